@@ -1,0 +1,17 @@
+#pragma once
+// Command-line front end: each sub-command lives in src/cmd_<name>.cpp and registers itself on the
+// CLI11 app; main() only parses and dispatches. Handlers throw InputError for bad input.
+#include <CLI/CLI.hpp>
+
+namespace pounding::cli {
+
+void add_simulate(CLI::App& app);  // src/cmd_simulate.cpp
+void add_collide(CLI::App& app);   // src/cmd_collide.cpp
+void add_bench(CLI::App& app);     // src/cmd_bench.cpp
+void add_records(CLI::App& app);   // src/cmd_records.cpp (ground motions)
+void add_sample(CLI::App& app);    // src/cmd_sample.cpp (stochastic structure model)
+
+// Exit code the sub-command asked for (set by handlers that fail without an exception).
+int& exit_code();
+
+}  // namespace pounding::cli

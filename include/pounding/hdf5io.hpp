@@ -1,0 +1,77 @@
+#pragma once
+// HDF5 infrastructure: RAII handles and a write_dataset(group, name, value) family.
+// The only module that includes <hdf5.h>. Files are readable with h5py.
+#include <cstdint>
+#include <span>
+#include <string>
+#include <vector>
+
+namespace pounding::h5 {
+
+using hid = std::int64_t;  // hid_t without including hdf5.h
+
+// Owns one HDF5 identifier (file, group, dataset, ...) and closes it.
+class Handle {
+ public:
+  Handle() = default;
+  explicit Handle(hid id) : id_(id) {}
+  Handle(const Handle&) = delete;
+  Handle& operator=(const Handle&) = delete;
+  Handle(Handle&& o) noexcept : id_(o.id_) { o.id_ = -1; }
+  Handle& operator=(Handle&& o) noexcept;
+  ~Handle();
+  hid get() const { return id_; }
+  bool valid() const { return id_ >= 0; }
+
+ private:
+  hid id_ = -1;
+};
+
+// A file written under a temporary name (path + ".tmp") and renamed to path by commit();
+// destroyed without commit(), the temporary is removed, so no partial file is ever left at path.
+class AtomicFile {
+ public:
+  explicit AtomicFile(std::string path);
+  ~AtomicFile();
+  AtomicFile(const AtomicFile&) = delete;
+  AtomicFile& operator=(const AtomicFile&) = delete;
+  hid root() const { return file_.get(); }
+  void commit();
+
+ private:
+  std::string path_, tmp_;
+  Handle file_;
+  bool committed_ = false;
+};
+
+// Opens an existing file read-only (error names the path if it cannot).
+Handle open_read(const std::string& path);
+// Opens an existing file read-write.
+Handle open_rw(const std::string& path);
+
+Handle create_group(hid parent, const std::string& name);
+Handle open_group(hid parent, const std::string& name);
+bool exists(hid parent, const std::string& name);
+
+void write_dataset(hid group, const std::string& name, std::span<const double> v);
+void write_dataset(hid group, const std::string& name, std::span<const std::int64_t> v);
+void write_dataset(hid group, const std::string& name, std::span<const std::int32_t> v);
+void write_dataset(hid group, const std::string& name, std::span<const std::uint8_t> v);
+// 2-D row-major (rows x cols) doubles.
+void write_dataset(hid group, const std::string& name, std::span<const double> v, std::size_t rows, std::size_t cols);
+void write_strings(hid group, const std::string& name, const std::vector<std::string>& v);
+
+void write_attribute(hid obj, const std::string& name, const std::string& value);
+void write_attribute(hid obj, const std::string& name, double value);
+void write_attribute(hid obj, const std::string& name, std::int64_t value);
+
+std::vector<double> read_doubles(hid group, const std::string& name);
+std::vector<std::int64_t> read_int64(hid group, const std::string& name);
+std::vector<std::int32_t> read_int32(hid group, const std::string& name);
+std::vector<std::uint8_t> read_uint8(hid group, const std::string& name);
+std::vector<std::string> read_strings(hid group, const std::string& name);
+std::string read_string_attribute(hid obj, const std::string& name);
+double read_double_attribute(hid obj, const std::string& name);
+std::int64_t read_int64_attribute(hid obj, const std::string& name);
+
+}  // namespace pounding::h5

@@ -1,0 +1,860 @@
+// The batch time-history kernel. Lanes are processed in tiles of up to `tile_width` pairs; inside a tile
+// the time loop is outer and the lane loop inner, written branch-free over plain arrays so that the
+// compiler vectorises it (check with -fopt-info-vec: the lane loops of every step_* function vectorise).
+// Every lane's arithmetic depends only on its own inputs, so a lane's result is bit-identical whatever the
+// batch width or its position in the batch.
+#include "pounding/kernel.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <memory>
+#include <numbers>
+#include <stdexcept>
+
+#include <fmt/format.h>
+
+#include "pounding/error.hpp"
+
+namespace pounding {
+
+namespace {
+
+constexpr int tile_width = 64;
+constexpr double inf = std::numeric_limits<double>::infinity();
+// Internal stand-in for an infinite yield force: finite so that qy * 0 == 0 in the dissipation sum.
+constexpr double elastic_qy = 1e300;
+
+struct StepperName {
+  Stepper s;
+  std::string_view name;
+};
+constexpr StepperName stepper_table[] = {
+    {Stepper::central_difference, "central-difference"},
+    {Stepper::newmark, "newmark"},
+    {Stepper::rk4, "rk4"},
+    {Stepper::nigam_jennings, "nigam-jennings"},
+};
+
+// One tile of lanes: derived constants, state, observers. Members are distinct arrays, so the
+// compiler knows they do not alias.
+struct alignas(64) Tile {
+  int n = 0;
+  // constants
+  double m1[tile_width], m2[tile_width], im1[tile_width], im2[tile_width];
+  double k1[tile_width], k2[tile_width], c1[tile_width], c2[tile_width];
+  double ak1[tile_width], ak2[tile_width];    // alpha k
+  double qy1[tile_width], qy2[tile_width];    // (1 - alpha) fy: half-width of the kinematic band
+  double kp1[tile_width], kp2[tile_width];    // (1 - alpha) k: stiffness of the elasto-plastic part
+  double gap[tile_width], kc[tile_width], cd[tile_width], e[tile_width], meff[tile_width];
+  // state
+  double u1[tile_width], v1[tile_width], a1[tile_width], fs1[tile_width];
+  double u2[tile_width], v2[tile_width], a2[tile_width], fs2[tile_width];
+  double F[tile_width], v0[tile_width], dprev[tile_width];
+  // observers
+  double pu1[tile_width], pu2[tile_width], pclose[tile_width], tpclose[tile_width], tfirst[tile_width];
+  double nimp[tile_width], nclamp[tile_width], pF[tile_width], ppen[tile_width], Wc[tile_width];
+  double tcon[tile_width], pa1[tile_width], pa2[tile_width], bad[tile_width];
+  // energy
+  double Ein[tile_width], Evis[tile_width], Ehys[tile_width], Dimp[tile_width];
+  // scratch (Newton iterates, RK4 stages, NJ coefficients)
+  double x1[tile_width], x2[tile_width], y1[tile_width], y2[tile_width], conv[tile_width];
+  double nj1[8][tile_width], nj2[8][tile_width];
+};
+
+// Bilinear kinematic hardening, closed-form return (branch-free): the trial force fs + k du is
+// clamped into the band alpha k u +/- (1 - alpha) fy (issue #2; exact for a monotone increment).
+inline double bilinear(double fs_old, double k, double du, double ak_u_new, double qy) {
+  double trial = fs_old + k * du;
+  return std::min(std::max(trial, ak_u_new - qy), ak_u_new + qy);
+}
+
+// Contact force for penetration d and rate dd; `clamp` is set to 1 when a tensile value was clamped.
+template <ContactLaw L, bool N15>
+inline double contact_force(double d, double dd, double kc, double cd, double v0, double n, double& clamp) {
+  double dp = d > 0.0 ? d : 0.0;
+  clamp = 0.0;
+  if constexpr (L == ContactLaw::linear) {
+    return kc * dp;  // muthukumar eq. 3
+  } else if constexpr (L == ContactLaw::kelvin) {
+    double raw = kc * dp + cd * dd;  // impact-stiffness paper eq. 1-3
+    double f = d > 0.0 ? raw : 0.0;
+    clamp = f < 0.0 ? 1.0 : 0.0;
+    return f > 0.0 ? f : 0.0;
+  } else if constexpr (L == ContactLaw::hertz || L == ContactLaw::hertzdamp || L == ContactLaw::jankowski) {
+    double pw;
+    if constexpr (N15 || L == ContactLaw::jankowski)
+      pw = dp * std::sqrt(dp);
+    else
+      pw = dp > 0.0 ? std::pow(dp, n) : 0.0;
+    if constexpr (L == ContactLaw::hertz) {
+      return kc * pw;  // muthukumar eq. 6
+    } else if constexpr (L == ContactLaw::hertzdamp) {
+      double raw = kc * pw * (1.0 + cd * dd / v0);  // muthukumar eq. 10 with xibar = cd
+      clamp = raw < 0.0 ? 1.0 : 0.0;
+      return raw > 0.0 ? raw : 0.0;
+    } else {
+      // rc-buildings eqs 4-5: c_h = 2 zeta sqrt(kh sqrt(delta) meff) = cd delta^(1/4), approach only
+      double damp = dd > 0.0 ? cd * std::sqrt(std::sqrt(dp)) * dd : 0.0;
+      return kc * pw + damp;
+    }
+  } else {
+    return 0.0;  // none, stereomechanical
+  }
+}
+
+// Derivatives of the contact force with respect to delta and ddelta (for Newton).
+template <ContactLaw L, bool N15>
+inline void contact_derivs(double d, double dd, double kc, double cd, double v0, double n, double F, double& dFd,
+                           double& dFv) {
+  dFd = 0.0;
+  dFv = 0.0;
+  if (!(d > 0.0) || !(F > 0.0)) return;
+  if constexpr (L == ContactLaw::linear) {
+    dFd = kc;
+  } else if constexpr (L == ContactLaw::kelvin) {
+    dFd = kc;
+    dFv = cd;
+  } else if constexpr (L == ContactLaw::hertz || L == ContactLaw::hertzdamp || L == ContactLaw::jankowski) {
+    double nn = (N15 || L == ContactLaw::jankowski) ? 1.5 : n;
+    double pw = std::pow(d, nn), dpw = nn * std::pow(d, nn - 1.0);
+    if constexpr (L == ContactLaw::hertz) {
+      dFd = kc * dpw;
+    } else if constexpr (L == ContactLaw::hertzdamp) {
+      dFd = kc * dpw * (1.0 + cd * dd / v0);
+      dFv = kc * pw * cd / v0;
+    } else {
+      dFd = kc * dpw;
+      if (dd > 0.0) {
+        double q = std::sqrt(std::sqrt(d));
+        dFd += cd * 0.25 * q / d * dd;
+        dFv = cd * q;
+      }
+    }
+  }
+}
+
+struct Context {
+  const ContactModel* contact;
+  const KernelSettings* settings;
+  const double* ag;  // ground acceleration at every integration step (size nsteps + 1)
+  long nsteps;
+  double h;
+  double v0_min;
+  double lim;
+  SeriesRecorder* rec;  // null unless the recorded lane is in this tile
+  int rec_lane;
+};
+
+// Observers after a step that ended at time t (lane i, new state already stored in the tile).
+template <ContactLaw L>
+inline void observe(Tile& T, int i, double t, double ag, double fclamp, double onset) {
+  double u1 = T.u1[i], u2 = T.u2[i];
+  T.pu1[i] = std::max(T.pu1[i], std::abs(u1));
+  T.pu2[i] = std::max(T.pu2[i], std::abs(u2));
+  double cl = u1 - u2;
+  bool up = cl > T.pclose[i];
+  T.pclose[i] = up ? cl : T.pclose[i];
+  T.tpclose[i] = up ? t : T.tpclose[i];
+  double d = cl - T.gap[i];
+  T.tfirst[i] = std::min(T.tfirst[i], onset > 0.0 ? t : inf);
+  T.nimp[i] += onset;
+  T.nclamp[i] += fclamp;
+  T.pF[i] = std::max(T.pF[i], T.F[i]);
+  T.ppen[i] = std::max(T.ppen[i], d);
+  T.pa1[i] = std::max(T.pa1[i], std::abs(T.a1[i] + ag));
+  T.pa2[i] = std::max(T.pa2[i], std::abs(T.a2[i] + ag));
+}
+
+// Divergence check: |u1| + |u2| above the limit (1) or non-finite (2); a bad lane is frozen at rest so
+// that it neither slows the tile with inf/NaN arithmetic nor pollutes anything.
+inline void check_lane(Tile& T, int i, double lim) {
+  double s = std::abs(T.u1[i]) + std::abs(T.u2[i]);
+  double sv = std::abs(T.v1[i]) + std::abs(T.v2[i]) + std::abs(T.a1[i]) + std::abs(T.a2[i]);
+  double code = (s <= lim) ? 0.0 : ((s - s == 0.0) ? 1.0 : 2.0);
+  code = (sv - sv == 0.0) ? code : 2.0;
+  double b = std::max(T.bad[i], code);
+  T.bad[i] = b;
+  bool frozen = b > 0.0;
+  T.u1[i] = frozen ? 0.0 : T.u1[i];
+  T.u2[i] = frozen ? 0.0 : T.u2[i];
+  T.v1[i] = frozen ? 0.0 : T.v1[i];
+  T.v2[i] = frozen ? 0.0 : T.v2[i];
+  T.a1[i] = frozen ? 0.0 : T.a1[i];
+  T.a2[i] = frozen ? 0.0 : T.a2[i];
+  T.fs1[i] = frozen ? 0.0 : T.fs1[i];
+  T.fs2[i] = frozen ? 0.0 : T.fs2[i];
+  T.F[i] = frozen ? 0.0 : T.F[i];
+}
+
+// Stereomechanical impact (muthukumar eq. 2) located inside the step just taken: the gap closed at the
+// fraction s of the step, where the velocities are interpolated; the momentum exchange is applied there
+// and the rest of the step is flown with the new velocities. Returns 1 when an impact happened.
+inline double stereomechanical(Tile& T, int i, double h, double v1_old, double v2_old, double d_old) {
+  double d = T.u1[i] - T.u2[i] - T.gap[i];
+  double closing = T.v1[i] - T.v2[i];
+  bool hit = d > 0.0 && closing > 0.0;
+  double denom = d - d_old;
+  double s = d_old > 0.0 ? 0.0 : -d_old / (denom > 0.0 ? denom : 1.0);
+  s = std::min(std::max(s, 0.0), 1.0);
+  double w1 = v1_old + s * (T.v1[i] - v1_old), w2 = v2_old + s * (T.v2[i] - v2_old);
+  double rel = w1 - w2;
+  rel = rel > 0.0 ? rel : closing;  // closing at the located instant (fallback: at the end of the step)
+  double M = T.m1[i] + T.m2[i];
+  double dv1 = -(1.0 + T.e[i]) * T.m2[i] * rel / M;
+  double dv2 = (1.0 + T.e[i]) * T.m1[i] * rel / M;
+  double rest = (1.0 - s) * h;
+  T.u1[i] += hit ? dv1 * rest : 0.0;
+  T.u2[i] += hit ? dv2 * rest : 0.0;
+  T.v1[i] += hit ? dv1 : 0.0;
+  T.v2[i] += hit ? dv2 : 0.0;
+  // energy lost in the exchange: meff (1 - e^2) rel^2 / 2
+  T.Dimp[i] += hit ? 0.5 * T.meff[i] * (1.0 - T.e[i] * T.e[i]) * rel * rel : 0.0;
+  return hit ? 1.0 : 0.0;
+}
+
+inline void record_series(const Context& C, const Tile& T, double t, double ag) {
+  if (!C.rec) return;
+  const int i = C.rec_lane;
+  SeriesRecorder* rec = C.rec;
+  rec->t.push_back(t);
+  rec->u1.push_back(T.u1[i]);
+  rec->u2.push_back(T.u2[i]);
+  rec->v1.push_back(T.v1[i]);
+  rec->v2.push_back(T.v2[i]);
+  rec->a1_abs.push_back(T.a1[i] + ag);
+  rec->a2_abs.push_back(T.a2[i] + ag);
+  rec->fs1.push_back(T.fs1[i]);
+  rec->fs2.push_back(T.fs2[i]);
+  rec->force.push_back(T.F[i]);
+  rec->ag.push_back(ag);
+}
+
+// ---------------------------------------------------------------------------------------------------
+// Explicit central difference (velocity Verlet). The velocity-dependent forces at n+1 use the predicted
+// velocity v_n + h a_n (error O(h^2)), which keeps the scheme second order with damping.
+template <ContactLaw L, bool N15, bool Energy>
+void run_central_difference(Tile& T, const Context& C) {
+  const double h = C.h, hh = 0.5 * h, n_exp = C.contact->n, vmin = C.v0_min, lim = C.lim;
+  const int n = T.n;
+  for (long step = 0; step < C.nsteps; ++step) {
+    const double ag0 = C.ag[step], ag1 = C.ag[step + 1];
+    const double t = static_cast<double>(step + 1) * h;
+#pragma GCC ivdep
+    for (int i = 0; i < n; ++i) {
+      double v1o = T.v1[i], v2o = T.v2[i];
+      double vh1 = v1o + hh * T.a1[i], vh2 = v2o + hh * T.a2[i];
+      double du1 = h * vh1, du2 = h * vh2;
+      double u1 = T.u1[i] + du1, u2 = T.u2[i] + du2;
+      double vp1 = vh1 + hh * T.a1[i], vp2 = vh2 + hh * T.a2[i];
+      double d_old = T.dprev[i];
+      double onset;
+      if constexpr (L == ContactLaw::stereomechanical) {
+        T.u1[i] = u1;
+        T.u2[i] = u2;
+        T.v1[i] = vp1;
+        T.v2[i] = vp2;
+        onset = stereomechanical(T, i, h, v1o, v2o, d_old);
+        double dv1 = T.v1[i] - vp1, dv2 = T.v2[i] - vp2;
+        du1 = T.u1[i] - (u1 - du1);
+        du2 = T.u2[i] - (u2 - du2);
+        u1 = T.u1[i];
+        u2 = T.u2[i];
+        vp1 = T.v1[i];
+        vp2 = T.v2[i];
+        vh1 += dv1;
+        vh2 += dv2;
+      }
+      double fs1 = bilinear(T.fs1[i], T.k1[i], du1, T.ak1[i] * u1, T.qy1[i]);
+      double fs2 = bilinear(T.fs2[i], T.k2[i], du2, T.ak2[i] * u2, T.qy2[i]);
+      double d = u1 - u2 - T.gap[i];
+      double dd = vp1 - vp2;
+      double clamp = 0.0, F = 0.0;
+      if constexpr (L != ContactLaw::stereomechanical) {
+        onset = (d > 0.0 && !(d_old > 0.0)) ? 1.0 : 0.0;
+        if constexpr (L == ContactLaw::hertzdamp) T.v0[i] = onset > 0.0 ? std::max(dd, vmin) : T.v0[i];
+        F = contact_force<L, N15>(d, dd, T.kc[i], T.cd[i], T.v0[i], n_exp, clamp);
+      }
+      double a1 = -ag1 - (T.c1[i] * vp1 + fs1 + F) * T.im1[i];
+      double a2 = -ag1 - (T.c2[i] * vp2 + fs2 - F) * T.im2[i];
+      double v1 = vh1 + hh * a1, v2 = vh2 + hh * a2;
+      if constexpr (Energy) {
+        double ae1 = T.fs1[i] + T.k1[i] * du1 - fs1, ae2 = T.fs2[i] + T.k2[i] * du2 - fs2;
+        T.Ehys[i] += T.qy1[i] * std::abs(ae1) / T.kp1[i] + T.qy2[i] * std::abs(ae2) / T.kp2[i];
+        T.Ein[i] -= hh * (T.m1[i] * (ag0 * v1o + ag1 * v1) + T.m2[i] * (ag0 * v2o + ag1 * v2));
+        T.Evis[i] += hh * (T.c1[i] * (v1o * v1o + v1 * v1) + T.c2[i] * (v2o * v2o + v2 * v2));
+      }
+      T.Wc[i] += 0.5 * (T.F[i] + F) * (du1 - du2);  // contact work (trapezoidal in displacement)
+      T.u1[i] = u1;
+      T.u2[i] = u2;
+      T.v1[i] = v1;
+      T.v2[i] = v2;
+      T.a1[i] = a1;
+      T.a2[i] = a2;
+      T.fs1[i] = fs1;
+      T.fs2[i] = fs2;
+      T.F[i] = F;
+      T.dprev[i] = d;
+      T.tcon[i] += d > 0.0 ? h : 0.0;
+      check_lane(T, i, lim);
+      observe<L>(T, i, t, ag1, clamp, onset);
+    }
+    record_series(C, T, t, ag1);
+  }
+}
+
+// Energy terms for steppers that do not fuse them into their lane loop (trapezoidal in time, exact
+// plastic dissipation); called with the state before (o) and after the step.
+template <bool Energy>
+inline void energy_step(Tile& T, int i, double h, double ag0, double ag1, double v1o, double v2o, double u1o,
+                        double u2o, double fs1o, double fs2o, double Fo) {
+  if constexpr (Energy) {
+    const double du1 = T.u1[i] - u1o, du2 = T.u2[i] - u2o;
+    double ae1 = fs1o + T.k1[i] * du1 - T.fs1[i], ae2 = fs2o + T.k2[i] * du2 - T.fs2[i];
+    T.Ehys[i] += T.qy1[i] * std::abs(ae1) / T.kp1[i] + T.qy2[i] * std::abs(ae2) / T.kp2[i];
+    double v1 = T.v1[i], v2 = T.v2[i];
+    T.Ein[i] -= 0.5 * h * (T.m1[i] * (ag0 * v1o + ag1 * v1) + T.m2[i] * (ag0 * v2o + ag1 * v2));
+    T.Evis[i] += 0.5 * h * (T.c1[i] * (v1o * v1o + v1 * v1) + T.c2[i] * (v2o * v2o + v2 * v2));
+  }
+  T.Wc[i] += 0.5 * (Fo + T.F[i]) * ((T.u1[i] - u1o) - (T.u2[i] - u2o));
+}
+
+// ---------------------------------------------------------------------------------------------------
+// Newmark average acceleration (gamma = 1/2, beta = 1/4) with Newton iterations on the coupled 2-DOF
+// residual; the 2x2 tangent is solved in closed form. Each lane stops iterating when its own increment is
+// below tolerance, so its result does not depend on the other lanes.
+template <ContactLaw L, bool N15, bool Energy>
+void run_newmark(Tile& T, const Context& C) {
+  const double h = C.h, n_exp = C.contact->n, vmin = C.v0_min, lim = C.lim;
+  const double c4 = 4.0 / (h * h), c2 = 2.0 / h;
+  const int n = T.n, maxit = C.settings->newton_max_iter;
+  const double tol = C.settings->newton_tol;
+  for (long step = 0; step < C.nsteps; ++step) {
+    const double ag0 = C.ag[step], ag1 = C.ag[step + 1];
+    const double t = static_cast<double>(step + 1) * h;
+    for (int i = 0; i < n; ++i) {  // predictor: constant acceleration
+      T.x1[i] = T.u1[i] + h * T.v1[i] + 0.5 * h * h * T.a1[i];
+      T.x2[i] = T.u2[i] + h * T.v2[i] + 0.5 * h * h * T.a2[i];
+      T.conv[i] = 0.0;
+    }
+    for (int it = 0; it < maxit; ++it) {
+      double open = 0.0;
+      for (int i = 0; i < n; ++i) {
+        double u1 = T.x1[i], u2 = T.x2[i];
+        double a1 = c4 * (u1 - T.u1[i]) - 4.0 / h * T.v1[i] - T.a1[i];
+        double a2 = c4 * (u2 - T.u2[i]) - 4.0 / h * T.v2[i] - T.a2[i];
+        double v1 = c2 * (u1 - T.u1[i]) - T.v1[i];
+        double v2 = c2 * (u2 - T.u2[i]) - T.v2[i];
+        double fs1 = bilinear(T.fs1[i], T.k1[i], u1 - T.u1[i], T.ak1[i] * u1, T.qy1[i]);
+        double fs2 = bilinear(T.fs2[i], T.k2[i], u2 - T.u2[i], T.ak2[i] * u2, T.qy2[i]);
+        double tr1 = T.fs1[i] + T.k1[i] * (u1 - T.u1[i]), tr2 = T.fs2[i] + T.k2[i] * (u2 - T.u2[i]);
+        double kt1 = tr1 == fs1 ? T.k1[i] : T.ak1[i];
+        double kt2 = tr2 == fs2 ? T.k2[i] : T.ak2[i];
+        double d = u1 - u2 - T.gap[i], dd = v1 - v2;
+        double F = 0.0, clamp = 0.0, dFd = 0.0, dFv = 0.0;
+        if constexpr (L != ContactLaw::stereomechanical && L != ContactLaw::none) {
+          double v0 = T.v0[i];
+          if constexpr (L == ContactLaw::hertzdamp) v0 = T.dprev[i] > 0.0 ? v0 : std::max(dd, vmin);
+          F = contact_force<L, N15>(d, dd, T.kc[i], T.cd[i], v0, n_exp, clamp);
+          contact_derivs<L, N15>(d, dd, T.kc[i], T.cd[i], v0, n_exp, F, dFd, dFv);
+        }
+        double r1 = T.m1[i] * (a1 + ag1) + T.c1[i] * v1 + fs1 + F;
+        double r2 = T.m2[i] * (a2 + ag1) + T.c2[i] * v2 + fs2 - F;
+        double kc_ = dFd + c2 * dFv;
+        double j11 = c4 * T.m1[i] + c2 * T.c1[i] + kt1 + kc_;
+        double j22 = c4 * T.m2[i] + c2 * T.c2[i] + kt2 + kc_;
+        double j12 = -kc_;
+        double det = j11 * j22 - j12 * j12;
+        double du1 = (j22 * r1 - j12 * r2) / det;
+        double du2 = (j11 * r2 - j12 * r1) / det;
+        bool done = T.conv[i] > 0.0;
+        T.x1[i] = done ? u1 : u1 - du1;
+        T.x2[i] = done ? u2 : u2 - du2;
+        double scale = std::abs(u1) + std::abs(u2) + 1e-9;
+        bool ok = (std::abs(du1) + std::abs(du2)) <= tol * scale;
+        T.conv[i] = (done || ok) ? 1.0 : 0.0;
+        open += T.conv[i] > 0.0 ? 0.0 : 1.0;
+      }
+      if (open == 0.0) break;
+    }
+    for (int i = 0; i < n; ++i) {
+      double u1o = T.u1[i], u2o = T.u2[i], v1o = T.v1[i], v2o = T.v2[i], fs1o = T.fs1[i], fs2o = T.fs2[i];
+      double Fo = T.F[i];
+      double u1 = T.x1[i], u2 = T.x2[i];
+      double a1 = c4 * (u1 - u1o) - 4.0 / h * v1o - T.a1[i];
+      double a2 = c4 * (u2 - u2o) - 4.0 / h * v2o - T.a2[i];
+      double v1 = c2 * (u1 - u1o) - v1o, v2 = c2 * (u2 - u2o) - v2o;
+      T.fs1[i] = bilinear(fs1o, T.k1[i], u1 - u1o, T.ak1[i] * u1, T.qy1[i]);
+      T.fs2[i] = bilinear(fs2o, T.k2[i], u2 - u2o, T.ak2[i] * u2, T.qy2[i]);
+      T.u1[i] = u1;
+      T.u2[i] = u2;
+      T.v1[i] = v1;
+      T.v2[i] = v2;
+      T.a1[i] = a1;
+      T.a2[i] = a2;
+      double d_old = T.dprev[i];
+      double d = u1 - u2 - T.gap[i], dd = v1 - v2;
+      double onset = 0.0, clamp = 0.0, F = 0.0;
+      if constexpr (L == ContactLaw::stereomechanical) {
+        onset = stereomechanical(T, i, h, v1o, v2o, d_old);
+        // the velocity jump changes the accelerations' history: restart Newmark from the new velocities
+        T.a1[i] = -ag1 - (T.c1[i] * T.v1[i] + T.fs1[i]) * T.im1[i];
+        T.a2[i] = -ag1 - (T.c2[i] * T.v2[i] + T.fs2[i]) * T.im2[i];
+        d = T.u1[i] - T.u2[i] - T.gap[i];
+      } else if constexpr (L != ContactLaw::none) {
+        onset = (d > 0.0 && !(d_old > 0.0)) ? 1.0 : 0.0;
+        if constexpr (L == ContactLaw::hertzdamp) T.v0[i] = onset > 0.0 ? std::max(dd, vmin) : T.v0[i];
+        F = contact_force<L, N15>(d, dd, T.kc[i], T.cd[i], T.v0[i], n_exp, clamp);
+      }
+      T.F[i] = F;
+      T.dprev[i] = d;
+      T.tcon[i] += d > 0.0 ? h : 0.0;
+      // a lane whose Newton iteration did not converge is marked diverged
+      T.bad[i] = std::max(T.bad[i], T.conv[i] > 0.0 ? 0.0 : 1.0);
+      energy_step<Energy>(T, i, h, ag0, ag1, v1o, v2o, u1o, u2o, fs1o, fs2o, Fo);
+      check_lane(T, i, lim);
+      observe<L>(T, i, t, ag1, clamp, onset);
+    }
+    record_series(C, T, t, ag1);
+  }
+}
+
+// ---------------------------------------------------------------------------------------------------
+// Classical RK4 on (u1, v1, u2, v2). The hysteretic force at a stage is the return map from the committed
+// state, the Hertzdamp approach velocity is latched at the first stage that finds contact.
+template <ContactLaw L, bool N15, bool Energy>
+void run_rk4(Tile& T, const Context& C) {
+  const double h = C.h, n_exp = C.contact->n, vmin = C.v0_min, lim = C.lim;
+  const int n = T.n;
+  for (long step = 0; step < C.nsteps; ++step) {
+    const double ag0 = C.ag[step], ag1 = C.ag[step + 1], agm = 0.5 * (ag0 + ag1);
+    const double t = static_cast<double>(step + 1) * h;
+    for (int i = 0; i < n; ++i) {
+      const double u1o = T.u1[i], u2o = T.u2[i], v1o = T.v1[i], v2o = T.v2[i];
+      const double fs1o = T.fs1[i], fs2o = T.fs2[i], Fo = T.F[i], d_old = T.dprev[i];
+      double v0 = T.v0[i];
+      auto deriv = [&](double u1, double v1, double u2, double v2, double ag, double& a1, double& a2) {
+        double fs1 = bilinear(fs1o, T.k1[i], u1 - u1o, T.ak1[i] * u1, T.qy1[i]);
+        double fs2 = bilinear(fs2o, T.k2[i], u2 - u2o, T.ak2[i] * u2, T.qy2[i]);
+        double F = 0.0, clamp = 0.0;
+        if constexpr (L != ContactLaw::stereomechanical && L != ContactLaw::none) {
+          double d = u1 - u2 - T.gap[i], dd = v1 - v2;
+          if constexpr (L == ContactLaw::hertzdamp)
+            v0 = (d_old > 0.0 || !(d > 0.0)) ? v0 : std::max(dd, vmin);
+          F = contact_force<L, N15>(d, dd, T.kc[i], T.cd[i], v0, n_exp, clamp);
+        }
+        a1 = -ag - (T.c1[i] * v1 + fs1 + F) * T.im1[i];
+        a2 = -ag - (T.c2[i] * v2 + fs2 - F) * T.im2[i];
+      };
+      double k1a1, k1a2, k2a1, k2a2, k3a1, k3a2, k4a1, k4a2;
+      deriv(u1o, v1o, u2o, v2o, ag0, k1a1, k1a2);
+      double k1u1 = v1o, k1u2 = v2o;
+      double k2u1 = v1o + 0.5 * h * k1a1, k2u2 = v2o + 0.5 * h * k1a2;
+      deriv(u1o + 0.5 * h * k1u1, k2u1, u2o + 0.5 * h * k1u2, k2u2, agm, k2a1, k2a2);
+      double k3u1 = v1o + 0.5 * h * k2a1, k3u2 = v2o + 0.5 * h * k2a2;
+      deriv(u1o + 0.5 * h * k2u1, k3u1, u2o + 0.5 * h * k2u2, k3u2, agm, k3a1, k3a2);
+      double k4u1 = v1o + h * k3a1, k4u2 = v2o + h * k3a2;
+      deriv(u1o + h * k3u1, k4u1, u2o + h * k3u2, k4u2, ag1, k4a1, k4a2);
+      T.u1[i] = u1o + h / 6.0 * (k1u1 + 2.0 * k2u1 + 2.0 * k3u1 + k4u1);
+      T.u2[i] = u2o + h / 6.0 * (k1u2 + 2.0 * k2u2 + 2.0 * k3u2 + k4u2);
+      T.v1[i] = v1o + h / 6.0 * (k1a1 + 2.0 * k2a1 + 2.0 * k3a1 + k4a1);
+      T.v2[i] = v2o + h / 6.0 * (k1a2 + 2.0 * k2a2 + 2.0 * k3a2 + k4a2);
+      double onset = 0.0, clamp = 0.0, F = 0.0;
+      if constexpr (L == ContactLaw::stereomechanical) onset = stereomechanical(T, i, h, v1o, v2o, d_old);
+      T.fs1[i] = bilinear(fs1o, T.k1[i], T.u1[i] - u1o, T.ak1[i] * T.u1[i], T.qy1[i]);
+      T.fs2[i] = bilinear(fs2o, T.k2[i], T.u2[i] - u2o, T.ak2[i] * T.u2[i], T.qy2[i]);
+      double d = T.u1[i] - T.u2[i] - T.gap[i], dd = T.v1[i] - T.v2[i];
+      if constexpr (L != ContactLaw::stereomechanical && L != ContactLaw::none) {
+        onset = (d > 0.0 && !(d_old > 0.0)) ? 1.0 : 0.0;
+        if constexpr (L == ContactLaw::hertzdamp) T.v0[i] = d_old > 0.0 ? T.v0[i] : v0;
+        F = contact_force<L, N15>(d, dd, T.kc[i], T.cd[i], T.v0[i], n_exp, clamp);
+      }
+      T.F[i] = F;
+      T.a1[i] = -ag1 - (T.c1[i] * T.v1[i] + T.fs1[i] + F) * T.im1[i];
+      T.a2[i] = -ag1 - (T.c2[i] * T.v2[i] + T.fs2[i] - F) * T.im2[i];
+      T.dprev[i] = d;
+      T.tcon[i] += d > 0.0 ? h : 0.0;
+      energy_step<Energy>(T, i, h, ag0, ag1, v1o, v2o, u1o, u2o, fs1o, fs2o, Fo);
+      check_lane(T, i, lim);
+      observe<L>(T, i, t, ag1, clamp, onset);
+    }
+    record_series(C, T, t, ag1);
+  }
+}
+
+// ---------------------------------------------------------------------------------------------------
+// Nigam-Jennings: each structure's linear part (m, k, c) is advanced with the exact recurrence for a
+// piecewise-linear load; the nonlinear remainder g = (fs - k u) + F (contact) enters as an extra load,
+// held at g_n (predictor) and then linear from g_n to g(n+1) predicted (corrector). With an elastic
+// structure out of contact g = 0 and the step is exact to round-off.
+template <ContactLaw L, bool N15, bool Energy>
+void run_nigam_jennings(Tile& T, const Context& C) {
+  const double h = C.h, n_exp = C.contact->n, vmin = C.v0_min, lim = C.lim;
+  const int n = T.n;
+  for (long step = 0; step < C.nsteps; ++step) {
+    const double ag0 = C.ag[step], ag1 = C.ag[step + 1];
+    const double t = static_cast<double>(step + 1) * h;
+    for (int i = 0; i < n; ++i) {
+      const double u1o = T.u1[i], u2o = T.u2[i], v1o = T.v1[i], v2o = T.v2[i];
+      const double fs1o = T.fs1[i], fs2o = T.fs2[i], Fo = T.F[i], d_old = T.dprev[i];
+      // load in acceleration units: u'' + 2 zeta w u' + w^2 u = -(ag + g/m)
+      const double p1o = ag0 + (fs1o - T.k1[i] * u1o + Fo) * T.im1[i];
+      const double p2o = ag0 + (fs2o - T.k2[i] * u2o - Fo) * T.im2[i];
+      auto adv = [&](const double (*c)[tile_width], double u, double v, double pa, double pb, double& un,
+                     double& vn) {
+        un = c[0][i] * u + c[1][i] * v + c[4][i] * pa + c[5][i] * pb;
+        vn = c[2][i] * u + c[3][i] * v + c[6][i] * pa + c[7][i] * pb;
+      };
+      double u1p, v1p, u2p, v2p;
+      adv(T.nj1, u1o, v1o, p1o, ag1 - ag0 + p1o, u1p, v1p);
+      adv(T.nj2, u2o, v2o, p2o, ag1 - ag0 + p2o, u2p, v2p);
+      // corrector with the remainder evaluated at the predicted end state
+      double fs1p = bilinear(fs1o, T.k1[i], u1p - u1o, T.ak1[i] * u1p, T.qy1[i]);
+      double fs2p = bilinear(fs2o, T.k2[i], u2p - u2o, T.ak2[i] * u2p, T.qy2[i]);
+      double Fp = 0.0, clamp = 0.0;
+      double v0 = T.v0[i];
+      if constexpr (L != ContactLaw::stereomechanical && L != ContactLaw::none) {
+        double d = u1p - u2p - T.gap[i], dd = v1p - v2p;
+        if constexpr (L == ContactLaw::hertzdamp) v0 = (d_old > 0.0) ? v0 : std::max(dd, vmin);
+        Fp = contact_force<L, N15>(d, dd, T.kc[i], T.cd[i], v0, n_exp, clamp);
+      }
+      double p1n = ag1 + (fs1p - T.k1[i] * u1p + Fp) * T.im1[i];
+      double p2n = ag1 + (fs2p - T.k2[i] * u2p - Fp) * T.im2[i];
+      adv(T.nj1, u1o, v1o, p1o, p1n, T.u1[i], T.v1[i]);
+      adv(T.nj2, u2o, v2o, p2o, p2n, T.u2[i], T.v2[i]);
+      double onset = 0.0, F = 0.0;
+      clamp = 0.0;
+      if constexpr (L == ContactLaw::stereomechanical) onset = stereomechanical(T, i, h, v1o, v2o, d_old);
+      T.fs1[i] = bilinear(fs1o, T.k1[i], T.u1[i] - u1o, T.ak1[i] * T.u1[i], T.qy1[i]);
+      T.fs2[i] = bilinear(fs2o, T.k2[i], T.u2[i] - u2o, T.ak2[i] * T.u2[i], T.qy2[i]);
+      double d = T.u1[i] - T.u2[i] - T.gap[i], dd = T.v1[i] - T.v2[i];
+      if constexpr (L != ContactLaw::stereomechanical && L != ContactLaw::none) {
+        onset = (d > 0.0 && !(d_old > 0.0)) ? 1.0 : 0.0;
+        if constexpr (L == ContactLaw::hertzdamp) T.v0[i] = onset > 0.0 ? std::max(dd, vmin) : T.v0[i];
+        F = contact_force<L, N15>(d, dd, T.kc[i], T.cd[i], T.v0[i], n_exp, clamp);
+      }
+      T.F[i] = F;
+      T.a1[i] = -ag1 - (T.c1[i] * T.v1[i] + T.fs1[i] + F) * T.im1[i];
+      T.a2[i] = -ag1 - (T.c2[i] * T.v2[i] + T.fs2[i] - F) * T.im2[i];
+      T.dprev[i] = d;
+      T.tcon[i] += d > 0.0 ? h : 0.0;
+      energy_step<Energy>(T, i, h, ag0, ag1, v1o, v2o, u1o, u2o, fs1o, fs2o, Fo);
+      check_lane(T, i, lim);
+      observe<L>(T, i, t, ag1, clamp, onset);
+    }
+    record_series(C, T, t, ag1);
+  }
+}
+
+template <ContactLaw L, bool N15, bool Energy>
+void dispatch_stepper(Tile& T, const Context& C) {
+  switch (C.settings->stepper) {
+    case Stepper::central_difference: run_central_difference<L, N15, Energy>(T, C); break;
+    case Stepper::newmark: run_newmark<L, N15, Energy>(T, C); break;
+    case Stepper::rk4: run_rk4<L, N15, Energy>(T, C); break;
+    case Stepper::nigam_jennings: run_nigam_jennings<L, N15, Energy>(T, C); break;
+  }
+}
+
+template <ContactLaw L>
+void dispatch_n(Tile& T, const Context& C) {
+  bool n15 = C.contact->n == 1.5;
+  bool energy = C.settings->energy;
+  if (n15 && energy) dispatch_stepper<L, true, true>(T, C);
+  else if (n15) dispatch_stepper<L, true, false>(T, C);
+  else if (energy) dispatch_stepper<L, false, true>(T, C);
+  else dispatch_stepper<L, false, false>(T, C);
+}
+
+void dispatch(Tile& T, const Context& C) {
+  switch (C.contact->law) {
+    case ContactLaw::none: dispatch_n<ContactLaw::none>(T, C); break;
+    case ContactLaw::linear: dispatch_n<ContactLaw::linear>(T, C); break;
+    case ContactLaw::kelvin: dispatch_n<ContactLaw::kelvin>(T, C); break;
+    case ContactLaw::hertz: dispatch_n<ContactLaw::hertz>(T, C); break;
+    case ContactLaw::hertzdamp: dispatch_n<ContactLaw::hertzdamp>(T, C); break;
+    case ContactLaw::jankowski: dispatch_n<ContactLaw::jankowski>(T, C); break;
+    case ContactLaw::stereomechanical: dispatch_n<ContactLaw::stereomechanical>(T, C); break;
+  }
+}
+
+double contact_damping_constant(const ContactModel& cm, double kc, double e, double meff) {
+  switch (cm.law) {
+    case ContactLaw::kelvin: return 2.0 * kelvin_damping_ratio(e) * std::sqrt(kc * meff);
+    case ContactLaw::hertzdamp: return hertzdamp_xibar(cm.damping, e, cm.n);
+    case ContactLaw::jankowski: return 2.0 * jankowski_zeta(e) * std::sqrt(kc * meff);
+    default: return 0.0;
+  }
+}
+
+void validate_lane(const PairParams& p, const ContactModel& cm, Stepper stepper, std::size_t lane) {
+  auto where = [&](const char* what) { return fmt::format("{} (lane {})", what, lane); };
+  for (auto [s, tag] : {std::pair{&p.s1, "1"}, std::pair{&p.s2, "2"}}) {
+    std::string sfx = tag;
+    require_positive(s->m, where(("m" + sfx).c_str()));
+    if (!std::isfinite(s->k) || s->k < 0) require_positive(s->k, where(("k" + sfx).c_str()));
+    if (!std::isfinite(s->c) || s->c < 0)
+      throw InputError(fmt::format("c{} = {} must be >= 0", sfx, s->c), where(("c" + sfx).c_str()), "give c >= 0");
+    if (!(s->fy > 0)) require_positive(s->fy, where(("fy" + sfx).c_str()));
+    require_range(s->alpha, 0.0, std::nextafter(1.0, 0.0), where(("alpha" + sfx).c_str()), "[0, 1)");
+    if (stepper == Stepper::nigam_jennings) {
+      require_positive(s->k, where(("k" + sfx + " (Nigam-Jennings needs k > 0)").c_str()));
+      double zeta = s->c / (2.0 * std::sqrt(s->k * s->m));
+      if (!(zeta < 1.0))
+        throw InputError(fmt::format("damping ratio {} of structure {} is not below 1", zeta, sfx),
+                         where("zeta"), "the Nigam-Jennings stepper needs an under-damped structure");
+    }
+  }
+  if (!std::isfinite(p.gap) || p.gap < 0)
+    throw InputError(fmt::format("gap = {} must be >= 0", p.gap), where("gap"), "give a gap >= 0 (m)");
+  if (cm.law != ContactLaw::none && cm.law != ContactLaw::stereomechanical) require_positive(p.kc, where("kc"));
+  if (cm.law == ContactLaw::kelvin || cm.law == ContactLaw::hertzdamp || cm.law == ContactLaw::jankowski ||
+      cm.law == ContactLaw::stereomechanical)
+    require_range(p.e, std::nextafter(0.0, 1.0), 1.0, where("e"), "(0, 1]");
+}
+
+}  // namespace
+
+Stepper parse_stepper(std::string_view name) {
+  for (auto& s : stepper_table)
+    if (s.name == name) return s.s;
+  throw InputError(fmt::format("unknown stepper '{}'", name), "stepper",
+                   fmt::format("use one of: {}", stepper_names));
+}
+std::string_view to_string(Stepper s) {
+  for (auto& t : stepper_table)
+    if (t.s == s) return t.name;
+  return "?";
+}
+std::string_view to_string(LaneStatus s) {
+  switch (s) {
+    case LaneStatus::ok: return "ok";
+    case LaneStatus::diverged: return "diverged";
+    case LaneStatus::non_finite: return "non-finite";
+  }
+  return "?";
+}
+
+Structure Structure::from_period(double m, double T, double zeta, double fy, double alpha) {
+  Structure s;
+  s.m = m;
+  s.k = 4.0 * std::numbers::pi * std::numbers::pi * m / (T * T);
+  s.c = 2.0 * zeta * std::sqrt(s.k * m);
+  s.fy = fy;
+  s.alpha = alpha;
+  return s;
+}
+
+void PairBatch::resize(std::size_t n) {
+  for (auto* v : {&m1, &k1, &c1, &fy1, &alpha1, &m2, &k2, &c2, &fy2, &alpha2, &gap, &kc, &e, &u1_0, &v1_0, &u2_0,
+                  &v2_0})
+    v->resize(n);
+}
+
+void PairBatch::set(std::size_t i, const PairParams& p) {
+  m1[i] = p.s1.m, k1[i] = p.s1.k, c1[i] = p.s1.c, fy1[i] = p.s1.fy, alpha1[i] = p.s1.alpha;
+  m2[i] = p.s2.m, k2[i] = p.s2.k, c2[i] = p.s2.c, fy2[i] = p.s2.fy, alpha2[i] = p.s2.alpha;
+  gap[i] = p.gap, kc[i] = p.kc, e[i] = p.e;
+  u1_0[i] = p.u1, v1_0[i] = p.v1, u2_0[i] = p.u2, v2_0[i] = p.v2;
+}
+
+PairParams PairBatch::get(std::size_t i) const {
+  PairParams p;
+  p.s1 = {m1[i], k1[i], c1[i], fy1[i], alpha1[i]};
+  p.s2 = {m2[i], k2[i], c2[i], fy2[i], alpha2[i]};
+  p.gap = gap[i], p.kc = kc[i], p.e = e[i];
+  p.u1 = u1_0[i], p.v1 = v1_0[i], p.u2 = u2_0[i], p.v2 = v2_0[i];
+  return p;
+}
+
+double GroundMotion::total_duration() const {
+  double own = ag.empty() ? 0.0 : static_cast<double>(ag.size() - 1) * dt;
+  return std::max(own, duration);
+}
+
+void SeriesRecorder::reserve_for(std::size_t n) {
+  for (auto* v : {&t, &u1, &u2, &v1, &v2, &a1_abs, &a2_abs, &fs1, &fs2, &force, &ag}) v->reserve(n + 1);
+}
+void SeriesRecorder::clear() {
+  for (auto* v : {&t, &u1, &u2, &v1, &v2, &a1_abs, &a2_abs, &fs1, &fs2, &force, &ag}) v->clear();
+}
+
+void BatchResult::resize(std::size_t n) {
+  for (auto* v : {&peak_u1, &peak_u2, &peak_closing, &t_peak_closing, &t_first_impact, &peak_force,
+                  &peak_penetration, &contact_energy, &contact_time, &peak_acc1, &peak_acc2, &final_u1, &final_v1,
+                  &final_u2, &final_v2, &e_input, &e_kinetic, &e_strain, &e_viscous, &e_hysteretic,
+                  &e_contact_stored})
+    v->assign(n, 0.0);
+  impact_count.assign(n, 0);
+  clamp_count.assign(n, 0);
+  status.assign(n, 0);
+}
+
+NigamJennings nigam_jennings(double w, double z, double h) {
+  // Nigam & Jennings (1969), for u'' + 2 z w u' + w^2 u = -a(t), a linear between a0 and a1 on [0, h].
+  const double sq = std::sqrt(1.0 - z * z), wd = w * sq;
+  const double E = std::exp(-z * w * h), S = std::sin(wd * h), Cs = std::cos(wd * h);
+  NigamJennings c;
+  c.a11 = E * (z / sq * S + Cs);
+  c.a12 = E * S / wd;
+  c.a21 = -w / sq * E * S;
+  c.a22 = E * (Cs - z / sq * S);
+  const double w2 = w * w, w3 = w2 * w;
+  const double t1 = (2.0 * z * z - 1.0) / (w2 * h), t2 = 2.0 * z / (w3 * h);
+  c.b11 = E * ((t1 + z / w) * S / wd + (t2 + 1.0 / w2) * Cs) - t2;
+  c.b12 = -E * (t1 * S / wd + t2 * Cs) - 1.0 / w2 + t2;
+  c.b21 = E * ((t1 + z / w) * (Cs - z / sq * S) - (t2 + 1.0 / w2) * (wd * S + z * w * Cs)) + 1.0 / (w2 * h);
+  c.b22 = -E * (t1 * (Cs - z / sq * S) - t2 * (wd * S + z * w * Cs)) - 1.0 / (w2 * h);
+  return c;
+}
+
+void run_batch(const PairBatch& batch, const ContactModel& contact, const GroundMotion& motion,
+               const KernelSettings& settings, BatchResult& out) {
+  const std::size_t width = batch.width();
+  if (settings.substeps < 1)
+    throw InputError(fmt::format("substeps = {} must be >= 1", settings.substeps), "substeps", "give 1 or more");
+  require_positive(motion.dt, "record dt");
+  if (contact.law == ContactLaw::hertzdamp || contact.law == ContactLaw::hertz)
+    require_range(contact.n, 1.0, 3.0, "Hertz exponent n", "[1, 3]");
+  out.resize(width);
+  if (width == 0) return;
+
+  const double h = motion.dt / settings.substeps;
+  const long nsteps = std::lround(motion.total_duration() / h);
+  // ground acceleration at every integration step, linear inside a record step, zero after the record
+  std::vector<double> ag(static_cast<std::size_t>(nsteps) + 1, 0.0);
+  const long nrec = static_cast<long>(motion.ag.size());
+  for (long j = 0; j <= nsteps; ++j) {
+    long r = j / settings.substeps, q = j % settings.substeps;
+    if (r >= nrec) break;
+    double a0 = motion.ag[static_cast<std::size_t>(r)];
+    double a1 = r + 1 < nrec ? motion.ag[static_cast<std::size_t>(r + 1)] : 0.0;
+    ag[static_cast<std::size_t>(j)] =
+        q == 0 ? a0 : a0 + (static_cast<double>(q) / settings.substeps) * (a1 - a0);
+  }
+  if (settings.series) {
+    settings.series->clear();
+    settings.series->reserve_for(static_cast<std::size_t>(nsteps) + 1);
+  }
+  Context C{&contact, &settings, ag.data(), nsteps, h, contact.v0_min, settings.displacement_limit, nullptr, 0};
+
+  auto tile = std::make_unique<Tile>();
+  for (std::size_t base = 0; base < width; base += tile_width) {
+    Tile& T = *tile;
+    T.n = static_cast<int>(std::min<std::size_t>(tile_width, width - base));
+    for (int i = 0; i < T.n; ++i) {
+      const std::size_t L = base + static_cast<std::size_t>(i);
+      PairParams p = batch.get(L);
+      validate_lane(p, contact, settings.stepper, L);
+      T.m1[i] = p.s1.m, T.m2[i] = p.s2.m, T.im1[i] = 1.0 / p.s1.m, T.im2[i] = 1.0 / p.s2.m;
+      T.k1[i] = p.s1.k, T.k2[i] = p.s2.k, T.c1[i] = p.s1.c, T.c2[i] = p.s2.c;
+      T.ak1[i] = p.s1.alpha * p.s1.k, T.ak2[i] = p.s2.alpha * p.s2.k;
+      T.qy1[i] = std::isfinite(p.s1.fy) ? (1.0 - p.s1.alpha) * p.s1.fy : elastic_qy;
+      T.qy2[i] = std::isfinite(p.s2.fy) ? (1.0 - p.s2.alpha) * p.s2.fy : elastic_qy;
+      T.kp1[i] = p.s1.k > 0 ? (1.0 - p.s1.alpha) * p.s1.k : 1.0;
+      T.kp2[i] = p.s2.k > 0 ? (1.0 - p.s2.alpha) * p.s2.k : 1.0;
+      T.gap[i] = p.gap, T.kc[i] = p.kc, T.e[i] = p.e;
+      T.meff[i] = p.s1.m * p.s2.m / (p.s1.m + p.s2.m);
+      T.cd[i] = contact_damping_constant(contact, p.kc, p.e, T.meff[i]);
+      T.u1[i] = p.u1, T.v1[i] = p.v1, T.u2[i] = p.u2, T.v2[i] = p.v2;
+      // initial state: springs at their elastic force, contact force from the initial penetration
+      T.fs1[i] = std::clamp(p.s1.k * p.u1, T.ak1[i] * p.u1 - T.qy1[i], T.ak1[i] * p.u1 + T.qy1[i]);
+      T.fs2[i] = std::clamp(p.s2.k * p.u2, T.ak2[i] * p.u2 - T.qy2[i], T.ak2[i] * p.u2 + T.qy2[i]);
+      double d0 = p.u1 - p.u2 - p.gap, dd0 = p.v1 - p.v2, clamp = 0;
+      T.v0[i] = std::max(dd0, contact.v0_min);
+      T.F[i] = 0.0;
+      if (d0 > 0.0) {
+        ContactModel cm = contact;
+        switch (contact.law) {
+          case ContactLaw::linear: T.F[i] = contact_force<ContactLaw::linear, true>(d0, dd0, p.kc, T.cd[i], T.v0[i], cm.n, clamp); break;
+          case ContactLaw::kelvin: T.F[i] = contact_force<ContactLaw::kelvin, true>(d0, dd0, p.kc, T.cd[i], T.v0[i], cm.n, clamp); break;
+          case ContactLaw::hertz: T.F[i] = contact_force<ContactLaw::hertz, false>(d0, dd0, p.kc, T.cd[i], T.v0[i], cm.n, clamp); break;
+          case ContactLaw::hertzdamp: T.F[i] = contact_force<ContactLaw::hertzdamp, false>(d0, dd0, p.kc, T.cd[i], T.v0[i], cm.n, clamp); break;
+          case ContactLaw::jankowski: T.F[i] = contact_force<ContactLaw::jankowski, true>(d0, dd0, p.kc, T.cd[i], T.v0[i], cm.n, clamp); break;
+          default: break;
+        }
+      }
+      T.dprev[i] = d0;
+      const double ag0 = ag[0];
+      T.a1[i] = -ag0 - (T.c1[i] * p.v1 + T.fs1[i] + T.F[i]) * T.im1[i];
+      T.a2[i] = -ag0 - (T.c2[i] * p.v2 + T.fs2[i] - T.F[i]) * T.im2[i];
+      T.pu1[i] = std::abs(p.u1), T.pu2[i] = std::abs(p.u2);
+      T.pclose[i] = p.u1 - p.u2, T.tpclose[i] = 0.0, T.tfirst[i] = d0 > 0.0 ? 0.0 : inf;
+      T.nimp[i] = d0 > 0.0 ? 1.0 : 0.0, T.nclamp[i] = 0.0, T.pF[i] = T.F[i], T.ppen[i] = d0;
+      T.Wc[i] = 0.0, T.tcon[i] = 0.0;
+      T.pa1[i] = std::abs(T.a1[i] + ag0), T.pa2[i] = std::abs(T.a2[i] + ag0), T.bad[i] = 0.0;
+      T.Ein[i] = 0.0, T.Evis[i] = 0.0, T.Ehys[i] = 0.0, T.Dimp[i] = 0.0;
+      if (settings.stepper == Stepper::nigam_jennings) {
+        for (int s = 0; s < 2; ++s) {
+          const Structure& st = s == 0 ? p.s1 : p.s2;
+          double w = std::sqrt(st.k / st.m), z = st.c / (2.0 * std::sqrt(st.k * st.m));
+          NigamJennings c = nigam_jennings(w, z, h);
+          double(*dst)[tile_width] = s == 0 ? T.nj1 : T.nj2;
+          double vals[8] = {c.a11, c.a12, c.a21, c.a22, c.b11, c.b12, c.b21, c.b22};
+          for (int q = 0; q < 8; ++q) dst[q][i] = vals[q];
+        }
+      }
+    }
+    // The series recorder only watches its lane in the tile that holds it.
+    Context Ct = C;
+    Ct.rec = nullptr;
+    Ct.rec_lane = 0;
+    if (settings.series && settings.series->lane >= base && settings.series->lane < base + static_cast<std::size_t>(T.n)) {
+      Ct.rec = settings.series;
+      Ct.rec_lane = static_cast<int>(settings.series->lane - base);
+      record_series(Ct, T, 0.0, ag[0]);
+    }
+    dispatch(T, Ct);
+
+    const double n_exp = (contact.law == ContactLaw::jankowski) ? 1.5 : contact.n;
+    for (int i = 0; i < T.n; ++i) {
+      const std::size_t L = base + static_cast<std::size_t>(i);
+      const double nan = std::numeric_limits<double>::quiet_NaN();
+      bool bad = T.bad[i] > 0.0;
+      out.status[L] = static_cast<std::uint8_t>(T.bad[i] >= 2.0 ? LaneStatus::non_finite
+                                                : bad          ? LaneStatus::diverged
+                                                               : LaneStatus::ok);
+      auto val = [&](double x) { return bad ? nan : x; };
+      out.peak_u1[L] = val(T.pu1[i]);
+      out.peak_u2[L] = val(T.pu2[i]);
+      out.peak_closing[L] = val(T.pclose[i]);
+      out.t_peak_closing[L] = val(T.tpclose[i]);
+      out.t_first_impact[L] = std::isinf(T.tfirst[i]) ? nan : val(T.tfirst[i]);
+      out.impact_count[L] = bad ? -1 : static_cast<std::int32_t>(T.nimp[i]);
+      out.clamp_count[L] = bad ? -1 : static_cast<std::int32_t>(T.nclamp[i]);
+      out.peak_force[L] = contact.law == ContactLaw::stereomechanical ? nan : val(T.pF[i]);
+      out.peak_penetration[L] = val(std::max(T.ppen[i], 0.0));
+      out.contact_time[L] = val(T.tcon[i]);
+      out.peak_acc1[L] = val(T.pa1[i]);
+      out.peak_acc2[L] = val(T.pa2[i]);
+      out.final_u1[L] = val(T.u1[i]), out.final_v1[L] = val(T.v1[i]);
+      out.final_u2[L] = val(T.u2[i]), out.final_v2[L] = val(T.v2[i]);
+      // stored energies at the end
+      double d = T.u1[i] - T.u2[i] - T.gap[i];
+      double dp = std::max(d, 0.0);
+      double stored = 0.0;
+      switch (contact.law) {
+        case ContactLaw::linear:
+        case ContactLaw::kelvin: stored = 0.5 * T.kc[i] * dp * dp; break;
+        case ContactLaw::hertz:
+        case ContactLaw::hertzdamp:
+        case ContactLaw::jankowski: stored = T.kc[i] * std::pow(dp, n_exp + 1.0) / (n_exp + 1.0); break;
+        default: break;
+      }
+      auto strain = [](double k, double ak, double u, double fs) {
+        double q = fs - ak * u;  // force in the elasto-plastic part (stiffness k - ak)
+        double kp = k - ak;
+        return 0.5 * ak * u * u + (kp > 0 ? 0.5 * q * q / kp : 0.0);
+      };
+      out.e_contact_stored[L] = val(stored);
+      out.contact_energy[L] = val(T.Wc[i] - stored + T.Dimp[i]);
+      out.e_input[L] = val(T.Ein[i]);
+      out.e_kinetic[L] = val(0.5 * T.m1[i] * T.v1[i] * T.v1[i] + 0.5 * T.m2[i] * T.v2[i] * T.v2[i]);
+      out.e_strain[L] = val(strain(T.k1[i], T.ak1[i], T.u1[i], T.fs1[i]) +
+                            strain(T.k2[i], T.ak2[i], T.u2[i], T.fs2[i]));
+      out.e_viscous[L] = val(T.Evis[i]);
+      out.e_hysteretic[L] = val(T.Ehys[i]);
+    }
+  }
+}
+
+}  // namespace pounding
