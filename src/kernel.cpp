@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <experimental/simd>
 #include <memory>
 #include <numbers>
 #include <stdexcept>
@@ -18,6 +19,8 @@
 namespace pounding {
 
 namespace {
+
+namespace stdx = std::experimental;
 
 constexpr int tile_width = 64;
 constexpr double inf = std::numeric_limits<double>::infinity();
@@ -63,14 +66,14 @@ struct alignas(64) Tile {
 
 // Bilinear kinematic hardening, closed-form return (branch-free): the trial force fs + k du is
 // clamped into the band alpha k u +/- (1 - alpha) fy (issue #2; exact for a monotone increment).
-inline double bilinear(double fs_old, double k, double du, double ak_u_new, double qy) {
+[[gnu::always_inline]] inline double bilinear(double fs_old, double k, double du, double ak_u_new, double qy) {
   double trial = fs_old + k * du;
   return std::min(std::max(trial, ak_u_new - qy), ak_u_new + qy);
 }
 
 // Contact force for penetration d and rate dd; `clamp` is set to 1 when a tensile value was clamped.
 template <ContactLaw L, bool N15>
-inline double contact_force(double d, double dd, double kc, double cd, double v0, double n, double& clamp) {
+[[gnu::always_inline]] inline double contact_force(double d, double dd, double kc, double cd, double v0, double n, double& clamp) {
   double dp = d > 0.0 ? d : 0.0;
   clamp = 0.0;
   if constexpr (L == ContactLaw::linear) {
@@ -104,7 +107,7 @@ inline double contact_force(double d, double dd, double kc, double cd, double v0
 
 // Derivatives of the contact force with respect to delta and ddelta (for Newton).
 template <ContactLaw L, bool N15>
-inline void contact_derivs(double d, double dd, double kc, double cd, double v0, double n, double F, double& dFd,
+[[gnu::always_inline]] inline void contact_derivs(double d, double dd, double kc, double cd, double v0, double n, double F, double& dFd,
                            double& dFv) {
   dFd = 0.0;
   dFv = 0.0;
@@ -146,8 +149,7 @@ struct Context {
 };
 
 // Observers after a step that ended at time t (lane i, new state already stored in the tile).
-template <ContactLaw L>
-inline void observe(Tile& T, int i, double t, double ag, double fclamp, double onset) {
+[[gnu::always_inline]] inline void observe(Tile& T, int i, double t, double ag, double fclamp, double onset) {
   double u1 = T.u1[i], u2 = T.u2[i];
   T.pu1[i] = std::max(T.pu1[i], std::abs(u1));
   T.pu2[i] = std::max(T.pu2[i], std::abs(u2));
@@ -167,7 +169,7 @@ inline void observe(Tile& T, int i, double t, double ag, double fclamp, double o
 
 // Divergence check: |u1| + |u2| above the limit (1) or non-finite (2); a bad lane is frozen at rest so
 // that it neither slows the tile with inf/NaN arithmetic nor pollutes anything.
-inline void check_lane(Tile& T, int i, double lim) {
+[[gnu::always_inline]] inline void check_lane(Tile& T, int i, double lim) {
   double s = std::abs(T.u1[i]) + std::abs(T.u2[i]);
   double sv = std::abs(T.v1[i]) + std::abs(T.v2[i]) + std::abs(T.a1[i]) + std::abs(T.a2[i]);
   double code = (s <= lim) ? 0.0 : ((s - s == 0.0) ? 1.0 : 2.0);
@@ -189,7 +191,7 @@ inline void check_lane(Tile& T, int i, double lim) {
 // Stereomechanical impact (muthukumar eq. 2) located inside the step just taken: the gap closed at the
 // fraction s of the step, where the velocities are interpolated; the momentum exchange is applied there
 // and the rest of the step is flown with the new velocities. Returns 1 when an impact happened.
-inline double stereomechanical(Tile& T, int i, double h, double v1_old, double v2_old, double d_old) {
+[[gnu::always_inline]] inline double stereomechanical(Tile& T, int i, double h, double v1_old, double v2_old, double d_old) {
   double d = T.u1[i] - T.u2[i] - T.gap[i];
   double closing = T.v1[i] - T.v2[i];
   bool hit = d > 0.0 && closing > 0.0;
@@ -230,82 +232,226 @@ inline void record_series(const Context& C, const Tile& T, double t, double ag) 
 }
 
 // ---------------------------------------------------------------------------------------------------
-// Explicit central difference (velocity Verlet). The velocity-dependent forces at n+1 use the predicted
-// velocity v_n + h a_n (error O(h^2)), which keeps the scheme second order with damping.
+// Explicit central difference (velocity Verlet), the production stepper. The velocity-dependent forces at
+// n+1 use the predicted velocity v_n + h a_n (error O(h^2)), which keeps the scheme second order with
+// damping. Lanes run in SIMD chunks (std::experimental::native_simd) whose state stays in registers for
+// the whole time loop; the contact law is evaluated only in steps where some lane of the chunk touches
+// (skipping it gives exactly F = 0, so results do not depend on the chunk's other lanes).
+namespace simd {
+using V = stdx::native_simd<double>;
+using M = V::mask_type;
+constexpr int W = static_cast<int>(V::size());
+[[gnu::always_inline]] inline V sel(const M& m, const V& a, const V& b) {
+  V r = b;
+  stdx::where(m, r) = a;
+  return r;
+}
+[[gnu::always_inline]] inline V ld(const double* p) { return V(p, stdx::element_aligned); }
+[[gnu::always_inline]] inline void st(const V& v, double* p) { v.copy_to(p, stdx::element_aligned); }
+}  // namespace simd
+
+template <ContactLaw L, bool N15>
+[[gnu::always_inline]] inline simd::V contact_force_v(const simd::V& d, const simd::V& dd, const simd::V& kc,
+                                                      const simd::V& cd, const simd::V& iv0, double n,
+                                                      simd::V& clamp) {
+  using namespace simd;
+  const V zero(0.0), one(1.0);
+  V dp = stdx::max(d, zero);
+  clamp = zero;
+  if constexpr (L == ContactLaw::linear) {
+    return kc * dp;  // muthukumar eq. 3
+  } else if constexpr (L == ContactLaw::kelvin) {
+    V raw = sel(d > zero, kc * dp + cd * dd, zero);  // impact-stiffness paper eqs 1-3
+    clamp = sel(raw < zero, one, zero);
+    return stdx::max(raw, zero);
+  } else if constexpr (L == ContactLaw::hertz || L == ContactLaw::hertzdamp || L == ContactLaw::jankowski) {
+    V pw;
+    if constexpr (N15 || L == ContactLaw::jankowski) {
+      pw = dp * stdx::sqrt(dp);
+    } else {
+      for (int j = 0; j < W; ++j) pw[j] = dp[j] > 0.0 ? std::pow(dp[j], n) : 0.0;
+    }
+    if constexpr (L == ContactLaw::hertz) {
+      return kc * pw;  // muthukumar eq. 6
+    } else if constexpr (L == ContactLaw::hertzdamp) {
+      V raw = kc * pw * (one + cd * dd * iv0);  // muthukumar eq. 10, xibar = cd
+      clamp = sel(raw < zero, one, zero);
+      return stdx::max(raw, zero);
+    } else {
+      // rc-buildings eqs 4-5: c_h = 2 zeta sqrt(kh sqrt(delta) meff) = cd delta^(1/4), approach only
+      V damp = sel(dd > zero, cd * stdx::sqrt(stdx::sqrt(dp)) * dd, zero);
+      return kc * pw + damp;
+    }
+  } else {
+    (void)n;
+    return zero;
+  }
+}
+
 template <ContactLaw L, bool N15, bool Energy>
 void run_central_difference(Tile& T, const Context& C) {
-  const double h = C.h, hh = 0.5 * h, n_exp = C.contact->n, vmin = C.v0_min, lim = C.lim;
-  const int n = T.n;
-  for (long step = 0; step < C.nsteps; ++step) {
-    const double ag0 = C.ag[step], ag1 = C.ag[step + 1];
-    const double t = static_cast<double>(step + 1) * h;
-#pragma GCC ivdep
-    for (int i = 0; i < n; ++i) {
-      double v1o = T.v1[i], v2o = T.v2[i];
-      double vh1 = v1o + hh * T.a1[i], vh2 = v2o + hh * T.a2[i];
-      double du1 = h * vh1, du2 = h * vh2;
-      double u1 = T.u1[i] + du1, u2 = T.u2[i] + du2;
-      double vp1 = vh1 + hh * T.a1[i], vp2 = vh2 + hh * T.a2[i];
-      double d_old = T.dprev[i];
-      double onset;
+  using namespace simd;
+  const double h = C.h, hh = 0.5 * h, n_exp = C.contact->n;
+  const V zero(0.0), one(1.0), vmin(C.v0_min), lim(C.lim), vinf(inf), vh(h);
+  for (int base = 0; base < T.n; base += W) {
+    const V m1 = ld(T.m1 + base), m2 = ld(T.m2 + base), im1 = ld(T.im1 + base), im2 = ld(T.im2 + base);
+    const V k1 = ld(T.k1 + base), k2 = ld(T.k2 + base), c1 = ld(T.c1 + base), c2 = ld(T.c2 + base);
+    const V ak1 = ld(T.ak1 + base), ak2 = ld(T.ak2 + base), qy1 = ld(T.qy1 + base), qy2 = ld(T.qy2 + base);
+    const V kp1 = ld(T.kp1 + base), kp2 = ld(T.kp2 + base);
+    const V gap = ld(T.gap + base), kc = ld(T.kc + base), cd = ld(T.cd + base), e = ld(T.e + base);
+    const V meff = ld(T.meff + base), Msum = m1 + m2;
+    V u1 = ld(T.u1 + base), v1 = ld(T.v1 + base), a1 = ld(T.a1 + base), fs1 = ld(T.fs1 + base);
+    V u2 = ld(T.u2 + base), v2 = ld(T.v2 + base), a2 = ld(T.a2 + base), fs2 = ld(T.fs2 + base);
+    V F = ld(T.F + base), v0 = ld(T.v0 + base), iv0 = one / v0, dprev = ld(T.dprev + base);
+    V pu1 = ld(T.pu1 + base), pu2 = ld(T.pu2 + base), pclose = ld(T.pclose + base), tpclose = ld(T.tpclose + base);
+    V tfirst = ld(T.tfirst + base), nimp = ld(T.nimp + base), nclamp = ld(T.nclamp + base);
+    V pF = ld(T.pF + base), ppen = ld(T.ppen + base), Wc = ld(T.Wc + base), tcon = ld(T.tcon + base);
+    V pa1 = ld(T.pa1 + base), pa2 = ld(T.pa2 + base), bad = ld(T.bad + base);
+    V Ein = ld(T.Ein + base), Evis = ld(T.Evis + base), Ehys = ld(T.Ehys + base), Dimp = ld(T.Dimp + base);
+    const int rec_j = (C.rec && C.rec_lane >= base && C.rec_lane < base + W) ? C.rec_lane - base : -1;
+    bool any_bad = stdx::any_of(bad > zero), force_prev = stdx::any_of(F > zero);
+
+    for (long step = 0; step < C.nsteps; ++step) {
+      const double ag0 = C.ag[step], ag1 = C.ag[step + 1];
+      const V t(static_cast<double>(step + 1) * h);
+      const V v1o = v1, v2o = v2;
+      V vh1 = v1 + hh * a1, vh2 = v2 + hh * a2;
+      V du1 = h * vh1, du2 = h * vh2;
+      V nu1 = u1 + du1, nu2 = u2 + du2;
+      V vp1 = vh1 + hh * a1, vp2 = vh2 + hh * a2;
+      V onset = zero, clamp = zero, nF = zero;
       if constexpr (L == ContactLaw::stereomechanical) {
-        T.u1[i] = u1;
-        T.u2[i] = u2;
-        T.v1[i] = vp1;
-        T.v2[i] = vp2;
-        onset = stereomechanical(T, i, h, v1o, v2o, d_old);
-        double dv1 = T.v1[i] - vp1, dv2 = T.v2[i] - vp2;
-        du1 = T.u1[i] - (u1 - du1);
-        du2 = T.u2[i] - (u2 - du2);
-        u1 = T.u1[i];
-        u2 = T.u2[i];
-        vp1 = T.v1[i];
-        vp2 = T.v2[i];
-        vh1 += dv1;
-        vh2 += dv2;
+        // muthukumar eq. 2 at the located closing instant: gap closed at fraction s of the step, velocities
+        // interpolated there; the rest of the step is flown with the exchanged velocities.
+        V d = nu1 - nu2 - gap;
+        V closing = vp1 - vp2;
+        M hit = (d > zero) && (closing > zero);
+        if (stdx::any_of(hit)) {
+          V den = d - dprev;
+          V s = sel(dprev > zero, zero, -dprev / sel(den > zero, den, one));
+          s = stdx::min(stdx::max(s, zero), one);
+          V w1 = v1o + s * (vp1 - v1o), w2 = v2o + s * (vp2 - v2o);
+          V rel = w1 - w2;
+          rel = sel(rel > zero, rel, closing);
+          V dv1 = sel(hit, -(one + e) * m2 * rel / Msum, zero);
+          V dv2 = sel(hit, (one + e) * m1 * rel / Msum, zero);
+          V rest = (one - s) * vh;
+          nu1 += dv1 * rest;
+          nu2 += dv2 * rest;
+          du1 += dv1 * rest;
+          du2 += dv2 * rest;
+          vp1 += dv1;
+          vp2 += dv2;
+          vh1 += dv1;
+          vh2 += dv2;
+          Dimp += sel(hit, 0.5 * meff * (one - e * e) * rel * rel, zero);
+          onset = sel(hit, one, zero);
+          nimp += onset;
+          tfirst = stdx::min(tfirst, sel(hit, t, vinf));
+        }
       }
-      double fs1 = bilinear(T.fs1[i], T.k1[i], du1, T.ak1[i] * u1, T.qy1[i]);
-      double fs2 = bilinear(T.fs2[i], T.k2[i], du2, T.ak2[i] * u2, T.qy2[i]);
-      double d = u1 - u2 - T.gap[i];
-      double dd = vp1 - vp2;
-      double clamp = 0.0, F = 0.0;
-      if constexpr (L != ContactLaw::stereomechanical) {
-        onset = (d > 0.0 && !(d_old > 0.0)) ? 1.0 : 0.0;
-        if constexpr (L == ContactLaw::hertzdamp) T.v0[i] = onset > 0.0 ? std::max(dd, vmin) : T.v0[i];
-        F = contact_force<L, N15>(d, dd, T.kc[i], T.cd[i], T.v0[i], n_exp, clamp);
+      // bilinear kinematic hardening, closed-form return into alpha k u +/- (1 - alpha) fy
+      V tr1 = fs1 + k1 * du1, tr2 = fs2 + k2 * du2;
+      V cb1 = ak1 * nu1, cb2 = ak2 * nu2;
+      V nfs1 = stdx::min(stdx::max(tr1, cb1 - qy1), cb1 + qy1);
+      V nfs2 = stdx::min(stdx::max(tr2, cb2 - qy2), cb2 + qy2);
+      V d = nu1 - nu2 - gap;
+      const M touching = d > zero;
+      const bool any_touch = stdx::any_of(touching);
+      if constexpr (L != ContactLaw::stereomechanical && L != ContactLaw::none) {
+        if (any_touch) {
+          V dd = vp1 - vp2;
+          M on = touching && !(dprev > zero);
+          onset = sel(on, one, zero);
+          if constexpr (L == ContactLaw::hertzdamp) {
+            if (stdx::any_of(on)) {
+              v0 = sel(on, stdx::max(dd, vmin), v0);
+              iv0 = one / v0;
+            }
+          }
+          nF = contact_force_v<L, N15>(d, dd, kc, cd, iv0, n_exp, clamp);
+        }
       }
-      double a1 = -ag1 - (T.c1[i] * vp1 + fs1 + F) * T.im1[i];
-      double a2 = -ag1 - (T.c2[i] * vp2 + fs2 - F) * T.im2[i];
-      double v1 = vh1 + hh * a1, v2 = vh2 + hh * a2;
+      V na1 = -ag1 - (c1 * vp1 + nfs1 + nF) * im1;
+      V na2 = -ag1 - (c2 * vp2 + nfs2 - nF) * im2;
+      V nv1 = vh1 + hh * na1, nv2 = vh2 + hh * na2;
       if constexpr (Energy) {
-        double ae1 = T.fs1[i] + T.k1[i] * du1 - fs1, ae2 = T.fs2[i] + T.k2[i] * du2 - fs2;
-        T.Ehys[i] += T.qy1[i] * std::abs(ae1) / T.kp1[i] + T.qy2[i] * std::abs(ae2) / T.kp2[i];
-        T.Ein[i] -= hh * (T.m1[i] * (ag0 * v1o + ag1 * v1) + T.m2[i] * (ag0 * v2o + ag1 * v2));
-        T.Evis[i] += hh * (T.c1[i] * (v1o * v1o + v1 * v1) + T.c2[i] * (v2o * v2o + v2 * v2));
+        Ehys += qy1 * stdx::abs(tr1 - nfs1) / kp1 + qy2 * stdx::abs(tr2 - nfs2) / kp2;
+        Ein -= hh * (m1 * (ag0 * v1o + ag1 * nv1) + m2 * (ag0 * v2o + ag1 * nv2));
+        Evis += hh * (c1 * (v1o * v1o + nv1 * nv1) + c2 * (v2o * v2o + nv2 * nv2));
       }
-      T.Wc[i] += 0.5 * (T.F[i] + F) * (du1 - du2);  // contact work (trapezoidal in displacement)
-      T.u1[i] = u1;
-      T.u2[i] = u2;
-      T.v1[i] = v1;
-      T.v2[i] = v2;
-      T.a1[i] = a1;
-      T.a2[i] = a2;
-      T.fs1[i] = fs1;
-      T.fs2[i] = fs2;
-      T.F[i] = F;
-      T.dprev[i] = d;
-      T.tcon[i] += d > 0.0 ? h : 0.0;
-      check_lane(T, i, lim);
-      observe<L>(T, i, t, ag1, clamp, onset);
+      if constexpr (L != ContactLaw::none) {
+        if (any_touch || force_prev) {
+          Wc += 0.5 * (F + nF) * (du1 - du2);  // contact work, trapezoidal in displacement
+          tcon += sel(touching, vh, zero);
+          if constexpr (L != ContactLaw::stereomechanical) {
+            nimp += onset;
+            tfirst = stdx::min(tfirst, sel(onset > zero, t, vinf));
+          }
+          nclamp += clamp;
+          pF = stdx::max(pF, nF);
+          ppen = stdx::max(ppen, d);
+        }
+        force_prev = any_touch;
+      }
+      // divergence: |u1| + |u2| above the limit (1) or anything non-finite (2); a bad lane is frozen at rest
+      // (skipping the freeze while no lane is bad gives the same bits)
+      V sdisp = stdx::abs(nu1) + stdx::abs(nu2);
+      V sv = stdx::abs(nv1) + stdx::abs(nv2) + stdx::abs(na1) + stdx::abs(na2);
+      const M ok = (sdisp <= lim) && (sv - sv == zero);
+      if (!stdx::all_of(ok) || any_bad) {
+        V code = sel(sdisp <= lim, zero, sel(sdisp - sdisp == zero, one, V(2.0)));
+        code = sel(sv - sv == zero, code, V(2.0));
+        bad = stdx::max(bad, code);
+        any_bad = true;
+        const M frozen = bad > zero;
+        nu1 = sel(frozen, zero, nu1), nu2 = sel(frozen, zero, nu2);
+        nv1 = sel(frozen, zero, nv1), nv2 = sel(frozen, zero, nv2);
+        na1 = sel(frozen, zero, na1), na2 = sel(frozen, zero, na2);
+        nfs1 = sel(frozen, zero, nfs1), nfs2 = sel(frozen, zero, nfs2);
+        nF = sel(frozen, zero, nF);
+      }
+      u1 = nu1, u2 = nu2, v1 = nv1, v2 = nv2, a1 = na1, a2 = na2, fs1 = nfs1, fs2 = nfs2, F = nF;
+      dprev = d;
+      // observers
+      pu1 = stdx::max(pu1, stdx::abs(u1));
+      pu2 = stdx::max(pu2, stdx::abs(u2));
+      V cl = u1 - u2;
+      M up = cl > pclose;
+      pclose = sel(up, cl, pclose);
+      tpclose = sel(up, t, tpclose);
+      pa1 = stdx::max(pa1, stdx::abs(a1 + ag1));
+      pa2 = stdx::max(pa2, stdx::abs(a2 + ag1));
+      if (rec_j >= 0) {
+        SeriesRecorder* rec = C.rec;
+        rec->t.push_back(t[0]);
+        rec->u1.push_back(u1[rec_j]);
+        rec->u2.push_back(u2[rec_j]);
+        rec->v1.push_back(v1[rec_j]);
+        rec->v2.push_back(v2[rec_j]);
+        rec->a1_abs.push_back(a1[rec_j] + ag1);
+        rec->a2_abs.push_back(a2[rec_j] + ag1);
+        rec->fs1.push_back(fs1[rec_j]);
+        rec->fs2.push_back(fs2[rec_j]);
+        rec->force.push_back(F[rec_j]);
+        rec->ag.push_back(ag1);
+      }
     }
-    record_series(C, T, t, ag1);
+    st(u1, T.u1 + base), st(v1, T.v1 + base), st(a1, T.a1 + base), st(fs1, T.fs1 + base);
+    st(u2, T.u2 + base), st(v2, T.v2 + base), st(a2, T.a2 + base), st(fs2, T.fs2 + base);
+    st(F, T.F + base), st(v0, T.v0 + base), st(dprev, T.dprev + base);
+    st(pu1, T.pu1 + base), st(pu2, T.pu2 + base), st(pclose, T.pclose + base), st(tpclose, T.tpclose + base);
+    st(tfirst, T.tfirst + base), st(nimp, T.nimp + base), st(nclamp, T.nclamp + base);
+    st(pF, T.pF + base), st(ppen, T.ppen + base), st(Wc, T.Wc + base), st(tcon, T.tcon + base);
+    st(pa1, T.pa1 + base), st(pa2, T.pa2 + base), st(bad, T.bad + base);
+    st(Ein, T.Ein + base), st(Evis, T.Evis + base), st(Ehys, T.Ehys + base), st(Dimp, T.Dimp + base);
   }
 }
 
 // Energy terms for steppers that do not fuse them into their lane loop (trapezoidal in time, exact
 // plastic dissipation); called with the state before (o) and after the step.
 template <bool Energy>
-inline void energy_step(Tile& T, int i, double h, double ag0, double ag1, double v1o, double v2o, double u1o,
+[[gnu::always_inline]] inline void energy_step(Tile& T, int i, double h, double ag0, double ag1, double v1o, double v2o, double u1o,
                         double u2o, double fs1o, double fs2o, double Fo) {
   if constexpr (Energy) {
     const double du1 = T.u1[i] - u1o, du2 = T.u2[i] - u2o;
@@ -412,7 +558,7 @@ void run_newmark(Tile& T, const Context& C) {
       T.bad[i] = std::max(T.bad[i], T.conv[i] > 0.0 ? 0.0 : 1.0);
       energy_step<Energy>(T, i, h, ag0, ag1, v1o, v2o, u1o, u2o, fs1o, fs2o, Fo);
       check_lane(T, i, lim);
-      observe<L>(T, i, t, ag1, clamp, onset);
+      observe(T, i, t, ag1, clamp, onset);
     }
     record_series(C, T, t, ag1);
   }
@@ -475,7 +621,7 @@ void run_rk4(Tile& T, const Context& C) {
       T.tcon[i] += d > 0.0 ? h : 0.0;
       energy_step<Energy>(T, i, h, ag0, ag1, v1o, v2o, u1o, u2o, fs1o, fs2o, Fo);
       check_lane(T, i, lim);
-      observe<L>(T, i, t, ag1, clamp, onset);
+      observe(T, i, t, ag1, clamp, onset);
     }
     record_series(C, T, t, ag1);
   }
@@ -539,7 +685,7 @@ void run_nigam_jennings(Tile& T, const Context& C) {
       T.tcon[i] += d > 0.0 ? h : 0.0;
       energy_step<Energy>(T, i, h, ag0, ag1, v1o, v2o, u1o, u2o, fs1o, fs2o, Fo);
       check_lane(T, i, lim);
-      observe<L>(T, i, t, ag1, clamp, onset);
+      observe(T, i, t, ag1, clamp, onset);
     }
     record_series(C, T, t, ag1);
   }
@@ -741,8 +887,10 @@ void run_batch(const PairBatch& batch, const ContactModel& contact, const Ground
   for (std::size_t base = 0; base < width; base += tile_width) {
     Tile& T = *tile;
     T.n = static_cast<int>(std::min<std::size_t>(tile_width, width - base));
-    for (int i = 0; i < T.n; ++i) {
-      const std::size_t L = base + static_cast<std::size_t>(i);
+    // lanes past n up to the SIMD chunk boundary are padded with copies of the tile's first lane
+    const int padded = std::min(tile_width, (T.n + simd::W - 1) / simd::W * simd::W);
+    for (int i = 0; i < padded; ++i) {
+      const std::size_t L = base + static_cast<std::size_t>(i < T.n ? i : 0);
       PairParams p = batch.get(L);
       validate_lane(p, contact, settings.stepper, L);
       T.m1[i] = p.s1.m, T.m2[i] = p.s2.m, T.im1[i] = 1.0 / p.s1.m, T.im2[i] = 1.0 / p.s2.m;
