@@ -1,0 +1,407 @@
+// The stochastic structure model (stochastic-pounding-monte-carlo.txt, sections 2.1-3.1). See sampler.hpp.
+#include "pounding/sampler.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <functional>
+#include <limits>
+#include <map>
+#include <numbers>
+#include <optional>
+#include <stdexcept>
+
+#include <boost/math/distributions/normal.hpp>
+#include <boost/math/policies/policy.hpp>
+#include <boost/random/mersenne_twister.hpp>
+#include <fmt/format.h>
+
+#include "pounding/contact.hpp"
+#include "pounding/error.hpp"
+
+namespace pounding {
+
+namespace {
+
+// Boost.Math's default policy promotes double to long double inside the special functions, which is 6x
+// slower and makes results depend on the platform's long double; evaluate in double throughout.
+using DoublePolicy = boost::math::policies::policy<boost::math::policies::promote_double<false>>;
+using Normal = boost::math::normal_distribution<double, DoublePolicy>;
+
+// A uniform variate in the open interval (0, 1) from the top 53 bits of one 64-bit engine output:
+// (j + 1/2) 2^-53, j in [0, 2^53). Never 0 or 1, so quantiles stay finite; identical on every machine.
+inline double uniform01(boost::random::mt19937_64& g) {
+  return (static_cast<double>(g() >> 11) + 0.5) * 0x1p-53;
+}
+
+std::string fmt_num(double x) { return fmt::format("{:.6g}", x); }
+
+using WhereFn = std::function<std::string(std::string_view key)>;
+
+void need(bool ok, const std::string& key, double value, const std::string& range, const WhereFn& where) {
+  if (!ok || !std::isfinite(value))
+    throw InputError(fmt::format("{} = {} is out of range", key, fmt_num(value)), where(key),
+                     fmt::format("give {} in {}", key, range));
+}
+
+HeightInterval height_interval_impl(const StructureModel& m, double T, const std::string& where) {
+  // eq. (6): ct_lower h^x <= T <= ct_upper h^x  <=>  (T/ct_upper)^(1/x) <= h <= (T/ct_lower)^(1/x)
+  const double rule_lo = std::pow(T / m.ct_upper, 1.0 / m.height_exponent);
+  const double rule_hi = std::pow(T / m.ct_lower, 1.0 / m.height_exponent);
+  HeightInterval iv{std::max(m.height_min, rule_lo), std::min(m.height_max, rule_hi)};
+  if (!(iv.lo <= iv.hi))
+    throw InputError(
+        fmt::format("no height satisfies T = {} s: lower bound max({}, (T/{})^(1/{})) = {} m exceeds upper bound "
+                    "min({}, (T/{})^(1/{})) = {} m",
+                    fmt_num(T), fmt_num(m.height_min), fmt_num(m.ct_upper), fmt_num(m.height_exponent),
+                    fmt_num(iv.lo), fmt_num(m.height_max), fmt_num(m.ct_lower), fmt_num(m.height_exponent),
+                    fmt_num(iv.hi)),
+        where,
+        "remove that period from the grid, or widen height_min/height_max or ct_lower/ct_upper");
+  return iv;
+}
+
+void validate_impl(const StructureModel& m, const WhereFn& where) {
+  if (m.periods.empty() || m.periods.size() > 1000)
+    throw InputError(fmt::format("the period grid has {} points", m.periods.size()), where("periods"),
+                     "give 1 to 1000 periods");
+  for (std::size_t i = 0; i < m.periods.size(); ++i) {
+    need(m.periods[i] > 0 && m.periods[i] <= 100, "periods", m.periods[i], "(0, 100] s", where);
+    if (i > 0 && !(m.periods[i] > m.periods[i - 1]))
+      throw InputError(fmt::format("periods are not strictly increasing at {} s", fmt_num(m.periods[i])),
+                       where("periods"), "list each period once, in increasing order");
+  }
+  if (m.samples_per_pair < 1 || m.samples_per_pair > (std::int64_t{1} << 40))
+    throw InputError(fmt::format("samples_per_pair = {} is out of range", m.samples_per_pair),
+                     where("samples_per_pair"), "give samples_per_pair in [1, 2^40]");
+  if (m.aspect_ratios.empty() || m.aspect_ratios.size() > 100)
+    throw InputError(fmt::format("aspect_ratios has {} values", m.aspect_ratios.size()), where("aspect_ratios"),
+                     "give 1 to 100 aspect ratios h/r");
+  for (double a : m.aspect_ratios) need(a > 0 && a <= 100, "aspect_ratios", a, "(0, 100]", where);
+  need(m.rho_mean > 0 && m.rho_mean <= 1e5, "rho_mean", m.rho_mean, "(0, 1e5] kg/m^3", where);
+  need(m.rho_cov >= 0 && m.rho_cov <= 2, "rho_cov", m.rho_cov, "[0, 2]", where);
+  need(m.mbar_mean > 0 && m.mbar_mean <= 100, "mbar_mean", m.mbar_mean, "(0, 100]", where);
+  need(m.mbar_cov > 0 && m.mbar_cov <= 2, "mbar_cov", m.mbar_cov, "(0, 2]", where);
+  need(m.mbar_min > 0 && m.mbar_min <= 100, "mbar_min", m.mbar_min, "(0, 100]", where);
+  need(m.mbar_max > m.mbar_min && m.mbar_max <= 1000, "mbar_max", m.mbar_max,
+       fmt::format("(mbar_min = {}, 1000]", fmt_num(m.mbar_min)), where);
+  need(m.zeta >= 0 && m.zeta < 1, "zeta", m.zeta, "[0, 1)", where);
+  need(m.drift > 0 && m.drift <= 1, "drift", m.drift, "(0, 1]", where);
+  need(m.ductility >= 1 && m.ductility <= 100, "ductility", m.ductility, "[1, 100]", where);
+  need(m.alpha >= 0 && m.alpha < 1, "alpha", m.alpha, "[0, 1)", where);
+  need(m.height_min > 0 && m.height_min <= 1000, "height_min", m.height_min, "(0, 1000] m", where);
+  need(m.height_max >= m.height_min && m.height_max <= 1000, "height_max", m.height_max,
+       fmt::format("[height_min = {}, 1000] m", fmt_num(m.height_min)), where);
+  need(m.ct_lower > 0 && m.ct_lower <= 10, "ct_lower", m.ct_lower, "(0, 10]", where);
+  need(m.ct_upper > m.ct_lower && m.ct_upper <= 10, "ct_upper", m.ct_upper,
+       fmt::format("(ct_lower = {}, 10]", fmt_num(m.ct_lower)), where);
+  need(m.height_exponent > 0 && m.height_exponent <= 2, "height_exponent", m.height_exponent, "(0, 2]", where);
+  need(m.code_gap_coefficient > 0 && m.code_gap_coefficient <= 1, "code_gap_coefficient", m.code_gap_coefficient,
+       "(0, 1]", where);
+  need(m.contact_density > 0 && m.contact_density <= 1e5, "contact_density", m.contact_density,
+       "(0, 1e5] kg/m^3", where);
+  need(m.contact_youngs_modulus > 0 && m.contact_youngs_modulus <= 1e13, "contact_youngs_modulus",
+       m.contact_youngs_modulus, "(0, 1e13] Pa", where);
+  need(m.contact_poisson >= 0 && m.contact_poisson < 0.5, "contact_poisson", m.contact_poisson, "[0, 0.5)", where);
+  need(m.kh >= 0, "kh", m.kh, "[0, inf) N/m^1.5 (0: equivalent spheres)", where);
+  for (double T : m.periods) height_interval_impl(m, T, where("periods"));
+  // The truncation interval must carry probability, or the inverse CDF has nothing to invert.
+  LognormalParams p = lognormal_from_mean_cov(m.mbar_mean, m.mbar_cov);
+  Normal nd;
+  double za = (std::log(m.mbar_min) - p.mu) / p.sigma, zb = (std::log(m.mbar_max) - p.mu) / p.sigma;
+  double mass = za > 0 ? cdf(complement(nd, za)) - cdf(complement(nd, zb)) : cdf(nd, zb) - cdf(nd, za);
+  if (!(mass > 1e-12))
+    throw InputError(fmt::format("the lognormal(mean {}, CoV {}) has probability {} on [mbar_min, mbar_max] = "
+                                 "[{}, {}]",
+                                 fmt_num(m.mbar_mean), fmt_num(m.mbar_cov), mass, fmt_num(m.mbar_min),
+                                 fmt_num(m.mbar_max)),
+                     where("mbar_min"), "put the truncation interval where the distribution has mass");
+}
+
+}  // namespace
+
+std::string_view to_string(Hysteresis h) { return h == Hysteresis::elastic ? "elastic" : "bilinear"; }
+
+std::vector<double> StructureModel::default_periods() { return make_period_grid(1.00, 1.50, 0.05); }
+
+std::vector<double> make_period_grid(double lo, double hi, double step, const std::string& where) {
+  if (!(std::isfinite(lo) && std::isfinite(hi) && std::isfinite(step)) || !(step > 0) || !(hi >= lo) || !(lo > 0))
+    throw InputError(fmt::format("period grid {}..{} step {} is not a grid", fmt_num(lo), fmt_num(hi), fmt_num(step)),
+                     where, "give 0 < period_min <= period_max and period_step > 0");
+  const double steps = (hi - lo) / step;
+  const double n_steps = std::round(steps);
+  if (std::abs(steps - n_steps) > 1e-9 * std::max(1.0, n_steps) || n_steps > 999)
+    throw InputError(fmt::format("(period_max - period_min) / period_step = {} is not an integer <= 999",
+                                 fmt::format("{:.12g}", steps)),
+                     where, "choose period_max = period_min + n period_step");
+  std::vector<double> grid(static_cast<std::size_t>(n_steps) + 1);
+  // lo + i step, rounded to 1e-12 s so that 1.00 + 2 x 0.05 is the double nearest 1.1, as a user typing
+  // the grid would get; never accumulated.
+  for (std::size_t i = 0; i < grid.size(); ++i)
+    grid[i] = std::round((lo + static_cast<double>(i) * step) * 1e12) / 1e12;
+  return grid;
+}
+
+HeightInterval height_interval(const StructureModel& model, double T, const std::string& where) {
+  return height_interval_impl(model, T, where);
+}
+
+void validate(const StructureModel& model, const std::string& where) {
+  validate_impl(model, [&](std::string_view key) { return fmt::format("{}.{}", where, key); });
+}
+
+LognormalParams lognormal_from_mean_cov(double mean, double cov) {
+  LognormalParams p;
+  p.sigma = std::sqrt(std::log1p(cov * cov));
+  p.mu = std::log(mean) - 0.5 * p.sigma * p.sigma;
+  return p;
+}
+
+// ---------------------------------------------------------------- parsing
+
+namespace {
+
+std::string loc(const std::string& file, const toml::source_region& src) {
+  return src.begin.line > 0 ? fmt::format("{}:{}", file, src.begin.line) : file;
+}
+
+double read_number(const toml::node& n, const std::string& where, const std::string& key) {
+  if (auto i = n.as_integer()) return static_cast<double>(i->get());
+  if (auto f = n.as_floating_point()) return f->get();
+  const char* type = n.is_string() ? "string" : n.is_boolean() ? "boolean" : n.is_array() ? "array"
+                     : n.is_table() ? "table" : "date/time";
+  throw InputError(fmt::format("{} must be a number, not a {}", key, type), where,
+                   fmt::format("write {} = <number>", key));
+}
+
+std::vector<double> read_number_array(const toml::node& n, const std::string& where, const std::string& key) {
+  const toml::array* a = n.as_array();
+  if (!a) throw InputError(fmt::format("{} must be an array of numbers", key), where,
+                           fmt::format("write {} = [x1, x2, ...]", key));
+  std::vector<double> v;
+  for (const toml::node& e : *a) v.push_back(read_number(e, where, key));
+  return v;
+}
+
+}  // namespace
+
+StructureModel parse_structure_model(const toml::table& table, const std::string& file) {
+  StructureModel m;
+  std::map<std::string, std::string, std::less<>> where_of;  // key -> "file:line [structures].key"
+  const std::string table_loc = loc(file, table.source());
+  auto where = [&](std::string_view key) -> std::string {
+    auto it = where_of.find(key);
+    return it != where_of.end() ? it->second : fmt::format("{} [structures].{}", table_loc, key);
+  };
+
+  const std::map<std::string, double*, std::less<>> numbers{
+      {"rho_mean", &m.rho_mean},
+      {"rho_cov", &m.rho_cov},
+      {"mbar_mean", &m.mbar_mean},
+      {"mbar_cov", &m.mbar_cov},
+      {"mbar_min", &m.mbar_min},
+      {"mbar_max", &m.mbar_max},
+      {"zeta", &m.zeta},
+      {"drift", &m.drift},
+      {"ductility", &m.ductility},
+      {"alpha", &m.alpha},
+      {"height_min", &m.height_min},
+      {"height_max", &m.height_max},
+      {"ct_lower", &m.ct_lower},
+      {"ct_upper", &m.ct_upper},
+      {"height_exponent", &m.height_exponent},
+      {"code_gap_coefficient", &m.code_gap_coefficient},
+      {"contact_density", &m.contact_density},
+      {"contact_youngs_modulus", &m.contact_youngs_modulus},
+      {"contact_poisson", &m.contact_poisson},
+      {"kh", &m.kh},
+  };
+  const char* known_list =
+      "periods, period_min, period_max, period_step, samples_per_pair, aspect_ratios, rho_mean, rho_cov, "
+      "mbar_mean, mbar_cov, mbar_min, mbar_max, zeta, hysteresis, drift, ductility, alpha, height_min, "
+      "height_max, ct_lower, ct_upper, height_exponent, code_gap_coefficient, contact_density, "
+      "contact_youngs_modulus, contact_poisson, kh";
+
+  std::optional<double> pmin, pmax, pstep;
+  bool have_periods = false;
+  for (auto&& [k, node] : table) {
+    const std::string key(k.str());
+    const std::string w = fmt::format("{} [structures].{}", loc(file, node.source()), key);
+    where_of[key] = w;
+    if (auto it = numbers.find(key); it != numbers.end()) {
+      *it->second = read_number(node, w, key);
+    } else if (key == "periods") {
+      m.periods = read_number_array(node, w, key);
+      have_periods = true;
+    } else if (key == "period_min") {
+      pmin = read_number(node, w, key);
+    } else if (key == "period_max") {
+      pmax = read_number(node, w, key);
+    } else if (key == "period_step") {
+      pstep = read_number(node, w, key);
+    } else if (key == "aspect_ratios") {
+      m.aspect_ratios = read_number_array(node, w, key);
+    } else if (key == "samples_per_pair") {
+      auto i = node.as_integer();
+      if (!i) throw InputError("samples_per_pair must be an integer", w, "write samples_per_pair = 256");
+      m.samples_per_pair = i->get();
+    } else if (key == "hysteresis") {
+      auto s = node.value<std::string>();
+      if (s == "bilinear") m.hysteresis = Hysteresis::bilinear;
+      else if (s == "elastic") m.hysteresis = Hysteresis::elastic;
+      else
+        throw InputError(fmt::format("hysteresis = {} is not a known model", s ? "\"" + *s + "\"" : "(not a string)"),
+                         w, "write hysteresis = \"bilinear\" or \"elastic\"");
+    } else {
+      throw InputError(fmt::format("unknown key \"{}\" in [structures]", key), w,
+                       fmt::format("use one of: {}", known_list));
+    }
+  }
+  if (have_periods && (pmin || pmax || pstep))
+    throw InputError("both periods and period_min/period_max/period_step are given", where("periods"),
+                     "give either the list periods = [..] or the grid period_min, period_max, period_step");
+  if (pmin || pmax || pstep) {
+    std::string w = where(pmin ? "period_min" : pmax ? "period_max" : "period_step");
+    m.periods = make_period_grid(pmin.value_or(1.00), pmax.value_or(1.50), pstep.value_or(0.05), w);
+  }
+  validate_impl(m, where);
+  return m;
+}
+
+std::uint64_t parse_study_seed(const toml::table& root, const std::string& file) {
+  const toml::node* n = root.get("seed");
+  if (!n)
+    throw InputError("the study has no seed", loc(file, root.source()),
+                     "add a top-level line seed = <integer >= 0> before any [table]");
+  auto i = n->as_integer();
+  if (!i || i->get() < 0)
+    throw InputError("seed must be an integer >= 0", fmt::format("{} seed", loc(file, n->source())),
+                     "write seed = <integer in [0, 2^63 - 1]>");
+  return static_cast<std::uint64_t>(i->get());
+}
+
+// ---------------------------------------------------------------- streams
+
+std::uint64_t splitmix64(std::uint64_t x) {
+  x += 0x9e3779b97f4a7c15ULL;
+  x = (x ^ (x >> 30)) * 0xbf58476d1ce4e5b9ULL;
+  x = (x ^ (x >> 27)) * 0x94d049bb133111ebULL;
+  return x ^ (x >> 31);
+}
+
+std::uint64_t stream_seed(std::uint64_t seed, std::uint64_t stream, const SampleId& id) {
+  // Each step is a bijection of the running value for fixed input, so for a given (seed, stream, i1, i2)
+  // distinct sample indices give distinct engine seeds; the chain makes every input bit avalanche.
+  const std::uint64_t pair = (static_cast<std::uint64_t>(static_cast<std::uint32_t>(id.i1)) << 32) |
+                             static_cast<std::uint32_t>(id.i2);
+  std::uint64_t h = splitmix64(seed);
+  h = splitmix64(h ^ stream);
+  h = splitmix64(h ^ pair);
+  return splitmix64(h ^ static_cast<std::uint64_t>(id.sample));
+}
+
+// ---------------------------------------------------------------- sampler
+
+StructureSampler::StructureSampler(StructureModel model, std::uint64_t seed, std::uint64_t stream)
+    : model_(std::move(model)), seed_(seed), stream_(stream) {
+  validate(model_);
+  for (double T : model_.periods) heights_.push_back(height_interval_impl(model_, T, "[structures].periods"));
+  LognormalParams rho = lognormal_from_mean_cov(model_.rho_mean, model_.rho_cov);
+  rho_mu_ = rho.mu;
+  rho_sigma_ = rho.sigma;
+  LognormalParams mb = lognormal_from_mean_cov(model_.mbar_mean, model_.mbar_cov);
+  mbar_mu_ = mb.mu;
+  mbar_sigma_ = mb.sigma;
+  mbar_za_ = (std::log(model_.mbar_min) - mbar_mu_) / mbar_sigma_;
+  mbar_zb_ = (std::log(model_.mbar_max) - mbar_mu_) / mbar_sigma_;
+  Normal nd;
+  mbar_pa_ = cdf(nd, mbar_za_);
+  mbar_pb_ = cdf(nd, mbar_zb_);
+  mbar_qa_ = cdf(complement(nd, mbar_za_));
+  mbar_qb_ = cdf(complement(nd, mbar_zb_));
+  mbar_upper_tail_ = mbar_za_ > 0;
+}
+
+template <class Engine>
+SampledStructure StructureSampler::draw_structure(Engine& g, std::size_t pi) const {
+  // Four uniforms per structure, always in this order: h, aspect ratio, rho, mbar.
+  const double u_h = uniform01(g), u_a = uniform01(g), u_rho = uniform01(g), u_mbar = uniform01(g);
+  const Normal nd;
+  SampledStructure s;
+  s.T = model_.periods[pi];
+  const HeightInterval& iv = heights_[pi];
+  s.h = iv.lo + (iv.hi - iv.lo) * u_h;  // uniform on [lo, hi] (section 3.1)
+  const std::size_t na = model_.aspect_ratios.size();
+  s.aspect = model_.aspect_ratios[std::min(na - 1, static_cast<std::size_t>(u_a * static_cast<double>(na)))];
+  s.r = s.h / s.aspect;
+  s.rho = std::exp(rho_mu_ + rho_sigma_ * quantile(nd, u_rho));
+  // Truncated lognormal, exact: ln mbar = mu + sigma Z with Z standard normal restricted to [za, zb].
+  // Its CDF is (Phi(z) - Phi(za)) / (Phi(zb) - Phi(za)); inverting at u gives
+  // z = Phi^-1(Phi(za) + u (Phi(zb) - Phi(za))) -- every u in (0, 1) maps inside [za, zb], no rejection.
+  // When za > 0 both bounds lie in the upper tail, where Phi ~ 1 loses digits, so the same map is applied
+  // to the upper-tail probabilities: z = -Phi^-1(Q(za) - u (Q(za) - Q(zb))), Q = 1 - Phi.
+  double z = mbar_upper_tail_ ? quantile(complement(nd, mbar_qa_ - u_mbar * (mbar_qa_ - mbar_qb_)))
+                              : quantile(nd, mbar_pa_ + u_mbar * (mbar_pb_ - mbar_pa_));
+  s.mbar = std::clamp(std::exp(mbar_mu_ + mbar_sigma_ * z), model_.mbar_min, model_.mbar_max);  // rounding only
+  s.m = s.mbar * s.rho * s.r * s.r * s.h;  // eq. (7)
+  Structure st = Structure::from_period(s.m, s.T, model_.zeta);  // eqs (8), (9)
+  s.k = st.k;
+  s.c = st.c;
+  if (model_.hysteresis == Hysteresis::bilinear) {
+    s.fy = s.k * (model_.drift * s.h / model_.ductility);  // ductility 6 at 2 % drift (section 2.1)
+    s.alpha = model_.alpha;
+  } else {
+    s.fy = std::numeric_limits<double>::infinity();
+    s.alpha = 0.0;
+  }
+  return s;
+}
+
+SampledPair StructureSampler::sample(const SampleId& id) const {
+  const auto n = static_cast<std::int32_t>(model_.periods.size());
+  if (id.i1 < 0 || id.i1 >= n || id.i2 < 0 || id.i2 >= n || id.sample < 0)
+    throw std::out_of_range(fmt::format("sample identity ({}, {}, {}) outside a grid of {} periods", id.i1, id.i2,
+                                        id.sample, n));
+  boost::random::mt19937_64 g(stream_seed(seed_, stream_, id));
+  SampledPair p;
+  p.id = id;
+  p.s1 = draw_structure(g, static_cast<std::size_t>(id.i1));
+  p.s2 = draw_structure(g, static_cast<std::size_t>(id.i2));
+  p.d = model_.code_gap_coefficient * (p.s1.h + p.s2.h);  // eq. (5)
+  p.kh = model_.kh > 0 ? model_.kh
+                       : hertz_stiffness_spheres(p.s1.m, p.s2.m, model_.contact_density, model_.contact_youngs_modulus,
+                                                 model_.contact_poisson);
+  return p;
+}
+
+void StructureSampler::sample_block(std::int32_t i1, std::int32_t i2, std::int64_t first,
+                                    std::span<SampledPair> out) const {
+  for (std::size_t j = 0; j < out.size(); ++j) out[j] = sample(SampleId{i1, i2, first + static_cast<std::int64_t>(j)});
+}
+
+std::int64_t StructureSampler::global_index(const SampleId& id) const {
+  const auto n = static_cast<std::int64_t>(model_.periods.size());
+  return (id.i1 * n + id.i2) * model_.samples_per_pair + id.sample;
+}
+
+SampleId StructureSampler::identity(std::int64_t global_index) const {
+  const auto n = static_cast<std::int64_t>(model_.periods.size());
+  const std::int64_t pair = global_index / model_.samples_per_pair;
+  return SampleId{static_cast<std::int32_t>(pair / n), static_cast<std::int32_t>(pair % n),
+                  global_index % model_.samples_per_pair};
+}
+
+PairParams SampledPair::pair_params(double gap_ratio, double e) const {
+  PairParams p;
+  p.s1 = s1.structure();
+  p.s2 = s2.structure();
+  p.gap = gap_ratio * d;
+  p.kc = kh;
+  p.e = e;
+  return p;
+}
+
+SampledPair sample_pair(const StructureModel& model, std::uint64_t seed, std::uint64_t stream, const SampleId& id) {
+  return StructureSampler(model, seed, stream).sample(id);
+}
+
+}  // namespace pounding
