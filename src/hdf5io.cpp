@@ -195,6 +195,7 @@ std::vector<std::string> read_strings(hid g, const std::string& n) {
   hssize_t count = H5Sget_simple_extent_npoints(space.get());
   Handle type(checked(H5Tcopy(H5T_C_S1), "string type"));
   check(H5Tset_size(type.get(), H5T_VARIABLE), "vlen");
+  check(H5Tset_cset(type.get(), H5T_CSET_UTF8), "utf8");
   std::vector<char*> ptrs(static_cast<std::size_t>(count), nullptr);
   if (count > 0) check(H5Dread(ds.get(), type.get(), H5S_ALL, H5S_ALL, H5P_DEFAULT, ptrs.data()), "read " + n);
   std::vector<std::string> out;
@@ -207,6 +208,7 @@ std::string read_string_attribute(hid obj, const std::string& name) {
   Handle a(checked(H5Aopen(obj, name.c_str(), H5P_DEFAULT), "attribute " + name));
   Handle type(checked(H5Tcopy(H5T_C_S1), "string type"));
   check(H5Tset_size(type.get(), H5T_VARIABLE), "vlen");
+  check(H5Tset_cset(type.get(), H5T_CSET_UTF8), "utf8");
   char* p = nullptr;
   check(H5Aread(a.get(), type.get(), &p), "read attr " + name);
   std::string s = p ? p : "";

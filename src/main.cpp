@@ -12,6 +12,8 @@ int main(int argc, char** argv) {
   CLI::App app{"pounding: probability of seismic pounding between adjacent structures"};
   app.set_version_flag("--version", std::string(pounding::program_version) + " (" + pounding::git_commit + ")");
   app.require_subcommand(1);
+  pounding::cli::add_run(app);
+  pounding::cli::add_report(app);
   pounding::cli::add_simulate(app);
   pounding::cli::add_collide(app);
   pounding::cli::add_bench(app);

@@ -10,6 +10,8 @@ void add_collide(CLI::App& app);   // src/cmd_collide.cpp
 void add_bench(CLI::App& app);     // src/cmd_bench.cpp
 void add_records(CLI::App& app);   // src/cmd_records.cpp (ground motions)
 void add_sample(CLI::App& app);    // src/cmd_sample.cpp (stochastic structure model)
+void add_run(CLI::App& app);       // src/cmd_run.cpp (the study)
+void add_report(CLI::App& app);    // src/cmd_run.cpp
 
 // Exit code the sub-command asked for (set by handlers that fail without an exception).
 int& exit_code();

@@ -1,0 +1,89 @@
+#pragma once
+// A study file (studies/*.toml) parsed once into a validated, immutable Study.
+//
+//   title = "..."                 seed = 20240601 (required)
+//   scene = "probability" | "impacts" | "auto"
+//   output = "results/quick.h5"   (relative to the working directory; default <study stem>.h5)
+//   [records]    suite = "..." (relative to the study file) | files = ["a.AT2", {path = "b.AT2", scale = 1.2}]
+//                | directory = "..."; real_dir = "..." (resolve suite entries to real PEER files);
+//                scale = 1.0; units = "g" | "m/s2" | "cm/s2"; dt = <s, one-column files>; limit = <first N>
+//   [structures] the stochastic structure model (see sampler.hpp)
+//   [gaps]       ratios = [0.1, 0.2, 0.3, 0.5, 0.7, 1.0]; curve_max = 1.5; curve_step = 0.005
+//   [contact]    law = "hertzdamp"; damping_law = "lankarani-nikravesh"; e = 0.65; n = 1.5; v0_min = 1e-3
+//   [analysis]   stepper = "central-difference"; substeps = 1; batch = 256; free_vibration = 0.0 (s);
+//                displacement_limit = 10.0 (m)
+//   [report]     targets = [10, 5, 1] (% probability); h1 = 40; h2 = 40 (m, for separations in metres);
+//                fit_min = 0.1; fit_max = 1.0
+//   [outputs]    forces = true; amplification = true   (what the impacts scene must deliver; `auto` reads it)
+#include <cstdint>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "pounding/contact.hpp"
+#include "pounding/kernel.hpp"
+#include "pounding/records.hpp"
+#include "pounding/sampler.hpp"
+
+namespace pounding {
+
+enum class Scene : std::uint8_t { probability, impacts, automatic };
+std::string_view to_string(Scene s);
+
+struct RecordFile {
+  std::string path;
+  double scale = 1.0;
+};
+
+struct Study {
+  std::string path;  // the study file
+  std::string text;  // its full text (echoed into the results)
+  std::string title;
+  std::uint64_t seed = 0;
+  Scene scene_requested = Scene::probability;
+  Scene scene = Scene::probability;  // after resolving "auto"
+  std::string scene_reason;
+  std::string output;
+  // records
+  std::string suite, real_dir, directory;
+  std::vector<RecordFile> files;
+  double scale = 1.0;
+  AccUnits units = AccUnits::g;
+  double dt_one_column = 0.0;
+  int record_limit = 0;
+  // structures
+  StructureModel structures;
+  // gaps
+  std::vector<double> gap_ratios{0.1, 0.2, 0.3, 0.5, 0.7, 1.0};
+  double curve_max = 1.5, curve_step = 0.005;
+  // contact and analysis
+  ContactModel contact;
+  double e = 0.65;
+  Stepper stepper = Stepper::central_difference;
+  int substeps = 1;
+  int batch = 256;
+  double free_vibration = 0.0;
+  double displacement_limit = 10.0;
+  // report
+  std::vector<double> targets{10.0, 5.0, 1.0};
+  double h1 = 40.0, h2 = 40.0, fit_min = 0.1, fit_max = 1.0;
+  // outputs wanted from the impacts scene
+  bool want_forces = true, want_amplification = true;
+};
+
+// Parses and validates; every problem is an InputError naming file:line, the key and the allowed values.
+Study parse_study(const std::string& text, const std::string& path);
+Study load_study(const std::string& path);
+
+// One input record of the study, resolved (real file or synthetic stand-in), scaled, in m/s^2.
+struct StudyRecord {
+  Record record;
+  bool synthetic = false;
+  std::string id;    // suite id (EQ1...) or file stem
+  std::string note;  // how it was resolved
+};
+std::vector<StudyRecord> load_study_records(const Study& study);
+// The suite part of load_study_records (src/study_suite.cpp).
+std::vector<StudyRecord> load_suite_records(const Study& study);
+
+}  // namespace pounding

@@ -1,0 +1,299 @@
+#include "pounding/study.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <map>
+#include <set>
+#include <sstream>
+
+#include <fmt/format.h>
+#include <toml++/toml.h>
+
+#include "pounding/error.hpp"
+
+namespace pounding {
+
+namespace fs = std::filesystem;
+
+std::string_view to_string(Scene s) {
+  switch (s) {
+    case Scene::probability: return "probability";
+    case Scene::impacts: return "impacts";
+    case Scene::automatic: return "auto";
+  }
+  return "?";
+}
+
+namespace {
+
+// Reads one TOML table with a fixed set of keys; every error names file:line, the table and the key.
+class TableReader {
+ public:
+  TableReader(const toml::table* t, std::string file, std::string name)
+      : t_(t), file_(std::move(file)), name_(std::move(name)) {}
+
+  std::string where(std::string_view key) const {
+    const toml::node* n = t_ ? t_->get(key) : nullptr;
+    int line = n ? static_cast<int>(n->source().begin.line) : (t_ ? static_cast<int>(t_->source().begin.line) : 0);
+    std::string k = name_.empty() ? std::string(key) : fmt::format("[{}].{}", name_, key);
+    return line > 0 ? fmt::format("{}:{} {}", file_, line, k) : fmt::format("{} {}", file_, k);
+  }
+  const toml::node* get(std::string_view key) {
+    seen_.insert(std::string(key));
+    return t_ ? t_->get(key) : nullptr;
+  }
+  double number(std::string_view key, double def, double lo, double hi, std::string_view range) {
+    const toml::node* n = get(key);
+    if (!n) return def;
+    double v;
+    if (auto i = n->as_integer()) v = static_cast<double>(i->get());
+    else if (auto f = n->as_floating_point()) v = f->get();
+    else throw InputError(fmt::format("{} must be a number", key), where(key), fmt::format("write {} = <number>", key));
+    if (!std::isfinite(v) || v < lo || v > hi)
+      throw InputError(fmt::format("{} = {} is out of range", key, v), where(key), fmt::format("give a value in {}", range));
+    return v;
+  }
+  long integer(std::string_view key, long def, long lo, long hi) {
+    const toml::node* n = get(key);
+    if (!n) return def;
+    auto i = n->as_integer();
+    if (!i) throw InputError(fmt::format("{} must be an integer", key), where(key), fmt::format("write {} = <integer>", key));
+    long v = static_cast<long>(i->get());
+    if (v < lo || v > hi)
+      throw InputError(fmt::format("{} = {} is out of range", key, v), where(key), fmt::format("give an integer in [{}, {}]", lo, hi));
+    return v;
+  }
+  std::string string(std::string_view key, std::string def) {
+    const toml::node* n = get(key);
+    if (!n) return def;
+    auto s = n->as_string();
+    if (!s) throw InputError(fmt::format("{} must be a string", key), where(key), fmt::format("write {} = \"...\"", key));
+    return s->get();
+  }
+  bool boolean(std::string_view key, bool def) {
+    const toml::node* n = get(key);
+    if (!n) return def;
+    auto b = n->as_boolean();
+    if (!b) throw InputError(fmt::format("{} must be true or false", key), where(key), fmt::format("write {} = true", key));
+    return b->get();
+  }
+  std::vector<double> numbers(std::string_view key, std::vector<double> def, double lo, double hi, std::string_view range) {
+    const toml::node* n = get(key);
+    if (!n) return def;
+    auto a = n->as_array();
+    if (!a || a->empty())
+      throw InputError(fmt::format("{} must be a non-empty array of numbers", key), where(key), fmt::format("write {} = [x1, x2, ...]", key));
+    std::vector<double> out;
+    for (auto& e : *a) {
+      double v;
+      if (auto i = e.as_integer()) v = static_cast<double>(i->get());
+      else if (auto f = e.as_floating_point()) v = f->get();
+      else throw InputError(fmt::format("{} must hold numbers only", key), where(key), "remove the non-numeric entries");
+      if (!std::isfinite(v) || v < lo || v > hi)
+        throw InputError(fmt::format("{} holds {}, out of range", key, v), where(key), fmt::format("give values in {}", range));
+      out.push_back(v);
+    }
+    return out;
+  }
+  // Every key of the table must have been read.
+  void finish(std::string_view allowed) const {
+    if (!t_) return;
+    for (auto&& [k, n] : *t_) {
+      if (!seen_.count(std::string(k.str())))
+        throw InputError(fmt::format("unknown key '{}'", k.str()), where(k.str()), fmt::format("allowed keys here: {}", allowed));
+    }
+  }
+
+ private:
+  const toml::table* t_;
+  std::string file_, name_;
+  std::set<std::string> seen_;
+};
+
+std::string resolve_relative(const std::string& study_path, const std::string& p) {
+  if (p.empty() || fs::path(p).is_absolute()) return p;
+  return (fs::path(study_path).parent_path() / p).lexically_normal().string();
+}
+
+}  // namespace
+
+Study parse_study(const std::string& text, const std::string& path) {
+  Study s;
+  s.path = path;
+  s.text = text;
+  toml::table root;
+  try {
+    root = toml::parse(text, path);
+  } catch (const toml::parse_error& e) {
+    throw InputError(fmt::format("TOML syntax error: {}", e.description()),
+                     fmt::format("{}:{}:{}", path, e.source().begin.line, e.source().begin.column),
+                     "fix the study file's syntax");
+  }
+  TableReader top(&root, path, "");
+  s.title = top.string("title", fs::path(path).stem().string());
+  top.get("seed");
+  s.seed = parse_study_seed(root, path);
+  std::string scene = top.string("scene", "probability");
+  if (scene == "probability") s.scene_requested = Scene::probability;
+  else if (scene == "impacts") s.scene_requested = Scene::impacts;
+  else if (scene == "auto") s.scene_requested = Scene::automatic;
+  else throw InputError(fmt::format("unknown scene '{}'", scene), top.where("scene"), "use \"probability\", \"impacts\" or \"auto\"");
+  s.output = top.string("output", fs::path(path).stem().string() + ".h5");
+  if (s.output.empty()) throw InputError("output is empty", top.where("output"), "give a results file name");
+
+  auto sub = [&](const char* name) -> const toml::table* {
+    top.get(name);
+    const toml::node* n = root.get(name);
+    if (n && !n->is_table())
+      throw InputError(fmt::format("{} must be a table", name), top.where(name), fmt::format("write [{}] on its own line", name));
+    return n ? n->as_table() : nullptr;
+  };
+
+  {  // [records]
+    const toml::table* t = sub("records");
+    TableReader r(t, path, "records");
+    s.suite = resolve_relative(path, r.string("suite", ""));
+    s.real_dir = resolve_relative(path, r.string("real_dir", ""));
+    s.directory = resolve_relative(path, r.string("directory", ""));
+    s.scale = r.number("scale", 1.0, 1e-6, 1e3, "(0, 1000]");
+    std::string units = r.string("units", "g");
+    try {
+      s.units = parse_units(units);
+    } catch (const InputError&) {
+      throw InputError(fmt::format("unknown units '{}'", units), r.where("units"), "use \"g\", \"m/s2\" or \"cm/s2\"");
+    }
+    s.dt_one_column = r.number("dt", 0.0, 0.0, 1.0, "[0, 1] s");
+    s.record_limit = static_cast<int>(r.integer("limit", 0, 0, 100000));
+    if (const toml::node* f = r.get("files")) {
+      auto a = f->as_array();
+      if (!a) throw InputError("files must be an array", r.where("files"), "write files = [\"a.AT2\", {path = \"b.AT2\", scale = 1.5}]");
+      for (auto& e : *a) {
+        RecordFile rf;
+        if (auto str = e.as_string()) {
+          rf.path = str->get();
+        } else if (auto tb = e.as_table()) {
+          TableReader fr(tb, path, "records.files");
+          rf.path = fr.string("path", "");
+          rf.scale = fr.number("scale", 1.0, 1e-6, 1e3, "(0, 1000]");
+          fr.finish("path, scale");
+        } else {
+          throw InputError("files entries must be strings or {path, scale} tables", r.where("files"), "fix the entry");
+        }
+        if (rf.path.empty()) throw InputError("a files entry has no path", r.where("files"), "give path = \"...\"");
+        rf.path = resolve_relative(path, rf.path);
+        s.files.push_back(rf);
+      }
+    }
+    r.finish("suite, real_dir, directory, files, scale, units, dt, limit");
+    int sources = !s.suite.empty() + !s.directory.empty() + !s.files.empty();
+    if (sources != 1)
+      throw InputError(sources == 0 ? "the study names no records" : "the study names records in more than one way",
+                       fmt::format("{} [records]", path), "give exactly one of suite, directory or files");
+  }
+
+  {  // [structures]
+    const toml::table* t = sub("structures");
+    toml::table empty;
+    s.structures = parse_structure_model(t ? *t : empty, path);
+  }
+
+  {  // [gaps]
+    TableReader g(sub("gaps"), path, "gaps");
+    s.gap_ratios = g.numbers("ratios", s.gap_ratios, 1e-9, 100.0, "(0, 100]");
+    for (std::size_t i = 1; i < s.gap_ratios.size(); ++i)
+      if (!(s.gap_ratios[i] > s.gap_ratios[i - 1]))
+        throw InputError("gap ratios must be strictly increasing", g.where("ratios"), "sort them and remove duplicates");
+    s.curve_max = g.number("curve_max", std::max(1.5, s.gap_ratios.back()), 0.01, 100.0, "[0.01, 100]");
+    s.curve_step = g.number("curve_step", 0.005, 1e-4, 1.0, "[1e-4, 1]");
+    g.finish("ratios, curve_max, curve_step");
+  }
+
+  {  // [contact]
+    TableReader c(sub("contact"), path, "contact");
+    std::string law = c.string("law", "hertzdamp");
+    std::string dl = c.string("damping_law", "lankarani-nikravesh");
+    try {
+      s.contact.law = parse_contact_law(law);
+    } catch (const InputError& e) {
+      throw InputError(e.what_part(), c.where("law"), e.fix());
+    }
+    try {
+      s.contact.damping = parse_damping_law(dl);
+    } catch (const InputError& e) {
+      throw InputError(e.what_part(), c.where("damping_law"), e.fix());
+    }
+    if (s.contact.law == ContactLaw::none)
+      throw InputError("contact law 'none' cannot count impacts", c.where("law"), "choose a contact law (hertzdamp, kelvin, ...)");
+    s.e = c.number("e", 0.65, 1e-6, 1.0, "(0, 1]");
+    s.contact.n = c.number("n", 1.5, 1.0, 3.0, "[1, 3]");
+    s.contact.v0_min = c.number("v0_min", 1e-3, 1e-12, 1.0, "(0, 1] m/s");
+    c.finish("law, damping_law, e, n, v0_min");
+  }
+
+  {  // [analysis]
+    TableReader a(sub("analysis"), path, "analysis");
+    std::string st = a.string("stepper", "central-difference");
+    try {
+      s.stepper = parse_stepper(st);
+    } catch (const InputError& e) {
+      throw InputError(e.what_part(), a.where("stepper"), e.fix());
+    }
+    s.substeps = static_cast<int>(a.integer("substeps", 1, 1, 10000));
+    s.batch = static_cast<int>(a.integer("batch", 256, 1, 65536));
+    s.free_vibration = a.number("free_vibration", 0.0, 0.0, 1000.0, "[0, 1000] s");
+    s.displacement_limit = a.number("displacement_limit", 10.0, 1e-6, 1e6, "(0, 1e6] m");
+    a.finish("stepper, substeps, batch, free_vibration, displacement_limit");
+  }
+
+  {  // [report]
+    TableReader r(sub("report"), path, "report");
+    s.targets = r.numbers("targets", s.targets, 1e-6, 99.999, "(0, 100) %");
+    s.h1 = r.number("h1", 40.0, 0.1, 1000.0, "(0, 1000] m");
+    s.h2 = r.number("h2", 40.0, 0.1, 1000.0, "(0, 1000] m");
+    s.fit_min = r.number("fit_min", 0.1, 0.0, 100.0, "[0, 100]");
+    s.fit_max = r.number("fit_max", 1.0, 0.0, 100.0, "[0, 100]");
+    if (!(s.fit_max > s.fit_min)) throw InputError("fit_max must exceed fit_min", r.where("fit_max"), "give fit_min < fit_max");
+    r.finish("targets, h1, h2, fit_min, fit_max");
+  }
+
+  {  // [outputs]
+    TableReader o(sub("outputs"), path, "outputs");
+    s.want_forces = o.boolean("forces", true);
+    s.want_amplification = o.boolean("amplification", true);
+    o.finish("forces, amplification");
+  }
+
+  top.finish("title, seed, scene, output, records, structures, gaps, contact, analysis, report, outputs");
+
+  // "auto": the cheapest scene that answers what the study asks for
+  s.scene = s.scene_requested;
+  if (s.scene_requested == Scene::automatic) {
+    if (s.want_forces || s.want_amplification) {
+      s.scene = Scene::impacts;
+      s.scene_reason = "auto: [outputs] asks for impact forces/amplification, which need the coupled contact runs";
+    } else {
+      s.scene = Scene::probability;
+      s.scene_reason = "auto: only the at-least-one-impact probability is asked for; it depends only on the "
+                       "uncoupled motion before the first contact, so one uncoupled run per model answers every gap";
+    }
+  } else if (s.scene == Scene::probability) {
+    s.scene_reason = "probability scene: whether a pair touches at gap g depends only on the motion before the first "
+                     "contact, i.e. the uncoupled motion; one uncoupled run per model and record answers every gap";
+  } else {
+    s.scene_reason = "impacts scene: coupled contact runs at every gap ratio (plus one uncoupled run per model)";
+  }
+  return s;
+}
+
+Study load_study(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError("cannot read the study file", path, "check the path");
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return parse_study(ss.str(), path);
+}
+
+}  // namespace pounding
