@@ -1,0 +1,37 @@
+#!/usr/bin/env bash
+# kill -9 of a whole `mpirun -np 2` job mid-run, then --resume: the results equal an uninterrupted run's.
+# Also: no results file exists after the kill; --resume against a different study is refused.
+# Args: <pounding binary> <source dir>
+set -euo pipefail
+bin=$1; src=$2
+export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
+tmp=$(mktemp -d); trap 'rm -rf "$tmp"' EXIT
+sed -e 's/^samples_per_pair = 8/samples_per_pair = 40/' -e 's/^batch = 3 .*/batch = 4/' \
+    -e "s|\.\./\.\./\.\./shared|$src/../shared|g" "$src/tests/data/study-small.toml" > "$tmp/study.toml"
+"$bin" run "$tmp/study.toml" --out "$tmp/ref.h5" --quiet > /dev/null 2>&1
+
+setsid mpirun -np 2 "$bin" run "$tmp/study.toml" --out "$tmp/cut.h5" --quiet > /dev/null 2>&1 &
+job=$!
+# wait until some units are checkpointed, then kill -9 every process of the job
+for _ in $(seq 1 400); do
+  [ -f "$tmp/cut.h5.ckpt" ] && [ "$(stat -c %s "$tmp/cut.h5.ckpt")" -gt 200000 ] && break
+  sleep 0.05
+done
+kill -9 -- -"$job" 2>/dev/null || true
+wait "$job" 2>/dev/null || true
+[ -f "$tmp/cut.h5" ] && { echo "FAIL: a results file exists after kill -9"; exit 1; }
+[ -f "$tmp/cut.h5.ckpt" ] || { echo "FAIL: no checkpoint after kill -9"; exit 1; }
+echo "checkpoint after kill -9: $(stat -c %s "$tmp/cut.h5.ckpt") bytes"
+
+# resuming with another study is refused with the reason, and leaves the checkpoint alone
+sed 's/^seed = 11/seed = 12/' "$tmp/study.toml" > "$tmp/other.toml"
+if "$bin" run "$tmp/other.toml" --out "$tmp/cut.h5" --resume --quiet > "$tmp/other.out" 2>&1; then
+  echo "FAIL: resume with a different study was accepted"; exit 1
+fi
+grep -q "different study" "$tmp/other.out" || { echo "FAIL: no reason given"; cat "$tmp/other.out"; exit 1; }
+
+mpirun -np 2 "$bin" run "$tmp/study.toml" --out "$tmp/cut.h5" --resume --quiet > /dev/null 2> "$tmp/resume.err"
+grep resuming "$tmp/resume.err"
+[ -f "$tmp/cut.h5.ckpt" ] && { echo "FAIL: checkpoint left after completion"; exit 1; }
+/usr/bin/python3 "$src/tests/cli/compare_results.py" "$tmp/ref.h5" "$tmp/cut.h5"
+echo "1 passed, 0 failed"
