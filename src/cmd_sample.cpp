@@ -57,7 +57,7 @@ std::vector<std::string> header_lines(const SampleOptions& o, const StructureSam
   std::vector<std::string> h;
   h.push_back("pounding sample: stochastic structure model (stochastic-pounding-monte-carlo.txt, sections 2.1-3.1)");
   h.push_back(fmt::format("study: {}", o.study));
-  h.push_back(fmt::format("seed: {}  stream: {}  engine: boost::random::mt19937_64 seeded with "
+  h.push_back(fmt::format("seed: {}  stream: {}  engine: boost::random::taus88 seeded with "
                           "SplitMix64(seed, stream, (i1, i2), sample)",
                           s.seed(), s.stream()));
   h.push_back(fmt::format("periods (s): [{}]  samples per pair written: {} (study: {})", join(m.periods), n,

@@ -27,9 +27,14 @@
 // The mean and CoV of mbar are those of the parent lognormal before truncation; the truncated
 // distribution is sampled exactly by inverse CDF (see sampler.cpp).
 //
+// Random numbers: 8 uniforms per pair in a fixed order (structure 1 then 2; each h, aspect, rho, mbar), each
+// from 53 bits of two engine outputs, mapped by inverse CDF (Boost.Math normal quantile in double precision);
+// no std:: distributions (their algorithms are implementation-defined).
+//
 // Reproducibility (OpenMC's idea): a sample's identity is (i1, i2, sample) -- period indices of structures 1
-// and 2 into the grid and the sample index within that period pair. Its engine (boost::random::mt19937_64) is
-// seeded only from (study seed, stream, identity) through a SplitMix64 mix, so the same structures appear
+// and 2 into the grid and the sample index within that period pair. Its engine (boost::random::taus88, a
+// combined Tausworthe generator) is seeded only from (study seed, stream, identity) through a SplitMix64 mix
+// (stream_seed; the 64-bit key and splitmix64(key) give the engine's three 32-bit seed words), so the same structures appear
 // for every record and gap (common random numbers), at any rank count, batch width or order of work; and
 // the first N samples of a pair do not depend on samples_per_pair.
 //
@@ -163,8 +168,8 @@ class StructureSampler {
   double mbar_sigma() const { return mbar_sigma_; }
 
  private:
-  template <class Engine>
-  SampledStructure draw_structure(Engine& g, std::size_t period_index) const;
+  template <class Gen>
+  SampledStructure draw_structure(Gen& g, std::size_t period_index) const;
 
   StructureModel model_;
   std::uint64_t seed_, stream_;
