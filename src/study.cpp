@@ -245,7 +245,8 @@ Study parse_study(const std::string& text, const std::string& path) {
     s.batch = static_cast<int>(a.integer("batch", 256, 1, 65536));
     s.free_vibration = a.number("free_vibration", 0.0, 0.0, 1000.0, "[0, 1000] s");
     s.displacement_limit = a.number("displacement_limit", 10.0, 1e-6, 1e6, "(0, 1e6] m");
-    a.finish("stepper, substeps, batch, free_vibration, displacement_limit");
+    s.skip_untouched = a.boolean("skip_untouched", true);
+    a.finish("stepper, substeps, batch, free_vibration, displacement_limit, skip_untouched");
   }
 
   {  // [report]
@@ -283,8 +284,13 @@ Study parse_study(const std::string& text, const std::string& path) {
     s.scene_reason = "probability scene: whether a pair touches at gap g depends only on the motion before the first "
                      "contact, i.e. the uncoupled motion; one uncoupled run per model and record answers every gap";
   } else {
-    s.scene_reason = "impacts scene: coupled contact runs at every gap ratio (plus one uncoupled run per model)";
+    s.scene_reason = "impacts scene: one uncoupled run per model, then coupled contact runs at every gap ratio";
   }
+  if (s.scene == Scene::impacts)
+    s.scene_reason += s.skip_untouched
+                          ? "; pairs whose uncoupled peak closing stays below a gap never touch there and are not rerun "
+                            "with contact (their coupled run would be bit-identical to the uncoupled one)"
+                          : "; every pair is rerun with contact at every gap (skip_untouched = false)";
   return s;
 }
 

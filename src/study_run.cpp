@@ -217,16 +217,39 @@ int run_study(const parallel::Session& session, const std::string& study_path, c
       payload.push_back(res.peak_closing[i]);
     }
     if (L.impacts) {
+      // A pair whose uncoupled peak closing stays <= g never touches at gap g, and its coupled run is
+      // bit-identical to the uncoupled one (the first-passage property, tested): only the pairs that touch
+      // are run with contact; the others take the uncoupled results (unless [analysis] skip_untouched = false).
+      std::vector<std::size_t> lanes;
+      PairBatch sub;
+      BatchResult cres;
       for (std::size_t g = 0; g < L.gaps; ++g) {
-        for (std::size_t i = 0; i < n; ++i) batch.set(i, pairs[i].pair_params(study.gap_ratios[g], study.e));
-        run_batch(batch, study.contact, gm, ks, res);
+        lanes.clear();
         for (std::size_t i = 0; i < n; ++i) {
-          payload.push_back(res.status[i]);
-          payload.push_back(res.impact_count[i]);
-          payload.push_back(res.peak_force[i]);
-          payload.push_back(res.peak_u1[i]);
-          payload.push_back(res.peak_u2[i]);
-          payload.push_back(res.t_first_impact[i]);
+          const bool untouched = res.status[i] == 0 && !(res.peak_closing[i] > study.gap_ratios[g] * pairs[i].d);
+          if (!study.skip_untouched || !untouched) lanes.push_back(i);
+        }
+        sub.resize(lanes.size());
+        for (std::size_t j = 0; j < lanes.size(); ++j) sub.set(j, pairs[lanes[j]].pair_params(study.gap_ratios[g], study.e));
+        if (!lanes.empty()) run_batch(sub, study.contact, gm, ks, cres);
+        std::size_t j = 0;
+        for (std::size_t i = 0; i < n; ++i) {
+          if (j < lanes.size() && lanes[j] == i) {
+            payload.push_back(cres.status[j]);
+            payload.push_back(cres.impact_count[j]);
+            payload.push_back(cres.peak_force[j]);
+            payload.push_back(cres.peak_u1[j]);
+            payload.push_back(cres.peak_u2[j]);
+            payload.push_back(cres.t_first_impact[j]);
+            ++j;
+          } else {
+            payload.push_back(res.status[i]);
+            payload.push_back(0.0);
+            payload.push_back(0.0);
+            payload.push_back(res.peak_u1[i]);
+            payload.push_back(res.peak_u2[i]);
+            payload.push_back(NAN);
+          }
         }
       }
     }
