@@ -24,7 +24,7 @@ namespace {
 
 struct SampleOptions {
   std::string study, pair, out;
-  std::int64_t n = 0;  // 0: the study's samples_per_pair
+  std::optional<std::int64_t> n;  // default: the study's samples_per_pair
   std::optional<std::int64_t> seed;
 };
 
@@ -182,9 +182,9 @@ void run_sample(const SampleOptions& o) {
   } else {
     seed = parse_study_seed(root, o.study);
   }
-  const std::int64_t n = o.n > 0 ? o.n : model.samples_per_pair;
-  if (o.n < 0 || n > 100'000'000)
-    throw InputError(fmt::format("--n = {} is out of range", o.n), "--n", "give 1 <= N <= 1e8 samples per pair");
+  const std::int64_t n = o.n.value_or(model.samples_per_pair);
+  if (n < 1 || n > 100'000'000)
+    throw InputError(fmt::format("--n = {} is out of range", n), "--n", "give 1 <= N <= 1e8 samples per pair");
   std::vector<std::pair<std::int32_t, std::int32_t>> pairs;
   if (!o.pair.empty()) {
     auto comma = o.pair.find(',');

@@ -271,6 +271,9 @@ StructureModel parse_structure_model(const toml::table& table, const std::string
       else
         throw InputError(fmt::format("hysteresis = {} is not a known model", s ? "\"" + *s + "\"" : "(not a string)"),
                          w, "write hysteresis = \"bilinear\" or \"elastic\"");
+    } else if (key == "seed") {
+      throw InputError("seed is not a [structures] setting", w,
+                       "move seed = <integer> to the top of the study file, before any [table]");
     } else {
       throw InputError(fmt::format("unknown key \"{}\" in [structures]", key), w,
                        fmt::format("use one of: {}", known_list));
@@ -280,8 +283,9 @@ StructureModel parse_structure_model(const toml::table& table, const std::string
     throw InputError("both periods and period_min/period_max/period_step are given", where("periods"),
                      "give either the list periods = [..] or the grid period_min, period_max, period_step");
   if (pmin || pmax || pstep) {
-    std::string w = where(pmin ? "period_min" : pmax ? "period_max" : "period_step");
+    std::string w = where(pmax ? "period_max" : pmin ? "period_min" : "period_step");
     m.periods = make_period_grid(pmin.value_or(1.00), pmax.value_or(1.50), pstep.value_or(0.05), w);
+    where_of["periods"] = w;  // later errors about a period of the grid point at the grid's keys
   }
   validate_impl(m, where);
   return m;

@@ -605,6 +605,13 @@ TEST(SamplerStudyFile, ErrorsNameFileLineKeyAndRange) {
   e = parse_error_of("[structures]\ncontact_poisson = 0.5\n");
   EXPECT_NE(e.fix().find("[0, 0.5)"), std::string::npos) << e.what();
 
+  e = parse_error_of("seed = 1\n[structures]\nperiod_min = 1.0\nperiod_max = 1.7\n");  // 1.6, 1.65, 1.7 too tall
+  EXPECT_NE(e.where().find("study.toml:4"), std::string::npos) << e.what();
+  EXPECT_NE(std::string(e.what()).find("T = 1.55 s"), std::string::npos) << e.what();
+
+  e = parse_error_of("[structures]\nseed = 3\n");
+  EXPECT_NE(e.fix().find("top of the study file"), std::string::npos) << e.what();
+
   e = parse_error_of("[structures]\nzeta = 0.05\n");  // no seed
   EXPECT_NE(std::string(e.what()).find("no seed"), std::string::npos) << e.what();
 
