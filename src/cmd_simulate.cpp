@@ -32,6 +32,7 @@ struct SimulateOptions {
   std::string contact = "hertzdamp", damping_law = "lankarani-nikravesh", stepper = "central-difference";
   double e = 0.65, kh = 0, n = 1.5, density = 2400.0, youngs = 24.86e9, poisson = 0.15;
   double dt = 0, duration = 0, u_limit = 10.0;
+  bool locate = false;
 };
 
 // Builds one structure from the options of side `i` ("1" or "2").
@@ -107,6 +108,9 @@ void run_simulate(const SimulateOptions& o) {
   ks.stepper = parse_stepper(o.stepper);
   ks.displacement_limit = o.u_limit;
   ks.energy = true;
+  ks.locate_contact = o.locate;
+  if (o.locate && ks.stepper != Stepper::rk4)
+    throw InputError("--locate-contact needs --stepper rk4", "--locate-contact", "add --stepper rk4 or drop the option");
 
   Structure s1 = make_structure(o.m1, o.T1, o.k1, o.h1, o.fy1, o.alpha, o.zeta, o.elastic, "1");
   Structure s2 = make_structure(o.m2, o.T2, o.k2, o.h2, o.fy2, o.alpha, o.zeta, o.elastic, "2");
@@ -209,6 +213,7 @@ void add_simulate(CLI::App& app) {
   c->add_option("--dt", o->dt, "integration step (s); must divide the record step (default: the record step)");
   c->add_option("--duration", o->duration, "analysis length (s); free vibration after the record");
   c->add_option("--u-limit", o->u_limit, "|u1| + |u2| above this (m) marks the run diverged")->capture_default_str();
+  c->add_flag("--locate-contact", o->locate, "rk4: locate each contact onset inside its step (high-accuracy mode)");
   c->add_option("--series", o->series, "write the time series to FILE.csv or FILE.h5");
   c->callback([o] { run_simulate(*o); });
 }

@@ -570,6 +570,7 @@ void run_newmark(Tile& T, const Context& C) {
 template <ContactLaw L, bool N15, bool Energy>
 void run_rk4(Tile& T, const Context& C) {
   const double h = C.h, n_exp = C.contact->n, vmin = C.v0_min, lim = C.lim;
+  const bool locate = C.settings->locate_contact;
   const int n = T.n;
   for (long step = 0; step < C.nsteps; ++step) {
     const double ag0 = C.ag[step], ag1 = C.ag[step + 1], agm = 0.5 * (ag0 + ag1);
@@ -578,6 +579,8 @@ void run_rk4(Tile& T, const Context& C) {
       const double u1o = T.u1[i], u2o = T.u2[i], v1o = T.v1[i], v2o = T.v2[i];
       const double fs1o = T.fs1[i], fs2o = T.fs2[i], Fo = T.F[i], d_old = T.dprev[i];
       double v0 = T.v0[i];
+      // mode 0: contact held inactive; 1: active with the latched v0; 2: latch v0 at the first stage in contact
+      int mode = 2;
       auto deriv = [&](double u1, double v1, double u2, double v2, double ag, double& a1, double& a2) {
         double fs1 = bilinear(fs1o, T.k1[i], u1 - u1o, T.ak1[i] * u1, T.qy1[i]);
         double fs2 = bilinear(fs2o, T.k2[i], u2 - u2o, T.ak2[i] * u2, T.qy2[i]);
@@ -585,25 +588,56 @@ void run_rk4(Tile& T, const Context& C) {
         if constexpr (L != ContactLaw::stereomechanical && L != ContactLaw::none) {
           double d = u1 - u2 - T.gap[i], dd = v1 - v2;
           if constexpr (L == ContactLaw::hertzdamp)
-            v0 = (d_old > 0.0 || !(d > 0.0)) ? v0 : std::max(dd, vmin);
-          F = contact_force<L, N15>(d, dd, T.kc[i], T.cd[i], v0, n_exp, clamp);
+            if (mode == 2) v0 = (d_old > 0.0 || !(d > 0.0)) ? v0 : std::max(dd, vmin);
+          F = mode == 0 ? 0.0 : contact_force<L, N15>(d, dd, T.kc[i], T.cd[i], v0, n_exp, clamp);
         }
         a1 = -ag - (T.c1[i] * v1 + fs1 + F) * T.im1[i];
         a2 = -ag - (T.c2[i] * v2 + fs2 - F) * T.im2[i];
       };
-      double k1a1, k1a2, k2a1, k2a2, k3a1, k3a2, k4a1, k4a2;
-      deriv(u1o, v1o, u2o, v2o, ag0, k1a1, k1a2);
-      double k1u1 = v1o, k1u2 = v2o;
-      double k2u1 = v1o + 0.5 * h * k1a1, k2u2 = v2o + 0.5 * h * k1a2;
-      deriv(u1o + 0.5 * h * k1u1, k2u1, u2o + 0.5 * h * k1u2, k2u2, agm, k2a1, k2a2);
-      double k3u1 = v1o + 0.5 * h * k2a1, k3u2 = v2o + 0.5 * h * k2a2;
-      deriv(u1o + 0.5 * h * k2u1, k3u1, u2o + 0.5 * h * k2u2, k3u2, agm, k3a1, k3a2);
-      double k4u1 = v1o + h * k3a1, k4u2 = v2o + h * k3a2;
-      deriv(u1o + h * k3u1, k4u1, u2o + h * k3u2, k4u2, ag1, k4a1, k4a2);
-      T.u1[i] = u1o + h / 6.0 * (k1u1 + 2.0 * k2u1 + 2.0 * k3u1 + k4u1);
-      T.u2[i] = u2o + h / 6.0 * (k1u2 + 2.0 * k2u2 + 2.0 * k3u2 + k4u2);
-      T.v1[i] = v1o + h / 6.0 * (k1a1 + 2.0 * k2a1 + 2.0 * k3a1 + k4a1);
-      T.v2[i] = v2o + h / 6.0 * (k1a2 + 2.0 * k2a2 + 2.0 * k3a2 + k4a2);
+      // one classical RK4 step of length hs from (x1, y1, x2, y2) with ground acceleration agA -> agB
+      auto rk4 = [&](double x1, double y1, double x2, double y2, double hs, double agA, double agB, double& X1,
+                     double& Y1, double& X2, double& Y2) {
+        const double agM = 0.5 * (agA + agB);
+        double k1a1, k1a2, k2a1, k2a2, k3a1, k3a2, k4a1, k4a2;
+        deriv(x1, y1, x2, y2, agA, k1a1, k1a2);
+        double k1u1 = y1, k1u2 = y2;
+        double k2u1 = y1 + 0.5 * hs * k1a1, k2u2 = y2 + 0.5 * hs * k1a2;
+        deriv(x1 + 0.5 * hs * k1u1, k2u1, x2 + 0.5 * hs * k1u2, k2u2, agM, k2a1, k2a2);
+        double k3u1 = y1 + 0.5 * hs * k2a1, k3u2 = y2 + 0.5 * hs * k2a2;
+        deriv(x1 + 0.5 * hs * k2u1, k3u1, x2 + 0.5 * hs * k2u2, k3u2, agM, k3a1, k3a2);
+        double k4u1 = y1 + hs * k3a1, k4u2 = y2 + hs * k3a2;
+        deriv(x1 + hs * k3u1, k4u1, x2 + hs * k3u2, k4u2, agB, k4a1, k4a2);
+        X1 = x1 + hs / 6.0 * (k1u1 + 2.0 * k2u1 + 2.0 * k3u1 + k4u1);
+        X2 = x2 + hs / 6.0 * (k1u2 + 2.0 * k2u2 + 2.0 * k3u2 + k4u2);
+        Y1 = y1 + hs / 6.0 * (k1a1 + 2.0 * k2a1 + 2.0 * k3a1 + k4a1);
+        Y2 = y2 + hs / 6.0 * (k1a2 + 2.0 * k2a2 + 2.0 * k3a2 + k4a2);
+      };
+      rk4(u1o, v1o, u2o, v2o, h, ag0, ag1, T.u1[i], T.v1[i], T.u2[i], T.v2[i]);
+      if constexpr (L != ContactLaw::stereomechanical && L != ContactLaw::none) {
+        const double dn = T.u1[i] - T.u2[i] - T.gap[i];
+        if (locate && !(d_old > 0.0) && dn > 0.0) {
+          // Event-located contact onset: find the closing instant on the step's cubic Hermite interpolant of
+          // delta, integrate up to it without contact, latch v0 there, and finish the step in contact.
+          const double ddo = v1o - v2o, ddn = T.v1[i] - T.v2[i];
+          auto delta = [&](double s) {
+            double s2 = s * s, s3 = s2 * s;
+            return (2 * s3 - 3 * s2 + 1) * d_old + (s3 - 2 * s2 + s) * h * ddo + (-2 * s3 + 3 * s2) * dn +
+                   (s3 - s2) * h * ddn;
+          };
+          double lo = 0.0, hi = 1.0;
+          for (int it = 0; it < 60; ++it) {
+            double mid = 0.5 * (lo + hi);
+            (delta(mid) > 0.0 ? hi : lo) = mid;
+          }
+          const double sc = 0.5 * (lo + hi), agc = ag0 + sc * (ag1 - ag0);
+          double cu1, cv1, cu2, cv2;
+          mode = 0;
+          rk4(u1o, v1o, u2o, v2o, sc * h, ag0, agc, cu1, cv1, cu2, cv2);
+          v0 = std::max(cv1 - cv2, vmin);
+          mode = 1;
+          rk4(cu1, cv1, cu2, cv2, (1.0 - sc) * h, agc, ag1, T.u1[i], T.v1[i], T.u2[i], T.v2[i]);
+        }
+      }
       double onset = 0.0, clamp = 0.0, F = 0.0;
       if constexpr (L == ContactLaw::stereomechanical) onset = stereomechanical(T, i, h, v1o, v2o, d_old);
       T.fs1[i] = bilinear(fs1o, T.k1[i], T.u1[i] - u1o, T.ak1[i] * T.u1[i], T.qy1[i]);

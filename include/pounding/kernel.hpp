@@ -95,6 +95,9 @@ struct KernelSettings {
   bool energy = false;               // track the energy terms (costs a little)
   int newton_max_iter = 30;
   double newton_tol = 1e-10;  // relative displacement increment
+  // rk4 only: locate the contact onset inside the step (cubic Hermite interpolant of delta), integrate to it
+  // without contact, latch v0 there and finish the step in contact (the high-accuracy mode)
+  bool locate_contact = false;
   SeriesRecorder* series = nullptr;
 };
 
