@@ -9,7 +9,8 @@
 //           intersected with the height limits (30-50 m)
 //   aspect  h/r, one of the aspect ratios (1, 2, 3) with equal probability
 //   r       foundation radius r = h / aspect
-//   rho     soil mass density, lognormal (mean 1800, CoV 6.8 %)
+//   rho     soil mass density, lognormal (mean 1800, CoV 6.8 %); drawn per structure, independently (the
+//           paper states no correlation between the two sites)
 //   mbar    mass index m / (rho r^2 h) (eq. 7), lognormal (mean 0.6, CoV 20 %) truncated to [0.4, 0.8]
 //   m       mbar rho r^2 h
 //   k       4 pi^2 m / T^2 (eq. 8);  c = 2 zeta sqrt(k m) (eq. 9, zeta = 0.05)
