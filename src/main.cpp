@@ -19,6 +19,7 @@ int main(int argc, char** argv) {
   pounding::cli::add_bench(app);
   pounding::cli::add_records(app);
   pounding::cli::add_sample(app);
+  pounding::cli::add_accuracy(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -12,6 +12,7 @@ void add_records(CLI::App& app);   // src/cmd_records.cpp (ground motions)
 void add_sample(CLI::App& app);    // src/cmd_sample.cpp (stochastic structure model)
 void add_run(CLI::App& app);       // src/cmd_run.cpp (the study)
 void add_report(CLI::App& app);    // src/cmd_run.cpp
+void add_accuracy(CLI::App& app);  // src/cmd_accuracy.cpp (accuracy/speed chart, stability, restitution, validation)
 
 // Exit code the sub-command asked for (set by handlers that fail without an exception).
 int& exit_code();
