@@ -230,7 +230,11 @@ Study parse_study(const std::string& text, const std::string& path) {
     s.e = c.number("e", 0.65, 1e-6, 1.0, "(0, 1]");
     s.contact.n = c.number("n", 1.5, 1.0, 3.0, "[1, 3]");
     s.contact.v0_min = c.number("v0_min", 1e-3, 1e-12, 1.0, "(0, 1] m/s");
-    c.finish("law, damping_law, e, n, v0_min");
+    s.contact_stiffness = c.number("stiffness", 0.0, 0.0, 1e20, "(0, 1e20]");
+    if ((s.contact.law == ContactLaw::linear || s.contact.law == ContactLaw::kelvin) && !(s.contact_stiffness > 0))
+      throw InputError(fmt::format("contact law '{}' needs a linear stiffness", law), c.where("stiffness"),
+                       "add stiffness = <N/m> to [contact] (the sampled Hertz kh is in N/m^1.5)");
+    c.finish("law, damping_law, e, n, v0_min, stiffness");
   }
 
   {  // [analysis]

@@ -230,7 +230,11 @@ int run_study(const parallel::Session& session, const std::string& study_path, c
           if (!study.skip_untouched || !untouched) lanes.push_back(i);
         }
         sub.resize(lanes.size());
-        for (std::size_t j = 0; j < lanes.size(); ++j) sub.set(j, pairs[lanes[j]].pair_params(study.gap_ratios[g], study.e));
+        for (std::size_t j = 0; j < lanes.size(); ++j) {
+          PairParams pp = pairs[lanes[j]].pair_params(study.gap_ratios[g], study.e);
+          if (study.contact_stiffness > 0) pp.kc = study.contact_stiffness;
+          sub.set(j, pp);
+        }
         if (!lanes.empty()) run_batch(sub, study.contact, gm, ks, cres);
         std::size_t j = 0;
         for (std::size_t i = 0; i < n; ++i) {

@@ -9,7 +9,8 @@
 //                scale = 1.0; units = "g" | "m/s2" | "cm/s2"; dt = <s, one-column files>; limit = <first N>
 //   [structures] the stochastic structure model (see sampler.hpp)
 //   [gaps]       ratios = [0.1, 0.2, 0.3, 0.5, 0.7, 1.0]; curve_max = 1.5; curve_step = 0.005
-//   [contact]    law = "hertzdamp"; damping_law = "lankarani-nikravesh"; e = 0.65; n = 1.5; v0_min = 1e-3
+//   [contact]    law = "hertzdamp"; damping_law = "lankarani-nikravesh"; e = 0.65; n = 1.5; v0_min = 1e-3;
+//                stiffness = <N/m^n for the Hertz family (default: equivalent spheres), N/m for linear/Kelvin (required)>
 //   [analysis]   stepper = "central-difference"; substeps = 1; batch = 256; free_vibration = 0.0 (s);
 //                displacement_limit = 10.0 (m); skip_untouched = true (impacts scene: pairs whose uncoupled
 //                peak closing stays below the gap are not rerun with contact; their results are identical)
@@ -60,6 +61,7 @@ struct Study {
   // contact and analysis
   ContactModel contact;
   double e = 0.65;
+  double contact_stiffness = 0.0;  // > 0 overrides the sampled Hertz kh; required (N/m) for linear/Kelvin
   Stepper stepper = Stepper::central_difference;
   int substeps = 1;
   int batch = 256;
