@@ -1,0 +1,239 @@
+// Record readers: every real file against MANIFEST.tsv (numbers we did not compute), the formats'
+// edge cases, every bad-input error naming file and line, the AT2 writer round trip, and the
+// intensity measures against closed forms.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <numbers>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "pounding/error.hpp"
+#include "pounding/records.hpp"
+
+using namespace pounding;
+namespace fs = std::filesystem;
+
+namespace {
+
+const std::string real_dir = std::string(POUNDING_SOURCE_DIR) + "/../shared/records/real";
+
+std::vector<std::string> split_tab(const std::string& line) {
+  std::vector<std::string> out;
+  std::stringstream ss(line);
+  std::string f;
+  while (std::getline(ss, f, '\t')) out.push_back(f);
+  return out;
+}
+
+// Expects parse_record(text) to throw an InputError whose where() is "name:line" and whose message
+// contains `needle`.
+void expect_error(const std::string& text, int line, const std::string& needle, ReadOptions o = {}) {
+  try {
+    parse_record(text, "bad.AT2", o);
+    FAIL() << "no error for:\n" << text;
+  } catch (const InputError& e) {
+    if (line > 0) EXPECT_EQ(e.where(), "bad.AT2:" + std::to_string(line)) << e.what();
+    else EXPECT_EQ(e.where(), "bad.AT2") << e.what();
+    EXPECT_NE(std::string(e.what()).find(needle), std::string::npos) << e.what();
+  }
+}
+
+const char* at2_header = "PEER NGA STRONG MOTION DATABASE RECORD\nX, 1/1/2000, Y, 0\nACCELERATION TIME SERIES IN UNITS OF G\n";
+
+}  // namespace
+
+TEST(RecordsManifest, EveryRealRecordMatchesManifest) {
+  std::ifstream in(real_dir + "/MANIFEST.tsv");
+  if (!in) GTEST_SKIP() << "no real records at " << real_dir;
+  std::string line;
+  std::getline(in, line);
+  const auto head = split_tab(line);
+  ASSERT_GE(head.size(), 9u);
+  ASSERT_EQ(head[0], "file");
+  ASSERT_EQ(head[5], "format");
+  ASSERT_EQ(head[6], "dt_s");
+  ASSERT_EQ(head[7], "npts");
+  ASSERT_EQ(head[8], "pga_g");
+  int n = 0;
+  double worst = 0;
+  while (std::getline(in, line)) {
+    if (line.empty()) continue;
+    const auto f = split_tab(line);
+    ASSERT_GE(f.size(), 9u) << line;
+    SCOPED_TRACE(f[0]);
+    const Record r = read_record(real_dir + "/" + f[0]);
+    const double dt = std::stod(f[6]);
+    const std::size_t npts = std::stoul(f[7]);
+    const double pga = std::stod(f[8]);
+    EXPECT_EQ(r.acc.size(), npts);
+    EXPECT_NEAR(r.dt, dt, 1e-6 * dt);
+    // 0.1 %, or half a unit of the manifest's last printed digit when that is coarser (0.0283 g is
+    // printed to 4 decimals: +-0.00005 g is already 0.18 %).
+    const auto dot = f[8].find('.');
+    const int decimals = dot == std::string::npos ? 0 : static_cast<int>(f[8].size() - dot - 1);
+    const double printed = 0.5 * std::pow(10.0, -decimals);
+    const double err = std::abs(r.pga() / g_accel - pga);
+    worst = std::max(worst, err / pga);
+    EXPECT_LE(err, std::max(1e-3 * pga, printed)) << "PGA " << r.pga() / g_accel << " g vs manifest " << pga;
+    // The format we detect agrees with the manifest's family.
+    const std::string fmt = r.meta.at("format");
+    if (f[5] == "TIME_ACC_2COL_G") EXPECT_EQ(fmt, "TIME_ACC_2COL");
+    else if (f[5] == "AT2_4LINE_PEKNOLD") EXPECT_EQ(fmt, "AT2_4LINE");
+    else EXPECT_EQ(fmt, f[5]);
+    ++n;
+  }
+  EXPECT_EQ(n, 85);
+  std::printf("85 records parsed; worst PGA disagreement with MANIFEST %.3g %%\n", 100 * worst);
+}
+
+TEST(RecordsFormats, Ngaw2HeaderCrlfAndMetadata) {
+  std::string t = "PEER NGA STRONG MOTION DATABASE RECORD\r\nDuzce Turkey, 11/12/1999, Lamont 362, E\r\n"
+                  "ACCELERATION TIME SERIES IN UNITS OF G\r\n"
+                  "NPTS=      7, DT=   .0100 SEC,  -5 POLE @      .03000 HZ\r\n"
+                  "  -.2415593E-03  .1E+00  -.5E-01  .0  .1  \r\n  .2  -.3   \r\n\r\n";
+  Record r = parse_record(t, "x.AT2");
+  ASSERT_EQ(r.acc.size(), 7u);
+  EXPECT_DOUBLE_EQ(r.dt, 0.01);
+  EXPECT_DOUBLE_EQ(r.acc[0], -0.2415593e-3 * g_accel);
+  EXPECT_DOUBLE_EQ(r.acc[6], -0.3 * g_accel);
+  EXPECT_EQ(r.meta["station"], "Lamont 362");
+  EXPECT_EQ(r.meta["component"], "E");
+  EXPECT_EQ(r.meta["format"], "PEER_AT2_NGAW2");
+}
+
+TEST(RecordsFormats, Ngaw1OldStyleNptsDtLine) {
+  // Older PEER files put the numbers first: "  2000   .02000   NPTS, DT".
+  std::string t = "PACIFIC ENGINEERING\nNORTHRIDGE 01/17/94 1231, ARLETA, 360\n"
+                  "ACCELERATION TIME HISTORY IN UNITS OF G\n   4   .02000   NPTS, DT\n .1E-02 -.2D-02 +.3e-2 4.E-03\n";
+  Record r = parse_record(t, "x.AT2");
+  ASSERT_EQ(r.acc.size(), 4u);
+  EXPECT_DOUBLE_EQ(r.dt, 0.02);
+  EXPECT_DOUBLE_EQ(r.acc[1], -0.002 * g_accel);
+  EXPECT_DOUBLE_EQ(r.acc[3], 0.004 * g_accel);
+  EXPECT_EQ(r.meta["format"], "PEER_AT2_NGAW1");
+}
+
+TEST(RecordsFormats, HeaderUnitsCmS2) {
+  std::string t = "A\nB\nACCELERATION IN CM/S/S\nNPTS= 2, DT= 0.01\n 981.0 -9.80665\n";
+  Record r = parse_record(t, "x.AT2");
+  EXPECT_DOUBLE_EQ(r.acc[0], 9.81);
+  EXPECT_DOUBLE_EQ(r.acc[1], -0.0980665);
+  ReadOptions o;
+  o.header_units = false;  // trust the caller instead: g
+  Record r2 = parse_record(t, "x.AT2", o);
+  EXPECT_DOUBLE_EQ(r2.acc[0], 981.0 * g_accel);
+}
+
+TEST(RecordsFormats, TwoColumnAndOneColumn) {
+  Record r = parse_record("# time acc\n0.0 0.0\r\n0.005, 0.1\n0.010\t-0.2  \n0.015 0.05\n", "a.txt");
+  EXPECT_EQ(r.meta["format"], "TIME_ACC_2COL");
+  ASSERT_EQ(r.acc.size(), 4u);
+  EXPECT_NEAR(r.dt, 0.005, 1e-15);
+  EXPECT_DOUBLE_EQ(r.acc[2], -0.2 * g_accel);
+  Record h = parse_record("time acc\n0 0\n0.01 1\n", "h.csv");  // a header row of names is allowed
+  EXPECT_EQ(h.acc.size(), 2u);
+  ReadOptions o;
+  o.dt = 0.02;
+  o.units = AccUnits::cm_s2;
+  Record c = parse_record("1.0\n-2.0\n3 4\n", "b.txt", o);
+  EXPECT_EQ(c.meta["format"], "ONE_COLUMN");
+  ASSERT_EQ(c.acc.size(), 4u);
+  EXPECT_DOUBLE_EQ(c.acc[3], 0.04);
+  EXPECT_DOUBLE_EQ(c.dt, 0.02);
+}
+
+TEST(RecordsErrors, NptsDisagreesWithValues) {
+  expect_error(std::string(at2_header) + "NPTS= 5, DT= .01 SEC\n .1 .2 .3\n .4\n", 4,
+               "NPTS = 5 but 4 values found (data end at line 6)");
+  expect_error(std::string(at2_header) + "NPTS= 2, DT= .01 SEC\n .1 .2\n .3\n", 6, "more values than NPTS");
+}
+
+TEST(RecordsErrors, NonNumericToken) {
+  expect_error(std::string(at2_header) + "NPTS= 3, DT= .01 SEC\n .1 .2\n .3x\n", 6, "'.3x' is not a number");
+  expect_error("0 0\n0.01 1\n0.02 abc\n", 3, "'abc' is not a number");
+}
+
+TEST(RecordsErrors, MissingOrNonPositiveDt) {
+  expect_error(std::string(at2_header) + "NPTS= 3\n .1 .2 .3\n", 4, "DT missing");
+  expect_error(std::string(at2_header) + "NPTS= 3, DT= 0.0 SEC\n .1 .2 .3\n", 4, "DT = 0 is not positive");
+  expect_error(std::string(at2_header) + "NPTS= 3, DT= -.01 SEC\n .1 .2 .3\n", 4, "not positive");
+  expect_error(std::string(at2_header) + "NPTS= x, DT= .01\n .1\n", 4, "NPTS missing");
+  expect_error("1\n2\n3\n", 0, "one-column record without a time step");
+}
+
+TEST(RecordsErrors, UnevenTimeColumn) {
+  expect_error("0 0\n0.01 1\n0.02 2\n0.035 3\n0.04 4\n", 4, "uneven time column");
+  expect_error("0 0\n0.01 1\n0.02 1 2\n", 3, "3 values on a row");
+  expect_error("0.02 0\n0.01 1\n0.0 2\n", 3, "no positive time step");
+}
+
+TEST(RecordsErrors, EmptyFile) {
+  expect_error("", 0, "empty record file");
+  expect_error("  \r\n\n\t\n", 0, "empty record file");
+  expect_error("# only a comment\n", 0, "no acceleration values");
+  expect_error(std::string(at2_header) + "NPTS= 0, DT= .01\n", 4, "NPTS missing");
+}
+
+TEST(RecordsErrors, NonFiniteValues) {
+  expect_error(std::string(at2_header) + "NPTS= 3, DT= .01\n .1 nan .3\n", 5, "non-finite value 'nan'");
+  expect_error(std::string(at2_header) + "NPTS= 3, DT= .01\n .1 .2E+999 .3\n", 5, "non-finite value");
+  expect_error("0 0\n0.01 inf\n", 2, "non-finite");
+}
+
+TEST(RecordsErrors, MissingFileNamesThePath) {
+  try {
+    read_record("/nonexistent/record.AT2");
+    FAIL();
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.where(), "/nonexistent/record.AT2");
+  }
+}
+
+TEST(RecordsWriter, At2RoundTripIsWithinPrintedPrecision) {
+  Record r;
+  r.name = "rt";
+  r.dt = 0.005;
+  for (int i = 0; i < 23; ++i) r.acc.push_back(std::sin(0.3 * i) * 3.7 - 0.01 * i);
+  const std::string path = (fs::temp_directory_path() / "pounding_test_rt.AT2").string();
+  write_at2(r, path);
+  EXPECT_FALSE(fs::exists(path + ".tmp"));
+  Record b = read_record(path);
+  fs::remove(path);
+  ASSERT_EQ(b.acc.size(), r.acc.size());
+  EXPECT_DOUBLE_EQ(b.dt, 0.005);
+  EXPECT_EQ(b.meta["format"], "PEER_AT2_NGAW2");
+  for (std::size_t i = 0; i < r.acc.size(); ++i) EXPECT_NEAR(b.acc[i], r.acc[i], 1e-7 * 3.7 + 1e-12);
+}
+
+TEST(RecordsMeasures, ClosedFormsForASine) {
+  // a(t) = A sin(2 pi t / T) over whole periods, finely sampled (linear between samples, error O(h^2)):
+  // v = A T/(2 pi) (1 - cos) -> PGV = A T / pi; Ia = pi/(2g) A^2 D / 2; the Husid curve of sin^2 over
+  // many periods is ~linear, so t05 ~ 0.05 D, t95 ~ 0.95 D.
+  const double A = 2.0, T = 0.5, D = 20.0, h = 1e-4;
+  Record r;
+  r.dt = h;
+  const auto n = static_cast<std::size_t>(std::lround(D / h)) + 1;
+  for (std::size_t k = 0; k < n; ++k) r.acc.push_back(A * std::sin(2 * std::numbers::pi * k * h / T));
+  const Measures m = measure(r);
+  EXPECT_NEAR(m.pga, A, 1e-6);
+  EXPECT_NEAR(m.pgv, A * T / std::numbers::pi, 1e-6);
+  // u(t) = A T/(2pi) t - A (T/2pi)^2 sin(...): the peak is at the end, A T D/(2 pi)
+  EXPECT_NEAR(m.pgd, A * T * D / (2 * std::numbers::pi), 1e-5);
+  // linear interpolation of a sine underestimates int a^2 by ~(omega h)^2/12 = 1.3e-7 relative
+  EXPECT_NEAR(m.arias / (std::numbers::pi / (2 * g_accel) * A * A * D / 2), 1.0, 1e-6);
+  EXPECT_NEAR(m.t05, 0.05 * D, T / 2);
+  EXPECT_NEAR(m.t95, 0.95 * D, T / 2);
+  EXPECT_NEAR(m.d5_95(), 0.9 * D, T / 2);
+}
+
+TEST(RecordsMeasures, AriasExactForPiecewiseLinear) {
+  // Two samples a0, a1: int_0^h (a0 + (a1-a0) t/h)^2 dt = h (a0^2 + a0 a1 + a1^2)/3 exactly.
+  Record r;
+  r.dt = 0.2;
+  r.acc = {1.0, 3.0};
+  EXPECT_NEAR(measure(r).arias, std::numbers::pi / (2 * g_accel) * 0.2 * 13.0 / 3.0, 1e-15);
+}
