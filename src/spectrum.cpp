@@ -12,10 +12,10 @@
 
 namespace pounding {
 
-double peak_displacement(const Record& rec, double period, double zeta) {
+double peak_displacement(const Record& rec, double period, double zeta, double steps_per_period) {
   if (!(period > 0)) return 0.0;
   const double w = 2.0 * std::numbers::pi / period;
-  const auto sub = static_cast<int>(std::max(1.0, std::ceil(40.0 * rec.dt / period - 1e-9)));
+  const auto sub = static_cast<int>(std::max(1.0, std::ceil(steps_per_period * rec.dt / period - 1e-9)));
   const double h = rec.dt / sub;
   const NigamJennings c = nigam_jennings(w, zeta, h);
   const auto& a = rec.acc;

@@ -23,8 +23,9 @@ struct Spectrum {
 
 // Throws InputError unless 0 <= zeta < 1 and every period >= 0 and finite.
 Spectrum response_spectrum(const Record& rec, std::span<const double> periods, double zeta = 0.05);
-// Peak |u| of one oscillator (the building block of response_spectrum).
-double peak_displacement(const Record& rec, double period, double zeta);
+// Peak |u| of one oscillator (the building block of response_spectrum); the peak is sampled at
+// least `steps_per_period` times per period (40 in response_spectrum).
+double peak_displacement(const Record& rec, double period, double zeta, double steps_per_period = 40.0);
 // 0 and 100 log-spaced periods from 0.01 s to 10 s (the grid `pounding records spectrum` writes).
 std::vector<double> default_periods();
 
