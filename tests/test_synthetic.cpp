@@ -10,6 +10,7 @@
 #include <boost/random/mersenne_twister.hpp>
 #include <chrono>
 #include <cmath>
+#include <cstring>
 #include <numbers>
 #include <vector>
 

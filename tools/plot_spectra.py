@@ -1,0 +1,83 @@
+#!/usr/bin/env python3
+"""Plot response spectra written by `pounding records spectrum` with the suite's mean, like Fig. 4 of
+stochastic-pounding-monte-carlo.txt (5 %-damped elastic pseudo-acceleration spectra and their mean).
+
+    pounding records spectrum --suite default --records-dir ../shared/records/real -o suite.csv
+    tools/plot_spectra.py suite.csv -o suite.png [--normalize] [--logx]
+
+Real records are drawn solid, synthetic stand-ins dashed (the CSV's `#kind` row says which); the mean
+(arithmetic, as in the paper) is thick black, the mean +- one standard deviation shaded.
+"""
+import argparse
+import csv
+import sys
+
+import numpy as np
+
+
+def read_csv(path):
+    names, kinds, rows, quantity = None, None, [], "psa"
+    with open(path, newline="") as f:
+        for row in csv.reader(f):
+            if not row:
+                continue
+            if row[0].startswith("# "):
+                quantity = row[0][2:].split()[0]
+            elif row[0] == "#kind":
+                kinds = row[1:]
+            elif row[0] == "period_s":
+                names = row[1:]
+            elif not row[0].startswith("#"):
+                rows.append([float(x) for x in row])
+    if names is None or not rows:
+        sys.exit(f"{path}: not a `pounding records spectrum` CSV (no period_s header or no rows)")
+    data = np.array(rows)
+    return quantity, names, kinds or ["real"] * len(names), data[:, 0], data[:, 1:]
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("csv")
+    ap.add_argument("-o", "--output", default="spectra.png")
+    ap.add_argument("--normalize", action="store_true", help="divide each spectrum by its value at T = 0 (PGA)")
+    ap.add_argument("--logx", action="store_true", help="logarithmic period axis")
+    ap.add_argument("--title", default="")
+    a = ap.parse_args()
+
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    quantity, names, kinds, T, S = read_csv(a.csv)
+    unit = {"psa": "g", "psv": "m/s", "sd": "m"}.get(quantity, "")
+    if a.normalize:
+        if T[0] != 0:
+            sys.exit("--normalize needs the T = 0 row (PGA) in the CSV")
+        S = S / S[0, :]
+    keep = T > 0 if a.logx else np.ones_like(T, dtype=bool)
+    fig, ax = plt.subplots(figsize=(8, 5))
+    for j, (n, k) in enumerate(zip(names, kinds)):
+        ax.plot(T[keep], S[keep, j], lw=0.8, alpha=0.6, ls="--" if k == "synthetic" else "-",
+                color="tab:blue" if k == "synthetic" else "tab:red", label=None)
+    mean, sd = S.mean(axis=1), S.std(axis=1, ddof=1) if S.shape[1] > 1 else np.zeros(len(T))
+    ax.fill_between(T[keep], (mean - sd)[keep], (mean + sd)[keep], color="k", alpha=0.12, label="mean ± 1 sd")
+    ax.plot(T[keep], mean[keep], color="k", lw=2.5, label=f"mean of {S.shape[1]}")
+    nsyn = sum(k == "synthetic" for k in kinds)
+    ax.plot([], [], color="tab:red", label=f"real ({len(kinds) - nsyn})")
+    ax.plot([], [], color="tab:blue", ls="--", label=f"synthetic ({nsyn})")
+    if a.logx:
+        ax.set_xscale("log")
+    ax.set_xlabel("period T (s)")
+    label = {"psa": "pseudo-acceleration", "psv": "pseudo-velocity", "sd": "deformation"}.get(quantity, quantity)
+    ax.set_ylabel(f"{label} / PGA" if a.normalize else f"{label} ({unit})")
+    ax.set_title(a.title or f"5 %-damped elastic spectra ({a.csv})")
+    ax.grid(True, which="both", alpha=0.3)
+    ax.legend()
+    fig.tight_layout()
+    fig.savefig(a.output, dpi=150)
+    print(f"wrote {a.output}: {S.shape[1]} spectra ({nsyn} synthetic), peak mean {mean.max():.3f} at T = {T[mean.argmax()]:.3g} s")
+
+
+if __name__ == "__main__":
+    main()
