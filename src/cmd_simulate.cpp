@@ -33,14 +33,18 @@ struct SimulateOptions {
   double e = 0.65, kh = 0, n = 1.5, density = 2400.0, youngs = 24.86e9, poisson = 0.15;
   double dt = 0, duration = 0, u_limit = 10.0;
   bool locate = false;
+  bool k1_given = false, k2_given = false, fy1_given = false, fy2_given = false, dt_given = false, kh_given = false;
+  bool duration_given = false;
 };
 
 // Builds one structure from the options of side `i` ("1" or "2").
 Structure make_structure(double m, double T, double k, double h, double fy, double alpha, double zeta, bool elastic,
-                         const std::string& i) {
+                         const std::string& i, bool k_given, bool fy_given) {
   require_positive(m, "--m" + i);
+  if (k_given) require_positive(k, "--k" + i);
+  if (fy_given) require_positive(fy, "--fy" + i);
   Structure s;
-  if (k > 0) {
+  if (k_given) {
     s.m = m, s.k = k, s.c = 2.0 * zeta * std::sqrt(k * m);
   } else {
     require_positive(T, "--T" + i);
@@ -49,7 +53,7 @@ Structure make_structure(double m, double T, double k, double h, double fy, doub
   s.alpha = alpha;
   if (elastic) {
     s.fy = std::numeric_limits<double>::infinity();
-  } else if (fy > 0) {
+  } else if (fy_given) {
     s.fy = fy;
   } else {
     require_positive(h, "--h" + i);
@@ -96,24 +100,33 @@ void run_simulate(const SimulateOptions& o) {
   if (!std::isfinite(o.gap) || o.gap < 0)
     throw InputError(fmt::format("--gap = {} must be >= 0", o.gap), "--gap", "give the at-rest separation in m");
   require_range(o.e, std::nextafter(0.0, 1.0), 1.0, "--e", "(0, 1]");
-  if (o.dt != 0) require_positive(o.dt, "--dt");
-  if (o.duration != 0) require_positive(o.duration, "--duration");
+  if (o.dt_given) require_positive(o.dt, "--dt");
+  if (o.duration_given) require_positive(o.duration, "--duration");
+  if (o.kh_given) require_positive(o.kh, "--kh");
   require_positive(o.u_limit, "--u-limit");
+  // name the option in errors from the shared parsers
+  auto as_option = [](const char* option, auto parse) {
+    try {
+      return parse();
+    } catch (const InputError& e) {
+      throw InputError(e.what_part(), option, e.fix());
+    }
+  };
   ContactModel cm;
-  cm.law = parse_contact_law(o.contact);
-  cm.damping = parse_damping_law(o.damping_law);
+  cm.law = as_option("--contact", [&] { return parse_contact_law(o.contact); });
+  cm.damping = as_option("--damping-law", [&] { return parse_damping_law(o.damping_law); });
   require_range(o.n, 1.0, 3.0, "--n", "[1, 3]");
   cm.n = o.n;
   KernelSettings ks;
-  ks.stepper = parse_stepper(o.stepper);
+  ks.stepper = as_option("--stepper", [&] { return parse_stepper(o.stepper); });
   ks.displacement_limit = o.u_limit;
   ks.energy = true;
   ks.locate_contact = o.locate;
   if (o.locate && ks.stepper != Stepper::rk4)
     throw InputError("--locate-contact needs --stepper rk4", "--locate-contact", "add --stepper rk4 or drop the option");
 
-  Structure s1 = make_structure(o.m1, o.T1, o.k1, o.h1, o.fy1, o.alpha, o.zeta, o.elastic, "1");
-  Structure s2 = make_structure(o.m2, o.T2, o.k2, o.h2, o.fy2, o.alpha, o.zeta, o.elastic, "2");
+  Structure s1 = make_structure(o.m1, o.T1, o.k1, o.h1, o.fy1, o.alpha, o.zeta, o.elastic, "1", o.k1_given, o.fy1_given);
+  Structure s2 = make_structure(o.m2, o.T2, o.k2, o.h2, o.fy2, o.alpha, o.zeta, o.elastic, "2", o.k2_given, o.fy2_given);
 
   Record rec;
   if (o.record.empty()) {
@@ -123,11 +136,11 @@ void run_simulate(const SimulateOptions& o) {
     rec.acc = builtin_motion(rec.dt, 40.0);
   } else {
     ReadOptions ro;
-    ro.units = parse_units(o.units);
+    ro.units = as_option("--units", [&] { return parse_units(o.units); });
     ro.dt = o.dt_record;
     rec = read_record(o.record, ro);
   }
-  if (o.dt > 0) {
+  if (o.dt_given) {
     double q = rec.dt / o.dt;
     ks.substeps = static_cast<int>(std::lround(q));
     if (ks.substeps < 1 || std::abs(q - ks.substeps) > 1e-9 * q)
@@ -138,10 +151,10 @@ void run_simulate(const SimulateOptions& o) {
   PairParams p;
   p.s1 = s1, p.s2 = s2, p.gap = o.gap, p.e = o.e;
   if (cm.law == ContactLaw::linear || cm.law == ContactLaw::kelvin) {
-    if (!(o.kh > 0)) require_positive(o.kh, "--kh (linear/Kelvin stiffness, N/m)");
+    if (!o.kh_given) require_positive(0.0, "--kh (linear/Kelvin stiffness, N/m)");
     p.kc = o.kh;
   } else {
-    p.kc = o.kh > 0 ? o.kh : hertz_stiffness_spheres(s1.m, s2.m, o.density, o.youngs, o.poisson);
+    p.kc = o.kh_given ? o.kh : hertz_stiffness_spheres(s1.m, s2.m, o.density, o.youngs, o.poisson);
   }
 
   SeriesRecorder series;
@@ -215,7 +228,13 @@ void add_simulate(CLI::App& app) {
   c->add_option("--u-limit", o->u_limit, "|u1| + |u2| above this (m) marks the run diverged")->capture_default_str();
   c->add_flag("--locate-contact", o->locate, "rk4: locate each contact onset inside its step (high-accuracy mode)");
   c->add_option("--series", o->series, "write the time series to FILE.csv or FILE.h5");
-  c->callback([o] { run_simulate(*o); });
+  c->callback([o, c] {
+    o->k1_given = c->count("--k1") > 0, o->k2_given = c->count("--k2") > 0;
+    o->fy1_given = c->count("--fy1") > 0, o->fy2_given = c->count("--fy2") > 0;
+    o->dt_given = c->count("--dt") > 0, o->kh_given = c->count("--kh") > 0;
+    o->duration_given = c->count("--duration") > 0;
+    run_simulate(*o);
+  });
 }
 
 }  // namespace pounding::cli

@@ -41,7 +41,9 @@ constexpr StepperName stepper_table[] = {
 // One tile of lanes: derived constants, state, observers. Members are distinct arrays, so the
 // compiler knows they do not alias.
 struct alignas(64) Tile {
-  int n = 0;
+  int n = 0;   // lanes in use
+  int np = 0;  // lanes padded to the SIMD width (copies of the first lane): the array steppers run all of them,
+               // so every lane goes through the same vector code whatever the batch width
   // constants
   double m1[tile_width], m2[tile_width], im1[tile_width], im2[tile_width];
   double k1[tile_width], k2[tile_width], c1[tile_width], c2[tile_width];
@@ -60,7 +62,7 @@ struct alignas(64) Tile {
   // energy
   double Ein[tile_width], Evis[tile_width], Ehys[tile_width], Dimp[tile_width];
   // scratch (Newton iterates, RK4 stages, NJ coefficients)
-  double x1[tile_width], x2[tile_width], y1[tile_width], y2[tile_width], conv[tile_width];
+  double x1[tile_width], x2[tile_width], y1[tile_width], y2[tile_width], conv[tile_width], sw[tile_width];
   double nj1[8][tile_width], nj2[8][tile_width];
 };
 
@@ -105,35 +107,52 @@ template <ContactLaw L, bool N15>
   }
 }
 
-// Derivatives of the contact force with respect to delta and ddelta (for Newton).
+// The contact law as Newton sees it while the contact is active: linear and Kelvin without the d > 0 gate,
+// Hertzdamp without the clamp, so that the residual is smooth; the active-set passes decide activity.
 template <ContactLaw L, bool N15>
-[[gnu::always_inline]] inline void contact_derivs(double d, double dd, double kc, double cd, double v0, double n, double F, double& dFd,
-                           double& dFv) {
-  dFd = 0.0;
-  dFv = 0.0;
-  if (!(d > 0.0) || !(F > 0.0)) return;
+[[gnu::always_inline]] inline void contact_force_raw(double d, double dd, double kc, double cd, double v0, double n,
+                                                     double& F, double& dFd, double& dFv) {
   if constexpr (L == ContactLaw::linear) {
-    dFd = kc;
+    F = kc * d, dFd = kc, dFv = 0.0;
   } else if constexpr (L == ContactLaw::kelvin) {
-    dFd = kc;
-    dFv = cd;
+    F = kc * d + cd * dd, dFd = kc, dFv = cd;
   } else if constexpr (L == ContactLaw::hertz || L == ContactLaw::hertzdamp || L == ContactLaw::jankowski) {
+    double dp = d > 0.0 ? d : 0.0;
     double nn = (N15 || L == ContactLaw::jankowski) ? 1.5 : n;
-    double pw = std::pow(d, nn), dpw = nn * std::pow(d, nn - 1.0);
+    double pw = dp > 0.0 ? std::pow(dp, nn) : 0.0, dpw = dp > 0.0 ? nn * std::pow(dp, nn - 1.0) : 0.0;
     if constexpr (L == ContactLaw::hertz) {
-      dFd = kc * dpw;
+      F = kc * pw, dFd = kc * dpw, dFv = 0.0;
     } else if constexpr (L == ContactLaw::hertzdamp) {
-      dFd = kc * dpw * (1.0 + cd * dd / v0);
-      dFv = kc * pw * cd / v0;
+      F = kc * pw * (1.0 + cd * dd / v0), dFd = kc * dpw * (1.0 + cd * dd / v0), dFv = kc * pw * cd / v0;
     } else {
-      dFd = kc * dpw;
-      if (dd > 0.0) {
-        double q = std::sqrt(std::sqrt(d));
-        dFd += cd * 0.25 * q / d * dd;
-        dFv = cd * q;
-      }
+      double q = dp > 0.0 ? std::sqrt(std::sqrt(dp)) : 0.0;
+      bool app = dd > 0.0;
+      F = kc * pw + (app ? cd * q * dd : 0.0);
+      dFd = kc * dpw + (app && dp > 0.0 ? cd * 0.25 * q / dp * dd : 0.0);
+      dFv = app ? cd * q : 0.0;
     }
+  } else {
+    (void)d, (void)dd, (void)kc, (void)cd, (void)v0, (void)n;
+    F = dFd = dFv = 0.0;
   }
+}
+
+// Stability guard of the explicit treatment of contact: the linearised contact stiffness k_lin (for
+// Hertzdamp scaled by its damping factor while approaching) gives omega = sqrt(k_lin / meff); omega h above
+// the stepper's limit (2 for central difference and the Nigam-Jennings predictor-corrector, 2.8 for RK4)
+// amplifies every contact step, so the lane is marked diverged instead of returning numbers.
+template <ContactLaw L, bool N15>
+[[gnu::always_inline]] inline bool contact_unstable(double d, double dd, double kc, double cd, double v0, double n,
+                                                    double h2_meff, double limit2) {
+  if (!(d > 0.0)) return false;
+  double klin = 0.0;
+  if constexpr (L == ContactLaw::linear || L == ContactLaw::kelvin) {
+    klin = kc;
+  } else if constexpr (L == ContactLaw::hertz || L == ContactLaw::hertzdamp || L == ContactLaw::jankowski) {
+    klin = (N15 || L == ContactLaw::jankowski) ? 1.5 * kc * std::sqrt(d) : n * kc * std::pow(d, n - 1.0);
+    if constexpr (L == ContactLaw::hertzdamp) klin *= std::max(1.0, 1.0 + cd * dd / v0);
+  }
+  return klin * h2_meff > limit2;
 }
 
 struct Context {
@@ -194,13 +213,14 @@ struct Context {
 [[gnu::always_inline]] inline double stereomechanical(Tile& T, int i, double h, double v1_old, double v2_old, double d_old) {
   double d = T.u1[i] - T.u2[i] - T.gap[i];
   double closing = T.v1[i] - T.v2[i];
-  bool hit = d > 0.0 && closing > 0.0;
+  // an impact: the gap closed in this step, or the bodies still overlap and approach
+  bool hit = d > 0.0 && (closing > 0.0 || !(d_old > 0.0));
   double denom = d - d_old;
   double s = d_old > 0.0 ? 0.0 : -d_old / (denom > 0.0 ? denom : 1.0);
   s = std::min(std::max(s, 0.0), 1.0);
   double w1 = v1_old + s * (T.v1[i] - v1_old), w2 = v2_old + s * (T.v2[i] - v2_old);
   double rel = w1 - w2;
-  rel = rel > 0.0 ? rel : closing;  // closing at the located instant (fallback: at the end of the step)
+  rel = rel > 0.0 ? rel : std::max(closing, 0.0);  // closing at the located instant (never pulls together)
   double M = T.m1[i] + T.m2[i];
   double dv1 = -(1.0 + T.e[i]) * T.m2[i] * rel / M;
   double dv2 = (1.0 + T.e[i]) * T.m1[i] * rel / M;
@@ -299,7 +319,7 @@ void run_central_difference(Tile& T, const Context& C) {
     const V ak1 = ld(T.ak1 + base), ak2 = ld(T.ak2 + base), qy1 = ld(T.qy1 + base), qy2 = ld(T.qy2 + base);
     const V kp1 = ld(T.kp1 + base), kp2 = ld(T.kp2 + base);
     const V gap = ld(T.gap + base), kc = ld(T.kc + base), cd = ld(T.cd + base), e = ld(T.e + base);
-    const V meff = ld(T.meff + base), Msum = m1 + m2;
+    const V meff = ld(T.meff + base), Msum = m1 + m2, h2m = vh * vh / meff;
     V u1 = ld(T.u1 + base), v1 = ld(T.v1 + base), a1 = ld(T.a1 + base), fs1 = ld(T.fs1 + base);
     V u2 = ld(T.u2 + base), v2 = ld(T.v2 + base), a2 = ld(T.a2 + base), fs2 = ld(T.fs2 + base);
     V F = ld(T.F + base), v0 = ld(T.v0 + base), iv0 = one / v0, dprev = ld(T.dprev + base);
@@ -325,14 +345,14 @@ void run_central_difference(Tile& T, const Context& C) {
         // interpolated there; the rest of the step is flown with the exchanged velocities.
         V d = nu1 - nu2 - gap;
         V closing = vp1 - vp2;
-        M hit = (d > zero) && (closing > zero);
+        M hit = (d > zero) && ((closing > zero) || !(dprev > zero));
         if (stdx::any_of(hit)) {
           V den = d - dprev;
           V s = sel(dprev > zero, zero, -dprev / sel(den > zero, den, one));
           s = stdx::min(stdx::max(s, zero), one);
           V w1 = v1o + s * (vp1 - v1o), w2 = v2o + s * (vp2 - v2o);
           V rel = w1 - w2;
-          rel = sel(rel > zero, rel, closing);
+          rel = sel(rel > zero, rel, stdx::max(closing, zero));
           V dv1 = sel(hit, -(one + e) * m2 * rel / Msum, zero);
           V dv2 = sel(hit, (one + e) * m1 * rel / Msum, zero);
           V rest = (one - s) * vh;
@@ -370,6 +390,21 @@ void run_central_difference(Tile& T, const Context& C) {
             }
           }
           nF = contact_force_v<L, N15>(d, dd, kc, cd, iv0, n_exp, clamp);
+          // stability guard (see contact_unstable): omega_lin h > 2
+          V klin;
+          if constexpr (L == ContactLaw::linear || L == ContactLaw::kelvin) {
+            klin = kc;
+          } else if constexpr (N15 || L == ContactLaw::jankowski) {
+            klin = 1.5 * kc * stdx::sqrt(stdx::max(d, zero));
+          } else {
+            for (int j = 0; j < W; ++j) klin[j] = d[j] > 0.0 ? n_exp * kc[j] * std::pow(d[j], n_exp - 1.0) : 0.0;
+          }
+          if constexpr (L == ContactLaw::hertzdamp) klin *= stdx::max(one, one + cd * dd * iv0);
+          const M unstable = touching && (klin * h2m > V(4.0));
+          if (stdx::any_of(unstable)) {
+            bad = stdx::max(bad, sel(unstable, one, zero));
+            any_bad = true;
+          }
         }
       }
       V na1 = -ag1 - (c1 * vp1 + nfs1 + nF) * im1;
@@ -472,16 +507,25 @@ template <ContactLaw L, bool N15, bool Energy>
 void run_newmark(Tile& T, const Context& C) {
   const double h = C.h, n_exp = C.contact->n, vmin = C.v0_min, lim = C.lim;
   const double c4 = 4.0 / (h * h), c2 = 2.0 / h;
-  const int n = T.n, maxit = C.settings->newton_max_iter;
+  const int n = T.np, maxit = C.settings->newton_max_iter;
   const double tol = C.settings->newton_tol;
   for (long step = 0; step < C.nsteps; ++step) {
     const double ag0 = C.ag[step], ag1 = C.ag[step + 1];
     const double t = static_cast<double>(step + 1) * h;
+    // Contact is handled as an active set: each lane first solves with its contact state from the start
+    // of the step (inactive unless already penetrating); if the converged state contradicts it (penetration
+    // without force, or a force that should be zero), the lane switches and solves again (at most 4 passes).
+    // An inactive lane does exactly the uncoupled arithmetic, so before the first impact the coupled run is
+    // bit-identical to the uncoupled one, and the kinks of the gated/clamped laws never meet Newton.
     for (int i = 0; i < n; ++i) {  // predictor: constant acceleration
       T.x1[i] = T.u1[i] + h * T.v1[i] + 0.5 * h * h * T.a1[i];
       T.x2[i] = T.u2[i] + h * T.v2[i] + 0.5 * h * h * T.a2[i];
       T.conv[i] = 0.0;
+      T.y1[i] = T.dprev[i] > 0.0 ? 1.0 : 0.0;  // active
+      T.y2[i] = 1.0;                           // Newton converged in every pass so far
+      T.sw[i] = 0.0;                           // switches so far
     }
+    for (int pass = 0; pass < 4; ++pass) {
     for (int it = 0; it < maxit; ++it) {
       double open = 0.0;
       for (int i = 0; i < n; ++i) {
@@ -496,12 +540,11 @@ void run_newmark(Tile& T, const Context& C) {
         double kt1 = tr1 == fs1 ? T.k1[i] : T.ak1[i];
         double kt2 = tr2 == fs2 ? T.k2[i] : T.ak2[i];
         double d = u1 - u2 - T.gap[i], dd = v1 - v2;
-        double F = 0.0, clamp = 0.0, dFd = 0.0, dFv = 0.0;
+        double F = 0.0, dFd = 0.0, dFv = 0.0;
         if constexpr (L != ContactLaw::stereomechanical && L != ContactLaw::none) {
           double v0 = T.v0[i];
           if constexpr (L == ContactLaw::hertzdamp) v0 = T.dprev[i] > 0.0 ? v0 : std::max(dd, vmin);
-          F = contact_force<L, N15>(d, dd, T.kc[i], T.cd[i], v0, n_exp, clamp);
-          contact_derivs<L, N15>(d, dd, T.kc[i], T.cd[i], v0, n_exp, F, dFd, dFv);
+          if (T.y1[i] > 0.0) contact_force_raw<L, N15>(d, dd, T.kc[i], T.cd[i], v0, n_exp, F, dFd, dFv);
         }
         double r1 = T.m1[i] * (a1 + ag1) + T.c1[i] * v1 + fs1 + F;
         double r2 = T.m2[i] * (a2 + ag1) + T.c2[i] * v2 + fs2 - F;
@@ -521,6 +564,26 @@ void run_newmark(Tile& T, const Context& C) {
         open += T.conv[i] > 0.0 ? 0.0 : 1.0;
       }
       if (open == 0.0) break;
+    }
+    if constexpr (L == ContactLaw::stereomechanical || L == ContactLaw::none) break;
+    double switched = 0.0;
+    for (int i = 0; i < n; ++i) {
+      T.y2[i] = T.conv[i] > 0.0 ? T.y2[i] : 0.0;
+      double u1 = T.x1[i], u2 = T.x2[i];
+      double v1 = c2 * (u1 - T.u1[i]) - T.v1[i], v2 = c2 * (u2 - T.u2[i]) - T.v2[i];
+      double d = u1 - u2 - T.gap[i], dd = v1 - v2, clamp = 0.0;
+      double v0 = T.v0[i];
+      if constexpr (L == ContactLaw::hertzdamp) v0 = T.dprev[i] > 0.0 ? v0 : std::max(dd, vmin);
+      double want = contact_force<L, N15>(d, dd, T.kc[i], T.cd[i], v0, n_exp, clamp) > 0.0 ? 1.0 : 0.0;
+      // activate at most once per step; a lane that flips back (grazing, or separating under a clamped
+      // force) keeps the inactive solution, whose penetration is then counted and its force committed
+      bool sw = want != T.y1[i] && (want == 0.0 || T.sw[i] == 0.0);
+      T.sw[i] += sw ? 1.0 : 0.0;
+      T.y1[i] = sw ? want : T.y1[i];
+      T.conv[i] = sw ? 0.0 : T.conv[i];
+      switched += sw ? 1.0 : 0.0;
+    }
+    if (switched == 0.0) break;
     }
     for (int i = 0; i < n; ++i) {
       double u1o = T.u1[i], u2o = T.u2[i], v1o = T.v1[i], v2o = T.v2[i], fs1o = T.fs1[i], fs2o = T.fs2[i];
@@ -543,8 +606,8 @@ void run_newmark(Tile& T, const Context& C) {
       if constexpr (L == ContactLaw::stereomechanical) {
         onset = stereomechanical(T, i, h, v1o, v2o, d_old);
         // the velocity jump changes the accelerations' history: restart Newmark from the new velocities
-        T.a1[i] = -ag1 - (T.c1[i] * T.v1[i] + T.fs1[i]) * T.im1[i];
-        T.a2[i] = -ag1 - (T.c2[i] * T.v2[i] + T.fs2[i]) * T.im2[i];
+        T.a1[i] = onset > 0.0 ? -ag1 - (T.c1[i] * T.v1[i] + T.fs1[i]) * T.im1[i] : T.a1[i];
+        T.a2[i] = onset > 0.0 ? -ag1 - (T.c2[i] * T.v2[i] + T.fs2[i]) * T.im2[i] : T.a2[i];
         d = T.u1[i] - T.u2[i] - T.gap[i];
       } else if constexpr (L != ContactLaw::none) {
         onset = (d > 0.0 && !(d_old > 0.0)) ? 1.0 : 0.0;
@@ -555,7 +618,7 @@ void run_newmark(Tile& T, const Context& C) {
       T.dprev[i] = d;
       T.tcon[i] += d > 0.0 ? h : 0.0;
       // a lane whose Newton iteration did not converge is marked diverged
-      T.bad[i] = std::max(T.bad[i], T.conv[i] > 0.0 ? 0.0 : 1.0);
+      T.bad[i] = std::max(T.bad[i], (T.conv[i] > 0.0 && T.y2[i] > 0.0) ? 0.0 : 1.0);
       energy_step<Energy>(T, i, h, ag0, ag1, v1o, v2o, u1o, u2o, fs1o, fs2o, Fo);
       check_lane(T, i, lim);
       observe(T, i, t, ag1, clamp, onset);
@@ -571,9 +634,9 @@ template <ContactLaw L, bool N15, bool Energy>
 void run_rk4(Tile& T, const Context& C) {
   const double h = C.h, n_exp = C.contact->n, vmin = C.v0_min, lim = C.lim;
   const bool locate = C.settings->locate_contact;
-  const int n = T.n;
+  const int n = T.np;
   for (long step = 0; step < C.nsteps; ++step) {
-    const double ag0 = C.ag[step], ag1 = C.ag[step + 1], agm = 0.5 * (ag0 + ag1);
+    const double ag0 = C.ag[step], ag1 = C.ag[step + 1];
     const double t = static_cast<double>(step + 1) * h;
     for (int i = 0; i < n; ++i) {
       const double u1o = T.u1[i], u2o = T.u2[i], v1o = T.v1[i], v2o = T.v2[i];
@@ -581,6 +644,8 @@ void run_rk4(Tile& T, const Context& C) {
       double v0 = T.v0[i];
       // mode 0: contact held inactive; 1: active with the latched v0; 2: latch v0 at the first stage in contact
       int mode = 2;
+      bool redone = false;
+      double stage_fmax = 0.0;  // largest contact force met at a stage (a contact can start and end in a step)
       auto deriv = [&](double u1, double v1, double u2, double v2, double ag, double& a1, double& a2) {
         double fs1 = bilinear(fs1o, T.k1[i], u1 - u1o, T.ak1[i] * u1, T.qy1[i]);
         double fs2 = bilinear(fs2o, T.k2[i], u2 - u2o, T.ak2[i] * u2, T.qy2[i]);
@@ -590,6 +655,7 @@ void run_rk4(Tile& T, const Context& C) {
           if constexpr (L == ContactLaw::hertzdamp)
             if (mode == 2) v0 = (d_old > 0.0 || !(d > 0.0)) ? v0 : std::max(dd, vmin);
           F = mode == 0 ? 0.0 : contact_force<L, N15>(d, dd, T.kc[i], T.cd[i], v0, n_exp, clamp);
+          stage_fmax = std::max(stage_fmax, F);
         }
         a1 = -ag - (T.c1[i] * v1 + fs1 + F) * T.im1[i];
         a2 = -ag - (T.c2[i] * v2 + fs2 - F) * T.im2[i];
@@ -612,9 +678,18 @@ void run_rk4(Tile& T, const Context& C) {
         Y1 = y1 + hs / 6.0 * (k1a1 + 2.0 * k2a1 + 2.0 * k3a1 + k4a1);
         Y2 = y2 + hs / 6.0 * (k1a2 + 2.0 * k2a2 + 2.0 * k3a2 + k4a2);
       };
+      // Out of contact at the start of the step: take the step without contact first (exactly the uncoupled
+      // arithmetic, so the first passage is bit-identical to the uncoupled run); only a step that ends
+      // penetrating is redone with the contact law.
+      mode = d_old > 0.0 ? 2 : 0;
       rk4(u1o, v1o, u2o, v2o, h, ag0, ag1, T.u1[i], T.v1[i], T.u2[i], T.v2[i]);
       if constexpr (L != ContactLaw::stereomechanical && L != ContactLaw::none) {
         const double dn = T.u1[i] - T.u2[i] - T.gap[i];
+        redone = !(d_old > 0.0) && dn > 0.0;
+        if (!locate && redone) {
+          mode = 2;
+          rk4(u1o, v1o, u2o, v2o, h, ag0, ag1, T.u1[i], T.v1[i], T.u2[i], T.v2[i]);
+        }
         if (locate && !(d_old > 0.0) && dn > 0.0) {
           // Event-located contact onset: find the closing instant on the step's cubic Hermite interpolant of
           // delta, integrate up to it without contact, latch v0 there, and finish the step in contact.
@@ -644,9 +719,12 @@ void run_rk4(Tile& T, const Context& C) {
       T.fs2[i] = bilinear(fs2o, T.k2[i], T.u2[i] - u2o, T.ak2[i] * T.u2[i], T.qy2[i]);
       double d = T.u1[i] - T.u2[i] - T.gap[i], dd = T.v1[i] - T.v2[i];
       if constexpr (L != ContactLaw::stereomechanical && L != ContactLaw::none) {
-        onset = (d > 0.0 && !(d_old > 0.0)) ? 1.0 : 0.0;
+        onset = ((d > 0.0 || redone) && !(d_old > 0.0)) ? 1.0 : 0.0;  // redone: touched inside the step
         if constexpr (L == ContactLaw::hertzdamp) T.v0[i] = d_old > 0.0 ? T.v0[i] : v0;
         F = contact_force<L, N15>(d, dd, T.kc[i], T.cd[i], T.v0[i], n_exp, clamp);
+        const bool unstable = contact_unstable<L, N15>(d, dd, T.kc[i], T.cd[i], T.v0[i], n_exp, h * h / T.meff[i], 2.8 * 2.8);
+        T.bad[i] = std::max(T.bad[i], unstable ? 1.0 : 0.0);
+        T.pF[i] = std::max(T.pF[i], stage_fmax);
       }
       T.F[i] = F;
       T.a1[i] = -ag1 - (T.c1[i] * T.v1[i] + T.fs1[i] + F) * T.im1[i];
@@ -669,7 +747,7 @@ void run_rk4(Tile& T, const Context& C) {
 template <ContactLaw L, bool N15, bool Energy>
 void run_nigam_jennings(Tile& T, const Context& C) {
   const double h = C.h, n_exp = C.contact->n, vmin = C.v0_min, lim = C.lim;
-  const int n = T.n;
+  const int n = T.np;
   for (long step = 0; step < C.nsteps; ++step) {
     const double ag0 = C.ag[step], ag1 = C.ag[step + 1];
     const double t = static_cast<double>(step + 1) * h;
@@ -692,15 +770,26 @@ void run_nigam_jennings(Tile& T, const Context& C) {
       double fs2p = bilinear(fs2o, T.k2[i], u2p - u2o, T.ak2[i] * u2p, T.qy2[i]);
       double Fp = 0.0, clamp = 0.0;
       double v0 = T.v0[i];
-      if constexpr (L != ContactLaw::stereomechanical && L != ContactLaw::none) {
-        double d = u1p - u2p - T.gap[i], dd = v1p - v2p;
-        if constexpr (L == ContactLaw::hertzdamp) v0 = (d_old > 0.0) ? v0 : std::max(dd, vmin);
-        Fp = contact_force<L, N15>(d, dd, T.kc[i], T.cd[i], v0, n_exp, clamp);
-      }
-      double p1n = ag1 + (fs1p - T.k1[i] * u1p + Fp) * T.im1[i];
-      double p2n = ag1 + (fs2p - T.k2[i] * u2p - Fp) * T.im2[i];
-      adv(T.nj1, u1o, v1o, p1o, p1n, T.u1[i], T.v1[i]);
-      adv(T.nj2, u2o, v2o, p2o, p2n, T.u2[i], T.v2[i]);
+      // Out of contact at the start: correct without contact first (the uncoupled arithmetic); a step that
+      // ends penetrating is corrected again with the contact force at the predicted state.
+      auto correct = [&](bool with_contact) {
+        Fp = 0.0;
+        if constexpr (L != ContactLaw::stereomechanical && L != ContactLaw::none) {
+          if (with_contact) {
+            double d = u1p - u2p - T.gap[i], dd = v1p - v2p;
+            if constexpr (L == ContactLaw::hertzdamp) v0 = (d_old > 0.0) ? v0 : std::max(dd, vmin);
+            Fp = contact_force<L, N15>(d, dd, T.kc[i], T.cd[i], v0, n_exp, clamp);
+          }
+        }
+        double p1n = ag1 + (fs1p - T.k1[i] * u1p + Fp) * T.im1[i];
+        double p2n = ag1 + (fs2p - T.k2[i] * u2p - Fp) * T.im2[i];
+        adv(T.nj1, u1o, v1o, p1o, p1n, T.u1[i], T.v1[i]);
+        adv(T.nj2, u2o, v2o, p2o, p2n, T.u2[i], T.v2[i]);
+      };
+      correct(d_old > 0.0);
+      const bool redone = !(d_old > 0.0) && T.u1[i] - T.u2[i] - T.gap[i] > 0.0;
+      if (redone) correct(true);
+      const double corrector_force = Fp;
       double onset = 0.0, F = 0.0;
       clamp = 0.0;
       if constexpr (L == ContactLaw::stereomechanical) onset = stereomechanical(T, i, h, v1o, v2o, d_old);
@@ -708,9 +797,12 @@ void run_nigam_jennings(Tile& T, const Context& C) {
       T.fs2[i] = bilinear(fs2o, T.k2[i], T.u2[i] - u2o, T.ak2[i] * T.u2[i], T.qy2[i]);
       double d = T.u1[i] - T.u2[i] - T.gap[i], dd = T.v1[i] - T.v2[i];
       if constexpr (L != ContactLaw::stereomechanical && L != ContactLaw::none) {
-        onset = (d > 0.0 && !(d_old > 0.0)) ? 1.0 : 0.0;
+        onset = ((d > 0.0 || redone) && !(d_old > 0.0)) ? 1.0 : 0.0;  // redone: touched inside the step
         if constexpr (L == ContactLaw::hertzdamp) T.v0[i] = onset > 0.0 ? std::max(dd, vmin) : T.v0[i];
         F = contact_force<L, N15>(d, dd, T.kc[i], T.cd[i], T.v0[i], n_exp, clamp);
+        const bool unstable = contact_unstable<L, N15>(d, dd, T.kc[i], T.cd[i], T.v0[i], n_exp, h * h / T.meff[i], 4.0);
+        T.bad[i] = std::max(T.bad[i], unstable ? 1.0 : 0.0);
+        T.pF[i] = std::max(T.pF[i], corrector_force);
       }
       T.F[i] = F;
       T.a1[i] = -ag1 - (T.c1[i] * T.v1[i] + T.fs1[i] + F) * T.im1[i];
@@ -871,6 +963,12 @@ void BatchResult::resize(std::size_t n) {
 
 NigamJennings nigam_jennings(double w, double z, double h) {
   // Nigam & Jennings (1969), for u'' + 2 z w u' + w^2 u = -a(t), a linear between a0 and a1 on [0, h].
+  // A (free response) in closed form. B are the Duhamel integrals of the unit impulse response
+  // g(s) = e^(-z w s) sin(wd s) / wd against the linear load shapes:
+  //   b11 = -int g(s) s/h ds, b12 = -int g(s) (1 - s/h) ds, b21, b22 the same with g'(s), s in [0, h].
+  // The textbook closed forms of B lose digits to cancellation when w h is small (1e-6 relative at
+  // w h = 1e-4), so B is integrated with composite 8-point Gauss-Legendre on panels of w h <= 0.25: the
+  // integrands are entire functions, so this is exact to round-off for any w h.
   const double sq = std::sqrt(1.0 - z * z), wd = w * sq;
   const double E = std::exp(-z * w * h), S = std::sin(wd * h), Cs = std::cos(wd * h);
   NigamJennings c;
@@ -878,12 +976,31 @@ NigamJennings nigam_jennings(double w, double z, double h) {
   c.a12 = E * S / wd;
   c.a21 = -w / sq * E * S;
   c.a22 = E * (Cs - z / sq * S);
-  const double w2 = w * w, w3 = w2 * w;
-  const double t1 = (2.0 * z * z - 1.0) / (w2 * h), t2 = 2.0 * z / (w3 * h);
-  c.b11 = E * ((t1 + z / w) * S / wd + (t2 + 1.0 / w2) * Cs) - t2;
-  c.b12 = -E * (t1 * S / wd + t2 * Cs) - 1.0 / w2 + t2;
-  c.b21 = E * ((t1 + z / w) * (Cs - z / sq * S) - (t2 + 1.0 / w2) * (wd * S + z * w * Cs)) + 1.0 / (w2 * h);
-  c.b22 = -E * (t1 * (Cs - z / sq * S) - t2 * (wd * S + z * w * Cs)) - 1.0 / (w2 * h);
+  static constexpr double gx[8] = {-0.9602898564975363, -0.7966664774136267, -0.5255324099163290,
+                                   -0.1834346424956498, 0.1834346424956498,  0.5255324099163290,
+                                   0.7966664774136267,  0.9602898564975363};
+  static constexpr double gw[8] = {0.1012285362903763, 0.2223810344533745, 0.3137066458778873,
+                                   0.3626837833783620, 0.3626837833783620, 0.3137066458778873,
+                                   0.2223810344533745, 0.1012285362903763};
+  const int panels = std::max(1, static_cast<int>(std::ceil(w * h / 0.25)));
+  const double ph = h / panels;
+  double i_gs = 0, i_g = 0, i_dgs = 0, i_dg = 0;  // int g s/h, int g, int g' s/h, int g'
+  for (int p = 0; p < panels; ++p) {
+    const double mid = (p + 0.5) * ph, half = 0.5 * ph;
+    for (int q = 0; q < 8; ++q) {
+      const double sv = mid + half * gx[q], wt = half * gw[q];
+      const double ex = std::exp(-z * w * sv), sn = std::sin(wd * sv), cs = std::cos(wd * sv);
+      const double g = ex * sn / wd, dg = ex * (cs - z * w / wd * sn);
+      i_gs += wt * g * (sv / h);
+      i_g += wt * g;
+      i_dgs += wt * dg * (sv / h);
+      i_dg += wt * dg;
+    }
+  }
+  c.b11 = -i_gs;
+  c.b12 = -(i_g - i_gs);
+  c.b21 = -i_dgs;
+  c.b22 = -(i_dg - i_dgs);
   return c;
 }
 
@@ -923,6 +1040,7 @@ void run_batch(const PairBatch& batch, const ContactModel& contact, const Ground
     T.n = static_cast<int>(std::min<std::size_t>(tile_width, width - base));
     // lanes past n up to the SIMD chunk boundary are padded with copies of the tile's first lane
     const int padded = std::min(tile_width, (T.n + simd::W - 1) / simd::W * simd::W);
+    T.np = padded;
     for (int i = 0; i < padded; ++i) {
       const std::size_t L = base + static_cast<std::size_t>(i < T.n ? i : 0);
       PairParams p = batch.get(L);
