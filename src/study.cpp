@@ -155,7 +155,8 @@ Study parse_study(const std::string& text, const std::string& path) {
   {  // [records]
     const toml::table* t = sub("records");
     TableReader r(t, path, "records");
-    s.suite = resolve_relative(path, r.string("suite", ""));
+    s.suite = r.string("suite", "");
+    if (s.suite != "builtin") s.suite = resolve_relative(path, s.suite);
     s.real_dir = resolve_relative(path, r.string("real_dir", ""));
     s.directory = resolve_relative(path, r.string("directory", ""));
     s.scale = r.number("scale", 1.0, 1e-6, 1e3, "(0, 1000]");
@@ -167,6 +168,7 @@ Study parse_study(const std::string& text, const std::string& path) {
     }
     s.dt_one_column = r.number("dt", 0.0, 0.0, 1.0, "[0, 1] s");
     s.record_limit = static_cast<int>(r.integer("limit", 0, 0, 100000));
+    s.synthetic_only = r.boolean("synthetic_only", false);
     if (const toml::node* f = r.get("files")) {
       auto a = f->as_array();
       if (!a) throw InputError("files must be an array", r.where("files"), "write files = [\"a.AT2\", {path = \"b.AT2\", scale = 1.5}]");
@@ -187,7 +189,7 @@ Study parse_study(const std::string& text, const std::string& path) {
         s.files.push_back(rf);
       }
     }
-    r.finish("suite, real_dir, directory, files, scale, units, dt, limit");
+    r.finish("suite, real_dir, directory, files, scale, units, dt, limit, synthetic_only");
     int sources = !s.suite.empty() + !s.directory.empty() + !s.files.empty();
     if (sources != 1)
       throw InputError(sources == 0 ? "the study names no records" : "the study names records in more than one way",

@@ -4,9 +4,11 @@
 //   title = "..."                 seed = 20240601 (required)
 //   scene = "probability" | "impacts" | "auto"
 //   output = "results/quick.h5"   (relative to the working directory; default <study stem>.h5)
-//   [records]    suite = "..." (relative to the study file) | files = ["a.AT2", {path = "b.AT2", scale = 1.2}]
+//   [records]    suite = "..." (relative to the study file, or "builtin" for the embedded 25-record suite)
+//                | files = ["a.AT2", {path = "b.AT2", scale = 1.2}]
 //                | directory = "..."; real_dir = "..." (resolve suite entries to real PEER files);
-//                scale = 1.0; units = "g" | "m/s2" | "cm/s2"; dt = <s, one-column files>; limit = <first N>
+//                scale = 1.0; units = "g" | "m/s2" | "cm/s2"; dt = <s, one-column files>; limit = <first N>;
+//                synthetic_only = false
 //   [structures] the stochastic structure model (see sampler.hpp)
 //   [gaps]       ratios = [0.1, 0.2, 0.3, 0.5, 0.7, 1.0]; curve_max = 1.5; curve_step = 0.005
 //   [contact]    law = "hertzdamp"; damping_law = "lankarani-nikravesh"; e = 0.65; n = 1.5; v0_min = 1e-3;
@@ -53,6 +55,7 @@ struct Study {
   AccUnits units = AccUnits::g;
   double dt_one_column = 0.0;
   int record_limit = 0;
+  bool synthetic_only = false;  // suite: every entry a synthetic stand-in, even where a real file exists
   // structures
   StructureModel structures;
   // gaps
