@@ -303,6 +303,21 @@ std::string report_markdown(const Results& r) {
         "| gap ratio | mean impacts (pounding models) | max impacts | median peak force MN | max peak force MN | "
         "mean amplification u1 | mean amplification u2 | excluded |\n|---|---|---|---|---|---|---|---|\n");
     const std::size_t G = r.gap_ratios.size();
+    std::string listing;
+    std::size_t nbad = 0;
+    for (std::size_t k = 0; k < R; ++k)
+      for (std::size_t m = 0; m < M; ++m)
+        for (std::size_t g = 0; g < G; ++g)
+          if (!ok(r.imp_status[(k * M + m) * G + g])) {
+            if (++nbad <= 10)
+              listing += fmt::format("  - record {} model (T1 {:.2f}, T2 {:.2f}, sample {}) at gap ratio {}: {}\n",
+                                     r.record_id[k], r.T1[m], r.T2[m], r.sample[m], r.gap_ratios[g],
+                                     r.imp_status[(k * M + m) * G + g] == 1 ? "diverged" : "non-finite");
+          }
+    std::string excluded_note =
+        nbad ? fmt::format("\nExcluded coupled analyses (diverged or non-finite, never counted as results): **{}**{}\n{}",
+                           nbad, nbad > 10 ? " (first 10 listed)" : "", listing)
+             : std::string();
     for (std::size_t g = 0; g < G; ++g) {
       double sum = 0, a1 = 0, a2 = 0;
       std::int64_t n = 0, maxc = 0, na = 0, excl = 0;
@@ -325,6 +340,7 @@ std::string report_markdown(const Results& r) {
           forces.empty() ? "-" : fmt::format("{:.2f}", forces[forces.size() / 2]),
           forces.empty() ? "-" : fmt::format("{:.2f}", forces.back()), na ? a1 / na : NAN, na ? a2 / na : NAN, excl);
     }
+    s += excluded_note;
   }
   return s;
 }

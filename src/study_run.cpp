@@ -430,6 +430,7 @@ int run_study(const parallel::Session& session, const std::string& study_path, c
     {
       auto g = h5::create_group(root, "models");
       std::vector<double> T1(M), T2(M), h1(M), h2(M), m1(M), m2(M), k1(M), k2(M), fy1(M), fy2(M), d(M), kh(M);
+      std::vector<double> a1(M), a2(M), rho1(M), rho2(M), mb1(M), mb2(M), c1(M), c2(M);
       std::vector<std::int32_t> i1(M), i2(M);
       std::vector<std::int64_t> sample(M);
       for (std::size_t p = 0; p < L.pairs; ++p) {
@@ -441,11 +442,15 @@ int run_study(const parallel::Session& session, const std::string& study_path, c
           T1[m] = q.s1.T, T2[m] = q.s2.T, h1[m] = q.s1.h, h2[m] = q.s2.h, m1[m] = q.s1.m, m2[m] = q.s2.m;
           k1[m] = q.s1.k, k2[m] = q.s2.k, fy1[m] = q.s1.fy, fy2[m] = q.s2.fy, d[m] = q.d, kh[m] = q.kh;
           i1[m] = q.id.i1, i2[m] = q.id.i2, sample[m] = q.id.sample;
+          a1[m] = q.s1.aspect, a2[m] = q.s2.aspect, rho1[m] = q.s1.rho, rho2[m] = q.s2.rho;
+          mb1[m] = q.s1.mbar, mb2[m] = q.s2.mbar, c1[m] = q.s1.c, c2[m] = q.s2.c;
         }
       }
       for (auto& [name, v] : std::vector<std::pair<const char*, std::vector<double>*>>{
                {"T1", &T1}, {"T2", &T2}, {"h1", &h1}, {"h2", &h2}, {"m1", &m1}, {"m2", &m2}, {"k1", &k1},
-               {"k2", &k2}, {"fy1", &fy1}, {"fy2", &fy2}, {"code_gap", &d}, {"kh", &kh}})
+               {"k2", &k2}, {"fy1", &fy1}, {"fy2", &fy2}, {"code_gap", &d}, {"kh", &kh}, {"aspect1", &a1},
+               {"aspect2", &a2}, {"rho1", &rho1}, {"rho2", &rho2}, {"mbar1", &mb1}, {"mbar2", &mb2}, {"c1", &c1},
+               {"c2", &c2}})
         h5::write_dataset(g.get(), name, *v);
       h5::write_dataset(g.get(), "i1", i1);
       h5::write_dataset(g.get(), "i2", i2);
@@ -471,6 +476,15 @@ int run_study(const parallel::Session& session, const std::string& study_path, c
       h5::write_dataset(g.get(), "peak_u1", ipu1);
       h5::write_dataset(g.get(), "peak_u2", ipu2);
       h5::write_dataset(g.get(), "t_first_impact", ifirst);
+      // response amplification: peak with pounding / peak without (the uncoupled run of the same model)
+      std::vector<double> amp1(R * M * G), amp2(R * M * G);
+      for (std::size_t q = 0; q < R * M; ++q)
+        for (std::size_t g2 = 0; g2 < G; ++g2) {
+          amp1[q * G + g2] = ipu1[q * G + g2] / pu1[q];
+          amp2[q * G + g2] = ipu2[q * G + g2] / pu2[q];
+        }
+      h5::write_dataset(g.get(), "amplification_u1", amp1);
+      h5::write_dataset(g.get(), "amplification_u2", amp2);
     }
     f.commit();
   }
