@@ -34,4 +34,19 @@ mpirun -np 2 "$bin" run "$tmp/study.toml" --out "$tmp/cut.h5" --resume --quiet >
 grep resuming "$tmp/resume.err"
 [ -f "$tmp/cut.h5.ckpt" ] && { echo "FAIL: checkpoint left after completion"; exit 1; }
 /usr/bin/python3 "$src/tests/cli/compare_results.py" "$tmp/ref.h5" "$tmp/cut.h5"
+
+# Ctrl-C (SIGINT) of a single-rank run: exit 130, the checkpoint stays valid, --resume completes it
+"$bin" run "$tmp/study.toml" --out "$tmp/int.h5" --quiet > /dev/null 2> "$tmp/int.err" &
+pid=$!
+for _ in $(seq 1 400); do
+  [ -f "$tmp/int.h5.ckpt" ] && [ "$(stat -c %s "$tmp/int.h5.ckpt")" -gt 100000 ] && break
+  sleep 0.05
+done
+kill -INT "$pid"
+rc=0; wait "$pid" || rc=$?
+[ "$rc" -eq 130 ] || { echo "FAIL: SIGINT exit code $rc (want 130)"; cat "$tmp/int.err"; exit 1; }
+grep -q "interrupted" "$tmp/int.err"
+[ -f "$tmp/int.h5" ] && { echo "FAIL: results file after SIGINT"; exit 1; }
+"$bin" run "$tmp/study.toml" --out "$tmp/int.h5" --resume --quiet > /dev/null 2>&1
+/usr/bin/python3 "$src/tests/cli/compare_results.py" "$tmp/ref.h5" "$tmp/int.h5"
 echo "1 passed, 0 failed"
