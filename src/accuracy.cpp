@@ -13,6 +13,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include <Eigen/Eigenvalues>
 #include <fmt/format.h>
 
 #include "pounding/collide.hpp"
@@ -369,8 +370,10 @@ std::vector<ChartRow> chart(const std::vector<Case>& cases, const std::string& r
         }
         perr.push_back(100.0 * std::abs(ne - nr) / static_cast<double>(unc.size()));
       }
+      // (record, model) -> uncoupled case, for the amplification peak |u1| coupled / uncoupled
+      std::map<std::pair<std::string, int>, std::size_t> unc_index;
+      for (std::size_t i = 0; i < unc.size(); ++i) unc_index[{unc[i].record, unc[i].model}] = i;
       for (const auto& [law, lc] : by_law) {
-        if (law == "none") continue;
         ChartRow row;
         row.stepper = v.name, row.law = law, row.k = k, row.dt = rec_dt / (1 << k);
         std::vector<double> wall, nsps;
@@ -384,10 +387,18 @@ std::vector<ChartRow> chart(const std::vector<Case>& cases, const std::string& r
         }
         row.ns_per_pair_step = percentile(nsps, 50);
         row.ms_per_analysis = 1e3 * percentile(wall, 50) / static_cast<double>(lc.size());
-        std::vector<double> ec, ef;
+        std::vector<double> ec, ef, ea;
         int cd = 0, vd = 0;
         for (std::size_t i = 0; i < lc.size(); ++i) {
           const Case& c = lc[i];
+          if (law != "none" && r[i].status == LaneStatus::ok) {
+            auto it = unc_index.find({c.record, c.model});
+            if (it != unc_index.end() && ru[it->second].status == LaneStatus::ok && c.ref_impact_count > 0) {
+              double amp = r[i].peak_u1 / ru[it->second].peak_u1;
+              double amp_ref = c.ref_peak_u1 / unc[it->second].ref_peak_u1;
+              ea.push_back(rel(amp, amp_ref));
+            }
+          }
           if (r[i].status != LaneStatus::ok) {
             ++row.diverged, ++cd, ++vd;
             ec.push_back(inf);
@@ -402,6 +413,7 @@ std::vector<ChartRow> chart(const std::vector<Case>& cases, const std::string& r
         row.closing_median = percentile(ec, 50), row.closing_p99 = percentile(ec, 99);
         row.force_median = ef.empty() ? nan : percentile(ef, 50);
         row.force_p99 = ef.empty() ? nan : percentile(ef, 99);
+        row.amp_p99 = ea.empty() ? nan : percentile(ea, 99);
         row.count_differs = static_cast<double>(cd) / static_cast<double>(lc.size());
         row.verdict_differs = static_cast<double>(vd) / static_cast<double>(lc.size());
         row.prob_error_pp = perr;
@@ -416,13 +428,13 @@ std::vector<ChartRow> chart(const std::vector<Case>& cases, const std::string& r
 void write_chart_csv(const std::string& path, const std::vector<ChartRow>& rows) {
   std::ostringstream o;
   o << "stepper,law,k,dt,ns_per_pair_step,ms_per_analysis,closing_median,closing_p99,force_median,force_p99,"
-       "count_differs,verdict_differs,diverged,prob_error_max_pp";
+       "amp_p99,count_differs,verdict_differs,diverged,prob_error_max_pp";
   for (double g : chart_gap_ratios()) o << fmt::format(",prob_error_pp_{}", g);
   o << "\n";
   for (const auto& r : rows) {
-    o << fmt::format("{},{},{},{:.6g},{:.4g},{:.4g},{:.4g},{:.4g},{:.4g},{:.4g},{:.4g},{:.4g},{},{:.4g}", r.stepper,
-                     r.law, r.k, r.dt, r.ns_per_pair_step, r.ms_per_analysis, r.closing_median, r.closing_p99,
-                     r.force_median, r.force_p99, r.count_differs, r.verdict_differs, r.diverged,
+    o << fmt::format("{},{},{},{:.6g},{:.4g},{:.4g},{:.4g},{:.4g},{:.4g},{:.4g},{:.4g},{:.4g},{:.4g},{},{:.4g}",
+                     r.stepper, r.law, r.k, r.dt, r.ns_per_pair_step, r.ms_per_analysis, r.closing_median,
+                     r.closing_p99, r.force_median, r.force_p99, r.amp_p99, r.count_differs, r.verdict_differs, r.diverged,
                      r.prob_error_max_pp);
     for (double p : r.prob_error_pp) o << fmt::format(",{:.4g}", p);
     o << "\n";
@@ -462,7 +474,7 @@ std::vector<StabilityRow> stability_map() {
     Stepper s;
     double theory0, theory5;
   };
-  // theory: central difference 2 (undamped); with the velocity predictor and damping: measured only.
+  // theory: central difference 2 (undamped); damped: the spectral radius of the kernel's scheme (below).
   // RK4: 2 sqrt(2) = 2.828 on the imaginary axis; damped: the boundary of |R(z)| = 1 along z = w h (-zeta + i sqrt(1-zeta^2)).
   auto rk4_boundary = [](double zeta) {
     double lo = 0.1, hi = 4.0;
@@ -480,10 +492,31 @@ std::vector<StabilityRow> stability_map() {
     }
     return 0.5 * (lo + hi);
   };
+  // central difference as the kernel writes it (velocity Verlet with the predictor v + h a in the damping):
+  // the largest h omega whose (u, v, a) amplification matrix has spectral radius <= 1
+  auto cd_boundary = [](double zeta) {
+    auto radius = [&](double h) {
+      Eigen::Matrix3d M;
+      for (int j = 0; j < 3; ++j) {
+        double u = j == 0, v = j == 1, a = j == 2;
+        double vh = v + 0.5 * h * a, un = u + h * vh, vp = vh + 0.5 * h * a;
+        double an = -(2.0 * zeta * vp + un), vn = vh + 0.5 * h * an;
+        M.col(j) << un, vn, an;
+      }
+      return M.eigenvalues().cwiseAbs().maxCoeff();
+    };
+    double lo = 0.5, hi = 0.5;
+    while (radius(hi) <= 1.0 + 1e-12) hi += 0.01;
+    lo = hi - 0.01;
+    for (int it = 0; it < 100; ++it) {
+      double x = 0.5 * (lo + hi);
+      (radius(x) <= 1.0 + 1e-12 ? lo : hi) = x;
+    }
+    return 0.5 * (lo + hi);
+  };
   for (double zeta : {0.0, 0.05}) {
     for (auto [s, name, theory] :
-         {std::tuple{Stepper::central_difference, "central-difference",
-                     zeta == 0 ? 2.0 : 2.0 * (std::sqrt(1 + zeta * zeta) - zeta)},
+         {std::tuple{Stepper::central_difference, "central-difference", cd_boundary(zeta)},
           std::tuple{Stepper::rk4, "rk4", rk4_boundary(zeta)},
           std::tuple{Stepper::nigam_jennings, "nigam-jennings", inf},
           std::tuple{Stepper::newmark, "newmark", inf}}) {

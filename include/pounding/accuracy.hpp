@@ -99,6 +99,7 @@ struct ChartRow {
   double dt = 0;               // integration step (s)
   double ns_per_pair_step = 0, ms_per_analysis = 0;  // medians over repeats
   double closing_median = 0, closing_p99 = 0, force_median = 0, force_p99 = 0;
+  double amp_p99 = 0;  // p99 relative error of the displacement amplification peak|u1| / uncoupled peak|u1|
   double count_differs = 0, verdict_differs = 0;  // fractions of cases
   int diverged = 0;
   std::vector<double> prob_error_pp;  // |P_engine - P_ref| in percentage points at each gap ratio
