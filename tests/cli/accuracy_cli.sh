@@ -1,0 +1,82 @@
+#!/usr/bin/env bash
+# `pounding accuracy` (issue 6): the model set the reference is built from, the stored reference regenerates
+# (SciPy on the first rows reproduces tests/data/reference/accuracy_reference.csv), the agreement command, and
+# bad input (exit 2, one " ERROR: " line, no output file).
+# Usage: accuracy_cli.sh <pounding binary> <source dir>
+set -uo pipefail
+bin=${1:?pounding binary}
+src=${2:?source dir}
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+pass=0
+fails=0
+ok() { echo "ok:   $1"; pass=$((pass + 1)); }
+fail() { echo "FAIL: $1"; fails=$((fails + 1)); }
+
+# 1. the model set: 50 models x 3 records x 5 laws, and one ground-motion file per record
+if "$bin" accuracy models --out "$work/models.csv" >"$work/out" 2>"$work/err"; then
+  rows=$(($(wc -l <"$work/models.csv") - 1))
+  nag=$(ls "$work"/*.ag 2>/dev/null | wc -l)
+  [[ $rows -eq 750 && $nag -eq 3 ]] && ok "models: 750 cases, 3 .ag files" || fail "models: $rows cases, $nag .ag files"
+else
+  fail "accuracy models failed: $(cat "$work/err")"
+fi
+
+# 2. the stored reference is what the model set + tools/reference_solver.py give (first 2 rows, 1e-9)
+ref="$src/tests/data/reference/accuracy_reference.csv"
+if /usr/bin/python3 "$src/tools/reference_solver.py" "$work/models.csv" "$work/ref2.csv" --jobs 1 --limit 2 \
+    2>"$work/err"; then
+  if /usr/bin/python3 - "$ref" "$work/ref2.csv" <<'PY'; then
+import csv, sys
+stored = list(csv.DictReader(open(sys.argv[1])))[:2]
+new = list(csv.DictReader(open(sys.argv[2])))
+bad = 0
+for a, b in zip(stored, new):
+    for k in ("gap", "kc", "m1", "k1", "fy2"):
+        bad += abs(float(a[k]) - float(b[k])) > 1e-12 * abs(float(a[k]))
+    for k in ("ref_peak_closing", "ref_peak_u1", "ref_peak_u2"):
+        bad += abs(float(a[k]) - float(b[k])) > 1e-9 * abs(float(a[k]))
+    bad += a["ref_impact_count"] != b["ref_impact_count"]
+sys.exit(1 if bad or len(new) != 2 else 0)
+PY
+    ok "reference regenerates (first 2 rows, parameters 1e-12, peaks 1e-9)"
+  else
+    fail "regenerated reference rows differ from the stored ones"
+  fi
+else
+  fail "reference_solver.py failed: $(tail -3 "$work/err")"
+fi
+
+# 3. agreement command: Hertzdamp peak-force error of the high-accuracy mode below 1e-4, no count difference
+if "$bin" accuracy agree --reference "$ref" >"$work/agree" 2>"$work/err"; then
+  line=$(grep '^hertzdamp ' "$work/agree")
+  fmax=$(awk '{print $8}' <<<"$line")
+  cnt=$(awk '{print $9}' <<<"$line")
+  if awk -v f="$fmax" 'BEGIN{exit !(f < 1e-4)}' && [[ $cnt == 0 ]]; then
+    ok "agree: hertzdamp force_max $fmax, count differs $cnt"
+  else
+    fail "agree: hertzdamp line '$line'"
+  fi
+else
+  fail "accuracy agree failed: $(cat "$work/err")"
+fi
+
+# 4. bad input
+check_bad() {
+  local what=$1 out=$2
+  shift 2
+  rm -f "$out"
+  "$bin" accuracy "$@" >"$work/out" 2>"$work/err"
+  local rc=$?
+  if [[ $rc -eq 2 ]] && grep -q '^ ERROR: ' "$work/err" && [[ ! -e $out ]]; then
+    ok "$what -> exit 2: $(head -c 100 "$work/err")"
+  else
+    fail "$what: exit $rc, stderr '$(head -c 200 "$work/err")'"
+  fi
+}
+check_bad "models --n 0" "$work/bad.csv" models --n 0 --out "$work/bad.csv"
+check_bad "agree with a missing reference" "$work/bad2.csv" agree --reference "$work/none.csv" --out "$work/bad2.csv"
+check_bad "chart --repeats 0" "$work/bad3.csv" chart --repeats 0 --out "$work/bad3.csv"
+
+echo "$pass passed, $fails failed"
+[[ $fails -eq 0 ]]
