@@ -334,7 +334,8 @@ std::vector<Agreement> agreement(const std::vector<Case>& cases, const std::vect
 std::vector<double> chart_gap_ratios() { return {0.1, 0.2, 0.3, 0.5, 0.7, 1.0}; }
 
 std::vector<ChartRow> chart(const std::vector<Case>& cases, const std::string& record_dir,
-                            const std::vector<RecordSpec>& records, int repeats, int kmax) {
+                            const std::vector<RecordSpec>& records, int repeats, int kmax,
+                            const std::vector<Case>* uncoupled) {
   struct Variant {
     std::string name;
     Stepper s;
@@ -347,6 +348,7 @@ std::vector<ChartRow> chart(const std::vector<Case>& cases, const std::string& r
                                          {"nigam-jennings", Stepper::nigam_jennings, false}};
   std::map<std::string, std::vector<Case>> by_law;
   for (const auto& c : cases) by_law[c.law].push_back(c);
+  if (uncoupled && !uncoupled->empty()) by_law["none"] = *uncoupled;  // a larger uncoupled set: finer probabilities
   if (!by_law.count("none"))
     throw InputError("the reference has no uncoupled ('none') cases", "reference", "regenerate it with law none");
   const auto ratios = chart_gap_ratios();

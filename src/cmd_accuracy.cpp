@@ -118,6 +118,7 @@ void add_accuracy(CLI::App& app) {
       std::string reference = std::string(POUNDING_SOURCE_DIR) + "/tests/data/reference/accuracy_reference.csv";
       std::string out = "accuracy_chart.csv";
       int repeats = 3, kmax = 5;
+      std::string uncoupled;
     };
     auto o = std::make_shared<O>();
     auto* c = acc->add_subcommand("chart", "stepper x dt x contact law: cost and error against the reference");
@@ -125,10 +126,13 @@ void add_accuracy(CLI::App& app) {
     c->add_option("--out", o->out, "chart CSV")->capture_default_str();
     c->add_option("--repeats", o->repeats, "timing repeats (median)")->capture_default_str();
     c->add_option("--kmax", o->kmax, "dt = record dt x 2^-k, k = 0..kmax")->capture_default_str();
+    c->add_option("--uncoupled", o->uncoupled, "larger uncoupled reference CSV for the probability table");
     c->callback([o, dir] {
       require_positive(o->repeats, "--repeats");
       auto cases = A::read_cases(o->reference);
-      auto rows = A::chart(cases, *dir, A::default_records(), o->repeats, o->kmax);
+      std::vector<A::Case> unc;
+      if (!o->uncoupled.empty()) unc = A::read_cases(o->uncoupled);
+      auto rows = A::chart(cases, *dir, A::default_records(), o->repeats, o->kmax, &unc);
       A::write_chart_csv(o->out, rows);
       fmt::print("{} rows -> {}\n", rows.size(), o->out);
     });

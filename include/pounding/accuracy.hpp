@@ -92,7 +92,9 @@ struct Agreement {
 std::vector<Agreement> agreement(const std::vector<Case>& cases, const std::vector<EngineResult>& res);
 
 // ---------------------------------------------------------------------------------------------------
-// The chart: stepper x dt x contact law
+// The chart: stepper x dt x contact law. The probability table (at-least-one-impact at each gap ratio) comes
+// from the uncoupled ("none") cases -- first passage: the coupled run equals the uncoupled one up to the first
+// impact -- taken from `uncoupled` when given (a larger model set resolves smaller probability errors).
 struct ChartRow {
   std::string stepper, law;
   int k = 0;                   // dt = record dt x 2^-k (substeps 2^k)
@@ -107,7 +109,8 @@ struct ChartRow {
 };
 std::vector<double> chart_gap_ratios();  // 0.1, 0.2, 0.3, 0.5, 0.7, 1.0
 std::vector<ChartRow> chart(const std::vector<Case>& cases, const std::string& record_dir,
-                            const std::vector<RecordSpec>& records, int repeats, int kmax);
+                            const std::vector<RecordSpec>& records, int repeats, int kmax,
+                            const std::vector<Case>* uncoupled = nullptr);
 void write_chart_csv(const std::string& path, const std::vector<ChartRow>& rows);
 
 // ---------------------------------------------------------------------------------------------------
