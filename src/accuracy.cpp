@@ -667,7 +667,7 @@ std::vector<MuthukumarRow> muthukumar(const std::string& record_dir, const Muthu
   const double gap = 0.5 * in;
   const double kh = 25000.0 * kip / std::pow(in, 1.5);
   const double kk = opt.kelvin_k > 0 ? opt.kelvin_k : 25000.0 * kip / in;
-  const double T2 = opt.T1 > 0 ? opt.T1 : 1.0;  // flexible system period (the paper's digits are not in the text)
+  const double T2 = opt.T2 > 0 ? opt.T2 : 1.0;  // flexible system period (the paper's digits are not in the text)
   // PGA groups of the paper: low 0.1-0.3 g, moderate 0.4-0.6 g, high 0.7-0.9 g
   struct Rec {
     std::string file, level;

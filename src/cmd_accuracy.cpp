@@ -211,7 +211,7 @@ void add_accuracy(CLI::App& app) {
     c->add_option("--substeps", o->substeps, "substeps per record step (default: h <= 0.5 ms)");
     c->callback([o, dir] {
       A::MuthukumarOptions mo;
-      mo.T1 = o->T2;
+      mo.T2 = o->T2;
       mo.kelvin_k = o->kelvin_k;
       mo.substeps = o->substeps;
       std::vector<std::string> log;

@@ -63,6 +63,17 @@ TEST(AccuracyReference, HighAccuracyModeAgreesWithScipy) {
   EXPECT_EQ(a["stereomechanical"].count_differs, 0);
 }
 
+// The larger uncoupled set behind the chart's probability table (1002 model-records).
+TEST(AccuracyReference, UncoupledSetAgrees) {
+  auto cases = A::read_cases(std::string(POUNDING_SOURCE_DIR) + "/tests/data/reference/accuracy_uncoupled.csv");
+  ASSERT_EQ(cases.size(), 1002u);
+  auto res = A::run_cases(cases, {Stepper::rk4, 64, true}, A::default_record_dir(), A::default_records());
+  auto a = A::agreement(cases, res);
+  ASSERT_EQ(a.size(), 1u);
+  EXPECT_LT(a[0].closing_max, 1e-4);
+  EXPECT_LT(a[0].closing_median, 1e-6);
+}
+
 // The same comparison must be able to fail: the production stepper at the record step is visibly less accurate.
 TEST(AccuracyReference, ComparisonDiscriminates) {
   auto a = agree({Stepper::central_difference, 1, false});

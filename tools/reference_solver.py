@@ -327,6 +327,18 @@ def work(args):
     return out
 
 
+def fmt_field(key, value):
+    """Numbers in their shortest round-trip form (so a rerun reproduces the stored CSV, timings aside)."""
+    if key == "ref_seconds":
+        return "%.3f" % value
+    if key in ("model", "ref_impact_count"):
+        return str(value)
+    try:
+        return repr(float(value))
+    except (TypeError, ValueError):
+        return value
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("models")
@@ -352,10 +364,10 @@ def main():
                                      "ref_peak_u2", "ref_seconds"]
     tmp = a.out + ".tmp"
     with open(tmp, "w", newline="") as f:
-        w = csv.DictWriter(f, fieldnames=fields)
+        w = csv.DictWriter(f, fieldnames=fields, lineterminator="\n")
         w.writeheader()
         for r in res:
-            w.writerow({k: (repr(v) if isinstance(v, float) else v) for k, v in r.items()})
+            w.writerow({k: fmt_field(k, v) for k, v in r.items()})
     os.replace(tmp, a.out)
     print("%d cases, %.1f s (%s, rtol %g)" % (len(res), time.perf_counter() - t0, a.method, a.rtol),
           file=sys.stderr)

@@ -167,7 +167,7 @@ struct MuthukumarRow {
   int diverged = 0;
 };
 struct MuthukumarOptions {
-  double T1 = 0.0;            // stiff system period (s); 0: the default stated in docs/validation.md
+  double T2 = 0.0;            // flexible system period (s), T1 = 0.3, 0.5, 0.7 T2; 0: 1.0 s (docs/validation.md)
   double kelvin_k = 0.0;      // N/m; 0: default
   int substeps = 0;           // 0: enough for 50 steps per Kelvin contact
 };
