@@ -137,21 +137,21 @@ std::string loc(const std::string& where, int line) { return fmt::format("{}:{}"
   throw InputError(fmt::format("'{}' is not a number", shown), loc(where, line), expected);
 }
 
-// Units named by an AT2 header; false when the header does not say.
-bool header_units(const std::string& header_upper, AccUnits& u) {
-  const std::string& h = header_upper;
-  if (h.find("CM/S") != std::string::npos || h.find("CM/SEC") != std::string::npos ||
-      h.find("GAL") != std::string::npos || h.find("CM/S2") != std::string::npos) {
+// Units named by an AT2 header's units line (PEER: line 3, "ACCELERATION TIME SERIES IN UNITS OF G");
+// false when it does not say. Only that line is searched, so a station named "Galway" is not "gal".
+bool header_units(const std::string& line_upper, AccUnits& u) {
+  const std::string h = " " + line_upper + " ";
+  auto has = [&](const char* s) { return h.find(s) != std::string::npos; };
+  if (has("CM/S") || has("CM/SEC") || has(" GAL ") || has(" GALS ") || has("(GAL)") || has("UNITS OF GAL")) {
     u = AccUnits::cm_s2;
     return true;
   }
-  if (h.find("UNITS OF G") != std::string::npos || h.find("(G)") != std::string::npos ||
-      h.find("IN G ") != std::string::npos || h.find("UNITS: G") != std::string::npos) {
+  if (has("UNITS OF G ") || has("UNITS OF G.") || has("UNITS OF G,") || has("(G)") || has(" IN G ") ||
+      has("UNITS: G ")) {
     u = AccUnits::g;
     return true;
   }
-  if (h.find("M/S/S") != std::string::npos || h.find("M/S2") != std::string::npos ||
-      h.find("M/S^2") != std::string::npos) {
+  if (has("M/S/S") || has("M/S2") || has("M/S^2") || has("M/SEC/SEC")) {
     u = AccUnits::m_s2;
     return true;
   }
@@ -208,12 +208,15 @@ Record parse_at2(const std::vector<Line>& lines, std::size_t npts_idx, const std
 
   Record rec;
   rec.dt = dt;
-  rec.acc.reserve(npts);
-  std::string header;
-  for (std::size_t i = 0; i < npts_idx; ++i) header += upper(lines[i].text) + "\n";
+  rec.acc.reserve(std::min<std::size_t>(npts, std::size_t{1} << 20));  // NPTS is not trusted before counting
   AccUnits units = options.units;
   AccUnits named;
-  if (options.header_units && header_units(header, named)) units = named;
+  const std::size_t units_line = npts_idx >= 3 ? 2 : 0;
+  for (std::size_t i = units_line; i < npts_idx; ++i)
+    if (options.header_units && header_units(upper(lines[i].text), named)) {
+      units = named;
+      break;
+    }
   const double f = to_m_s2(units);
   bool exp_notation = false;
   for (std::size_t i = npts_idx + 1; i < lines.size(); ++i) {

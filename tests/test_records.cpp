@@ -126,6 +126,10 @@ TEST(RecordsFormats, HeaderUnitsCmS2) {
   o.header_units = false;  // trust the caller instead: g
   Record r2 = parse_record(t, "x.AT2", o);
   EXPECT_DOUBLE_EQ(r2.acc[0], 981.0 * g_accel);
+  // a station named like a unit on line 2 does not change the units; line 3 decides
+  Record r3 = parse_record("A\nGalway, 1/1/2000, GAL 1, 0\nACCELERATION TIME SERIES IN UNITS OF G\nNPTS= 1, DT= .01\n 0.5\n", "y.AT2");
+  EXPECT_DOUBLE_EQ(r3.acc[0], 0.5 * g_accel);
+  EXPECT_EQ(r3.meta["units"], "g");
 }
 
 TEST(RecordsFormats, TwoColumnAndOneColumn) {
