@@ -123,6 +123,30 @@ TEST(AccuracyStability, StiffContactPastTheLimitIsMarkedDiverged) {
   EXPECT_EQ(checked, 3 * 3 * 3);
 }
 
+// The contact term's own limit, measured on the linear contact (omega_c = sqrt(k / meff) = 2490 rad/s):
+// central difference is marked diverged from h omega_c = 1.92 up and runs from 1.78 down (its damped
+// free-vibration limit is 1.81); RK4 diverges from 3.11 and runs from 2.77 down (theory 2.83).
+TEST(AccuracyStability, ContactTermLimits) {
+  auto rows = A::stiff_contact(A::default_record_dir());
+  int n = 0;
+  for (const auto& r : rows) {
+    if (r.law != "linear") continue;
+    SCOPED_TRACE(r.stepper + " h*wc " + std::to_string(r.h_omega_contact));
+    double lo = r.stepper == "central-difference" ? 1.78 : r.stepper == "rk4" ? 2.77 : -1.0;
+    double hi = r.stepper == "central-difference" ? 1.9 : r.stepper == "rk4" ? 3.0 : -1.0;
+    if (lo < 0) continue;
+    if (r.h_omega_contact >= hi) {
+      EXPECT_EQ(r.status, "diverged");
+      ++n;
+    }
+    if (r.h_omega_contact <= lo) {
+      EXPECT_EQ(r.status, "ok");
+      ++n;
+    }
+  }
+  EXPECT_GT(n, 50);
+}
+
 // Newmark stays bounded past the explicit limit, but at h omega_c = 25 its Hertzdamp peak force is far from the
 // converged one: a failure mode (stable but wrong) that no status marks -- documented in docs/accuracy.md.
 TEST(AccuracyStability, NewmarkAtHugeStepIsStableButInaccurate) {
