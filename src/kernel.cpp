@@ -385,7 +385,11 @@ void run_central_difference(Tile& T, const Context& C) {
           onset = sel(on, one, zero);
           if constexpr (L == ContactLaw::hertzdamp) {
             if (stdx::any_of(on)) {
-              v0 = sel(on, stdx::max(dd, vmin), v0);
+              // approach velocity at the interpolated closing instant inside the step (second order)
+              V den = d - dprev;
+              V sc = stdx::min(stdx::max(-dprev / sel(den > zero, den, one), zero), one);
+              V ddo = v1o - v2o;
+              v0 = sel(on, stdx::max(ddo + sc * (dd - ddo), vmin), v0);
               iv0 = one / v0;
             }
           }
@@ -558,8 +562,9 @@ void run_newmark(Tile& T, const Context& C) {
         bool done = T.conv[i] > 0.0;
         T.x1[i] = done ? u1 : u1 - du1;
         T.x2[i] = done ? u2 : u2 - du2;
-        double scale = std::abs(u1) + std::abs(u2) + 1e-9;
-        bool ok = (std::abs(du1) + std::abs(du2)) <= tol * scale;
+        // relative increment, with an absolute floor far above round-off of decayed motion (1e-15 m)
+        double scale = std::abs(u1) + std::abs(u2);
+        bool ok = (std::abs(du1) + std::abs(du2)) <= tol * scale + 1e-19;
         T.conv[i] = (done || ok) ? 1.0 : 0.0;
         open += T.conv[i] > 0.0 ? 0.0 : 1.0;
       }
