@@ -3,6 +3,7 @@
 #include <unistd.h>
 
 #include <atomic>
+#include <cmath>
 #include <chrono>
 #include <csignal>
 #include <cstdio>
@@ -186,10 +187,13 @@ int run_study(const parallel::Session& session, const std::string& study_path, c
   L.impacts = study.scene == Scene::impacts;
   const std::size_t nper = study.structures.periods.size();
 
-  KernelSettings ks;
-  ks.stepper = study.stepper;
-  ks.substeps = study.substeps;
-  ks.displacement_limit = study.displacement_limit;
+  KernelSettings ks_base;
+  ks_base.stepper = study.stepper;
+  ks_base.displacement_limit = study.displacement_limit;
+  auto substeps_for = [&](double dt) {
+    int q = study.max_dt > 0 ? static_cast<int>(std::ceil(dt / study.max_dt - 1e-9)) : 1;
+    return std::max(study.substeps, q);
+  };
   ContactModel uncoupled = study.contact;
   uncoupled.law = ContactLaw::none;
 
@@ -203,6 +207,8 @@ int run_study(const parallel::Session& session, const std::string& study_path, c
                          static_cast<std::int64_t>(b * L.batch), pairs);
     const Record& rec = records[r].record;
     GroundMotion gm{rec.dt, rec.acc, rec.duration() + study.free_vibration};
+    KernelSettings ks = ks_base;
+    ks.substeps = substeps_for(rec.dt);
     PairBatch batch;
     batch.resize(n);
     for (std::size_t i = 0; i < n; ++i) batch.set(i, pairs[i].pair_params(0.0, study.e));
@@ -403,6 +409,7 @@ int run_study(const parallel::Session& session, const std::string& study_path, c
     h5::write_attribute(root, "restitution", study.e);
     h5::write_attribute(root, "stepper", std::string(to_string(study.stepper)));
     h5::write_attribute(root, "substeps", static_cast<std::int64_t>(study.substeps));
+    h5::write_attribute(root, "max_dt", study.max_dt);
     h5::write_attribute(root, "ranks", static_cast<std::int64_t>(session.size()));
     h5::write_attribute(root, "wall_time_s", wall);
     {
