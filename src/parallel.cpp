@@ -66,16 +66,22 @@ bool run_units(const Session& s, const std::vector<std::size_t>& todo, const Com
   }
 
   if (!s.root()) {  // worker: receive a unit, compute, send [unit, payload...]; -1 ends
-    std::vector<double> msg;
-    for (;;) {
+    // Results go out with MPI_Isend from two alternating buffers: a result larger than the eager limit
+    // waits for the master to post its receive (it may be busy computing a unit), and the worker goes on
+    // computing its next unit meanwhile instead of blocking in MPI_Send.
+    std::vector<double> msg[2];
+    MPI_Request req[2] = {MPI_REQUEST_NULL, MPI_REQUEST_NULL};
+    for (int k = 0;; k ^= 1) {
       std::int64_t unit = stop_unit;
       MPI_Recv(&unit, 1, MPI_INT64_T, 0, tag_work, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
       if (unit == stop_unit) break;
       std::vector<double> payload = compute(static_cast<std::size_t>(unit));
-      msg.assign(1, static_cast<double>(unit));
-      msg.insert(msg.end(), payload.begin(), payload.end());
-      MPI_Send(msg.data(), static_cast<int>(msg.size()), MPI_DOUBLE, 0, tag_result, MPI_COMM_WORLD);
+      MPI_Wait(&req[k], MPI_STATUS_IGNORE);
+      msg[k].assign(1, static_cast<double>(unit));
+      msg[k].insert(msg[k].end(), payload.begin(), payload.end());
+      MPI_Isend(msg[k].data(), static_cast<int>(msg[k].size()), MPI_DOUBLE, 0, tag_result, MPI_COMM_WORLD, &req[k]);
     }
+    MPI_Waitall(2, req, MPI_STATUSES_IGNORE);
     return true;
   }
 
