@@ -273,7 +273,7 @@ constexpr int W = static_cast<int>(V::size());
 template <ContactLaw L, bool N15>
 [[gnu::always_inline]] inline simd::V contact_force_v(const simd::V& d, const simd::V& dd, const simd::V& kc,
                                                       const simd::V& cd, const simd::V& iv0, double n,
-                                                      simd::V& clamp) {
+                                                      simd::V& clamp, simd::V& sq) {
   using namespace simd;
   const V zero(0.0), one(1.0);
   V dp = stdx::max(d, zero);
@@ -287,7 +287,8 @@ template <ContactLaw L, bool N15>
   } else if constexpr (L == ContactLaw::hertz || L == ContactLaw::hertzdamp || L == ContactLaw::jankowski) {
     V pw;
     if constexpr (N15 || L == ContactLaw::jankowski) {
-      pw = dp * stdx::sqrt(dp);
+      sq = stdx::sqrt(dp);
+      pw = dp * sq;
     } else {
       for (int j = 0; j < W; ++j) pw[j] = dp[j] > 0.0 ? std::pow(dp[j], n) : 0.0;
     }
@@ -299,7 +300,7 @@ template <ContactLaw L, bool N15>
       return stdx::max(raw, zero);
     } else {
       // rc-buildings eqs 4-5: c_h = 2 zeta sqrt(kh sqrt(delta) meff) = cd delta^(1/4), approach only
-      V damp = sel(dd > zero, cd * stdx::sqrt(stdx::sqrt(dp)) * dd, zero);
+      V damp = sel(dd > zero, cd * stdx::sqrt(sq) * dd, zero);
       return kc * pw + damp;
     }
   } else {
@@ -393,13 +394,14 @@ void run_central_difference(Tile& T, const Context& C) {
               iv0 = one / v0;
             }
           }
-          nF = contact_force_v<L, N15>(d, dd, kc, cd, iv0, n_exp, clamp);
+          V sq = zero;  // sqrt of the penetration, shared with the stability guard
+          nF = contact_force_v<L, N15>(d, dd, kc, cd, iv0, n_exp, clamp, sq);
           // stability guard (see contact_unstable): omega_lin h > 2
           V klin;
           if constexpr (L == ContactLaw::linear || L == ContactLaw::kelvin) {
             klin = kc;
           } else if constexpr (N15 || L == ContactLaw::jankowski) {
-            klin = 1.5 * kc * stdx::sqrt(stdx::max(d, zero));
+            klin = 1.5 * kc * sq;
           } else {
             for (int j = 0; j < W; ++j) klin[j] = d[j] > 0.0 ? n_exp * kc[j] * std::pow(d[j], n_exp - 1.0) : 0.0;
           }
