@@ -10,6 +10,7 @@
 #include <fmt/format.h>
 
 #include "pounding/error.hpp"
+#include "pounding/files.hpp"
 
 namespace pounding::h5 {
 namespace {
@@ -84,27 +85,27 @@ Handle::~Handle() {
 }
 
 AtomicFile::AtomicFile(std::string path) : path_(std::move(path)) {
-  tmp_ = fmt::format("{}.tmp{}", path_, static_cast<long>(getpid()));
+  // Built in memory (core driver, no backing store) and written by files::write_atomically on commit():
+  // HDF5 never touches the disk, so a full disk is one clean OS error and never a half-closed HDF5 file.
   H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
-  hid_t f = H5Fcreate(tmp_.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
-  if (f < 0)
-    throw InputError(fmt::format("cannot create output file {}", tmp_), path_,
-                     "check that the directory exists and is writable");
+  Handle fapl(checked(H5Pcreate(H5P_FILE_ACCESS), "file access plist"));
+  check(H5Pset_fapl_core(fapl.get(), 1 << 20, 0), "core driver");
+  hid_t f = H5Fcreate(path_.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, fapl.get());
+  if (f < 0) throw std::runtime_error("HDF5 error: cannot create the in-memory file for " + path_);
   file_ = Handle(f);
 }
 
-AtomicFile::~AtomicFile() {
-  if (!committed_) {
-    file_ = Handle();
-    std::remove(tmp_.c_str());
-  }
-}
+AtomicFile::~AtomicFile() = default;
 
 void AtomicFile::commit() {
-  check(H5Fflush(file_.get(), H5F_SCOPE_GLOBAL), "flush");
+  check(H5Fflush(file_.get(), H5F_SCOPE_GLOBAL), "flush " + path_);
+  const ssize_t n = H5Fget_file_image(file_.get(), nullptr, 0);
+  if (n < 0) throw std::runtime_error("HDF5 error: file image size of " + path_);
+  std::vector<std::byte> image(static_cast<std::size_t>(n));
+  if (H5Fget_file_image(file_.get(), image.data(), image.size()) != n)
+    throw std::runtime_error("HDF5 error: file image of " + path_);
   file_ = Handle();
-  std::filesystem::rename(tmp_, path_);
-  committed_ = true;
+  files::write_atomically(path_, image);
 }
 
 Handle open_read(const std::string& path) {
@@ -128,6 +129,7 @@ Handle open_group(hid parent, const std::string& name) {
   return Handle(checked(H5Gopen2(parent, name.c_str(), H5P_DEFAULT), "open group " + name));
 }
 bool exists(hid parent, const std::string& name) { return H5Lexists(parent, name.c_str(), H5P_DEFAULT) > 0; }
+bool attribute_exists(hid obj, const std::string& name) { return H5Aexists(obj, name.c_str()) > 0; }
 
 void write_dataset(hid g, const std::string& n, std::span<const double> v) {
   hsize_t d[1] = {v.size()};

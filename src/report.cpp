@@ -92,6 +92,8 @@ Results load_results(const std::string& path) {
   r.wall_time = h5::read_double_attribute(root, "wall_time_s");
   r.ranks = h5::read_int64_attribute(root, "ranks");
   r.seed = h5::read_int64_attribute(root, "seed");
+  if (h5::attribute_exists(root, "exclusion_warning"))
+    r.exclusion_warning = h5::read_string_attribute(root, "exclusion_warning");
   {
     auto g = h5::open_group(root, "records");
     r.record_id = h5::read_strings(g.get(), "id");
@@ -168,6 +170,8 @@ std::string report_markdown(const Results& r) {
   const std::size_t R = r.records(), M = r.models();
   const auto& ratios = r.study_gap_ratios;
   out("# Pounding study: {}\n\n", r.title);
+  if (!r.exclusion_warning.empty())
+    out("> **WARNING — results not trustworthy as they stand:** {}.\n\n", r.exclusion_warning);
   out("- results: `{}` (written {}, commit {}, {} rank(s), wall time {:.2f} s)\n", r.path, r.date, r.commit, r.ranks,
       r.wall_time);
   out("- scene: **{}** — {}\n", r.scene, r.scene_reason);

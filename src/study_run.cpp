@@ -11,11 +11,15 @@
 #include <ctime>
 #include <filesystem>
 #include <fstream>
+#include <optional>
 #include <sstream>
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
+#include "pounding/checkpoint.hpp"
 #include "pounding/error.hpp"
+#include "pounding/files.hpp"
 #include "pounding/hdf5io.hpp"
 #include "pounding/kernel.hpp"
 #include "pounding/report.hpp"
@@ -37,12 +41,6 @@ constexpr int gap_fields = 6;
 std::atomic<bool> g_stop{false};
 extern "C" void on_signal(int) { g_stop.store(true); }
 
-std::uint64_t fnv1a(const void* data, std::size_t n, std::uint64_t h = 1469598103934665603ULL) {
-  const auto* p = static_cast<const unsigned char*>(data);
-  for (std::size_t i = 0; i < n; ++i) h = (h ^ p[i]) * 1099511628211ULL;
-  return h;
-}
-
 // Work units: unit = (record r, period pair p, block b), numbered r-major.
 struct Layout {
   std::size_t records = 0, pairs = 0, blocks = 0, batch = 0, samples = 0, gaps = 0;
@@ -60,84 +58,21 @@ struct Layout {
   }
 };
 
-// ------------------------------------------------------------------------------------------------
-// Checkpoint: <out>.ckpt, append-only. Header: magic, study hash, unit count. Record: unit, count,
-// count doubles, FNV-1a checksum. A torn last record (kill -9 during a write) fails its checksum and is
-// dropped on --resume; the file is truncated to the last good record.
-class Checkpoint {
- public:
-  static constexpr char magic[8] = {'P', 'N', 'D', 'C', 'K', 'P', 'T', '1'};
-  Checkpoint(std::string path, std::uint64_t hash, std::uint64_t units) : path_(std::move(path)), hash_(hash), units_(units) {}
-
-  // Loads finished units (unit -> payload). Throws InputError if the checkpoint belongs to another study.
-  void load(const std::function<void(std::size_t, std::vector<double>&&)>& on_unit) {
-    std::ifstream in(path_, std::ios::binary);
-    if (!in) throw InputError("no checkpoint to resume from", path_, "run without --resume to start the study");
-    char m[8];
-    std::uint64_t h = 0, n = 0;
-    in.read(m, 8);
-    in.read(reinterpret_cast<char*>(&h), 8);
-    in.read(reinterpret_cast<char*>(&n), 8);
-    if (!in || std::memcmp(m, magic, 8) != 0)
-      throw InputError("the checkpoint file is not a pounding checkpoint", path_, "delete it and run without --resume");
-    if (h != hash_ || n != units_)
-      throw InputError("the checkpoint belongs to a different study (study text or program format changed)", path_,
-                       "resume with the study file that started the run, or run without --resume to start afresh");
-    std::uint64_t good = 24;
-    for (;;) {
-      std::uint64_t unit = 0, count = 0, sum = 0;
-      in.read(reinterpret_cast<char*>(&unit), 8);
-      in.read(reinterpret_cast<char*>(&count), 8);
-      if (!in || count > (1u << 28) || unit >= units_) break;
-      std::vector<double> data(count);
-      in.read(reinterpret_cast<char*>(data.data()), static_cast<std::streamsize>(count * 8));
-      in.read(reinterpret_cast<char*>(&sum), 8);
-      if (!in) break;
-      std::uint64_t c = fnv1a(&unit, 8);
-      c = fnv1a(&count, 8, c);
-      c = fnv1a(data.data(), count * 8, c);
-      if (c != sum) break;
-      good += 24 + count * 8;
-      on_unit(static_cast<std::size_t>(unit), std::move(data));
-    }
-    in.close();
-    fs::resize_file(path_, good);
+// Test-only fault injection: POUNDING_INJECT_FAULT=<phase>[@rank] makes `phase` (load, compute, write)
+// throw on that rank (default 0); `compute` throws on the rank's third unit. The fault tests in
+// tests/faults/ use it to check that an error anywhere ends the whole job promptly with one message.
+void inject_fault(std::string_view phase, int rank) {
+  static const char* spec = std::getenv("POUNDING_INJECT_FAULT");
+  if (!spec) return;
+  std::string_view v(spec);
+  int at = 0;
+  if (auto k = v.find('@'); k != std::string_view::npos) {
+    at = std::atoi(std::string(v.substr(k + 1)).c_str());
+    v = v.substr(0, k);
   }
-  void open(bool append) {
-    f_ = std::fopen(path_.c_str(), append ? "ab" : "wb");
-    if (!f_) throw InputError("cannot write the checkpoint", path_, "check that the directory is writable");
-    if (!append) {
-      std::fwrite(magic, 1, 8, f_);
-      std::fwrite(&hash_, 8, 1, f_);
-      std::fwrite(&units_, 8, 1, f_);
-      std::fflush(f_);
-    }
-  }
-  void append(std::size_t unit, const std::vector<double>& data) {
-    std::uint64_t u = unit, count = data.size();
-    std::uint64_t c = fnv1a(&u, 8);
-    c = fnv1a(&count, 8, c);
-    c = fnv1a(data.data(), count * 8, c);
-    std::fwrite(&u, 8, 1, f_);
-    std::fwrite(&count, 8, 1, f_);
-    std::fwrite(data.data(), 8, count, f_);
-    std::fwrite(&c, 8, 1, f_);
-    std::fflush(f_);
-  }
-  void sync() {
-    if (f_) fsync(fileno(f_));
-  }
-  void close() {
-    if (f_) std::fclose(f_);
-    f_ = nullptr;
-  }
-  ~Checkpoint() { close(); }
-
- private:
-  std::string path_;
-  std::uint64_t hash_, units_;
-  std::FILE* f_ = nullptr;
-};
+  if (v == phase && at == rank)
+    throw std::runtime_error(fmt::format("injected fault in phase '{}' on rank {} (POUNDING_INJECT_FAULT)", phase, rank));
+}
 
 std::string now_iso() {
   std::time_t t = std::time(nullptr);
@@ -152,29 +87,208 @@ std::string hms(double s) {
   return fmt::format("{}:{:02}:{:02}", t / 3600, (t / 60) % 60, t % 60);
 }
 
+// Per-model results gathered on rank 0 in fixed arrays: any completion order gives the same file.
+struct Tally {
+  std::vector<std::uint8_t> unc_status, imp_status;           // [R x M], [R x M x G]
+  std::vector<double> pu1, pu2, pclose, ipu1, ipu2, iforce, ifirst;
+  std::vector<std::int32_t> icount;
+};
+
+// Analyses excluded from the probabilities (diverged or non-finite), and whether they are too many to trust
+// the results: a whole record lost, or more than [analysis] max_excluded_fraction of all analyses.
+struct Exclusions {
+  std::int64_t excluded = 0, total = 0;
+  std::string verdict;  // empty when acceptable; otherwise the banner's text
+};
+
+Exclusions count_exclusions(const Study& study, const Layout& L, const Tally& t,
+                            const std::vector<StudyRecord>& records) {
+  Exclusions ex;
+  const std::size_t M = L.models(), G = L.gaps;
+  std::vector<std::string> lost;
+  for (std::size_t r = 0; r < L.records; ++r) {
+    std::int64_t bad_unc = 0, bad_cpl = 0;
+    for (std::size_t m = 0; m < M; ++m) bad_unc += t.unc_status[r * M + m] != 0;
+    if (L.impacts)
+      for (std::size_t i = r * M * G; i < (r + 1) * M * G; ++i) bad_cpl += t.imp_status[i] != 0;
+    ex.excluded += bad_unc + bad_cpl;
+    ex.total += static_cast<std::int64_t>(M + (L.impacts ? M * G : 0));
+    if (M > 0 && (bad_unc == static_cast<std::int64_t>(M) || (L.impacts && bad_cpl == static_cast<std::int64_t>(M * G))))
+      lost.push_back(records[r].id);
+  }
+  const double frac = ex.total ? static_cast<double>(ex.excluded) / static_cast<double>(ex.total) : 0.0;
+  if (!lost.empty())
+    ex.verdict = fmt::format("every {}analysis of record(s) {} diverged or was non-finite",
+                             L.impacts ? "uncoupled or every coupled " : "", fmt::join(lost, ", "));
+  if (frac > 0.001 /*TMP study.max_excluded_fraction*/)
+    ex.verdict += fmt::format("{}{} of {} analyses ({:.3g} %) were excluded, more than [analysis] "
+                              "max_excluded_fraction = {:.3g} %",
+                              ex.verdict.empty() ? "" : "; ", ex.excluded, ex.total, 100.0 * frac,
+                              100.0 * 0.001 /*TMP study.max_excluded_fraction*/);
+  if (!ex.verdict.empty())
+    ex.verdict += "; the probabilities may be biased: check the record units and scale, the contact stiffness "
+                  "and the step (substeps, max_dt)";
+  return ex;
+}
+
+void write_exclusions(h5::hid root, const Study& study, const Exclusions& ex) {
+  h5::write_attribute(root, "excluded_analyses", ex.excluded);
+  h5::write_attribute(root, "total_analyses", ex.total);
+  h5::write_attribute(root, "max_excluded_fraction", 0.001 /*TMP study.max_excluded_fraction*/);
+  h5::write_attribute(root, "exclusion_warning", ex.verdict);
+}
+
+// The results file: built in memory and written atomically (files::write_atomically), so a full disk or
+// an interrupt leaves neither a partial file under `out` nor a temporary.
+void write_results(const std::string& out, const Study& study, const std::vector<StudyRecord>& records,
+                   const StructureSampler& sampler, const Layout& L, const std::string& build, int ranks, double wall,
+                   const Exclusions& ex, const Tally& t) {
+  const std::size_t M = L.models(), R = L.records, G = L.gaps;
+  const std::size_t nper = study.structures.periods.size();
+  {
+    h5::AtomicFile f(out);
+    const auto root = f.root();
+    h5::write_attribute(root, "format_version", results_format_version);
+    h5::write_attribute(root, "program_version", std::string(program_version));
+    h5::write_attribute(root, "git_commit", std::string(git_commit));
+    h5::write_attribute(root, "date", now_iso());
+    h5::write_attribute(root, "seed", static_cast<std::int64_t>(study.seed));
+    h5::write_attribute(root, "study_text", study.text);
+    h5::write_attribute(root, "study_path", study.path);
+    h5::write_attribute(root, "title", study.title);
+    h5::write_attribute(root, "scene", std::string(to_string(study.scene)));
+    h5::write_attribute(root, "scene_reason", study.scene_reason);
+    h5::write_attribute(root, "contact_law", std::string(to_string(study.contact.law)));
+    h5::write_attribute(root, "damping_law", std::string(to_string(study.contact.damping)));
+    h5::write_attribute(root, "restitution", study.e);
+    h5::write_attribute(root, "stepper", std::string(to_string(study.stepper)));
+    h5::write_attribute(root, "substeps", static_cast<std::int64_t>(study.substeps));
+    h5::write_attribute(root, "max_dt", study.max_dt);
+    h5::write_attribute(root, "ranks", static_cast<std::int64_t>(ranks));
+    h5::write_attribute(root, "build", build);
+    write_exclusions(root, study, ex);
+    h5::write_attribute(root, "wall_time_s", wall);
+    {
+      auto g = h5::create_group(root, "records");
+      std::vector<std::string> ids, names, sources, notes;
+      std::vector<std::uint8_t> synth;
+      std::vector<double> dt, dur, pga;
+      std::vector<std::int64_t> npts;
+      for (const auto& rr : records) {
+        ids.push_back(rr.id), names.push_back(rr.record.name), sources.push_back(rr.record.source);
+        notes.push_back(rr.note), synth.push_back(rr.synthetic ? 1 : 0);
+        dt.push_back(rr.record.dt), dur.push_back(rr.record.duration()), pga.push_back(rr.record.pga() / g_accel);
+        npts.push_back(static_cast<std::int64_t>(rr.record.acc.size()));
+      }
+      h5::write_strings(g.get(), "id", ids);
+      h5::write_strings(g.get(), "name", names);
+      h5::write_strings(g.get(), "source", sources);
+      h5::write_strings(g.get(), "note", notes);
+      h5::write_dataset(g.get(), "synthetic", synth);
+      h5::write_dataset(g.get(), "dt", dt);
+      h5::write_dataset(g.get(), "duration", dur);
+      h5::write_dataset(g.get(), "pga_g", pga);
+      h5::write_dataset(g.get(), "npts", npts);
+    }
+    {
+      auto g = h5::create_group(root, "models");
+      std::vector<double> T1(M), T2(M), h1(M), h2(M), m1(M), m2(M), k1(M), k2(M), fy1(M), fy2(M), d(M), kh(M);
+      std::vector<double> a1(M), a2(M), rho1(M), rho2(M), mb1(M), mb2(M), c1(M), c2(M);
+      std::vector<std::int32_t> i1(M), i2(M);
+      std::vector<std::int64_t> sample(M);
+      for (std::size_t p = 0; p < L.pairs; ++p) {
+        std::vector<SampledPair> sp(L.samples);
+        sampler.sample_block(static_cast<std::int32_t>(p / nper), static_cast<std::int32_t>(p % nper), 0, sp);
+        for (std::size_t s = 0; s < L.samples; ++s) {
+          const std::size_t m = p * L.samples + s;
+          const auto& q = sp[s];
+          T1[m] = q.s1.T, T2[m] = q.s2.T, h1[m] = q.s1.h, h2[m] = q.s2.h, m1[m] = q.s1.m, m2[m] = q.s2.m;
+          k1[m] = q.s1.k, k2[m] = q.s2.k, fy1[m] = q.s1.fy, fy2[m] = q.s2.fy, d[m] = q.d, kh[m] = q.kh;
+          i1[m] = q.id.i1, i2[m] = q.id.i2, sample[m] = q.id.sample;
+          a1[m] = q.s1.aspect, a2[m] = q.s2.aspect, rho1[m] = q.s1.rho, rho2[m] = q.s2.rho;
+          mb1[m] = q.s1.mbar, mb2[m] = q.s2.mbar, c1[m] = q.s1.c, c2[m] = q.s2.c;
+        }
+      }
+      for (auto& [name, v] : std::vector<std::pair<const char*, std::vector<double>*>>{
+               {"T1", &T1}, {"T2", &T2}, {"h1", &h1}, {"h2", &h2}, {"m1", &m1}, {"m2", &m2}, {"k1", &k1},
+               {"k2", &k2}, {"fy1", &fy1}, {"fy2", &fy2}, {"code_gap", &d}, {"kh", &kh}, {"aspect1", &a1},
+               {"aspect2", &a2}, {"rho1", &rho1}, {"rho2", &rho2}, {"mbar1", &mb1}, {"mbar2", &mb2}, {"c1", &c1},
+               {"c2", &c2}})
+        h5::write_dataset(g.get(), name, *v);
+      h5::write_dataset(g.get(), "i1", i1);
+      h5::write_dataset(g.get(), "i2", i2);
+      h5::write_dataset(g.get(), "sample", sample);
+      h5::write_dataset(g.get(), "periods", study.structures.periods);
+      h5::write_attribute(g.get(), "zeta", study.structures.zeta);
+    }
+    {
+      auto g = h5::create_group(root, "uncoupled");
+      h5::write_attribute(g.get(), "shape", std::string("[records, models]"));
+      h5::write_dataset(g.get(), "status", t.unc_status);
+      h5::write_dataset(g.get(), "peak_u1", t.pu1, R, M);
+      h5::write_dataset(g.get(), "peak_u2", t.pu2, R, M);
+      h5::write_dataset(g.get(), "peak_closing", t.pclose, R, M);
+    }
+    if (L.impacts) {
+      auto g = h5::create_group(root, "impacts");
+      h5::write_attribute(g.get(), "shape", std::string("[records, models, gaps]"));
+      h5::write_dataset(g.get(), "gap_ratios", study.gap_ratios);
+      h5::write_dataset(g.get(), "status", t.imp_status);
+      h5::write_dataset(g.get(), "impact_count", t.icount);
+      h5::write_dataset(g.get(), "peak_force", t.iforce);
+      h5::write_dataset(g.get(), "peak_u1", t.ipu1);
+      h5::write_dataset(g.get(), "peak_u2", t.ipu2);
+      h5::write_dataset(g.get(), "t_first_impact", t.ifirst);
+      // response amplification: peak with pounding / peak without (the uncoupled run of the same model)
+      std::vector<double> amp1(R * M * G), amp2(R * M * G);
+      for (std::size_t q = 0; q < R * M; ++q)
+        for (std::size_t g2 = 0; g2 < G; ++g2) {
+          amp1[q * G + g2] = t.ipu1[q * G + g2] / t.pu1[q];
+          amp2[q * G + g2] = t.ipu2[q * G + g2] / t.pu2[q];
+        }
+      h5::write_dataset(g.get(), "amplification_u1", amp1);
+      h5::write_dataset(g.get(), "amplification_u2", amp2);
+    }
+    f.commit();
+  }
+}
+
 }  // namespace
 
 int run_study(const parallel::Session& session, const std::string& study_path, const RunOptions& opt) {
-  // Every rank parses the same text (rank 0 reads the file), so every rank holds the same immutable Study.
+  // Every phase below runs inside session.agree(): an error on any rank stops every rank together, and
+  // rank 0 prints one message. Every rank parses the same text (rank 0 reads the file), so every rank holds
+  // the same immutable Study.
   std::string text;
-  int read_ok = 1;
-  if (session.root()) {
+  session.agree([&] {
+    if (!session.root()) return;
     std::ifstream in(study_path, std::ios::binary);
-    if (in) {
-      std::stringstream ss;
-      ss << in.rdbuf();
-      text = ss.str();
-    } else {
-      read_ok = 0;
-    }
-  }
-  session.broadcast(read_ok);
-  if (!read_ok) throw InputError("cannot read the study file", study_path, "check the path");
+    if (!in) throw InputError("cannot read the study file", study_path, "check the path");
+    std::stringstream ss;
+    ss << in.rdbuf();
+    text = ss.str();
+  });
   session.broadcast(text);
-  const Study study = parse_study(text, study_path);
-  const std::string out = opt.out.empty() ? study.output : opt.out;
-  const std::vector<StudyRecord> records = load_study_records(study);
-  if (records.empty()) throw InputError("the study resolves to no records", study_path, "check [records]");
+  std::optional<Study> parsed;
+  session.agree([&] { parsed.emplace(parse_study(text, study_path)); });
+  const Study& study = *parsed;
+  const std::string out = opt.out_given ? opt.out : study.output;
+
+  // The output is checked and the checkpoint locked before any work: a bad path or a second run on the same
+  // output stops here, not after the whole run.
+  std::optional<Checkpoint> ckpt;
+  session.agree([&] {
+    if (!session.root()) return;
+    files::check_output_path(out, opt.out_given ? "--out" : study_path + ": output");
+    ckpt.emplace(out + ".ckpt");
+    files::remove_stale_temporaries(out);
+  });
+  std::vector<StudyRecord> records;
+  session.agree([&] {
+    inject_fault("load", session.rank());
+    records = load_study_records(study);
+    if (records.empty()) throw InputError("the study resolves to no records", study_path, "check [records]");
+  });
   const StructureSampler sampler(study.structures, study.seed);
 
   Layout L;
@@ -198,7 +312,9 @@ int run_study(const parallel::Session& session, const std::string& study_path, c
   uncoupled.law = ContactLaw::none;
 
   // ---- one work unit: sample the block, run the uncoupled pairs (and the coupled ones per gap)
+  int computed = 0;
   auto compute = [&](std::size_t unit) {
+    if (++computed == 3) inject_fault("compute", session.rank());
     std::size_t r, p, b;
     L.decode(unit, r, p, b);
     const std::size_t n = L.lanes(b);
@@ -268,9 +384,11 @@ int run_study(const parallel::Session& session, const std::string& study_path, c
 
   // ---- rank 0 gathers per-model results in fixed arrays: any completion order gives the same file
   const std::size_t M = L.models(), R = L.records, G = L.gaps;
-  std::vector<std::uint8_t> unc_status, imp_status;
-  std::vector<double> pu1, pu2, pclose, ipu1, ipu2, iforce, ifirst;
-  std::vector<std::int32_t> icount;
+  Tally tally;
+  auto &unc_status = tally.unc_status, &imp_status = tally.imp_status;
+  auto &pu1 = tally.pu1, &pu2 = tally.pu2, &pclose = tally.pclose, &ipu1 = tally.ipu1, &ipu2 = tally.ipu2;
+  auto &iforce = tally.iforce, &ifirst = tally.ifirst;
+  auto& icount = tally.icount;
   std::vector<char> done(L.units(), 0);
   std::size_t n_done = 0;
   if (session.root()) {
@@ -311,21 +429,23 @@ int run_study(const parallel::Session& session, const std::string& study_path, c
   };
 
   // ---- checkpoint / resume (rank 0), then tell every rank which units remain
-  std::uint64_t hash = fnv1a(study.text.data(), study.text.size());
-  hash = fnv1a(&results_format_version, sizeof results_format_version, hash);
-  for (const auto& rr : records) {
-    hash = fnv1a(rr.record.acc.data(), rr.record.acc.size() * sizeof(double), hash);
-    hash = fnv1a(&rr.record.dt, sizeof(double), hash);
-  }
-  Checkpoint ckpt(out + ".ckpt", hash, L.units());
+  CheckpointKey key = session.root() ? this_build() : CheckpointKey{};
   std::string todo_text;
-  if (session.root()) {
-    if (opt.resume) ckpt.load([&](std::size_t u, std::vector<double>&& d) { store(u, d); });
-    ckpt.open(opt.resume);
+  session.agree([&] {
+    if (!session.root()) return;
+    std::uint64_t hash = files::fnv1a(study.text.data(), study.text.size());
+    hash = files::fnv1a(&results_format_version, sizeof results_format_version, hash);
+    for (const auto& rr : records) {
+      hash = files::fnv1a(rr.record.acc.data(), rr.record.acc.size() * sizeof(double), hash);
+      hash = files::fnv1a(&rr.record.dt, sizeof(double), hash);
+    }
+    key.study_hash = hash;
+    key.units = L.units();
+    open_for_run(*ckpt, key, opt.resume, opt.force, [&](std::size_t u, std::vector<double>&& d) { store(u, d); });
     for (std::size_t u = 0; u < L.units(); ++u)
       if (!done[u]) todo_text += fmt::format("{} ", u);
     if (opt.resume) fmt::print(stderr, "resuming: {} of {} units already done\n", n_done, L.units());
-  }
+  });
   session.broadcast(todo_text);
   std::vector<std::size_t> todo;
   {
@@ -343,7 +463,7 @@ int run_study(const parallel::Session& session, const std::string& study_path, c
   auto tick = [&] {
     auto now = std::chrono::steady_clock::now();
     if (now - last_sync > std::chrono::seconds(5)) {
-      ckpt.sync();
+      ckpt->sync();
       last_sync = now;
     }
     bool final = n_done == L.units();
@@ -377,128 +497,39 @@ int run_study(const parallel::Session& session, const std::string& study_path, c
       session, todo, compute,
       [&](std::size_t u, std::vector<double>&& d) {
         store(u, d);
-        ckpt.append(u, d);
+        ckpt->append(u, d);
       },
       tick, g_stop);
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t_start).count();
-  if (!session.root()) return 0;
-  ckpt.sync();
-  ckpt.close();
-  if (!complete || n_done != L.units()) {
-    fmt::print(stderr, "\ninterrupted: {} of {} units done and checkpointed in {}; continue with --resume\n", n_done,
-               L.units(), out + ".ckpt");
+  if (session.root()) ckpt->sync();
+  if (!complete || (session.root() && n_done != L.units())) {
+    if (session.root())
+      fmt::print(stderr, "\ninterrupted: {} of {} units done and checkpointed in {}; continue with --resume\n", n_done,
+                 L.units(), ckpt->path());
     return 130;
   }
 
-  // ---- the results file, written under a temporary name and renamed
-  {
-    h5::AtomicFile f(out);
-    const auto root = f.root();
-    h5::write_attribute(root, "format_version", results_format_version);
-    h5::write_attribute(root, "program_version", std::string(program_version));
-    h5::write_attribute(root, "git_commit", std::string(git_commit));
-    h5::write_attribute(root, "date", now_iso());
-    h5::write_attribute(root, "seed", static_cast<std::int64_t>(study.seed));
-    h5::write_attribute(root, "study_text", study.text);
-    h5::write_attribute(root, "study_path", study.path);
-    h5::write_attribute(root, "title", study.title);
-    h5::write_attribute(root, "scene", std::string(to_string(study.scene)));
-    h5::write_attribute(root, "scene_reason", study.scene_reason);
-    h5::write_attribute(root, "contact_law", std::string(to_string(study.contact.law)));
-    h5::write_attribute(root, "damping_law", std::string(to_string(study.contact.damping)));
-    h5::write_attribute(root, "restitution", study.e);
-    h5::write_attribute(root, "stepper", std::string(to_string(study.stepper)));
-    h5::write_attribute(root, "substeps", static_cast<std::int64_t>(study.substeps));
-    h5::write_attribute(root, "max_dt", study.max_dt);
-    h5::write_attribute(root, "ranks", static_cast<std::int64_t>(session.size()));
-    h5::write_attribute(root, "wall_time_s", wall);
-    {
-      auto g = h5::create_group(root, "records");
-      std::vector<std::string> ids, names, sources, notes;
-      std::vector<std::uint8_t> synth;
-      std::vector<double> dt, dur, pga;
-      std::vector<std::int64_t> npts;
-      for (const auto& rr : records) {
-        ids.push_back(rr.id), names.push_back(rr.record.name), sources.push_back(rr.record.source);
-        notes.push_back(rr.note), synth.push_back(rr.synthetic ? 1 : 0);
-        dt.push_back(rr.record.dt), dur.push_back(rr.record.duration()), pga.push_back(rr.record.pga() / g_accel);
-        npts.push_back(static_cast<std::int64_t>(rr.record.acc.size()));
-      }
-      h5::write_strings(g.get(), "id", ids);
-      h5::write_strings(g.get(), "name", names);
-      h5::write_strings(g.get(), "source", sources);
-      h5::write_strings(g.get(), "note", notes);
-      h5::write_dataset(g.get(), "synthetic", synth);
-      h5::write_dataset(g.get(), "dt", dt);
-      h5::write_dataset(g.get(), "duration", dur);
-      h5::write_dataset(g.get(), "pga_g", pga);
-      h5::write_dataset(g.get(), "npts", npts);
+  // ---- the results file (rank 0; the others wait for its outcome), then the checkpoint goes
+  int rc = 0;
+  session.agree([&] {
+    if (!session.root()) return;
+    inject_fault("write", 0);
+    const Exclusions ex = count_exclusions(study, L, tally, records);
+    try {
+      write_results(out, study, records, sampler, L, key.build, session.size(), wall, ex, tally);
+    } catch (const InputError& e) {
+      throw InputError(e.what_part(), e.where(),
+                       e.fix() + "; the checkpoint keeps every unit: --resume writes the results without recomputing");
     }
-    {
-      auto g = h5::create_group(root, "models");
-      std::vector<double> T1(M), T2(M), h1(M), h2(M), m1(M), m2(M), k1(M), k2(M), fy1(M), fy2(M), d(M), kh(M);
-      std::vector<double> a1(M), a2(M), rho1(M), rho2(M), mb1(M), mb2(M), c1(M), c2(M);
-      std::vector<std::int32_t> i1(M), i2(M);
-      std::vector<std::int64_t> sample(M);
-      for (std::size_t p = 0; p < L.pairs; ++p) {
-        std::vector<SampledPair> sp(L.samples);
-        sampler.sample_block(static_cast<std::int32_t>(p / nper), static_cast<std::int32_t>(p % nper), 0, sp);
-        for (std::size_t s = 0; s < L.samples; ++s) {
-          const std::size_t m = p * L.samples + s;
-          const auto& q = sp[s];
-          T1[m] = q.s1.T, T2[m] = q.s2.T, h1[m] = q.s1.h, h2[m] = q.s2.h, m1[m] = q.s1.m, m2[m] = q.s2.m;
-          k1[m] = q.s1.k, k2[m] = q.s2.k, fy1[m] = q.s1.fy, fy2[m] = q.s2.fy, d[m] = q.d, kh[m] = q.kh;
-          i1[m] = q.id.i1, i2[m] = q.id.i2, sample[m] = q.id.sample;
-          a1[m] = q.s1.aspect, a2[m] = q.s2.aspect, rho1[m] = q.s1.rho, rho2[m] = q.s2.rho;
-          mb1[m] = q.s1.mbar, mb2[m] = q.s2.mbar, c1[m] = q.s1.c, c2[m] = q.s2.c;
-        }
-      }
-      for (auto& [name, v] : std::vector<std::pair<const char*, std::vector<double>*>>{
-               {"T1", &T1}, {"T2", &T2}, {"h1", &h1}, {"h2", &h2}, {"m1", &m1}, {"m2", &m2}, {"k1", &k1},
-               {"k2", &k2}, {"fy1", &fy1}, {"fy2", &fy2}, {"code_gap", &d}, {"kh", &kh}, {"aspect1", &a1},
-               {"aspect2", &a2}, {"rho1", &rho1}, {"rho2", &rho2}, {"mbar1", &mb1}, {"mbar2", &mb2}, {"c1", &c1},
-               {"c2", &c2}})
-        h5::write_dataset(g.get(), name, *v);
-      h5::write_dataset(g.get(), "i1", i1);
-      h5::write_dataset(g.get(), "i2", i2);
-      h5::write_dataset(g.get(), "sample", sample);
-      h5::write_dataset(g.get(), "periods", study.structures.periods);
-      h5::write_attribute(g.get(), "zeta", study.structures.zeta);
-    }
-    {
-      auto g = h5::create_group(root, "uncoupled");
-      h5::write_attribute(g.get(), "shape", std::string("[records, models]"));
-      h5::write_dataset(g.get(), "status", unc_status);
-      h5::write_dataset(g.get(), "peak_u1", pu1, R, M);
-      h5::write_dataset(g.get(), "peak_u2", pu2, R, M);
-      h5::write_dataset(g.get(), "peak_closing", pclose, R, M);
-    }
-    if (L.impacts) {
-      auto g = h5::create_group(root, "impacts");
-      h5::write_attribute(g.get(), "shape", std::string("[records, models, gaps]"));
-      h5::write_dataset(g.get(), "gap_ratios", study.gap_ratios);
-      h5::write_dataset(g.get(), "status", imp_status);
-      h5::write_dataset(g.get(), "impact_count", icount);
-      h5::write_dataset(g.get(), "peak_force", iforce);
-      h5::write_dataset(g.get(), "peak_u1", ipu1);
-      h5::write_dataset(g.get(), "peak_u2", ipu2);
-      h5::write_dataset(g.get(), "t_first_impact", ifirst);
-      // response amplification: peak with pounding / peak without (the uncoupled run of the same model)
-      std::vector<double> amp1(R * M * G), amp2(R * M * G);
-      for (std::size_t q = 0; q < R * M; ++q)
-        for (std::size_t g2 = 0; g2 < G; ++g2) {
-          amp1[q * G + g2] = ipu1[q * G + g2] / pu1[q];
-          amp2[q * G + g2] = ipu2[q * G + g2] / pu2[q];
-        }
-      h5::write_dataset(g.get(), "amplification_u1", amp1);
-      h5::write_dataset(g.get(), "amplification_u2", amp2);
-    }
-    f.commit();
-  }
-  std::remove((out + ".ckpt").c_str());
+    ckpt->remove();
+    rc = ex.verdict.empty() ? 0 : 3;
+  });
+  session.broadcast(rc);
+  if (!session.root()) return rc;
   fmt::print(stderr, "results: {} (wall time {:.2f} s, {} ranks)\n", out, wall, session.size());
+  if (rc == 3) fmt::print(stderr, " WARNING: too many excluded analyses; the results file says so (exit code 3)\n");
   fmt::print("{}", report_markdown(load_results(out)));
-  return 0;
+  return rc;
 }
 
 }  // namespace pounding

@@ -27,8 +27,9 @@ class Handle {
   hid id_ = -1;
 };
 
-// A file written under a temporary name (path + ".tmp") and renamed to path by commit();
-// destroyed without commit(), the temporary is removed, so no partial file is ever left at path.
+// A file built in memory and written to path by commit() through a temporary name and a rename
+// (files::write_atomically): destroyed without commit(), nothing is written; a failed write (disk full,
+// EFBIG) throws InputError with the OS error and leaves neither path nor a temporary.
 class AtomicFile {
  public:
   explicit AtomicFile(std::string path);
@@ -39,9 +40,8 @@ class AtomicFile {
   void commit();
 
  private:
-  std::string path_, tmp_;
+  std::string path_;
   Handle file_;
-  bool committed_ = false;
 };
 
 // Opens an existing file read-only (error names the path if it cannot).
@@ -52,6 +52,7 @@ Handle open_rw(const std::string& path);
 Handle create_group(hid parent, const std::string& name);
 Handle open_group(hid parent, const std::string& name);
 bool exists(hid parent, const std::string& name);
+bool attribute_exists(hid obj, const std::string& name);
 
 void write_dataset(hid group, const std::string& name, std::span<const double> v);
 void write_dataset(hid group, const std::string& name, std::span<const std::int64_t> v);

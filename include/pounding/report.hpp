@@ -9,6 +9,7 @@ namespace pounding {
 
 struct Results {
   std::string path, title, scene, scene_reason, contact_law, damping_law, stepper, study_text, date, commit;
+  std::string exclusion_warning;  // non-empty: too many excluded analyses (the run exited with code 3)
   double restitution = 0, wall_time = 0, zeta = 0.05;
   std::int64_t ranks = 1, seed = 0;
   // records

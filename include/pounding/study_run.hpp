@@ -9,12 +9,17 @@
 namespace pounding {
 
 struct RunOptions {
-  std::string out;      // overrides the study's output path
-  bool resume = false;  // continue from <out>.ckpt
+  std::string out;         // overrides the study's output path when out_given (--out "" is an error)
+  bool out_given = false;
+  bool resume = false;     // continue from <out>.ckpt
+  bool force = false;      // discard whatever <out>.ckpt holds
   bool progress = true;
 };
 
-// Returns the process exit code (0 done, 2 bad input, 130 interrupted). Prints the report on rank 0.
+// Returns the process exit code on every rank: 0 done, 3 done but too many analyses excluded (the results
+// file and the report say so), 130 interrupted (checkpoint kept). Any error on any rank (bad input, resume
+// checks, a failed unit, a failed checkpoint or results write) is thrown on every rank as InputError after
+// the job has stopped; the caller prints it on rank 0 and exits 2. Prints the report on rank 0.
 int run_study(const parallel::Session& session, const std::string& study_path, const RunOptions& options);
 
 }  // namespace pounding
