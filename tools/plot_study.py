@@ -15,11 +15,14 @@ import numpy as np  # noqa: E402
 
 
 def wilson(k, n, z=1.959963984540054):
+    """95 % Wilson score interval of k in n. Exactly, lo <= k/n <= hi, lo = 0 at k = 0 and hi = 1 at k = n;
+    in floating point centre - half can land a few ulp above 0 (k = 0) or centre + half below 1 (k = n), which
+    gave a negative error bar that matplotlib rejects -- so the bounds are clipped to [0, k/n] and [k/n, 1]."""
     p = k / n
     den = 1 + z * z / n
     centre = (p + z * z / (2 * n)) / den
     half = z * np.sqrt(p * (1 - p) / n + z * z / (4 * n * n)) / den
-    return centre - half, centre + half
+    return min(max(centre - half, 0.0), p), max(min(centre + half, 1.0), p)
 
 
 def main():
@@ -38,6 +41,8 @@ def main():
     d = f["models/code_gap"][()]
     z = (pc / d[None, :])[ok]
     n = z.size
+    if n == 0:
+        raise SystemExit(f"plot_study.py: {a.results} has no valid analysis (all {pc.size} excluded); nothing to plot")
     x = np.linspace(0.005, 1.5, 300)
     zs = np.sort(z)
     p = 100.0 * (n - np.searchsorted(zs, x, side="right")) / n
