@@ -10,17 +10,21 @@
 #include <numbers>
 
 #include "pounding/accuracy.hpp"
+#include "test_data.hpp"
 
 using namespace pounding;
 namespace A = pounding::accuracy;
 
 namespace {
 
-const std::string reference_csv = std::string(POUNDING_SOURCE_DIR) + "/tests/data/reference/accuracy_reference.csv";
+const std::string reference_csv = testdata::data_dir() + "/reference/accuracy_reference.csv";
+// The reference was computed on real records (A::default_records()); tests/test_data.hpp skips or fails
+// without them.
+const std::string record_dir = testdata::real_records_dir();
 
 std::map<std::string, A::Agreement> agree(const A::EngineSetting& es) {
   auto cases = A::read_cases(reference_csv);
-  auto res = A::run_cases(cases, es, A::default_record_dir(), A::default_records());
+  auto res = A::run_cases(cases, es, record_dir, A::default_records());
   std::map<std::string, A::Agreement> out;
   for (auto& a : A::agreement(cases, res)) out[a.law] = a;
   return out;
@@ -42,6 +46,7 @@ TEST(AccuracyReference, SetHasFiftyModelsThreeRecordsFiveLaws) {
 // rk4 + event-located contact onset, 64 substeps (h = 0.156 ms) against DOP853 rtol 1e-10 with every switch
 // located: peak closing, peak force and impact count.
 TEST(AccuracyReference, HighAccuracyModeAgreesWithScipy) {
+  POUNDING_REQUIRE_REAL_RECORDS();
   auto a = agree({Stepper::rk4, 64, true});
   for (const char* law : {"none", "hertzdamp", "kelvin", "linear", "stereomechanical"}) {
     SCOPED_TRACE(law);
@@ -65,9 +70,10 @@ TEST(AccuracyReference, HighAccuracyModeAgreesWithScipy) {
 
 // The larger uncoupled set behind the chart's probability table (1002 model-records).
 TEST(AccuracyReference, UncoupledSetAgrees) {
-  auto cases = A::read_cases(std::string(POUNDING_SOURCE_DIR) + "/tests/data/reference/accuracy_uncoupled.csv");
+  POUNDING_REQUIRE_REAL_RECORDS();
+  auto cases = A::read_cases(testdata::data_dir() + "/reference/accuracy_uncoupled.csv");
   ASSERT_EQ(cases.size(), 1002u);
-  auto res = A::run_cases(cases, {Stepper::rk4, 64, true}, A::default_record_dir(), A::default_records());
+  auto res = A::run_cases(cases, {Stepper::rk4, 64, true}, record_dir, A::default_records());
   auto a = A::agreement(cases, res);
   ASSERT_EQ(a.size(), 1u);
   EXPECT_LT(a[0].closing_max, 1e-4);
@@ -76,6 +82,7 @@ TEST(AccuracyReference, UncoupledSetAgrees) {
 
 // The same comparison must be able to fail: the production stepper at the record step is visibly less accurate.
 TEST(AccuracyReference, ComparisonDiscriminates) {
+  POUNDING_REQUIRE_REAL_RECORDS();
   auto a = agree({Stepper::central_difference, 1, false});
   EXPECT_GT(a["hertzdamp"].force_max, 1e-3);
   EXPECT_GT(a["hertzdamp"].closing_max, 1e-4);
@@ -103,7 +110,8 @@ TEST(AccuracyStability, MeasuredLimitsMatchTheory) {
 // step: every explicit stepper goes past its limit (h omega_c = 25) and every such lane is marked, never
 // returned as numbers; with h omega_c < 0.4 every lane is ok.
 TEST(AccuracyStability, StiffContactPastTheLimitIsMarkedDiverged) {
-  auto rows = A::stiff_contact(A::default_record_dir());
+  POUNDING_REQUIRE_REAL_RECORDS();
+  auto rows = A::stiff_contact(record_dir);
   int checked = 0;
   for (const auto& r : rows) {
     SCOPED_TRACE(r.stepper + " " + r.law + " substeps " + std::to_string(r.substeps));
@@ -127,7 +135,8 @@ TEST(AccuracyStability, StiffContactPastTheLimitIsMarkedDiverged) {
 // central difference is marked diverged from h omega_c = 1.92 up and runs from 1.78 down (its damped
 // free-vibration limit is 1.81); RK4 diverges from 3.11 and runs from 2.77 down (theory 2.83).
 TEST(AccuracyStability, ContactTermLimits) {
-  auto rows = A::stiff_contact(A::default_record_dir());
+  POUNDING_REQUIRE_REAL_RECORDS();
+  auto rows = A::stiff_contact(record_dir);
   int n = 0;
   for (const auto& r : rows) {
     if (r.law != "linear") continue;
@@ -150,7 +159,8 @@ TEST(AccuracyStability, ContactTermLimits) {
 // Newmark stays bounded past the explicit limit, but at h omega_c = 25 its Hertzdamp peak force is far from the
 // converged one: a failure mode (stable but wrong) that no status marks -- documented in docs/accuracy.md.
 TEST(AccuracyStability, NewmarkAtHugeStepIsStableButInaccurate) {
-  auto rows = A::stiff_contact(A::default_record_dir());
+  POUNDING_REQUIRE_REAL_RECORDS();
+  auto rows = A::stiff_contact(record_dir);
   double coarse = 0, fine = 0;
   for (const auto& r : rows)
     if (r.stepper == "newmark" && r.law == "hertzdamp") {

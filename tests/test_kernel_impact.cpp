@@ -19,6 +19,7 @@
 
 #include "kernel_test_support.hpp"
 #include "pounding/collide.hpp"
+#include "test_data.hpp"
 
 namespace pounding {
 namespace {
@@ -249,7 +250,7 @@ std::string run_capture(const std::string& cmd, int& rc) {
 }
 
 TEST(Restitution, ScipyReferenceAgreesWithOdeintReference) {
-  const std::string script = std::string(POUNDING_SOURCE_DIR) + "/tools/reference_restitution.py";
+  const std::string script = testdata::source_dir() + "/tools/reference_restitution.py";
   std::string out;
   for (const char* py : {"/usr/bin/python3", "python3"}) {
     int rc = 0;
@@ -257,7 +258,7 @@ TEST(Restitution, ScipyReferenceAgreesWithOdeintReference) {
     if (rc == 0 && !out.empty()) break;
     out.clear();
   }
-  if (out.empty()) GTEST_SKIP() << "no python3 with SciPy";
+  if (out.empty()) POUNDING_SKIP_OR_FAIL("needs python3 with SciPy (Debian: python3-scipy; tools/setup.sh installs it)");
   const auto& ref = reference_table();
   std::istringstream in(out);
   std::string line;

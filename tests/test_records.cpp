@@ -13,13 +13,14 @@
 
 #include "pounding/error.hpp"
 #include "pounding/records.hpp"
+#include "test_data.hpp"
 
 using namespace pounding;
 namespace fs = std::filesystem;
 
 namespace {
 
-const std::string real_dir = std::string(POUNDING_SOURCE_DIR) + "/../shared/records/real";
+const std::string real_dir = testdata::real_records_dir();
 
 std::vector<std::string> split_tab(const std::string& line) {
   std::vector<std::string> out;
@@ -47,8 +48,9 @@ const char* at2_header = "PEER NGA STRONG MOTION DATABASE RECORD\nX, 1/1/2000, Y
 }  // namespace
 
 TEST(RecordsManifest, EveryRealRecordMatchesManifest) {
+  POUNDING_REQUIRE_REAL_RECORDS();
   std::ifstream in(real_dir + "/MANIFEST.tsv");
-  if (!in) GTEST_SKIP() << "no real records at " << real_dir;
+  ASSERT_TRUE(in) << real_dir << "/MANIFEST.tsv";
   std::string line;
   std::getline(in, line);
   const auto head = split_tab(line);

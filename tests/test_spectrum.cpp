@@ -10,11 +10,12 @@
 #include "pounding/error.hpp"
 #include "pounding/records.hpp"
 #include "pounding/spectrum.hpp"
+#include "test_data.hpp"
 
 using namespace pounding;
 
 namespace {
-const std::string real_dir = std::string(POUNDING_SOURCE_DIR) + "/../shared/records/real";
+const std::string real_dir = testdata::real_records_dir();
 constexpr double pi = std::numbers::pi;
 }  // namespace
 
@@ -78,12 +79,8 @@ TEST(SpectrumPublished, ChopraElCentro1940Deformations) {
   // Chopra, Dynamics of Structures, Fig. 6.4.1 (El Centro 1940 NS, PGA 0.319 g, zeta = 2 %):
   // D = 2.67, 5.97, 7.47 in for Tn = 0.5, 1, 2 s (printed to 3 figures: +-0.2 %; the file is the
   // Peknold digitization, which may differ slightly from Chopra's: 1 % allowed).
-  Record r;
-  try {
-    r = read_record(real_dir + "/ImperialValley_1940_ElCentro_NS_Peknold1559pts.AT2");
-  } catch (const InputError&) {
-    GTEST_SKIP() << "no real records";
-  }
+  POUNDING_REQUIRE_REAL_RECORDS();
+  const Record r = read_record(real_dir + "/ImperialValley_1940_ElCentro_NS_Peknold1559pts.AT2");
   const std::vector<double> T{0.5, 1.0, 2.0};
   const Spectrum s = response_spectrum(r, T, 0.02);
   const double inch = 0.0254;
@@ -99,12 +96,8 @@ TEST(SpectrumPublished, ChopraElCentro1940Deformations) {
 TEST(SpectrumIndependent, FineStepRk4OnARealRecord) {
   // Classical RK4 with h = dt/200 on the same piecewise-linear ground motion (and the same one-period
   // free-vibration tail) agrees with the exact recurrence to RK4's truncation error.
-  Record r;
-  try {
-    r = read_record(real_dir + "/LomaPrieta_1989_Capitola_000.txt");
-  } catch (const InputError&) {
-    GTEST_SKIP() << "no real records";
-  }
+  POUNDING_REQUIRE_REAL_RECORDS();
+  Record r = read_record(real_dir + "/LomaPrieta_1989_Capitola_000.txt");
   r.acc.resize(2001);  // first 10 s keep the test fast
   for (double T : {0.2, 1.0, 3.0}) {
     const double z = 0.05, w = 2 * pi / T;

@@ -14,14 +14,15 @@
 
 #include "pounding/error.hpp"
 #include "pounding/suite.hpp"
+#include "test_data.hpp"
 
 using namespace pounding;
 namespace fs = std::filesystem;
 
 namespace {
 
-const std::string src_dir = POUNDING_SOURCE_DIR;
-const std::string real_dir = src_dir + "/../shared/records/real";
+const std::string src_dir = testdata::source_dir();
+const std::string real_dir = testdata::real_records_dir();
 
 void expect_suite_error(const std::string& text, int line, const std::string& needle) {
   try {
@@ -91,7 +92,7 @@ TEST(SuiteFile, HoldsTable1OfTheSeedStudy) {
 }
 
 TEST(SuiteResolve, FourRealRecordsFromTheSharedDirectoryTheRestSynthetic) {
-  if (!fs::exists(real_dir + "/MANIFEST.tsv")) GTEST_SKIP() << "no real records";
+  POUNDING_REQUIRE_REAL_RECORDS();
   const auto pga = manifest_pga();
   const Suite s = default_suite();
   ResolveOptions o;

@@ -18,12 +18,13 @@
 #include "pounding/records.hpp"
 #include "pounding/spectrum.hpp"
 #include "pounding/synthetic.hpp"
+#include "test_data.hpp"
 
 using namespace pounding;
 
 namespace {
 
-const std::string real_dir = std::string(POUNDING_SOURCE_DIR) + "/../shared/records/real";
+const std::string real_dir = testdata::real_records_dir();
 
 double median(std::vector<double> v) {
   std::sort(v.begin(), v.end());
@@ -252,6 +253,7 @@ TEST(SyntheticRecords, GoldenValuesGuardAgainstSilentChanges) {
 }
 
 TEST(SyntheticRecords, MedianSpectrumNearTheRealRecordOfTheSameSite) {
+  POUNDING_REQUIRE_REAL_RECORDS();
   const std::vector<double> T{0.1, 0.2, 0.3, 0.5, 0.75, 1.0, 1.5, 2.0, 3.0};
   struct Case {
     const char* file;
@@ -262,12 +264,7 @@ TEST(SyntheticRecords, MedianSpectrumNearTheRealRecordOfTheSameSite) {
                         {"Landers_1992_Coolwater_TR.txt", {7.3, 19.7, 352.98, 0}},
                         {"Kocaeli_1999_Duzce_270.txt", {7.5, 15.3, 281.86, 0}}};
   for (const Case& c : cases) {
-    Record real;
-    try {
-      real = read_record(real_dir + "/" + c.file);
-    } catch (const InputError&) {
-      GTEST_SKIP() << "no real records";
-    }
+    const Record real = read_record(real_dir + "/" + c.file);
     const Spectrum sr = response_spectrum(real, T, 0.05);
     std::vector<std::vector<double>> sims(T.size());
     for (std::uint64_t seed = 1; seed <= 40; ++seed) {

@@ -1,10 +1,9 @@
 #!/usr/bin/env bash
-# `pounding records ...` end to end: synth -> AT2 -> show/spectrum round trip, the suite with and
-# without the real records, bad input (exit 2, file:line in the message, no partial output).
+# `pounding records ...` end to end: synth -> AT2 -> show/spectrum round trip, the synthetic suite, bad input
+# (exit 2, file:line in the message, no partial output). The real-record part is records_real.sh.
 set -euo pipefail
 bin=$1
 src=$2
-real="$src/../shared/records/real"
 tmp=$(mktemp -d)
 trap 'rm -rf "$tmp"' EXIT
 fail() { echo "FAIL: $*" >&2; exit 1; }
@@ -27,17 +26,9 @@ grep -q "^period_s,s$" "$tmp/spec.csv" || fail "spectrum header"
 awk -F, '$1 == "0" { exit !($2 > 0.5099 && $2 < 0.5101) }' "$tmp/spec.csv" || fail "PSA(0) != PGA"
 [ "$(grep -vc '^#\|^period' "$tmp/spec.csv")" = 3 ] || fail "expected 3 period rows"
 
-# the embedded suite: 25 records, all synthetic without a directory, 4 real with the shared records
+# the embedded suite: 25 records, all synthetic without a directory (with the real records: records_real.sh)
 "$bin" records suite --synthetic-only >"$tmp/suite.out"
 grep -q "25 records: 0 real, 25 synthetic" "$tmp/suite.out" || fail "synthetic-only suite"
-if [ -d "$real" ]; then
-  "$bin" records suite --records-dir "$real" --write "$tmp/suite" >"$tmp/suite2.out"
-  grep -q "25 records: 4 real, 21 synthetic" "$tmp/suite2.out" || fail "suite with real records: $(tail -1 "$tmp/suite2.out")"
-  [ "$(ls "$tmp/suite" | wc -l)" = 25 ] || fail "suite --write"
-  "$bin" records show "$real/ImperialValley_1940_ElCentro_NS_Peknold1559pts.AT2" | grep -q "0.3188" || fail "El Centro PGA"
-  "$bin" records spectrum --suite default --records-dir "$real" --periods 0.5,1 -o "$tmp/suite.csv" | grep -q "25 spectra, 21 synthetic" \
-    || fail "suite spectrum"
-fi
 
 # bad input: exit 2, file and line named, no output file
 printf 'h1\nh2\nh3\nNPTS= 3, DT= .01 SEC\n .1 abc .3\n' >"$tmp/bad.AT2"

@@ -1,12 +1,13 @@
 #!/usr/bin/env bash
 # A contact far too stiff for the time step makes the touching pairs diverge (stability guard): they are
 # excluded with a visible count and their identity, never counted as "no impact"; the uncoupled
-# probability table is unaffected. Args: <pounding binary> <source dir>
+# probability table is unaffected. Synthetic twin of study-small.toml (no ../shared needed).
+# Args: <pounding binary> <source dir>
 set -euo pipefail
 bin=$1; src=$2
 tmp=$(mktemp -d); trap 'rm -rf "$tmp"' EXIT
-sed -e "s|\.\./\.\./\.\./shared|$src/../shared|g" -e 's/^law = "hertzdamp"/law = "linear"\nstiffness = 1e14/' \
-    -e 's/^samples_per_pair = 8/samples_per_pair = 2/' "$src/tests/data/study-small.toml" > "$tmp/stiff.toml"
+sed -e 's/^law = "hertzdamp"/law = "linear"\nstiffness = 1e14/' \
+    -e 's/^samples_per_pair = 8/samples_per_pair = 2/' "$src/tests/data/study-small-synthetic.toml" > "$tmp/stiff.toml"
 "$bin" run "$tmp/stiff.toml" --out "$tmp/stiff.h5" --quiet > "$tmp/stiff.md" 2>/dev/null
 /usr/bin/python3 - "$tmp/stiff.h5" <<'PY'
 import sys, h5py, numpy as np

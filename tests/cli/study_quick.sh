@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
-# The README's main job (studies/quick.toml, synthetic stand-ins of the paper's suite) on 2 ranks, and the
-# same suite with the four records present in ../shared/records/real resolved to the real files.
+# The README's main job (studies/quick.toml, synthetic stand-ins of the paper's suite) on 2 ranks. The same
+# suite resolved to the real records of ../shared/records/real is study_quick_real.sh.
 # Args: <pounding binary> <source dir>
 set -euo pipefail
 bin=$1; src=$2
@@ -9,12 +9,7 @@ tmp=$(mktemp -d); trap 'rm -rf "$tmp"' EXIT
 mpirun -np 2 "$bin" run "$src/studies/quick.toml" --out "$tmp/quick.h5" --quiet > "$tmp/quick.md" 2> "$tmp/quick.err"
 grep -q "25 records (25 synthetic stand-ins, 0 real)" "$tmp/quick.md"
 grep -q "record EQ13: synthetic stand-in" "$tmp/quick.err"
-# the suite with real_dir: exactly the four records present there resolve to real files
-sed -e "s|^synthetic_only = true|real_dir = \"$src/../shared/records/real\"|" -e 's/^samples_per_pair = 32/samples_per_pair = 2/' \
-    -e "s|\.\./records/|$src/records/|" "$src/studies/quick.toml" > "$tmp/real.toml"
-"$bin" run "$tmp/real.toml" --out "$tmp/real.h5" --quiet > "$tmp/real.md" 2>/dev/null
-grep -q "25 records (21 synthetic stand-ins, 4 real)" "$tmp/real.md"
-/usr/bin/python3 - "$tmp/quick.h5" "$tmp/real.h5" <<'PY'
+/usr/bin/python3 - "$tmp/quick.h5" <<'PY'
 import sys, h5py, numpy as np
 q = h5py.File(sys.argv[1], "r")
 pc = q["uncoupled/peak_closing"][()]
@@ -24,10 +19,6 @@ assert ok.all(), "diverged lanes in the quick study"
 p = [np.mean(pc[ok.reshape(pc.shape)] > x * np.broadcast_to(d, pc.shape)[ok]) for x in (0.1, 0.2, 0.3, 0.5, 0.7, 1.0)]
 assert all(a >= b for a, b in zip(p, p[1:])), p          # probability falls with the gap
 assert 0.3 < p[0] < 0.99 and p[-1] < 0.05, p            # pounding at 0.1 d common, rare at the code gap
-r = h5py.File(sys.argv[2], "r")
-ids = [s.decode() if isinstance(s, bytes) else s for s in r["records/id"][()]]
-real = [i for i, s in zip(ids, r["records/synthetic"][()]) if s == 0]
-assert sorted(real) == ["EQ15", "EQ2", "EQ3", "EQ6"], real
-print("quick: P =", [round(100 * x, 2) for x in p], "%; real records:", real)
+print("quick: P =", [round(100 * x, 2) for x in p], "%")
 PY
 echo "1 passed, 0 failed"
