@@ -118,7 +118,7 @@ std::string upper(std::string_view s) {
 std::string loc(const std::string& where, int line) { return fmt::format("{}:{}", where, line); }
 
 [[noreturn]] void bad_token(const std::string& where, int line, std::string_view tok, const char* expected) {
-  std::string shown(tok.substr(0, 40));
+  const std::string shown = escaped_excerpt(tok);  // binary garbage is never echoed raw
   // A token that parses but is not finite (1e999, an overflow) gets its own message.
   bool non_finite = false;
   {
@@ -174,6 +174,51 @@ bool value_after(std::string_view line, std::size_t key_end, double& value) {
   return parse_number(line.substr(i, j - i), value);
 }
 
+// The raw token after `key` (blanks, one '=' or ':', blanks, then up to a blank or ','); empty if none.
+std::string_view raw_after(std::string_view line, std::size_t key_end) {
+  std::size_t i = key_end;
+  while (i < line.size() && (line[i] == ' ' || line[i] == '\t')) ++i;
+  if (i < line.size() && (line[i] == '=' || line[i] == ':')) ++i;
+  while (i < line.size() && (line[i] == ' ' || line[i] == '\t')) ++i;
+  std::size_t j = i;
+  while (j < line.size() && line[j] != ' ' && line[j] != '\t' && line[j] != ',') ++j;
+  return line.substr(i, j - i);
+}
+
+// "not a number" for NaN, letters and garbage; "not finite" for an overflowing or infinite value.
+std::string not_a_number(std::string_view what, std::string_view tok) {
+  std::string t(tok.substr(0, 64));
+  for (char& c : t)
+    if (c == 'D' || c == 'd') c = 'e';
+  char* end = nullptr;
+  const double v = std::strtod(t.c_str(), &end);
+  const bool parsed = !t.empty() && end && *end == '\0';
+  if (parsed && std::isinf(v)) return fmt::format("{} = '{}' is not a finite number", what, escaped_excerpt(tok));
+  return fmt::format("{} = '{}' is not a number", what, escaped_excerpt(tok));
+}
+
+// The time step of a record must lie in [record_dt_min, record_dt_max]; `source` says where dt came from.
+void check_dt(double dt, const std::string& at, std::string_view source, std::string_view fix) {
+  if (!(dt >= record_dt_min && dt <= record_dt_max))
+    throw InputError(fmt::format("{} = {} s is outside [{}, {}] s", source, dt, record_dt_min, record_dt_max), at,
+                     std::string(fix));
+}
+
+// A value times the units factor must stay finite (1e308 g overflows in m/s^2).
+double converted(double v, double f, std::string_view shown, AccUnits units, const std::string& where, int line) {
+  const double a = v * f;
+  if (!std::isfinite(a))
+    throw InputError(fmt::format("value '{}' {} overflows to infinity in m/s2", escaped_excerpt(shown), to_string(units)),
+                     loc(where, line), "every acceleration must be a finite number in the file's units; fix or remove the sample");
+  return a;
+}
+
+// Appends a sample, remembering the line of the largest |a| (the first one on ties).
+void push_value(Record& rec, double& peak, double a, int line) {
+  if (std::abs(a) > peak) peak = std::abs(a), rec.peak_line = line;
+  rec.acc.push_back(a);
+}
+
 Record parse_at2(const std::vector<Line>& lines, std::size_t npts_idx, const std::string& where,
                  const ReadOptions& options) {
   const Line& hl = lines[npts_idx];
@@ -181,29 +226,35 @@ Record parse_at2(const std::vector<Line>& lines, std::size_t npts_idx, const std
   const std::size_t kn = up.find("NPTS");
   double npts_v = 0, dt = 0;
   bool have_n = false, have_dt = false;
+  std::string_view dt_token;  // what stands where DT's value should be (for "not a number")
   if (value_after(up, kn + 4, npts_v)) {
     have_n = true;
     std::size_t kd = up.find("DT", kn + 4);
-    if (kd != std::string::npos) have_dt = value_after(up, kd + 2, dt);
+    if (kd != std::string::npos) {
+      have_dt = value_after(up, kd + 2, dt);
+      if (!have_dt) dt_token = raw_after(hl.text, kd + 2);
+    }
   } else {
     // Old NGA-West1 style: "  2000   .02000   NPTS, DT"
-    auto toks = tokens(std::string_view(up).substr(0, kn), true);
+    auto toks = tokens(hl.text.substr(0, kn), true);
     if (toks.size() >= 2) {
       have_n = parse_number(toks[0], npts_v);
       have_dt = parse_number(toks[1], dt);
+      if (!have_dt) dt_token = toks[1];
     } else if (toks.size() == 1) {
       have_n = parse_number(toks[0], npts_v);
     }
   }
   const std::string at = loc(where, hl.number);
+  constexpr const char* header_fix = "line 4 of an AT2 file must read like 'NPTS=  7992, DT= .0050 SEC'";
   if (!have_n || npts_v < 1 || npts_v != std::floor(npts_v) || npts_v > 1e9)
-    throw InputError(fmt::format("NPTS missing or not a positive whole number in '{}'", hl.text.substr(0, 80)), at,
-                     "line 4 of an AT2 file must read like 'NPTS=  7992, DT= .0050 SEC'");
-  if (!have_dt)
-    throw InputError(fmt::format("DT missing in '{}'", hl.text.substr(0, 80)), at,
-                     "line 4 of an AT2 file must read like 'NPTS=  7992, DT= .0050 SEC'");
+    throw InputError(fmt::format("NPTS missing or not a positive whole number in '{}'", escaped_excerpt(hl.text)), at,
+                     header_fix);
+  if (!have_dt && !dt_token.empty()) throw InputError(not_a_number("DT", dt_token), at, header_fix);
+  if (!have_dt) throw InputError(fmt::format("DT missing in '{}'", escaped_excerpt(hl.text)), at, header_fix);
   if (!(dt > 0))
     throw InputError(fmt::format("DT = {} is not positive", dt), at, "give the time step in seconds (> 0)");
+  check_dt(dt, at, "DT", "DT is the time step in seconds (records are sampled at 0.001-0.05 s, e.g. DT= .0050 SEC)");
   const auto npts = static_cast<std::size_t>(npts_v);
 
   Record rec;
@@ -215,22 +266,32 @@ Record parse_at2(const std::vector<Line>& lines, std::size_t npts_idx, const std
   for (std::size_t i = units_line; i < npts_idx; ++i)
     if (options.header_units && header_units(upper(lines[i].text), named)) {
       units = named;
+      rec.meta["units_from"] = fmt::format("header line {}", lines[i].number);
       break;
     }
   const double f = to_m_s2(units);
   bool exp_notation = false;
+  std::size_t count = 0;  // every value in the file; only the first NPTS are kept
+  int first_extra = 0;    // line of value NPTS + 1
+  double peak = -1.0;  // largest |a| so far
   for (std::size_t i = npts_idx + 1; i < lines.size(); ++i) {
     for (auto tok : tokens(lines[i].text, false)) {
       double v;
       if (!parse_number(tok, v))
         bad_token(where, lines[i].number, tok, "AT2 values must be numbers like .1234E-02, 5 per line");
-      if (rec.acc.size() == npts)
-        throw InputError(fmt::format("more values than NPTS = {} (extra value '{}')", npts, tok.substr(0, 40)),
-                         loc(where, lines[i].number), "correct NPTS on line 4 or remove the extra values");
+      if (++count > npts) {
+        if (first_extra == 0) first_extra = lines[i].number;
+        continue;
+      }
       if (tok.find_first_of("EeDd") != std::string_view::npos) exp_notation = true;
-      rec.acc.push_back(v * f);
+      push_value(rec, peak, converted(v, f, tok, units, where, lines[i].number), lines[i].number);
     }
   }
+  if (count > npts)
+    throw InputError(fmt::format("more values than NPTS: NPTS = {} on line {} but the file holds {} values (the first "
+                                 "extra one on line {})",
+                                 npts, hl.number, count, first_extra),
+                     loc(where, hl.number), "correct NPTS on line 4 or remove the extra values");
   if (rec.acc.size() != npts)
     throw InputError(fmt::format("NPTS = {} but {} values found (data end at line {})", npts, rec.acc.size(),
                                  lines.back().number),
@@ -298,6 +359,7 @@ Record parse_text(const std::vector<Line>& lines, const std::string& where, cons
     throw InputError("no acceleration values", where,
                      "give an AT2 file, two columns (time s, acceleration) or one column with --dt-record");
   Record rec;
+  double peak = -1.0;
   const double f = to_m_s2(options.units);
   rec.meta["units"] = std::string(to_string(options.units));
   const std::size_t ncol = rows.front().second.size();
@@ -322,18 +384,22 @@ Record parse_text(const std::vector<Line>& lines, const std::string& where, cons
                                      rows[i].second[0], dt, expect),
                          loc(where, rows[i].first), "records must have a constant time step; resample first");
     }
+    check_dt(dt, loc(where, rows.back().first), fmt::format("the time column's step ({} to {} s in {} steps)", t0, t1, rows.size() - 1),
+             "the first column must be time in seconds, sampled at 0.001-0.05 s");
     rec.dt = dt;
     if (t0 != 0.0) rec.meta["t0"] = fmt::format("{}", t0);
     rec.acc.reserve(rows.size());
-    for (auto& r : rows) rec.acc.push_back(r.second[1] * f);
+    for (auto& r : rows) push_value(rec, peak, converted(r.second[1], f, fmt::format("{}", r.second[1]), options.units, where, r.first), r.first);
   } else {
     rec.meta["format"] = "ONE_COLUMN";
     if (!(options.dt > 0) || !std::isfinite(options.dt))
       throw InputError("one-column record without a time step", where,
                        "give the time step (--dt-record, or dt in the study's [records])");
+    check_dt(options.dt, where, "the time step given for this one-column record",
+             "give the time step in seconds (--dt-record, or dt in the study's [records]), e.g. 0.01");
     rec.dt = options.dt;
     for (auto& r : rows)
-      for (double v : r.second) rec.acc.push_back(v * f);
+      for (double v : r.second) push_value(rec, peak, converted(v, f, fmt::format("{}", v), options.units, where, r.first), r.first);
   }
   return rec;
 }
@@ -403,6 +469,52 @@ void write_at2(const Record& rec, const std::string& path) {
     std::remove(tmp.c_str());
     throw InputError("cannot rename " + tmp + ": " + ec.message(), path, "check the directory permissions");
   }
+}
+
+std::optional<InputError> analysis_problem(const Record& rec, const AnalysisContext& ctx) {
+  const std::string file = rec.source.empty() ? rec.name : rec.source;
+  if (rec.acc.size() < 2 || !(rec.duration() >= record_duration_min))
+    return InputError(fmt::format("the record lasts {:.4g} s ({} samples at dt = {} s), less than the {} s an analysis "
+                                  "needs",
+                                  rec.duration(), rec.acc.size(), rec.dt, record_duration_min),
+                      file, "give the complete record (is the file truncated, or NPTS/DT in its header wrong?)");
+  const double pga_g = rec.pga() / g_accel;
+  if (!(pga_g <= record_pga_max_g)) {
+    const double scale = ctx.scale;
+    const double file_g = pga_g / scale;  // PGA before the scale, in g
+    std::string what = fmt::format("PGA {:.4g} g is above the {} g of any real ground motion", pga_g, record_pga_max_g);
+    if (scale != 1.0) what += fmt::format(" ({:.4g} g in the file, times scale {})", file_g, scale);
+    const std::string where = rec.peak_line > 0 ? loc(file, rec.peak_line) : file;
+    const auto units_it = rec.meta.find("units");
+    const std::string units = units_it == rec.meta.end() ? "g" : units_it->second;
+    const auto from_it = rec.meta.find("units_from");
+    std::string fix;
+    if (scale != 1.0 && file_g <= record_pga_max_g) {
+      fix = fmt::format("{} = {} is too large: the file's own PGA is {:.4g} g; give a scale that keeps the PGA below "
+                        "{} g",
+                        ctx.scale_setting.empty() ? std::string("the scale") : ctx.scale_setting, scale, file_g,
+                        record_pga_max_g);
+    } else if (from_it != rec.meta.end()) {
+      fix = fmt::format("the file's {} says its values are in {}: check the file's values and header", from_it->second,
+                        units);
+    } else if (units != "cm/s2") {
+      // the same numbers read as cm/s^2
+      const double as_cm = file_g * (units == "g" ? g_accel : 1.0) * 0.01 / g_accel;
+      fix = fmt::format("is the file in cm/s2 (its values in {} read as cm/s2 give a PGA of {:.4g} g)? {}", units, as_cm,
+                        ctx.units_setting.empty() ? std::string("read it as cm/s2") : ctx.units_setting);
+      if (scale != 1.0)
+        fix += fmt::format("; check {} = {} too", ctx.scale_setting.empty() ? std::string("the scale") : ctx.scale_setting,
+                           scale);
+    } else {
+      fix = "the values exceed 4,900 cm/s2: check the file (units, corrupt samples)";
+    }
+    return InputError(what, where, fix);
+  }
+  return std::nullopt;
+}
+
+void require_analysable(const Record& rec, const AnalysisContext& ctx) {
+  if (auto e = analysis_problem(rec, ctx)) throw *e;
 }
 
 std::vector<double> husid(const Record& rec) {

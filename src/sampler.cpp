@@ -275,8 +275,7 @@ StructureModel parse_structure_model(const toml::table& table, const std::string
       throw InputError("seed is not a [structures] setting", w,
                        "move seed = <integer> to the top of the study file, before any [table]");
     } else {
-      throw InputError(fmt::format("unknown key \"{}\" in [structures]", key), w,
-                       fmt::format("use one of: {}", known_list));
+      throw unknown_key_error(key, "[structures]", w, known_list);
     }
   }
   if (have_periods && (pmin || pmax || pstep))

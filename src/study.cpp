@@ -103,7 +103,8 @@ class TableReader {
     if (!t_) return;
     for (auto&& [k, n] : *t_) {
       if (!seen_.count(std::string(k.str())))
-        throw InputError(fmt::format("unknown key '{}'", k.str()), where(k.str()), fmt::format("allowed keys here: {}", allowed));
+        throw unknown_key_error(k.str(), name_.empty() ? std::string("the study file's top level") : "[" + name_ + "]",
+                                where(k.str()), allowed);
     }
   }
 
@@ -253,7 +254,9 @@ Study parse_study(const std::string& text, const std::string& path) {
     s.free_vibration = a.number("free_vibration", 0.0, 0.0, 1000.0, "[0, 1000] s");
     s.displacement_limit = a.number("displacement_limit", 10.0, 1e-6, 1e6, "(0, 1e6] m");
     s.skip_untouched = a.boolean("skip_untouched", true);
-    a.finish("stepper, substeps, max_dt, batch, free_vibration, displacement_limit, skip_untouched");
+    s.max_excluded_fraction = a.number("max_excluded_fraction", 0.001, 0.0, 1.0, "[0, 1] (0.001 = 0.1 % of all analyses)");
+    a.finish("stepper, substeps, max_dt, batch, free_vibration, displacement_limit, skip_untouched, "
+             "max_excluded_fraction");
   }
 
   {  // [report]
@@ -298,12 +301,57 @@ Study parse_study(const std::string& text, const std::string& path) {
     s.scene_reason = "impacts scene: one uncoupled run per model, then coupled contact runs at every gap ratio";
   }
   if (!max_dt_given) s.max_dt = s.scene == Scene::impacts ? 0.0025 : 0.0;
+  // the results must fit in memory; the suite's record count is not known yet, so count at least one record
+  check_result_memory(s, std::max<std::size_t>({std::size_t{1}, s.files.size(),
+                                                 static_cast<std::size_t>(std::max(0, s.record_limit))}));
   if (s.scene == Scene::impacts)
     s.scene_reason += s.skip_untouched
                           ? "; pairs whose uncoupled peak closing stays below a gap never touch there and are not rerun "
                             "with contact (their coupled run would be bit-identical to the uncoupled one)"
                           : "; every pair is rerun with contact at every gap (skip_untouched = false)";
   return s;
+}
+
+double result_bytes(const Study& s, std::size_t records) {
+  const double per_model = 25.0 + (s.scene == Scene::impacts ? 45.0 * static_cast<double>(s.gap_ratios.size()) : 0.0);
+  return static_cast<double>(records) * static_cast<double>(s.structures.period_pair_count()) *
+         static_cast<double>(s.structures.samples_per_pair) * per_model;
+}
+
+namespace {
+std::string human_bytes(double b) {
+  const char* units[] = {"bytes", "KiB", "MiB", "GiB", "TiB", "PiB", "EiB"};
+  int i = 0;
+  while (b >= 1024.0 && i < 6) b /= 1024.0, ++i;
+  return i == 0 ? fmt::format("{:.0f} bytes", b) : fmt::format("{:.3g} {}", b, units[i]);
+}
+}  // namespace
+
+void check_result_memory(const Study& s, std::size_t records) {
+  const double need = result_bytes(s, records);
+  if (need <= max_result_bytes) return;
+  // where samples_per_pair is (or would be) written
+  std::string where = fmt::format("{} [structures].samples_per_pair", s.path);
+  try {
+    const toml::table root = toml::parse(s.text, s.path);
+    if (const toml::node* n = root.at_path("structures.samples_per_pair").node())
+      where = fmt::format("{}:{} [structures].samples_per_pair", s.path, n->source().begin.line);
+    else
+      where += fmt::format(" (default {})", s.structures.samples_per_pair);
+  } catch (const toml::parse_error&) {
+  }
+  const double per_model = need / (static_cast<double>(records) * static_cast<double>(s.structures.period_pair_count()) *
+                                   static_cast<double>(s.structures.samples_per_pair));
+  const double fits = std::floor(max_result_bytes / (need / static_cast<double>(s.structures.samples_per_pair)));
+  throw InputError(
+      fmt::format("samples_per_pair = {} needs {} of result arrays ({} record{} x {} period pairs x {} samples x {} "
+                  "bytes per model), more than the {} limit",
+                  s.structures.samples_per_pair, human_bytes(need), records, records == 1 ? "" : "s",
+                  s.structures.period_pair_count(), s.structures.samples_per_pair, per_model,
+                  human_bytes(max_result_bytes)),
+      where,
+      fits >= 1 ? fmt::format("give samples_per_pair <= {:.0f} (the paper uses 256), or split the study", fits)
+                : std::string("split the study into fewer records, period pairs or gaps"));
 }
 
 Study load_study(const std::string& path) {

@@ -357,8 +357,7 @@ void check_keys(const toml::table& t, const std::string& file, const std::set<st
     if (!allowed.count(std::string(k.str()))) {
       std::string list;
       for (const auto& a : allowed) list += (list.empty() ? "" : ", ") + a;
-      throw InputError(fmt::format("unknown key '{}' in {}", k.str(), what), loc(file, v.source()),
-                       fmt::format("allowed keys: {}", list));
+      throw unknown_key_error(k.str(), what, loc(file, v.source()), list);
     }
   }
 }

@@ -12,15 +12,36 @@
 // CRLF/CR line ends and trailing blanks are tolerated; `#`, `%` and `!` start a comment line in the text
 // formats; `,` and `;` separate values like blanks. Units: g unless stated (ReadOptions::units, or the AT2
 // header's "UNITS OF G" / "CM/S/S" when ReadOptions::header_units).
+//
+// What the readers refuse (InputError naming file:line and the fix), whatever the record is used for:
+//   - a value that is not a finite number, or that overflows when converted to m/s^2 (1e308 g);
+//   - a time step outside [record_dt_min, record_dt_max] (AT2 DT, the two-column time step, the one-column
+//     dt), and a DT that is not a number ("DT= NaN" is "not a number", not "missing");
+//   - an AT2 whose NPTS differs from the number of values it holds, either way (the message names the
+//     NPTS line and both numbers). Every PEER file we know holds exactly NPTS values (the 85 real records
+//     in ../shared/records/real all do), so no slack is allowed: a mismatch means a truncated or edited file.
+// What an ANALYSIS refuses on top (require_analysable: `pounding run`, `simulate`): a record shorter than
+// record_duration_min, and a PGA above record_pga_max_g after units and scale -- the signature of a file in
+// cm/s^2 read as g, or of a wrong scale. `records show` and `records spectrum` still display such a record
+// (they are how one inspects it) but print the same message as a WARNING on stderr.
 #include <cstdint>
 #include <map>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
 
+#include "pounding/error.hpp"
+
 namespace pounding {
 
 inline constexpr double g_accel = 9.80665;  // m/s^2 per g
+
+// Limits of a ground-motion record (see the header comment). Recorded accelerograms are sampled at
+// 0.001-0.05 s; the largest PGAs ever recorded are about 4 g, so 5 g is beyond any real motion.
+inline constexpr double record_dt_min = 1e-4, record_dt_max = 0.1;  // s
+inline constexpr double record_pga_max_g = 5.0;                     // g, after units and scale
+inline constexpr double record_duration_min = 2.0;                  // s, (npts - 1) dt
 
 enum class AccUnits { g, m_s2, cm_s2 };
 AccUnits parse_units(const std::string& name);  // "g", "m/s2", "cm/s2"; InputError otherwise
@@ -32,7 +53,8 @@ struct Record {
   std::string source;                        // path, or "synthetic:..." for generated records
   double dt = 0.0;                           // s
   std::vector<double> acc;                   // m/s^2
-  std::map<std::string, std::string> meta;   // format, event, station, units, ...
+  std::map<std::string, std::string> meta;   // format, event, station, units, units_from, ...
+  int peak_line = 0;                         // line of the file holding the largest |value| (0: not from a file)
   double duration() const { return acc.empty() ? 0.0 : dt * static_cast<double>(acc.size() - 1); }
   double pga() const;                        // m/s^2
   bool synthetic() const { return source.rfind("synthetic:", 0) == 0; }
@@ -49,6 +71,18 @@ struct ReadOptions {
 Record read_record(const std::string& path, const ReadOptions& options = {});
 // The same from text already in memory; `where` names it in errors (and becomes Record::source).
 Record parse_record(std::string_view text, const std::string& where, const ReadOptions& options = {});
+
+// Where the user sets what require_analysable's messages tell them to change.
+struct AnalysisContext {
+  double scale = 1.0;           // factor already applied to rec.acc (1: none)
+  std::string scale_setting;    // e.g. "[records] scale"; empty when the user gives no scale
+  std::string units_setting;    // e.g. "[records] units = \"cm/s2\"" or "--units cm/s2": how to say cm/s^2
+};
+// The first limit the record breaks as an analysis input (duration, PGA), or nothing. The error names the
+// file and the line of the peak sample, the PGA found and the likely cause (units, scale).
+std::optional<InputError> analysis_problem(const Record& rec, const AnalysisContext& context);
+// Throws analysis_problem's error.
+void require_analysable(const Record& rec, const AnalysisContext& context);
 
 // Writes a PEER NGA-West2-style AT2 file (values in g, 5 per line, %15.7E) that read_record (and
 // OpenSees' ReadRecord.tcl / PEER tools) read back. Written to a temporary name and renamed.

@@ -16,10 +16,18 @@
 //   [analysis]   stepper = "central-difference"; substeps = 1; max_dt = <s; 0: no cap; default 0.0025 in the impacts
 //                scene (cheapest step with 1 % peak force, docs/accuracy.md), 0 in the probability scene>; batch = 256; free_vibration = 0.0 (s);
 //                displacement_limit = 10.0 (m); skip_untouched = true (impacts scene: pairs whose uncoupled
-//                peak closing stays below the gap are not rerun with contact; their results are identical)
+//                peak closing stays below the gap are not rerun with contact; their results are identical);
+//                max_excluded_fraction = 0.001 (in [0, 1]: the largest fraction of all analyses that may be
+//                excluded (diverged, non-finite) before the run ends with exit code 3 and a warning banner)
 //   [report]     targets = [10, 5, 1] (% probability); h1 = 40; h2 = 40 (m, for separations in metres);
 //                fit_min = 0.1; fit_max = 1.0
 //   [outputs]    forces = true; amplification = true   (what the impacts scene must deliver; `auto` reads it)
+//
+// Sanity limits (errors naming the file, line and key, not a report full of nan or a std::bad_alloc):
+//   - every record must pass require_analysable (records.hpp) after units and scale: at least 2 s long,
+//     PGA at most 5 g (a PGA of 499 g is a file in cm/s^2 read as g, or a wrong scale);
+//   - the per-model result arrays rank 0 holds (result_bytes) must fit in max_result_bytes (64 GiB): a
+//     [structures] samples_per_pair of 2^40 is refused with the memory it would need.
 #include <cstdint>
 #include <string>
 #include <utility>
@@ -73,6 +81,7 @@ struct Study {
   double free_vibration = 0.0;
   double displacement_limit = 10.0;
   bool skip_untouched = true;  // impacts scene: pairs that never touch take their uncoupled results
+  double max_excluded_fraction = 0.001;  // [analysis]: more excluded analyses than this fraction -> exit code 3
   // report
   std::vector<double> targets{10.0, 5.0, 1.0};
   double h1 = 40.0, h2 = 40.0, fit_min = 0.1, fit_max = 1.0;
@@ -80,7 +89,19 @@ struct Study {
   bool want_forces = true, want_amplification = true;
 };
 
+// Bytes of the per-model result arrays rank 0 gathers for `records` records (src/study_run.cpp): per record
+// and model, the uncoupled status (1 byte) and three peaks (8 bytes each) = 25 bytes; in the impacts scene,
+// per gap, a status (1), an impact count (4) and five doubles (40) = 45 bytes more. A double, so that absurd
+// sizes do not overflow.
+double result_bytes(const Study& study, std::size_t records);
+inline constexpr double max_result_bytes = 64.0 * 1024 * 1024 * 1024;  // 64 GiB
+// Throws InputError naming [structures] samples_per_pair (file:line), the memory needed and the largest
+// samples_per_pair that fits, when result_bytes(study, records) > max_result_bytes.
+void check_result_memory(const Study& study, std::size_t records);
+
 // Parses and validates; every problem is an InputError naming file:line, the key and the allowed values.
+// The memory check runs here with a lower bound on the record count (files, or limit); load_study_records
+// repeats it with the real count.
 Study parse_study(const std::string& text, const std::string& path);
 Study load_study(const std::string& path);
 
