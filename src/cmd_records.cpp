@@ -2,6 +2,8 @@
 //   show FILE...        dt, npts, duration, PGA, PGV, PGD, Arias intensity, D5-95, t_mid
 //   spectrum FILE...    pseudo-acceleration (or PSV, SD) spectra to CSV; --suite for a whole suite
 //   synth               one Rezaeian & Der Kiureghian (2010) record for (M, R, Vs30, F, seed) as AT2
+//                       (a record that `run`/`simulate` would refuse -- shorter than 2 s, PGA above 5 g -- is
+//                       shown with a WARNING on stderr; records.hpp)
 //   suite [FILE]        resolve a suite (default: the embedded seed-study suite): which records are
 //                       real, which synthetic; --write DIR writes every resolved record as AT2
 #include <cstdio>
@@ -73,6 +75,13 @@ void write_file(const std::string& path, const std::string& text) {
   }
 }
 
+// `show` and `spectrum` display a record that an analysis would refuse (they are how one inspects it), with
+// the analysis' message as a warning on stderr; exit code 0.
+void warn_if_not_analysable(const Record& r) {
+  if (auto e = analysis_problem(r, {1.0, "", "add --units cm/s2"}))
+    fmt::print(stderr, " WARNING: {} (pounding run and simulate refuse this record)\n", e->what());
+}
+
 std::vector<double> parse_periods(const std::string& text) {
   if (text.empty()) return default_periods();
   std::vector<double> p;
@@ -117,6 +126,7 @@ void add_records(CLI::App& app) {
       fmt::print("{:<44} {:>16} {:>8} {:>7} {:>8} {:>8} {:>8} {:>8} {:>8} {:>8} {:>8}\n", "record", "format", "dt_s",
                  "npts", "dur_s", "PGA_g", "PGV_m/s", "PGD_m", "Ia_m/s", "D5-95_s", "tmid_s");
       for (const Record& r : recs) {
+        warn_if_not_analysable(r);
         const Measures m = measure(r);
         fmt::print("{:<44} {:>16} {:>8.5g} {:>7} {:>8.3f} {:>8.4f} {:>8.4f} {:>8.4f} {:>8.4f} {:>8.3f} {:>8.3f}\n", r.name,
                    r.meta.count("format") ? r.meta.at("format") : "?", r.dt, r.acc.size(), r.duration(), m.pga / g_accel,
@@ -156,6 +166,7 @@ void add_records(CLI::App& app) {
       const ReadOptions ro = o->read.get();
       for (const auto& f : o->files) {
         const Record r = read_record(f, ro);
+        warn_if_not_analysable(r);
         names.push_back(r.name);
         kinds.push_back("real");
         spectra.push_back(response_spectrum(r, T, o->damping));

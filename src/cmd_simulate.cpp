@@ -139,6 +139,7 @@ void run_simulate(const SimulateOptions& o) {
     ro.units = as_option("--units", [&] { return parse_units(o.units); });
     ro.dt = o.dt_record;
     rec = read_record(o.record, ro);
+    require_analysable(rec, {1.0, "", "add --units cm/s2"});  // 2 s long, PGA <= 5 g (records.hpp)
   }
   if (o.dt_given) {
     double q = rec.dt / o.dt;

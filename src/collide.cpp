@@ -4,18 +4,127 @@
 #include <numbers>
 #include <vector>
 
+#include <fmt/format.h>
+
+#include "pounding/error.hpp"
+
 namespace pounding {
+
+std::string_view to_string(RestitutionKind k) {
+  switch (k) {
+    case RestitutionKind::elastic: return "elastic";
+    case RestitutionKind::exact: return "exact";
+    case RestitutionKind::approximate: return "approximate";
+    case RestitutionKind::saturating: return "saturating";
+  }
+  return "?";
+}
+
+RestitutionPromise restitution_promise(const ContactModel& cm) {
+  RestitutionPromise p;
+  switch (cm.law) {
+    case ContactLaw::none:
+      p.kind = RestitutionKind::elastic;
+      p.note = "no contact element: the bodies pass through each other";
+      return p;
+    case ContactLaw::linear:
+    case ContactLaw::hertz:
+      p.kind = RestitutionKind::elastic;
+      p.note = fmt::format("the {} law has no damping: it delivers e = 1 whatever e is asked", to_string(cm.law));
+      return p;
+    case ContactLaw::stereomechanical:
+      p.note = "instantaneous momentum exchange with e: delivers e by construction";
+      return p;
+    case ContactLaw::kelvin:
+      p.kind = RestitutionKind::approximate;
+      p.note = "the damping ratio xi = -ln e / sqrt(pi^2 + ln^2 e) is exact for the tension-carrying oscillator; the "
+               "non-tensile contact ends early and delivers more than e at low e (0.675 at 0.65, 0.397 at 0.3; "
+               "docs/accuracy.md)";
+      return p;
+    case ContactLaw::jankowski:
+      p.kind = RestitutionKind::approximate;
+      p.note = "Jankowski's damping ratio (rc-buildings eq. 5) delivers e within 0.01 (docs/accuracy.md)";
+      return p;
+    case ContactLaw::hertzdamp: break;
+  }
+  switch (cm.damping) {
+    case DampingLaw::calibrated:
+      p.note = "xibar solved so that one free impact returns e (within 1e-6): delivers e by construction";
+      return p;
+    case DampingLaw::flores:
+    case DampingLaw::hu_guo:
+    case DampingLaw::gonthier:
+      p.kind = RestitutionKind::approximate;
+      p.note = fmt::format("{}'s closed-form xibar delivers e within 0.05 over (0, 1] (docs/accuracy.md); "
+                           "use --damping-law calibrated for e exactly",
+                           to_string(cm.damping));
+      return p;
+    case DampingLaw::lankarani_nikravesh:
+    case DampingLaw::hunt_crossley: {
+      p.kind = RestitutionKind::saturating;
+      const double xi_max = hertzdamp_xibar(cm.damping, 0.0, cm.n);  // the bound of xibar as e -> 0
+      p.floor = hertzdamp_restitution(xi_max, cm.n);
+      const bool ln = cm.damping == DampingLaw::lankarani_nikravesh;
+      p.note = fmt::format("{}'s xibar = {} is derived for e near 1: it delivers more than e away from 1 ({} at "
+                           "e = 0.65, docs/accuracy.md) and never less than {:.3f}; use --damping-law calibrated for "
+                           "e exactly",
+                           to_string(cm.damping), ln ? "3 (1 - e^2) / 4" : "3 (1 - e) / 2", ln ? "0.775" : "0.739",
+                           p.floor);
+      return p;
+    }
+  }
+  return p;
+}
+
+double estimated_contact_duration(const ContactModel& cm, double v0, double m1, double m2, double kc) {
+  const double meff = m1 * m2 / (m1 + m2);
+  if (cm.law == ContactLaw::linear || cm.law == ContactLaw::kelvin) return std::numbers::pi * std::sqrt(meff / kc);
+  if (cm.law == ContactLaw::stereomechanical) return 1e-3;
+  return hertz_contact_duration(meff, v0, kc);  // exact for n = 3/2, an order-of-magnitude guide otherwise
+}
+
+void check_impact_inputs(const ContactModel& cm, double e, bool e_given, double v0, double m1, double m2, double kc) {
+  require_range(e, std::nextafter(0.0, 1.0), 1.0, "--e", "(0, 1]");
+  require_positive(m1, "--m1");
+  require_positive(m2, "--m2");
+  require_positive(kc, "--kh");
+  if (cm.law == ContactLaw::none)
+    throw InputError("contact law 'none' has no contact element: nothing collides", "--law",
+                     fmt::format("choose a contact law: {}", contact_law_names.substr(6)));
+  const RestitutionPromise p = restitution_promise(cm);
+  if (p.kind == RestitutionKind::elastic && e_given && e != 1.0)
+    throw InputError(fmt::format("--e = {} with the elastic {} law: {}", e, to_string(cm.law), p.note), "--e",
+                     "drop --e (or give --e 1), or choose a damped law for e < 1 (kelvin, hertzdamp, jankowski, "
+                     "stereomechanical)");
+  if (p.kind != RestitutionKind::elastic && cm.law != ContactLaw::stereomechanical && e < collide_e_min) {
+    std::string why = fmt::format(
+        "below e = {} an impact is plastic for any structural purpose (it keeps less than {} of its energy) and the "
+        "damped laws' damping grows like 1/e beyond what the integration resolves",
+        collide_e_min, collide_e_min * collide_e_min);
+    if (p.kind == RestitutionKind::saturating) why = p.note;
+    throw InputError(fmt::format("--e = {} is outside the valid range [{}, 1] of {}{}: {}", e, collide_e_min,
+                                 to_string(cm.law),
+                                 cm.law == ContactLaw::hertzdamp ? fmt::format(" with {}", to_string(cm.damping)) : "",
+                                 why),
+                     "--e", fmt::format("give --e in [{}, 1], or use --law stereomechanical for a plastic impact",
+                                        collide_e_min));
+  }
+  if (!(v0 >= cm.v0_min && v0 <= collide_v0_max))
+    throw InputError(fmt::format("--v0 = {} m/s is outside [{}, {}] m/s", v0, cm.v0_min, collide_v0_max), "--v0",
+                     fmt::format("give the approach speed in m/s: pounding structures meet at a few m/s; below {} m/s "
+                                 "the kernel floors the latched approach speed (grazing contacts), and the contact "
+                                 "duration the time step is built on needs a moderate v0",
+                                 cm.v0_min));
+  const double tc = estimated_contact_duration(cm, v0, m1, m2, kc);
+  if (!(tc >= 1e-9 && tc <= 100.0))
+    throw InputError(fmt::format("the estimated contact duration is {} s, outside [1e-9, 100] s", tc),
+                     "--m1, --m2, --kh, --v0",
+                     "check the masses (kg), the contact stiffness (N/m^n; N/m for linear/Kelvin) and v0 (m/s)");
+}
 
 ImpactResult single_impact(const ContactModel& cm, Stepper stepper, double e, double v0, double m1, double m2,
                            double kc, int steps_per_contact) {
-  const double meff = m1 * m2 / (m1 + m2);
-  double tc;  // estimated contact duration
-  if (cm.law == ContactLaw::linear || cm.law == ContactLaw::kelvin)
-    tc = std::numbers::pi * std::sqrt(meff / kc);
-  else if (cm.law == ContactLaw::stereomechanical)
-    tc = 1e-3;
-  else
-    tc = hertz_contact_duration(meff, v0, kc);  // exact for n = 3/2, an order-of-magnitude guide otherwise
+  const double tc = estimated_contact_duration(cm, v0, m1, m2, kc);
   PairParams p;
   p.s1 = {m1, 0.0, 0.0};
   p.s2 = {m2, 0.0, 0.0};

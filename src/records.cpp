@@ -499,7 +499,8 @@ std::optional<InputError> analysis_problem(const Record& rec, const AnalysisCont
                         units);
     } else if (units != "cm/s2") {
       // the same numbers read as cm/s^2
-      const double as_cm = file_g * (units == "g" ? g_accel : 1.0) * 0.01 / g_accel;
+      const double value = file_g * g_accel / to_m_s2(parse_units(units));  // the peak as written in the file
+      const double as_cm = value * 0.01 / g_accel;
       fix = fmt::format("is the file in cm/s2 (its values in {} read as cm/s2 give a PGA of {:.4g} g)? {}", units, as_cm,
                         ctx.units_setting.empty() ? std::string("read it as cm/s2") : ctx.units_setting);
       if (scale != 1.0)

@@ -245,7 +245,7 @@ StructureModel parse_structure_model(const toml::table& table, const std::string
   bool have_periods = false;
   for (auto&& [k, node] : table) {
     const std::string key(k.str());
-    const std::string w = fmt::format("{} [structures].{}", loc(file, node.source()), key);
+    const std::string w = fmt::format("{} [structures].{}", loc(file, node.source()), escaped_excerpt(key));
     where_of[key] = w;
     if (auto it = numbers.find(key); it != numbers.end()) {
       *it->second = read_number(node, w, key);

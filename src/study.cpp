@@ -38,7 +38,8 @@ class TableReader {
   std::string where(std::string_view key) const {
     const toml::node* n = t_ ? t_->get(key) : nullptr;
     int line = n ? static_cast<int>(n->source().begin.line) : (t_ ? static_cast<int>(t_->source().begin.line) : 0);
-    std::string k = name_.empty() ? std::string(key) : fmt::format("[{}].{}", name_, key);
+    const std::string shown = escaped_excerpt(key);  // a key of control or non-ASCII bytes is shown escaped
+    std::string k = name_.empty() ? shown : fmt::format("[{}].{}", name_, shown);
     return line > 0 ? fmt::format("{}:{} {}", file_, line, k) : fmt::format("{} {}", file_, k);
   }
   const toml::node* get(std::string_view key) {
@@ -129,7 +130,7 @@ Study parse_study(const std::string& text, const std::string& path) {
   try {
     root = toml::parse(text, path);
   } catch (const toml::parse_error& e) {
-    throw InputError(fmt::format("TOML syntax error: {}", e.description()),
+    throw InputError(fmt::format("TOML syntax error: {}", escaped_excerpt(e.description(), 200)),
                      fmt::format("{}:{}:{}", path, e.source().begin.line, e.source().begin.column),
                      "fix the study file's syntax");
   }

@@ -2,6 +2,8 @@
 // match) or synthetic stand-ins (include/pounding/suite.hpp); study-level scale applied on top.
 #include <filesystem>
 
+#include <fmt/format.h>
+
 #include "pounding/error.hpp"
 #include "pounding/study.hpp"
 #include "pounding/suite.hpp"
@@ -19,10 +21,21 @@ std::vector<StudyRecord> load_suite_records(const Study& s) {
   }
   ro.synthetic_only = s.synthetic_only;
   std::vector<StudyRecord> out;
-  for (ResolvedRecord& r : resolve_suite(suite, ro)) {
+  std::vector<ResolvedRecord> resolved = resolve_suite(suite, ro);
+  for (std::size_t i = 0; i < resolved.size(); ++i) {
+    ResolvedRecord& r = resolved[i];
+    const SuiteEntry& e = suite.entries[i];  // resolve_suite keeps the entries' order
     StudyRecord sr;
     sr.record = std::move(r.record);
     for (double& a : sr.record.acc) a *= s.scale;
+    // the suite entry's scale times the study's (a synthetic stand-in's fit to pga_g is not the user's scale)
+    const std::string entry = fmt::format("record {} of {} (line {})", e.id, suite.path, e.line);
+    AnalysisContext ctx;
+    ctx.scale = e.scale * s.scale;
+    ctx.scale_setting = e.scale != 1.0 ? fmt::format("scale of {} x [records] scale of {}", entry, s.path)
+                                       : "[records] scale in " + s.path;
+    ctx.units_setting = "set units = \"cm/s2\" in " + entry;
+    require_analysable(sr.record, ctx);
     sr.synthetic = r.synthetic;
     sr.id = r.id;
     sr.note = r.note;

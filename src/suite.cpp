@@ -389,7 +389,7 @@ Suite parse_suite(const std::string& text, const std::string& path) {
   try {
     root = toml::parse(text, path);
   } catch (const toml::parse_error& e) {
-    throw InputError(fmt::format("TOML syntax: {}", e.description()), loc(path, e.source()),
+    throw InputError(fmt::format("TOML syntax: {}", escaped_excerpt(e.description(), 200)), loc(path, e.source()),
                      "fix the suite file's syntax");
   }
   Suite s;
