@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <numbers>
@@ -41,6 +42,12 @@ void expect_error(const std::string& text, int line, const std::string& needle, 
     else EXPECT_EQ(e.where(), "bad.AT2") << e.what();
     EXPECT_NE(std::string(e.what()).find(needle), std::string::npos) << e.what();
   }
+}
+
+std::string fmt_value(double v) {
+  char b[32];
+  std::snprintf(b, sizeof b, "%15.7E", v);
+  return b;
 }
 
 const char* at2_header = "PEER NGA STRONG MOTION DATABASE RECORD\nX, 1/1/2000, Y, 0\nACCELERATION TIME SERIES IN UNITS OF G\n";
@@ -155,7 +162,9 @@ TEST(RecordsFormats, TwoColumnAndOneColumn) {
 TEST(RecordsErrors, NptsDisagreesWithValues) {
   expect_error(std::string(at2_header) + "NPTS= 5, DT= .01 SEC\n .1 .2 .3\n .4\n", 4,
                "NPTS = 5 but 4 values found (data end at line 6)");
-  expect_error(std::string(at2_header) + "NPTS= 2, DT= .01 SEC\n .1 .2\n .3\n", 6, "more values than NPTS");
+  // more values than NPTS: the NPTS line, both numbers and where the surplus starts (issue 10.4)
+  expect_error(std::string(at2_header) + "NPTS= 2, DT= .01 SEC\n .1 .2\n .3\n", 4,
+               "more values than NPTS: NPTS = 2 on line 4 but the file holds 3 values (the first extra one on line 6)");
 }
 
 TEST(RecordsErrors, NonNumericToken) {
@@ -188,6 +197,125 @@ TEST(RecordsErrors, NonFiniteValues) {
   expect_error(std::string(at2_header) + "NPTS= 3, DT= .01\n .1 nan .3\n", 5, "non-finite value 'nan'");
   expect_error(std::string(at2_header) + "NPTS= 3, DT= .01\n .1 .2E+999 .3\n", 5, "non-finite value");
   expect_error("0 0\n0.01 inf\n", 2, "non-finite");
+}
+
+// Issue 10.4: a value that overflows when converted to m/s^2 is non-finite too, on its line.
+TEST(RecordsErrors, ValueOverflowingInMetresPerSecondSquared) {
+  expect_error(std::string(at2_header) + "NPTS= 3, DT= .01\n .1 .2\n 1e308\n", 6,
+               "value '1e308' g overflows to infinity in m/s2");
+  ReadOptions o;
+  o.units = AccUnits::m_s2;
+  EXPECT_NO_THROW(parse_record("0 0\n0.01 1e308\n", "big.txt", o));  // finite: the PGA bound's business
+  o.units = AccUnits::g;
+  expect_error("0 0\n0.01 1\n0.02 -1e308\n", 3, "value '-1e+308' g overflows", o);
+}
+
+// Issue 10.4: DT outside [1e-4, 0.1] s on its line with the range; NaN is "not a number", not "missing".
+TEST(RecordsErrors, DtOutsideItsRangeOrNotANumber) {
+  const std::string v = "\n .1 .2 .3\n";
+  expect_error(std::string(at2_header) + "NPTS= 3, DT= 1e308 SEC" + v, 4, "DT = 1e+308 s is outside [0.0001, 0.1] s");
+  expect_error(std::string(at2_header) + "NPTS= 3, DT= 1e-300 SEC" + v, 4, "DT = 1e-300 s is outside [0.0001, 0.1] s");
+  expect_error(std::string(at2_header) + "NPTS= 3, DT= .2 SEC" + v, 4, "DT = 0.2 s is outside");
+  expect_error(std::string(at2_header) + "NPTS= 3, DT= NaN SEC" + v, 4, "DT = 'NaN' is not a number");
+  expect_error(std::string(at2_header) + "NPTS= 3, DT= 1e999 SEC" + v, 4, "DT = '1e999' is not a finite number");
+  expect_error(std::string(at2_header) + "   3   nan   NPTS, DT" + v, 4, "DT = 'nan' is not a number");
+  EXPECT_NO_THROW(parse_record(std::string(at2_header) + "NPTS= 3, DT= .0001 SEC" + v, "ok.AT2"));
+  EXPECT_NO_THROW(parse_record(std::string(at2_header) + "NPTS= 3, DT= 0.1 SEC" + v, "ok.AT2"));
+  expect_error("0 0\n0.5 1\n1.0 2\n", 3, "the time column's step (0 to 1 s in 2 steps) = 0.5 s is outside");
+  ReadOptions o;
+  o.dt = 1.0;
+  expect_error("1\n2\n", 0, "the time step given for this one-column record = 1 s is outside", o);
+}
+
+// Issue 10.5: file text in a message is a short escaped excerpt, never raw bytes.
+TEST(RecordsErrors, BinaryGarbageIsEscaped) {
+  std::string garbage = std::string(at2_header) + "NPTS= 3, DT= .01\n .1 ";
+  garbage += std::string("\x01\xff\x1b[2J\0", 7) + std::string(60, 'z') + "\n";  // with a NUL byte
+  try {
+    parse_record(garbage, "bad.AT2");
+    FAIL();
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.where(), "bad.AT2:5");
+    EXPECT_EQ(e.what_part(), "'\\x01\\xFF\\x1B[2J\\x00" + std::string(33, 'z') + "...' is not a number");
+  }
+  EXPECT_EQ(escaped_excerpt("ab\tc\x7f\xc3\xa9"), "ab\\x09c\\x7F\\xC3\\xA9");
+  EXPECT_EQ(escaped_excerpt(std::string(50, 'a'), 40), std::string(40, 'a') + "...");
+}
+
+// Issue 10.5: one wording for every unknown key.
+TEST(RecordsErrors, UnknownKeyWording) {
+  const InputError e = unknown_key_error("colour", "[records]", "s.toml:3 [records].colour", "suite, files");
+  EXPECT_STREQ(e.what(), "unknown key 'colour' in [records], s.toml:3 [records].colour, check the spelling; "
+                         "[records] takes: suite, files");
+  EXPECT_EQ(unknown_key_error("--x", "pounding run", "command line", "--out", "option").what_part(),
+            "unknown option '--x' in pounding run");
+}
+
+// Issue 10.4: what an analysis refuses -- PGA above 5 g after units and scale (the peak's line and the likely
+// cause), records shorter than 2 s -- and what it accepts.
+TEST(RecordsAnalysis, PgaBoundNamesThePeakLineAndTheCause) {
+  // 4 s at 0.01 s; 0.3 g written in cm/s^2 (294), the peak (490.3 cm/s^2 = 0.5 g) on line 45
+  std::string t = "PEER NGA STRONG MOTION DATABASE RECORD\nX, 1/1/2000, Y, 0\nACCELERATION TIME SERIES\nNPTS= 401, DT= .01\n";
+  for (int i = 0; i < 401; ++i)
+    t += (i == 203 ? std::string(" 490.3") : fmt_value(294.2 * std::sin(0.1 * i))) + (i % 5 == 4 ? "\n" : "");
+  t += "\n";
+  const Record as_g = parse_record(t, "cms2.AT2");
+  EXPECT_EQ(as_g.peak_line, 45);
+  const AnalysisContext study{1.0, "[records] scale", "set [records] units = \"cm/s2\""};
+  auto problem = analysis_problem(as_g, study);
+  ASSERT_TRUE(problem);
+  EXPECT_EQ(problem->where(), "cms2.AT2:45");
+  EXPECT_EQ(problem->what_part(), "PGA 490.3 g is above the 5 g of any real ground motion");
+  EXPECT_EQ(problem->fix(), "is the file in cm/s2 (its values in g read as cm/s2 give a PGA of 0.5 g)? "
+                            "set [records] units = \"cm/s2\"");
+  EXPECT_THROW(require_analysable(as_g, study), InputError);
+  ReadOptions o;
+  o.units = AccUnits::cm_s2;
+  const Record right = parse_record(t, "cms2.AT2", o);
+  EXPECT_FALSE(analysis_problem(right, study));
+  EXPECT_NO_THROW(require_analysable(right, study));
+  // a normal record times 1000: the scale is named, not the units
+  Record scaled = right;
+  for (double& a : scaled.acc) a *= 1000.0;
+  problem = analysis_problem(scaled, {1000.0, "[records] scale", "set [records] units = \"cm/s2\""});
+  ASSERT_TRUE(problem);
+  EXPECT_EQ(problem->what_part(), "PGA 500 g is above the 5 g of any real ground motion (0.5 g in the file, times scale 1000)");
+  EXPECT_NE(problem->fix().find("[records] scale = 1000 is too large"), std::string::npos) << problem->fix();
+  // the header says g: changing [records] units would not help, so the message says so
+  std::string g_header = t;
+  g_header.replace(g_header.find("ACCELERATION TIME SERIES"), 24, "ACCELERATION TIME SERIES IN UNITS OF G");
+  problem = analysis_problem(parse_record(g_header, "g.AT2", o), study);
+  ASSERT_TRUE(problem);
+  EXPECT_NE(problem->fix().find("header line 3 says its values are in g"), std::string::npos) << problem->fix();
+}
+
+TEST(RecordsAnalysis, ShorterThanTwoSecondsIsRefused) {
+  const Record one = parse_record(std::string(at2_header) + "NPTS= 1, DT= .01\n 0.5\n", "one.AT2");
+  auto problem = analysis_problem(one, {});
+  ASSERT_TRUE(problem);
+  EXPECT_EQ(problem->where(), "one.AT2");
+  EXPECT_NE(problem->what_part().find("less than the 2 s"), std::string::npos) << problem->what();
+  Record two;
+  two.source = "two";
+  two.dt = 0.01;
+  two.acc.assign(201, 0.1);  // exactly 2 s
+  EXPECT_FALSE(analysis_problem(two, {}));
+  two.acc.pop_back();
+  EXPECT_TRUE(analysis_problem(two, {}));
+}
+
+// Every real record passes the readers' and the analysis' limits (issue 10.4: nothing real is refused).
+TEST(RecordsAnalysis, EveryRealRecordIsAnalysable) {
+  POUNDING_REQUIRE_REAL_RECORDS();
+  int n = 0;
+  for (const auto& e : fs::directory_iterator(real_dir)) {
+    const std::string ext = e.path().extension().string();
+    if (ext != ".AT2" && ext != ".txt") continue;
+    const Record r = read_record(e.path().string());
+    EXPECT_FALSE(analysis_problem(r, {})) << analysis_problem(r, {})->what();
+    ++n;
+  }
+  EXPECT_EQ(n, 85);
 }
 
 TEST(RecordsErrors, MissingFileNamesThePath) {
