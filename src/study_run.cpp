@@ -120,11 +120,11 @@ Exclusions count_exclusions(const Study& study, const Layout& L, const Tally& t,
   if (!lost.empty())
     ex.verdict = fmt::format("every {}analysis of record(s) {} diverged or was non-finite",
                              L.impacts ? "uncoupled or every coupled " : "", fmt::join(lost, ", "));
-  if (frac > 0.001 /*TMP study.max_excluded_fraction*/)
+  if (frac > study.max_excluded_fraction)
     ex.verdict += fmt::format("{}{} of {} analyses ({:.3g} %) were excluded, more than [analysis] "
                               "max_excluded_fraction = {:.3g} %",
                               ex.verdict.empty() ? "" : "; ", ex.excluded, ex.total, 100.0 * frac,
-                              100.0 * 0.001 /*TMP study.max_excluded_fraction*/);
+                              100.0 * study.max_excluded_fraction);
   if (!ex.verdict.empty())
     ex.verdict += "; the probabilities may be biased: check the record units and scale, the contact stiffness "
                   "and the step (substeps, max_dt)";
@@ -134,7 +134,7 @@ Exclusions count_exclusions(const Study& study, const Layout& L, const Tally& t,
 void write_exclusions(h5::hid root, const Study& study, const Exclusions& ex) {
   h5::write_attribute(root, "excluded_analyses", ex.excluded);
   h5::write_attribute(root, "total_analyses", ex.total);
-  h5::write_attribute(root, "max_excluded_fraction", 0.001 /*TMP study.max_excluded_fraction*/);
+  h5::write_attribute(root, "max_excluded_fraction", study.max_excluded_fraction);
   h5::write_attribute(root, "exclusion_warning", ex.verdict);
 }
 

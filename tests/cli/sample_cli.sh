@@ -69,7 +69,7 @@ expect_error() {  # expect_error <pattern> <args...>
   ! ls "$tmp"/bad.*.tmp* > /dev/null 2>&1 || fail "a temporary was left for: $*"
 }
 printf 'seed = 1\n[structures]\nzeta = 0.05\nrho_meen = 1800\n' > "$tmp/unknown.toml"
-expect_error 'unknown key "rho_meen".*unknown.toml:4' "$tmp/unknown.toml" --out "$tmp/bad.csv"
+expect_error "unknown key 'rho_meen'.*unknown.toml:4" "$tmp/unknown.toml" --out "$tmp/bad.csv"
 printf 'seed = 1\n[structures]\nperiods = [1.0, 1.6]\n' > "$tmp/empty.toml"
 expect_error 'T = 1.6 s.*54.2884 m.*50 m.*empty.toml:3' "$tmp/empty.toml" --out "$tmp/bad.h5"
 printf 'seed = 1\n[structures]\nmbar_cov = 3\n' > "$tmp/range.toml"

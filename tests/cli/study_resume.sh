@@ -19,7 +19,10 @@ for _ in $(seq 1 400); do
   [ -f "$tmp/cut.h5.ckpt" ] && [ "$(stat -c %s "$tmp/cut.h5.ckpt")" -gt 200000 ] && break
   sleep 0.05
 done
-kill -9 -- -"$job" 2>/dev/null || true
+# mpirun puts each rank in its own process group: kill the whole session (setsid), and wait until every
+# process of it is gone (a surviving rank would still hold the checkpoint's lock, and would still write)
+pkill -9 -s "$job" 2>/dev/null || true
+for _ in $(seq 1 200); do pgrep -s "$job" > /dev/null || break; sleep 0.05; done
 wait "$job" 2>/dev/null || true
 [ -f "$tmp/cut.h5" ] && { echo "FAIL: a results file exists after kill -9"; exit 1; }
 [ -f "$tmp/cut.h5.ckpt" ] || { echo "FAIL: no checkpoint after kill -9"; exit 1; }
