@@ -135,6 +135,7 @@ Results load_results(const std::string& path) {
   Study s = parse_study(r.study_text, spath);
   r.study_gap_ratios = s.gap_ratios;
   r.targets = s.targets;
+  r.code_gap_coefficient = s.structures.code_gap_coefficient;
   r.h1_report = s.h1, r.h2_report = s.h2, r.fit_min = s.fit_min, r.fit_max = s.fit_max;
   r.curve_max = s.curve_max, r.curve_step = s.curve_step;
   return r;
@@ -192,9 +193,10 @@ std::string report_markdown(const Results& r) {
           ++shown;
         }
   }
-  out("\nAt least one impact at gap g = ratio x d (d = 0.005 (h1 + h2), Standard 2800) is counted from the "
+  out("\nAt least one impact at gap g = ratio x d (d = {} (h1 + h2){}) is counted from the "
       "uncoupled peak closing: the motion before the first contact is the uncoupled motion, so "
-      "peak(u1 - u2) > g is exactly \"touches at least once\".\n");
+      "peak(u1 - u2) > g is exactly \"touches at least once\".\n",
+      r.code_gap_coefficient, r.code_gap_coefficient == 0.005 ? ", Standard 2800" : "");
 
   // Table 2: per record
   out("\n## Probability of at least one impact per record (Table 2)\n\n| record | synthetic | PGA g |");
@@ -258,11 +260,11 @@ std::string report_markdown(const Results& r) {
     out("Fitted on the continuous curve, {} points for x in [{}, {}]:\n\n    PP = {:.1f} x^3 {:+.1f} x^2 {:+.1f} x {:+.1f}    "
         "(R^2 = {:.4f})\n\npaper (eq. 10): PP = -213.7 x^3 + 510.3 x^2 - 403.4 x + 106.8\n",
         fx.size(), r.fit_min, r.fit_max, f.c[3], f.c[2], f.c[1], f.c[0], f.r2);
-    out("\n## Separation recommendation\n\nGap ratio x (and metres for h1 = {} m, h2 = {} m: g = x 0.005 (h1 + h2)) at "
+    out("\n## Separation recommendation\n\nGap ratio x (and metres for h1 = {} m, h2 = {} m: g = x {} (h1 + h2)) at "
         "which the probability of at least one impact falls to the target:\n\n"
         "| target | empirical x | empirical m | cubic x | cubic m | difference x |\n|---|---|---|---|---|---|\n",
-        r.h1_report, r.h2_report);
-    const double dcode = 0.005 * (r.h1_report + r.h2_report);
+        r.h1_report, r.h2_report, r.code_gap_coefficient);
+    const double dcode = r.code_gap_coefficient * (r.h1_report + r.h2_report);
     for (double t : r.targets) {
       double xe = empirical_ratio(curve, t);
       auto xc = solve_fit(f, t, r.fit_min, r.fit_max);
@@ -278,7 +280,8 @@ std::string report_markdown(const Results& r) {
   // code rules side by side, each from the models' own uncoupled peaks
   out("\n## Code separation rules (each from the models' own uncoupled peaks)\n\n| rule | gap | probability of pounding |\n|---|---|---|\n");
   struct Rule { const char* name; const char* gap; int kind; };
-  const Rule rules[] = {{"Standard 2800", "0.005 (h1 + h2)", 0}, {"ABS", "u1 + u2", 1}, {"SRSS", "sqrt(u1^2 + u2^2)", 2},
+  const std::string code_rule = fmt::format("{} (h1 + h2)", r.code_gap_coefficient);
+  const Rule rules[] = {{r.code_gap_coefficient == 0.005 ? "Standard 2800" : "code gap", code_rule.c_str(), 0}, {"ABS", "u1 + u2", 1}, {"SRSS", "sqrt(u1^2 + u2^2)", 2},
                         {"double difference (CQC)", "sqrt(u1^2 + u2^2 - 2 rho u1 u2)", 3}};
   for (const Rule& rule : rules) {
     std::int64_t hits = 0, n = 0;

@@ -31,6 +31,7 @@ struct Results {
   std::vector<double> peak_force, imp_peak_u1, imp_peak_u2;
   // report settings (from the study text)
   std::vector<double> study_gap_ratios, targets;
+  double code_gap_coefficient = 0.005;  // d = coefficient (h1 + h2) (Standard 2800: 0.005)
   double h1_report = 40, h2_report = 40, fit_min = 0.1, fit_max = 1.0, curve_max = 1.5, curve_step = 0.005;
   std::size_t records() const { return record_id.size(); }
   std::size_t models() const { return T1.size(); }
