@@ -16,7 +16,7 @@ if [ -f "$log" ]; then
   awk '/^[0-9]+\/[0-9]+ Test: / { name = $3; next }
        after { why[name] = $0; after = 0; next }
        /: Skipped$/ { after = 1; next }
-       /^SKIPPED: / { sub(/^SKIPPED: /, ""); why[name] = $0 }
+       /^SKIP(PED)?: / { sub(/^SKIP(PED)?: /, ""); why[name] = $0 }
        END { for (n in why) print "  " n ": " why[n] }' "$log" | sort > skipped.txt
   if [ -s skipped.txt ]; then
     echo "Skipped tests and why:"
