@@ -180,6 +180,35 @@ void write_attribute(hid obj, const std::string& name, std::int64_t value) {
   write_attr_raw(obj, name, H5T_NATIVE_INT64, &value);
 }
 
+void write_attribute(hid obj, const std::string& name, std::span<const double> values) {
+  if (H5Aexists(obj, name.c_str()) > 0) H5Adelete(obj, name.c_str());
+  const hsize_t n = values.size();
+  Handle space(checked(H5Screate_simple(1, &n, nullptr), "attribute space " + name));
+  Handle a(checked(H5Acreate2(obj, name.c_str(), H5T_NATIVE_DOUBLE, space.get(), H5P_DEFAULT, H5P_DEFAULT),
+                   "attr " + name));
+  if (n > 0) check(H5Awrite(a.get(), H5T_NATIVE_DOUBLE, values.data()), "write attr " + name);
+}
+void write_attribute(hid obj, const std::string& name, const std::vector<std::string>& values) {
+  if (H5Aexists(obj, name.c_str()) > 0) H5Adelete(obj, name.c_str());
+  Handle type(checked(H5Tcopy(H5T_C_S1), "string type"));
+  check(H5Tset_size(type.get(), H5T_VARIABLE), "vlen");
+  check(H5Tset_cset(type.get(), H5T_CSET_UTF8), "utf8");
+  const hsize_t n = values.size();
+  Handle space(checked(H5Screate_simple(1, &n, nullptr), "attribute space " + name));
+  Handle a(checked(H5Acreate2(obj, name.c_str(), type.get(), space.get(), H5P_DEFAULT, H5P_DEFAULT), "attr " + name));
+  std::vector<const char*> p;
+  for (const auto& v : values) p.push_back(v.c_str());
+  if (n > 0) check(H5Awrite(a.get(), type.get(), p.data()), "write attr " + name);
+}
+std::vector<double> read_doubles_attribute(hid obj, const std::string& name) {
+  Handle a(checked(H5Aopen(obj, name.c_str(), H5P_DEFAULT), "attribute " + name));
+  Handle space(checked(H5Aget_space(a.get()), "attribute space " + name));
+  const hssize_t n = H5Sget_simple_extent_npoints(space.get());
+  std::vector<double> v(static_cast<std::size_t>(std::max<hssize_t>(n, 0)));
+  if (n > 0) check(H5Aread(a.get(), H5T_NATIVE_DOUBLE, v.data()), "read attr " + name);
+  return v;
+}
+
 std::vector<double> read_doubles(hid g, const std::string& n) { return read_all<double>(g, n, H5T_NATIVE_DOUBLE); }
 std::vector<std::int64_t> read_int64(hid g, const std::string& n) {
   return read_all<std::int64_t>(g, n, H5T_NATIVE_INT64);

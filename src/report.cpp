@@ -85,7 +85,7 @@ Results load_results(const std::string& path) {
   r.contact_law = h5::read_string_attribute(root, "contact_law");
   r.damping_law = h5::read_string_attribute(root, "damping_law");
   r.stepper = h5::read_string_attribute(root, "stepper");
-  r.study_text = h5::read_string_attribute(root, "study_text");
+  if (h5::attribute_exists(root, "study_text")) r.study_text = h5::read_string_attribute(root, "study_text");
   r.date = h5::read_string_attribute(root, "date");
   r.commit = h5::read_string_attribute(root, "git_commit");
   r.restitution = h5::read_double_attribute(root, "restitution");
@@ -130,14 +130,32 @@ Results load_results(const std::string& path) {
     r.imp_peak_u1 = h5::read_doubles(g.get(), "peak_u1");
     r.imp_peak_u2 = h5::read_doubles(g.get(), "peak_u2");
   }
-  // report settings come from the echoed study
-  std::string spath = h5::read_string_attribute(root, "study_path");
-  Study s = parse_study(r.study_text, spath);
-  r.study_gap_ratios = s.gap_ratios;
-  r.targets = s.targets;
-  r.code_gap_coefficient = s.structures.code_gap_coefficient;
-  r.h1_report = s.h1, r.h2_report = s.h2, r.fit_min = s.fit_min, r.fit_max = s.fit_max;
-  r.curve_max = s.curve_max, r.curve_step = s.curve_step;
+  // report settings: /settings (format with settings) or, for older files, the echoed study text
+  if (h5::exists(root, "settings")) {
+    auto g = h5::open_group(root, "settings");
+    auto section = [&](const char* name) { return h5::open_group(g.get(), name); };
+    {
+      auto s = section("gaps");
+      r.study_gap_ratios = h5::read_doubles_attribute(s.get(), "ratios");
+      r.curve_max = h5::read_double_attribute(s.get(), "curve_max");
+      r.curve_step = h5::read_double_attribute(s.get(), "curve_step");
+    }
+    {
+      auto s = section("report");
+      r.targets = h5::read_doubles_attribute(s.get(), "targets");
+      r.h1_report = h5::read_double_attribute(s.get(), "h1"), r.h2_report = h5::read_double_attribute(s.get(), "h2");
+      r.fit_min = h5::read_double_attribute(s.get(), "fit_min"), r.fit_max = h5::read_double_attribute(s.get(), "fit_max");
+    }
+    r.code_gap_coefficient = h5::read_double_attribute(section("structures").get(), "code_gap_coefficient");
+  } else {
+    const std::string spath = h5::read_string_attribute(root, "study_path");
+    const Study s = parse_study(r.study_text, spath);
+    r.study_gap_ratios = s.gap_ratios;
+    r.targets = s.targets;
+    r.code_gap_coefficient = s.structures.code_gap_coefficient;
+    r.h1_report = s.h1, r.h2_report = s.h2, r.fit_min = s.fit_min, r.fit_max = s.fit_max;
+    r.curve_max = s.curve_max, r.curve_step = s.curve_step;
+  }
   return r;
 }
 

@@ -1,5 +1,8 @@
 #include "pounding/study_run.hpp"
 
+#include <map>
+#include <type_traits>
+
 #include <unistd.h>
 
 #include <atomic>
@@ -24,6 +27,7 @@
 #include "pounding/kernel.hpp"
 #include "pounding/report.hpp"
 #include "pounding/sampler.hpp"
+#include "pounding/study_settings.hpp"
 #include "pounding/version.hpp"
 
 namespace pounding {
@@ -131,6 +135,24 @@ Exclusions count_exclusions(const Study& study, const Layout& L, const Tally& t,
   return ex;
 }
 
+// Every setting at /settings/<section>/<key> (study_settings.hpp); booleans as 0/1 integers.
+void write_settings(h5::hid root, const Study& study) {
+  auto settings = h5::create_group(root, "settings");
+  std::map<std::string, h5::Handle> sections;
+  visit_settings(study, [&](const std::string& section, const std::string& key, const auto& value) {
+    h5::hid g = settings.get();
+    if (!section.empty()) {
+      auto it = sections.find(section);
+      if (it == sections.end()) it = sections.emplace(section, h5::create_group(settings.get(), section)).first;
+      g = it->second.get();
+    }
+    using T = std::decay_t<decltype(value)>;
+    if constexpr (std::is_same_v<T, bool>) h5::write_attribute(g, key, static_cast<std::int64_t>(value));
+    else if constexpr (std::is_same_v<T, std::vector<double>>) h5::write_attribute(g, key, std::span<const double>(value));
+    else h5::write_attribute(g, key, value);
+  });
+}
+
 void write_exclusions(h5::hid root, const Study& study, const Exclusions& ex) {
   h5::write_attribute(root, "excluded_analyses", ex.excluded);
   h5::write_attribute(root, "total_analyses", ex.total);
@@ -166,6 +188,7 @@ void write_results(const std::string& out, const Study& study, const std::vector
     h5::write_attribute(root, "max_dt", study.max_dt);
     h5::write_attribute(root, "ranks", static_cast<std::int64_t>(ranks));
     h5::write_attribute(root, "build", build);
+    write_settings(root, study);
     write_exclusions(root, study, ex);
     h5::write_attribute(root, "wall_time_s", wall);
     {

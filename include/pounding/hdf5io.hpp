@@ -65,6 +65,9 @@ void write_strings(hid group, const std::string& name, const std::vector<std::st
 void write_attribute(hid obj, const std::string& name, const std::string& value);
 void write_attribute(hid obj, const std::string& name, double value);
 void write_attribute(hid obj, const std::string& name, std::int64_t value);
+// 1-D attributes (an empty vector is stored as an empty array).
+void write_attribute(hid obj, const std::string& name, std::span<const double> values);
+void write_attribute(hid obj, const std::string& name, const std::vector<std::string>& values);
 
 std::vector<double> read_doubles(hid group, const std::string& name);
 std::vector<std::int64_t> read_int64(hid group, const std::string& name);
@@ -74,5 +77,6 @@ std::vector<std::string> read_strings(hid group, const std::string& name);
 std::string read_string_attribute(hid obj, const std::string& name);
 double read_double_attribute(hid obj, const std::string& name);
 std::int64_t read_int64_attribute(hid obj, const std::string& name);
+std::vector<double> read_doubles_attribute(hid obj, const std::string& name);
 
 }  // namespace pounding::h5
