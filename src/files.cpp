@@ -64,6 +64,35 @@ std::uint64_t fnv1a(const void* data, std::size_t n, std::uint64_t h) {
   return h;
 }
 
+std::string read_text(const std::string& path, const std::string& what) {
+  auto fail = [&](int err) {
+    const char* fix = err == ENOENT || err == ENOTDIR ? "check the path"
+                      : err == EISDIR             ? "give a file, not a folder"
+                      : err == EACCES || err == EPERM ? "check its permissions"
+                                                      : "check the disk and the path";
+    return InputError(fmt::format("cannot read {}: {}", what, os_error(err)), path, fix);
+  };
+  int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
+  if (fd < 0) throw fail(errno);
+  std::string text;
+  struct stat st {};
+  if (::fstat(fd, &st) == 0 && S_ISREG(st.st_mode) && st.st_size > 0) text.reserve(static_cast<std::size_t>(st.st_size));
+  char buf[1 << 16];
+  for (;;) {
+    const ssize_t r = ::read(fd, buf, sizeof buf);
+    if (r == 0) break;
+    if (r < 0) {
+      if (errno == EINTR) continue;
+      const int err = errno;
+      ::close(fd);
+      throw fail(err);
+    }
+    text.append(buf, static_cast<std::size_t>(r));
+  }
+  ::close(fd);
+  return text;
+}
+
 void write_all(int fd, const void* data, std::size_t n, const std::string& path) {
   const char* p = static_cast<const char*>(data);
   while (n > 0) {
@@ -116,6 +145,10 @@ void write_atomically(const std::string& path, std::span<const std::byte> bytes)
     ::fsync(dfd);
     ::close(dfd);
   }
+}
+
+void write_text_atomically(const std::string& path, std::string_view text) {
+  write_atomically(path, std::as_bytes(std::span<const char>(text.data(), text.size())));
 }
 
 void check_output_path(const std::string& path, const std::string& where) {

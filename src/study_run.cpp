@@ -284,12 +284,7 @@ int run_study(const parallel::Session& session, const std::string& study_path, c
   // the same immutable Study.
   std::string text;
   session.agree([&] {
-    if (!session.root()) return;
-    std::ifstream in(study_path, std::ios::binary);
-    if (!in) throw InputError("cannot read the study file", study_path, "check the path");
-    std::stringstream ss;
-    ss << in.rdbuf();
-    text = ss.str();
+    if (session.root()) text = files::read_text(study_path, "the study file");
   });
   session.broadcast(text);
   std::optional<Study> parsed;

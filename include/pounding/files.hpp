@@ -5,8 +5,14 @@
 #include <cstdint>
 #include <span>
 #include <string>
+#include <string_view>
 
 namespace pounding::files {
+
+// The whole file `path` as bytes (binary-safe: NUL bytes and CRLF kept). `what` names the file in the
+// message ("the study file"). Throws InputError naming the path and the OS error when it cannot be read
+// (missing, a folder, no permission, I/O error).
+std::string read_text(const std::string& path, const std::string& what);
 
 // Writes all n bytes to fd (retrying short writes and EINTR). Throws InputError naming path and the OS
 // error (ENOSPC, EFBIG, EIO, ...) otherwise.
@@ -17,6 +23,8 @@ void write_all(int fd, const void* data, std::size_t n, const std::string& path)
 // back meanwhile (delivered afterwards), so an interrupt never leaves the temporary behind. On any failure
 // the temporary is removed, `path` is untouched and InputError names the path and the OS error.
 void write_atomically(const std::string& path, std::span<const std::byte> bytes);
+// The same for text (CSV, AT2, ...).
+void write_text_atomically(const std::string& path, std::string_view text);
 
 // Checks, before any work, that `path` can become the output file: not empty, not a directory name (no
 // trailing '/'), not an existing directory or special file, its parent folder exists, and a file can be
@@ -29,6 +37,9 @@ void check_output_path(const std::string& path, const std::string& where);
 int remove_stale_temporaries(const std::string& path);
 
 // 64-bit FNV-1a over bytes (checksums, study hashes).
+// NOTE: the default start value is not FNV's published offset basis (fnv1a_offset_basis, one digit longer);
+// checkpoints and study hashes depend on it, so it stays. Pass fnv1a_offset_basis for the standard hash.
 std::uint64_t fnv1a(const void* data, std::size_t n, std::uint64_t h = 1469598103934665603ULL);
+inline constexpr std::uint64_t fnv1a_offset_basis = 0xcbf29ce484222325ULL;  // 14695981039346656037
 
 }  // namespace pounding::files
