@@ -2,19 +2,18 @@
 // pairs the stochastic structure model draws (sampler.hpp) for a study's seed and [structures] table.
 #include <cmath>
 #include <cstdio>
-#include <filesystem>
 #include <memory>
 #include <optional>
 #include <string>
 #include <vector>
 
 #include <fmt/format.h>
-#include <fmt/os.h>
-#include <unistd.h>
 #include <toml++/toml.h>
 
 #include "pounding/cli.hpp"
+#include "pounding/config.hpp"
 #include "pounding/error.hpp"
+#include "pounding/files.hpp"
 #include "pounding/hdf5io.hpp"
 #include "pounding/sampler.hpp"
 
@@ -99,25 +98,17 @@ double parse_period(const std::string& text) {
 }
 
 void write_csv(const std::string& path, const std::vector<std::string>& header, const std::vector<SampledPair>& rows) {
-  const std::string tmp = fmt::format("{}.tmp{}", path, static_cast<long>(::getpid()));
-  try {
-    {
-      auto out = fmt::output_file(tmp);
-      for (const auto& line : header) out.print("# {}\n", line);
-      out.print("i1,i2,sample");
-      for (const auto& c : columns) out.print(",{}", c);
-      out.print("\n");
-      for (const SampledPair& p : rows) {
-        out.print("{},{},{}", p.id.i1, p.id.i2, p.id.sample);
-        for (double v : values(p)) out.print(",{:.17g}", v);  // round-trips every double
-        out.print("\n");
-      }
-    }
-    std::filesystem::rename(tmp, path);
-  } catch (...) {
-    std::remove(tmp.c_str());
-    throw;
+  fmt::memory_buffer out;
+  for (const auto& line : header) fmt::format_to(std::back_inserter(out), "# {}\n", line);
+  fmt::format_to(std::back_inserter(out), "i1,i2,sample");
+  for (const auto& c : columns) fmt::format_to(std::back_inserter(out), ",{}", c);
+  fmt::format_to(std::back_inserter(out), "\n");
+  for (const SampledPair& p : rows) {
+    fmt::format_to(std::back_inserter(out), "{},{},{}", p.id.i1, p.id.i2, p.id.sample);
+    for (double v : values(p)) fmt::format_to(std::back_inserter(out), ",{:.17g}", v);  // round-trips every double
+    fmt::format_to(std::back_inserter(out), "\n");
   }
+  files::write_text_atomically(path, std::string_view(out.data(), out.size()));
 }
 
 void write_h5(const std::string& path, const std::vector<std::string>& header, const std::vector<SampledPair>& rows,
@@ -158,23 +149,12 @@ void run_sample(const SampleOptions& o) {
   if (!csv && !h5)
     throw InputError(fmt::format("--out {} has no .csv or .h5 extension", o.out), "--out",
                      "name the output FILE.csv or FILE.h5");
-  toml::table root;
-  try {
-    root = toml::parse_file(o.study);
-  } catch (const toml::parse_error& e) {
-    const auto line = e.source().begin.line;
-    throw InputError(std::string(e.description()), line > 0 ? fmt::format("{}:{}", o.study, line) : o.study,
-                     "fix the study file (TOML syntax)");
-  }
-  toml::table empty;
-  const toml::table* table = &empty;
-  if (const toml::node* n = root.get("structures")) {
-    table = n->as_table();
-    if (!table)
-      throw InputError("structures must be a table", fmt::format("{}:{}", o.study, n->source().begin.line),
-                       "write the settings under a [structures] header");
-  }
-  StructureModel model = parse_structure_model(*table, o.study);
+  const toml::table root =
+      config::parse(files::read_text(o.study, "the study file"), o.study, "fix the study file's syntax");
+  // only the seed and [structures] are read: the rest of the study need not be complete
+  const toml::table empty;
+  const toml::table* table = config::TableReader(&root, o.study, "").table("structures");
+  StructureModel model = parse_structure_model(table ? *table : empty, o.study);
   std::uint64_t seed = 0;
   if (o.seed) {
     if (*o.seed < 0) throw InputError(fmt::format("--seed = {} is negative", *o.seed), "--seed", "give a seed >= 0");

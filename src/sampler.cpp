@@ -15,6 +15,7 @@
 #include <boost/random/taus88.hpp>
 #include <fmt/format.h>
 
+#include "pounding/config.hpp"
 #include "pounding/contact.hpp"
 #include "pounding/error.hpp"
 
@@ -178,113 +179,68 @@ LognormalParams lognormal_from_mean_cov(double mean, double cov) {
 
 // ---------------------------------------------------------------- parsing
 
-namespace {
-
-std::string loc(const std::string& file, const toml::source_region& src) {
-  return src.begin.line > 0 ? fmt::format("{}:{}", file, src.begin.line) : file;
-}
-
-double read_number(const toml::node& n, const std::string& where, const std::string& key) {
-  if (auto i = n.as_integer()) return static_cast<double>(i->get());
-  if (auto f = n.as_floating_point()) return f->get();
-  const char* type = n.is_string() ? "string" : n.is_boolean() ? "boolean" : n.is_array() ? "array"
-                     : n.is_table() ? "table" : "date/time";
-  throw InputError(fmt::format("{} must be a number, not a {}", key, type), where,
-                   fmt::format("write {} = <number>", key));
-}
-
-std::vector<double> read_number_array(const toml::node& n, const std::string& where, const std::string& key) {
-  const toml::array* a = n.as_array();
-  if (!a) throw InputError(fmt::format("{} must be an array of numbers", key), where,
-                           fmt::format("write {} = [x1, x2, ...]", key));
-  std::vector<double> v;
-  for (const toml::node& e : *a) v.push_back(read_number(e, where, key));
-  return v;
-}
-
-}  // namespace
-
 StructureModel parse_structure_model(const toml::table& table, const std::string& file) {
   StructureModel m;
-  std::map<std::string, std::string, std::less<>> where_of;  // key -> "file:line [structures].key"
-  const std::string table_loc = loc(file, table.source());
-  auto where = [&](std::string_view key) -> std::string {
-    auto it = where_of.find(key);
-    return it != where_of.end() ? it->second : fmt::format("{} [structures].{}", table_loc, key);
+  config::TableReader r(&table, file, "structures");
+  std::string periods_where;  // set when the grid keys make the periods: later errors point at them
+  auto where = [&](std::string_view key) {
+    return key == "periods" && !periods_where.empty() ? periods_where : r.where(key);
   };
+  if (table.get("seed"))
+    throw InputError("seed is not a [structures] setting", r.where("seed"),
+                     "move seed = <integer> to the top of the study file, before any [table]");
 
-  const std::map<std::string, double*, std::less<>> numbers{
-      {"rho_mean", &m.rho_mean},
-      {"rho_cov", &m.rho_cov},
-      {"mbar_mean", &m.mbar_mean},
-      {"mbar_cov", &m.mbar_cov},
-      {"mbar_min", &m.mbar_min},
-      {"mbar_max", &m.mbar_max},
-      {"zeta", &m.zeta},
-      {"drift", &m.drift},
-      {"ductility", &m.ductility},
-      {"alpha", &m.alpha},
-      {"height_min", &m.height_min},
-      {"height_max", &m.height_max},
-      {"ct_lower", &m.ct_lower},
-      {"ct_upper", &m.ct_upper},
-      {"height_exponent", &m.height_exponent},
-      {"code_gap_coefficient", &m.code_gap_coefficient},
-      {"contact_density", &m.contact_density},
-      {"contact_youngs_modulus", &m.contact_youngs_modulus},
-      {"contact_poisson", &m.contact_poisson},
-      {"kh", &m.kh},
+  // Values are only read here; validate_impl checks their ranges (non-finite values included).
+  auto number = [&](const char* key, double& out) {
+    if (const toml::node* n = r.get(key)) out = config::number(*n, key, r.where(key));
   };
-  const char* known_list =
-      "periods, period_min, period_max, period_step, samples_per_pair, aspect_ratios, rho_mean, rho_cov, "
-      "mbar_mean, mbar_cov, mbar_min, mbar_max, zeta, hysteresis, drift, ductility, alpha, height_min, "
-      "height_max, ct_lower, ct_upper, height_exponent, code_gap_coefficient, contact_density, "
-      "contact_youngs_modulus, contact_poisson, kh";
-
-  std::optional<double> pmin, pmax, pstep;
-  bool have_periods = false;
-  for (auto&& [k, node] : table) {
-    const std::string key(k.str());
-    const std::string w = fmt::format("{} [structures].{}", loc(file, node.source()), escaped_excerpt(key));
-    where_of[key] = w;
-    if (auto it = numbers.find(key); it != numbers.end()) {
-      *it->second = read_number(node, w, key);
-    } else if (key == "periods") {
-      m.periods = read_number_array(node, w, key);
-      have_periods = true;
-    } else if (key == "period_min") {
-      pmin = read_number(node, w, key);
-    } else if (key == "period_max") {
-      pmax = read_number(node, w, key);
-    } else if (key == "period_step") {
-      pstep = read_number(node, w, key);
-    } else if (key == "aspect_ratios") {
-      m.aspect_ratios = read_number_array(node, w, key);
-    } else if (key == "samples_per_pair") {
-      auto i = node.as_integer();
-      if (!i) throw InputError("samples_per_pair must be an integer", w, "write samples_per_pair = 256");
-      m.samples_per_pair = i->get();
-    } else if (key == "hysteresis") {
-      auto s = node.value<std::string>();
-      if (s == "bilinear") m.hysteresis = Hysteresis::bilinear;
-      else if (s == "elastic") m.hysteresis = Hysteresis::elastic;
-      else
-        throw InputError(fmt::format("hysteresis = {} is not a known model", s ? "\"" + *s + "\"" : "(not a string)"),
-                         w, "write hysteresis = \"bilinear\" or \"elastic\"");
-    } else if (key == "seed") {
-      throw InputError("seed is not a [structures] setting", w,
-                       "move seed = <integer> to the top of the study file, before any [table]");
-    } else {
-      throw unknown_key_error(key, "[structures]", w, known_list);
-    }
+  number("rho_mean", m.rho_mean);
+  number("rho_cov", m.rho_cov);
+  number("mbar_mean", m.mbar_mean);
+  number("mbar_cov", m.mbar_cov);
+  number("mbar_min", m.mbar_min);
+  number("mbar_max", m.mbar_max);
+  number("zeta", m.zeta);
+  number("drift", m.drift);
+  number("ductility", m.ductility);
+  number("alpha", m.alpha);
+  number("height_min", m.height_min);
+  number("height_max", m.height_max);
+  number("ct_lower", m.ct_lower);
+  number("ct_upper", m.ct_upper);
+  number("height_exponent", m.height_exponent);
+  number("code_gap_coefficient", m.code_gap_coefficient);
+  number("contact_density", m.contact_density);
+  number("contact_youngs_modulus", m.contact_youngs_modulus);
+  number("contact_poisson", m.contact_poisson);
+  number("kh", m.kh);
+  if (const toml::node* n = r.get("aspect_ratios")) m.aspect_ratios = config::numbers(*n, "aspect_ratios", r.where("aspect_ratios"));
+  if (const toml::node* n = r.get("samples_per_pair"))
+    m.samples_per_pair = config::integer(*n, "samples_per_pair", r.where("samples_per_pair"));
+  if (const toml::node* n = r.get("hysteresis")) {
+    const std::string h = config::string(*n, "hysteresis", r.where("hysteresis"));
+    if (h == "bilinear") m.hysteresis = Hysteresis::bilinear;
+    else if (h == "elastic") m.hysteresis = Hysteresis::elastic;
+    else
+      throw InputError(fmt::format("hysteresis = \"{}\" is not a known model", h), r.where("hysteresis"),
+                       "write hysteresis = \"bilinear\" or \"elastic\"");
   }
-  if (have_periods && (pmin || pmax || pstep))
-    throw InputError("both periods and period_min/period_max/period_step are given", where("periods"),
+  const toml::node* periods = r.get("periods");
+  if (periods) m.periods = config::numbers(*periods, "periods", r.where("periods"));
+  std::optional<double> pmin, pmax, pstep;
+  for (auto [key, out] : {std::pair{"period_min", &pmin}, {"period_max", &pmax}, {"period_step", &pstep}})
+    if (const toml::node* n = r.get(key)) *out = config::number(*n, key, r.where(key));
+  r.finish("periods, period_min, period_max, period_step, samples_per_pair, aspect_ratios, rho_mean, rho_cov, "
+           "mbar_mean, mbar_cov, mbar_min, mbar_max, zeta, hysteresis, drift, ductility, alpha, height_min, "
+           "height_max, ct_lower, ct_upper, height_exponent, code_gap_coefficient, contact_density, "
+           "contact_youngs_modulus, contact_poisson, kh");
+
+  if (periods && (pmin || pmax || pstep))
+    throw InputError("both periods and period_min/period_max/period_step are given", r.where("periods"),
                      "give either the list periods = [..] or the grid period_min, period_max, period_step");
   if (pmin || pmax || pstep) {
-    std::string w = where(pmax ? "period_max" : pmin ? "period_min" : "period_step");
-    m.periods = make_period_grid(pmin.value_or(1.00), pmax.value_or(1.50), pstep.value_or(0.05), w);
-    where_of["periods"] = w;  // later errors about a period of the grid point at the grid's keys
+    periods_where = r.where(pmax ? "period_max" : pmin ? "period_min" : "period_step");
+    m.periods = make_period_grid(pmin.value_or(1.00), pmax.value_or(1.50), pstep.value_or(0.05), periods_where);
   }
   validate_impl(m, where);
   return m;
@@ -293,23 +249,12 @@ StructureModel parse_structure_model(const toml::table& table, const std::string
 std::uint64_t parse_study_seed(const toml::table& root, const std::string& file) {
   const toml::node* n = root.get("seed");
   if (!n)
-    throw InputError("the study has no seed", loc(file, root.source()),
+    throw InputError("the study has no seed", config::location(file, root.source()),
                      "add a top-level line seed = <integer >= 0> before any [table]");
-  auto i = n->as_integer();
-  if (!i || i->get() < 0)
-    throw InputError("seed must be an integer >= 0", fmt::format("{} seed", loc(file, n->source())),
-                     "write seed = <integer in [0, 2^63 - 1]>");
-  return static_cast<std::uint64_t>(i->get());
+  return config::seed(*n, "seed", fmt::format("{} seed", config::location(file, n->source())));
 }
 
 // ---------------------------------------------------------------- streams
-
-std::uint64_t splitmix64(std::uint64_t x) {
-  x += 0x9e3779b97f4a7c15ULL;
-  x = (x ^ (x >> 30)) * 0xbf58476d1ce4e5b9ULL;
-  x = (x ^ (x >> 27)) * 0x94d049bb133111ebULL;
-  return x ^ (x >> 31);
-}
 
 std::uint64_t stream_seed(std::uint64_t seed, std::uint64_t stream, const SampleId& id) {
   // Each step is a bijection of the running value for fixed input, so for a given (seed, stream, i1, i2)

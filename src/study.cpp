@@ -3,16 +3,13 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
-#include <fstream>
-#include <functional>
-#include <map>
-#include <set>
-#include <sstream>
 
 #include <fmt/format.h>
 #include <toml++/toml.h>
 
+#include "pounding/config.hpp"
 #include "pounding/error.hpp"
+#include "pounding/files.hpp"
 
 namespace pounding {
 
@@ -29,91 +26,7 @@ std::string_view to_string(Scene s) {
 
 namespace {
 
-// Reads one TOML table with a fixed set of keys; every error names file:line, the table and the key.
-class TableReader {
- public:
-  TableReader(const toml::table* t, std::string file, std::string name)
-      : t_(t), file_(std::move(file)), name_(std::move(name)) {}
-
-  std::string where(std::string_view key) const {
-    const toml::node* n = t_ ? t_->get(key) : nullptr;
-    int line = n ? static_cast<int>(n->source().begin.line) : (t_ ? static_cast<int>(t_->source().begin.line) : 0);
-    const std::string shown = escaped_excerpt(key);  // a key of control or non-ASCII bytes is shown escaped
-    std::string k = name_.empty() ? shown : fmt::format("[{}].{}", name_, shown);
-    return line > 0 ? fmt::format("{}:{} {}", file_, line, k) : fmt::format("{} {}", file_, k);
-  }
-  const toml::node* get(std::string_view key) {
-    seen_.insert(std::string(key));
-    return t_ ? t_->get(key) : nullptr;
-  }
-  double number(std::string_view key, double def, double lo, double hi, std::string_view range) {
-    const toml::node* n = get(key);
-    if (!n) return def;
-    double v;
-    if (auto i = n->as_integer()) v = static_cast<double>(i->get());
-    else if (auto f = n->as_floating_point()) v = f->get();
-    else throw InputError(fmt::format("{} must be a number", key), where(key), fmt::format("write {} = <number>", key));
-    if (!std::isfinite(v) || v < lo || v > hi)
-      throw InputError(fmt::format("{} = {} is out of range", key, v), where(key), fmt::format("give a value in {}", range));
-    return v;
-  }
-  long integer(std::string_view key, long def, long lo, long hi) {
-    const toml::node* n = get(key);
-    if (!n) return def;
-    auto i = n->as_integer();
-    if (!i) throw InputError(fmt::format("{} must be an integer", key), where(key), fmt::format("write {} = <integer>", key));
-    long v = static_cast<long>(i->get());
-    if (v < lo || v > hi)
-      throw InputError(fmt::format("{} = {} is out of range", key, v), where(key), fmt::format("give an integer in [{}, {}]", lo, hi));
-    return v;
-  }
-  std::string string(std::string_view key, std::string def) {
-    const toml::node* n = get(key);
-    if (!n) return def;
-    auto s = n->as_string();
-    if (!s) throw InputError(fmt::format("{} must be a string", key), where(key), fmt::format("write {} = \"...\"", key));
-    return s->get();
-  }
-  bool boolean(std::string_view key, bool def) {
-    const toml::node* n = get(key);
-    if (!n) return def;
-    auto b = n->as_boolean();
-    if (!b) throw InputError(fmt::format("{} must be true or false", key), where(key), fmt::format("write {} = true", key));
-    return b->get();
-  }
-  std::vector<double> numbers(std::string_view key, std::vector<double> def, double lo, double hi, std::string_view range) {
-    const toml::node* n = get(key);
-    if (!n) return def;
-    auto a = n->as_array();
-    if (!a || a->empty())
-      throw InputError(fmt::format("{} must be a non-empty array of numbers", key), where(key), fmt::format("write {} = [x1, x2, ...]", key));
-    std::vector<double> out;
-    for (auto& e : *a) {
-      double v;
-      if (auto i = e.as_integer()) v = static_cast<double>(i->get());
-      else if (auto f = e.as_floating_point()) v = f->get();
-      else throw InputError(fmt::format("{} must hold numbers only", key), where(key), "remove the non-numeric entries");
-      if (!std::isfinite(v) || v < lo || v > hi)
-        throw InputError(fmt::format("{} holds {}, out of range", key, v), where(key), fmt::format("give values in {}", range));
-      out.push_back(v);
-    }
-    return out;
-  }
-  // Every key of the table must have been read.
-  void finish(std::string_view allowed) const {
-    if (!t_) return;
-    for (auto&& [k, n] : *t_) {
-      if (!seen_.count(std::string(k.str())))
-        throw unknown_key_error(k.str(), name_.empty() ? std::string("the study file's top level") : "[" + name_ + "]",
-                                where(k.str()), allowed);
-    }
-  }
-
- private:
-  const toml::table* t_;
-  std::string file_, name_;
-  std::set<std::string> seen_;
-};
+using config::TableReader;
 
 std::string resolve_relative(const std::string& study_path, const std::string& p) {
   if (p.empty() || fs::path(p).is_absolute()) return p;
@@ -126,14 +39,7 @@ Study parse_study(const std::string& text, const std::string& path) {
   Study s;
   s.path = path;
   s.text = text;
-  toml::table root;
-  try {
-    root = toml::parse(text, path);
-  } catch (const toml::parse_error& e) {
-    throw InputError(fmt::format("TOML syntax error: {}", escaped_excerpt(e.description(), 200)),
-                     fmt::format("{}:{}:{}", path, e.source().begin.line, e.source().begin.column),
-                     "fix the study file's syntax");
-  }
+  const toml::table root = config::parse(text, path, "fix the study file's syntax");
   TableReader top(&root, path, "");
   s.title = top.string("title", fs::path(path).stem().string());
   top.get("seed");
@@ -146,13 +52,7 @@ Study parse_study(const std::string& text, const std::string& path) {
   s.output = top.string("output", fs::path(path).stem().string() + ".h5");
   if (s.output.empty()) throw InputError("output is empty", top.where("output"), "give a results file name");
 
-  auto sub = [&](const char* name) -> const toml::table* {
-    top.get(name);
-    const toml::node* n = root.get(name);
-    if (n && !n->is_table())
-      throw InputError(fmt::format("{} must be a table", name), top.where(name), fmt::format("write [{}] on its own line", name));
-    return n ? n->as_table() : nullptr;
-  };
+  auto sub = [&](const char* name) { return top.table(name); };
 
   {  // [records]
     const toml::table* t = sub("records");
@@ -355,12 +255,6 @@ void check_result_memory(const Study& s, std::size_t records) {
                 : std::string("split the study into fewer records, period pairs or gaps"));
 }
 
-Study load_study(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError("cannot read the study file", path, "check the path");
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return parse_study(ss.str(), path);
-}
+Study load_study(const std::string& path) { return parse_study(files::read_text(path, "the study file"), path); }
 
 }  // namespace pounding

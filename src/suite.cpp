@@ -13,7 +13,10 @@
 #include <sstream>
 #include <toml++/toml.h>
 
+#include "pounding/config.hpp"
 #include "pounding/error.hpp"
+#include "pounding/files.hpp"
+#include "pounding/random.hpp"
 
 namespace pounding {
 
@@ -316,50 +319,28 @@ vs30 = 278.35
 F = 1
 )SUITE";
 
-std::string loc(const std::string& file, const toml::source_region& src) {
-  return src.begin.line > 0 ? fmt::format("{}:{}", file, src.begin.line) : file;
-}
+using config::location;
 
-const char* type_name(const toml::node& n) {
-  return n.is_string() ? "string" : n.is_integer() ? "integer" : n.is_floating_point() ? "number"
-         : n.is_boolean() ? "boolean" : n.is_array() ? "array" : n.is_table() ? "table" : "date/time";
-}
-
+// Suite values point at "file:line" of the value (tests/test_suite.cpp checks the exact place).
 double get_number(const toml::node& n, const std::string& file, const std::string& key) {
-  if (auto i = n.as_integer()) return static_cast<double>(i->get());
-  if (auto f = n.as_floating_point()) {
-    if (!std::isfinite(f->get()))
-      throw InputError(fmt::format("{} = {} is not finite", key, f->get()), loc(file, n.source()),
-                       fmt::format("write {} = <number>", key));
-    return f->get();
-  }
-  throw InputError(fmt::format("{} must be a number, not a {}", key, type_name(n)), loc(file, n.source()),
-                   fmt::format("write {} = <number>", key));
+  const double v = config::number(n, key, location(file, n.source()));
+  if (!std::isfinite(v))
+    throw InputError(fmt::format("{} = {} is not finite", key, v), location(file, n.source()),
+                     fmt::format("write {} = <number>", key));
+  return v;
 }
 
 std::string get_string(const toml::node& n, const std::string& file, const std::string& key) {
-  if (auto s = n.as_string()) return s->get();
-  throw InputError(fmt::format("{} must be a string, not a {}", key, type_name(n)), loc(file, n.source()),
-                   fmt::format("write {} = \"...\"", key));
+  return config::string(n, key, location(file, n.source()));
 }
 
-std::uint64_t get_seed(const toml::node& n, const std::string& file, const std::string& key) {
-  auto i = n.as_integer();
-  if (!i || i->get() < 0)
-    throw InputError(fmt::format("{} must be a non-negative integer", key), loc(file, n.source()),
-                     fmt::format("write {} = 12345", key));
-  return static_cast<std::uint64_t>(i->get());
-}
-
-void check_keys(const toml::table& t, const std::string& file, const std::set<std::string>& allowed,
+void check_keys(const toml::table& t, const std::string& file, const std::set<std::string, std::less<>>& allowed,
                 const std::string& what) {
-  for (auto&& [k, v] : t) {
-    if (!allowed.count(std::string(k.str()))) {
-      std::string list;
-      for (const auto& a : allowed) list += (list.empty() ? "" : ", ") + a;
-      throw unknown_key_error(k.str(), what, loc(file, v.source()), list);
-    }
-  }
+  std::string list;
+  for (const auto& a : allowed) list += (list.empty() ? "" : ", ") + a;
+  config::check_keys(
+      t, [&](std::string_view k) { return allowed.count(k) > 0; }, what, list,
+      [&](std::string_view, const toml::node& v) { return location(file, v.source()); });
 }
 
 std::string normalise(std::string_view s) {
@@ -369,43 +350,28 @@ std::string normalise(std::string_view s) {
   return out;
 }
 
-std::uint64_t splitmix64(std::uint64_t x) {
-  x += 0x9e3779b97f4a7c15ULL;
-  x = (x ^ (x >> 30)) * 0xbf58476d1ce4e5b9ULL;
-  x = (x ^ (x >> 27)) * 0x94d049bb133111ebULL;
-  return x ^ (x >> 31);
-}
-
 }  // namespace
 
 std::uint64_t derive_seed(std::uint64_t suite_seed, const std::string& id) {
-  std::uint64_t h = 0xcbf29ce484222325ULL;  // FNV-1a 64
-  for (unsigned char c : id) h = (h ^ c) * 0x100000001b3ULL;
-  return splitmix64(suite_seed ^ h);
+  return splitmix64(suite_seed ^ files::fnv1a(id.data(), id.size(), files::fnv1a_offset_basis));
 }
 
 Suite parse_suite(const std::string& text, const std::string& path) {
-  toml::table root;
-  try {
-    root = toml::parse(text, path);
-  } catch (const toml::parse_error& e) {
-    throw InputError(fmt::format("TOML syntax: {}", escaped_excerpt(e.description(), 200)), loc(path, e.source()),
-                     "fix the suite file's syntax");
-  }
+  const toml::table root = config::parse(text, path, "fix the suite file's syntax");
   Suite s;
   s.path = path;
   check_keys(root, path, {"suite", "record"}, "the suite file");
   if (const toml::node* n = root.get("suite")) {
     const toml::table* t = n->as_table();
-    if (!t) throw InputError("[suite] must be a table", loc(path, n->source()), "write [suite] with name, seed, dt");
+    if (!t) throw InputError("[suite] must be a table", location(path, n->source()), "write [suite] with name, seed, dt");
     check_keys(*t, path, {"name", "description", "seed", "dt"}, "[suite]");
     if (auto v = t->get("name")) s.name = get_string(*v, path, "name");
     if (auto v = t->get("description")) s.description = get_string(*v, path, "description");
-    if (auto v = t->get("seed")) s.seed = get_seed(*v, path, "seed");
+    if (auto v = t->get("seed")) s.seed = config::seed(*v, "seed", location(path, v->source()));
     if (auto v = t->get("dt")) {
       s.dt = get_number(*v, path, "dt");
       if (!(s.dt > 0 && s.dt <= 0.05))
-        throw InputError(fmt::format("dt = {} is outside (0, 0.05] s", s.dt), loc(path, v->source()),
+        throw InputError(fmt::format("dt = {} is outside (0, 0.05] s", s.dt), location(path, v->source()),
                          "give the synthetic records' time step, e.g. dt = 0.01");
     }
   }
@@ -418,7 +384,7 @@ Suite parse_suite(const std::string& text, const std::string& path) {
   std::set<std::string> ids;
   for (const toml::node& node : *arr) {
     const toml::table* t = node.as_table();
-    if (!t) throw InputError("record must be a table", loc(path, node.source()), "write [[record]] tables");
+    if (!t) throw InputError("record must be a table", location(path, node.source()), "write [[record]] tables");
     check_keys(*t, path,
                {"id", "event", "year", "station", "component", "M", "R_km", "vs30", "F", "pga_g", "file", "scale",
                 "seed", "units", "dt_record"},
@@ -430,7 +396,7 @@ Suite parse_suite(const std::string& text, const std::string& path) {
     if (!id) throw InputError("[[record]] without id", at, "give every record an id, e.g. id = \"EQ1\"");
     e.id = get_string(*id, path, "id");
     if (e.id.empty() || !ids.insert(e.id).second)
-      throw InputError(fmt::format("id '{}' is empty or repeated", e.id), loc(path, id->source()), "give unique ids");
+      throw InputError(fmt::format("id '{}' is empty or repeated", e.id), location(path, id->source()), "give unique ids");
     if (auto v = t->get("event")) e.event = get_string(*v, path, "event");
     if (auto v = t->get("station")) e.station = get_string(*v, path, "station");
     if (auto v = t->get("component")) e.component = get_string(*v, path, "component");
@@ -450,7 +416,7 @@ Suite parse_suite(const std::string& text, const std::string& path) {
     site_num("F", F);
     if (site_keys > 0 && F >= 0) {
       if (F != 0 && F != 1)
-        throw InputError(fmt::format("F = {} in record {}", F, e.id), loc(path, t->get("F")->source()),
+        throw InputError(fmt::format("F = {} in record {}", F, e.id), location(path, t->get("F")->source()),
                          "F is 0 (strike-slip) or 1 (reverse or reverse-oblique)");
       sp.F = static_cast<int>(F);
     }
@@ -461,33 +427,33 @@ Suite parse_suite(const std::string& text, const std::string& path) {
     if (auto v = t->get("pga_g")) {
       e.pga_g = get_number(*v, path, "pga_g");
       if (!(e.pga_g > 0 && e.pga_g <= 5))
-        throw InputError(fmt::format("pga_g = {} in record {}", e.pga_g, e.id), loc(path, v->source()),
+        throw InputError(fmt::format("pga_g = {} in record {}", e.pga_g, e.id), location(path, v->source()),
                          "give the PGA in g, in (0, 5]");
     }
     if (auto v = t->get("file")) {
       e.file = get_string(*v, path, "file");
-      if (e.file.empty()) throw InputError("empty file name", loc(path, v->source()), "give a path or drop the key");
+      if (e.file.empty()) throw InputError("empty file name", location(path, v->source()), "give a path or drop the key");
       if (fs::path(e.file).is_relative() && !base.empty()) e.file = (base / e.file).lexically_normal().string();
     }
     if (auto v = t->get("scale")) {
       e.scale = get_number(*v, path, "scale");
       if (!(e.scale > 0))
-        throw InputError(fmt::format("scale = {} in record {}", e.scale, e.id), loc(path, v->source()), "give a factor > 0");
+        throw InputError(fmt::format("scale = {} in record {}", e.scale, e.id), location(path, v->source()), "give a factor > 0");
     }
     if (auto v = t->get("units")) {
       const std::string u = get_string(*v, path, "units");
       try {
         e.units = parse_units(u);
       } catch (const InputError&) {
-        throw InputError(fmt::format("units = '{}'", u), loc(path, v->source()), "use g, m/s2 or cm/s2");
+        throw InputError(fmt::format("units = '{}'", u), location(path, v->source()), "use g, m/s2 or cm/s2");
       }
     }
     if (auto v = t->get("dt_record")) {
       e.dt_record = get_number(*v, path, "dt_record");
-      if (!(e.dt_record > 0)) throw InputError("dt_record must be > 0", loc(path, v->source()), "give the step in s");
+      if (!(e.dt_record > 0)) throw InputError("dt_record must be > 0", location(path, v->source()), "give the step in s");
     }
     e.seed = derive_seed(s.seed, e.id);
-    if (auto v = t->get("seed")) e.seed = get_seed(*v, path, "seed");
+    if (auto v = t->get("seed")) e.seed = config::seed(*v, "seed", location(path, v->source()));
     if (e.file.empty() && !e.site)
       throw InputError(fmt::format("record {} has neither file nor a complete site (M, R_km, vs30, F)", e.id), at,
                        "add file = \"...\" or all of M, R_km, vs30 and F");
@@ -496,13 +462,7 @@ Suite parse_suite(const std::string& text, const std::string& path) {
   return s;
 }
 
-Suite load_suite(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError("cannot open suite file", path, "check the path");
-  std::ostringstream ss;
-  ss << in.rdbuf();
-  return parse_suite(ss.str(), path);
-}
+Suite load_suite(const std::string& path) { return parse_suite(files::read_text(path, "the suite file"), path); }
 
 const std::string& default_suite_text() {
   static const std::string text = std::string(k_default_suite).substr(1);  // drop the newline after R"SUITE(

@@ -49,6 +49,7 @@
 #include <toml++/toml.h>
 
 #include "pounding/kernel.hpp"
+#include "pounding/random.hpp"  // splitmix64
 
 namespace pounding {
 
@@ -123,8 +124,6 @@ struct SampleId {
   friend bool operator==(const SampleId&, const SampleId&) = default;
 };
 
-// SplitMix64 (Steele, Lea, Flood 2014): the finaliser applied to x + 0x9e3779b97f4a7c15.
-std::uint64_t splitmix64(std::uint64_t x);
 // The engine seed of one sample: splitmix64 chained over seed, stream, (i1, i2) and sample.
 std::uint64_t stream_seed(std::uint64_t seed, std::uint64_t stream, const SampleId& id);
 
