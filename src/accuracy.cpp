@@ -18,6 +18,7 @@
 
 #include "pounding/collide.hpp"
 #include "pounding/error.hpp"
+#include "pounding/files.hpp"
 #include "pounding/records.hpp"
 #include "pounding/sampler.hpp"
 
@@ -62,18 +63,6 @@ double parse_double(const std::string& s) {
   if (s == "inf" || s == "Infinity") return inf;
   if (s == "nan" || s == "NaN" || s.empty()) return nan;
   return std::stod(s);
-}
-
-// atomic write: temporary name, rename on success
-void write_atomic(const std::string& path, const std::string& text) {
-  std::string tmp = path + ".tmp";
-  {
-    std::ofstream f(tmp);
-    if (!f) throw InputError(fmt::format("cannot write '{}'", tmp), path, "check the directory exists");
-    f << text;
-    if (!f) throw InputError(fmt::format("write failed for '{}'", tmp), path, "check the disk");
-  }
-  std::filesystem::rename(tmp, path);
 }
 
 const LoadedRecord& cached_record(const std::string& dir, const std::vector<RecordSpec>& records,
@@ -186,14 +175,14 @@ void write_cases(const std::string& path, const std::vector<Case>& cases, const 
                        c.ref_impact_count, c.ref_peak_u1, c.ref_peak_u2);
     o << "\n";
   }
-  write_atomic(path, o.str());
+  files::write_text_atomically(path, o.str());
   auto dir = std::filesystem::path(path).parent_path();
   for (const auto& r : records) {
     LoadedRecord lr = load_record(record_dir, r);
     std::ostringstream a;
     a << fmt::format("{:.17g}\n", lr.dt);
     for (double x : lr.ag) a << fmt::format("{:.17g}\n", x);
-    write_atomic((dir / (r.file + ".ag")).string(), a.str());
+    files::write_text_atomically((dir / (r.file + ".ag")).string(), a.str());
   }
 }
 
@@ -441,7 +430,7 @@ void write_chart_csv(const std::string& path, const std::vector<ChartRow>& rows)
     for (double p : r.prob_error_pp) o << fmt::format(",{:.4g}", p);
     o << "\n";
   }
-  write_atomic(path, o.str());
+  files::write_text_atomically(path, o.str());
 }
 
 // ---------------------------------------------------------------------------------------------------

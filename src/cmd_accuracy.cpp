@@ -15,23 +15,9 @@
 #include "pounding/accuracy.hpp"
 #include "pounding/cli.hpp"
 #include "pounding/error.hpp"
+#include "pounding/files.hpp"
 
 namespace pounding::cli {
-
-namespace {
-
-void write_text(const std::string& path, const std::string& text) {
-  std::string tmp = path + ".tmp";
-  {
-    std::FILE* f = std::fopen(tmp.c_str(), "w");
-    if (!f) throw InputError(fmt::format("cannot write '{}'", tmp), path, "check the directory exists");
-    std::fputs(text.c_str(), f);
-    std::fclose(f);
-  }
-  std::filesystem::rename(tmp, path);
-}
-
-}  // namespace
 
 void add_accuracy(CLI::App& app) {
   namespace A = pounding::accuracy;
@@ -107,7 +93,7 @@ void add_accuracy(CLI::App& app) {
           s << fmt::format("{},{},{},{:.10g},{:.10g},{:.10g},{:.10g},{},{},{}\n", cases[i].record, cases[i].model,
                            cases[i].law, cases[i].ref_peak_closing, res[i].peak_closing, cases[i].ref_peak_force,
                            res[i].peak_force, cases[i].ref_impact_count, res[i].impact_count, to_string(res[i].status));
-        write_text(o->out, s.str());
+        files::write_text_atomically(o->out, s.str());
       }
     });
   }
@@ -155,7 +141,7 @@ void add_accuracy(CLI::App& app) {
         s << fmt::format("{},{},{:.6g},{:.6g}\n", r.stepper, r.zeta, r.measured, r.theory);
         fmt::print("{:<20} {:>5} {:>10.5g} {:>10.5g}\n", r.stepper, r.zeta, r.measured, r.theory);
       }
-      write_text(o->out, s.str());
+      files::write_text_atomically(o->out, s.str());
       std::ostringstream t;
       t << "stepper,law,substeps,h_omega_contact,status,peak_force,impacts\n";
       for (const auto& r : A::stiff_contact(*dir)) {
@@ -164,7 +150,7 @@ void add_accuracy(CLI::App& app) {
         fmt::print("{:<20} {:<10} {:>4} h*wc={:>8.3f} {:<10} F={:.4g} N impacts={}\n", r.stepper, r.law, r.substeps,
                    r.h_omega_contact, r.status, r.peak_force, r.impacts);
       }
-      write_text(o->stiff_out, t.str());
+      files::write_text_atomically(o->stiff_out, t.str());
     });
   }
 
@@ -183,7 +169,7 @@ void add_accuracy(CLI::App& app) {
       s << "law,e_target,e_effective,clamps\n";
       for (const auto& r : A::restitution_table(targets))
         s << fmt::format("{},{:.4g},{:.8g},{}\n", r.law, r.e_target, r.e_effective, r.clamps);
-      write_text(o->out, s.str());
+      files::write_text_atomically(o->out, s.str());
       fmt::print("restitution table -> {}\n", o->out);
       fmt::print("Kelvin (m1 = m2 = 1e6 kg, kc = 1e9 N/m, v0 = 1 m/s):\n");
       for (double e : {0.3, 0.5, 0.65, 0.8, 0.95}) {
@@ -225,7 +211,7 @@ void add_accuracy(CLI::App& app) {
                    r.period_ratio, r.model, r.e, r.records, r.disp_amp, r.acc_amp,
                    r.diverged ? fmt::format(" ({} diverged)", r.diverged) : "");
       }
-      write_text(o->out, s.str());
+      files::write_text_atomically(o->out, s.str());
     });
   }
 }

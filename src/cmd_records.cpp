@@ -14,6 +14,7 @@
 
 #include "pounding/cli.hpp"
 #include "pounding/error.hpp"
+#include "pounding/files.hpp"
 #include "pounding/records.hpp"
 #include "pounding/spectrum.hpp"
 #include "pounding/suite.hpp"
@@ -58,21 +59,6 @@ std::vector<ResolvedRecord> resolve(const SuiteOpts& o, const std::string& suite
   ro.synthetic_only = o.synthetic_only;
   ro.allow_synthetic = !o.require_real;
   return resolve_suite(s, ro);
-}
-
-// Writes `text` to `path` through a temporary name (no partial output on failure).
-void write_file(const std::string& path, const std::string& text) {
-  const std::string tmp = path + ".tmp";
-  std::FILE* f = std::fopen(tmp.c_str(), "wb");
-  if (!f) throw InputError("cannot create output file", tmp, "check that the directory exists and is writable");
-  const bool ok = std::fwrite(text.data(), 1, text.size(), f) == text.size() && std::fflush(f) == 0;
-  std::fclose(f);
-  std::error_code ec;
-  if (ok) std::filesystem::rename(tmp, path, ec);
-  if (!ok || ec) {
-    std::remove(tmp.c_str());
-    throw InputError("cannot write output file", path, "check free space and permissions");
-  }
 }
 
 // `show` and `spectrum` display a record that an analysis would refuse (they are how one inspects it), with
@@ -194,7 +180,7 @@ void add_records(CLI::App& app) {
       }
       if (o->out.empty()) fmt::print("{}", csv);
       else {
-        write_file(o->out, csv);
+        files::write_text_atomically(o->out, csv);
         int nsyn = 0;
         for (const auto& k : kinds) nsyn += k == "synthetic";
         fmt::print("wrote {} ({} spectra, {} synthetic)\n", o->out, spectra.size(), nsyn);

@@ -2,16 +2,15 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
 #include <limits>
 #include <memory>
 
 #include <fmt/format.h>
-#include <fmt/os.h>
 
 #include "pounding/cli.hpp"
 #include "pounding/contact.hpp"
 #include "pounding/error.hpp"
+#include "pounding/files.hpp"
 #include "pounding/hdf5io.hpp"
 #include "pounding/kernel.hpp"
 #include "pounding/records.hpp"
@@ -63,15 +62,14 @@ Structure make_structure(double m, double T, double k, double h, double fy, doub
 }
 
 void write_series_csv(const std::string& path, const SeriesRecorder& r) {
-  std::string tmp = path + ".tmp";
-  {
-    auto out = fmt::output_file(tmp);
-    out.print("t_s,ag_m_s2,u1_m,u2_m,v1_m_s,v2_m_s,a1_abs_m_s2,a2_abs_m_s2,fs1_N,fs2_N,contact_force_N\n");
-    for (std::size_t j = 0; j < r.t.size(); ++j)
-      out.print("{:.6f},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g}\n", r.t[j], r.ag[j],
-                r.u1[j], r.u2[j], r.v1[j], r.v2[j], r.a1_abs[j], r.a2_abs[j], r.fs1[j], r.fs2[j], r.force[j]);
-  }
-  std::filesystem::rename(tmp, path);
+  fmt::memory_buffer out;
+  fmt::format_to(std::back_inserter(out),
+                 "t_s,ag_m_s2,u1_m,u2_m,v1_m_s,v2_m_s,a1_abs_m_s2,a2_abs_m_s2,fs1_N,fs2_N,contact_force_N\n");
+  for (std::size_t j = 0; j < r.t.size(); ++j)
+    fmt::format_to(std::back_inserter(out), "{:.6f},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g}\n",
+                   r.t[j], r.ag[j], r.u1[j], r.u2[j], r.v1[j], r.v2[j], r.a1_abs[j], r.a2_abs[j], r.fs1[j], r.fs2[j],
+                   r.force[j]);
+  files::write_text_atomically(path, std::string_view(out.data(), out.size()));
 }
 
 void write_series_h5(const std::string& path, const SeriesRecorder& r, const std::string& summary) {

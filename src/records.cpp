@@ -8,11 +8,11 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
 #include <numbers>
 #include <sstream>
 
 #include "pounding/error.hpp"
+#include "pounding/files.hpp"
 
 namespace pounding {
 
@@ -432,43 +432,26 @@ Record read_record(const std::string& path, const ReadOptions& options) {
   std::error_code ec;
   if (!std::filesystem::is_regular_file(path, ec))
     throw InputError("record file not found", path, "check the path (records are read from disk, not the repo)");
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError("cannot open record file", path, "check its permissions");
-  std::ostringstream ss;
-  ss << in.rdbuf();
-  return parse_record(ss.str(), path, options);
+  return parse_record(files::read_text(path, "the record file"), path, options);
 }
 
 void write_at2(const Record& rec, const std::string& path) {
   if (!(rec.dt > 0) || rec.acc.empty())
     throw InputError("cannot write an empty record", path, "generate or read a record first");
-  const std::string tmp = path + ".tmp";
-  {
-    std::FILE* f = std::fopen(tmp.c_str(), "wb");
-    if (!f) throw InputError("cannot create output file", tmp, "check that the directory exists and is writable");
-    std::string l2 = rec.name;
-    if (auto it = rec.meta.find("description"); it != rec.meta.end()) l2 += ", " + it->second;
-    std::fprintf(f, "PEER NGA STRONG MOTION DATABASE RECORD (format); written by pounding\n");
-    std::fprintf(f, "%s\n", l2.c_str());
-    std::fprintf(f, "ACCELERATION TIME SERIES IN UNITS OF G\n");
-    std::fprintf(f, "NPTS=%8zu, DT=%12.6f SEC\n", rec.acc.size(), rec.dt);
-    for (std::size_t i = 0; i < rec.acc.size(); ++i) {
-      std::fprintf(f, "%15.7E", rec.acc[i] / g_accel);
-      if (i % 5 == 4 || i + 1 == rec.acc.size()) std::fputc('\n', f);
-    }
-    const bool ok = std::fflush(f) == 0 && !std::ferror(f);
-    std::fclose(f);
-    if (!ok) {
-      std::remove(tmp.c_str());
-      throw InputError("write failed", tmp, "check free disk space");
-    }
+  std::string l2 = rec.name;
+  if (auto it = rec.meta.find("description"); it != rec.meta.end()) l2 += ", " + it->second;
+  std::string text = "PEER NGA STRONG MOTION DATABASE RECORD (format); written by pounding\n" + l2 +
+                     "\nACCELERATION TIME SERIES IN UNITS OF G\n";
+  text.reserve(text.size() + 48 + 16 * rec.acc.size());
+  char buf[64];  // printf formats: the file's bytes are those of the fprintf writer this replaced
+  std::snprintf(buf, sizeof buf, "NPTS=%8zu, DT=%12.6f SEC\n", rec.acc.size(), rec.dt);
+  text += buf;
+  for (std::size_t i = 0; i < rec.acc.size(); ++i) {
+    std::snprintf(buf, sizeof buf, "%15.7E", rec.acc[i] / g_accel);
+    text += buf;
+    if (i % 5 == 4 || i + 1 == rec.acc.size()) text += '\n';
   }
-  std::error_code ec;
-  std::filesystem::rename(tmp, path, ec);
-  if (ec) {
-    std::remove(tmp.c_str());
-    throw InputError("cannot rename " + tmp + ": " + ec.message(), path, "check the directory permissions");
-  }
+  files::write_text_atomically(path, text);
 }
 
 std::optional<InputError> analysis_problem(const Record& rec, const AnalysisContext& ctx) {
