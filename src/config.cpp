@@ -33,17 +33,24 @@ std::string_view type_name(const toml::node& n) {
                                  : "a date/time";
 }
 
+namespace {
+// "<key> must be <wanted>, not <what it holds>", fix "write <key> = <example>".
+[[noreturn]] void wrong_type(const toml::node& n, std::string_view key, const std::string& where,
+                             std::string_view wanted, std::string_view example) {
+  throw InputError(fmt::format("{} must be {}, not {}", key, wanted, type_name(n)), where,
+                   fmt::format("write {} = {}", key, example));
+}
+}  // namespace
+
 double number(const toml::node& n, std::string_view key, const std::string& where) {
   if (auto i = n.as_integer()) return static_cast<double>(i->get());
   if (auto f = n.as_floating_point()) return f->get();
-  throw InputError(fmt::format("{} must be a number, not {}", key, type_name(n)), where,
-                   fmt::format("write {} = <number>", key));
+  wrong_type(n, key, where, "a number", "<number>");
 }
 
 std::int64_t integer(const toml::node& n, std::string_view key, const std::string& where) {
   if (auto i = n.as_integer()) return i->get();
-  throw InputError(fmt::format("{} must be an integer, not {}", key, type_name(n)), where,
-                   fmt::format("write {} = <integer>", key));
+  wrong_type(n, key, where, "an integer", "<integer>");
 }
 
 std::uint64_t seed(const toml::node& n, std::string_view key, const std::string& where) {
@@ -56,22 +63,20 @@ std::uint64_t seed(const toml::node& n, std::string_view key, const std::string&
 
 std::string string(const toml::node& n, std::string_view key, const std::string& where) {
   if (auto s = n.as_string()) return s->get();
-  throw InputError(fmt::format("{} must be a string, not {}", key, type_name(n)), where,
-                   fmt::format("write {} = \"...\"", key));
+  wrong_type(n, key, where, "a string", "\"...\"");
 }
 
 bool boolean(const toml::node& n, std::string_view key, const std::string& where) {
   if (auto b = n.as_boolean()) return b->get();
-  throw InputError(fmt::format("{} must be true or false, not {}", key, type_name(n)), where,
-                   fmt::format("write {} = true", key));
+  wrong_type(n, key, where, "true or false", "true");
 }
 
 std::vector<double> numbers(const toml::node& n, std::string_view key, const std::string& where) {
   const toml::array* a = n.as_array();
-  if (!a || a->empty())
-    throw InputError(a ? fmt::format("{} must be a non-empty array of numbers", key)
-                       : fmt::format("{} must be a non-empty array of numbers, not {}", key, type_name(n)),
-                     where, fmt::format("write {} = [x1, x2, ...]", key));
+  if (!a) wrong_type(n, key, where, "a non-empty array of numbers", "[x1, x2, ...]");
+  if (a->empty())
+    throw InputError(fmt::format("{} must be a non-empty array of numbers", key), where,
+                     fmt::format("write {} = [x1, x2, ...]", key));
   std::vector<double> out;
   out.reserve(a->size());
   for (const toml::node& e : *a) {

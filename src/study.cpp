@@ -44,11 +44,11 @@ Study parse_study(const std::string& text, const std::string& path) {
   s.title = top.string("title", fs::path(path).stem().string());
   top.get("seed");
   s.seed = parse_study_seed(root, path);
-  std::string scene = top.string("scene", "probability");
-  if (scene == "probability") s.scene_requested = Scene::probability;
-  else if (scene == "impacts") s.scene_requested = Scene::impacts;
-  else if (scene == "auto") s.scene_requested = Scene::automatic;
-  else throw InputError(fmt::format("unknown scene '{}'", scene), top.where("scene"), "use \"probability\", \"impacts\" or \"auto\"");
+  s.scene_requested = top.choice("scene", "probability", [](const std::string& name) {
+    for (Scene scene : {Scene::probability, Scene::impacts, Scene::automatic})
+      if (to_string(scene) == name) return scene;
+    throw InputError(fmt::format("unknown scene '{}'", name), "scene", "use \"probability\", \"impacts\" or \"auto\"");
+  });
   s.output = top.string("output", fs::path(path).stem().string() + ".h5");
   if (s.output.empty()) throw InputError("output is empty", top.where("output"), "give a results file name");
 
@@ -62,12 +62,7 @@ Study parse_study(const std::string& text, const std::string& path) {
     s.real_dir = resolve_relative(path, r.string("real_dir", ""));
     s.directory = resolve_relative(path, r.string("directory", ""));
     s.scale = r.number("scale", 1.0, 1e-6, 1e3, "(0, 1000]");
-    std::string units = r.string("units", "g");
-    try {
-      s.units = parse_units(units);
-    } catch (const InputError&) {
-      throw InputError(fmt::format("unknown units '{}'", units), r.where("units"), "use \"g\", \"m/s2\" or \"cm/s2\"");
-    }
+    s.units = r.choice("units", "g", parse_units);
     s.dt_one_column = r.number("dt", 0.0, 0.0, 1.0, "[0, 1] s");
     s.record_limit = static_cast<int>(r.integer("limit", 0, 0, 100000));
     s.synthetic_only = r.boolean("synthetic_only", false);
@@ -117,18 +112,8 @@ Study parse_study(const std::string& text, const std::string& path) {
 
   {  // [contact]
     TableReader c(sub("contact"), path, "contact");
-    std::string law = c.string("law", "hertzdamp");
-    std::string dl = c.string("damping_law", "lankarani-nikravesh");
-    try {
-      s.contact.law = parse_contact_law(law);
-    } catch (const InputError& e) {
-      throw InputError(e.what_part(), c.where("law"), e.fix());
-    }
-    try {
-      s.contact.damping = parse_damping_law(dl);
-    } catch (const InputError& e) {
-      throw InputError(e.what_part(), c.where("damping_law"), e.fix());
-    }
+    s.contact.law = c.choice("law", "hertzdamp", parse_contact_law);
+    s.contact.damping = c.choice("damping_law", "lankarani-nikravesh", parse_damping_law);
     if (s.contact.law == ContactLaw::none)
       throw InputError("contact law 'none' cannot count impacts", c.where("law"), "choose a contact law (hertzdamp, kelvin, ...)");
     s.e = c.number("e", 0.65, 1e-6, 1.0, "(0, 1]");
@@ -136,19 +121,14 @@ Study parse_study(const std::string& text, const std::string& path) {
     s.contact.v0_min = c.number("v0_min", 1e-3, 1e-12, 1.0, "(0, 1] m/s");
     s.contact_stiffness = c.number("stiffness", 0.0, 0.0, 1e20, "(0, 1e20]");
     if ((s.contact.law == ContactLaw::linear || s.contact.law == ContactLaw::kelvin) && !(s.contact_stiffness > 0))
-      throw InputError(fmt::format("contact law '{}' needs a linear stiffness", law), c.where("stiffness"),
+      throw InputError(fmt::format("contact law '{}' needs a linear stiffness", to_string(s.contact.law)), c.where("stiffness"),
                        "add stiffness = <N/m> to [contact] (the sampled Hertz kh is in N/m^1.5)");
     c.finish("law, damping_law, e, n, v0_min, stiffness");
   }
 
   {  // [analysis]
     TableReader a(sub("analysis"), path, "analysis");
-    std::string st = a.string("stepper", "central-difference");
-    try {
-      s.stepper = parse_stepper(st);
-    } catch (const InputError& e) {
-      throw InputError(e.what_part(), a.where("stepper"), e.fix());
-    }
+    s.stepper = a.choice("stepper", "central-difference", parse_stepper);
     s.substeps = static_cast<int>(a.integer("substeps", 1, 1, 10000));
     s.max_dt = a.number("max_dt", -1.0, 0.0, 1.0, "[0, 1] s (0: no cap)");
     s.batch = static_cast<int>(a.integer("batch", 256, 1, 65536));

@@ -18,6 +18,8 @@
 
 #include <toml++/toml.h>
 
+#include "pounding/error.hpp"
+
 namespace pounding::config {
 
 // "file:line" of a source region, or "file" where toml++ knows no line (a table built in code).
@@ -67,6 +69,17 @@ class TableReader {
   bool boolean(std::string_view key, bool def);
   std::vector<double> numbers(std::string_view key, std::vector<double> def, double lo, double hi,
                               std::string_view range);
+  // A name turned into a value by its owner's parser (parse_stepper, parse_contact_law, ...): an InputError
+  // from `parse` keeps its message and fix but points at the key.
+  template <class Parse>
+  auto choice(std::string_view key, std::string def, Parse parse) {
+    const std::string name = string(key, std::move(def));
+    try {
+      return parse(name);
+    } catch (const InputError& e) {
+      throw InputError(e.what_part(), where(key), e.fix());
+    }
+  }
 
   // Every key of the table must have been asked for; `allowed` is the list shown in the fix.
   void finish(std::string_view allowed) const;
