@@ -4,7 +4,6 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <cstring>
 #include <numbers>
@@ -514,22 +513,6 @@ TEST(SamplerStreams, DifferentIdentitiesAreIndependent) {
   double crit = quantile(boost::math::chi_squared(99), 0.999);
   std::printf("joint histogram of neighbours: chi2 = %.2f (99 dof, 0.1%% critical %.2f)\n", chi2, crit);
   EXPECT_LT(chi2, crit);
-}
-
-TEST(SamplerStreams, ThirtyThousandModelsTiming) {
-  // Not an assertion (timings live in benchmarks): prints the cost of one record's worth of models.
-  StructureSampler s(StructureModel{}, kSeed);
-  std::vector<SampledPair> out(256);
-  auto t0 = std::chrono::steady_clock::now();
-  double sum = 0;
-  for (std::int32_t i1 = 0; i1 < 11; ++i1)
-    for (std::int32_t i2 = 0; i2 < 11; ++i2) {
-      s.sample_block(i1, i2, 0, out);
-      for (const auto& p : out) sum += p.kh;
-    }
-  double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-  std::printf("30,976 models sampled in %.2f ms (checksum %.6g)\n", ms, sum);
-  EXPECT_GT(sum, 0);
 }
 
 // ------------------------------------------------------------------------------------- study file
