@@ -1,6 +1,13 @@
 // `pounding run STUDY.toml [--out RESULTS.h5] [--resume]` (alone or under mpirun) and
 // `pounding report RESULTS.h5 [--md|--csv]`.
+#include <unistd.h>
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cmath>
 #include <csignal>
+#include <cstdio>
 #include <memory>
 
 #include <fmt/format.h>
@@ -12,6 +19,48 @@
 #include "pounding/study_run.hpp"
 
 namespace pounding::cli {
+
+namespace {
+
+// The process-wide stop flag: set by SIGINT/SIGTERM, read by the run between units.
+std::atomic<bool> stop_requested{false};
+extern "C" void on_stop_signal(int) { stop_requested.store(true); }
+
+std::string hms(double s) {
+  if (!std::isfinite(s) || s < 0) return "--:--:--";
+  const long t = std::lround(s);
+  return fmt::format("{}:{:02}:{:02}", t / 3600, (t / 60) % 60, t % 60);
+}
+
+// Progress on stderr: a bar on a terminal (4 updates a second), a line every 10 s otherwise.
+class TerminalProgress {
+ public:
+  TerminalProgress() : tty_(isatty(fileno(stderr)) != 0) {}
+  void operator()(const ProgressReport& p) {
+    const auto now = std::chrono::steady_clock::now();
+    if (!p.final && now - last_ < std::chrono::milliseconds(tty_ ? 250 : 10000)) return;
+    last_ = now;
+    const double rate = static_cast<double>(p.units_done - p.units_at_start) * p.models_per_unit /
+                        std::max(p.elapsed_s, 1e-9);
+    const double frac = static_cast<double>(p.units_done) / static_cast<double>(p.units_total);
+    const double eta = static_cast<double>(p.units_total - p.units_done) * p.models_per_unit / std::max(rate, 1e-9);
+    if (tty_) {
+      const int w = 30, fill = static_cast<int>(frac * w);
+      fmt::print(stderr, "\r[{}{}] {:5.1f}%  units {}/{}  {:.0f} models/s  ETA {}{}", std::string(fill, '#'),
+                 std::string(w - fill, '.'), 100 * frac, p.units_done, p.units_total, rate, hms(eta),
+                 p.final ? "\n" : "");
+    } else {
+      fmt::print(stderr, "progress: units {}/{} ({:.1f}%), {:.0f} models/s, elapsed {}, ETA {}\n", p.units_done,
+                 p.units_total, 100 * frac, rate, hms(p.elapsed_s), hms(eta));
+    }
+  }
+
+ private:
+  bool tty_;
+  std::chrono::steady_clock::time_point last_{};
+};
+
+}  // namespace
 
 void add_run(CLI::App& app) {
   struct Opts {
@@ -32,14 +81,23 @@ void add_run(CLI::App& app) {
     int argc = 0;
     char** argv = nullptr;
     parallel::Session session(argc, argv);
+    std::signal(SIGINT, on_stop_signal);
+    std::signal(SIGTERM, on_stop_signal);
     try {
       RunOptions ro;
       ro.out = o->out;
       ro.out_given = out->count() > 0;
       ro.resume = o->resume;
       ro.force = o->force;
-      ro.progress = !o->quiet;
-      exit_code() = run_study(session, o->study, ro);
+      RunContext ctx;
+      ctx.cancel = &stop_requested;
+      if (session.root()) {
+        ctx.info = [](const std::string& line) { fmt::print(stderr, "{}\n", line); };
+        if (!o->quiet) ctx.progress = TerminalProgress();
+      }
+      const RunOutcome r = run_study(session, o->study, ro, ctx);
+      if (session.root() && (r.code == 0 || r.code == 3)) fmt::print("{}", report_markdown(load_results(r.out)));
+      exit_code() = r.code;
     } catch (const InputError& e) {
       // thrown on every rank after the job stopped together (Session::agree, run_units): one message
       if (session.root()) fmt::print(stderr, " ERROR: {}\n", e.what());

@@ -42,8 +42,6 @@ constexpr int unc_fields = 4;
 // per lane and gap: status, impact count, peak force, peak |u1|, peak |u2|, first impact time
 constexpr int gap_fields = 6;
 
-std::atomic<bool> g_stop{false};
-extern "C" void on_signal(int) { g_stop.store(true); }
 
 // Work units: unit = (record r, period pair p, block b), numbered r-major.
 struct Layout {
@@ -85,17 +83,137 @@ std::string now_iso() {
   return buf;
 }
 
-std::string hms(double s) {
-  if (!std::isfinite(s) || s < 0) return "--:--:--";
-  long t = std::lround(s);
-  return fmt::format("{}:{:02}:{:02}", t / 3600, (t / 60) % 60, t % 60);
-}
 
 // Per-model results gathered on rank 0 in fixed arrays: any completion order gives the same file.
 struct Tally {
   std::vector<std::uint8_t> unc_status, imp_status;           // [R x M], [R x M x G]
   std::vector<double> pu1, pu2, pclose, ipu1, ipu2, iforce, ifirst;
   std::vector<std::int32_t> icount;
+  std::vector<char> done;  // per unit
+  std::size_t n_done = 0;
+
+  void init(const Layout& L) {
+    const std::size_t RM = L.records * L.models(), RMG = RM * L.gaps;
+    unc_status.assign(RM, 255);
+    pu1.assign(RM, NAN), pu2.assign(RM, NAN), pclose.assign(RM, NAN);
+    if (L.impacts) {
+      imp_status.assign(RMG, 255);
+      icount.assign(RMG, -1);
+      iforce.assign(RMG, NAN), ipu1.assign(RMG, NAN), ipu2.assign(RMG, NAN), ifirst.assign(RMG, NAN);
+    }
+    done.assign(L.units(), 0);
+  }
+
+  // Scatters one unit's payload (UnitComputer's layout) into the arrays.
+  void store(const Layout& L, std::size_t unit, const std::vector<double>& d) {
+    std::size_t r, p, b;
+    L.decode(unit, r, p, b);
+    const std::size_t n = L.lanes(b), M = L.models(), G = L.gaps;
+    if (d.size() != L.payload_size(b)) throw std::runtime_error(fmt::format("unit {}: payload size mismatch", unit));
+    const std::size_t m0 = p * L.samples + b * L.batch;
+    std::size_t k = 0;
+    for (std::size_t i = 0; i < n; ++i, k += unc_fields) {
+      const std::size_t idx = r * M + m0 + i;
+      unc_status[idx] = static_cast<std::uint8_t>(d[k]);
+      pu1[idx] = d[k + 1], pu2[idx] = d[k + 2], pclose[idx] = d[k + 3];
+    }
+    if (L.impacts)
+      for (std::size_t g = 0; g < G; ++g)
+        for (std::size_t i = 0; i < n; ++i, k += gap_fields) {
+          const std::size_t idx = (r * M + m0 + i) * G + g;
+          imp_status[idx] = static_cast<std::uint8_t>(d[k]);
+          icount[idx] = static_cast<std::int32_t>(d[k + 1]);
+          iforce[idx] = d[k + 2], ipu1[idx] = d[k + 3], ipu2[idx] = d[k + 4], ifirst[idx] = d[k + 5];
+        }
+    if (!done[unit]) ++n_done;
+    done[unit] = 1;
+  }
+};
+
+// One work unit: sample the block, run the uncoupled pairs (and, in the impacts scene, the coupled ones per
+// gap); the payload is [per lane: unc_fields] then [per gap, per lane: gap_fields].
+class UnitComputer {
+ public:
+  UnitComputer(const Study& s, const std::vector<StudyRecord>& records, const StructureSampler& sampler,
+               const Layout& L, int rank)
+      : s_(s), records_(records), sampler_(sampler), L_(L), rank_(rank), nper_(s.structures.periods.size()) {
+    ks_base_.stepper = s.stepper;
+    ks_base_.displacement_limit = s.displacement_limit;
+    uncoupled_ = s.contact;
+    uncoupled_.law = ContactLaw::none;
+  }
+
+  std::vector<double> operator()(std::size_t unit) {
+    if (++computed_ == 3) inject_fault("compute", rank_);
+    std::size_t r, p, b;
+    L_.decode(unit, r, p, b);
+    const std::size_t n = L_.lanes(b);
+    pairs_.resize(n);
+    sampler_.sample_block(static_cast<std::int32_t>(p / nper_), static_cast<std::int32_t>(p % nper_),
+                          static_cast<std::int64_t>(b * L_.batch), pairs_);
+    const Record& rec = records_[r].record;
+    const GroundMotion gm{rec.dt, rec.acc, rec.duration() + s_.free_vibration};
+    KernelSettings ks = ks_base_;
+    ks.substeps = substeps_for(rec.dt);
+    PairBatch batch;
+    batch.resize(n);
+    for (std::size_t i = 0; i < n; ++i) batch.set(i, pairs_[i].pair_params(0.0, s_.e));
+    run_batch(batch, uncoupled_, gm, ks, res_);
+    std::vector<double> payload;
+    payload.reserve(L_.payload_size(b));
+    for (std::size_t i = 0; i < n; ++i)
+      payload.insert(payload.end(), {double(res_.status[i]), res_.peak_u1[i], res_.peak_u2[i], res_.peak_closing[i]});
+    if (L_.impacts)
+      for (std::size_t g = 0; g < L_.gaps; ++g) coupled(g, gm, ks, payload);
+    return payload;
+  }
+
+ private:
+  int substeps_for(double dt) const {
+    const int q = s_.max_dt > 0 ? static_cast<int>(std::ceil(dt / s_.max_dt - 1e-9)) : 1;
+    return std::max(s_.substeps, q);
+  }
+
+  // A pair whose uncoupled peak closing stays <= g never touches at gap g, and its coupled run is
+  // bit-identical to the uncoupled one (the first-passage property, tested): only the pairs that touch are
+  // run with contact; the others take the uncoupled results (unless [analysis] skip_untouched = false).
+  void coupled(std::size_t g, const GroundMotion& gm, const KernelSettings& ks, std::vector<double>& payload) {
+    const std::size_t n = pairs_.size();
+    lanes_.clear();
+    for (std::size_t i = 0; i < n; ++i) {
+      const bool untouched = res_.status[i] == 0 && !(res_.peak_closing[i] > s_.gap_ratios[g] * pairs_[i].d);
+      if (!s_.skip_untouched || !untouched) lanes_.push_back(i);
+    }
+    sub_.resize(lanes_.size());
+    for (std::size_t j = 0; j < lanes_.size(); ++j) {
+      PairParams pp = pairs_[lanes_[j]].pair_params(s_.gap_ratios[g], s_.e);
+      if (s_.contact_stiffness > 0) pp.kc = s_.contact_stiffness;
+      sub_.set(j, pp);
+    }
+    if (!lanes_.empty()) run_batch(sub_, s_.contact, gm, ks, cres_);
+    for (std::size_t i = 0, j = 0; i < n; ++i) {
+      if (j < lanes_.size() && lanes_[j] == i) {
+        payload.insert(payload.end(), {double(cres_.status[j]), double(cres_.impact_count[j]), cres_.peak_force[j],
+                                       cres_.peak_u1[j], cres_.peak_u2[j], cres_.t_first_impact[j]});
+        ++j;
+      } else {
+        payload.insert(payload.end(), {double(res_.status[i]), 0.0, 0.0, res_.peak_u1[i], res_.peak_u2[i], NAN});
+      }
+    }
+  }
+
+  const Study& s_;
+  const std::vector<StudyRecord>& records_;
+  const StructureSampler& sampler_;
+  const Layout& L_;
+  int rank_, computed_ = 0;
+  std::size_t nper_;
+  KernelSettings ks_base_;
+  ContactModel uncoupled_;
+  std::vector<SampledPair> pairs_;
+  std::vector<std::size_t> lanes_;
+  PairBatch sub_;
+  BatchResult res_, cres_;
 };
 
 // Analyses excluded from the probabilities (diverged or non-finite), and whether they are too many to trust
@@ -163,8 +281,9 @@ void write_exclusions(h5::hid root, const Study& study, const Exclusions& ex) {
 // The results file: built in memory and written atomically (files::write_atomically), so a full disk or
 // an interrupt leaves neither a partial file under `out` nor a temporary.
 void write_results(const std::string& out, const Study& study, const std::vector<StudyRecord>& records,
-                   const StructureSampler& sampler, const Layout& L, const std::string& build, int ranks, double wall,
-                   const Exclusions& ex, const Tally& t) {
+                   const Layout& L, const std::string& build, int ranks, double wall, const Exclusions& ex,
+                   const Tally& t) {
+  const StructureSampler sampler(study.structures, study.seed);
   const std::size_t M = L.models(), R = L.records, G = L.gaps;
   const std::size_t nper = study.structures.periods.size();
   {
@@ -278,263 +397,143 @@ void write_results(const std::string& out, const Study& study, const std::vector
 
 }  // namespace
 
-int run_study(const parallel::Session& session, const std::string& study_path, const RunOptions& opt) {
-  // Every phase below runs inside session.agree(): an error on any rank stops every rank together, and
-  // rank 0 prints one message. Every rank parses the same text (rank 0 reads the file), so every rank holds
-  // the same immutable Study.
+namespace {
+
+// ---- phase 1: the inputs, identical on every rank -------------------------------------------------
+struct Inputs {
+  Study study;
+  std::string out, out_where;
+  std::vector<StudyRecord> records;
+};
+
+// Every rank parses the same text (rank 0 reads the file) and loads the same records. The output is checked
+// and the checkpoint locked (rank 0) before any work: a bad path or a second run on one output stops here.
+Inputs load_inputs(const parallel::Session& session, const std::string& study_path, const RunOptions& opt,
+                   std::optional<Checkpoint>& ckpt) {
   std::string text;
   session.agree([&] {
     if (session.root()) text = files::read_text(study_path, "the study file");
   });
   session.broadcast(text);
-  std::optional<Study> parsed;
-  session.agree([&] { parsed.emplace(parse_study(text, study_path)); });
-  const Study& study = *parsed;
-  const std::string out = opt.out_given ? opt.out : study.output;
-
-  // The output is checked and the checkpoint locked before any work: a bad path or a second run on the same
-  // output stops here, not after the whole run.
-  std::optional<Checkpoint> ckpt;
+  std::optional<Inputs> in;
+  session.agree([&] { in.emplace(Inputs{parse_study(text, study_path), {}, {}, {}}); });
+  in->out = opt.out_given ? opt.out : in->study.output;
+  in->out_where = opt.out_given ? "--out" : study_path + ": output";
   session.agree([&] {
     if (!session.root()) return;
-    files::check_output_path(out, opt.out_given ? "--out" : study_path + ": output");
-    ckpt.emplace(out + ".ckpt");
-    files::remove_stale_temporaries(out);
+    files::check_output_path(in->out, in->out_where);
+    ckpt.emplace(in->out + ".ckpt");
+    files::remove_stale_temporaries(in->out);
   });
-  std::vector<StudyRecord> records;
   session.agree([&] {
     inject_fault("load", session.rank());
-    records = load_study_records(study);
-    if (records.empty()) throw InputError("the study resolves to no records", study_path, "check [records]");
+    in->records = load_study_records(in->study);
+    if (in->records.empty()) throw InputError("the study resolves to no records", study_path, "check [records]");
   });
-  const StructureSampler sampler(study.structures, study.seed);
+  return std::move(*in);
+}
 
+// ---- phase 2: the work plan ---------------------------------------------------------------------
+Layout plan_work(const Inputs& in) {
+  const Study& s = in.study;
   Layout L;
-  L.records = records.size();
-  L.pairs = static_cast<std::size_t>(study.structures.period_pair_count());
-  L.samples = static_cast<std::size_t>(study.structures.samples_per_pair);
-  L.batch = static_cast<std::size_t>(study.batch);
+  L.records = in.records.size();
+  L.pairs = static_cast<std::size_t>(s.structures.period_pair_count());
+  L.samples = static_cast<std::size_t>(s.structures.samples_per_pair);
+  L.batch = static_cast<std::size_t>(s.batch);
   L.blocks = (L.samples + L.batch - 1) / L.batch;
-  L.gaps = study.gap_ratios.size();
-  L.impacts = study.scene == Scene::impacts;
-  const std::size_t nper = study.structures.periods.size();
+  L.gaps = s.gap_ratios.size();
+  L.impacts = s.scene == Scene::impacts;
+  return L;
+}
 
-  KernelSettings ks_base;
-  ks_base.stepper = study.stepper;
-  ks_base.displacement_limit = study.displacement_limit;
-  auto substeps_for = [&](double dt) {
-    int q = study.max_dt > 0 ? static_cast<int>(std::ceil(dt / study.max_dt - 1e-9)) : 1;
-    return std::max(study.substeps, q);
-  };
-  ContactModel uncoupled = study.contact;
-  uncoupled.law = ContactLaw::none;
-
-  // ---- one work unit: sample the block, run the uncoupled pairs (and the coupled ones per gap)
-  int computed = 0;
-  auto compute = [&](std::size_t unit) {
-    if (++computed == 3) inject_fault("compute", session.rank());
-    std::size_t r, p, b;
-    L.decode(unit, r, p, b);
-    const std::size_t n = L.lanes(b);
-    std::vector<SampledPair> pairs(n);
-    sampler.sample_block(static_cast<std::int32_t>(p / nper), static_cast<std::int32_t>(p % nper),
-                         static_cast<std::int64_t>(b * L.batch), pairs);
-    const Record& rec = records[r].record;
-    GroundMotion gm{rec.dt, rec.acc, rec.duration() + study.free_vibration};
-    KernelSettings ks = ks_base;
-    ks.substeps = substeps_for(rec.dt);
-    PairBatch batch;
-    batch.resize(n);
-    for (std::size_t i = 0; i < n; ++i) batch.set(i, pairs[i].pair_params(0.0, study.e));
-    BatchResult res;
-    run_batch(batch, uncoupled, gm, ks, res);
-    std::vector<double> payload;
-    payload.reserve(L.payload_size(b));
-    for (std::size_t i = 0; i < n; ++i) {
-      payload.push_back(res.status[i]);
-      payload.push_back(res.peak_u1[i]);
-      payload.push_back(res.peak_u2[i]);
-      payload.push_back(res.peak_closing[i]);
-    }
-    if (L.impacts) {
-      // A pair whose uncoupled peak closing stays <= g never touches at gap g, and its coupled run is
-      // bit-identical to the uncoupled one (the first-passage property, tested): only the pairs that touch
-      // are run with contact; the others take the uncoupled results (unless [analysis] skip_untouched = false).
-      std::vector<std::size_t> lanes;
-      PairBatch sub;
-      BatchResult cres;
-      for (std::size_t g = 0; g < L.gaps; ++g) {
-        lanes.clear();
-        for (std::size_t i = 0; i < n; ++i) {
-          const bool untouched = res.status[i] == 0 && !(res.peak_closing[i] > study.gap_ratios[g] * pairs[i].d);
-          if (!study.skip_untouched || !untouched) lanes.push_back(i);
-        }
-        sub.resize(lanes.size());
-        for (std::size_t j = 0; j < lanes.size(); ++j) {
-          PairParams pp = pairs[lanes[j]].pair_params(study.gap_ratios[g], study.e);
-          if (study.contact_stiffness > 0) pp.kc = study.contact_stiffness;
-          sub.set(j, pp);
-        }
-        if (!lanes.empty()) run_batch(sub, study.contact, gm, ks, cres);
-        std::size_t j = 0;
-        for (std::size_t i = 0; i < n; ++i) {
-          if (j < lanes.size() && lanes[j] == i) {
-            payload.push_back(cres.status[j]);
-            payload.push_back(cres.impact_count[j]);
-            payload.push_back(cres.peak_force[j]);
-            payload.push_back(cres.peak_u1[j]);
-            payload.push_back(cres.peak_u2[j]);
-            payload.push_back(cres.t_first_impact[j]);
-            ++j;
-          } else {
-            payload.push_back(res.status[i]);
-            payload.push_back(0.0);
-            payload.push_back(0.0);
-            payload.push_back(res.peak_u1[i]);
-            payload.push_back(res.peak_u2[i]);
-            payload.push_back(NAN);
-          }
-        }
-      }
-    }
-    return payload;
-  };
-
-  // ---- rank 0 gathers per-model results in fixed arrays: any completion order gives the same file
-  const std::size_t M = L.models(), R = L.records, G = L.gaps;
-  Tally tally;
-  auto &unc_status = tally.unc_status, &imp_status = tally.imp_status;
-  auto &pu1 = tally.pu1, &pu2 = tally.pu2, &pclose = tally.pclose, &ipu1 = tally.ipu1, &ipu2 = tally.ipu2;
-  auto &iforce = tally.iforce, &ifirst = tally.ifirst;
-  auto& icount = tally.icount;
-  std::vector<char> done(L.units(), 0);
-  std::size_t n_done = 0;
-  if (session.root()) {
-    unc_status.assign(R * M, 255);
-    pu1.assign(R * M, NAN), pu2.assign(R * M, NAN), pclose.assign(R * M, NAN);
-    if (L.impacts) {
-      imp_status.assign(R * M * G, 255);
-      icount.assign(R * M * G, -1);
-      iforce.assign(R * M * G, NAN), ipu1.assign(R * M * G, NAN), ipu2.assign(R * M * G, NAN);
-      ifirst.assign(R * M * G, NAN);
-    }
+// The study, its records and the build: a checkpoint of anything else is not resumed.
+CheckpointKey checkpoint_key(const Inputs& in, const Layout& L) {
+  CheckpointKey key = this_build();
+  std::uint64_t hash = files::fnv1a(in.study.text.data(), in.study.text.size());
+  hash = files::fnv1a(&results_format_version, sizeof results_format_version, hash);
+  for (const auto& rr : in.records) {
+    hash = files::fnv1a(rr.record.acc.data(), rr.record.acc.size() * sizeof(double), hash);
+    hash = files::fnv1a(&rr.record.dt, sizeof(double), hash);
   }
-  auto store = [&](std::size_t unit, const std::vector<double>& d) {
-    std::size_t r, p, b;
-    L.decode(unit, r, p, b);
-    const std::size_t n = L.lanes(b);
-    if (d.size() != L.payload_size(b)) throw std::runtime_error(fmt::format("unit {}: payload size mismatch", unit));
-    const std::size_t m0 = p * L.samples + b * L.batch;
-    std::size_t k = 0;
-    for (std::size_t i = 0; i < n; ++i) {
-      const std::size_t idx = r * M + m0 + i;
-      unc_status[idx] = static_cast<std::uint8_t>(d[k]);
-      pu1[idx] = d[k + 1], pu2[idx] = d[k + 2], pclose[idx] = d[k + 3];
-      k += unc_fields;
-    }
-    if (L.impacts) {
-      for (std::size_t g = 0; g < G; ++g)
-        for (std::size_t i = 0; i < n; ++i) {
-          const std::size_t idx = (r * M + m0 + i) * G + g;
-          imp_status[idx] = static_cast<std::uint8_t>(d[k]);
-          icount[idx] = static_cast<std::int32_t>(d[k + 1]);
-          iforce[idx] = d[k + 2], ipu1[idx] = d[k + 3], ipu2[idx] = d[k + 4], ifirst[idx] = d[k + 5];
-          k += gap_fields;
-        }
-    }
-    if (!done[unit]) ++n_done;
-    done[unit] = 1;
-  };
+  key.study_hash = hash;
+  key.units = L.units();
+  return key;
+}
 
-  // ---- checkpoint / resume (rank 0), then tell every rank which units remain
-  CheckpointKey key = session.root() ? this_build() : CheckpointKey{};
+// ---- phase 3: checkpoint and resume (rank 0); every rank learns which units remain ---------------
+std::vector<std::size_t> open_checkpoint(const parallel::Session& session, const RunOptions& opt, const Inputs& in,
+                                         const Layout& L, Checkpoint* ckpt, const CheckpointKey& key, Tally& tally,
+                                         const RunContext& ctx) {
   std::string todo_text;
   session.agree([&] {
     if (!session.root()) return;
-    std::uint64_t hash = files::fnv1a(study.text.data(), study.text.size());
-    hash = files::fnv1a(&results_format_version, sizeof results_format_version, hash);
-    for (const auto& rr : records) {
-      hash = files::fnv1a(rr.record.acc.data(), rr.record.acc.size() * sizeof(double), hash);
-      hash = files::fnv1a(&rr.record.dt, sizeof(double), hash);
-    }
-    key.study_hash = hash;
-    key.units = L.units();
-    open_for_run(*ckpt, key, opt.resume, opt.force, [&](std::size_t u, std::vector<double>&& d) { store(u, d); });
+    open_for_run(*ckpt, key, opt.resume, opt.force,
+                 [&](std::size_t u, std::vector<double>&& d) { tally.store(L, u, d); });
     for (std::size_t u = 0; u < L.units(); ++u)
-      if (!done[u]) todo_text += fmt::format("{} ", u);
-    if (opt.resume) fmt::print(stderr, "resuming: {} of {} units already done\n", n_done, L.units());
+      if (!tally.done[u]) todo_text += fmt::format("{} ", u);
+    if (opt.resume) ctx.say(fmt::format("resuming: {} of {} units already done", tally.n_done, L.units()));
   });
   session.broadcast(todo_text);
   std::vector<std::size_t> todo;
-  {
-    std::istringstream is(todo_text);
-    std::size_t u;
-    while (is >> u) todo.push_back(u);
-  }
+  std::istringstream is(todo_text);
+  for (std::size_t u; is >> u;) todo.push_back(u);
+  (void)in;
+  return todo;
+}
 
-  // ---- progress on rank 0: a bar on a terminal, periodic lines otherwise
-  const bool tty = isatty(fileno(stderr));
+void announce(const parallel::Session& session, const Inputs& in, const Layout& L, const RunContext& ctx) {
+  if (!session.root()) return;
+  ctx.say(fmt::format("pounding run: {} ({} records, {} models, scene {}, {} units on {} rank{})", in.study.title,
+                      L.records, L.models(), to_string(in.study.scene), L.units(), session.size(),
+                      session.size() > 1 ? "s" : ""));
+  ctx.say(in.study.scene_reason);
+  for (const auto& rr : in.records)
+    if (rr.synthetic) ctx.say(fmt::format("record {}: synthetic stand-in ({})", rr.id, rr.note));
+}
+
+// ---- phase 4: the work (every rank computes; rank 0 gathers, checkpoints and reports progress) -----
+bool execute(const parallel::Session& session, const Inputs& in, const Layout& L, const std::vector<std::size_t>& todo,
+             Checkpoint* ckpt, Tally& tally, const RunContext& ctx, double& wall) {
+  const StructureSampler sampler(in.study.structures, in.study.seed);
+  UnitComputer compute(in.study, in.records, sampler, L, session.rank());
   const auto t0 = std::chrono::steady_clock::now();
-  auto last = t0, last_sync = t0;
-  const std::size_t done_at_start = n_done;
-  const double models_per_unit = static_cast<double>(L.samples) / static_cast<double>(L.blocks);
+  auto last_sync = t0;
+  const std::size_t at_start = tally.n_done;
   auto tick = [&] {
-    auto now = std::chrono::steady_clock::now();
-    if (now - last_sync > std::chrono::seconds(5)) {
-      ckpt->sync();
-      last_sync = now;
-    }
-    bool final = n_done == L.units();
-    if (!opt.progress || (!final && now - last < std::chrono::milliseconds(tty ? 250 : 10000))) return;
-    last = now;
-    double el = std::chrono::duration<double>(now - t0).count();
-    double rate = static_cast<double>(n_done - done_at_start) * models_per_unit / std::max(el, 1e-9);
-    double frac = static_cast<double>(n_done) / static_cast<double>(L.units());
-    double eta = (static_cast<double>(L.units() - n_done) * models_per_unit) / std::max(rate, 1e-9);
-    if (tty) {
-      int w = 30, fill = static_cast<int>(frac * w);
-      fmt::print(stderr, "\r[{}{}] {:5.1f}%  units {}/{}  {:.0f} models/s  ETA {}{}", std::string(fill, '#'),
-                 std::string(w - fill, '.'), 100 * frac, n_done, L.units(), rate, hms(eta), final ? "\n" : "");
-    } else {
-      fmt::print(stderr, "progress: units {}/{} ({:.1f}%), {:.0f} models/s, elapsed {}, ETA {}\n", n_done, L.units(),
-                 100 * frac, rate, hms(el), hms(eta));
-    }
+    const auto now = std::chrono::steady_clock::now();
+    if (now - last_sync > std::chrono::seconds(5)) ckpt->sync(), last_sync = now;
+    if (!ctx.progress) return;
+    ProgressReport p;
+    p.units_done = tally.n_done, p.units_total = L.units(), p.units_at_start = at_start;
+    p.models_per_unit = static_cast<double>(L.samples) / static_cast<double>(L.blocks);
+    p.elapsed_s = std::chrono::duration<double>(now - t0).count();
+    p.final = tally.n_done == L.units();
+    ctx.progress(p);
   };
-
-  if (session.root()) {
-    fmt::print(stderr, "pounding run: {} ({} records, {} models, scene {}, {} units on {} rank{})\n", study.title, R, M,
-               to_string(study.scene), L.units(), session.size(), session.size() > 1 ? "s" : "");
-    fmt::print(stderr, "{}\n", study.scene_reason);
-    for (const auto& rr : records)
-      if (rr.synthetic) fmt::print(stderr, "record {}: synthetic stand-in ({})\n", rr.id, rr.note);
-  }
-  std::signal(SIGINT, on_signal);
-  std::signal(SIGTERM, on_signal);
-  const auto t_start = std::chrono::steady_clock::now();
-  bool complete = parallel::run_units(
-      session, todo, compute,
+  static const std::atomic<bool> never{false};
+  const bool complete = parallel::run_units(
+      session, todo, [&](std::size_t u) { return compute(u); },
       [&](std::size_t u, std::vector<double>&& d) {
-        store(u, d);
+        tally.store(L, u, d);
         ckpt->append(u, d);
       },
-      tick, g_stop);
-  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t_start).count();
+      tick, ctx.cancel ? *ctx.cancel : never);
+  wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   if (session.root()) ckpt->sync();
-  if (!complete || (session.root() && n_done != L.units())) {
-    if (session.root())
-      fmt::print(stderr, "\ninterrupted: {} of {} units done and checkpointed in {}; continue with --resume\n", n_done,
-                 L.units(), ckpt->path());
-    return 130;
-  }
+  return complete && (!session.root() || tally.n_done == L.units());
+}
 
-  // ---- the results file (rank 0; the others wait for its outcome), then the checkpoint goes
+// ---- phase 5: the results file (rank 0; the others wait for its outcome), then the checkpoint goes --
+int finish(const parallel::Session& session, const Inputs& in, const Layout& L, Checkpoint* ckpt, const Tally& tally,
+           const CheckpointKey& key, double wall, const RunContext& ctx) {
   int rc = 0;
   session.agree([&] {
     if (!session.root()) return;
     inject_fault("write", 0);
-    const Exclusions ex = count_exclusions(study, L, tally, records);
+    const Exclusions ex = count_exclusions(in.study, L, tally, in.records);
     try {
-      write_results(out, study, records, sampler, L, key.build, session.size(), wall, ex, tally);
+      write_results(in.out, in.study, in.records, L, key.build, session.size(), wall, ex, tally);
     } catch (const InputError& e) {
       throw InputError(e.what_part(), e.where(),
                        e.fix() + "; the checkpoint keeps every unit: --resume writes the results without recomputing");
@@ -543,11 +542,35 @@ int run_study(const parallel::Session& session, const std::string& study_path, c
     rc = ex.verdict.empty() ? 0 : 3;
   });
   session.broadcast(rc);
-  if (!session.root()) return rc;
-  fmt::print(stderr, "results: {} (wall time {:.2f} s, {} ranks)\n", out, wall, session.size());
-  if (rc == 3) fmt::print(stderr, " WARNING: too many excluded analyses; the results file says so (exit code 3)\n");
-  fmt::print("{}", report_markdown(load_results(out)));
+  if (session.root()) {
+    ctx.say(fmt::format("results: {} (wall time {:.2f} s, {} ranks)", in.out, wall, session.size()));
+    if (rc == 3) ctx.say(" WARNING: too many excluded analyses; the results file says so (exit code 3)");
+  }
   return rc;
+}
+
+}  // namespace
+
+RunOutcome run_study(const parallel::Session& session, const std::string& study_path, const RunOptions& opt,
+                     const RunContext& ctx) {
+  // Every phase runs inside session.agree() or run_units: an error on any rank stops every rank together,
+  // and rank 0 prints one message.
+  std::optional<Checkpoint> ckpt;  // rank 0 only
+  const Inputs in = load_inputs(session, study_path, opt, ckpt);
+  const Layout L = plan_work(in);
+  Tally tally;
+  if (session.root()) tally.init(L);
+  const CheckpointKey key = session.root() ? checkpoint_key(in, L) : CheckpointKey{};
+  const std::vector<std::size_t> todo = open_checkpoint(session, opt, in, L, ckpt ? &*ckpt : nullptr, key, tally, ctx);
+  announce(session, in, L, ctx);
+  double wall = 0.0;
+  if (!execute(session, in, L, todo, ckpt ? &*ckpt : nullptr, tally, ctx, wall)) {
+    if (session.root())
+      ctx.say(fmt::format("\ninterrupted: {} of {} units done and checkpointed in {}; continue with --resume",
+                          tally.n_done, L.units(), ckpt->path()));
+    return {130, in.out};
+  }
+  return {finish(session, in, L, ckpt ? &*ckpt : nullptr, tally, key, wall, ctx), in.out};
 }
 
 }  // namespace pounding
