@@ -87,7 +87,7 @@ CheckpointKey this_build() {
   std::ifstream exe("/proc/self/exe", std::ios::binary);
   if (exe) {
     std::vector<char> buf(1 << 20);
-    std::uint64_t h = 1469598103934665603ULL;
+    std::uint64_t h = files::fnv1a_offset_basis;
     while (exe.read(buf.data(), static_cast<std::streamsize>(buf.size())) || exe.gcount() > 0)
       h = files::fnv1a(buf.data(), static_cast<std::size_t>(exe.gcount()), h);
     k.build_hash = h;

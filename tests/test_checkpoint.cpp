@@ -222,3 +222,9 @@ TEST(OutputPath, ProblemsFoundBeforeWork) {
   EXPECT_FALSE(fs::exists(t.file("r.h5")));
   EXPECT_EQ(std::distance(fs::directory_iterator(t.dir), fs::directory_iterator{}), 0) << "the probe was left";
 }
+
+TEST(Fnv1a, PublishedTestVectors) {  // Fowler-Noll-Vo reference vectors for 64-bit FNV-1a
+  EXPECT_EQ(files::fnv1a("", 0), 0xcbf29ce484222325ULL);
+  EXPECT_EQ(files::fnv1a("a", 1), 0xaf63dc4c8601ec8cULL);
+  EXPECT_EQ(files::fnv1a("foobar", 6), 0x85944171f73967e8ULL);
+}

@@ -37,9 +37,9 @@ void check_output_path(const std::string& path, const std::string& where);
 int remove_stale_temporaries(const std::string& path);
 
 // 64-bit FNV-1a over bytes (checksums, study hashes).
-// NOTE: the default start value is not FNV's published offset basis (fnv1a_offset_basis, one digit longer);
-// checkpoints and study hashes depend on it, so it stays. Pass fnv1a_offset_basis for the standard hash.
-std::uint64_t fnv1a(const void* data, std::size_t n, std::uint64_t h = 1469598103934665603ULL);
+// (The checkpoint format 1 used a start value one digit short of the offset basis; format 2 uses the
+// published one.)
 inline constexpr std::uint64_t fnv1a_offset_basis = 0xcbf29ce484222325ULL;  // 14695981039346656037
+std::uint64_t fnv1a(const void* data, std::size_t n, std::uint64_t h = fnv1a_offset_basis);
 
 }  // namespace pounding::files
