@@ -99,7 +99,9 @@ std::vector<RecordSpec> default_records() {
           {"Northridge_1994_CanyonCountryWLostCyn_270.txt", 15.0}};
 }
 
-std::string default_record_dir() { return std::string(POUNDING_SOURCE_DIR) + "/../shared/records/real"; }
+// Relative to the working directory (the repository root, where docs/accuracy.md runs the commands); the
+// command line also reads $POUNDING_RECORDS_DIR. No build-machine path is compiled into the library.
+std::string default_record_dir() { return "../shared/records/real"; }
 
 LoadedRecord load_record(const std::string& dir, const RecordSpec& spec) {
   Record r = read_record(dir + "/" + spec.file);

@@ -6,6 +6,7 @@
 //   restitution          effective e of every damping law, Kelvin's tension (CSV)
 //   validate-muthukumar  Muthukumar-DesRoches (2006) parameter study on the real records (CSV)
 #include <cmath>
+#include <cstdlib>
 #include <filesystem>
 #include <memory>
 #include <sstream>
@@ -25,7 +26,9 @@ void add_accuracy(CLI::App& app) {
                                              "restitution, validation");
   acc->require_subcommand(1);
   auto dir = std::make_shared<std::string>(A::default_record_dir());
-  acc->add_option("--records-dir", *dir, "directory of the real records (../shared/records/real)")
+  if (const char* env = std::getenv("POUNDING_RECORDS_DIR"); env && *env) *dir = env;
+  acc->add_option("--records-dir", *dir,
+                  "directory of the real records (default: $POUNDING_RECORDS_DIR, else ../shared/records/real)")
       ->capture_default_str();
 
   // models
@@ -59,7 +62,7 @@ void add_accuracy(CLI::App& app) {
   // agree
   {
     struct O {
-      std::string reference = std::string(POUNDING_SOURCE_DIR) + "/tests/data/reference/accuracy_reference.csv";
+      std::string reference = "tests/data/reference/accuracy_reference.csv";  // from the repository root
       std::string stepper = "rk4";
       int substeps = 64;
       bool no_locate = false;
@@ -101,7 +104,7 @@ void add_accuracy(CLI::App& app) {
   // chart
   {
     struct O {
-      std::string reference = std::string(POUNDING_SOURCE_DIR) + "/tests/data/reference/accuracy_reference.csv";
+      std::string reference = "tests/data/reference/accuracy_reference.csv";  // from the repository root
       std::string out = "accuracy_chart.csv";
       int repeats = 3, kmax = 5;
       std::string uncoupled;

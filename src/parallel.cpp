@@ -1,4 +1,5 @@
-// MPI lives here and nowhere else.
+// The MPI executor (POUNDING_WITH_MPI=ON): MPI lives here and nowhere else. A serial build compiles
+// src/parallel_serial.cpp instead, with the semantics of the one-rank paths below.
 #include "pounding/parallel.hpp"
 
 #include <mpi.h>

@@ -20,7 +20,7 @@
 #include "pounding/workloads.hpp"
 
 #ifndef POUNDING_TEST_SOURCE_DIR
-#define POUNDING_TEST_SOURCE_DIR POUNDING_SOURCE_DIR
+#error "POUNDING_TEST_SOURCE_DIR is set by CMakeLists.txt for the test targets"
 #endif
 
 using namespace pounding;

@@ -21,9 +21,13 @@ if ((${#missing[@]})); then
   DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
 fi
 
-native=${POUNDING_NATIVE:-ON}
+# Build options for a fresh build/ (README, "Build options"): POUNDING_KERNEL_ARCH=native|x86-64-v3|x86-64-v4|OFF,
+# POUNDING_WITH_MPI=ON|OFF; POUNDING_NATIVE=OFF is the older spelling of POUNDING_KERNEL_ARCH=OFF.
+arch=${POUNDING_KERNEL_ARCH:-native}
+[ "${POUNDING_NATIVE:-ON}" = OFF ] && arch=OFF
+mpi=${POUNDING_WITH_MPI:-ON}
 if [ ! -f build/CMakeCache.txt ]; then
-  cmake -S . -B build -DCMAKE_BUILD_TYPE=Release -DPOUNDING_NATIVE="$native" >/dev/null
+  cmake -S . -B build -DCMAKE_BUILD_TYPE=Release -DPOUNDING_KERNEL_ARCH="$arch" -DPOUNDING_WITH_MPI="$mpi" >/dev/null
 fi
 if ! cmake --build build -j "$(nproc)" > build/build.log 2>&1; then
   grep -E -v '^\[ *[0-9]+%\]' build/build.log >&2

@@ -1,0 +1,26 @@
+# ctest build.serial_refuses_mpirun (serial builds only): `mpirun -np 2 pounding run` must exit 2 with one
+# message naming POUNDING_WITH_MPI, instead of two copies writing one results file.
+# cmake -DPOUNDING=<binary> -DMPIRUN=<mpirun or empty> -DSOURCE_DIR=<source> -P test_serial_refuses_mpirun.cmake
+if(NOT MPIRUN)
+  message("SKIP: no mpirun on this machine, nothing to refuse")
+  return()
+endif()
+set(work ${CMAKE_CURRENT_BINARY_DIR}/serial-refuses-mpirun)
+file(REMOVE_RECURSE ${work})
+file(MAKE_DIRECTORY ${work})
+execute_process(COMMAND ${MPIRUN} -np 2 ${POUNDING} run ${SOURCE_DIR}/studies/quick.toml --out ${work}/q.h5 --quiet
+                RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err TIMEOUT 120)
+message("exit code: ${rc}\nstdout:\n${out}\nstderr:\n${err}")
+set(msg "this pounding was built without MPI (POUNDING_WITH_MPI=OFF)")
+string(FIND "${err}" "${msg}" first)
+string(FIND "${err}" "${msg}" last REVERSE)
+if(NOT rc EQUAL 2)
+  message(FATAL_ERROR "expected exit code 2, got ${rc}")
+endif()
+if(first EQUAL -1 OR NOT first EQUAL last)
+  message(FATAL_ERROR "expected the message '${msg}' exactly once on stderr")
+endif()
+if(EXISTS ${work}/q.h5)
+  message(FATAL_ERROR "a results file was written")
+endif()
+file(REMOVE_RECURSE ${work})
