@@ -38,8 +38,9 @@ long launched_rank() {
 Session::Session(int&, char**&) {
   const long size = launched_size(), rank = launched_rank();
   if (size <= 1 && rank <= 0) return;  // alone, or `mpirun -np 1`: one rank either way
-  // Only the first rank explains; the others leave quietly with the same code, so the job prints one message.
-  if (rank > 0) std::exit(2);
+  // Only the first rank explains and fails (exit 2, the launcher's exit code). The others leave quietly with 0:
+  // a non-zero exit there would make mpirun kill the first rank, possibly before it has printed why.
+  if (rank > 0) std::exit(0);
   throw InputError("this pounding was built without MPI (POUNDING_WITH_MPI=OFF) but was started as " +
                        (size > 1 ? std::to_string(size) + " ranks" : std::string("several ranks")),
                    "mpirun/srun", "run it without mpirun, or rebuild with MPI (cmake -DPOUNDING_WITH_MPI=ON)");
