@@ -4,7 +4,7 @@
 #                      [PUBLIC_DEPS ...] [PRIVATE_DEPS ...])
 #   A static library pounding_<module> (alias and exported name pounding::<module>): its sources, its
 #   public headers as a HEADERS file set (installed, include paths through BUILD_INTERFACE/INSTALL_INTERFACE),
-#   C++20 as a usage requirement, and the project's warnings (pounding_build_flags, build tree only).
+#   C++20 as a usage requirement, and the project's warnings (pounding_build_flags' compile options).
 #   A dependency is PUBLIC only when one of the module's headers includes it.
 #
 # Every file named here (and by pounding_list_files) lands in a manifest, which the ctest
@@ -24,8 +24,10 @@ function(pounding_add_library module)
     target_sources(${target} PUBLIC FILE_SET HEADERS BASE_DIRS ${PROJECT_SOURCE_DIR}/include FILES ${arg_HEADERS})
   endif()
   target_compile_features(${target} PUBLIC cxx_std_20)
-  target_link_libraries(${target} PUBLIC ${arg_PUBLIC_DEPS} PRIVATE ${arg_PRIVATE_DEPS}
-                        $<BUILD_INTERFACE:pounding_build_flags>)
+  target_link_libraries(${target} PUBLIC ${arg_PUBLIC_DEPS} PRIVATE ${arg_PRIVATE_DEPS})
+  # The shared flags as compile options only: a static library's private links are exported as LINK_ONLY
+  # entries, and pounding_build_flags is a build-tree target. Executables link it (link options too).
+  target_compile_options(${target} PRIVATE $<TARGET_PROPERTY:pounding_build_flags,INTERFACE_COMPILE_OPTIONS>)
   set_target_properties(${target} PROPERTIES EXPORT_NAME ${module})
   set_property(GLOBAL APPEND PROPERTY POUNDING_LIBRARIES ${target})
   pounding_list_files(${arg_SOURCES} ${arg_HEADERS})
