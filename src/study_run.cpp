@@ -566,8 +566,10 @@ RunOutcome run_study(const parallel::Session& session, const std::string& study_
   double wall = 0.0;
   if (!execute(session, in, L, todo, ckpt ? &*ckpt : nullptr, tally, ctx, wall)) {
     if (session.root())
-      ctx.say(fmt::format("\ninterrupted: {} of {} units done and checkpointed in {}; continue with --resume",
-                          tally.n_done, L.units(), ckpt->path()));
+      ctx.say(tally.n_done > 0
+                  ? fmt::format("\ninterrupted: {} of {} units done and checkpointed in {}; continue with --resume",
+                                tally.n_done, L.units(), ckpt->path())
+                  : fmt::format("\ninterrupted before any unit finished: nothing to keep, no checkpoint left"));
     return {130, in.out};
   }
   return {finish(session, in, L, ckpt ? &*ckpt : nullptr, tally, key, wall, ctx), in.out};
