@@ -1,6 +1,6 @@
 // Google Benchmark of the stochastic structure model: the paper's 30,976 models (11 x 11 period pairs x 256
 // samples, one record's worth) drawn through StructureSampler::sample_block, as `pounding run` does per
-// work unit. Counter "ns_per_model". Moved here from tests/test_sampler.cpp (SamplerStreams.
+// work unit. Counter "ns_per_model". Moved here from tests/sampling/test_sampler.cpp (SamplerStreams.
 // ThirtyThousandModelsTiming, which could not fail): timings live in benchmarks, not in tests. Run:
 //   build/bench_sampler --benchmark_repetitions=5 --benchmark_report_aggregates_only=true
 #include <benchmark/benchmark.h>
@@ -8,7 +8,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "pounding/sampler.hpp"
+#include "pounding/sampling/sampler.hpp"
 
 namespace {
 

@@ -14,7 +14,7 @@
 
 #include <fmt/format.h>
 
-#include "pounding/error.hpp"
+#include "pounding/core/error.hpp"
 
 namespace pounding {
 

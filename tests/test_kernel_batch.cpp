@@ -13,7 +13,7 @@
 #include <vector>
 
 #include "kernel_test_support.hpp"
-#include "pounding/error.hpp"
+#include "pounding/core/error.hpp"
 
 namespace pounding {
 namespace {

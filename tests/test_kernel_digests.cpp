@@ -17,7 +17,7 @@
 
 #include "pounding/contact.hpp"
 #include "pounding/kernel.hpp"
-#include "pounding/workloads.hpp"
+#include "pounding/testing/workloads.hpp"
 
 #ifndef POUNDING_TEST_SOURCE_DIR
 #error "POUNDING_TEST_SOURCE_DIR is set by CMakeLists.txt for the test targets"

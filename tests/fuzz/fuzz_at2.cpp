@@ -8,8 +8,8 @@
 #include <cstdlib>
 #include <string_view>
 
-#include "pounding/error.hpp"
-#include "pounding/records.hpp"
+#include "pounding/core/error.hpp"
+#include "pounding/motion/records.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   const std::string_view text(reinterpret_cast<const char*>(data), size);

@@ -8,8 +8,8 @@
 
 #include "pounding/contact.hpp"
 #include "pounding/kernel.hpp"
-#include "pounding/version.hpp"
-#include "pounding/workloads.hpp"
+#include "pounding/core/version.hpp"
+#include "pounding/testing/workloads.hpp"
 
 int main() {
   using namespace pounding;

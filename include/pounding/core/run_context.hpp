@@ -1,0 +1,31 @@
+#pragma once
+// What a long job needs from its caller, instead of globals and console I/O in the library: where to say
+// things, where to report progress, and whether to stop. The command line supplies a terminal logger, a
+// progress bar and a flag set by SIGINT/SIGTERM (src/cli/commands/run.cpp); tests and Python supply their own.
+#include <atomic>
+#include <cstddef>
+#include <functional>
+#include <string>
+
+namespace pounding {
+
+struct ProgressReport {
+  std::size_t units_done = 0, units_total = 0;
+  std::size_t units_at_start = 0;  // done before this run (resumed)
+  double models_per_unit = 0.0;
+  double elapsed_s = 0.0;          // since the work started
+  bool final = false;              // every unit is done
+};
+
+struct RunContext {
+  std::function<void(const std::string&)> info;                // one line for the user (rank 0 only)
+  std::function<void(const ProgressReport&)> progress;         // after each finished unit (rank 0 only)
+  const std::atomic<bool>* cancel = nullptr;                   // raised: stop handing out work, keep progress
+
+  void say(const std::string& line) const {
+    if (info) info(line);
+  }
+  bool cancelled() const { return cancel && cancel->load(); }
+};
+
+}  // namespace pounding

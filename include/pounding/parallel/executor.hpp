@@ -1,0 +1,54 @@
+#pragma once
+// Distribution of work units over MPI ranks: the only module that knows about MPI (src/parallel/mpi_executor.cpp).
+// Without mpirun the program runs as one rank and MPI is never initialised.
+#include <atomic>
+#include <cstddef>
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace pounding::parallel {
+
+class Session {
+ public:
+  Session(int& argc, char**& argv);  // initialises MPI only when launched by mpirun/srun
+  ~Session();
+  Session(const Session&) = delete;
+  Session& operator=(const Session&) = delete;
+  int rank() const { return rank_; }
+  int size() const { return size_; }
+  bool root() const { return rank_ == 0; }
+  bool mpi() const { return mpi_; }
+  void barrier() const;
+  // rank 0's value is sent to every rank
+  void broadcast(std::string& s) const;
+  void broadcast(int& v) const;
+  [[noreturn]] void abort(int code) const;
+  // Runs `phase` on this rank. If it throws on any rank, every rank throws the error of the lowest failing
+  // rank (as an InputError with the same what/where/fix), so the whole job stops together, promptly, and
+  // rank 0 prints one message. `phase` must not itself communicate.
+  void agree(const std::function<void()>& phase) const;
+
+ private:
+  int rank_ = 0, size_ = 1;
+  bool mpi_ = false;
+};
+
+// Computes a unit and returns its payload (any doubles; integers are stored exactly).
+using ComputeFn = std::function<std::vector<double>(std::size_t unit)>;
+// Receives a finished unit's payload on rank 0, in completion order.
+using ResultFn = std::function<void(std::size_t unit, std::vector<double>&& payload)>;
+// Called on rank 0 between units (progress, checkpoint flushes).
+using TickFn = std::function<void()>;
+
+// Dynamic master/worker scheduling of `todo` (unit ids, handed out in this order). Rank 0 hands units to
+// workers (two in flight per worker so none waits for the master) and computes units itself between
+// messages, so with 2 ranks both cores compute. Returns false on every rank if `stop` was raised on rank 0
+// (it stops handing out work, collects what is in flight and returns; workers are released).
+// If compute throws on any rank, or on_result/tick throw on rank 0, rank 0 stops handing out work, waits
+// only for the units in flight on healthy workers, releases every worker, and the error is thrown on every
+// rank (InputError with the failing rank's what/where/fix).
+bool run_units(const Session& s, const std::vector<std::size_t>& todo, const ComputeFn& compute,
+               const ResultFn& on_result, const TickFn& tick, const std::atomic<bool>& stop);
+
+}  // namespace pounding::parallel

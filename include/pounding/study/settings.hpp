@@ -1,0 +1,95 @@
+#pragma once
+// Every setting of a Study under its study-file section and key, in one list: the results file stores them
+// as /settings/<section>/<key> attributes (src/results_settings.cpp) and the report reads them back, so no
+// reader needs the study text. A new Study field is one line here.
+//
+// visit_settings(study, v) calls v(section, key, value) with value one of: double, std::int64_t, bool,
+// std::string, std::vector<double>, std::vector<std::string>. Section "" is the file's top level.
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "pounding/study/study.hpp"
+
+namespace pounding {
+
+template <class V>
+void visit_settings(const Study& s, V&& v) {
+  using S = std::string;
+  v("", "title", s.title);
+  v("", "seed", static_cast<std::int64_t>(s.seed));
+  v("", "scene", S(to_string(s.scene_requested)));
+  v("", "scene_resolved", S(to_string(s.scene)));
+  v("", "output", s.output);
+
+  std::vector<std::string> files;
+  std::vector<double> file_scales;
+  for (const auto& f : s.files) files.push_back(f.path), file_scales.push_back(f.scale);
+  v("records", "suite", s.suite);
+  v("records", "real_dir", s.real_dir);
+  v("records", "directory", s.directory);
+  v("records", "files", files);
+  v("records", "file_scales", file_scales);
+  v("records", "scale", s.scale);
+  v("records", "units", S(to_string(s.units)));
+  v("records", "dt", s.dt_one_column);
+  v("records", "limit", static_cast<std::int64_t>(s.record_limit));
+  v("records", "synthetic_only", s.synthetic_only);
+
+  const StructureModel& m = s.structures;
+  v("structures", "periods", m.periods);
+  v("structures", "samples_per_pair", m.samples_per_pair);
+  v("structures", "aspect_ratios", m.aspect_ratios);
+  v("structures", "rho_mean", m.rho_mean);
+  v("structures", "rho_cov", m.rho_cov);
+  v("structures", "mbar_mean", m.mbar_mean);
+  v("structures", "mbar_cov", m.mbar_cov);
+  v("structures", "mbar_min", m.mbar_min);
+  v("structures", "mbar_max", m.mbar_max);
+  v("structures", "zeta", m.zeta);
+  v("structures", "hysteresis", S(to_string(m.hysteresis)));
+  v("structures", "drift", m.drift);
+  v("structures", "ductility", m.ductility);
+  v("structures", "alpha", m.alpha);
+  v("structures", "height_min", m.height_min);
+  v("structures", "height_max", m.height_max);
+  v("structures", "ct_lower", m.ct_lower);
+  v("structures", "ct_upper", m.ct_upper);
+  v("structures", "height_exponent", m.height_exponent);
+  v("structures", "code_gap_coefficient", m.code_gap_coefficient);
+  v("structures", "contact_density", m.contact_density);
+  v("structures", "contact_youngs_modulus", m.contact_youngs_modulus);
+  v("structures", "contact_poisson", m.contact_poisson);
+  v("structures", "kh", m.kh);
+
+  v("gaps", "ratios", s.gap_ratios);
+  v("gaps", "curve_max", s.curve_max);
+  v("gaps", "curve_step", s.curve_step);
+
+  v("contact", "law", S(to_string(s.contact.law)));
+  v("contact", "damping_law", S(to_string(s.contact.damping)));
+  v("contact", "e", s.e);
+  v("contact", "n", s.contact.n);
+  v("contact", "v0_min", s.contact.v0_min);
+  v("contact", "stiffness", s.contact_stiffness);
+
+  v("analysis", "stepper", S(to_string(s.stepper)));
+  v("analysis", "substeps", static_cast<std::int64_t>(s.substeps));
+  v("analysis", "max_dt", s.max_dt);
+  v("analysis", "batch", static_cast<std::int64_t>(s.batch));
+  v("analysis", "free_vibration", s.free_vibration);
+  v("analysis", "displacement_limit", s.displacement_limit);
+  v("analysis", "skip_untouched", s.skip_untouched);
+  v("analysis", "max_excluded_fraction", s.max_excluded_fraction);
+
+  v("report", "targets", s.targets);
+  v("report", "h1", s.h1);
+  v("report", "h2", s.h2);
+  v("report", "fit_min", s.fit_min);
+  v("report", "fit_max", s.fit_max);
+
+  v("outputs", "forces", s.want_forces);
+  v("outputs", "amplification", s.want_amplification);
+}
+
+}  // namespace pounding

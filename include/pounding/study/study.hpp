@@ -1,0 +1,119 @@
+#pragma once
+// A study file (studies/*.toml) parsed once into a validated, immutable Study.
+//
+//   title = "..."                 seed = 20240601 (required)
+//   scene = "probability" | "impacts" | "auto"
+//   output = "results/quick.h5"   (relative to the working directory; default <study stem>.h5)
+//   [records]    suite = "..." (relative to the study file, or "builtin" for the embedded 25-record suite)
+//                | files = ["a.AT2", {path = "b.AT2", scale = 1.2}]
+//                | directory = "..."; real_dir = "..." (resolve suite entries to real PEER files);
+//                scale = 1.0; units = "g" | "m/s2" | "cm/s2"; dt = <s, one-column files>; limit = <first N>;
+//                synthetic_only = false
+//   [structures] the stochastic structure model (see sampler.hpp)
+//   [gaps]       ratios = [0.1, 0.2, 0.3, 0.5, 0.7, 1.0]; curve_max = 1.5; curve_step = 0.005
+//   [contact]    law = "hertzdamp"; damping_law = "lankarani-nikravesh"; e = 0.65; n = 1.5; v0_min = 1e-3;
+//                stiffness = <N/m^n for the Hertz family (default: equivalent spheres), N/m for linear/Kelvin (required)>
+//   [analysis]   stepper = "central-difference"; substeps = 1; max_dt = <s; 0: no cap; default 0.0025 in the impacts
+//                scene (cheapest step with 1 % peak force, docs/accuracy.md), 0 in the probability scene>; batch = 256; free_vibration = 0.0 (s);
+//                displacement_limit = 10.0 (m); skip_untouched = true (impacts scene: pairs whose uncoupled
+//                peak closing stays below the gap are not rerun with contact; their results are identical);
+//                max_excluded_fraction = 0.001 (in [0, 1]: the largest fraction of all analyses that may be
+//                excluded (diverged, non-finite) before the run ends with exit code 3 and a warning banner)
+//   [report]     targets = [10, 5, 1] (% probability); h1 = 40; h2 = 40 (m, for separations in metres);
+//                fit_min = 0.1; fit_max = 1.0
+//   [outputs]    forces = true; amplification = true   (what the impacts scene must deliver; `auto` reads it)
+//
+// Sanity limits (errors naming the file, line and key, not a report full of nan or a std::bad_alloc):
+//   - every record must pass require_analysable (records.hpp) after units and scale: at least 2 s long,
+//     PGA at most 5 g (a PGA of 499 g is a file in cm/s^2 read as g, or a wrong scale);
+//   - the per-model result arrays rank 0 holds (result_bytes) must fit in max_result_bytes (64 GiB): a
+//     [structures] samples_per_pair of 2^40 is refused with the memory it would need.
+#include <cstdint>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "pounding/contact.hpp"
+#include "pounding/kernel.hpp"
+#include "pounding/motion/records.hpp"
+#include "pounding/sampling/sampler.hpp"
+
+namespace pounding {
+
+enum class Scene : std::uint8_t { probability, impacts, automatic };
+std::string_view to_string(Scene s);
+
+struct RecordFile {
+  std::string path;
+  double scale = 1.0;
+};
+
+struct Study {
+  std::string path;  // the study file
+  std::string text;  // its full text (echoed into the results)
+  std::string title;
+  std::uint64_t seed = 0;
+  Scene scene_requested = Scene::probability;
+  Scene scene = Scene::probability;  // after resolving "auto"
+  std::string scene_reason;
+  std::string output;
+  // records
+  std::string suite, real_dir, directory;
+  std::vector<RecordFile> files;
+  double scale = 1.0;
+  AccUnits units = AccUnits::g;
+  double dt_one_column = 0.0;
+  int record_limit = 0;
+  bool synthetic_only = false;  // suite: every entry a synthetic stand-in, even where a real file exists
+  // structures
+  StructureModel structures;
+  // gaps
+  std::vector<double> gap_ratios{0.1, 0.2, 0.3, 0.5, 0.7, 1.0};
+  double curve_max = 1.5, curve_step = 0.005;
+  // contact and analysis
+  ContactModel contact;
+  double e = 0.65;
+  double contact_stiffness = 0.0;  // > 0 overrides the sampled Hertz kh; required (N/m) for linear/Kelvin
+  Stepper stepper = Stepper::central_difference;
+  int substeps = 1;
+  double max_dt = 0.0;  // step cap (s): substeps = max(substeps, ceil(dt / max_dt)); default 2.5 ms (impacts), 0 (probability)
+  int batch = 256;
+  double free_vibration = 0.0;
+  double displacement_limit = 10.0;
+  bool skip_untouched = true;  // impacts scene: pairs that never touch take their uncoupled results
+  double max_excluded_fraction = 0.001;  // [analysis]: more excluded analyses than this fraction -> exit code 3
+  // report
+  std::vector<double> targets{10.0, 5.0, 1.0};
+  double h1 = 40.0, h2 = 40.0, fit_min = 0.1, fit_max = 1.0;
+  // outputs wanted from the impacts scene
+  bool want_forces = true, want_amplification = true;
+};
+
+// Bytes of the per-model result arrays rank 0 gathers for `records` records (src/study/run.cpp): per record
+// and model, the uncoupled status (1 byte) and three peaks (8 bytes each) = 25 bytes; in the impacts scene,
+// per gap, a status (1), an impact count (4) and five doubles (40) = 45 bytes more. A double, so that absurd
+// sizes do not overflow.
+double result_bytes(const Study& study, std::size_t records);
+inline constexpr double max_result_bytes = 64.0 * 1024 * 1024 * 1024;  // 64 GiB
+// Throws InputError naming [structures] samples_per_pair (file:line), the memory needed and the largest
+// samples_per_pair that fits, when result_bytes(study, records) > max_result_bytes.
+void check_result_memory(const Study& study, std::size_t records);
+
+// Parses and validates; every problem is an InputError naming file:line, the key and the allowed values.
+// The memory check runs here with a lower bound on the record count (files, or limit); load_study_records
+// repeats it with the real count.
+Study parse_study(const std::string& text, const std::string& path);
+Study load_study(const std::string& path);
+
+// One input record of the study, resolved (real file or synthetic stand-in), scaled, in m/s^2.
+struct StudyRecord {
+  Record record;
+  bool synthetic = false;
+  std::string id;    // suite id (EQ1...) or file stem
+  std::string note;  // how it was resolved
+};
+std::vector<StudyRecord> load_study_records(const Study& study);
+// The suite part of load_study_records (src/study/suite.cpp).
+std::vector<StudyRecord> load_suite_records(const Study& study);
+
+}  // namespace pounding

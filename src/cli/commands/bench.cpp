@@ -1,0 +1,77 @@
+// `pounding bench`: the kernel benchmark (ns per pair-step, median of repeats) on the named workload.
+#include <algorithm>
+#include <chrono>
+#include <memory>
+#include <thread>
+#include <vector>
+
+#include <fmt/format.h>
+
+#include "cli/commands.hpp"
+#include "pounding/core/error.hpp"
+#include "pounding/kernel.hpp"
+#include "pounding/testing/workloads.hpp"
+
+namespace pounding::cli {
+
+void add_bench(CLI::App& app) {
+  struct Opts {
+    std::string stepper = "central-difference", contact = "hertzdamp", damping = "lankarani-nikravesh";
+    std::size_t width = 256;
+    int repeats = 5, substeps = 1;
+    double duration = 40.0, dt = 0.005;
+    bool energy = false;
+  };
+  auto o = std::make_shared<Opts>();
+  auto* c = app.add_subcommand("bench", "kernel benchmark: ns per pair-step on a 40 s record at 0.005 s, "
+                                        "bilinear pairs (workload 'kernel-bilinear')");
+  c->add_option("--stepper", o->stepper, std::string(stepper_names))->capture_default_str();
+  c->add_option("--contact", o->contact, std::string(contact_law_names))->capture_default_str();
+  c->add_option("--damping-law", o->damping, std::string(damping_law_names))->capture_default_str();
+  c->add_option("--width", o->width, "pairs per batch")->capture_default_str();
+  c->add_option("--repeats", o->repeats, "timed repeats (the median is reported)")->capture_default_str();
+  c->add_option("--substeps", o->substeps, "integration steps per record step")->capture_default_str();
+  c->add_option("--duration", o->duration, "record length (s)")->capture_default_str();
+  c->add_flag("--energy", o->energy, "also track the energy terms");
+  c->callback([o] {
+    if (o->width < 1) throw InputError("--width must be >= 1", "--width", "give a batch width of 1 or more");
+    if (o->repeats < 1) throw InputError("--repeats must be >= 1", "--repeats", "give 1 or more");
+    require_positive(o->duration, "--duration");
+    ContactModel cm;
+    cm.law = parse_contact_law(o->contact);
+    cm.damping = parse_damping_law(o->damping);
+    KernelSettings ks;
+    ks.stepper = parse_stepper(o->stepper);
+    ks.substeps = o->substeps;
+    ks.energy = o->energy;
+    std::vector<double> ag = builtin_motion(o->dt, o->duration);
+    GroundMotion gm{o->dt, ag, 0.0};
+    // enough pairs that one repeat takes a measurable time, in batches of `width`
+    const double steps = static_cast<double>(ag.size() - 1) * o->substeps;
+    const std::size_t batches = std::max<std::size_t>(1, static_cast<std::size_t>(2e7 / (steps * o->width)));
+    PairBatch b = benchmark_batch(o->width);
+    BatchResult r;
+    run_batch(b, cm, gm, ks, r);  // warm-up (and calibration cache)
+    std::vector<double> ns;
+    std::size_t bad = 0;
+    for (int rep = 0; rep < o->repeats; ++rep) {
+      auto t0 = std::chrono::steady_clock::now();
+      for (std::size_t k = 0; k < batches; ++k) run_batch(b, cm, gm, ks, r);
+      auto t1 = std::chrono::steady_clock::now();
+      double sec = std::chrono::duration<double>(t1 - t0).count();
+      ns.push_back(sec * 1e9 / (steps * static_cast<double>(o->width * batches)));
+    }
+    for (auto s : r.status) bad += s != 0;
+    std::sort(ns.begin(), ns.end());
+    fmt::print("workload: kernel-bilinear ({} s record at {} s, {} substeps)\n", o->duration, o->dt, o->substeps);
+    fmt::print("stepper: {}\ncontact: {}\nwidth: {}\n", to_string(ks.stepper), to_string(cm.law), o->width);
+    fmt::print("hardware_threads: {}\n", std::thread::hardware_concurrency());
+    fmt::print("ns_per_pair_step_median: {:.3f}\n", ns[ns.size() / 2]);
+    fmt::print("ns_per_pair_step_min: {:.3f}\n", ns.front());
+    fmt::print("ns_per_pair_step_max: {:.3f}\n", ns.back());
+    fmt::print("repeats: {}\n", o->repeats);
+    fmt::print("lanes_not_ok: {}\n", bad);
+  });
+}
+
+}  // namespace pounding::cli

@@ -1,0 +1,130 @@
+// `pounding run STUDY.toml [--out RESULTS.h5] [--resume]` (alone or under mpirun) and
+// `pounding report RESULTS.h5 [--md|--csv]`.
+#include <unistd.h>
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <csignal>
+#include <cstdio>
+#include <memory>
+
+#include <fmt/format.h>
+
+#include "cli/commands.hpp"
+#include "pounding/core/error.hpp"
+#include "pounding/parallel/executor.hpp"
+#include "pounding/report/report.hpp"
+#include "pounding/study/run.hpp"
+
+namespace pounding::cli {
+
+namespace {
+
+// The process-wide stop flag: set by SIGINT/SIGTERM, read by the run between units.
+std::atomic<bool> stop_requested{false};
+extern "C" void on_stop_signal(int) { stop_requested.store(true); }
+
+std::string hms(double s) {
+  if (!std::isfinite(s) || s < 0) return "--:--:--";
+  const long t = std::lround(s);
+  return fmt::format("{}:{:02}:{:02}", t / 3600, (t / 60) % 60, t % 60);
+}
+
+// Progress on stderr: a bar on a terminal (4 updates a second), a line every 10 s otherwise.
+class TerminalProgress {
+ public:
+  TerminalProgress() : tty_(isatty(fileno(stderr)) != 0) {}
+  void operator()(const ProgressReport& p) {
+    const auto now = std::chrono::steady_clock::now();
+    if (!p.final && now - last_ < std::chrono::milliseconds(tty_ ? 250 : 10000)) return;
+    last_ = now;
+    const double rate = static_cast<double>(p.units_done - p.units_at_start) * p.models_per_unit /
+                        std::max(p.elapsed_s, 1e-9);
+    const double frac = static_cast<double>(p.units_done) / static_cast<double>(p.units_total);
+    const double eta = static_cast<double>(p.units_total - p.units_done) * p.models_per_unit / std::max(rate, 1e-9);
+    if (tty_) {
+      const int w = 30, fill = static_cast<int>(frac * w);
+      fmt::print(stderr, "\r[{}{}] {:5.1f}%  units {}/{}  {:.0f} models/s  ETA {}{}", std::string(fill, '#'),
+                 std::string(w - fill, '.'), 100 * frac, p.units_done, p.units_total, rate, hms(eta),
+                 p.final ? "\n" : "");
+    } else {
+      fmt::print(stderr, "progress: units {}/{} ({:.1f}%), {:.0f} models/s, elapsed {}, ETA {}\n", p.units_done,
+                 p.units_total, 100 * frac, rate, hms(p.elapsed_s), hms(eta));
+    }
+  }
+
+ private:
+  bool tty_;
+  std::chrono::steady_clock::time_point last_{};
+};
+
+}  // namespace
+
+void add_run(CLI::App& app) {
+  struct Opts {
+    std::string study, out;
+    bool resume = false, force = false, quiet = false;
+  };
+  auto o = std::make_shared<Opts>();
+  auto* c = app.add_subcommand("run", "run a study (Monte Carlo over records x period pairs x samples); "
+                                      "under mpirun the ranks share the work");
+  c->add_option("study", o->study, "study file (studies/*.toml)")->required();
+  auto* out = c->add_option("--out", o->out, "results file (default: the study's output)");
+  c->add_flag("--resume", o->resume, "continue a killed, interrupted or failed run from its checkpoint (<out>.ckpt)");
+  c->add_flag("--force", o->force, "discard the progress in <out>.ckpt and start afresh");
+  c->add_flag("--quiet", o->quiet, "no progress display");
+  c->callback([o, out] {
+    // A write beyond the file-size limit (ulimit -f) must be an EFBIG error we report, not SIGXFSZ.
+    std::signal(SIGXFSZ, SIG_IGN);
+    int argc = 0;
+    char** argv = nullptr;
+    parallel::Session session(argc, argv);
+    std::signal(SIGINT, on_stop_signal);
+    std::signal(SIGTERM, on_stop_signal);
+    try {
+      RunOptions ro;
+      ro.out = o->out;
+      ro.out_given = out->count() > 0;
+      ro.resume = o->resume;
+      ro.force = o->force;
+      RunContext ctx;
+      ctx.cancel = &stop_requested;
+      if (session.root()) {
+        ctx.info = [](const std::string& line) { fmt::print(stderr, "{}\n", line); };
+        if (!o->quiet) ctx.progress = TerminalProgress();
+      }
+      const RunOutcome r = run_study(session, o->study, ro, ctx);
+      if (session.root() && (r.code == 0 || r.code == 3)) fmt::print("{}", report_markdown(load_results(r.out)));
+      exit_code() = r.code;
+    } catch (const InputError& e) {
+      // thrown on every rank after the job stopped together (Session::agree, run_units): one message
+      if (session.root()) fmt::print(stderr, " ERROR: {}\n", e.what());
+      exit_code() = 2;
+    } catch (const std::exception& e) {
+      // outside the agreed phases: this rank alone knows; end the job rather than let the others wait
+      fmt::print(stderr, " ERROR: {} (rank {})\n", e.what(), session.rank());
+      if (session.size() > 1) session.abort(2);
+      exit_code() = 2;
+    }
+  });
+}
+
+void add_report(CLI::App& app) {
+  struct Opts {
+    std::string path;
+    bool md = false, csv = false;
+  };
+  auto o = std::make_shared<Opts>();
+  auto* c = app.add_subcommand("report", "tables, cubic fit, separation advice and code rules from a results file");
+  c->add_option("results", o->path, "results file written by `pounding run`")->required();
+  auto* md = c->add_flag("--md", o->md, "Markdown (default)");
+  c->add_flag("--csv", o->csv, "CSV: per-record, total, per-period-pair tables and the continuous curve")->excludes(md);
+  c->callback([o] {
+    Results r = load_results(o->path);
+    fmt::print("{}", o->csv ? report_csv(r) : report_markdown(r));
+  });
+}
+
+}  // namespace pounding::cli

@@ -1,0 +1,239 @@
+// `pounding simulate`: one pair through one record -> observers (and optionally the time series).
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <limits>
+#include <memory>
+
+#include <fmt/format.h>
+
+#include "cli/commands.hpp"
+#include "pounding/contact.hpp"
+#include "pounding/core/error.hpp"
+#include "pounding/core/files.hpp"
+#include "pounding/io/hdf5.hpp"
+#include "pounding/kernel.hpp"
+#include "pounding/motion/records.hpp"
+#include "pounding/report/summary.hpp"
+#include "pounding/testing/workloads.hpp"
+
+namespace pounding::cli {
+
+namespace {
+
+struct SimulateOptions {
+  std::string record, units = "g", series;
+  double dt_record = 0.0;
+  double m1 = 1.0e7, T1 = 1.0, k1 = 0, h1 = 30.0, fy1 = 0;
+  double m2 = 1.0e7, T2 = 1.5, k2 = 0, h2 = 45.0, fy2 = 0;
+  double alpha = 0.05, zeta = 0.05, gap = 0.1;
+  bool elastic = false;
+  std::string contact = "hertzdamp", damping_law = "lankarani-nikravesh", stepper = "central-difference";
+  double e = 0.65, kh = 0, n = 1.5, density = 2400.0, youngs = 24.86e9, poisson = 0.15;
+  double dt = 0, duration = 0, u_limit = 10.0;
+  bool locate = false;
+  bool k1_given = false, k2_given = false, fy1_given = false, fy2_given = false, dt_given = false, kh_given = false;
+  bool duration_given = false;
+};
+
+// Builds one structure from the options of side `i` ("1" or "2").
+Structure make_structure(double m, double T, double k, double h, double fy, double alpha, double zeta, bool elastic,
+                         const std::string& i, bool k_given, bool fy_given) {
+  require_positive(m, "--m" + i);
+  if (k_given) require_positive(k, "--k" + i);
+  if (fy_given) require_positive(fy, "--fy" + i);
+  Structure s;
+  if (k_given) {
+    s.m = m, s.k = k, s.c = 2.0 * zeta * std::sqrt(k * m);
+  } else {
+    require_positive(T, "--T" + i);
+    s = Structure::from_period(m, T, zeta);
+  }
+  s.alpha = alpha;
+  if (elastic) {
+    s.fy = std::numeric_limits<double>::infinity();
+  } else if (fy_given) {
+    s.fy = fy;
+  } else {
+    require_positive(h, "--h" + i);
+    s.fy = s.k * 0.02 * h / 6.0;  // ductility 6 at 2 % drift (stochastic-pounding-monte-carlo.txt, sec. 2)
+  }
+  return s;
+}
+
+void write_series_csv(const std::string& path, const SeriesRecorder& r) {
+  fmt::memory_buffer out;
+  fmt::format_to(std::back_inserter(out),
+                 "t_s,ag_m_s2,u1_m,u2_m,v1_m_s,v2_m_s,a1_abs_m_s2,a2_abs_m_s2,fs1_N,fs2_N,contact_force_N\n");
+  for (std::size_t j = 0; j < r.t.size(); ++j)
+    fmt::format_to(std::back_inserter(out), "{:.6f},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g},{:.9g}\n",
+                   r.t[j], r.ag[j], r.u1[j], r.u2[j], r.v1[j], r.v2[j], r.a1_abs[j], r.a2_abs[j], r.fs1[j], r.fs2[j],
+                   r.force[j]);
+  files::write_text_atomically(path, std::string_view(out.data(), out.size()));
+}
+
+void write_series_h5(const std::string& path, const SeriesRecorder& r, const std::string& summary) {
+  h5::AtomicFile f(path);
+  auto g = h5::create_group(f.root(), "series");
+  h5::write_dataset(g.get(), "t", r.t);
+  h5::write_dataset(g.get(), "ag", r.ag);
+  h5::write_dataset(g.get(), "u1", r.u1);
+  h5::write_dataset(g.get(), "u2", r.u2);
+  h5::write_dataset(g.get(), "v1", r.v1);
+  h5::write_dataset(g.get(), "v2", r.v2);
+  h5::write_dataset(g.get(), "a1_abs", r.a1_abs);
+  h5::write_dataset(g.get(), "a2_abs", r.a2_abs);
+  h5::write_dataset(g.get(), "fs1", r.fs1);
+  h5::write_dataset(g.get(), "fs2", r.fs2);
+  h5::write_dataset(g.get(), "contact_force", r.force);
+  h5::write_attribute(g.get(), "units", std::string("SI: s, m, m/s, m/s^2, N"));
+  h5::write_attribute(f.root(), "summary", summary);
+  f.commit();
+}
+
+void run_simulate(const SimulateOptions& o) {
+  // --- validate everything before any work or output
+  require_range(o.zeta, 0.0, 0.999, "--zeta", "[0, 1)");
+  require_range(o.alpha, 0.0, std::nextafter(1.0, 0.0), "--alpha", "[0, 1)");
+  if (!std::isfinite(o.gap) || o.gap < 0)
+    throw InputError(fmt::format("--gap = {} must be >= 0", o.gap), "--gap", "give the at-rest separation in m");
+  require_range(o.e, std::nextafter(0.0, 1.0), 1.0, "--e", "(0, 1]");
+  if (o.dt_given) require_positive(o.dt, "--dt");
+  if (o.duration_given) require_positive(o.duration, "--duration");
+  if (o.kh_given) require_positive(o.kh, "--kh");
+  require_positive(o.u_limit, "--u-limit");
+  // name the option in errors from the shared parsers
+  auto as_option = [](const char* option, auto parse) {
+    try {
+      return parse();
+    } catch (const InputError& e) {
+      throw InputError(e.what_part(), option, e.fix());
+    }
+  };
+  ContactModel cm;
+  cm.law = as_option("--contact", [&] { return parse_contact_law(o.contact); });
+  cm.damping = as_option("--damping-law", [&] { return parse_damping_law(o.damping_law); });
+  require_range(o.n, 1.0, 3.0, "--n", "[1, 3]");
+  cm.n = o.n;
+  KernelSettings ks;
+  ks.stepper = as_option("--stepper", [&] { return parse_stepper(o.stepper); });
+  ks.displacement_limit = o.u_limit;
+  ks.energy = true;
+  ks.locate_contact = o.locate;
+  if (o.locate && ks.stepper != Stepper::rk4)
+    throw InputError("--locate-contact needs --stepper rk4", "--locate-contact", "add --stepper rk4 or drop the option");
+
+  Structure s1 = make_structure(o.m1, o.T1, o.k1, o.h1, o.fy1, o.alpha, o.zeta, o.elastic, "1", o.k1_given, o.fy1_given);
+  Structure s2 = make_structure(o.m2, o.T2, o.k2, o.h2, o.fy2, o.alpha, o.zeta, o.elastic, "2", o.k2_given, o.fy2_given);
+
+  Record rec;
+  if (o.record.empty()) {
+    rec.name = "builtin-sweep";
+    rec.source = "built-in example: 0.4 g sine sweep 0.3-3 Hz, 40 s";
+    rec.dt = 0.005;
+    rec.acc = builtin_motion(rec.dt, 40.0);
+  } else {
+    ReadOptions ro;
+    ro.units = as_option("--units", [&] { return parse_units(o.units); });
+    ro.dt = o.dt_record;
+    rec = read_record(o.record, ro);
+    require_analysable(rec, {1.0, "", "add --units cm/s2"});  // 2 s long, PGA <= 5 g (records.hpp)
+  }
+  if (o.dt_given) {
+    double q = rec.dt / o.dt;
+    ks.substeps = static_cast<int>(std::lround(q));
+    if (ks.substeps < 1 || std::abs(q - ks.substeps) > 1e-9 * q)
+      throw InputError(fmt::format("--dt = {} does not divide the record step {}", o.dt, rec.dt), "--dt",
+                       "give the record step divided by a whole number");
+  }
+
+  PairParams p;
+  p.s1 = s1, p.s2 = s2, p.gap = o.gap, p.e = o.e;
+  if (cm.law == ContactLaw::linear || cm.law == ContactLaw::kelvin) {
+    if (!o.kh_given) require_positive(0.0, "--kh (linear/Kelvin stiffness, N/m)");
+    p.kc = o.kh;
+  } else {
+    p.kc = o.kh_given ? o.kh : hertz_stiffness_spheres(s1.m, s2.m, o.density, o.youngs, o.poisson);
+  }
+
+  SeriesRecorder series;
+  if (!o.series.empty()) {
+    auto ext = std::filesystem::path(o.series).extension().string();
+    if (ext != ".csv" && ext != ".h5")
+      throw InputError(fmt::format("unknown series format '{}'", ext), "--series", "use a .csv or .h5 file name");
+    ks.series = &series;
+  }
+  PairBatch b;
+  b.resize(1);
+  b.set(0, p);
+  GroundMotion gm{rec.dt, rec.acc, o.duration};
+  BatchResult r;
+  run_batch(b, cm, gm, ks, r);
+
+  std::string text = format_summary(r, 0, cm, p, rec, ks);
+  fmt::print("{}", text);
+  if (!o.series.empty()) {
+    if (std::filesystem::path(o.series).extension() == ".csv")
+      write_series_csv(o.series, series);
+    else
+      write_series_h5(o.series, series, text);
+  }
+  if (r.status[0] != 0) exit_code() = 3;  // diverged: the numbers above are not results
+}
+
+}  // namespace
+
+int& exit_code() {
+  static int rc = 0;
+  return rc;
+}
+
+void add_simulate(CLI::App& app) {
+  auto o = std::make_shared<SimulateOptions>();
+  auto* c = app.add_subcommand("simulate", "one pair of SDOF structures through one record; prints every observer");
+  c->add_option("--record", o->record, "ground motion file (PEER .AT2, time/acc text, one-column text); "
+                                       "default: built-in 0.4 g sweep");
+  c->add_option("--units", o->units, "units of the record values: g, m/s2, cm/s2")->capture_default_str();
+  c->add_option("--dt-record", o->dt_record, "time step of a one-column record (s)");
+  c->add_option("--m1", o->m1, "mass of structure 1, the left one (kg)")->capture_default_str();
+  c->add_option("--T1", o->T1, "period of structure 1 (s)")->capture_default_str();
+  c->add_option("--k1", o->k1, "initial stiffness of structure 1 (N/m), instead of --T1");
+  c->add_option("--h1", o->h1, "height of structure 1 (m): yield displacement 0.02 h / 6")->capture_default_str();
+  c->add_option("--fy1", o->fy1, "yield force of structure 1 (N), instead of --h1");
+  c->add_option("--m2", o->m2, "mass of structure 2 (kg)")->capture_default_str();
+  c->add_option("--T2", o->T2, "period of structure 2 (s)")->capture_default_str();
+  c->add_option("--k2", o->k2, "initial stiffness of structure 2 (N/m), instead of --T2");
+  c->add_option("--h2", o->h2, "height of structure 2 (m)")->capture_default_str();
+  c->add_option("--fy2", o->fy2, "yield force of structure 2 (N), instead of --h2");
+  c->add_flag("--elastic", o->elastic, "linear elastic structures (no yielding)");
+  c->add_option("--alpha", o->alpha, "post-yield stiffness ratio, [0, 1)")->capture_default_str();
+  c->add_option("--zeta", o->zeta, "viscous damping ratio of both structures")->capture_default_str();
+  c->add_option("--gap", o->gap, "at-rest separation (m)")->capture_default_str();
+  c->add_option("--contact", o->contact, std::string("contact law: ") + std::string(contact_law_names))
+      ->capture_default_str();
+  c->add_option("--damping-law", o->damping_law, std::string("Hertzdamp xibar law: ") + std::string(damping_law_names))
+      ->capture_default_str();
+  c->add_option("--e", o->e, "coefficient of restitution, (0, 1]")->capture_default_str();
+  c->add_option("--kh", o->kh, "contact stiffness (N/m^n Hertz family, N/m linear/Kelvin); "
+                               "default for Hertz: equivalent spheres");
+  c->add_option("--n", o->n, "Hertz exponent")->capture_default_str();
+  c->add_option("--density", o->density, "equivalent-sphere density (kg/m^3)")->capture_default_str();
+  c->add_option("--E", o->youngs, "equivalent-sphere Young's modulus (Pa)")->capture_default_str();
+  c->add_option("--nu", o->poisson, "equivalent-sphere Poisson ratio")->capture_default_str();
+  c->add_option("--stepper", o->stepper, std::string("integrator: ") + std::string(stepper_names))
+      ->capture_default_str();
+  c->add_option("--dt", o->dt, "integration step (s); must divide the record step (default: the record step)");
+  c->add_option("--duration", o->duration, "analysis length (s); free vibration after the record");
+  c->add_option("--u-limit", o->u_limit, "|u1| + |u2| above this (m) marks the run diverged")->capture_default_str();
+  c->add_flag("--locate-contact", o->locate, "rk4: locate each contact onset inside its step (high-accuracy mode)");
+  c->add_option("--series", o->series, "write the time series to FILE.csv or FILE.h5");
+  c->callback([o, c] {
+    o->k1_given = c->count("--k1") > 0, o->k2_given = c->count("--k2") > 0;
+    o->fy1_given = c->count("--fy1") > 0, o->fy2_given = c->count("--fy2") > 0;
+    o->dt_given = c->count("--dt") > 0, o->kh_given = c->count("--kh") > 0;
+    o->duration_given = c->count("--duration") > 0;
+    run_simulate(*o);
+  });
+}
+
+}  // namespace pounding::cli

@@ -1,0 +1,200 @@
+#include "pounding/core/files.hpp"
+
+#include <fcntl.h>
+#include <signal.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstring>
+#include <filesystem>
+#include <system_error>
+
+#include <fmt/format.h>
+
+#include "pounding/core/error.hpp"
+
+namespace pounding::files {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+std::string os_error(int err) {
+  const char* name = err == ENOSPC ? " (ENOSPC)" : err == EFBIG ? " (EFBIG)" : err == EIO ? " (EIO)" : err == EDQUOT ? " (EDQUOT)" : "";
+  return fmt::format("{}{}", std::strerror(err), name);
+}
+
+std::string fix_for(int err) {
+  if (err == ENOSPC || err == EDQUOT) return "free disk space (or choose another folder) and rerun";
+  if (err == EFBIG) return "raise the file-size limit (ulimit -f) or choose another file system, and rerun";
+  if (err == EACCES || err == EPERM || err == EROFS) return "write to a folder you may write to";
+  return "check the disk and the path, and rerun";
+}
+
+// Holds back SIGINT/SIGTERM/SIGHUP for its lifetime; pending ones are delivered when it ends.
+class SignalHold {
+ public:
+  SignalHold() {
+    sigset_t s;
+    sigemptyset(&s);
+    sigaddset(&s, SIGINT);
+    sigaddset(&s, SIGTERM);
+    sigaddset(&s, SIGHUP);
+    pthread_sigmask(SIG_BLOCK, &s, &old_);
+  }
+  ~SignalHold() { pthread_sigmask(SIG_SETMASK, &old_, nullptr); }
+  SignalHold(const SignalHold&) = delete;
+  SignalHold& operator=(const SignalHold&) = delete;
+
+ private:
+  sigset_t old_;
+};
+
+std::string parent_of(const std::string& path) {
+  fs::path p = fs::path(path).parent_path();
+  return p.empty() ? std::string(".") : p.string();
+}
+
+}  // namespace
+
+std::uint64_t fnv1a(const void* data, std::size_t n, std::uint64_t h) {
+  const auto* p = static_cast<const unsigned char*>(data);
+  for (std::size_t i = 0; i < n; ++i) h = (h ^ p[i]) * 1099511628211ULL;
+  return h;
+}
+
+std::string read_text(const std::string& path, const std::string& what) {
+  auto fail = [&](int err) {
+    const char* fix = err == ENOENT || err == ENOTDIR ? "check the path"
+                      : err == EISDIR             ? "give a file, not a folder"
+                      : err == EACCES || err == EPERM ? "check its permissions"
+                                                      : "check the disk and the path";
+    return InputError(fmt::format("cannot read {}: {}", what, os_error(err)), path, fix);
+  };
+  int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
+  if (fd < 0) throw fail(errno);
+  std::string text;
+  struct stat st {};
+  if (::fstat(fd, &st) == 0 && S_ISREG(st.st_mode) && st.st_size > 0) text.reserve(static_cast<std::size_t>(st.st_size));
+  char buf[1 << 16];
+  for (;;) {
+    const ssize_t r = ::read(fd, buf, sizeof buf);
+    if (r == 0) break;
+    if (r < 0) {
+      if (errno == EINTR) continue;
+      const int err = errno;
+      ::close(fd);
+      throw fail(err);
+    }
+    text.append(buf, static_cast<std::size_t>(r));
+  }
+  ::close(fd);
+  return text;
+}
+
+void write_all(int fd, const void* data, std::size_t n, const std::string& path) {
+  const char* p = static_cast<const char*>(data);
+  while (n > 0) {
+    ssize_t w = ::write(fd, p, n);
+    if (w < 0) {
+      if (errno == EINTR) continue;
+      const int err = errno;
+      throw InputError(fmt::format("cannot write {}: {}", path, os_error(err)), path, fix_for(err));
+    }
+    if (w == 0) throw InputError(fmt::format("cannot write {}: no progress", path), path, fix_for(EIO));
+    p += w;
+    n -= static_cast<std::size_t>(w);
+  }
+}
+
+void write_atomically(const std::string& path, std::span<const std::byte> bytes) {
+  const std::string tmp = fmt::format("{}.tmp{}", path, static_cast<long>(getpid()));
+  SignalHold hold;
+  int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
+  if (fd < 0) {
+    const int err = errno;
+    throw InputError(fmt::format("cannot create {}: {}", tmp, os_error(err)), path, fix_for(err));
+  }
+  auto fail = [&](int err, const char* step) {
+    ::close(fd);
+    ::unlink(tmp.c_str());
+    throw InputError(fmt::format("cannot write {} ({}): {}", path, step, os_error(err)), path, fix_for(err));
+  };
+  try {
+    write_all(fd, bytes.data(), bytes.size(), tmp);
+  } catch (const InputError& e) {
+    ::close(fd);
+    ::unlink(tmp.c_str());
+    throw InputError(fmt::format("{} (the temporary of {}, removed)", e.what_part(), path), path, e.fix());
+  }
+  if (::fsync(fd) != 0) fail(errno, "fsync");
+  if (::close(fd) != 0) {
+    const int err = errno;
+    ::unlink(tmp.c_str());
+    throw InputError(fmt::format("cannot write {} (close): {}", path, os_error(err)), path, fix_for(err));
+  }
+  if (::rename(tmp.c_str(), path.c_str()) != 0) {
+    const int err = errno;
+    ::unlink(tmp.c_str());
+    throw InputError(fmt::format("cannot rename {} to {}: {}", tmp, path, os_error(err)), path, fix_for(err));
+  }
+  // the rename itself survives a power cut only once the directory is on disk
+  int dfd = ::open(parent_of(path).c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+  if (dfd >= 0) {
+    ::fsync(dfd);
+    ::close(dfd);
+  }
+}
+
+void write_text_atomically(const std::string& path, std::string_view text) {
+  write_atomically(path, std::as_bytes(std::span<const char>(text.data(), text.size())));
+}
+
+void check_output_path(const std::string& path, const std::string& where) {
+  if (path.empty())
+    throw InputError("the output path is empty", where, "give a file name, e.g. --out results.h5");
+  if (path.back() == '/')
+    throw InputError(fmt::format("the output path '{}' names a folder, not a file", path), where,
+                     "give a file name, e.g. --out " + path + "results.h5");
+  struct stat st {};
+  if (::stat(path.c_str(), &st) == 0) {
+    if (S_ISDIR(st.st_mode))
+      throw InputError(fmt::format("the output path '{}' is an existing folder", path), where,
+                       "give a file name inside it, e.g. --out " + path + "/results.h5");
+    if (!S_ISREG(st.st_mode))
+      throw InputError(fmt::format("the output path '{}' exists and is not a regular file", path), where,
+                       "give the path of a new or ordinary file");
+  }
+  const std::string dir = parent_of(path);
+  struct stat ds {};
+  if (::stat(dir.c_str(), &ds) != 0 || !S_ISDIR(ds.st_mode))
+    throw InputError(fmt::format("the folder '{}' of the output path does not exist", dir), where,
+                     fmt::format("create it first (mkdir -p {}) or give another path", dir));
+  // a real probe, not access(2): it also catches read-only file systems, and ACLs
+  const std::string probe = fmt::format("{}.probe{}", path, static_cast<long>(getpid()));
+  int fd = ::open(probe.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0644);
+  if (fd < 0) {
+    const int err = errno;
+    throw InputError(fmt::format("cannot create files in '{}': {}", dir, os_error(err)), where, fix_for(err));
+  }
+  ::close(fd);
+  ::unlink(probe.c_str());
+}
+
+int remove_stale_temporaries(const std::string& path) {
+  const fs::path p(path);
+  const fs::path dir = p.parent_path().empty() ? fs::path(".") : p.parent_path();
+  const std::string stem = p.filename().string() + ".tmp";
+  int removed = 0;
+  std::error_code ec;
+  for (const auto& entry : fs::directory_iterator(dir, ec)) {
+    const std::string name = entry.path().filename().string();
+    if (name.size() <= stem.size() || name.compare(0, stem.size(), stem) != 0) continue;
+    if (name.find_first_not_of("0123456789", stem.size()) != std::string::npos) continue;
+    if (fs::remove(entry.path(), ec)) ++removed;
+  }
+  return removed;
+}
+
+}  // namespace pounding::files

@@ -1,0 +1,262 @@
+#include "pounding/io/hdf5.hpp"
+
+#include <hdf5.h>
+#include <unistd.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <stdexcept>
+
+#include <fmt/format.h>
+
+#include "pounding/core/error.hpp"
+#include "pounding/core/files.hpp"
+
+namespace pounding::h5 {
+namespace {
+
+void check(herr_t status, const std::string& what) {
+  if (status < 0) throw std::runtime_error("HDF5 error: " + what);
+}
+hid checked(hid_t id, const std::string& what) {
+  if (id < 0) throw std::runtime_error("HDF5 error: " + what);
+  return id;
+}
+
+template <class T>
+void write_nd(hid group, const std::string& name, const T* data, hid_t type, std::span<const hsize_t> dims) {
+  Handle space(checked(H5Screate_simple(static_cast<int>(dims.size()), dims.data(), nullptr), "dataspace " + name));
+  Handle plist(checked(H5Pcreate(H5P_DATASET_CREATE), "plist"));
+  hsize_t total = 1;
+  for (auto d : dims) total *= d;
+  if (total >= 4096) {  // compress large datasets; chunk along the first dimension
+    std::vector<hsize_t> chunk(dims.begin(), dims.end());
+    chunk[0] = std::min<hsize_t>(dims[0], 65536);
+    check(H5Pset_chunk(plist.get(), static_cast<int>(chunk.size()), chunk.data()), "chunk");
+    check(H5Pset_deflate(plist.get(), 4), "deflate");
+  }
+  Handle ds(checked(H5Dcreate2(group, name.c_str(), type, space.get(), H5P_DEFAULT, plist.get(), H5P_DEFAULT),
+                    "create dataset " + name));
+  if (total > 0) check(H5Dwrite(ds.get(), type, H5S_ALL, H5S_ALL, H5P_DEFAULT, data), "write " + name);
+}
+
+template <class T>
+std::vector<T> read_all(hid group, const std::string& name, hid_t type) {
+  if (!exists(group, name)) throw std::runtime_error(fmt::format("HDF5: dataset '{}' not found", name));
+  Handle ds(checked(H5Dopen2(group, name.c_str(), H5P_DEFAULT), "open " + name));
+  Handle space(checked(H5Dget_space(ds.get()), "space " + name));
+  hssize_t n = H5Sget_simple_extent_npoints(space.get());
+  std::vector<T> out(static_cast<std::size_t>(n));
+  if (n > 0) check(H5Dread(ds.get(), type, H5S_ALL, H5S_ALL, H5P_DEFAULT, out.data()), "read " + name);
+  return out;
+}
+
+void write_attr_raw(hid obj, const std::string& name, hid_t type, const void* value) {
+  if (H5Aexists(obj, name.c_str()) > 0) H5Adelete(obj, name.c_str());
+  Handle space(checked(H5Screate(H5S_SCALAR), "scalar space"));
+  Handle a(checked(H5Acreate2(obj, name.c_str(), type, space.get(), H5P_DEFAULT, H5P_DEFAULT), "attr " + name));
+  check(H5Awrite(a.get(), type, value), "write attr " + name);
+}
+
+}  // namespace
+
+Handle& Handle::operator=(Handle&& o) noexcept {
+  if (this != &o) {
+    this->~Handle();
+    id_ = o.id_;
+    o.id_ = -1;
+  }
+  return *this;
+}
+
+Handle::~Handle() {
+  if (id_ < 0) return;
+  switch (H5Iget_type(id_)) {
+    case H5I_FILE: H5Fclose(id_); break;
+    case H5I_GROUP: H5Gclose(id_); break;
+    case H5I_DATASET: H5Dclose(id_); break;
+    case H5I_DATASPACE: H5Sclose(id_); break;
+    case H5I_DATATYPE: H5Tclose(id_); break;
+    case H5I_ATTR: H5Aclose(id_); break;
+    case H5I_GENPROP_LST: H5Pclose(id_); break;
+    default: break;
+  }
+  id_ = -1;
+}
+
+AtomicFile::AtomicFile(std::string path) : path_(std::move(path)) {
+  // Built in memory (core driver, no backing store) and written by files::write_atomically on commit():
+  // HDF5 never touches the disk, so a full disk is one clean OS error and never a half-closed HDF5 file.
+  H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
+  Handle fapl(checked(H5Pcreate(H5P_FILE_ACCESS), "file access plist"));
+  check(H5Pset_fapl_core(fapl.get(), 1 << 20, 0), "core driver");
+  hid_t f = H5Fcreate(path_.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, fapl.get());
+  if (f < 0) throw std::runtime_error("HDF5 error: cannot create the in-memory file for " + path_);
+  file_ = Handle(f);
+}
+
+AtomicFile::~AtomicFile() = default;
+
+void AtomicFile::commit() {
+  check(H5Fflush(file_.get(), H5F_SCOPE_GLOBAL), "flush " + path_);
+  const ssize_t n = H5Fget_file_image(file_.get(), nullptr, 0);
+  if (n < 0) throw std::runtime_error("HDF5 error: file image size of " + path_);
+  std::vector<std::byte> image(static_cast<std::size_t>(n));
+  if (H5Fget_file_image(file_.get(), image.data(), image.size()) != n)
+    throw std::runtime_error("HDF5 error: file image of " + path_);
+  file_ = Handle();
+  files::write_atomically(path_, image);
+}
+
+Handle open_read(const std::string& path) {
+  H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
+  hid_t f = H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+  if (f < 0) throw InputError("cannot open HDF5 file", path, "give an existing results file written by pounding");
+  return Handle(f);
+}
+
+Handle open_rw(const std::string& path) {
+  H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
+  hid_t f = H5Fopen(path.c_str(), H5F_ACC_RDWR, H5P_DEFAULT);
+  if (f < 0) throw InputError("cannot open HDF5 file for writing", path, "check the path and permissions");
+  return Handle(f);
+}
+
+Handle create_group(hid parent, const std::string& name) {
+  return Handle(checked(H5Gcreate2(parent, name.c_str(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), "group " + name));
+}
+Handle open_group(hid parent, const std::string& name) {
+  return Handle(checked(H5Gopen2(parent, name.c_str(), H5P_DEFAULT), "open group " + name));
+}
+bool exists(hid parent, const std::string& name) { return H5Lexists(parent, name.c_str(), H5P_DEFAULT) > 0; }
+bool attribute_exists(hid obj, const std::string& name) { return H5Aexists(obj, name.c_str()) > 0; }
+
+void write_dataset(hid g, const std::string& n, std::span<const double> v) {
+  hsize_t d[1] = {v.size()};
+  write_nd(g, n, v.data(), H5T_NATIVE_DOUBLE, d);
+}
+void write_dataset(hid g, const std::string& n, std::span<const std::int64_t> v) {
+  hsize_t d[1] = {v.size()};
+  write_nd(g, n, v.data(), H5T_NATIVE_INT64, d);
+}
+void write_dataset(hid g, const std::string& n, std::span<const std::int32_t> v) {
+  hsize_t d[1] = {v.size()};
+  write_nd(g, n, v.data(), H5T_NATIVE_INT32, d);
+}
+void write_dataset(hid g, const std::string& n, std::span<const std::uint8_t> v) {
+  hsize_t d[1] = {v.size()};
+  write_nd(g, n, v.data(), H5T_NATIVE_UINT8, d);
+}
+void write_dataset(hid g, const std::string& n, std::span<const double> v, std::size_t rows, std::size_t cols) {
+  if (rows * cols != v.size()) throw std::logic_error("write_dataset: shape does not match data");
+  hsize_t d[2] = {rows, cols};
+  write_nd(g, n, v.data(), H5T_NATIVE_DOUBLE, d);
+}
+
+void write_strings(hid g, const std::string& n, const std::vector<std::string>& v) {
+  Handle type(checked(H5Tcopy(H5T_C_S1), "string type"));
+  check(H5Tset_size(type.get(), H5T_VARIABLE), "vlen");
+  check(H5Tset_cset(type.get(), H5T_CSET_UTF8), "utf8");
+  std::vector<const char*> ptrs;
+  for (auto& s : v) ptrs.push_back(s.c_str());
+  hsize_t d[1] = {v.size()};
+  Handle space(checked(H5Screate_simple(1, d, nullptr), "space"));
+  Handle ds(checked(H5Dcreate2(g, n.c_str(), type.get(), space.get(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT),
+                    "dataset " + n));
+  if (!v.empty()) check(H5Dwrite(ds.get(), type.get(), H5S_ALL, H5S_ALL, H5P_DEFAULT, ptrs.data()), "write " + n);
+}
+
+void write_attribute(hid obj, const std::string& name, const std::string& value) {
+  Handle type(checked(H5Tcopy(H5T_C_S1), "string type"));
+  check(H5Tset_size(type.get(), H5T_VARIABLE), "vlen");
+  check(H5Tset_cset(type.get(), H5T_CSET_UTF8), "utf8");
+  const char* p = value.c_str();
+  write_attr_raw(obj, name, type.get(), &p);
+}
+void write_attribute(hid obj, const std::string& name, double value) {
+  write_attr_raw(obj, name, H5T_NATIVE_DOUBLE, &value);
+}
+void write_attribute(hid obj, const std::string& name, std::int64_t value) {
+  write_attr_raw(obj, name, H5T_NATIVE_INT64, &value);
+}
+
+void write_attribute(hid obj, const std::string& name, std::span<const double> values) {
+  if (H5Aexists(obj, name.c_str()) > 0) H5Adelete(obj, name.c_str());
+  const hsize_t n = values.size();
+  Handle space(checked(H5Screate_simple(1, &n, nullptr), "attribute space " + name));
+  Handle a(checked(H5Acreate2(obj, name.c_str(), H5T_NATIVE_DOUBLE, space.get(), H5P_DEFAULT, H5P_DEFAULT),
+                   "attr " + name));
+  if (n > 0) check(H5Awrite(a.get(), H5T_NATIVE_DOUBLE, values.data()), "write attr " + name);
+}
+void write_attribute(hid obj, const std::string& name, const std::vector<std::string>& values) {
+  if (H5Aexists(obj, name.c_str()) > 0) H5Adelete(obj, name.c_str());
+  Handle type(checked(H5Tcopy(H5T_C_S1), "string type"));
+  check(H5Tset_size(type.get(), H5T_VARIABLE), "vlen");
+  check(H5Tset_cset(type.get(), H5T_CSET_UTF8), "utf8");
+  const hsize_t n = values.size();
+  Handle space(checked(H5Screate_simple(1, &n, nullptr), "attribute space " + name));
+  Handle a(checked(H5Acreate2(obj, name.c_str(), type.get(), space.get(), H5P_DEFAULT, H5P_DEFAULT), "attr " + name));
+  std::vector<const char*> p;
+  for (const auto& v : values) p.push_back(v.c_str());
+  if (n > 0) check(H5Awrite(a.get(), type.get(), p.data()), "write attr " + name);
+}
+std::vector<double> read_doubles_attribute(hid obj, const std::string& name) {
+  Handle a(checked(H5Aopen(obj, name.c_str(), H5P_DEFAULT), "attribute " + name));
+  Handle space(checked(H5Aget_space(a.get()), "attribute space " + name));
+  const hssize_t n = H5Sget_simple_extent_npoints(space.get());
+  std::vector<double> v(static_cast<std::size_t>(std::max<hssize_t>(n, 0)));
+  if (n > 0) check(H5Aread(a.get(), H5T_NATIVE_DOUBLE, v.data()), "read attr " + name);
+  return v;
+}
+
+std::vector<double> read_doubles(hid g, const std::string& n) { return read_all<double>(g, n, H5T_NATIVE_DOUBLE); }
+std::vector<std::int64_t> read_int64(hid g, const std::string& n) {
+  return read_all<std::int64_t>(g, n, H5T_NATIVE_INT64);
+}
+std::vector<std::int32_t> read_int32(hid g, const std::string& n) {
+  return read_all<std::int32_t>(g, n, H5T_NATIVE_INT32);
+}
+std::vector<std::uint8_t> read_uint8(hid g, const std::string& n) {
+  return read_all<std::uint8_t>(g, n, H5T_NATIVE_UINT8);
+}
+
+std::vector<std::string> read_strings(hid g, const std::string& n) {
+  Handle ds(checked(H5Dopen2(g, n.c_str(), H5P_DEFAULT), "open " + n));
+  Handle space(checked(H5Dget_space(ds.get()), "space"));
+  hssize_t count = H5Sget_simple_extent_npoints(space.get());
+  Handle type(checked(H5Tcopy(H5T_C_S1), "string type"));
+  check(H5Tset_size(type.get(), H5T_VARIABLE), "vlen");
+  check(H5Tset_cset(type.get(), H5T_CSET_UTF8), "utf8");
+  std::vector<char*> ptrs(static_cast<std::size_t>(count), nullptr);
+  if (count > 0) check(H5Dread(ds.get(), type.get(), H5S_ALL, H5S_ALL, H5P_DEFAULT, ptrs.data()), "read " + n);
+  std::vector<std::string> out;
+  for (char* p : ptrs) out.emplace_back(p ? p : "");
+  if (count > 0) H5Dvlen_reclaim(type.get(), space.get(), H5P_DEFAULT, ptrs.data());
+  return out;
+}
+
+std::string read_string_attribute(hid obj, const std::string& name) {
+  Handle a(checked(H5Aopen(obj, name.c_str(), H5P_DEFAULT), "attribute " + name));
+  Handle type(checked(H5Tcopy(H5T_C_S1), "string type"));
+  check(H5Tset_size(type.get(), H5T_VARIABLE), "vlen");
+  check(H5Tset_cset(type.get(), H5T_CSET_UTF8), "utf8");
+  char* p = nullptr;
+  check(H5Aread(a.get(), type.get(), &p), "read attr " + name);
+  std::string s = p ? p : "";
+  H5free_memory(p);
+  return s;
+}
+double read_double_attribute(hid obj, const std::string& name) {
+  Handle a(checked(H5Aopen(obj, name.c_str(), H5P_DEFAULT), "attribute " + name));
+  double v = 0;
+  check(H5Aread(a.get(), H5T_NATIVE_DOUBLE, &v), "read attr " + name);
+  return v;
+}
+std::int64_t read_int64_attribute(hid obj, const std::string& name) {
+  Handle a(checked(H5Aopen(obj, name.c_str(), H5P_DEFAULT), "attribute " + name));
+  std::int64_t v = 0;
+  check(H5Aread(a.get(), H5T_NATIVE_INT64, &v), "read attr " + name);
+  return v;
+}
+
+}  // namespace pounding::h5

@@ -1,0 +1,261 @@
+// The MPI executor (POUNDING_WITH_MPI=ON): MPI lives here and nowhere else. A serial build compiles
+// src/parallel/serial_executor.cpp instead, with the semantics of the one-rank paths below.
+#include "pounding/parallel/executor.hpp"
+
+#include <mpi.h>
+
+#include <cstdint>
+#include <cstdlib>
+#include <deque>
+#include <string>
+
+#include "pounding/core/error.hpp"
+
+namespace pounding::parallel {
+
+namespace {
+constexpr int tag_work = 1, tag_result = 2, tag_error = 3;
+constexpr std::int64_t stop_unit = -1;
+constexpr char sep = '\x1f';  // separates what, where and fix in an error message
+
+bool launched_by_mpi() {
+  for (const char* v : {"OMPI_COMM_WORLD_SIZE", "PMI_SIZE", "PMIX_RANK", "SLURM_STEP_NUM_TASKS", "MPI_LOCALNRANKS"})
+    if (std::getenv(v)) return true;
+  return false;
+}
+
+// An error crossing ranks: InputError's parts, or a plain exception's text with the rank as its place.
+struct Failure {
+  bool set = false;
+  std::string what, where, fix;
+  void capture(int rank) {
+    if (set) return;
+    set = true;
+    try {
+      throw;
+    } catch (const InputError& e) {
+      what = e.what_part(), where = e.where(), fix = e.fix();
+    } catch (const std::exception& e) {
+      what = e.what(), where = "rank " + std::to_string(rank), fix = "rerun; if the run had started, --resume continues from its checkpoint";
+    } catch (...) {
+      what = "unknown error", where = "rank " + std::to_string(rank), fix = "rerun; if the run had started, --resume continues from its checkpoint";
+    }
+  }
+  std::string pack() const { return what + sep + where + sep + fix; }
+  void unpack(const std::string& s) {
+    set = true;
+    const auto a = s.find(sep), b = s.find(sep, a + 1);
+    what = s.substr(0, a), where = s.substr(a + 1, b - a - 1), fix = s.substr(b + 1);
+  }
+  [[noreturn]] void raise() const { throw InputError(what, where, fix); }
+};
+
+// rank `from`'s string to every rank
+void broadcast_from(std::string& s, int from) {
+  long long n = static_cast<long long>(s.size());
+  MPI_Bcast(&n, 1, MPI_LONG_LONG, from, MPI_COMM_WORLD);
+  s.resize(static_cast<std::size_t>(n));
+  if (n > 0) MPI_Bcast(s.data(), static_cast<int>(n), MPI_CHAR, from, MPI_COMM_WORLD);
+}
+
+// After the work loop: rank 0's outcome (0 done, 1 stopped, 2 failed + message) to every rank.
+bool finish(Failure& f, bool stopped) {
+  int code = f.set ? 2 : stopped ? 1 : 0;
+  MPI_Bcast(&code, 1, MPI_INT, 0, MPI_COMM_WORLD);
+  if (code == 2) {
+    std::string msg = f.pack();
+    broadcast_from(msg, 0);
+    f.unpack(msg);
+    f.raise();
+  }
+  return code == 0;
+}
+
+bool worker_loop(const ComputeFn& compute) {
+  // Results go out with MPI_Isend from two alternating buffers: a result larger than the eager limit
+  // waits for the master to post its receive (it may be busy computing a unit), and the worker goes on
+  // computing its next unit meanwhile instead of blocking in MPI_Send. After a failure the worker sends
+  // the error once and only drains unit messages until the master's stop.
+  std::vector<double> msg[2];
+  MPI_Request req[2] = {MPI_REQUEST_NULL, MPI_REQUEST_NULL};
+  Failure failed;
+  int rank = 0;
+  MPI_Comm_rank(MPI_COMM_WORLD, &rank);
+  for (int k = 0;; k ^= 1) {
+    std::int64_t unit = stop_unit;
+    MPI_Recv(&unit, 1, MPI_INT64_T, 0, tag_work, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
+    if (unit == stop_unit) break;
+    if (failed.set) continue;
+    std::vector<double> payload;
+    try {
+      payload = compute(static_cast<std::size_t>(unit));
+    } catch (...) {
+      failed.capture(rank);
+      std::string text = failed.pack();
+      MPI_Send(text.data(), static_cast<int>(text.size()), MPI_CHAR, 0, tag_error, MPI_COMM_WORLD);
+      continue;
+    }
+    MPI_Wait(&req[k], MPI_STATUS_IGNORE);
+    msg[k].assign(1, static_cast<double>(unit));
+    msg[k].insert(msg[k].end(), payload.begin(), payload.end());
+    MPI_Isend(msg[k].data(), static_cast<int>(msg[k].size()), MPI_DOUBLE, 0, tag_result, MPI_COMM_WORLD, &req[k]);
+  }
+  MPI_Waitall(2, req, MPI_STATUSES_IGNORE);
+  Failure outcome;
+  return finish(outcome, false);
+}
+}  // namespace
+
+Session::Session(int& argc, char**& argv) {
+  if (!launched_by_mpi()) return;
+  int provided = 0;
+  MPI_Init_thread(&argc, &argv, MPI_THREAD_FUNNELED, &provided);
+  MPI_Comm_rank(MPI_COMM_WORLD, &rank_);
+  MPI_Comm_size(MPI_COMM_WORLD, &size_);
+  mpi_ = true;
+}
+
+Session::~Session() {
+  if (mpi_) MPI_Finalize();
+}
+
+void Session::barrier() const {
+  if (mpi_) MPI_Barrier(MPI_COMM_WORLD);
+}
+
+void Session::broadcast(std::string& s) const {
+  if (!mpi_) return;
+  long long n = static_cast<long long>(s.size());
+  MPI_Bcast(&n, 1, MPI_LONG_LONG, 0, MPI_COMM_WORLD);
+  s.resize(static_cast<std::size_t>(n));
+  if (n > 0) MPI_Bcast(s.data(), static_cast<int>(n), MPI_CHAR, 0, MPI_COMM_WORLD);
+}
+
+void Session::broadcast(int& v) const {
+  if (mpi_) MPI_Bcast(&v, 1, MPI_INT, 0, MPI_COMM_WORLD);
+}
+
+void Session::abort(int code) const {
+  if (mpi_) MPI_Abort(MPI_COMM_WORLD, code);
+  std::exit(code);
+}
+
+void Session::agree(const std::function<void()>& phase) const {
+  if (!mpi_ || size_ == 1) {
+    phase();
+    return;
+  }
+  Failure f;
+  try {
+    phase();
+  } catch (...) {
+    f.capture(rank_);
+  }
+  int mine = f.set ? rank_ : size_, first = size_;
+  MPI_Allreduce(&mine, &first, 1, MPI_INT, MPI_MIN, MPI_COMM_WORLD);
+  if (first == size_) return;
+  std::string msg = f.pack();
+  broadcast_from(msg, first);
+  f.unpack(msg);
+  f.raise();
+}
+
+bool run_units(const Session& s, const std::vector<std::size_t>& todo, const ComputeFn& compute,
+               const ResultFn& on_result, const TickFn& tick, const std::atomic<bool>& stop) {
+  if (s.size() == 1) {
+    for (std::size_t u : todo) {
+      if (stop.load()) return false;
+      on_result(u, compute(u));
+      tick();
+    }
+    return true;
+  }
+  if (!s.root()) return worker_loop(compute);
+
+  // master
+  Failure failed;
+  auto halted = [&] { return failed.set || stop.load(); };
+  std::deque<std::size_t> queue(todo.begin(), todo.end());
+  const int workers = s.size() - 1;
+  std::vector<int> in_flight(static_cast<std::size_t>(s.size()), 0);
+  std::vector<char> dead(static_cast<std::size_t>(s.size()), 0);
+  auto send_unit = [&](int rank) {
+    if (queue.empty() || halted() || dead[static_cast<std::size_t>(rank)]) return false;
+    std::int64_t unit = static_cast<std::int64_t>(queue.front());
+    queue.pop_front();
+    ++in_flight[static_cast<std::size_t>(rank)];
+    MPI_Send(&unit, 1, MPI_INT64_T, rank, tag_work, MPI_COMM_WORLD);
+    return true;
+  };
+  for (int r = 1; r <= workers; ++r)
+    for (int k = 0; k < 2; ++k) send_unit(r);
+  int outstanding = 0;
+  for (int r = 1; r <= workers; ++r) outstanding += in_flight[static_cast<std::size_t>(r)];
+
+  std::vector<double> buf;
+  std::string text;
+  auto receive_one = [&](const MPI_Status& st) {
+    const auto src = static_cast<std::size_t>(st.MPI_SOURCE);
+    if (st.MPI_TAG == tag_error) {  // the worker computes nothing more; its units in flight are lost
+      int count = 0;
+      MPI_Get_count(&st, MPI_CHAR, &count);
+      text.resize(static_cast<std::size_t>(count));
+      MPI_Recv(text.data(), count, MPI_CHAR, st.MPI_SOURCE, tag_error, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
+      if (!failed.set) failed.unpack(text);
+      outstanding -= in_flight[src];
+      in_flight[src] = 0;
+      dead[src] = 1;
+      return;
+    }
+    int count = 0;
+    MPI_Get_count(&st, MPI_DOUBLE, &count);
+    buf.resize(static_cast<std::size_t>(count));
+    MPI_Recv(buf.data(), count, MPI_DOUBLE, st.MPI_SOURCE, tag_result, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
+    --in_flight[src];
+    --outstanding;
+    if (send_unit(st.MPI_SOURCE)) ++outstanding;
+    if (failed.set) return;  // nothing more is stored after a failure
+    try {
+      on_result(static_cast<std::size_t>(buf[0]), std::vector<double>(buf.begin() + 1, buf.end()));
+      tick();
+    } catch (...) {
+      failed.capture(0);
+    }
+  };
+  auto service = [&](bool block) {
+    for (;;) {
+      int flag = 0;
+      MPI_Status st;
+      if (block) {
+        MPI_Probe(MPI_ANY_SOURCE, MPI_ANY_TAG, MPI_COMM_WORLD, &st);
+        flag = 1;
+        block = false;
+      } else {
+        MPI_Iprobe(MPI_ANY_SOURCE, MPI_ANY_TAG, MPI_COMM_WORLD, &flag, &st);
+      }
+      if (!flag) return;
+      receive_one(st);
+    }
+  };
+
+  while (!queue.empty() && !halted()) {
+    service(false);
+    if (queue.empty() || halted()) break;
+    std::size_t u = queue.front();
+    queue.pop_front();
+    try {
+      on_result(u, compute(u));
+      tick();
+    } catch (...) {
+      failed.capture(0);
+    }
+  }
+  while (outstanding > 0) service(true);
+  for (int r = 1; r <= workers; ++r) {
+    std::int64_t unit = stop_unit;
+    MPI_Send(&unit, 1, MPI_INT64_T, r, tag_work, MPI_COMM_WORLD);
+  }
+  return finish(failed, stop.load() && !queue.empty());
+}
+
+}  // namespace pounding::parallel

@@ -1,0 +1,319 @@
+#include "pounding/study/checkpoint.hpp"
+
+#include <fcntl.h>
+#include <sys/file.h>
+#include <sys/stat.h>
+#include <sys/sysmacros.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstring>
+#include <fstream>
+#include <sstream>
+
+#include <fmt/format.h>
+
+#include "pounding/core/error.hpp"
+#include "pounding/core/files.hpp"
+#include "pounding/core/version.hpp"
+
+namespace pounding {
+
+namespace {
+
+constexpr char magic_v2[8] = {'P', 'N', 'D', 'C', 'K', 'P', 'T', '2'};
+constexpr char magic_v1[8] = {'P', 'N', 'D', 'C', 'K', 'P', 'T', '1'};
+constexpr std::uint64_t max_payload = 1ULL << 28;  // doubles per unit: far above any real unit
+
+// The process holding a flock on (dev, ino), from /proc/locks (Linux); 0 if unknown.
+long lock_holder(int fd) {
+  struct stat st {};
+  if (fstat(fd, &st) != 0) return 0;
+  std::ifstream in("/proc/locks");
+  const std::string id = fmt::format("{:02x}:{:02x}:{}", major(st.st_dev), minor(st.st_dev), st.st_ino);
+  std::string line;
+  while (std::getline(in, line)) {
+    std::istringstream is(line);
+    std::string num, type, mode, rw, dev;
+    long pid = 0;
+    is >> num >> type;
+    if (type == "->") is >> type;  // a blocked waiter
+    is >> mode >> rw >> pid >> dev;
+    if (type == "FLOCK" && dev == id) return pid;
+  }
+  return 0;
+}
+
+std::string human(std::uint64_t n) {  // 3025 -> "3,025"
+  const std::string d = std::to_string(n);
+  std::string s;
+  for (std::size_t i = 0; i < d.size(); ++i) {
+    if (i > 0 && (d.size() - i) % 3 == 0) s += ',';
+    s += d[i];
+  }
+  return s;
+}
+
+std::uint64_t record_checksum(std::uint64_t unit, std::uint64_t count, const double* data) {
+  std::uint64_t c = files::fnv1a(&unit, 8);
+  c = files::fnv1a(&count, 8, c);
+  return files::fnv1a(data, count * 8, c);
+}
+
+}  // namespace
+
+CheckpointKey this_build() {
+  CheckpointKey k;
+  k.build = fmt::format("pounding {} (commit {}), {}", program_version, git_commit,
+#if defined(__clang__)
+                        "clang " __clang_version__
+#elif defined(__GNUC__)
+                        "GCC " __VERSION__
+#else
+                        "unknown compiler"
+#endif
+  );
+#if defined(__AVX512F__)
+  k.build += ", AVX-512";
+#elif defined(__AVX2__)
+  k.build += ", AVX2";
+#elif defined(__SSE2__)
+  k.build += ", SSE2";
+#endif
+#if defined(__FMA__)
+  k.build += "+FMA";
+#endif
+  // the executable's bytes: any rebuild that can change a result changes them
+  std::ifstream exe("/proc/self/exe", std::ios::binary);
+  if (exe) {
+    std::vector<char> buf(1 << 20);
+    std::uint64_t h = files::fnv1a_offset_basis;
+    while (exe.read(buf.data(), static_cast<std::streamsize>(buf.size())) || exe.gcount() > 0)
+      h = files::fnv1a(buf.data(), static_cast<std::size_t>(exe.gcount()), h);
+    k.build_hash = h;
+  } else {
+    k.build_hash = files::fnv1a(k.build.data(), k.build.size());
+  }
+  return k;
+}
+
+Checkpoint::Checkpoint(std::string path) : path_(std::move(path)) {
+  created_ = ::access(path_.c_str(), F_OK) != 0;
+  fd_ = ::open(path_.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
+  if (fd_ < 0) {
+    const int err = errno;
+    throw InputError(fmt::format("cannot open the checkpoint: {}", std::strerror(err)), path_,
+                     "check that the output folder exists and is writable");
+  }
+  if (::flock(fd_, LOCK_EX | LOCK_NB) != 0) {
+    const long pid = lock_holder(fd_);
+    ::close(fd_);
+    fd_ = -1;
+    created_ = false;
+    throw InputError(pid > 0 ? fmt::format("{} is in use by process {}", path_, pid)
+                             : fmt::format("{} is in use by another process", path_),
+                     path_,
+                     "wait for that run to finish, or stop it, or give another --out; two runs must not share "
+                     "one output");
+  }
+}
+
+Checkpoint::~Checkpoint() {
+  if (fd_ < 0) return;
+  // a checkpoint that never held a unit of this run holds nothing worth keeping
+  if (created_ && units_ == 0) ::unlink(path_.c_str());
+  ::close(fd_);  // releases the lock
+}
+
+CheckpointScan Checkpoint::scan(const CheckpointKey& key, const UnitFn& on_unit) {
+  CheckpointScan s;
+  std::ifstream in(path_, std::ios::binary);
+  char m[8] = {};
+  in.read(m, 8);
+  if (in.gcount() == 0) return s;  // empty
+  if (!in) {
+    s.kind = CheckpointScan::Kind::not_checkpoint;
+    return s;
+  }
+  if (std::memcmp(m, magic_v1, 8) == 0) {
+    s.kind = CheckpointScan::Kind::old_format;
+    return s;
+  }
+  if (std::memcmp(m, magic_v2, 8) != 0) {
+    s.kind = CheckpointScan::Kind::not_checkpoint;
+    return s;
+  }
+  std::uint64_t h = 0, n = 0, bh = 0, blen = 0;
+  in.read(reinterpret_cast<char*>(&h), 8);
+  in.read(reinterpret_cast<char*>(&n), 8);
+  in.read(reinterpret_cast<char*>(&bh), 8);
+  in.read(reinterpret_cast<char*>(&blen), 8);
+  if (!in || blen > 4096) {
+    s.kind = CheckpointScan::Kind::not_checkpoint;
+    return s;
+  }
+  s.build.resize(blen);
+  in.read(s.build.data(), static_cast<std::streamsize>(blen));
+  if (!in) {
+    s.kind = CheckpointScan::Kind::not_checkpoint;
+    return s;
+  }
+  s.units_total = n;
+  if (h != key.study_hash || n != key.units) {
+    s.kind = CheckpointScan::Kind::other_study;
+  } else {
+    s.kind = bh == key.build_hash ? CheckpointScan::Kind::ours : CheckpointScan::Kind::other_build;
+  }
+  s.good_bytes = 40 + blen;
+  const bool deliver = s.kind == CheckpointScan::Kind::ours && on_unit;
+  std::vector<double> data;
+  for (;;) {
+    std::uint64_t unit = 0, count = 0, sum = 0;
+    in.read(reinterpret_cast<char*>(&unit), 8);
+    in.read(reinterpret_cast<char*>(&count), 8);
+    if (!in || count > max_payload || unit >= n) break;
+    data.resize(count);
+    in.read(reinterpret_cast<char*>(data.data()), static_cast<std::streamsize>(count * 8));
+    in.read(reinterpret_cast<char*>(&sum), 8);
+    if (!in || record_checksum(unit, count, data.data()) != sum) break;
+    s.good_bytes += 24 + count * 8;
+    ++s.units_done;
+    if (deliver) on_unit(static_cast<std::size_t>(unit), std::move(data));
+  }
+  return s;
+}
+
+void Checkpoint::start(const CheckpointKey& key) {
+  if (::ftruncate(fd_, 0) != 0 || ::lseek(fd_, 0, SEEK_SET) != 0) {
+    const int err = errno;
+    throw InputError(fmt::format("cannot reset the checkpoint: {}", std::strerror(err)), path_,
+                     "check the disk and the path");
+  }
+  std::string head(magic_v2, 8);
+  const std::uint64_t blen = key.build.size();
+  for (std::uint64_t v : {key.study_hash, key.units, key.build_hash, blen})
+    head.append(reinterpret_cast<const char*>(&v), 8);
+  head += key.build;
+  good_ = 0;
+  try {
+    files::write_all(fd_, head.data(), head.size(), path_);
+  } catch (const InputError&) {
+    if (::ftruncate(fd_, 0) != 0) { /* the header is all there was; an empty file scans as empty */ }
+    throw;
+  }
+  good_ = head.size();
+  sync();
+}
+
+void Checkpoint::resume(const CheckpointScan& scanned) {
+  if (::ftruncate(fd_, static_cast<off_t>(scanned.good_bytes)) != 0 ||
+      ::lseek(fd_, static_cast<off_t>(scanned.good_bytes), SEEK_SET) < 0) {
+    const int err = errno;
+    throw InputError(fmt::format("cannot continue the checkpoint: {}", std::strerror(err)), path_,
+                     "check the disk and the path");
+  }
+  good_ = scanned.good_bytes;
+  units_ = scanned.units_done;
+}
+
+void Checkpoint::append(std::uint64_t unit, std::span<const double> payload) {
+  const std::uint64_t count = payload.size();
+  const std::uint64_t sum = record_checksum(unit, count, payload.data());
+  std::string rec;
+  rec.reserve(24 + count * 8);
+  rec.append(reinterpret_cast<const char*>(&unit), 8);
+  rec.append(reinterpret_cast<const char*>(&count), 8);
+  rec.append(reinterpret_cast<const char*>(payload.data()), count * 8);
+  rec.append(reinterpret_cast<const char*>(&sum), 8);
+  try {
+    files::write_all(fd_, rec.data(), rec.size(), path_);
+  } catch (const InputError& e) {
+    // cut back to the last complete record: the file stays a valid, resumable checkpoint
+    const bool cut = ::ftruncate(fd_, static_cast<off_t>(good_)) == 0 &&
+                     ::lseek(fd_, static_cast<off_t>(good_), SEEK_SET) >= 0 && ::fsync(fd_) == 0;
+    throw InputError(fmt::format("{}; the checkpoint keeps {} finished units{}", e.what_part(), human(units_),
+                                 cut ? "" : " (its torn last record is dropped on resume)"),
+                     path_, e.fix() + " with --resume to continue");
+  }
+  good_ += rec.size();
+  ++units_;
+}
+
+void Checkpoint::sync() {
+  if (fd_ >= 0 && ::fsync(fd_) != 0) {
+    const int err = errno;
+    throw InputError(fmt::format("cannot write the checkpoint to disk (fsync): {}", std::strerror(err)), path_,
+                     "check the disk, then rerun with --resume");
+  }
+}
+
+std::uint64_t open_for_run(Checkpoint& ckpt, const CheckpointKey& key, bool resume, bool force,
+                           const Checkpoint::UnitFn& on_unit) {
+  using K = CheckpointScan::Kind;
+  const std::string& p = ckpt.path();
+  if (resume && force)
+    throw InputError("--resume and --force contradict each other", "--resume --force",
+                     "give --resume to continue the checkpoint or --force to discard it");
+  if (!resume) {
+    const CheckpointScan s = ckpt.scan(key);
+    if (!force) {
+      const std::string discard = " or --force to discard it";
+      switch (s.kind) {
+        case K::empty: break;
+        case K::ours:
+          if (s.units_done > 0)
+            throw InputError(fmt::format("checkpoint {} holds {} of {} units of this study", p, human(s.units_done),
+                                         human(s.units_total)),
+                             p, "rerun with --resume to continue" + discard);
+          break;
+        case K::other_build:
+          if (s.units_done > 0)
+            throw InputError(fmt::format("checkpoint {} holds {} of {} units of this study, written by another build "
+                                         "({})", p, human(s.units_done), human(s.units_total), s.build),
+                             p, "rerun with that build and --resume to continue" + discard);
+          break;
+        case K::other_study:
+          throw InputError(fmt::format("checkpoint {} holds {} units of a different study", p, human(s.units_done)), p,
+                           "give another --out, resume that study" + discard);
+        case K::old_format:
+          throw InputError(fmt::format("checkpoint {} was written by an older pounding (checkpoint format 1)", p), p,
+                           "finish it with that version, or rerun with --force to discard it");
+        case K::not_checkpoint:
+          throw InputError(fmt::format("{} exists and is not a pounding checkpoint", p), p,
+                           "move it away, give another --out, or rerun with --force to overwrite it");
+      }
+    }
+    ckpt.start(key);
+    return 0;
+  }
+  const CheckpointScan s = ckpt.scan(key, on_unit);
+  switch (s.kind) {
+    case K::empty:
+      throw InputError("no checkpoint to resume from", p, "run without --resume to start the study");
+    case K::ours: break;
+    case K::other_build:
+      throw InputError(fmt::format("the checkpoint was written by a different build of pounding ({}; this is {}); "
+                                   "its units could differ from this build's in the last bits",
+                                   s.build, key.build),
+                       p, "resume with the build that started the run, or rerun with --force to start afresh");
+    case K::other_study:
+      throw InputError("the checkpoint belongs to a different study (study text, records or program format changed)", p,
+                       "resume with the study file that started the run, or run with --force to start afresh");
+    case K::old_format:
+      throw InputError("the checkpoint was written by an older pounding (checkpoint format 1)", p,
+                       "finish it with that version, or rerun with --force to start afresh");
+    case K::not_checkpoint:
+      throw InputError("the checkpoint file is not a pounding checkpoint", p, "move it away and run with --force");
+  }
+  ckpt.resume(s);
+  return s.units_done;
+}
+
+void Checkpoint::remove() {
+  if (fd_ < 0) return;
+  ::unlink(path_.c_str());
+  ::close(fd_);
+  fd_ = -1;
+}
+
+}  // namespace pounding

@@ -1,0 +1,59 @@
+// Resolving a study's [records] into scaled ground motions (real files or synthetic stand-ins).
+#include <algorithm>
+#include <filesystem>
+
+#include <fmt/format.h>
+
+#include "pounding/core/error.hpp"
+#include "pounding/study/study.hpp"
+
+namespace pounding {
+
+namespace fs = std::filesystem;
+
+namespace {
+// scale_setting: where the user set `scale` ("[records] scale", or a files entry's scale).
+StudyRecord from_file(const std::string& path, double scale, const Study& s, const std::string& scale_setting) {
+  ReadOptions ro;
+  ro.units = s.units;
+  ro.dt = s.dt_one_column;
+  StudyRecord r;
+  r.record = read_record(path, ro);
+  for (double& a : r.record.acc) a *= scale;
+  // a PGA of 499 g (a file in cm/s^2 read as g, or scale = 1000) would make every analysis diverge
+  require_analysable(r.record, {scale, scale_setting, "set [records] units = \"cm/s2\" in " + s.path});
+  r.id = fs::path(path).stem().string();
+  r.note = fmt::format("file {} x {}", path, scale);
+  return r;
+}
+}  // namespace
+
+std::vector<StudyRecord> load_study_records(const Study& s) {
+  std::vector<StudyRecord> out;
+  if (!s.files.empty()) {
+    for (const auto& f : s.files)
+      out.push_back(from_file(f.path, f.scale * s.scale, s,
+                              f.scale != 1.0 ? fmt::format("the [records] files entry's scale ({}) x [records] scale ({}) "
+                                                           "in {}", f.scale, s.scale, s.path)
+                                             : "[records] scale in " + s.path));
+  } else if (!s.directory.empty()) {
+    if (!fs::is_directory(s.directory))
+      throw InputError("records directory not found", s.directory, "fix [records] directory");
+    std::vector<std::string> paths;
+    for (const auto& e : fs::directory_iterator(s.directory)) {
+      auto ext = e.path().extension().string();
+      std::transform(ext.begin(), ext.end(), ext.begin(), ::tolower);
+      if (e.is_regular_file() && (ext == ".at2" || ext == ".txt")) paths.push_back(e.path().string());
+    }
+    std::sort(paths.begin(), paths.end());
+    if (paths.empty()) throw InputError("no .AT2 or .txt records in the directory", s.directory, "point [records] directory at PEER files");
+    for (const auto& p : paths) out.push_back(from_file(p, s.scale, s, "[records] scale in " + s.path));
+  } else {
+    out = load_suite_records(s);
+  }
+  if (s.record_limit > 0 && out.size() > static_cast<std::size_t>(s.record_limit)) out.resize(static_cast<std::size_t>(s.record_limit));
+  check_result_memory(s, out.size());  // parse_study could only count a lower bound of the records
+  return out;
+}
+
+}  // namespace pounding

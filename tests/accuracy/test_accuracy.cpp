@@ -1,0 +1,199 @@
+// Issue 6: the engine's high-accuracy mode against the stored SciPy reference (tools/reference_solver.py,
+// tests/data/reference/accuracy_reference.csv), stability limits, stiff-contact failure marking, restitution
+// of the damping laws and Kelvin's clamped tension. Regenerate the reference with the commands in
+// docs/accuracy.md.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <numbers>
+
+#include "pounding/accuracy/accuracy.hpp"
+#include "test_data.hpp"
+
+using namespace pounding;
+namespace A = pounding::accuracy;
+
+namespace {
+
+const std::string reference_csv = testdata::data_dir() + "/reference/accuracy_reference.csv";
+// The reference was computed on real records (A::default_records()); tests/test_data.hpp skips or fails
+// without them.
+const std::string record_dir = testdata::real_records_dir();
+
+std::map<std::string, A::Agreement> agree(const A::EngineSetting& es) {
+  auto cases = A::read_cases(reference_csv);
+  auto res = A::run_cases(cases, es, record_dir, A::default_records());
+  std::map<std::string, A::Agreement> out;
+  for (auto& a : A::agreement(cases, res)) out[a.law] = a;
+  return out;
+}
+
+}  // namespace
+
+TEST(AccuracyReference, SetHasFiftyModelsThreeRecordsFiveLaws) {
+  auto cases = A::read_cases(reference_csv);
+  ASSERT_EQ(cases.size(), 750u);
+  std::map<std::string, int> per_law;
+  for (const auto& c : cases) {
+    ++per_law[c.law];
+    EXPECT_GE(c.ref_impact_count, 0);
+  }
+  for (const char* law : {"none", "hertzdamp", "kelvin", "linear", "stereomechanical"}) EXPECT_EQ(per_law[law], 150);
+}
+
+// rk4 + event-located contact onset, 64 substeps (h = 0.156 ms) against DOP853 rtol 1e-10 with every switch
+// located: peak closing, peak force and impact count.
+TEST(AccuracyReference, HighAccuracyModeAgreesWithScipy) {
+  POUNDING_REQUIRE_REAL_RECORDS();
+  auto a = agree({Stepper::rk4, 64, true});
+  for (const char* law : {"none", "hertzdamp", "kelvin", "linear", "stereomechanical"}) {
+    SCOPED_TRACE(law);
+    ASSERT_TRUE(a.count(law));
+    EXPECT_EQ(a[law].cases, 150);
+    EXPECT_LT(a[law].closing_max, 2e-3);
+    EXPECT_LT(a[law].closing_median, 1e-4);
+    EXPECT_EQ(a[law].verdict_differs, 0);
+  }
+  for (const char* law : {"hertzdamp", "linear"}) {
+    SCOPED_TRACE(law);
+    EXPECT_GT(a[law].impacting, 100);
+    EXPECT_LT(a[law].force_max, 1e-4);
+    EXPECT_EQ(a[law].count_differs, 0);
+  }
+  // Kelvin: its clamp instant (force turning tensile) is not located by the engine -> a little less accurate
+  EXPECT_LT(a["kelvin"].force_max, 1e-3);
+  EXPECT_EQ(a["kelvin"].count_differs, 0);
+  EXPECT_EQ(a["stereomechanical"].count_differs, 0);
+}
+
+// The larger uncoupled set behind the chart's probability table (1002 model-records).
+TEST(AccuracyReference, UncoupledSetAgrees) {
+  POUNDING_REQUIRE_REAL_RECORDS();
+  auto cases = A::read_cases(testdata::data_dir() + "/reference/accuracy_uncoupled.csv");
+  ASSERT_EQ(cases.size(), 1002u);
+  auto res = A::run_cases(cases, {Stepper::rk4, 64, true}, record_dir, A::default_records());
+  auto a = A::agreement(cases, res);
+  ASSERT_EQ(a.size(), 1u);
+  EXPECT_LT(a[0].closing_max, 1e-4);
+  EXPECT_LT(a[0].closing_median, 1e-6);
+}
+
+// The same comparison must be able to fail: the production stepper at the record step is visibly less accurate.
+TEST(AccuracyReference, ComparisonDiscriminates) {
+  POUNDING_REQUIRE_REAL_RECORDS();
+  auto a = agree({Stepper::central_difference, 1, false});
+  EXPECT_GT(a["hertzdamp"].force_max, 1e-3);
+  EXPECT_GT(a["hertzdamp"].closing_max, 1e-4);
+}
+
+TEST(AccuracyStability, MeasuredLimitsMatchTheory) {
+  auto rows = A::stability_map();
+  auto find = [&](const std::string& s, double z) {
+    for (auto& r : rows)
+      if (r.stepper == s && r.zeta == z) return r;
+    ADD_FAILURE() << "no row " << s;
+    return A::StabilityRow{};
+  };
+  EXPECT_NEAR(find("central-difference", 0.0).measured, 2.0, 2e-3);
+  EXPECT_NEAR(find("rk4", 0.0).measured, 2.0 * std::numbers::sqrt2, 2e-3);
+  EXPECT_NEAR(find("rk4", 0.05).measured, find("rk4", 0.05).theory, 2e-3);
+  EXPECT_TRUE(std::isinf(find("nigam-jennings", 0.0).measured));  // exact for a linear SDOF
+  EXPECT_TRUE(std::isinf(find("newmark", 0.0).measured));         // average acceleration: unconditionally stable
+  // the damped central difference with the velocity predictor: 1.80998 from its amplification matrix
+  EXPECT_NEAR(find("central-difference", 0.05).measured, find("central-difference", 0.05).theory, 2e-3);
+  EXPECT_NEAR(find("central-difference", 0.05).theory, 1.80998, 1e-4);
+}
+
+// impact-stiffness-linear-viscoelastic-experiment.txt steel frames (k = 20,660 N/mm, 5 and 10 kg) at the record
+// step: every explicit stepper goes past its limit (h omega_c = 25) and every such lane is marked, never
+// returned as numbers; with h omega_c < 0.4 every lane is ok.
+TEST(AccuracyStability, StiffContactPastTheLimitIsMarkedDiverged) {
+  POUNDING_REQUIRE_REAL_RECORDS();
+  auto rows = A::stiff_contact(record_dir);
+  int checked = 0;
+  for (const auto& r : rows) {
+    SCOPED_TRACE(r.stepper + " " + r.law + " substeps " + std::to_string(r.substeps));
+    if (r.stepper == "newmark") continue;  // implicit: stable, see the next test
+    if (r.substeps == 1) {
+      EXPECT_NE(r.status, "ok");
+      EXPECT_TRUE(std::isnan(r.peak_force));
+      EXPECT_EQ(r.impacts, -1);
+      ++checked;
+    }
+    if (r.h_omega_contact < 0.4) {
+      EXPECT_EQ(r.status, "ok");
+      EXPECT_GT(r.impacts, 10);
+      ++checked;
+    }
+  }
+  EXPECT_EQ(checked, 3 * 3 * 3);
+}
+
+// The contact term's own limit, measured on the linear contact (omega_c = sqrt(k / meff) = 2490 rad/s):
+// central difference is marked diverged from h omega_c = 1.92 up and runs from 1.78 down (its damped
+// free-vibration limit is 1.81); RK4 diverges from 3.11 and runs from 2.77 down (theory 2.83).
+TEST(AccuracyStability, ContactTermLimits) {
+  POUNDING_REQUIRE_REAL_RECORDS();
+  auto rows = A::stiff_contact(record_dir);
+  int n = 0;
+  for (const auto& r : rows) {
+    if (r.law != "linear") continue;
+    SCOPED_TRACE(r.stepper + " h*wc " + std::to_string(r.h_omega_contact));
+    double lo = r.stepper == "central-difference" ? 1.78 : r.stepper == "rk4" ? 2.77 : -1.0;
+    double hi = r.stepper == "central-difference" ? 1.9 : r.stepper == "rk4" ? 3.0 : -1.0;
+    if (lo < 0) continue;
+    if (r.h_omega_contact >= hi) {
+      EXPECT_EQ(r.status, "diverged");
+      ++n;
+    }
+    if (r.h_omega_contact <= lo) {
+      EXPECT_EQ(r.status, "ok");
+      ++n;
+    }
+  }
+  EXPECT_GT(n, 50);
+}
+
+// Newmark stays bounded past the explicit limit, but at h omega_c = 25 its Hertzdamp peak force is far from the
+// converged one: a failure mode (stable but wrong) that no status marks -- documented in docs/accuracy.md.
+TEST(AccuracyStability, NewmarkAtHugeStepIsStableButInaccurate) {
+  POUNDING_REQUIRE_REAL_RECORDS();
+  auto rows = A::stiff_contact(record_dir);
+  double coarse = 0, fine = 0;
+  for (const auto& r : rows)
+    if (r.stepper == "newmark" && r.law == "hertzdamp") {
+      if (r.substeps == 1) {
+        EXPECT_EQ(r.status, "ok");
+        coarse = r.peak_force;
+      }
+      if (r.substeps == 256) fine = r.peak_force;
+    }
+  ASSERT_GT(fine, 0);
+  EXPECT_GT(std::abs(coarse - fine) / fine, 0.5);
+}
+
+TEST(AccuracyRestitution, CalibratedOnDiagonalOthersMiss) {
+  std::vector<double> targets{0.3, 0.5, 0.65, 0.8, 0.95};
+  auto rows = A::restitution_table(targets);
+  std::map<std::string, std::map<double, double>> e;
+  for (auto& r : rows) e[r.law][r.e_target] = r.e_effective;
+  for (double t : targets) EXPECT_NEAR(e["calibrated"][t], t, 1e-3) << t;
+  // Lankarani-Nikravesh is derived for e near 1: at the paper's e = 0.65 it delivers about 0.77
+  EXPECT_GT(e["lankarani-nikravesh"][0.65], 0.75);
+  EXPECT_LT(e["lankarani-nikravesh"][0.65], 0.80);
+  EXPECT_NEAR(e["lankarani-nikravesh"][0.95], 0.95, 0.01);
+  EXPECT_GT(e["hunt-crossley"][0.3], 0.5);
+}
+
+TEST(AccuracyKelvin, TensionIsClampedAndChangesTheRestitution) {
+  for (double target : {0.5, 0.65, 0.8}) {
+    auto k = A::kelvin_tension(target);
+    SCOPED_TRACE(target);
+    EXPECT_LT(k.tension_unclamped, -0.05 * k.peak_force);  // the unclamped law pulls before separation
+    EXPECT_GT(k.clamps, 0);
+    EXPECT_GE(k.min_force_series, 0.0);                     // the kernel never returns a tensile force
+    EXPECT_GT(k.e_effective_clamped, target);               // clamping ends the contact early: less loss
+  }
+}

@@ -1,0 +1,230 @@
+// The checkpoint (include/pounding/study/checkpoint.hpp) and atomic files (files.hpp): torn records, refusals,
+// the lock, write failures that keep the file resumable, atomic replacement.
+#include <fcntl.h>
+#include <sys/file.h>
+#include <sys/resource.h>
+#include <unistd.h>
+
+#include <csignal>
+#include <filesystem>
+#include <fstream>
+#include <map>
+
+#include <gtest/gtest.h>
+
+#include "pounding/study/checkpoint.hpp"
+#include "pounding/core/error.hpp"
+#include "pounding/core/files.hpp"
+
+namespace fs = std::filesystem;
+using namespace pounding;
+
+namespace {
+
+struct TempDir {
+  fs::path dir;
+  TempDir() {
+    char tmpl[] = "/tmp/pounding-ckpt-XXXXXX";
+    dir = mkdtemp(tmpl);
+  }
+  ~TempDir() { fs::remove_all(dir); }
+  std::string file(const std::string& name) const { return (dir / name).string(); }
+};
+
+CheckpointKey key(std::uint64_t study = 11, std::uint64_t units = 100, std::uint64_t build = 5) {
+  CheckpointKey k;
+  k.study_hash = study, k.units = units, k.build_hash = build, k.build = "test build " + std::to_string(build);
+  return k;
+}
+
+std::vector<double> payload(std::size_t unit) { return {double(unit), 0.5 * double(unit), -1.0, 1e-300}; }
+
+// Runs `fn` under a file-size limit with SIGXFSZ ignored, restoring both afterwards.
+template <class F>
+void with_file_size_limit(rlim_t bytes, F&& fn) {
+  rlimit old{};
+  getrlimit(RLIMIT_FSIZE, &old);
+  auto old_handler = std::signal(SIGXFSZ, SIG_IGN);
+  rlimit lim = old;
+  lim.rlim_cur = bytes;
+  ASSERT_EQ(setrlimit(RLIMIT_FSIZE, &lim), 0);
+  fn();
+  setrlimit(RLIMIT_FSIZE, &old);
+  std::signal(SIGXFSZ, old_handler);
+}
+
+}  // namespace
+
+TEST(Checkpoint, RoundTripAndTornLastRecordDropped) {
+  TempDir t;
+  const std::string p = t.file("r.h5.ckpt");
+  {
+    Checkpoint c(p);
+    open_for_run(c, key(), false, false, {});
+    for (std::size_t u : {3, 7, 42}) c.append(u, payload(u));
+  }
+  const auto full = fs::file_size(p);
+  fs::resize_file(p, full - 5);  // kill -9 in the middle of the last record
+  std::map<std::size_t, std::vector<double>> got;
+  Checkpoint c(p);
+  EXPECT_EQ(open_for_run(c, key(), true, false, [&](std::size_t u, std::vector<double>&& d) { got[u] = d; }), 2u);
+  ASSERT_EQ(got.size(), 2u);
+  EXPECT_EQ(got[3], payload(3));
+  EXPECT_EQ(got[7], payload(7));
+  EXPECT_EQ(got.count(42), 0u);
+  // the torn tail is cut, and appending continues a valid file
+  c.append(42, payload(42));
+  EXPECT_EQ(fs::file_size(p), full);
+}
+
+TEST(Checkpoint, CorruptedRecordEndsTheValidPrefix) {
+  TempDir t;
+  const std::string p = t.file("c.ckpt");
+  {
+    Checkpoint c(p);
+    open_for_run(c, key(), false, false, {});
+    for (std::size_t u = 0; u < 5; ++u) c.append(u, payload(u));
+  }
+  // flip one byte inside the third record's data
+  const std::size_t header = 40 + key().build.size(), rec = 24 + 4 * 8;
+  std::fstream f(p, std::ios::in | std::ios::out | std::ios::binary);
+  f.seekp(static_cast<std::streamoff>(header + 2 * rec + 20));
+  f.put('\x7f');
+  f.close();
+  Checkpoint c(p);
+  const CheckpointScan s = c.scan(key());
+  EXPECT_EQ(s.kind, CheckpointScan::Kind::ours);
+  EXPECT_EQ(s.units_done, 2u);
+}
+
+TEST(Checkpoint, RefusesToDiscardProgressWithoutForce) {
+  TempDir t;
+  const std::string p = t.file("p.ckpt");
+  {
+    Checkpoint c(p);
+    open_for_run(c, key(11, 3025), false, false, {});
+    for (std::size_t u = 0; u < 812; ++u) c.append(u, payload(u));
+  }
+  const auto size = fs::file_size(p);
+  {
+    Checkpoint c(p);
+    try {
+      open_for_run(c, key(11, 3025), false, false, {});
+      FAIL() << "a fresh run discarded progress";
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.what()).find("holds 812 of 3,025 units of this study"), std::string::npos) << e.what();
+      EXPECT_NE(e.fix().find("--resume to continue or --force to discard it"), std::string::npos) << e.fix();
+    }
+  }
+  EXPECT_EQ(fs::file_size(p), size);
+  {
+    Checkpoint c(p);
+    EXPECT_THROW(open_for_run(c, key(99, 3025), false, false, {}), InputError);  // another study's progress too
+  }
+  EXPECT_EQ(fs::file_size(p), size);
+  Checkpoint c(p);
+  EXPECT_EQ(open_for_run(c, key(11, 3025), false, true, {}), 0u);  // --force
+  EXPECT_EQ(c.scan(key(11, 3025)).units_done, 0u);
+}
+
+TEST(Checkpoint, ResumeRefusesOtherStudyOtherBuildNothingAndOldFormat) {
+  TempDir t;
+  const std::string p = t.file("o.ckpt");
+  {
+    Checkpoint c(p);
+    open_for_run(c, key(), false, false, {});
+    c.append(1, payload(1));
+  }
+  auto message = [&](const CheckpointKey& k) {
+    Checkpoint c(p);
+    try {
+      open_for_run(c, k, true, false, {});
+    } catch (const InputError& e) {
+      return std::string(e.what());
+    }
+    return std::string("accepted");
+  };
+  EXPECT_NE(message(key(12)).find("different study"), std::string::npos);
+  EXPECT_NE(message(key(11, 101)).find("different study"), std::string::npos);
+  const std::string other_build = message(key(11, 100, 6));
+  EXPECT_NE(other_build.find("different build"), std::string::npos) << other_build;
+  EXPECT_NE(other_build.find("test build 5"), std::string::npos) << other_build;  // names the writer's build
+  EXPECT_EQ(message(key()), "accepted");
+  std::ofstream(p, std::ios::binary) << "PNDCKPT1" << std::string(16, '\0');
+  EXPECT_NE(message(key()).find("format 1"), std::string::npos);
+  std::ofstream(p, std::ios::binary) << "hello, world";
+  EXPECT_NE(message(key()).find("not a pounding checkpoint"), std::string::npos);
+  fs::remove(p);
+  EXPECT_NE(message(key()).find("no checkpoint to resume from"), std::string::npos);
+  EXPECT_FALSE(fs::exists(p)) << "a failed --resume left an empty checkpoint behind";
+}
+
+TEST(Checkpoint, ExclusiveLockNamesTheHolder) {
+  TempDir t;
+  const std::string p = t.file("l.ckpt");
+  Checkpoint first(p);
+  try {
+    Checkpoint second(p);
+    FAIL() << "two holders of one checkpoint";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("is in use by process " + std::to_string(getpid())), std::string::npos)
+        << e.what();
+  }
+}
+
+TEST(Checkpoint, FailedAppendKeepsTheFileResumable) {
+  TempDir t;
+  const std::string p = t.file("f.ckpt");
+  std::uint64_t appended = 0;
+  {
+    Checkpoint c(p);
+    open_for_run(c, key(), false, false, {});
+    with_file_size_limit(1000, [&] {
+      try {
+        for (std::size_t u = 0; u < 100; ++u, ++appended) c.append(u, payload(u));
+        ADD_FAILURE() << "no error at the file-size limit";
+      } catch (const InputError& e) {
+        EXPECT_NE(std::string(e.what()).find("EFBIG"), std::string::npos) << e.what();
+        EXPECT_NE(std::string(e.what()).find(p), std::string::npos) << e.what();
+      }
+    });
+  }
+  ASSERT_GT(appended, 0u);
+  Checkpoint c(p);
+  const CheckpointScan s = c.scan(key());
+  EXPECT_EQ(s.kind, CheckpointScan::Kind::ours);
+  EXPECT_EQ(s.units_done, appended);
+  EXPECT_EQ(s.good_bytes, fs::file_size(p)) << "a partial record was left at the end";
+}
+
+TEST(AtomicFile, ReplacesWholeOrNotAtAll) {
+  TempDir t;
+  const std::string p = t.file("a.bin");
+  std::vector<std::byte> big(64 * 1024, std::byte{1}), small(10, std::byte{2});
+  files::write_atomically(p, small);
+  EXPECT_EQ(fs::file_size(p), 10u);
+  with_file_size_limit(4096, [&] { EXPECT_THROW(files::write_atomically(p, big), InputError); });
+  EXPECT_EQ(fs::file_size(p), 10u) << "the old file must survive a failed replacement";
+  for (const auto& e : fs::directory_iterator(t.dir))
+    EXPECT_EQ(e.path().filename().string().find(".tmp"), std::string::npos) << "temporary left: " << e.path();
+  files::write_atomically(p, big);
+  EXPECT_EQ(fs::file_size(p), big.size());
+}
+
+TEST(OutputPath, ProblemsFoundBeforeWork) {
+  TempDir t;
+  EXPECT_THROW(files::check_output_path("", "--out"), InputError);
+  EXPECT_THROW(files::check_output_path(t.dir.string() + "/", "--out"), InputError);
+  EXPECT_THROW(files::check_output_path(t.dir.string(), "--out"), InputError);
+  EXPECT_THROW(files::check_output_path(t.file("missing/r.h5"), "--out"), InputError);
+  EXPECT_THROW(files::check_output_path("/dev/null", "--out"), InputError);
+  EXPECT_NO_THROW(files::check_output_path(t.file("r.h5"), "--out"));
+  EXPECT_FALSE(fs::exists(t.file("r.h5")));
+  EXPECT_EQ(std::distance(fs::directory_iterator(t.dir), fs::directory_iterator{}), 0) << "the probe was left";
+}
+
+TEST(Fnv1a, PublishedTestVectors) {  // Fowler-Noll-Vo reference vectors for 64-bit FNV-1a
+  EXPECT_EQ(files::fnv1a("", 0), 0xcbf29ce484222325ULL);
+  EXPECT_EQ(files::fnv1a("a", 1), 0xaf63dc4c8601ec8cULL);
+  EXPECT_EQ(files::fnv1a("foobar", 6), 0x85944171f73967e8ULL);
+}
