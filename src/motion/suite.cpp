@@ -356,25 +356,124 @@ std::uint64_t derive_seed(std::uint64_t suite_seed, const std::string& id) {
   return splitmix64(suite_seed ^ files::fnv1a(id.data(), id.size(), files::fnv1a_offset_basis));
 }
 
+namespace {
+
+// [suite]: name, description, seed, dt.
+void parse_suite_table(Suite& s, const toml::table& root, const std::string& path) {
+  const toml::node* n = root.get("suite");
+  if (!n) return;
+  const toml::table* t = n->as_table();
+  if (!t) throw InputError("[suite] must be a table", location(path, n->source()), "write [suite] with name, seed, dt");
+  check_keys(*t, path, {"name", "description", "seed", "dt"}, "[suite]");
+  if (auto v = t->get("name")) s.name = get_string(*v, path, "name");
+  if (auto v = t->get("description")) s.description = get_string(*v, path, "description");
+  if (auto v = t->get("seed")) s.seed = config::seed(*v, "seed", location(path, v->source()));
+  if (auto v = t->get("dt")) {
+    s.dt = get_number(*v, path, "dt");
+    if (!(s.dt > 0 && s.dt <= 0.05))
+      throw InputError(fmt::format("dt = {} is outside (0, 0.05] s", s.dt), location(path, v->source()),
+                       "give the synthetic records' time step, e.g. dt = 0.01");
+  }
+}
+
+// M, R_km, vs30, F of a [[record]]: the site when all four are given (and valid).
+void parse_entry_site(SuiteEntry& e, const toml::table& t, const std::string& path, const std::string& at) {
+  int site_keys = 0;
+  SiteParams sp;
+  auto site_num = [&](const char* key, double& out) {
+    if (auto v = t.get(key)) {
+      out = get_number(*v, path, key);
+      ++site_keys;
+    }
+  };
+  double F = -1;
+  site_num("M", sp.M);
+  site_num("R_km", sp.R_km);
+  site_num("vs30", sp.vs30);
+  site_num("F", F);
+  if (site_keys > 0 && F >= 0) {
+    if (F != 0 && F != 1)
+      throw InputError(fmt::format("F = {} in record {}", F, e.id), location(path, t.get("F")->source()),
+                       "F is 0 (strike-slip) or 1 (reverse or reverse-oblique)");
+    sp.F = static_cast<int>(F);
+  }
+  if (site_keys == 4) {
+    validate(sp, at);
+    e.site = sp;
+  }
+}
+
+// pga_g, file (relative to the suite file's directory), scale, units, dt_record of a [[record]].
+void parse_entry_record(SuiteEntry& e, const toml::table& t, const std::string& path, const fs::path& base) {
+  if (auto v = t.get("pga_g")) {
+    e.pga_g = get_number(*v, path, "pga_g");
+    if (!(e.pga_g > 0 && e.pga_g <= 5))
+      throw InputError(fmt::format("pga_g = {} in record {}", e.pga_g, e.id), location(path, v->source()),
+                       "give the PGA in g, in (0, 5]");
+  }
+  if (auto v = t.get("file")) {
+    e.file = get_string(*v, path, "file");
+    if (e.file.empty()) throw InputError("empty file name", location(path, v->source()), "give a path or drop the key");
+    if (fs::path(e.file).is_relative() && !base.empty()) e.file = (base / e.file).lexically_normal().string();
+  }
+  if (auto v = t.get("scale")) {
+    e.scale = get_number(*v, path, "scale");
+    if (!(e.scale > 0))
+      throw InputError(fmt::format("scale = {} in record {}", e.scale, e.id), location(path, v->source()), "give a factor > 0");
+  }
+  if (auto v = t.get("units")) {
+    const std::string u = get_string(*v, path, "units");
+    try {
+      e.units = parse_units(u);
+    } catch (const InputError&) {
+      throw InputError(fmt::format("units = '{}'", u), location(path, v->source()), "use g, m/s2 or cm/s2");
+    }
+  }
+  if (auto v = t.get("dt_record")) {
+    e.dt_record = get_number(*v, path, "dt_record");
+    if (!(e.dt_record > 0)) throw InputError("dt_record must be > 0", location(path, v->source()), "give the step in s");
+  }
+}
+
+// One [[record]]; ids collects the ids seen so far (each must be unique).
+SuiteEntry parse_entry(const toml::node& node, const Suite& s, const fs::path& base, std::set<std::string>& ids) {
+  const std::string& path = s.path;
+  const toml::table* t = node.as_table();
+  if (!t) throw InputError("record must be a table", location(path, node.source()), "write [[record]] tables");
+  check_keys(*t, path,
+             {"id", "event", "year", "station", "component", "M", "R_km", "vs30", "F", "pga_g", "file", "scale",
+              "seed", "units", "dt_record"},
+             "[[record]]");
+  SuiteEntry e;
+  e.line = static_cast<int>(node.source().begin.line);
+  const std::string at = fmt::format("{}:{}", path, e.line);
+  const toml::node* id = t->get("id");
+  if (!id) throw InputError("[[record]] without id", at, "give every record an id, e.g. id = \"EQ1\"");
+  e.id = get_string(*id, path, "id");
+  if (e.id.empty() || !ids.insert(e.id).second)
+    throw InputError(fmt::format("id '{}' is empty or repeated", e.id), location(path, id->source()), "give unique ids");
+  if (auto v = t->get("event")) e.event = get_string(*v, path, "event");
+  if (auto v = t->get("station")) e.station = get_string(*v, path, "station");
+  if (auto v = t->get("component")) e.component = get_string(*v, path, "component");
+  if (auto v = t->get("year")) e.year = static_cast<int>(get_number(*v, path, "year"));
+  parse_entry_site(e, *t, path, at);
+  parse_entry_record(e, *t, path, base);
+  e.seed = derive_seed(s.seed, e.id);
+  if (auto v = t->get("seed")) e.seed = config::seed(*v, "seed", location(path, v->source()));
+  if (e.file.empty() && !e.site)
+    throw InputError(fmt::format("record {} has neither file nor a complete site (M, R_km, vs30, F)", e.id), at,
+                     "add file = \"...\" or all of M, R_km, vs30 and F");
+  return e;
+}
+
+}  // namespace
+
 Suite parse_suite(const std::string& text, const std::string& path) {
   const toml::table root = config::parse(text, path, "fix the suite file's syntax");
   Suite s;
   s.path = path;
   check_keys(root, path, {"suite", "record"}, "the suite file");
-  if (const toml::node* n = root.get("suite")) {
-    const toml::table* t = n->as_table();
-    if (!t) throw InputError("[suite] must be a table", location(path, n->source()), "write [suite] with name, seed, dt");
-    check_keys(*t, path, {"name", "description", "seed", "dt"}, "[suite]");
-    if (auto v = t->get("name")) s.name = get_string(*v, path, "name");
-    if (auto v = t->get("description")) s.description = get_string(*v, path, "description");
-    if (auto v = t->get("seed")) s.seed = config::seed(*v, "seed", location(path, v->source()));
-    if (auto v = t->get("dt")) {
-      s.dt = get_number(*v, path, "dt");
-      if (!(s.dt > 0 && s.dt <= 0.05))
-        throw InputError(fmt::format("dt = {} is outside (0, 0.05] s", s.dt), location(path, v->source()),
-                         "give the synthetic records' time step, e.g. dt = 0.01");
-    }
-  }
+  parse_suite_table(s, root, path);
   if (s.name.empty()) s.name = fs::path(path).stem().string();
   const toml::node* recs = root.get("record");
   const toml::array* arr = recs ? recs->as_array() : nullptr;
@@ -382,83 +481,7 @@ Suite parse_suite(const std::string& text, const std::string& path) {
     throw InputError("no [[record]] entries", path, "list the ground motions as [[record]] tables with id = ...");
   const fs::path base = fs::path(path).parent_path();
   std::set<std::string> ids;
-  for (const toml::node& node : *arr) {
-    const toml::table* t = node.as_table();
-    if (!t) throw InputError("record must be a table", location(path, node.source()), "write [[record]] tables");
-    check_keys(*t, path,
-               {"id", "event", "year", "station", "component", "M", "R_km", "vs30", "F", "pga_g", "file", "scale",
-                "seed", "units", "dt_record"},
-               "[[record]]");
-    SuiteEntry e;
-    e.line = static_cast<int>(node.source().begin.line);
-    const std::string at = fmt::format("{}:{}", path, e.line);
-    const toml::node* id = t->get("id");
-    if (!id) throw InputError("[[record]] without id", at, "give every record an id, e.g. id = \"EQ1\"");
-    e.id = get_string(*id, path, "id");
-    if (e.id.empty() || !ids.insert(e.id).second)
-      throw InputError(fmt::format("id '{}' is empty or repeated", e.id), location(path, id->source()), "give unique ids");
-    if (auto v = t->get("event")) e.event = get_string(*v, path, "event");
-    if (auto v = t->get("station")) e.station = get_string(*v, path, "station");
-    if (auto v = t->get("component")) e.component = get_string(*v, path, "component");
-    if (auto v = t->get("year")) e.year = static_cast<int>(get_number(*v, path, "year"));
-    int site_keys = 0;
-    SiteParams sp;
-    auto site_num = [&](const char* key, double& out) {
-      if (auto v = t->get(key)) {
-        out = get_number(*v, path, key);
-        ++site_keys;
-      }
-    };
-    double F = -1;
-    site_num("M", sp.M);
-    site_num("R_km", sp.R_km);
-    site_num("vs30", sp.vs30);
-    site_num("F", F);
-    if (site_keys > 0 && F >= 0) {
-      if (F != 0 && F != 1)
-        throw InputError(fmt::format("F = {} in record {}", F, e.id), location(path, t->get("F")->source()),
-                         "F is 0 (strike-slip) or 1 (reverse or reverse-oblique)");
-      sp.F = static_cast<int>(F);
-    }
-    if (site_keys == 4) {
-      validate(sp, at);
-      e.site = sp;
-    }
-    if (auto v = t->get("pga_g")) {
-      e.pga_g = get_number(*v, path, "pga_g");
-      if (!(e.pga_g > 0 && e.pga_g <= 5))
-        throw InputError(fmt::format("pga_g = {} in record {}", e.pga_g, e.id), location(path, v->source()),
-                         "give the PGA in g, in (0, 5]");
-    }
-    if (auto v = t->get("file")) {
-      e.file = get_string(*v, path, "file");
-      if (e.file.empty()) throw InputError("empty file name", location(path, v->source()), "give a path or drop the key");
-      if (fs::path(e.file).is_relative() && !base.empty()) e.file = (base / e.file).lexically_normal().string();
-    }
-    if (auto v = t->get("scale")) {
-      e.scale = get_number(*v, path, "scale");
-      if (!(e.scale > 0))
-        throw InputError(fmt::format("scale = {} in record {}", e.scale, e.id), location(path, v->source()), "give a factor > 0");
-    }
-    if (auto v = t->get("units")) {
-      const std::string u = get_string(*v, path, "units");
-      try {
-        e.units = parse_units(u);
-      } catch (const InputError&) {
-        throw InputError(fmt::format("units = '{}'", u), location(path, v->source()), "use g, m/s2 or cm/s2");
-      }
-    }
-    if (auto v = t->get("dt_record")) {
-      e.dt_record = get_number(*v, path, "dt_record");
-      if (!(e.dt_record > 0)) throw InputError("dt_record must be > 0", location(path, v->source()), "give the step in s");
-    }
-    e.seed = derive_seed(s.seed, e.id);
-    if (auto v = t->get("seed")) e.seed = config::seed(*v, "seed", location(path, v->source()));
-    if (e.file.empty() && !e.site)
-      throw InputError(fmt::format("record {} has neither file nor a complete site (M, R_km, vs30, F)", e.id), at,
-                       "add file = \"...\" or all of M, R_km, vs30 and F");
-    s.entries.push_back(std::move(e));
-  }
+  for (const toml::node& node : *arr) s.entries.push_back(parse_entry(node, s, base, ids));
   return s;
 }
 
