@@ -17,10 +17,8 @@
 namespace pounding {
 
 AccUnits parse_units(const std::string& name) {
-  if (name == "g") return AccUnits::g;
-  if (name == "m/s2") return AccUnits::m_s2;
-  if (name == "cm/s2") return AccUnits::cm_s2;
-  throw InputError("unknown units '" + name + "'", "--units", "use g, m/s2 or cm/s2");
+  if (auto u = parse_enum(acc_units_names, name)) return *u;
+  throw InputError("unknown units '" + name + "'", "--units", "use " + enum_name_list(acc_units_names, " or "));
 }
 
 double to_m_s2(AccUnits u) {
@@ -30,15 +28,6 @@ double to_m_s2(AccUnits u) {
     case AccUnits::cm_s2: return 0.01;
   }
   return 1.0;
-}
-
-std::string_view to_string(AccUnits u) {
-  switch (u) {
-    case AccUnits::g: return "g";
-    case AccUnits::m_s2: return "m/s2";
-    case AccUnits::cm_s2: return "cm/s2";
-  }
-  return "?";
 }
 
 double Record::pga() const {

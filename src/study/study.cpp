@@ -15,15 +15,6 @@ namespace pounding {
 
 namespace fs = std::filesystem;
 
-std::string_view to_string(Scene s) {
-  switch (s) {
-    case Scene::probability: return "probability";
-    case Scene::impacts: return "impacts";
-    case Scene::automatic: return "auto";
-  }
-  return "?";
-}
-
 namespace {
 
 using config::TableReader;
@@ -176,9 +167,8 @@ Study parse_study(const std::string& text, const std::string& path) {
   top.get("seed");
   s.seed = parse_study_seed(root, path);
   s.scene_requested = top.choice("scene", "probability", [](const std::string& name) {
-    for (Scene scene : {Scene::probability, Scene::impacts, Scene::automatic})
-      if (to_string(scene) == name) return scene;
-    throw InputError(fmt::format("unknown scene '{}'", name), "scene", "use \"probability\", \"impacts\" or \"auto\"");
+    if (auto scene = parse_enum(scene_names, name)) return *scene;
+    throw InputError(fmt::format("unknown scene '{}'", name), "scene", "use " + enum_name_list(scene_names, " or ", "\""));
   });
   s.output = top.string("output", fs::path(path).stem().string() + ".h5");
   if (s.output.empty()) throw InputError("output is empty", top.where("output"), "give a results file name");
