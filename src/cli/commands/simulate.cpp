@@ -75,17 +75,11 @@ void write_series_csv(const std::string& path, const SeriesRecorder& r) {
 void write_series_h5(const std::string& path, const SeriesRecorder& r, const std::string& summary) {
   h5::AtomicFile f(path);
   auto g = h5::create_group(f.root(), "series");
-  h5::write_dataset(g.get(), "t", r.t);
-  h5::write_dataset(g.get(), "ag", r.ag);
-  h5::write_dataset(g.get(), "u1", r.u1);
-  h5::write_dataset(g.get(), "u2", r.u2);
-  h5::write_dataset(g.get(), "v1", r.v1);
-  h5::write_dataset(g.get(), "v2", r.v2);
-  h5::write_dataset(g.get(), "a1_abs", r.a1_abs);
-  h5::write_dataset(g.get(), "a2_abs", r.a2_abs);
-  h5::write_dataset(g.get(), "fs1", r.fs1);
-  h5::write_dataset(g.get(), "fs2", r.fs2);
-  h5::write_dataset(g.get(), "contact_force", r.force);
+  using S = SeriesRecorder;
+  for (const auto& [name, values] : {std::pair{"t", &S::t}, {"ag", &S::ag}, {"u1", &S::u1}, {"u2", &S::u2},
+                                     {"v1", &S::v1}, {"v2", &S::v2}, {"a1_abs", &S::a1_abs}, {"a2_abs", &S::a2_abs},
+                                     {"fs1", &S::fs1}, {"fs2", &S::fs2}, {"contact_force", &S::force}})
+    h5::write_dataset(g.get(), name, r.*values);
   h5::write_attribute(g.get(), "units", std::string("SI: s, m, m/s, m/s^2, N"));
   h5::write_attribute(f.root(), "summary", summary);
   f.commit();
