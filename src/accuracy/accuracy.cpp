@@ -2,6 +2,7 @@
 #include "pounding/accuracy/accuracy.hpp"
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -65,18 +66,6 @@ double parse_double(const std::string& s) {
   return std::stod(s);
 }
 
-const LoadedRecord& cached_record(const std::string& dir, const std::vector<RecordSpec>& records,
-                                  const std::string& name) {
-  static std::map<std::string, LoadedRecord> cache;
-  std::string key = dir + "/" + name;
-  auto it = cache.find(key);
-  if (it != cache.end()) return it->second;
-  for (const auto& r : records)
-    if (r.file == name) return cache.emplace(key, load_record(dir, r)).first->second;
-  throw InputError(fmt::format("record '{}' is not in the accuracy record list", name), "record",
-                   "use the records of default_records()");
-}
-
 ContactModel contact_model(const std::string& law, const std::string& damping, double n, double v0_min) {
   ContactModel cm;
   cm.law = parse_contact_law(law);
@@ -112,6 +101,18 @@ LoadedRecord load_record(const std::string& dir, const RecordSpec& spec) {
   if (spec.duration > 0) n = std::min(n, static_cast<std::size_t>(std::lround(spec.duration / r.dt)) + 1);
   out.ag.assign(r.acc.begin(), r.acc.begin() + static_cast<long>(n));
   return out;
+}
+
+RecordCache::RecordCache(std::string dir, std::vector<RecordSpec> records)
+    : dir_(std::move(dir)), records_(std::move(records)) {}
+
+const LoadedRecord& RecordCache::get(const std::string& name) {
+  auto it = loaded_.find(name);
+  if (it != loaded_.end()) return it->second;
+  for (const auto& r : records_)
+    if (r.file == name) return loaded_.emplace(name, load_record(dir_, r)).first->second;
+  throw InputError(fmt::format("record '{}' is not in the accuracy record list", name), "record",
+                   "use the records of default_records()");
 }
 
 std::vector<Model> sample_models(int n, std::uint64_t seed) {
@@ -233,8 +234,7 @@ std::vector<Case> read_cases(const std::string& path) {
 }
 
 // ---------------------------------------------------------------------------------------------------
-std::vector<EngineResult> run_cases(const std::vector<Case>& cases, const EngineSetting& setting,
-                                    const std::string& record_dir, const std::vector<RecordSpec>& records,
+std::vector<EngineResult> run_cases(const std::vector<Case>& cases, const EngineSetting& setting, RecordCache& records,
                                     double* seconds_out, long* pair_steps_out) {
   std::vector<EngineResult> out(cases.size());
   // group by (record, law, damping, n, v0_min): one batch each
@@ -247,7 +247,7 @@ std::vector<EngineResult> run_cases(const std::vector<Case>& cases, const Engine
   long steps = 0;
   for (const auto& [key, idx] : groups) {
     const Case& c0 = cases[idx[0]];
-    const LoadedRecord& rec = cached_record(record_dir, records, c0.record);
+    const LoadedRecord& rec = records.get(c0.record);
     PairBatch b;
     b.resize(idx.size());
     for (std::size_t j = 0; j < idx.size(); ++j) b.set(j, cases[idx[j]].p);
@@ -324,8 +324,87 @@ std::vector<Agreement> agreement(const std::vector<Case>& cases, const std::vect
 // ---------------------------------------------------------------------------------------------------
 std::vector<double> chart_gap_ratios() { return {0.1, 0.2, 0.3, 0.5, 0.7, 1.0}; }
 
-std::vector<ChartRow> chart(const std::vector<Case>& cases, const std::string& record_dir,
-                            const std::vector<RecordSpec>& records, int repeats, int kmax,
+namespace {
+
+// |P_engine - P_ref| (percentage points) of at-least-one-impact at each gap ratio; at gap g a pair impacts
+// <=> its uncoupled peak closing exceeds g (first passage). Adds the diverged uncoupled runs to *diverged.
+std::vector<double> probability_errors(const std::vector<Case>& unc, const std::vector<EngineResult>& ru,
+                                       int* diverged) {
+  std::vector<double> perr;
+  for (double g : chart_gap_ratios()) {
+    int ne = 0, nr = 0;
+    for (std::size_t i = 0; i < unc.size(); ++i) {
+      double gap = g * unc[i].d;
+      *diverged += ru[i].status != LaneStatus::ok;
+      ne += ru[i].status == LaneStatus::ok && ru[i].peak_closing > gap;
+      nr += unc[i].ref_peak_closing > gap;
+    }
+    perr.push_back(100.0 * std::abs(ne - nr) / static_cast<double>(unc.size()));
+  }
+  return perr;
+}
+
+// The uncoupled runs of one chart variant, for the amplification peak |u1| coupled / uncoupled.
+struct Uncoupled {
+  const std::vector<Case>& cases;
+  const std::vector<EngineResult>& results;
+  std::map<std::pair<std::string, int>, std::size_t> index;  // (record, model) -> case
+};
+
+// The error columns of one chart row from the engine results r of the law's cases lc.
+void score_row(ChartRow& row, const std::vector<Case>& lc, const std::vector<EngineResult>& r, const Uncoupled& u) {
+  const std::string& law = row.law;
+  std::vector<double> ec, ef, ea;
+  int cd = 0, vd = 0;
+  for (std::size_t i = 0; i < lc.size(); ++i) {
+    const Case& c = lc[i];
+    if (law != "none" && r[i].status == LaneStatus::ok) {
+      auto it = u.index.find({c.record, c.model});
+      if (it != u.index.end() && u.results[it->second].status == LaneStatus::ok && c.ref_impact_count > 0) {
+        double amp = r[i].peak_u1 / u.results[it->second].peak_u1;
+        double amp_ref = c.ref_peak_u1 / u.cases[it->second].ref_peak_u1;
+        ea.push_back(rel(amp, amp_ref));
+      }
+    }
+    if (r[i].status != LaneStatus::ok) {
+      ++row.diverged, ++cd, ++vd;
+      ec.push_back(inf);
+      if (c.ref_impact_count > 0) ef.push_back(inf);
+      continue;
+    }
+    ec.push_back(rel_closing(r[i].peak_closing, c.ref_peak_closing));
+    cd += r[i].impact_count != c.ref_impact_count;
+    vd += (r[i].impact_count > 0) != (c.ref_impact_count > 0);
+    if (c.ref_impact_count > 0 && law != "stereomechanical") ef.push_back(rel(r[i].peak_force, c.ref_peak_force));
+  }
+  row.closing_median = percentile(ec, 50), row.closing_p99 = percentile(ec, 99);
+  row.force_median = ef.empty() ? nan : percentile(ef, 50);
+  row.force_p99 = ef.empty() ? nan : percentile(ef, 99);
+  row.amp_p99 = ea.empty() ? nan : percentile(ea, 99);
+  row.count_differs = static_cast<double>(cd) / static_cast<double>(lc.size());
+  row.verdict_differs = static_cast<double>(vd) / static_cast<double>(lc.size());
+}
+
+// Runs the cases `repeats` times; the cost columns are the medians, the results those of the last run.
+std::vector<EngineResult> timed_runs(ChartRow& row, const std::vector<Case>& lc, const EngineSetting& es,
+                                     RecordCache& records, int repeats) {
+  std::vector<double> wall, nsps;
+  std::vector<EngineResult> r;
+  for (int rep = 0; rep < repeats; ++rep) {
+    double secs = 0;
+    long ps = 0;
+    r = run_cases(lc, es, records, &secs, &ps);
+    wall.push_back(secs);
+    nsps.push_back(1e9 * secs / static_cast<double>(ps));
+  }
+  row.ns_per_pair_step = percentile(nsps, 50);
+  row.ms_per_analysis = 1e3 * percentile(wall, 50) / static_cast<double>(lc.size());
+  return r;
+}
+
+}  // namespace
+
+std::vector<ChartRow> chart(const std::vector<Case>& cases, RecordCache& records, int repeats, int kmax,
                             const std::vector<Case>* uncoupled) {
   struct Variant {
     std::string name;
@@ -342,73 +421,21 @@ std::vector<ChartRow> chart(const std::vector<Case>& cases, const std::string& r
   if (uncoupled && !uncoupled->empty()) by_law["none"] = *uncoupled;  // a larger uncoupled set: finer probabilities
   if (!by_law.count("none"))
     throw InputError("the reference has no uncoupled ('none') cases", "reference", "regenerate it with law none");
-  const auto ratios = chart_gap_ratios();
-  const double rec_dt = cached_record(record_dir, records, cases[0].record).dt;
+  const double rec_dt = records.get(cases[0].record).dt;
   std::vector<ChartRow> rows;
   for (const auto& v : variants)
     for (int k = 0; k <= kmax; ++k) {
       EngineSetting es{v.s, 1 << k, v.locate};
-      // probability table: at-least-one-impact at gap g <=> uncoupled peak closing > g (first passage)
       const auto& unc = by_law["none"];
-      auto ru = run_cases(unc, es, record_dir, records);
-      std::vector<double> perr;
+      auto ru = run_cases(unc, es, records);
       int ndiv_unc = 0;
-      for (double g : ratios) {
-        int ne = 0, nr = 0;
-        for (std::size_t i = 0; i < unc.size(); ++i) {
-          double gap = g * unc[i].d;
-          ndiv_unc += ru[i].status != LaneStatus::ok;
-          ne += ru[i].status == LaneStatus::ok && ru[i].peak_closing > gap;
-          nr += unc[i].ref_peak_closing > gap;
-        }
-        perr.push_back(100.0 * std::abs(ne - nr) / static_cast<double>(unc.size()));
-      }
-      // (record, model) -> uncoupled case, for the amplification peak |u1| coupled / uncoupled
-      std::map<std::pair<std::string, int>, std::size_t> unc_index;
-      for (std::size_t i = 0; i < unc.size(); ++i) unc_index[{unc[i].record, unc[i].model}] = i;
+      const std::vector<double> perr = probability_errors(unc, ru, &ndiv_unc);
+      Uncoupled u{unc, ru, {}};
+      for (std::size_t i = 0; i < unc.size(); ++i) u.index[{unc[i].record, unc[i].model}] = i;
       for (const auto& [law, lc] : by_law) {
         ChartRow row;
         row.stepper = v.name, row.law = law, row.k = k, row.dt = rec_dt / (1 << k);
-        std::vector<double> wall, nsps;
-        std::vector<EngineResult> r;
-        for (int rep = 0; rep < repeats; ++rep) {
-          double secs = 0;
-          long ps = 0;
-          r = run_cases(lc, es, record_dir, records, &secs, &ps);
-          wall.push_back(secs);
-          nsps.push_back(1e9 * secs / static_cast<double>(ps));
-        }
-        row.ns_per_pair_step = percentile(nsps, 50);
-        row.ms_per_analysis = 1e3 * percentile(wall, 50) / static_cast<double>(lc.size());
-        std::vector<double> ec, ef, ea;
-        int cd = 0, vd = 0;
-        for (std::size_t i = 0; i < lc.size(); ++i) {
-          const Case& c = lc[i];
-          if (law != "none" && r[i].status == LaneStatus::ok) {
-            auto it = unc_index.find({c.record, c.model});
-            if (it != unc_index.end() && ru[it->second].status == LaneStatus::ok && c.ref_impact_count > 0) {
-              double amp = r[i].peak_u1 / ru[it->second].peak_u1;
-              double amp_ref = c.ref_peak_u1 / unc[it->second].ref_peak_u1;
-              ea.push_back(rel(amp, amp_ref));
-            }
-          }
-          if (r[i].status != LaneStatus::ok) {
-            ++row.diverged, ++cd, ++vd;
-            ec.push_back(inf);
-            if (c.ref_impact_count > 0) ef.push_back(inf);
-            continue;
-          }
-          ec.push_back(rel_closing(r[i].peak_closing, c.ref_peak_closing));
-          cd += r[i].impact_count != c.ref_impact_count;
-          vd += (r[i].impact_count > 0) != (c.ref_impact_count > 0);
-          if (c.ref_impact_count > 0 && law != "stereomechanical") ef.push_back(rel(r[i].peak_force, c.ref_peak_force));
-        }
-        row.closing_median = percentile(ec, 50), row.closing_p99 = percentile(ec, 99);
-        row.force_median = ef.empty() ? nan : percentile(ef, 50);
-        row.force_p99 = ef.empty() ? nan : percentile(ef, 99);
-        row.amp_p99 = ea.empty() ? nan : percentile(ea, 99);
-        row.count_differs = static_cast<double>(cd) / static_cast<double>(lc.size());
-        row.verdict_differs = static_cast<double>(vd) / static_cast<double>(lc.size());
+        score_row(row, lc, timed_runs(row, lc, es, records, repeats), u);
         row.prob_error_pp = perr;
         row.prob_error_max_pp = *std::max_element(perr.begin(), perr.end());
         row.diverged += ndiv_unc;
@@ -656,104 +683,130 @@ KelvinTension kelvin_tension(double e) {
 }
 
 // ---------------------------------------------------------------------------------------------------
-std::vector<MuthukumarRow> muthukumar(const std::string& record_dir, const MuthukumarOptions& opt,
-                                      std::vector<std::string>* log) {
-  // muthukumar-desroches-2006-hertzdamp.txt: equal masses 7.8 kip s^2/in, gap 0.5 in, kh = 25,000 kip/in^1.5,
-  // 5 % damping, elastic. 1 kip s^2/in = 175,126.8 kg; 1 kip = 4448.222 N; 1 in = 0.0254 m.
-  const double kip = 4448.2216152605, in = 0.0254;
-  const double m = 7.8 * kip / in;
-  const double gap = 0.5 * in;
-  const double kh = 25000.0 * kip / std::pow(in, 1.5);
-  const double kk = opt.kelvin_k > 0 ? opt.kelvin_k : 25000.0 * kip / in;
-  const double T2 = opt.T2 > 0 ? opt.T2 : 1.0;  // flexible system period (the paper's digits are not in the text)
-  // PGA groups of the paper: low 0.1-0.3 g, moderate 0.4-0.6 g, high 0.7-0.9 g
-  struct Rec {
-    std::string file, level;
-    double pga;
-  };
-  std::vector<Rec> recs;
-  {
-    std::ifstream f(record_dir + "/MANIFEST.tsv");
-    if (!f) throw InputError("cannot read MANIFEST.tsv", record_dir, "give the real-record directory");
-    std::string line;
-    std::getline(f, line);
-    while (std::getline(f, line)) {
-      std::vector<std::string> v;
-      std::stringstream ss(line);
-      std::string x;
-      while (std::getline(ss, x, '\t')) v.push_back(x);
-      if (v.size() < 9) continue;
-      double pga = std::stod(v[8]);
-      std::string lvl = (pga >= 0.1 && pga <= 0.3)   ? "low"
-                        : (pga >= 0.4 && pga <= 0.6) ? "moderate"
-                        : (pga >= 0.7 && pga <= 0.9) ? "high"
-                                                     : "";
-      if (!lvl.empty()) recs.push_back({v[0], lvl, pga});
+namespace {
+
+// A record of the Muthukumar-DesRoches study with its PGA group: low 0.1-0.3 g, moderate 0.4-0.6 g, high 0.7-0.9 g.
+struct LevelRecord {
+  std::string file, level;
+  double pga;
+};
+
+std::vector<LevelRecord> muthukumar_records(const std::string& record_dir) {
+  std::vector<LevelRecord> recs;
+  std::ifstream f(record_dir + "/MANIFEST.tsv");
+  if (!f) throw InputError("cannot read MANIFEST.tsv", record_dir, "give the real-record directory");
+  std::string line;
+  std::getline(f, line);
+  while (std::getline(f, line)) {
+    std::vector<std::string> v;
+    std::stringstream ss(line);
+    std::string x;
+    while (std::getline(ss, x, '\t')) v.push_back(x);
+    if (v.size() < 9) continue;
+    double pga = std::stod(v[8]);
+    std::string lvl = (pga >= 0.1 && pga <= 0.3)   ? "low"
+                      : (pga >= 0.4 && pga <= 0.6) ? "moderate"
+                      : (pga >= 0.7 && pga <= 0.9) ? "high"
+                                                   : "";
+    if (!lvl.empty()) recs.push_back({v[0], lvl, pga});
+  }
+  return recs;
+}
+
+struct ContactSpec {
+  std::string name, law;
+  double e;
+  std::string damping = "-";
+};
+// the paper's six, plus Hertzdamp with the calibrated xibar (delivers e = 0.6; Lankarani-Nikravesh gives ~0.74)
+std::vector<ContactSpec> muthukumar_models() {
+  return {{"stereomechanical", "stereomechanical", 1.0},
+          {"stereomechanical", "stereomechanical", 0.6},
+          {"kelvin", "linear", 1.0},
+          {"kelvin", "kelvin", 0.6},
+          {"hertzdamp", "hertz", 1.0},
+          {"hertzdamp", "hertzdamp", 0.6, "lankarani-nikravesh"},
+          {"hertzdamp-calibrated", "hertzdamp", 0.6, "calibrated"}};
+}
+constexpr std::array<double, 3> muthukumar_ratios = {0.3, 0.5, 0.7};
+
+// muthukumar-desroches-2006-hertzdamp.txt: equal masses 7.8 kip s^2/in, gap 0.5 in, kh = 25,000 kip/in^1.5,
+// 5 % damping, elastic. 1 kip s^2/in = 175,126.8 kg; 1 kip = 4448.222 N; 1 in = 0.0254 m.
+struct MuthukumarSetup {
+  static constexpr double kip = 4448.2216152605, in = 0.0254;
+  double m = 7.8 * kip / in;
+  double gap = 0.5 * in;
+  double kh = 25000.0 * kip / std::pow(in, 1.5);
+  double kk, T2;
+  explicit MuthukumarSetup(const MuthukumarOptions& opt)
+      : kk(opt.kelvin_k > 0 ? opt.kelvin_k : 25000.0 * kip / in),
+        T2(opt.T2 > 0 ? opt.T2 : 1.0) {}  // flexible system period (the paper's digits are not in the text)
+};
+
+// (level, period ratio, model, e) -> (sum of displacement amplifications, of acceleration ones, runs, diverged)
+using AmpSums = std::map<std::tuple<std::string, double, std::string, double>, std::tuple<double, double, int, int>>;
+
+// One record through every model at every period ratio, added to the sums; returns the substeps used.
+int add_muthukumar_record(AmpSums& acc, const LevelRecord& rc, const LoadedRecord& lr, const MuthukumarSetup& su,
+                          int substeps) {
+  const auto& ratios = muthukumar_ratios;
+  int sub = substeps > 0 ? substeps : std::max(1, static_cast<int>(std::ceil(lr.dt / 5e-4)));
+  GroundMotion gm{lr.dt, lr.ag, lr.dt * static_cast<double>(lr.ag.size() - 1) + 5.0};
+  KernelSettings ks;
+  ks.stepper = Stepper::rk4;
+  ks.substeps = sub;
+  ks.locate_contact = true;
+  PairBatch b;
+  b.resize(ratios.size());
+  for (std::size_t j = 0; j < ratios.size(); ++j) {
+    PairParams p;
+    p.s1 = Structure::from_period(su.m, ratios[j] * su.T2, 0.05);
+    p.s2 = Structure::from_period(su.m, su.T2, 0.05);
+    p.gap = su.gap;
+    b.set(j, p);
+  }
+  ContactModel none;
+  none.law = ContactLaw::none;
+  BatchResult r0;
+  run_batch(b, none, gm, ks, r0);
+  for (const auto& ms : muthukumar_models()) {
+    PairBatch bb = b;
+    for (std::size_t j = 0; j < ratios.size(); ++j) {
+      bb.kc[j] = (ms.law == "linear" || ms.law == "kelvin") ? su.kk : su.kh;
+      bb.e[j] = ms.e;
+    }
+    ContactModel cm = contact_model(ms.law, ms.damping, 1.5, 1e-3);
+    BatchResult r;
+    run_batch(bb, cm, gm, ks, r);
+    for (std::size_t j = 0; j < ratios.size(); ++j) {
+      auto& [sd, sa, n, ndiv] = acc[{rc.level, ratios[j], ms.name, ms.e}];
+      if (r.status[j] != 0) {
+        ++ndiv;
+        continue;
+      }
+      sd += r.peak_u1[j] / r0.peak_u1[j];
+      sa += r.peak_acc1[j] / r0.peak_acc1[j];
+      ++n;
     }
   }
-  struct ModelSpec {
-    std::string name, law;
-    double e;
-    std::string damping = "-";
-  };
-  // the paper's six, plus Hertzdamp with the calibrated xibar (delivers e = 0.6; Lankarani-Nikravesh gives ~0.74)
-  const std::vector<ModelSpec> models = {{"stereomechanical", "stereomechanical", 1.0},
-                                         {"stereomechanical", "stereomechanical", 0.6},
-                                         {"kelvin", "linear", 1.0},
-                                         {"kelvin", "kelvin", 0.6},
-                                         {"hertzdamp", "hertz", 1.0},
-                                         {"hertzdamp", "hertzdamp", 0.6, "lankarani-nikravesh"},
-                                         {"hertzdamp-calibrated", "hertzdamp", 0.6, "calibrated"}};
-  const std::vector<double> ratios = {0.3, 0.5, 0.7};
-  // sums[level][ratio][model]
-  std::map<std::tuple<std::string, double, std::string, double>, std::tuple<double, double, int, int>> acc;
-  for (const auto& rc : recs) {
+  return sub;
+}
+
+}  // namespace
+
+std::vector<MuthukumarRow> muthukumar(const std::string& record_dir, const MuthukumarOptions& opt,
+                                      std::vector<std::string>* log) {
+  const MuthukumarSetup setup(opt);
+  AmpSums acc;
+  for (const auto& rc : muthukumar_records(record_dir)) {
     LoadedRecord lr = load_record(record_dir, {rc.file, 0.0});
-    int sub = opt.substeps > 0 ? opt.substeps : std::max(1, static_cast<int>(std::ceil(lr.dt / 5e-4)));
-    GroundMotion gm{lr.dt, lr.ag, lr.dt * static_cast<double>(lr.ag.size() - 1) + 5.0};
-    KernelSettings ks;
-    ks.stepper = Stepper::rk4;
-    ks.substeps = sub;
-    ks.locate_contact = true;
-    PairBatch b;
-    b.resize(ratios.size());
-    for (std::size_t j = 0; j < ratios.size(); ++j) {
-      PairParams p;
-      p.s1 = Structure::from_period(m, ratios[j] * T2, 0.05);
-      p.s2 = Structure::from_period(m, T2, 0.05);
-      p.gap = gap;
-      b.set(j, p);
-    }
-    ContactModel none;
-    none.law = ContactLaw::none;
-    BatchResult r0;
-    run_batch(b, none, gm, ks, r0);
-    for (const auto& ms : models) {
-      PairBatch bb = b;
-      for (std::size_t j = 0; j < ratios.size(); ++j) {
-        bb.kc[j] = (ms.law == "linear" || ms.law == "kelvin") ? kk : kh;
-        bb.e[j] = ms.e;
-      }
-      ContactModel cm = contact_model(ms.law, ms.damping, 1.5, 1e-3);
-      BatchResult r;
-      run_batch(bb, cm, gm, ks, r);
-      for (std::size_t j = 0; j < ratios.size(); ++j) {
-        auto& [sd, sa, n, ndiv] = acc[{rc.level, ratios[j], ms.name, ms.e}];
-        if (r.status[j] != 0) {
-          ++ndiv;
-          continue;
-        }
-        sd += r.peak_u1[j] / r0.peak_u1[j];
-        sa += r.peak_acc1[j] / r0.peak_acc1[j];
-        ++n;
-      }
-    }
+    const int sub = add_muthukumar_record(acc, rc, lr, setup, opt.substeps);
     if (log) log->push_back(fmt::format("{} ({}, PGA {} g, {} substeps)", rc.file, rc.level, rc.pga, sub));
   }
   std::vector<MuthukumarRow> out;
   for (std::string lvl : {"low", "moderate", "high"})
-    for (double rt : ratios)
-      for (const auto& ms : models) {
+    for (double rt : muthukumar_ratios)
+      for (const auto& ms : muthukumar_models()) {
         auto it = acc.find({lvl, rt, ms.name, ms.e});
         if (it == acc.end()) continue;
         auto [sd, sa, n, ndiv] = it->second;

@@ -1,7 +1,9 @@
 #pragma once
-// Command-line front end: each sub-command lives in src/cmd_<name>.cpp and registers itself on the
+// Command-line front end: each sub-command lives in src/cli/commands/<name>.cpp and registers itself on the
 // CLI11 app; main() only parses and dispatches. Handlers throw InputError for bad input.
 #include <CLI/CLI.hpp>
+
+#include "pounding/core/error.hpp"
 
 namespace pounding::cli {
 
@@ -14,7 +16,24 @@ void add_run(CLI::App& app);       // src/cli/commands/run.cpp (the study)
 void add_report(CLI::App& app);    // src/cli/commands/run.cpp
 void add_accuracy(CLI::App& app);  // src/cli/commands/accuracy.cpp (accuracy/speed chart, stability, restitution, validation)
 
-// Exit code the sub-command asked for (set by handlers that fail without an exception).
+// Runs a shared parser (parse_stepper, parse_units, ...) and names the command-line option in its InputError.
+template <class Parse>
+auto as_option(const char* option, Parse parse) {
+  try {
+    return parse();
+  } catch (const InputError& e) {
+    throw InputError(e.what_part(), option, e.fix());
+  }
+}
+
+// Thrown by a sub-command that wrote its output but must end with a non-zero exit code (3: a run diverged or
+// a collision failed, its numbers are not results); main() returns `code`. Nothing process-wide holds it.
+struct ExitRequest {
+  int code;
+};
+
+// Transitional, for src/cli/commands/run.cpp only (the results/driver redesign owns it): the exit code it
+// sets, held by main.cpp. It goes once run.cpp throws ExitRequest; new code must not use it.
 int& exit_code();
 
 }  // namespace pounding::cli

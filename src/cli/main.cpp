@@ -45,6 +45,14 @@ bool unknown_name_error(const CLI::App& app, pounding::InputError& out) {
 
 }  // namespace
 
+namespace pounding::cli {
+// Transitional (commands.hpp): only run.cpp still sets it.
+int& exit_code() {
+  static int code = 0;
+  return code;
+}
+}  // namespace pounding::cli
+
 int main(int argc, char** argv) {
   CLI::App app{"pounding: probability of seismic pounding between adjacent structures"};
   app.set_version_flag("--version", std::string(pounding::program_version) + " (" + pounding::git_commit + ")");
@@ -68,6 +76,8 @@ int main(int argc, char** argv) {
     }
     int rc = app.exit(e);
     return rc == 0 ? 0 : 2;
+  } catch (const pounding::cli::ExitRequest& e) {
+    return e.code;
   } catch (const pounding::InputError& e) {
     fmt::print(stderr, " ERROR: {}\n", e.what());
     return 2;

@@ -6,7 +6,7 @@
 #include <algorithm>
 #include <charconv>
 #include <cmath>
-#include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <numbers>
 #include <sstream>
@@ -17,10 +17,8 @@
 namespace pounding {
 
 AccUnits parse_units(const std::string& name) {
-  if (name == "g") return AccUnits::g;
-  if (name == "m/s2") return AccUnits::m_s2;
-  if (name == "cm/s2") return AccUnits::cm_s2;
-  throw InputError("unknown units '" + name + "'", "--units", "use g, m/s2 or cm/s2");
+  if (auto u = parse_enum(acc_units_names, name)) return *u;
+  throw InputError("unknown units '" + name + "'", "--units", "use " + enum_name_list(acc_units_names, " or "));
 }
 
 double to_m_s2(AccUnits u) {
@@ -30,15 +28,6 @@ double to_m_s2(AccUnits u) {
     case AccUnits::cm_s2: return 0.01;
   }
   return 1.0;
-}
-
-std::string_view to_string(AccUnits u) {
-  switch (u) {
-    case AccUnits::g: return "g";
-    case AccUnits::m_s2: return "m/s2";
-    case AccUnits::cm_s2: return "cm/s2";
-  }
-  return "?";
 }
 
 double Record::pga() const {
@@ -219,9 +208,13 @@ void push_value(Record& rec, double& peak, double a, int line) {
   rec.acc.push_back(a);
 }
 
-Record parse_at2(const std::vector<Line>& lines, std::size_t npts_idx, const std::string& where,
-                 const ReadOptions& options) {
-  const Line& hl = lines[npts_idx];
+// NPTS and DT from the AT2 header line (PEER "NPTS=  7992, DT= .0050 SEC", or NGA-West1 "2000 .02000 NPTS, DT").
+struct At2Header {
+  std::size_t npts;
+  double dt;
+};
+
+At2Header parse_at2_header(const Line& hl, const std::string& where) {
   const std::string up = upper(hl.text);
   const std::size_t kn = up.find("NPTS");
   double npts_v = 0, dt = 0;
@@ -255,20 +248,13 @@ Record parse_at2(const std::vector<Line>& lines, std::size_t npts_idx, const std
   if (!(dt > 0))
     throw InputError(fmt::format("DT = {} is not positive", dt), at, "give the time step in seconds (> 0)");
   check_dt(dt, at, "DT", "DT is the time step in seconds (records are sampled at 0.001-0.05 s, e.g. DT= .0050 SEC)");
-  const auto npts = static_cast<std::size_t>(npts_v);
+  return {static_cast<std::size_t>(npts_v), dt};
+}
 
-  Record rec;
-  rec.dt = dt;
-  rec.acc.reserve(std::min<std::size_t>(npts, std::size_t{1} << 20));  // NPTS is not trusted before counting
-  AccUnits units = options.units;
-  AccUnits named;
-  const std::size_t units_line = npts_idx >= 3 ? 2 : 0;
-  for (std::size_t i = units_line; i < npts_idx; ++i)
-    if (options.header_units && header_units(upper(lines[i].text), named)) {
-      units = named;
-      rec.meta["units_from"] = fmt::format("header line {}", lines[i].number);
-      break;
-    }
+// The values after the header line, in m/s^2; exactly NPTS of them. Returns whether any used exponent notation.
+bool read_at2_values(Record& rec, const std::vector<Line>& lines, std::size_t npts_idx, std::size_t npts,
+                     AccUnits units, const std::string& where) {
+  const Line& hl = lines[npts_idx];
   const double f = to_m_s2(units);
   bool exp_notation = false;
   std::size_t count = 0;  // every value in the file; only the first NPTS are kept
@@ -296,6 +282,11 @@ Record parse_at2(const std::vector<Line>& lines, std::size_t npts_idx, const std
     throw InputError(fmt::format("NPTS = {} but {} values found (data end at line {})", npts, rec.acc.size(),
                                  lines.back().number),
                      loc(where, hl.number), "the file is truncated or NPTS on line 4 is wrong");
+  return exp_notation;
+}
+
+// format, units, header lines and (NGA-West2) event, date, station, component.
+void at2_meta(Record& rec, const std::vector<Line>& lines, std::size_t npts_idx, bool exp_notation, AccUnits units) {
   std::string l1 = lines.empty() ? "" : upper(lines[0].text);
   if (l1.find("PEER NGA STRONG MOTION DATABASE") != std::string::npos) rec.meta["format"] = "PEER_AT2_NGAW2";
   else if (exp_notation) rec.meta["format"] = "PEER_AT2_NGAW1";
@@ -319,11 +310,30 @@ Record parse_at2(const std::vector<Line>& lines, std::size_t npts_idx, const std
       rec.meta["component"] = parts[3];
     }
   }
+}
+
+Record parse_at2(const std::vector<Line>& lines, std::size_t npts_idx, const std::string& where,
+                 const ReadOptions& options) {
+  const At2Header h = parse_at2_header(lines[npts_idx], where);
+  Record rec;
+  rec.dt = h.dt;
+  rec.acc.reserve(std::min<std::size_t>(h.npts, std::size_t{1} << 20));  // NPTS is not trusted before counting
+  AccUnits units = options.units;
+  AccUnits named;
+  const std::size_t units_line = npts_idx >= 3 ? 2 : 0;
+  for (std::size_t i = units_line; i < npts_idx; ++i)
+    if (options.header_units && header_units(upper(lines[i].text), named)) {
+      units = named;
+      rec.meta["units_from"] = fmt::format("header line {}", lines[i].number);
+      break;
+    }
+  const bool exp_notation = read_at2_values(rec, lines, npts_idx, h.npts, units, where);
+  at2_meta(rec, lines, npts_idx, exp_notation, units);
   return rec;
 }
 
-Record parse_text(const std::vector<Line>& lines, const std::string& where, const ReadOptions& options) {
-  // Rows of numbers; the first row decides one or two columns. One header row of words is allowed.
+// Rows of numbers (with their line numbers); comment lines and one header row of words are skipped.
+std::vector<std::pair<int, std::vector<double>>> text_rows(const std::vector<Line>& lines, const std::string& where) {
   std::vector<std::pair<int, std::vector<double>>> rows;
   bool header_skipped = false;
   for (const Line& l : lines) {
@@ -355,6 +365,12 @@ Record parse_text(const std::vector<Line>& lines, const std::string& where, cons
     }
     rows.emplace_back(l.number, std::move(vals));
   }
+  return rows;
+}
+
+Record parse_text(const std::vector<Line>& lines, const std::string& where, const ReadOptions& options) {
+  // Rows of numbers; the first row decides one or two columns. One header row of words is allowed.
+  const auto rows = text_rows(lines, where);
   if (rows.empty())
     throw InputError("no acceleration values", where,
                      "give an AT2 file, two columns (time s, acceleration) or one column with --dt-record");
@@ -365,7 +381,7 @@ Record parse_text(const std::vector<Line>& lines, const std::string& where, cons
   const std::size_t ncol = rows.front().second.size();
   if (ncol == 2) {
     rec.meta["format"] = "TIME_ACC_2COL";
-    for (auto& [ln, v] : rows)
+    for (const auto& [ln, v] : rows)
       if (v.size() != 2)
         throw InputError(fmt::format("{} values on a row of a two-column file", v.size()), loc(where, ln),
                          "every row must be 'time acceleration'");
@@ -389,7 +405,7 @@ Record parse_text(const std::vector<Line>& lines, const std::string& where, cons
     rec.dt = dt;
     if (t0 != 0.0) rec.meta["t0"] = fmt::format("{}", t0);
     rec.acc.reserve(rows.size());
-    for (auto& r : rows) push_value(rec, peak, converted(r.second[1], f, fmt::format("{}", r.second[1]), options.units, where, r.first), r.first);
+    for (const auto& r : rows) push_value(rec, peak, converted(r.second[1], f, fmt::format("{}", r.second[1]), options.units, where, r.first), r.first);
   } else {
     rec.meta["format"] = "ONE_COLUMN";
     if (!(options.dt > 0) || !std::isfinite(options.dt))
@@ -398,7 +414,7 @@ Record parse_text(const std::vector<Line>& lines, const std::string& where, cons
     check_dt(options.dt, where, "the time step given for this one-column record",
              "give the time step in seconds (--dt-record, or dt in the study's [records]), e.g. 0.01");
     rec.dt = options.dt;
-    for (auto& r : rows)
+    for (const auto& r : rows)
       for (double v : r.second) push_value(rec, peak, converted(v, f, fmt::format("{}", v), options.units, where, r.first), r.first);
   }
   return rec;
@@ -443,12 +459,12 @@ void write_at2(const Record& rec, const std::string& path) {
   std::string text = "PEER NGA STRONG MOTION DATABASE RECORD (format); written by pounding\n" + l2 +
                      "\nACCELERATION TIME SERIES IN UNITS OF G\n";
   text.reserve(text.size() + 48 + 16 * rec.acc.size());
-  char buf[64];  // printf formats: the file's bytes are those of the fprintf writer this replaced
-  std::snprintf(buf, sizeof buf, "NPTS=%8zu, DT=%12.6f SEC\n", rec.acc.size(), rec.dt);
-  text += buf;
+  // The bytes of the printf writer this replaced ("NPTS=%8zu, DT=%12.6f SEC", "%15.7E"; test_records.cpp
+  // compares the two on every kind of value).
+  auto out = std::back_inserter(text);
+  fmt::format_to(out, "NPTS={:8}, DT={:>12.6f} SEC\n", rec.acc.size(), rec.dt);
   for (std::size_t i = 0; i < rec.acc.size(); ++i) {
-    std::snprintf(buf, sizeof buf, "%15.7E", rec.acc[i] / g_accel);
-    text += buf;
+    fmt::format_to(out, "{:>15.7E}", rec.acc[i] / g_accel);  // ">": fmt left-aligns INF/NAN by default
     if (i % 5 == 4 || i + 1 == rec.acc.size()) text += '\n';
   }
   files::write_text_atomically(path, text);

@@ -17,307 +17,13 @@
 #include "pounding/core/error.hpp"
 #include "pounding/core/files.hpp"
 #include "pounding/core/random.hpp"
+#include "embedded/stochastic_pounding_suite.hpp"
 
 namespace pounding {
 
 namespace fs = std::filesystem;
 
 namespace {
-
-// records/stochastic-pounding-suite.toml, embedded (tests/motion/test_suite.cpp checks they are identical).
-const char* const k_default_suite = R"SUITE(
-# The 25 ground motions of the seed study (stochastic-pounding-monte-carlo.txt, Table 1), cleaned:
-# the paper's table is garbled in places; M of EQ17 and the station of EQ21 are read from neighbouring
-# rows. Soil class C throughout. F: 0 strike-slip, 1 reverse or reverse-oblique. R_km is R_rup.
-#
-# Each entry resolves to a real record when one is given (file = ...) or found in a directory of PEER
-# files (pounding records suite --records-dir DIR; matched on event, year and station, the component
-# whose PGA is closest to pga_g), otherwise to a Rezaeian & Der Kiureghian (2010) synthetic stand-in for
-# (M, R_km, vs30, F) with the entry's fixed seed (derived from [suite] seed and the id), scaled to pga_g.
-# Real records are used as recorded (scale = 1), as in the paper. See include/pounding/motion/suite.hpp.
-# This file is embedded in the binary (src/motion/suite.cpp); tests/motion/test_suite.cpp checks that the two agree.
-
-[suite]
-name = "stochastic-pounding-25"
-description = "25 records of the seed study (Table 1), soil class C, M 6.2-7.5, R 11-38 km, PGA 0.32-0.99 g"
-seed = 20240601
-dt = 0.01
-
-[[record]]
-id = "EQ1"
-event = "Morgan Hill"
-year = 1984
-station = "Gilroy Array #4"
-M = 6.2
-pga_g = 0.35
-R_km = 11.5
-vs30 = 221.78
-F = 0
-
-[[record]]
-id = "EQ2"
-event = "Superstition Hills"
-year = 1987
-station = "Poe Road (temp)"
-M = 6.5
-pga_g = 0.47
-R_km = 11.1
-vs30 = 316.64
-F = 0
-
-[[record]]
-id = "EQ3"
-event = "Loma Prieta"
-year = 1989
-station = "Capitola"
-M = 6.9
-pga_g = 0.51
-R_km = 15.2
-vs30 = 288.62
-F = 1
-
-[[record]]
-id = "EQ4"
-event = "Loma Prieta"
-year = 1989
-station = "Gilroy Array #4"
-M = 6.9
-pga_g = 0.42
-R_km = 14.3
-vs30 = 221.78
-F = 1
-
-[[record]]
-id = "EQ5"
-event = "Loma Prieta"
-year = 1989
-station = "Gilroy Array #7"
-M = 6.9
-pga_g = 0.44
-R_km = 22.6
-vs30 = 333.85
-F = 1
-
-[[record]]
-id = "EQ6"
-event = "Landers"
-year = 1992
-station = "Coolwater"
-M = 7.3
-pga_g = 0.42
-R_km = 19.7
-vs30 = 352.98
-F = 0
-
-[[record]]
-id = "EQ7"
-event = "Northridge"
-year = 1994
-station = "Canoga Park - Topanga Can"
-M = 6.7
-pga_g = 0.39
-R_km = 14.7
-vs30 = 267.49
-F = 1
-
-[[record]]
-id = "EQ8"
-event = "Northridge"
-year = 1994
-station = "Glendale - Las Palmas"
-M = 6.7
-pga_g = 0.37
-R_km = 22.2
-vs30 = 371.07
-F = 1
-
-[[record]]
-id = "EQ9"
-event = "Northridge"
-year = 1994
-station = "LA - Centinela St"
-M = 6.7
-pga_g = 0.48
-R_km = 28.3
-vs30 = 321.91
-F = 1
-
-[[record]]
-id = "EQ10"
-event = "Northridge"
-year = 1994
-station = "LA - Saturn St"
-M = 6.7
-pga_g = 0.47
-R_km = 27.0
-vs30 = 308.71
-F = 1
-
-[[record]]
-id = "EQ11"
-event = "Northridge"
-year = 1994
-station = "Pacific Palisades - Sunset"
-M = 6.7
-pga_g = 0.46
-R_km = 24.0
-vs30 = 191.06
-F = 1
-
-[[record]]
-id = "EQ12"
-event = "Northridge"
-year = 1994
-station = "Santa Monica City Hall"
-M = 6.7
-pga_g = 0.88
-R_km = 26.4
-vs30 = 336.20
-F = 1
-
-[[record]]
-id = "EQ13"
-event = "Northridge"
-year = 1994
-station = "Tarzana - Cedar Hill A"
-M = 6.7
-pga_g = 0.99
-R_km = 15.6
-vs30 = 257.21
-F = 1
-
-[[record]]
-id = "EQ14"
-event = "Kobe"
-year = 1995
-station = "Kakogawa"
-M = 6.9
-pga_g = 0.32
-R_km = 22.5
-vs30 = 312.00
-F = 0
-
-[[record]]
-id = "EQ15"
-event = "Kocaeli"
-year = 1999
-station = "Duzce"
-M = 7.5
-pga_g = 0.36
-R_km = 15.3
-vs30 = 281.86
-F = 0
-
-[[record]]
-id = "EQ16"
-event = "Cape Mendocino"
-year = 1992
-station = "Fortuna Fire Station"
-M = 7.0
-pga_g = 0.33
-R_km = 20.4
-vs30 = 355.18
-F = 1
-
-[[record]]
-id = "EQ17"
-event = "Chuetsu-oki"
-year = 2007
-station = "Kawanishi Izumozaki NS"
-M = 6.8
-pga_g = 0.36
-R_km = 11.7
-vs30 = 338.32
-F = 1
-
-[[record]]
-id = "EQ18"
-event = "Chuetsu-oki"
-year = 2007
-station = "Tamati Yone Izumozaki NS"
-M = 6.8
-pga_g = 0.63
-R_km = 11.4
-vs30 = 338.32
-F = 1
-
-[[record]]
-id = "EQ19"
-event = "Chuetsu-oki"
-year = 2007
-station = "Kashiwazaki NPP Unit 1"
-M = 6.8
-pga_g = 0.90
-R_km = 10.9
-vs30 = 329.00
-F = 1
-
-[[record]]
-id = "EQ20"
-event = "Chuetsu-oki"
-year = 2007
-station = "Tamati Yone Izumozaki EW"
-M = 6.8
-pga_g = 0.50
-R_km = 11.4
-vs30 = 338.32
-F = 1
-
-[[record]]
-id = "EQ21"
-event = "Chuetsu-oki"
-year = 2007
-station = "Kawanishi Izumozaki EW"
-M = 6.8
-pga_g = 0.91
-R_km = 11.7
-vs30 = 338.32
-F = 1
-
-[[record]]
-id = "EQ22"
-event = "El Mayor-Cucapah"
-year = 2010
-station = "El Centro Differential Array 360"
-M = 7.2
-pga_g = 0.55
-R_km = 23.4
-vs30 = 202.26
-F = 0
-
-[[record]]
-id = "EQ23"
-event = "El Mayor-Cucapah"
-year = 2010
-station = "El Centro Differential Array 90"
-M = 7.2
-pga_g = 0.51
-R_km = 23.4
-vs30 = 202.26
-F = 0
-
-[[record]]
-id = "EQ24"
-event = "Iwate"
-year = 2008
-station = "Misato, Miyagi Kitaura"
-M = 6.9
-pga_g = 0.40
-R_km = 38.0
-vs30 = 278.35
-F = 1
-
-[[record]]
-id = "EQ25"
-event = "Iwate"
-year = 2008
-station = "Misato, Miyagi Kitaura"
-M = 6.9
-pga_g = 0.35
-R_km = 38.0
-vs30 = 278.35
-F = 1
-)SUITE";
 
 using config::location;
 
@@ -356,25 +62,124 @@ std::uint64_t derive_seed(std::uint64_t suite_seed, const std::string& id) {
   return splitmix64(suite_seed ^ files::fnv1a(id.data(), id.size(), files::fnv1a_offset_basis));
 }
 
+namespace {
+
+// [suite]: name, description, seed, dt.
+void parse_suite_table(Suite& s, const toml::table& root, const std::string& path) {
+  const toml::node* n = root.get("suite");
+  if (!n) return;
+  const toml::table* t = n->as_table();
+  if (!t) throw InputError("[suite] must be a table", location(path, n->source()), "write [suite] with name, seed, dt");
+  check_keys(*t, path, {"name", "description", "seed", "dt"}, "[suite]");
+  if (auto v = t->get("name")) s.name = get_string(*v, path, "name");
+  if (auto v = t->get("description")) s.description = get_string(*v, path, "description");
+  if (auto v = t->get("seed")) s.seed = config::seed(*v, "seed", location(path, v->source()));
+  if (auto v = t->get("dt")) {
+    s.dt = get_number(*v, path, "dt");
+    if (!(s.dt > 0 && s.dt <= 0.05))
+      throw InputError(fmt::format("dt = {} is outside (0, 0.05] s", s.dt), location(path, v->source()),
+                       "give the synthetic records' time step, e.g. dt = 0.01");
+  }
+}
+
+// M, R_km, vs30, F of a [[record]]: the site when all four are given (and valid).
+void parse_entry_site(SuiteEntry& e, const toml::table& t, const std::string& path, const std::string& at) {
+  int site_keys = 0;
+  SiteParams sp;
+  auto site_num = [&](const char* key, double& out) {
+    if (auto v = t.get(key)) {
+      out = get_number(*v, path, key);
+      ++site_keys;
+    }
+  };
+  double F = -1;
+  site_num("M", sp.M);
+  site_num("R_km", sp.R_km);
+  site_num("vs30", sp.vs30);
+  site_num("F", F);
+  if (site_keys > 0 && F >= 0) {
+    if (F != 0 && F != 1)
+      throw InputError(fmt::format("F = {} in record {}", F, e.id), location(path, t.get("F")->source()),
+                       "F is 0 (strike-slip) or 1 (reverse or reverse-oblique)");
+    sp.F = static_cast<int>(F);
+  }
+  if (site_keys == 4) {
+    validate(sp, at);
+    e.site = sp;
+  }
+}
+
+// pga_g, file (relative to the suite file's directory), scale, units, dt_record of a [[record]].
+void parse_entry_record(SuiteEntry& e, const toml::table& t, const std::string& path, const fs::path& base) {
+  if (auto v = t.get("pga_g")) {
+    e.pga_g = get_number(*v, path, "pga_g");
+    if (!(e.pga_g > 0 && e.pga_g <= 5))
+      throw InputError(fmt::format("pga_g = {} in record {}", e.pga_g, e.id), location(path, v->source()),
+                       "give the PGA in g, in (0, 5]");
+  }
+  if (auto v = t.get("file")) {
+    e.file = get_string(*v, path, "file");
+    if (e.file.empty()) throw InputError("empty file name", location(path, v->source()), "give a path or drop the key");
+    if (fs::path(e.file).is_relative() && !base.empty()) e.file = (base / e.file).lexically_normal().string();
+  }
+  if (auto v = t.get("scale")) {
+    e.scale = get_number(*v, path, "scale");
+    if (!(e.scale > 0))
+      throw InputError(fmt::format("scale = {} in record {}", e.scale, e.id), location(path, v->source()), "give a factor > 0");
+  }
+  if (auto v = t.get("units")) {
+    const std::string u = get_string(*v, path, "units");
+    try {
+      e.units = parse_units(u);
+    } catch (const InputError&) {
+      throw InputError(fmt::format("units = '{}'", u), location(path, v->source()), "use g, m/s2 or cm/s2");
+    }
+  }
+  if (auto v = t.get("dt_record")) {
+    e.dt_record = get_number(*v, path, "dt_record");
+    if (!(e.dt_record > 0)) throw InputError("dt_record must be > 0", location(path, v->source()), "give the step in s");
+  }
+}
+
+// One [[record]]; ids collects the ids seen so far (each must be unique).
+SuiteEntry parse_entry(const toml::node& node, const Suite& s, const fs::path& base, std::set<std::string>& ids) {
+  const std::string& path = s.path;
+  const toml::table* t = node.as_table();
+  if (!t) throw InputError("record must be a table", location(path, node.source()), "write [[record]] tables");
+  check_keys(*t, path,
+             {"id", "event", "year", "station", "component", "M", "R_km", "vs30", "F", "pga_g", "file", "scale",
+              "seed", "units", "dt_record"},
+             "[[record]]");
+  SuiteEntry e;
+  e.line = static_cast<int>(node.source().begin.line);
+  const std::string at = fmt::format("{}:{}", path, e.line);
+  const toml::node* id = t->get("id");
+  if (!id) throw InputError("[[record]] without id", at, "give every record an id, e.g. id = \"EQ1\"");
+  e.id = get_string(*id, path, "id");
+  if (e.id.empty() || !ids.insert(e.id).second)
+    throw InputError(fmt::format("id '{}' is empty or repeated", e.id), location(path, id->source()), "give unique ids");
+  if (auto v = t->get("event")) e.event = get_string(*v, path, "event");
+  if (auto v = t->get("station")) e.station = get_string(*v, path, "station");
+  if (auto v = t->get("component")) e.component = get_string(*v, path, "component");
+  if (auto v = t->get("year")) e.year = static_cast<int>(get_number(*v, path, "year"));
+  parse_entry_site(e, *t, path, at);
+  parse_entry_record(e, *t, path, base);
+  e.seed = derive_seed(s.seed, e.id);
+  if (auto v = t->get("seed")) e.seed = config::seed(*v, "seed", location(path, v->source()));
+  if (e.file.empty() && !e.site)
+    throw InputError(fmt::format("record {} has neither file nor a complete site (M, R_km, vs30, F)", e.id), at,
+                     "add file = \"...\" or all of M, R_km, vs30 and F");
+  return e;
+}
+
+}  // namespace
+
 Suite parse_suite(const std::string& text, const std::string& path) {
   const toml::table root = config::parse(text, path, "fix the suite file's syntax");
   Suite s;
   s.path = path;
   check_keys(root, path, {"suite", "record"}, "the suite file");
-  if (const toml::node* n = root.get("suite")) {
-    const toml::table* t = n->as_table();
-    if (!t) throw InputError("[suite] must be a table", location(path, n->source()), "write [suite] with name, seed, dt");
-    check_keys(*t, path, {"name", "description", "seed", "dt"}, "[suite]");
-    if (auto v = t->get("name")) s.name = get_string(*v, path, "name");
-    if (auto v = t->get("description")) s.description = get_string(*v, path, "description");
-    if (auto v = t->get("seed")) s.seed = config::seed(*v, "seed", location(path, v->source()));
-    if (auto v = t->get("dt")) {
-      s.dt = get_number(*v, path, "dt");
-      if (!(s.dt > 0 && s.dt <= 0.05))
-        throw InputError(fmt::format("dt = {} is outside (0, 0.05] s", s.dt), location(path, v->source()),
-                         "give the synthetic records' time step, e.g. dt = 0.01");
-    }
-  }
+  parse_suite_table(s, root, path);
   if (s.name.empty()) s.name = fs::path(path).stem().string();
   const toml::node* recs = root.get("record");
   const toml::array* arr = recs ? recs->as_array() : nullptr;
@@ -382,94 +187,18 @@ Suite parse_suite(const std::string& text, const std::string& path) {
     throw InputError("no [[record]] entries", path, "list the ground motions as [[record]] tables with id = ...");
   const fs::path base = fs::path(path).parent_path();
   std::set<std::string> ids;
-  for (const toml::node& node : *arr) {
-    const toml::table* t = node.as_table();
-    if (!t) throw InputError("record must be a table", location(path, node.source()), "write [[record]] tables");
-    check_keys(*t, path,
-               {"id", "event", "year", "station", "component", "M", "R_km", "vs30", "F", "pga_g", "file", "scale",
-                "seed", "units", "dt_record"},
-               "[[record]]");
-    SuiteEntry e;
-    e.line = static_cast<int>(node.source().begin.line);
-    const std::string at = fmt::format("{}:{}", path, e.line);
-    const toml::node* id = t->get("id");
-    if (!id) throw InputError("[[record]] without id", at, "give every record an id, e.g. id = \"EQ1\"");
-    e.id = get_string(*id, path, "id");
-    if (e.id.empty() || !ids.insert(e.id).second)
-      throw InputError(fmt::format("id '{}' is empty or repeated", e.id), location(path, id->source()), "give unique ids");
-    if (auto v = t->get("event")) e.event = get_string(*v, path, "event");
-    if (auto v = t->get("station")) e.station = get_string(*v, path, "station");
-    if (auto v = t->get("component")) e.component = get_string(*v, path, "component");
-    if (auto v = t->get("year")) e.year = static_cast<int>(get_number(*v, path, "year"));
-    int site_keys = 0;
-    SiteParams sp;
-    auto site_num = [&](const char* key, double& out) {
-      if (auto v = t->get(key)) {
-        out = get_number(*v, path, key);
-        ++site_keys;
-      }
-    };
-    double F = -1;
-    site_num("M", sp.M);
-    site_num("R_km", sp.R_km);
-    site_num("vs30", sp.vs30);
-    site_num("F", F);
-    if (site_keys > 0 && F >= 0) {
-      if (F != 0 && F != 1)
-        throw InputError(fmt::format("F = {} in record {}", F, e.id), location(path, t->get("F")->source()),
-                         "F is 0 (strike-slip) or 1 (reverse or reverse-oblique)");
-      sp.F = static_cast<int>(F);
-    }
-    if (site_keys == 4) {
-      validate(sp, at);
-      e.site = sp;
-    }
-    if (auto v = t->get("pga_g")) {
-      e.pga_g = get_number(*v, path, "pga_g");
-      if (!(e.pga_g > 0 && e.pga_g <= 5))
-        throw InputError(fmt::format("pga_g = {} in record {}", e.pga_g, e.id), location(path, v->source()),
-                         "give the PGA in g, in (0, 5]");
-    }
-    if (auto v = t->get("file")) {
-      e.file = get_string(*v, path, "file");
-      if (e.file.empty()) throw InputError("empty file name", location(path, v->source()), "give a path or drop the key");
-      if (fs::path(e.file).is_relative() && !base.empty()) e.file = (base / e.file).lexically_normal().string();
-    }
-    if (auto v = t->get("scale")) {
-      e.scale = get_number(*v, path, "scale");
-      if (!(e.scale > 0))
-        throw InputError(fmt::format("scale = {} in record {}", e.scale, e.id), location(path, v->source()), "give a factor > 0");
-    }
-    if (auto v = t->get("units")) {
-      const std::string u = get_string(*v, path, "units");
-      try {
-        e.units = parse_units(u);
-      } catch (const InputError&) {
-        throw InputError(fmt::format("units = '{}'", u), location(path, v->source()), "use g, m/s2 or cm/s2");
-      }
-    }
-    if (auto v = t->get("dt_record")) {
-      e.dt_record = get_number(*v, path, "dt_record");
-      if (!(e.dt_record > 0)) throw InputError("dt_record must be > 0", location(path, v->source()), "give the step in s");
-    }
-    e.seed = derive_seed(s.seed, e.id);
-    if (auto v = t->get("seed")) e.seed = config::seed(*v, "seed", location(path, v->source()));
-    if (e.file.empty() && !e.site)
-      throw InputError(fmt::format("record {} has neither file nor a complete site (M, R_km, vs30, F)", e.id), at,
-                       "add file = \"...\" or all of M, R_km, vs30 and F");
-    s.entries.push_back(std::move(e));
-  }
+  for (const toml::node& node : *arr) s.entries.push_back(parse_entry(node, s, base, ids));
   return s;
 }
 
 Suite load_suite(const std::string& path) { return parse_suite(files::read_text(path, "the suite file"), path); }
 
-const std::string& default_suite_text() {
-  static const std::string text = std::string(k_default_suite).substr(1);  // drop the newline after R"SUITE(
-  return text;
-}
+// Compiled in from records/stochastic-pounding-suite.toml at build time (cmake/Embed.cmake), the one copy.
+std::string_view default_suite_text() { return embedded::stochastic_pounding_suite; }
 
-Suite default_suite() { return parse_suite(default_suite_text(), "<built-in stochastic-pounding-suite>"); }
+Suite default_suite() {
+  return parse_suite(std::string(default_suite_text()), "<built-in stochastic-pounding-suite>");
+}
 
 namespace {
 

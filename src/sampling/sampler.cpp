@@ -140,7 +140,6 @@ void validate_impl(const StructureModel& m, const WhereFn& where) {
 
 }  // namespace
 
-std::string_view to_string(Hysteresis h) { return h == Hysteresis::elastic ? "elastic" : "bilinear"; }
 
 std::vector<double> StructureModel::default_periods() { return make_period_grid(1.00, 1.50, 0.05); }
 
@@ -219,11 +218,11 @@ StructureModel parse_structure_model(const toml::table& table, const std::string
     m.samples_per_pair = config::integer(*n, "samples_per_pair", r.where("samples_per_pair"));
   if (const toml::node* n = r.get("hysteresis")) {
     const std::string h = config::string(*n, "hysteresis", r.where("hysteresis"));
-    if (h == "bilinear") m.hysteresis = Hysteresis::bilinear;
-    else if (h == "elastic") m.hysteresis = Hysteresis::elastic;
-    else
+    const std::optional<Hysteresis> known = parse_enum(hysteresis_names, h);
+    if (!known)
       throw InputError(fmt::format("hysteresis = \"{}\" is not a known model", h), r.where("hysteresis"),
-                       "write hysteresis = \"bilinear\" or \"elastic\"");
+                       "write hysteresis = " + enum_name_list(hysteresis_names, " or ", "\""));
+    m.hysteresis = *known;
   }
   const toml::node* periods = r.get("periods");
   if (periods) m.periods = config::numbers(*periods, "periods", r.where("periods"));

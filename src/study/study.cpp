@@ -15,15 +15,6 @@ namespace pounding {
 
 namespace fs = std::filesystem;
 
-std::string_view to_string(Scene s) {
-  switch (s) {
-    case Scene::probability: return "probability";
-    case Scene::impacts: return "impacts";
-    case Scene::automatic: return "auto";
-  }
-  return "?";
-}
-
 namespace {
 
 using config::TableReader;
@@ -35,135 +26,115 @@ std::string resolve_relative(const std::string& study_path, const std::string& p
 
 }  // namespace
 
-Study parse_study(const std::string& text, const std::string& path) {
-  Study s;
-  s.path = path;
-  s.text = text;
-  const toml::table root = config::parse(text, path, "fix the study file's syntax");
-  TableReader top(&root, path, "");
-  s.title = top.string("title", fs::path(path).stem().string());
-  top.get("seed");
-  s.seed = parse_study_seed(root, path);
-  s.scene_requested = top.choice("scene", "probability", [](const std::string& name) {
-    for (Scene scene : {Scene::probability, Scene::impacts, Scene::automatic})
-      if (to_string(scene) == name) return scene;
-    throw InputError(fmt::format("unknown scene '{}'", name), "scene", "use \"probability\", \"impacts\" or \"auto\"");
-  });
-  s.output = top.string("output", fs::path(path).stem().string() + ".h5");
-  if (s.output.empty()) throw InputError("output is empty", top.where("output"), "give a results file name");
+namespace {
 
-  auto sub = [&](const char* name) { return top.table(name); };
-
-  {  // [records]
-    const toml::table* t = sub("records");
-    TableReader r(t, path, "records");
-    s.suite = r.string("suite", "");
-    if (s.suite != "builtin") s.suite = resolve_relative(path, s.suite);
-    s.real_dir = resolve_relative(path, r.string("real_dir", ""));
-    s.directory = resolve_relative(path, r.string("directory", ""));
-    s.scale = r.number("scale", 1.0, 1e-6, 1e3, "(0, 1000]");
-    s.units = r.choice("units", "g", parse_units);
-    s.dt_one_column = r.number("dt", 0.0, 0.0, 1.0, "[0, 1] s");
-    s.record_limit = static_cast<int>(r.integer("limit", 0, 0, 100000));
-    s.synthetic_only = r.boolean("synthetic_only", false);
-    if (const toml::node* f = r.get("files")) {
-      auto a = f->as_array();
-      if (!a) throw InputError("files must be an array", r.where("files"), "write files = [\"a.AT2\", {path = \"b.AT2\", scale = 1.5}]");
-      for (auto& e : *a) {
-        RecordFile rf;
-        if (auto str = e.as_string()) {
-          rf.path = str->get();
-        } else if (auto tb = e.as_table()) {
-          TableReader fr(tb, path, "records.files");
-          rf.path = fr.string("path", "");
-          rf.scale = fr.number("scale", 1.0, 1e-6, 1e3, "(0, 1000]");
-          fr.finish("path, scale");
-        } else {
-          throw InputError("files entries must be strings or {path, scale} tables", r.where("files"), "fix the entry");
-        }
-        if (rf.path.empty()) throw InputError("a files entry has no path", r.where("files"), "give path = \"...\"");
-        rf.path = resolve_relative(path, rf.path);
-        s.files.push_back(rf);
-      }
+// [records].files: strings or {path, scale} tables.
+void parse_record_files(Study& s, TableReader& r, const std::string& path) {
+  const toml::node* f = r.get("files");
+  if (!f) return;
+  auto a = f->as_array();
+  if (!a) throw InputError("files must be an array", r.where("files"), "write files = [\"a.AT2\", {path = \"b.AT2\", scale = 1.5}]");
+  for (auto& e : *a) {
+    RecordFile rf;
+    if (auto str = e.as_string()) {
+      rf.path = str->get();
+    } else if (auto tb = e.as_table()) {
+      TableReader fr(tb, path, "records.files");
+      rf.path = fr.string("path", "");
+      rf.scale = fr.number("scale", 1.0, 1e-6, 1e3, "(0, 1000]");
+      fr.finish("path, scale");
+    } else {
+      throw InputError("files entries must be strings or {path, scale} tables", r.where("files"), "fix the entry");
     }
-    r.finish("suite, real_dir, directory, files, scale, units, dt, limit, synthetic_only");
-    int sources = !s.suite.empty() + !s.directory.empty() + !s.files.empty();
-    if (sources != 1)
-      throw InputError(sources == 0 ? "the study names no records" : "the study names records in more than one way",
-                       fmt::format("{} [records]", path), "give exactly one of suite, directory or files");
+    if (rf.path.empty()) throw InputError("a files entry has no path", r.where("files"), "give path = \"...\"");
+    rf.path = resolve_relative(path, rf.path);
+    s.files.push_back(rf);
   }
+}
 
-  {  // [structures]
-    const toml::table* t = sub("structures");
-    toml::table empty;
-    s.structures = parse_structure_model(t ? *t : empty, path);
-  }
+void parse_records(Study& s, const toml::table* t, const std::string& path) {
+  TableReader r(t, path, "records");
+  s.suite = r.string("suite", "");
+  if (s.suite != "builtin") s.suite = resolve_relative(path, s.suite);
+  s.real_dir = resolve_relative(path, r.string("real_dir", ""));
+  s.directory = resolve_relative(path, r.string("directory", ""));
+  s.scale = r.number("scale", 1.0, 1e-6, 1e3, "(0, 1000]");
+  s.units = r.choice("units", "g", parse_units);
+  s.dt_one_column = r.number("dt", 0.0, 0.0, 1.0, "[0, 1] s");
+  s.record_limit = static_cast<int>(r.integer("limit", 0, 0, 100000));
+  s.synthetic_only = r.boolean("synthetic_only", false);
+  parse_record_files(s, r, path);
+  r.finish("suite, real_dir, directory, files, scale, units, dt, limit, synthetic_only");
+  int sources = !s.suite.empty() + !s.directory.empty() + !s.files.empty();
+  if (sources != 1)
+    throw InputError(sources == 0 ? "the study names no records" : "the study names records in more than one way",
+                     fmt::format("{} [records]", path), "give exactly one of suite, directory or files");
+}
 
-  {  // [gaps]
-    TableReader g(sub("gaps"), path, "gaps");
-    s.gap_ratios = g.numbers("ratios", s.gap_ratios, 1e-9, 100.0, "(0, 100]");
-    for (std::size_t i = 1; i < s.gap_ratios.size(); ++i)
-      if (!(s.gap_ratios[i] > s.gap_ratios[i - 1]))
-        throw InputError("gap ratios must be strictly increasing", g.where("ratios"), "sort them and remove duplicates");
-    s.curve_max = g.number("curve_max", std::max(1.5, s.gap_ratios.back()), 0.01, 100.0, "[0.01, 100]");
-    s.curve_step = g.number("curve_step", 0.005, 1e-4, 1.0, "[1e-4, 1]");
-    g.finish("ratios, curve_max, curve_step");
-  }
+void parse_gaps(Study& s, const toml::table* t, const std::string& path) {
+  TableReader g(t, path, "gaps");
+  s.gap_ratios = g.numbers("ratios", s.gap_ratios, 1e-9, 100.0, "(0, 100]");
+  for (std::size_t i = 1; i < s.gap_ratios.size(); ++i)
+    if (!(s.gap_ratios[i] > s.gap_ratios[i - 1]))
+      throw InputError("gap ratios must be strictly increasing", g.where("ratios"), "sort them and remove duplicates");
+  s.curve_max = g.number("curve_max", std::max(1.5, s.gap_ratios.back()), 0.01, 100.0, "[0.01, 100]");
+  s.curve_step = g.number("curve_step", 0.005, 1e-4, 1.0, "[1e-4, 1]");
+  g.finish("ratios, curve_max, curve_step");
+}
 
-  {  // [contact]
-    TableReader c(sub("contact"), path, "contact");
-    s.contact.law = c.choice("law", "hertzdamp", parse_contact_law);
-    s.contact.damping = c.choice("damping_law", "lankarani-nikravesh", parse_damping_law);
-    if (s.contact.law == ContactLaw::none)
-      throw InputError("contact law 'none' cannot count impacts", c.where("law"), "choose a contact law (hertzdamp, kelvin, ...)");
-    s.e = c.number("e", 0.65, 1e-6, 1.0, "(0, 1]");
-    s.contact.n = c.number("n", 1.5, 1.0, 3.0, "[1, 3]");
-    s.contact.v0_min = c.number("v0_min", 1e-3, 1e-12, 1.0, "(0, 1] m/s");
-    s.contact_stiffness = c.number("stiffness", 0.0, 0.0, 1e20, "(0, 1e20]");
-    if ((s.contact.law == ContactLaw::linear || s.contact.law == ContactLaw::kelvin) && !(s.contact_stiffness > 0))
-      throw InputError(fmt::format("contact law '{}' needs a linear stiffness", to_string(s.contact.law)), c.where("stiffness"),
-                       "add stiffness = <N/m> to [contact] (the sampled Hertz kh is in N/m^1.5)");
-    c.finish("law, damping_law, e, n, v0_min, stiffness");
-  }
+void parse_contact(Study& s, const toml::table* t, const std::string& path) {
+  TableReader c(t, path, "contact");
+  s.contact.law = c.choice("law", "hertzdamp", parse_contact_law);
+  s.contact.damping = c.choice("damping_law", "lankarani-nikravesh", parse_damping_law);
+  if (s.contact.law == ContactLaw::none)
+    throw InputError("contact law 'none' cannot count impacts", c.where("law"), "choose a contact law (hertzdamp, kelvin, ...)");
+  s.e = c.number("e", 0.65, 1e-6, 1.0, "(0, 1]");
+  s.contact.n = c.number("n", 1.5, 1.0, 3.0, "[1, 3]");
+  s.contact.v0_min = c.number("v0_min", 1e-3, 1e-12, 1.0, "(0, 1] m/s");
+  s.contact_stiffness = c.number("stiffness", 0.0, 0.0, 1e20, "(0, 1e20]");
+  if ((s.contact.law == ContactLaw::linear || s.contact.law == ContactLaw::kelvin) && !(s.contact_stiffness > 0))
+    throw InputError(fmt::format("contact law '{}' needs a linear stiffness", to_string(s.contact.law)), c.where("stiffness"),
+                     "add stiffness = <N/m> to [contact] (the sampled Hertz kh is in N/m^1.5)");
+  c.finish("law, damping_law, e, n, v0_min, stiffness");
+}
 
-  {  // [analysis]
-    TableReader a(sub("analysis"), path, "analysis");
-    s.stepper = a.choice("stepper", "central-difference", parse_stepper);
-    s.substeps = static_cast<int>(a.integer("substeps", 1, 1, 10000));
-    s.max_dt = a.number("max_dt", -1.0, 0.0, 1.0, "[0, 1] s (0: no cap)");
-    s.batch = static_cast<int>(a.integer("batch", 256, 1, 65536));
-    s.free_vibration = a.number("free_vibration", 0.0, 0.0, 1000.0, "[0, 1000] s");
-    s.displacement_limit = a.number("displacement_limit", 10.0, 1e-6, 1e6, "(0, 1e6] m");
-    s.skip_untouched = a.boolean("skip_untouched", true);
-    s.max_excluded_fraction = a.number("max_excluded_fraction", 0.001, 0.0, 1.0, "[0, 1] (0.001 = 0.1 % of all analyses)");
-    a.finish("stepper, substeps, max_dt, batch, free_vibration, displacement_limit, skip_untouched, "
-             "max_excluded_fraction");
-  }
+void parse_analysis(Study& s, const toml::table* t, const std::string& path) {
+  TableReader a(t, path, "analysis");
+  s.stepper = a.choice("stepper", "central-difference", parse_stepper);
+  s.substeps = static_cast<int>(a.integer("substeps", 1, 1, 10000));
+  s.max_dt = a.number("max_dt", -1.0, 0.0, 1.0, "[0, 1] s (0: no cap)");
+  s.batch = static_cast<int>(a.integer("batch", 256, 1, 65536));
+  s.free_vibration = a.number("free_vibration", 0.0, 0.0, 1000.0, "[0, 1000] s");
+  s.displacement_limit = a.number("displacement_limit", 10.0, 1e-6, 1e6, "(0, 1e6] m");
+  s.skip_untouched = a.boolean("skip_untouched", true);
+  s.max_excluded_fraction = a.number("max_excluded_fraction", 0.001, 0.0, 1.0, "[0, 1] (0.001 = 0.1 % of all analyses)");
+  a.finish("stepper, substeps, max_dt, batch, free_vibration, displacement_limit, skip_untouched, "
+           "max_excluded_fraction");
+}
 
-  {  // [report]
-    TableReader r(sub("report"), path, "report");
-    s.targets = r.numbers("targets", s.targets, 1e-6, 99.999, "(0, 100) %");
-    s.h1 = r.number("h1", 40.0, 0.1, 1000.0, "(0, 1000] m");
-    s.h2 = r.number("h2", 40.0, 0.1, 1000.0, "(0, 1000] m");
-    s.fit_min = r.number("fit_min", 0.1, 0.0, 100.0, "[0, 100]");
-    s.fit_max = r.number("fit_max", 1.0, 0.0, 100.0, "[0, 100]");
-    if (!(s.fit_max > s.fit_min)) throw InputError("fit_max must exceed fit_min", r.where("fit_max"), "give fit_min < fit_max");
-    r.finish("targets, h1, h2, fit_min, fit_max");
-  }
+void parse_report(Study& s, const toml::table* t, const std::string& path) {
+  TableReader r(t, path, "report");
+  s.targets = r.numbers("targets", s.targets, 1e-6, 99.999, "(0, 100) %");
+  s.h1 = r.number("h1", 40.0, 0.1, 1000.0, "(0, 1000] m");
+  s.h2 = r.number("h2", 40.0, 0.1, 1000.0, "(0, 1000] m");
+  s.fit_min = r.number("fit_min", 0.1, 0.0, 100.0, "[0, 100]");
+  s.fit_max = r.number("fit_max", 1.0, 0.0, 100.0, "[0, 100]");
+  if (!(s.fit_max > s.fit_min)) throw InputError("fit_max must exceed fit_min", r.where("fit_max"), "give fit_min < fit_max");
+  r.finish("targets, h1, h2, fit_min, fit_max");
+}
 
-  {  // [outputs]
-    TableReader o(sub("outputs"), path, "outputs");
-    s.want_forces = o.boolean("forces", true);
-    s.want_amplification = o.boolean("amplification", true);
-    o.finish("forces, amplification");
-  }
+void parse_outputs(Study& s, const toml::table* t, const std::string& path) {
+  TableReader o(t, path, "outputs");
+  s.want_forces = o.boolean("forces", true);
+  s.want_amplification = o.boolean("amplification", true);
+  o.finish("forces, amplification");
+}
 
-  top.finish("title, seed, scene, output, records, structures, gaps, contact, analysis, report, outputs");
-
-  // default step cap, per scene (docs/accuracy.md and the README's accuracy section): the coupled runs need
-  // h <= 2.5 ms for 1 % peak forces; the at-least-one-impact probability of the full paper study moves by
-  // at most 0.02 percentage points between the record step (10 ms) and 2.5 ms, so the probability scene
-  // integrates at the record step.
+// The scene actually run (auto resolved from [outputs]), why, and the scene's default step cap
+// (docs/accuracy.md and the README's accuracy section): the coupled runs need h <= 2.5 ms for 1 % peak
+// forces; the at-least-one-impact probability of the full paper study moves by at most 0.02 percentage points
+// between the record step (10 ms) and 2.5 ms, so the probability scene integrates at the record step.
+void choose_scene(Study& s) {
   const bool max_dt_given = s.max_dt >= 0.0;
   s.scene = s.scene_requested;
   if (s.scene_requested == Scene::automatic) {
@@ -182,6 +153,38 @@ Study parse_study(const std::string& text, const std::string& path) {
     s.scene_reason = "impacts scene: one uncoupled run per model, then coupled contact runs at every gap ratio";
   }
   if (!max_dt_given) s.max_dt = s.scene == Scene::impacts ? 0.0025 : 0.0;
+}
+
+}  // namespace
+
+Study parse_study(const std::string& text, const std::string& path) {
+  Study s;
+  s.path = path;
+  s.text = text;
+  const toml::table root = config::parse(text, path, "fix the study file's syntax");
+  TableReader top(&root, path, "");
+  s.title = top.string("title", fs::path(path).stem().string());
+  top.get("seed");
+  s.seed = parse_study_seed(root, path);
+  s.scene_requested = top.choice("scene", "probability", [](const std::string& name) {
+    if (auto scene = parse_enum(scene_names, name)) return *scene;
+    throw InputError(fmt::format("unknown scene '{}'", name), "scene", "use " + enum_name_list(scene_names, " or ", "\""));
+  });
+  s.output = top.string("output", fs::path(path).stem().string() + ".h5");
+  if (s.output.empty()) throw InputError("output is empty", top.where("output"), "give a results file name");
+
+  parse_records(s, top.table("records"), path);
+  const toml::table* structures = top.table("structures");
+  const toml::table empty;  // a named table, not `t ? *t : toml::table{}`: that copies *t and loses its lines
+  s.structures = parse_structure_model(structures ? *structures : empty, path);
+  parse_gaps(s, top.table("gaps"), path);
+  parse_contact(s, top.table("contact"), path);
+  parse_analysis(s, top.table("analysis"), path);
+  parse_report(s, top.table("report"), path);
+  parse_outputs(s, top.table("outputs"), path);
+  top.finish("title, seed, scene, output, records, structures, gaps, contact, analysis, report, outputs");
+
+  choose_scene(s);
   // the results must fit in memory; the suite's record count is not known yet, so count at least one record
   check_result_memory(s, std::max<std::size_t>({std::size_t{1}, s.files.size(),
                                                  static_cast<std::size_t>(std::max(0, s.record_limit))}));

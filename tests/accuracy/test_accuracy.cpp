@@ -10,6 +10,7 @@
 #include <numbers>
 
 #include "pounding/accuracy/accuracy.hpp"
+#include "pounding/core/error.hpp"
 #include "test_data.hpp"
 
 using namespace pounding;
@@ -24,7 +25,8 @@ const std::string record_dir = testdata::real_records_dir();
 
 std::map<std::string, A::Agreement> agree(const A::EngineSetting& es) {
   auto cases = A::read_cases(reference_csv);
-  auto res = A::run_cases(cases, es, record_dir, A::default_records());
+  A::RecordCache records(record_dir, A::default_records());
+  auto res = A::run_cases(cases, es, records);
   std::map<std::string, A::Agreement> out;
   for (auto& a : A::agreement(cases, res)) out[a.law] = a;
   return out;
@@ -68,12 +70,26 @@ TEST(AccuracyReference, HighAccuracyModeAgreesWithScipy) {
   EXPECT_EQ(a["stereomechanical"].count_differs, 0);
 }
 
+// The caller-owned record cache (no process-wide state): each record read once, names outside the list refused.
+TEST(RecordCache, ReadsEachRecordOnceAndRefusesOthers) {
+  A::RecordCache none("/nonexistent", A::default_records());
+  EXPECT_THROW(none.get("not-in-the-list.AT2"), InputError);
+  POUNDING_REQUIRE_REAL_RECORDS();
+  A::RecordCache records(record_dir, A::default_records());
+  const std::string name = A::default_records()[0].file;
+  const A::LoadedRecord& first = records.get(name);
+  EXPECT_EQ(&first, &records.get(name));
+  EXPECT_EQ(first.name, name);
+  EXPECT_EQ(first.ag.size(), 1501u);  // 15 s at 0.01 s
+}
+
 // The larger uncoupled set behind the chart's probability table (1002 model-records).
 TEST(AccuracyReference, UncoupledSetAgrees) {
   POUNDING_REQUIRE_REAL_RECORDS();
   auto cases = A::read_cases(testdata::data_dir() + "/reference/accuracy_uncoupled.csv");
   ASSERT_EQ(cases.size(), 1002u);
-  auto res = A::run_cases(cases, {Stepper::rk4, 64, true}, record_dir, A::default_records());
+  A::RecordCache records(record_dir, A::default_records());
+  auto res = A::run_cases(cases, {Stepper::rk4, 64, true}, records);
   auto a = A::agreement(cases, res);
   ASSERT_EQ(a.size(), 1u);
   EXPECT_LT(a[0].closing_max, 1e-4);

@@ -49,6 +49,7 @@ std::map<std::string, double> manifest_pga() {
 
 }  // namespace
 
+// The build embeds the records file byte for byte (cmake/Embed.cmake: raw string, no newline added or lost).
 TEST(SuiteFile, EmbeddedDefaultIsTheRecordsFile) {
   std::ifstream in(src_dir + "/records/stochastic-pounding-suite.toml", std::ios::binary);
   ASSERT_TRUE(in);

@@ -4,6 +4,7 @@
 // every damping law, Kelvin's tension and the Muthukumar-DesRoches validation. Orchestration layer: it runs
 // the kernel on plain batches and reduces to rows; no MPI, no HDF5.
 #include <cstdint>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -29,6 +30,20 @@ struct LoadedRecord {
   std::vector<double> ag;  // m/s^2, truncated
 };
 LoadedRecord load_record(const std::string& dir, const RecordSpec& spec);
+
+// The records of one directory, each read once, on first use (the caller owns it: one per command or test,
+// so nothing outlives the run or is shared between threads).
+class RecordCache {
+ public:
+  RecordCache(std::string dir, std::vector<RecordSpec> records);
+  // The record of that file name; InputError when it is not in the list.
+  const LoadedRecord& get(const std::string& name);
+
+ private:
+  std::string dir_;
+  std::vector<RecordSpec> records_;
+  std::map<std::string, LoadedRecord> loaded_;
+};
 
 // One model of the set: a sampled pair (paper's bilinear structure model) and its code gap d.
 struct Model {
@@ -77,8 +92,7 @@ struct EngineSetting {
   bool locate_contact = true;
 };
 // Runs every case (grouped by record and law into batches). seconds_out (optional): wall time summed.
-std::vector<EngineResult> run_cases(const std::vector<Case>& cases, const EngineSetting& setting,
-                                    const std::string& record_dir, const std::vector<RecordSpec>& records,
+std::vector<EngineResult> run_cases(const std::vector<Case>& cases, const EngineSetting& setting, RecordCache& records,
                                     double* seconds_out = nullptr, long* pair_steps_out = nullptr);
 
 // Agreement of engine results with the stored reference, per law.
@@ -108,8 +122,7 @@ struct ChartRow {
   double prob_error_max_pp = 0;
 };
 std::vector<double> chart_gap_ratios();  // 0.1, 0.2, 0.3, 0.5, 0.7, 1.0
-std::vector<ChartRow> chart(const std::vector<Case>& cases, const std::string& record_dir,
-                            const std::vector<RecordSpec>& records, int repeats, int kmax,
+std::vector<ChartRow> chart(const std::vector<Case>& cases, RecordCache& records, int repeats, int kmax,
                             const std::vector<Case>* uncoupled = nullptr);
 void write_chart_csv(const std::string& path, const std::vector<ChartRow>& rows);
 

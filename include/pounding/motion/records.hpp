@@ -31,6 +31,7 @@
 #include <string_view>
 #include <vector>
 
+#include "pounding/core/enum_names.hpp"
 #include "pounding/core/error.hpp"
 
 namespace pounding {
@@ -44,9 +45,11 @@ inline constexpr double record_pga_max_g = 5.0;                     // g, after 
 inline constexpr double record_duration_min = 2.0;                  // s, (npts - 1) dt
 
 enum class AccUnits { g, m_s2, cm_s2 };
+inline constexpr EnumName<AccUnits> acc_units_names[] = {
+    {AccUnits::g, "g"}, {AccUnits::m_s2, "m/s2"}, {AccUnits::cm_s2, "cm/s2"}};
+constexpr const auto& enum_names(AccUnits) { return acc_units_names; }  // to_string(AccUnits), enum_names.hpp
 AccUnits parse_units(const std::string& name);  // "g", "m/s2", "cm/s2"; InputError otherwise
 double to_m_s2(AccUnits u);                     // factor from the unit to m/s^2
-std::string_view to_string(AccUnits u);
 
 struct Record {
   std::string name;                          // file stem or generated name

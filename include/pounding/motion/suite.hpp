@@ -23,6 +23,7 @@
 #include <cstdint>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "pounding/motion/records.hpp"
@@ -54,10 +55,10 @@ struct Suite {
 // Parses and validates; errors name the file, the line and the key.
 Suite parse_suite(const std::string& text, const std::string& path);
 Suite load_suite(const std::string& path);
-// The 25-record suite of stochastic-pounding-monte-carlo.txt, embedded in the binary (identical to
-// records/stochastic-pounding-suite.toml; a test checks that), so a fresh install runs without files.
+// The 25-record suite of stochastic-pounding-monte-carlo.txt: records/stochastic-pounding-suite.toml, compiled
+// into the binary at build time (cmake/Embed.cmake), so a fresh install runs without files.
 Suite default_suite();
-const std::string& default_suite_text();
+std::string_view default_suite_text();
 // seed of an entry without an explicit one: splitmix64(suite seed ^ FNV-1a-64(id)).
 std::uint64_t derive_seed(std::uint64_t suite_seed, const std::string& id);
 

@@ -49,6 +49,7 @@
 #include <toml++/toml.h>
 
 #include "pounding/kernel.hpp"
+#include "pounding/core/enum_names.hpp"
 #include "pounding/core/random.hpp"  // splitmix64
 
 namespace pounding {
@@ -57,7 +58,9 @@ enum class Hysteresis : std::uint8_t {
   bilinear,  // kinematic hardening with fy from drift/ductility and alpha (the paper's model)
   elastic,   // fy = +inf: linear elastic structures
 };
-std::string_view to_string(Hysteresis h);
+inline constexpr EnumName<Hysteresis> hysteresis_names[] = {{Hysteresis::bilinear, "bilinear"},
+                                                            {Hysteresis::elastic, "elastic"}};
+constexpr const auto& enum_names(Hysteresis) { return hysteresis_names; }  // to_string(Hysteresis), enum_names.hpp
 
 // All settings of the structure model; the defaults reproduce the paper. A study file's [structures]
 // table sets any of them (key names in parse_structure_model).

@@ -33,6 +33,7 @@
 #include <utility>
 #include <vector>
 
+#include "pounding/core/enum_names.hpp"
 #include "pounding/contact.hpp"
 #include "pounding/kernel.hpp"
 #include "pounding/motion/records.hpp"
@@ -41,7 +42,9 @@
 namespace pounding {
 
 enum class Scene : std::uint8_t { probability, impacts, automatic };
-std::string_view to_string(Scene s);
+inline constexpr EnumName<Scene> scene_names[] = {
+    {Scene::probability, "probability"}, {Scene::impacts, "impacts"}, {Scene::automatic, "auto"}};
+constexpr const auto& enum_names(Scene) { return scene_names; }  // to_string(Scene), enum_names.hpp
 
 struct RecordFile {
   std::string path;

@@ -20,8 +20,204 @@
 
 namespace pounding::cli {
 
+namespace {
+
+namespace A = pounding::accuracy;
+using RecordsDir = std::shared_ptr<const std::string>;  // --records-dir, read when a subcommand runs
+
+
+// models
+void add_models(CLI::App* acc, const RecordsDir& dir) {
+  struct O {
+    int n = 50;
+    double gap_ratio = 0.1, e = 0.65;
+    std::string out = "accuracy-models/models.csv";
+    std::vector<std::string> laws{"none", "hertzdamp", "kelvin", "linear", "stereomechanical"};
+  };
+  auto o = std::make_shared<O>();
+  auto* c = acc->add_subcommand("models", "write the accuracy model set (CSV) and its ground motions (.ag)");
+  c->add_option("--n", o->n, "number of sampled models")->capture_default_str();
+  c->add_option("--gap-ratio", o->gap_ratio, "gap / code separation d")->capture_default_str();
+  c->add_option("--e", o->e, "restitution")->capture_default_str();
+  c->add_option("--laws", o->laws, "contact laws")->capture_default_str();
+  c->add_option("--out", o->out, "output CSV (its directory receives <record>.ag)")->capture_default_str();
+  c->callback([o, dir] {
+    require_positive(o->n, "--n");
+    auto models = A::sample_models(o->n);
+    auto recs = A::default_records();
+    auto cases = A::make_cases(models, recs, o->laws, o->gap_ratio, o->e);
+    auto parent = std::filesystem::path(o->out).parent_path();
+    if (!parent.empty()) std::filesystem::create_directories(parent);
+    A::write_cases(o->out, cases, *dir, recs);
+    fmt::print("{} cases ({} models x {} records x {} laws) -> {}\n", cases.size(), models.size(), recs.size(),
+               o->laws.size(), o->out);
+  });
+}
+
+// agree
+void add_agree(CLI::App* acc, const RecordsDir& dir) {
+  struct O {
+    std::string reference = "tests/data/reference/accuracy_reference.csv";  // from the repository root
+    std::string stepper = "rk4";
+    int substeps = 64;
+    bool no_locate = false;
+    std::string out;
+  };
+  auto o = std::make_shared<O>();
+  auto* c = acc->add_subcommand("agree", "engine (default: rk4 + located contact, 64 substeps) vs the SciPy reference");
+  c->add_option("--reference", o->reference, "reference CSV from tools/reference_solver.py")->capture_default_str();
+  c->add_option("--stepper", o->stepper, "stepper")->capture_default_str();
+  c->add_option("--substeps", o->substeps, "substeps per record step")->capture_default_str();
+  c->add_flag("--no-locate", o->no_locate, "do not locate the contact onset");
+  c->add_option("--out", o->out, "per-case CSV (engine beside reference)");
+  c->callback([o, dir] {
+    auto cases = A::read_cases(o->reference);
+    A::EngineSetting es{parse_stepper(o->stepper), o->substeps, !o->no_locate};
+    double secs = 0;
+    A::RecordCache records(*dir, A::default_records());
+    auto res = A::run_cases(cases, es, records, &secs);
+    fmt::print("engine: {} substeps {}{}, {} cases, {:.2f} s\n", o->stepper, o->substeps,
+               o->no_locate ? "" : " located contact", cases.size(), secs);
+    fmt::print("{:<17} {:>5} {:>9} {:>12} {:>12} {:>12} {:>12} {:>12} {:>8} {:>8}\n", "law", "cases", "impacting",
+               "closing_med", "closing_max", "force_med", "force_p99", "force_max", "count!=", "verdict!=");
+    for (const auto& a : A::agreement(cases, res))
+      fmt::print("{:<17} {:>5} {:>9} {:>12.3e} {:>12.3e} {:>12.3e} {:>12.3e} {:>12.3e} {:>8} {:>8}\n", a.law, a.cases,
+                 a.impacting, a.closing_median, a.closing_max, a.force_median, a.force_p99, a.force_max,
+                 a.count_differs, a.verdict_differs);
+    if (!o->out.empty()) {
+      std::ostringstream s;
+      s << "record,model,law,ref_peak_closing,peak_closing,ref_peak_force,peak_force,ref_impact_count,"
+           "impact_count,status\n";
+      for (std::size_t i = 0; i < cases.size(); ++i)
+        s << fmt::format("{},{},{},{:.10g},{:.10g},{:.10g},{:.10g},{},{},{}\n", cases[i].record, cases[i].model,
+                         cases[i].law, cases[i].ref_peak_closing, res[i].peak_closing, cases[i].ref_peak_force,
+                         res[i].peak_force, cases[i].ref_impact_count, res[i].impact_count, to_string(res[i].status));
+      files::write_text_atomically(o->out, s.str());
+    }
+  });
+}
+
+// chart
+void add_chart(CLI::App* acc, const RecordsDir& dir) {
+  struct O {
+    std::string reference = "tests/data/reference/accuracy_reference.csv";  // from the repository root
+    std::string out = "accuracy_chart.csv";
+    int repeats = 3, kmax = 5;
+    std::string uncoupled;
+  };
+  auto o = std::make_shared<O>();
+  auto* c = acc->add_subcommand("chart", "stepper x dt x contact law: cost and error against the reference");
+  c->add_option("--reference", o->reference, "reference CSV")->capture_default_str();
+  c->add_option("--out", o->out, "chart CSV")->capture_default_str();
+  c->add_option("--repeats", o->repeats, "timing repeats (median)")->capture_default_str();
+  c->add_option("--kmax", o->kmax, "dt = record dt x 2^-k, k = 0..kmax")->capture_default_str();
+  c->add_option("--uncoupled", o->uncoupled, "larger uncoupled reference CSV for the probability table");
+  c->callback([o, dir] {
+    require_positive(o->repeats, "--repeats");
+    auto cases = A::read_cases(o->reference);
+    std::vector<A::Case> unc;
+    if (!o->uncoupled.empty()) unc = A::read_cases(o->uncoupled);
+    A::RecordCache records(*dir, A::default_records());
+    auto rows = A::chart(cases, records, o->repeats, o->kmax, &unc);
+    A::write_chart_csv(o->out, rows);
+    fmt::print("{} rows -> {}\n", rows.size(), o->out);
+  });
+}
+
+// stability
+void add_stability(CLI::App* acc, const RecordsDir& dir) {
+  struct O {
+    std::string out = "stability.csv", stiff_out = "stiff_contact.csv";
+  };
+  auto o = std::make_shared<O>();
+  auto* c = acc->add_subcommand("stability", "largest stable h omega per stepper; stiff steel-frame contact");
+  c->add_option("--out", o->out, "stability CSV")->capture_default_str();
+  c->add_option("--stiff-out", o->stiff_out, "stiff-contact CSV")->capture_default_str();
+  c->callback([o, dir] {
+    std::ostringstream s;
+    s << "stepper,zeta,measured_h_omega,theory_h_omega\n";
+    fmt::print("{:<20} {:>5} {:>10} {:>10}\n", "stepper", "zeta", "measured", "theory");
+    for (const auto& r : A::stability_map()) {
+      s << fmt::format("{},{},{:.6g},{:.6g}\n", r.stepper, r.zeta, r.measured, r.theory);
+      fmt::print("{:<20} {:>5} {:>10.5g} {:>10.5g}\n", r.stepper, r.zeta, r.measured, r.theory);
+    }
+    files::write_text_atomically(o->out, s.str());
+    std::ostringstream t;
+    t << "stepper,law,substeps,h_omega_contact,status,peak_force,impacts\n";
+    for (const auto& r : A::stiff_contact(*dir)) {
+      t << fmt::format("{},{},{},{:.4g},{},{:.6g},{}\n", r.stepper, r.law, r.substeps, r.h_omega_contact, r.status,
+                       r.peak_force, r.impacts);
+      fmt::print("{:<20} {:<10} {:>4} h*wc={:>8.3f} {:<10} F={:.4g} N impacts={}\n", r.stepper, r.law, r.substeps,
+                 r.h_omega_contact, r.status, r.peak_force, r.impacts);
+    }
+    files::write_text_atomically(o->stiff_out, t.str());
+  });
+}
+
+// restitution
+void add_restitution(CLI::App* acc) {
+  struct O {
+    std::string out = "restitution.csv";
+  };
+  auto o = std::make_shared<O>();
+  auto* c = acc->add_subcommand("restitution", "effective vs target e for every damping law; Kelvin's tension");
+  c->add_option("--out", o->out, "restitution CSV")->capture_default_str();
+  c->callback([o] {
+    std::vector<double> targets;
+    for (int i = 2; i <= 20; ++i) targets.push_back(0.05 * i);
+    std::ostringstream s;
+    s << "law,e_target,e_effective,clamps\n";
+    for (const auto& r : A::restitution_table(targets))
+      s << fmt::format("{},{:.4g},{:.8g},{}\n", r.law, r.e_target, r.e_effective, r.clamps);
+    files::write_text_atomically(o->out, s.str());
+    fmt::print("restitution table -> {}\n", o->out);
+    fmt::print("Kelvin (m1 = m2 = 1e6 kg, kc = 1e9 N/m, v0 = 1 m/s):\n");
+    for (double e : {0.3, 0.5, 0.65, 0.8, 0.95}) {
+      auto k = A::kelvin_tension(e);
+      fmt::print("  e = {:.2f}: peak force {:.4g} N, unclamped tension {:.4g} N ({:.1f} % of peak), clamped steps "
+                 "{}, smallest kernel force {:.3g} N, e delivered {:.4f}\n",
+                 e, k.peak_force, k.tension_unclamped, 100.0 * -k.tension_unclamped / k.peak_force, k.clamps,
+                 k.min_force_series, k.e_effective_clamped);
+    }
+  });
+}
+
+// validate-muthukumar
+void add_validate_muthukumar(CLI::App* acc, const RecordsDir& dir) {
+  struct O {
+    std::string out = "muthukumar.csv";
+    double T2 = 1.0, kelvin_k = 0.0;
+    int substeps = 0;
+  };
+  auto o = std::make_shared<O>();
+  auto* c = acc->add_subcommand("validate-muthukumar", "Muthukumar-DesRoches (2006) parameter study, real records");
+  c->add_option("--out", o->out, "CSV")->capture_default_str();
+  c->add_option("--T2", o->T2, "flexible system period (s); T1 = 0.3, 0.5, 0.7 T2")->capture_default_str();
+  c->add_option("--kelvin-k", o->kelvin_k, "Kelvin/linear stiffness (N/m); default 25,000 kip/in");
+  c->add_option("--substeps", o->substeps, "substeps per record step (default: h <= 0.5 ms)");
+  c->callback([o, dir] {
+    A::MuthukumarOptions mo;
+    mo.T2 = o->T2;
+    mo.kelvin_k = o->kelvin_k;
+    mo.substeps = o->substeps;
+    std::vector<std::string> log;
+    auto rows = A::muthukumar(*dir, mo, &log);
+    std::ostringstream s;
+    s << "level,period_ratio,model,e,records,diverged,disp_amp,acc_amp\n";
+    for (const auto& r : rows) {
+      s << fmt::format("{},{},{},{},{},{},{:.5g},{:.5g}\n", r.level, r.period_ratio, r.model, r.e, r.records,
+                       r.diverged, r.disp_amp, r.acc_amp);
+      fmt::print("{:<9} T1/T2={:.1f} {:<17} e={:.1f} n={:>2} disp_amp={:.3f} acc_amp={:.3f}{}\n", r.level,
+                 r.period_ratio, r.model, r.e, r.records, r.disp_amp, r.acc_amp,
+                 r.diverged ? fmt::format(" ({} diverged)", r.diverged) : "");
+    }
+    files::write_text_atomically(o->out, s.str());
+  });
+}
+
+}  // namespace
+
 void add_accuracy(CLI::App& app) {
-  namespace A = pounding::accuracy;
   auto* acc = app.add_subcommand("accuracy", "accuracy against speed: reference bridge, chart, stability, "
                                              "restitution, validation");
   acc->require_subcommand(1);
@@ -30,193 +226,12 @@ void add_accuracy(CLI::App& app) {
   acc->add_option("--records-dir", *dir,
                   "directory of the real records (default: $POUNDING_RECORDS_DIR, else ../shared/records/real)")
       ->capture_default_str();
-
-  // models
-  {
-    struct O {
-      int n = 50;
-      double gap_ratio = 0.1, e = 0.65;
-      std::string out = "accuracy-models/models.csv";
-      std::vector<std::string> laws{"none", "hertzdamp", "kelvin", "linear", "stereomechanical"};
-    };
-    auto o = std::make_shared<O>();
-    auto* c = acc->add_subcommand("models", "write the accuracy model set (CSV) and its ground motions (.ag)");
-    c->add_option("--n", o->n, "number of sampled models")->capture_default_str();
-    c->add_option("--gap-ratio", o->gap_ratio, "gap / code separation d")->capture_default_str();
-    c->add_option("--e", o->e, "restitution")->capture_default_str();
-    c->add_option("--laws", o->laws, "contact laws")->capture_default_str();
-    c->add_option("--out", o->out, "output CSV (its directory receives <record>.ag)")->capture_default_str();
-    c->callback([o, dir] {
-      require_positive(o->n, "--n");
-      auto models = A::sample_models(o->n);
-      auto recs = A::default_records();
-      auto cases = A::make_cases(models, recs, o->laws, o->gap_ratio, o->e);
-      auto parent = std::filesystem::path(o->out).parent_path();
-      if (!parent.empty()) std::filesystem::create_directories(parent);
-      A::write_cases(o->out, cases, *dir, recs);
-      fmt::print("{} cases ({} models x {} records x {} laws) -> {}\n", cases.size(), models.size(), recs.size(),
-                 o->laws.size(), o->out);
-    });
-  }
-
-  // agree
-  {
-    struct O {
-      std::string reference = "tests/data/reference/accuracy_reference.csv";  // from the repository root
-      std::string stepper = "rk4";
-      int substeps = 64;
-      bool no_locate = false;
-      std::string out;
-    };
-    auto o = std::make_shared<O>();
-    auto* c = acc->add_subcommand("agree", "engine (default: rk4 + located contact, 64 substeps) vs the SciPy reference");
-    c->add_option("--reference", o->reference, "reference CSV from tools/reference_solver.py")->capture_default_str();
-    c->add_option("--stepper", o->stepper, "stepper")->capture_default_str();
-    c->add_option("--substeps", o->substeps, "substeps per record step")->capture_default_str();
-    c->add_flag("--no-locate", o->no_locate, "do not locate the contact onset");
-    c->add_option("--out", o->out, "per-case CSV (engine beside reference)");
-    c->callback([o, dir] {
-      auto cases = A::read_cases(o->reference);
-      A::EngineSetting es{parse_stepper(o->stepper), o->substeps, !o->no_locate};
-      double secs = 0;
-      auto res = A::run_cases(cases, es, *dir, A::default_records(), &secs);
-      fmt::print("engine: {} substeps {}{}, {} cases, {:.2f} s\n", o->stepper, o->substeps,
-                 o->no_locate ? "" : " located contact", cases.size(), secs);
-      fmt::print("{:<17} {:>5} {:>9} {:>12} {:>12} {:>12} {:>12} {:>12} {:>8} {:>8}\n", "law", "cases", "impacting",
-                 "closing_med", "closing_max", "force_med", "force_p99", "force_max", "count!=", "verdict!=");
-      for (const auto& a : A::agreement(cases, res))
-        fmt::print("{:<17} {:>5} {:>9} {:>12.3e} {:>12.3e} {:>12.3e} {:>12.3e} {:>12.3e} {:>8} {:>8}\n", a.law, a.cases,
-                   a.impacting, a.closing_median, a.closing_max, a.force_median, a.force_p99, a.force_max,
-                   a.count_differs, a.verdict_differs);
-      if (!o->out.empty()) {
-        std::ostringstream s;
-        s << "record,model,law,ref_peak_closing,peak_closing,ref_peak_force,peak_force,ref_impact_count,"
-             "impact_count,status\n";
-        for (std::size_t i = 0; i < cases.size(); ++i)
-          s << fmt::format("{},{},{},{:.10g},{:.10g},{:.10g},{:.10g},{},{},{}\n", cases[i].record, cases[i].model,
-                           cases[i].law, cases[i].ref_peak_closing, res[i].peak_closing, cases[i].ref_peak_force,
-                           res[i].peak_force, cases[i].ref_impact_count, res[i].impact_count, to_string(res[i].status));
-        files::write_text_atomically(o->out, s.str());
-      }
-    });
-  }
-
-  // chart
-  {
-    struct O {
-      std::string reference = "tests/data/reference/accuracy_reference.csv";  // from the repository root
-      std::string out = "accuracy_chart.csv";
-      int repeats = 3, kmax = 5;
-      std::string uncoupled;
-    };
-    auto o = std::make_shared<O>();
-    auto* c = acc->add_subcommand("chart", "stepper x dt x contact law: cost and error against the reference");
-    c->add_option("--reference", o->reference, "reference CSV")->capture_default_str();
-    c->add_option("--out", o->out, "chart CSV")->capture_default_str();
-    c->add_option("--repeats", o->repeats, "timing repeats (median)")->capture_default_str();
-    c->add_option("--kmax", o->kmax, "dt = record dt x 2^-k, k = 0..kmax")->capture_default_str();
-    c->add_option("--uncoupled", o->uncoupled, "larger uncoupled reference CSV for the probability table");
-    c->callback([o, dir] {
-      require_positive(o->repeats, "--repeats");
-      auto cases = A::read_cases(o->reference);
-      std::vector<A::Case> unc;
-      if (!o->uncoupled.empty()) unc = A::read_cases(o->uncoupled);
-      auto rows = A::chart(cases, *dir, A::default_records(), o->repeats, o->kmax, &unc);
-      A::write_chart_csv(o->out, rows);
-      fmt::print("{} rows -> {}\n", rows.size(), o->out);
-    });
-  }
-
-  // stability
-  {
-    struct O {
-      std::string out = "stability.csv", stiff_out = "stiff_contact.csv";
-    };
-    auto o = std::make_shared<O>();
-    auto* c = acc->add_subcommand("stability", "largest stable h omega per stepper; stiff steel-frame contact");
-    c->add_option("--out", o->out, "stability CSV")->capture_default_str();
-    c->add_option("--stiff-out", o->stiff_out, "stiff-contact CSV")->capture_default_str();
-    c->callback([o, dir] {
-      std::ostringstream s;
-      s << "stepper,zeta,measured_h_omega,theory_h_omega\n";
-      fmt::print("{:<20} {:>5} {:>10} {:>10}\n", "stepper", "zeta", "measured", "theory");
-      for (const auto& r : A::stability_map()) {
-        s << fmt::format("{},{},{:.6g},{:.6g}\n", r.stepper, r.zeta, r.measured, r.theory);
-        fmt::print("{:<20} {:>5} {:>10.5g} {:>10.5g}\n", r.stepper, r.zeta, r.measured, r.theory);
-      }
-      files::write_text_atomically(o->out, s.str());
-      std::ostringstream t;
-      t << "stepper,law,substeps,h_omega_contact,status,peak_force,impacts\n";
-      for (const auto& r : A::stiff_contact(*dir)) {
-        t << fmt::format("{},{},{},{:.4g},{},{:.6g},{}\n", r.stepper, r.law, r.substeps, r.h_omega_contact, r.status,
-                         r.peak_force, r.impacts);
-        fmt::print("{:<20} {:<10} {:>4} h*wc={:>8.3f} {:<10} F={:.4g} N impacts={}\n", r.stepper, r.law, r.substeps,
-                   r.h_omega_contact, r.status, r.peak_force, r.impacts);
-      }
-      files::write_text_atomically(o->stiff_out, t.str());
-    });
-  }
-
-  // restitution
-  {
-    struct O {
-      std::string out = "restitution.csv";
-    };
-    auto o = std::make_shared<O>();
-    auto* c = acc->add_subcommand("restitution", "effective vs target e for every damping law; Kelvin's tension");
-    c->add_option("--out", o->out, "restitution CSV")->capture_default_str();
-    c->callback([o] {
-      std::vector<double> targets;
-      for (int i = 2; i <= 20; ++i) targets.push_back(0.05 * i);
-      std::ostringstream s;
-      s << "law,e_target,e_effective,clamps\n";
-      for (const auto& r : A::restitution_table(targets))
-        s << fmt::format("{},{:.4g},{:.8g},{}\n", r.law, r.e_target, r.e_effective, r.clamps);
-      files::write_text_atomically(o->out, s.str());
-      fmt::print("restitution table -> {}\n", o->out);
-      fmt::print("Kelvin (m1 = m2 = 1e6 kg, kc = 1e9 N/m, v0 = 1 m/s):\n");
-      for (double e : {0.3, 0.5, 0.65, 0.8, 0.95}) {
-        auto k = A::kelvin_tension(e);
-        fmt::print("  e = {:.2f}: peak force {:.4g} N, unclamped tension {:.4g} N ({:.1f} % of peak), clamped steps "
-                   "{}, smallest kernel force {:.3g} N, e delivered {:.4f}\n",
-                   e, k.peak_force, k.tension_unclamped, 100.0 * -k.tension_unclamped / k.peak_force, k.clamps,
-                   k.min_force_series, k.e_effective_clamped);
-      }
-    });
-  }
-
-  // validate-muthukumar
-  {
-    struct O {
-      std::string out = "muthukumar.csv";
-      double T2 = 1.0, kelvin_k = 0.0;
-      int substeps = 0;
-    };
-    auto o = std::make_shared<O>();
-    auto* c = acc->add_subcommand("validate-muthukumar", "Muthukumar-DesRoches (2006) parameter study, real records");
-    c->add_option("--out", o->out, "CSV")->capture_default_str();
-    c->add_option("--T2", o->T2, "flexible system period (s); T1 = 0.3, 0.5, 0.7 T2")->capture_default_str();
-    c->add_option("--kelvin-k", o->kelvin_k, "Kelvin/linear stiffness (N/m); default 25,000 kip/in");
-    c->add_option("--substeps", o->substeps, "substeps per record step (default: h <= 0.5 ms)");
-    c->callback([o, dir] {
-      A::MuthukumarOptions mo;
-      mo.T2 = o->T2;
-      mo.kelvin_k = o->kelvin_k;
-      mo.substeps = o->substeps;
-      std::vector<std::string> log;
-      auto rows = A::muthukumar(*dir, mo, &log);
-      std::ostringstream s;
-      s << "level,period_ratio,model,e,records,diverged,disp_amp,acc_amp\n";
-      for (const auto& r : rows) {
-        s << fmt::format("{},{},{},{},{},{},{:.5g},{:.5g}\n", r.level, r.period_ratio, r.model, r.e, r.records,
-                         r.diverged, r.disp_amp, r.acc_amp);
-        fmt::print("{:<9} T1/T2={:.1f} {:<17} e={:.1f} n={:>2} disp_amp={:.3f} acc_amp={:.3f}{}\n", r.level,
-                   r.period_ratio, r.model, r.e, r.records, r.disp_amp, r.acc_amp,
-                   r.diverged ? fmt::format(" ({} diverged)", r.diverged) : "");
-      }
-      files::write_text_atomically(o->out, s.str());
-    });
-  }
+  add_models(acc, dir);
+  add_agree(acc, dir);
+  add_chart(acc, dir);
+  add_stability(acc, dir);
+  add_restitution(acc);
+  add_validate_muthukumar(acc, dir);
 }
 
 }  // namespace pounding::cli

@@ -42,13 +42,6 @@ void add_collide(CLI::App& app) {
             "or the kernel's status (diverged, non-finite: exit code 3). Elastic laws (linear, hertz) target e = 1.");
   c->callback([o, c] {
     ContactModel cm;
-    auto as_option = [](const char* option, auto parse) {
-      try {
-        return parse();
-      } catch (const InputError& e) {
-        throw InputError(e.what_part(), option, e.fix());
-      }
-    };
     cm.law = as_option("--law", [&] { return parse_contact_law(o->law); });
     cm.damping = as_option("--damping-law", [&] { return parse_damping_law(o->damping_law); });
     require_range(o->n, 1.0, 3.0, "--n", "[1, 3]");
@@ -81,7 +74,7 @@ void add_collide(CLI::App& app) {
     fmt::print("tensile_force_clamps: {}\n", r.clamps);
     if (r.status != LaneStatus::ok) {
       fmt::print("status: {}\n", to_string(r.status));
-      exit_code() = 3;
+      throw ExitRequest{3};
     } else if (!(std::abs(miss) <= o->tolerance)) {
       fmt::print("status: off-target (e_effective {:.4g} misses e_target {:.4g} by {:+.3g}, more than the tolerance "
                  "{:.3g})\n",

@@ -75,24 +75,18 @@ void write_series_csv(const std::string& path, const SeriesRecorder& r) {
 void write_series_h5(const std::string& path, const SeriesRecorder& r, const std::string& summary) {
   h5::AtomicFile f(path);
   auto g = h5::create_group(f.root(), "series");
-  h5::write_dataset(g.get(), "t", r.t);
-  h5::write_dataset(g.get(), "ag", r.ag);
-  h5::write_dataset(g.get(), "u1", r.u1);
-  h5::write_dataset(g.get(), "u2", r.u2);
-  h5::write_dataset(g.get(), "v1", r.v1);
-  h5::write_dataset(g.get(), "v2", r.v2);
-  h5::write_dataset(g.get(), "a1_abs", r.a1_abs);
-  h5::write_dataset(g.get(), "a2_abs", r.a2_abs);
-  h5::write_dataset(g.get(), "fs1", r.fs1);
-  h5::write_dataset(g.get(), "fs2", r.fs2);
-  h5::write_dataset(g.get(), "contact_force", r.force);
+  using S = SeriesRecorder;
+  for (const auto& [name, values] : {std::pair{"t", &S::t}, {"ag", &S::ag}, {"u1", &S::u1}, {"u2", &S::u2},
+                                     {"v1", &S::v1}, {"v2", &S::v2}, {"a1_abs", &S::a1_abs}, {"a2_abs", &S::a2_abs},
+                                     {"fs1", &S::fs1}, {"fs2", &S::fs2}, {"contact_force", &S::force}})
+    h5::write_dataset(g.get(), name, r.*values);
   h5::write_attribute(g.get(), "units", std::string("SI: s, m, m/s, m/s^2, N"));
   h5::write_attribute(f.root(), "summary", summary);
   f.commit();
 }
 
-void run_simulate(const SimulateOptions& o) {
-  // --- validate everything before any work or output
+// The scalar options, checked before any work or output.
+void validate_scalars(const SimulateOptions& o) {
   require_range(o.zeta, 0.0, 0.999, "--zeta", "[0, 1)");
   require_range(o.alpha, 0.0, std::nextafter(1.0, 0.0), "--alpha", "[0, 1)");
   if (!std::isfinite(o.gap) || o.gap < 0)
@@ -102,19 +96,18 @@ void run_simulate(const SimulateOptions& o) {
   if (o.duration_given) require_positive(o.duration, "--duration");
   if (o.kh_given) require_positive(o.kh, "--kh");
   require_positive(o.u_limit, "--u-limit");
-  // name the option in errors from the shared parsers
-  auto as_option = [](const char* option, auto parse) {
-    try {
-      return parse();
-    } catch (const InputError& e) {
-      throw InputError(e.what_part(), option, e.fix());
-    }
-  };
+}
+
+ContactModel contact_model(const SimulateOptions& o) {
   ContactModel cm;
   cm.law = as_option("--contact", [&] { return parse_contact_law(o.contact); });
   cm.damping = as_option("--damping-law", [&] { return parse_damping_law(o.damping_law); });
   require_range(o.n, 1.0, 3.0, "--n", "[1, 3]");
   cm.n = o.n;
+  return cm;
+}
+
+KernelSettings kernel_settings(const SimulateOptions& o) {
   KernelSettings ks;
   ks.stepper = as_option("--stepper", [&] { return parse_stepper(o.stepper); });
   ks.displacement_limit = o.u_limit;
@@ -122,10 +115,11 @@ void run_simulate(const SimulateOptions& o) {
   ks.locate_contact = o.locate;
   if (o.locate && ks.stepper != Stepper::rk4)
     throw InputError("--locate-contact needs --stepper rk4", "--locate-contact", "add --stepper rk4 or drop the option");
+  return ks;
+}
 
-  Structure s1 = make_structure(o.m1, o.T1, o.k1, o.h1, o.fy1, o.alpha, o.zeta, o.elastic, "1", o.k1_given, o.fy1_given);
-  Structure s2 = make_structure(o.m2, o.T2, o.k2, o.h2, o.fy2, o.alpha, o.zeta, o.elastic, "2", o.k2_given, o.fy2_given);
-
+// --record, or the built-in sweep.
+Record ground_motion(const SimulateOptions& o) {
   Record rec;
   if (o.record.empty()) {
     rec.name = "builtin-sweep";
@@ -139,14 +133,20 @@ void run_simulate(const SimulateOptions& o) {
     rec = read_record(o.record, ro);
     require_analysable(rec, {1.0, "", "add --units cm/s2"});  // 2 s long, PGA <= 5 g (records.hpp)
   }
-  if (o.dt_given) {
-    double q = rec.dt / o.dt;
-    ks.substeps = static_cast<int>(std::lround(q));
-    if (ks.substeps < 1 || std::abs(q - ks.substeps) > 1e-9 * q)
-      throw InputError(fmt::format("--dt = {} does not divide the record step {}", o.dt, rec.dt), "--dt",
-                       "give the record step divided by a whole number");
-  }
+  return rec;
+}
 
+// Substeps per record step for --dt, which must divide it.
+int substeps_for(const SimulateOptions& o, double record_dt) {
+  double q = record_dt / o.dt;
+  const int substeps = static_cast<int>(std::lround(q));
+  if (substeps < 1 || std::abs(q - substeps) > 1e-9 * q)
+    throw InputError(fmt::format("--dt = {} does not divide the record step {}", o.dt, record_dt), "--dt",
+                     "give the record step divided by a whole number");
+  return substeps;
+}
+
+PairParams pair_params(const SimulateOptions& o, const ContactModel& cm, const Structure& s1, const Structure& s2) {
   PairParams p;
   p.s1 = s1, p.s2 = s2, p.gap = o.gap, p.e = o.e;
   if (cm.law == ContactLaw::linear || cm.law == ContactLaw::kelvin) {
@@ -155,6 +155,20 @@ void run_simulate(const SimulateOptions& o) {
   } else {
     p.kc = o.kh_given ? o.kh : hertz_stiffness_spheres(s1.m, s2.m, o.density, o.youngs, o.poisson);
   }
+  return p;
+}
+
+// Runs the pair, prints the summary and writes --series; returns the exit code (3: diverged, the numbers
+// printed are not results).
+int run_simulate(const SimulateOptions& o) {
+  validate_scalars(o);  // everything is validated before any work or output
+  const ContactModel cm = contact_model(o);
+  KernelSettings ks = kernel_settings(o);
+  Structure s1 = make_structure(o.m1, o.T1, o.k1, o.h1, o.fy1, o.alpha, o.zeta, o.elastic, "1", o.k1_given, o.fy1_given);
+  Structure s2 = make_structure(o.m2, o.T2, o.k2, o.h2, o.fy2, o.alpha, o.zeta, o.elastic, "2", o.k2_given, o.fy2_given);
+  const Record rec = ground_motion(o);
+  if (o.dt_given) ks.substeps = substeps_for(o, rec.dt);
+  const PairParams p = pair_params(o, cm, s1, s2);
 
   SeriesRecorder series;
   if (!o.series.empty()) {
@@ -178,15 +192,10 @@ void run_simulate(const SimulateOptions& o) {
     else
       write_series_h5(o.series, series, text);
   }
-  if (r.status[0] != 0) exit_code() = 3;  // diverged: the numbers above are not results
+  return r.status[0] != 0 ? 3 : 0;
 }
 
 }  // namespace
-
-int& exit_code() {
-  static int rc = 0;
-  return rc;
-}
 
 void add_simulate(CLI::App& app) {
   auto o = std::make_shared<SimulateOptions>();
@@ -232,7 +241,7 @@ void add_simulate(CLI::App& app) {
     o->fy1_given = c->count("--fy1") > 0, o->fy2_given = c->count("--fy2") > 0;
     o->dt_given = c->count("--dt") > 0, o->kh_given = c->count("--kh") > 0;
     o->duration_given = c->count("--duration") > 0;
-    run_simulate(*o);
+    if (const int code = run_simulate(*o)) throw ExitRequest{code};
   });
 }
 
