@@ -32,8 +32,5 @@ struct ExitRequest {
   int code;
 };
 
-// Transitional, for src/cli/commands/run.cpp only (the results/driver redesign owns it): the exit code it
-// sets, held by main.cpp. It goes once run.cpp throws ExitRequest; new code must not use it.
-int& exit_code();
 
 }  // namespace pounding::cli

@@ -45,14 +45,6 @@ bool unknown_name_error(const CLI::App& app, pounding::InputError& out) {
 
 }  // namespace
 
-namespace pounding::cli {
-// Transitional (commands.hpp): only run.cpp still sets it.
-int& exit_code() {
-  static int code = 0;
-  return code;
-}
-}  // namespace pounding::cli
-
 int main(int argc, char** argv) {
   CLI::App app{"pounding: probability of seismic pounding between adjacent structures"};
   app.set_version_flag("--version", std::string(pounding::program_version) + " (" + pounding::git_commit + ")");
@@ -85,5 +77,5 @@ int main(int argc, char** argv) {
     fmt::print(stderr, " ERROR: {}\n", e.what());
     return 1;
   }
-  return pounding::cli::exit_code();
+  return 0;
 }

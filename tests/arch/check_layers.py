@@ -36,9 +36,14 @@ ALLOWED = {
     "accuracy": {"physics", "contact", "model", "kernel", "motion", "sampling", "analysis", "config", "core"},
     "testing": {"physics", "contact", "model", "kernel", "motion", "core"},
     "cli": None,  # anything
+    "python": None,  # anything
 }
-# Headers still at the top of include/pounding/ while the kernel redesign moves them (module they belong to).
+# Transitional, until the kernel redesign lands (docs/architecture.md, "Not yet"): the kernel's headers and
+# sources still at the top of include/pounding/ and src/, with the module each belongs to. kernel.hpp includes
+# contact.hpp today (kernel <- contact is the wrong way round); that one include is the only exception.
 FLAT = {"kernel.hpp": "kernel", "contact.hpp": "contact", "collide.hpp": "contact"}
+FLAT_SOURCES = {"src/kernel.cpp", "src/contact.cpp", "src/collide.cpp"}
+TRANSITIONAL_INCLUDES = {("include/pounding/kernel.hpp", "contact.hpp")}
 # Layers that must stay free of I/O, parsing and third-party formatting.
 PURE = {"kernel", "contact", "model"}
 PURE_BANNED = re.compile(r'#\s*include\s*<(fmt/|toml\+\+|CLI/|iostream|cstdio|fstream)')
@@ -103,7 +108,7 @@ def check(source_dir):
                 parts = rel.split("/")
                 if parts[0] == "include" and len(parts) == 3 and parts[2] not in FLAT:
                     problems.append(f"{rel}: a header outside a module folder (include/pounding/<module>/)")
-                if parts[0] == "src" and len(parts) == 2:
+                if parts[0] == "src" and len(parts) == 2 and rel not in FLAT_SOURCES:
                     problems.append(f"{rel}: a source outside a module folder (src/<module>/)")
                 if mod is not None and mod not in ALLOWED:
                     problems.append(f"{rel}: unknown module '{mod}' (add it to ALLOWED and docs/architecture.md)")
@@ -114,6 +119,8 @@ def check(source_dir):
                     m = INCLUDE.search(line)
                     if m and mod is not None and ALLOWED[mod] is not None:
                         dep = included_module(m.group(1))
+                        if (rel, m.group(1)) in TRANSITIONAL_INCLUDES:
+                            continue
                         if dep != mod and dep not in ALLOWED[mod]:
                             problems.append(f"{rel}:{no}: {mod} may not include {dep} ({m.group(1)})")
                     s = SYSTEM.search(line)

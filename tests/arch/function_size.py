@@ -20,13 +20,10 @@ LIMIT = 80
 # Files being rewritten by other branches at the same time (kernel redesign; results/driver redesign).
 # They are checked once those land: the integrator empties this list when merging.
 EXCLUDED = {
-    "src/kernel.cpp",        # kernel redesign (run_central_difference, run_newmark, run_rk4, run_batch)
-    "src/contact.cpp",       # kernel redesign (contact laws)
-    "src/collide.cpp",       # kernel redesign
-    "src/study/run.cpp",     # results/driver redesign (run_study, run_units)
-    "src/report/report.cpp", # results/driver redesign (report_markdown)
-    # Not in the list but owned by the results/driver redesign too (src/parallel is theirs):
-    "src/parallel/mpi_executor.cpp",  # run_units, 97 lines
+    # Transitional: the kernel redesign (branch work in progress; docs/architecture.md) replaces these.
+    "src/kernel.cpp",        # run_central_difference, run_newmark, run_rk4, run_batch
+    "src/contact.cpp",
+    "src/collide.cpp",
 }
 
 SUFFIXES = (".cpp", ".cc", ".hpp", ".h")

@@ -61,14 +61,49 @@ class TerminalProgress {
   std::chrono::steady_clock::time_point last_{};
 };
 
+struct RunOpts {
+  std::string study, out;
+  bool resume = false, force = false, quiet = false, out_given = false;
+};
+
+// One `pounding run` on this rank; returns the exit code (the MPI session has ended when it returns).
+int run_job(const RunOpts& o) {
+  int argc = 0;
+  char** argv = nullptr;
+  parallel::Session session(argc, argv);
+  std::signal(SIGINT, on_stop_signal);
+  std::signal(SIGTERM, on_stop_signal);
+  try {
+    RunOptions ro;
+    ro.out = o.out;
+    ro.out_given = o.out_given;
+    ro.resume = o.resume;
+    ro.force = o.force;
+    RunContext ctx;
+    ctx.cancel = &stop_requested;
+    if (session.root()) {
+      ctx.info = [](const std::string& line) { fmt::print(stderr, "{}\n", line); };
+      if (!o.quiet) ctx.progress = TerminalProgress();
+    }
+    const RunOutcome r = run_study(session, o.study, ro, ctx);
+    if (session.root() && (r.code == 0 || r.code == 3)) fmt::print("{}", report_markdown(results::load(r.out)));
+    return r.code;
+  } catch (const InputError& e) {
+    // thrown on every rank after the job stopped together (Session::agree, run_units): one message
+    if (session.root()) fmt::print(stderr, " ERROR: {}\n", e.what());
+    return 2;
+  } catch (const std::exception& e) {
+    // outside the agreed phases: this rank alone knows; end the job rather than let the others wait
+    fmt::print(stderr, " ERROR: {} (rank {})\n", e.what(), session.rank());
+    if (session.size() > 1) session.abort(2);
+    return 2;
+  }
+}
+
 }  // namespace
 
 void add_run(CLI::App& app) {
-  struct Opts {
-    std::string study, out;
-    bool resume = false, force = false, quiet = false;
-  };
-  auto o = std::make_shared<Opts>();
+  auto o = std::make_shared<RunOpts>();
   auto* c = app.add_subcommand("run", "run a study (Monte Carlo over records x period pairs x samples); "
                                       "under mpirun the ranks share the work");
   c->add_option("study", o->study, "study file (studies/*.toml)")->required();
@@ -79,36 +114,8 @@ void add_run(CLI::App& app) {
   c->callback([o, out] {
     // A write beyond the file-size limit (ulimit -f) must be an EFBIG error we report, not SIGXFSZ.
     std::signal(SIGXFSZ, SIG_IGN);
-    int argc = 0;
-    char** argv = nullptr;
-    parallel::Session session(argc, argv);
-    std::signal(SIGINT, on_stop_signal);
-    std::signal(SIGTERM, on_stop_signal);
-    try {
-      RunOptions ro;
-      ro.out = o->out;
-      ro.out_given = out->count() > 0;
-      ro.resume = o->resume;
-      ro.force = o->force;
-      RunContext ctx;
-      ctx.cancel = &stop_requested;
-      if (session.root()) {
-        ctx.info = [](const std::string& line) { fmt::print(stderr, "{}\n", line); };
-        if (!o->quiet) ctx.progress = TerminalProgress();
-      }
-      const RunOutcome r = run_study(session, o->study, ro, ctx);
-      if (session.root() && (r.code == 0 || r.code == 3)) fmt::print("{}", report_markdown(results::load(r.out)));
-      exit_code() = r.code;
-    } catch (const InputError& e) {
-      // thrown on every rank after the job stopped together (Session::agree, run_units): one message
-      if (session.root()) fmt::print(stderr, " ERROR: {}\n", e.what());
-      exit_code() = 2;
-    } catch (const std::exception& e) {
-      // outside the agreed phases: this rank alone knows; end the job rather than let the others wait
-      fmt::print(stderr, " ERROR: {} (rank {})\n", e.what(), session.rank());
-      if (session.size() > 1) session.abort(2);
-      exit_code() = 2;
-    }
+    o->out_given = out->count() > 0;
+    if (const int code = run_job(*o)) throw ExitRequest{code};
   });
 }
 
