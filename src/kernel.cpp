@@ -94,7 +94,8 @@ template <ContactLaw L, bool N15>
     if constexpr (L == ContactLaw::hertz) {
       return kc * pw;  // muthukumar eq. 6
     } else if constexpr (L == ContactLaw::hertzdamp) {
-      double raw = kc * pw * (1.0 + cd * dd / v0);  // muthukumar eq. 10 with xibar = cd
+      const double iv0 = 1.0 / v0;  // the reciprocal, as the SIMD path (P6)
+      double raw = kc * pw * (1.0 + cd * dd * iv0);  // muthukumar eq. 10 with xibar = cd
       clamp = raw < 0.0 ? 1.0 : 0.0;
       return raw > 0.0 ? raw : 0.0;
     } else {
@@ -123,7 +124,8 @@ template <ContactLaw L, bool N15>
     if constexpr (L == ContactLaw::hertz) {
       F = kc * pw, dFd = kc * dpw, dFv = 0.0;
     } else if constexpr (L == ContactLaw::hertzdamp) {
-      F = kc * pw * (1.0 + cd * dd / v0), dFd = kc * dpw * (1.0 + cd * dd / v0), dFv = kc * pw * cd / v0;
+      const double iv0 = 1.0 / v0;  // the reciprocal, as the SIMD path (P6)
+      F = kc * pw * (1.0 + cd * dd * iv0), dFd = kc * dpw * (1.0 + cd * dd * iv0), dFv = kc * pw * cd * iv0;
     } else {
       double q = dp > 0.0 ? std::sqrt(std::sqrt(dp)) : 0.0;
       bool app = dd > 0.0;
@@ -150,7 +152,7 @@ template <ContactLaw L, bool N15>
     klin = kc;
   } else if constexpr (L == ContactLaw::hertz || L == ContactLaw::hertzdamp || L == ContactLaw::jankowski) {
     klin = (N15 || L == ContactLaw::jankowski) ? 1.5 * kc * std::sqrt(d) : n * kc * std::pow(d, n - 1.0);
-    if constexpr (L == ContactLaw::hertzdamp) klin *= std::max(1.0, 1.0 + cd * dd / v0);
+    if constexpr (L == ContactLaw::hertzdamp) klin *= std::max(1.0, 1.0 + cd * dd * (1.0 / v0));  // reciprocal (P6)
   }
   return klin * h2_meff > limit2;
 }
