@@ -209,6 +209,60 @@ std::vector<double> read_doubles_attribute(hid obj, const std::string& name) {
   return v;
 }
 
+std::vector<std::string> read_strings_attribute(hid obj, const std::string& name) {
+  Handle a(checked(H5Aopen(obj, name.c_str(), H5P_DEFAULT), "attribute " + name));
+  Handle space(checked(H5Aget_space(a.get()), "attribute space " + name));
+  const hssize_t n = H5Sget_simple_extent_npoints(space.get());
+  Handle type(checked(H5Tcopy(H5T_C_S1), "string type"));
+  check(H5Tset_size(type.get(), H5T_VARIABLE), "vlen");
+  check(H5Tset_cset(type.get(), H5T_CSET_UTF8), "utf8");
+  std::vector<char*> ptrs(static_cast<std::size_t>(std::max<hssize_t>(n, 0)), nullptr);
+  if (n > 0) check(H5Aread(a.get(), type.get(), ptrs.data()), "read attr " + name);
+  std::vector<std::string> out;
+  for (char* p : ptrs) out.emplace_back(p ? p : "");
+  if (n > 0) H5Dvlen_reclaim(type.get(), space.get(), H5P_DEFAULT, ptrs.data());
+  return out;
+}
+
+AttributeKind attribute_kind(hid obj, const std::string& name) {
+  Handle a(checked(H5Aopen(obj, name.c_str(), H5P_DEFAULT), "attribute " + name));
+  Handle space(checked(H5Aget_space(a.get()), "attribute space " + name));
+  Handle type(checked(H5Aget_type(a.get()), "attribute type " + name));
+  const bool scalar = H5Sget_simple_extent_type(space.get()) == H5S_SCALAR;
+  if (!scalar && H5Sget_simple_extent_ndims(space.get()) != 1) return AttributeKind::other;
+  switch (H5Tget_class(type.get())) {
+    case H5T_STRING: return scalar ? AttributeKind::string : AttributeKind::strings;
+    case H5T_FLOAT: return scalar ? AttributeKind::number : AttributeKind::numbers;
+    case H5T_INTEGER: return scalar ? AttributeKind::integer : AttributeKind::integers;
+    default: return AttributeKind::other;
+  }
+}
+
+namespace {
+herr_t collect_attribute(hid_t, const char* name, const H5A_info_t*, void* out) {
+  static_cast<std::vector<std::string>*>(out)->emplace_back(name);
+  return 0;
+}
+herr_t collect_link(hid_t, const char* name, const H5L_info_t*, void* out) {
+  static_cast<std::vector<std::string>*>(out)->emplace_back(name);
+  return 0;
+}
+}  // namespace
+
+std::vector<std::string> attribute_names(hid obj) {
+  std::vector<std::string> names;
+  hsize_t at = 0;
+  check(H5Aiterate2(obj, H5_INDEX_NAME, H5_ITER_INC, &at, collect_attribute, &names), "list attributes");
+  return names;
+}
+
+std::vector<std::string> member_names(hid group) {
+  std::vector<std::string> names;
+  hsize_t at = 0;
+  check(H5Literate(group, H5_INDEX_NAME, H5_ITER_INC, &at, collect_link, &names), "list members");
+  return names;
+}
+
 std::vector<double> read_doubles(hid g, const std::string& n) { return read_all<double>(g, n, H5T_NATIVE_DOUBLE); }
 std::vector<std::int64_t> read_int64(hid g, const std::string& n) {
   return read_all<std::int64_t>(g, n, H5T_NATIVE_INT64);

@@ -6,6 +6,7 @@
 
 #include <cstdint>
 #include <cstdlib>
+#include <cstring>
 #include <deque>
 #include <string>
 
@@ -71,12 +72,19 @@ bool finish(Failure& f, bool stopped) {
   return code == 0;
 }
 
+// A result message: the unit id (8 bytes, native order) followed by the payload bytes.
+void pack_result(std::vector<std::byte>& msg, std::int64_t unit, const Payload& payload) {
+  msg.resize(sizeof unit + payload.size());
+  std::memcpy(msg.data(), &unit, sizeof unit);
+  if (!payload.empty()) std::memcpy(msg.data() + sizeof unit, payload.data(), payload.size());
+}
+
 bool worker_loop(const ComputeFn& compute) {
   // Results go out with MPI_Isend from two alternating buffers: a result larger than the eager limit
   // waits for the master to post its receive (it may be busy computing a unit), and the worker goes on
   // computing its next unit meanwhile instead of blocking in MPI_Send. After a failure the worker sends
   // the error once and only drains unit messages until the master's stop.
-  std::vector<double> msg[2];
+  std::vector<std::byte> msg[2];
   MPI_Request req[2] = {MPI_REQUEST_NULL, MPI_REQUEST_NULL};
   Failure failed;
   int rank = 0;
@@ -86,7 +94,7 @@ bool worker_loop(const ComputeFn& compute) {
     MPI_Recv(&unit, 1, MPI_INT64_T, 0, tag_work, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
     if (unit == stop_unit) break;
     if (failed.set) continue;
-    std::vector<double> payload;
+    Payload payload;
     try {
       payload = compute(static_cast<std::size_t>(unit));
     } catch (...) {
@@ -96,14 +104,120 @@ bool worker_loop(const ComputeFn& compute) {
       continue;
     }
     MPI_Wait(&req[k], MPI_STATUS_IGNORE);
-    msg[k].assign(1, static_cast<double>(unit));
-    msg[k].insert(msg[k].end(), payload.begin(), payload.end());
-    MPI_Isend(msg[k].data(), static_cast<int>(msg[k].size()), MPI_DOUBLE, 0, tag_result, MPI_COMM_WORLD, &req[k]);
+    pack_result(msg[k], unit, payload);
+    MPI_Isend(msg[k].data(), static_cast<int>(msg[k].size()), MPI_BYTE, 0, tag_result, MPI_COMM_WORLD, &req[k]);
   }
   MPI_Waitall(2, req, MPI_STATUSES_IGNORE);
   Failure outcome;
   return finish(outcome, false);
 }
+
+// Rank 0 of a multi-rank run: hands out units (two in flight per worker), computes units itself between
+// messages, stores results in completion order, and stops every worker at the end.
+class Master {
+ public:
+  Master(const Session& s, const std::vector<std::size_t>& todo, const ComputeFn& compute, const ResultFn& on_result,
+         const TickFn& tick, const std::atomic<bool>& stop)
+      : size_(s.size()), queue_(todo.begin(), todo.end()), compute_(compute), on_result_(on_result), tick_(tick),
+        stop_(stop), in_flight_(static_cast<std::size_t>(size_), 0), dead_(static_cast<std::size_t>(size_), 0) {}
+
+  bool run() {
+    for (int r = 1; r < size_; ++r)
+      for (int k = 0; k < 2; ++k) outstanding_ += send_unit(r);
+    while (!queue_.empty() && !halted()) {
+      service(false);
+      if (queue_.empty() || halted()) break;
+      const std::size_t u = queue_.front();
+      queue_.pop_front();
+      deliver([&] { on_result_(u, compute_(u)); });
+    }
+    while (outstanding_ > 0) service(true);
+    for (int r = 1; r < size_; ++r) {
+      std::int64_t unit = stop_unit;
+      MPI_Send(&unit, 1, MPI_INT64_T, r, tag_work, MPI_COMM_WORLD);
+    }
+    return finish(failed_, stop_.load() && !queue_.empty());
+  }
+
+ private:
+  bool halted() const { return failed_.set || stop_.load(); }
+
+  bool send_unit(int rank) {
+    if (queue_.empty() || halted() || dead_[static_cast<std::size_t>(rank)]) return false;
+    std::int64_t unit = static_cast<std::int64_t>(queue_.front());
+    queue_.pop_front();
+    ++in_flight_[static_cast<std::size_t>(rank)];
+    MPI_Send(&unit, 1, MPI_INT64_T, rank, tag_work, MPI_COMM_WORLD);
+    return true;
+  }
+
+  // on_result and tick: a throw stops the run (the error goes to every rank at the end)
+  template <class F>
+  void deliver(F&& store) {
+    try {
+      store();
+      tick_();
+    } catch (...) {
+      failed_.capture(0);
+    }
+  }
+
+  void receive_error(const MPI_Status& st) {  // the worker computes nothing more; its units in flight are lost
+    const auto src = static_cast<std::size_t>(st.MPI_SOURCE);
+    int count = 0;
+    MPI_Get_count(&st, MPI_CHAR, &count);
+    text_.resize(static_cast<std::size_t>(count));
+    MPI_Recv(text_.data(), count, MPI_CHAR, st.MPI_SOURCE, tag_error, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
+    if (!failed_.set) failed_.unpack(text_);
+    outstanding_ -= in_flight_[src];
+    in_flight_[src] = 0;
+    dead_[src] = 1;
+  }
+
+  void receive_result(const MPI_Status& st) {
+    int count = 0;
+    MPI_Get_count(&st, MPI_BYTE, &count);
+    buf_.resize(static_cast<std::size_t>(count));
+    MPI_Recv(buf_.data(), count, MPI_BYTE, st.MPI_SOURCE, tag_result, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
+    --in_flight_[static_cast<std::size_t>(st.MPI_SOURCE)];
+    --outstanding_;
+    if (send_unit(st.MPI_SOURCE)) ++outstanding_;
+    if (failed_.set) return;  // nothing more is stored after a failure
+    std::int64_t unit = 0;
+    std::memcpy(&unit, buf_.data(), sizeof unit);
+    deliver([&] { on_result_(static_cast<std::size_t>(unit), Payload(buf_.begin() + sizeof unit, buf_.end())); });
+  }
+
+  void service(bool block) {
+    for (;;) {
+      int flag = 0;
+      MPI_Status st;
+      if (block) {
+        MPI_Probe(MPI_ANY_SOURCE, MPI_ANY_TAG, MPI_COMM_WORLD, &st);
+        flag = 1;
+        block = false;
+      } else {
+        MPI_Iprobe(MPI_ANY_SOURCE, MPI_ANY_TAG, MPI_COMM_WORLD, &flag, &st);
+      }
+      if (!flag) return;
+      if (st.MPI_TAG == tag_error) receive_error(st);
+      else receive_result(st);
+    }
+  }
+
+  int size_;
+  std::deque<std::size_t> queue_;
+  const ComputeFn& compute_;
+  const ResultFn& on_result_;
+  const TickFn& tick_;
+  const std::atomic<bool>& stop_;
+  Failure failed_;
+  std::vector<int> in_flight_;
+  std::vector<char> dead_;
+  int outstanding_ = 0;
+  std::vector<std::byte> buf_;
+  std::string text_;
+};
 }  // namespace
 
 Session::Session(int& argc, char**& argv) {
@@ -171,91 +285,7 @@ bool run_units(const Session& s, const std::vector<std::size_t>& todo, const Com
     return true;
   }
   if (!s.root()) return worker_loop(compute);
-
-  // master
-  Failure failed;
-  auto halted = [&] { return failed.set || stop.load(); };
-  std::deque<std::size_t> queue(todo.begin(), todo.end());
-  const int workers = s.size() - 1;
-  std::vector<int> in_flight(static_cast<std::size_t>(s.size()), 0);
-  std::vector<char> dead(static_cast<std::size_t>(s.size()), 0);
-  auto send_unit = [&](int rank) {
-    if (queue.empty() || halted() || dead[static_cast<std::size_t>(rank)]) return false;
-    std::int64_t unit = static_cast<std::int64_t>(queue.front());
-    queue.pop_front();
-    ++in_flight[static_cast<std::size_t>(rank)];
-    MPI_Send(&unit, 1, MPI_INT64_T, rank, tag_work, MPI_COMM_WORLD);
-    return true;
-  };
-  for (int r = 1; r <= workers; ++r)
-    for (int k = 0; k < 2; ++k) send_unit(r);
-  int outstanding = 0;
-  for (int r = 1; r <= workers; ++r) outstanding += in_flight[static_cast<std::size_t>(r)];
-
-  std::vector<double> buf;
-  std::string text;
-  auto receive_one = [&](const MPI_Status& st) {
-    const auto src = static_cast<std::size_t>(st.MPI_SOURCE);
-    if (st.MPI_TAG == tag_error) {  // the worker computes nothing more; its units in flight are lost
-      int count = 0;
-      MPI_Get_count(&st, MPI_CHAR, &count);
-      text.resize(static_cast<std::size_t>(count));
-      MPI_Recv(text.data(), count, MPI_CHAR, st.MPI_SOURCE, tag_error, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
-      if (!failed.set) failed.unpack(text);
-      outstanding -= in_flight[src];
-      in_flight[src] = 0;
-      dead[src] = 1;
-      return;
-    }
-    int count = 0;
-    MPI_Get_count(&st, MPI_DOUBLE, &count);
-    buf.resize(static_cast<std::size_t>(count));
-    MPI_Recv(buf.data(), count, MPI_DOUBLE, st.MPI_SOURCE, tag_result, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
-    --in_flight[src];
-    --outstanding;
-    if (send_unit(st.MPI_SOURCE)) ++outstanding;
-    if (failed.set) return;  // nothing more is stored after a failure
-    try {
-      on_result(static_cast<std::size_t>(buf[0]), std::vector<double>(buf.begin() + 1, buf.end()));
-      tick();
-    } catch (...) {
-      failed.capture(0);
-    }
-  };
-  auto service = [&](bool block) {
-    for (;;) {
-      int flag = 0;
-      MPI_Status st;
-      if (block) {
-        MPI_Probe(MPI_ANY_SOURCE, MPI_ANY_TAG, MPI_COMM_WORLD, &st);
-        flag = 1;
-        block = false;
-      } else {
-        MPI_Iprobe(MPI_ANY_SOURCE, MPI_ANY_TAG, MPI_COMM_WORLD, &flag, &st);
-      }
-      if (!flag) return;
-      receive_one(st);
-    }
-  };
-
-  while (!queue.empty() && !halted()) {
-    service(false);
-    if (queue.empty() || halted()) break;
-    std::size_t u = queue.front();
-    queue.pop_front();
-    try {
-      on_result(u, compute(u));
-      tick();
-    } catch (...) {
-      failed.capture(0);
-    }
-  }
-  while (outstanding > 0) service(true);
-  for (int r = 1; r <= workers; ++r) {
-    std::int64_t unit = stop_unit;
-    MPI_Send(&unit, 1, MPI_INT64_T, r, tag_work, MPI_COMM_WORLD);
-  }
-  return finish(failed, stop.load() && !queue.empty());
+  return Master(s, todo, compute, on_result, tick, stop).run();
 }
 
 }  // namespace pounding::parallel

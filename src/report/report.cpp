@@ -2,14 +2,12 @@
 
 #include <algorithm>
 #include <cmath>
-#include <map>
+#include <span>
 
 #include <fmt/format.h>
-#include <toml++/toml.h>
 
-#include "pounding/io/hdf5.hpp"
+#include "legacy_v1.hpp"
 #include "pounding/analysis/stats.hpp"
-#include "pounding/study/study.hpp"
 
 namespace pounding {
 
@@ -21,31 +19,65 @@ constexpr double paper_fit[] = {106.8, -403.4, 510.3, -213.7};  // c0 + c1 x + c
 
 bool ok(std::uint8_t s) { return s == 0; }
 
+template <class T>
+std::span<const T> column_or_empty(const results::Results& r, const char* group, const char* name) {
+  return r.find(group, name) ? std::span<const T>(r.column<T>(group, name)) : std::span<const T>();
+}
+
+// The report's view of a Results: the columns it reads by short names, and its settings.
+struct Data {
+  const results::Results& res;
+  const results::Header& h;
+  const results::RecordTable& rec;
+  const results::ModelTable& mod;
+  ReportSettings set;
+  std::span<const std::uint8_t> status, imp_status;
+  std::span<const double> peak_u1, peak_u2, peak_closing, peak_force, imp_peak_u1, imp_peak_u2;
+  std::span<const std::int32_t> impact_count;
+  bool impacts;
+
+  explicit Data(const results::Results& r)
+      : res(r), h(r.header), rec(r.records), mod(r.models), set(report_settings(r)),
+        status(column_or_empty<std::uint8_t>(r, "uncoupled", "status")),
+        imp_status(column_or_empty<std::uint8_t>(r, "impacts", "status")),
+        peak_u1(column_or_empty<double>(r, "uncoupled", "peak_u1")),
+        peak_u2(column_or_empty<double>(r, "uncoupled", "peak_u2")),
+        peak_closing(column_or_empty<double>(r, "uncoupled", "peak_closing")),
+        peak_force(column_or_empty<double>(r, "impacts", "peak_force")),
+        imp_peak_u1(column_or_empty<double>(r, "impacts", "peak_u1")),
+        imp_peak_u2(column_or_empty<double>(r, "impacts", "peak_u2")),
+        impact_count(column_or_empty<std::int32_t>(r, "impacts", "impact_count")),
+        impacts(r.has_group("impacts")) {}
+  std::size_t records() const { return rec.size(); }
+  std::size_t models() const { return mod.size(); }
+  std::size_t gaps() const { return res.gap_ratios.size(); }
+};
+
 struct Count {
   std::int64_t hits = 0, n = 0;
   double pct() const { return n ? 100.0 * static_cast<double>(hits) / static_cast<double>(n) : NAN; }
 };
 
 // uncoupled: hit when peak closing > ratio * code gap (contact is delta = u1 - u2 - gap > 0)
-Count count_uncoupled(const Results& r, double ratio, int rec, int pair_i1 = -1, int pair_i2 = -1) {
+Count count_uncoupled(const Data& r, double ratio, int rec, int pair_i1 = -1, int pair_i2 = -1) {
   Count c;
   const std::size_t M = r.models();
   for (std::size_t k = 0; k < r.records(); ++k) {
     if (rec >= 0 && static_cast<int>(k) != rec) continue;
     for (std::size_t m = 0; m < M; ++m) {
-      if (pair_i1 >= 0 && (r.i1[m] != pair_i1 || r.i2[m] != pair_i2)) continue;
+      if (pair_i1 >= 0 && (r.mod.i1[m] != pair_i1 || r.mod.i2[m] != pair_i2)) continue;
       const std::size_t idx = k * M + m;
       if (!ok(r.status[idx])) continue;
       ++c.n;
-      c.hits += r.peak_closing[idx] > ratio * r.code_gap[m];
+      c.hits += r.peak_closing[idx] > ratio * r.mod.code_gap[m];
     }
   }
   return c;
 }
 
-Count count_coupled(const Results& r, std::size_t g, int rec) {
+Count count_coupled(const Data& r, std::size_t g, int rec) {
   Count c;
-  const std::size_t M = r.models(), G = r.gap_ratios.size();
+  const std::size_t M = r.models(), G = r.gaps();
   for (std::size_t k = 0; k < r.records(); ++k) {
     if (rec >= 0 && static_cast<int>(k) != rec) continue;
     for (std::size_t m = 0; m < M; ++m) {
@@ -72,101 +104,14 @@ double empirical_ratio(const Curve& c, double target) {
   return NAN;
 }
 
-}  // namespace
-
-Results load_results(const std::string& path) {
-  Results r;
-  r.path = path;
-  auto f = h5::open_read(path);
-  const auto root = f.get();
-  r.title = h5::read_string_attribute(root, "title");
-  r.scene = h5::read_string_attribute(root, "scene");
-  r.scene_reason = h5::read_string_attribute(root, "scene_reason");
-  r.contact_law = h5::read_string_attribute(root, "contact_law");
-  r.damping_law = h5::read_string_attribute(root, "damping_law");
-  r.stepper = h5::read_string_attribute(root, "stepper");
-  if (h5::attribute_exists(root, "study_text")) r.study_text = h5::read_string_attribute(root, "study_text");
-  r.date = h5::read_string_attribute(root, "date");
-  r.commit = h5::read_string_attribute(root, "git_commit");
-  r.restitution = h5::read_double_attribute(root, "restitution");
-  r.wall_time = h5::read_double_attribute(root, "wall_time_s");
-  r.ranks = h5::read_int64_attribute(root, "ranks");
-  r.seed = h5::read_int64_attribute(root, "seed");
-  if (h5::attribute_exists(root, "exclusion_warning"))
-    r.exclusion_warning = h5::read_string_attribute(root, "exclusion_warning");
-  {
-    auto g = h5::open_group(root, "records");
-    r.record_id = h5::read_strings(g.get(), "id");
-    r.record_name = h5::read_strings(g.get(), "name");
-    r.record_note = h5::read_strings(g.get(), "note");
-    r.record_synthetic = h5::read_uint8(g.get(), "synthetic");
-    r.record_pga_g = h5::read_doubles(g.get(), "pga_g");
-    r.record_duration = h5::read_doubles(g.get(), "duration");
-  }
-  {
-    auto g = h5::open_group(root, "models");
-    r.T1 = h5::read_doubles(g.get(), "T1"), r.T2 = h5::read_doubles(g.get(), "T2");
-    r.h1 = h5::read_doubles(g.get(), "h1"), r.h2 = h5::read_doubles(g.get(), "h2");
-    r.code_gap = h5::read_doubles(g.get(), "code_gap");
-    r.periods = h5::read_doubles(g.get(), "periods");
-    r.i1 = h5::read_int32(g.get(), "i1"), r.i2 = h5::read_int32(g.get(), "i2");
-    r.sample = h5::read_int64(g.get(), "sample");
-    r.zeta = h5::read_double_attribute(g.get(), "zeta");
-  }
-  {
-    auto g = h5::open_group(root, "uncoupled");
-    r.status = h5::read_uint8(g.get(), "status");
-    r.peak_u1 = h5::read_doubles(g.get(), "peak_u1");
-    r.peak_u2 = h5::read_doubles(g.get(), "peak_u2");
-    r.peak_closing = h5::read_doubles(g.get(), "peak_closing");
-  }
-  if (h5::exists(root, "impacts")) {
-    r.impacts = true;
-    auto g = h5::open_group(root, "impacts");
-    r.gap_ratios = h5::read_doubles(g.get(), "gap_ratios");
-    r.imp_status = h5::read_uint8(g.get(), "status");
-    r.impact_count = h5::read_int32(g.get(), "impact_count");
-    r.peak_force = h5::read_doubles(g.get(), "peak_force");
-    r.imp_peak_u1 = h5::read_doubles(g.get(), "peak_u1");
-    r.imp_peak_u2 = h5::read_doubles(g.get(), "peak_u2");
-  }
-  // report settings: /settings (format with settings) or, for older files, the echoed study text
-  if (h5::exists(root, "settings")) {
-    auto g = h5::open_group(root, "settings");
-    auto section = [&](const char* name) { return h5::open_group(g.get(), name); };
-    {
-      auto s = section("gaps");
-      r.study_gap_ratios = h5::read_doubles_attribute(s.get(), "ratios");
-      r.curve_max = h5::read_double_attribute(s.get(), "curve_max");
-      r.curve_step = h5::read_double_attribute(s.get(), "curve_step");
-    }
-    {
-      auto s = section("report");
-      r.targets = h5::read_doubles_attribute(s.get(), "targets");
-      r.h1_report = h5::read_double_attribute(s.get(), "h1"), r.h2_report = h5::read_double_attribute(s.get(), "h2");
-      r.fit_min = h5::read_double_attribute(s.get(), "fit_min"), r.fit_max = h5::read_double_attribute(s.get(), "fit_max");
-    }
-    r.code_gap_coefficient = h5::read_double_attribute(section("structures").get(), "code_gap_coefficient");
-  } else {
-    const std::string spath = h5::read_string_attribute(root, "study_path");
-    const Study s = parse_study(r.study_text, spath);
-    r.study_gap_ratios = s.gap_ratios;
-    r.targets = s.targets;
-    r.code_gap_coefficient = s.structures.code_gap_coefficient;
-    r.h1_report = s.h1, r.h2_report = s.h2, r.fit_min = s.fit_min, r.fit_max = s.fit_max;
-    r.curve_max = s.curve_max, r.curve_step = s.curve_step;
-  }
-  return r;
-}
-
-Curve probability_curve(const Results& r, double step, double xmax, int record) {
+Curve curve_of(const Data& r, double step, double xmax, int record) {
   std::vector<double> z;  // peak closing / code gap
   const std::size_t M = r.models();
   for (std::size_t k = 0; k < r.records(); ++k) {
     if (record >= 0 && static_cast<int>(k) != record) continue;
     for (std::size_t m = 0; m < M; ++m) {
       const std::size_t idx = k * M + m;
-      if (ok(r.status[idx])) z.push_back(r.peak_closing[idx] / r.code_gap[m]);
+      if (ok(r.status[idx])) z.push_back(r.peak_closing[idx] / r.mod.code_gap[m]);
     }
   }
   std::sort(z.begin(), z.end());
@@ -183,124 +128,179 @@ Curve probability_curve(const Results& r, double step, double xmax, int record) 
   return c;
 }
 
-std::string report_markdown(const Results& r) {
-  std::string s;
-  auto out = [&]<typename... A>(fmt::format_string<A...> f, A&&... a) { s += fmt::format(f, std::forward<A>(a)...); };
-  const std::size_t R = r.records(), M = r.models();
-  const auto& ratios = r.study_gap_ratios;
-  out("# Pounding study: {}\n\n", r.title);
-  if (!r.exclusion_warning.empty())
-    out("> **WARNING — results not trustworthy as they stand:** {}.\n\n", r.exclusion_warning);
-  out("- results: `{}` (written {}, commit {}, {} rank(s), wall time {:.2f} s)\n", r.path, r.date, r.commit, r.ranks,
-      r.wall_time);
-  out("- scene: **{}** — {}\n", r.scene, r.scene_reason);
-  out("- contact: {} ({}), e = {}; stepper {}\n", r.contact_law, r.damping_law, r.restitution, r.stepper);
-  std::size_t synth = 0;
-  for (auto v : r.record_synthetic) synth += v;
-  out("- {} records ({} synthetic stand-ins, {} real), {} models per record, seed {}\n", R, synth, R - synth, M, r.seed);
-  std::size_t bad = 0;
-  for (auto v : r.status) bad += !ok(v);
-  out("- excluded (diverged or non-finite) analyses: **{}** of {}\n", bad, R * M);
-  if (bad) {
-    int shown = 0;
-    for (std::size_t k = 0; k < R && shown < 10; ++k)
-      for (std::size_t m = 0; m < M && shown < 10; ++m)
-        if (!ok(r.status[k * M + m])) {
-          out("  - record {} model (T1 {:.2f}, T2 {:.2f}, sample {}): status {}\n", r.record_id[k], r.T1[m], r.T2[m],
-              r.sample[m], r.status[k * M + m] == 1 ? "diverged" : "non-finite");
-          ++shown;
-        }
+// Markdown output, section by section.
+class Markdown {
+ public:
+  explicit Markdown(const Data& r) : r(r) {}
+  std::string text() && { return std::move(s); }
+
+  template <typename... A>
+  void out(fmt::format_string<A...> f, A&&... a) {
+    s += fmt::format(f, std::forward<A>(a)...);
   }
+
+  void overview();
+  void per_record();
+  void total();
+  void coupled_counts();
+  void period_matrix();
+  void fit_and_recommendation();
+  void code_rules();
+  void impacts_table();
+
+ private:
+  void excluded_uncoupled();
+  void recommendation(const Curve& curve, const CubicFit& f);
+  std::string excluded_coupled();
+  const Data& r;
+  std::string s;
+};
+
+void Markdown::overview() {
+  const std::size_t R = r.records(), M = r.models();
+  out("# Pounding study: {}\n\n", r.h.title);
+  if (!r.h.exclusion_warning.empty())
+    out("> **WARNING — results not trustworthy as they stand:** {}.\n\n", r.h.exclusion_warning);
+  out("- results: `{}` (written {}, commit {}, {} rank(s), wall time {:.2f} s)\n", r.res.path, r.h.date,
+      r.h.git_commit, r.h.ranks, r.h.wall_time_s);
+  out("- scene: **{}** — {}\n", r.h.scene, r.h.scene_reason);
+  out("- contact: {} ({}), e = {}; stepper {}\n", r.h.contact_law, r.h.damping_law, r.h.restitution, r.h.stepper);
+  std::size_t synth = 0;
+  for (auto v : r.rec.synthetic) synth += v;
+  out("- {} records ({} synthetic stand-ins, {} real), {} models per record, seed {}\n", R, synth, R - synth, M,
+      r.h.seed);
+  excluded_uncoupled();
   out("\nAt least one impact at gap g = ratio x d (d = {} (h1 + h2){}) is counted from the "
       "uncoupled peak closing: the motion before the first contact is the uncoupled motion, so "
       "peak(u1 - u2) > g is exactly \"touches at least once\".\n",
-      r.code_gap_coefficient, r.code_gap_coefficient == 0.005 ? ", Standard 2800" : "");
+      r.set.code_gap_coefficient, r.set.code_gap_coefficient == 0.005 ? ", Standard 2800" : "");
+}
 
-  // Table 2: per record
+void Markdown::excluded_uncoupled() {
+  const std::size_t R = r.records(), M = r.models();
+  std::size_t bad = 0;
+  for (auto v : r.status) bad += !ok(v);
+  out("- excluded (diverged or non-finite) analyses: **{}** of {}\n", bad, R * M);
+  if (!bad) return;
+  int shown = 0;
+  for (std::size_t k = 0; k < R && shown < 10; ++k)
+    for (std::size_t m = 0; m < M && shown < 10; ++m)
+      if (!ok(r.status[k * M + m])) {
+        out("  - record {} model (T1 {:.2f}, T2 {:.2f}, sample {}): status {}\n", r.rec.id[k], r.mod.T1[m],
+            r.mod.T2[m], r.mod.sample[m], r.status[k * M + m] == 1 ? "diverged" : "non-finite");
+        ++shown;
+      }
+}
+
+// Table 2: per record
+void Markdown::per_record() {
+  const auto& ratios = r.set.gap_ratios;
   out("\n## Probability of at least one impact per record (Table 2)\n\n| record | synthetic | PGA g |");
   for (double x : ratios) out(" {}d |", x);
   out("\n|---|---|---|");
   for (std::size_t i = 0; i < ratios.size(); ++i) out("---|");
   out("\n");
-  for (std::size_t k = 0; k < R; ++k) {
-    out("| {} | {} | {:.2f} |", r.record_id[k], r.record_synthetic[k] ? "yes" : "no", r.record_pga_g[k]);
+  for (std::size_t k = 0; k < r.records(); ++k) {
+    out("| {} | {} | {:.2f} |", r.rec.id[k], r.rec.synthetic[k] ? "yes" : "no", r.rec.pga_g[k]);
     for (double x : ratios) {
       Count c = count_uncoupled(r, x, static_cast<int>(k));
       out(" {} ({}) |", c.hits, pct(c.pct()));
     }
     out("\n");
   }
+}
 
-  // Table 3: total with Wilson intervals, beside the paper
+// Table 3: total with Wilson intervals, beside the paper
+void Markdown::total() {
   out("\n## Total probability of pounding (Table 3), 95 % Wilson intervals\n\n");
   out("| gap ratio | models with impact | probability | 95 % interval | paper |\n|---|---|---|---|---|\n");
-  for (double x : ratios) {
+  for (double x : r.set.gap_ratios) {
     Count c = count_uncoupled(r, x, -1);
     Interval w = wilson_interval(c.hits, c.n);
     std::string paper = "-";
     for (int j = 0; j < 6; ++j)
       if (std::abs(paper_ratios[j] - x) < 1e-12) paper = pct(paper_total[j]);
-    out("| {} | {} / {} | {} | [{:.2f}%, {:.2f}%] | {} |\n", x, c.hits, c.n, pct(c.pct()), 100 * w.lo, 100 * w.hi, paper);
+    out("| {} | {} / {} | {} | [{:.2f}%, {:.2f}%] | {} |\n", x, c.hits, c.n, pct(c.pct()), 100 * w.lo, 100 * w.hi,
+        paper);
   }
-  if (r.impacts) {
-    out("\nCoupled runs ({}): models with at least one counted impact per gap, beside the uncoupled count "
-        "(they must agree):\n\n| gap ratio | coupled | uncoupled |\n|---|---|---|\n", r.contact_law);
-    for (std::size_t g = 0; g < r.gap_ratios.size(); ++g) {
-      Count c = count_coupled(r, g, -1), u = count_uncoupled(r, r.gap_ratios[g], -1);
-      out("| {} | {} / {} | {} / {} |\n", r.gap_ratios[g], c.hits, c.n, u.hits, u.n);
-    }
-  }
+}
 
-  // T1 x T2 matrix
+void Markdown::coupled_counts() {
+  if (!r.impacts) return;
+  out("\nCoupled runs ({}): models with at least one counted impact per gap, beside the uncoupled count "
+      "(they must agree):\n\n| gap ratio | coupled | uncoupled |\n|---|---|---|\n", r.h.contact_law);
+  for (std::size_t g = 0; g < r.gaps(); ++g) {
+    Count c = count_coupled(r, g, -1), u = count_uncoupled(r, r.res.gap_ratios[g], -1);
+    out("| {} | {} / {} | {} / {} |\n", r.res.gap_ratios[g], c.hits, c.n, u.hits, u.n);
+  }
+}
+
+// T1 x T2 matrix
+void Markdown::period_matrix() {
+  const auto& ratios = r.set.gap_ratios;
+  const auto& periods = r.mod.periods;
   double xm = ratios[std::min<std::size_t>(ratios.size() - 1, 2)];
   out("\n## Probability by period pair at gap ratio {} (rows T1, columns T2)\n\n| T1 \\ T2 |", xm);
-  for (double T : r.periods) out(" {:.2f} |", T);
+  for (double T : periods) out(" {:.2f} |", T);
   out("\n|---|");
-  for (std::size_t j = 0; j < r.periods.size(); ++j) out("---|");
+  for (std::size_t j = 0; j < periods.size(); ++j) out("---|");
   out("\n");
-  for (std::size_t a = 0; a < r.periods.size(); ++a) {
-    out("| {:.2f} |", r.periods[a]);
-    for (std::size_t b = 0; b < r.periods.size(); ++b) {
+  for (std::size_t a = 0; a < periods.size(); ++a) {
+    out("| {:.2f} |", periods[a]);
+    for (std::size_t b = 0; b < periods.size(); ++b) {
       Count c = count_uncoupled(r, xm, -1, static_cast<int>(a), static_cast<int>(b));
       out(" {:.1f} |", c.pct());
     }
     out("\n");
   }
+}
 
-  // cubic fit on the continuous curve
-  Curve curve = probability_curve(r, r.curve_step, r.curve_max);
+// cubic fit on the continuous curve
+void Markdown::fit_and_recommendation() {
+  const ReportSettings& set = r.set;
+  Curve curve = curve_of(r, set.curve_step, set.curve_max, -1);
   std::vector<double> fx, fy;
   for (std::size_t i = 0; i < curve.x.size(); ++i)
-    if (curve.x[i] >= r.fit_min - 1e-12 && curve.x[i] <= r.fit_max + 1e-12) fx.push_back(curve.x[i]), fy.push_back(100 * curve.p[i]);
+    if (curve.x[i] >= set.fit_min - 1e-12 && curve.x[i] <= set.fit_max + 1e-12)
+      fx.push_back(curve.x[i]), fy.push_back(100 * curve.p[i]);
   out("\n## Cubic fit of probability (%) versus gap ratio x (eq. 10)\n\n");
-  if (fx.size() >= 4) {
-    CubicFit f = fit_cubic(fx, fy);
-    out("Fitted on the continuous curve, {} points for x in [{}, {}]:\n\n    PP = {:.1f} x^3 {:+.1f} x^2 {:+.1f} x {:+.1f}    "
-        "(R^2 = {:.4f})\n\npaper (eq. 10): PP = -213.7 x^3 + 510.3 x^2 - 403.4 x + 106.8\n",
-        fx.size(), r.fit_min, r.fit_max, f.c[3], f.c[2], f.c[1], f.c[0], f.r2);
-    out("\n## Separation recommendation\n\nGap ratio x (and metres for h1 = {} m, h2 = {} m: g = x {} (h1 + h2)) at "
-        "which the probability of at least one impact falls to the target:\n\n"
-        "| target | empirical x | empirical m | cubic x | cubic m | difference x |\n|---|---|---|---|---|---|\n",
-        r.h1_report, r.h2_report, r.code_gap_coefficient);
-    const double dcode = r.code_gap_coefficient * (r.h1_report + r.h2_report);
-    for (double t : r.targets) {
-      double xe = empirical_ratio(curve, t);
-      auto xc = solve_fit(f, t, r.fit_min, r.fit_max);
-      out("| {}% | {} | {} | {} | {} | {} |\n", t, std::isnan(xe) ? "> curve_max" : fmt::format("{:.3f}", xe),
-          std::isnan(xe) ? "-" : fmt::format("{:.3f}", xe * dcode), xc ? fmt::format("{:.3f}", *xc) : "outside fit range",
-          xc ? fmt::format("{:.3f}", *xc * dcode) : "-",
-          (xc && !std::isnan(xe)) ? fmt::format("{:+.3f}", *xc - xe) : "-");
-    }
-  } else {
-    out("too few curve points in [{}, {}] to fit a cubic\n", r.fit_min, r.fit_max);
+  if (fx.size() < 4) {
+    out("too few curve points in [{}, {}] to fit a cubic\n", set.fit_min, set.fit_max);
+    return;
   }
+  CubicFit f = fit_cubic(fx, fy);
+  out("Fitted on the continuous curve, {} points for x in [{}, {}]:\n\n    PP = {:.1f} x^3 {:+.1f} x^2 {:+.1f} x {:+.1f}    "
+      "(R^2 = {:.4f})\n\npaper (eq. 10): PP = -213.7 x^3 + 510.3 x^2 - 403.4 x + 106.8\n",
+      fx.size(), set.fit_min, set.fit_max, f.c[3], f.c[2], f.c[1], f.c[0], f.r2);
+  recommendation(curve, f);
+}
 
-  // code rules side by side, each from the models' own uncoupled peaks
+void Markdown::recommendation(const Curve& curve, const CubicFit& f) {
+  const ReportSettings& set = r.set;
+  out("\n## Separation recommendation\n\nGap ratio x (and metres for h1 = {} m, h2 = {} m: g = x {} (h1 + h2)) at "
+      "which the probability of at least one impact falls to the target:\n\n"
+      "| target | empirical x | empirical m | cubic x | cubic m | difference x |\n|---|---|---|---|---|---|\n",
+      set.h1, set.h2, set.code_gap_coefficient);
+  const double dcode = set.code_gap_coefficient * (set.h1 + set.h2);
+  for (double t : set.targets) {
+    double xe = empirical_ratio(curve, t);
+    auto xc = solve_fit(f, t, set.fit_min, set.fit_max);
+    out("| {}% | {} | {} | {} | {} | {} |\n", t, std::isnan(xe) ? "> curve_max" : fmt::format("{:.3f}", xe),
+        std::isnan(xe) ? "-" : fmt::format("{:.3f}", xe * dcode), xc ? fmt::format("{:.3f}", *xc) : "outside fit range",
+        xc ? fmt::format("{:.3f}", *xc * dcode) : "-", (xc && !std::isnan(xe)) ? fmt::format("{:+.3f}", *xc - xe) : "-");
+  }
+}
+
+// code rules side by side, each from the models' own uncoupled peaks
+void Markdown::code_rules() {
   out("\n## Code separation rules (each from the models' own uncoupled peaks)\n\n| rule | gap | probability of pounding |\n|---|---|---|\n");
   struct Rule { const char* name; const char* gap; int kind; };
-  const std::string code_rule = fmt::format("{} (h1 + h2)", r.code_gap_coefficient);
-  const Rule rules[] = {{r.code_gap_coefficient == 0.005 ? "Standard 2800" : "code gap", code_rule.c_str(), 0}, {"ABS", "u1 + u2", 1}, {"SRSS", "sqrt(u1^2 + u2^2)", 2},
+  const double coef = r.set.code_gap_coefficient;
+  const std::string code_rule = fmt::format("{} (h1 + h2)", coef);
+  const Rule rules[] = {{coef == 0.005 ? "Standard 2800" : "code gap", code_rule.c_str(), 0}, {"ABS", "u1 + u2", 1},
+                        {"SRSS", "sqrt(u1^2 + u2^2)", 2},
                         {"double difference (CQC)", "sqrt(u1^2 + u2^2 - 2 rho u1 u2)", 3}};
+  const std::size_t R = r.records(), M = r.models();
   for (const Rule& rule : rules) {
     std::int64_t hits = 0, n = 0;
     for (std::size_t k = 0; k < R; ++k)
@@ -309,11 +309,11 @@ std::string report_markdown(const Results& r) {
         if (!ok(r.status[idx])) continue;
         double u1 = r.peak_u1[idx], u2 = r.peak_u2[idx], g = 0;
         switch (rule.kind) {
-          case 0: g = r.code_gap[m]; break;
+          case 0: g = r.mod.code_gap[m]; break;
           case 1: g = u1 + u2; break;
           case 2: g = std::sqrt(u1 * u1 + u2 * u2); break;
           default: {
-            double rho = cqc_rho(r.T2[m] / r.T1[m], r.zeta);  // r = omega1/omega2 = T2/T1
+            double rho = cqc_rho(r.mod.T2[m] / r.mod.T1[m], r.mod.zeta);  // r = omega1/omega2 = T2/T1
             g = std::sqrt(std::max(0.0, u1 * u1 + u2 * u2 - 2.0 * rho * u1 * u2));
           }
         }
@@ -322,74 +322,115 @@ std::string report_markdown(const Results& r) {
       }
     out("| {} | {} | {} |\n", rule.name, rule.gap, pct(n ? 100.0 * static_cast<double>(hits) / static_cast<double>(n) : NAN));
   }
-
-  if (r.impacts) {
-    out("\n## Impacts scene: counts, forces, amplification (peak with pounding / peak without)\n\n"
-        "| gap ratio | mean impacts (pounding models) | max impacts | median peak force MN | max peak force MN | "
-        "mean amplification u1 | mean amplification u2 | excluded |\n|---|---|---|---|---|---|---|---|\n");
-    const std::size_t G = r.gap_ratios.size();
-    std::string listing;
-    std::size_t nbad = 0;
-    for (std::size_t k = 0; k < R; ++k)
-      for (std::size_t m = 0; m < M; ++m)
-        for (std::size_t g = 0; g < G; ++g)
-          if (!ok(r.imp_status[(k * M + m) * G + g])) {
-            if (++nbad <= 10)
-              listing += fmt::format("  - record {} model (T1 {:.2f}, T2 {:.2f}, sample {}) at gap ratio {}: {}\n",
-                                     r.record_id[k], r.T1[m], r.T2[m], r.sample[m], r.gap_ratios[g],
-                                     r.imp_status[(k * M + m) * G + g] == 1 ? "diverged" : "non-finite");
-          }
-    std::string excluded_note =
-        nbad ? fmt::format("\nExcluded coupled analyses (diverged or non-finite, never counted as results): **{}**{}\n{}",
-                           nbad, nbad > 10 ? " (first 10 listed)" : "", listing)
-             : std::string();
-    for (std::size_t g = 0; g < G; ++g) {
-      double sum = 0, a1 = 0, a2 = 0;
-      std::int64_t n = 0, maxc = 0, na = 0, excl = 0;
-      std::vector<double> forces;
-      for (std::size_t k = 0; k < R; ++k)
-        for (std::size_t m = 0; m < M; ++m) {
-          const std::size_t idx = (k * M + m) * G + g, u = k * M + m;
-          if (!ok(r.imp_status[idx]) || !ok(r.status[u])) {
-            ++excl;
-            continue;
-          }
-          a1 += r.imp_peak_u1[idx] / r.peak_u1[u], a2 += r.imp_peak_u2[idx] / r.peak_u2[u], ++na;
-          if (r.impact_count[idx] > 0) {
-            sum += r.impact_count[idx], ++n, maxc = std::max<std::int64_t>(maxc, r.impact_count[idx]);
-            forces.push_back(r.peak_force[idx] / 1e6);
-          }
-        }
-      std::sort(forces.begin(), forces.end());
-      out("| {} | {:.2f} | {} | {} | {} | {:.3f} | {:.3f} | {} |\n", r.gap_ratios[g], n ? sum / n : 0.0, maxc,
-          forces.empty() ? "-" : fmt::format("{:.2f}", forces[forces.size() / 2]),
-          forces.empty() ? "-" : fmt::format("{:.2f}", forces.back()), na ? a1 / na : NAN, na ? a2 / na : NAN, excl);
-    }
-    s += excluded_note;
-  }
-  return s;
 }
 
-std::string report_csv(const Results& r) {
+// The coupled analyses excluded (diverged or non-finite): a count and the first 10, or "".
+std::string Markdown::excluded_coupled() {
+  const std::size_t R = r.records(), M = r.models(), G = r.gaps();
+  std::string listing;
+  std::size_t nbad = 0;
+  for (std::size_t k = 0; k < R; ++k)
+    for (std::size_t m = 0; m < M; ++m)
+      for (std::size_t g = 0; g < G; ++g)
+        if (!ok(r.imp_status[(k * M + m) * G + g])) {
+          if (++nbad <= 10)
+            listing += fmt::format("  - record {} model (T1 {:.2f}, T2 {:.2f}, sample {}) at gap ratio {}: {}\n",
+                                   r.rec.id[k], r.mod.T1[m], r.mod.T2[m], r.mod.sample[m], r.res.gap_ratios[g],
+                                   r.imp_status[(k * M + m) * G + g] == 1 ? "diverged" : "non-finite");
+        }
+  return nbad ? fmt::format("\nExcluded coupled analyses (diverged or non-finite, never counted as results): **{}**{}\n{}",
+                            nbad, nbad > 10 ? " (first 10 listed)" : "", listing)
+              : std::string();
+}
+
+void Markdown::impacts_table() {
+  if (!r.impacts) return;
+  out("\n## Impacts scene: counts, forces, amplification (peak with pounding / peak without)\n\n"
+      "| gap ratio | mean impacts (pounding models) | max impacts | median peak force MN | max peak force MN | "
+      "mean amplification u1 | mean amplification u2 | excluded |\n|---|---|---|---|---|---|---|---|\n");
+  const std::size_t R = r.records(), M = r.models(), G = r.gaps();
+  const std::string excluded_note = excluded_coupled();
+  for (std::size_t g = 0; g < G; ++g) {
+    double sum = 0, a1 = 0, a2 = 0;
+    std::int64_t n = 0, maxc = 0, na = 0, excl = 0;
+    std::vector<double> forces;
+    for (std::size_t k = 0; k < R; ++k)
+      for (std::size_t m = 0; m < M; ++m) {
+        const std::size_t idx = (k * M + m) * G + g, u = k * M + m;
+        if (!ok(r.imp_status[idx]) || !ok(r.status[u])) {
+          ++excl;
+          continue;
+        }
+        a1 += r.imp_peak_u1[idx] / r.peak_u1[u], a2 += r.imp_peak_u2[idx] / r.peak_u2[u], ++na;
+        if (r.impact_count[idx] > 0) {
+          sum += r.impact_count[idx], ++n, maxc = std::max<std::int64_t>(maxc, r.impact_count[idx]);
+          forces.push_back(r.peak_force[idx] / 1e6);
+        }
+      }
+    std::sort(forces.begin(), forces.end());
+    out("| {} | {:.2f} | {} | {} | {} | {:.3f} | {:.3f} | {} |\n", r.res.gap_ratios[g], n ? sum / n : 0.0, maxc,
+        forces.empty() ? "-" : fmt::format("{:.2f}", forces[forces.size() / 2]),
+        forces.empty() ? "-" : fmt::format("{:.2f}", forces.back()), na ? a1 / na : NAN, na ? a2 / na : NAN, excl);
+  }
+  s += excluded_note;
+}
+
+}  // namespace
+
+ReportSettings report_settings(const results::Results& r) {
+  if (r.settings.empty()) return legacy_v1::report_settings_from_text(r);
+  const results::Settings& s = r.settings;
+  ReportSettings set;
+  set.gap_ratios = s.numbers("gaps", "ratios");
+  set.curve_max = s.number("gaps", "curve_max");
+  set.curve_step = s.number("gaps", "curve_step");
+  set.targets = s.numbers("report", "targets");
+  set.h1 = s.number("report", "h1"), set.h2 = s.number("report", "h2");
+  set.fit_min = s.number("report", "fit_min"), set.fit_max = s.number("report", "fit_max");
+  set.code_gap_coefficient = s.number("structures", "code_gap_coefficient");
+  return set;
+}
+
+Curve probability_curve(const results::Results& r, double step, double xmax, int record) {
+  return curve_of(Data(r), step, xmax, record);
+}
+
+std::string report_markdown(const results::Results& results) {
+  const Data r(results);
+  Markdown md(r);
+  md.overview();
+  md.per_record();
+  md.total();
+  md.coupled_counts();
+  md.period_matrix();
+  md.fit_and_recommendation();
+  md.code_rules();
+  md.impacts_table();
+  return std::move(md).text();
+}
+
+std::string report_csv(const results::Results& results) {
+  const Data r(results);
   std::string s = "table,record,gap_ratio,T1,T2,hits,n,probability\n";
-  const auto& ratios = r.study_gap_ratios;
+  const auto& ratios = r.set.gap_ratios;
+  const auto& periods = r.mod.periods;
   for (std::size_t k = 0; k < r.records(); ++k)
     for (double x : ratios) {
       Count c = count_uncoupled(r, x, static_cast<int>(k));
-      s += fmt::format("per_record,{},{},,,{},{},{:.6f}\n", r.record_id[k], x, c.hits, c.n, c.pct() / 100);
+      s += fmt::format("per_record,{},{},,,{},{},{:.6f}\n", r.rec.id[k], x, c.hits, c.n, c.pct() / 100);
     }
   for (double x : ratios) {
     Count c = count_uncoupled(r, x, -1);
     s += fmt::format("total,,{},,,{},{},{:.6f}\n", x, c.hits, c.n, c.pct() / 100);
   }
   for (double x : ratios)
-    for (std::size_t a = 0; a < r.periods.size(); ++a)
-      for (std::size_t b = 0; b < r.periods.size(); ++b) {
+    for (std::size_t a = 0; a < periods.size(); ++a)
+      for (std::size_t b = 0; b < periods.size(); ++b) {
         Count c = count_uncoupled(r, x, -1, static_cast<int>(a), static_cast<int>(b));
-        s += fmt::format("period_pair,,{},{:.2f},{:.2f},{},{},{:.6f}\n", x, r.periods[a], r.periods[b], c.hits, c.n,
+        s += fmt::format("period_pair,,{},{:.2f},{:.2f},{},{},{:.6f}\n", x, periods[a], periods[b], c.hits, c.n,
                          c.pct() / 100);
       }
-  Curve c = probability_curve(r, r.curve_step, r.curve_max);
+  Curve c = curve_of(r, r.set.curve_step, r.set.curve_max, -1);
   for (std::size_t i = 0; i < c.x.size(); ++i)
     s += fmt::format("curve,,{:.4f},,,,{},{:.6f}\n", c.x[i], c.n, c.p[i]);
   return s;

@@ -21,9 +21,9 @@ namespace pounding {
 
 namespace {
 
-constexpr char magic_v2[8] = {'P', 'N', 'D', 'C', 'K', 'P', 'T', '2'};
-constexpr char magic_v1[8] = {'P', 'N', 'D', 'C', 'K', 'P', 'T', '1'};
-constexpr std::uint64_t max_payload = 1ULL << 28;  // doubles per unit: far above any real unit
+constexpr char magic_v3[8] = {'P', 'N', 'D', 'C', 'K', 'P', 'T', '3'};
+constexpr char magic_old[7] = {'P', 'N', 'D', 'C', 'K', 'P', 'T'};  // + '1' or '2': payloads of doubles
+constexpr std::uint64_t max_payload = 1ULL << 31;  // bytes per unit: far above any real unit
 
 // The process holding a flock on (dev, ino), from /proc/locks (Linux); 0 if unknown.
 long lock_holder(int fd) {
@@ -54,10 +54,10 @@ std::string human(std::uint64_t n) {  // 3025 -> "3,025"
   return s;
 }
 
-std::uint64_t record_checksum(std::uint64_t unit, std::uint64_t count, const double* data) {
+std::uint64_t record_checksum(std::uint64_t unit, std::uint64_t count, const std::byte* data) {
   std::uint64_t c = files::fnv1a(&unit, 8);
   c = files::fnv1a(&count, 8, c);
-  return files::fnv1a(data, count * 8, c);
+  return files::fnv1a(data, count, c);
 }
 
 }  // namespace
@@ -135,11 +135,12 @@ CheckpointScan Checkpoint::scan(const CheckpointKey& key, const UnitFn& on_unit)
     s.kind = CheckpointScan::Kind::not_checkpoint;
     return s;
   }
-  if (std::memcmp(m, magic_v1, 8) == 0) {
+  if (std::memcmp(m, magic_old, 7) == 0 && (m[7] == '1' || m[7] == '2')) {
     s.kind = CheckpointScan::Kind::old_format;
+    s.format = m[7] - '0';
     return s;
   }
-  if (std::memcmp(m, magic_v2, 8) != 0) {
+  if (std::memcmp(m, magic_v3, 8) != 0) {
     s.kind = CheckpointScan::Kind::not_checkpoint;
     return s;
   }
@@ -159,6 +160,7 @@ CheckpointScan Checkpoint::scan(const CheckpointKey& key, const UnitFn& on_unit)
     return s;
   }
   s.units_total = n;
+  s.format = 3;
   if (h != key.study_hash || n != key.units) {
     s.kind = CheckpointScan::Kind::other_study;
   } else {
@@ -166,17 +168,17 @@ CheckpointScan Checkpoint::scan(const CheckpointKey& key, const UnitFn& on_unit)
   }
   s.good_bytes = 40 + blen;
   const bool deliver = s.kind == CheckpointScan::Kind::ours && on_unit;
-  std::vector<double> data;
+  std::vector<std::byte> data;
   for (;;) {
     std::uint64_t unit = 0, count = 0, sum = 0;
     in.read(reinterpret_cast<char*>(&unit), 8);
     in.read(reinterpret_cast<char*>(&count), 8);
     if (!in || count > max_payload || unit >= n) break;
     data.resize(count);
-    in.read(reinterpret_cast<char*>(data.data()), static_cast<std::streamsize>(count * 8));
+    in.read(reinterpret_cast<char*>(data.data()), static_cast<std::streamsize>(count));
     in.read(reinterpret_cast<char*>(&sum), 8);
     if (!in || record_checksum(unit, count, data.data()) != sum) break;
-    s.good_bytes += 24 + count * 8;
+    s.good_bytes += 24 + count;
     ++s.units_done;
     if (deliver) on_unit(static_cast<std::size_t>(unit), std::move(data));
   }
@@ -189,7 +191,7 @@ void Checkpoint::start(const CheckpointKey& key) {
     throw InputError(fmt::format("cannot reset the checkpoint: {}", std::strerror(err)), path_,
                      "check the disk and the path");
   }
-  std::string head(magic_v2, 8);
+  std::string head(magic_v3, 8);
   const std::uint64_t blen = key.build.size();
   for (std::uint64_t v : {key.study_hash, key.units, key.build_hash, blen})
     head.append(reinterpret_cast<const char*>(&v), 8);
@@ -216,14 +218,14 @@ void Checkpoint::resume(const CheckpointScan& scanned) {
   units_ = scanned.units_done;
 }
 
-void Checkpoint::append(std::uint64_t unit, std::span<const double> payload) {
+void Checkpoint::append(std::uint64_t unit, std::span<const std::byte> payload) {
   const std::uint64_t count = payload.size();
   const std::uint64_t sum = record_checksum(unit, count, payload.data());
   std::string rec;
-  rec.reserve(24 + count * 8);
+  rec.reserve(24 + count);
   rec.append(reinterpret_cast<const char*>(&unit), 8);
   rec.append(reinterpret_cast<const char*>(&count), 8);
-  rec.append(reinterpret_cast<const char*>(payload.data()), count * 8);
+  rec.append(reinterpret_cast<const char*>(payload.data()), count);
   rec.append(reinterpret_cast<const char*>(&sum), 8);
   try {
     files::write_all(fd_, rec.data(), rec.size(), path_);
@@ -276,7 +278,9 @@ std::uint64_t open_for_run(Checkpoint& ckpt, const CheckpointKey& key, bool resu
           throw InputError(fmt::format("checkpoint {} holds {} units of a different study", p, human(s.units_done)), p,
                            "give another --out, resume that study" + discard);
         case K::old_format:
-          throw InputError(fmt::format("checkpoint {} was written by an older pounding (checkpoint format 1)", p), p,
+          throw InputError(fmt::format("checkpoint {} was written by an older pounding (checkpoint format {})", p,
+                                       s.format),
+                           p,
                            "finish it with that version, or rerun with --force to discard it");
         case K::not_checkpoint:
           throw InputError(fmt::format("{} exists and is not a pounding checkpoint", p), p,
@@ -300,7 +304,7 @@ std::uint64_t open_for_run(Checkpoint& ckpt, const CheckpointKey& key, bool resu
       throw InputError("the checkpoint belongs to a different study (study text, records or program format changed)", p,
                        "resume with the study file that started the run, or run with --force to start afresh");
     case K::old_format:
-      throw InputError("the checkpoint was written by an older pounding (checkpoint format 1)", p,
+      throw InputError(fmt::format("the checkpoint was written by an older pounding (checkpoint format {})", s.format), p,
                        "finish it with that version, or rerun with --force to start afresh");
     case K::not_checkpoint:
       throw InputError("the checkpoint file is not a pounding checkpoint", p, "move it away and run with --force");

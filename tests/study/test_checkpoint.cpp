@@ -37,7 +37,12 @@ CheckpointKey key(std::uint64_t study = 11, std::uint64_t units = 100, std::uint
   return k;
 }
 
-std::vector<double> payload(std::size_t unit) { return {double(unit), 0.5 * double(unit), -1.0, 1e-300}; }
+// 32 bytes of a unit's serialised result (the checkpoint stores them unchanged)
+std::vector<std::byte> payload(std::size_t unit) {
+  const double v[4] = {double(unit), 0.5 * double(unit), -1.0, 1e-300};
+  const auto* p = reinterpret_cast<const std::byte*>(v);
+  return {p, p + sizeof v};
+}
 
 // Runs `fn` under a file-size limit with SIGXFSZ ignored, restoring both afterwards.
 template <class F>
@@ -65,9 +70,9 @@ TEST(Checkpoint, RoundTripAndTornLastRecordDropped) {
   }
   const auto full = fs::file_size(p);
   fs::resize_file(p, full - 5);  // kill -9 in the middle of the last record
-  std::map<std::size_t, std::vector<double>> got;
+  std::map<std::size_t, std::vector<std::byte>> got;
   Checkpoint c(p);
-  EXPECT_EQ(open_for_run(c, key(), true, false, [&](std::size_t u, std::vector<double>&& d) { got[u] = d; }), 2u);
+  EXPECT_EQ(open_for_run(c, key(), true, false, [&](std::size_t u, std::vector<std::byte>&& d) { got[u] = d; }), 2u);
   ASSERT_EQ(got.size(), 2u);
   EXPECT_EQ(got[3], payload(3));
   EXPECT_EQ(got[7], payload(7));
@@ -152,6 +157,8 @@ TEST(Checkpoint, ResumeRefusesOtherStudyOtherBuildNothingAndOldFormat) {
   EXPECT_EQ(message(key()), "accepted");
   std::ofstream(p, std::ios::binary) << "PNDCKPT1" << std::string(16, '\0');
   EXPECT_NE(message(key()).find("format 1"), std::string::npos);
+  std::ofstream(p, std::ios::binary) << "PNDCKPT2" << std::string(16, '\0');  // payloads of doubles
+  EXPECT_NE(message(key()).find("format 2"), std::string::npos);
   std::ofstream(p, std::ios::binary) << "hello, world";
   EXPECT_NE(message(key()).find("not a pounding checkpoint"), std::string::npos);
   fs::remove(p);

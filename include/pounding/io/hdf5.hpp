@@ -78,5 +78,14 @@ std::string read_string_attribute(hid obj, const std::string& name);
 double read_double_attribute(hid obj, const std::string& name);
 std::int64_t read_int64_attribute(hid obj, const std::string& name);
 std::vector<double> read_doubles_attribute(hid obj, const std::string& name);
+std::vector<std::string> read_strings_attribute(hid obj, const std::string& name);
+
+// What an attribute holds, for readers of generic tables (/settings): a scalar or a 1-D array of strings,
+// floating-point numbers or integers.
+enum class AttributeKind { string, strings, number, numbers, integer, integers, other };
+AttributeKind attribute_kind(hid obj, const std::string& name);
+// The attribute names of obj, and the names of the links (groups, datasets) in a group, by name.
+std::vector<std::string> attribute_names(hid obj);
+std::vector<std::string> member_names(hid group);
 
 }  // namespace pounding::h5

@@ -3,6 +3,7 @@
 // Without mpirun the program runs as one rank and MPI is never initialised.
 #include <atomic>
 #include <cstddef>
+#include <cstdint>
 #include <functional>
 #include <string>
 #include <vector>
@@ -34,10 +35,13 @@ class Session {
   bool mpi_ = false;
 };
 
-// Computes a unit and returns its payload (any doubles; integers are stored exactly).
-using ComputeFn = std::function<std::vector<double>(std::size_t unit)>;
+// A unit's result as bytes (the study serialises its typed fields, study/unit_result.hpp): the executor
+// moves them between ranks unchanged.
+using Payload = std::vector<std::byte>;
+// Computes a unit and returns its payload.
+using ComputeFn = std::function<Payload(std::size_t unit)>;
 // Receives a finished unit's payload on rank 0, in completion order.
-using ResultFn = std::function<void(std::size_t unit, std::vector<double>&& payload)>;
+using ResultFn = std::function<void(std::size_t unit, Payload&& payload)>;
 // Called on rank 0 between units (progress, checkpoint flushes).
 using TickFn = std::function<void()>;
 

@@ -2,10 +2,12 @@
 // The run's checkpoint <out>.ckpt: every finished work unit, appended by rank 0, so that a killed or
 // failed run continues with --resume and gives bit-identical results.
 //
-// Format 2 (little-endian, native doubles): header = magic "PNDCKPT2", study hash (u64), unit count (u64),
-// build hash (u64), build description length (u64) + bytes; then records = unit (u64), count (u64), count
-// doubles, FNV-1a checksum of the three (u64). A torn last record (kill -9 during a write) fails its
+// Format 3 (little-endian): header = magic "PNDCKPT3", study hash (u64), unit count (u64), build hash (u64),
+// build description length (u64) + bytes; then records = unit (u64), byte count (u64), that many payload
+// bytes (a serialised UnitResult, study/unit_result.hpp), FNV-1a checksum of the three (u64). Formats 1 and 2
+// (payloads of doubles) are recognised and refused as older. A torn last record (kill -9 during a write) fails its
 // checksum and is dropped on resume. The file is locked (flock) by the run that owns it.
+#include <cstddef>
 #include <cstdint>
 #include <functional>
 #include <span>
@@ -28,11 +30,12 @@ struct CheckpointScan {
   std::uint64_t units_total = 0;  // the unit count of the study that wrote it
   std::uint64_t good_bytes = 0;   // file length up to the end of the last valid record
   std::string build;              // the writer's build description
+  int format = 0;                 // the file's format (1, 2: older; 3: this one), 0 when unknown
 };
 
 class Checkpoint {
  public:
-  using UnitFn = std::function<void(std::size_t unit, std::vector<double>&& payload)>;
+  using UnitFn = std::function<void(std::size_t unit, std::vector<std::byte>&& payload)>;
 
   // Opens `path` (creating it empty if absent) and locks it exclusively for the life of this object or
   // the process. If another process holds it: InputError "<path> is in use by process N".
@@ -50,7 +53,7 @@ class Checkpoint {
   void resume(const CheckpointScan& scanned);
   // Appends one finished unit. A failed write (disk full, EFBIG, EIO) cuts the file back to its last
   // complete record, so it stays resumable, and throws InputError with the OS error and the path.
-  void append(std::uint64_t unit, std::span<const double> payload);
+  void append(std::uint64_t unit, std::span<const std::byte> payload);
   // fsync; throws InputError on failure.
   void sync();
   // The run is complete and its results are written: delete the file.

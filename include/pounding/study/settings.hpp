@@ -1,6 +1,7 @@
 #pragma once
 // Every setting of a Study under its study-file section and key, in one list: the results file stores them
-// as /settings/<section>/<key> attributes (src/results_settings.cpp) and the report reads them back, so no
+// as /settings/<section>/<key> attributes (settings_of in src/study/make_results.cpp, written by
+// src/results/writer.cpp) and the report reads them back (results::Settings), so no
 // reader needs the study text. A new Study field is one line here.
 //
 // visit_settings(study, v) calls v(section, key, value) with value one of: double, std::int64_t, bool,

@@ -16,6 +16,7 @@
 #include "pounding/core/error.hpp"
 #include "pounding/parallel/executor.hpp"
 #include "pounding/report/report.hpp"
+#include "pounding/results/reader.hpp"
 #include "pounding/study/run.hpp"
 
 namespace pounding::cli {
@@ -96,7 +97,7 @@ void add_run(CLI::App& app) {
         if (!o->quiet) ctx.progress = TerminalProgress();
       }
       const RunOutcome r = run_study(session, o->study, ro, ctx);
-      if (session.root() && (r.code == 0 || r.code == 3)) fmt::print("{}", report_markdown(load_results(r.out)));
+      if (session.root() && (r.code == 0 || r.code == 3)) fmt::print("{}", report_markdown(results::load(r.out)));
       exit_code() = r.code;
     } catch (const InputError& e) {
       // thrown on every rank after the job stopped together (Session::agree, run_units): one message
@@ -122,7 +123,7 @@ void add_report(CLI::App& app) {
   auto* md = c->add_flag("--md", o->md, "Markdown (default)");
   c->add_flag("--csv", o->csv, "CSV: per-record, total, per-period-pair tables and the continuous curve")->excludes(md);
   c->callback([o] {
-    Results r = load_results(o->path);
+    const results::Results r = results::load(o->path);
     fmt::print("{}", o->csv ? report_csv(r) : report_markdown(r));
   });
 }

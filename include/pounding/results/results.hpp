@@ -1,0 +1,116 @@
+#pragma once
+// A results file in memory: what `pounding run` writes (results/writer.hpp) and what the report reads
+// (results/reader.hpp). Every dataset and attribute of the file has a member here, so write(load(f)) keeps
+// everything. The study's settings are a generic table (section, key, value) filled from
+// study::visit_settings: this module depends on no study type.
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <utility>
+#include <variant>
+#include <vector>
+
+#include "pounding/results/schema.hpp"
+
+namespace pounding::results {
+
+// Root attributes, in the file's order (provenance, the run's choices, exclusions, wall time).
+struct Header {
+  std::int64_t format_version = results::format_version;
+  std::string program_version, git_commit, date;
+  std::int64_t seed = 0;
+  std::string study_text, study_path, title, scene, scene_reason, contact_law, damping_law;
+  double restitution = 0;
+  std::string stepper;
+  std::int64_t substeps = 1;
+  double max_dt = 0;
+  std::int64_t ranks = 1;
+  std::string build;
+  // analyses excluded from the probabilities (diverged or non-finite)
+  std::int64_t excluded_analyses = 0, total_analyses = 0;
+  double max_excluded_fraction = 0;
+  std::string exclusion_warning;  // non-empty: too many excluded analyses (the run exited with code 3)
+  double wall_time_s = 0;
+};
+
+// /records: one entry per ground motion.
+struct RecordTable {
+  std::vector<std::string> id, name, source, note;
+  std::vector<std::uint8_t> synthetic;
+  std::vector<double> dt, duration, pga_g;
+  std::vector<std::int64_t> npts;
+  std::size_t size() const { return id.size(); }
+};
+
+// /models: one entry per sampled pair (record-independent), and the period grid.
+struct ModelTable {
+  std::vector<double> T1, T2, h1, h2, m1, m2, k1, k2, fy1, fy2, code_gap, kh, aspect1, aspect2, rho1, rho2, mbar1,
+      mbar2, c1, c2;
+  std::vector<std::int32_t> i1, i2;
+  std::vector<std::int64_t> sample;
+  std::vector<double> periods;
+  double zeta = 0.05;
+  std::size_t size() const { return T1.size(); }
+};
+
+// The double datasets of /models, in the file's order: the writer and the reader share this list.
+inline constexpr std::pair<std::string_view, std::vector<double> ModelTable::*> model_doubles[] = {
+    {"T1", &ModelTable::T1},           {"T2", &ModelTable::T2},           {"h1", &ModelTable::h1},
+    {"h2", &ModelTable::h2},           {"m1", &ModelTable::m1},           {"m2", &ModelTable::m2},
+    {"k1", &ModelTable::k1},           {"k2", &ModelTable::k2},           {"fy1", &ModelTable::fy1},
+    {"fy2", &ModelTable::fy2},         {"code_gap", &ModelTable::code_gap}, {"kh", &ModelTable::kh},
+    {"aspect1", &ModelTable::aspect1}, {"aspect2", &ModelTable::aspect2}, {"rho1", &ModelTable::rho1},
+    {"rho2", &ModelTable::rho2},       {"mbar1", &ModelTable::mbar1},     {"mbar2", &ModelTable::mbar2},
+    {"c1", &ModelTable::c1},           {"c2", &ModelTable::c2}};
+
+// /settings/<section>/<key> (section "" is /settings itself). Booleans are stored as 0/1 integers.
+using SettingValue = std::variant<double, std::int64_t, std::string, std::vector<double>, std::vector<std::string>>;
+struct Setting {
+  std::string section, key;
+  SettingValue value;
+  bool operator==(const Setting&) const = default;
+};
+
+class Settings {
+ public:
+  std::vector<Setting> entries;  // in writing order (a file read back lists them by name)
+  bool empty() const { return entries.empty(); }
+  void add(std::string section, std::string key, SettingValue value);
+  const SettingValue* find(std::string_view section, std::string_view key) const;
+  // Typed look-ups; throw std::runtime_error naming /settings/<section>/<key> when absent or of another type
+  // (an integer is accepted where a number is asked for).
+  double number(std::string_view section, std::string_view key) const;
+  std::vector<double> numbers(std::string_view section, std::string_view key) const;
+  std::string text(std::string_view section, std::string_view key) const;
+};
+
+// One per-model output: its row of the schema and its values ([records x models] or [records x models x gaps]).
+struct Field {
+  FieldSpec spec;
+  Column data;
+};
+
+struct Results {
+  std::string path;  // where it was read from (not stored in the file)
+  Header header;
+  Settings settings;  // empty for files written before /settings existed
+  RecordTable records;
+  ModelTable models;
+  std::vector<double> gap_ratios;  // the gap axis of every lane x gap field (impacts scene)
+  std::vector<Field> fields;       // unit fields, then derived ones, in writing order
+
+  std::size_t record_count() const { return records.size(); }
+  std::size_t model_count() const { return models.size(); }
+  bool has_group(std::string_view group) const;
+  const Field* find(std::string_view group, std::string_view name) const;
+  // The values of /<group>/<name>; throws std::runtime_error when absent or of another type.
+  template <class T>
+  const std::vector<T>& column(std::string_view group, std::string_view name) const;
+};
+
+// Appends derived_fields (schema.hpp) computed from the unit fields: amplification = impacts peak / uncoupled
+// peak of the same model, per gap. Does nothing without impacts fields.
+void add_derived_fields(Results& r);
+
+}  // namespace pounding::results

@@ -1,0 +1,36 @@
+#pragma once
+// The end of a run: the analyses excluded from the probabilities, and the Results (results/results.hpp) of a
+// finished study -- provenance, settings (visit_settings), records, sampled models and the tally's fields.
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "pounding/results/results.hpp"
+#include "pounding/study/plan.hpp"
+#include "pounding/study/study.hpp"
+#include "pounding/study/tally.hpp"
+
+namespace pounding {
+
+// Analyses excluded from the probabilities (diverged or non-finite), and whether they are too many to trust
+// the results: a whole record lost, or more than [analysis] max_excluded_fraction of all analyses.
+struct Exclusions {
+  std::int64_t excluded = 0, total = 0;
+  std::string verdict;  // empty when acceptable; otherwise the banner's text
+};
+Exclusions count_exclusions(const Study& study, const WorkPlan& plan, const Tally& tally,
+                            const std::vector<StudyRecord>& records);
+
+// Every setting of the study as /settings/<section>/<key> entries (booleans as 0/1 integers).
+results::Settings settings_of(const Study& study);
+
+struct RunFacts {
+  std::string build;  // this_build().build
+  int ranks = 1;
+  double wall_time_s = 0;
+};
+// Takes the tally's fields (the tally is left empty).
+results::Results make_results(const Study& study, const std::vector<StudyRecord>& records, const WorkPlan& plan,
+                              Tally& tally, const Exclusions& ex, const RunFacts& facts);
+
+}  // namespace pounding

@@ -1,0 +1,33 @@
+#pragma once
+// The work plan: work units = (record r, period pair p, sample block b), numbered r-major, and the schema of
+// what each unit returns (results/schema.hpp). Model m = p * samples + sample, the same on every rank.
+#include <algorithm>
+#include <cstddef>
+#include <vector>
+
+#include "pounding/results/schema.hpp"
+
+namespace pounding {
+
+struct UnitIndex {
+  std::size_t record = 0, pair = 0, block = 0;
+};
+
+struct WorkPlan {
+  std::size_t records = 0, pairs = 0, blocks = 0, batch = 0, samples = 0, gaps = 0;
+  bool impacts = false;                       // the scene runs coupled analyses per gap
+  std::vector<results::FieldSpec> fields;     // what a unit returns (results::unit_schema(impacts))
+
+  std::size_t units() const { return records * pairs * blocks; }
+  std::size_t models() const { return pairs * samples; }
+  UnitIndex decode(std::size_t u) const { return {u / (blocks * pairs), (u / blocks) % pairs, u % blocks}; }
+  std::size_t lanes(std::size_t block) const { return std::min(batch, samples - block * batch); }
+  // The first model of unit u's block within its record.
+  std::size_t first_model(const UnitIndex& i) const { return i.pair * samples + i.block * batch; }
+  // Values of a field per lane: 1, or the gap count.
+  std::size_t per_lane(const results::FieldSpec& f) const {
+    return f.extent == results::Extent::lane_gap ? gaps : 1;
+  }
+};
+
+}  // namespace pounding

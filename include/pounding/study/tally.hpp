@@ -1,0 +1,39 @@
+#pragma once
+// Per-model results gathered on rank 0 in fixed arrays, one column per schema field ([records x models] or
+// [records x models x gaps]): any completion order, rank count or resume gives the same arrays.
+#include <cstddef>
+#include <span>
+#include <vector>
+
+#include "pounding/results/results.hpp"
+#include "pounding/study/plan.hpp"
+
+namespace pounding {
+
+class Tally {
+ public:
+  Tally() = default;
+  explicit Tally(const WorkPlan& plan);
+
+  // Scatters one unit's serialised result (UnitResult::serialise) into the columns; throws std::runtime_error
+  // on a payload of the wrong size. Storing a unit twice overwrites it.
+  void store(std::size_t unit, std::span<const std::byte> payload);
+
+  bool done(std::size_t unit) const { return done_[unit] != 0; }
+  std::size_t units_done() const { return n_done_; }
+  const results::Column& column(std::size_t field) const { return columns_[field]; }
+  template <class T>
+  const std::vector<T>& values(std::size_t field) const {
+    return std::get<std::vector<T>>(columns_[field]);
+  }
+  // The columns as results fields (the tally is left empty).
+  std::vector<results::Field> take_fields();
+
+ private:
+  WorkPlan plan_;
+  std::vector<results::Column> columns_;
+  std::vector<char> done_;
+  std::size_t n_done_ = 0;
+};
+
+}  // namespace pounding

@@ -1,0 +1,146 @@
+#include "pounding/results/reader.hpp"
+
+#include <type_traits>
+
+#include "pounding/io/hdf5.hpp"
+
+namespace pounding::results {
+
+namespace {
+
+// Readers that leave the default when a file predates the item.
+void read_opt(h5::hid obj, const char* name, std::string& v) {
+  if (h5::attribute_exists(obj, name)) v = h5::read_string_attribute(obj, name);
+}
+void read_opt(h5::hid obj, const char* name, double& v) {
+  if (h5::attribute_exists(obj, name)) v = h5::read_double_attribute(obj, name);
+}
+void read_opt(h5::hid obj, const char* name, std::int64_t& v) {
+  if (h5::attribute_exists(obj, name)) v = h5::read_int64_attribute(obj, name);
+}
+template <class T>
+void read_opt(h5::hid g, const char* name, std::vector<T>& v) {
+  if (!h5::exists(g, name)) return;
+  if constexpr (std::is_same_v<T, std::string>) v = h5::read_strings(g, name);
+  else if constexpr (std::is_same_v<T, double>) v = h5::read_doubles(g, name);
+  else if constexpr (std::is_same_v<T, std::int64_t>) v = h5::read_int64(g, name);
+  else if constexpr (std::is_same_v<T, std::int32_t>) v = h5::read_int32(g, name);
+  else v = h5::read_uint8(g, name);
+}
+
+Header read_header(h5::hid root) {
+  Header h;
+  read_opt(root, "format_version", h.format_version);
+  read_opt(root, "program_version", h.program_version);
+  read_opt(root, "git_commit", h.git_commit);
+  read_opt(root, "date", h.date);
+  read_opt(root, "seed", h.seed);
+  read_opt(root, "study_text", h.study_text);
+  read_opt(root, "study_path", h.study_path);
+  read_opt(root, "title", h.title);
+  read_opt(root, "scene", h.scene);
+  read_opt(root, "scene_reason", h.scene_reason);
+  read_opt(root, "contact_law", h.contact_law);
+  read_opt(root, "damping_law", h.damping_law);
+  read_opt(root, "restitution", h.restitution);
+  read_opt(root, "stepper", h.stepper);
+  read_opt(root, "substeps", h.substeps);
+  read_opt(root, "max_dt", h.max_dt);
+  read_opt(root, "ranks", h.ranks);
+  read_opt(root, "build", h.build);
+  read_opt(root, "excluded_analyses", h.excluded_analyses);
+  read_opt(root, "total_analyses", h.total_analyses);
+  read_opt(root, "max_excluded_fraction", h.max_excluded_fraction);
+  read_opt(root, "exclusion_warning", h.exclusion_warning);
+  read_opt(root, "wall_time_s", h.wall_time_s);
+  return h;
+}
+
+void read_section(h5::hid g, const std::string& section, Settings& out) {
+  using K = h5::AttributeKind;
+  for (const std::string& key : h5::attribute_names(g)) {
+    switch (h5::attribute_kind(g, key)) {
+      case K::string: out.add(section, key, h5::read_string_attribute(g, key)); break;
+      case K::strings: out.add(section, key, h5::read_strings_attribute(g, key)); break;
+      case K::number: out.add(section, key, h5::read_double_attribute(g, key)); break;
+      case K::numbers: out.add(section, key, h5::read_doubles_attribute(g, key)); break;
+      case K::integer: out.add(section, key, h5::read_int64_attribute(g, key)); break;
+      case K::integers: out.add(section, key, h5::read_doubles_attribute(g, key)); break;  // never written
+      case K::other: break;
+    }
+  }
+}
+
+Settings read_settings(h5::hid root) {
+  Settings s;
+  if (!h5::exists(root, "settings")) return s;
+  auto top = h5::open_group(root, "settings");
+  read_section(top.get(), "", s);
+  for (const std::string& section : h5::member_names(top.get()))
+    read_section(h5::open_group(top.get(), section).get(), section, s);
+  return s;
+}
+
+RecordTable read_records(h5::hid root) {
+  RecordTable t;
+  if (!h5::exists(root, "records")) return t;
+  auto g = h5::open_group(root, "records");
+  read_opt(g.get(), "id", t.id);
+  read_opt(g.get(), "name", t.name);
+  read_opt(g.get(), "source", t.source);
+  read_opt(g.get(), "note", t.note);
+  read_opt(g.get(), "synthetic", t.synthetic);
+  read_opt(g.get(), "dt", t.dt);
+  read_opt(g.get(), "duration", t.duration);
+  read_opt(g.get(), "pga_g", t.pga_g);
+  read_opt(g.get(), "npts", t.npts);
+  return t;
+}
+
+ModelTable read_models(h5::hid root) {
+  ModelTable t;
+  if (!h5::exists(root, "models")) return t;
+  auto g = h5::open_group(root, "models");
+  for (const auto& [name, member] : model_doubles) read_opt(g.get(), std::string(name).c_str(), t.*member);
+  read_opt(g.get(), "i1", t.i1);
+  read_opt(g.get(), "i2", t.i2);
+  read_opt(g.get(), "sample", t.sample);
+  read_opt(g.get(), "periods", t.periods);
+  read_opt(g.get(), "zeta", t.zeta);
+  return t;
+}
+
+// Every field of the schema present in the file, in the schema's order; the gap axis with the first
+// lane x gap field.
+void read_fields(h5::hid root, std::span<const FieldSpec> specs, Results& r) {
+  for (const FieldSpec& spec : specs) {
+    const std::string group(spec.group), name(spec.name);
+    if (!h5::exists(root, group)) continue;
+    auto g = h5::open_group(root, group);
+    if (!h5::exists(g.get(), name)) continue;
+    if (spec.extent == Extent::lane_gap && r.gap_ratios.empty()) read_opt(g.get(), "gap_ratios", r.gap_ratios);
+    Column c = make_column(spec, 0);
+    std::visit([&](auto& v) { read_opt(g.get(), name.c_str(), v); }, c);
+    r.fields.push_back({spec, std::move(c)});
+  }
+}
+
+}  // namespace
+
+Results load(const std::string& path, std::span<const FieldSpec> extra) {
+  Results r;
+  r.path = path;
+  auto f = h5::open_read(path);
+  const auto root = f.get();
+  r.header = read_header(root);
+  r.settings = read_settings(root);
+  r.records = read_records(root);
+  r.models = read_models(root);
+  std::vector<FieldSpec> specs(std::begin(unit_fields), std::end(unit_fields));
+  specs.insert(specs.end(), std::begin(derived_fields), std::end(derived_fields));
+  specs.insert(specs.end(), extra.begin(), extra.end());
+  read_fields(root, specs, r);
+  return r;
+}
+
+}  // namespace pounding::results

@@ -1,0 +1,111 @@
+#include "pounding/results/results.hpp"
+
+#include <stdexcept>
+
+#include <fmt/format.h>
+
+namespace pounding::results {
+
+Column make_column(const FieldSpec& spec, std::size_t n) {
+  switch (spec.dtype) {
+    case Dtype::u8: return std::vector<std::uint8_t>(n, static_cast<std::uint8_t>(spec.fill));
+    case Dtype::i32: return std::vector<std::int32_t>(n, static_cast<std::int32_t>(spec.fill));
+    case Dtype::i64: return std::vector<std::int64_t>(n, static_cast<std::int64_t>(spec.fill));
+    case Dtype::f64: return std::vector<double>(n, spec.fill);
+  }
+  throw std::logic_error("make_column: unknown dtype");
+}
+
+std::size_t column_size(const Column& c) {
+  return std::visit([](const auto& v) { return v.size(); }, c);
+}
+
+std::vector<FieldSpec> unit_schema(bool with_gaps) {
+  std::vector<FieldSpec> s;
+  for (const FieldSpec& f : unit_fields)
+    if (with_gaps || f.extent == Extent::lane) s.push_back(f);
+  return s;
+}
+
+void Settings::add(std::string section, std::string key, SettingValue value) {
+  entries.push_back({std::move(section), std::move(key), std::move(value)});
+}
+
+const SettingValue* Settings::find(std::string_view section, std::string_view key) const {
+  for (const Setting& s : entries)
+    if (s.section == section && s.key == key) return &s.value;
+  return nullptr;
+}
+
+namespace {
+[[noreturn]] void missing(std::string_view section, std::string_view key, const char* what) {
+  throw std::runtime_error(fmt::format("results: /settings/{}{}{} is {}", section, section.empty() ? "" : "/", key,
+                                       what));
+}
+}  // namespace
+
+double Settings::number(std::string_view section, std::string_view key) const {
+  const SettingValue* v = find(section, key);
+  if (!v) missing(section, key, "missing");
+  if (const auto* d = std::get_if<double>(v)) return *d;
+  if (const auto* i = std::get_if<std::int64_t>(v)) return static_cast<double>(*i);
+  missing(section, key, "not a number");
+}
+
+std::vector<double> Settings::numbers(std::string_view section, std::string_view key) const {
+  const SettingValue* v = find(section, key);
+  if (!v) missing(section, key, "missing");
+  if (const auto* d = std::get_if<std::vector<double>>(v)) return *d;
+  missing(section, key, "not a list of numbers");
+}
+
+std::string Settings::text(std::string_view section, std::string_view key) const {
+  const SettingValue* v = find(section, key);
+  if (!v) missing(section, key, "missing");
+  if (const auto* s = std::get_if<std::string>(v)) return *s;
+  missing(section, key, "not a string");
+}
+
+bool Results::has_group(std::string_view group) const {
+  for (const Field& f : fields)
+    if (f.spec.group == group) return true;
+  return false;
+}
+
+const Field* Results::find(std::string_view group, std::string_view name) const {
+  for (const Field& f : fields)
+    if (f.spec.group == group && f.spec.name == name) return &f;
+  return nullptr;
+}
+
+template <class T>
+const std::vector<T>& Results::column(std::string_view group, std::string_view name) const {
+  const Field* f = find(group, name);
+  if (!f) throw std::runtime_error(fmt::format("results: no dataset /{}/{}", group, name));
+  const auto* v = std::get_if<std::vector<T>>(&f->data);
+  if (!v) throw std::runtime_error(fmt::format("results: /{}/{} has another element type", group, name));
+  return *v;
+}
+template const std::vector<std::uint8_t>& Results::column(std::string_view, std::string_view) const;
+template const std::vector<std::int32_t>& Results::column(std::string_view, std::string_view) const;
+template const std::vector<std::int64_t>& Results::column(std::string_view, std::string_view) const;
+template const std::vector<double>& Results::column(std::string_view, std::string_view) const;
+
+void add_derived_fields(Results& r) {
+  if (!r.find("impacts", "peak_u1")) return;
+  const auto& pu1 = r.column<double>("uncoupled", "peak_u1");
+  const auto& pu2 = r.column<double>("uncoupled", "peak_u2");
+  const auto& ipu1 = r.column<double>("impacts", "peak_u1");
+  const auto& ipu2 = r.column<double>("impacts", "peak_u2");
+  const std::size_t RM = pu1.size(), G = r.gap_ratios.size();
+  std::vector<double> amp1(RM * G), amp2(RM * G);
+  for (std::size_t q = 0; q < RM; ++q)
+    for (std::size_t g = 0; g < G; ++g) {
+      amp1[q * G + g] = ipu1[q * G + g] / pu1[q];
+      amp2[q * G + g] = ipu2[q * G + g] / pu2[q];
+    }
+  r.fields.push_back({derived_fields[0], std::move(amp1)});
+  r.fields.push_back({derived_fields[1], std::move(amp2)});
+}
+
+}  // namespace pounding::results

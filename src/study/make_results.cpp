@@ -1,0 +1,138 @@
+#include "pounding/study/make_results.hpp"
+
+#include <ctime>
+#include <type_traits>
+
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+
+#include "pounding/core/version.hpp"
+#include "pounding/sampling/sampler.hpp"
+#include "pounding/study/settings.hpp"
+
+namespace pounding {
+
+namespace {
+
+std::string now_iso() {
+  std::time_t t = std::time(nullptr);
+  char buf[64];
+  std::strftime(buf, sizeof buf, "%Y-%m-%dT%H:%M:%SZ", std::gmtime(&t));
+  return buf;
+}
+
+results::Header make_header(const Study& study, const Exclusions& ex, const RunFacts& facts) {
+  results::Header h;
+  h.program_version = program_version;
+  h.git_commit = git_commit;
+  h.date = now_iso();
+  h.seed = static_cast<std::int64_t>(study.seed);
+  h.study_text = study.text, h.study_path = study.path, h.title = study.title;
+  h.scene = to_string(study.scene), h.scene_reason = study.scene_reason;
+  h.contact_law = to_string(study.contact.law), h.damping_law = to_string(study.contact.damping);
+  h.restitution = study.e;
+  h.stepper = to_string(study.stepper);
+  h.substeps = study.substeps, h.max_dt = study.max_dt;
+  h.ranks = facts.ranks, h.build = facts.build;
+  h.excluded_analyses = ex.excluded, h.total_analyses = ex.total;
+  h.max_excluded_fraction = study.max_excluded_fraction, h.exclusion_warning = ex.verdict;
+  h.wall_time_s = facts.wall_time_s;
+  return h;
+}
+
+results::RecordTable record_table(const std::vector<StudyRecord>& records) {
+  results::RecordTable t;
+  for (const auto& rr : records) {
+    t.id.push_back(rr.id), t.name.push_back(rr.record.name), t.source.push_back(rr.record.source);
+    t.note.push_back(rr.note), t.synthetic.push_back(rr.synthetic ? 1 : 0);
+    t.dt.push_back(rr.record.dt), t.duration.push_back(rr.record.duration());
+    t.pga_g.push_back(rr.record.pga() / g_accel);
+    t.npts.push_back(static_cast<std::int64_t>(rr.record.acc.size()));
+  }
+  return t;
+}
+
+// The models are resampled (a sample depends only on its pair and index): no rank ships them.
+results::ModelTable model_table(const Study& study, const WorkPlan& plan) {
+  const StructureSampler sampler(study.structures, study.seed);
+  const std::size_t M = plan.models(), nper = study.structures.periods.size();
+  results::ModelTable t;
+  for (const auto& [name, member] : results::model_doubles) (t.*member).resize(M);
+  t.i1.resize(M), t.i2.resize(M), t.sample.resize(M);
+  std::vector<SampledPair> sp(plan.samples);
+  for (std::size_t p = 0; p < plan.pairs; ++p) {
+    sampler.sample_block(static_cast<std::int32_t>(p / nper), static_cast<std::int32_t>(p % nper), 0, sp);
+    for (std::size_t s = 0; s < plan.samples; ++s) {
+      const std::size_t m = p * plan.samples + s;
+      const auto& q = sp[s];
+      t.T1[m] = q.s1.T, t.T2[m] = q.s2.T, t.h1[m] = q.s1.h, t.h2[m] = q.s2.h, t.m1[m] = q.s1.m, t.m2[m] = q.s2.m;
+      t.k1[m] = q.s1.k, t.k2[m] = q.s2.k, t.fy1[m] = q.s1.fy, t.fy2[m] = q.s2.fy, t.code_gap[m] = q.d;
+      t.kh[m] = q.kh, t.i1[m] = q.id.i1, t.i2[m] = q.id.i2, t.sample[m] = q.id.sample;
+      t.aspect1[m] = q.s1.aspect, t.aspect2[m] = q.s2.aspect, t.rho1[m] = q.s1.rho, t.rho2[m] = q.s2.rho;
+      t.mbar1[m] = q.s1.mbar, t.mbar2[m] = q.s2.mbar, t.c1[m] = q.s1.c, t.c2[m] = q.s2.c;
+    }
+  }
+  t.periods = study.structures.periods;
+  t.zeta = study.structures.zeta;
+  return t;
+}
+
+}  // namespace
+
+Exclusions count_exclusions(const Study& study, const WorkPlan& L, const Tally& t,
+                            const std::vector<StudyRecord>& records) {
+  constexpr std::size_t unc_status = results::unit_field("uncoupled", "status");
+  constexpr std::size_t imp_status = results::unit_field("impacts", "status");
+  Exclusions ex;
+  const std::size_t M = L.models(), G = L.gaps;
+  const auto& us = t.values<std::uint8_t>(unc_status);
+  std::vector<std::string> lost;
+  for (std::size_t r = 0; r < L.records; ++r) {
+    std::int64_t bad_unc = 0, bad_cpl = 0;
+    for (std::size_t m = 0; m < M; ++m) bad_unc += us[r * M + m] != 0;
+    if (L.impacts)
+      for (std::size_t i = r * M * G; i < (r + 1) * M * G; ++i) bad_cpl += t.values<std::uint8_t>(imp_status)[i] != 0;
+    ex.excluded += bad_unc + bad_cpl;
+    ex.total += static_cast<std::int64_t>(M + (L.impacts ? M * G : 0));
+    if (M > 0 && (bad_unc == static_cast<std::int64_t>(M) || (L.impacts && bad_cpl == static_cast<std::int64_t>(M * G))))
+      lost.push_back(records[r].id);
+  }
+  const double frac = ex.total ? static_cast<double>(ex.excluded) / static_cast<double>(ex.total) : 0.0;
+  if (!lost.empty())
+    ex.verdict = fmt::format("every {}analysis of record(s) {} diverged or was non-finite",
+                             L.impacts ? "uncoupled or every coupled " : "", fmt::join(lost, ", "));
+  if (frac > study.max_excluded_fraction)
+    ex.verdict += fmt::format("{}{} of {} analyses ({:.3g} %) were excluded, more than [analysis] "
+                              "max_excluded_fraction = {:.3g} %",
+                              ex.verdict.empty() ? "" : "; ", ex.excluded, ex.total, 100.0 * frac,
+                              100.0 * study.max_excluded_fraction);
+  if (!ex.verdict.empty())
+    ex.verdict += "; the probabilities may be biased: check the record units and scale, the contact stiffness "
+                  "and the step (substeps, max_dt)";
+  return ex;
+}
+
+results::Settings settings_of(const Study& study) {
+  results::Settings s;
+  visit_settings(study, [&](const std::string& section, const std::string& key, const auto& value) {
+    using T = std::decay_t<decltype(value)>;
+    if constexpr (std::is_same_v<T, bool>) s.add(section, key, static_cast<std::int64_t>(value));
+    else s.add(section, key, value);
+  });
+  return s;
+}
+
+results::Results make_results(const Study& study, const std::vector<StudyRecord>& records, const WorkPlan& plan,
+                              Tally& tally, const Exclusions& ex, const RunFacts& facts) {
+  results::Results r;
+  r.header = make_header(study, ex, facts);
+  r.settings = settings_of(study);
+  r.records = record_table(records);
+  r.models = model_table(study, plan);
+  if (plan.impacts) r.gap_ratios = study.gap_ratios;
+  r.fields = tally.take_fields();
+  results::add_derived_fields(r);
+  return r;
+}
+
+}  // namespace pounding

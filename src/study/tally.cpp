@@ -1,0 +1,49 @@
+#include "pounding/study/tally.hpp"
+
+#include <cstring>
+#include <stdexcept>
+
+#include <fmt/format.h>
+
+#include "pounding/study/unit_result.hpp"
+
+namespace pounding {
+
+Tally::Tally(const WorkPlan& plan) : plan_(plan) {
+  const std::size_t rm = plan.records * plan.models();
+  for (const results::FieldSpec& f : plan.fields) columns_.push_back(results::make_column(f, rm * plan.per_lane(f)));
+  done_.assign(plan.units(), 0);
+}
+
+// A unit's lanes are consecutive models of one record, so each field's block is one contiguous range of its
+// column: [lane] at (r M + m0 + lane), [lane][gap] at (r M + m0 + lane) G + gap.
+void Tally::store(std::size_t unit, std::span<const std::byte> payload) {
+  const UnitIndex i = plan_.decode(unit);
+  const std::size_t lanes = plan_.lanes(i.block);
+  if (payload.size() != serialised_size(plan_, lanes))
+    throw std::runtime_error(fmt::format("unit {}: payload of {} bytes, expected {}", unit, payload.size(),
+                                         serialised_size(plan_, lanes)));
+  const std::size_t first = i.record * plan_.models() + plan_.first_model(i);
+  std::size_t at = 0;
+  for (std::size_t k = 0; k < columns_.size(); ++k) {
+    const std::size_t per = plan_.per_lane(plan_.fields[k]);
+    std::visit(
+        [&](auto& v) {
+          const std::size_t n = lanes * per * sizeof(v[0]);
+          std::memcpy(v.data() + first * per, payload.data() + at, n);
+          at += n;
+        },
+        columns_[k]);
+  }
+  if (!done_[unit]) ++n_done_;
+  done_[unit] = 1;
+}
+
+std::vector<results::Field> Tally::take_fields() {
+  std::vector<results::Field> out;
+  for (std::size_t k = 0; k < columns_.size(); ++k) out.push_back({plan_.fields[k], std::move(columns_[k])});
+  columns_.clear();
+  return out;
+}
+
+}  // namespace pounding
