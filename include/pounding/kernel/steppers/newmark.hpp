@@ -124,8 +124,11 @@ template <class Law, class Exp, bool WithEnergy>
   const double h = C.h, c4 = C.c4, c2 = C.c2;
   const scalar::Old o = scalar::old_state(T, i);
   const double u1 = T.x1[i], u2 = T.x2[i];
-  const double a1 = c4 * (u1 - o.u1) - 4.0 / h * o.v1 - T.a1[i];
-  const double a2 = c4 * (u2 - o.u2) - 4.0 / h * o.v2 - T.a2[i];
+  // c4 du - (4/h) v as fms(c4, du, (4/h) v): the contraction the kernel had before the redesign. Left to GCC,
+  // tree sinking moves these lines into the impulsive law's branches and the other product gets fused, which
+  // broke first passage for stereomechanical (in the Newton update GCC keeps fusing (4/h) v, as it always did).
+  const double a1 = std::fma(c4, u1 - o.u1, -(4.0 / h * o.v1)) - T.a1[i];
+  const double a2 = std::fma(c4, u2 - o.u2, -(4.0 / h * o.v2)) - T.a2[i];
   const double v1 = c2 * (u1 - o.u1) - o.v1, v2 = c2 * (u2 - o.u2) - o.v2;
   T.fs1[i] = scalar::spring1(T, i, o.fs1, o.u1, u1);
   T.fs2[i] = scalar::spring2(T, i, o.fs2, o.u2, u2);
