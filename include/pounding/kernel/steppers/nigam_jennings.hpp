@@ -20,6 +20,13 @@ struct NigamJennings {
 
 namespace nj_detail {
 
+// Loop constants by value: a load through Context inside the lane loop may alias the tile's stores (both
+// double), which keeps it in the loop and stops if-conversion and the vectoriser (as in Newmark and RK4).
+struct K {
+  double h, v0_min, lim;
+};
+inline K constants(const Context& C) { return {C.h, C.v0_min, C.lim}; }
+
 [[gnu::always_inline]] inline void advance(const double (*c)[tile_width], int i, double u, double v, double pa,
                                            double pb, double& un, double& vn) {
   un = c[0][i] * u + c[1][i] * v + c[4][i] * pa + c[5][i] * pb;
@@ -29,7 +36,7 @@ namespace nj_detail {
 // Predictor, then the corrector (again with contact when the step ends penetrating); returns the
 // corrector's contact force. `redone`: the step touched although it started out of contact.
 template <class Law, class Exp>
-[[gnu::always_inline]] inline double integrate(Tile& T, int i, const Context& C, double ag0, double ag1,
+[[gnu::always_inline]] inline double integrate(Tile& T, int i, const K& C, double ag0, double ag1,
                                                const scalar::Old& o, Exp n, bool& redone) {
   const double d_old = T.dprev[i];
   // load in acceleration units: u'' + 2 zeta w u' + w^2 u = -(ag + g/m)
@@ -65,7 +72,7 @@ template <class Law, class Exp>
 }
 
 template <class Law, class Exp, bool WithEnergy>
-[[gnu::always_inline]] inline void lane_step(Tile& T, int i, const Context& C, double t, double ag0, double ag1, Exp n) {
+[[gnu::always_inline]] inline void lane_step(Tile& T, int i, const K& C, double t, double ag0, double ag1, Exp n) {
   const double h = C.h;
   const scalar::Old o = scalar::old_state(T, i);
   const double d_old = T.dprev[i];
@@ -96,10 +103,12 @@ template <class Law, class Exp, bool WithEnergy>
 
 template <class Law, class Exp, bool WithEnergy>
 void NigamJennings::run(Tile& T, const Context& C, Exp n) {
+  const nj_detail::K k = nj_detail::constants(C);
   for (long step = 0; step < C.nsteps; ++step) {
     const double ag0 = C.ag[step], ag1 = C.ag[step + 1];
     const double t = static_cast<double>(step + 1) * C.h;
-    for (int i = 0; i < T.np; ++i) nj_detail::lane_step<Law, Exp, WithEnergy>(T, i, C, t, ag0, ag1, n);
+    const int np = T.np;
+    for (int i = 0; i < np; ++i) nj_detail::lane_step<Law, Exp, WithEnergy>(T, i, k, t, ag0, ag1, n);
     record_lane(C, T, t, ag1);
   }
 }
