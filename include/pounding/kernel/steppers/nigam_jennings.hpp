@@ -84,8 +84,12 @@ template <class Law, class Exp, bool WithEnergy>
   T.fs2[i] = scalar::spring2(T, i, o.fs2, o.u2, T.u2[i]);
   const double d = T.u1[i] - T.u2[i] - T.gap[i], dd = T.v1[i] - T.v2[i];
   if constexpr (Law::traits.has_force) {
-    onset = ((d > 0.0 || redone) && !(d_old > 0.0)) ? 1.0 : 0.0;  // redone: touched inside the step
-    T.iv0[i] = scalar::latched<Law>(T.iv0[i], onset > 0.0, dd, C.v0_min);
+    // redone: touched inside the step. One bool for both uses, with & and | (no short-circuit): tested
+    // again as onset > 0.0, GCC threads the latch through it into a select between masks, which the
+    // vectoriser emulates lane by lane.
+    const bool on = ((d > 0.0) | redone) & !(d_old > 0.0);
+    onset = on ? 1.0 : 0.0;
+    T.iv0[i] = scalar::latched<Law>(T.iv0[i], on, dd, C.v0_min);
     contact::Shared<double> sh{0.0};
     F = scalar::force<Law>(T, i, d, dd, T.iv0[i], n, clamp, sh);
     scalar::guard_contact<Law>(T, i, d, dd, n, sh, h, limit2_nigam_jennings);
