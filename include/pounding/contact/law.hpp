@@ -1,0 +1,78 @@
+#pragma once
+// What every contact law is written against (architecture.md 2.3): the lane-generic kinematics, parameters
+// and latched state, the Hertz exponent as a type, the traits the steppers and validation read, and the
+// concept every law in contact/registry.hpp satisfies. A law is a struct of static templates over the lane
+// type T (double or simd::V), written once; its expression order is the kernel's (FMA contraction under
+// -march follows the expression shape, architecture.md 2.12 risk 1).
+#include <concepts>
+#include <string_view>
+
+#include "pounding/contact.hpp"
+#include "pounding/kernel/lane.hpp"
+
+namespace pounding::contact {
+
+template <class T> struct Kin { T d, dd; };        // penetration delta = u1 - u2 - gap and its rate
+template <class T> struct Params { T kc, cd; };    // contact stiffness; the law's damping constant
+template <class T> struct State { T iv0; };        // latched 1/v0 (Hertzdamp)
+template <class T> struct Shared { T sq; };        // sqrt of the penetration, reused by the stability guard
+template <class T> struct Tangent { T F, dFd, dFv; };  // Newmark: force and its derivatives by d and dd
+
+struct LawTraits {
+  bool has_force = true;          // a force element (false: none, the impulsive stereomechanical)
+  bool impulsive = false;         // momentum exchange at the located closing instant (stereomechanical)
+  bool needs_stiffness = true;    // kc > 0 required
+  bool needs_restitution = false; // 0 < e <= 1 required
+  bool latches_v0 = false;        // the force depends on the approach velocity latched at onset
+  bool uses_exponent = false;     // the Hertz exponent n of ContactModel applies
+  std::string_view stiffness_unit = "N/m";
+};
+
+// The Hertz exponent: FixedExponent<3, 2> takes d^1.5 as d sqrt(d) and shares sqrt(d) with the guard;
+// RuntimeExponent takes std::pow (replaces the kernel's former N15 flag).
+template <int P, int Q> struct FixedExponent {
+  static_assert(P == 3 && Q == 2, "only 3/2 has a closed form; use RuntimeExponent");
+  static constexpr double value() { return 1.5; }
+  template <class T> POUNDING_INLINE T power(T dp, Shared<T>& sh) const {
+    sh.sq = lane::sqrt(dp);
+    return dp * sh.sq;
+  }
+  // n kc d^(n-1), valid where d > 0 (the guard masks the rest)
+  template <class T> POUNDING_INLINE T stiffness(T, T kc, const Shared<T>& sh) const { return 1.5 * kc * sh.sq; }
+};
+struct RuntimeExponent {
+  double n = 1.5;
+  double value() const { return n; }
+  template <class T> POUNDING_INLINE T power(T dp, Shared<T>&) const {
+    const double e = n;
+    return lane::map(dp, [e](double x) { return x > 0.0 ? std::pow(x, e) : 0.0; });
+  }
+  template <class T> POUNDING_INLINE T stiffness(T d, T kc, const Shared<T>&) const {
+    const double e = n;
+    return lane::map2(d, kc, [e](double x, double k) { return x > 0.0 ? e * k * std::pow(x, e - 1.0) : 0.0; });
+  }
+};
+using Exp15 = FixedExponent<3, 2>;
+
+// Every law: a name, traits, and the five functions the kernel calls.
+template <class L>
+concept Law = requires(Kin<double> k, Params<double> p, State<double> s, Shared<double> sh, double x,
+                       const ContactModel& cm) {
+  { L::name } -> std::convertible_to<std::string_view>;
+  { L::traits } -> std::convertible_to<LawTraits>;
+  { L::template force<double>(k, p, s, Exp15{}, sh, x) } -> std::same_as<double>;
+  { L::template force<simd::V>(Kin<simd::V>{}, Params<simd::V>{}, State<simd::V>{}, RuntimeExponent{},
+                               std::declval<Shared<simd::V>&>(), std::declval<simd::V&>()) } -> std::same_as<simd::V>;
+  { L::template tangent<double>(k, p, s, RuntimeExponent{}) } -> std::same_as<Tangent<double>>;
+  { L::template linear_stiffness<double>(k, p, s, Exp15{}, sh) } -> std::same_as<double>;
+  { L::template stored_energy<double>(x, x, 1.5) } -> std::same_as<double>;
+  { L::damping_constant(cm, x, x, x) } -> std::same_as<double>;
+};
+
+// The latch every law shares unless it overrides it: Hertzdamp's v0 = max(approach speed, v0_min) at onset.
+template <class T>
+POUNDING_INLINE void latch_v0(State<T>& s, lane::mask_t<T> on, T approach, double v0_min) {
+  s.iv0 = lane::select(on, T(1.0) / lane::max(approach, T(v0_min)), s.iv0);
+}
+
+}  // namespace pounding::contact

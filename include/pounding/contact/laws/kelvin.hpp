@@ -1,0 +1,31 @@
+#pragma once
+// F = kc delta + ck ddelta, clamped non-tensile (impact-stiffness paper eqs 1-3);
+// ck = 2 xi sqrt(kc meff), xi = -ln e / sqrt(pi^2 + ln^2 e).
+#include <cmath>
+
+#include "pounding/contact/law.hpp"
+
+namespace pounding::contact {
+
+struct Kelvin {
+  static constexpr std::string_view name = "kelvin";
+  static constexpr LawTraits traits{.needs_restitution = true};
+  template <class T, class Exp> POUNDING_INLINE static T force(Kin<T> k, Params<T> p, State<T>, Exp, Shared<T>&, T& clamp) {
+    const T zero(0.0);
+    T raw = lane::select(k.d > zero, p.kc * lane::max(k.d, zero) + p.cd * k.dd, zero);
+    clamp = lane::select(raw < zero, T(1.0), zero);
+    return lane::max(raw, zero);
+  }
+  template <class T, class Exp> POUNDING_INLINE static Tangent<T> tangent(Kin<T> k, Params<T> p, State<T>, Exp) {
+    return {p.kc * k.d + p.cd * k.dd, p.kc, p.cd};
+  }
+  template <class T, class Exp>
+  POUNDING_INLINE static T linear_stiffness(Kin<T>, Params<T> p, State<T>, Exp, const Shared<T>&) { return p.kc; }
+  template <class T> POUNDING_INLINE static T stored_energy(T dp, T kc, double) { return 0.5 * kc * dp * dp; }
+  template <class T> POUNDING_INLINE static void on_onset(State<T>&, lane::mask_t<T>, T, double) {}
+  static double damping_constant(const ContactModel&, double kc, double e, double meff) {
+    return 2.0 * kelvin_damping_ratio(e) * std::sqrt(kc * meff);
+  }
+};
+
+}  // namespace pounding::contact

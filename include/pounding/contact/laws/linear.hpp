@@ -1,0 +1,25 @@
+#pragma once
+// F = kc delta (muthukumar eq. 3); elastic, non-tensile by the delta > 0 gate.
+#include "pounding/contact/law.hpp"
+
+namespace pounding::contact {
+
+struct Linear {
+  static constexpr std::string_view name = "linear";
+  static constexpr LawTraits traits{};
+  template <class T, class Exp> POUNDING_INLINE static T force(Kin<T> k, Params<T> p, State<T>, Exp, Shared<T>&, T& clamp) {
+    clamp = T(0.0);
+    return p.kc * lane::max(k.d, T(0.0));
+  }
+  // Newton sees the law without the gate (the active set decides activity)
+  template <class T, class Exp> POUNDING_INLINE static Tangent<T> tangent(Kin<T> k, Params<T> p, State<T>, Exp) {
+    return {p.kc * k.d, p.kc, T(0.0)};
+  }
+  template <class T, class Exp>
+  POUNDING_INLINE static T linear_stiffness(Kin<T>, Params<T> p, State<T>, Exp, const Shared<T>&) { return p.kc; }
+  template <class T> POUNDING_INLINE static T stored_energy(T dp, T kc, double) { return 0.5 * kc * dp * dp; }
+  template <class T> POUNDING_INLINE static void on_onset(State<T>&, lane::mask_t<T>, T, double) {}
+  static double damping_constant(const ContactModel&, double, double, double) { return 0.0; }
+};
+
+}  // namespace pounding::contact

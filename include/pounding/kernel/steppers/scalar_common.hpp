@@ -1,0 +1,104 @@
+#pragma once
+// What the lane-loop steppers (Newmark, RK4, Nigam-Jennings) share: the law at one lane, the impulsive
+// exchange, the energy terms, the guard and the observers, each a call into the lane-generic code at T = double.
+#include "pounding/contact/laws/stereomechanical.hpp"
+#include "pounding/kernel/guard.hpp"
+#include "pounding/kernel/observers.hpp"
+#include "pounding/model/hysteresis/bilinear_kinematic.hpp"
+
+namespace pounding::kernel::scalar {
+
+using Hyst = model::BilinearKinematic;
+
+// The restoring force of structure 1 or 2 of lane i after a displacement from u_old to u (committed fs_old).
+[[gnu::always_inline]] inline double spring1(const Tile& T, int i, double fs_old, double u_old, double u) {
+  return Hyst::restoring(fs_old, T.k1[i], u - u_old, T.ak1[i] * u, T.qy1[i]);
+}
+[[gnu::always_inline]] inline double spring2(const Tile& T, int i, double fs_old, double u_old, double u) {
+  return Hyst::restoring(fs_old, T.k2[i], u - u_old, T.ak2[i] * u, T.qy2[i]);
+}
+
+// The law's force at lane i with latched 1/v0 `iv0`; sh receives sqrt(penetration) for the guard.
+template <class Law, class Exp>
+[[gnu::always_inline]] inline double force(const Tile& T, int i, double d, double dd, double iv0, Exp n, double& clamp,
+                                           contact::Shared<double>& sh) {
+  return Law::template force<double>({d, dd}, {T.kc[i], T.cd[i]}, {iv0}, n, sh, clamp);
+}
+template <class Law, class Exp>
+[[gnu::always_inline]] inline double force(const Tile& T, int i, double d, double dd, double iv0, Exp n, double& clamp) {
+  contact::Shared<double> sh{0.0};
+  return force<Law>(T, i, d, dd, iv0, n, clamp, sh);
+}
+// 1/v0 as latched at an onset with approach speed `approach` (unchanged when !on or the law does not latch)
+template <class Law> [[gnu::always_inline]] inline double latched(double iv0, bool on, double approach, double v0_min) {
+  contact::State<double> s{iv0};
+  Law::template on_onset<double>(s, on, approach, v0_min);
+  return s.iv0;
+}
+// Marks lane i diverged when the explicit contact treatment is past the stepper's stability limit.
+template <class Law, class Exp>
+[[gnu::always_inline]] inline void guard_contact(Tile& T, int i, double d, double dd, Exp n,
+                                                 const contact::Shared<double>& sh, double h, double limit2) {
+  const bool unstable = contact_unstable<Law, double>({d, dd}, {T.kc[i], T.cd[i]}, {T.iv0[i]}, n, sh,
+                                                      h * h / T.meff[i], limit2);
+  T.bad[i] = std::max(T.bad[i], unstable ? 1.0 : 0.0);
+}
+
+// Stereomechanical exchange inside the step just taken (state at the end already in the tile). Returns 1 on
+// an impact.
+[[gnu::always_inline]] inline double impulsive(Tile& T, int i, double h, double v1_old, double v2_old, double d_old) {
+  const double d = T.u1[i] - T.u2[i] - T.gap[i];
+  const auto x = contact::Stereomechanical::exchange<double>(
+      {d, d_old, T.v1[i] - T.v2[i], v1_old, v2_old, T.v1[i], T.v2[i], T.m1[i], T.m2[i], T.m1[i] + T.m2[i], T.meff[i],
+       T.e[i], h});
+  // the products stay out of the sums (no contraction across the select): the scalar kernel's bits
+  T.u1[i] += x.hit ? x.dv1 * x.rest : 0.0;
+  T.u2[i] += x.hit ? x.dv2 * x.rest : 0.0;
+  T.v1[i] += x.hit ? x.dv1 : 0.0;
+  T.v2[i] += x.hit ? x.dv2 : 0.0;
+  T.Dimp[i] += x.hit ? x.loss : 0.0;
+  return x.hit ? 1.0 : 0.0;
+}
+
+// Start of the step, for the energy terms and the contact work.
+struct Old {
+  double u1, u2, v1, v2, fs1, fs2, F;
+};
+[[gnu::always_inline]] inline Old old_state(const Tile& T, int i) {
+  return {T.u1[i], T.u2[i], T.v1[i], T.v2[i], T.fs1[i], T.fs2[i], T.F[i]};
+}
+
+// Energy terms (trapezoidal in time, exact plastic dissipation) and contact work over the step just taken.
+template <bool WithEnergy>
+[[gnu::always_inline]] inline void energy_step(Tile& T, int i, double h, double ag0, double ag1, const Old& o) {
+  if constexpr (WithEnergy) {
+    const double du1 = T.u1[i] - o.u1, du2 = T.u2[i] - o.u2;
+    const double x1 = Hyst::trial(o.fs1, T.k1[i], du1) - T.fs1[i], x2 = Hyst::trial(o.fs2, T.k2[i], du2) - T.fs2[i];
+    Energy<double> en = Energy<double>::load(T, i);
+    en.on_step({T.m1[i], T.c1[i], T.qy1[i], T.kp1[i], x1, o.v1, T.v1[i]},
+               {T.m2[i], T.c2[i], T.qy2[i], T.kp2[i], x2, o.v2, T.v2[i]}, ag0, ag1, 0.5 * h);
+    en.store(T, i);
+  }
+  T.Wc[i] += contact_work(o.F, T.F[i], (T.u1[i] - o.u1) - (T.u2[i] - o.u2));
+}
+
+// Divergence guard, then the observers, for lane i after its step (t: end of the step).
+[[gnu::always_inline]] inline void finish(Tile& T, int i, double t, double ag, double clamp, double onset, double lim) {
+  check_and_freeze<double>(T.bad[i], {T.u1[i], T.u2[i], T.v1[i], T.v2[i], T.a1[i], T.a2[i], T.fs1[i], T.fs2[i], T.F[i]},
+                           lim);
+  Peaks<double> pk = Peaks<double>::load(T, i);
+  pk.on_step(t, T.u1[i], T.u2[i], T.a1[i], T.a2[i], ag);
+  pk.store(T, i);
+  Impacts<double> im = Impacts<double>::load(T, i);
+  im.on_onset(t, onset);
+  im.on_contact(T.F[i], T.u1[i] - T.u2[i] - T.gap[i], clamp);
+  im.store(T, i);
+}
+
+// Accelerations from the equations of motion at the end of the step (F: contact force).
+[[gnu::always_inline]] inline void accelerations(Tile& T, int i, double ag, double F) {
+  T.a1[i] = -ag - (T.c1[i] * T.v1[i] + T.fs1[i] + F) * T.im1[i];
+  T.a2[i] = -ag - (T.c2[i] * T.v2[i] + T.fs2[i] - F) * T.im2[i];
+}
+
+}  // namespace pounding::kernel::scalar

@@ -1,0 +1,90 @@
+#pragma once
+// A batch through the kernel with the law as a type (architecture.md 2.4): tiles of lanes are filled from
+// the batch, run by the stepper chosen in the settings and reduced into a BatchResult. No validation here
+// (physics/validate.hpp; pounding::run_batch validates and throws InputError). A law outside the registry
+// runs with run_batch_t<Law> after including physics/tile_runner_impl.hpp (tests/contact/test_extension_law.cpp).
+#include <algorithm>
+#include <memory>
+#include <vector>
+
+#include "pounding/contact/law.hpp"
+#include "pounding/kernel/steppers/registry.hpp"
+#include "pounding/kernel/tile.hpp"
+#include "pounding/physics/tile_runner.hpp"
+
+namespace pounding::physics {
+
+// Ground acceleration at every integration step: linear inside a record step, zero after the record.
+struct Schedule {
+  std::vector<double> ag;
+  long nsteps = 0;
+  double h = 0.0;
+};
+Schedule make_schedule(const GroundMotion& motion, int substeps);
+
+// The law-independent part of lane i's tile entries (structures, initial state, observers at rest).
+void fill_lane_common(kernel::Tile& T, int i, const PairParams& p, double v0_min, Stepper stepper, double h);
+// Accelerations and observers that depend on the initial contact force T.F[i].
+void fill_lane_initial_force(kernel::Tile& T, int i, const PairParams& p, double ag0);
+// Lane i's reductions into out[L]; `stored`: contact energy stored at the end; impulsive: no peak force.
+void collect_lane(const kernel::Tile& T, int i, std::size_t L, double stored, bool impulsive, BatchResult& out);
+
+template <class Law>
+void fill_lane(kernel::Tile& T, int i, const PairParams& p, const ContactModel& cm, Stepper stepper, const Schedule& s) {
+  fill_lane_common(T, i, p, cm.v0_min, stepper, s.h);
+  T.cd[i] = Law::damping_constant(cm, p.kc, p.e, T.meff[i]);
+  // the initial contact force from the initial penetration (std::pow for the Hertz family)
+  const double d0 = p.u1 - p.u2 - p.gap, dd0 = p.v1 - p.v2;
+  double clamp = 0.0;
+  contact::Shared<double> sh{0.0};
+  T.F[i] = 0.0;
+  if (d0 > 0.0 && Law::traits.has_force)
+    T.F[i] = Law::template force<double>({d0, dd0}, {p.kc, T.cd[i]}, {T.iv0[i]}, contact::RuntimeExponent{cm.n}, sh, clamp);
+  fill_lane_initial_force(T, i, p, s.ag[0]);
+}
+
+template <class Law>
+void collect(const kernel::Tile& T, std::size_t base, const ContactModel& cm, BatchResult& out) {
+  const double n_exp = cm.n;
+  for (int i = 0; i < T.n; ++i) {
+    const double dp = std::max(T.u1[i] - T.u2[i] - T.gap[i], 0.0);
+    collect_lane(T, i, base + static_cast<std::size_t>(i), Law::template stored_energy<double>(dp, T.kc[i], n_exp),
+                 Law::traits.impulsive, out);
+  }
+}
+
+// The series recorder watches its lane in the tile that holds it.
+kernel::Context tile_context(const kernel::Context& C, const KernelSettings& ks, const kernel::Tile& T,
+                             std::size_t base, double ag0);
+
+template <class Law>
+void run_batch_t(const PairBatch& batch, const ContactModel& cm, const GroundMotion& motion, const KernelSettings& ks,
+                 BatchResult& out) {
+  const std::size_t width = batch.width();
+  out.resize(width);
+  if (width == 0) return;
+  const Schedule s = make_schedule(motion, ks.substeps);
+  if (ks.series) {
+    ks.series->clear();
+    ks.series->reserve_for(static_cast<std::size_t>(s.nsteps) + 1);
+  }
+  const kernel::Context C{&ks, s.ag.data(), s.nsteps, s.h, cm.v0_min, ks.displacement_limit, nullptr, 0};
+  auto tile = std::make_unique<kernel::Tile>();
+  kernel::Tile& T = *tile;
+  for (std::size_t base = 0; base < width; base += kernel::tile_width) {
+    T.n = static_cast<int>(std::min<std::size_t>(kernel::tile_width, width - base));
+    // lanes past n up to the SIMD chunk boundary are padded with copies of the tile's first lane
+    T.np = std::min(kernel::tile_width, (T.n + simd::W - 1) / simd::W * simd::W);
+    for (int i = 0; i < T.np; ++i)
+      fill_lane<Law>(T, i, batch.get(base + static_cast<std::size_t>(i < T.n ? i : 0)), cm, ks.stepper, s);
+    const kernel::Context Ct = tile_context(C, ks, T, base, s.ag[0]);
+    kernel::visit_stepper(ks.stepper, [&]<class S>() { run_tile<S, Law>(T, Ct, cm); });
+    collect<Law>(T, base, cm, out);
+  }
+}
+
+// The registered law of cm.law (contact/registry.hpp); preconditions are the caller's (physics::validate).
+void run_batch(const PairBatch& batch, const ContactModel& cm, const GroundMotion& motion, const KernelSettings& ks,
+               BatchResult& out);
+
+}  // namespace pounding::physics

@@ -1,0 +1,17 @@
+// The nigam-jennings stepper with every registered law (one TU per stepper: architecture.md 2.4).
+#include "pounding/kernel/steppers/registry.hpp"
+#include "pounding/physics/tile_runner_impl.hpp"
+
+namespace pounding::physics {
+
+using kernel::NigamJennings;
+template void run_tile<NigamJennings, contact::None>(kernel::Tile&, const kernel::Context&, const ContactModel&);
+template void run_tile<NigamJennings, contact::Linear>(kernel::Tile&, const kernel::Context&, const ContactModel&);
+template void run_tile<NigamJennings, contact::Kelvin>(kernel::Tile&, const kernel::Context&, const ContactModel&);
+template void run_tile<NigamJennings, contact::Hertz>(kernel::Tile&, const kernel::Context&, const ContactModel&);
+template void run_tile<NigamJennings, contact::Hertzdamp>(kernel::Tile&, const kernel::Context&, const ContactModel&);
+template void run_tile<NigamJennings, contact::Jankowski>(kernel::Tile&, const kernel::Context&, const ContactModel&);
+template void run_tile<NigamJennings, contact::Stereomechanical>(kernel::Tile&, const kernel::Context&, const ContactModel&);
+static_assert(contact::Laws::size == 7, "instantiate every registered law above");
+
+}  // namespace pounding::physics
