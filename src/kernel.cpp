@@ -1,5 +1,5 @@
 // The kernel's public value types (kernel.hpp) and the stepper names. The steppers are in
-// include/pounding/kernel/steppers/, the batch driver in src/physics/run_batch.cpp.
+// include/pounding/physics/steppers/, the batch driver in src/physics/run_batch.cpp.
 #include "pounding/kernel.hpp"
 
 #include <algorithm>
@@ -9,7 +9,7 @@
 #include <fmt/format.h>
 
 #include "pounding/core/error.hpp"
-#include "pounding/kernel/steppers/registry.hpp"
+#include "pounding/physics/steppers/registry.hpp"
 
 namespace pounding {
 

@@ -1,5 +1,5 @@
 // The nigam-jennings stepper with every registered law (one TU per stepper: architecture.md 2.4).
-#include "pounding/kernel/steppers/registry.hpp"
+#include "pounding/physics/steppers/registry.hpp"
 #include "pounding/physics/tile_runner_impl.hpp"
 
 namespace pounding::physics {

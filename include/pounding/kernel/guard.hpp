@@ -1,10 +1,8 @@
 #pragma once
-// The guards, written once for both lane types (architecture.md 2.4):
-//  * contact stability: the linearised contact stiffness k_lin gives omega = sqrt(k_lin / meff); omega h
-//    above the stepper's limit amplifies every contact step, so the lane is marked diverged (1);
+// The divergence guard, written once for both lane types (architecture.md 2.4), and the steppers' contact
+// stability limits (the contact-stability test itself is contact/stability.hpp: it asks the law):
 //  * divergence: |u1| + |u2| above the limit (1) or anything non-finite (2); a bad lane is frozen at rest
 //    so that it neither slows the tile with inf/NaN arithmetic nor pollutes anything.
-#include "pounding/contact/law.hpp"
 #include "pounding/kernel/lane.hpp"
 
 namespace pounding::kernel {
@@ -13,13 +11,6 @@ namespace pounding::kernel {
 inline constexpr double limit2_central_difference = 4.0;  // omega h < 2
 inline constexpr double limit2_nigam_jennings = 4.0;      // its predictor-corrector, as central difference
 inline constexpr double limit2_rk4 = 2.8 * 2.8;           // RK4's real-axis stability bound, omega h < 2.8
-
-template <class Law, class T, class Exp>
-POUNDING_INLINE lane::mask_t<T> contact_unstable(contact::Kin<T> k, contact::Params<T> p, contact::State<T> s, Exp n,
-                                                 const contact::Shared<T>& sh, T h2_meff, double limit2) {
-  const T klin = Law::template linear_stiffness<T>(k, p, s, n, sh);
-  return (k.d > T(0.0)) && (klin * h2_meff > T(limit2));
-}
 
 // 0 ok, 1 diverged (displacement sum above lim), 2 non-finite
 template <class T> POUNDING_INLINE T divergence_code(T sdisp, T sv, T lim) {

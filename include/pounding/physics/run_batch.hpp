@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "pounding/contact/law.hpp"
-#include "pounding/kernel/steppers/registry.hpp"
+#include "pounding/physics/steppers/registry.hpp"
 #include "pounding/kernel/tile.hpp"
 #include "pounding/physics/tile_runner.hpp"
 

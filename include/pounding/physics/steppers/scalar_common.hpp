@@ -2,6 +2,7 @@
 // What the lane-loop steppers (Newmark, RK4, Nigam-Jennings) share: the law at one lane, the impulsive
 // exchange, the energy terms, the guard and the observers, each a call into the lane-generic code at T = double.
 #include "pounding/contact/laws/stereomechanical.hpp"
+#include "pounding/contact/stability.hpp"
 #include "pounding/kernel/guard.hpp"
 #include "pounding/kernel/observers.hpp"
 #include "pounding/model/hysteresis/bilinear_kinematic.hpp"
@@ -39,7 +40,7 @@ template <class Law> [[gnu::always_inline]] inline double latched(double iv0, bo
 template <class Law, class Exp>
 [[gnu::always_inline]] inline void guard_contact(Tile& T, int i, double d, double dd, Exp n,
                                                  const contact::Shared<double>& sh, double h, double limit2) {
-  const bool unstable = contact_unstable<Law, double>({d, dd}, {T.kc[i], T.cd[i]}, {T.iv0[i]}, n, sh,
+  const bool unstable = contact::unstable<Law, double>({d, dd}, {T.kc[i], T.cd[i]}, {T.iv0[i]}, n, sh,
                                                       h * h / T.meff[i], limit2);
   T.bad[i] = std::max(T.bad[i], unstable ? 1.0 : 0.0);
 }

@@ -12,7 +12,7 @@
 #include <cmath>
 #include <string_view>
 
-#include "pounding/kernel/steppers/scalar_common.hpp"
+#include "pounding/physics/steppers/scalar_common.hpp"
 
 namespace pounding::kernel {
 

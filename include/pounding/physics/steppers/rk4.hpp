@@ -7,7 +7,7 @@
 #include <algorithm>
 #include <string_view>
 
-#include "pounding/kernel/steppers/scalar_common.hpp"
+#include "pounding/physics/steppers/scalar_common.hpp"
 
 namespace pounding::kernel {
 

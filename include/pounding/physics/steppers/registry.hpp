@@ -4,10 +4,10 @@
 #include <string_view>
 
 #include "pounding/contact/registry.hpp"
-#include "pounding/kernel/steppers/central_difference.hpp"
-#include "pounding/kernel/steppers/newmark.hpp"
-#include "pounding/kernel/steppers/nigam_jennings.hpp"
-#include "pounding/kernel/steppers/rk4.hpp"
+#include "pounding/physics/steppers/central_difference.hpp"
+#include "pounding/physics/steppers/newmark.hpp"
+#include "pounding/physics/steppers/nigam_jennings.hpp"
+#include "pounding/physics/steppers/rk4.hpp"
 
 namespace pounding::kernel {
 

@@ -7,6 +7,7 @@
 #include <string_view>
 
 #include "pounding/contact/laws/stereomechanical.hpp"
+#include "pounding/contact/stability.hpp"
 #include "pounding/kernel/guard.hpp"
 #include "pounding/kernel/observers.hpp"
 #include "pounding/model/hysteresis/bilinear_kinematic.hpp"
@@ -93,7 +94,7 @@ template <class Law, class Exp>
   const contact::Kin<V> k{d, dd};
   const contact::Params<V> prm{c.kc, c.cd};
   const V F = Law::template force<V>(k, prm, s, n, sh, clamp);
-  const simd::M unstable = contact_unstable<Law>(k, prm, s, n, sh, c.h2m, limit2_central_difference);
+  const simd::M unstable = contact::unstable<Law>(k, prm, s, n, sh, c.h2m, limit2_central_difference);
   if (lane::any(unstable)) {
     c.bad = lane::max(c.bad, lane::select(unstable, one, zero));
     any_bad = true;
