@@ -215,7 +215,7 @@ def main():
         print(f"arch.function_size: {len(problems)} function(s) over {LIMIT} lines")
         return 1
     print(f"arch.function_size: no function in src/ over {LIMIT} lines"
-          + ("" if a.all else f" ({len(EXCLUDED)} files excluded while being rewritten)"))
+          + (f" ({len(EXCLUDED)} files excluded while being rewritten)" if EXCLUDED and not a.all else ""))
     return 0
 
 
