@@ -1,7 +1,7 @@
 // libFuzzer target for the record readers (AT2 family, two-column and one-column text). Any input must
 // either parse into a finite record with dt > 0 and as many values as NPTS says, or throw InputError;
 // anything else (crash, sanitizer report, other exception, non-finite value) is a bug.
-// Build: CXX=clang++ cmake -S . -B build-fuzz -DPOUNDING_FUZZ=ON -DCMAKE_CXX_FLAGS=-fsanitize=fuzzer-no-link,address
+// Build: CXX=clang++ cmake -S . -B build-fuzz -DPOUNDING_FUZZ=ON   (POUNDING_FUZZ instruments every target itself)
 //        cmake --build build-fuzz --target fuzz_at2 && build-fuzz/fuzz_at2 -max_total_time=300 corpus/
 #include <cmath>
 #include <cstdint>
