@@ -20,6 +20,13 @@ struct NigamJennings {
 
 namespace nj_detail {
 
+// Loop constants by value: a load through Context inside the lane loop may alias the tile's stores (both
+// double), which keeps it in the loop and stops if-conversion and the vectoriser (as in Newmark and RK4).
+struct K {
+  double h, v0_min, lim;
+};
+inline K constants(const Context& C) { return {C.h, C.v0_min, C.lim}; }
+
 [[gnu::always_inline]] inline void advance(const double (*c)[tile_width], int i, double u, double v, double pa,
                                            double pb, double& un, double& vn) {
   un = c[0][i] * u + c[1][i] * v + c[4][i] * pa + c[5][i] * pb;
@@ -29,7 +36,7 @@ namespace nj_detail {
 // Predictor, then the corrector (again with contact when the step ends penetrating); returns the
 // corrector's contact force. `redone`: the step touched although it started out of contact.
 template <class Law, class Exp>
-[[gnu::always_inline]] inline double integrate(Tile& T, int i, const Context& C, double ag0, double ag1,
+[[gnu::always_inline]] inline double integrate(Tile& T, int i, const K& C, double ag0, double ag1,
                                                const scalar::Old& o, Exp n, bool& redone) {
   const double d_old = T.dprev[i];
   // load in acceleration units: u'' + 2 zeta w u' + w^2 u = -(ag + g/m)
@@ -65,7 +72,7 @@ template <class Law, class Exp>
 }
 
 template <class Law, class Exp, bool WithEnergy>
-[[gnu::always_inline]] inline void lane_step(Tile& T, int i, const Context& C, double t, double ag0, double ag1, Exp n) {
+[[gnu::always_inline]] inline void lane_step(Tile& T, int i, const K& C, double t, double ag0, double ag1, Exp n) {
   const double h = C.h;
   const scalar::Old o = scalar::old_state(T, i);
   const double d_old = T.dprev[i];
@@ -77,8 +84,12 @@ template <class Law, class Exp, bool WithEnergy>
   T.fs2[i] = scalar::spring2(T, i, o.fs2, o.u2, T.u2[i]);
   const double d = T.u1[i] - T.u2[i] - T.gap[i], dd = T.v1[i] - T.v2[i];
   if constexpr (Law::traits.has_force) {
-    onset = ((d > 0.0 || redone) && !(d_old > 0.0)) ? 1.0 : 0.0;  // redone: touched inside the step
-    T.iv0[i] = scalar::latched<Law>(T.iv0[i], onset > 0.0, dd, C.v0_min);
+    // redone: touched inside the step. One bool for both uses, with & and | (no short-circuit): tested
+    // again as onset > 0.0, GCC threads the latch through it into a select between masks, which the
+    // vectoriser emulates lane by lane.
+    const bool on = ((d > 0.0) | redone) & !(d_old > 0.0);
+    onset = on ? 1.0 : 0.0;
+    T.iv0[i] = scalar::latched<Law>(T.iv0[i], on, dd, C.v0_min);
     contact::Shared<double> sh{0.0};
     F = scalar::force<Law>(T, i, d, dd, T.iv0[i], n, clamp, sh);
     scalar::guard_contact<Law>(T, i, d, dd, n, sh, h, limit2_nigam_jennings);
@@ -96,10 +107,12 @@ template <class Law, class Exp, bool WithEnergy>
 
 template <class Law, class Exp, bool WithEnergy>
 void NigamJennings::run(Tile& T, const Context& C, Exp n) {
+  const nj_detail::K k = nj_detail::constants(C);
   for (long step = 0; step < C.nsteps; ++step) {
     const double ag0 = C.ag[step], ag1 = C.ag[step + 1];
     const double t = static_cast<double>(step + 1) * C.h;
-    for (int i = 0; i < T.np; ++i) nj_detail::lane_step<Law, Exp, WithEnergy>(T, i, C, t, ag0, ag1, n);
+    const int np = T.np;
+    for (int i = 0; i < np; ++i) nj_detail::lane_step<Law, Exp, WithEnergy>(T, i, k, t, ag0, ag1, n);
     record_lane(C, T, t, ag1);
   }
 }

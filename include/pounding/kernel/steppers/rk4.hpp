@@ -19,6 +19,15 @@ struct Rk4 {
 
 namespace rk4_detail {
 
+// Loop constants by value: a load through Context inside the lane loop may alias the tile's stores (both
+// double), which keeps it in the loop, makes loop distribution version the loop on a run-time alias test
+// and stops if-conversion and the vectoriser (as in Newmark).
+struct K {
+  double h, v0_min, lim;
+  bool locate;
+};
+inline K constants(const Context& C) { return {C.h, C.v0_min, C.lim, C.settings->locate_contact}; }
+
 struct Y {
   double u1, v1, u2, v2;
 };
@@ -92,7 +101,7 @@ template <class Law, class Exp> struct Lane {
 
 // One lane's step: the integration (with the redo or the located onset), then the commit.
 template <class Law, class Exp, bool WithEnergy>
-[[gnu::always_inline]] inline void lane_step(Tile& T, int i, const Context& C, double t, double ag0, double ag1, Exp n) {
+[[gnu::always_inline]] inline void lane_step(Tile& T, int i, const K& C, double t, double ag0, double ag1, Exp n) {
   const double h = C.h;
   const scalar::Old o = scalar::old_state(T, i);
   const double d_old = T.dprev[i];
@@ -105,7 +114,7 @@ template <class Law, class Exp, bool WithEnergy>
   if constexpr (Law::traits.has_force) {
     const double dn = y.u1 - y.u2 - T.gap[i];
     redone = !(d_old > 0.0) && dn > 0.0;
-    if (redone && !C.settings->locate_contact) {
+    if (redone && !C.locate) {
       L.mode = 2;
       y = L.step(yo, h, ag0, ag1);
     } else if (redone) {
@@ -138,10 +147,12 @@ template <class Law, class Exp, bool WithEnergy>
 
 template <class Law, class Exp, bool WithEnergy>
 void Rk4::run(Tile& T, const Context& C, Exp n) {
+  const rk4_detail::K k = rk4_detail::constants(C);
   for (long step = 0; step < C.nsteps; ++step) {
     const double ag0 = C.ag[step], ag1 = C.ag[step + 1];
     const double t = static_cast<double>(step + 1) * C.h;
-    for (int i = 0; i < T.np; ++i) rk4_detail::lane_step<Law, Exp, WithEnergy>(T, i, C, t, ag0, ag1, n);
+    const int np = T.np;
+    for (int i = 0; i < np; ++i) rk4_detail::lane_step<Law, Exp, WithEnergy>(T, i, k, t, ag0, ag1, n);
     record_lane(C, T, t, ag1);
   }
 }
