@@ -49,8 +49,10 @@ template <class Law, class Exp>
   const double d = u1 - u2 - T.gap[i], dd = v1 - v2;
   contact::Tangent<double> tg{0.0, 0.0, 0.0};
   if constexpr (Law::traits.has_force) {
-    const double iv0 = scalar::latched<Law>(T.iv0[i], !(T.dprev[i] > 0.0), dd, C.v0_min);
-    if (T.y1[i] > 0.0) tg = Law::template tangent<double>({d, dd}, {T.kc[i], T.cd[i]}, {iv0}, n);
+    if (T.y1[i] > 0.0) {  // the latch (a division) only in the active lanes
+      const double iv0 = scalar::latched<Law>(T.iv0[i], !(T.dprev[i] > 0.0), dd, C.v0_min);
+      tg = Law::template tangent<double>({d, dd}, {T.kc[i], T.cd[i]}, {iv0}, n);
+    }
   }
   const double r1 = T.m1[i] * (a1 + ag1) + T.c1[i] * v1 + fs1 + tg.F;
   const double r2 = T.m2[i] * (a2 + ag1) + T.c2[i] * v2 + fs2 - tg.F;

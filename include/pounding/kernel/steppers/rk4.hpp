@@ -77,8 +77,9 @@ template <class Law, class Exp> struct Lane {
   }
 
   // Event-located contact onset: the closing instant on the step's cubic Hermite interpolant of delta;
-  // integrate up to it without contact, latch v0 there, and finish the step in contact.
-  Y located(const Y& yo, const Y& yn, double h, double ag0, double ag1) {
+  // integrate up to it without contact, latch v0 there, and finish the step in contact. Inlined although
+  // rare: an out-of-line call takes the Lane's address, which keeps the Lane in memory in every lane step.
+  [[gnu::always_inline]] Y located(const Y& yo, const Y& yn, double h, double ag0, double ag1) {
     const double dn = yn.u1 - yn.u2 - T.gap[i], ddo = yo.v1 - yo.v2, ddn = yn.v1 - yn.v2;
     auto delta = [&](double s) {
       double s2 = s * s, s3 = s2 * s;
