@@ -1,8 +1,6 @@
 #include "pounding/contact.hpp"
 
 #include <cmath>
-#include <map>
-#include <mutex>
 #include <numbers>
 #include <stdexcept>
 #include <utility>
@@ -111,12 +109,6 @@ double hertzdamp_restitution(double xi, double n) {
 double calibrated_xibar(double e, double n) {
   if (!(e > 0.0 && e <= 1.0)) throw InputError(fmt::format("e = {} is out of range", e), "e", "give 0 < e <= 1");
   if (e == 1.0) return 0.0;
-  static std::mutex mu;
-  static std::map<std::pair<double, double>, double> cache;
-  {
-    std::lock_guard lock(mu);
-    if (auto it = cache.find({e, n}); it != cache.end()) return it->second;
-  }
   // e(xi) falls monotonically from 1 at xi = 0. Bracket, then secant-safeguarded bisection.
   double lo = 0.0, e_lo = 1.0;
   double hi = 1.0, e_hi = hertzdamp_restitution(hi, n);
@@ -142,8 +134,6 @@ double calibrated_xibar(double e, double n) {
       e_hi = ex;
     }
   }
-  std::lock_guard lock(mu);
-  cache[{e, n}] = xi;
   return xi;
 }
 

@@ -45,7 +45,8 @@ struct ContactModel {
 // xibar of Hertzdamp for restitution e and exponent n.
 double hertzdamp_xibar(DampingLaw law, double e, double n = 1.5);
 // Solves x'' = -x^n (1 + xi x'), x(0) = 0, x'(0) = 1 (the scale-free single impact) for the xi whose
-// rebound speed is e. Cached per (e, n); thread-safe. |e_achieved - e| < 1e-9.
+// rebound speed is e. A pure function, not cached: run_batch solves each distinct e once per call
+// (physics::DampingTable). |e_achieved - e| < 1e-9.
 double calibrated_xibar(double e, double n = 1.5);
 // Rebound speed ratio of the scale-free Hertzdamp impact for a given xi (the function calibrated_xibar inverts).
 double hertzdamp_restitution(double xibar, double n = 1.5);

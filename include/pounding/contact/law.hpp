@@ -69,6 +69,14 @@ concept Law = requires(Kin<double> k, Params<double> p, State<double> s, Shared<
   { L::damping_constant(cm, x, x, x) } -> std::same_as<double>;
 };
 
+// A law whose damping constant follows from the model and e alone, and may be costly (Hertzdamp's calibrated
+// xibar solves the scale-free impact), also offers damping_of_e; run_batch then takes each distinct e once
+// per call (physics::DampingTable) instead of a process-wide cache.
+template <class L>
+concept DampingFromRestitution = requires(const ContactModel& cm, double e) {
+  { L::damping_of_e(cm, e) } -> std::same_as<double>;
+};
+
 // The latch every law shares unless it overrides it: Hertzdamp's v0 = max(approach speed, v0_min) at onset.
 template <class T>
 POUNDING_INLINE void latch_v0(State<T>& s, lane::mask_t<T> on, T approach, double v0_min) {

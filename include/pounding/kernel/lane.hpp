@@ -48,6 +48,10 @@ POUNDING_INLINE double sqrt(double a) { return std::sqrt(a); }
 POUNDING_INLINE simd::V sqrt(const simd::V& a) { return simd::stdx::sqrt(a); }
 POUNDING_INLINE double abs(double a) { return std::abs(a); }
 POUNDING_INLINE simd::V abs(const simd::V& a) { return simd::stdx::abs(a); }
+// a * b + c rounded once: pins the contraction where a sum of two products would let the compiler pick
+// which product to fuse (its pick differs between lane types and inlining contexts)
+POUNDING_INLINE double fma(double a, double b, double c) { return std::fma(a, b, c); }
+POUNDING_INLINE simd::V fma(const simd::V& a, const simd::V& b, const simd::V& c) { return simd::stdx::fma(a, b, c); }
 POUNDING_INLINE bool any(bool m) { return m; }
 POUNDING_INLINE bool any(const simd::M& m) { return simd::stdx::any_of(m); }
 POUNDING_INLINE bool all(bool m) { return m; }

@@ -4,7 +4,10 @@
 // (physics/validate.hpp; pounding::run_batch validates and throws InputError). A law outside the registry
 // runs with run_batch_t<Law> after including physics/tile_runner_impl.hpp (tests/contact/test_extension_law.cpp).
 #include <algorithm>
+#include <bit>
+#include <cstdint>
 #include <memory>
+#include <unordered_map>
 #include <vector>
 
 #include "pounding/contact/law.hpp"
@@ -29,10 +32,32 @@ void fill_lane_initial_force(kernel::Tile& T, int i, const PairParams& p, double
 // Lane i's reductions into out[L]; `stored`: contact energy stored at the end; impulsive: no peak force.
 void collect_lane(const kernel::Tile& T, int i, std::size_t L, double stored, bool impulsive, BatchResult& out);
 
+// The law's damping constant of each lane. For a law whose constant follows from e alone
+// (contact::DampingFromRestitution: Hertzdamp's xibar, an ODE solve when calibrated) each distinct e is
+// computed once per run_batch call and looked up by its bits; a local table, no process-wide cache.
+template <class Law> class DampingTable {
+ public:
+  explicit DampingTable(const ContactModel& cm) : cm_(cm) {}
+  double operator()(double kc, double e, double meff) {
+    if constexpr (contact::DampingFromRestitution<Law>) {
+      const auto [it, fresh] = seen_.try_emplace(std::bit_cast<std::uint64_t>(e), 0.0);
+      if (fresh) it->second = Law::damping_of_e(cm_, e);
+      return it->second;
+    } else {
+      return Law::damping_constant(cm_, kc, e, meff);
+    }
+  }
+
+ private:
+  const ContactModel& cm_;
+  std::unordered_map<std::uint64_t, double> seen_;
+};
+
 template <class Law>
-void fill_lane(kernel::Tile& T, int i, const PairParams& p, const ContactModel& cm, Stepper stepper, const Schedule& s) {
+void fill_lane(kernel::Tile& T, int i, const PairParams& p, const ContactModel& cm, Stepper stepper, const Schedule& s,
+               DampingTable<Law>& damping) {
   fill_lane_common(T, i, p, cm.v0_min, stepper, s.h);
-  T.cd[i] = Law::damping_constant(cm, p.kc, p.e, T.meff[i]);
+  T.cd[i] = damping(p.kc, p.e, T.meff[i]);
   // the initial contact force from the initial penetration (std::pow for the Hertz family)
   const double d0 = p.u1 - p.u2 - p.gap, dd0 = p.v1 - p.v2;
   double clamp = 0.0;
@@ -69,6 +94,7 @@ void run_batch_t(const PairBatch& batch, const ContactModel& cm, const GroundMot
     ks.series->reserve_for(static_cast<std::size_t>(s.nsteps) + 1);
   }
   const kernel::Context C{&ks, s.ag.data(), s.nsteps, s.h, cm.v0_min, ks.displacement_limit, nullptr, 0};
+  DampingTable<Law> damping(cm);
   auto tile = std::make_unique<kernel::Tile>();
   kernel::Tile& T = *tile;
   for (std::size_t base = 0; base < width; base += kernel::tile_width) {
@@ -76,7 +102,7 @@ void run_batch_t(const PairBatch& batch, const ContactModel& cm, const GroundMot
     // lanes past n up to the SIMD chunk boundary are padded with copies of the tile's first lane
     T.np = std::min(kernel::tile_width, (T.n + simd::W - 1) / simd::W * simd::W);
     for (int i = 0; i < T.np; ++i)
-      fill_lane<Law>(T, i, batch.get(base + static_cast<std::size_t>(i < T.n ? i : 0)), cm, ks.stepper, s);
+      fill_lane<Law>(T, i, batch.get(base + static_cast<std::size_t>(i < T.n ? i : 0)), cm, ks.stepper, s, damping);
     const kernel::Context Ct = tile_context(C, ks, T, base, s.ag[0]);
     kernel::visit_stepper(ks.stepper, [&]<class S>() { run_tile<S, Law>(T, Ct, cm); });
     collect<Law>(T, base, cm, out);

@@ -32,9 +32,8 @@ struct Hertzdamp {
   template <class T> POUNDING_INLINE static void on_onset(State<T>& s, lane::mask_t<T> on, T approach, double v0_min) {
     latch_v0(s, on, approach, v0_min);
   }
-  static double damping_constant(const ContactModel& cm, double, double e, double) {
-    return hertzdamp_xibar(cm.damping, e, cm.n);
-  }
+  static double damping_of_e(const ContactModel& cm, double e) { return hertzdamp_xibar(cm.damping, e, cm.n); }
+  static double damping_constant(const ContactModel& cm, double, double e, double) { return damping_of_e(cm, e); }
 };
 
 }  // namespace pounding::contact

@@ -16,7 +16,7 @@ struct Jankowski {
     clamp = zero;
     T pw = Exp15{}.power(lane::max(k.d, zero), sh);
     T damp = lane::select(k.dd > zero, p.cd * lane::sqrt(sh.sq) * k.dd, zero);
-    return p.kc * pw + damp;
+    return lane::fma(p.kc, pw, damp);  // central difference's contraction, pinned for the scalar steppers too
   }
   template <class T, class Exp> POUNDING_INLINE static Tangent<T> tangent(Kin<T> k, Params<T> p, State<T>, Exp) {
     const T zero(0.0);
@@ -25,9 +25,12 @@ struct Jankowski {
     const T dp = lane::max(k.d, zero);
     const T q = lane::map(dp, [](double x) { return x > 0.0 ? std::sqrt(std::sqrt(x)) : 0.0; });
     const auto app = k.dd > zero;
-    return {p.kc * pw + lane::select(app, p.cd * q * k.dd, zero),
-            p.kc * dpw + lane::select(app && dp > zero, p.cd * 0.25 * q / dp * k.dd, zero),
-            lane::select(app, p.cd * q, zero)};
+    // contractions pinned (lane::fma) so that one lane and a SIMD lane agree; F keeps the shape the scalar
+    // Newmark stepper had (the damper's product fused onto kc pw while approaching)
+    const T kpw = p.kc * pw, cq = p.cd * q;
+    return {lane::select(app, lane::fma(cq, k.dd, kpw), kpw),
+            lane::fma(p.kc, dpw, lane::select(app && dp > zero, p.cd * 0.25 * q / dp * k.dd, zero)),
+            lane::select(app, cq, zero)};
   }
   template <class T, class Exp>
   POUNDING_INLINE static T linear_stiffness(Kin<T> k, Params<T> p, State<T>, Exp, const Shared<T>& sh) {

@@ -12,12 +12,12 @@ struct Kelvin {
   static constexpr LawTraits traits{.needs_restitution = true};
   template <class T, class Exp> POUNDING_INLINE static T force(Kin<T> k, Params<T> p, State<T>, Exp, Shared<T>&, T& clamp) {
     const T zero(0.0);
-    T raw = lane::select(k.d > zero, p.kc * lane::max(k.d, zero) + p.cd * k.dd, zero);
+    T raw = lane::select(k.d > zero, lane::fma(p.cd, k.dd, p.kc * lane::max(k.d, zero)), zero);
     clamp = lane::select(raw < zero, T(1.0), zero);
     return lane::max(raw, zero);
   }
   template <class T, class Exp> POUNDING_INLINE static Tangent<T> tangent(Kin<T> k, Params<T> p, State<T>, Exp) {
-    return {p.kc * k.d + p.cd * k.dd, p.kc, p.cd};
+    return {lane::fma(p.kc, k.d, p.cd * k.dd), p.kc, p.cd};
   }
   template <class T, class Exp>
   POUNDING_INLINE static T linear_stiffness(Kin<T>, Params<T> p, State<T>, Exp, const Shared<T>&) { return p.kc; }
