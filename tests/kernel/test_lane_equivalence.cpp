@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "pounding/contact/registry.hpp"
+#include "pounding/contact/stability.hpp"
 #include "pounding/kernel/guard.hpp"
 #include "pounding/kernel/observers.hpp"
 
@@ -54,7 +55,7 @@ template <class Law, class T, class Exp> std::vector<T> evaluate(const std::arra
   const T st = Law::template stored_energy<T>(lane::max(d, T(0.0)), kc, n.value());
   pc::State<T> s{iv0};
   Law::template on_onset<T>(s, d > T(0.0), dd, 0.1);
-  const T unstable = to_t<T>(pk::contact_unstable<Law, T>({d, dd}, {kc, cd}, {iv0}, n, sh, lane::abs(in[5]), 4.0));
+  const T unstable = to_t<T>(pounding::contact::unstable<Law, T>({d, dd}, {kc, cd}, {iv0}, n, sh, lane::abs(in[5]), 4.0));
   out.insert(out.end(), {F, clamp, sh.sq, tg.F, tg.dFd, tg.dFv, kl, st, s.iv0, unstable});
   return out;
 }
