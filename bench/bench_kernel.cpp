@@ -6,7 +6,7 @@
 
 #include <vector>
 
-#include "pounding/kernel.hpp"
+#include "pounding/physics/batch.hpp"
 #include "pounding/testing/workloads.hpp"
 
 namespace {

@@ -6,8 +6,8 @@
 #include <numbers>
 #include <vector>
 
-#include "pounding/contact.hpp"
-#include "pounding/kernel.hpp"
+#include "pounding/contact/model.hpp"
+#include "pounding/physics/batch.hpp"
 
 namespace pounding::test {
 

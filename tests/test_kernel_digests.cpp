@@ -15,8 +15,8 @@
 
 #include <gtest/gtest.h>
 
-#include "pounding/contact.hpp"
-#include "pounding/kernel.hpp"
+#include "pounding/contact/model.hpp"
+#include "pounding/physics/batch.hpp"
 #include "pounding/testing/workloads.hpp"
 
 #ifndef POUNDING_TEST_SOURCE_DIR

@@ -18,7 +18,7 @@
 #include <boost/numeric/odeint.hpp>
 
 #include "kernel_test_support.hpp"
-#include "pounding/collide.hpp"
+#include "pounding/physics/single_impact.hpp"
 #include "test_data.hpp"
 
 namespace pounding {

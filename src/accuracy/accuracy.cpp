@@ -17,7 +17,7 @@
 #include <Eigen/Eigenvalues>
 #include <fmt/format.h>
 
-#include "pounding/collide.hpp"
+#include "pounding/physics/single_impact.hpp"
 #include "pounding/core/error.hpp"
 #include "pounding/core/files.hpp"
 #include "pounding/motion/records.hpp"

@@ -2,7 +2,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "pounding/kernel.hpp"
+#include "pounding/kernel/batch.hpp"
 
 namespace pounding {
 

@@ -8,7 +8,7 @@
 #include <numbers>
 
 #include "pounding/core/error.hpp"
-#include "pounding/kernel.hpp"
+#include "pounding/kernel/batch.hpp"
 
 namespace pounding {
 

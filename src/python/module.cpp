@@ -12,10 +12,10 @@
 #include <string>
 #include <vector>
 
-#include "pounding/contact.hpp"
+#include "pounding/contact/model.hpp"
 #include "pounding/core/error.hpp"
 #include "pounding/core/version.hpp"
-#include "pounding/kernel.hpp"
+#include "pounding/physics/batch.hpp"
 #include "pounding/testing/workloads.hpp"
 
 namespace py = pybind11;

@@ -16,7 +16,7 @@
 #include <fmt/format.h>
 
 #include "pounding/config/config.hpp"
-#include "pounding/contact.hpp"
+#include "pounding/contact/model.hpp"
 #include "pounding/core/error.hpp"
 
 namespace pounding {

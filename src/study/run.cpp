@@ -11,7 +11,7 @@
 
 #include "pounding/core/error.hpp"
 #include "pounding/core/files.hpp"
-#include "pounding/kernel.hpp"
+#include "pounding/physics/batch.hpp"
 #include "pounding/results/writer.hpp"
 #include "pounding/sampling/sampler.hpp"
 #include "pounding/study/checkpoint.hpp"

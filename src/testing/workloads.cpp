@@ -3,7 +3,7 @@
 #include <cmath>
 #include <numbers>
 
-#include "pounding/contact.hpp"
+#include "pounding/contact/model.hpp"
 #include "pounding/motion/records.hpp"
 
 namespace pounding {

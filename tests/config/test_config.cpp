@@ -8,7 +8,7 @@
 #include <toml++/toml.h>
 
 #include "pounding/config/config.hpp"
-#include "pounding/contact.hpp"
+#include "pounding/contact/model.hpp"
 #include "pounding/core/error.hpp"
 #include "pounding/study/study.hpp"
 

@@ -8,8 +8,8 @@
 #include <string>
 #include <vector>
 
-#include "pounding/contact.hpp"
-#include "pounding/kernel.hpp"
+#include "pounding/contact/model.hpp"
+#include "pounding/physics/batch.hpp"
 
 namespace pounding::accuracy {
 

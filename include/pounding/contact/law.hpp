@@ -7,7 +7,7 @@
 #include <concepts>
 #include <string_view>
 
-#include "pounding/contact.hpp"
+#include "pounding/contact/model.hpp"
 #include "pounding/kernel/lane.hpp"
 
 namespace pounding::contact {

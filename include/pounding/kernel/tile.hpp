@@ -3,7 +3,7 @@
 // arrays, so the compiler knows they do not alias; a lane's arithmetic depends only on its own inputs.
 #include <limits>
 
-#include "pounding/kernel.hpp"
+#include "pounding/kernel/batch.hpp"
 
 namespace pounding::kernel {
 

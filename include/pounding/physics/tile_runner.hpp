@@ -2,7 +2,7 @@
 // One tile through one stepper with one law: the run-time choices (Hertz exponent, energy) become template
 // arguments here. Declared for every TU; defined in tile_runner_impl.hpp, which only the per-stepper
 // instantiation TUs (src/physics/instantiate_<stepper>.cpp) and extension tests include.
-#include "pounding/contact.hpp"
+#include "pounding/contact/model.hpp"
 #include "pounding/kernel/tile.hpp"
 
 namespace pounding::physics {

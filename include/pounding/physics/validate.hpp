@@ -4,7 +4,7 @@
 #include <string>
 #include <vector>
 
-#include "pounding/kernel.hpp"
+#include "pounding/physics/batch.hpp"
 
 namespace pounding::physics {
 

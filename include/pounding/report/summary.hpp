@@ -2,8 +2,8 @@
 // Text summaries of kernel results: one `name: value` per line (SI units in the names).
 #include <string>
 
-#include "pounding/contact.hpp"
-#include "pounding/kernel.hpp"
+#include "pounding/contact/model.hpp"
+#include "pounding/physics/batch.hpp"
 #include "pounding/motion/records.hpp"
 
 namespace pounding {

@@ -48,7 +48,7 @@
 
 #include <toml++/toml.h>
 
-#include "pounding/kernel.hpp"
+#include "pounding/physics/batch.hpp"
 #include "pounding/core/enum_names.hpp"
 #include "pounding/core/random.hpp"  // splitmix64
 

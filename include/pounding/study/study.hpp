@@ -34,8 +34,8 @@
 #include <vector>
 
 #include "pounding/core/enum_names.hpp"
-#include "pounding/contact.hpp"
-#include "pounding/kernel.hpp"
+#include "pounding/contact/model.hpp"
+#include "pounding/physics/batch.hpp"
 #include "pounding/motion/records.hpp"
 #include "pounding/sampling/sampler.hpp"
 

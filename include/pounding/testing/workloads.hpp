@@ -3,7 +3,7 @@
 #include <cstddef>
 #include <vector>
 
-#include "pounding/kernel.hpp"
+#include "pounding/physics/batch.hpp"
 
 namespace pounding {
 

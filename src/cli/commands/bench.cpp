@@ -9,7 +9,7 @@
 
 #include "cli/commands.hpp"
 #include "pounding/core/error.hpp"
-#include "pounding/kernel.hpp"
+#include "pounding/physics/batch.hpp"
 #include "pounding/testing/workloads.hpp"
 
 namespace pounding::cli {

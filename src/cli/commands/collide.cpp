@@ -9,7 +9,7 @@
 #include <fmt/format.h>
 
 #include "cli/commands.hpp"
-#include "pounding/collide.hpp"
+#include "pounding/physics/single_impact.hpp"
 #include "pounding/core/error.hpp"
 
 namespace pounding::cli {

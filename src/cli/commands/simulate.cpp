@@ -8,11 +8,11 @@
 #include <fmt/format.h>
 
 #include "cli/commands.hpp"
-#include "pounding/contact.hpp"
+#include "pounding/contact/model.hpp"
 #include "pounding/core/error.hpp"
 #include "pounding/core/files.hpp"
 #include "pounding/io/hdf5.hpp"
-#include "pounding/kernel.hpp"
+#include "pounding/physics/batch.hpp"
 #include "pounding/motion/records.hpp"
 #include "pounding/report/summary.hpp"
 #include "pounding/testing/workloads.hpp"

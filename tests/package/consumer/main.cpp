@@ -6,8 +6,8 @@
 #include <string>
 #include <vector>
 
-#include "pounding/contact.hpp"
-#include "pounding/kernel.hpp"
+#include "pounding/contact/model.hpp"
+#include "pounding/physics/batch.hpp"
 #include "pounding/core/version.hpp"
 #include "pounding/testing/workloads.hpp"
 

@@ -1,6 +1,6 @@
 // The kernel's public value types (kernel.hpp) and the stepper names. The steppers are in
 // include/pounding/physics/steppers/, the batch driver in src/physics/run_batch.cpp.
-#include "pounding/kernel.hpp"
+#include "pounding/physics/batch.hpp"
 
 #include <algorithm>
 #include <cmath>

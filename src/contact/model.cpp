@@ -1,55 +1,24 @@
-#include "pounding/contact.hpp"
+#include "pounding/contact/model.hpp"
 
+#include <charconv>
 #include <cmath>
+#include <string>
 #include <numbers>
 #include <stdexcept>
 #include <utility>
-
-#include <fmt/format.h>
 
 #include "pounding/core/error.hpp"
 
 namespace pounding {
 
 namespace {
-constexpr std::pair<ContactLaw, std::string_view> contact_names[] = {
-    {ContactLaw::none, "none"},           {ContactLaw::linear, "linear"},
-    {ContactLaw::kelvin, "kelvin"},       {ContactLaw::hertz, "hertz"},
-    {ContactLaw::hertzdamp, "hertzdamp"}, {ContactLaw::jankowski, "jankowski"},
-    {ContactLaw::stereomechanical, "stereomechanical"},
-};
-constexpr std::pair<DampingLaw, std::string_view> damping_names[] = {
-    {DampingLaw::lankarani_nikravesh, "lankarani-nikravesh"},
-    {DampingLaw::hunt_crossley, "hunt-crossley"},
-    {DampingLaw::flores, "flores"},
-    {DampingLaw::hu_guo, "hu-guo"},
-    {DampingLaw::gonthier, "gonthier"},
-    {DampingLaw::calibrated, "calibrated"},
-};
+// The shortest text that reads back as x (what fmt's "{}" prints), without fmt in the contact layer.
+std::string shortest(double x) {
+  char buf[32];
+  const auto r = std::to_chars(buf, buf + sizeof buf, x);
+  return std::string(buf, r.ptr);
+}
 }  // namespace
-
-ContactLaw parse_contact_law(std::string_view name) {
-  for (auto& [law, s] : contact_names)
-    if (s == name) return law;
-  throw InputError(fmt::format("unknown contact law '{}'", name), "contact law",
-                   fmt::format("use one of: {}", contact_law_names));
-}
-std::string_view to_string(ContactLaw law) {
-  for (auto& [l, s] : contact_names)
-    if (l == law) return s;
-  return "?";
-}
-DampingLaw parse_damping_law(std::string_view name) {
-  for (auto& [law, s] : damping_names)
-    if (s == name) return law;
-  throw InputError(fmt::format("unknown damping law '{}'", name), "damping law",
-                   fmt::format("use one of: {}", damping_law_names));
-}
-std::string_view to_string(DampingLaw law) {
-  for (auto& [l, s] : damping_names)
-    if (l == law) return s;
-  return "?";
-}
 
 double hertzdamp_xibar(DampingLaw law, double e, double n) {
   switch (law) {
@@ -107,7 +76,7 @@ double hertzdamp_restitution(double xi, double n) {
 }
 
 double calibrated_xibar(double e, double n) {
-  if (!(e > 0.0 && e <= 1.0)) throw InputError(fmt::format("e = {} is out of range", e), "e", "give 0 < e <= 1");
+  if (!(e > 0.0 && e <= 1.0)) throw InputError("e = " + shortest(e) + " is out of range", "e", "give 0 < e <= 1");
   if (e == 1.0) return 0.0;
   // e(xi) falls monotonically from 1 at xi = 0. Bracket, then secant-safeguarded bisection.
   double lo = 0.0, e_lo = 1.0;

@@ -1,5 +1,5 @@
 #pragma once
-// The batch time-history kernel: pairs of SDOF structures (1 = left, 2 = right) on a common ground
+// The batch time-history kernel's value types (physics/batch.hpp adds the contact model and run_batch): pairs of SDOF structures (1 = left, 2 = right) on a common ground
 // motion, with a contact law between them. Plain data in, peaks and counts out; no MPI, no HDF5,
 // no I/O, no allocation inside the time loop.
 //
@@ -23,7 +23,6 @@
 #include <string_view>
 #include <vector>
 
-#include "pounding/contact.hpp"
 
 namespace pounding {
 
@@ -120,10 +119,6 @@ struct BatchResult {
   void resize(std::size_t n);
   std::size_t width() const { return status.size(); }
 };
-
-// Runs every lane of `batch` through `motion` in lockstep. `out` is resized to the batch width.
-void run_batch(const PairBatch& batch, const ContactModel& contact, const GroundMotion& motion,
-               const KernelSettings& settings, BatchResult& out);
 
 // Nigam-Jennings coefficients for u'' + 2 zeta omega u' + omega^2 u = -a(t), a linear on [0, h]:
 // [u1; v1] = A [u0; v0] + B [a0; a1]. Exact; requires 0 <= zeta < 1, omega > 0, h > 0.

@@ -5,8 +5,8 @@
 #include <string>
 #include <string_view>
 
-#include "pounding/contact.hpp"
-#include "pounding/kernel.hpp"
+#include "pounding/contact/model.hpp"
+#include "pounding/physics/batch.hpp"
 
 namespace pounding {
 

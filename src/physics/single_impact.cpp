@@ -1,4 +1,4 @@
-#include "pounding/collide.hpp"
+#include "pounding/physics/single_impact.hpp"
 
 #include <cmath>
 #include <numbers>
