@@ -6,6 +6,9 @@
 // (a > b ? a : b, a < b ? a : b), which is also what the scalar kernel has always written out.
 #include <cmath>
 #include <experimental/simd>
+#if defined(__AVX512F__) || defined(__FMA__)
+#include <immintrin.h>
+#endif
 
 #ifndef POUNDING_HD
 #define POUNDING_HD  // __host__ __device__ under a CUDA backend
@@ -51,7 +54,26 @@ POUNDING_INLINE simd::V abs(const simd::V& a) { return simd::stdx::abs(a); }
 // a * b + c rounded once: pins the contraction where a sum of two products would let the compiler pick
 // which product to fuse (its pick differs between lane types and inlining contexts)
 POUNDING_INLINE double fma(double a, double b, double c) { return std::fma(a, b, c); }
-POUNDING_INLINE simd::V fma(const simd::V& a, const simd::V& b, const simd::V& c) { return simd::stdx::fma(a, b, c); }
+// libstdc++ 12's stdx::fma is a per-element fallback (8 scalar fmas for a 512-bit chunk, measured 4.5 % on
+// central difference + Jankowski); where the vector unit has FMA, one vector instruction gives the same bits.
+POUNDING_INLINE simd::V fma(const simd::V& a, const simd::V& b, const simd::V& c) {
+  alignas(64) double x[8], y[8], z[8];
+  a.copy_to(x, simd::stdx::element_aligned), b.copy_to(y, simd::stdx::element_aligned);
+  c.copy_to(z, simd::stdx::element_aligned);
+#if defined(__AVX512F__)
+  if constexpr (simd::W == 8) {
+    _mm512_store_pd(x, _mm512_fmadd_pd(_mm512_load_pd(x), _mm512_load_pd(y), _mm512_load_pd(z)));
+    return simd::V(x, simd::stdx::element_aligned);
+  }
+#endif
+#if defined(__FMA__)
+  if constexpr (simd::W == 4) {
+    _mm256_store_pd(x, _mm256_fmadd_pd(_mm256_load_pd(x), _mm256_load_pd(y), _mm256_load_pd(z)));
+    return simd::V(x, simd::stdx::element_aligned);
+  }
+#endif
+  return simd::stdx::fma(a, b, c);  // no vector FMA unit: libstdc++'s exact per-element fallback
+}
 POUNDING_INLINE bool any(bool m) { return m; }
 POUNDING_INLINE bool any(const simd::M& m) { return simd::stdx::any_of(m); }
 POUNDING_INLINE bool all(bool m) { return m; }
