@@ -24,21 +24,12 @@ Schedule make_schedule(const GroundMotion& motion, int substeps) {
   return s;
 }
 
-void fill_lane_common(kernel::Tile& T, int i, const PairParams& p, double v0_min, Stepper stepper, double h) {
-  using kernel::elastic_qy;
+void fill_lane_common(kernel::Tile& T, int i, const PairParams& p, double v0_min) {
   T.m1[i] = p.s1.m, T.m2[i] = p.s2.m, T.im1[i] = 1.0 / p.s1.m, T.im2[i] = 1.0 / p.s2.m;
   T.k1[i] = p.s1.k, T.k2[i] = p.s2.k, T.c1[i] = p.s1.c, T.c2[i] = p.s2.c;
-  T.ak1[i] = p.s1.alpha * p.s1.k, T.ak2[i] = p.s2.alpha * p.s2.k;
-  T.qy1[i] = std::isfinite(p.s1.fy) ? (1.0 - p.s1.alpha) * p.s1.fy : elastic_qy;
-  T.qy2[i] = std::isfinite(p.s2.fy) ? (1.0 - p.s2.alpha) * p.s2.fy : elastic_qy;
-  T.kp1[i] = p.s1.k > 0 ? (1.0 - p.s1.alpha) * p.s1.k : 1.0;
-  T.kp2[i] = p.s2.k > 0 ? (1.0 - p.s2.alpha) * p.s2.k : 1.0;
   T.gap[i] = p.gap, T.kc[i] = p.kc, T.e[i] = p.e;
   T.meff[i] = p.s1.m * p.s2.m / (p.s1.m + p.s2.m);
   T.u1[i] = p.u1, T.v1[i] = p.v1, T.u2[i] = p.u2, T.v2[i] = p.v2;
-  // initial state: springs at their elastic force
-  T.fs1[i] = std::clamp(p.s1.k * p.u1, T.ak1[i] * p.u1 - T.qy1[i], T.ak1[i] * p.u1 + T.qy1[i]);
-  T.fs2[i] = std::clamp(p.s2.k * p.u2, T.ak2[i] * p.u2 - T.qy2[i], T.ak2[i] * p.u2 + T.qy2[i]);
   const double d0 = p.u1 - p.u2 - p.gap, dd0 = p.v1 - p.v2;
   T.iv0[i] = 1.0 / std::max(dd0, v0_min);
   T.dprev[i] = d0;
@@ -47,15 +38,14 @@ void fill_lane_common(kernel::Tile& T, int i, const PairParams& p, double v0_min
   T.nimp[i] = d0 > 0.0 ? 1.0 : 0.0, T.nclamp[i] = 0.0, T.ppen[i] = d0;
   T.Wc[i] = 0.0, T.tcon[i] = 0.0, T.bad[i] = 0.0;
   T.Ein[i] = 0.0, T.Evis[i] = 0.0, T.Ehys[i] = 0.0, T.Dimp[i] = 0.0;
-  if (stepper != Stepper::nigam_jennings) return;
-  for (int s = 0; s < 2; ++s) {
-    const Structure& st = s == 0 ? p.s1 : p.s2;
-    const double w = std::sqrt(st.k / st.m), z = st.c / (2.0 * std::sqrt(st.k * st.m));
-    const NigamJennings c = nigam_jennings(w, z, h);
-    double(*dst)[kernel::tile_width] = s == 0 ? T.nj1 : T.nj2;
-    const double vals[8] = {c.a11, c.a12, c.a21, c.a22, c.b11, c.b12, c.b21, c.b22};
-    for (int q = 0; q < 8; ++q) dst[q][i] = vals[q];
-  }
+}
+
+void fill_lane_nj(kernel::Tile& T, int body, int i, const Structure& st, double k_lin, double h) {
+  const double w = std::sqrt(k_lin / st.m), z = st.c / (2.0 * std::sqrt(k_lin * st.m));
+  const NigamJennings c = nigam_jennings(w, z, h);
+  double(*dst)[kernel::tile_width] = body == 0 ? T.nj1 : T.nj2;
+  const double vals[8] = {c.a11, c.a12, c.a21, c.a22, c.b11, c.b12, c.b21, c.b22};
+  for (int q = 0; q < 8; ++q) dst[q][i] = vals[q];
 }
 
 void fill_lane_initial_force(kernel::Tile& T, int i, const PairParams& p, double ag0) {
@@ -65,7 +55,8 @@ void fill_lane_initial_force(kernel::Tile& T, int i, const PairParams& p, double
   T.pa1[i] = std::abs(T.a1[i] + ag0), T.pa2[i] = std::abs(T.a2[i] + ag0);
 }
 
-void collect_lane(const kernel::Tile& T, int i, std::size_t L, double stored, bool impulsive, BatchResult& out) {
+void collect_lane(const kernel::Tile& T, int i, std::size_t L, double stored, double strain, bool impulsive,
+                  BatchResult& out) {
   const double nan = std::numeric_limits<double>::quiet_NaN();
   const bool bad = T.bad[i] > 0.0;
   out.status[L] = static_cast<std::uint8_t>(T.bad[i] >= 2.0 ? LaneStatus::non_finite
@@ -90,8 +81,7 @@ void collect_lane(const kernel::Tile& T, int i, std::size_t L, double stored, bo
   out.contact_energy[L] = val(T.Wc[i] - stored + T.Dimp[i]);
   out.e_input[L] = val(T.Ein[i]);
   out.e_kinetic[L] = val(0.5 * T.m1[i] * T.v1[i] * T.v1[i] + 0.5 * T.m2[i] * T.v2[i] * T.v2[i]);
-  out.e_strain[L] = val(model::BilinearKinematic::strain_energy(T.k1[i], T.ak1[i], T.u1[i], T.fs1[i]) +
-                        model::BilinearKinematic::strain_energy(T.k2[i], T.ak2[i], T.u2[i], T.fs2[i]));
+  out.e_strain[L] = val(strain);
   out.e_viscous[L] = val(T.Evis[i]);
   out.e_hysteretic[L] = val(T.Ehys[i]);
 }

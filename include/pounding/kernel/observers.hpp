@@ -76,7 +76,13 @@ template <class T> struct Energy {
   // products fuses its second product, the outer update fuses hh): the same bits at both lane types, and
   // CD's digests unchanged (the scalar steppers had fused the first products and not hh).
   POUNDING_INLINE void on_step(const Body& b1, const Body& b2, double ag0, double ag1, T hh) {
-    Ehys += b1.qy * lane::abs(b1.excess) / b1.kp + b2.qy * lane::abs(b2.excess) / b2.kp;
+    on_step(b1.qy * lane::abs(b1.excess) / b1.kp + b2.qy * lane::abs(b2.excess) / b2.kp, {b1.m, b1.c, b1.vo, b1.vn},
+            {b2.m, b2.c, b2.vo, b2.vn}, ag0, ag1, hh);
+  }
+  // The same with the structures' hysteretic increment of the step already summed (model::StructureModel).
+  struct Motion { T m, c, vo, vn; };
+  POUNDING_INLINE void on_step(T dhys, const Motion& b1, const Motion& b2, double ag0, double ag1, T hh) {
+    Ehys += dhys;
     const T g0(ag0), g1(ag1);
     const T in1 = lane::fma(g1, b1.vn, g0 * b1.vo), in2 = lane::fma(g1, b2.vn, g0 * b2.vo);
     Ein = lane::fma(-hh, lane::fma(b2.m, in2, b1.m * in1), Ein);

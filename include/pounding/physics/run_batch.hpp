@@ -2,7 +2,8 @@
 // A batch through the kernel with the law as a type (architecture.md 2.4): tiles of lanes are filled from
 // the batch, run by the stepper chosen in the settings and reduced into a BatchResult. No validation here
 // (physics/validate.hpp; pounding::run_batch validates and throws InputError). A law outside the registry
-// runs with run_batch_t<Law> after including physics/tile_runner_impl.hpp (tests/contact/test_extension_law.cpp).
+// runs with run_batch_t<Law> after including physics/tile_runner_impl.hpp (tests/contact/test_extension_law.cpp);
+// a structure model other than model::Registered with run_batch_t<Law, Model> (tests/model/test_extension_model.cpp).
 #include <algorithm>
 #include <bit>
 #include <cstdint>
@@ -25,12 +26,29 @@ struct Schedule {
 };
 Schedule make_schedule(const GroundMotion& motion, int substeps);
 
-// The law-independent part of lane i's tile entries (structures, initial state, observers at rest).
-void fill_lane_common(kernel::Tile& T, int i, const PairParams& p, double v0_min, Stepper stepper, double h);
+// The law- and model-independent part of lane i's tile entries (masses, damping, initial state, observers at rest).
+void fill_lane_common(kernel::Tile& T, int i, const PairParams& p, double v0_min);
+// Nigam-Jennings' coefficients of body `body` of lane i for the linear part (m, k_lin, c).
+void fill_lane_nj(kernel::Tile& T, int body, int i, const Structure& s, double k_lin, double h);
+
+// The structure model's part: its parameters in the tile, the initial restoring forces, the NJ coefficients.
+template <class Model>
+void fill_lane_model(kernel::Tile& T, int i, const PairParams& p, Stepper stepper, double h) {
+  const auto p1 = Model::params(p.s1), p2 = Model::params(p.s2);
+  Model::store(T, 0, i, p1);
+  Model::store(T, 1, i, p2);
+  T.fs1[i] = Model::initial_force(p1, p.u1);
+  T.fs2[i] = Model::initial_force(p2, p.u2);
+  if (stepper != Stepper::nigam_jennings) return;
+  fill_lane_nj(T, 0, i, p.s1, Model::template linear_stiffness<double>(p1), h);
+  fill_lane_nj(T, 1, i, p.s2, Model::template linear_stiffness<double>(p2), h);
+}
 // Accelerations and observers that depend on the initial contact force T.F[i].
 void fill_lane_initial_force(kernel::Tile& T, int i, const PairParams& p, double ag0);
-// Lane i's reductions into out[L]; `stored`: contact energy stored at the end; impulsive: no peak force.
-void collect_lane(const kernel::Tile& T, int i, std::size_t L, double stored, bool impulsive, BatchResult& out);
+// Lane i's reductions into out[L]; `stored`: contact energy stored at the end; `strain`: the structures'
+// recoverable energy at the end; impulsive: no peak force.
+void collect_lane(const kernel::Tile& T, int i, std::size_t L, double stored, double strain, bool impulsive,
+                  BatchResult& out);
 
 // The law's damping constant of each lane. For a law whose constant follows from e alone
 // (contact::DampingFromRestitution: Hertzdamp's xibar, an ODE solve when calibrated) each distinct e is
@@ -53,10 +71,11 @@ template <class Law> class DampingTable {
   std::unordered_map<std::uint64_t, double> seen_;
 };
 
-template <class Law>
+template <class Law, class Model>
 void fill_lane(kernel::Tile& T, int i, const PairParams& p, const ContactModel& cm, Stepper stepper, const Schedule& s,
                DampingTable<Law>& damping) {
-  fill_lane_common(T, i, p, cm.v0_min, stepper, s.h);
+  fill_lane_common(T, i, p, cm.v0_min);
+  fill_lane_model<Model>(T, i, p, stepper, s.h);
   T.cd[i] = damping(p.kc, p.e, T.meff[i]);
   // the initial contact force from the initial penetration (std::pow for the Hertz family)
   const double d0 = p.u1 - p.u2 - p.gap, dd0 = p.v1 - p.v2;
@@ -68,13 +87,15 @@ void fill_lane(kernel::Tile& T, int i, const PairParams& p, const ContactModel& 
   fill_lane_initial_force(T, i, p, s.ag[0]);
 }
 
-template <class Law>
+template <class Law, class Model>
 void collect(const kernel::Tile& T, std::size_t base, const ContactModel& cm, BatchResult& out) {
   const double n_exp = cm.n;
   for (int i = 0; i < T.n; ++i) {
     const double dp = std::max(T.u1[i] - T.u2[i] - T.gap[i], 0.0);
+    const double strain = Model::strain_energy(Model::template load<double>(T, 0, i), T.u1[i], T.fs1[i]) +
+                          Model::strain_energy(Model::template load<double>(T, 1, i), T.u2[i], T.fs2[i]);
     collect_lane(T, i, base + static_cast<std::size_t>(i), Law::template stored_energy<double>(dp, T.kc[i], n_exp),
-                 Law::traits.impulsive, out);
+                 strain, Law::traits.impulsive, out);
   }
 }
 
@@ -82,7 +103,7 @@ void collect(const kernel::Tile& T, std::size_t base, const ContactModel& cm, Ba
 kernel::Context tile_context(const kernel::Context& C, const KernelSettings& ks, const kernel::Tile& T,
                              std::size_t base, double ag0);
 
-template <class Law>
+template <class Law, class Model = model::Registered>
 void run_batch_t(const PairBatch& batch, const ContactModel& cm, const GroundMotion& motion, const KernelSettings& ks,
                  BatchResult& out) {
   const std::size_t width = batch.width();
@@ -102,10 +123,10 @@ void run_batch_t(const PairBatch& batch, const ContactModel& cm, const GroundMot
     // lanes past n up to the SIMD chunk boundary are padded with copies of the tile's first lane
     T.np = std::min(kernel::tile_width, (T.n + simd::W - 1) / simd::W * simd::W);
     for (int i = 0; i < T.np; ++i)
-      fill_lane<Law>(T, i, batch.get(base + static_cast<std::size_t>(i < T.n ? i : 0)), cm, ks.stepper, s, damping);
+      fill_lane<Law, Model>(T, i, batch.get(base + static_cast<std::size_t>(i < T.n ? i : 0)), cm, ks.stepper, s, damping);
     const kernel::Context Ct = tile_context(C, ks, T, base, s.ag[0]);
-    kernel::visit_stepper(ks.stepper, [&]<class S>() { run_tile<S, Law>(T, Ct, cm); });
-    collect<Law>(T, base, cm, out);
+    kernel::visit_stepper(ks.stepper, [&]<class S>() { run_tile<S, Law, Model>(T, Ct, cm); });
+    collect<Law, Model>(T, base, cm, out);
   }
 }
 

@@ -4,14 +4,14 @@
 
 namespace pounding::physics {
 
-template <class Stepper, class Law>
+template <class Stepper, class Law, class Model>
 void run_tile(kernel::Tile& T, const kernel::Context& C, const ContactModel& cm) {
   const bool energy = C.settings->energy;
   auto go = [&](auto exp) {
     if (energy)
-      Stepper::template run<Law, decltype(exp), true>(T, C, exp);
+      Stepper::template run<Law, decltype(exp), true, Model>(T, C, exp);
     else
-      Stepper::template run<Law, decltype(exp), false>(T, C, exp);
+      Stepper::template run<Law, decltype(exp), false, Model>(T, C, exp);
   };
   if constexpr (Law::traits.uses_exponent) {
     if (cm.n == 1.5)

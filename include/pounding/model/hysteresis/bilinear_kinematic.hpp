@@ -1,24 +1,59 @@
 #pragma once
 // Bilinear kinematic hardening, closed-form return (branch-free): the trial force fs + k du is clamped into
 // the band alpha k u +/- (1 - alpha) fy (issue #2; exact for a monotone increment). Written over the lane type.
+// Its per-lane parameters live in the tile's four slots of each body (k, ak, qy, kp; kernel/tile.hpp).
+#include <algorithm>
+#include <cmath>
+
 #include "pounding/kernel/lane.hpp"
+#include "pounding/kernel/tile.hpp"
 
 namespace pounding::model {
 
 struct BilinearKinematic {
   // Per-lane constants: k, alpha k, (1 - alpha) fy (qy), (1 - alpha) k (kp, 1 when k = 0).
   template <class T> struct Params { T k, ak, qy, kp; };
+
+  static Params<double> params(const Structure& s) {
+    return {s.k, s.alpha * s.k, std::isfinite(s.fy) ? (1.0 - s.alpha) * s.fy : kernel::elastic_qy,
+            s.k > 0 ? (1.0 - s.alpha) * s.k : 1.0};
+  }
+  static void store(kernel::Tile& t, int body, int i, const Params<double>& p) {
+    (body == 0 ? t.k1 : t.k2)[i] = p.k, (body == 0 ? t.ak1 : t.ak2)[i] = p.ak;
+    (body == 0 ? t.qy1 : t.qy2)[i] = p.qy, (body == 0 ? t.kp1 : t.kp2)[i] = p.kp;
+  }
+  template <class T> POUNDING_INLINE static Params<T> load(const kernel::Tile& t, int body, int i) {
+    using lane::load;
+    return body == 0 ? Params<T>{load<T>(t.k1 + i), load<T>(t.ak1 + i), load<T>(t.qy1 + i), load<T>(t.kp1 + i)}
+                     : Params<T>{load<T>(t.k2 + i), load<T>(t.ak2 + i), load<T>(t.qy2 + i), load<T>(t.kp2 + i)};
+  }
+  // the spring at its elastic force from a displacement u0 at rest, returned into the band
+  static double initial_force(const Params<double>& p, double u0) {
+    return std::clamp(p.k * u0, p.ak * u0 - p.qy, p.ak * u0 + p.qy);
+  }
+
   template <class T> POUNDING_INLINE static T trial(T fs_old, T k, T du) { return fs_old + k * du; }
   template <class T> POUNDING_INLINE static T returned(T trial, T ak_u_new, T qy) {
     return lane::min(lane::max(trial, ak_u_new - qy), ak_u_new + qy);
   }
-  template <class T> POUNDING_INLINE static T restoring(T fs_old, T k, T du, T ak_u_new, T qy) {
-    return returned(trial(fs_old, k, du), ak_u_new, qy);
+  // The force after an increment du from the committed force fs_old, at the new displacement u_new.
+  template <class T> POUNDING_INLINE static T restoring(const Params<T>& p, T fs_old, T du, T u_new) {
+    return returned(trial(fs_old, p.k, du), p.ak * u_new, p.qy);
+  }
+  // Newmark's tangent: k while the return left the trial force alone (elastic), alpha k on the band.
+  template <class T> POUNDING_INLINE static T tangent(const Params<T>& p, T fs_old, T du, T fs_new) {
+    return lane::select(trial(fs_old, p.k, du) == fs_new, p.k, p.ak);
+  }
+  // Plastic dissipation of the increment, exact: qy |trial - returned| / kp.
+  template <class T> POUNDING_INLINE static T dissipated(const Params<T>& p, T fs_old, T du, T fs_new) {
+    return p.qy * lane::abs(trial(fs_old, p.k, du) - fs_new) / p.kp;
   }
   // Recoverable energy: alpha k u^2 / 2 + q^2 / (2 (k - alpha k)), q = fs - alpha k u the elasto-plastic part.
-  static double strain_energy(double k, double ak, double u, double fs) {
-    const double q = fs - ak * u, kp = k - ak;
-    return 0.5 * ak * u * u + (kp > 0 ? 0.5 * q * q / kp : 0.0);
+  // The two contractions are pinned to the ones GCC picked when this was inlined into the out-of-line
+  // collect_lane (the stored digests' e_strain); left free, they follow the inlining context.
+  static double strain_energy(const Params<double>& p, double u, double fs) {
+    const double q = std::fma(-p.ak, u, fs), kp = p.k - p.ak;
+    return std::fma(0.5 * p.ak * u, u, kp > 0 ? 0.5 * q * q / kp : 0.0);
   }
 };
 

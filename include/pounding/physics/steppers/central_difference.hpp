@@ -10,29 +10,31 @@
 #include "pounding/contact/stability.hpp"
 #include "pounding/kernel/guard.hpp"
 #include "pounding/kernel/observers.hpp"
-#include "pounding/model/hysteresis/bilinear_kinematic.hpp"
+#include "pounding/model/sdof.hpp"
 
 namespace pounding::kernel {
 
 namespace cd_detail {
 using simd::V;
-using Hyst = model::BilinearKinematic;
 
-// One SIMD chunk: constants, state and accumulators, loaded once and kept in registers.
-struct Chunk {
-  V m1, m2, im1, im2, k1, k2, c1, c2, ak1, ak2, qy1, qy2, kp1, kp2, gap, kc, cd, e, meff, msum, h2m;
+// One SIMD chunk: constants (the structure model's parameters p1, p2), state and accumulators, loaded once
+// and kept in registers.
+template <class M> struct Chunk {
+  using P = typename M::template Params<V>;
+  using S = typename M::template State<V>;
+  V m1, m2, im1, im2, c1, c2, gap, kc, cd, e, meff, msum, h2m;
+  P p1, p2;
   V u1, v1, a1, fs1, u2, v2, a2, fs2, F, iv0, dprev, Wc, tcon, bad, Dimp;
   Peaks<V> peaks;
   Impacts<V> imp;
   Energy<V> en;
 };
-[[gnu::always_inline]] inline Chunk load(const Tile& T, int b, double h) {
+template <class M> [[gnu::always_inline]] inline Chunk<M> load(const Tile& T, int b, double h) {
   using lane::load;
-  Chunk c;
+  Chunk<M> c;
   c.m1 = load<V>(T.m1 + b), c.m2 = load<V>(T.m2 + b), c.im1 = load<V>(T.im1 + b), c.im2 = load<V>(T.im2 + b);
-  c.k1 = load<V>(T.k1 + b), c.k2 = load<V>(T.k2 + b), c.c1 = load<V>(T.c1 + b), c.c2 = load<V>(T.c2 + b);
-  c.ak1 = load<V>(T.ak1 + b), c.ak2 = load<V>(T.ak2 + b), c.qy1 = load<V>(T.qy1 + b), c.qy2 = load<V>(T.qy2 + b);
-  c.kp1 = load<V>(T.kp1 + b), c.kp2 = load<V>(T.kp2 + b);
+  c.c1 = load<V>(T.c1 + b), c.c2 = load<V>(T.c2 + b);
+  c.p1 = M::template load<V>(T, 0, b), c.p2 = M::template load<V>(T, 1, b);
   c.gap = load<V>(T.gap + b), c.kc = load<V>(T.kc + b), c.cd = load<V>(T.cd + b), c.e = load<V>(T.e + b);
   c.meff = load<V>(T.meff + b), c.msum = c.m1 + c.m2, c.h2m = V(h) * V(h) / c.meff;
   c.u1 = load<V>(T.u1 + b), c.v1 = load<V>(T.v1 + b), c.a1 = load<V>(T.a1 + b), c.fs1 = load<V>(T.fs1 + b);
@@ -42,7 +44,7 @@ struct Chunk {
   c.peaks = Peaks<V>::load(T, b), c.imp = Impacts<V>::load(T, b), c.en = Energy<V>::load(T, b);
   return c;
 }
-[[gnu::always_inline]] inline void store(const Chunk& c, Tile& T, int b) {
+template <class M> [[gnu::always_inline]] inline void store(const Chunk<M>& c, Tile& T, int b) {
   using lane::store;
   store(c.u1, T.u1 + b), store(c.v1, T.v1 + b), store(c.a1, T.a1 + b), store(c.fs1, T.fs1 + b);
   store(c.u2, T.u2 + b), store(c.v2, T.v2 + b), store(c.a2, T.a2 + b), store(c.fs2, T.fs2 + b);
@@ -57,7 +59,7 @@ struct Pred {
 };
 
 // muthukumar eq. 2 at the located closing instant (contact::Stereomechanical::exchange).
-[[gnu::always_inline]] inline void impulsive(Chunk& c, Pred& p, V t, V vh) {
+template <class C> [[gnu::always_inline]] inline void impulsive(C& c, Pred& p, V t, V vh) {
   const V zero(0.0);
   const V d = p.nu1 - p.nu2 - c.gap, closing = p.vp1 - p.vp2;
   const simd::M hit = (d > zero) && ((closing > zero) || !(c.dprev > zero));
@@ -73,8 +75,8 @@ struct Pred {
 }
 
 // The contact force at n+1 (laws with a force element), the Hertzdamp latch and the stability guard.
-template <class Law, class Exp>
-[[gnu::always_inline]] inline V contact_force(Chunk& c, const Pred& p, V d, V& onset, V& clamp, bool& any_bad,
+template <class Law, class Exp, class C>
+[[gnu::always_inline]] inline V contact_force(C& c, const Pred& p, V d, V& onset, V& clamp, bool& any_bad,
                                               double v0_min, Exp n) {
   const V zero(0.0), one(1.0);
   const V dd = p.vp1 - p.vp2;
@@ -107,13 +109,14 @@ template <class Law, class Exp>
 struct CentralDifference {
   static constexpr std::string_view name = "central-difference";
   static constexpr double contact_limit2 = limit2_central_difference;
-  template <class Law, class Exp, bool WithEnergy> static void run(Tile& T, const Context& C, Exp n);
+  template <class Law, class Exp, bool WithEnergy, class Model = model::Registered>
+  static void run(Tile& T, const Context& C, Exp n);
 };
 
 namespace cd_detail {
 
-template <class Law, class Exp, bool WithEnergy>
-[[gnu::always_inline]] inline void step(Chunk& c, const Context& C, long stepi, bool& any_bad, bool& force_prev, Exp n) {
+template <class Law, class Exp, bool WithEnergy, class M>
+[[gnu::always_inline]] inline void step(Chunk<M>& c, const Context& C, long stepi, bool& any_bad, bool& force_prev, Exp n) {
   const double h = C.h, hh = 0.5 * h, ag0 = C.ag[stepi], ag1 = C.ag[stepi + 1];
   const V zero(0.0), vh(h), t(static_cast<double>(stepi + 1) * h);
   Pred p;
@@ -123,8 +126,9 @@ template <class Law, class Exp, bool WithEnergy>
   p.nu1 = c.u1 + p.du1, p.nu2 = c.u2 + p.du2;
   p.vp1 = p.vh1 + hh * c.a1, p.vp2 = p.vh2 + hh * c.a2;
   if constexpr (Law::traits.impulsive) impulsive(c, p, t, vh);
-  const V tr1 = Hyst::trial(c.fs1, c.k1, p.du1), tr2 = Hyst::trial(c.fs2, c.k2, p.du2);
-  V nfs1 = Hyst::returned(tr1, c.ak1 * p.nu1, c.qy1), nfs2 = Hyst::returned(tr2, c.ak2 * p.nu2, c.qy2);
+  using S = typename Chunk<M>::S;
+  const S s1{c.u1, c.fs1}, s2{c.u2, c.fs2};
+  V nfs1 = M::template restoring<V>(c.p1, s1, p.nu1, p.du1), nfs2 = M::template restoring<V>(c.p2, s2, p.nu2, p.du2);
   const V d = p.nu1 - p.nu2 - c.gap;
   const simd::M touching = d > zero;
   const bool any_touch = lane::any(touching);
@@ -135,8 +139,9 @@ template <class Law, class Exp, bool WithEnergy>
   V na2 = -ag1 - (c.c2 * p.vp2 + nfs2 - nF) * c.im2;
   V nv1 = p.vh1 + hh * na1, nv2 = p.vh2 + hh * na2;
   if constexpr (WithEnergy)
-    c.en.on_step({c.m1, c.c1, c.qy1, c.kp1, tr1 - nfs1, p.v1o, nv1}, {c.m2, c.c2, c.qy2, c.kp2, tr2 - nfs2, p.v2o, nv2},
-                 ag0, ag1, V(hh));
+    c.en.on_step(M::template hysteretic_increment<V>(c.p1, s1, p.du1, nfs1) +
+                     M::template hysteretic_increment<V>(c.p2, s2, p.du2, nfs2),
+                 {c.m1, c.c1, p.v1o, nv1}, {c.m2, c.c2, p.v2o, nv2}, ag0, ag1, V(hh));
   if constexpr (Law::traits.has_force || Law::traits.impulsive) {
     if (any_touch || force_prev) {
       c.Wc += contact_work(c.F, nF, p.du1 - p.du2);
@@ -159,15 +164,16 @@ template <class Law, class Exp, bool WithEnergy>
 
 }  // namespace cd_detail
 
-template <class Law, class Exp, bool WithEnergy>
+template <class Law, class Exp, bool WithEnergy, class Model>
 void CentralDifference::run(Tile& T, const Context& C, Exp n) {
+  static_assert(model::StructureModel<Model> && Model::dofs == 1, "the pair steppers run SDOF models");
   using cd_detail::V;
   for (int base = 0; base < T.n; base += simd::W) {
-    cd_detail::Chunk c = cd_detail::load(T, base, C.h);
+    cd_detail::Chunk<Model> c = cd_detail::load<Model>(T, base, C.h);
     const int rec_j = (C.rec && C.rec_lane >= base && C.rec_lane < base + simd::W) ? C.rec_lane - base : -1;
     bool any_bad = lane::any(c.bad > V(0.0)), force_prev = lane::any(c.F > V(0.0));
     for (long step = 0; step < C.nsteps; ++step) {
-      cd_detail::step<Law, Exp, WithEnergy>(c, C, step, any_bad, force_prev, n);
+      cd_detail::step<Law, Exp, WithEnergy, Model>(c, C, step, any_bad, force_prev, n);
       if (rec_j >= 0) {
         const int j = rec_j;
         record(C.rec, {static_cast<double>(step + 1) * C.h, c.u1[j], c.u2[j], c.v1[j], c.v2[j], c.a1[j], c.a2[j],

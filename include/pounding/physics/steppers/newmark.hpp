@@ -18,7 +18,8 @@ namespace pounding::kernel {
 
 struct Newmark {
   static constexpr std::string_view name = "newmark";
-  template <class Law, class Exp, bool WithEnergy> static void run(Tile& T, const Context& C, Exp n);
+  template <class Law, class Exp, bool WithEnergy, class Model = model::Registered>
+  static void run(Tile& T, const Context& C, Exp n);
 };
 
 namespace newmark_detail {
@@ -34,7 +35,7 @@ inline K constants(const Context& C) {
 }
 
 // One Newton iteration of lane i at the iterate (x1, x2); returns true when the lane is converged.
-template <class Law, class Exp>
+template <class Law, class M, class Exp>
 [[gnu::always_inline]] inline bool newton_update(Tile& T, int i, const K& C, double ag1, Exp n) {
   const double h = C.h, c4 = C.c4, c2 = C.c2;
   const double u1 = T.x1[i], u2 = T.x2[i];
@@ -42,10 +43,12 @@ template <class Law, class Exp>
   const double a2 = c4 * (u2 - T.u2[i]) - 4.0 / h * T.v2[i] - T.a2[i];
   const double v1 = c2 * (u1 - T.u1[i]) - T.v1[i];
   const double v2 = c2 * (u2 - T.u2[i]) - T.v2[i];
-  const double fs1 = scalar::spring1(T, i, T.fs1[i], T.u1[i], u1), fs2 = scalar::spring2(T, i, T.fs2[i], T.u2[i], u2);
-  const double tr1 = T.fs1[i] + T.k1[i] * (u1 - T.u1[i]), tr2 = T.fs2[i] + T.k2[i] * (u2 - T.u2[i]);
-  const double kt1 = tr1 == fs1 ? T.k1[i] : T.ak1[i];
-  const double kt2 = tr2 == fs2 ? T.k2[i] : T.ak2[i];
+  const auto p1 = M::template load<double>(T, 0, i), p2 = M::template load<double>(T, 1, i);
+  const typename M::template State<double> s1{T.u1[i], T.fs1[i]}, s2{T.u2[i], T.fs2[i]};
+  const double fs1 = M::template restoring<double>(p1, s1, u1, u1 - T.u1[i]);
+  const double fs2 = M::template restoring<double>(p2, s2, u2, u2 - T.u2[i]);
+  const double kt1 = M::template tangent<double>(p1, s1, u1, u1 - T.u1[i], fs1);
+  const double kt2 = M::template tangent<double>(p2, s2, u2, u2 - T.u2[i], fs2);
   const double d = u1 - u2 - T.gap[i], dd = v1 - v2;
   contact::Tangent<double> tg{0.0, 0.0, 0.0};
   if constexpr (Law::traits.has_force) {
@@ -98,7 +101,7 @@ template <class Law, class Exp>
   return switched;
 }
 
-template <class Law, class Exp> void solve(Tile& T, const K C, double ag1, Exp n) {
+template <class Law, class M, class Exp> void solve(Tile& T, const K C, double ag1, Exp n) {
   const double h = C.h;
   const int np = T.np;
   for (int i = 0; i < np; ++i) {  // predictor: constant acceleration
@@ -112,7 +115,7 @@ template <class Law, class Exp> void solve(Tile& T, const K C, double ag1, Exp n
   for (int pass = 0; pass < 4; ++pass) {
     for (int it = 0; it < C.maxit; ++it) {
       double open = 0.0;
-      for (int i = 0; i < np; ++i) open += newton_update<Law>(T, i, C, ag1, n) ? 0.0 : 1.0;
+      for (int i = 0; i < np; ++i) open += newton_update<Law, M>(T, i, C, ag1, n) ? 0.0 : 1.0;
       if (open == 0.0) break;
     }
     if constexpr (!Law::traits.has_force) break;
@@ -121,7 +124,7 @@ template <class Law, class Exp> void solve(Tile& T, const K C, double ag1, Exp n
 }
 
 // Commits lane i's converged iterate, applies the contact, the guard and the observers.
-template <class Law, class Exp, bool WithEnergy>
+template <class Law, class M, class Exp, bool WithEnergy>
 [[gnu::always_inline]] inline void commit(Tile& T, int i, const K& C, double t, double ag0, double ag1, Exp n) {
   const double h = C.h, c4 = C.c4, c2 = C.c2;
   const scalar::Old o = scalar::old_state(T, i);
@@ -132,8 +135,8 @@ template <class Law, class Exp, bool WithEnergy>
   const double a1 = std::fma(c4, u1 - o.u1, -(4.0 / h * o.v1)) - T.a1[i];
   const double a2 = std::fma(c4, u2 - o.u2, -(4.0 / h * o.v2)) - T.a2[i];
   const double v1 = c2 * (u1 - o.u1) - o.v1, v2 = c2 * (u2 - o.u2) - o.v2;
-  T.fs1[i] = scalar::spring1(T, i, o.fs1, o.u1, u1);
-  T.fs2[i] = scalar::spring2(T, i, o.fs2, o.u2, u2);
+  T.fs1[i] = scalar::spring1<M>(T, i, o.fs1, o.u1, u1);
+  T.fs2[i] = scalar::spring2<M>(T, i, o.fs2, o.u2, u2);
   T.u1[i] = u1, T.u2[i] = u2, T.v1[i] = v1, T.v2[i] = v2, T.a1[i] = a1, T.a2[i] = a2;
   const double d_old = T.dprev[i];
   double d = u1 - u2 - T.gap[i];
@@ -155,21 +158,22 @@ template <class Law, class Exp, bool WithEnergy>
   T.tcon[i] += d > 0.0 ? h : 0.0;
   // a lane whose Newton iteration did not converge is marked diverged
   T.bad[i] = std::max(T.bad[i], (T.conv[i] > 0.0 && T.y2[i] > 0.0) ? 0.0 : 1.0);
-  scalar::energy_step<WithEnergy>(T, i, h, ag0, ag1, o);
+  scalar::energy_step<M, WithEnergy>(T, i, h, ag0, ag1, o);
   scalar::finish(T, i, t, ag1, clamp, onset, C.lim);
 }
 
 }  // namespace newmark_detail
 
-template <class Law, class Exp, bool WithEnergy>
+template <class Law, class Exp, bool WithEnergy, class Model>
 void Newmark::run(Tile& T, const Context& C, Exp n) {
+  static_assert(model::StructureModel<Model> && Model::dofs == 1, "the pair steppers run SDOF models");
   const newmark_detail::K k = newmark_detail::constants(C);
   for (long step = 0; step < C.nsteps; ++step) {
     const double ag0 = C.ag[step], ag1 = C.ag[step + 1];
     const double t = static_cast<double>(step + 1) * C.h;
-    newmark_detail::solve<Law>(T, k, ag1, n);
+    newmark_detail::solve<Law, Model>(T, k, ag1, n);
     const int np = T.np;
-    for (int i = 0; i < np; ++i) newmark_detail::commit<Law, Exp, WithEnergy>(T, i, k, t, ag0, ag1, n);
+    for (int i = 0; i < np; ++i) newmark_detail::commit<Law, Model, Exp, WithEnergy>(T, i, k, t, ag0, ag1, n);
     record_lane(C, T, t, ag1);
   }
 }

@@ -1,6 +1,6 @@
 #pragma once
-// Nigam-Jennings: each structure's linear part (m, k, c) is advanced with the exact recurrence for a
-// piecewise-linear load; the nonlinear remainder g = (fs - k u) + F (contact) enters as an extra load,
+// Nigam-Jennings: each structure's linear part (m, k, c; k the model's linear_stiffness) is advanced with the
+// exact recurrence for a piecewise-linear load; the nonlinear remainder g = (fs - k u) + F (contact) enters as an extra load,
 // held at g_n (predictor) and then linear from g_n to g(n+1) predicted (corrector). With an elastic
 // structure out of contact g = 0 and the step is exact to round-off. The coefficients (Tile::nj1, nj2)
 // come from nigam_jennings() (kernel.hpp).
@@ -15,7 +15,8 @@ struct NigamJennings {
   static constexpr std::string_view name = "nigam-jennings";
   static constexpr double contact_limit2 = limit2_nigam_jennings;
   static constexpr bool needs_coefficients = true;
-  template <class Law, class Exp, bool WithEnergy> static void run(Tile& T, const Context& C, Exp n);
+  template <class Law, class Exp, bool WithEnergy, class Model = model::Registered>
+  static void run(Tile& T, const Context& C, Exp n);
 };
 
 namespace nj_detail {
@@ -35,18 +36,20 @@ inline K constants(const Context& C) { return {C.h, C.v0_min, C.lim}; }
 
 // Predictor, then the corrector (again with contact when the step ends penetrating); returns the
 // corrector's contact force. `redone`: the step touched although it started out of contact.
-template <class Law, class Exp>
+template <class Law, class M, class Exp>
 [[gnu::always_inline]] inline double integrate(Tile& T, int i, const K& C, double ag0, double ag1,
                                                const scalar::Old& o, Exp n, bool& redone) {
   const double d_old = T.dprev[i];
   // load in acceleration units: u'' + 2 zeta w u' + w^2 u = -(ag + g/m)
-  const double p1o = ag0 + (o.fs1 - T.k1[i] * o.u1 + o.F) * T.im1[i];
-  const double p2o = ag0 + (o.fs2 - T.k2[i] * o.u2 - o.F) * T.im2[i];
+  const double kl1 = M::template linear_stiffness<double>(M::template load<double>(T, 0, i));
+  const double kl2 = M::template linear_stiffness<double>(M::template load<double>(T, 1, i));
+  const double p1o = ag0 + (o.fs1 - kl1 * o.u1 + o.F) * T.im1[i];
+  const double p2o = ag0 + (o.fs2 - kl2 * o.u2 - o.F) * T.im2[i];
   double u1p, v1p, u2p, v2p;
   advance(T.nj1, i, o.u1, o.v1, p1o, ag1 - ag0 + p1o, u1p, v1p);
   advance(T.nj2, i, o.u2, o.v2, p2o, ag1 - ag0 + p2o, u2p, v2p);
   // corrector with the remainder evaluated at the predicted end state
-  const double fs1p = scalar::spring1(T, i, o.fs1, o.u1, u1p), fs2p = scalar::spring2(T, i, o.fs2, o.u2, u2p);
+  const double fs1p = scalar::spring1<M>(T, i, o.fs1, o.u1, u1p), fs2p = scalar::spring2<M>(T, i, o.fs2, o.u2, u2p);
   double Fp = 0.0;
   auto correct = [&](bool with_contact) {
     Fp = 0.0;
@@ -58,8 +61,8 @@ template <class Law, class Exp>
         Fp = scalar::force<Law>(T, i, d, dd, iv0, n, clamp);
       }
     }
-    const double p1n = ag1 + (fs1p - T.k1[i] * u1p + Fp) * T.im1[i];
-    const double p2n = ag1 + (fs2p - T.k2[i] * u2p - Fp) * T.im2[i];
+    const double p1n = ag1 + (fs1p - kl1 * u1p + Fp) * T.im1[i];
+    const double p2n = ag1 + (fs2p - kl2 * u2p - Fp) * T.im2[i];
     advance(T.nj1, i, o.u1, o.v1, p1o, p1n, T.u1[i], T.v1[i]);
     advance(T.nj2, i, o.u2, o.v2, p2o, p2n, T.u2[i], T.v2[i]);
   };
@@ -71,17 +74,17 @@ template <class Law, class Exp>
   return Fp;
 }
 
-template <class Law, class Exp, bool WithEnergy>
+template <class Law, class M, class Exp, bool WithEnergy>
 [[gnu::always_inline]] inline void lane_step(Tile& T, int i, const K& C, double t, double ag0, double ag1, Exp n) {
   const double h = C.h;
   const scalar::Old o = scalar::old_state(T, i);
   const double d_old = T.dprev[i];
   bool redone = false;
-  const double corrector_force = integrate<Law>(T, i, C, ag0, ag1, o, n, redone);
+  const double corrector_force = integrate<Law, M>(T, i, C, ag0, ag1, o, n, redone);
   double onset = 0.0, F = 0.0, clamp = 0.0;
   if constexpr (Law::traits.impulsive) onset = scalar::impulsive(T, i, h, o.v1, o.v2, d_old);
-  T.fs1[i] = scalar::spring1(T, i, o.fs1, o.u1, T.u1[i]);
-  T.fs2[i] = scalar::spring2(T, i, o.fs2, o.u2, T.u2[i]);
+  T.fs1[i] = scalar::spring1<M>(T, i, o.fs1, o.u1, T.u1[i]);
+  T.fs2[i] = scalar::spring2<M>(T, i, o.fs2, o.u2, T.u2[i]);
   const double d = T.u1[i] - T.u2[i] - T.gap[i], dd = T.v1[i] - T.v2[i];
   if constexpr (Law::traits.has_force) {
     // redone: touched inside the step. One bool for both uses, with & and | (no short-circuit): tested
@@ -99,20 +102,21 @@ template <class Law, class Exp, bool WithEnergy>
   scalar::accelerations(T, i, ag1, F);
   T.dprev[i] = d;
   T.tcon[i] += d > 0.0 ? h : 0.0;
-  scalar::energy_step<WithEnergy>(T, i, h, ag0, ag1, o);
+  scalar::energy_step<M, WithEnergy>(T, i, h, ag0, ag1, o);
   scalar::finish(T, i, t, ag1, clamp, onset, C.lim);
 }
 
 }  // namespace nj_detail
 
-template <class Law, class Exp, bool WithEnergy>
+template <class Law, class Exp, bool WithEnergy, class Model>
 void NigamJennings::run(Tile& T, const Context& C, Exp n) {
+  static_assert(model::StructureModel<Model> && Model::dofs == 1, "the pair steppers run SDOF models");
   const nj_detail::K k = nj_detail::constants(C);
   for (long step = 0; step < C.nsteps; ++step) {
     const double ag0 = C.ag[step], ag1 = C.ag[step + 1];
     const double t = static_cast<double>(step + 1) * C.h;
     const int np = T.np;
-    for (int i = 0; i < np; ++i) nj_detail::lane_step<Law, Exp, WithEnergy>(T, i, k, t, ag0, ag1, n);
+    for (int i = 0; i < np; ++i) nj_detail::lane_step<Law, Model, Exp, WithEnergy>(T, i, k, t, ag0, ag1, n);
     record_lane(C, T, t, ag1);
   }
 }

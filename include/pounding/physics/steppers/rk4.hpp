@@ -14,7 +14,8 @@ namespace pounding::kernel {
 struct Rk4 {
   static constexpr std::string_view name = "rk4";
   static constexpr double contact_limit2 = limit2_rk4;
-  template <class Law, class Exp, bool WithEnergy> static void run(Tile& T, const Context& C, Exp n);
+  template <class Law, class Exp, bool WithEnergy, class Model = model::Registered>
+  static void run(Tile& T, const Context& C, Exp n);
 };
 
 namespace rk4_detail {
@@ -34,7 +35,7 @@ struct Y {
 
 // The system of one lane within one step: springs from the committed state, the contact in one of three
 // modes (0 held inactive; 1 active with the latched v0; 2 latch v0 at the first stage in contact).
-template <class Law, class Exp> struct Lane {
+template <class Law, class M, class Exp> struct Lane {
   const Tile& T;
   int i;
   double fs1o, fs2o, u1o, u2o, d_old, v0_min;
@@ -44,7 +45,7 @@ template <class Law, class Exp> struct Lane {
   double stage_fmax = 0.0;  // largest contact force met at a stage (a contact can start and end in a step)
 
   [[gnu::always_inline]] void deriv(const Y& y, double ag, double& a1, double& a2) {
-    const double fs1 = scalar::spring1(T, i, fs1o, u1o, y.u1), fs2 = scalar::spring2(T, i, fs2o, u2o, y.u2);
+    const double fs1 = scalar::spring1<M>(T, i, fs1o, u1o, y.u1), fs2 = scalar::spring2<M>(T, i, fs2o, u2o, y.u2);
     double F = 0.0, clamp = 0.0;
     if constexpr (Law::traits.has_force) {
       const double d = y.u1 - y.u2 - T.gap[i], dd = y.v1 - y.v2;
@@ -101,12 +102,12 @@ template <class Law, class Exp> struct Lane {
 };
 
 // One lane's step: the integration (with the redo or the located onset), then the commit.
-template <class Law, class Exp, bool WithEnergy>
+template <class Law, class M, class Exp, bool WithEnergy>
 [[gnu::always_inline]] inline void lane_step(Tile& T, int i, const K& C, double t, double ag0, double ag1, Exp n) {
   const double h = C.h;
   const scalar::Old o = scalar::old_state(T, i);
   const double d_old = T.dprev[i];
-  Lane<Law, Exp> L{T, i, o.fs1, o.fs2, o.u1, o.u2, d_old, C.v0_min, n};
+  Lane<Law, M, Exp> L{T, i, o.fs1, o.fs2, o.u1, o.u2, d_old, C.v0_min, n};
   L.iv0 = T.iv0[i];
   const Y yo{o.u1, o.v1, o.u2, o.v2};
   L.mode = d_old > 0.0 ? 2 : 0;
@@ -125,8 +126,8 @@ template <class Law, class Exp, bool WithEnergy>
   T.u1[i] = y.u1, T.v1[i] = y.v1, T.u2[i] = y.u2, T.v2[i] = y.v2;
   double onset = 0.0, clamp = 0.0, F = 0.0;
   if constexpr (Law::traits.impulsive) onset = scalar::impulsive(T, i, h, o.v1, o.v2, d_old);
-  T.fs1[i] = scalar::spring1(T, i, o.fs1, o.u1, T.u1[i]);
-  T.fs2[i] = scalar::spring2(T, i, o.fs2, o.u2, T.u2[i]);
+  T.fs1[i] = scalar::spring1<M>(T, i, o.fs1, o.u1, T.u1[i]);
+  T.fs2[i] = scalar::spring2<M>(T, i, o.fs2, o.u2, T.u2[i]);
   const double d = T.u1[i] - T.u2[i] - T.gap[i], dd = T.v1[i] - T.v2[i];
   if constexpr (Law::traits.has_force) {
     onset = ((d > 0.0 || redone) && !(d_old > 0.0)) ? 1.0 : 0.0;  // redone: touched inside the step
@@ -140,20 +141,21 @@ template <class Law, class Exp, bool WithEnergy>
   scalar::accelerations(T, i, ag1, F);
   T.dprev[i] = d;
   T.tcon[i] += d > 0.0 ? h : 0.0;
-  scalar::energy_step<WithEnergy>(T, i, h, ag0, ag1, o);
+  scalar::energy_step<M, WithEnergy>(T, i, h, ag0, ag1, o);
   scalar::finish(T, i, t, ag1, clamp, onset, C.lim);
 }
 
 }  // namespace rk4_detail
 
-template <class Law, class Exp, bool WithEnergy>
+template <class Law, class Exp, bool WithEnergy, class Model>
 void Rk4::run(Tile& T, const Context& C, Exp n) {
+  static_assert(model::StructureModel<Model> && Model::dofs == 1, "the pair steppers run SDOF models");
   const rk4_detail::K k = rk4_detail::constants(C);
   for (long step = 0; step < C.nsteps; ++step) {
     const double ag0 = C.ag[step], ag1 = C.ag[step + 1];
     const double t = static_cast<double>(step + 1) * C.h;
     const int np = T.np;
-    for (int i = 0; i < np; ++i) rk4_detail::lane_step<Law, Exp, WithEnergy>(T, i, k, t, ag0, ag1, n);
+    for (int i = 0; i < np; ++i) rk4_detail::lane_step<Law, Model, Exp, WithEnergy>(T, i, k, t, ag0, ag1, n);
     record_lane(C, T, t, ag1);
   }
 }

@@ -5,18 +5,21 @@
 #include "pounding/contact/stability.hpp"
 #include "pounding/kernel/guard.hpp"
 #include "pounding/kernel/observers.hpp"
-#include "pounding/model/hysteresis/bilinear_kinematic.hpp"
+#include "pounding/model/sdof.hpp"
 
 namespace pounding::kernel::scalar {
 
-using Hyst = model::BilinearKinematic;
-
-// The restoring force of structure 1 or 2 of lane i after a displacement from u_old to u (committed fs_old).
-[[gnu::always_inline]] inline double spring1(const Tile& T, int i, double fs_old, double u_old, double u) {
-  return Hyst::restoring(fs_old, T.k1[i], u - u_old, T.ak1[i] * u, T.qy1[i]);
+// The restoring force of structure `body` (0 or 1) of lane i after a displacement from u_old to u (committed
+// fs_old), from the structure model M.
+template <class M>
+[[gnu::always_inline]] inline double spring(const Tile& T, int body, int i, double fs_old, double u_old, double u) {
+  return M::template restoring<double>(M::template load<double>(T, body, i), {u_old, fs_old}, u, u - u_old);
 }
-[[gnu::always_inline]] inline double spring2(const Tile& T, int i, double fs_old, double u_old, double u) {
-  return Hyst::restoring(fs_old, T.k2[i], u - u_old, T.ak2[i] * u, T.qy2[i]);
+template <class M> [[gnu::always_inline]] inline double spring1(const Tile& T, int i, double fs_old, double u_old, double u) {
+  return spring<M>(T, 0, i, fs_old, u_old, u);
+}
+template <class M> [[gnu::always_inline]] inline double spring2(const Tile& T, int i, double fs_old, double u_old, double u) {
+  return spring<M>(T, 1, i, fs_old, u_old, u);
 }
 
 // The law's force at lane i with latched 1/v0 `iv0`; sh receives sqrt(penetration) for the guard.
@@ -70,14 +73,15 @@ struct Old {
 }
 
 // Energy terms (trapezoidal in time, exact plastic dissipation) and contact work over the step just taken.
-template <bool WithEnergy>
+template <class M, bool WithEnergy>
 [[gnu::always_inline]] inline void energy_step(Tile& T, int i, double h, double ag0, double ag1, const Old& o) {
   if constexpr (WithEnergy) {
     const double du1 = T.u1[i] - o.u1, du2 = T.u2[i] - o.u2;
-    const double x1 = Hyst::trial(o.fs1, T.k1[i], du1) - T.fs1[i], x2 = Hyst::trial(o.fs2, T.k2[i], du2) - T.fs2[i];
+    const double dhys =
+        M::template hysteretic_increment<double>(M::template load<double>(T, 0, i), {o.u1, o.fs1}, du1, T.fs1[i]) +
+        M::template hysteretic_increment<double>(M::template load<double>(T, 1, i), {o.u2, o.fs2}, du2, T.fs2[i]);
     Energy<double> en = Energy<double>::load(T, i);
-    en.on_step({T.m1[i], T.c1[i], T.qy1[i], T.kp1[i], x1, o.v1, T.v1[i]},
-               {T.m2[i], T.c2[i], T.qy2[i], T.kp2[i], x2, o.v2, T.v2[i]}, ag0, ag1, 0.5 * h);
+    en.on_step(dhys, {T.m1[i], T.c1[i], o.v1, T.v1[i]}, {T.m2[i], T.c2[i], o.v2, T.v2[i]}, ag0, ag1, 0.5 * h);
     en.store(T, i);
   }
   T.Wc[i] += contact_work(o.F, T.F[i], (T.u1[i] - o.u1) - (T.u2[i] - o.u2));
