@@ -23,15 +23,6 @@ std::string_view to_string(Stepper s) {
   const auto i = static_cast<std::size_t>(s);
   return i < kernel::stepper_names.size() ? kernel::stepper_names[i] : "?";
 }
-std::string_view to_string(LaneStatus s) {
-  switch (s) {
-    case LaneStatus::ok: return "ok";
-    case LaneStatus::diverged: return "diverged";
-    case LaneStatus::non_finite: return "non-finite";
-  }
-  return "?";
-}
-
 Structure Structure::from_period(double m, double T, double zeta, double fy, double alpha) {
   Structure s;
   s.m = m;

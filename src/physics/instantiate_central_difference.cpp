@@ -4,14 +4,6 @@
 
 namespace pounding::physics {
 
-using kernel::CentralDifference;
-template void run_tile<CentralDifference, contact::None>(kernel::Tile&, const kernel::Context&, const ContactModel&);
-template void run_tile<CentralDifference, contact::Linear>(kernel::Tile&, const kernel::Context&, const ContactModel&);
-template void run_tile<CentralDifference, contact::Kelvin>(kernel::Tile&, const kernel::Context&, const ContactModel&);
-template void run_tile<CentralDifference, contact::Hertz>(kernel::Tile&, const kernel::Context&, const ContactModel&);
-template void run_tile<CentralDifference, contact::Hertzdamp>(kernel::Tile&, const kernel::Context&, const ContactModel&);
-template void run_tile<CentralDifference, contact::Jankowski>(kernel::Tile&, const kernel::Context&, const ContactModel&);
-template void run_tile<CentralDifference, contact::Stereomechanical>(kernel::Tile&, const kernel::Context&, const ContactModel&);
-static_assert(contact::Laws::size == 7, "instantiate every registered law above");
+template struct RegisteredLawRunners<kernel::CentralDifference, contact::Laws>;
 
 }  // namespace pounding::physics

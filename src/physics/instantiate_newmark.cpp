@@ -4,14 +4,6 @@
 
 namespace pounding::physics {
 
-using kernel::Newmark;
-template void run_tile<Newmark, contact::None>(kernel::Tile&, const kernel::Context&, const ContactModel&);
-template void run_tile<Newmark, contact::Linear>(kernel::Tile&, const kernel::Context&, const ContactModel&);
-template void run_tile<Newmark, contact::Kelvin>(kernel::Tile&, const kernel::Context&, const ContactModel&);
-template void run_tile<Newmark, contact::Hertz>(kernel::Tile&, const kernel::Context&, const ContactModel&);
-template void run_tile<Newmark, contact::Hertzdamp>(kernel::Tile&, const kernel::Context&, const ContactModel&);
-template void run_tile<Newmark, contact::Jankowski>(kernel::Tile&, const kernel::Context&, const ContactModel&);
-template void run_tile<Newmark, contact::Stereomechanical>(kernel::Tile&, const kernel::Context&, const ContactModel&);
-static_assert(contact::Laws::size == 7, "instantiate every registered law above");
+template struct RegisteredLawRunners<kernel::Newmark, contact::Laws>;
 
 }  // namespace pounding::physics

@@ -4,14 +4,6 @@
 
 namespace pounding::physics {
 
-using kernel::NigamJennings;
-template void run_tile<NigamJennings, contact::None>(kernel::Tile&, const kernel::Context&, const ContactModel&);
-template void run_tile<NigamJennings, contact::Linear>(kernel::Tile&, const kernel::Context&, const ContactModel&);
-template void run_tile<NigamJennings, contact::Kelvin>(kernel::Tile&, const kernel::Context&, const ContactModel&);
-template void run_tile<NigamJennings, contact::Hertz>(kernel::Tile&, const kernel::Context&, const ContactModel&);
-template void run_tile<NigamJennings, contact::Hertzdamp>(kernel::Tile&, const kernel::Context&, const ContactModel&);
-template void run_tile<NigamJennings, contact::Jankowski>(kernel::Tile&, const kernel::Context&, const ContactModel&);
-template void run_tile<NigamJennings, contact::Stereomechanical>(kernel::Tile&, const kernel::Context&, const ContactModel&);
-static_assert(contact::Laws::size == 7, "instantiate every registered law above");
+template struct RegisteredLawRunners<kernel::NigamJennings, contact::Laws>;
 
 }  // namespace pounding::physics

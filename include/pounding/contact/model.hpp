@@ -5,6 +5,8 @@
 #include <string>
 #include <string_view>
 
+#include "pounding/core/enum_names.hpp"
+
 namespace pounding {
 
 enum class ContactLaw : std::uint8_t {
@@ -16,8 +18,14 @@ enum class ContactLaw : std::uint8_t {
   jankowski,         // F = kc delta^1.5 + c(delta) ddelta, damper only while approaching (rc-buildings eqs 4-5)
   stereomechanical,  // instantaneous momentum exchange with restitution e (muthukumar eq. 2)
 };
-ContactLaw parse_contact_law(std::string_view name);
-std::string_view to_string(ContactLaw law);
+inline constexpr EnumName<ContactLaw> contact_law_table[] = {
+    {ContactLaw::none, "none"},           {ContactLaw::linear, "linear"},
+    {ContactLaw::kelvin, "kelvin"},       {ContactLaw::hertz, "hertz"},
+    {ContactLaw::hertzdamp, "hertzdamp"}, {ContactLaw::jankowski, "jankowski"},
+    {ContactLaw::stereomechanical, "stereomechanical"},
+};
+constexpr const auto& enum_names(ContactLaw) { return contact_law_table; }  // to_string(ContactLaw) (core)
+ContactLaw parse_contact_law(std::string_view name);  // InputError listing the names (src/physics/names.cpp)
 inline constexpr std::string_view contact_law_names =
     "none, linear, kelvin, hertz, hertzdamp, jankowski, stereomechanical";
 
@@ -30,8 +38,16 @@ enum class DampingLaw : std::uint8_t {
   gonthier,             // (1 - e^2) / e
   calibrated,           // solved so that one free impact returns exactly e
 };
+inline constexpr EnumName<DampingLaw> damping_law_table[] = {
+    {DampingLaw::lankarani_nikravesh, "lankarani-nikravesh"},
+    {DampingLaw::hunt_crossley, "hunt-crossley"},
+    {DampingLaw::flores, "flores"},
+    {DampingLaw::hu_guo, "hu-guo"},
+    {DampingLaw::gonthier, "gonthier"},
+    {DampingLaw::calibrated, "calibrated"},
+};
+constexpr const auto& enum_names(DampingLaw) { return damping_law_table; }
 DampingLaw parse_damping_law(std::string_view name);
-std::string_view to_string(DampingLaw law);
 inline constexpr std::string_view damping_law_names =
     "lankarani-nikravesh, hunt-crossley, flores, hu-guo, gonthier, calibrated";
 

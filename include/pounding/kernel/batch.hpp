@@ -23,6 +23,8 @@
 #include <string_view>
 #include <vector>
 
+#include "pounding/core/enum_names.hpp"
+
 
 namespace pounding {
 
@@ -37,7 +39,9 @@ std::string_view to_string(Stepper s);
 inline constexpr std::string_view stepper_names = "central-difference, newmark, rk4, nigam-jennings";
 
 enum class LaneStatus : std::uint8_t { ok = 0, diverged = 1, non_finite = 2 };
-std::string_view to_string(LaneStatus s);
+inline constexpr EnumName<LaneStatus> lane_status_table[] = {
+    {LaneStatus::ok, "ok"}, {LaneStatus::diverged, "diverged"}, {LaneStatus::non_finite, "non-finite"}};
+constexpr const auto& enum_names(LaneStatus) { return lane_status_table; }  // to_string(LaneStatus) (core)
 
 // One structure. fy = +inf (the default) makes the spring linear elastic.
 struct Structure {

@@ -1,5 +1,8 @@
 #pragma once
+// The definition of run_tile, included only by the per-stepper instantiation units and by tests that run a
+// law or model outside the registry.
 #include "pounding/contact/law.hpp"
+#include "pounding/contact/registry.hpp"
 #include "pounding/physics/tile_runner.hpp"
 
 namespace pounding::physics {
@@ -22,5 +25,13 @@ void run_tile(kernel::Tile& T, const kernel::Context& C, const ContactModel& cm)
     go(contact::Exp15{});  // the law does not read n
   }
 }
+
+// run_tile<Stepper, L> for every registered law L: `template struct RegisteredLawRunners<S, contact::Laws>;`
+// in src/physics/instantiate_<stepper>.cpp instantiates the whole row, so a new law needs no edit there.
+template <class Stepper, class Laws> struct RegisteredLawRunners;
+template <class Stepper, class... Ls> struct RegisteredLawRunners<Stepper, TypeList<Ls...>> {
+  using Fn = void (*)(kernel::Tile&, const kernel::Context&, const ContactModel&);
+  static constexpr Fn runners[] = {&run_tile<Stepper, Ls>...};
+};
 
 }  // namespace pounding::physics
