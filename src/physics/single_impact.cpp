@@ -6,46 +6,18 @@
 
 #include <fmt/format.h>
 
+#include "pounding/contact/registry.hpp"
 #include "pounding/core/error.hpp"
 
 namespace pounding {
 
-std::string_view to_string(RestitutionKind k) {
-  switch (k) {
-    case RestitutionKind::elastic: return "elastic";
-    case RestitutionKind::exact: return "exact";
-    case RestitutionKind::approximate: return "approximate";
-    case RestitutionKind::saturating: return "saturating";
-  }
-  return "?";
-}
-
 RestitutionPromise restitution_promise(const ContactModel& cm) {
   RestitutionPromise p;
-  switch (cm.law) {
-    case ContactLaw::none:
-      p.kind = RestitutionKind::elastic;
-      p.note = "no contact element: the bodies pass through each other";
-      return p;
-    case ContactLaw::linear:
-    case ContactLaw::hertz:
-      p.kind = RestitutionKind::elastic;
-      p.note = fmt::format("the {} law has no damping: it delivers e = 1 whatever e is asked", to_string(cm.law));
-      return p;
-    case ContactLaw::stereomechanical:
-      p.note = "instantaneous momentum exchange with e: delivers e by construction";
-      return p;
-    case ContactLaw::kelvin:
-      p.kind = RestitutionKind::approximate;
-      p.note = "the damping ratio xi = -ln e / sqrt(pi^2 + ln^2 e) is exact for the tension-carrying oscillator; the "
-               "non-tensile contact ends early and delivers more than e at low e (0.675 at 0.65, 0.397 at 0.3; "
-               "docs/accuracy.md)";
-      return p;
-    case ContactLaw::jankowski:
-      p.kind = RestitutionKind::approximate;
-      p.note = "Jankowski's damping ratio (rc-buildings eq. 5) delivers e within 0.01 (docs/accuracy.md)";
-      return p;
-    case ContactLaw::hertzdamp: break;
+  const contact::LawTraits& law = contact::traits(cm.law);
+  if (!law.restitution_from_damping) {
+    p.kind = law.restitution;
+    p.note = std::string(law.restitution_note);
+    return p;
   }
   switch (cm.damping) {
     case DampingLaw::calibrated:
@@ -78,8 +50,9 @@ RestitutionPromise restitution_promise(const ContactModel& cm) {
 
 double estimated_contact_duration(const ContactModel& cm, double v0, double m1, double m2, double kc) {
   const double meff = m1 * m2 / (m1 + m2);
-  if (cm.law == ContactLaw::linear || cm.law == ContactLaw::kelvin) return std::numbers::pi * std::sqrt(meff / kc);
-  if (cm.law == ContactLaw::stereomechanical) return 1e-3;
+  const contact::DurationForm form = contact::traits(cm.law).duration;
+  if (form == contact::DurationForm::linear) return std::numbers::pi * std::sqrt(meff / kc);
+  if (form == contact::DurationForm::impulsive) return 1e-3;
   return hertz_contact_duration(meff, v0, kc);  // exact for n = 3/2, an order-of-magnitude guide otherwise
 }
 
@@ -88,7 +61,8 @@ void check_impact_inputs(const ContactModel& cm, double e, bool e_given, double 
   require_positive(m1, "--m1");
   require_positive(m2, "--m2");
   require_positive(kc, "--kh");
-  if (cm.law == ContactLaw::none)
+  const contact::LawTraits& law = contact::traits(cm.law);
+  if (!law.has_force && !law.impulsive)
     throw InputError("contact law 'none' has no contact element: nothing collides", "--law",
                      fmt::format("choose a contact law: {}", contact_law_names.substr(6)));
   const RestitutionPromise p = restitution_promise(cm);
@@ -96,7 +70,7 @@ void check_impact_inputs(const ContactModel& cm, double e, bool e_given, double 
     throw InputError(fmt::format("--e = {} with the elastic {} law: {}", e, to_string(cm.law), p.note), "--e",
                      "drop --e (or give --e 1), or choose a damped law for e < 1 (kelvin, hertzdamp, jankowski, "
                      "stereomechanical)");
-  if (p.kind != RestitutionKind::elastic && cm.law != ContactLaw::stereomechanical && e < collide_e_min) {
+  if (p.kind != RestitutionKind::elastic && !law.impulsive && e < collide_e_min) {
     std::string why = fmt::format(
         "below e = {} an impact is plastic for any structural purpose (it keeps less than {} of its energy) and the "
         "damped laws' damping grows like 1/e beyond what the integration resolves",
@@ -104,7 +78,7 @@ void check_impact_inputs(const ContactModel& cm, double e, bool e_given, double 
     if (p.kind == RestitutionKind::saturating) why = p.note;
     throw InputError(fmt::format("--e = {} is outside the valid range [{}, 1] of {}{}: {}", e, collide_e_min,
                                  to_string(cm.law),
-                                 cm.law == ContactLaw::hertzdamp ? fmt::format(" with {}", to_string(cm.damping)) : "",
+                                 law.restitution_from_damping ? fmt::format(" with {}", to_string(cm.damping)) : "",
                                  why),
                      "--e", fmt::format("give --e in [{}, 1], or use --law stereomechanical for a plastic impact",
                                         collide_e_min));

@@ -8,6 +8,7 @@
 #include <string_view>
 
 #include "pounding/contact/model.hpp"
+#include "pounding/core/enum_names.hpp"
 #include "pounding/kernel/lane.hpp"
 
 namespace pounding::contact {
@@ -18,6 +19,17 @@ template <class T> struct State { T iv0; };        // latched 1/v0 (Hertzdamp)
 template <class T> struct Shared { T sq; };        // sqrt of the penetration, reused by the stability guard
 template <class T> struct Tangent { T F, dFd, dFv; };  // Newmark: force and its derivatives by d and dd
 
+// What one free impact with the law delivers against the restitution e it is given (`pounding collide`).
+enum class RestitutionKind : std::uint8_t { elastic, exact, approximate, saturating };
+inline constexpr EnumName<RestitutionKind> restitution_kind_table[] = {{RestitutionKind::elastic, "elastic"},
+                                                                       {RestitutionKind::exact, "exact"},
+                                                                       {RestitutionKind::approximate, "approximate"},
+                                                                       {RestitutionKind::saturating, "saturating"}};
+constexpr const auto& enum_names(RestitutionKind) { return restitution_kind_table; }
+// How long one impact lasts, for the time step of a single-impact analysis: Hertz theory, half a period
+// of the linear spring (pi sqrt(meff / kc)), or instantaneous (impulsive laws).
+enum class DurationForm : std::uint8_t { hertz, linear, impulsive };
+
 struct LawTraits {
   bool has_force = true;          // a force element (false: none, the impulsive stereomechanical)
   bool impulsive = false;         // momentum exchange at the located closing instant (stereomechanical)
@@ -26,6 +38,10 @@ struct LawTraits {
   bool latches_v0 = false;        // the force depends on the approach velocity latched at onset
   bool uses_exponent = false;     // the Hertz exponent n of ContactModel applies
   std::string_view stiffness_unit = "N/m";
+  RestitutionKind restitution = RestitutionKind::exact;
+  std::string_view restitution_note = "";  // one line for `pounding collide`: what it delivers and why
+  bool restitution_from_damping = false;   // the damping law (ContactModel::damping) decides (Hertzdamp)
+  DurationForm duration = DurationForm::hertz;
 };
 
 // The Hertz exponent: FixedExponent<3, 2> takes d^1.5 as d sqrt(d) and shares sqrt(d) with the guard;

@@ -5,6 +5,7 @@
 #include <string>
 #include <string_view>
 
+#include "pounding/contact/law.hpp"
 #include "pounding/contact/model.hpp"
 #include "pounding/physics/batch.hpp"
 
@@ -25,8 +26,7 @@ struct ImpactResult {
 //                (its damping ratio is exact only without the non-tensile clamp: 0.675 at 0.65, 0.397 at 0.3)
 //   saturating   hertzdamp + lankarani-nikravesh / hunt-crossley: derived for e near 1; xibar is bounded as
 //                e -> 0, so they deliver more than e (LN: 0.775 at 0.65) and never less than `floor`
-enum class RestitutionKind : std::uint8_t { elastic, exact, approximate, saturating };
-std::string_view to_string(RestitutionKind k);
+using contact::RestitutionKind;  // contact/law.hpp: each law's traits say what it delivers
 struct RestitutionPromise {
   RestitutionKind kind = RestitutionKind::exact;
   double floor = 0.0;  // saturating laws: the restitution delivered as e -> 0 (the smallest they can deliver)

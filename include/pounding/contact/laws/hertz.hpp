@@ -6,7 +6,9 @@ namespace pounding::contact {
 
 struct Hertz {
   static constexpr std::string_view name = "hertz";
-  static constexpr LawTraits traits{.uses_exponent = true, .stiffness_unit = "N/m^n"};
+  static constexpr LawTraits traits{
+      .uses_exponent = true, .stiffness_unit = "N/m^n", .restitution = RestitutionKind::elastic,
+      .restitution_note = "the hertz law has no damping: it delivers e = 1 whatever e is asked"};
   template <class T, class Exp>
   POUNDING_INLINE static T force(Kin<T> k, Params<T> p, State<T>, Exp n, Shared<T>& sh, T& clamp) {
     clamp = T(0.0);

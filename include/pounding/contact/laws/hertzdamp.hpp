@@ -8,7 +8,7 @@ namespace pounding::contact {
 struct Hertzdamp {
   static constexpr std::string_view name = "hertzdamp";
   static constexpr LawTraits traits{.needs_restitution = true, .latches_v0 = true, .uses_exponent = true,
-                                    .stiffness_unit = "N/m^n"};
+                                    .stiffness_unit = "N/m^n", .restitution_from_damping = true};
   template <class T, class Exp>
   POUNDING_INLINE static T force(Kin<T> k, Params<T> p, State<T> s, Exp n, Shared<T>& sh, T& clamp) {
     const T zero(0.0);

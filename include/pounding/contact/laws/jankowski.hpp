@@ -9,7 +9,9 @@ namespace pounding::contact {
 
 struct Jankowski {
   static constexpr std::string_view name = "jankowski";
-  static constexpr LawTraits traits{.needs_restitution = true, .stiffness_unit = "N/m^1.5"};
+  static constexpr LawTraits traits{
+      .needs_restitution = true, .stiffness_unit = "N/m^1.5", .restitution = RestitutionKind::approximate,
+      .restitution_note = "Jankowski's damping ratio (rc-buildings eq. 5) delivers e within 0.01 (docs/accuracy.md)"};
   template <class T, class Exp>
   POUNDING_INLINE static T force(Kin<T> k, Params<T> p, State<T>, Exp, Shared<T>& sh, T& clamp) {
     const T zero(0.0);

@@ -6,7 +6,10 @@ namespace pounding::contact {
 
 struct Linear {
   static constexpr std::string_view name = "linear";
-  static constexpr LawTraits traits{};
+  static constexpr LawTraits traits{
+      .restitution = RestitutionKind::elastic,
+      .restitution_note = "the linear law has no damping: it delivers e = 1 whatever e is asked",
+      .duration = DurationForm::linear};
   template <class T, class Exp> POUNDING_INLINE static T force(Kin<T> k, Params<T> p, State<T>, Exp, Shared<T>&, T& clamp) {
     clamp = T(0.0);
     return p.kc * lane::max(k.d, T(0.0));

@@ -6,7 +6,9 @@ namespace pounding::contact {
 
 struct None {
   static constexpr std::string_view name = "none";
-  static constexpr LawTraits traits{.has_force = false, .needs_stiffness = false};
+  static constexpr LawTraits traits{.has_force = false, .needs_stiffness = false,
+                                    .restitution = RestitutionKind::elastic,
+                                    .restitution_note = "no contact element: the bodies pass through each other"};
   template <class T, class Exp> POUNDING_INLINE static T force(Kin<T>, Params<T>, State<T>, Exp, Shared<T>&, T& clamp) {
     clamp = T(0.0);
     return T(0.0);

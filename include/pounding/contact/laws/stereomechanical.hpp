@@ -22,8 +22,10 @@ template <class T> struct ImpactOut {
 
 struct Stereomechanical {
   static constexpr std::string_view name = "stereomechanical";
-  static constexpr LawTraits traits{.has_force = false, .impulsive = true, .needs_stiffness = false,
-                                    .needs_restitution = true};
+  static constexpr LawTraits traits{
+      .has_force = false, .impulsive = true, .needs_stiffness = false, .needs_restitution = true,
+      .restitution_note = "instantaneous momentum exchange with e: delivers e by construction",
+      .duration = DurationForm::impulsive};
   template <class T, class Exp> POUNDING_INLINE static T force(Kin<T>, Params<T>, State<T>, Exp, Shared<T>&, T& clamp) {
     clamp = T(0.0);
     return T(0.0);
