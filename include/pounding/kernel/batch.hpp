@@ -34,8 +34,6 @@ enum class Stepper : std::uint8_t {
   rk4,                 // classical 4th-order Runge-Kutta (the Muthukumar-DesRoches paper's choice)
   nigam_jennings,      // exact recurrence for linear phases, nonlinear remainder as piecewise-linear load
 };
-Stepper parse_stepper(std::string_view name);  // throws InputError naming the allowed values
-std::string_view to_string(Stepper s);
 inline constexpr std::string_view stepper_names = "central-difference, newmark, rk4, nigam-jennings";
 
 enum class LaneStatus : std::uint8_t { ok = 0, diverged = 1, non_finite = 2 };

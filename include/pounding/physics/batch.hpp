@@ -7,6 +7,10 @@
 
 namespace pounding {
 
+// Stepper names from the stepper registry (physics/steppers/registry.hpp).
+Stepper parse_stepper(std::string_view name);  // throws InputError naming the allowed values
+std::string_view to_string(Stepper s);
+
 // Runs every lane of `batch` through `motion` in lockstep. `out` is resized to the batch width.
 void run_batch(const PairBatch& batch, const ContactModel& contact, const GroundMotion& motion,
                const KernelSettings& settings, BatchResult& out);
