@@ -70,6 +70,23 @@ struct RuntimeExponent {
 };
 using Exp15 = FixedExponent<3, 2>;
 
+// The force-side functions of a law without a force element (none; the impulsive stereomechanical law, which
+// acts through its exchange instead): zero force, tangent, stiffness and stored energy, nothing to latch.
+struct NoForceElement {
+  template <class T, class Exp> POUNDING_INLINE static T force(Kin<T>, Params<T>, State<T>, Exp, Shared<T>&, T& clamp) {
+    clamp = T(0.0);
+    return T(0.0);
+  }
+  template <class T, class Exp> POUNDING_INLINE static Tangent<T> tangent(Kin<T>, Params<T>, State<T>, Exp) {
+    return {T(0.0), T(0.0), T(0.0)};
+  }
+  template <class T, class Exp>
+  POUNDING_INLINE static T linear_stiffness(Kin<T>, Params<T>, State<T>, Exp, const Shared<T>&) { return T(0.0); }
+  template <class T> POUNDING_INLINE static T stored_energy(T, T, double) { return T(0.0); }
+  template <class T> POUNDING_INLINE static void on_onset(State<T>&, lane::mask_t<T>, T, double) {}
+  static double damping_constant(const ContactModel&, double, double, double) { return 0.0; }
+};
+
 // Every law: a name, traits, and the five functions the kernel calls.
 template <class L>
 concept Law = requires(Kin<double> k, Params<double> p, State<double> s, Shared<double> sh, double x,

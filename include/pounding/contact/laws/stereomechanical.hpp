@@ -20,24 +20,12 @@ template <class T> struct ImpactOut {
   T loss;      // energy lost: meff (1 - e^2) rel^2 / 2 (0 where no hit)
 };
 
-struct Stereomechanical {
+struct Stereomechanical : NoForceElement {
   static constexpr std::string_view name = "stereomechanical";
   static constexpr LawTraits traits{
       .has_force = false, .impulsive = true, .needs_stiffness = false, .needs_restitution = true,
       .restitution_note = "instantaneous momentum exchange with e: delivers e by construction",
       .duration = DurationForm::impulsive};
-  template <class T, class Exp> POUNDING_INLINE static T force(Kin<T>, Params<T>, State<T>, Exp, Shared<T>&, T& clamp) {
-    clamp = T(0.0);
-    return T(0.0);
-  }
-  template <class T, class Exp> POUNDING_INLINE static Tangent<T> tangent(Kin<T>, Params<T>, State<T>, Exp) {
-    return {T(0.0), T(0.0), T(0.0)};
-  }
-  template <class T, class Exp>
-  POUNDING_INLINE static T linear_stiffness(Kin<T>, Params<T>, State<T>, Exp, const Shared<T>&) { return T(0.0); }
-  template <class T> POUNDING_INLINE static T stored_energy(T, T, double) { return T(0.0); }
-  template <class T> POUNDING_INLINE static void on_onset(State<T>&, lane::mask_t<T>, T, double) {}
-  static double damping_constant(const ContactModel&, double, double, double) { return 0.0; }
 
   // An impact: the gap closed in this step, or the bodies still overlap and approach.
   template <class T> POUNDING_INLINE static ImpactOut<T> exchange(const ImpactIn<T>& in) {
