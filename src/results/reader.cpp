@@ -30,29 +30,9 @@ void read_opt(h5::hid g, const char* name, std::vector<T>& v) {
 
 Header read_header(h5::hid root) {
   Header h;
-  read_opt(root, "format_version", h.format_version);
-  read_opt(root, "program_version", h.program_version);
-  read_opt(root, "git_commit", h.git_commit);
-  read_opt(root, "date", h.date);
-  read_opt(root, "seed", h.seed);
-  read_opt(root, "study_text", h.study_text);
-  read_opt(root, "study_path", h.study_path);
-  read_opt(root, "title", h.title);
-  read_opt(root, "scene", h.scene);
-  read_opt(root, "scene_reason", h.scene_reason);
-  read_opt(root, "contact_law", h.contact_law);
-  read_opt(root, "damping_law", h.damping_law);
-  read_opt(root, "restitution", h.restitution);
-  read_opt(root, "stepper", h.stepper);
-  read_opt(root, "substeps", h.substeps);
-  read_opt(root, "max_dt", h.max_dt);
-  read_opt(root, "ranks", h.ranks);
-  read_opt(root, "build", h.build);
-  read_opt(root, "excluded_analyses", h.excluded_analyses);
-  read_opt(root, "total_analyses", h.total_analyses);
-  read_opt(root, "max_excluded_fraction", h.max_excluded_fraction);
-  read_opt(root, "exclusion_warning", h.exclusion_warning);
-  read_opt(root, "wall_time_s", h.wall_time_s);
+  const auto read = [&](const char* name, auto& value) { read_opt(root, name, value); };
+  visit_header_start(h, read);
+  visit_header_end(h, read);
   return h;
 }
 

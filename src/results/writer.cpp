@@ -10,32 +10,11 @@ namespace pounding::results {
 namespace {
 
 void write_header_start(h5::hid root, const Header& h) {
-  h5::write_attribute(root, "format_version", h.format_version);
-  h5::write_attribute(root, "program_version", h.program_version);
-  h5::write_attribute(root, "git_commit", h.git_commit);
-  h5::write_attribute(root, "date", h.date);
-  h5::write_attribute(root, "seed", h.seed);
-  h5::write_attribute(root, "study_text", h.study_text);
-  h5::write_attribute(root, "study_path", h.study_path);
-  h5::write_attribute(root, "title", h.title);
-  h5::write_attribute(root, "scene", h.scene);
-  h5::write_attribute(root, "scene_reason", h.scene_reason);
-  h5::write_attribute(root, "contact_law", h.contact_law);
-  h5::write_attribute(root, "damping_law", h.damping_law);
-  h5::write_attribute(root, "restitution", h.restitution);
-  h5::write_attribute(root, "stepper", h.stepper);
-  h5::write_attribute(root, "substeps", h.substeps);
-  h5::write_attribute(root, "max_dt", h.max_dt);
-  h5::write_attribute(root, "ranks", h.ranks);
-  h5::write_attribute(root, "build", h.build);
+  visit_header_start(h, [&](const char* name, const auto& value) { h5::write_attribute(root, name, value); });
 }
 
 void write_header_end(h5::hid root, const Header& h) {
-  h5::write_attribute(root, "excluded_analyses", h.excluded_analyses);
-  h5::write_attribute(root, "total_analyses", h.total_analyses);
-  h5::write_attribute(root, "max_excluded_fraction", h.max_excluded_fraction);
-  h5::write_attribute(root, "exclusion_warning", h.exclusion_warning);
-  h5::write_attribute(root, "wall_time_s", h.wall_time_s);
+  visit_header_end(h, [&](const char* name, const auto& value) { h5::write_attribute(root, name, value); });
 }
 
 void write_settings(h5::hid root, const Settings& settings) {

@@ -34,6 +34,36 @@ struct Header {
   double wall_time_s = 0;
 };
 
+// The header's root attributes by name, for the writer and the reader: those written before the data, then
+// those known only at the end of the run.
+template <class H, class F> void visit_header_start(H& h, F&& f) {
+  f("format_version", h.format_version);
+  f("program_version", h.program_version);
+  f("git_commit", h.git_commit);
+  f("date", h.date);
+  f("seed", h.seed);
+  f("study_text", h.study_text);
+  f("study_path", h.study_path);
+  f("title", h.title);
+  f("scene", h.scene);
+  f("scene_reason", h.scene_reason);
+  f("contact_law", h.contact_law);
+  f("damping_law", h.damping_law);
+  f("restitution", h.restitution);
+  f("stepper", h.stepper);
+  f("substeps", h.substeps);
+  f("max_dt", h.max_dt);
+  f("ranks", h.ranks);
+  f("build", h.build);
+}
+template <class H, class F> void visit_header_end(H& h, F&& f) {
+  f("excluded_analyses", h.excluded_analyses);
+  f("total_analyses", h.total_analyses);
+  f("max_excluded_fraction", h.max_excluded_fraction);
+  f("exclusion_warning", h.exclusion_warning);
+  f("wall_time_s", h.wall_time_s);
+}
+
 // /records: one entry per ground motion.
 struct RecordTable {
   std::vector<std::string> id, name, source, note;
