@@ -153,13 +153,10 @@ template <class Law, class M, class Exp, bool WithEnergy>
     T.iv0[i] = scalar::latched<Law>(T.iv0[i], onset > 0.0, dd, C.v0_min);
     F = scalar::force<Law>(T, i, d, dd, T.iv0[i], n, clamp);
   }
-  T.F[i] = F;
-  T.dprev[i] = d;
-  T.tcon[i] += d > 0.0 ? h : 0.0;
   // a lane whose Newton iteration did not converge is marked diverged
   T.bad[i] = std::max(T.bad[i], (T.conv[i] > 0.0 && T.y2[i] > 0.0) ? 0.0 : 1.0);
-  scalar::energy_step<M, WithEnergy>(T, i, h, ag0, ag1, o);
-  scalar::finish(T, i, t, ag1, clamp, onset, C.lim);
+  // Newmark keeps its own accelerations (the average-acceleration update above)
+  scalar::end_step<M, WithEnergy, false>(T, i, h, t, ag0, ag1, o, F, d, clamp, onset, C.lim);
 }
 
 }  // namespace newmark_detail

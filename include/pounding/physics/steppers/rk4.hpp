@@ -137,12 +137,7 @@ template <class Law, class M, class Exp, bool WithEnergy>
     scalar::guard_contact<Law>(T, i, d, dd, n, sh, h, limit2_rk4);
     T.pF[i] = std::max(T.pF[i], L.stage_fmax);
   }
-  T.F[i] = F;
-  scalar::accelerations(T, i, ag1, F);
-  T.dprev[i] = d;
-  T.tcon[i] += d > 0.0 ? h : 0.0;
-  scalar::energy_step<M, WithEnergy>(T, i, h, ag0, ag1, o);
-  scalar::finish(T, i, t, ag1, clamp, onset, C.lim);
+  scalar::end_step<M, WithEnergy>(T, i, h, t, ag0, ag1, o, F, d, clamp, onset, C.lim);
 }
 
 }  // namespace rk4_detail

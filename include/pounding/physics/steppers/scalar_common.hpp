@@ -106,4 +106,18 @@ template <class M, bool WithEnergy>
   T.a2[i] = -ag - (T.c2[i] * T.v2[i] + T.fs2[i] - F) * T.im2[i];
 }
 
+// The end of a lane-loop step once the state and the contact force F are known: the accelerations from the
+// equations of motion (unless the stepper keeps its own), the contact bookkeeping, the energy terms, the
+// divergence guard and the observers.
+template <class M, bool WithEnergy, bool Accelerations = true>
+[[gnu::always_inline]] inline void end_step(Tile& T, int i, double h, double t, double ag0, double ag1, const Old& o,
+                                            double F, double d, double clamp, double onset, double lim) {
+  T.F[i] = F;
+  if constexpr (Accelerations) accelerations(T, i, ag1, F);
+  T.dprev[i] = d;
+  T.tcon[i] += d > 0.0 ? h : 0.0;
+  energy_step<M, WithEnergy>(T, i, h, ag0, ag1, o);
+  finish(T, i, t, ag1, clamp, onset, lim);
+}
+
 }  // namespace pounding::kernel::scalar
