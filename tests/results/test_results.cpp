@@ -10,20 +10,15 @@
 #include "pounding/results/writer.hpp"
 #include "results/results_compare.hpp"
 #include "results/sample_results.hpp"
+#include "temp_dir.hpp"
 
 namespace fs = std::filesystem;
 using namespace pounding;
 
 namespace {
 
-struct TempDir {
-  fs::path dir;
-  TempDir() {
-    char tmpl[] = "/tmp/pounding-results-XXXXXX";
-    dir = mkdtemp(tmpl);
-  }
-  ~TempDir() { fs::remove_all(dir); }
-  std::string file(const std::string& name) const { return (dir / name).string(); }
+struct TempDir : testdata::TempDir {
+  TempDir() : testdata::TempDir("results") {}
 };
 
 std::set<std::string> as_set(const std::vector<std::string>& v) { return {v.begin(), v.end()}; }

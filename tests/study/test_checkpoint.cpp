@@ -15,20 +15,15 @@
 #include "pounding/study/checkpoint.hpp"
 #include "pounding/core/error.hpp"
 #include "pounding/core/files.hpp"
+#include "temp_dir.hpp"
 
 namespace fs = std::filesystem;
 using namespace pounding;
 
 namespace {
 
-struct TempDir {
-  fs::path dir;
-  TempDir() {
-    char tmpl[] = "/tmp/pounding-ckpt-XXXXXX";
-    dir = mkdtemp(tmpl);
-  }
-  ~TempDir() { fs::remove_all(dir); }
-  std::string file(const std::string& name) const { return (dir / name).string(); }
+struct TempDir : testdata::TempDir {
+  TempDir() : testdata::TempDir("ckpt") {}
 };
 
 CheckpointKey key(std::uint64_t study = 11, std::uint64_t units = 100, std::uint64_t build = 5) {

@@ -11,20 +11,15 @@
 #include "pounding/study/checkpoint.hpp"
 #include "pounding/study/tally.hpp"
 #include "pounding/study/unit_result.hpp"
+#include "temp_dir.hpp"
 
 namespace fs = std::filesystem;
 using namespace pounding;
 
 namespace {
 
-struct TempDir {
-  fs::path dir;
-  TempDir() {
-    char tmpl[] = "/tmp/pounding-unit-XXXXXX";
-    dir = mkdtemp(tmpl);
-  }
-  ~TempDir() { fs::remove_all(dir); }
-  std::string file(const std::string& name) const { return (dir / name).string(); }
+struct TempDir : testdata::TempDir {
+  TempDir() : testdata::TempDir("unit") {}
 };
 
 // The test-only row: per lane and gap, 64-bit integers, in a group of its own.
