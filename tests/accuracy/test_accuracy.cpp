@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <map>
 #include <numbers>
 
@@ -46,28 +47,125 @@ TEST(AccuracyReference, SetHasFiftyModelsThreeRecordsFiveLaws) {
 }
 
 // rk4 + event-located contact onset, 64 substeps (h = 0.156 ms) against DOP853 rtol 1e-10 with every switch
-// located: peak closing, peak force and impact count.
+// located: peak closing, peak force and impact count. The bounds are 1.5x the errors docs/accuracy.md section 1
+// documents (its table is `build/pounding accuracy agree`), so a loss of accuracy the docs would not show fails.
+struct Documented {
+  const char* law;
+  double closing_median, closing_max;             // relative errors (closing: of max(|reference|, 1 mm))
+  double force_median, force_p99, force_max;      // 0: no force (uncoupled, stereomechanical)
+};
+constexpr Documented documented_agreement[] = {
+    {"none", 8.6e-8, 2.8e-5, 0, 0, 0},
+    {"hertzdamp", 1.3e-7, 2.8e-5, 2.3e-6, 1.3e-5, 3.1e-5},
+    {"kelvin", 2.7e-6, 7.0e-5, 1.8e-5, 2.4e-4, 2.6e-4},
+    {"linear", 1.6e-7, 2.8e-5, 1.6e-6, 1.4e-5, 2.0e-5},
+    {"stereomechanical", 5.1e-5, 7.7e-4, 0, 0, 0},
+};
+constexpr double claim_margin = 1.5;
+
 TEST(AccuracyReference, HighAccuracyModeAgreesWithScipy) {
   POUNDING_REQUIRE_REAL_RECORDS();
   auto a = agree({Stepper::rk4, 64, true});
-  for (const char* law : {"none", "hertzdamp", "kelvin", "linear", "stereomechanical"}) {
-    SCOPED_TRACE(law);
-    ASSERT_TRUE(a.count(law));
-    EXPECT_EQ(a[law].cases, 150);
-    EXPECT_LT(a[law].closing_max, 2e-3);
-    EXPECT_LT(a[law].closing_median, 1e-4);
-    EXPECT_EQ(a[law].verdict_differs, 0);
+  for (const auto& d : documented_agreement) {
+    SCOPED_TRACE(d.law);
+    ASSERT_TRUE(a.count(d.law));
+    const A::Agreement& g = a[d.law];
+    EXPECT_EQ(g.cases, 150);
+    EXPECT_LE(g.closing_median, claim_margin * d.closing_median);
+    EXPECT_LE(g.closing_max, claim_margin * d.closing_max);
+    EXPECT_EQ(g.verdict_differs, 0);
+    EXPECT_EQ(g.count_differs, 0);  // impact counts identical for every law (427 stereomechanical impacts)
+    if (std::string(d.law) != "none") {
+      EXPECT_EQ(g.impacting, 136);
+    }
+    if (d.force_max > 0) {
+      EXPECT_LE(g.force_median, claim_margin * d.force_median);
+      EXPECT_LE(g.force_p99, claim_margin * d.force_p99);
+      EXPECT_LE(g.force_max, claim_margin * d.force_max);
+    }
   }
-  for (const char* law : {"hertzdamp", "linear"}) {
-    SCOPED_TRACE(law);
-    EXPECT_GT(a[law].impacting, 100);
-    EXPECT_LT(a[law].force_max, 1e-4);
-    EXPECT_EQ(a[law].count_differs, 0);
+}
+
+// Convergence with yielding and contact against the independent reference (not only against the engine
+// itself): the cases of the reference set where a force law acts (impact count > 0) and at least one structure
+// yields (reference peak |u| above fy / k), run at h = 10 ms x 2^-k, k = 0..5. The observed order of the median
+// relative peak-force and peak-closing errors (the reference is good to ~1e-8, far below them) must lie in the
+// stated band: the claim is the order, both ways.
+namespace {
+struct ConvergencePoint {
+  double force = 0, closing = 0;
+};
+bool yields(const A::Case& c) { return c.ref_peak_u1 > c.p.s1.fy / c.p.s1.k || c.ref_peak_u2 > c.p.s2.fy / c.p.s2.k; }
+std::vector<A::Case> impacting(const std::vector<A::Case>& all, const std::string& law, bool yielding) {
+  std::vector<A::Case> out;
+  for (const auto& c : all)
+    if (c.law == law && c.ref_impact_count > 0 && yields(c) == yielding) out.push_back(c);
+  return out;
+}
+ConvergencePoint median_errors(const std::vector<A::Case>& cases, const A::EngineSetting& es) {
+  A::RecordCache records(record_dir, A::default_records());
+  auto res = A::run_cases(cases, es, records);
+  auto a = A::agreement(cases, res);
+  EXPECT_EQ(a.size(), 1u);
+  return {a[0].force_median, a[0].closing_median};
+}
+// The observed order: least-squares slope of log2(median error) against log2(h).
+double order_of(const std::vector<int>& substeps, const std::vector<double>& err) {
+  double sx = 0, sy = 0, sxx = 0, sxy = 0;
+  const double n = static_cast<double>(err.size());
+  for (std::size_t i = 0; i < err.size(); ++i) {
+    const double x = -std::log2(static_cast<double>(substeps[i])), y = std::log2(err[i]);
+    sx += x, sy += y, sxx += x * x, sxy += x * y;
   }
-  // Kelvin: its clamp instant (force turning tensile) is not located by the engine -> a little less accurate
-  EXPECT_LT(a["kelvin"].force_max, 1e-3);
-  EXPECT_EQ(a["kelvin"].count_differs, 0);
-  EXPECT_EQ(a["stereomechanical"].count_differs, 0);
+  return (n * sxy - sx * sy) / (n * sxx - sx * sx);
+}
+// Prints the medians (the evidence behind docs/accuracy.md's convergence statement) and checks the observed
+// order of the peak force and of the peak closing against [lo, hi].
+void expect_order(const char* law, const std::vector<A::Case>& cases, Stepper st, bool locate, double lo, double hi) {
+  const std::vector<int> substeps{1, 2, 4, 8, 16, 32};  // h = 10 ms ... 0.3125 ms
+  std::vector<double> ef, ec;
+  for (int n : substeps) {
+    const ConvergencePoint e = median_errors(cases, {st, n, locate});
+    ef.push_back(e.force), ec.push_back(e.closing);
+    std::printf("%-10s %-18s %-7s h = %8.5f ms: median peak-force error %.3e, peak-closing error %.3e\n", law,
+                to_string(st).data(), locate ? "located" : "", 10.0 / n, e.force, e.closing);
+  }
+  const double pf = order_of(substeps, ef), pc = order_of(substeps, ec);
+  std::printf("%-10s %-18s %-7s observed order: peak force %.2f, peak closing %.2f\n", law, to_string(st).data(),
+              locate ? "located" : "", pf, pc);
+  SCOPED_TRACE(std::string(law) + " " + std::string(to_string(st)));
+  EXPECT_GE(pf, lo);
+  EXPECT_LE(pf, hi);
+  EXPECT_GE(pc, lo);
+  EXPECT_LE(pc, hi);
+}
+}  // namespace
+
+TEST(AccuracyConvergence, YieldingWithContactConvergesToTheReference) {
+  POUNDING_REQUIRE_REAL_RECORDS();
+  auto all = A::read_cases(reference_csv);
+  struct Expect {
+    const char* law;
+    Stepper stepper;
+    bool locate;
+    double lo, hi;
+  };
+  // Second order for central difference with the Hertz and linear laws, and for RK4 too: its fourth order is lost
+  // to the instants it does not locate (separation, yield, unloading: kinks in the force). Kelvin with central
+  // difference is first order (its force jumps by ck v at onset and is clamped at an unlocated instant).
+  // Measured (h = 10 ms ... 0.3125 ms, 124-128 cases per law): CD 1.99 / 2.01 / 1.07 (force), RK4 located 2.01 /
+  // 2.00 / 1.75.
+  const Expect expect[] = {{"hertzdamp", Stepper::central_difference, false, 1.8, 2.3},
+                           {"linear", Stepper::central_difference, false, 1.8, 2.3},
+                           {"kelvin", Stepper::central_difference, false, 0.9, 1.3},
+                           {"hertzdamp", Stepper::rk4, true, 1.8, 2.3},
+                           {"linear", Stepper::rk4, true, 1.8, 2.3},
+                           {"kelvin", Stepper::rk4, true, 1.4, 2.0}};
+  for (const auto& x : expect) {
+    auto cases = impacting(all, x.law, true);
+    ASSERT_GE(cases.size(), 100u) << x.law;  // yielding, impacting model-records: a stable median
+    expect_order(x.law, cases, x.stepper, x.locate, x.lo, x.hi);
+  }
 }
 
 // The caller-owned record cache (no process-wide state): each record read once, names outside the list refused.
@@ -92,8 +190,10 @@ TEST(AccuracyReference, UncoupledSetAgrees) {
   auto res = A::run_cases(cases, {Stepper::rk4, 64, true}, records);
   auto a = A::agreement(cases, res);
   ASSERT_EQ(a.size(), 1u);
-  EXPECT_LT(a[0].closing_max, 1e-4);
-  EXPECT_LT(a[0].closing_median, 1e-6);
+  // docs/accuracy.md section 1: median 9.3e-8, max 2.8e-5 (`accuracy agree --reference .../accuracy_uncoupled.csv`)
+  EXPECT_LE(a[0].closing_max, claim_margin * 2.8e-5);
+  EXPECT_LE(a[0].closing_median, claim_margin * 9.3e-8);
+  EXPECT_EQ(a[0].verdict_differs, 0);
 }
 
 // The same comparison must be able to fail: the production stepper at the record step is visibly less accurate.
