@@ -374,9 +374,19 @@ def main():
     ap.add_argument("--method", default="DOP853", choices=["DOP853", "Radau", "RK45"])
     ap.add_argument("--rtol", type=float, default=1e-10)
     ap.add_argument("--limit", type=int, default=0, help="only the first N rows (smoke test)")
+    ap.add_argument("--rows", default="", help="only these 0-based data rows, comma-separated (regeneration test)")
     a = ap.parse_args()
     with open(a.models) as f:
         rows = list(csv.DictReader(f))
+    if a.rows:
+        try:
+            picked = [int(x) for x in a.rows.split(",")]
+        except ValueError:
+            sys.exit("reference_solver.py: --rows takes 0-based row numbers separated by commas, got '%s'" % a.rows)
+        bad = [i for i in picked if not 0 <= i < len(rows)]
+        if bad:
+            sys.exit("reference_solver.py: --rows %s outside 0..%d (%s)" % (bad, len(rows) - 1, a.models))
+        rows = [rows[i] for i in picked]
     if a.limit:
         rows = rows[:a.limit]
     agdir = os.path.dirname(os.path.abspath(a.models))

@@ -25,24 +25,41 @@ else
   fail "accuracy models failed: $(cat "$work/err")"
 fi
 
-# 2. the stored reference is what the model set + tools/reference_solver.py give (first 2 rows, 1e-9)
+# 2. the stored reference is what the model set + tools/reference_solver.py give: one case of every law, each
+#    of a yielding pair (the force laws and stereomechanical with 3-8 impacts), every reference column at 1e-9
+#    (parameters at 1e-12), impact counts equal. Rows (0-based): 0 none, 188 hertzdamp (5 impacts), 324 kelvin
+#    (7), 505 linear (3), 624 stereomechanical (8).
 ref="$src/tests/data/reference/accuracy_reference.csv"
-if /usr/bin/python3 "$src/tools/reference_solver.py" "$work/models.csv" "$work/ref2.csv" --jobs 1 --limit 2 \
+rows=0,188,324,505,624
+if /usr/bin/python3 "$src/tools/reference_solver.py" "$work/models.csv" "$work/ref5.csv" --jobs 2 --rows $rows \
     2>"$work/err"; then
-  if /usr/bin/python3 - "$ref" "$work/ref2.csv" <<'PY'; then
+  if /usr/bin/python3 - "$ref" "$work/ref5.csv" "$rows" <<'PY'; then
 import csv, sys
-stored = list(csv.DictReader(open(sys.argv[1])))[:2]
+allrows = list(csv.DictReader(open(sys.argv[1])))
+stored = [allrows[int(i)] for i in sys.argv[3].split(",")]
 new = list(csv.DictReader(open(sys.argv[2])))
-bad = 0
+bad = []
+def close(a, b, rtol):
+    a, b = float(a), float(b)
+    return abs(a - b) <= rtol * max(abs(a), abs(b)) or a == b
 for a, b in zip(stored, new):
-    for k in ("gap", "kc", "m1", "k1", "fy2"):
-        bad += abs(float(a[k]) - float(b[k])) > 1e-12 * abs(float(a[k]))
-    for k in ("ref_peak_closing", "ref_peak_u1", "ref_peak_u2"):
-        bad += abs(float(a[k]) - float(b[k])) > 1e-9 * abs(float(a[k]))
-    bad += a["ref_impact_count"] != b["ref_impact_count"]
-sys.exit(1 if bad or len(new) != 2 else 0)
+    tag = "%s model %s %s" % (a["law"], a["model"], a["record"][:24])
+    for k in ("record", "model", "law", "damping"):
+        if a[k] != b[k]: bad.append("%s: %s %s != %s" % (tag, k, a[k], b[k]))
+    for k in ("gap", "kc", "e", "m1", "k1", "c1", "fy1", "m2", "k2", "c2", "fy2"):
+        if not close(a[k], b[k], 1e-12): bad.append("%s: %s %s != %s" % (tag, k, a[k], b[k]))
+    for k in ("ref_peak_closing", "ref_peak_force", "ref_peak_u1", "ref_peak_u2"):
+        if not close(a[k], b[k], 1e-9): bad.append("%s: %s %s != %s" % (tag, k, a[k], b[k]))
+    if a["ref_impact_count"] != b["ref_impact_count"]: bad.append("%s: impact count" % tag)
+laws = sorted({r["law"] for r in new})
+if len(new) != 5 or laws != ["hertzdamp", "kelvin", "linear", "none", "stereomechanical"]:
+    bad.append("expected one row per law, got %d rows: %s" % (len(new), laws))
+if not all(float(r["ref_peak_force"]) > 0 for r in new if r["law"] in ("hertzdamp", "kelvin", "linear")):
+    bad.append("a force law without a peak force")
+print("\n".join(bad))
+sys.exit(1 if bad else 0)
 PY
-    ok "reference regenerates (first 2 rows, parameters 1e-12, peaks 1e-9)"
+    ok "reference regenerates (5 rows, every law, forces and peaks 1e-9, parameters 1e-12, counts equal)"
   else
     fail "regenerated reference rows differ from the stored ones"
   fi
