@@ -110,8 +110,9 @@ TEST(KinematicHardening, RecordedForcePathMatchesClosedFormForEveryStepper) {
     EXPECT_GT(on_lower, 50);
     EXPECT_GT(reversals, 10);
     EXPECT_GT(r.peak_u1[0], 0.03);
-    // round-off of two different formulas for the same path
-    EXPECT_LT(worst, 1e-9 * p.s1.fy) << to_string(st);
+    // round-off of two different formulas for the same path: measured 4.0e-15 fy at most (central difference;
+    // 6e-16 to 1.0e-15 for the others), README quotes 4e-15 fy, bound 1.5x
+    EXPECT_LT(worst, 6e-15 * p.s1.fy) << to_string(st);
     EXPECT_NEAR(r.e_hysteretic[0], hyst_ref, 1e-9 * hyst_ref) << to_string(st);
     EXPECT_GT(hyst_ref, 0.0);
   }
