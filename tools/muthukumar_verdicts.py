@@ -3,6 +3,7 @@
 
   tools/muthukumar_verdicts.py docs/muthukumar_sensitivity.csv   (records_set,T2,kelvin_scale + rows)
   tools/muthukumar_verdicts.py docs/muthukumar.csv               (one configuration: all records, T2 1, x1)
+  tools/muthukumar_verdicts.py --compact CSV                      one table, a row per configuration
 
 Prints the Markdown tables of docs/validation.md ("Sensitivity"). The findings and the rules applied:
   F1  displacement amplification of stereomechanical, Kelvin, Hertzdamp (Lankarani-Nikravesh) within 12 % of
@@ -154,14 +155,44 @@ def c7(t):
     return ("supported" if worst[0] < 10.0 else "NOT supported") + f": Hertz e-effect at low PGA {worst[0]:.1f} % (T1/T2 {worst[1]})"
 
 
+def compact(cfgs):
+    print("| records | T2 (s) | Kelvin x | F1 max spread | F2 | F3 low<mod, mod<high (disp) | F4 H<K low, mod, high "
+          "| F5 disp reduction s/K/H (28/16/10) | C6 rises with PGA | C7 Hertz e-effect, low PGA |")
+    print("|---|---|---|---|---|---|---|---|---|---|")
+    for (rs, t2, ks), t in cfgs.items():
+        v1 = f1(t).split(": max spread ")
+        cells = [f"{v1[1].split(' (')[0]} {'ok' if v1[0] == 'holds' else '**fails**'}"]
+        v2 = f2(t)
+        cells.append(v2.split(": ")[1].replace(" groups", "") + (" ok" if v2.startswith("holds") else " **fails**"))
+        v3 = f3(t)
+        cells.append(", ".join(p.split(" ", 2)[2] for p in v3.split(": ", 1)[1].split(", ") if p.startswith("disp"))
+                     if v3 != "n/a" else "n/a")
+        v4 = f4(t)
+        cells.append(v4.split("H<K ")[1] + (" ok" if v4.startswith("holds") else " **fails**"))
+        v5 = f5(t)
+        cells.append(v5.split(" % (28")[0].replace("disp ", "") + " %" + ("" if "disp order holds" in v5 else " (order fails)"))
+        v6 = c6(t)
+        cells.append("n/a" if v6 == "n/a" else ", ".join(
+            f"{m}: {'yes' if part.endswith('rises') else 'no'}"
+            for m, part in zip(("S", "K", "H"), v6.split("; "))))
+        v7 = c7(t)
+        cells.append("n/a" if v7 == "n/a" else v7.split("low PGA ")[1].split(" (")[0] + (" ok" if v7.startswith("supported") else " **fails**"))
+        print(f"| {rs} | {t2} | {ks} | " + " | ".join(cells) + " |")
+
+
 def main():
-    if len(sys.argv) != 2:
+    args = [a for a in sys.argv[1:] if a != "--compact"]
+    if len(args) != 1:
         print(__doc__, file=sys.stderr)
         sys.exit(2)
-    cfgs = configs(sys.argv[1])
+    cfgs = configs(args[0])
+    if "--compact" in sys.argv:
+        compact(cfgs)
+        return
     cols = [("F1 spread <= 12 %", f1), ("F2 rises as T1/T2 falls", f2), ("F3 rises with PGA (0.3, 0.5)", f3),
             ("F4 Hertzdamp < Kelvin acc (low, mod, high)", f4), ("F5 e-reduction, high PGA, 0.3", f5),
-            ("C6 e-effect rises with PGA (disp reduction %, T1/T2 0.3, by level present)", c6), ("C7 Hertz e = 1 adequate at low PGA", c7)]
+            ("C6 e-effect rises with PGA (disp reduction %, T1/T2 0.3, by level present)", c6),
+            ("C7 Hertz e = 1 adequate at low PGA", c7)]
     for name, fn in cols:
         print(f"\n**{name}**\n")
         print("| records | T2 (s) | Kelvin x | verdict |")
