@@ -169,23 +169,6 @@ struct KelvinTension {
 };
 KelvinTension kelvin_tension(double e);
 
-// ---------------------------------------------------------------------------------------------------
-// Muthukumar-DesRoches parameter study (elastic 2-DOF)
-struct MuthukumarRow {
-  std::string level;  // low, moderate, high
-  double period_ratio = 0;
-  std::string model;  // stereomechanical, kelvin, hertzdamp (e = 1: linear / hertz)
-  double e = 0;
-  int records = 0;
-  double disp_amp = 0, acc_amp = 0;  // mean over records
-  int diverged = 0;
-};
-struct MuthukumarOptions {
-  double T2 = 0.0;            // flexible system period (s), T1 = 0.3, 0.5, 0.7 T2; 0: 1.0 s (docs/validation.md)
-  double kelvin_k = 0.0;      // N/m; 0: default
-  int substeps = 0;           // 0: enough for 50 steps per Kelvin contact
-};
-std::vector<MuthukumarRow> muthukumar(const std::string& record_dir, const MuthukumarOptions& opt,
-                                      std::vector<std::string>* log = nullptr);
+// The Muthukumar-DesRoches parameter study: pounding/accuracy/muthukumar.hpp.
 
 }  // namespace pounding::accuracy

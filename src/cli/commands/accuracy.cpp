@@ -14,6 +14,7 @@
 #include <fmt/format.h>
 
 #include "pounding/accuracy/accuracy.hpp"
+#include "pounding/accuracy/muthukumar.hpp"
 #include "cli/commands.hpp"
 #include "pounding/core/error.hpp"
 #include "pounding/core/files.hpp"
@@ -183,35 +184,54 @@ void add_restitution(CLI::App* acc) {
 }
 
 // validate-muthukumar
+std::string muthukumar_csv(const std::vector<A::MuthukumarRow>& rows) {
+  std::ostringstream s;
+  s << "level,period_ratio,model,e,records,diverged,disp_amp,acc_amp\n";
+  for (const auto& r : rows) {
+    s << fmt::format("{},{},{},{},{},{},{:.5g},{:.5g}\n", r.level, r.period_ratio, r.model, r.e, r.records,
+                     r.diverged, r.disp_amp, r.acc_amp);
+    fmt::print("{:<9} T1/T2={:.1f} {:<17} e={:.1f} n={:>2} disp_amp={:.3f} acc_amp={:.3f}{}\n", r.level,
+               r.period_ratio, r.model, r.e, r.records, r.disp_amp, r.acc_amp,
+               r.diverged ? fmt::format(" ({} diverged)", r.diverged) : "");
+  }
+  return s.str();
+}
+
+void print_table_i() {
+  fmt::print("level,event,station,our_files,note\n");
+  for (const auto& t : A::muthukumar_table_i()) {
+    std::string files;
+    for (const auto& f : t.files) files += (files.empty() ? "" : " ") + f;
+    fmt::print("{},{},{},{},\"{}\"\n", t.level, t.event, t.station, files.empty() ? "-" : files, t.note);
+  }
+}
+
 void add_validate_muthukumar(CLI::App* acc, const RecordsDir& dir) {
   struct O {
     std::string out = "muthukumar.csv";
-    double T2 = 1.0, kelvin_k = 0.0;
-    int substeps = 0;
+    A::MuthukumarOptions mo;
+    bool table_i = false;
   };
   auto o = std::make_shared<O>();
   auto* c = acc->add_subcommand("validate-muthukumar", "Muthukumar-DesRoches (2006) parameter study, real records");
   c->add_option("--out", o->out, "CSV")->capture_default_str();
-  c->add_option("--T2", o->T2, "flexible system period (s); T1 = 0.3, 0.5, 0.7 T2")->capture_default_str();
-  c->add_option("--kelvin-k", o->kelvin_k, "Kelvin/linear stiffness (N/m); default 25,000 kip/in");
-  c->add_option("--substeps", o->substeps, "substeps per record step (default: h <= 0.5 ms)");
+  c->add_option("--T2", o->mo.T2, "flexible system period (s), ASSUMED; T1 = 0.3, 0.5, 0.7 T2")
+      ->capture_default_str();
+  c->add_option("--kelvin-k", o->mo.kelvin_k, "Kelvin/linear stiffness (N/m); default 25,000 kip/in (ASSUMED)");
+  c->add_option("--kelvin-scale", o->mo.kelvin_scale, "multiplies the Kelvin/linear stiffness (sensitivity)")
+      ->capture_default_str();
+  c->add_option("--records", o->mo.records,
+                "all (every record in a PGA band) or matched (the paper's Table I records we hold)")
+      ->capture_default_str();
+  c->add_option("--levels", o->mo.levels, "PGA levels to run (low moderate high; default all)")->delimiter(',');
+  c->add_option("--ratios", o->mo.ratios, "T1/T2 to run (0.3 0.5 0.7; default all)")->delimiter(',');
+  c->add_option("--substeps", o->mo.substeps, "substeps per record step (default: h <= 0.5 ms)");
+  c->add_flag("--table-i", o->table_i, "print the paper's Table I against our records (CSV) and exit");
   c->callback([o, dir] {
-    A::MuthukumarOptions mo;
-    mo.T2 = o->T2;
-    mo.kelvin_k = o->kelvin_k;
-    mo.substeps = o->substeps;
+    if (o->table_i) return print_table_i();
     std::vector<std::string> log;
-    auto rows = A::muthukumar(*dir, mo, &log);
-    std::ostringstream s;
-    s << "level,period_ratio,model,e,records,diverged,disp_amp,acc_amp\n";
-    for (const auto& r : rows) {
-      s << fmt::format("{},{},{},{},{},{},{:.5g},{:.5g}\n", r.level, r.period_ratio, r.model, r.e, r.records,
-                       r.diverged, r.disp_amp, r.acc_amp);
-      fmt::print("{:<9} T1/T2={:.1f} {:<17} e={:.1f} n={:>2} disp_amp={:.3f} acc_amp={:.3f}{}\n", r.level,
-                 r.period_ratio, r.model, r.e, r.records, r.disp_amp, r.acc_amp,
-                 r.diverged ? fmt::format(" ({} diverged)", r.diverged) : "");
-    }
-    files::write_text_atomically(o->out, s.str());
+    auto rows = A::muthukumar(*dir, o->mo, &log);
+    files::write_text_atomically(o->out, muthukumar_csv(rows));
   });
 }
 
