@@ -404,8 +404,34 @@ std::vector<EngineResult> timed_runs(ChartRow& row, const std::vector<Case>& lc,
 
 }  // namespace
 
+ChartRowId parse_chart_row_id(const std::string& s) {
+  auto a = s.find(':'), b = s.rfind(':');
+  ChartRowId id;
+  if (a != std::string::npos && b != a) {
+    id.stepper = s.substr(0, a), id.law = s.substr(a + 1, b - a - 1);
+    const std::string k = s.substr(b + 1);
+    if (!id.stepper.empty() && !id.law.empty() && !k.empty() && k.size() < 3 &&
+        k.find_first_not_of("0123456789") == std::string::npos) {
+      id.k = std::stoi(k);
+      return id;
+    }
+  }
+  throw InputError(fmt::format("chart row '{}' is not stepper:law:k", s), "--rows",
+                   "give e.g. central-difference:hertzdamp:2 (steppers central-difference, newmark, rk4, "
+                   "rk4-located, nigam-jennings; k = 0..kmax)");
+}
+
+namespace {
+bool selected(const std::vector<ChartRowId>& only, const std::string& stepper, const std::string& law, int k) {
+  if (only.empty()) return true;
+  return std::any_of(only.begin(), only.end(), [&](const ChartRowId& r) {
+    return r.stepper == stepper && r.k == k && (law.empty() || r.law == law);
+  });
+}
+}  // namespace
+
 std::vector<ChartRow> chart(const std::vector<Case>& cases, RecordCache& records, int repeats, int kmax,
-                            const std::vector<Case>* uncoupled) {
+                            const std::vector<Case>* uncoupled, const std::vector<ChartRowId>& only) {
   struct Variant {
     std::string name;
     Stepper s;
@@ -421,10 +447,16 @@ std::vector<ChartRow> chart(const std::vector<Case>& cases, RecordCache& records
   if (uncoupled && !uncoupled->empty()) by_law["none"] = *uncoupled;  // a larger uncoupled set: finer probabilities
   if (!by_law.count("none"))
     throw InputError("the reference has no uncoupled ('none') cases", "reference", "regenerate it with law none");
+  for (const auto& r : only)
+    if (!by_law.count(r.law) || r.k < 0 || r.k > kmax ||
+        std::none_of(variants.begin(), variants.end(), [&](const Variant& v) { return v.name == r.stepper; }))
+      throw InputError(fmt::format("chart row {}:{}:{} is not in the chart", r.stepper, r.law, r.k), "--rows",
+                       "name a stepper and law of the chart and k = 0..kmax");
   const double rec_dt = records.get(cases[0].record).dt;
   std::vector<ChartRow> rows;
   for (const auto& v : variants)
     for (int k = 0; k <= kmax; ++k) {
+      if (!selected(only, v.name, "", k)) continue;
       EngineSetting es{v.s, 1 << k, v.locate};
       const auto& unc = by_law["none"];
       auto ru = run_cases(unc, es, records);
@@ -433,6 +465,7 @@ std::vector<ChartRow> chart(const std::vector<Case>& cases, RecordCache& records
       Uncoupled u{unc, ru, {}};
       for (std::size_t i = 0; i < unc.size(); ++i) u.index[{unc[i].record, unc[i].model}] = i;
       for (const auto& [law, lc] : by_law) {
+        if (!selected(only, v.name, law, k)) continue;
         ChartRow row;
         row.stepper = v.name, row.law = law, row.k = k, row.dt = rec_dt / (1 << k);
         score_row(row, lc, timed_runs(row, lc, es, records, repeats), u);
@@ -616,11 +649,19 @@ std::vector<StiffRow> stiff_contact(const std::string& record_dir) {
 }
 
 // ---------------------------------------------------------------------------------------------------
-std::vector<RestitutionRow> restitution_table(const std::vector<double>& targets) {
+std::vector<RestitutionRow> restitution_table(const std::vector<double>& targets,
+                                              const std::vector<std::string>& laws) {
   std::vector<RestitutionRow> out;
   const double m = 1e6, kh = 2.808e10, v0 = 1.0;
-  for (std::string law : {"lankarani-nikravesh", "hunt-crossley", "flores", "hu-guo", "gonthier", "calibrated",
-                          "jankowski", "kelvin"})
+  const std::vector<std::string> all{"lankarani-nikravesh", "hunt-crossley", "flores", "hu-guo", "gonthier",
+                                     "calibrated", "jankowski", "kelvin"};
+  for (const auto& l : laws)
+    if (std::find(all.begin(), all.end(), l) == all.end())
+      throw InputError(fmt::format("'{}' is not a law of the restitution table", l), "--laws",
+                       "give some of lankarani-nikravesh, hunt-crossley, flores, hu-guo, gonthier, calibrated, "
+                       "jankowski, kelvin");
+  for (const std::string& law : all) {
+    if (!laws.empty() && std::find(laws.begin(), laws.end(), law) == laws.end()) continue;
     for (double e : targets) {
       ContactModel cm;
       double kc = kh;
@@ -636,6 +677,7 @@ std::vector<RestitutionRow> restitution_table(const std::vector<double>& targets
       ImpactResult ir = single_impact(cm, Stepper::rk4, e, v0, m, m, kc, 20000);
       out.push_back({law, e, ir.e_effective, ir.clamps});
     }
+  }
   return out;
 }
 

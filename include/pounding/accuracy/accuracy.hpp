@@ -122,8 +122,17 @@ struct ChartRow {
   double prob_error_max_pp = 0;
 };
 std::vector<double> chart_gap_ratios();  // 0.1, 0.2, 0.3, 0.5, 0.7, 1.0
+// One chart row by its key (stepper name as in the CSV, law, k): `only` restricts the chart to these rows.
+// Each selected row is computed exactly as in the full chart (same cases, same uncoupled runs for its
+// probability and amplification columns), so its error columns equal the full chart's (tests/docs).
+struct ChartRowId {
+  std::string stepper, law;
+  int k = 0;
+};
+// "stepper:law:k" (e.g. "central-difference:hertzdamp:2"); InputError otherwise.
+ChartRowId parse_chart_row_id(const std::string& s);
 std::vector<ChartRow> chart(const std::vector<Case>& cases, RecordCache& records, int repeats, int kmax,
-                            const std::vector<Case>* uncoupled = nullptr);
+                            const std::vector<Case>* uncoupled = nullptr, const std::vector<ChartRowId>& only = {});
 void write_chart_csv(const std::string& path, const std::vector<ChartRow>& rows);
 
 // ---------------------------------------------------------------------------------------------------
@@ -157,7 +166,10 @@ struct RestitutionRow {
   double e_target = 0, e_effective = 0;
   int clamps = 0;
 };
-std::vector<RestitutionRow> restitution_table(const std::vector<double>& targets);
+// laws: the damping-law names of the table (lankarani-nikravesh ... calibrated, jankowski, kelvin) in its
+// order; empty = all. A subset gives exactly the rows of the full table (tests/docs/restitution.sh).
+std::vector<RestitutionRow> restitution_table(const std::vector<double>& targets,
+                                              const std::vector<std::string>& laws = {});
 
 struct KelvinTension {
   double e = 0;

@@ -5,6 +5,7 @@
 //   stability            stability limits (h omega) and the stiff steel-frame contact (CSV)
 //   restitution          effective e of every damping law, Kelvin's tension (CSV)
 //   validate-muthukumar  Muthukumar-DesRoches (2006) parameter study on the real records (CSV)
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
@@ -105,6 +106,7 @@ void add_chart(CLI::App* acc, const RecordsDir& dir) {
     std::string out = "accuracy_chart.csv";
     int repeats = 3, kmax = 5;
     std::string uncoupled;
+    std::vector<std::string> rows;
   };
   auto o = std::make_shared<O>();
   auto* c = acc->add_subcommand("chart", "stepper x dt x contact law: cost and error against the reference");
@@ -113,13 +115,19 @@ void add_chart(CLI::App* acc, const RecordsDir& dir) {
   c->add_option("--repeats", o->repeats, "timing repeats (median)")->capture_default_str();
   c->add_option("--kmax", o->kmax, "dt = record dt x 2^-k, k = 0..kmax")->capture_default_str();
   c->add_option("--uncoupled", o->uncoupled, "larger uncoupled reference CSV for the probability table");
+  c->add_option("--rows", o->rows,
+                "only these rows, stepper:law:k (e.g. central-difference:hertzdamp:2); each equals the full "
+                "chart's row except the timing columns")
+      ->delimiter(',');
   c->callback([o, dir] {
     require_positive(o->repeats, "--repeats");
+    std::vector<A::ChartRowId> only;
+    for (const auto& r : o->rows) only.push_back(A::parse_chart_row_id(r));
     auto cases = A::read_cases(o->reference);
     std::vector<A::Case> unc;
     if (!o->uncoupled.empty()) unc = A::read_cases(o->uncoupled);
     A::RecordCache records(*dir, A::default_records());
-    auto rows = A::chart(cases, records, o->repeats, o->kmax, &unc);
+    auto rows = A::chart(cases, records, o->repeats, o->kmax, &unc, only);
     A::write_chart_csv(o->out, rows);
     fmt::print("{} rows -> {}\n", rows.size(), o->out);
   });
@@ -159,16 +167,27 @@ void add_stability(CLI::App* acc, const RecordsDir& dir) {
 void add_restitution(CLI::App* acc) {
   struct O {
     std::string out = "restitution.csv";
+    std::vector<std::string> laws;
+    std::vector<double> targets;
   };
   auto o = std::make_shared<O>();
   auto* c = acc->add_subcommand("restitution", "effective vs target e for every damping law; Kelvin's tension");
   c->add_option("--out", o->out, "restitution CSV")->capture_default_str();
+  c->add_option("--laws", o->laws, "only these laws' rows (default: all eight)")->delimiter(',');
+  c->add_option("--targets", o->targets, "only these target e of the table's 0.10, 0.15, ..., 1.00")
+      ->delimiter(',');
   c->callback([o] {
-    std::vector<double> targets;
-    for (int i = 2; i <= 20; ++i) targets.push_back(0.05 * i);
+    std::vector<double> targets;  // 0.05 i exactly as in the full table, so a subset gives the same rows
+    for (int i = 2; i <= 20; ++i)
+      if (o->targets.empty() ||
+          std::any_of(o->targets.begin(), o->targets.end(), [i](double t) { return std::abs(t - 0.05 * i) < 1e-9; }))
+        targets.push_back(0.05 * i);
+    if (targets.size() < std::max<std::size_t>(1, o->targets.size()))
+      throw InputError("a --targets value is not one of 0.10, 0.15, ..., 1.00", "--targets",
+                       "give targets on the table's 0.05 grid");
     std::ostringstream s;
     s << "law,e_target,e_effective,clamps\n";
-    for (const auto& r : A::restitution_table(targets))
+    for (const auto& r : A::restitution_table(targets, o->laws))
       s << fmt::format("{},{:.4g},{:.8g},{}\n", r.law, r.e_target, r.e_effective, r.clamps);
     files::write_text_atomically(o->out, s.str());
     fmt::print("restitution table -> {}\n", o->out);
