@@ -38,11 +38,11 @@ constexpr Scheme scheme_of(Stepper s, bool locate_contact) {
 inline constexpr double no_limit = std::numeric_limits<double>::infinity();
 // [scheme][law]: none, linear, kelvin, hertz, hertzdamp, jankowski, stereomechanical (measured, see above)
 inline constexpr std::array<std::array<double, law_count>, scheme_count> resolution_limits{{
-    {no_limit, no_limit, no_limit, no_limit, no_limit, no_limit, no_limit},  // central-difference
-    {no_limit, no_limit, no_limit, no_limit, no_limit, no_limit, no_limit},  // newmark
-    {no_limit, no_limit, no_limit, no_limit, no_limit, no_limit, no_limit},  // rk4
-    {no_limit, no_limit, no_limit, no_limit, no_limit, no_limit, no_limit},  // rk4 + locate_contact
-    {no_limit, no_limit, no_limit, no_limit, no_limit, no_limit, no_limit},  // nigam-jennings
+    {no_limit, 0.304, 0.079, 0.366, 0.274, 0.099, no_limit},  // central-difference
+    {no_limit, 0.214, 0.079, 0.215, 0.214, 0.092, no_limit},  // newmark
+    {no_limit, 0.261, 0.114, 0.274, 0.268, 0.124, no_limit},  // rk4
+    {no_limit, 0.285, 0.174, 0.281, 0.268, 0.181, no_limit},  // rk4 + locate_contact
+    {no_limit, 0.248, 0.079, 0.241, 0.235, 0.099, no_limit},  // nigam-jennings
 }};
 constexpr double resolution_limit(Stepper s, bool locate_contact, ContactLaw law) {
   return resolution_limits[static_cast<std::size_t>(scheme_of(s, locate_contact))][static_cast<std::size_t>(law)];
