@@ -39,6 +39,9 @@ double percentile(std::vector<double> v, double p) {  // linear interpolation (n
   return v[i] + (x - static_cast<double>(i)) * (v[i + 1] - v[i]);
 }
 
+// The run returned numbers: ok, or coarse (the resolution guard's mark; its error is what the chart measures).
+bool ran(LaneStatus s) { return s == LaneStatus::ok || s == LaneStatus::coarse; }
+
 double rel(double a, double ref) { return std::abs(a - ref) / std::abs(ref); }
 // Peak closing: relative to the reference, floored at 1 mm (pairs of equal periods close by ~1e-16 m and never
 // impact at any studied gap; their relative error would be noise).
@@ -295,7 +298,7 @@ std::vector<Agreement> agreement(const std::vector<Case>& cases, const std::vect
       const Case& c = cases[i];
       const EngineResult& r = res[i];
       ++a.cases;
-      if (r.status != LaneStatus::ok) {
+      if (!ran(r.status)) {
         ++a.count_differs, ++a.verdict_differs;
         ec.push_back(inf);
         continue;
@@ -335,8 +338,8 @@ std::vector<double> probability_errors(const std::vector<Case>& unc, const std::
     int ne = 0, nr = 0;
     for (std::size_t i = 0; i < unc.size(); ++i) {
       double gap = g * unc[i].d;
-      *diverged += ru[i].status != LaneStatus::ok;
-      ne += ru[i].status == LaneStatus::ok && ru[i].peak_closing > gap;
+      *diverged += !ran(ru[i].status);
+      ne += ran(ru[i].status) && ru[i].peak_closing > gap;
       nr += unc[i].ref_peak_closing > gap;
     }
     perr.push_back(100.0 * std::abs(ne - nr) / static_cast<double>(unc.size()));
@@ -358,15 +361,15 @@ void score_row(ChartRow& row, const std::vector<Case>& lc, const std::vector<Eng
   int cd = 0, vd = 0;
   for (std::size_t i = 0; i < lc.size(); ++i) {
     const Case& c = lc[i];
-    if (law != "none" && r[i].status == LaneStatus::ok) {
+    if (law != "none" && ran(r[i].status)) {
       auto it = u.index.find({c.record, c.model});
-      if (it != u.index.end() && u.results[it->second].status == LaneStatus::ok && c.ref_impact_count > 0) {
+      if (it != u.index.end() && ran(u.results[it->second].status) && c.ref_impact_count > 0) {
         double amp = r[i].peak_u1 / u.results[it->second].peak_u1;
         double amp_ref = c.ref_peak_u1 / u.cases[it->second].ref_peak_u1;
         ea.push_back(rel(amp, amp_ref));
       }
     }
-    if (r[i].status != LaneStatus::ok) {
+    if (!ran(r[i].status)) {
       ++row.diverged, ++cd, ++vd;
       ec.push_back(inf);
       if (c.ref_impact_count > 0) ef.push_back(inf);
@@ -800,7 +803,7 @@ int add_muthukumar_record(AmpSums& acc, const LevelRecord& rc, const LoadedRecor
     run_batch(bb, cm, gm, ks, r);
     for (std::size_t j = 0; j < ratios.size(); ++j) {
       auto& [sd, sa, n, ndiv] = acc[{rc.level, ratios[j], ms.name, ms.e}];
-      if (r.status[j] != 0) {
+      if (!ran(static_cast<LaneStatus>(r.status[j]))) {
         ++ndiv;
         continue;
       }

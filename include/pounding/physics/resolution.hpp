@@ -12,7 +12,9 @@
 #include <array>
 #include <cmath>
 #include <cstddef>
+#include <cstdint>
 #include <limits>
+#include <string>
 
 #include "pounding/contact/model.hpp"
 #include "pounding/kernel/batch.hpp"
@@ -59,5 +61,18 @@ inline double h_omega(double h, double k_t, double meff) { return h * std::sqrt(
 inline int substeps_for_limit(int substeps, double hw_max, double limit) {
   return static_cast<int>(std::ceil(substeps * hw_max / limit - 1e-9));
 }
+
+// A study's (or a run's) coarse analyses, for the report and the run output.
+struct CoarseSummary {
+  std::int64_t coarse = 0, analyses = 0;  // analyses marked coarse, of all coupled analyses with a force law
+  double hw_max = std::numeric_limits<double>::quiet_NaN();  // largest h omega_c of any analysis that ran
+  double limit = no_limit;                // of the stepper x law
+  double h_at_max = 0;                    // the step (s) of the analysis with hw_max
+  int substeps_at_max = 1;                // its substeps per record step
+  bool kept = false;                      // [analysis] coarse = "keep"
+};
+// "coarse: N analyses (max h·ω_c X, limit Y)", and when N > 0 the [analysis] substeps / max_dt that would bring
+// hw_max under the limit (an estimate), and whether they were excluded or kept.
+std::string describe(const CoarseSummary& c);
 
 }  // namespace pounding::physics
