@@ -17,7 +17,7 @@ std::string describe(const CoarseSummary& c) {
                               std::isnan(c.hw_max) ? std::string("-") : fmt::format("{:.3g}", c.hw_max),
                               std::isinf(c.limit) ? std::string("none") : fmt::format("{:.3g}", c.limit));
   if (c.coarse == 0) return s;
-  s += fmt::format("; {} from the statistics ([analysis] coarse = \"{}\")", c.kept ? "kept in" : "excluded",
+  s += fmt::format("; {} the statistics ([analysis] coarse = \"{}\")", c.kept ? "kept in" : "excluded from",
                    c.kept ? "keep" : "exclude");
   if (std::isfinite(c.limit) && c.limit > 0 && c.hw_max > 0)
     s += fmt::format(". To bring the largest h·ω_c under the limit: [analysis] substeps = {} (or max_dt = {:.3g} s) "
