@@ -26,4 +26,14 @@ template <class L> double tangent_at_penetration(double pen, double kc, double c
   }
 }
 
+// The penetration the guard evaluates the tangent at: the lane's peak penetration, or, when a lane reports a
+// contact force but no positive end-of-step penetration (seen: Nigam-Jennings with the linear law at h omega_c
+// 2.49-2.77, inside its unstable contact window, 47,700 N with peak penetration <= 0), the elastic penetration
+// that carries the peak force, (F / kc)^(1/n): otherwise such a lane would read as "never touched" (0).
+template <class L> double guard_penetration(double pen, double peak_force, double kc, double n) {
+  if (pen > 0.0 || !(peak_force > 0.0) || !(kc > 0.0)) return pen;
+  const double n_law = L::traits.uses_exponent ? n : L::traits.stiffness_unit == "N/m" ? 1.0 : 1.5;
+  return std::pow(peak_force / kc, 1.0 / n_law);
+}
+
 }  // namespace pounding::contact

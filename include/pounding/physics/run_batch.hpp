@@ -102,7 +102,8 @@ void collect(const kernel::Tile& T, std::size_t base, const ContactModel& cm, do
     const double strain = Model::strain_energy(Model::template load<double>(T, 0, i), T.u1[i], T.fs1[i]) +
                           Model::strain_energy(Model::template load<double>(T, 1, i), T.u2[i], T.fs2[i]);
     collect_lane(T, i, L, Law::template stored_energy<double>(dp, T.kc[i], n_exp), strain, Law::traits.impulsive, out);
-    const double k_t = contact::tangent_at_penetration<Law>(out.peak_penetration[L], T.kc[i], T.cd[i], n_exp);
+    const double pen = contact::guard_penetration<Law>(out.peak_penetration[L], out.peak_force[L], T.kc[i], n_exp);
+    const double k_t = contact::tangent_at_penetration<Law>(pen, T.kc[i], T.cd[i], n_exp);
     mark_resolution(L, k_t, T.meff[i], h, limit, out);
   }
 }
