@@ -51,7 +51,9 @@ void check_balance(const ContactModel& cm, double kc, const char* label, bool rk
     std::string line;
     for (int s : {2, 4, 8, 16, 32}) {
       BatchResult r = run_one(p, cm, ag, dt, 0.0, st, s, true);
-      ASSERT_EQ(r.status[0], 0) << to_string(st) << " substeps " << s;
+      // ok, or coarse (the energy balance holds at any step; some of these steps under-resolve the contact)
+      ASSERT_TRUE(r.status[0] == 0 || r.status[0] == static_cast<std::uint8_t>(LaneStatus::coarse))
+          << to_string(st) << " substeps " << s;
       // a real pounding history: several impacts, yielding and contact dissipation all present
       EXPECT_GE(r.impact_count[0], 2);
       EXPECT_GT(r.e_hysteretic[0], 0.05 * r.e_input[0]);

@@ -258,7 +258,8 @@ Convergence measure(const PairParams& p, const ContactModel& cm, const std::vect
   for (int s : {1, 2, 4, 8}) {
     SeriesRecorder rec;
     BatchResult r = run_one(p, cm, ag, dt, 0.0, st, s, false, &rec);
-    EXPECT_EQ(r.status[0], 0);
+    // ran (ok, or coarse: the convergence study starts at under-resolved steps on purpose)
+    EXPECT_TRUE(r.status[0] == 0 || r.status[0] == static_cast<std::uint8_t>(LaneStatus::coarse));
     c.err.push_back(history_error(rec, s, ref1, ref2));
   }
   for (std::size_t i = 0; i + 1 < c.err.size(); ++i) c.order.push_back(std::log2(c.err[i] / c.err[i + 1]));

@@ -1,7 +1,8 @@
 #!/usr/bin/python3
 """Stiff steel-frame contact (docs/stiff_contact.csv from `pounding accuracy stability`): peak contact force
 against h * omega_c (omega_c = sqrt(k / meff) of the 20,660 N/mm contact) for every stepper and law; lanes the
-kernel marked diverged are drawn as crosses at the top. The measured stability limits (docs/stability.csv)
+kernel marked diverged are drawn as crosses at the top, lanes the resolution guard marked coarse (ran, but h omega_c
+over the accuracy limit of the stepper x law) as open circles, ok lanes filled. The measured stability limits (docs/stability.csv)
 are printed.
 
     /usr/bin/python3 tools/plot_stability.py docs/stability.csv docs/stiff_contact.csv docs/img/stability.png
@@ -25,13 +26,20 @@ def main():
     fig, axes = plt.subplots(1, len(laws), figsize=(4.3 * len(laws), 3.8), squeeze=False)
     for j, law in enumerate(laws):
         ax = axes[0][j]
-        top = max(float(r["peak_force"]) for r in rows if r["law"] == law and r["status"] == "ok") * 1.6
+        ran = ("ok", "coarse")
+        top = max(float(r["peak_force"]) for r in rows if r["law"] == law and r["status"] in ran) * 1.6
         for i, s in enumerate(steppers):
             pts = [r for r in rows if r["law"] == law and r["stepper"] == s]
+            line = [(float(r["h_omega_contact"]), float(r["peak_force"])) for r in pts if r["status"] in ran]
             ok = [(float(r["h_omega_contact"]), float(r["peak_force"])) for r in pts if r["status"] == "ok"]
-            bad = [float(r["h_omega_contact"]) for r in pts if r["status"] != "ok"]
+            coarse = [(float(r["h_omega_contact"]), float(r["peak_force"])) for r in pts if r["status"] == "coarse"]
+            bad = [float(r["h_omega_contact"]) for r in pts if r["status"] not in ran]
+            if line:
+                ax.plot(*zip(*sorted(line)), "-", color="C%d" % i, lw=0.8, label=s)
             if ok:
-                ax.plot(*zip(*sorted(ok)), "o-", color="C%d" % i, ms=4, label=s)
+                ax.plot(*zip(*ok), "o", color="C%d" % i, ms=4)
+            if coarse:
+                ax.plot(*zip(*coarse), "o", mfc="none", color="C%d" % i, ms=5)
             if bad:
                 ax.plot(bad, [top * (1 + 0.05 * i)] * len(bad), "x", color="C%d" % i, ms=8)
         ax.axvline(2.0, color="grey", ls=":", lw=0.8)
@@ -39,7 +47,7 @@ def main():
         ax.set_xscale("log")
         ax.set_xlabel("h * omega_c (contact)")
         ax.set_ylabel("peak contact force (N)")
-        ax.set_title("%s (x = marked diverged)" % law, fontsize=9)
+        ax.set_title("%s (x diverged, open = coarse, filled = ok)" % law, fontsize=9)
         ax.grid(True, lw=0.3)
     axes[0][0].legend(fontsize=7)
     fig.tight_layout()

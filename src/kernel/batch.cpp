@@ -55,7 +55,7 @@ void BatchResult::resize(std::size_t n) {
   for (auto* v : {&peak_u1, &peak_u2, &peak_closing, &t_peak_closing, &t_first_impact, &peak_force,
                   &peak_penetration, &contact_energy, &contact_time, &peak_acc1, &peak_acc2, &final_u1, &final_v1,
                   &final_u2, &final_v2, &e_input, &e_kinetic, &e_strain, &e_viscous, &e_hysteretic,
-                  &e_contact_stored})
+                  &e_contact_stored, &h_omega_contact})
     v->assign(n, 0.0);
   impact_count.assign(n, 0);
   clamp_count.assign(n, 0);

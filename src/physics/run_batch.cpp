@@ -86,6 +86,12 @@ void collect_lane(const kernel::Tile& T, int i, std::size_t L, double stored, do
   out.e_hysteretic[L] = val(T.Ehys[i]);
 }
 
+void mark_resolution(std::size_t L, double k_t, double meff, double h, double limit, BatchResult& out) {
+  const bool ran = out.status[L] == static_cast<std::uint8_t>(LaneStatus::ok);
+  out.h_omega_contact[L] = ran ? h_omega(h, k_t, meff) : std::numeric_limits<double>::quiet_NaN();
+  if (ran && out.h_omega_contact[L] > limit) out.status[L] = static_cast<std::uint8_t>(LaneStatus::coarse);
+}
+
 kernel::Context tile_context(const kernel::Context& C, const KernelSettings& ks, const kernel::Tile& T,
                              std::size_t base, double ag0) {
   kernel::Context Ct = C;

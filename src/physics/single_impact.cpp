@@ -132,6 +132,7 @@ ImpactResult single_impact(const ContactModel& cm, Stepper stepper, double e, do
   out.energy_lost = ke0 - ke1;
   out.energy_lost_fraction = out.energy_lost / ke0;
   out.clamps = r.clamp_count[0];
+  out.h_omega_contact = r.h_omega_contact[0];
   return out;
 }
 

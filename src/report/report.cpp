@@ -8,6 +8,8 @@
 
 #include "legacy_v1.hpp"
 #include "pounding/analysis/stats.hpp"
+#include "pounding/physics/batch.hpp"
+#include "pounding/physics/resolution.hpp"
 
 namespace pounding {
 
@@ -17,7 +19,6 @@ constexpr double paper_ratios[] = {0.1, 0.2, 0.3, 0.5, 0.7, 1.0};
 constexpr double paper_total[] = {71.09, 45.56, 25.26, 6.12, 1.14, 0.0};
 constexpr double paper_fit[] = {106.8, -403.4, 510.3, -213.7};  // c0 + c1 x + c2 x^2 + c3 x^3 (%)
 
-bool ok(std::uint8_t s) { return s == 0; }
 
 template <class T>
 std::span<const T> column_or_empty(const results::Results& r, const char* group, const char* name) {
@@ -34,7 +35,8 @@ struct Data {
   std::span<const std::uint8_t> status, imp_status;
   std::span<const double> peak_u1, peak_u2, peak_closing, peak_force, imp_peak_u1, imp_peak_u2;
   std::span<const std::int32_t> impact_count;
-  bool impacts;
+  std::span<const double> h_omega;
+  bool impacts, keep_coarse;
 
   explicit Data(const results::Results& r)
       : res(r), h(r.header), rec(r.records), mod(r.models), set(report_settings(r)),
@@ -47,7 +49,11 @@ struct Data {
         imp_peak_u1(column_or_empty<double>(r, "impacts", "peak_u1")),
         imp_peak_u2(column_or_empty<double>(r, "impacts", "peak_u2")),
         impact_count(column_or_empty<std::int32_t>(r, "impacts", "impact_count")),
-        impacts(r.has_group("impacts")) {}
+        h_omega(column_or_empty<double>(r, "impacts", "h_omega_contact")),
+        impacts(r.has_group("impacts")),
+        keep_coarse(r.settings.find("analysis", "coarse") && r.settings.text("analysis", "coarse") == "keep") {}
+  // ok, or coarse kept in the statistics by [analysis] coarse = "keep"
+  bool ok(std::uint8_t s) const { return s == 0 || (keep_coarse && s == static_cast<std::uint8_t>(LaneStatus::coarse)); }
   std::size_t records() const { return rec.size(); }
   std::size_t models() const { return mod.size(); }
   std::size_t gaps() const { return res.gap_ratios.size(); }
@@ -67,7 +73,7 @@ Count count_uncoupled(const Data& r, double ratio, int rec, int pair_i1 = -1, in
     for (std::size_t m = 0; m < M; ++m) {
       if (pair_i1 >= 0 && (r.mod.i1[m] != pair_i1 || r.mod.i2[m] != pair_i2)) continue;
       const std::size_t idx = k * M + m;
-      if (!ok(r.status[idx])) continue;
+      if (!r.ok(r.status[idx])) continue;
       ++c.n;
       c.hits += r.peak_closing[idx] > ratio * r.mod.code_gap[m];
     }
@@ -82,7 +88,7 @@ Count count_coupled(const Data& r, std::size_t g, int rec) {
     if (rec >= 0 && static_cast<int>(k) != rec) continue;
     for (std::size_t m = 0; m < M; ++m) {
       const std::size_t idx = (k * M + m) * G + g;
-      if (!ok(r.imp_status[idx]) || !ok(r.status[k * M + m])) continue;
+      if (!r.ok(r.imp_status[idx]) || !r.ok(r.status[k * M + m])) continue;
       ++c.n;
       c.hits += r.impact_count[idx] > 0;
     }
@@ -111,7 +117,7 @@ Curve curve_of(const Data& r, double step, double xmax, int record) {
     if (record >= 0 && static_cast<int>(k) != record) continue;
     for (std::size_t m = 0; m < M; ++m) {
       const std::size_t idx = k * M + m;
-      if (ok(r.status[idx])) z.push_back(r.peak_closing[idx] / r.mod.code_gap[m]);
+      if (r.ok(r.status[idx])) z.push_back(r.peak_closing[idx] / r.mod.code_gap[m]);
     }
   }
   std::sort(z.begin(), z.end());
@@ -179,15 +185,15 @@ void Markdown::overview() {
 void Markdown::excluded_uncoupled() {
   const std::size_t R = r.records(), M = r.models();
   std::size_t bad = 0;
-  for (auto v : r.status) bad += !ok(v);
+  for (auto v : r.status) bad += !r.ok(v);
   out("- excluded (diverged or non-finite) analyses: **{}** of {}\n", bad, R * M);
   if (!bad) return;
   int shown = 0;
   for (std::size_t k = 0; k < R && shown < 10; ++k)
     for (std::size_t m = 0; m < M && shown < 10; ++m)
-      if (!ok(r.status[k * M + m])) {
+      if (!r.ok(r.status[k * M + m])) {
         out("  - record {} model (T1 {:.2f}, T2 {:.2f}, sample {}): status {}\n", r.rec.id[k], r.mod.T1[m],
-            r.mod.T2[m], r.mod.sample[m], r.status[k * M + m] == 1 ? "diverged" : "non-finite");
+            r.mod.T2[m], r.mod.sample[m], to_string(static_cast<LaneStatus>(r.status[k * M + m])));
         ++shown;
       }
 }
@@ -306,7 +312,7 @@ void Markdown::code_rules() {
     for (std::size_t k = 0; k < R; ++k)
       for (std::size_t m = 0; m < M; ++m) {
         const std::size_t idx = k * M + m;
-        if (!ok(r.status[idx])) continue;
+        if (!r.ok(r.status[idx])) continue;
         double u1 = r.peak_u1[idx], u2 = r.peak_u2[idx], g = 0;
         switch (rule.kind) {
           case 0: g = r.mod.code_gap[m]; break;
@@ -332,15 +338,36 @@ std::string Markdown::excluded_coupled() {
   for (std::size_t k = 0; k < R; ++k)
     for (std::size_t m = 0; m < M; ++m)
       for (std::size_t g = 0; g < G; ++g)
-        if (!ok(r.imp_status[(k * M + m) * G + g])) {
+        if (!r.ok(r.imp_status[(k * M + m) * G + g])) {
           if (++nbad <= 10)
             listing += fmt::format("  - record {} model (T1 {:.2f}, T2 {:.2f}, sample {}) at gap ratio {}: {}\n",
                                    r.rec.id[k], r.mod.T1[m], r.mod.T2[m], r.mod.sample[m], r.res.gap_ratios[g],
-                                   r.imp_status[(k * M + m) * G + g] == 1 ? "diverged" : "non-finite");
+                                   to_string(static_cast<LaneStatus>(r.imp_status[(k * M + m) * G + g])));
         }
   return nbad ? fmt::format("\nExcluded coupled analyses (diverged or non-finite, never counted as results): **{}**{}\n{}",
                             nbad, nbad > 10 ? " (first 10 listed)" : "", listing)
               : std::string();
+}
+
+// The resolution guard over the coupled analyses (physics/resolution.hpp), from the results alone.
+physics::CoarseSummary coarse_summary(const Data& r) {
+  physics::CoarseSummary c;
+  c.limit = physics::resolution_limit(parse_stepper(r.h.stepper), false, parse_contact_law(r.h.contact_law));
+  c.kept = r.keep_coarse;
+  const std::size_t MG = r.models() * r.gaps();
+  for (std::size_t k = 0; k < r.records(); ++k)
+    for (std::size_t i = k * MG; i < (k + 1) * MG; ++i) {
+      if (std::isnan(r.h_omega[i])) continue;
+      ++c.analyses;
+      c.coarse += r.imp_status[i] == static_cast<std::uint8_t>(LaneStatus::coarse);
+      if (!(r.h_omega[i] <= c.hw_max)) {
+        const double dt = r.rec.dt[k];
+        const int q = r.h.max_dt > 0 ? static_cast<int>(std::ceil(dt / r.h.max_dt - 1e-9)) : 1;
+        c.hw_max = r.h_omega[i], c.substeps_at_max = std::max(static_cast<int>(r.h.substeps), q);
+        c.h_at_max = dt / c.substeps_at_max;
+      }
+    }
+  return c;
 }
 
 void Markdown::impacts_table() {
@@ -357,7 +384,7 @@ void Markdown::impacts_table() {
     for (std::size_t k = 0; k < R; ++k)
       for (std::size_t m = 0; m < M; ++m) {
         const std::size_t idx = (k * M + m) * G + g, u = k * M + m;
-        if (!ok(r.imp_status[idx]) || !ok(r.status[u])) {
+        if (!r.ok(r.imp_status[idx]) || !r.ok(r.status[u])) {
           ++excl;
           continue;
         }
@@ -373,6 +400,7 @@ void Markdown::impacts_table() {
         forces.empty() ? "-" : fmt::format("{:.2f}", forces.back()), na ? a1 / na : NAN, na ? a2 / na : NAN, excl);
   }
   s += excluded_note;
+  if (!r.h_omega.empty()) out("\n{}\n", physics::describe(coarse_summary(r)));
 }
 
 }  // namespace

@@ -4,6 +4,8 @@
 
 #include <fmt/format.h>
 
+#include "pounding/physics/resolution.hpp"
+
 namespace pounding {
 
 namespace {
@@ -61,6 +63,17 @@ std::string format_summary(const BatchResult& r, std::size_t i, const ContactMod
   num("T1_s", 2 * M_PI * std::sqrt(p.s1.m / p.s1.k));
   num("T2_s", 2 * M_PI * std::sqrt(p.s2.m / p.s2.k));
   line("status", to_string(static_cast<LaneStatus>(r.status[i])));
+  // the resolution guard (physics/resolution.hpp): h omega_c at the peak penetration against the stepper x law limit
+  const double limit = physics::resolution_limit(ks, cm.law);
+  num("h_omega_contact", r.h_omega_contact[i]);
+  num("h_omega_limit", limit);
+  if (r.status[i] == static_cast<std::uint8_t>(LaneStatus::coarse))
+    line("coarse", fmt::format("the contact is under-resolved (peak force off by more than {} %): use {} substeps per "
+                               "record step (integration dt {:.3g} s) -- an estimate, the peak penetration changes "
+                               "with the step",
+                               100.0 * physics::resolution_tolerance,
+                               physics::substeps_for_limit(ks.substeps, r.h_omega_contact[i], limit),
+                               rec.dt / physics::substeps_for_limit(ks.substeps, r.h_omega_contact[i], limit)));
   fields(peak_fields);
   line("impact_count", r.impact_count[i]);
   fields(contact_fields);

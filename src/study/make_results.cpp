@@ -1,5 +1,6 @@
 #include "pounding/study/make_results.hpp"
 
+#include <cmath>
 #include <ctime>
 #include <type_traits>
 
@@ -79,6 +80,29 @@ results::ModelTable model_table(const Study& study, const WorkPlan& plan) {
 
 }  // namespace
 
+physics::CoarseSummary coarse_summary(const Study& study, const WorkPlan& L, const Tally& t,
+                                      const std::vector<StudyRecord>& records) {
+  constexpr std::size_t imp_status = results::unit_field("impacts", "status");
+  constexpr std::size_t imp_h_omega = results::unit_field("impacts", "h_omega_contact");
+  physics::CoarseSummary c;
+  c.limit = physics::resolution_limit(study.stepper, false, study.contact.law);
+  c.kept = study.coarse == CoarsePolicy::keep;
+  const std::size_t MG = L.models() * L.gaps;
+  const auto& st = t.values<std::uint8_t>(imp_status);
+  const auto& hw = t.values<double>(imp_h_omega);
+  for (std::size_t r = 0; r < L.records; ++r)
+    for (std::size_t i = r * MG; i < (r + 1) * MG; ++i) {
+      if (std::isnan(hw[i])) continue;  // no force law, or diverged
+      ++c.analyses;
+      c.coarse += st[i] == static_cast<std::uint8_t>(LaneStatus::coarse);
+      if (!(hw[i] <= c.hw_max)) {
+        const double dt = records[r].record.dt;
+        c.hw_max = hw[i], c.substeps_at_max = study_substeps(study, dt), c.h_at_max = dt / c.substeps_at_max;
+      }
+    }
+  return c;
+}
+
 Exclusions count_exclusions(const Study& study, const WorkPlan& L, const Tally& t,
                             const std::vector<StudyRecord>& records) {
   constexpr std::size_t unc_status = results::unit_field("uncoupled", "status");
@@ -86,12 +110,15 @@ Exclusions count_exclusions(const Study& study, const WorkPlan& L, const Tally& 
   Exclusions ex;
   const std::size_t M = L.models(), G = L.gaps;
   const auto& us = t.values<std::uint8_t>(unc_status);
+  const bool keep = study.coarse == CoarsePolicy::keep;
+  const auto bad = [keep](std::uint8_t s) { return s != 0 && !(keep && s == static_cast<std::uint8_t>(LaneStatus::coarse)); };
+  if (L.impacts) ex.coarse = coarse_summary(study, L, t, records);
   std::vector<std::string> lost;
   for (std::size_t r = 0; r < L.records; ++r) {
     std::int64_t bad_unc = 0, bad_cpl = 0;
-    for (std::size_t m = 0; m < M; ++m) bad_unc += us[r * M + m] != 0;
+    for (std::size_t m = 0; m < M; ++m) bad_unc += bad(us[r * M + m]);
     if (L.impacts)
-      for (std::size_t i = r * M * G; i < (r + 1) * M * G; ++i) bad_cpl += t.values<std::uint8_t>(imp_status)[i] != 0;
+      for (std::size_t i = r * M * G; i < (r + 1) * M * G; ++i) bad_cpl += bad(t.values<std::uint8_t>(imp_status)[i]);
     ex.excluded += bad_unc + bad_cpl;
     ex.total += static_cast<std::int64_t>(M + (L.impacts ? M * G : 0));
     if (M > 0 && (bad_unc == static_cast<std::int64_t>(M) || (L.impacts && bad_cpl == static_cast<std::int64_t>(M * G))))

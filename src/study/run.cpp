@@ -11,6 +11,7 @@
 
 #include "pounding/core/error.hpp"
 #include "pounding/core/files.hpp"
+#include "pounding/contact/registry.hpp"
 #include "pounding/physics/batch.hpp"
 #include "pounding/results/writer.hpp"
 #include "pounding/sampling/sampler.hpp"
@@ -54,6 +55,7 @@ constexpr std::size_t imp_peak_force = results::unit_field("impacts", "peak_forc
 constexpr std::size_t imp_peak_u1 = results::unit_field("impacts", "peak_u1");
 constexpr std::size_t imp_peak_u2 = results::unit_field("impacts", "peak_u2");
 constexpr std::size_t imp_t_first = results::unit_field("impacts", "t_first_impact");
+constexpr std::size_t imp_h_omega = results::unit_field("impacts", "h_omega_contact");
 }  // namespace field
 
 // One work unit: sample the block, run the uncoupled pairs (and, in the impacts scene, the coupled ones per
@@ -97,10 +99,7 @@ class UnitComputer {
   }
 
  private:
-  int substeps_for(double dt) const {
-    const int q = s_.max_dt > 0 ? static_cast<int>(std::ceil(dt / s_.max_dt - 1e-9)) : 1;
-    return std::max(s_.substeps, q);
-  }
+  int substeps_for(double dt) const { return study_substeps(s_, dt); }
 
   // A pair whose uncoupled peak closing stays <= g never touches at gap g, and its coupled run is
   // bit-identical to the uncoupled one (the first-passage property, tested): only the pairs that touch are
@@ -123,16 +122,19 @@ class UnitComputer {
     auto count = out.values<std::int32_t>(field::imp_count);
     auto force = out.values<double>(field::imp_peak_force), first = out.values<double>(field::imp_t_first);
     auto u1 = out.values<double>(field::imp_peak_u1), u2 = out.values<double>(field::imp_peak_u2);
+    auto hw = out.values<double>(field::imp_h_omega);
     const std::size_t G = plan_.gaps;
     for (std::size_t i = 0, j = 0; i < n; ++i) {
       const std::size_t k = i * G + g;  // [lane][gap]
       if (j < lanes_.size() && lanes_[j] == i) {
         status[k] = cres_.status[j], count[k] = cres_.impact_count[j], force[k] = cres_.peak_force[j];
         u1[k] = cres_.peak_u1[j], u2[k] = cres_.peak_u2[j], first[k] = cres_.t_first_impact[j];
+        hw[k] = cres_.h_omega_contact[j];
         ++j;
       } else {
         status[k] = res_.status[i], count[k] = 0, force[k] = 0.0;
         u1[k] = res_.peak_u1[i], u2[k] = res_.peak_u2[i], first[k] = NAN;
+        hw[k] = res_.status[i] == 0 && contact::traits(s_.contact.law).has_force ? 0.0 : NAN;  // never touched
       }
     }
   }
@@ -288,10 +290,12 @@ bool execute(const parallel::Session& session, const Inputs& in, const WorkPlan&
 int finish(const parallel::Session& session, const Inputs& in, const WorkPlan& L, Checkpoint* ckpt, Tally& tally,
            const CheckpointKey& key, double wall, const RunContext& ctx) {
   int rc = 0;
+  std::string coarse_line;
   session.agree([&] {
     if (!session.root()) return;
     inject_fault("write", 0);
     const Exclusions ex = count_exclusions(in.study, L, tally, in.records);
+    if (L.impacts) coarse_line = physics::describe(ex.coarse);
     try {
       results::write(in.out, make_results(in.study, in.records, L, tally, ex, {key.build, session.size(), wall}));
     } catch (const InputError& e) {
@@ -303,6 +307,7 @@ int finish(const parallel::Session& session, const Inputs& in, const WorkPlan& L
   });
   session.broadcast(rc);
   if (session.root()) {
+    if (!coarse_line.empty()) ctx.say(coarse_line);
     ctx.say(fmt::format("results: {} (wall time {:.2f} s, {} ranks)", in.out, wall, session.size()));
     if (rc == 3) ctx.say(" WARNING: too many excluded analyses; the results file says so (exit code 3)");
   }

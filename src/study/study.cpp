@@ -98,6 +98,18 @@ void parse_contact(Study& s, const toml::table* t, const std::string& path) {
   c.finish("law, damping_law, e, n, v0_min, stiffness");
 }
 
+}  // namespace
+
+CoarsePolicy parse_coarse_policy(std::string_view name) {
+  for (const auto& [v, n] : coarse_policy_names)
+    if (n == name) return v;
+  throw InputError(fmt::format("unknown coarse policy '{}'", name), "coarse",
+                   "use \"exclude\" (default: coarse analyses left out of the statistics like diverged ones) or "
+                   "\"keep\" (kept in the statistics, still counted and reported)");
+}
+
+namespace {
+
 void parse_analysis(Study& s, const toml::table* t, const std::string& path) {
   TableReader a(t, path, "analysis");
   s.stepper = a.choice("stepper", "central-difference", parse_stepper);
@@ -108,8 +120,9 @@ void parse_analysis(Study& s, const toml::table* t, const std::string& path) {
   s.displacement_limit = a.number("displacement_limit", 10.0, 1e-6, 1e6, "(0, 1e6] m");
   s.skip_untouched = a.boolean("skip_untouched", true);
   s.max_excluded_fraction = a.number("max_excluded_fraction", 0.001, 0.0, 1.0, "[0, 1] (0.001 = 0.1 % of all analyses)");
+  s.coarse = a.choice("coarse", "exclude", parse_coarse_policy);
   a.finish("stepper, substeps, max_dt, batch, free_vibration, displacement_limit, skip_untouched, "
-           "max_excluded_fraction");
+           "max_excluded_fraction, coarse");
 }
 
 void parse_report(Study& s, const toml::table* t, const std::string& path) {

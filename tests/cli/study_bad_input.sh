@@ -33,5 +33,7 @@ expect_error no_seed 'seed' "$(echo "$body" | sed '/^seed = /d')"
 expect_error bad_law 'law' "$(echo "$body" | sed 's/^law = "hertzdamp"/law = "glue"/')"
 expect_error syntax 'syntax' "$(echo "$body" | sed 's/^\[gaps\]/[gaps/')"
 expect_error bad_stepper 'unknown stepper' "$(echo "$body" | sed 's/^batch = 3/stepper = "euler"\nbatch = 3/')"
+expect_error bad_coarse ':26 \[analysis\].coarse, use "exclude".*"keep"' \
+  "$(echo "$body" | sed 's/^batch = 3/coarse = "drop"\nbatch = 3/')"
 echo "$passes passed, $fails failed"
 [ $fails -eq 0 ]

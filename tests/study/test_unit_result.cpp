@@ -71,12 +71,12 @@ TEST(UnitResult, SerialisationIsTypedAndChecked) {
   const WorkPlan plan = test_plan();
   const UnitResult u = compute(plan, 4);  // record 1, block 1: 2 lanes
   const auto bytes = u.serialise();
-  // per lane: u8 + 3 f64; per lane and gap: u8 + i32 + 4 f64 + the probe's i64
-  EXPECT_EQ(bytes.size(), 2 * (1 + 3 * 8) + 2 * 2 * (1 + 4 + 4 * 8 + 8));
+  // per lane: u8 + 3 f64; per lane and gap: u8 + i32 + 5 f64 (h_omega_contact the fifth) + the probe's i64
+  EXPECT_EQ(bytes.size(), 2 * (1 + 3 * 8) + 2 * 2 * (1 + 4 + 5 * 8 + 8));
   EXPECT_EQ(bytes.size(), serialised_size(plan, 2));
   UnitResult back = UnitResult::deserialise(plan, 2, bytes);
   EXPECT_EQ(back.serialise(), bytes);
-  EXPECT_EQ(back.values<std::int64_t>(plan.fields.size() - 1)[3], 160 + 10 + 3 + 1);  // lane 1, gap 1, field 10
+  EXPECT_EQ(back.values<std::int64_t>(plan.fields.size() - 1)[3], 160 + 11 + 3 + 1);  // lane 1, gap 1, field 11
   EXPECT_THROW(UnitResult::deserialise(plan, 1, bytes), std::runtime_error);
   EXPECT_THROW(back.values<double>(0), std::logic_error);  // status is u8
 }

@@ -149,15 +149,49 @@ std::vector<StabilityRow> stability_map();
 // The steel frames of impact-stiffness-linear-viscoelastic-experiment.txt (k = 20,660 N/mm, masses 5 and
 // 10 kg) under a real record (Rinaldi 228, 15 s): one row per stepper x contact law x substeps (1, 4, 16, 64,
 // 256; the linear law also every substep count 6..30, h omega_c = 4.1 ... 0.83, across the limits).
+// The lane's h_omega_contact (tangent at its own peak penetration) beside the nominal one (the linear spring's
+// omega_c = sqrt(k / meff) = 2490 rad/s times h); force_error against the converged peak force of the same law
+// (rk4 with located onset at 256 substeps).
 struct StiffRow {
   std::string stepper, law;
   int substeps = 1;
-  double h_omega_contact = 0;
+  double h_omega_contact = 0;  // nominal: h sqrt(k / meff)
+  double h_omega_lane = 0;     // the resolution guard's: tangent at the lane's peak penetration (NaN: diverged)
   std::string status;
   double peak_force = 0;
+  double force_error = 0;      // |F - F_converged| / F_converged (NaN when diverged)
   int impacts = 0;
 };
-std::vector<StiffRow> stiff_contact(const std::string& record_dir);
+// steppers/laws: subsets to run (empty: all); substeps: a subset of the grid (empty: all).
+std::vector<StiffRow> stiff_contact(const std::string& record_dir, const std::vector<std::string>& steppers = {},
+                                    const std::vector<std::string>& laws = {}, const std::vector<int>& substeps = {});
+
+// ---------------------------------------------------------------------------------------------------
+// Resolution: the accuracy limit of every stepper x force law (physics/resolution.hpp holds the table)
+// One free impact of two 1 kg masses (negligible springs, omega 1e-3 of the contact's), v0 = 1 m/s, e = 0.65
+// (Hertzdamp: lankarani-nikravesh), at `phases` onset positions inside a step (the contact opens at the fraction
+// (j + 0.5) / phases of a step), h swept so that h omega_c spans about 0.01 .. 2. Errors against the same impact
+// by rk4 with located onset at h omega_c = 0.002 (the converged value); the row keeps the worst phase.
+struct ResolutionPoint {
+  std::string scheme, law;  // scheme: central-difference, newmark, rk4, rk4-located, nigam-jennings
+  int steps = 0;            // integration steps over the run (3 estimated contact durations)
+  double h_omega_contact = 0;          // largest over the phases (the lane's own BatchResult::h_omega_contact)
+  double peak_force = 0, force_error = 0;   // worst phase; error relative to the converged peak force
+  double e_effective = 0, e_error = 0;      // exit-velocity ratio, worst |e - e_converged|
+  std::string status;                       // worst lane status (ok < coarse < diverged < non-finite)
+};
+struct ResolutionLimit {
+  std::string scheme, law;
+  double limit = 0;       // largest h omega_c of the sweep below the first point over the tolerance, 3 decimals down
+  double first_over = 0;  // h omega_c of that first point (inf: none to the sweep's end; NaN: it diverged)
+};
+std::vector<std::string> resolution_schemes();  // the five scheme names above
+std::vector<std::string> resolution_laws();     // every registered law with a force element
+// `points_per_decade` sets the h grid (geometric); `phases` the onset positions per h.
+std::vector<ResolutionPoint> resolution_sweep(const std::vector<std::string>& schemes,
+                                              const std::vector<std::string>& laws, int points_per_decade = 150,
+                                              int phases = 8);
+std::vector<ResolutionLimit> resolution_limits(const std::vector<ResolutionPoint>& points, double tolerance);
 
 // ---------------------------------------------------------------------------------------------------
 // Restitution and Kelvin's tension

@@ -36,9 +36,13 @@ enum class Stepper : std::uint8_t {
 };
 inline constexpr std::string_view stepper_names = "central-difference, newmark, rk4, nigam-jennings";
 
-enum class LaneStatus : std::uint8_t { ok = 0, diverged = 1, non_finite = 2 };
-inline constexpr EnumName<LaneStatus> lane_status_table[] = {
-    {LaneStatus::ok, "ok"}, {LaneStatus::diverged, "diverged"}, {LaneStatus::non_finite, "non-finite"}};
+// coarse: ran to the end (status ok) but the contact was not resolved: the lane's h omega_c (BatchResult::
+// h_omega_contact) exceeds the accuracy limit of its stepper x law (physics/resolution.hpp); peaks are returned.
+enum class LaneStatus : std::uint8_t { ok = 0, diverged = 1, non_finite = 2, coarse = 3 };
+inline constexpr EnumName<LaneStatus> lane_status_table[] = {{LaneStatus::ok, "ok"},
+                                                             {LaneStatus::diverged, "diverged"},
+                                                             {LaneStatus::non_finite, "non-finite"},
+                                                             {LaneStatus::coarse, "coarse"}};
 constexpr const auto& enum_names(LaneStatus) { return lane_status_table; }  // to_string(LaneStatus) (core)
 
 // One structure. fy = +inf (the default) makes the spring linear elastic.
@@ -114,6 +118,10 @@ struct BatchResult {
   std::vector<double> peak_acc1, peak_acc2;       // max |absolute acceleration| (m/s^2)
   std::vector<std::int32_t> clamp_count;          // steps where a tensile contact force was clamped to 0
   std::vector<std::uint8_t> status;               // LaneStatus
+  // The resolution of the contact: h omega_c with omega_c = sqrt(k_t / meff), k_t the law's tangent stiffness at
+  // the lane's peak penetration (physics/resolution.hpp). 0 when the lane never touched, NaN for a law without a
+  // force element (none, stereomechanical) and for a diverged lane. A post-run reduction: no cost in the loop.
+  std::vector<double> h_omega_contact;
   std::vector<double> final_u1, final_v1, final_u2, final_v2;
   // Energy terms at the end (only with KernelSettings::energy): input = kinetic + strain + viscous
   // + hysteretic + contact_stored + contact_dissipated (contact_energy).

@@ -12,6 +12,8 @@
 #include <vector>
 
 #include "pounding/contact/law.hpp"
+#include "pounding/contact/resolution.hpp"
+#include "pounding/physics/resolution.hpp"
 #include "pounding/physics/steppers/registry.hpp"
 #include "pounding/kernel/tile.hpp"
 #include "pounding/physics/tile_runner.hpp"
@@ -87,15 +89,22 @@ void fill_lane(kernel::Tile& T, int i, const PairParams& p, const ContactModel& 
   fill_lane_initial_force(T, i, p, s.ag[0]);
 }
 
+// The resolution guard, after the run (physics/resolution.hpp): lane L's h omega_c at its peak penetration, and
+// status coarse where an ok lane exceeds the limit of its stepper x law.
+void mark_resolution(std::size_t L, double k_t, double meff, double h, double limit, BatchResult& out);
+
 template <class Law, class Model>
-void collect(const kernel::Tile& T, std::size_t base, const ContactModel& cm, BatchResult& out) {
+void collect(const kernel::Tile& T, std::size_t base, const ContactModel& cm, double h, double limit, BatchResult& out) {
   const double n_exp = cm.n;
   for (int i = 0; i < T.n; ++i) {
+    const std::size_t L = base + static_cast<std::size_t>(i);
     const double dp = std::max(T.u1[i] - T.u2[i] - T.gap[i], 0.0);
     const double strain = Model::strain_energy(Model::template load<double>(T, 0, i), T.u1[i], T.fs1[i]) +
                           Model::strain_energy(Model::template load<double>(T, 1, i), T.u2[i], T.fs2[i]);
-    collect_lane(T, i, base + static_cast<std::size_t>(i), Law::template stored_energy<double>(dp, T.kc[i], n_exp),
-                 strain, Law::traits.impulsive, out);
+    collect_lane(T, i, L, Law::template stored_energy<double>(dp, T.kc[i], n_exp), strain, Law::traits.impulsive, out);
+    const double pen = contact::guard_penetration<Law>(out.peak_penetration[L], out.peak_force[L], T.kc[i], n_exp);
+    const double k_t = contact::tangent_at_penetration<Law>(pen, T.kc[i], T.cd[i], n_exp);
+    mark_resolution(L, k_t, T.meff[i], h, limit, out);
   }
 }
 
@@ -116,6 +125,9 @@ void run_batch_t(const PairBatch& batch, const ContactModel& cm, const GroundMot
   }
   const kernel::Context C{&ks, s.ag.data(), s.nsteps, s.h, cm.v0_min, ks.displacement_limit, nullptr, 0};
   DampingTable<Law> damping(cm);
+  // a law outside the registry has no measured limit (no coarse status)
+  const bool registered = contact::law_names[static_cast<std::size_t>(cm.law)] == Law::name;
+  const double limit = registered ? resolution_limit(ks, cm.law) : no_limit;
   auto tile = std::make_unique<kernel::Tile>();
   kernel::Tile& T = *tile;
   for (std::size_t base = 0; base < width; base += kernel::tile_width) {
@@ -126,7 +138,7 @@ void run_batch_t(const PairBatch& batch, const ContactModel& cm, const GroundMot
       fill_lane<Law, Model>(T, i, batch.get(base + static_cast<std::size_t>(i < T.n ? i : 0)), cm, ks.stepper, s, damping);
     const kernel::Context Ct = tile_context(C, ks, T, base, s.ag[0]);
     kernel::visit_stepper(ks.stepper, [&]<class S>() { run_tile<S, Law, Model>(T, Ct, cm); });
-    collect<Law, Model>(T, base, cm, out);
+    collect<Law, Model>(T, base, cm, s.h, limit, out);
   }
 }
 

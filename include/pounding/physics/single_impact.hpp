@@ -15,6 +15,7 @@ struct ImpactResult {
   double e_effective = 0, peak_force = 0, peak_penetration = 0, duration = 0;
   double energy_lost = 0, energy_lost_fraction = 0;
   int clamps = 0;
+  double h_omega_contact = 0;  // the resolution guard's h omega_c (physics/resolution.hpp)
   LaneStatus status = LaneStatus::ok;
 };
 

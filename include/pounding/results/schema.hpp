@@ -52,7 +52,7 @@ constexpr std::size_t dtype_size(Dtype t) {
 Column make_column(const FieldSpec& spec, std::size_t n);
 std::size_t column_size(const Column& c);
 
-// What one work unit returns: status 0 ok, 1 diverged, 2 non-finite (kernel.hpp); peaks in m, N, s.
+// What one work unit returns: status 0 ok, 1 diverged, 2 non-finite, 3 coarse (kernel/batch.hpp); peaks in m, N, s.
 // The impacts-scene rows (lane_gap) follow the per-lane rows, so a scene without gaps uses a prefix.
 inline constexpr FieldSpec unit_fields[] = {
     {"uncoupled", "status", Dtype::u8, Extent::lane, false, "code", 255},
@@ -65,6 +65,9 @@ inline constexpr FieldSpec unit_fields[] = {
     {"impacts", "peak_u1", Dtype::f64, Extent::lane_gap, false, "m", NAN},
     {"impacts", "peak_u2", Dtype::f64, Extent::lane_gap, false, "m", NAN},
     {"impacts", "t_first_impact", Dtype::f64, Extent::lane_gap, false, "s", NAN},
+    // the resolution guard's h omega_c (physics/resolution.hpp): 0 for a pair that never touched, NaN without a
+    // force law or when diverged; beside the limit in /settings it shows each analysis's margin
+    {"impacts", "h_omega_contact", Dtype::f64, Extent::lane_gap, false, "", NAN},
 };
 
 // Written after the run from the unit fields (results::add_derived_fields).

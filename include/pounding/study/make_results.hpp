@@ -7,6 +7,7 @@
 
 #include "pounding/results/results.hpp"
 #include "pounding/study/plan.hpp"
+#include "pounding/physics/resolution.hpp"
 #include "pounding/study/study.hpp"
 #include "pounding/study/tally.hpp"
 
@@ -17,7 +18,11 @@ namespace pounding {
 struct Exclusions {
   std::int64_t excluded = 0, total = 0;
   std::string verdict;  // empty when acceptable; otherwise the banner's text
+  physics::CoarseSummary coarse;  // the resolution guard (impacts scene); excluded above unless [analysis] coarse = "keep"
 };
+// The impacts scene's coupled analyses against the resolution guard (the tally's impacts/status and h_omega_contact).
+physics::CoarseSummary coarse_summary(const Study& study, const WorkPlan& plan, const Tally& tally,
+                                      const std::vector<StudyRecord>& records);
 Exclusions count_exclusions(const Study& study, const WorkPlan& plan, const Tally& tally,
                             const std::vector<StudyRecord>& records);
 

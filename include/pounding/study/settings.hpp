@@ -82,6 +82,7 @@ void visit_settings(const Study& s, V&& v) {
   v("analysis", "displacement_limit", s.displacement_limit);
   v("analysis", "skip_untouched", s.skip_untouched);
   v("analysis", "max_excluded_fraction", s.max_excluded_fraction);
+  v("analysis", "coarse", S(to_string(s.coarse)));
 
   v("report", "targets", s.targets);
   v("report", "h1", s.h1);

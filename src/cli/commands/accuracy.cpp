@@ -3,6 +3,7 @@
 //   agree                engine high-accuracy mode vs a stored SciPy reference
 //   chart                stepper x dt x contact law: cost and error against the reference (CSV)
 //   stability            stability limits (h omega) and the stiff steel-frame contact (CSV)
+//   resolution           accuracy limit h omega_c of every stepper x force law (the resolution guard's table)
 //   restitution          effective e of every damping law, Kelvin's tension (CSV)
 //   validate-muthukumar  Muthukumar-DesRoches (2006) parameter study on the real records (CSV)
 #include <algorithm>
@@ -19,6 +20,7 @@
 #include "cli/commands.hpp"
 #include "pounding/core/error.hpp"
 #include "pounding/core/files.hpp"
+#include "pounding/physics/resolution.hpp"
 
 namespace pounding::cli {
 
@@ -134,32 +136,84 @@ void add_chart(CLI::App* acc, const RecordsDir& dir) {
 }
 
 // stability
+struct StabilityOpts {
+  std::string out = "stability.csv", stiff_out = "stiff_contact.csv";
+  std::vector<std::string> steppers, laws;  // stiff-contact subset (empty: all)
+  std::vector<int> substeps;
+  bool no_free = false, no_stiff = false;
+};
+void write_free_vibration(const StabilityOpts& o) {
+  std::ostringstream s;
+  s << "stepper,zeta,measured_h_omega,theory_h_omega\n";
+  fmt::print("{:<20} {:>5} {:>10} {:>10}\n", "stepper", "zeta", "measured", "theory");
+  for (const auto& r : A::stability_map()) {
+    s << fmt::format("{},{},{:.6g},{:.6g}\n", r.stepper, r.zeta, r.measured, r.theory);
+    fmt::print("{:<20} {:>5} {:>10.5g} {:>10.5g}\n", r.stepper, r.zeta, r.measured, r.theory);
+  }
+  files::write_text_atomically(o.out, s.str());
+}
+void write_stiff_contact(const StabilityOpts& o, const std::string& dir) {
+  std::ostringstream t;
+  t << "stepper,law,substeps,h_omega_contact,h_omega_lane,status,peak_force,force_error,impacts\n";
+  for (const auto& r : A::stiff_contact(dir, o.steppers, o.laws, o.substeps)) {
+    t << fmt::format("{},{},{},{:.4g},{:.4g},{},{:.6g},{:.4g},{}\n", r.stepper, r.law, r.substeps, r.h_omega_contact,
+                     r.h_omega_lane, r.status, r.peak_force, r.force_error, r.impacts);
+    fmt::print("{:<20} {:<10} {:>4} h*wc={:>8.3f} lane {:>8.3f} {:<10} F={:.4g} N ({:+.1f} %) impacts={}\n", r.stepper,
+               r.law, r.substeps, r.h_omega_contact, r.h_omega_lane, r.status, r.peak_force, 100.0 * r.force_error,
+               r.impacts);
+  }
+  files::write_text_atomically(o.stiff_out, t.str());
+}
 void add_stability(CLI::App* acc, const RecordsDir& dir) {
-  struct O {
-    std::string out = "stability.csv", stiff_out = "stiff_contact.csv";
-  };
-  auto o = std::make_shared<O>();
+  auto o = std::make_shared<StabilityOpts>();
   auto* c = acc->add_subcommand("stability", "largest stable h omega per stepper; stiff steel-frame contact");
   c->add_option("--out", o->out, "stability CSV")->capture_default_str();
   c->add_option("--stiff-out", o->stiff_out, "stiff-contact CSV")->capture_default_str();
+  c->add_option("--steppers", o->steppers, "stiff contact: only these steppers");
+  c->add_option("--laws", o->laws, "stiff contact: only these laws (linear, kelvin, hertzdamp)");
+  c->add_option("--substeps", o->substeps, "stiff contact: only these substep counts");
+  c->add_flag("--no-free", o->no_free, "skip the free-vibration limits (stability CSV)");
+  c->add_flag("--no-stiff", o->no_stiff, "skip the stiff steel-frame contact (stiff-contact CSV)");
   c->callback([o, dir] {
+    if (!o->no_free) write_free_vibration(*o);
+    if (!o->no_stiff) write_stiff_contact(*o, *dir);
+  });
+}
+
+// resolution
+void add_resolution(CLI::App* acc) {
+  struct O {
+    std::string out = "resolution.csv", limits_out = "resolution_limits.csv";
+    std::vector<std::string> schemes = A::resolution_schemes(), laws = A::resolution_laws();
+    int points_per_decade = 150, phases = 8;
+  };
+  auto o = std::make_shared<O>();
+  auto* c = acc->add_subcommand("resolution", "accuracy limit h omega_c of every stepper x force law (one free impact)");
+  c->add_option("--out", o->out, "sweep CSV (one row per step)")->capture_default_str();
+  c->add_option("--limits-out", o->limits_out, "limits CSV (the resolution guard's table)")->capture_default_str();
+  c->add_option("--schemes", o->schemes, "central-difference, newmark, rk4, rk4-located, nigam-jennings")
+      ->capture_default_str();
+  c->add_option("--laws", o->laws, "force laws")->capture_default_str();
+  c->add_option("--points-per-decade", o->points_per_decade, "h grid density")->capture_default_str();
+  c->add_option("--phases", o->phases, "onset positions inside a step per h")->capture_default_str();
+  c->callback([o] {
+    const auto pts = A::resolution_sweep(o->schemes, o->laws, o->points_per_decade, o->phases);
     std::ostringstream s;
-    s << "stepper,zeta,measured_h_omega,theory_h_omega\n";
-    fmt::print("{:<20} {:>5} {:>10} {:>10}\n", "stepper", "zeta", "measured", "theory");
-    for (const auto& r : A::stability_map()) {
-      s << fmt::format("{},{},{:.6g},{:.6g}\n", r.stepper, r.zeta, r.measured, r.theory);
-      fmt::print("{:<20} {:>5} {:>10.5g} {:>10.5g}\n", r.stepper, r.zeta, r.measured, r.theory);
-    }
+    s << "scheme,law,steps,h_omega_contact,peak_force,force_error,e_effective,e_error,status\n";
+    for (const auto& p : pts)
+      s << fmt::format("{},{},{},{:.6g},{:.8g},{:.4g},{:.8g},{:.4g},{}\n", p.scheme, p.law, p.steps,
+                       p.h_omega_contact, p.peak_force, p.force_error, p.e_effective, p.e_error, p.status);
     files::write_text_atomically(o->out, s.str());
-    std::ostringstream t;
-    t << "stepper,law,substeps,h_omega_contact,status,peak_force,impacts\n";
-    for (const auto& r : A::stiff_contact(*dir)) {
-      t << fmt::format("{},{},{},{:.4g},{},{:.6g},{}\n", r.stepper, r.law, r.substeps, r.h_omega_contact, r.status,
-                       r.peak_force, r.impacts);
-      fmt::print("{:<20} {:<10} {:>4} h*wc={:>8.3f} {:<10} F={:.4g} N impacts={}\n", r.stepper, r.law, r.substeps,
-                 r.h_omega_contact, r.status, r.peak_force, r.impacts);
+    std::ostringstream l;
+    l << "scheme,law,limit_h_omega,first_over_h_omega,tolerance\n";
+    fmt::print("{:<20} {:<10} {:>8} {:>10}   (peak-force tolerance {} %)\n", "scheme", "law", "limit", "first over",
+               100.0 * physics::resolution_tolerance);
+    for (const auto& L : A::resolution_limits(pts, physics::resolution_tolerance)) {
+      l << fmt::format("{},{},{:.3f},{:.4g},{}\n", L.scheme, L.law, L.limit, L.first_over,
+                       physics::resolution_tolerance);
+      fmt::print("{:<20} {:<10} {:>8.3f} {:>10.4g}\n", L.scheme, L.law, L.limit, L.first_over);
     }
-    files::write_text_atomically(o->stiff_out, t.str());
+    files::write_text_atomically(o->limits_out, l.str());
   });
 }
 
@@ -269,6 +323,7 @@ void add_accuracy(CLI::App& app) {
   add_agree(acc, dir);
   add_chart(acc, dir);
   add_stability(acc, dir);
+  add_resolution(acc);
   add_restitution(acc);
   add_validate_muthukumar(acc, dir);
 }

@@ -9,6 +9,7 @@
 #include <fmt/format.h>
 
 #include "cli/commands.hpp"
+#include "pounding/physics/resolution.hpp"
 #include "pounding/physics/single_impact.hpp"
 #include "pounding/core/error.hpp"
 
@@ -72,6 +73,8 @@ void add_collide(CLI::App& app) {
     fmt::print("energy_lost_J: {:.9g}\n", r.energy_lost);
     fmt::print("energy_lost_fraction: {:.9g}\n", r.energy_lost_fraction);
     fmt::print("tensile_force_clamps: {}\n", r.clamps);
+    fmt::print("h_omega_contact: {:.6g}\n", r.h_omega_contact);
+    fmt::print("h_omega_limit: {:.6g}\n", physics::resolution_limit(stepper, false, cm.law));
     if (r.status != LaneStatus::ok) {
       fmt::print("status: {}\n", to_string(r.status));
       throw ExitRequest{3};
