@@ -10,7 +10,10 @@ ReportSettings report_settings_from_text(const results::Results& r) {
   set.gap_ratios = s.gap_ratios;
   set.targets = s.targets;
   set.code_gap_coefficient = s.structures.code_gap_coefficient;
-  set.h1 = s.h1, set.h2 = s.h2, set.fit_min = s.fit_min, set.fit_max = s.fit_max;
+  set.fit_min = s.fit_min, set.fit_max = s.fit_max;
+  set.seed = s.seed;
+  set.compare_with = s.compare_with;
+  set.confidence = s.confidence, set.bootstrap = s.bootstrap;
   set.curve_max = s.curve_max, set.curve_step = s.curve_step;
   return set;
 }

@@ -2,70 +2,74 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <span>
 
 #include <fmt/format.h>
 
+#include "data.hpp"
 #include "legacy_v1.hpp"
 #include "pounding/analysis/stats.hpp"
+#include "pounding/core/random.hpp"
 #include "pounding/physics/batch.hpp"
 #include "pounding/physics/resolution.hpp"
 
 namespace pounding {
 
+using namespace report_detail;
+
 namespace {
-// The published study (stochastic-pounding-monte-carlo.txt, Table 3 and eq. 10) for comparison.
+// The published study (stochastic-pounding-monte-carlo.txt, Table 3 and eq. 10), printed beside ours only when the
+// study asks for it ([report] compare_with = "stochastic-pounding").
 constexpr double paper_ratios[] = {0.1, 0.2, 0.3, 0.5, 0.7, 1.0};
 constexpr double paper_total[] = {71.09, 45.56, 25.26, 6.12, 1.14, 0.0};
-constexpr double paper_fit[] = {106.8, -403.4, 510.3, -213.7};  // c0 + c1 x + c2 x^2 + c3 x^3 (%)
+}  // namespace
 
+namespace report_detail {
 
-template <class T>
-std::span<const T> column_or_empty(const results::Results& r, const char* group, const char* name) {
-  return r.find(group, name) ? std::span<const T>(r.column<T>(group, name)) : std::span<const T>();
+Data::Data(const results::Results& r)
+    : res(r), h(r.header), rec(r.records), mod(r.models), set(report_settings(r)),
+      status(column_or_empty<std::uint8_t>(r, "uncoupled", "status")),
+      imp_status(column_or_empty<std::uint8_t>(r, "impacts", "status")),
+      peak_u1(column_or_empty<double>(r, "uncoupled", "peak_u1")),
+      peak_u2(column_or_empty<double>(r, "uncoupled", "peak_u2")),
+      peak_closing(column_or_empty<double>(r, "uncoupled", "peak_closing")),
+      peak_force(column_or_empty<double>(r, "impacts", "peak_force")),
+      imp_peak_u1(column_or_empty<double>(r, "impacts", "peak_u1")),
+      imp_peak_u2(column_or_empty<double>(r, "impacts", "peak_u2")),
+      impact_count(column_or_empty<std::int32_t>(r, "impacts", "impact_count")),
+      h_omega(column_or_empty<double>(r, "impacts", "h_omega_contact")),
+      impacts(r.has_group("impacts")),
+      keep_coarse(r.settings.find("analysis", "coarse") && r.settings.text("analysis", "coarse") == "keep") {}
+
+double Data::zeta(int, std::size_t) const { return mod.zeta; }
+
+const std::vector<double>& Data::periods(int) const { return mod.periods; }
+
+separation::Demands Data::demands(bool metres) const {
+  separation::Demands d;
+  d.records = records(), d.models = models();
+  d.z.resize(d.records * d.models, NAN);
+  for (std::size_t k = 0; k < d.records; ++k)
+    for (std::size_t m = 0; m < d.models; ++m) {
+      const std::size_t i = k * d.models + m;
+      if (ok(status[i])) d.z[i] = metres ? peak_closing[i] : peak_closing[i] / mod.code_gap[m];
+    }
+  return d;
 }
 
-// The report's view of a Results: the columns it reads by short names, and its settings.
-struct Data {
-  const results::Results& res;
-  const results::Header& h;
-  const results::RecordTable& rec;
-  const results::ModelTable& mod;
-  ReportSettings set;
-  std::span<const std::uint8_t> status, imp_status;
-  std::span<const double> peak_u1, peak_u2, peak_closing, peak_force, imp_peak_u1, imp_peak_u2;
-  std::span<const std::int32_t> impact_count;
-  std::span<const double> h_omega;
-  bool impacts, keep_coarse;
+separation::BootstrapSettings Data::bootstrap_settings() const {
+  separation::BootstrapSettings b;
+  b.replicates = set.bootstrap;
+  b.confidence = set.confidence;
+  b.seed = splitmix64(set.seed ^ 0x7265706f7274ULL);  // the report's own stream ("report")
+  return b;
+}
 
-  explicit Data(const results::Results& r)
-      : res(r), h(r.header), rec(r.records), mod(r.models), set(report_settings(r)),
-        status(column_or_empty<std::uint8_t>(r, "uncoupled", "status")),
-        imp_status(column_or_empty<std::uint8_t>(r, "impacts", "status")),
-        peak_u1(column_or_empty<double>(r, "uncoupled", "peak_u1")),
-        peak_u2(column_or_empty<double>(r, "uncoupled", "peak_u2")),
-        peak_closing(column_or_empty<double>(r, "uncoupled", "peak_closing")),
-        peak_force(column_or_empty<double>(r, "impacts", "peak_force")),
-        imp_peak_u1(column_or_empty<double>(r, "impacts", "peak_u1")),
-        imp_peak_u2(column_or_empty<double>(r, "impacts", "peak_u2")),
-        impact_count(column_or_empty<std::int32_t>(r, "impacts", "impact_count")),
-        h_omega(column_or_empty<double>(r, "impacts", "h_omega_contact")),
-        impacts(r.has_group("impacts")),
-        keep_coarse(r.settings.find("analysis", "coarse") && r.settings.text("analysis", "coarse") == "keep") {}
-  // ok, or coarse kept in the statistics by [analysis] coarse = "keep"
-  bool ok(std::uint8_t s) const { return s == 0 || (keep_coarse && s == static_cast<std::uint8_t>(LaneStatus::coarse)); }
-  std::size_t records() const { return rec.size(); }
-  std::size_t models() const { return mod.size(); }
-  std::size_t gaps() const { return res.gap_ratios.size(); }
-};
-
-struct Count {
-  std::int64_t hits = 0, n = 0;
-  double pct() const { return n ? 100.0 * static_cast<double>(hits) / static_cast<double>(n) : NAN; }
-};
+std::string pct(double p) { return std::isnan(p) ? "n/a" : fmt::format("{:.2f}%", p); }
 
 // uncoupled: hit when peak closing > ratio * code gap (contact is delta = u1 - u2 - gap > 0)
-Count count_uncoupled(const Data& r, double ratio, int rec, int pair_i1 = -1, int pair_i2 = -1) {
+Count count_uncoupled(const Data& r, double ratio, int rec, int pair_i1, int pair_i2) {
   Count c;
   const std::size_t M = r.models();
   for (std::size_t k = 0; k < r.records(); ++k) {
@@ -81,6 +85,10 @@ Count count_uncoupled(const Data& r, double ratio, int rec, int pair_i1 = -1, in
   return c;
 }
 
+}  // namespace report_detail
+
+namespace {
+
 Count count_coupled(const Data& r, std::size_t g, int rec) {
   Count c;
   const std::size_t M = r.models(), G = r.gaps();
@@ -94,20 +102,6 @@ Count count_coupled(const Data& r, std::size_t g, int rec) {
     }
   }
   return c;
-}
-
-std::string pct(double p) { return std::isnan(p) ? "n/a" : fmt::format("{:.2f}%", p); }
-
-// Smallest x where the (non-increasing) empirical curve falls to <= target %, interpolated linearly.
-double empirical_ratio(const Curve& c, double target) {
-  for (std::size_t i = 0; i < c.x.size(); ++i) {
-    if (100.0 * c.p[i] <= target) {
-      if (i == 0) return c.x[0];
-      double x0 = c.x[i - 1], x1 = c.x[i], p0 = 100.0 * c.p[i - 1], p1 = 100.0 * c.p[i];
-      return p0 == p1 ? x1 : x0 + (target - p0) * (x1 - x0) / (p1 - p0);
-    }
-  }
-  return NAN;
 }
 
 Curve curve_of(const Data& r, double step, double xmax, int record) {
@@ -134,6 +128,19 @@ Curve curve_of(const Data& r, double step, double xmax, int record) {
   return c;
 }
 
+// The cubic of eq. 10 on the continuous curve over [fit_min, fit_max], or nothing with fewer than 4 points.
+std::optional<CubicFit> ratio_fit(const Data& r, std::size_t* points = nullptr) {
+  const ReportSettings& set = r.set;
+  Curve curve = curve_of(r, set.curve_step, set.curve_max, -1);
+  std::vector<double> fx, fy;
+  for (std::size_t i = 0; i < curve.x.size(); ++i)
+    if (curve.x[i] >= set.fit_min - 1e-12 && curve.x[i] <= set.fit_max + 1e-12)
+      fx.push_back(curve.x[i]), fy.push_back(100 * curve.p[i]);
+  if (points) *points = fx.size();
+  if (fx.size() < 4) return std::nullopt;
+  return fit_cubic(fx, fy);
+}
+
 // Markdown output, section by section.
 class Markdown {
  public:
@@ -144,19 +151,18 @@ class Markdown {
   void out(fmt::format_string<A...> f, A&&... a) {
     s += fmt::format(f, std::forward<A>(a)...);
   }
+  void raw(const std::string& t) { s += t; }
 
   void overview();
   void per_record();
   void total();
   void coupled_counts();
   void period_matrix();
-  void fit_and_recommendation();
-  void code_rules();
+  void fit();
   void impacts_table();
 
  private:
   void excluded_uncoupled();
-  void recommendation(const Curve& curve, const CubicFit& f);
   std::string excluded_coupled();
   const Data& r;
   std::string s;
@@ -175,6 +181,9 @@ void Markdown::overview() {
   for (auto v : r.rec.synthetic) synth += v;
   out("- {} records ({} synthetic stand-ins, {} real), {} models per record, seed {}\n", R, synth, R - synth, M,
       r.h.seed);
+  out("- {}\n", r.set.pair ? "a pair study: both buildings' heights are given, so separations are in metres"
+                           : "a grid study: heights come from the period-height rule, so gaps are ratios x of the "
+                             "code gap d and no separation is given in metres");
   excluded_uncoupled();
   out("\nAt least one impact at gap g = ratio x d (d = {} (h1 + h2){}) is counted from the "
       "uncoupled peak closing: the motion before the first contact is the uncoupled motion, so "
@@ -198,11 +207,18 @@ void Markdown::excluded_uncoupled() {
       }
 }
 
+// The gap ratio x as a column title; "x d = g m" when the code gap is the same for every model.
+std::string gap_title(const Data& r, double x) {
+  if (!r.set.pair || r.mod.code_gap.empty()) return fmt::format("{}d", x);
+  const auto [lo, hi] = std::minmax_element(r.mod.code_gap.begin(), r.mod.code_gap.end());
+  return *lo == *hi ? fmt::format("{}d = {:.3f} m", x, x * *lo) : fmt::format("{}d", x);
+}
+
 // Table 2: per record
 void Markdown::per_record() {
   const auto& ratios = r.set.gap_ratios;
   out("\n## Probability of at least one impact per record (Table 2)\n\n| record | synthetic | PGA g |");
-  for (double x : ratios) out(" {}d |", x);
+  for (double x : ratios) out(" {} |", gap_title(r, x));
   out("\n|---|---|---|");
   for (std::size_t i = 0; i < ratios.size(); ++i) out("---|");
   out("\n");
@@ -216,18 +232,23 @@ void Markdown::per_record() {
   }
 }
 
-// Table 3: total with Wilson intervals, beside the paper
+// Table 3: total with Wilson intervals (beside the paper when the study compares with it)
 void Markdown::total() {
   out("\n## Total probability of pounding (Table 3), 95 % Wilson intervals\n\n");
-  out("| gap ratio | models with impact | probability | 95 % interval | paper |\n|---|---|---|---|---|\n");
+  out("The Wilson interval is the sampling error of the models under this fixed set of records; it leaves out "
+      "record-to-record variability{}.\n\n",
+      r.set.pair ? " (the separation in metres above has the bootstrap interval that includes it)" : "");
+  const bool paper = r.paper();
+  out("| gap ratio | models with impact | probability | 95 % interval |{}\n|---|---|---|---|{}\n",
+      paper ? " paper |" : "", paper ? "---|" : "");
   for (double x : r.set.gap_ratios) {
     Count c = count_uncoupled(r, x, -1);
     Interval w = wilson_interval(c.hits, c.n);
-    std::string paper = "-";
+    std::string paper_cell = "-";
     for (int j = 0; j < 6; ++j)
-      if (std::abs(paper_ratios[j] - x) < 1e-12) paper = pct(paper_total[j]);
-    out("| {} | {} / {} | {} | [{:.2f}%, {:.2f}%] | {} |\n", x, c.hits, c.n, pct(c.pct()), 100 * w.lo, 100 * w.hi,
-        paper);
+      if (std::abs(paper_ratios[j] - x) < 1e-12) paper_cell = pct(paper_total[j]);
+    out("| {} | {} / {} | {} | [{:.2f}%, {:.2f}%] |{}\n", x, c.hits, c.n, pct(c.pct()), 100 * w.lo, 100 * w.hi,
+        paper ? fmt::format(" {} |", paper_cell) : "");
   }
 }
 
@@ -241,19 +262,20 @@ void Markdown::coupled_counts() {
   }
 }
 
-// T1 x T2 matrix
+// T1 x T2 matrix (rows building 1's grid, columns building 2's); nothing for a single period pair
 void Markdown::period_matrix() {
   const auto& ratios = r.set.gap_ratios;
-  const auto& periods = r.mod.periods;
+  const auto &p1 = r.periods(1), &p2 = r.periods(2);
+  if (p1.size() * p2.size() <= 1) return;
   double xm = ratios[std::min<std::size_t>(ratios.size() - 1, 2)];
   out("\n## Probability by period pair at gap ratio {} (rows T1, columns T2)\n\n| T1 \\ T2 |", xm);
-  for (double T : periods) out(" {:.2f} |", T);
+  for (double T : p2) out(" {:.2f} |", T);
   out("\n|---|");
-  for (std::size_t j = 0; j < periods.size(); ++j) out("---|");
+  for (std::size_t j = 0; j < p2.size(); ++j) out("---|");
   out("\n");
-  for (std::size_t a = 0; a < periods.size(); ++a) {
-    out("| {:.2f} |", periods[a]);
-    for (std::size_t b = 0; b < periods.size(); ++b) {
+  for (std::size_t a = 0; a < p1.size(); ++a) {
+    out("| {:.2f} |", p1[a]);
+    for (std::size_t b = 0; b < p2.size(); ++b) {
       Count c = count_uncoupled(r, xm, -1, static_cast<int>(a), static_cast<int>(b));
       out(" {:.1f} |", c.pct());
     }
@@ -261,73 +283,20 @@ void Markdown::period_matrix() {
   }
 }
 
-// cubic fit on the continuous curve
-void Markdown::fit_and_recommendation() {
+// cubic fit on the continuous curve (eq. 10)
+void Markdown::fit() {
   const ReportSettings& set = r.set;
-  Curve curve = curve_of(r, set.curve_step, set.curve_max, -1);
-  std::vector<double> fx, fy;
-  for (std::size_t i = 0; i < curve.x.size(); ++i)
-    if (curve.x[i] >= set.fit_min - 1e-12 && curve.x[i] <= set.fit_max + 1e-12)
-      fx.push_back(curve.x[i]), fy.push_back(100 * curve.p[i]);
+  std::size_t points = 0;
+  const std::optional<CubicFit> f = ratio_fit(r, &points);
   out("\n## Cubic fit of probability (%) versus gap ratio x (eq. 10)\n\n");
-  if (fx.size() < 4) {
+  if (!f) {
     out("too few curve points in [{}, {}] to fit a cubic\n", set.fit_min, set.fit_max);
     return;
   }
-  CubicFit f = fit_cubic(fx, fy);
   out("Fitted on the continuous curve, {} points for x in [{}, {}]:\n\n    PP = {:.1f} x^3 {:+.1f} x^2 {:+.1f} x {:+.1f}    "
-      "(R^2 = {:.4f})\n\npaper (eq. 10): PP = -213.7 x^3 + 510.3 x^2 - 403.4 x + 106.8\n",
-      fx.size(), set.fit_min, set.fit_max, f.c[3], f.c[2], f.c[1], f.c[0], f.r2);
-  recommendation(curve, f);
-}
-
-void Markdown::recommendation(const Curve& curve, const CubicFit& f) {
-  const ReportSettings& set = r.set;
-  out("\n## Separation recommendation\n\nGap ratio x (and metres for h1 = {} m, h2 = {} m: g = x {} (h1 + h2)) at "
-      "which the probability of at least one impact falls to the target:\n\n"
-      "| target | empirical x | empirical m | cubic x | cubic m | difference x |\n|---|---|---|---|---|---|\n",
-      set.h1, set.h2, set.code_gap_coefficient);
-  const double dcode = set.code_gap_coefficient * (set.h1 + set.h2);
-  for (double t : set.targets) {
-    double xe = empirical_ratio(curve, t);
-    auto xc = solve_fit(f, t, set.fit_min, set.fit_max);
-    out("| {}% | {} | {} | {} | {} | {} |\n", t, std::isnan(xe) ? "> curve_max" : fmt::format("{:.3f}", xe),
-        std::isnan(xe) ? "-" : fmt::format("{:.3f}", xe * dcode), xc ? fmt::format("{:.3f}", *xc) : "outside fit range",
-        xc ? fmt::format("{:.3f}", *xc * dcode) : "-", (xc && !std::isnan(xe)) ? fmt::format("{:+.3f}", *xc - xe) : "-");
-  }
-}
-
-// code rules side by side, each from the models' own uncoupled peaks
-void Markdown::code_rules() {
-  out("\n## Code separation rules (each from the models' own uncoupled peaks)\n\n| rule | gap | probability of pounding |\n|---|---|---|\n");
-  struct Rule { const char* name; const char* gap; int kind; };
-  const double coef = r.set.code_gap_coefficient;
-  const std::string code_rule = fmt::format("{} (h1 + h2)", coef);
-  const Rule rules[] = {{coef == 0.005 ? "Standard 2800" : "code gap", code_rule.c_str(), 0}, {"ABS", "u1 + u2", 1},
-                        {"SRSS", "sqrt(u1^2 + u2^2)", 2},
-                        {"double difference (CQC)", "sqrt(u1^2 + u2^2 - 2 rho u1 u2)", 3}};
-  const std::size_t R = r.records(), M = r.models();
-  for (const Rule& rule : rules) {
-    std::int64_t hits = 0, n = 0;
-    for (std::size_t k = 0; k < R; ++k)
-      for (std::size_t m = 0; m < M; ++m) {
-        const std::size_t idx = k * M + m;
-        if (!r.ok(r.status[idx])) continue;
-        double u1 = r.peak_u1[idx], u2 = r.peak_u2[idx], g = 0;
-        switch (rule.kind) {
-          case 0: g = r.mod.code_gap[m]; break;
-          case 1: g = u1 + u2; break;
-          case 2: g = std::sqrt(u1 * u1 + u2 * u2); break;
-          default: {
-            double rho = cqc_rho(r.mod.T2[m] / r.mod.T1[m], r.mod.zeta);  // r = omega1/omega2 = T2/T1
-            g = std::sqrt(std::max(0.0, u1 * u1 + u2 * u2 - 2.0 * rho * u1 * u2));
-          }
-        }
-        ++n;
-        hits += r.peak_closing[idx] > g;
-      }
-    out("| {} | {} | {} |\n", rule.name, rule.gap, pct(n ? 100.0 * static_cast<double>(hits) / static_cast<double>(n) : NAN));
-  }
+      "(R^2 = {:.4f})\n",
+      points, set.fit_min, set.fit_max, f->c[3], f->c[2], f->c[1], f->c[0], f->r2);
+  if (r.paper()) out("\npaper (eq. 10): PP = -213.7 x^3 + 510.3 x^2 - 403.4 x + 106.8\n");
 }
 
 // The coupled analyses excluded (diverged or non-finite): a count and the first 10, or "".
@@ -405,6 +374,34 @@ void Markdown::impacts_table() {
 
 }  // namespace
 
+namespace report_detail {
+
+// A grid study's advice in gap ratios: the exact order statistic, its bootstrap interval, the cubic's root.
+std::string grid_advice_section(const Data& r) {
+  const ReportSettings& set = r.set;
+  std::vector<double> targets;
+  for (double t : set.targets) targets.push_back(t / 100.0);
+  const separation::BootstrapResult b = separation::bootstrap(r.demands(false), targets, {}, r.bootstrap_settings());
+  const std::optional<CubicFit> f = ratio_fit(r);
+  std::string s = fmt::format(
+      "\n## Separation advice in gap ratios x of the code gap d\n\n"
+      "x is the smallest gap ratio that at most floor(t n) of the n analyses exceed (the exact empirical curve). "
+      "The interval is a two-stage bootstrap over records and over models within records ({} replicates, "
+      "{:.0f} %), so it includes record-to-record variability; the advice is its upper end. Heights here come "
+      "from the period-height rule, so no separation is given in metres.\n\n"
+      "| target | x | {:.0f} % interval | advice x (upper end) | cubic x |\n|---|---|---|---|---|\n",
+      b.replicates, 100 * set.confidence, 100 * set.confidence);
+  for (std::size_t i = 0; i < targets.size(); ++i) {
+    const separation::Estimate& e = b.separation[i];
+    const auto xc = f ? solve_fit(*f, set.targets[i], set.fit_min, set.fit_max) : std::nullopt;
+    s += fmt::format("| {}% | {:.3f} | [{:.3f}, {:.3f}] | **{:.3f}** | {} |\n", set.targets[i], e.value, e.lo, e.hi,
+                     e.hi, xc ? fmt::format("{:.3f}", *xc) : "outside fit range");
+  }
+  return s;
+}
+
+}  // namespace report_detail
+
 ReportSettings report_settings(const results::Results& r) {
   if (r.settings.empty()) return legacy_v1::report_settings_from_text(r);
   const results::Settings& s = r.settings;
@@ -413,9 +410,14 @@ ReportSettings report_settings(const results::Results& r) {
   set.curve_max = s.number("gaps", "curve_max");
   set.curve_step = s.number("gaps", "curve_step");
   set.targets = s.numbers("report", "targets");
-  set.h1 = s.number("report", "h1"), set.h2 = s.number("report", "h2");
   set.fit_min = s.number("report", "fit_min"), set.fit_max = s.number("report", "fit_max");
   set.code_gap_coefficient = s.number("structures", "code_gap_coefficient");
+  set.seed = static_cast<std::uint64_t>(r.header.seed);
+  // added with issue 13; files written before have the defaults (and all studied the paper's model)
+  set.compare_with = s.find("report", "compare_with") ? s.text("report", "compare_with") : "stochastic-pounding";
+  if (s.find("report", "confidence")) set.confidence = s.number("report", "confidence");
+  if (s.find("report", "bootstrap")) set.bootstrap = static_cast<int>(s.number("report", "bootstrap"));
+  set.pair = s.find("structures", "heights_specified") && s.number("structures", "heights_specified") != 0;
   return set;
 }
 
@@ -427,41 +429,48 @@ std::string report_markdown(const results::Results& results) {
   const Data r(results);
   Markdown md(r);
   md.overview();
+  if (r.set.pair) {
+    md.raw(pair_separation_section(r));
+    md.raw(code_rules_section(r));
+  }
   md.per_record();
   md.total();
   md.coupled_counts();
   md.period_matrix();
-  md.fit_and_recommendation();
-  md.code_rules();
+  if (!r.set.pair) {
+    md.fit();
+    md.raw(grid_advice_section(r));
+    md.raw(code_rules_section(r));
+  }
   md.impacts_table();
   return std::move(md).text();
 }
 
 std::string report_csv(const results::Results& results) {
   const Data r(results);
-  std::string s = "table,record,gap_ratio,T1,T2,hits,n,probability\n";
+  std::string s = "table,record,gap_ratio,T1,T2,hits,n,probability,gap_m,lo,hi,name\n";
   const auto& ratios = r.set.gap_ratios;
-  const auto& periods = r.mod.periods;
+  const auto &p1 = r.periods(1), &p2 = r.periods(2);
   for (std::size_t k = 0; k < r.records(); ++k)
     for (double x : ratios) {
       Count c = count_uncoupled(r, x, static_cast<int>(k));
-      s += fmt::format("per_record,{},{},,,{},{},{:.6f}\n", r.rec.id[k], x, c.hits, c.n, c.pct() / 100);
+      s += fmt::format("per_record,{},{},,,{},{},{:.6f},,,,\n", r.rec.id[k], x, c.hits, c.n, c.pct() / 100);
     }
   for (double x : ratios) {
     Count c = count_uncoupled(r, x, -1);
-    s += fmt::format("total,,{},,,{},{},{:.6f}\n", x, c.hits, c.n, c.pct() / 100);
+    s += fmt::format("total,,{},,,{},{},{:.6f},,,,\n", x, c.hits, c.n, c.pct() / 100);
   }
   for (double x : ratios)
-    for (std::size_t a = 0; a < periods.size(); ++a)
-      for (std::size_t b = 0; b < periods.size(); ++b) {
+    for (std::size_t a = 0; a < p1.size(); ++a)
+      for (std::size_t b = 0; b < p2.size(); ++b) {
         Count c = count_uncoupled(r, x, -1, static_cast<int>(a), static_cast<int>(b));
-        s += fmt::format("period_pair,,{},{:.2f},{:.2f},{},{},{:.6f}\n", x, periods[a], periods[b], c.hits, c.n,
+        s += fmt::format("period_pair,,{},{:.2f},{:.2f},{},{},{:.6f},,,,\n", x, p1[a], p2[b], c.hits, c.n,
                          c.pct() / 100);
       }
   Curve c = curve_of(r, r.set.curve_step, r.set.curve_max, -1);
   for (std::size_t i = 0; i < c.x.size(); ++i)
-    s += fmt::format("curve,,{:.4f},,,,{},{:.6f}\n", c.x[i], c.n, c.p[i]);
-  return s;
+    s += fmt::format("curve,,{:.4f},,,,{},{:.6f},,,,\n", c.x[i], c.n, c.p[i]);
+  return s + separation_csv(r);
 }
 
 }  // namespace pounding

@@ -128,12 +128,24 @@ void parse_analysis(Study& s, const toml::table* t, const std::string& path) {
 void parse_report(Study& s, const toml::table* t, const std::string& path) {
   TableReader r(t, path, "report");
   s.targets = r.numbers("targets", s.targets, 1e-6, 99.999, "(0, 100) %");
-  s.h1 = r.number("h1", 40.0, 0.1, 1000.0, "(0, 1000] m");
-  s.h2 = r.number("h2", 40.0, 0.1, 1000.0, "(0, 1000] m");
+  for (const char* key : {"h1", "h2"})
+    if (r.get(key))
+      throw InputError(fmt::format("[report] {} is no longer a setting: separations in metres come from the buildings' "
+                                   "own heights, never from assumed ones", key),
+                       r.where(key),
+                       "delete it; for a pair of given buildings set [structures.building1] height = <m> and "
+                       "[structures.building2] height = <m> (a study with heights from the period-height rule "
+                       "reports gaps as ratios of the code gap d)");
+  s.confidence = r.number("confidence", 0.95, 0.5, 0.999, "[0.5, 0.999]");
+  s.bootstrap = static_cast<int>(r.integer("bootstrap", 2000, 0, 100000));
+  s.compare_with = r.string("compare_with", "");
+  if (!s.compare_with.empty() && s.compare_with != "stochastic-pounding")
+    throw InputError(fmt::format("compare_with = \"{}\" is not a published study the report knows", s.compare_with),
+                     r.where("compare_with"), "write compare_with = \"stochastic-pounding\" or leave it out");
   s.fit_min = r.number("fit_min", 0.1, 0.0, 100.0, "[0, 100]");
   s.fit_max = r.number("fit_max", 1.0, 0.0, 100.0, "[0, 100]");
   if (!(s.fit_max > s.fit_min)) throw InputError("fit_max must exceed fit_min", r.where("fit_max"), "give fit_min < fit_max");
-  r.finish("targets, h1, h2, fit_min, fit_max");
+  r.finish("targets, fit_min, fit_max, confidence, bootstrap, compare_with");
 }
 
 void parse_outputs(Study& s, const toml::table* t, const std::string& path) {

@@ -28,9 +28,9 @@ batch = 16
 max_excluded_fraction = 0.5
 [report]
 targets = [20, 2]
-h1 = 25
-h2 = 35
 fit_min = 0.2
+confidence = 0.9
+bootstrap = 300
 TOML
 "$bin" run "$tmp/s.toml" --out "$tmp/s.h5" --quiet > "$tmp/run.md" 2>/dev/null
 "$bin" report "$tmp/s.h5" > "$tmp/a.md"
@@ -59,7 +59,7 @@ print(f"{checked} study keys found in /settings with their values")
 PY
 "$bin" report "$tmp/s.h5" > "$tmp/b.md"
 diff <(grep -v '^- results:' "$tmp/a.md") <(grep -v '^- results:' "$tmp/b.md") || { echo "FAIL: the report changed without the study text"; exit 1; }
-grep -q "g = x 0.008 (h1 + h2)" "$tmp/b.md" || { echo "FAIL: report settings not read from /settings"; exit 1; }
+grep -q "d = 0.008 (h1 + h2)" "$tmp/b.md" && grep -q "300 replicates, 90 %" "$tmp/b.md" || { echo "FAIL: report settings not read from /settings"; exit 1; }
 # the older layout: no /settings, the study text is read instead
 "$bin" run "$tmp/s.toml" --out "$tmp/old.h5" --quiet > /dev/null 2>&1
 /usr/bin/python3 -c "import h5py, sys; f = h5py.File(sys.argv[1], 'r+'); del f['settings']" "$tmp/old.h5"

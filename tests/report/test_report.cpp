@@ -42,13 +42,15 @@ TEST(Report, SettingsComeFromTheResultsNotTheStudyText) {
   EXPECT_EQ(s.code_gap_coefficient, 0.008);
   EXPECT_EQ(s.gap_ratios, (std::vector<double>{0.2, 0.5, 1.0}));
   EXPECT_EQ(s.targets, (std::vector<double>{50, 10}));
-  EXPECT_EQ(s.h1 + s.h2, 50.0);
+  EXPECT_EQ(s.confidence, 0.9);
+  EXPECT_EQ(s.bootstrap, 200);
+  EXPECT_EQ(s.compare_with, "stochastic-pounding");  // files from before [report] compare_with studied the paper
   EXPECT_EQ(report_markdown(r), report_markdown(testdata::sample_results()));
 }
 
 TEST(Report, CsvCountsTheSampleModels) {
   const std::string csv = report_csv(testdata::sample_results());
   // gap ratio 0.2: z > 0.2 for 0.35, 0.62, 1.25, 0.45, 0.95 of the 7 ok models
-  EXPECT_NE(csv.find("total,,0.2,,,5,7,0.714286\n"), std::string::npos) << csv;
-  EXPECT_NE(csv.find("per_record,EQ2,1,,,0,3,0.000000\n"), std::string::npos) << csv;
+  EXPECT_NE(csv.find("total,,0.2,,,5,7,0.714286,,,,\n"), std::string::npos) << csv;
+  EXPECT_NE(csv.find("per_record,EQ2,1,,,0,3,0.000000,,,,\n"), std::string::npos) << csv;
 }

@@ -34,8 +34,8 @@ inline results::Results sample_results() {
   r.settings.add("gaps", "curve_max", 1.5);
   r.settings.add("gaps", "curve_step", 0.1);
   r.settings.add("report", "targets", std::vector<double>{50, 10});
-  r.settings.add("report", "h1", 20.0);
-  r.settings.add("report", "h2", 30.0);
+  r.settings.add("report", "confidence", 0.9);
+  r.settings.add("report", "bootstrap", std::int64_t{200});
   r.settings.add("report", "fit_min", 0.1);
   r.settings.add("report", "fit_max", 1.0);
   r.settings.add("outputs", "empty", std::vector<double>{});

@@ -11,11 +11,18 @@
 
 namespace pounding {
 
-// What the report needs from the study: [gaps], [report] and the code gap coefficient of [structures].
+// What the report needs from the study: [gaps], [report], the seed, and of [structures] the code gap coefficient
+// and whether the buildings' heights are given (a pair study: answers in metres) or come from the period-height
+// rule (a grid study: answers in ratios of the code gap d).
 struct ReportSettings {
   std::vector<double> gap_ratios, targets;
   double code_gap_coefficient = 0.005;  // d = coefficient (h1 + h2) (Standard 2800: 0.005)
-  double h1 = 40, h2 = 40, fit_min = 0.1, fit_max = 1.0, curve_max = 1.5, curve_step = 0.005;
+  double fit_min = 0.1, fit_max = 1.0, curve_max = 1.5, curve_step = 0.005;
+  double confidence = 0.95;
+  int bootstrap = 2000;       // replicates of the two-stage bootstrap (analysis/separation.hpp)
+  std::string compare_with;   // "stochastic-pounding": the published Table 3 and eq. 10 beside ours
+  std::uint64_t seed = 0;     // the study's seed (the bootstrap's stream derives from it)
+  bool pair = false;          // [structures] heights_specified
 };
 ReportSettings report_settings(const results::Results& r);
 

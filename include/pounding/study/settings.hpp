@@ -85,10 +85,11 @@ void visit_settings(const Study& s, V&& v) {
   v("analysis", "coarse", S(to_string(s.coarse)));
 
   v("report", "targets", s.targets);
-  v("report", "h1", s.h1);
-  v("report", "h2", s.h2);
   v("report", "fit_min", s.fit_min);
   v("report", "fit_max", s.fit_max);
+  v("report", "confidence", s.confidence);
+  v("report", "bootstrap", static_cast<std::int64_t>(s.bootstrap));
+  v("report", "compare_with", s.compare_with);
 
   v("outputs", "forces", s.want_forces);
   v("outputs", "amplification", s.want_amplification);

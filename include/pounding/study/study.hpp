@@ -25,8 +25,12 @@
 //                analysis (left out of the statistics, counted in max_excluded_fraction): a number known to be
 //                wrong is not averaged in silently. "keep" keeps it in the statistics (impact verdicts and counts
 //                are much less sensitive to the step than the peak force) but still counts and reports it.
-//   [report]     targets = [10, 5, 1] (% probability); h1 = 40; h2 = 40 (m, for separations in metres);
-//                fit_min = 0.1; fit_max = 1.0
+//   [report]     targets = [10, 5, 1] (% probability); fit_min = 0.1; fit_max = 1.0 (gap ratios of the cubic fit);
+//                confidence = 0.95 and bootstrap = 2000 (the two-stage bootstrap over records and models within
+//                records behind the intervals of a pair study's separation in metres, analysis/separation.hpp;
+//                0 replicates: no interval); compare_with = "" | "stochastic-pounding" (print the published
+//                study's Table 3 and eq. 10 beside ours; the paper studies set it). The old h1/h2 keys are refused:
+//                metres come from the buildings' own heights ([structures.building1/2] height).
 //   [outputs]    forces = true; amplification = true   (what the impacts scene must deliver; `auto` reads it)
 //
 // Sanity limits (errors naming the file, line and key, not a report full of nan or a std::bad_alloc):
@@ -103,7 +107,10 @@ struct Study {
   CoarsePolicy coarse = CoarsePolicy::exclude;  // [analysis] coarse: analyses marked coarse by the resolution guard
   // report
   std::vector<double> targets{10.0, 5.0, 1.0};
-  double h1 = 40.0, h2 = 40.0, fit_min = 0.1, fit_max = 1.0;
+  double fit_min = 0.1, fit_max = 1.0;
+  double confidence = 0.95;
+  int bootstrap = 2000;
+  std::string compare_with;  // "" or "stochastic-pounding"
   // outputs wanted from the impacts scene
   bool want_forces = true, want_amplification = true;
 };

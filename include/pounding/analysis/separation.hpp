@@ -1,0 +1,88 @@
+#pragma once
+// Separation of a pair in metres (or in ratios of the code gap d) from a study's demands, with intervals that
+// include record-to-record variability, and the code separation rules in metres (issue 13).
+//
+// The demand of one analysis (record k, model m) is its peak closing z = max(u1 - u2) of the uncoupled
+// motion: the pair touches at least once at gap g exactly when z > g (the motion before the first contact is
+// the uncoupled one). Over the n ok analyses of a study:
+//   P(g)            = #{z > g} / n                          (the continuous, empirical curve)
+//   separation(t)   = the smallest g with P(g) <= t          = the (floor(t n) + 1)-th largest z
+// (t a fraction). Both are exact order statistics: no grid, no interpolation.
+//
+// Intervals. A study's n analyses are not n independent draws: the same M models meet the same R records,
+// and what varies most is the record. The bootstrap here is two-stage (Davison & Hinkley 1997, sec. 3.8;
+// the "cluster bootstrap"): a replicate draws R records with replacement and, inside each drawn record, as many
+// of its ok analyses as it has, with replacement; the statistic is recomputed on the pooled replicate, and the
+// interval is the percentile interval of `replicates` replicates at `confidence` (type-7 quantiles of the
+// sorted replicate values). Replicate b uses its own stream splitmix64-derived from (seed, b), so the result
+// does not depend on how replicates are spread over threads. The Wilson interval (stats.hpp) is the
+// sampling error of the models under a fixed record set, and ignores record-to-record scatter.
+#include <cstddef>
+#include <cstdint>
+#include <span>
+#include <string>
+#include <vector>
+
+namespace pounding::separation {
+
+// The demands of a study: z[k * models + m] (NaN where the analysis is excluded).
+struct Demands {
+  std::size_t records = 0, models = 0;
+  std::vector<double> z;
+  // z of the ok analyses of record k (NaN excluded), unsorted.
+  std::vector<double> record(std::size_t k) const;
+  std::vector<double> pooled() const;  // every ok analysis
+};
+
+// Fraction of `z` strictly above g; NaN when z is empty.
+double exceedance(std::span<const double> z, double g);
+// The smallest g with exceedance(z, g) <= t (t in [0, 1)); NaN when z is empty. Takes a copy (nth_element).
+double separation_at(std::vector<double> z, double t);
+
+struct BootstrapSettings {
+  int replicates = 2000;
+  double confidence = 0.95;
+  std::uint64_t seed = 0;
+  int threads = 2;  // the result does not depend on it
+};
+
+struct Estimate {
+  double value = 0, lo = 0, hi = 0;  // the full-data value and its percentile interval
+};
+
+struct BootstrapResult {
+  std::vector<Estimate> separation;   // per target fraction
+  std::vector<Estimate> probability;  // per gap (fraction)
+  int replicates = 0;
+};
+
+// Separations at `targets` (fractions) and probabilities at `gaps`, each with its two-stage interval. With
+// replicates = 0 the intervals are the values themselves.
+BootstrapResult bootstrap(const Demands& d, std::span<const double> targets, std::span<const double> gaps,
+                          const BootstrapSettings& s);
+
+// ---------------------------------------------------------------- code rules
+
+// The CQC correlation of two oscillators with unequal damping (Der Kiureghian 1981, EESD 9(5)), r = T2 / T1
+// (= omega1 / omega2): 8 sqrt(z1 z2) (z1 + r z2) r^1.5 / ((1 - r^2)^2 + 4 z1 z2 r (1 + r^2) + 4 (z1^2 + z2^2) r^2).
+// Equals cqc_rho(r, z) when z1 = z2 = z.
+double ddc_rho(double T1, double T2, double zeta1, double zeta2);
+
+// The design values the rules combine: each building's peak displacement (m) and its period and damping.
+struct DesignPair {
+  double u1 = 0, u2 = 0, T1 = 0, T2 = 0, zeta1 = 0.05, zeta2 = 0.05;
+  double code_gap = 0;  // the coefficient rule's gap, code_gap_coefficient (h1 + h2) (m)
+};
+
+struct Rule {
+  std::string name, clause, formula;
+  double gap = 0;  // m
+};
+
+// Standard 2800 (or the study's coefficient rule), ABS, SRSS, double difference (DDC), ASCE 7-16 sec. 12.12.3
+// (same property: SRSS; separate lots: each set back by its own deltaM, so the sum) and EC8 sec. 4.4.2.7 (separate
+// properties: the sum; same property: SRSS; x 0.7 where floor levels coincide), in this order. `coefficient` names the first row
+// ("Standard 2800" at 0.005).
+std::vector<Rule> code_rules(const DesignPair& p, double coefficient);
+
+}  // namespace pounding::separation

@@ -1,0 +1,181 @@
+// Separation in metres with two-stage bootstrap intervals, and code separation rules. See separation.hpp.
+#include "pounding/analysis/separation.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <thread>
+
+#include "pounding/core/random.hpp"
+
+namespace pounding::separation {
+
+std::vector<double> Demands::record(std::size_t k) const {
+  std::vector<double> out;
+  out.reserve(models);
+  for (std::size_t m = 0; m < models; ++m)
+    if (const double v = z[k * models + m]; !std::isnan(v)) out.push_back(v);
+  return out;
+}
+
+std::vector<double> Demands::pooled() const {
+  std::vector<double> out;
+  out.reserve(z.size());
+  for (double v : z)
+    if (!std::isnan(v)) out.push_back(v);
+  return out;
+}
+
+double exceedance(std::span<const double> z, double g) {
+  if (z.empty()) return NAN;
+  std::size_t above = 0;
+  for (double v : z) above += v > g;
+  return static_cast<double>(above) / static_cast<double>(z.size());
+}
+
+namespace {
+
+// Index (ascending) of the smallest g with at most floor(t n) values above it: the (floor(t n) + 1)-th largest.
+std::size_t separation_index(std::size_t n, double t) {
+  const auto j = static_cast<std::size_t>(std::floor(t * static_cast<double>(n)));
+  return j >= n ? 0 : n - 1 - j;
+}
+
+// SplitMix64 as a counter-based generator; index draws by the multiply-shift map (bias < n / 2^64).
+struct Stream {
+  std::uint64_t state;
+  std::size_t below(std::size_t n) {
+    const std::uint64_t r = splitmix64(state);
+    state += 0x9e3779b97f4a7c15ULL;
+    return static_cast<std::size_t>((static_cast<unsigned __int128>(r) * n) >> 64);
+  }
+};
+
+// The statistics of one pooled sample: separations at targets, then probabilities at gaps. Reorders z.
+void statistics(std::vector<double>& z, std::span<const double> targets, std::span<const double> gaps,
+                double* out) {
+  const std::size_t n = z.size(), T = targets.size();
+  if (n == 0) {
+    std::fill(out, out + T + gaps.size(), NAN);
+    return;
+  }
+  if (gaps.size() > 16) {  // many gaps: sort once, then binary searches
+    std::sort(z.begin(), z.end());
+    for (std::size_t i = 0; i < T; ++i) out[i] = z[separation_index(n, targets[i])];
+    for (std::size_t i = 0; i < gaps.size(); ++i)
+      out[T + i] = static_cast<double>(z.end() - std::upper_bound(z.begin(), z.end(), gaps[i])) / static_cast<double>(n);
+    return;
+  }
+  for (std::size_t i = 0; i < T; ++i) {
+    auto nth = z.begin() + static_cast<std::ptrdiff_t>(separation_index(n, targets[i]));
+    std::nth_element(z.begin(), nth, z.end());
+    out[i] = *nth;
+  }
+  for (std::size_t i = 0; i < gaps.size(); ++i) out[T + i] = exceedance(z, gaps[i]);
+}
+
+// Type-7 quantile of sorted values (NaN-free).
+double quantile7(const std::vector<double>& v, double p) {
+  if (v.empty()) return NAN;
+  const double h = static_cast<double>(v.size() - 1) * p;
+  const auto lo = static_cast<std::size_t>(std::floor(h));
+  if (lo + 1 >= v.size()) return v.back();
+  return v[lo] + (h - static_cast<double>(lo)) * (v[lo + 1] - v[lo]);
+}
+
+// Replicates [first, last): stats[b * S + s].
+void run_replicates(const std::vector<std::vector<double>>& records, std::span<const double> targets,
+                    std::span<const double> gaps, std::uint64_t seed, int first, int last, std::vector<double>& stats) {
+  const std::size_t R = records.size(), S = targets.size() + gaps.size();
+  std::vector<double> buf;
+  for (int b = first; b < last; ++b) {
+    Stream g{splitmix64(splitmix64(seed) ^ static_cast<std::uint64_t>(b))};
+    buf.clear();
+    for (std::size_t i = 0; i < R; ++i) {
+      const std::vector<double>& rec = records[g.below(R)];
+      for (std::size_t j = 0; j < rec.size(); ++j) buf.push_back(rec[g.below(rec.size())]);
+    }
+    statistics(buf, targets, gaps, &stats[static_cast<std::size_t>(b) * S]);
+  }
+}
+
+}  // namespace
+
+double separation_at(std::vector<double> z, double t) {
+  if (z.empty()) return NAN;
+  auto nth = z.begin() + static_cast<std::ptrdiff_t>(separation_index(z.size(), t));
+  std::nth_element(z.begin(), nth, z.end());
+  return *nth;
+}
+
+BootstrapResult bootstrap(const Demands& d, std::span<const double> targets, std::span<const double> gaps,
+                          const BootstrapSettings& s) {
+  if (s.replicates < 0 || !(s.confidence > 0 && s.confidence < 1))
+    throw std::invalid_argument("bootstrap: replicates >= 0 and confidence in (0, 1)");
+  const std::size_t T = targets.size(), S = T + gaps.size(), B = static_cast<std::size_t>(s.replicates);
+  std::vector<double> full(S), pooled = d.pooled();
+  statistics(pooled, targets, gaps, full.data());
+
+  std::vector<std::vector<double>> records(d.records);
+  for (std::size_t k = 0; k < d.records; ++k) records[k] = d.record(k);
+  std::vector<double> stats(B * S);
+  const int threads = std::max(1, std::min(s.threads, s.replicates));
+  std::vector<std::thread> pool;
+  for (int t = 0; t < threads; ++t) {
+    const int first = s.replicates * t / threads, last = s.replicates * (t + 1) / threads;
+    pool.emplace_back([&, first, last] { run_replicates(records, targets, gaps, s.seed, first, last, stats); });
+  }
+  for (auto& th : pool) th.join();
+
+  BootstrapResult out;
+  out.replicates = s.replicates;
+  const double a = 0.5 * (1.0 - s.confidence);
+  std::vector<double> v;
+  for (std::size_t i = 0; i < S; ++i) {
+    v.clear();
+    for (std::size_t b = 0; b < B; ++b)
+      if (!std::isnan(stats[b * S + i])) v.push_back(stats[b * S + i]);
+    std::sort(v.begin(), v.end());
+    Estimate e{full[i], B ? quantile7(v, a) : full[i], B ? quantile7(v, 1.0 - a) : full[i]};
+    (i < T ? out.separation : out.probability).push_back(e);
+  }
+  return out;
+}
+
+// ---------------------------------------------------------------- code rules
+
+double ddc_rho(double T1, double T2, double z1, double z2) {
+  const double r = T2 / T1;
+  const double num = 8.0 * std::sqrt(z1 * z2) * (z1 + r * z2) * std::pow(r, 1.5);
+  const double den = (1.0 - r * r) * (1.0 - r * r) + 4.0 * z1 * z2 * r * (1.0 + r * r) + 4.0 * (z1 * z1 + z2 * z2) * r * r;
+  return num / den;
+}
+
+std::vector<Rule> code_rules(const DesignPair& p, double coefficient) {
+  const double abs = p.u1 + p.u2, srss = std::hypot(p.u1, p.u2);
+  const double rho = ddc_rho(p.T1, p.T2, p.zeta1, p.zeta2);
+  const double ddc = std::sqrt(std::max(0.0, p.u1 * p.u1 + p.u2 * p.u2 - 2.0 * rho * p.u1 * p.u2));
+  const bool s2800 = coefficient == 0.005;
+  std::string coef = std::to_string(coefficient);
+  coef.erase(coef.find_last_not_of('0') + 1);
+  return {
+      {s2800 ? "Standard 2800" : "coefficient rule",
+       s2800 ? "Standard 2800 (4th ed.): each building up to 8 storeys 0.005 h from the boundary" : "[structures] code_gap_coefficient",
+       coef + " (h1 + h2)", p.code_gap},
+      {"ABS", "sum of the peaks; what any set-back-from-the-boundary rule implies", "u1 + u2", abs},
+      {"SRSS", "square root of the sum of squares", "sqrt(u1^2 + u2^2)", srss},
+      {"DDC", "double difference combination (Jeng, Kasai & Maison 1992; Penzien 1997), rho of Der Kiureghian 1981",
+       "sqrt(u1^2 + u2^2 - 2 rho u1 u2)", ddc},
+      {"ASCE 7-16, same property", "ASCE 7-16 sec. 12.12.3: delta_MT = sqrt(delta_M1^2 + delta_M2^2)", "sqrt(u1^2 + u2^2)",
+       srss},
+      {"ASCE 7-16, separate lots", "ASCE 7-16 sec. 12.12.3: each set back from the property line by its own delta_M",
+       "u1 + u2", abs},
+      {"EC8, separate properties", "EN 1998-1 sec. 4.4.2.7(2)a: each building its own peak from the property line",
+       "u1 + u2", abs},
+      {"EC8, same property", "EN 1998-1 sec. 4.4.2.7(2)b: SRSS of the two peaks at the level", "sqrt(u1^2 + u2^2)", srss},
+      {"EC8, same property, floor levels coincide", "EN 1998-1 sec. 4.4.2.7(3): 0.7 x the SRSS distance",
+       "0.7 sqrt(u1^2 + u2^2)", 0.7 * srss},
+  };
+}
+
+}  // namespace pounding::separation

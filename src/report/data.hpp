@@ -1,0 +1,68 @@
+#pragma once
+// The report's view of a Results (internal to src/report): the columns it reads by short names, its settings,
+// and the counting helpers that report.cpp (the paper's tables) and separation_sections.cpp (separations in
+// metres, code rules) share.
+#include <cmath>
+#include <cstdint>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "pounding/analysis/separation.hpp"
+#include "pounding/kernel/batch.hpp"
+#include "pounding/report/report.hpp"
+#include "pounding/results/results.hpp"
+
+namespace pounding::report_detail {
+
+template <class T>
+std::span<const T> column_or_empty(const results::Results& r, const char* group, const char* name) {
+  return r.find(group, name) ? std::span<const T>(r.column<T>(group, name)) : std::span<const T>();
+}
+
+struct Data {
+  const results::Results& res;
+  const results::Header& h;
+  const results::RecordTable& rec;
+  const results::ModelTable& mod;
+  ReportSettings set;
+  std::span<const std::uint8_t> status, imp_status;
+  std::span<const double> peak_u1, peak_u2, peak_closing, peak_force, imp_peak_u1, imp_peak_u2;
+  std::span<const std::int32_t> impact_count;
+  std::span<const double> h_omega;
+  bool impacts, keep_coarse;
+
+  explicit Data(const results::Results& r);
+  // ok, or coarse kept in the statistics by [analysis] coarse = "keep"
+  bool ok(std::uint8_t s) const { return s == 0 || (keep_coarse && s == static_cast<std::uint8_t>(LaneStatus::coarse)); }
+  std::size_t records() const { return rec.size(); }
+  std::size_t models() const { return mod.size(); }
+  std::size_t gaps() const { return res.gap_ratios.size(); }
+  bool paper() const { return set.compare_with == "stochastic-pounding"; }
+  // Damping ratio of building b (1 or 2) of model m (per building when the file has it).
+  double zeta(int b, std::size_t m) const;
+  // The period grids of buildings 1 and 2 (the shared grid in files without per-building grids).
+  const std::vector<double>& periods(int b) const;
+  // The demand of every analysis: peak closing in metres (pair study) or in code gaps d (grid study); NaN
+  // where excluded.
+  separation::Demands demands(bool metres) const;
+  separation::BootstrapSettings bootstrap_settings() const;
+};
+
+struct Count {
+  std::int64_t hits = 0, n = 0;
+  double pct() const { return n ? 100.0 * static_cast<double>(hits) / static_cast<double>(n) : NAN; }
+};
+
+std::string pct(double p);
+// The uncoupled verdict "touches at least once at gap ratio x d", over one record (rec >= 0) and one period
+// pair (i1 >= 0), or all.
+Count count_uncoupled(const Data& r, double ratio, int rec, int pair_i1 = -1, int pair_i2 = -1);
+
+// Sections on separations (separation_sections.cpp).
+std::string pair_separation_section(const Data& r);  // the pair's separation in metres (report's first section)
+std::string code_rules_section(const Data& r);       // the code rules: in metres for a pair, probabilities for a grid
+std::string grid_advice_section(const Data& r);      // a grid study's separation advice in gap ratios
+std::string separation_csv(const Data& r);           // rows pair_curve, separation, code_rule
+
+}  // namespace pounding::report_detail
