@@ -83,19 +83,80 @@ double quantile7(const std::vector<double>& v, double p) {
   return v[lo] + (h - static_cast<double>(lo)) * (v[lo + 1] - v[lo]);
 }
 
+// The replicates work on ranks: every ok analysis has its rank in the sorted pooled values, a replicate is a
+// count per rank, and its order statistics and exceedances are one walk down the ranks -- O(n) per replicate
+// without comparisons (nth_element on the values was 5x slower).
+struct Ranked {
+  std::vector<double> sorted;                     // the pooled ok values, ascending
+  std::vector<std::vector<std::uint32_t>> ranks;  // per record, the rank of each of its ok analyses
+  std::vector<std::size_t> gap_bound;             // per gap, the number of values <= gap
+  std::vector<std::size_t> gap_order;             // gap indices by bound, descending
+};
+
+Ranked rank(const Demands& d, std::span<const double> gaps) {
+  Ranked r;
+  std::vector<std::pair<double, std::pair<std::uint32_t, std::uint32_t>>> all;  // value, (record, index)
+  r.ranks.resize(d.records);
+  for (std::size_t k = 0; k < d.records; ++k) {
+    const std::vector<double> z = d.record(k);
+    r.ranks[k].resize(z.size());
+    for (std::size_t j = 0; j < z.size(); ++j)
+      all.push_back({z[j], {static_cast<std::uint32_t>(k), static_cast<std::uint32_t>(j)}});
+  }
+  std::sort(all.begin(), all.end());
+  for (std::size_t i = 0; i < all.size(); ++i) {
+    r.sorted.push_back(all[i].first);
+    r.ranks[all[i].second.first][all[i].second.second] = static_cast<std::uint32_t>(i);
+  }
+  for (double g : gaps)
+    r.gap_bound.push_back(static_cast<std::size_t>(std::upper_bound(r.sorted.begin(), r.sorted.end(), g) - r.sorted.begin()));
+  r.gap_order.resize(gaps.size());
+  for (std::size_t i = 0; i < gaps.size(); ++i) r.gap_order[i] = i;
+  std::stable_sort(r.gap_order.begin(), r.gap_order.end(),
+                   [&](std::size_t a, std::size_t b) { return r.gap_bound[a] > r.gap_bound[b]; });
+  return r;
+}
+
+// Separations and exceedances of one replicate from its counts per rank (n drawn analyses in all): one walk
+// down the ranks, gaps visited in the order of their bounds (gap_order: by bound, descending).
+void replicate_statistics(const Ranked& r, const std::vector<std::uint32_t>& count, std::size_t n,
+                          std::span<const double> targets, double* out) {
+  const std::size_t T = targets.size(), G = r.gap_bound.size(), N = r.sorted.size();
+  if (n == 0) {
+    std::fill(out, out + T + G, NAN);
+    return;
+  }
+  std::size_t want[64];  // more than this many above: the (want + 1)-th largest
+  for (std::size_t i = 0; i < T; ++i) want[i] = static_cast<std::size_t>(std::floor(targets[i] * static_cast<double>(n)));
+  std::size_t above = 0, found = 0, next_gap = 0;
+  const auto fraction = [&] { return static_cast<double>(above) / static_cast<double>(n); };
+  for (std::size_t i = N; i-- > 0;) {
+    // gaps with `i + 1` values at or below them: exceeded by what is counted so far
+    for (; next_gap < G && r.gap_bound[r.gap_order[next_gap]] == i + 1; ++next_gap) out[T + r.gap_order[next_gap]] = fraction();
+    above += count[i];
+    for (std::size_t t = 0; t < T; ++t)
+      if (above > want[t] && std::isnan(out[t])) out[t] = r.sorted[i], ++found;
+    if (found == T && (next_gap == G || r.gap_bound[r.gap_order[next_gap]] == 0)) break;
+  }
+  for (; next_gap < G; ++next_gap) out[T + r.gap_order[next_gap]] = 1.0;  // bound 0: every value is above
+}
+
 // Replicates [first, last): stats[b * S + s].
-void run_replicates(const std::vector<std::vector<double>>& records, std::span<const double> targets,
-                    std::span<const double> gaps, std::uint64_t seed, int first, int last, std::vector<double>& stats) {
-  const std::size_t R = records.size(), S = targets.size() + gaps.size();
-  std::vector<double> buf;
+void run_replicates(const Ranked& r, std::span<const double> targets, std::uint64_t seed, int first, int last,
+                    std::vector<double>& stats) {
+  const std::size_t R = r.ranks.size(), S = targets.size() + r.gap_bound.size();
+  std::vector<std::uint32_t> count(r.sorted.size());
   for (int b = first; b < last; ++b) {
     Stream g{splitmix64(splitmix64(seed) ^ static_cast<std::uint64_t>(b))};
-    buf.clear();
+    std::fill(count.begin(), count.end(), 0u);
+    std::fill_n(&stats[static_cast<std::size_t>(b) * S], S, NAN);
+    std::size_t n = 0;
     for (std::size_t i = 0; i < R; ++i) {
-      const std::vector<double>& rec = records[g.below(R)];
-      for (std::size_t j = 0; j < rec.size(); ++j) buf.push_back(rec[g.below(rec.size())]);
+      const std::vector<std::uint32_t>& rec = r.ranks[g.below(R)];
+      for (std::size_t j = 0; j < rec.size(); ++j) ++count[rec[g.below(rec.size())]];
+      n += rec.size();
     }
-    statistics(buf, targets, gaps, &stats[static_cast<std::size_t>(b) * S]);
+    replicate_statistics(r, count, n, targets, &stats[static_cast<std::size_t>(b) * S]);
   }
 }
 
@@ -110,20 +171,19 @@ double separation_at(std::vector<double> z, double t) {
 
 BootstrapResult bootstrap(const Demands& d, std::span<const double> targets, std::span<const double> gaps,
                           const BootstrapSettings& s) {
-  if (s.replicates < 0 || !(s.confidence > 0 && s.confidence < 1))
-    throw std::invalid_argument("bootstrap: replicates >= 0 and confidence in (0, 1)");
+  if (s.replicates < 0 || !(s.confidence > 0 && s.confidence < 1) || targets.size() > 64)
+    throw std::invalid_argument("bootstrap: replicates >= 0, confidence in (0, 1), at most 64 targets");
   const std::size_t T = targets.size(), S = T + gaps.size(), B = static_cast<std::size_t>(s.replicates);
   std::vector<double> full(S), pooled = d.pooled();
   statistics(pooled, targets, gaps, full.data());
 
-  std::vector<std::vector<double>> records(d.records);
-  for (std::size_t k = 0; k < d.records; ++k) records[k] = d.record(k);
+  const Ranked ranked = rank(d, gaps);
   std::vector<double> stats(B * S);
   const int threads = std::max(1, std::min(s.threads, s.replicates));
   std::vector<std::thread> pool;
   for (int t = 0; t < threads; ++t) {
     const int first = s.replicates * t / threads, last = s.replicates * (t + 1) / threads;
-    pool.emplace_back([&, first, last] { run_replicates(records, targets, gaps, s.seed, first, last, stats); });
+    pool.emplace_back([&, first, last] { run_replicates(ranked, targets, s.seed, first, last, stats); });
   }
   for (auto& th : pool) th.join();
 

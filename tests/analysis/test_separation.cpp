@@ -170,3 +170,21 @@ TEST(CodeRules, GapsInMetres) {
   const DesignPair same{.u1 = 0.12, .u2 = 0.16, .T1 = 1.0, .T2 = 1.0, .zeta1 = 0.05, .zeta2 = 0.05, .code_gap = 0.3};
   EXPECT_NEAR(code_rules(same, 0.005)[3].gap, 0.04, 1e-12);
 }
+
+TEST(Separation, CurveBandIsConsistentWithThePointValues) {
+  Demands d = grid(9, 13, 0.02, 0.003);
+  d.z[7] = d.z[8];  // ties
+  std::vector<double> gaps;
+  for (int i = 0; i <= 60; ++i) gaps.push_back(0.15 + 0.005 * i);
+  const double targets[] = {0.3, 0.1, 0.02};
+  const BootstrapResult b = bootstrap(d, targets, gaps, {.replicates = 400, .seed = 9});
+  const std::vector<double> z = d.pooled();
+  for (std::size_t i = 0; i < gaps.size(); ++i) {
+    EXPECT_EQ(b.probability[i].value, exceedance(z, gaps[i]));
+    EXPECT_LE(b.probability[i].lo, b.probability[i].value + 1e-12);
+    EXPECT_GE(b.probability[i].hi, b.probability[i].value - 1e-12);
+    if (i) EXPECT_LE(b.probability[i].hi, b.probability[i - 1].hi);  // the band falls with the gap
+  }
+  for (std::size_t t = 0; t < 3; ++t) EXPECT_EQ(b.separation[t].value, separation_at(z, targets[t]));
+  EXPECT_EQ(b.probability.front().hi, 1.0);  // below every value
+}
