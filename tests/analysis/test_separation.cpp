@@ -183,7 +183,9 @@ TEST(Separation, CurveBandIsConsistentWithThePointValues) {
     EXPECT_EQ(b.probability[i].value, exceedance(z, gaps[i]));
     EXPECT_LE(b.probability[i].lo, b.probability[i].value + 1e-12);
     EXPECT_GE(b.probability[i].hi, b.probability[i].value - 1e-12);
-    if (i) EXPECT_LE(b.probability[i].hi, b.probability[i - 1].hi);  // the band falls with the gap
+    if (i) {
+      EXPECT_LE(b.probability[i].hi, b.probability[i - 1].hi);  // the band falls with the gap
+    }
   }
   for (std::size_t t = 0; t < 3; ++t) EXPECT_EQ(b.separation[t].value, separation_at(z, targets[t]));
   EXPECT_EQ(b.probability.front().hi, 1.0);  // below every value

@@ -1,0 +1,128 @@
+#!/usr/bin/env bash
+# A pair whose answer is known independently (issue 13): two LINEAR SDOF buildings with fixed periods, heights,
+# masses and (unequal) damping under six generated records. At gap g the probability of at least one impact is
+# exactly the fraction of records whose peak of (u1 - u2) exceeds g; SciPy's lsim (first-order hold, exact
+# for a piecewise-linear ground motion, as the Nigam-Jennings stepper) computes those peaks without any of our
+# code. The study must give:
+#   - every record's peak closing to 1e-9 relative,
+#   - at gaps placed between the SciPy peaks, exactly the fraction of records above (Table 3's counts),
+#   - at each target the separation = the (floor(t n) + 1)-th largest SciPy peak,
+#   - an interval of zero width when all six records are copies of one, and a positive one when they differ.
+# Args: <pounding binary> <source dir>
+set -euo pipefail
+bin=$1
+tmp=$(mktemp -d); trap 'rm -rf "$tmp"' EXIT
+cd "$tmp"
+/usr/bin/python3 - "$bin" <<'PY'
+import subprocess, sys, h5py, numpy as np
+from scipy import signal
+
+bin_ = sys.argv[1]
+G = 9.80665
+dt, n = 0.01, 2000
+rng = np.random.default_rng(20261124)
+t = np.arange(n) * dt
+env = np.minimum(1, t / 2) * np.exp(-np.maximum(0, t - 8) / 4)
+records = []
+for k in range(6):  # band-limited noise with an envelope, PGA 0.15-0.40 g
+    b, a = signal.butter(2, [0.3, 6.0], btype="band", fs=1 / dt)
+    ag = signal.lfilter(b, a, rng.standard_normal(n)) * env
+    ag *= (0.15 + 0.05 * k) / np.max(np.abs(ag))
+    records.append(ag)
+
+def write_at2(path, ag):
+    with open(path, "w") as f:
+        f.write("generated for pair_linear_exact.sh\nband-limited noise\nACCELERATION TIME SERIES IN UNITS OF G\n")
+        f.write(f"NPTS= {len(ag)}, DT= {dt:.4f} SEC\n")
+        for i in range(0, len(ag), 5):
+            f.write("".join(f"{v:16.8e}" for v in ag[i:i + 5]) + "\n")
+
+# the buildings: periods, damping, heights (code gap d = 0.005 (28 + 42) = 0.35 m)
+T1, T2, z1, z2, h1, h2 = 0.9, 1.3, 0.05, 0.03, 28.0, 42.0
+d = 0.005 * (h1 + h2)
+
+def peak_closing(ag):
+    # read back as the engine does: the file's 8 significant digits
+    u = []
+    for T, z in ((T1, z1), (T2, z2)):
+        w = 2 * np.pi / T
+        sys_ = signal.StateSpace([[0, 1], [-w * w, -2 * z * w]], [[0], [-1]], [[1, 0]], [[0]])
+        _, y, _ = signal.lsim(sys_, ag * G, t)
+        u.append(y)
+    return np.max(u[0] - u[1])
+
+def study(files, ratios, name):
+    text = f'''title = "linear pair with a known answer"
+seed = 3
+scene = "probability"
+output = "{name}.h5"
+[records]
+files = {files!r}
+[structures]
+samples_per_pair = 2
+hysteresis = "elastic"
+[structures.building1]
+period = {T1}
+height = {h1}
+mass = 2.0e6
+zeta = {z1}
+[structures.building2]
+period = {T2}
+height = {h2}
+mass = 3.0e6
+zeta = {z2}
+[gaps]
+ratios = {list(ratios)!r}
+[analysis]
+stepper = "nigam-jennings"
+[report]
+targets = [40, 20]
+bootstrap = 400
+'''.replace("'", '"')
+    open(f"{name}.toml", "w").write(text)
+    subprocess.run([bin_, "run", f"{name}.toml", "--quiet"], check=True, stdout=subprocess.DEVNULL)
+    return subprocess.run([bin_, "report", f"{name}.h5", "--csv"], check=True, capture_output=True, text=True).stdout
+
+files = []
+for k, ag in enumerate(records):
+    write_at2(f"r{k}.AT2", ag)
+    files.append(f"r{k}.AT2")
+ag_read = [np.loadtxt(f, skiprows=4).ravel() for f in files]
+ref = np.array([peak_closing(ag) for ag in ag_read])
+s = np.sort(ref)
+print("SciPy peak closings (m):", np.round(ref, 5))
+assert s[0] > 0.02 and s[-1] < 0.5 * 6 * d, s
+gaps = np.concatenate([[0.5 * s[0]], 0.5 * (s[1:] + s[:-1]), [1.5 * s[-1]]])  # between the peaks
+ratios = np.round(gaps / d, 9)
+csv = study(files, ratios, "pair")
+f = h5py.File("pair.h5", "r")
+pc = f["uncoupled/peak_closing"][()].reshape(len(files), -1)
+assert np.all(f["uncoupled/status"][()] == 0)
+err = np.max(np.abs(pc - ref[:, None]) / ref[:, None])
+print(f"peak closing: largest relative difference to SciPy {err:.2e}")
+assert err < 1e-9, err
+rows = {}
+for line in csv.splitlines()[1:]:
+    c = line.split(",")
+    if c[0] == "total":
+        rows[float(c[2])] = (int(c[5]), int(c[6]))
+for x, g in zip(ratios, gaps):
+    want = int(np.sum(ref > x * d))
+    hits, nn = rows[x]
+    assert nn == 2 * len(files) and hits == 2 * want, (x, hits, nn, want)
+print(f"{len(ratios)} gaps: the study's fraction equals the SciPy fraction of records exactly")
+seps = [line.split(",") for line in csv.splitlines() if line.startswith("separation,")]
+for c, t in zip(seps, (0.40, 0.20)):
+    j = int(np.floor(t * 2 * len(files)))  # two identical models per record
+    want = np.sort(np.repeat(ref, 2))[::-1][j]
+    got, lo, hi = float(c[8]), float(c[9]), float(c[10])
+    assert abs(got - want) < 1e-6, (t, got, want)
+    assert hi - lo > 1e-3, ("records disagree: the interval must have width", lo, hi)
+    print(f"target {t:.0%}: separation {got:.6f} m = SciPy {want:.6f} m, interval [{lo:.4f}, {hi:.4f}]")
+# all records copies of one: the bootstrap interval collapses to the value
+csv = study([files[2]] * 6, ratios, "copies")
+for c in (line.split(",") for line in csv.splitlines() if line.startswith("separation,")):
+    assert float(c[9]) == float(c[8]) == float(c[10]) and abs(float(c[8]) - ref[2]) < 1e-6, c
+print("copies of one record: interval of zero width at the SciPy peak")
+PY
+echo "1 passed, 0 failed"
