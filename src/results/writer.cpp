@@ -1,16 +1,27 @@
 #include "pounding/results/writer.hpp"
 
 #include <map>
+#include <stdexcept>
 #include <type_traits>
 
+#include <fmt/format.h>
+
 #include "pounding/io/hdf5.hpp"
+#include "pounding/results/describe.hpp"
 
 namespace pounding::results {
 
 namespace {
 
 void write_header_start(h5::hid root, const Header& h) {
-  visit_header_start(h, [&](const char* name, const auto& value) { h5::write_attribute(root, name, value); });
+  visit_header_start(h, [&](const char* name, const auto& value) {
+    if constexpr (std::is_same_v<std::decay_t<decltype(value)>, std::int64_t>)
+      if (std::string_view(name) == "format_version") {  // the layout written is always the current one
+        h5::write_attribute(root, name, results::format_version);
+        return;
+      }
+    h5::write_attribute(root, name, value);
+  });
 }
 
 void write_header_end(h5::hid root, const Header& h) {
@@ -37,27 +48,61 @@ void write_settings(h5::hid root, const Settings& settings) {
   }
 }
 
+// The dataset's `units` and `description`; a dataset without them is a programming error (describe.hpp).
+void label(h5::hid g, std::string_view group, const std::string& name, const Description& d) {
+  if (d.units.empty() || d.description.empty())
+    throw std::logic_error(fmt::format("results: /{}/{} has no units or description: give it a row in "
+                                       "src/results/describe.cpp (or its schema row)",
+                                       group, name));
+  auto ds = h5::open_dataset(g, name);
+  h5::write_attribute(ds.get(), "units", std::string(d.units));
+  h5::write_attribute(ds.get(), "description", std::string(d.description));
+}
+void label(h5::hid g, std::string_view group, const std::string& name) {
+  label(g, group, name, describe(group, name).value_or(Description{}));
+}
+
+// One dataset of /<group> with its attributes: 1-D, or with the shape `dims`.
+template <class T>
+void put(h5::hid g, std::string_view group, const std::string& name, const std::vector<T>& v,
+         std::span<const std::size_t> dims = {}) {
+  if constexpr (std::is_same_v<T, std::string>) h5::write_strings(g, name, v);
+  else if (dims.empty()) h5::write_dataset(g, name, std::span<const T>(v));
+  else h5::write_dataset(g, name, std::span<const T>(v), dims);
+  label(g, group, name);
+}
+
 void write_records(h5::hid root, const RecordTable& t) {
   auto g = h5::create_group(root, "records");
-  h5::write_strings(g.get(), "id", t.id);
-  h5::write_strings(g.get(), "name", t.name);
-  h5::write_strings(g.get(), "source", t.source);
-  h5::write_strings(g.get(), "note", t.note);
-  h5::write_dataset(g.get(), "synthetic", t.synthetic);
-  h5::write_dataset(g.get(), "dt", t.dt);
-  h5::write_dataset(g.get(), "duration", t.duration);
-  h5::write_dataset(g.get(), "pga_g", t.pga_g);
-  h5::write_dataset(g.get(), "npts", t.npts);
+  const auto put_r = [&](const char* name, const auto& v) { put(g.get(), "records", name, v); };
+  put_r("id", t.id);
+  put_r("name", t.name);
+  put_r("source", t.source);
+  put_r("note", t.note);
+  put_r("synthetic", t.synthetic);
+  put_r("dt", t.dt);
+  put_r("duration", t.duration);
+  put_r("pga_g", t.pga_g);
+  put_r("npts", t.npts);
 }
 
 void write_models(h5::hid root, const ModelTable& t) {
   auto g = h5::create_group(root, "models");
-  for (const auto& [name, member] : model_doubles) h5::write_dataset(g.get(), std::string(name), t.*member);
-  h5::write_dataset(g.get(), "i1", t.i1);
-  h5::write_dataset(g.get(), "i2", t.i2);
-  h5::write_dataset(g.get(), "sample", t.sample);
-  h5::write_dataset(g.get(), "periods", t.periods);
+  for (const auto& [name, member] : model_doubles) put(g.get(), "models", std::string(name), t.*member);
+  put(g.get(), "models", "i1", t.i1);
+  put(g.get(), "models", "i2", t.i2);
+  put(g.get(), "models", "sample", t.sample);
+  put(g.get(), "models", "periods", t.periods);
   h5::write_attribute(g.get(), "zeta", t.zeta);
+}
+
+// /gaps/ratios [gaps] and /gaps/metres [models, gaps].
+void write_gaps(h5::hid root, const GapTable& t, std::size_t models) {
+  if (t.ratios.empty()) return;
+  auto g = h5::create_group(root, "gaps");
+  put(g.get(), "gaps", "ratios", t.ratios);
+  const std::size_t dims[] = {models, t.ratios.size()};
+  put(g.get(), "gaps", "metres", t.metres, dims);
 }
 
 // A field group starts with its shape (and, for lane x gap fields, its gap axis) when first met.
@@ -67,24 +112,25 @@ h5::hid field_group(h5::hid root, const Results& r, const FieldSpec& spec, std::
   auto g = h5::create_group(root, name);
   const bool gaps = spec.extent == Extent::lane_gap;
   h5::write_attribute(g.get(), "shape", std::string(gaps ? "[records, models, gaps]" : "[records, models]"));
-  if (gaps) h5::write_dataset(g.get(), "gap_ratios", r.gap_ratios);
+  if (gaps) put(g.get(), spec.group, "gap_ratios", r.gap_ratios);
   return groups.emplace(name, std::move(g)).first->second.get();
 }
 
+// Every field with the shape of its extent, [records, models] or [records, models, gaps].
 void write_fields(h5::hid root, const Results& r) {
   std::map<std::string, h5::Handle> groups;
   for (const Field& f : r.fields) {
     const h5::hid g = field_group(root, r, f.spec, groups);
     const std::string name(f.spec.name);
+    const std::size_t dims[] = {r.record_count(), r.model_count(), r.gap_ratios.size()};
+    const std::span<const std::size_t> shape(dims, f.spec.extent == Extent::lane_gap ? 3 : 2);
     std::visit(
         [&](const auto& v) {
           using T = typename std::decay_t<decltype(v)>::value_type;
-          if constexpr (std::is_same_v<T, double>) {
-            if (f.spec.matrix) return h5::write_dataset(g, name, v, r.record_count(), r.model_count());
-          }
-          h5::write_dataset(g, name, std::span<const T>(v));
+          h5::write_dataset(g, name, std::span<const T>(v), shape);
         },
         f.data);
+    label(g, f.spec.group, name, {f.spec.units, f.spec.description});
   }
 }
 
@@ -98,6 +144,7 @@ void write(const std::string& path, const Results& r) {
   write_header_end(root, r.header);
   write_records(root, r.records);
   write_models(root, r.models);
+  write_gaps(root, r.gaps, r.model_count());
   write_fields(root, r);
   f.commit();
 }
