@@ -62,37 +62,33 @@ void label(h5::hid g, std::string_view group, const std::string& name) {
   label(g, group, name, describe(group, name).value_or(Description{}));
 }
 
-// One dataset of /<group> with its attributes: 1-D, or with the shape `dims`.
-template <class T>
-void put(h5::hid g, std::string_view group, const std::string& name, const std::vector<T>& v,
-         std::span<const std::size_t> dims = {}) {
-  if constexpr (std::is_same_v<T, std::string>) h5::write_strings(g, name, v);
-  else if (dims.empty()) h5::write_dataset(g, name, std::span<const T>(v));
-  else h5::write_dataset(g, name, std::span<const T>(v), dims);
-  label(g, group, name);
+// Every dataset of /<group>, labelled from the group's table after it is written: a dataset added to the group
+// without a row in describe.cpp is refused.
+void label_group(h5::hid root, std::string_view group) {
+  auto g = h5::open_group(root, std::string(group));
+  for (const std::string& name : h5::member_names(g.get())) label(g.get(), group, name);
 }
 
 void write_records(h5::hid root, const RecordTable& t) {
   auto g = h5::create_group(root, "records");
-  const auto put_r = [&](const char* name, const auto& v) { put(g.get(), "records", name, v); };
-  put_r("id", t.id);
-  put_r("name", t.name);
-  put_r("source", t.source);
-  put_r("note", t.note);
-  put_r("synthetic", t.synthetic);
-  put_r("dt", t.dt);
-  put_r("duration", t.duration);
-  put_r("pga_g", t.pga_g);
-  put_r("npts", t.npts);
+  h5::write_strings(g.get(), "id", t.id);
+  h5::write_strings(g.get(), "name", t.name);
+  h5::write_strings(g.get(), "source", t.source);
+  h5::write_strings(g.get(), "note", t.note);
+  h5::write_dataset(g.get(), "synthetic", t.synthetic);
+  h5::write_dataset(g.get(), "dt", t.dt);
+  h5::write_dataset(g.get(), "duration", t.duration);
+  h5::write_dataset(g.get(), "pga_g", t.pga_g);
+  h5::write_dataset(g.get(), "npts", t.npts);
 }
 
 void write_models(h5::hid root, const ModelTable& t) {
   auto g = h5::create_group(root, "models");
-  for (const auto& [name, member] : model_doubles) put(g.get(), "models", std::string(name), t.*member);
-  put(g.get(), "models", "i1", t.i1);
-  put(g.get(), "models", "i2", t.i2);
-  put(g.get(), "models", "sample", t.sample);
-  put(g.get(), "models", "periods", t.periods);
+  for (const auto& [name, member] : model_doubles) h5::write_dataset(g.get(), std::string(name), t.*member);
+  h5::write_dataset(g.get(), "i1", t.i1);
+  h5::write_dataset(g.get(), "i2", t.i2);
+  h5::write_dataset(g.get(), "sample", t.sample);
+  h5::write_dataset(g.get(), "periods", t.periods);
   h5::write_attribute(g.get(), "zeta", t.zeta);
 }
 
@@ -100,9 +96,9 @@ void write_models(h5::hid root, const ModelTable& t) {
 void write_gaps(h5::hid root, const GapTable& t, std::size_t models) {
   if (t.ratios.empty()) return;
   auto g = h5::create_group(root, "gaps");
-  put(g.get(), "gaps", "ratios", t.ratios);
+  h5::write_dataset(g.get(), "ratios", t.ratios);
   const std::size_t dims[] = {models, t.ratios.size()};
-  put(g.get(), "gaps", "metres", t.metres, dims);
+  h5::write_dataset(g.get(), "metres", std::span<const double>(t.metres), dims);
 }
 
 // A field group starts with its shape (and, for lane x gap fields, its gap axis) when first met.
@@ -112,7 +108,10 @@ h5::hid field_group(h5::hid root, const Results& r, const FieldSpec& spec, std::
   auto g = h5::create_group(root, name);
   const bool gaps = spec.extent == Extent::lane_gap;
   h5::write_attribute(g.get(), "shape", std::string(gaps ? "[records, models, gaps]" : "[records, models]"));
-  if (gaps) put(g.get(), spec.group, "gap_ratios", r.gap_ratios);
+  if (gaps) {
+    h5::write_dataset(g.get(), "gap_ratios", r.gap_ratios);
+    label(g.get(), spec.group, "gap_ratios");
+  }
   return groups.emplace(name, std::move(g)).first->second.get();
 }
 
@@ -145,7 +144,9 @@ void write(const std::string& path, const Results& r) {
   write_records(root, r.records);
   write_models(root, r.models);
   write_gaps(root, r.gaps, r.model_count());
-  write_fields(root, r);
+  for (const char* group : {"records", "models", "gaps"})
+    if (h5::exists(root, group)) label_group(root, group);
+  write_fields(root, r);  // labelled from their schema rows
   f.commit();
 }
 
