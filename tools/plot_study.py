@@ -37,7 +37,7 @@ def main():
     f = h5py.File(a.results, "r")
     pc = f["uncoupled/peak_closing"][()]
     R, M = pc.shape
-    ok = f["uncoupled/status"][()].reshape(R, M) == 0
+    ok = f["uncoupled/status"][()].reshape(R, M) == 0  # [records, models]; format 1 stored it flat
     d = f["models/code_gap"][()]
     z = (pc / d[None, :])[ok]
     n = z.size

@@ -3,6 +3,7 @@
 #include <hdf5.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <stdexcept>
@@ -29,9 +30,10 @@ void write_nd(hid group, const std::string& name, const T* data, hid_t type, std
   Handle plist(checked(H5Pcreate(H5P_DATASET_CREATE), "plist"));
   hsize_t total = 1;
   for (auto d : dims) total *= d;
-  if (total >= 4096) {  // compress large datasets; chunk along the first dimension
+  if (total >= 4096) {  // compress large datasets; chunk along the first dimension (chunks up to 4 Mi values)
     std::vector<hsize_t> chunk(dims.begin(), dims.end());
-    chunk[0] = std::min<hsize_t>(dims[0], 65536);
+    const hsize_t rest = std::max<hsize_t>(1, total / dims[0]);
+    chunk[0] = std::min<hsize_t>({dims[0], 65536, std::max<hsize_t>(1, (hsize_t{1} << 22) / rest)});
     check(H5Pset_chunk(plist.get(), static_cast<int>(chunk.size()), chunk.data()), "chunk");
     check(H5Pset_deflate(plist.get(), 4), "deflate");
   }
@@ -128,7 +130,24 @@ Handle create_group(hid parent, const std::string& name) {
 Handle open_group(hid parent, const std::string& name) {
   return Handle(checked(H5Gopen2(parent, name.c_str(), H5P_DEFAULT), "open group " + name));
 }
+Handle open_dataset(hid parent, const std::string& name) {
+  return Handle(checked(H5Dopen2(parent, name.c_str(), H5P_DEFAULT), "open dataset " + name));
+}
 bool exists(hid parent, const std::string& name) { return H5Lexists(parent, name.c_str(), H5P_DEFAULT) > 0; }
+bool is_group(hid parent, const std::string& name) {
+  if (!exists(parent, name)) return false;
+  Handle object(checked(H5Oopen(parent, name.c_str(), H5P_DEFAULT), "open object " + name));
+  return H5Iget_type(object.get()) == H5I_GROUP;
+}
+std::vector<std::size_t> dataset_shape(hid parent, const std::string& name) {
+  Handle ds = open_dataset(parent, name);
+  Handle space(checked(H5Dget_space(ds.get()), "space " + name));
+  const int rank = H5Sget_simple_extent_ndims(space.get());
+  if (rank < 0) throw std::runtime_error("HDF5 error: rank of " + name);
+  std::vector<hsize_t> d(static_cast<std::size_t>(rank));
+  if (rank > 0) H5Sget_simple_extent_dims(space.get(), d.data(), nullptr);
+  return {d.begin(), d.end()};
+}
 bool attribute_exists(hid obj, const std::string& name) { return H5Aexists(obj, name.c_str()) > 0; }
 
 void write_dataset(hid g, const std::string& n, std::span<const double> v) {
@@ -147,10 +166,29 @@ void write_dataset(hid g, const std::string& n, std::span<const std::uint8_t> v)
   hsize_t d[1] = {v.size()};
   write_nd(g, n, v.data(), H5T_NATIVE_UINT8, d);
 }
-void write_dataset(hid g, const std::string& n, std::span<const double> v, std::size_t rows, std::size_t cols) {
-  if (rows * cols != v.size()) throw std::logic_error("write_dataset: shape does not match data");
-  hsize_t d[2] = {rows, cols};
-  write_nd(g, n, v.data(), H5T_NATIVE_DOUBLE, d);
+namespace {
+template <class T>
+void write_shaped(hid g, const std::string& n, std::span<const T> v, std::span<const std::size_t> dims, hid_t type) {
+  std::vector<hsize_t> d(dims.begin(), dims.end());
+  std::size_t total = 1;
+  for (std::size_t x : dims) total *= x;
+  if (dims.empty() || total != v.size())
+    throw std::logic_error(fmt::format("write_dataset {}: {} values do not fill the shape", n, v.size()));
+  write_nd(g, n, v.data(), type, d);
+}
+}  // namespace
+
+void write_dataset(hid g, const std::string& n, std::span<const double> v, std::span<const std::size_t> dims) {
+  write_shaped(g, n, v, dims, H5T_NATIVE_DOUBLE);
+}
+void write_dataset(hid g, const std::string& n, std::span<const std::int64_t> v, std::span<const std::size_t> dims) {
+  write_shaped(g, n, v, dims, H5T_NATIVE_INT64);
+}
+void write_dataset(hid g, const std::string& n, std::span<const std::int32_t> v, std::span<const std::size_t> dims) {
+  write_shaped(g, n, v, dims, H5T_NATIVE_INT32);
+}
+void write_dataset(hid g, const std::string& n, std::span<const std::uint8_t> v, std::span<const std::size_t> dims) {
+  write_shaped(g, n, v, dims, H5T_NATIVE_UINT8);
 }
 
 void write_strings(hid g, const std::string& n, const std::vector<std::string>& v) {

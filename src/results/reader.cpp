@@ -90,6 +90,21 @@ ModelTable read_models(h5::hid root) {
   return t;
 }
 
+// /gaps, or (a format-1 file) the same table from the study's [gaps] ratios, or the impacts group's gap axis.
+GapTable read_gaps(h5::hid root, const Results& r) {
+  GapTable t;
+  if (h5::exists(root, "gaps")) {
+    auto g = h5::open_group(root, "gaps");
+    read_opt(g.get(), "ratios", t.ratios);
+    read_opt(g.get(), "metres", t.metres);
+    return t;
+  }
+  if (const SettingValue* v = r.settings.find("gaps", "ratios"); v && std::holds_alternative<std::vector<double>>(*v))
+    return gap_table(std::get<std::vector<double>>(*v), r.models.code_gap);
+  if (!r.gap_ratios.empty()) return gap_table(r.gap_ratios, r.models.code_gap);
+  return t;
+}
+
 // Every field of the schema present in the file, in the schema's order; the gap axis with the first
 // lane x gap field.
 void read_fields(h5::hid root, std::span<const FieldSpec> specs, Results& r) {
@@ -119,7 +134,8 @@ Results load(const std::string& path, std::span<const FieldSpec> extra) {
   std::vector<FieldSpec> specs(std::begin(unit_fields), std::end(unit_fields));
   specs.insert(specs.end(), std::begin(derived_fields), std::end(derived_fields));
   specs.insert(specs.end(), extra.begin(), extra.end());
-  read_fields(root, specs, r);
+  read_fields(root, specs, r);  // format 1 stored some flat, format 2 with their shape: the values are the same
+  r.gaps = read_gaps(root, r);
   return r;
 }
 

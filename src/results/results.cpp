@@ -27,6 +27,15 @@ std::vector<FieldSpec> unit_schema(bool with_gaps) {
   return s;
 }
 
+GapTable gap_table(std::span<const double> ratios, std::span<const double> code_gap) {
+  GapTable t;
+  t.ratios.assign(ratios.begin(), ratios.end());
+  t.metres.reserve(code_gap.size() * ratios.size());
+  for (double d : code_gap)
+    for (double x : ratios) t.metres.push_back(x * d);  // the report's test: peak closing > x * code_gap
+  return t;
+}
+
 void Settings::add(std::string section, std::string key, SettingValue value) {
   entries.push_back({std::move(section), std::move(key), std::move(value)});
 }

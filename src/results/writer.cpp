@@ -1,16 +1,27 @@
 #include "pounding/results/writer.hpp"
 
 #include <map>
+#include <stdexcept>
 #include <type_traits>
 
+#include <fmt/format.h>
+
 #include "pounding/io/hdf5.hpp"
+#include "pounding/results/describe.hpp"
 
 namespace pounding::results {
 
 namespace {
 
 void write_header_start(h5::hid root, const Header& h) {
-  visit_header_start(h, [&](const char* name, const auto& value) { h5::write_attribute(root, name, value); });
+  visit_header_start(h, [&](const char* name, const auto& value) {
+    if constexpr (std::is_same_v<std::decay_t<decltype(value)>, std::int64_t>)
+      if (std::string_view(name) == "format_version") {  // the layout written is always the current one
+        h5::write_attribute(root, name, results::format_version);
+        return;
+      }
+    h5::write_attribute(root, name, value);
+  });
 }
 
 void write_header_end(h5::hid root, const Header& h) {
@@ -37,6 +48,27 @@ void write_settings(h5::hid root, const Settings& settings) {
   }
 }
 
+// The dataset's `units` and `description`; a dataset without them is a programming error (describe.hpp).
+void label(h5::hid g, std::string_view group, const std::string& name, const Description& d) {
+  if (d.units.empty() || d.description.empty())
+    throw std::logic_error(fmt::format("results: /{}/{} has no units or description: give it a row in "
+                                       "src/results/describe.cpp (or its schema row)",
+                                       group, name));
+  auto ds = h5::open_dataset(g, name);
+  h5::write_attribute(ds.get(), "units", std::string(d.units));
+  h5::write_attribute(ds.get(), "description", std::string(d.description));
+}
+void label(h5::hid g, std::string_view group, const std::string& name) {
+  label(g, group, name, describe(group, name).value_or(Description{}));
+}
+
+// Every dataset of /<group>, labelled from the group's table after it is written: a dataset added to the group
+// without a row in describe.cpp is refused.
+void label_group(h5::hid root, std::string_view group) {
+  auto g = h5::open_group(root, std::string(group));
+  for (const std::string& name : h5::member_names(g.get())) label(g.get(), group, name);
+}
+
 void write_records(h5::hid root, const RecordTable& t) {
   auto g = h5::create_group(root, "records");
   h5::write_strings(g.get(), "id", t.id);
@@ -60,6 +92,15 @@ void write_models(h5::hid root, const ModelTable& t) {
   h5::write_attribute(g.get(), "zeta", t.zeta);
 }
 
+// /gaps/ratios [gaps] and /gaps/metres [models, gaps].
+void write_gaps(h5::hid root, const GapTable& t, std::size_t models) {
+  if (t.ratios.empty()) return;
+  auto g = h5::create_group(root, "gaps");
+  h5::write_dataset(g.get(), "ratios", t.ratios);
+  const std::size_t dims[] = {models, t.ratios.size()};
+  h5::write_dataset(g.get(), "metres", std::span<const double>(t.metres), dims);
+}
+
 // A field group starts with its shape (and, for lane x gap fields, its gap axis) when first met.
 h5::hid field_group(h5::hid root, const Results& r, const FieldSpec& spec, std::map<std::string, h5::Handle>& groups) {
   const std::string name(spec.group);
@@ -67,24 +108,28 @@ h5::hid field_group(h5::hid root, const Results& r, const FieldSpec& spec, std::
   auto g = h5::create_group(root, name);
   const bool gaps = spec.extent == Extent::lane_gap;
   h5::write_attribute(g.get(), "shape", std::string(gaps ? "[records, models, gaps]" : "[records, models]"));
-  if (gaps) h5::write_dataset(g.get(), "gap_ratios", r.gap_ratios);
+  if (gaps) {
+    h5::write_dataset(g.get(), "gap_ratios", r.gap_ratios);
+    label(g.get(), spec.group, "gap_ratios");
+  }
   return groups.emplace(name, std::move(g)).first->second.get();
 }
 
+// Every field with the shape of its extent, [records, models] or [records, models, gaps].
 void write_fields(h5::hid root, const Results& r) {
   std::map<std::string, h5::Handle> groups;
   for (const Field& f : r.fields) {
     const h5::hid g = field_group(root, r, f.spec, groups);
     const std::string name(f.spec.name);
+    const std::size_t dims[] = {r.record_count(), r.model_count(), r.gap_ratios.size()};
+    const std::span<const std::size_t> shape(dims, f.spec.extent == Extent::lane_gap ? 3 : 2);
     std::visit(
         [&](const auto& v) {
           using T = typename std::decay_t<decltype(v)>::value_type;
-          if constexpr (std::is_same_v<T, double>) {
-            if (f.spec.matrix) return h5::write_dataset(g, name, v, r.record_count(), r.model_count());
-          }
-          h5::write_dataset(g, name, std::span<const T>(v));
+          h5::write_dataset(g, name, std::span<const T>(v), shape);
         },
         f.data);
+    label(g, f.spec.group, name, {f.spec.units, f.spec.description});
   }
 }
 
@@ -98,7 +143,10 @@ void write(const std::string& path, const Results& r) {
   write_header_end(root, r.header);
   write_records(root, r.records);
   write_models(root, r.models);
-  write_fields(root, r);
+  write_gaps(root, r.gaps, r.model_count());
+  for (const char* group : {"records", "models", "gaps"})
+    if (h5::exists(root, group)) label_group(root, group);
+  write_fields(root, r);  // labelled from their schema rows
   f.commit();
 }
 

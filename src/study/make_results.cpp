@@ -156,6 +156,7 @@ results::Results make_results(const Study& study, const std::vector<StudyRecord>
   r.settings = settings_of(study);
   r.records = record_table(records);
   r.models = model_table(study, plan);
+  r.gaps = results::gap_table(study.gap_ratios, r.models.code_gap);  // every scene
   if (plan.impacts) r.gap_ratios = study.gap_ratios;
   r.fields = tally.take_fields();
   results::add_derived_fields(r);

@@ -47,7 +47,7 @@ import sys, h5py, numpy as np
 f = h5py.File(sys.argv[1], "r")
 st, hw = f["impacts/status"][()], f["impacts/h_omega_contact"][()]
 F = f["impacts/peak_force"][()]
-assert (st == 3).any() and not (st == 1).any(), np.bincount(st)
+assert (st == 3).any() and not (st == 1).any(), np.bincount(st.ravel())
 assert (hw[st == 3] > 0.304).all() and (hw[st == 0] <= 0.304).all(), "status coarse <=> h omega_c over the limit"
 assert np.isfinite(F[st == 3]).all(), "a coarse analysis keeps its numbers"
 print(f"{(st == 3).sum()} coarse analyses, h omega_c up to {np.nanmax(hw):.3f}")

@@ -3,7 +3,8 @@
 # " ERROR: " line naming the option, the valid range and the reason), and its "status: ok" means the delivered
 # restitution is within the stated tolerance (e_tolerance, default 0.05) of the target; a law that does not
 # deliver its nominal e by design (Lankarani-Nikravesh: 0.775 at e = 0.65, docs/accuracy.md) reports
-# "off-target" with the numbers and what the law promises (e_law). Args: <pounding binary> <source dir>
+# "off-target" with the numbers and what the law promises (e_law); the energy lost is given as a fraction of the
+# initial and of the relative kinetic energy, each named. Args: <pounding binary> <source dir>
 set -euo pipefail
 bin=$1
 tmp=$(mktemp -d)
@@ -61,6 +62,16 @@ verdict "flores at e = 0.65 (within 0.05)" "ok" "e_law: approximate:" -- --dampi
 verdict "kelvin at e = 0.3 delivers 0.397" "off-target" "e_law: approximate:" -- --law kelvin --kh 1e9 --e 0.3
 verdict "stereomechanical at e = 0.001" "ok" "e_law: exact:" -- --law stereomechanical --e 0.001
 verdict "linear law without --e: target 1" "ok" "e_target: 1" "e_law: elastic:" -- --law linear --kh 1e9
+
+# the energy fractions name their basis: with e delivered exactly (calibrated), 1 - e^2 = 0.5775 of the relative
+# kinetic energy 1/2 m1 m2 / (m1 + m2) v0^2, and m2 / (m1 + m2) of that of the initial 1/2 m1 v0^2 (0.75 here)
+"$bin" collide --damping-law calibrated --e 0.65 --m2 3e6 > "$tmp/energy" 2>&1 || true
+if grep -q "^energy_lost_fraction_of_relative_kinetic: 0.5775$" "$tmp/energy" &&
+   grep -q "^energy_lost_fraction_of_initial_kinetic: 0.433125$" "$tmp/energy" && ! grep -q "^energy_lost_fraction:" "$tmp/energy"; then
+  ok "energy lost: 0.5775 of the relative kinetic energy, 0.433 of the initial"
+else
+  fail "energy fractions: $(grep energy "$tmp/energy")"
+fi
 
 if [ "$fails" -gt 0 ]; then
   echo "FAIL: $fails check(s) failed"

@@ -1,7 +1,7 @@
 #pragma once
 // A small Results built in memory (no run): 2 records x 4 models (periods 0.5 and 1.0, one sample per pair),
 // the impacts scene with 2 gap ratios, one excluded uncoupled analysis and one excluded coupled one, and
-// every kind of setting. Used by the results round trip and the report golden test.
+// every kind of setting, and /gaps. Used by the results round trip and the report golden test.
 #include <cmath>
 #include <cstdint>
 #include <string>
@@ -52,6 +52,7 @@ inline results::Results sample_results() {
   m.code_gap = {0.1, 0.2, 0.3, 0.4};
 
   r.gap_ratios = {0.2, 0.5};
+  r.gaps = gap_table(r.gap_ratios, m.code_gap);
   // [records x models]: peak closing / code gap z = 0.05 ... 1.25; record 2, model 3 diverged
   const std::vector<double> z = {0.05, 0.35, 0.62, 1.25, 0.15, 0.45, 0.95, 0.0};
   std::vector<std::uint8_t> status = {0, 0, 0, 0, 0, 0, 0, 1};

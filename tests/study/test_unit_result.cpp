@@ -23,7 +23,8 @@ struct TempDir : testdata::TempDir {
 };
 
 // The test-only row: per lane and gap, 64-bit integers, in a group of its own.
-constexpr results::FieldSpec probe{"test", "probe", results::Dtype::i64, results::Extent::lane_gap, false, "", -7};
+constexpr results::FieldSpec probe{"test", "probe", results::Dtype::i64, results::Extent::lane_gap, -7, "1",
+                                   "a test-only field"};
 
 // 2 records x 1 period pair x 5 samples in blocks of 2 (3 blocks, the last with one lane) x 2 gaps: 6 units.
 WorkPlan test_plan() {

@@ -51,15 +51,25 @@ Handle open_rw(const std::string& path);
 
 Handle create_group(hid parent, const std::string& name);
 Handle open_group(hid parent, const std::string& name);
+Handle open_dataset(hid parent, const std::string& name);  // e.g. to give it attributes
 bool exists(hid parent, const std::string& name);
+bool is_group(hid parent, const std::string& name);  // an existing link that is a group
+// The dimensions of a dataset (empty for a scalar).
+std::vector<std::size_t> dataset_shape(hid parent, const std::string& name);
 bool attribute_exists(hid obj, const std::string& name);
 
 void write_dataset(hid group, const std::string& name, std::span<const double> v);
 void write_dataset(hid group, const std::string& name, std::span<const std::int64_t> v);
 void write_dataset(hid group, const std::string& name, std::span<const std::int32_t> v);
 void write_dataset(hid group, const std::string& name, std::span<const std::uint8_t> v);
-// 2-D row-major (rows x cols) doubles.
-void write_dataset(hid group, const std::string& name, std::span<const double> v, std::size_t rows, std::size_t cols);
+// N-D row-major (the last dimension varies fastest); the product of dims must be v.size().
+void write_dataset(hid group, const std::string& name, std::span<const double> v, std::span<const std::size_t> dims);
+void write_dataset(hid group, const std::string& name, std::span<const std::int64_t> v,
+                   std::span<const std::size_t> dims);
+void write_dataset(hid group, const std::string& name, std::span<const std::int32_t> v,
+                   std::span<const std::size_t> dims);
+void write_dataset(hid group, const std::string& name, std::span<const std::uint8_t> v,
+                   std::span<const std::size_t> dims);
 void write_strings(hid group, const std::string& name, const std::vector<std::string>& v);
 
 void write_attribute(hid obj, const std::string& name, const std::string& value);

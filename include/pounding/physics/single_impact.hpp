@@ -13,6 +13,8 @@ namespace pounding {
 
 struct ImpactResult {
   double e_effective = 0, peak_force = 0, peak_penetration = 0, duration = 0;
+  // energy_lost (J) as a fraction of the initial kinetic energy 1/2 m1 v0^2 (mass 2 at rest), not of the relative
+  // kinetic energy 1/2 m1 m2 / (m1 + m2) v0^2 that `pounding collide` also prints
   double energy_lost = 0, energy_lost_fraction = 0;
   int clamps = 0;
   double h_omega_contact = 0;  // the resolution guard's h omega_c (physics/resolution.hpp)

@@ -5,6 +5,7 @@
 // study::visit_settings: this module depends on no study type.
 #include <cstdint>
 #include <optional>
+#include <span>
 #include <string>
 #include <string_view>
 #include <utility>
@@ -115,7 +116,16 @@ class Settings {
   std::string text(std::string_view section, std::string_view key) const;
 };
 
-// One per-model output: its row of the schema and its values ([records x models] or [records x models x gaps]).
+// /gaps, in every scene: the study's gap ratios and the gap in metres each gives each model.
+struct GapTable {
+  std::vector<double> ratios;  // [gaps]
+  std::vector<double> metres;  // [models x gaps], model-major: ratios[g] * code_gap[m]
+};
+// The gaps of `ratios` for models of code gap `code_gap` (m).
+GapTable gap_table(std::span<const double> ratios, std::span<const double> code_gap);
+
+// One per-model output: its row of the schema and its values, flat and record-major ([records x models] or
+// [records x models x gaps]; the file stores them with that shape).
 struct Field {
   FieldSpec spec;
   Column data;
@@ -127,7 +137,8 @@ struct Results {
   Settings settings;  // empty for files written before /settings existed
   RecordTable records;
   ModelTable models;
-  std::vector<double> gap_ratios;  // the gap axis of every lane x gap field (impacts scene)
+  GapTable gaps;                   // empty only for format-1 files without the study's settings or gaps
+  std::vector<double> gap_ratios;  // the gap axis of every lane x gap field (impacts scene; else empty)
   std::vector<Field> fields;       // unit fields, then derived ones, in writing order
 
   std::size_t record_count() const { return records.size(); }

@@ -5,9 +5,10 @@
 // the HDF5 dataset names all come from this table, so a new per-model output is one row here (and the code
 // that computes it).
 //
-// Format 1 keeps its quirks for bit-identical files: uncoupled/peak_* are 2-D [records, models] while
-// uncoupled/status and impacts/* are flat, and no dataset carries its unit yet (`unit` is written from
-// format 2 on; adding an attribute now would change every file).
+// Format 2 (docs/results-format.md): every per-model field has the shape of its extent, [records, models] or
+// [records, models, gaps] (format 1 stored uncoupled/status and impacts/* flat; the reader still reads it), and
+// every dataset carries `units` and `description` attributes: a field's come from its row here, the other
+// datasets' from results/describe.hpp. In memory every field stays flat, record-major.
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
@@ -18,7 +19,7 @@
 
 namespace pounding::results {
 
-inline constexpr std::int64_t format_version = 1;
+inline constexpr std::int64_t format_version = 2;
 
 // Element types of a field; the order is the alternatives' order in Column.
 enum class Dtype : std::uint8_t { u8, i32, i64, f64 };
@@ -33,9 +34,9 @@ struct FieldSpec {
   std::string_view group, name;  // HDF5 /<group>/<name>
   Dtype dtype;
   Extent extent;
-  bool matrix;                   // stored 2-D [records, models] (format 1: uncoupled f64 fields), else flat
-  std::string_view unit;         // SI unit ("" dimensionless, "code" for status codes)
   double fill;                   // value of a model not computed (yet)
+  std::string_view units;        // SI unit, the dataset's `units` ("1": dimensionless, codes, counts)
+  std::string_view description;  // one line, the dataset's `description` (the writer refuses an empty one)
 };
 
 constexpr std::size_t dtype_size(Dtype t) {
@@ -55,25 +56,36 @@ std::size_t column_size(const Column& c);
 // What one work unit returns: status 0 ok, 1 diverged, 2 non-finite, 3 coarse (kernel/batch.hpp); peaks in m, N, s.
 // The impacts-scene rows (lane_gap) follow the per-lane rows, so a scene without gaps uses a prefix.
 inline constexpr FieldSpec unit_fields[] = {
-    {"uncoupled", "status", Dtype::u8, Extent::lane, false, "code", 255},
-    {"uncoupled", "peak_u1", Dtype::f64, Extent::lane, true, "m", NAN},
-    {"uncoupled", "peak_u2", Dtype::f64, Extent::lane, true, "m", NAN},
-    {"uncoupled", "peak_closing", Dtype::f64, Extent::lane, true, "m", NAN},
-    {"impacts", "status", Dtype::u8, Extent::lane_gap, false, "code", 255},
-    {"impacts", "impact_count", Dtype::i32, Extent::lane_gap, false, "", -1},
-    {"impacts", "peak_force", Dtype::f64, Extent::lane_gap, false, "N", NAN},
-    {"impacts", "peak_u1", Dtype::f64, Extent::lane_gap, false, "m", NAN},
-    {"impacts", "peak_u2", Dtype::f64, Extent::lane_gap, false, "m", NAN},
-    {"impacts", "t_first_impact", Dtype::f64, Extent::lane_gap, false, "s", NAN},
+    {"uncoupled", "status", Dtype::u8, Extent::lane, 255, "1",
+     "status of the analysis without contact: 0 ok, 1 diverged, 2 non-finite, 3 coarse (under-resolved contact), "
+     "255 not computed"},
+    {"uncoupled", "peak_u1", Dtype::f64, Extent::lane, NAN, "m", "peak |u1| of building 1 without contact"},
+    {"uncoupled", "peak_u2", Dtype::f64, Extent::lane, NAN, "m", "peak |u2| of building 2 without contact"},
+    {"uncoupled", "peak_closing", Dtype::f64, Extent::lane, NAN, "m",
+     "peak closing max(u1 - u2) without contact: the pair touches at a gap g exactly when peak_closing > g"},
+    {"impacts", "status", Dtype::u8, Extent::lane_gap, 255, "1",
+     "status of the analysis with contact at this gap: 0 ok, 1 diverged, 2 non-finite, 3 coarse (under-resolved "
+     "contact), 255 not computed"},
+    {"impacts", "impact_count", Dtype::i32, Extent::lane_gap, -1, "1",
+     "number of impacts (separated-to-contact transitions); -1 not computed"},
+    {"impacts", "peak_force", Dtype::f64, Extent::lane_gap, NAN, "N", "peak contact force"},
+    {"impacts", "peak_u1", Dtype::f64, Extent::lane_gap, NAN, "m", "peak |u1| of building 1 with contact"},
+    {"impacts", "peak_u2", Dtype::f64, Extent::lane_gap, NAN, "m", "peak |u2| of building 2 with contact"},
+    {"impacts", "t_first_impact", Dtype::f64, Extent::lane_gap, NAN, "s",
+     "time of the first impact from the start of the record; NaN when the pair never touched"},
     // the resolution guard's h omega_c (physics/resolution.hpp): 0 for a pair that never touched, NaN without a
     // force law or when diverged; beside the limit in /settings it shows each analysis's margin
-    {"impacts", "h_omega_contact", Dtype::f64, Extent::lane_gap, false, "", NAN},
+    {"impacts", "h_omega_contact", Dtype::f64, Extent::lane_gap, NAN, "1",
+     "resolution of the contact: step h times the contact frequency omega_c (0 never touched, NaN no force law "
+     "or diverged); status 3 above the stepper's limit"},
 };
 
 // Written after the run from the unit fields (results::add_derived_fields).
 inline constexpr FieldSpec derived_fields[] = {
-    {"impacts", "amplification_u1", Dtype::f64, Extent::lane_gap, false, "", NAN},  // peak with / without pounding
-    {"impacts", "amplification_u2", Dtype::f64, Extent::lane_gap, false, "", NAN},
+    {"impacts", "amplification_u1", Dtype::f64, Extent::lane_gap, NAN, "1",
+     "peak_u1 with contact / /uncoupled/peak_u1 of the same record and model"},
+    {"impacts", "amplification_u2", Dtype::f64, Extent::lane_gap, NAN, "1",
+     "peak_u2 with contact / /uncoupled/peak_u2 of the same record and model"},
 };
 
 // The index of a row of unit_fields, at compile time (an unknown name does not compile).

@@ -40,7 +40,10 @@ void add_collide(CLI::App& app) {
       ->capture_default_str();
   c->footer("status: ok (the delivered restitution is within --e-tolerance of the target), off-target (it is not: "
             "a property of laws that do not deliver their nominal e, e.g. lankarani-nikravesh, see e_law; exit code 0), "
-            "or the kernel's status (diverged, non-finite: exit code 3). Elastic laws (linear, hertz) target e = 1.");
+            "or the kernel's status (diverged, non-finite: exit code 3). Elastic laws (linear, hertz) target e = 1.\n"
+            "energy_lost_fraction_of_initial_kinetic: energy_lost_J / (1/2 m1 v0^2), mass 2 at rest; "
+            "energy_lost_fraction_of_relative_kinetic: energy_lost_J / (1/2 m1 m2 / (m1 + m2) v0^2), the kinetic energy "
+            "of the pre-impact relative motion (= 1 - e_effective^2).");
   c->callback([o, c] {
     ContactModel cm;
     cm.law = as_option("--law", [&] { return parse_contact_law(o->law); });
@@ -71,7 +74,11 @@ void add_collide(CLI::App& app) {
     fmt::print("peak_penetration_m: {:.9g}\n", r.peak_penetration);
     fmt::print("contact_duration_s: {:.9g}\n", r.duration);
     fmt::print("energy_lost_J: {:.9g}\n", r.energy_lost);
-    fmt::print("energy_lost_fraction: {:.9g}\n", r.energy_lost_fraction);
+    // the basis of each fraction: the whole initial kinetic energy (mass 2 at rest), and the kinetic energy of the
+    // pre-impact relative motion, the most an impact can take (momentum is conserved): 1 - e^2 of it is lost
+    const double ke_relative = 0.5 * o->m1 * o->m2 / (o->m1 + o->m2) * o->v0 * o->v0;
+    fmt::print("energy_lost_fraction_of_initial_kinetic: {:.9g}\n", r.energy_lost_fraction);
+    fmt::print("energy_lost_fraction_of_relative_kinetic: {:.9g}\n", r.energy_lost / ke_relative);
     fmt::print("tensile_force_clamps: {}\n", r.clamps);
     fmt::print("h_omega_contact: {:.6g}\n", r.h_omega_contact);
     fmt::print("h_omega_limit: {:.6g}\n", physics::resolution_limit(stepper, false, cm.law));

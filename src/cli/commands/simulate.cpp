@@ -1,9 +1,11 @@
 // `pounding simulate`: one pair through one record -> observers (and optionally the time series).
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <limits>
 #include <memory>
+#include <tuple>
 
 #include <fmt/format.h>
 
@@ -21,11 +23,21 @@ namespace pounding::cli {
 
 namespace {
 
+// Default masses from the heights: the paper's mass model m = mbar rho r^2 h with r = h / aspect (eq. 7,
+// stochastic-pounding-monte-carlo.txt) at its mean values (sampling/sampler.hpp's defaults, aspect the middle
+// of 1, 2, 3): h = 30 m gives 7.29e6 kg, 45 m 2.46e7 kg.
+constexpr double default_mbar = 0.6, default_rho = 1800.0, default_aspect = 2.0;
+constexpr const char* mass_model_text = "m = mbar rho r^2 h, r = h / aspect, mbar 0.6, rho 1800 kg/m^3, aspect 2";
+double mass_from_height(double h) {
+  const double r = h / default_aspect;
+  return default_mbar * default_rho * r * r * h;
+}
+
 struct SimulateOptions {
   std::string record, units = "g", series;
   double dt_record = 0.0;
-  double m1 = 1.0e7, T1 = 1.0, k1 = 0, h1 = 30.0, fy1 = 0;
-  double m2 = 1.0e7, T2 = 1.5, k2 = 0, h2 = 45.0, fy2 = 0;
+  double m1 = 0, T1 = 1.0, k1 = 0, h1 = 30.0, fy1 = 0;  // m = 0: from the height (mass_from_height)
+  double m2 = 0, T2 = 1.5, k2 = 0, h2 = 45.0, fy2 = 0;
   double alpha = 0.05, zeta = 0.05, gap = 0.1;
   bool elastic = false;
   std::string contact = "hertzdamp", damping_law = "lankarani-nikravesh", stepper = "central-difference";
@@ -33,8 +45,47 @@ struct SimulateOptions {
   double dt = 0, duration = 0, u_limit = 10.0;
   bool locate = false;
   bool k1_given = false, k2_given = false, fy1_given = false, fy2_given = false, dt_given = false, kh_given = false;
-  bool duration_given = false;
+  bool duration_given = false, m1_given = false, m2_given = false;
 };
+
+// --m1/--m2, or the mass model's value at --h1/--h2.
+void resolve_masses(SimulateOptions& o) {
+  for (auto [m, h, given, i] : {std::tuple{&o.m1, o.h1, o.m1_given, "1"}, {&o.m2, o.h2, o.m2_given, "2"}}) {
+    if (given) continue;
+    if (!(std::isfinite(h) && h > 0))
+      throw InputError(fmt::format("--h{} = {} must be a height > 0 (m)", i, h), std::string("--h") + i,
+                       fmt::format("give the height in m (the default mass comes from it), or give --m{}", i));
+    *m = mass_from_height(h);
+  }
+}
+
+// What the pair and the analysis are beyond the summary: the masses and where they came from, and the analysis
+// length against the record's.
+std::string describe_run(const SimulateOptions& o, double record_length, double analysis_length) {
+  std::string t;
+  for (const auto& [name, m, given, h] : {std::tuple{"m1", o.m1, o.m1_given, o.h1}, {"m2", o.m2, o.m2_given, o.h2}})
+    t += fmt::format("{}_kg: {:.6g} ({})\n", name, m,
+                     given ? std::string("--") + name : fmt::format("from h = {:g} m: {}", h, mass_model_text));
+  t += fmt::format("analysis_duration_s: {:.6g}\n", analysis_length);
+  if (analysis_length < record_length - 1e-12)
+    t += fmt::format("analysis_note: --duration shortened the analysis to the first {:.6g} s of the record's {:.6g} s\n",
+                     analysis_length, record_length);
+  else if (analysis_length > record_length + 1e-12)
+    t += fmt::format("analysis_note: --duration runs {:.6g} s: the record's {:.6g} s, then free vibration\n",
+                     analysis_length, record_length);
+  return t;
+}
+
+// --duration shorter than the record keeps its first duration / dt steps (rounded to a whole step); longer, the
+// kernel continues in free vibration. Returns the analysis length.
+double cut_to_duration(const SimulateOptions& o, Record& rec) {
+  const double own = rec.duration();
+  if (!o.duration_given) return own;
+  if (o.duration >= own) return o.duration;
+  const auto steps = std::max<long>(1, std::lround(o.duration / rec.dt));
+  rec.acc.resize(static_cast<std::size_t>(steps) + 1);
+  return rec.duration();
+}
 
 // Builds one structure from the options of side `i` ("1" or "2").
 Structure make_structure(double m, double T, double k, double h, double fy, double alpha, double zeta, bool elastic,
@@ -160,13 +211,16 @@ PairParams pair_params(const SimulateOptions& o, const ContactModel& cm, const S
 
 // Runs the pair, prints the summary and writes --series; returns the exit code (3: diverged, the numbers
 // printed are not results).
-int run_simulate(const SimulateOptions& o) {
+int run_simulate(SimulateOptions& o) {
   validate_scalars(o);  // everything is validated before any work or output
+  resolve_masses(o);
   const ContactModel cm = contact_model(o);
   KernelSettings ks = kernel_settings(o);
   Structure s1 = make_structure(o.m1, o.T1, o.k1, o.h1, o.fy1, o.alpha, o.zeta, o.elastic, "1", o.k1_given, o.fy1_given);
   Structure s2 = make_structure(o.m2, o.T2, o.k2, o.h2, o.fy2, o.alpha, o.zeta, o.elastic, "2", o.k2_given, o.fy2_given);
-  const Record rec = ground_motion(o);
+  Record rec = ground_motion(o);
+  const double record_length = rec.duration();
+  const double analysis_length = cut_to_duration(o, rec);
   if (o.dt_given) ks.substeps = substeps_for(o, rec.dt);
   const PairParams p = pair_params(o, cm, s1, s2);
 
@@ -180,11 +234,11 @@ int run_simulate(const SimulateOptions& o) {
   PairBatch b;
   b.resize(1);
   b.set(0, p);
-  GroundMotion gm{rec.dt, rec.acc, o.duration};
+  GroundMotion gm{rec.dt, rec.acc, analysis_length > record_length ? analysis_length : 0.0};
   BatchResult r;
   run_batch(b, cm, gm, ks, r);
 
-  std::string text = format_summary(r, 0, cm, p, rec, ks);
+  std::string text = describe_run(o, record_length, analysis_length) + format_summary(r, 0, cm, p, rec, ks);
   fmt::print("{}", text);
   if (!o.series.empty()) {
     if (std::filesystem::path(o.series).extension() == ".csv")
@@ -204,12 +258,14 @@ void add_simulate(CLI::App& app) {
                                        "default: built-in 0.4 g sweep");
   c->add_option("--units", o->units, "units of the record values: g, m/s2, cm/s2")->capture_default_str();
   c->add_option("--dt-record", o->dt_record, "time step of a one-column record (s)");
-  c->add_option("--m1", o->m1, "mass of structure 1, the left one (kg)")->capture_default_str();
+  c->add_option("--m1", o->m1, std::string("mass of structure 1, the left one (kg); default from --h1: ") + mass_model_text +
+                                   " (30 m: 7.29e6 kg)");
   c->add_option("--T1", o->T1, "period of structure 1 (s)")->capture_default_str();
   c->add_option("--k1", o->k1, "initial stiffness of structure 1 (N/m), instead of --T1");
-  c->add_option("--h1", o->h1, "height of structure 1 (m): yield displacement 0.02 h / 6")->capture_default_str();
+  c->add_option("--h1", o->h1, "height of structure 1 (m): yield displacement 0.02 h / 6, default mass")
+      ->capture_default_str();
   c->add_option("--fy1", o->fy1, "yield force of structure 1 (N), instead of --h1");
-  c->add_option("--m2", o->m2, "mass of structure 2 (kg)")->capture_default_str();
+  c->add_option("--m2", o->m2, "mass of structure 2 (kg); default from --h2 as for --m1 (45 m: 2.46e7 kg)");
   c->add_option("--T2", o->T2, "period of structure 2 (s)")->capture_default_str();
   c->add_option("--k2", o->k2, "initial stiffness of structure 2 (N/m), instead of --T2");
   c->add_option("--h2", o->h2, "height of structure 2 (m)")->capture_default_str();
@@ -232,7 +288,8 @@ void add_simulate(CLI::App& app) {
   c->add_option("--stepper", o->stepper, std::string("integrator: ") + std::string(stepper_names))
       ->capture_default_str();
   c->add_option("--dt", o->dt, "integration step (s); must divide the record step (default: the record step)");
-  c->add_option("--duration", o->duration, "analysis length (s); free vibration after the record");
+  c->add_option("--duration", o->duration, "analysis length (s): shorter than the record, its first part (rounded to "
+                                           "whole record steps); longer, free vibration after it (default: the record)");
   c->add_option("--u-limit", o->u_limit, "|u1| + |u2| above this (m) marks the run diverged")->capture_default_str();
   c->add_flag("--locate-contact", o->locate, "rk4: locate each contact onset inside its step (high-accuracy mode)");
   c->add_option("--series", o->series, "write the time series to FILE.csv or FILE.h5");
@@ -241,6 +298,7 @@ void add_simulate(CLI::App& app) {
     o->fy1_given = c->count("--fy1") > 0, o->fy2_given = c->count("--fy2") > 0;
     o->dt_given = c->count("--dt") > 0, o->kh_given = c->count("--kh") > 0;
     o->duration_given = c->count("--duration") > 0;
+    o->m1_given = c->count("--m1") > 0, o->m2_given = c->count("--m2") > 0;
     if (const int code = run_simulate(*o)) throw ExitRequest{code};
   });
 }
