@@ -70,7 +70,7 @@ void check_distribution(const Distribution& d, std::string_view key, const KeyRa
   if (d.kind == K::lognormal && d.random()) {
     const double kept = Truncated(d, r.lo, r.hi).kept();
     if (!(kept >= 0.5))
-      throw InputError(fmt::format("{} = {} keeps only {:.3g} % of its probability in the valid range {}", key,
+      throw InputError(fmt::format("{} = {} keeps only {:.3g} % of its probability (at least 50 % needed) in the valid range {}", key,
                                    d.describe(r.unit), 100 * kept, r.text),
                        where(key), "move the median into the range or lower the cov");
   }
@@ -280,7 +280,7 @@ void check_period_truncation(const BuildingModel& b, const WhereFn& where) {
   const double hi = std::min(pr.hi, max_period);
   const double kept = pr.lo <= hi ? Truncated(b.period, pr.lo, hi).kept() : 0.0;
   if (!(kept >= 0.5))
-    throw InputError(fmt::format("period = {} keeps only {:.3g} % of its probability in the periods the "
+    throw InputError(fmt::format("period = {} keeps only {:.3g} % of its probability (at least 50 % needed) in the periods the "
                                  "period-height rule admits, [{}, {}] s (ct_lower height_min^x, ct_upper height_max^x)",
                                  b.period.describe("s"), 100 * kept, fmt_num(pr.lo), fmt_num(hi)),
                      where("period"),
