@@ -2,7 +2,12 @@
 // The stochastic structure model (stochastic-pounding-monte-carlo.txt, sections 2.1-3.1): realistic pairs of
 // SDOF structures drawn reproducibly, one independent random stream per sample identity.
 //
-// Parameters of one structure (SI units: m, s, kg, N, kg/m^3):
+// Each building of a pair has its own model (building.hpp): [structures] gives the defaults of both, and the
+// tables [structures.building1] (left) and [structures.building2] (right) override any per-building key and may
+// give period, height, mass, zeta and yield_coefficient as a number or a distribution. Without building tables
+// both buildings are the paper's model below, bit for bit as before.
+//
+// Parameters of one structure (SI units: m, s, kg, N, kg/m^3), defaults:
 //   T       fundamental period, a point of the period grid (default 1.00, 1.05, ..., 1.50 s)
 //   h       effective height, uniform on [max(h_min, (T/ct_upper)^(1/x)), min(h_max, (T/ct_lower)^(1/x))],
 //           i.e. the period-height rule ct_lower h^x <= T <= ct_upper h^x (eq. 6; 0.05, 0.08, x = 0.75)
@@ -15,7 +20,11 @@
 //   m       mbar rho r^2 h
 //   k       4 pi^2 m / T^2 (eq. 8);  c = 2 zeta sqrt(k m) (eq. 9, zeta = 0.05)
 //   fy, alpha  bilinear kinematic hardening: u_y = drift h / ductility (2 % drift, ductility 6), fy = k u_y,
-//           alpha = 0.05 (section 2.1)
+//           alpha = 0.05 (section 2.1); or fy = Cy m g for a building given yield_coefficient Cy
+// A building given its period as a distribution has one period "slot" whose T is drawn per sample (truncated
+// to the periods the height rule admits when h comes from the rule, then h uniform on the rule interval at T);
+// a given height or mass replaces the rule or the mass-index model (aspect, r, rho, mbar are then NaN).
+// equal_heights = true: one height for both, uniform on the intersection of their rule intervals.
 // Per pair:
 //   d       code separation (Standard 2800, eq. 5): d = 0.005 (h1 + h2); study gaps are ratios of d
 //   kh      Hertz contact stiffness: equivalent concrete spheres of masses m1, m2 (muthukumar eqs 11-13),
@@ -28,12 +37,15 @@
 // The mean and CoV of mbar are those of the parent lognormal before truncation; the truncated
 // distribution is sampled exactly by inverse CDF (see sampler.cpp).
 //
-// Random numbers: 8 uniforms per pair in a fixed order (structure 1 then 2; each h, aspect, rho, mbar), each
-// from 53 bits of two engine outputs, mapped by inverse CDF (Boost.Math normal quantile in double precision);
-// no std:: distributions (their algorithms are implementation-defined).
+// Random numbers: 14 uniforms per pair in a fixed order: first the paper's 8 (structure 1 then 2; each h, aspect,
+// rho, mbar), then per structure (1 then 2) T, zeta, Cy -- all 14 always, used or not, so a stream never depends
+// on which keys a study sets and the paper's studies keep their bits. A given height distribution uses its
+// building's h uniform, a given mass its mbar uniform. Each uniform is 53 bits of two engine outputs, mapped by
+// inverse CDF (Boost.Math normal quantile in double precision); no std:: distributions (their algorithms are
+// implementation-defined).
 //
-// Reproducibility (OpenMC's idea): a sample's identity is (i1, i2, sample) -- period indices of structures 1
-// and 2 into the grid and the sample index within that period pair. Its engine (boost::random::taus88, a
+// Reproducibility (OpenMC's idea): a sample's identity is (i1, i2, sample) -- period slots of structures 1
+// and 2 in their own grids (n1 x n2 pairs) and the sample index within that period pair. Its engine (boost::random::taus88, a
 // combined Tausworthe generator) is seeded only from (study seed, stream, identity) through a SplitMix64 mix
 // (stream_seed; the 64-bit key and splitmix64(key) give the engine's three 32-bit seed words), so the same structures appear
 // for every record and gap (common random numbers), at any rank count, batch width or order of work; and
@@ -124,7 +136,9 @@ void validate(const StructureModel& model, const std::string& where = "[structur
 //   periods = [..]  or  period_min, period_max, period_step;  samples_per_pair; aspect_ratios = [..];
 //   rho_mean, rho_cov; mbar_mean, mbar_cov, mbar_min, mbar_max; zeta; hysteresis = "bilinear"|"elastic";
 //   drift, ductility, alpha; height_min, height_max; ct_lower, ct_upper, height_exponent;
-//   code_gap_coefficient; contact_density, contact_youngs_modulus, contact_poisson; kh.
+//   code_gap_coefficient; contact_density, contact_youngs_modulus, contact_poisson; kh; equal_heights (bool);
+//   and the sub-tables [structures.building1], [structures.building2] (keys in building.hpp), resolved into
+//   StructureModel::buildings over these defaults.
 // Unknown keys, wrong types and out-of-range values throw InputError naming file:line, the key and the
 // allowed range. The seed is NOT in this table (see parse_study_seed).
 StructureModel parse_structure_model(const toml::table& table, const std::string& file);
