@@ -5,6 +5,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <map>
+#include <type_traits>
 #include <numbers>
 #include <string>
 #include <vector>
@@ -13,6 +15,7 @@
 
 #include "pounding/core/error.hpp"
 #include "pounding/sampling/sampler.hpp"
+#include "pounding/study/settings.hpp"
 
 using namespace pounding;
 
@@ -341,4 +344,24 @@ TEST(BuildingErrors, TheRuleAndEqualHeights) {
                "[structures.building2]\nperiods = [1.5]\n",
                "equal_heights", "T1 = 1 s (building 1: [30, 40] m) and T2 = 1.5 s");
   expect_error("[structures]\nequal_heights = 1\n", "equal_heights");
+}
+
+TEST(Building, SettingsDescribeEachBuilding) {
+  Study s;
+  s.structures = parse(example);
+  std::map<std::string, std::string> text;
+  bool heights_specified = false;
+  visit_settings(s, [&](const std::string& section, const std::string& key, const auto& value) {
+    using V = std::decay_t<decltype(value)>;
+    if constexpr (std::is_same_v<V, std::string>) text[section + "/" + key] = value;
+    if constexpr (std::is_same_v<V, bool>)
+      if (section == "structures" && key == "heights_specified") heights_specified = value;
+  });
+  EXPECT_TRUE(heights_specified);
+  EXPECT_EQ(text["structures.building1/period"], "lognormal(median 0.9 s, cov 0.15)");
+  EXPECT_EQ(text["structures.building2/period"], "lognormal(median 1.3 s, cov 0.15)");
+  EXPECT_EQ(text["structures.building1/height"], "28 m");
+  EXPECT_EQ(text["structures.building1/mass"], "4.2e+06 kg");
+  EXPECT_EQ(text["structures.building2/zeta"], "0.05");
+  EXPECT_EQ(text["structures.building2/yield"], "drift 0.02 / ductility 6");
 }
