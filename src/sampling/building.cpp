@@ -70,7 +70,9 @@ void check_distribution(const Distribution& d, std::string_view key, const KeyRa
   if (d.kind == K::lognormal && d.random()) {
     const double kept = Truncated(d, r.lo, r.hi).kept();
     if (!(kept >= 0.5))
-      throw InputError(fmt::format("{} = {} keeps only {:.3g} % of its probability (at least 50 % needed) in the valid range {}", key,
+      throw InputError(fmt::format("{} = {} keeps only {:.3g} % of its probability (at least 50 % needed) in the "
+                                   "valid range {}",
+                                   key,
                                    d.describe(r.unit), 100 * kept, r.text),
                        where(key), "move the median into the range or lower the cov");
   }
@@ -280,8 +282,8 @@ void check_period_truncation(const BuildingModel& b, const WhereFn& where) {
   const double hi = std::min(pr.hi, max_period);
   const double kept = pr.lo <= hi ? Truncated(b.period, pr.lo, hi).kept() : 0.0;
   if (!(kept >= 0.5))
-    throw InputError(fmt::format("period = {} keeps only {:.3g} % of its probability (at least 50 % needed) in the periods the "
-                                 "period-height rule admits, [{}, {}] s (ct_lower height_min^x, ct_upper height_max^x)",
+    throw InputError(fmt::format("period = {} keeps only {:.3g} % of its probability (at least 50 % needed) in "
+                                 "the periods the period-height rule admits, [{}, {}] s (ct_lower height_min^x, ct_upper height_max^x)",
                                  b.period.describe("s"), 100 * kept, fmt_num(pr.lo), fmt_num(hi)),
                      where("period"),
                      "centre the period distribution in that range, give a height, or widen height_min/height_max "
@@ -348,7 +350,8 @@ double required_number(config::TableReader& r, std::string_view key) {
 
 Distribution parse_distribution(const toml::node& n, std::string_view key, const std::string& file,
                                 const std::string& name, const std::string& where) {
-  const std::string fix = fmt::format("write {0} = <number>, {0} = {{lognormal = {{median = <number>, cov = <number>}}}} "
+  const std::string fix = fmt::format("write {0} = <number>, "
+                                      "{0} = {{lognormal = {{median = <number>, cov = <number>}}}} "
                                       "or {0} = {{uniform = {{min = <number>, max = <number>}}}}",
                                       key);
   if (n.is_number()) return Distribution::fixed(config::number(n, key, where));
@@ -417,7 +420,8 @@ BuildingModel parse_building(const toml::table* t, const std::string& file, cons
                           {"ct_upper", &b.ct_upper}, {"height_exponent", &b.height_exponent}})
     number(key, *out);
   for (const char* key : {"ct_lower", "ct_upper", "height_exponent"}) b.rule_explicit |= r.get(key) != nullptr;
-  if (const toml::node* n = r.get("aspect_ratios")) b.aspect_ratios = config::numbers(*n, "aspect_ratios", r.where("aspect_ratios"));
+  if (const toml::node* n = r.get("aspect_ratios"))
+    b.aspect_ratios = config::numbers(*n, "aspect_ratios", r.where("aspect_ratios"));
   if (const toml::node* n = r.get("hysteresis")) {
     const std::string h = config::string(*n, "hysteresis", r.where("hysteresis"));
     const std::optional<Hysteresis> known = parse_enum(hysteresis_names, h);

@@ -89,11 +89,14 @@ void check_equal_heights(const StructureModel& m, const std::string& where) {
       throw InputError(fmt::format("equal_heights = true needs heights from the period-height rule, but building{} "
                                    "has height = {}",
                                    i + 1, b[i].height.describe("m")),
-                       where, fmt::format("remove height from [structures.building{}], or set equal_heights = false", i + 1));
+                       where,
+                       fmt::format("remove height from [structures.building{}], or set equal_heights = false", i + 1));
     if (b[i].period.random())
       throw InputError(fmt::format("equal_heights = true needs grid or fixed periods, but building{} has period = {}",
                                    i + 1, b[i].period.describe("s")),
-                       where, fmt::format("give building{} a period grid or a fixed period, or set equal_heights = false", i + 1));
+                       where,
+                       fmt::format("give building{} a period grid or a fixed period, or set equal_heights = false",
+                                   i + 1));
   }
   for (double T1 : b[0].periods)
     for (double T2 : b[1].periods) {
