@@ -69,17 +69,20 @@ def main():
     fig.tight_layout()
     fig.savefig(prefix + "-probability.png", dpi=120)
 
-    periods = f["models/periods"][()]
-    i1, i2 = f["models/i1"][()], f["models/i2"][()]
+    # each building its own grid (files before periods1/periods2: one grid for both)
+    g = f["models"]
+    p1 = g["periods1"][()] if "periods1" in g else g["periods"][()]
+    p2 = g["periods2"][()] if "periods2" in g else g["periods"][()]
+    i1, i2 = g["i1"][()], g["i2"][()]
     hit = (pc > a.ratio * d[None, :]) & ok
-    mat = np.full((len(periods), len(periods)), np.nan)
-    for a1 in range(len(periods)):
-        for a2 in range(len(periods)):
+    mat = np.full((len(p1), len(p2)), np.nan)
+    for a1 in range(len(p1)):
+        for a2 in range(len(p2)):
             m = (i1 == a1) & (i2 == a2)
             mat[a1, a2] = 100.0 * hit[:, m].sum() / max(1, ok[:, m].sum())
     fig, ax = plt.subplots(figsize=(6, 5))
-    im = ax.imshow(mat, origin="lower", cmap="viridis", extent=[periods[0] - 0.025, periods[-1] + 0.025,
-                                                                periods[0] - 0.025, periods[-1] + 0.025])
+    im = ax.imshow(mat, origin="lower", cmap="viridis",
+                   extent=[p2[0] - 0.025, p2[-1] + 0.025, p1[0] - 0.025, p1[-1] + 0.025])
     fig.colorbar(im, label="probability of at least one impact (%)")
     ax.set_xlabel("T2 (s), right structure")
     ax.set_ylabel("T1 (s), left structure")

@@ -121,7 +121,7 @@ const LoadedRecord& RecordCache::get(const std::string& name) {
 std::vector<Model> sample_models(int n, std::uint64_t seed) {
   StructureModel sm;  // the paper's bilinear model
   StructureSampler sampler(sm, seed);
-  const int np = static_cast<int>(sm.periods.size());
+  const int np = static_cast<int>(sm.slots(0));  // both buildings share the default grid
   std::vector<Model> out;
   for (int i = 0; i < n; ++i) {
     SampleId id{static_cast<std::int32_t>(i % np), static_cast<std::int32_t>((3 * i + i / np) % np), i};

@@ -86,6 +86,10 @@ ModelTable read_models(h5::hid root) {
   read_opt(g.get(), "i2", t.i2);
   read_opt(g.get(), "sample", t.sample);
   read_opt(g.get(), "periods", t.periods);
+  read_opt(g.get(), "periods1", t.periods1);
+  read_opt(g.get(), "periods2", t.periods2);
+  if (t.periods1.empty()) t.periods1 = t.periods;  // written before each building had its grid
+  if (t.periods2.empty()) t.periods2 = t.periods;
   read_opt(g.get(), "zeta", t.zeta);
   return t;
 }

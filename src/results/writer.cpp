@@ -89,6 +89,8 @@ void write_models(h5::hid root, const ModelTable& t) {
   h5::write_dataset(g.get(), "i2", t.i2);
   h5::write_dataset(g.get(), "sample", t.sample);
   h5::write_dataset(g.get(), "periods", t.periods);
+  h5::write_dataset(g.get(), "periods1", t.periods1);
+  h5::write_dataset(g.get(), "periods2", t.periods2);
   h5::write_attribute(g.get(), "zeta", t.zeta);
 }
 

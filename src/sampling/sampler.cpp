@@ -23,6 +23,8 @@ namespace pounding {
 
 namespace {
 
+constexpr double standard_gravity = 9.80665;  // m/s^2: fy = Cy m g
+
 // Boost.Math's default policy promotes double to long double inside the special functions, which is 6x
 // slower and makes results depend on the platform's long double; evaluate in double throughout.
 using DoublePolicy = boost::math::policies::policy<boost::math::policies::promote_double<false>>;
@@ -56,66 +58,17 @@ inline double uniform01(Engine& g) {
 
 std::string fmt_num(double x) { return fmt::format("{:.6g}", x); }
 
-using WhereFn = std::function<std::string(std::string_view key)>;
-
 void need(bool ok, const std::string& key, double value, const std::string& range, const WhereFn& where) {
   if (!ok || !std::isfinite(value))
     throw InputError(fmt::format("{} = {} is out of range", key, fmt_num(value)), where(key),
                      fmt::format("give {} in {}", key, range));
 }
 
-HeightInterval height_interval_impl(const StructureModel& m, double T, const std::string& where) {
-  // eq. (6): ct_lower h^x <= T <= ct_upper h^x  <=>  (T/ct_upper)^(1/x) <= h <= (T/ct_lower)^(1/x)
-  const double rule_lo = std::pow(T / m.ct_upper, 1.0 / m.height_exponent);
-  const double rule_hi = std::pow(T / m.ct_lower, 1.0 / m.height_exponent);
-  HeightInterval iv{std::max(m.height_min, rule_lo), std::min(m.height_max, rule_hi)};
-  if (!(iv.lo <= iv.hi))
-    throw InputError(
-        fmt::format("no height satisfies T = {} s: lower bound max({}, (T/{})^(1/{})) = {} m exceeds upper bound "
-                    "min({}, (T/{})^(1/{})) = {} m",
-                    fmt_num(T), fmt_num(m.height_min), fmt_num(m.ct_upper), fmt_num(m.height_exponent),
-                    fmt_num(iv.lo), fmt_num(m.height_max), fmt_num(m.ct_lower), fmt_num(m.height_exponent),
-                    fmt_num(iv.hi)),
-        where,
-        "remove that period from the grid, or widen height_min/height_max or ct_lower/ct_upper");
-  return iv;
-}
-
-void validate_impl(const StructureModel& m, const WhereFn& where) {
-  if (m.periods.empty() || m.periods.size() > 1000)
-    throw InputError(fmt::format("the period grid has {} points", m.periods.size()), where("periods"),
-                     "give 1 to 1000 periods");
-  for (std::size_t i = 0; i < m.periods.size(); ++i) {
-    need(m.periods[i] > 0 && m.periods[i] <= 100, "periods", m.periods[i], "(0, 100] s", where);
-    if (i > 0 && !(m.periods[i] > m.periods[i - 1]))
-      throw InputError(fmt::format("periods are not strictly increasing at {} s", fmt_num(m.periods[i])),
-                       where("periods"), "list each period once, in increasing order");
-  }
+// The settings only [structures] has (both buildings share them).
+void validate_shared(const StructureModel& m, const WhereFn& where) {
   if (m.samples_per_pair < 1 || m.samples_per_pair > (std::int64_t{1} << 40))
     throw InputError(fmt::format("samples_per_pair = {} is out of range", m.samples_per_pair),
                      where("samples_per_pair"), "give samples_per_pair in [1, 2^40]");
-  if (m.aspect_ratios.empty() || m.aspect_ratios.size() > 100)
-    throw InputError(fmt::format("aspect_ratios has {} values", m.aspect_ratios.size()), where("aspect_ratios"),
-                     "give 1 to 100 aspect ratios h/r");
-  for (double a : m.aspect_ratios) need(a > 0 && a <= 100, "aspect_ratios", a, "(0, 100]", where);
-  need(m.rho_mean > 0 && m.rho_mean <= 1e5, "rho_mean", m.rho_mean, "(0, 1e5] kg/m^3", where);
-  need(m.rho_cov >= 0 && m.rho_cov <= 2, "rho_cov", m.rho_cov, "[0, 2]", where);
-  need(m.mbar_mean > 0 && m.mbar_mean <= 100, "mbar_mean", m.mbar_mean, "(0, 100]", where);
-  need(m.mbar_cov > 0 && m.mbar_cov <= 2, "mbar_cov", m.mbar_cov, "(0, 2]", where);
-  need(m.mbar_min > 0 && m.mbar_min <= 100, "mbar_min", m.mbar_min, "(0, 100]", where);
-  need(m.mbar_max > m.mbar_min && m.mbar_max <= 1000, "mbar_max", m.mbar_max,
-       fmt::format("(mbar_min = {}, 1000]", fmt_num(m.mbar_min)), where);
-  need(m.zeta >= 0 && m.zeta < 1, "zeta", m.zeta, "[0, 1)", where);
-  need(m.drift > 0 && m.drift <= 1, "drift", m.drift, "(0, 1]", where);
-  need(m.ductility >= 1 && m.ductility <= 100, "ductility", m.ductility, "[1, 100]", where);
-  need(m.alpha >= 0 && m.alpha < 1, "alpha", m.alpha, "[0, 1)", where);
-  need(m.height_min > 0 && m.height_min <= 1000, "height_min", m.height_min, "(0, 1000] m", where);
-  need(m.height_max >= m.height_min && m.height_max <= 1000, "height_max", m.height_max,
-       fmt::format("[height_min = {}, 1000] m", fmt_num(m.height_min)), where);
-  need(m.ct_lower > 0 && m.ct_lower <= 10, "ct_lower", m.ct_lower, "(0, 10]", where);
-  need(m.ct_upper > m.ct_lower && m.ct_upper <= 10, "ct_upper", m.ct_upper,
-       fmt::format("(ct_lower = {}, 10]", fmt_num(m.ct_lower)), where);
-  need(m.height_exponent > 0 && m.height_exponent <= 2, "height_exponent", m.height_exponent, "(0, 2]", where);
   need(m.code_gap_coefficient > 0 && m.code_gap_coefficient <= 1, "code_gap_coefficient", m.code_gap_coefficient,
        "(0, 1]", where);
   need(m.contact_density > 0 && m.contact_density <= 1e5, "contact_density", m.contact_density,
@@ -124,18 +77,49 @@ void validate_impl(const StructureModel& m, const WhereFn& where) {
        m.contact_youngs_modulus, "(0, 1e13] Pa", where);
   need(m.contact_poisson >= 0 && m.contact_poisson < 0.5, "contact_poisson", m.contact_poisson, "[0, 0.5)", where);
   need(m.kh >= 0, "kh", m.kh, "[0, inf) N/m^1.5 (0: equivalent spheres)", where);
-  for (double T : m.periods) height_interval_impl(m, T, where("periods"));
-  // The truncation interval must carry probability, or the inverse CDF has nothing to invert.
-  LognormalParams p = lognormal_from_mean_cov(m.mbar_mean, m.mbar_cov);
-  Normal nd;
-  double za = (std::log(m.mbar_min) - p.mu) / p.sigma, zb = (std::log(m.mbar_max) - p.mu) / p.sigma;
-  double mass = za > 0 ? cdf(complement(nd, za)) - cdf(complement(nd, zb)) : cdf(nd, zb) - cdf(nd, za);
-  if (!(mass > 1e-12))
-    throw InputError(fmt::format("the lognormal(mean {}, CoV {}) has probability {} on [mbar_min, mbar_max] = "
-                                 "[{}, {}]",
-                                 fmt_num(m.mbar_mean), fmt_num(m.mbar_cov), mass, fmt_num(m.mbar_min),
-                                 fmt_num(m.mbar_max)),
-                     where("mbar_min"), "put the truncation interval where the distribution has mass");
+}
+
+// equal_heights: heights from the rule and grid (or fixed) periods in both buildings, and a common height for
+// every period pair.
+void check_equal_heights(const StructureModel& m, const std::string& where) {
+  if (!m.equal_heights) return;
+  const std::array<BuildingModel, 2> b{m.building(0), m.building(1)};
+  for (int i = 0; i < 2; ++i) {
+    if (!b[i].height_from_rule())
+      throw InputError(fmt::format("equal_heights = true needs heights from the period-height rule, but building{} "
+                                   "has height = {}",
+                                   i + 1, b[i].height.describe("m")),
+                       where,
+                       fmt::format("remove height from [structures.building{}], or set equal_heights = false", i + 1));
+    if (b[i].period.random())
+      throw InputError(fmt::format("equal_heights = true needs grid or fixed periods, but building{} has period = {}",
+                                   i + 1, b[i].period.describe("s")),
+                       where,
+                       fmt::format("give building{} a period grid or a fixed period, or set equal_heights = false",
+                                   i + 1));
+  }
+  for (double T1 : b[0].periods)
+    for (double T2 : b[1].periods) {
+      const HeightInterval a = checked_rule_heights(b[0], T1, where), c = checked_rule_heights(b[1], T2, where);
+      if (!(std::max(a.lo, c.lo) <= std::min(a.hi, c.hi)))
+        throw InputError(fmt::format("equal_heights: no height suits both T1 = {} s (building 1: [{}, {}] m) and "
+                                     "T2 = {} s (building 2: [{}, {}] m)",
+                                     fmt_num(T1), fmt_num(a.lo), fmt_num(a.hi), fmt_num(T2), fmt_num(c.lo),
+                                     fmt_num(c.hi)),
+                         where, "drop one of these periods from its grid, widen the height limits, or set "
+                                "equal_heights = false");
+    }
+}
+
+void validate_impl(const StructureModel& m, const WhereFn& where) {
+  validate_shared(m, where);
+  validate_building(m.default_building(), where);
+  for (int i = 0; i < 2; ++i)
+    if (m.buildings[i].resolved)
+      validate_building(m.buildings[i], [&](std::string_view key) {
+        return fmt::format("{} (building{}.{})", where(key), i + 1, key);
+      });
+  check_equal_heights(m, where("equal_heights"));
 }
 
 }  // namespace
@@ -143,26 +127,27 @@ void validate_impl(const StructureModel& m, const WhereFn& where) {
 
 std::vector<double> StructureModel::default_periods() { return make_period_grid(1.00, 1.50, 0.05); }
 
-std::vector<double> make_period_grid(double lo, double hi, double step, const std::string& where) {
-  if (!(std::isfinite(lo) && std::isfinite(hi) && std::isfinite(step)) || !(step > 0) || !(hi >= lo) || !(lo > 0))
-    throw InputError(fmt::format("period grid {}..{} step {} is not a grid", fmt_num(lo), fmt_num(hi), fmt_num(step)),
-                     where, "give 0 < period_min <= period_max and period_step > 0");
-  const double steps = (hi - lo) / step;
-  const double n_steps = std::round(steps);
-  if (std::abs(steps - n_steps) > 1e-9 * std::max(1.0, n_steps) || n_steps > 999)
-    throw InputError(fmt::format("(period_max - period_min) / period_step = {} is not an integer <= 999",
-                                 fmt::format("{:.12g}", steps)),
-                     where, "choose period_max = period_min + n period_step");
-  std::vector<double> grid(static_cast<std::size_t>(n_steps) + 1);
-  // lo + i step, rounded to 1e-12 s so that 1.00 + 2 x 0.05 is the double nearest 1.1, as a user typing
-  // the grid would get; never accumulated.
-  for (std::size_t i = 0; i < grid.size(); ++i)
-    grid[i] = std::round((lo + static_cast<double>(i) * step) * 1e12) / 1e12;
-  return grid;
+BuildingModel StructureModel::default_building() const {
+  BuildingModel b;
+  b.resolved = true;
+  b.periods = periods;
+  b.zeta = Distribution::fixed(zeta);
+  b.aspect_ratios = aspect_ratios;
+  b.rho_mean = rho_mean, b.rho_cov = rho_cov;
+  b.mbar_mean = mbar_mean, b.mbar_cov = mbar_cov, b.mbar_min = mbar_min, b.mbar_max = mbar_max;
+  b.hysteresis = hysteresis;
+  b.drift = drift, b.ductility = ductility, b.alpha = alpha;
+  b.height_min = height_min, b.height_max = height_max;
+  b.ct_lower = ct_lower, b.ct_upper = ct_upper, b.height_exponent = height_exponent;
+  return b;
+}
+
+bool StructureModel::heights_specified() const {
+  return buildings[0].height.given() && buildings[1].height.given();
 }
 
 HeightInterval height_interval(const StructureModel& model, double T, const std::string& where) {
-  return height_interval_impl(model, T, where);
+  return checked_rule_heights(model.default_building(), T, where);
 }
 
 void validate(const StructureModel& model, const std::string& where) {
@@ -177,6 +162,20 @@ LognormalParams lognormal_from_mean_cov(double mean, double cov) {
 }
 
 // ---------------------------------------------------------------- parsing
+
+namespace {
+
+// Both buildings from the [structures] defaults and their own tables (absent tables: the defaults).
+void resolve_buildings(StructureModel& m, const std::array<const toml::table*, 2>& tables, const std::string& file,
+                       const WhereFn& where, bool rule_explicit) {
+  BuildingModel defaults = m.default_building();
+  defaults.rule_explicit = rule_explicit;
+  for (int i = 0; i < 2; ++i)
+    m.buildings[i] = parse_building(tables[i], file, fmt::format("structures.building{}", i + 1), defaults, where);
+  check_equal_heights(m, where("equal_heights"));
+}
+
+}  // namespace
 
 StructureModel parse_structure_model(const toml::table& table, const std::string& file) {
   StructureModel m;
@@ -193,26 +192,19 @@ StructureModel parse_structure_model(const toml::table& table, const std::string
   auto number = [&](const char* key, double& out) {
     if (const toml::node* n = r.get(key)) out = config::number(*n, key, r.where(key));
   };
-  number("rho_mean", m.rho_mean);
-  number("rho_cov", m.rho_cov);
-  number("mbar_mean", m.mbar_mean);
-  number("mbar_cov", m.mbar_cov);
-  number("mbar_min", m.mbar_min);
-  number("mbar_max", m.mbar_max);
-  number("zeta", m.zeta);
-  number("drift", m.drift);
-  number("ductility", m.ductility);
-  number("alpha", m.alpha);
-  number("height_min", m.height_min);
-  number("height_max", m.height_max);
-  number("ct_lower", m.ct_lower);
-  number("ct_upper", m.ct_upper);
-  number("height_exponent", m.height_exponent);
-  number("code_gap_coefficient", m.code_gap_coefficient);
-  number("contact_density", m.contact_density);
-  number("contact_youngs_modulus", m.contact_youngs_modulus);
-  number("contact_poisson", m.contact_poisson);
-  number("kh", m.kh);
+  for (auto [key, out] :
+       {std::pair{"rho_mean", &m.rho_mean}, {"rho_cov", &m.rho_cov}, {"mbar_mean", &m.mbar_mean},
+        {"mbar_cov", &m.mbar_cov}, {"mbar_min", &m.mbar_min}, {"mbar_max", &m.mbar_max}, {"zeta", &m.zeta},
+        {"drift", &m.drift}, {"ductility", &m.ductility}, {"alpha", &m.alpha}, {"height_min", &m.height_min},
+        {"height_max", &m.height_max}, {"ct_lower", &m.ct_lower}, {"ct_upper", &m.ct_upper},
+        {"height_exponent", &m.height_exponent}, {"code_gap_coefficient", &m.code_gap_coefficient},
+        {"contact_density", &m.contact_density}, {"contact_youngs_modulus", &m.contact_youngs_modulus},
+        {"contact_poisson", &m.contact_poisson}, {"kh", &m.kh}})
+    number(key, *out);
+  bool rule_explicit = false;
+  for (const char* key : {"ct_lower", "ct_upper", "height_exponent"}) rule_explicit |= r.get(key) != nullptr;
+  m.equal_heights = r.boolean("equal_heights", false);
+  const std::array<const toml::table*, 2> buildings{r.table("building1"), r.table("building2")};
   if (const toml::node* n = r.get("aspect_ratios")) m.aspect_ratios = config::numbers(*n, "aspect_ratios", r.where("aspect_ratios"));
   if (const toml::node* n = r.get("samples_per_pair"))
     m.samples_per_pair = config::integer(*n, "samples_per_pair", r.where("samples_per_pair"));
@@ -232,7 +224,8 @@ StructureModel parse_structure_model(const toml::table& table, const std::string
   r.finish("periods, period_min, period_max, period_step, samples_per_pair, aspect_ratios, rho_mean, rho_cov, "
            "mbar_mean, mbar_cov, mbar_min, mbar_max, zeta, hysteresis, drift, ductility, alpha, height_min, "
            "height_max, ct_lower, ct_upper, height_exponent, code_gap_coefficient, contact_density, "
-           "contact_youngs_modulus, contact_poisson, kh");
+           "contact_youngs_modulus, contact_poisson, kh, equal_heights, building1, building2 (tables "
+           "[structures.building1], [structures.building2])");
 
   if (periods && (pmin || pmax || pstep))
     throw InputError("both periods and period_min/period_max/period_step are given", r.where("periods"),
@@ -241,7 +234,9 @@ StructureModel parse_structure_model(const toml::table& table, const std::string
     periods_where = r.where(pmax ? "period_max" : pmin ? "period_min" : "period_step");
     m.periods = make_period_grid(pmin.value_or(1.00), pmax.value_or(1.50), pstep.value_or(0.05), periods_where);
   }
-  validate_impl(m, where);
+  validate_shared(m, where);
+  validate_building(m.default_building(), where);
+  resolve_buildings(m, buildings, file, where, rule_explicit);
   return m;
 }
 
@@ -271,68 +266,92 @@ std::uint64_t stream_seed(std::uint64_t seed, std::uint64_t stream, const Sample
 StructureSampler::StructureSampler(StructureModel model, std::uint64_t seed, std::uint64_t stream)
     : model_(std::move(model)), seed_(seed), stream_(stream) {
   validate(model_);
-  for (double T : model_.periods) heights_.push_back(height_interval_impl(model_, T, "[structures].periods"));
-  LognormalParams rho = lognormal_from_mean_cov(model_.rho_mean, model_.rho_cov);
-  rho_mu_ = rho.mu;
-  rho_sigma_ = rho.sigma;
-  LognormalParams mb = lognormal_from_mean_cov(model_.mbar_mean, model_.mbar_cov);
-  mbar_mu_ = mb.mu;
-  mbar_sigma_ = mb.sigma;
-  mbar_za_ = (std::log(model_.mbar_min) - mbar_mu_) / mbar_sigma_;
-  mbar_zb_ = (std::log(model_.mbar_max) - mbar_mu_) / mbar_sigma_;
-  Normal nd;
-  mbar_pa_ = cdf(nd, mbar_za_);
-  mbar_pb_ = cdf(nd, mbar_zb_);
-  mbar_qa_ = cdf(complement(nd, mbar_za_));
-  mbar_qb_ = cdf(complement(nd, mbar_zb_));
-  mbar_upper_tail_ = mbar_za_ > 0;
+  for (int b = 0; b < 2; ++b) side_[b] = make_side(model_.building(b));
 }
 
-template <class Gen>
-SampledStructure StructureSampler::draw_structure(Gen& g, std::size_t pi) const {
-  // Four uniforms per structure, always in this order: h, aspect ratio, rho, mbar.
-  const double u_h = uniform01(g), u_a = uniform01(g), u_rho = uniform01(g), u_mbar = uniform01(g);
+StructureSampler::Side StructureSampler::make_side(BuildingModel b) {
+  Side s;
+  if (b.height_from_rule() && !b.period.random())
+    for (double T : b.periods) s.heights.push_back(checked_rule_heights(b, T, "[structures].periods"));
+  const LognormalParams rho = lognormal_from_mean_cov(b.rho_mean, b.rho_cov);
+  s.rho_mu = rho.mu, s.rho_sigma = rho.sigma;
+  const LognormalParams mb = lognormal_from_mean_cov(b.mbar_mean, b.mbar_cov);
+  s.mbar_mu = mb.mu, s.mbar_sigma = mb.sigma;
+  s.mbar = Truncated::lognormal_mu_sigma(mb.mu, mb.sigma, b.mbar_min, b.mbar_max);
+  // Each drawn key truncated to its valid range; T also to the periods the rule admits when it gives h.
+  const HeightInterval pr = b.height_from_rule() ? b.rule_periods() : HeightInterval{0.0, max_period};
+  s.period = Truncated(b.period, pr.lo, std::min(pr.hi, max_period));
+  s.height = Truncated(b.height, 0.0, max_height);
+  s.mass = Truncated(b.mass, 0.0, max_mass);
+  s.zeta = Truncated(b.zeta, 0.0, std::nextafter(1.0, 0.0));
+  s.cy = Truncated(b.yield_coefficient, 0.0, max_cy);
+  s.model = std::move(b);
+  return s;
+}
+
+SampledStructure StructureSampler::draw_structure(const Side& side, const Uniforms& u, std::size_t slot,
+                                                  const double* h_equal) const {
+  const BuildingModel& b = side.model;
   const Normal nd;
   SampledStructure s;
-  s.T = model_.periods[pi];
-  const HeightInterval& iv = heights_[pi];
-  s.h = iv.lo + (iv.hi - iv.lo) * u_h;  // uniform on [lo, hi] (section 3.1)
-  const std::size_t na = model_.aspect_ratios.size();
-  s.aspect = model_.aspect_ratios[std::min(na - 1, static_cast<std::size_t>(u_a * static_cast<double>(na)))];
-  s.r = s.h / s.aspect;
-  s.rho = std::exp(rho_mu_ + rho_sigma_ * quantile(nd, u_rho));
-  // Truncated lognormal, exact: ln mbar = mu + sigma Z with Z standard normal restricted to [za, zb].
-  // Its CDF is (Phi(z) - Phi(za)) / (Phi(zb) - Phi(za)); inverting at u gives
-  // z = Phi^-1(Phi(za) + u (Phi(zb) - Phi(za))) -- every u in (0, 1) maps inside [za, zb], no rejection.
-  // When za > 0 both bounds lie in the upper tail, where Phi ~ 1 loses digits, so the same map is applied
-  // to the upper-tail probabilities: z = -Phi^-1(Q(za) - u (Q(za) - Q(zb))), Q = 1 - Phi.
-  double z = mbar_upper_tail_ ? quantile(complement(nd, mbar_qa_ - u_mbar * (mbar_qa_ - mbar_qb_)))
-                              : quantile(nd, mbar_pa_ + u_mbar * (mbar_pb_ - mbar_pa_));
-  s.mbar = std::clamp(std::exp(mbar_mu_ + mbar_sigma_ * z), model_.mbar_min, model_.mbar_max);  // rounding only
-  s.m = s.mbar * s.rho * s.r * s.r * s.h;  // eq. (7)
-  Structure st = Structure::from_period(s.m, s.T, model_.zeta);  // eqs (8), (9)
+  s.T = b.period.random() ? side.period.sample(u.T) : b.periods[slot];
+  if (h_equal) {
+    s.h = *h_equal;
+  } else if (b.height.given()) {
+    s.h = side.height.sample(u.h);
+  } else {
+    HeightInterval iv = b.period.random() ? b.rule_heights(s.T) : side.heights[slot];
+    iv.hi = std::max(iv.lo, iv.hi);  // a drawn T at the edge of the rule's range: rounding only
+    s.h = iv.lo + (iv.hi - iv.lo) * u.h;  // uniform on [lo, hi] (section 3.1)
+  }
+  if (b.mass_index_model()) {
+    const std::size_t na = b.aspect_ratios.size();
+    s.aspect = b.aspect_ratios[std::min(na - 1, static_cast<std::size_t>(u.aspect * static_cast<double>(na)))];
+    s.r = s.h / s.aspect;
+    s.rho = std::exp(side.rho_mu + side.rho_sigma * quantile(nd, u.rho));
+    s.mbar = side.mbar.sample(u.mbar);  // the truncated lognormal, exact (Truncated, building.cpp)
+    s.m = s.mbar * s.rho * s.r * s.r * s.h;  // eq. (7)
+  } else {
+    s.aspect = s.r = s.rho = s.mbar = std::numeric_limits<double>::quiet_NaN();
+    s.m = side.mass.sample(u.mbar);
+  }
+  s.zeta = b.zeta.random() ? side.zeta.sample(u.zeta) : b.zeta.median();
+  Structure st = Structure::from_period(s.m, s.T, s.zeta);  // eqs (8), (9)
   s.k = st.k;
   s.c = st.c;
-  if (model_.hysteresis == Hysteresis::bilinear) {
-    s.fy = s.k * (model_.drift * s.h / model_.ductility);  // ductility 6 at 2 % drift (section 2.1)
-    s.alpha = model_.alpha;
-  } else {
+  if (b.hysteresis == Hysteresis::elastic) {
     s.fy = std::numeric_limits<double>::infinity();
     s.alpha = 0.0;
+  } else {
+    s.fy = b.yield_coefficient.given() ? side.cy.sample(u.cy) * s.m * standard_gravity
+                                       : s.k * (b.drift * s.h / b.ductility);  // ductility 6 at 2 % drift (2.1)
+    s.alpha = b.alpha;
   }
   return s;
 }
 
 SampledPair StructureSampler::sample(const SampleId& id) const {
-  const auto n = static_cast<std::int32_t>(model_.periods.size());
-  if (id.i1 < 0 || id.i1 >= n || id.i2 < 0 || id.i2 >= n || id.sample < 0)
-    throw std::out_of_range(fmt::format("sample identity ({}, {}, {}) outside a grid of {} periods", id.i1, id.i2,
-                                        id.sample, n));
+  const auto n1 = static_cast<std::int32_t>(model_.slots(0)), n2 = static_cast<std::int32_t>(model_.slots(1));
+  if (id.i1 < 0 || id.i1 >= n1 || id.i2 < 0 || id.i2 >= n2 || id.sample < 0)
+    throw std::out_of_range(fmt::format("sample identity ({}, {}, {}) outside {} x {} period slots", id.i1, id.i2,
+                                        id.sample, n1, n2));
   Engine g = make_engine(stream_seed(seed_, stream_, id));
+  // The paper's 8 uniforms first (building 1 then 2: h, aspect, rho, mbar), then per building T, zeta, Cy:
+  // always all 14, so a stream never depends on which keys a study sets.
+  std::array<Uniforms, 2> u;
+  for (Uniforms& x : u) x.h = uniform01(g), x.aspect = uniform01(g), x.rho = uniform01(g), x.mbar = uniform01(g);
+  for (Uniforms& x : u) x.T = uniform01(g), x.zeta = uniform01(g), x.cy = uniform01(g);
+  const auto i1 = static_cast<std::size_t>(id.i1), i2 = static_cast<std::size_t>(id.i2);
+  double h_equal = 0;
+  if (model_.equal_heights) {  // one height on the intersection of both rule intervals, building 1's uniform
+    const HeightInterval &a = side_[0].heights[i1], &c = side_[1].heights[i2];
+    const double lo = std::max(a.lo, c.lo), hi = std::max(lo, std::min(a.hi, c.hi));
+    h_equal = lo + (hi - lo) * u[0].h;
+  }
   SampledPair p;
   p.id = id;
-  p.s1 = draw_structure(g, static_cast<std::size_t>(id.i1));
-  p.s2 = draw_structure(g, static_cast<std::size_t>(id.i2));
+  p.s1 = draw_structure(side_[0], u[0], i1, model_.equal_heights ? &h_equal : nullptr);
+  p.s2 = draw_structure(side_[1], u[1], i2, model_.equal_heights ? &h_equal : nullptr);
   p.d = model_.code_gap_coefficient * (p.s1.h + p.s2.h);  // eq. (5)
   p.kh = model_.kh > 0 ? model_.kh
                        : hertz_stiffness_spheres(p.s1.m, p.s2.m, model_.contact_density, model_.contact_youngs_modulus,
@@ -346,15 +365,12 @@ void StructureSampler::sample_block(std::int32_t i1, std::int32_t i2, std::int64
 }
 
 std::int64_t StructureSampler::global_index(const SampleId& id) const {
-  const auto n = static_cast<std::int64_t>(model_.periods.size());
-  return (id.i1 * n + id.i2) * model_.samples_per_pair + id.sample;
+  const auto n2 = static_cast<std::int64_t>(model_.slots(1));
+  return (id.i1 * n2 + id.i2) * model_.samples_per_pair + id.sample;
 }
 
 SampleId StructureSampler::identity(std::int64_t global_index) const {
-  const auto n = static_cast<std::int64_t>(model_.periods.size());
-  const std::int64_t pair = global_index / model_.samples_per_pair;
-  return SampleId{static_cast<std::int32_t>(pair / n), static_cast<std::int32_t>(pair % n),
-                  global_index % model_.samples_per_pair};
+  return model_.pair_id(global_index / model_.samples_per_pair, global_index % model_.samples_per_pair);
 }
 
 PairParams SampledPair::pair_params(double gap_ratio, double e) const {

@@ -56,13 +56,14 @@ results::RecordTable record_table(const std::vector<StudyRecord>& records) {
 // The models are resampled (a sample depends only on its pair and index): no rank ships them.
 results::ModelTable model_table(const Study& study, const WorkPlan& plan) {
   const StructureSampler sampler(study.structures, study.seed);
-  const std::size_t M = plan.models(), nper = study.structures.periods.size();
+  const std::size_t M = plan.models();
   results::ModelTable t;
   for (const auto& [name, member] : results::model_doubles) (t.*member).resize(M);
   t.i1.resize(M), t.i2.resize(M), t.sample.resize(M);
   std::vector<SampledPair> sp(plan.samples);
   for (std::size_t p = 0; p < plan.pairs; ++p) {
-    sampler.sample_block(static_cast<std::int32_t>(p / nper), static_cast<std::int32_t>(p % nper), 0, sp);
+    const SampleId pair = study.structures.pair_id(static_cast<std::int64_t>(p));
+    sampler.sample_block(pair.i1, pair.i2, 0, sp);
     for (std::size_t s = 0; s < plan.samples; ++s) {
       const std::size_t m = p * plan.samples + s;
       const auto& q = sp[s];
@@ -71,9 +72,11 @@ results::ModelTable model_table(const Study& study, const WorkPlan& plan) {
       t.kh[m] = q.kh, t.i1[m] = q.id.i1, t.i2[m] = q.id.i2, t.sample[m] = q.id.sample;
       t.aspect1[m] = q.s1.aspect, t.aspect2[m] = q.s2.aspect, t.rho1[m] = q.s1.rho, t.rho2[m] = q.s2.rho;
       t.mbar1[m] = q.s1.mbar, t.mbar2[m] = q.s2.mbar, t.c1[m] = q.s1.c, t.c2[m] = q.s2.c;
+      t.zeta1[m] = q.s1.zeta, t.zeta2[m] = q.s2.zeta, t.alpha1[m] = q.s1.alpha, t.alpha2[m] = q.s2.alpha;
     }
   }
-  t.periods = study.structures.periods;
+  t.periods1 = sampler.building(0).periods, t.periods2 = sampler.building(1).periods;
+  t.periods = t.periods1;  // building 1's grid, for readers of the one-grid files
   t.zeta = study.structures.zeta;
   return t;
 }

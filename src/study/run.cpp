@@ -64,7 +64,7 @@ class UnitComputer {
  public:
   UnitComputer(const Study& s, const std::vector<StudyRecord>& records, const StructureSampler& sampler,
                const WorkPlan& plan, int rank)
-      : s_(s), records_(records), sampler_(sampler), plan_(plan), rank_(rank), nper_(s.structures.periods.size()) {
+      : s_(s), records_(records), sampler_(sampler), plan_(plan), rank_(rank) {
     ks_base_.stepper = s.stepper;
     ks_base_.displacement_limit = s.displacement_limit;
     uncoupled_ = s.contact;
@@ -76,8 +76,8 @@ class UnitComputer {
     const UnitIndex u = plan_.decode(unit);
     const std::size_t n = plan_.lanes(u.block);
     pairs_.resize(n);
-    sampler_.sample_block(static_cast<std::int32_t>(u.pair / nper_), static_cast<std::int32_t>(u.pair % nper_),
-                          static_cast<std::int64_t>(u.block * plan_.batch), pairs_);
+    const SampleId pair = s_.structures.pair_id(static_cast<std::int64_t>(u.pair));  // slots i1, i2
+    sampler_.sample_block(pair.i1, pair.i2, static_cast<std::int64_t>(u.block * plan_.batch), pairs_);
     const Record& rec = records_[u.record].record;
     const GroundMotion gm{rec.dt, rec.acc, rec.duration() + s_.free_vibration};
     KernelSettings ks = ks_base_;
@@ -144,7 +144,6 @@ class UnitComputer {
   const StructureSampler& sampler_;
   const WorkPlan& plan_;
   int rank_, computed_ = 0;
-  std::size_t nper_;
   KernelSettings ks_base_;
   ContactModel uncoupled_;
   std::vector<SampledPair> pairs_;

@@ -19,7 +19,7 @@ grep -q '^# .*shear-wave velocity.*not sampled.*fixed-base SDOF' "$tmp/a.csv" ||
 grep -q 'shear-wave velocity' "$tmp/stdout" || fail "stdout lacks the Vs note"
 grep -q '^# seed: 20240917' "$tmp/a.csv" || fail "header lacks the seed"
 header=$(awk '!/^#/ {print; exit}' "$tmp/a.csv")
-[ "$header" = "i1,i2,sample,T1,T2,h1,h2,aspect1,aspect2,r1,r2,rho1,rho2,mbar1,mbar2,m1,m2,k1,k2,c1,c2,fy1,fy2,alpha1,alpha2,d,kh" ] \
+[ "$header" = "i1,i2,sample,T1,T2,h1,h2,aspect1,aspect2,r1,r2,rho1,rho2,mbar1,mbar2,m1,m2,k1,k2,c1,c2,fy1,fy2,alpha1,alpha2,d,kh,zeta1,zeta2" ] \
   || fail "unexpected columns: $header"
 
 # --- --pair and --n pick the same structures as the full dump (identity, not position, sets the stream)

@@ -81,7 +81,7 @@ TEST(Results, FileHoldsTheFormatTwoLayout) {
   EXPECT_EQ(as_set(h5::member_names(imp.get())),
             (std::set<std::string>{"amplification_u1", "amplification_u2", "gap_ratios", "impact_count",
                                    "peak_force", "peak_u1", "peak_u2", "status", "t_first_impact"}));
-  EXPECT_EQ(h5::member_names(h5::open_group(root, "models").get()).size(), std::size(results::model_doubles) + 4);
+  EXPECT_EQ(h5::member_names(h5::open_group(root, "models").get()).size(), std::size(results::model_doubles) + 6);  // i1, i2, sample, periods, periods1, periods2
   EXPECT_EQ(h5::member_names(h5::open_group(root, "records").get()).size(), 9u);
   // booleans are 0/1 integers; lists of strings and empty lists survive
   auto rec = h5::open_group(h5::open_group(root, "settings").get(), "records");

@@ -77,10 +77,11 @@ struct RecordTable {
 // /models: one entry per sampled pair (record-independent), and the period grid.
 struct ModelTable {
   std::vector<double> T1, T2, h1, h2, m1, m2, k1, k2, fy1, fy2, code_gap, kh, aspect1, aspect2, rho1, rho2, mbar1,
-      mbar2, c1, c2;
+      mbar2, c1, c2, zeta1, zeta2, alpha1, alpha2;
   std::vector<std::int32_t> i1, i2;
   std::vector<std::int64_t> sample;
-  std::vector<double> periods;
+  std::vector<double> periods;            // building 1's grid (files before periods1/periods2: the one grid)
+  std::vector<double> periods1, periods2;  // the buildings' grids (a period distribution: one slot, its median)
   double zeta = 0.05;
   std::size_t size() const { return T1.size(); }
 };
@@ -93,7 +94,8 @@ inline constexpr std::pair<std::string_view, std::vector<double> ModelTable::*> 
     {"fy2", &ModelTable::fy2},         {"code_gap", &ModelTable::code_gap}, {"kh", &ModelTable::kh},
     {"aspect1", &ModelTable::aspect1}, {"aspect2", &ModelTable::aspect2}, {"rho1", &ModelTable::rho1},
     {"rho2", &ModelTable::rho2},       {"mbar1", &ModelTable::mbar1},     {"mbar2", &ModelTable::mbar2},
-    {"c1", &ModelTable::c1},           {"c2", &ModelTable::c2}};
+    {"c1", &ModelTable::c1},           {"c2", &ModelTable::c2},           {"zeta1", &ModelTable::zeta1},
+    {"zeta2", &ModelTable::zeta2},     {"alpha1", &ModelTable::alpha1},   {"alpha2", &ModelTable::alpha2}};
 
 // /settings/<section>/<key> (section "" is /settings itself). Booleans are stored as 0/1 integers.
 using SettingValue = std::variant<double, std::int64_t, std::string, std::vector<double>, std::vector<std::string>>;

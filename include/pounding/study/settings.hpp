@@ -62,6 +62,34 @@ void visit_settings(const Study& s, V&& v) {
   v("structures", "contact_youngs_modulus", m.contact_youngs_modulus);
   v("structures", "contact_poisson", m.contact_poisson);
   v("structures", "kh", m.kh);
+  v("structures", "equal_heights", m.equal_heights);
+  v("structures", "heights_specified", m.heights_specified());
+  for (int i = 0; i < 2; ++i) {  // each building resolved; a distribution as its describe() text
+    const BuildingModel b = m.building(i);
+    const S sec = i == 0 ? "structures.building1" : "structures.building2";
+    v(sec, "periods", b.periods);
+    v(sec, "period", b.period_text());
+    v(sec, "height", b.height_text());
+    v(sec, "mass", b.mass_text());
+    v(sec, "zeta", b.zeta_text());
+    v(sec, "yield", b.yield_text());
+    v(sec, "alpha", b.alpha);
+    v(sec, "hysteresis", S(to_string(b.hysteresis)));
+    v(sec, "aspect_ratios", b.aspect_ratios);
+    v(sec, "rho_mean", b.rho_mean);
+    v(sec, "rho_cov", b.rho_cov);
+    v(sec, "mbar_mean", b.mbar_mean);
+    v(sec, "mbar_cov", b.mbar_cov);
+    v(sec, "mbar_min", b.mbar_min);
+    v(sec, "mbar_max", b.mbar_max);
+    v(sec, "drift", b.drift);
+    v(sec, "ductility", b.ductility);
+    v(sec, "height_min", b.height_min);
+    v(sec, "height_max", b.height_max);
+    v(sec, "ct_lower", b.ct_lower);
+    v(sec, "ct_upper", b.ct_upper);
+    v(sec, "height_exponent", b.height_exponent);
+  }
 
   v("gaps", "ratios", s.gap_ratios);
   v("gaps", "curve_max", s.curve_max);

@@ -9,7 +9,10 @@
 //                | directory = "..."; real_dir = "..." (resolve suite entries to real PEER files);
 //                scale = 1.0; units = "g" | "m/s2" | "cm/s2"; dt = <s, one-column files>; limit = <first N>;
 //                synthetic_only = false
-//   [structures] the stochastic structure model (see sampler.hpp)
+//   [structures] the stochastic structure model (see sampler.hpp): the defaults of both buildings; equal_heights = false
+//                [structures.building1] / [structures.building2]: one building's overrides and its own period, height,
+//                mass, zeta, yield_coefficient (a number or {lognormal = {median, cov}} / {uniform = {min, max}};
+//                see building.hpp); heights given to both make a "pair study" (answers in metres)
 //   [gaps]       ratios = [0.1, 0.2, 0.3, 0.5, 0.7, 1.0]; curve_max = 1.5; curve_step = 0.005
 //   [contact]    law = "hertzdamp"; damping_law = "lankarani-nikravesh"; e = 0.65; n = 1.5; v0_min = 1e-3;
 //                stiffness = <N/m^n for the Hertz family (default: equivalent spheres), N/m for linear/Kelvin (required)>

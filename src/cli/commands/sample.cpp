@@ -34,15 +34,17 @@ constexpr const char* vs_note =
 const std::vector<std::string> columns{
     "T1",    "T2",   "h1",  "h2",  "aspect1", "aspect2", "r1",     "r2",     "rho1", "rho2",
     "mbar1", "mbar2", "m1", "m2",  "k1",      "k2",      "c1",     "c2",     "fy1",  "fy2",
-    "alpha1", "alpha2", "d", "kh"};
+    "alpha1", "alpha2", "d", "kh", "zeta1", "zeta2"};
 const char* units =
     "T s, h m, aspect -, r m, rho kg/m^3, mbar -, m kg, k N/m, c N s/m, fy N (inf: elastic), alpha -, "
-    "d m (code separation 0.005 (h1 + h2)), kh N/m^1.5";
+    "d m (code separation 0.005 (h1 + h2)), kh N/m^1.5, zeta - (damping ratio); aspect, r, rho, mbar NaN when the "
+    "mass is given";
 
 std::vector<double> values(const SampledPair& p) {
   return {p.s1.T,     p.s2.T,     p.s1.h,  p.s2.h,  p.s1.aspect, p.s2.aspect, p.s1.r,     p.s2.r,
           p.s1.rho,   p.s2.rho,   p.s1.mbar, p.s2.mbar, p.s1.m,   p.s2.m,      p.s1.k,     p.s2.k,
-          p.s1.c,     p.s2.c,     p.s1.fy, p.s2.fy, p.s1.alpha, p.s2.alpha, p.d,        p.kh};
+          p.s1.c,     p.s2.c,     p.s1.fy, p.s2.fy, p.s1.alpha, p.s2.alpha, p.d,        p.kh,
+          p.s1.zeta,  p.s2.zeta};
 }
 
 std::string join(const std::vector<double>& v) {
@@ -59,8 +61,14 @@ std::vector<std::string> header_lines(const SampleOptions& o, const StructureSam
   h.push_back(fmt::format("seed: {}  stream: {}  engine: boost::random::taus88 seeded with "
                           "SplitMix64(seed, stream, (i1, i2), sample)",
                           s.seed(), s.stream()));
-  h.push_back(fmt::format("periods (s): [{}]  samples per pair written: {} (study: {})", join(m.periods), n,
-                          m.samples_per_pair));
+  h.push_back(fmt::format("periods (s): building 1 [{}], building 2 [{}]  samples per pair written: {} (study: {})",
+                          join(s.building(0).periods), join(s.building(1).periods), n, m.samples_per_pair));
+  for (int b = 0; b < 2; ++b) {
+    const BuildingModel& bm = s.building(b);
+    h.push_back(fmt::format("building {}: period {}; height {}; mass {}; zeta {}; yield {}; alpha {}", b + 1,
+                            bm.period_text(), bm.height_text(), bm.mass_text(), bm.zeta_text(), bm.yield_text(),
+                            bm.alpha));
+  }
   h.push_back(fmt::format("h uniform on [max({}, (T/{})^(1/{})), min({}, (T/{})^(1/{}))] m; aspect h/r in [{}] "
                           "equally likely; r = h / aspect",
                           m.height_min, m.ct_upper, m.height_exponent, m.height_max, m.ct_lower, m.height_exponent,
@@ -131,7 +139,9 @@ void write_h5(const std::string& path, const std::vector<std::string>& header, c
     for (std::size_t c = 0; c < v.size(); ++c) cols[c].push_back(v[c]);
   }
   for (std::size_t c = 0; c < columns.size(); ++c) h5::write_dataset(g.get(), columns[c], std::span<const double>(cols[c]));
-  h5::write_dataset(f.root(), "periods", std::span<const double>(s.model().periods));
+  h5::write_dataset(f.root(), "periods", std::span<const double>(s.building(0).periods));
+  h5::write_dataset(f.root(), "periods1", std::span<const double>(s.building(0).periods));
+  h5::write_dataset(f.root(), "periods2", std::span<const double>(s.building(1).periods));
   h5::write_attribute(f.root(), "seed", static_cast<std::int64_t>(s.seed()));
   h5::write_attribute(f.root(), "stream", static_cast<std::int64_t>(s.stream()));
   h5::write_attribute(f.root(), "study", study);
@@ -171,11 +181,13 @@ void run_sample(const SampleOptions& o) {
     if (comma == std::string::npos)
       throw InputError(fmt::format("--pair {} is not T1,T2", o.pair), "--pair", "write --pair T1,T2, e.g. 1.1,1.3");
     std::string a = o.pair.substr(0, comma), b = o.pair.substr(comma + 1);
-    pairs.emplace_back(find_period(model.periods, parse_period(a), a), find_period(model.periods, parse_period(b), b));
+    pairs.emplace_back(find_period(model.building(0).periods, parse_period(a), a),
+                       find_period(model.building(1).periods, parse_period(b), b));
   } else {
-    const auto np = static_cast<std::int32_t>(model.periods.size());
-    for (std::int32_t i1 = 0; i1 < np; ++i1)
-      for (std::int32_t i2 = 0; i2 < np; ++i2) pairs.emplace_back(i1, i2);
+    for (std::int64_t p = 0; p < model.period_pair_count(); ++p) {
+      const SampleId id = model.pair_id(p);
+      pairs.emplace_back(id.i1, id.i2);
+    }
   }
   if (static_cast<double>(pairs.size()) * static_cast<double>(n) > 5e7)
     throw InputError(fmt::format("{} pairs x {} samples is too many rows", pairs.size(), n), "--n",

@@ -1,0 +1,155 @@
+#pragma once
+// One building of a pair: its fully resolved settings (the [structures] defaults overridden by its own
+// [structures.building1] or [structures.building2] table) and the distributions a building may be given.
+//
+// Keys of a building table (every one optional; absent keys take the value of [structures]):
+//   periods = [..]  or  period_min, period_max, period_step   the period grid (s), as in [structures]
+//   period          a number (fixed, s), {lognormal = {median = 0.9, cov = 0.15}} or {uniform = {min, max}};
+//                   not together with a grid. A fixed period is a grid of one point; a distribution is one
+//                   "slot" whose T is drawn per sample (with the height rule: truncated to the periods the
+//                   rule admits, [ct_lower height_min^x, ct_upper height_max^x], and an error when that keeps
+//                   less than 50 % of the distribution)
+//   height          m, fixed or a distribution; default the period-height rule (uniform on the rule interval)
+//   mass            kg, fixed or a distribution; default the mass-index model m = mbar rho r^2 h
+//   zeta            viscous damping ratio, fixed or a distribution
+//   yield_coefficient  Cy = Vy / W, fixed or a distribution: fy = Cy m g (g = 9.80665 m/s^2); default the
+//                   drift/ductility rule fy = k drift h / ductility (not together with drift or ductility)
+//   alpha, hysteresis, aspect_ratios, rho_mean, rho_cov, mbar_mean, mbar_cov, mbar_min, mbar_max, drift,
+//   ductility, height_min, height_max, ct_lower, ct_upper, height_exponent   as in [structures]
+//
+// Distributions: lognormal {median, cov}: ln X ~ N(ln median, sigma^2), sigma^2 = ln(1 + cov^2) (cov is the
+// CoV of X; 0 means fixed, at most 2); uniform {min, max} with min <= max. Every draw is truncated to the
+// key's valid range (period (0, 100] s, height (0, 1000] m, mass (0, 1e10] kg, zeta [0, 1), Cy (0, 5]),
+// exactly by inverse CDF, and refused when that keeps less than 50 % of the probability.
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include <toml++/toml.h>
+
+#include "pounding/core/enum_names.hpp"
+
+namespace pounding {
+
+enum class Hysteresis : std::uint8_t {
+  bilinear,  // kinematic hardening with fy from drift/ductility (or Cy) and alpha (the paper's model)
+  elastic,   // fy = +inf: linear elastic structures
+};
+inline constexpr EnumName<Hysteresis> hysteresis_names[] = {{Hysteresis::bilinear, "bilinear"},
+                                                            {Hysteresis::elastic, "elastic"}};
+constexpr const auto& enum_names(Hysteresis) { return hysteresis_names; }  // to_string(Hysteresis), enum_names.hpp
+
+// A value or the law it is drawn from. Kind::none: the key is not given (its model's default applies).
+struct Distribution {
+  enum class Kind : std::uint8_t { none, fixed, lognormal, uniform };
+  Kind kind = Kind::none;
+  double value = 0;       // fixed: the value; lognormal: the median
+  double cov = 0;         // lognormal: CoV of X
+  double lo = 0, hi = 0;  // uniform: min, max
+
+  static Distribution fixed(double v) { return {Kind::fixed, v, 0, 0, 0}; }
+  static Distribution lognormal(double median, double cov) { return {Kind::lognormal, median, cov, 0, 0}; }
+  static Distribution uniform(double min, double max) { return {Kind::uniform, 0, 0, min, max}; }
+
+  bool given() const { return kind != Kind::none; }
+  // Drawn per sample (a lognormal with cov > 0 or a uniform with min < max); otherwise one value.
+  bool random() const;
+  double sigma() const;  // lognormal: sqrt(ln(1 + cov^2))
+  // The u-quantile (0 < u < 1) of the untruncated law; a fixed value for every u.
+  double quantile(double u) const;
+  double cdf(double x) const;
+  double median() const;
+  // "0.9 s", "lognormal(median 0.9 s, cov 0.15)", "uniform(0.8 s, 1 s)"; unit may be empty.
+  std::string describe(std::string_view unit) const;
+};
+
+// A distribution restricted to [lo, hi] (lo >= 0, hi may be +inf), sampled exactly by inverse CDF:
+// x = F^-1(F(lo) + u (F(hi) - F(lo))), through the upper tail when the interval lies in it (as the mass
+// index, sampler.cpp). kept() is F(hi) - F(lo).
+class Truncated {
+ public:
+  Truncated() = default;
+  Truncated(const Distribution& d, double lo, double hi);
+  // Parent lognormal ln X ~ N(mu, sigma^2) restricted to [lo, hi] (the mass index's law).
+  static Truncated lognormal_mu_sigma(double mu, double sigma, double lo, double hi);
+  double sample(double u) const;
+  double kept() const { return kept_; }
+
+ private:
+  Distribution d_;
+  double lo_ = 0, hi_ = 0, mu_ = 0, sigma_ = 0;
+  double pa_ = 0, pb_ = 1, qa_ = 1, qb_ = 0;  // Phi(za), Phi(zb), 1 - Phi(za), 1 - Phi(zb)
+  bool upper_tail_ = false, lognormal_ = false;
+  double kept_ = 1;
+  void set_lognormal(double mu, double sigma, double lo, double hi);
+};
+
+// lo + i step for i = 0..n-1 where n = round((hi - lo)/step) + 1; throws InputError (naming `where`) when
+// (hi - lo)/step is not an integer to 1e-9 or the grid is empty.
+std::vector<double> make_period_grid(double lo, double hi, double step, const std::string& where = "periods");
+
+// Height interval for period T: [max(h_min, (T/ct_upper)^(1/x)), min(h_max, (T/ct_lower)^(1/x))].
+struct HeightInterval {
+  double lo = 0.0, hi = 0.0;
+};
+
+// Valid ranges of the distribution keys (the truncation of their draws).
+inline constexpr double max_period = 100.0, max_height = 1000.0, max_mass = 1e10, max_cy = 5.0;
+
+// One building's resolved settings. `resolved` false: not yet resolved -- StructureModel::building(b) then
+// takes every value from the shared [structures] fields (a model built in code).
+struct BuildingModel {
+  bool resolved = false;
+  std::vector<double> periods;  // the grid (s); a fixed period: {T}; a period distribution: {its median}
+  Distribution period;          // none: the grid; fixed: one point; random: one slot drawn per sample
+  Distribution height;          // none: the period-height rule
+  Distribution mass;            // none: the mass-index model
+  Distribution zeta;            // always given (fixed: [structures] zeta)
+  Distribution yield_coefficient;  // none: drift/ductility
+  std::vector<double> aspect_ratios;
+  double rho_mean = 0, rho_cov = 0, mbar_mean = 0, mbar_cov = 0, mbar_min = 0, mbar_max = 0;
+  Hysteresis hysteresis = Hysteresis::bilinear;
+  double drift = 0, ductility = 0, alpha = 0;
+  double height_min = 0, height_max = 0, ct_lower = 0, ct_upper = 0, height_exponent = 0;
+  bool rule_explicit = false;  // ct_lower, ct_upper or height_exponent set in this table or [structures]
+
+  std::size_t slots() const { return periods.size(); }
+  bool height_from_rule() const { return !height.given(); }
+  bool mass_index_model() const { return !mass.given(); }
+  // The period range where the rule interval is non-empty: [ct_lower height_min^x, ct_upper height_max^x].
+  HeightInterval rule_periods() const;
+  // The rule interval at T; lo > hi when empty.
+  HeightInterval rule_heights(double T) const;
+  // Descriptions for the settings: "lognormal(median 0.9 s, cov 0.15)", "grid of 11 periods (1 s to 1.5 s)",
+  // "period-height rule", "mass-index model", "drift 0.02 / ductility 6", "Cy 0.1" ...
+  std::string period_text() const;
+  std::string height_text() const;
+  std::string mass_text() const;
+  std::string zeta_text() const;
+  std::string yield_text() const;
+};
+
+// A distribution key: a number, {lognormal = {median, cov}} or {uniform = {min, max}}. `name` is the table
+// holding the key ("structures.building1"), for errors inside it ("[structures.building1.period.lognormal].cov");
+// `where` is the key's location. Only the shape and types are checked here (ranges: validate_building).
+Distribution parse_distribution(const toml::node& n, std::string_view key, const std::string& file,
+                                const std::string& name, const std::string& where);
+
+using WhereFn = std::function<std::string(std::string_view key)>;
+
+// Reads one building table over `defaults` (the building [structures] makes); t may be null (the table is
+// absent: the defaults). name: "structures.building1". Keys absent from the table point at `fallback`
+// (their [structures] key) in errors. Validates the result (validate_building).
+BuildingModel parse_building(const toml::table* t, const std::string& file, const std::string& name,
+                             BuildingModel defaults, const WhereFn& fallback);
+
+// Checks every value and cross-condition of one resolved building (ranges, the period grid, the rule interval
+// of every grid period, the truncations, a given height against an explicit rule); where(key) locates a key.
+void validate_building(const BuildingModel& b, const WhereFn& where);
+
+// The rule interval at T, or InputError naming T and both bounds (where) when it is empty.
+HeightInterval checked_rule_heights(const BuildingModel& b, double T, const std::string& where);
+
+}  // namespace pounding

@@ -1,0 +1,447 @@
+// One building's settings and distributions. See building.hpp.
+#include "pounding/sampling/building.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <optional>
+
+#include <boost/math/distributions/normal.hpp>
+#include <boost/math/policies/policy.hpp>
+#include <fmt/format.h>
+
+#include "pounding/config/config.hpp"
+#include "pounding/core/error.hpp"
+
+namespace pounding {
+
+namespace {
+
+// As in sampler.cpp: Boost.Math in double precision, no promotion to long double.
+using DoublePolicy = boost::math::policies::policy<boost::math::policies::promote_double<false>>;
+using Normal = boost::math::normal_distribution<double, DoublePolicy>;
+
+std::string fmt_num(double x) { return fmt::format("{:.6g}", x); }
+
+std::string with_unit(double x, std::string_view unit) {
+  return unit.empty() ? fmt_num(x) : fmt::format("{} {}", fmt_num(x), unit);
+}
+
+void need(bool ok, std::string_view key, double value, const std::string& range, const WhereFn& where) {
+  if (!ok || !std::isfinite(value))
+    throw InputError(fmt::format("{} = {} is out of range", key, fmt_num(value)), where(key),
+                     fmt::format("give {} in {}", key, range));
+}
+
+// The valid range of a distribution key: lo < x (or lo <= x when lo_closed) and x <= hi (x < hi when hi_open).
+struct KeyRange {
+  double lo, hi;
+  bool lo_closed, hi_open;
+  std::string_view text, unit;
+  bool contains(double x) const {
+    return std::isfinite(x) && (lo_closed ? x >= lo : x > lo) && (hi_open ? x < hi : x <= hi);
+  }
+};
+constexpr KeyRange period_range{0, max_period, false, false, "(0, 100] s", "s"};
+constexpr KeyRange height_range{0, max_height, false, false, "(0, 1000] m", "m"};
+constexpr KeyRange mass_range{0, max_mass, false, false, "(0, 1e10] kg", "kg"};
+constexpr KeyRange zeta_range{0, 1, true, true, "[0, 1)", ""};
+constexpr KeyRange cy_range{0, max_cy, false, false, "(0, 5]", ""};
+
+// Ranges of the parameters of d, then the probability the valid range keeps.
+void check_distribution(const Distribution& d, std::string_view key, const KeyRange& r, const WhereFn& where) {
+  using K = Distribution::Kind;
+  const auto bad = [&](std::string_view what, double v, std::string_view range) {
+    throw InputError(fmt::format("{}: {} = {} is out of range", key, what, fmt_num(v)), where(key),
+                     fmt::format("give the {} of {} in {}", what, key, range));
+  };
+  if (d.kind == K::fixed) need(r.contains(d.value), key, d.value, std::string(r.text), where);
+  if (d.kind == K::lognormal) {
+    if (!r.contains(d.value) || !(d.value > 0)) bad("median", d.value, r.text);
+    if (!(d.cov >= 0 && d.cov <= 2)) bad("cov", d.cov, "[0, 2]");
+  }
+  if (d.kind == K::uniform) {
+    if (!r.contains(d.lo)) bad("min", d.lo, r.text);
+    if (!r.contains(d.hi)) bad("max", d.hi, r.text);
+    if (!(d.lo <= d.hi))
+      throw InputError(fmt::format("{}: uniform min = {} exceeds max = {}", key, fmt_num(d.lo), fmt_num(d.hi)),
+                       where(key), "give min <= max");
+  }
+  if (d.kind == K::lognormal && d.random()) {
+    const double kept = Truncated(d, r.lo, r.hi).kept();
+    if (!(kept >= 0.5))
+      throw InputError(fmt::format("{} = {} keeps only {:.3g} % of its probability (at least 50 % needed) in the "
+                                   "valid range {}",
+                                   key,
+                                   d.describe(r.unit), 100 * kept, r.text),
+                       where(key), "move the median into the range or lower the cov");
+  }
+}
+
+}  // namespace
+
+// ---------------------------------------------------------------- Distribution
+
+bool Distribution::random() const {
+  return (kind == Kind::lognormal && cov > 0) || (kind == Kind::uniform && hi > lo);
+}
+
+double Distribution::sigma() const { return kind == Kind::lognormal ? std::sqrt(std::log1p(cov * cov)) : 0.0; }
+
+double Distribution::quantile(double u) const {
+  switch (kind) {
+    case Kind::lognormal:
+      return cov > 0 ? std::exp(std::log(value) + sigma() * boost::math::quantile(Normal(), u)) : value;
+    case Kind::uniform:
+      return lo + (hi - lo) * u;
+    default:
+      return value;
+  }
+}
+
+double Distribution::cdf(double x) const {
+  switch (kind) {
+    case Kind::lognormal:
+      if (!(x > 0)) return 0.0;
+      if (!(cov > 0)) return x >= value ? 1.0 : 0.0;
+      if (std::isinf(x)) return 1.0;
+      return boost::math::cdf(Normal(), (std::log(x) - std::log(value)) / sigma());
+    case Kind::uniform:
+      if (!(hi > lo)) return x >= lo ? 1.0 : 0.0;
+      return std::clamp((x - lo) / (hi - lo), 0.0, 1.0);
+    default:
+      return x >= value ? 1.0 : 0.0;
+  }
+}
+
+double Distribution::median() const { return kind == Kind::uniform ? 0.5 * (lo + hi) : value; }
+
+std::string Distribution::describe(std::string_view unit) const {
+  switch (kind) {
+    case Kind::none:
+      return "not given";
+    case Kind::lognormal:
+      return fmt::format("lognormal(median {}, cov {})", with_unit(value, unit), fmt_num(cov));
+    case Kind::uniform:
+      return fmt::format("uniform({}, {})", with_unit(lo, unit), with_unit(hi, unit));
+    default:
+      return with_unit(value, unit);
+  }
+}
+
+// ---------------------------------------------------------------- Truncated
+
+Truncated::Truncated(const Distribution& d, double lo, double hi) : d_(d), lo_(lo), hi_(hi) {
+  if (d.kind == Distribution::Kind::lognormal && d.cov > 0) {
+    set_lognormal(std::log(d.value), d.sigma(), lo, hi);
+  } else if (d.kind == Distribution::Kind::uniform && d.hi > d.lo) {
+    lo_ = std::max(d.lo, lo), hi_ = std::min(d.hi, hi);
+    kept_ = hi_ >= lo_ ? (hi_ - lo_) / (d.hi - d.lo) : 0.0;
+  } else {
+    const double v = d.median();
+    kept_ = v >= lo && v <= hi ? 1.0 : 0.0;
+  }
+}
+
+Truncated Truncated::lognormal_mu_sigma(double mu, double sigma, double lo, double hi) {
+  Truncated t;
+  t.set_lognormal(mu, sigma, lo, hi);
+  return t;
+}
+
+void Truncated::set_lognormal(double mu, double sigma, double lo, double hi) {
+  lognormal_ = true, mu_ = mu, sigma_ = sigma, lo_ = lo, hi_ = hi;
+  const Normal nd;
+  const double za = lo > 0 ? (std::log(lo) - mu) / sigma : -std::numeric_limits<double>::infinity();
+  const double zb = std::isfinite(hi) ? (std::log(hi) - mu) / sigma : std::numeric_limits<double>::infinity();
+  pa_ = std::isfinite(za) ? cdf(nd, za) : 0.0;
+  pb_ = std::isfinite(zb) ? cdf(nd, zb) : 1.0;
+  qa_ = std::isfinite(za) ? cdf(complement(nd, za)) : 1.0;
+  qb_ = std::isfinite(zb) ? cdf(complement(nd, zb)) : 0.0;
+  upper_tail_ = za > 0;
+  kept_ = upper_tail_ ? qa_ - qb_ : pb_ - pa_;
+}
+
+double Truncated::sample(double u) const {
+  if (!lognormal_) {
+    if (d_.kind == Distribution::Kind::uniform && d_.hi > d_.lo) return lo_ + (hi_ - lo_) * u;
+    return d_.median();
+  }
+  // ln X = mu + sigma Z with Z standard normal restricted to [za, zb]: z = Phi^-1(Phi(za) + u (Phi(zb) - Phi(za))),
+  // or through the upper tail Q = 1 - Phi when za > 0 (Phi ~ 1 loses digits there).
+  const Normal nd;
+  const double z = upper_tail_ ? quantile(complement(nd, qa_ - u * (qa_ - qb_))) : quantile(nd, pa_ + u * (pb_ - pa_));
+  return std::clamp(std::exp(mu_ + sigma_ * z), lo_, hi_);  // rounding only
+}
+
+// ---------------------------------------------------------------- grids and the rule
+
+std::vector<double> make_period_grid(double lo, double hi, double step, const std::string& where) {
+  if (!(std::isfinite(lo) && std::isfinite(hi) && std::isfinite(step)) || !(step > 0) || !(hi >= lo) || !(lo > 0))
+    throw InputError(fmt::format("period grid {}..{} step {} is not a grid", fmt_num(lo), fmt_num(hi), fmt_num(step)),
+                     where, "give 0 < period_min <= period_max and period_step > 0");
+  const double steps = (hi - lo) / step;
+  const double n_steps = std::round(steps);
+  if (std::abs(steps - n_steps) > 1e-9 * std::max(1.0, n_steps) || n_steps > 999)
+    throw InputError(fmt::format("(period_max - period_min) / period_step = {} is not an integer <= 999",
+                                 fmt::format("{:.12g}", steps)),
+                     where, "choose period_max = period_min + n period_step");
+  std::vector<double> grid(static_cast<std::size_t>(n_steps) + 1);
+  // lo + i step, rounded to 1e-12 s so that 1.00 + 2 x 0.05 is the double nearest 1.1, as a user typing
+  // the grid would get; never accumulated.
+  for (std::size_t i = 0; i < grid.size(); ++i)
+    grid[i] = std::round((lo + static_cast<double>(i) * step) * 1e12) / 1e12;
+  return grid;
+}
+
+HeightInterval BuildingModel::rule_periods() const {
+  return {ct_lower * std::pow(height_min, height_exponent), ct_upper * std::pow(height_max, height_exponent)};
+}
+
+HeightInterval BuildingModel::rule_heights(double T) const {
+  // eq. (6): ct_lower h^x <= T <= ct_upper h^x  <=>  (T/ct_upper)^(1/x) <= h <= (T/ct_lower)^(1/x)
+  const double rule_lo = std::pow(T / ct_upper, 1.0 / height_exponent);
+  const double rule_hi = std::pow(T / ct_lower, 1.0 / height_exponent);
+  return {std::max(height_min, rule_lo), std::min(height_max, rule_hi)};
+}
+
+HeightInterval checked_rule_heights(const BuildingModel& b, double T, const std::string& where) {
+  const HeightInterval iv = b.rule_heights(T);
+  if (!(iv.lo <= iv.hi))
+    throw InputError(
+        fmt::format("no height satisfies T = {} s: lower bound max({}, (T/{})^(1/{})) = {} m exceeds upper bound "
+                    "min({}, (T/{})^(1/{})) = {} m",
+                    fmt_num(T), fmt_num(b.height_min), fmt_num(b.ct_upper), fmt_num(b.height_exponent),
+                    fmt_num(iv.lo), fmt_num(b.height_max), fmt_num(b.ct_lower), fmt_num(b.height_exponent),
+                    fmt_num(iv.hi)),
+        where, "remove that period from the grid, or widen height_min/height_max or ct_lower/ct_upper");
+  return iv;
+}
+
+std::string BuildingModel::period_text() const {
+  if (period.given()) return period.describe("s");
+  return fmt::format("grid of {} period{} ({} s to {} s)", periods.size(), periods.size() == 1 ? "" : "s",
+                     fmt_num(periods.empty() ? 0.0 : periods.front()), fmt_num(periods.empty() ? 0.0 : periods.back()));
+}
+std::string BuildingModel::height_text() const {
+  return height.given() ? height.describe("m") : "period-height rule";
+}
+std::string BuildingModel::mass_text() const { return mass.given() ? mass.describe("kg") : "mass-index model"; }
+std::string BuildingModel::zeta_text() const { return zeta.describe(""); }
+std::string BuildingModel::yield_text() const {
+  if (hysteresis == Hysteresis::elastic) return "elastic";
+  if (yield_coefficient.given()) return "Cy " + yield_coefficient.describe("");
+  return fmt::format("drift {} / ductility {}", fmt_num(drift), fmt_num(ductility));
+}
+
+// ---------------------------------------------------------------- validation
+
+namespace {
+
+void check_grid(const BuildingModel& b, const WhereFn& where) {
+  const std::string_view key = b.period.given() ? "period" : "periods";
+  if (b.periods.empty() || b.periods.size() > 1000)
+    throw InputError(fmt::format("the period grid has {} points", b.periods.size()), where(key),
+                     "give 1 to 1000 periods");
+  for (std::size_t i = 0; i < b.periods.size(); ++i) {
+    need(b.periods[i] > 0 && b.periods[i] <= max_period, key, b.periods[i], "(0, 100] s", where);
+    if (i > 0 && !(b.periods[i] > b.periods[i - 1]))
+      throw InputError(fmt::format("periods are not strictly increasing at {} s", fmt_num(b.periods[i])),
+                       where(key), "list each period once, in increasing order");
+  }
+}
+
+void check_parameters(const BuildingModel& b, const WhereFn& where) {
+  if (b.aspect_ratios.empty() || b.aspect_ratios.size() > 100)
+    throw InputError(fmt::format("aspect_ratios has {} values", b.aspect_ratios.size()), where("aspect_ratios"),
+                     "give 1 to 100 aspect ratios h/r");
+  for (double a : b.aspect_ratios) need(a > 0 && a <= 100, "aspect_ratios", a, "(0, 100]", where);
+  need(b.rho_mean > 0 && b.rho_mean <= 1e5, "rho_mean", b.rho_mean, "(0, 1e5] kg/m^3", where);
+  need(b.rho_cov >= 0 && b.rho_cov <= 2, "rho_cov", b.rho_cov, "[0, 2]", where);
+  need(b.mbar_mean > 0 && b.mbar_mean <= 100, "mbar_mean", b.mbar_mean, "(0, 100]", where);
+  need(b.mbar_cov > 0 && b.mbar_cov <= 2, "mbar_cov", b.mbar_cov, "(0, 2]", where);
+  need(b.mbar_min > 0 && b.mbar_min <= 100, "mbar_min", b.mbar_min, "(0, 100]", where);
+  need(b.mbar_max > b.mbar_min && b.mbar_max <= 1000, "mbar_max", b.mbar_max,
+       fmt::format("(mbar_min = {}, 1000]", fmt_num(b.mbar_min)), where);
+  check_distribution(b.zeta, "zeta", zeta_range, where);
+  need(b.drift > 0 && b.drift <= 1, "drift", b.drift, "(0, 1]", where);
+  need(b.ductility >= 1 && b.ductility <= 100, "ductility", b.ductility, "[1, 100]", where);
+  need(b.alpha >= 0 && b.alpha < 1, "alpha", b.alpha, "[0, 1)", where);
+  need(b.height_min > 0 && b.height_min <= max_height, "height_min", b.height_min, "(0, 1000] m", where);
+  need(b.height_max >= b.height_min && b.height_max <= max_height, "height_max", b.height_max,
+       fmt::format("[height_min = {}, 1000] m", fmt_num(b.height_min)), where);
+  need(b.ct_lower > 0 && b.ct_lower <= 10, "ct_lower", b.ct_lower, "(0, 10]", where);
+  need(b.ct_upper > b.ct_lower && b.ct_upper <= 10, "ct_upper", b.ct_upper,
+       fmt::format("(ct_lower = {}, 10]", fmt_num(b.ct_lower)), where);
+  need(b.height_exponent > 0 && b.height_exponent <= 2, "height_exponent", b.height_exponent, "(0, 2]", where);
+}
+
+// A period distribution with heights from the rule: T is drawn from the periods the rule admits.
+void check_period_truncation(const BuildingModel& b, const WhereFn& where) {
+  const HeightInterval pr = b.rule_periods();
+  const double hi = std::min(pr.hi, max_period);
+  const double kept = pr.lo <= hi ? Truncated(b.period, pr.lo, hi).kept() : 0.0;
+  if (!(kept >= 0.5))
+    throw InputError(fmt::format("period = {} keeps only {:.3g} % of its probability (at least 50 % needed) in "
+                                 "the periods the period-height rule admits, [{}, {}] s (ct_lower height_min^x, ct_upper height_max^x)",
+                                 b.period.describe("s"), 100 * kept, fmt_num(pr.lo), fmt_num(hi)),
+                     where("period"),
+                     "centre the period distribution in that range, give a height, or widen height_min/height_max "
+                     "or ct_lower/ct_upper");
+}
+
+// A given height against a rule the study asks for: every grid period, or the median of a distribution.
+void check_given_height(const BuildingModel& b, const WhereFn& where) {
+  const double h = b.height.median(), hx = std::pow(h, b.height_exponent);
+  const std::vector<double> periods = b.period.random() ? std::vector<double>{b.period.median()} : b.periods;
+  for (double T : periods)
+    if (!(T >= b.ct_lower * hx && T <= b.ct_upper * hx))
+      throw InputError(fmt::format("height {} m is outside the period-height rule at T = {} s: "
+                                   "ct_lower h^x = {} s, ct_upper h^x = {} s",
+                                   fmt_num(h), fmt_num(T), fmt_num(b.ct_lower * hx), fmt_num(b.ct_upper * hx)),
+                       where("height"),
+                       "give a height the rule admits, or drop ct_lower/ct_upper/height_exponent to take the "
+                       "height as given");
+}
+
+void check_mass_index(const BuildingModel& b, const WhereFn& where) {
+  // The truncation interval must carry probability, or the inverse CDF has nothing to invert.
+  const double sigma = std::sqrt(std::log1p(b.mbar_cov * b.mbar_cov));
+  const double mu = std::log(b.mbar_mean) - 0.5 * sigma * sigma;
+  const double mass = Truncated::lognormal_mu_sigma(mu, sigma, b.mbar_min, b.mbar_max).kept();
+  if (!(mass > 1e-12))
+    throw InputError(fmt::format("the lognormal(mean {}, CoV {}) has probability {} on [mbar_min, mbar_max] = "
+                                 "[{}, {}]",
+                                 fmt_num(b.mbar_mean), fmt_num(b.mbar_cov), mass, fmt_num(b.mbar_min),
+                                 fmt_num(b.mbar_max)),
+                     where("mbar_min"), "put the truncation interval where the distribution has mass");
+}
+
+}  // namespace
+
+void validate_building(const BuildingModel& b, const WhereFn& where) {
+  check_grid(b, where);
+  check_parameters(b, where);
+  check_distribution(b.period, "period", period_range, where);
+  check_distribution(b.height, "height", height_range, where);
+  check_distribution(b.mass, "mass", mass_range, where);
+  check_distribution(b.yield_coefficient, "yield_coefficient", cy_range, where);
+  if (b.yield_coefficient.given() && b.hysteresis == Hysteresis::elastic)
+    throw InputError("yield_coefficient is given for an elastic building", where("yield_coefficient"),
+                     "remove yield_coefficient, or set hysteresis = \"bilinear\"");
+  if (b.height_from_rule() && b.period.random()) check_period_truncation(b, where);
+  if (b.height_from_rule() && !b.period.random())
+    for (double T : b.periods) checked_rule_heights(b, T, where(b.period.given() ? "period" : "periods"));
+  if (!b.height_from_rule() && b.rule_explicit) check_given_height(b, where);
+  if (b.mass_index_model()) check_mass_index(b, where);
+}
+
+// ---------------------------------------------------------------- parsing
+
+namespace {
+
+double required_number(config::TableReader& r, std::string_view key) {
+  const toml::node* n = r.get(key);
+  if (!n) throw InputError(fmt::format("{} is missing", key), r.where(key), fmt::format("write {} = <number>", key));
+  return config::number(*n, key, r.where(key));
+}
+
+}  // namespace
+
+Distribution parse_distribution(const toml::node& n, std::string_view key, const std::string& file,
+                                const std::string& name, const std::string& where) {
+  const std::string fix = fmt::format("write {0} = <number>, "
+                                      "{0} = {{lognormal = {{median = <number>, cov = <number>}}}} "
+                                      "or {0} = {{uniform = {{min = <number>, max = <number>}}}}",
+                                      key);
+  if (n.is_number()) return Distribution::fixed(config::number(n, key, where));
+  if (!n.is_table())
+    throw InputError(fmt::format("{} must be a number or a distribution table, not {}", key, config::type_name(n)),
+                     where, fix);
+  const std::string sub = fmt::format("{}.{}", name, key);
+  config::TableReader r(n.as_table(), file, sub);
+  const toml::table* ln = r.table("lognormal");
+  const toml::table* un = r.table("uniform");
+  r.finish("lognormal, uniform");
+  if (!ln == !un)
+    throw InputError(fmt::format("{} names {} distribution", key, ln ? "more than one" : "no"), where, fix);
+  config::TableReader q(ln ? ln : un, file, sub + (ln ? ".lognormal" : ".uniform"));
+  const double a = required_number(q, ln ? "median" : "min"), b = required_number(q, ln ? "cov" : "max");
+  q.finish(ln ? "median, cov" : "min, max");
+  return ln ? Distribution::lognormal(a, b) : Distribution::uniform(a, b);
+}
+
+namespace {
+
+// periods = [..] or period_min/period_max/period_step or period; the grid is only replaced when given.
+void read_periods(config::TableReader& r, const std::string& file, const std::string& name, BuildingModel& b) {
+  const toml::node* periods = r.get("periods");
+  const toml::node* period = r.get("period");
+  std::optional<double> pmin, pmax, pstep;
+  for (auto [key, out] : {std::pair{"period_min", &pmin}, {"period_max", &pmax}, {"period_step", &pstep}})
+    if (const toml::node* n = r.get(key)) *out = config::number(*n, key, r.where(key));
+  if (period && (periods || pmin || pmax || pstep))
+    throw InputError("both period and a period grid (periods or period_min/period_max/period_step) are given",
+                     r.where("period"), "give either period = <number or distribution> or the grid, not both");
+  if (periods && (pmin || pmax || pstep))
+    throw InputError("both periods and period_min/period_max/period_step are given", r.where("periods"),
+                     "give either the list periods = [..] or the grid period_min, period_max, period_step");
+  if (periods) b.periods = config::numbers(*periods, "periods", r.where("periods")), b.period = {};
+  if (pmin || pmax || pstep) {
+    const std::string w = r.where(pmax ? "period_max" : pmin ? "period_min" : "period_step");
+    b.periods = make_period_grid(pmin.value_or(1.00), pmax.value_or(1.50), pstep.value_or(0.05), w), b.period = {};
+  }
+  if (period) {
+    b.period = parse_distribution(*period, "period", file, name, r.where("period"));
+    b.periods = {b.period.median()};
+  }
+}
+
+}  // namespace
+
+BuildingModel parse_building(const toml::table* t, const std::string& file, const std::string& name,
+                             BuildingModel b, const WhereFn& fallback) {
+  b.resolved = true;
+  config::TableReader r(t, file, name);
+  const auto where = [&](std::string_view key) {
+    if (t && t->get(key)) return r.where(key);
+    if (t && key == "periods")  // a grid made from period_min/period_max/period_step
+      for (const char* k : {"period_max", "period_min", "period_step"})
+        if (t->get(k)) return r.where(k);
+    return fallback(key);
+  };
+  const auto number = [&](const char* key, double& out) {
+    if (const toml::node* n = r.get(key)) out = config::number(*n, key, r.where(key));
+  };
+  for (auto [key, out] : {std::pair{"rho_mean", &b.rho_mean}, {"rho_cov", &b.rho_cov}, {"mbar_mean", &b.mbar_mean},
+                          {"mbar_cov", &b.mbar_cov}, {"mbar_min", &b.mbar_min}, {"mbar_max", &b.mbar_max},
+                          {"drift", &b.drift}, {"ductility", &b.ductility}, {"alpha", &b.alpha},
+                          {"height_min", &b.height_min}, {"height_max", &b.height_max}, {"ct_lower", &b.ct_lower},
+                          {"ct_upper", &b.ct_upper}, {"height_exponent", &b.height_exponent}})
+    number(key, *out);
+  for (const char* key : {"ct_lower", "ct_upper", "height_exponent"}) b.rule_explicit |= r.get(key) != nullptr;
+  if (const toml::node* n = r.get("aspect_ratios"))
+    b.aspect_ratios = config::numbers(*n, "aspect_ratios", r.where("aspect_ratios"));
+  if (const toml::node* n = r.get("hysteresis")) {
+    const std::string h = config::string(*n, "hysteresis", r.where("hysteresis"));
+    const std::optional<Hysteresis> known = parse_enum(hysteresis_names, h);
+    if (!known)
+      throw InputError(fmt::format("hysteresis = \"{}\" is not a known model", h), r.where("hysteresis"),
+                       "write hysteresis = " + enum_name_list(hysteresis_names, " or ", "\""));
+    b.hysteresis = *known;
+  }
+  read_periods(r, file, name, b);
+  for (auto [key, out] : {std::pair{"height", &b.height}, {"mass", &b.mass}, {"zeta", &b.zeta},
+                          {"yield_coefficient", &b.yield_coefficient}})
+    if (const toml::node* n = r.get(key)) *out = parse_distribution(*n, key, file, name, r.where(key));
+  if (b.yield_coefficient.given() && (r.get("drift") || r.get("ductility")))
+    throw InputError("both yield_coefficient and drift/ductility are given", r.where("yield_coefficient"),
+                     "give either yield_coefficient (fy = Cy m g) or drift and ductility (fy = k drift h / ductility)");
+  r.finish("periods, period_min, period_max, period_step, period, height, mass, zeta, yield_coefficient, alpha, "
+           "hysteresis, aspect_ratios, rho_mean, rho_cov, mbar_mean, mbar_cov, mbar_min, mbar_max, drift, ductility, "
+           "height_min, height_max, ct_lower, ct_upper, height_exponent");
+  validate_building(b, where);
+  return b;
+}
+
+}  // namespace pounding
