@@ -42,9 +42,15 @@ Data::Data(const results::Results& r)
       impacts(r.has_group("impacts")),
       keep_coarse(r.settings.find("analysis", "coarse") && r.settings.text("analysis", "coarse") == "keep") {}
 
-double Data::zeta(int, std::size_t) const { return mod.zeta; }
+double Data::zeta(int b, std::size_t m) const {
+  const std::vector<double>& z = b == 1 ? mod.zeta1 : mod.zeta2;
+  return z.empty() ? mod.zeta : z[m];  // files from before the per-building models: one damping ratio
+}
 
-const std::vector<double>& Data::periods(int) const { return mod.periods; }
+const std::vector<double>& Data::periods(int b) const {
+  const std::vector<double>& p = b == 1 ? mod.periods1 : mod.periods2;
+  return p.empty() ? mod.periods : p;
+}
 
 separation::Demands Data::demands(bool metres) const {
   separation::Demands d;

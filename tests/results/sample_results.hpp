@@ -50,6 +50,8 @@ inline results::Results sample_results() {
   for (const auto& [name, member] : model_doubles) (m.*member) = {1.0, 2.0, 3.0, 4.0};
   m.T1 = {0.5, 0.5, 1.0, 1.0}, m.T2 = {0.5, 1.0, 0.5, 1.0};
   m.code_gap = {0.1, 0.2, 0.3, 0.4};
+  m.zeta1 = m.zeta2 = {0.05, 0.05, 0.05, 0.05}, m.alpha1 = m.alpha2 = {0.05, 0.05, 0.05, 0.05};
+  m.periods1 = m.periods2 = m.periods;
 
   r.gap_ratios = {0.2, 0.5};
   r.gaps = gap_table(r.gap_ratios, m.code_gap);

@@ -114,7 +114,8 @@ TEST(Results, EveryDatasetSaysItsUnitsAndMeaning) {
   auto f = h5::open_read(t.file("a.h5"));
   std::vector<std::array<std::string, 3>> all;
   datasets(f.get(), "", all);
-  EXPECT_EQ(all.size(), 9u + std::size(results::model_doubles) + 4 + 2 + 4 + 10);
+  // records 9, models: the doubles + i1, i2, sample, periods, periods1, periods2; gaps 2; uncoupled 4; impacts 10
+  EXPECT_EQ(all.size(), 9u + std::size(results::model_doubles) + 6 + 2 + 4 + 10);
   for (const auto& [path, units, description] : all) {
     EXPECT_FALSE(units.empty()) << path << " has no units";
     EXPECT_FALSE(description.empty()) << path << " has no description";
