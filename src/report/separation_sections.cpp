@@ -47,7 +47,7 @@ std::string buildings(const Data& r) {
     const auto& h = b == 1 ? r.mod.h1 : r.mod.h2;
     const auto& m = b == 1 ? r.mod.m1 : r.mod.m2;
     s += fmt::format("- building {}: T {}, height {}, mass {}, damping {}", b, spread(T, 1, "s"), spread(h, 1, "m"),
-                     spread(m, 1e-6, "Gg"), spread(zetas(r, b), 100, "%"));
+                     spread(m, 1e-3, "t"), spread(zetas(r, b), 100, "%"));
     const std::string section = fmt::format("structures.building{}", b);
     std::string given;
     for (const char* key : {"period", "height", "mass", "zeta", "yield"})
