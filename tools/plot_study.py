@@ -1,10 +1,22 @@
 #!/usr/bin/python3
-"""Plots from a pounding results file (h5py + matplotlib, Debian's python3 packages):
+"""Plots from a pounding results file (h5py + matplotlib, Debian's python3 packages).
+Pair studies (/settings/structures heights_specified == 1, both buildings' heights given):
+  <prefix>-separation.png   probability of at least one impact versus separation in metres, with the bootstrap
+                            band, the code rules and the separation advice -- all read from the engine's own
+                            `pounding report RESULTS.h5 --csv`, so the figure and the report agree
+Grid studies:
   <prefix>-probability.png  probability of at least one impact versus gap ratio: the continuous curve,
-                            the study's gap ratios with 95 % Wilson intervals, the cubic fit, the paper's eq. 10
+                            the study's gap ratios with 95 % Wilson intervals, the cubic fit, and (when the study
+                            compares with "stochastic-pounding", or does not say) the paper's Table 3 and eq. 10
   <prefix>-periods.png      T1 x T2 heat map of the probability at one gap ratio
-Usage: tools/plot_study.py RESULTS.h5 [--prefix out/study] [--ratio 0.3]"""
+Every figure: PNG at 200 dpi, plus each --format given (svg, pdf).
+Usage: tools/plot_study.py RESULTS.h5 [--prefix out/study] [--ratio 0.3] [--format svg pdf] [--pounding BIN]"""
 import argparse
+import csv
+import io
+import os
+import shutil
+import subprocess
 
 import h5py
 import matplotlib
@@ -25,6 +37,103 @@ def wilson(k, n, z=1.959963984540054):
     return min(max(centre - half, 0.0), p), max(min(centre + half, 1.0), p)
 
 
+DPI = 200
+
+
+def save(fig, base, formats):
+    """base.png at 200 dpi plus base.<ext> for each extra format; returns the names written."""
+    names = [base + ".png"]
+    fig.savefig(names[0], dpi=DPI)
+    for ext in formats:
+        names.append(base + "." + ext)
+        fig.savefig(names[-1], dpi=DPI)
+    plt.close(fig)
+    return names
+
+
+def attr_str(v):
+    return v.decode() if isinstance(v, bytes) else str(v)
+
+
+def find_pounding(given):
+    """--pounding, else $POUNDING, else <repo>/build/pounding next to this script, else `pounding` on PATH."""
+    if given:
+        cands = [given]
+    elif os.environ.get("POUNDING"):
+        cands = [os.environ["POUNDING"]]
+    else:
+        here = os.path.dirname(os.path.abspath(__file__))
+        cands = [os.path.join(here, "..", "build", "pounding"), shutil.which("pounding")]
+    for c in cands:
+        if c and os.path.isfile(c) and os.access(c, os.X_OK):
+            return c
+    tried = ", ".join(str(c) for c in cands if c) or "nothing"
+    raise SystemExit(f"plot_study.py: cannot find an executable pounding binary (tried {tried}; none on PATH "
+                     "either unless listed); give it with --pounding BIN or $POUNDING")
+
+
+def report_rows(binary, results):
+    r = subprocess.run([binary, "report", results, "--csv"], capture_output=True, text=True)
+    if r.returncode != 0:
+        raise SystemExit(f"plot_study.py: `{binary} report {results} --csv` failed ({r.returncode}): {r.stderr}")
+    return list(csv.DictReader(io.StringIO(r.stdout)))
+
+
+def plot_pair(f, a, prefix):
+    rows = report_rows(find_pounding(a.pounding), a.results)
+    conf = float(f["settings/report"].attrs.get("confidence", 0.95)) if "settings/report" in f else 0.95
+    band = [r for r in rows if r["table"] == "curve_band"]
+    if not band:
+        raise SystemExit(f"plot_study.py: the report of {a.results} has no curve_band rows; nothing to plot")
+    g = np.array([float(r["gap_m"]) for r in band])
+    p = 100 * np.array([float(r["probability"]) for r in band])
+    lo = 100 * np.array([float(r["lo"]) for r in band])
+    hi = 100 * np.array([float(r["hi"]) for r in band])
+    n = band[0]["n"]
+
+    fig, ax = plt.subplots(figsize=(8, 5))
+    ax.fill_between(g, lo, hi, color="C0", alpha=0.25,
+                    label=f"{100 * conf:g} % bootstrap band over records and models")
+    ax.plot(g, p, "C0", lw=2, label=f"this study (n = {n})")
+
+    # code rules: rules with equal separations share one line and one label
+    rules = {}
+    for r in rows:
+        if r["table"] == "code_rule":
+            key = round(float(r["gap_m"]), 6)
+            rules.setdefault(key, [float(r["probability"]), []])[1].append(r["name"])
+    for i, (gm, (prob, names)) in enumerate(sorted(rules.items())):
+        colour = f"C{2 + i % 8}"
+        ax.axvline(gm, color=colour, lw=1, alpha=0.8)
+        ax.text(gm, 98 - 9 * (i % 6), "\n".join(names) + f": P = {100 * prob:.1f} %", rotation=0, fontsize=6,
+                color=colour, va="top", ha="left",
+                bbox=dict(facecolor="white", edgecolor="none", alpha=0.7, pad=1))
+
+    # separation advice: target probability at the separation, with its interval; dashed at the upper end
+    first = True
+    for r in rows:
+        if r["table"] != "separation":
+            continue
+        s, t = float(r["gap_m"]), 100 * float(r["probability"])
+        slo, shi = float(r["lo"]), float(r["hi"])
+        ax.errorbar([s], [t], xerr=[[s - slo], [shi - s]], fmt="o", color="k", capsize=3,
+                    label="separation for a target probability (interval)" if first else None)
+        ax.axvline(shi, color="k", ls="--", lw=1,
+                   label="advised separation (upper end of the interval)" if first else None)
+        ax.annotate(f"{t:g} %: {shi:.3f} m", (shi, t), textcoords="offset points", xytext=(4, 4), fontsize=7)
+        first = False
+
+    ax.set_xlim(0, g.max())
+    ax.set_ylim(0, 100)
+    ax.set_xlabel("separation between the buildings (m)")
+    ax.set_ylabel("probability of at least one impact (%)")
+    ax.set_title(attr_str(f.attrs["title"]))
+    ax.grid(alpha=0.3)
+    ax.legend(fontsize=7, loc="center right")
+    fig.tight_layout()
+    return save(fig, prefix + "-separation", a.format)
+
+
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("results")
@@ -32,9 +141,18 @@ def main():
     ap.add_argument("--ratio", type=float, default=0.3)
     ap.add_argument("--fit-min", type=float, default=0.1)
     ap.add_argument("--fit-max", type=float, default=1.0)
+    ap.add_argument("--format", nargs="+", default=[], choices=["svg", "pdf"],
+                    help="extra formats besides the 200 dpi PNG")
+    ap.add_argument("--pounding", default=None, help="the pounding binary (pair studies run its report --csv)")
     a = ap.parse_args()
     prefix = a.prefix or a.results.rsplit(".", 1)[0]
     f = h5py.File(a.results, "r")
+    st = f["settings/structures"].attrs if "settings/structures" in f else {}
+    if int(st.get("heights_specified", 0)) == 1:
+        print(*plot_pair(f, a, prefix))
+        return
+    rep = f["settings/report"].attrs if "settings/report" in f else {}
+    paper = "compare_with" not in rep or attr_str(rep["compare_with"]) == "stochastic-pounding"
     pc = f["uncoupled/peak_closing"][()]
     R, M = pc.shape
     ok = f["uncoupled/status"][()].reshape(R, M) == 0  # [records, models]; format 1 stored it flat
@@ -53,9 +171,10 @@ def main():
     ax.plot(x, p, lw=2, label=f"this study, continuous (n = {n})")
     ax.plot(x[sel], np.polyval(c, x[sel]), "--", label="cubic fit: {:.1f}x³ {:+.1f}x² {:+.1f}x {:+.1f}".format(*c))
     paper_x = np.array([0.1, 0.2, 0.3, 0.5, 0.7, 1.0])
-    ax.plot(paper_x, [71.09, 45.56, 25.26, 6.12, 1.14, 0.0], "ks", label="paper, Table 3")
-    xx = np.linspace(0.1, 1.0, 100)
-    ax.plot(xx, -213.7 * xx**3 + 510.3 * xx**2 - 403.4 * xx + 106.8, "k:", label="paper, eq. 10")
+    if paper:
+        ax.plot(paper_x, [71.09, 45.56, 25.26, 6.12, 1.14, 0.0], "ks", label="paper, Table 3")
+        xx = np.linspace(0.1, 1.0, 100)
+        ax.plot(xx, -213.7 * xx**3 + 510.3 * xx**2 - 403.4 * xx + 106.8, "k:", label="paper, eq. 10")
     for r in paper_x:
         k = int(np.sum(z > r))
         lo, hi = wilson(k, n)
@@ -67,7 +186,7 @@ def main():
     ax.grid(alpha=0.3)
     ax.legend(fontsize=8)
     fig.tight_layout()
-    fig.savefig(prefix + "-probability.png", dpi=120)
+    written = save(fig, prefix + "-probability", a.format)
 
     # each building its own grid (files before periods1/periods2: one grid for both)
     g = f["models"]
@@ -88,8 +207,8 @@ def main():
     ax.set_ylabel("T1 (s), left structure")
     ax.set_title(f"gap ratio {a.ratio}")
     fig.tight_layout()
-    fig.savefig(prefix + "-periods.png", dpi=120)
-    print(prefix + "-probability.png", prefix + "-periods.png")
+    written += save(fig, prefix + "-periods", a.format)
+    print(*written)
 
 
 if __name__ == "__main__":
