@@ -161,7 +161,8 @@ TEST(DesignSpectrumEc8, Validation) {
 TEST(DesignSpectrumIran2800, ResearchNoteWorkedExample) {
   // A = 0.35, soil III (T0 0.15, Ts 0.7, S 1.75, S0 1.1) -- table from a secondary source (VERIFY).
   const Iran2800Spectrum s{0.35, Iran2800Soil::III, 1.0};
-  const std::vector<std::pair<double, double>> b{{0, 1.1}, {0.1, 2.2}, {0.5, 2.75}, {1, 2.0475}, {2, 1.22792}, {4.5, 0.72722}};
+  const std::vector<std::pair<double, double>> b{{0, 1.1},      {0.1, 2.2},     {0.5, 2.75},
+                                                 {1, 2.0475},   {2, 1.22792},   {4.5, 0.72722}};
   for (auto [t, v] : b) EXPECT_NEAR(iran2800_b(s, t), v, 5e-6) << "T " << t;
   EXPECT_NEAR(sa(s, 1.0), 0.71662, 5e-6);
 }
@@ -190,7 +191,8 @@ TEST(DesignSpectrumIran2800, ContinuousAtCorners) {
       const Iran2800Spectrum s{a, Iran2800Soil(soil), 1.0};
       const Iran2800SoilParams p = iran2800_soil_params(Iran2800Soil(soil), a);
       for (double t : {p.t0, p.ts, 4.0})
-        EXPECT_NEAR(sa(s, t * (1 - 1e-10)), sa(s, t * (1 + 1e-10)), 1e-9) << "A " << a << " soil " << soil << " T " << t;
+        EXPECT_NEAR(sa(s, t * (1 - 1e-10)), sa(s, t * (1 + 1e-10)), 1e-9)
+            << "A " << a << " soil " << soil << " T " << t;
     }
   }
 }
@@ -251,6 +253,8 @@ TEST(DesignSpectrumTabulated, CsvReader) {
   EXPECT_EQ(input_error([&] { read_tabulated_spectrum(neg); }).where(), neg + ":3");
   const std::string bad = write("bad.csv", "0.1,1\n0.3,abc\n");
   EXPECT_EQ(input_error([&] { read_tabulated_spectrum(bad); }).where(), bad + ":2");
+  const std::string junk = write("junk.csv", "0.1,1\n0.3,1.5x\n");  // trailing junk after a number
+  EXPECT_EQ(input_error([&] { read_tabulated_spectrum(junk); }).where(), junk + ":2");
   const std::string three = write("three.csv", "0.1,1\n0.3,1,2\n");
   EXPECT_EQ(input_error([&] { read_tabulated_spectrum(three); }).where(), three + ":2");
   const std::string hdr2 = write("hdr2.csv", "period,sa\nT,Sa\n");  // only the first line may be a header
