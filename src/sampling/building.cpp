@@ -399,6 +399,16 @@ void read_periods(config::TableReader& r, const std::string& file, const std::st
 
 }  // namespace
 
+std::optional<Hysteresis> read_hysteresis(const toml::node* n, const std::string& where) {
+  if (!n) return std::nullopt;
+  const std::string h = config::string(*n, "hysteresis", where);
+  const std::optional<Hysteresis> known = parse_enum(hysteresis_names, h);
+  if (!known)
+    throw InputError(fmt::format("hysteresis = \"{}\" is not a known model", h), where,
+                     "write hysteresis = " + enum_name_list(hysteresis_names, " or ", "\""));
+  return known;
+}
+
 BuildingModel parse_building(const toml::table* t, const std::string& file, const std::string& name,
                              BuildingModel b, const WhereFn& fallback) {
   b.resolved = true;
@@ -422,14 +432,7 @@ BuildingModel parse_building(const toml::table* t, const std::string& file, cons
   for (const char* key : {"ct_lower", "ct_upper", "height_exponent"}) b.rule_explicit |= r.get(key) != nullptr;
   if (const toml::node* n = r.get("aspect_ratios"))
     b.aspect_ratios = config::numbers(*n, "aspect_ratios", r.where("aspect_ratios"));
-  if (const toml::node* n = r.get("hysteresis")) {
-    const std::string h = config::string(*n, "hysteresis", r.where("hysteresis"));
-    const std::optional<Hysteresis> known = parse_enum(hysteresis_names, h);
-    if (!known)
-      throw InputError(fmt::format("hysteresis = \"{}\" is not a known model", h), r.where("hysteresis"),
-                       "write hysteresis = " + enum_name_list(hysteresis_names, " or ", "\""));
-    b.hysteresis = *known;
-  }
+  if (const auto h = read_hysteresis(r.get("hysteresis"), r.where("hysteresis"))) b.hysteresis = *h;
   read_periods(r, file, name, b);
   for (auto [key, out] : {std::pair{"height", &b.height}, {"mass", &b.mass}, {"zeta", &b.zeta},
                           {"yield_coefficient", &b.yield_coefficient}})

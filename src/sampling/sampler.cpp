@@ -208,14 +208,7 @@ StructureModel parse_structure_model(const toml::table& table, const std::string
   if (const toml::node* n = r.get("aspect_ratios")) m.aspect_ratios = config::numbers(*n, "aspect_ratios", r.where("aspect_ratios"));
   if (const toml::node* n = r.get("samples_per_pair"))
     m.samples_per_pair = config::integer(*n, "samples_per_pair", r.where("samples_per_pair"));
-  if (const toml::node* n = r.get("hysteresis")) {
-    const std::string h = config::string(*n, "hysteresis", r.where("hysteresis"));
-    const std::optional<Hysteresis> known = parse_enum(hysteresis_names, h);
-    if (!known)
-      throw InputError(fmt::format("hysteresis = \"{}\" is not a known model", h), r.where("hysteresis"),
-                       "write hysteresis = " + enum_name_list(hysteresis_names, " or ", "\""));
-    m.hysteresis = *known;
-  }
+  if (const auto h = read_hysteresis(r.get("hysteresis"), r.where("hysteresis"))) m.hysteresis = *h;
   const toml::node* periods = r.get("periods");
   if (periods) m.periods = config::numbers(*periods, "periods", r.where("periods"));
   std::optional<double> pmin, pmax, pstep;

@@ -23,6 +23,7 @@
 // exactly by inverse CDF, and refused when that keeps less than 50 % of the probability.
 #include <cstdint>
 #include <functional>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -142,6 +143,9 @@ using WhereFn = std::function<std::string(std::string_view key)>;
 // Reads one building table over `defaults` (the building [structures] makes); t may be null (the table is
 // absent: the defaults). name: "structures.building1". Keys absent from the table point at `fallback`
 // (their [structures] key) in errors. Validates the result (validate_building).
+// The value of key `hysteresis` of a table (InputError naming file:line and the known models), or nothing.
+std::optional<Hysteresis> read_hysteresis(const toml::node* n, const std::string& where);
+
 BuildingModel parse_building(const toml::table* t, const std::string& file, const std::string& name,
                              BuildingModel defaults, const WhereFn& fallback);
 
