@@ -12,25 +12,16 @@
 #include "pounding/core/error.hpp"
 #include "pounding/study/study.hpp"
 
+#include "input_error.hpp"
+
 using namespace pounding;
 
 namespace {
 
-// The InputError `f` throws (a test failure when it throws none).
-template <class F>
-InputError error_of(F f) {
-  try {
-    f();
-  } catch (const InputError& e) {
-    return e;
-  }
-  ADD_FAILURE() << "no InputError";
-  return InputError("", "", "");
-}
 
 const std::string records = "seed = 1\n[records]\nsuite = \"builtin\"\n";  // lines 1-3 of every study below
 
-InputError study_error(const std::string& text) { return error_of([&] { parse_study(text, "s.toml"); }); }
+InputError study_error(const std::string& text) { return testdata::input_error([&] { parse_study(text, "s.toml"); }); }
 
 }  // namespace
 
@@ -38,7 +29,7 @@ TEST(ConfigErrors, WrongTypeNamesFileLineTableAndKey) {
   const toml::table root = config::parse("[contact]\nlaw = \"hertz\"\ne = \"high\"\n", "c.toml", "fix it");
   config::TableReader top(&root, "c.toml", "");
   config::TableReader c(top.table("contact"), "c.toml", "contact");
-  const InputError e = error_of([&] { c.number("e", 0.65, 0.0, 1.0, "(0, 1]"); });
+  const InputError e = testdata::input_error([&] { c.number("e", 0.65, 0.0, 1.0, "(0, 1]"); });
   EXPECT_EQ(e.what_part(), "e must be a number, not a string");
   EXPECT_EQ(e.where(), "c.toml:3 [contact].e");
   EXPECT_EQ(e.fix(), "write e = <number>");
@@ -52,7 +43,7 @@ TEST(ConfigErrors, UnknownKeyNamesFileLineTableAndKey) {
   const toml::table root = config::parse("[gaps]\nratios = [0.1]\nratio = 0.2\n", "g.toml", "fix it");
   config::TableReader g(root.get_as<toml::table>("gaps"), "g.toml", "gaps");
   g.numbers("ratios", {0.5}, 0.0, 1.0, "(0, 1]");
-  const InputError e = error_of([&] { g.finish("ratios"); });
+  const InputError e = testdata::input_error([&] { g.finish("ratios"); });
   EXPECT_EQ(e.what_part(), "unknown key 'ratio' in [gaps]");
   EXPECT_EQ(e.where(), "g.toml:3 [gaps].ratio");
   EXPECT_EQ(e.fix(), "check the spelling; [gaps] takes: ratios");
@@ -83,7 +74,7 @@ TEST(ConfigErrors, MissingOrMisplacedTable) {
 TEST(ConfigErrors, BadEnumNameListsTheNamesAtFileLineTableAndKey) {
   const toml::table root = config::parse("[contact]\n\nlaw = \"hertzian\"\n", "l.toml", "fix it");
   config::TableReader c(root.get_as<toml::table>("contact"), "l.toml", "contact");
-  const InputError e = error_of([&] { c.choice("law", "hertzdamp", parse_contact_law); });
+  const InputError e = testdata::input_error([&] { c.choice("law", "hertzdamp", parse_contact_law); });
   EXPECT_EQ(e.what_part(), "unknown contact law 'hertzian'");
   EXPECT_EQ(e.where(), "l.toml:3 [contact].law");
   EXPECT_EQ(e.fix(), "use one of: none, linear, kelvin, hertz, hertzdamp, jankowski, stereomechanical");
@@ -100,7 +91,7 @@ TEST(ConfigErrors, BadEnumNameListsTheNamesAtFileLineTableAndKey) {
 }
 
 TEST(ConfigErrors, SyntaxErrorNamesFileAndLine) {
-  const InputError e = error_of([] { config::parse("a = 1\nb = = 2\n", "x.toml", "fix the syntax"); });
+  const InputError e = testdata::input_error([] { config::parse("a = 1\nb = = 2\n", "x.toml", "fix the syntax"); });
   EXPECT_EQ(e.where(), "x.toml:2");
   EXPECT_EQ(e.fix(), "fix the syntax");
   EXPECT_NE(e.what_part().find("TOML syntax error"), std::string::npos);

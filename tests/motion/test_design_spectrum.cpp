@@ -13,21 +13,12 @@
 #include "pounding/motion/design_spectrum.hpp"
 #include "temp_dir.hpp"
 
+#include "input_error.hpp"
+
 using namespace pounding;
 
 namespace {
 
-// The InputError's where() and what() of `f`, or fails the test when f does not throw InputError.
-template <class F>
-InputError input_error(F f) {
-  try {
-    f();
-  } catch (const InputError& e) {
-    return e;
-  }
-  ADD_FAILURE() << "no InputError";
-  return InputError("", "", "");
-}
 
 constexpr double eps = 1e-12;
 
@@ -68,12 +59,12 @@ TEST(DesignSpectrumAsce7, ContinuousAtCorners) {
 }
 
 TEST(DesignSpectrumAsce7, Validation) {
-  EXPECT_EQ(input_error([] { validate(Asce7Spectrum{0.0, 0.5, 8}); }).where(), "SDS");
-  EXPECT_EQ(input_error([] { validate(Asce7Spectrum{1.0, -0.5, 8}); }).where(), "SD1");
-  const InputError tl = input_error([] { validate(Asce7Spectrum{1.0, 0.5, 0.5}); });
+  EXPECT_EQ(testdata::input_error([] { validate(Asce7Spectrum{0.0, 0.5, 8}); }).where(), "SDS");
+  EXPECT_EQ(testdata::input_error([] { validate(Asce7Spectrum{1.0, -0.5, 8}); }).where(), "SD1");
+  const InputError tl = testdata::input_error([] { validate(Asce7Spectrum{1.0, 0.5, 0.5}); });
   EXPECT_EQ(tl.where(), "TL");
   EXPECT_NE(tl.fix().find("[1, 20] s"), std::string::npos) << tl.fix();
-  EXPECT_EQ(input_error([] { validate(Asce7Spectrum{0.5, 3.0, 4}); }).where(), "SD1");  // TS = 6 s > TL
+  EXPECT_EQ(testdata::input_error([] { validate(Asce7Spectrum{0.5, 3.0, 4}); }).where(), "SD1");  // TS = 6 s > TL
   EXPECT_NO_THROW(validate(Asce7Spectrum{1.2, 0.56, 8}));
   EXPECT_THROW(sa(Asce7Spectrum{1.2, 0.56, 8}, -0.1), InputError);
   EXPECT_THROW(sa(Asce7Spectrum{1.2, 0.56, 8}, std::nan("")), InputError);
@@ -107,7 +98,7 @@ TEST(DesignSpectrumEc8, EtaFactor) {
   EXPECT_NEAR(ec8_eta(28.0), std::sqrt(10.0 / 33.0), eps);  // 0.5505, just above the floor
   EXPECT_EQ(ec8_eta(30.0), 0.55);                            // sqrt(10/35) = 0.5345 -> floor
   EXPECT_EQ(ec8_eta(50.0), 0.55);
-  EXPECT_EQ(input_error([] { ec8_eta(-1.0); }).where(), "damping ratio xi (%)");
+  EXPECT_EQ(testdata::input_error([] { ec8_eta(-1.0); }).where(), "damping ratio xi (%)");
 }
 
 TEST(DesignSpectrumEc8, ResearchNoteWorkedExamples) {
@@ -146,13 +137,13 @@ TEST(DesignSpectrumEc8, ContinuousAtCornersEveryGroundAndType) {
 }
 
 TEST(DesignSpectrumEc8, Validation) {
-  EXPECT_EQ(input_error([] { validate(Ec8Spectrum{Ec8Type::type1, Ec8Ground::A, 0.0, 1.0, 5}); }).where(), "agR");
-  const InputError imp = input_error([] { validate(Ec8Spectrum{Ec8Type::type1, Ec8Ground::A, 0.2, 1.6, 5}); });
+  EXPECT_EQ(testdata::input_error([] { validate(Ec8Spectrum{Ec8Type::type1, Ec8Ground::A, 0.0, 1.0, 5}); }).where(), "agR");
+  const InputError imp = testdata::input_error([] { validate(Ec8Spectrum{Ec8Type::type1, Ec8Ground::A, 0.2, 1.6, 5}); });
   EXPECT_EQ(imp.where(), "importance factor gammaI");
   EXPECT_NE(imp.fix().find("[0.8, 1.4]"), std::string::npos) << imp.fix();
-  EXPECT_EQ(input_error([] { validate(Ec8Spectrum{Ec8Type::type1, Ec8Ground::A, 0.2, 1.0, 60}); }).where(),
+  EXPECT_EQ(testdata::input_error([] { validate(Ec8Spectrum{Ec8Type::type1, Ec8Ground::A, 0.2, 1.0, 60}); }).where(),
             "damping ratio xi (%)");
-  EXPECT_EQ(input_error([] { validate(Ec8Spectrum{Ec8Type::type1, Ec8Ground(7), 0.2, 1.0, 5}); }).where(),
+  EXPECT_EQ(testdata::input_error([] { validate(Ec8Spectrum{Ec8Type::type1, Ec8Ground(7), 0.2, 1.0, 5}); }).where(),
             "ground type");
 }
 
@@ -198,11 +189,11 @@ TEST(DesignSpectrumIran2800, ContinuousAtCorners) {
 }
 
 TEST(DesignSpectrumIran2800, Validation) {
-  const InputError a = input_error([] { validate(Iran2800Spectrum{0.32, Iran2800Soil::I, 1.0}); });
+  const InputError a = testdata::input_error([] { validate(Iran2800Spectrum{0.32, Iran2800Soil::I, 1.0}); });
   EXPECT_EQ(a.where(), "A");
   EXPECT_NE(a.fix().find("0.35, 0.30, 0.25 or 0.20"), std::string::npos) << a.fix();
-  EXPECT_EQ(input_error([] { validate(Iran2800Spectrum{0.30, Iran2800Soil::I, 2.0}); }).where(), "importance factor I");
-  EXPECT_EQ(input_error([] { validate(Iran2800Spectrum{0.30, Iran2800Soil(4), 1.0}); }).where(), "soil type");
+  EXPECT_EQ(testdata::input_error([] { validate(Iran2800Spectrum{0.30, Iran2800Soil::I, 2.0}); }).where(), "importance factor I");
+  EXPECT_EQ(testdata::input_error([] { validate(Iran2800Spectrum{0.30, Iran2800Soil(4), 1.0}); }).where(), "soil type");
   EXPECT_NO_THROW(validate(Iran2800Spectrum{0.20, Iran2800Soil::IV, 1.4}));
 }
 
@@ -224,11 +215,11 @@ TEST(DesignSpectrumTabulated, LinearInterpolation) {
 }
 
 TEST(DesignSpectrumTabulated, Errors) {
-  EXPECT_EQ(input_error([] { validate(TabulatedSpectrum{{0.1, 0.1, 0.5}, {1, 1, 1}, "t"}); }).where(), "t point 2");
-  EXPECT_EQ(input_error([] { validate(TabulatedSpectrum{{0.1, 0.5, 0.3}, {1, 1, 1}, "t"}); }).where(), "t point 3");
-  EXPECT_EQ(input_error([] { validate(TabulatedSpectrum{{0.1, 0.5}, {1, -0.1}, "t"}); }).where(), "t point 2");
-  EXPECT_EQ(input_error([] { validate(TabulatedSpectrum{{-0.1, 0.5}, {1, 1}, "t"}); }).where(), "t point 1");
-  const InputError one = input_error([] { validate(TabulatedSpectrum{{0.1}, {1}, "t"}); });
+  EXPECT_EQ(testdata::input_error([] { validate(TabulatedSpectrum{{0.1, 0.1, 0.5}, {1, 1, 1}, "t"}); }).where(), "t point 2");
+  EXPECT_EQ(testdata::input_error([] { validate(TabulatedSpectrum{{0.1, 0.5, 0.3}, {1, 1, 1}, "t"}); }).where(), "t point 3");
+  EXPECT_EQ(testdata::input_error([] { validate(TabulatedSpectrum{{0.1, 0.5}, {1, -0.1}, "t"}); }).where(), "t point 2");
+  EXPECT_EQ(testdata::input_error([] { validate(TabulatedSpectrum{{-0.1, 0.5}, {1, 1}, "t"}); }).where(), "t point 1");
+  const InputError one = testdata::input_error([] { validate(TabulatedSpectrum{{0.1}, {1}, "t"}); });
   EXPECT_EQ(one.where(), "t");
   EXPECT_NE(one.what_part().find("at least 2 points"), std::string::npos);
   EXPECT_THROW(validate(TabulatedSpectrum{{0.1, 0.2}, {1}, "t"}), InputError);
@@ -248,19 +239,19 @@ TEST(DesignSpectrumTabulated, CsvReader) {
   EXPECT_DOUBLE_EQ(sa(s, 0.6), 0.75);
 
   const std::string dec = write("dec.csv", "period,sa\n0.1,1\n0.3,1\n0.3,0.8\n");
-  EXPECT_EQ(input_error([&] { read_tabulated_spectrum(dec); }).where(), dec + ":4");
+  EXPECT_EQ(testdata::input_error([&] { read_tabulated_spectrum(dec); }).where(), dec + ":4");
   const std::string neg = write("neg.csv", "0.1,1\n# c\n0.3,-0.2\n");
-  EXPECT_EQ(input_error([&] { read_tabulated_spectrum(neg); }).where(), neg + ":3");
+  EXPECT_EQ(testdata::input_error([&] { read_tabulated_spectrum(neg); }).where(), neg + ":3");
   const std::string bad = write("bad.csv", "0.1,1\n0.3,abc\n");
-  EXPECT_EQ(input_error([&] { read_tabulated_spectrum(bad); }).where(), bad + ":2");
+  EXPECT_EQ(testdata::input_error([&] { read_tabulated_spectrum(bad); }).where(), bad + ":2");
   const std::string junk = write("junk.csv", "0.1,1\n0.3,1.5x\n");  // trailing junk after a number
-  EXPECT_EQ(input_error([&] { read_tabulated_spectrum(junk); }).where(), junk + ":2");
+  EXPECT_EQ(testdata::input_error([&] { read_tabulated_spectrum(junk); }).where(), junk + ":2");
   const std::string three = write("three.csv", "0.1,1\n0.3,1,2\n");
-  EXPECT_EQ(input_error([&] { read_tabulated_spectrum(three); }).where(), three + ":2");
+  EXPECT_EQ(testdata::input_error([&] { read_tabulated_spectrum(three); }).where(), three + ":2");
   const std::string hdr2 = write("hdr2.csv", "period,sa\nT,Sa\n");  // only the first line may be a header
-  EXPECT_EQ(input_error([&] { read_tabulated_spectrum(hdr2); }).where(), hdr2 + ":2");
+  EXPECT_EQ(testdata::input_error([&] { read_tabulated_spectrum(hdr2); }).where(), hdr2 + ":2");
   const std::string few = write("few.csv", "period,sa\n0.1,1\n");
-  EXPECT_EQ(input_error([&] { read_tabulated_spectrum(few); }).where(), few);
+  EXPECT_EQ(testdata::input_error([&] { read_tabulated_spectrum(few); }).where(), few);
   EXPECT_THROW(read_tabulated_spectrum(dir.file("missing.csv")), InputError);
 }
 
