@@ -276,6 +276,18 @@ AttributeKind attribute_kind(hid obj, const std::string& name) {
   }
 }
 
+DatasetKind dataset_kind(hid group, const std::string& name) {
+  Handle d(checked(H5Dopen2(group, name.c_str(), H5P_DEFAULT), "dataset " + name));
+  Handle type(checked(H5Dget_type(d.get()), "dataset type " + name));
+  const std::size_t size = H5Tget_size(type.get());
+  switch (H5Tget_class(type.get())) {
+    case H5T_STRING: return DatasetKind::strings;
+    case H5T_FLOAT: return size == 8 ? DatasetKind::f64 : DatasetKind::other;
+    case H5T_INTEGER: return size == 8 ? DatasetKind::i64 : size == 4 ? DatasetKind::i32 : size == 1 ? DatasetKind::u8 : DatasetKind::other;
+    default: return DatasetKind::other;
+  }
+}
+
 namespace {
 herr_t collect_attribute(hid_t, const char* name, const H5A_info_t*, void* out) {
   static_cast<std::vector<std::string>*>(out)->emplace_back(name);

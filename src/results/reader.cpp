@@ -124,6 +124,37 @@ void read_fields(h5::hid root, std::span<const FieldSpec> specs, Results& r) {
   }
 }
 
+// Every group marked `module_group` (results.hpp), in name order.
+void read_groups(h5::hid root, Results& r) {
+  using K = h5::DatasetKind;
+  for (const std::string& name : h5::member_names(root)) {
+    if (!h5::is_group(root, name)) continue;
+    auto g = h5::open_group(root, name);
+    if (!h5::attribute_exists(g.get(), "module_group")) continue;
+    Group gr{name, {}, {}};
+    Settings attrs;
+    read_section(g.get(), "", attrs);
+    for (auto& a : attrs.entries)
+      if (a.key != "module_group") gr.attributes.emplace_back(a.key, std::move(a.value));
+    for (const std::string& d : h5::member_names(g.get())) {
+      GroupDataset ds{d, {}, h5::dataset_shape(g.get(), d), {}, {}};
+      if (ds.shape.size() <= 1) ds.shape.clear();
+      auto h = h5::open_dataset(g.get(), d);
+      read_opt(h.get(), "units", ds.units);
+      read_opt(h.get(), "description", ds.description);
+      switch (h5::dataset_kind(g.get(), d)) {
+        case K::strings: ds.data = h5::read_strings(g.get(), d); break;
+        case K::f64: ds.data = h5::read_doubles(g.get(), d); break;
+        case K::i64: ds.data = h5::read_int64(g.get(), d); break;
+        case K::u8: ds.data = h5::read_uint8(g.get(), d); break;
+        default: continue;
+      }
+      gr.datasets.push_back(std::move(ds));
+    }
+    r.groups.push_back(std::move(gr));
+  }
+}
+
 }  // namespace
 
 Results load(const std::string& path, std::span<const FieldSpec> extra) {
@@ -140,6 +171,13 @@ Results load(const std::string& path, std::span<const FieldSpec> extra) {
   specs.insert(specs.end(), extra.begin(), extra.end());
   read_fields(root, specs, r);  // format 1 stored some flat, format 2 with their shape: the values are the same
   r.gaps = read_gaps(root, r);
+  if (h5::exists(root, "uncoupled")) {
+    auto g = h5::open_group(root, "uncoupled");
+    std::int64_t stripes = 0;
+    read_opt(g.get(), "stripes", stripes);
+    r.stripes = static_cast<std::size_t>(stripes);
+  }
+  read_groups(root, r);
   return r;
 }
 

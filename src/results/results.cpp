@@ -118,3 +118,72 @@ void add_derived_fields(Results& r) {
 }
 
 }  // namespace pounding::results
+
+namespace pounding::results {
+
+void Group::add(std::string dataset, GroupData data, std::string units, std::string description,
+                std::vector<std::size_t> shape) {
+  datasets.push_back({std::move(dataset), std::move(data), std::move(shape), std::move(units), std::move(description)});
+}
+
+void Group::set(std::string key, SettingValue value) {
+  for (auto& [k, v] : attributes)
+    if (k == key) {
+      v = std::move(value);
+      return;
+    }
+  attributes.emplace_back(std::move(key), std::move(value));
+}
+
+const GroupDataset* Group::find(std::string_view dataset) const {
+  for (const GroupDataset& d : datasets)
+    if (d.name == dataset) return &d;
+  return nullptr;
+}
+
+const SettingValue* Group::attribute(std::string_view key) const {
+  for (const auto& [k, v] : attributes)
+    if (k == key) return &v;
+  return nullptr;
+}
+
+template <class T>
+const std::vector<T>& Group::get(std::string_view dataset) const {
+  const GroupDataset* d = find(dataset);
+  if (!d) throw std::runtime_error(fmt::format("results: no dataset /{}/{}", name, dataset));
+  const auto* v = std::get_if<std::vector<T>>(&d->data);
+  if (!v) throw std::runtime_error(fmt::format("results: /{}/{} has another element type", name, dataset));
+  return *v;
+}
+template const std::vector<double>& Group::get(std::string_view) const;
+template const std::vector<std::int64_t>& Group::get(std::string_view) const;
+template const std::vector<std::uint8_t>& Group::get(std::string_view) const;
+template const std::vector<std::string>& Group::get(std::string_view) const;
+
+double Group::number(std::string_view key) const {
+  const SettingValue* v = attribute(key);
+  if (const auto* d = v ? std::get_if<double>(v) : nullptr) return *d;
+  if (const auto* i = v ? std::get_if<std::int64_t>(v) : nullptr) return static_cast<double>(*i);
+  throw std::runtime_error(fmt::format("results: /{} has no number attribute {}", name, key));
+}
+
+std::string Group::text(std::string_view key) const {
+  const SettingValue* v = attribute(key);
+  if (const auto* s = v ? std::get_if<std::string>(v) : nullptr) return *s;
+  throw std::runtime_error(fmt::format("results: /{} has no text attribute {}", name, key));
+}
+
+const Group* Results::group(std::string_view g) const {
+  for (const Group& x : groups)
+    if (x.name == g) return &x;
+  return nullptr;
+}
+
+Group& Results::group_for(std::string g) {
+  for (Group& x : groups)
+    if (x.name == g) return x;
+  groups.push_back({std::move(g), {}, {}});
+  return groups.back();
+}
+
+}  // namespace pounding::results

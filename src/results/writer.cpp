@@ -28,6 +28,16 @@ void write_header_end(h5::hid root, const Header& h) {
   visit_header_end(h, [&](const char* name, const auto& value) { h5::write_attribute(root, name, value); });
 }
 
+void write_value(h5::hid g, const std::string& key, const SettingValue& value) {
+  std::visit(
+      [&](const auto& v) {
+        using T = std::decay_t<decltype(v)>;
+        if constexpr (std::is_same_v<T, std::vector<double>>) h5::write_attribute(g, key, std::span<const double>(v));
+        else h5::write_attribute(g, key, v);
+      },
+      value);
+}
+
 void write_settings(h5::hid root, const Settings& settings) {
   auto top = h5::create_group(root, "settings");
   std::map<std::string, h5::Handle> sections;
@@ -38,13 +48,7 @@ void write_settings(h5::hid root, const Settings& settings) {
       if (it == sections.end()) it = sections.emplace(s.section, h5::create_group(top.get(), s.section)).first;
       g = it->second.get();
     }
-    std::visit(
-        [&](const auto& v) {
-          using T = std::decay_t<decltype(v)>;
-          if constexpr (std::is_same_v<T, std::vector<double>>) h5::write_attribute(g, s.key, std::span<const double>(v));
-          else h5::write_attribute(g, s.key, v);
-        },
-        s.value);
+    write_value(g, s.key, s.value);
   }
 }
 
@@ -109,7 +113,9 @@ h5::hid field_group(h5::hid root, const Results& r, const FieldSpec& spec, std::
   if (auto it = groups.find(name); it != groups.end()) return it->second.get();
   auto g = h5::create_group(root, name);
   const bool gaps = spec.extent == Extent::lane_gap;
-  h5::write_attribute(g.get(), "shape", std::string(gaps ? "[records, models, gaps]" : "[records, models]"));
+  const char* lead = r.stripes ? "[stripes, records, models" : "[records, models";
+  h5::write_attribute(g.get(), "shape", fmt::format("{}{}]", lead, gaps ? ", gaps" : ""));
+  if (r.stripes) h5::write_attribute(g.get(), "stripes", static_cast<std::int64_t>(r.stripes));
   if (gaps) {
     h5::write_dataset(g.get(), "gap_ratios", r.gap_ratios);
     label(g.get(), spec.group, "gap_ratios");
@@ -117,21 +123,45 @@ h5::hid field_group(h5::hid root, const Results& r, const FieldSpec& spec, std::
   return groups.emplace(name, std::move(g)).first->second.get();
 }
 
-// Every field with the shape of its extent, [records, models] or [records, models, gaps].
+// Every field with the shape of its extent, [records, models] or [records, models, gaps], after [stripes] in a
+// fragility study.
 void write_fields(h5::hid root, const Results& r) {
   std::map<std::string, h5::Handle> groups;
   for (const Field& f : r.fields) {
     const h5::hid g = field_group(root, r, f.spec, groups);
     const std::string name(f.spec.name);
-    const std::size_t dims[] = {r.record_count(), r.model_count(), r.gap_ratios.size()};
-    const std::span<const std::size_t> shape(dims, f.spec.extent == Extent::lane_gap ? 3 : 2);
+    std::vector<std::size_t> shape;
+    if (r.stripes) shape.push_back(r.stripes);
+    shape.insert(shape.end(), {r.record_count(), r.model_count()});
+    if (f.spec.extent == Extent::lane_gap) shape.push_back(r.gap_ratios.size());
     std::visit(
         [&](const auto& v) {
           using T = typename std::decay_t<decltype(v)>::value_type;
-          h5::write_dataset(g, name, std::span<const T>(v), shape);
+          h5::write_dataset(g, name, std::span<const T>(v), std::span<const std::size_t>(shape));
         },
         f.data);
     label(g, f.spec.group, name, {f.spec.units, f.spec.description});
+  }
+}
+
+// A module group (results.hpp): marked, its attributes, its datasets with their shapes, units and descriptions.
+void write_group(h5::hid root, const Group& gr) {
+  auto g = h5::create_group(root, gr.name);
+  h5::write_attribute(g.get(), "module_group", std::int64_t{1});
+  for (const auto& [key, value] : gr.attributes) write_value(g.get(), key, value);
+  for (const GroupDataset& d : gr.datasets) {
+    std::visit(
+        [&](const auto& v) {
+          using T = typename std::decay_t<decltype(v)>::value_type;
+          if constexpr (std::is_same_v<T, std::string>) {
+            h5::write_strings(g.get(), d.name, v);
+          } else {
+            const std::vector<std::size_t> shape = d.shape.empty() ? std::vector<std::size_t>{v.size()} : d.shape;
+            h5::write_dataset(g.get(), d.name, std::span<const T>(v), std::span<const std::size_t>(shape));
+          }
+        },
+        d.data);
+    label(g.get(), gr.name, d.name, {d.units, d.description});
   }
 }
 
@@ -149,6 +179,7 @@ void write(const std::string& path, const Results& r) {
   for (const char* group : {"records", "models", "gaps"})
     if (h5::exists(root, group)) label_group(root, group);
   write_fields(root, r);  // labelled from their schema rows
+  for (const Group& g : r.groups) write_group(root, g);
   f.commit();
 }
 

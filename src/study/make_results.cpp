@@ -99,7 +99,7 @@ physics::CoarseSummary coarse_summary(const Study& study, const WorkPlan& L, con
       ++c.analyses;
       c.coarse += st[i] == static_cast<std::uint8_t>(LaneStatus::coarse);
       if (!(hw[i] <= c.hw_max)) {
-        const double dt = records[r].record.dt;
+        const double dt = records[r % records.size()].record.dt;
         c.hw_max = hw[i], c.substeps_at_max = study_substeps(study, dt), c.h_at_max = dt / c.substeps_at_max;
       }
     }
@@ -114,18 +114,22 @@ Exclusions count_exclusions(const Study& study, const WorkPlan& L, const Tally& 
   const std::size_t M = L.models(), G = L.gaps;
   const auto& us = t.values<std::uint8_t>(unc_status);
   const bool keep = study.coarse == CoarsePolicy::keep;
-  const auto bad = [keep](std::uint8_t s) { return s != 0 && !(keep && s == static_cast<std::uint8_t>(LaneStatus::coarse)); };
+  const auto bad = [keep](std::uint8_t s) {
+    return s != 0 && s != results::dropped_status && !(keep && s == static_cast<std::uint8_t>(LaneStatus::coarse));
+  };
   if (L.impacts) ex.coarse = coarse_summary(study, L, t, records);
   std::vector<std::string> lost;
   for (std::size_t r = 0; r < L.records; ++r) {
     std::int64_t bad_unc = 0, bad_cpl = 0;
-    for (std::size_t m = 0; m < M; ++m) bad_unc += bad(us[r * M + m]);
+    std::int64_t dropped = 0;
+    for (std::size_t m = 0; m < M; ++m) bad_unc += bad(us[r * M + m]), dropped += us[r * M + m] == results::dropped_status;
+    if (dropped) continue;  // a record dropped from a stripe: nothing analysed, nothing excluded
     if (L.impacts)
       for (std::size_t i = r * M * G; i < (r + 1) * M * G; ++i) bad_cpl += bad(t.values<std::uint8_t>(imp_status)[i]);
     ex.excluded += bad_unc + bad_cpl;
     ex.total += static_cast<std::int64_t>(M + (L.impacts ? M * G : 0));
     if (M > 0 && (bad_unc == static_cast<std::int64_t>(M) || (L.impacts && bad_cpl == static_cast<std::int64_t>(M * G))))
-      lost.push_back(records[r].id);
+      lost.push_back(records[r % records.size()].id);
   }
   const double frac = ex.total ? static_cast<double>(ex.excluded) / static_cast<double>(ex.total) : 0.0;
   if (!lost.empty())
@@ -152,8 +156,31 @@ results::Settings settings_of(const Study& study) {
   return s;
 }
 
+results::Group intensity_group(const Study& study, const StripePlan& p) {
+  const IntensitySpec& x = study.intensity;
+  const std::string units(im_units(x.im.measure));
+  results::Group g{"intensity", {}, {}};
+  g.set("measure", std::string(to_string(x.im.measure)));
+  g.set("units", units);
+  g.set("description", describe(x.im));
+  g.set("method", std::string(to_string(x.method)));
+  g.set("periods", x.im.periods);
+  g.set("damping", x.im.damping);
+  g.set("period_pair", static_cast<std::int64_t>(x.period_pair));
+  g.set("max_scale", x.max_scale);
+  g.add("levels", x.levels, units, "the stripes' intensity levels (" + describe(x.im) + ")");
+  g.add("im", p.im, units, "the intensity measure of each record as loaded (before any stripe scaling)");
+  if (p.stripes) {
+    g.add("scale", p.scale, "1", "amplitude factor of each record at each stripe: level / im; [stripes, records]",
+          {p.stripes, p.records});
+    g.add("dropped", p.dropped, "1",
+          "1: the record is not in this stripe (its factor exceeds max_scale); [stripes, records]", {p.stripes, p.records});
+  }
+  return g;
+}
+
 results::Results make_results(const Study& study, const std::vector<StudyRecord>& records, const WorkPlan& plan,
-                              Tally& tally, const Exclusions& ex, const RunFacts& facts) {
+                              Tally& tally, const Exclusions& ex, const RunFacts& facts, const StripePlan& stripes) {
   results::Results r;
   r.header = make_header(study, ex, facts);
   r.settings = settings_of(study);
@@ -162,7 +189,9 @@ results::Results make_results(const Study& study, const std::vector<StudyRecord>
   r.gaps = results::gap_table(study.gap_ratios, r.models.code_gap);  // every scene
   if (plan.impacts) r.gap_ratios = study.gap_ratios;
   r.fields = tally.take_fields();
+  r.stripes = stripes.stripes;
   results::add_derived_fields(r);
+  if (study.intensity.enabled) r.groups.push_back(intensity_group(study, stripes));
   return r;
 }
 

@@ -62,9 +62,9 @@ constexpr std::size_t imp_h_omega = results::unit_field("impacts", "h_omega_cont
 // gap), fill a UnitResult.
 class UnitComputer {
  public:
-  UnitComputer(const Study& s, const std::vector<StudyRecord>& records, const StructureSampler& sampler,
-               const WorkPlan& plan, int rank)
-      : s_(s), records_(records), sampler_(sampler), plan_(plan), rank_(rank) {
+  UnitComputer(const Study& s, const std::vector<StudyRecord>& records, const StripePlan& stripes,
+               const StructureSampler& sampler, const WorkPlan& plan, int rank)
+      : s_(s), records_(records), stripes_(stripes), sampler_(sampler), plan_(plan), rank_(rank) {
     ks_base_.stepper = s.stepper;
     ks_base_.displacement_limit = s.displacement_limit;
     uncoupled_ = s.contact;
@@ -75,11 +75,14 @@ class UnitComputer {
     if (++computed_ == 3) inject_fault("compute", rank_);
     const UnitIndex u = plan_.decode(unit);
     const std::size_t n = plan_.lanes(u.block);
+    // a fragility study's analysis record u.record is (stripe, record), stripe-major
+    const bool dropped = stripes_.stripes && stripes_.dropped[u.record];
+    if (dropped) return dropped_unit(n);
     pairs_.resize(n);
     const SampleId pair = s_.structures.pair_id(static_cast<std::int64_t>(u.pair));  // slots i1, i2
     sampler_.sample_block(pair.i1, pair.i2, static_cast<std::int64_t>(u.block * plan_.batch), pairs_);
-    const Record& rec = records_[u.record].record;
-    const GroundMotion gm{rec.dt, rec.acc, rec.duration() + s_.free_vibration};
+    const Record& rec = records_[u.record % records_.size()].record;
+    const GroundMotion gm{rec.dt, ground(rec, u.record), rec.duration() + s_.free_vibration};
     KernelSettings ks = ks_base_;
     ks.substeps = substeps_for(rec.dt);
     PairBatch batch;
@@ -100,6 +103,23 @@ class UnitComputer {
 
  private:
   int substeps_for(double dt) const { return study_substeps(s_, dt); }
+
+  // The record's acceleration, scaled to its stripe's level in a fragility study (one scaled copy per unit; the
+  // record itself is loaded or synthesised once).
+  std::span<const double> ground(const Record& rec, std::size_t analysis_record) {
+    if (!stripes_.stripes) return rec.acc;
+    const double f = stripes_.scale[analysis_record];
+    scaled_.resize(rec.acc.size());
+    for (std::size_t i = 0; i < scaled_.size(); ++i) scaled_[i] = f * rec.acc[i];
+    return scaled_;
+  }
+
+  // A record dropped from a stripe (its factor exceeds max_scale): nothing is analysed, status dropped_status.
+  UnitResult dropped_unit(std::size_t n) const {
+    UnitResult out(plan_, n);
+    for (std::size_t i = 0; i < n; ++i) out.values<std::uint8_t>(field::unc_status)[i] = results::dropped_status;
+    return out;
+  }
 
   // A pair whose uncoupled peak closing stays <= g never touches at gap g, and its coupled run is
   // bit-identical to the uncoupled one (the first-passage property, tested): only the pairs that touch are
@@ -141,6 +161,7 @@ class UnitComputer {
 
   const Study& s_;
   const std::vector<StudyRecord>& records_;
+  const StripePlan& stripes_;
   const StructureSampler& sampler_;
   const WorkPlan& plan_;
   int rank_, computed_ = 0;
@@ -150,6 +171,7 @@ class UnitComputer {
   std::vector<std::size_t> lanes_;
   PairBatch sub_;
   BatchResult res_, cres_;
+  std::vector<double> scaled_;
 };
 
 }  // namespace
@@ -161,6 +183,7 @@ struct Inputs {
   Study study;
   std::string out, out_where;
   std::vector<StudyRecord> records;
+  StripePlan stripes;  // a fragility study's stripes (none otherwise)
 };
 
 // Every rank parses the same text (rank 0 reads the file) and loads the same records. The output is checked
@@ -173,7 +196,7 @@ Inputs load_inputs(const parallel::Session& session, const std::string& study_pa
   });
   session.broadcast(text);
   std::optional<Inputs> in;
-  session.agree([&] { in.emplace(Inputs{parse_study(text, study_path), {}, {}, {}}); });
+  session.agree([&] { in.emplace(Inputs{parse_study(text, study_path), {}, {}, {}, {}}); });
   in->out = opt.out_given ? opt.out : in->study.output;
   in->out_where = opt.out_given ? "--out" : study_path + ": output";
   session.agree([&] {
@@ -186,6 +209,11 @@ Inputs load_inputs(const parallel::Session& session, const std::string& study_pa
     inject_fault("load", session.rank());
     in->records = load_study_records(in->study);
     if (in->records.empty()) throw InputError("the study resolves to no records", study_path, "check [records]");
+    if (in->study.intensity.enabled) {
+      std::vector<double> im;
+      for (const auto& rr : in->records) im.push_back(intensity(rr.record, in->study.intensity.im));
+      in->stripes = plan_stripes(in->study.intensity, im);
+    }
   });
   return std::move(*in);
 }
@@ -194,7 +222,7 @@ Inputs load_inputs(const parallel::Session& session, const std::string& study_pa
 WorkPlan plan_work(const Inputs& in) {
   const Study& s = in.study;
   WorkPlan L;
-  L.records = in.records.size();
+  L.records = in.records.size() * std::max<std::size_t>(1, in.stripes.stripes);  // (stripe, record) in a fragility study
   L.pairs = static_cast<std::size_t>(s.structures.period_pair_count());
   L.samples = static_cast<std::size_t>(s.structures.samples_per_pair);
   L.batch = static_cast<std::size_t>(s.batch);
@@ -246,9 +274,22 @@ std::vector<std::size_t> open_checkpoint(const parallel::Session& session, const
 void announce(const parallel::Session& session, const Inputs& in, const WorkPlan& L, const RunContext& ctx) {
   if (!session.root()) return;
   ctx.say(fmt::format("pounding run: {} ({} records, {} models, scene {}, {} units on {} rank{})", in.study.title,
-                      L.records, L.models(), to_string(in.study.scene), L.units(), session.size(),
+                      in.records.size(), L.models(), to_string(in.study.scene), L.units(), session.size(),
                       session.size() > 1 ? "s" : ""));
   ctx.say(in.study.scene_reason);
+  if (const StripePlan& p = in.stripes; p.stripes) {
+    const IntensitySpec& x = in.study.intensity;
+    std::string dropped;
+    for (std::size_t s = 0; s < p.stripes; ++s)
+      if (const std::size_t d = p.dropped_count(s))
+        dropped += fmt::format("{}{} at {:g}", dropped.empty() ? "" : ", ", d, x.levels[s]);
+    ctx.say(fmt::format("multiple-stripe analysis: {} stripes of {}{}; every record scaled to each level, the same "
+                        "models at every stripe{}",
+                        p.stripes, describe(x.im), x.period_pair ? " (period \"pair\": the geometric mean of the "
+                                                                  "buildings' median periods)" : "",
+                        dropped.empty() ? "" : fmt::format("; records dropped (factor above max_scale = {:g}): {}",
+                                                           x.max_scale, dropped)));
+  }
   for (const auto& rr : in.records)
     if (rr.synthetic) ctx.say(fmt::format("record {}: synthetic stand-in ({})", rr.id, rr.note));
 }
@@ -257,7 +298,7 @@ void announce(const parallel::Session& session, const Inputs& in, const WorkPlan
 bool execute(const parallel::Session& session, const Inputs& in, const WorkPlan& L, const std::vector<std::size_t>& todo,
              Checkpoint* ckpt, Tally& tally, const RunContext& ctx, double& wall) {
   const StructureSampler sampler(in.study.structures, in.study.seed);
-  UnitComputer compute(in.study, in.records, sampler, L, session.rank());
+  UnitComputer compute(in.study, in.records, in.stripes, sampler, L, session.rank());
   const auto t0 = std::chrono::steady_clock::now();
   auto last_sync = t0;
   const std::size_t at_start = tally.units_done();
@@ -287,7 +328,7 @@ bool execute(const parallel::Session& session, const Inputs& in, const WorkPlan&
 
 // ---- phase 5: the results file (rank 0; the others wait for its outcome), then the checkpoint goes --
 int finish(const parallel::Session& session, const Inputs& in, const WorkPlan& L, Checkpoint* ckpt, Tally& tally,
-           const CheckpointKey& key, double wall, const RunContext& ctx) {
+           const CheckpointKey& key, double wall, const RunContext& ctx, const RunOptions& opt) {
   int rc = 0;
   std::string coarse_line;
   session.agree([&] {
@@ -296,7 +337,9 @@ int finish(const parallel::Session& session, const Inputs& in, const WorkPlan& L
     const Exclusions ex = count_exclusions(in.study, L, tally, in.records);
     if (L.impacts) coarse_line = physics::describe(ex.coarse);
     try {
-      results::write(in.out, make_results(in.study, in.records, L, tally, ex, {key.build, session.size(), wall}));
+      results::Results res = make_results(in.study, in.records, L, tally, ex, {key.build, session.size(), wall}, in.stripes);
+      if (opt.analyse) opt.analyse(res);  // the analyses the caller adds (fragility, hazard: report/fragility.hpp)
+      results::write(in.out, res);
     } catch (const InputError& e) {
       throw InputError(e.what_part(), e.where(),
                        e.fix() + "; the checkpoint keeps every unit: --resume writes the results without recomputing");
@@ -336,7 +379,7 @@ RunOutcome run_study(const parallel::Session& session, const std::string& study_
                   : fmt::format("\ninterrupted before any unit finished: nothing to keep, no checkpoint left"));
     return {130, in.out};
   }
-  return {finish(session, in, L, ckpt ? &*ckpt : nullptr, tally, key, wall, ctx), in.out};
+  return {finish(session, in, L, ckpt ? &*ckpt : nullptr, tally, key, wall, ctx, opt), in.out};
 }
 
 }  // namespace pounding

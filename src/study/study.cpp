@@ -207,7 +207,12 @@ Study parse_study(const std::string& text, const std::string& path) {
   parse_analysis(s, top.table("analysis"), path);
   parse_report(s, top.table("report"), path);
   parse_outputs(s, top.table("outputs"), path);
-  top.finish("title, seed, scene, output, records, structures, gaps, contact, analysis, report, outputs");
+  s.intensity = parse_intensity(top.table("intensity"), path, s.structures);
+  s.hazard = parse_hazard(top.table("hazard"), path, s.intensity);
+  top.finish("title, seed, scene, output, records, structures, gaps, contact, analysis, report, outputs, intensity, hazard");
+  if (s.intensity.enabled && s.scene_requested != Scene::probability)
+    throw InputError("a fragility study ([intensity]) runs in the probability scene", top.where("scene"),
+                     "write scene = \"probability\": whether a pair touches at a gap is decided by the uncoupled motion");
 
   choose_scene(s);
   // the results must fit in memory; the suite's record count is not known yet, so count at least one record
@@ -223,7 +228,7 @@ Study parse_study(const std::string& text, const std::string& path) {
 
 double result_bytes(const Study& s, std::size_t records) {
   const double per_model = 25.0 + (s.scene == Scene::impacts ? 45.0 * static_cast<double>(s.gap_ratios.size()) : 0.0);
-  return static_cast<double>(records) * static_cast<double>(s.structures.period_pair_count()) *
+  return static_cast<double>(records) * static_cast<double>(std::max<std::size_t>(1, s.intensity.stripes())) * static_cast<double>(s.structures.period_pair_count()) *
          static_cast<double>(s.structures.samples_per_pair) * per_model;
 }
 

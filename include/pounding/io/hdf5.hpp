@@ -94,6 +94,9 @@ std::vector<std::string> read_strings_attribute(hid obj, const std::string& name
 // floating-point numbers or integers.
 enum class AttributeKind { string, strings, number, numbers, integer, integers, other };
 AttributeKind attribute_kind(hid obj, const std::string& name);
+// What a dataset holds, for readers of generic groups: strings, 64-bit floats, or integers of 8, 32 or 64 bits.
+enum class DatasetKind { strings, f64, i64, i32, u8, other };
+DatasetKind dataset_kind(hid group, const std::string& name);
 // The attribute names of obj, and the names of the links (groups, datasets) in a group, by name.
 std::vector<std::string> attribute_names(hid obj);
 std::vector<std::string> member_names(hid group);

@@ -133,6 +133,34 @@ struct Field {
   Column data;
 };
 
+// A module's group (/intensity, /fragility, /hazard, ...): datasets that carry their own units and description,
+// and attributes. Analyses added after the kernel's per-model fields (fragility, hazard, later modules) write
+// their results as groups, so a new module needs no new writer or reader code: the writer marks each group
+// (attribute `module_group`) and the reader reads every marked group back.
+using GroupData = std::variant<std::vector<double>, std::vector<std::int64_t>, std::vector<std::uint8_t>,
+                               std::vector<std::string>>;
+struct GroupDataset {
+  std::string name;
+  GroupData data;
+  std::vector<std::size_t> shape;  // empty: 1-D
+  std::string units, description;  // both required (the writer refuses an empty one)
+};
+struct Group {
+  std::string name;
+  std::vector<GroupDataset> datasets;
+  std::vector<std::pair<std::string, SettingValue>> attributes;
+
+  void add(std::string dataset, GroupData data, std::string units, std::string description,
+           std::vector<std::size_t> shape = {});
+  void set(std::string key, SettingValue value);
+  const GroupDataset* find(std::string_view dataset) const;
+  const SettingValue* attribute(std::string_view key) const;
+  // Typed look-ups; throw std::runtime_error naming /<group>/<name> when absent or of another type.
+  template <class T> const std::vector<T>& get(std::string_view dataset) const;
+  double number(std::string_view key) const;
+  std::string text(std::string_view key) const;
+};
+
 struct Results {
   std::string path;  // where it was read from (not stored in the file)
   Header header;
@@ -142,6 +170,13 @@ struct Results {
   GapTable gaps;                   // empty only for format-1 files without the study's settings or gaps
   std::vector<double> gap_ratios;  // the gap axis of every lane x gap field (impacts scene; else empty)
   std::vector<Field> fields;       // unit fields, then derived ones, in writing order
+  // Fragility studies: the stripes (S IM levels) are a leading dimension of every field, [stripes, records,
+  // models]; 0 otherwise. The fields stay flat, stripe-major.
+  std::size_t stripes = 0;
+  std::vector<Group> groups;       // module groups, in writing order
+
+  const Group* group(std::string_view name) const;
+  Group& group_for(std::string name);  // the group, created (at the end) when absent
 
   std::size_t record_count() const { return records.size(); }
   std::size_t model_count() const { return models.size(); }

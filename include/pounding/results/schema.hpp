@@ -58,7 +58,7 @@ std::size_t column_size(const Column& c);
 inline constexpr FieldSpec unit_fields[] = {
     {"uncoupled", "status", Dtype::u8, Extent::lane, 255, "1",
      "status of the analysis without contact: 0 ok, 1 diverged, 2 non-finite, 3 coarse (under-resolved contact), "
-     "255 not computed"},
+     "254 not analysed (record dropped from this stripe: scale factor above max_scale), 255 not computed"},
     {"uncoupled", "peak_u1", Dtype::f64, Extent::lane, NAN, "m", "peak |u1| of building 1 without contact"},
     {"uncoupled", "peak_u2", Dtype::f64, Extent::lane, NAN, "m", "peak |u2| of building 2 without contact"},
     {"uncoupled", "peak_closing", Dtype::f64, Extent::lane, NAN, "m",
@@ -87,6 +87,10 @@ inline constexpr FieldSpec derived_fields[] = {
     {"impacts", "amplification_u2", Dtype::f64, Extent::lane_gap, NAN, "1",
      "peak_u2 with contact / /uncoupled/peak_u2 of the same record and model"},
 };
+
+// uncoupled/status of a (stripe, record) a fragility study does not analyse: the record's factor to the stripe's
+// level exceeds [intensity] max_scale. Not an exclusion: the record is simply not in that stripe.
+inline constexpr std::uint8_t dropped_status = 254;
 
 // The index of a row of unit_fields, at compile time (an unknown name does not compile).
 consteval std::size_t unit_field(std::string_view group, std::string_view name) {

@@ -34,8 +34,11 @@ struct RunFacts {
   int ranks = 1;
   double wall_time_s = 0;
 };
-// Takes the tally's fields (the tally is left empty).
+// Takes the tally's fields (the tally is left empty). A fragility study's stripes give the fields their leading
+// [stripes] dimension and the /intensity group.
 results::Results make_results(const Study& study, const std::vector<StudyRecord>& records, const WorkPlan& plan,
-                              Tally& tally, const Exclusions& ex, const RunFacts& facts);
+                              Tally& tally, const Exclusions& ex, const RunFacts& facts, const StripePlan& stripes = {});
+// /intensity: the measure, the levels, each record's IM, and (stripes) the factors and dropped records.
+results::Group intensity_group(const Study& study, const StripePlan& stripes);
 
 }  // namespace pounding

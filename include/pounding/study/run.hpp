@@ -1,10 +1,12 @@
 #pragma once
 // The study's main job: work units (record, period pair, sample block) -> kernel -> per-model results ->
 // checkpoint -> HDF5 results file. Orchestration only; MPI is behind pounding::parallel.
+#include <functional>
 #include <string>
 
 #include "pounding/parallel/executor.hpp"
 #include "pounding/core/run_context.hpp"
+#include "pounding/results/results.hpp"
 #include "pounding/study/study.hpp"
 
 namespace pounding {
@@ -14,6 +16,11 @@ struct RunOptions {
   bool out_given = false;
   bool resume = false;     // continue from <out>.ckpt
   bool force = false;      // discard whatever <out>.ckpt holds
+  // Called on rank 0 with the complete results before they are written: the analyses of higher layers (the
+  // fragility curves, hazard and risk-targeted separation of a fragility study, report/fragility.hpp) add their
+  // groups here, so one results file holds them. An exception ends the run like any other error (the checkpoint
+  // keeps the work).
+  std::function<void(results::Results&)> analyse;
 };
 
 struct RunOutcome {

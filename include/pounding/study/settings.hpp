@@ -121,6 +121,31 @@ void visit_settings(const Study& s, V&& v) {
 
   v("outputs", "forces", s.want_forces);
   v("outputs", "amplification", s.want_amplification);
+
+  if (s.intensity.enabled) {  // a fragility study (study/intensity.hpp); absent otherwise
+    const IntensitySpec& x = s.intensity;
+    v("intensity", "measure", S(to_string(x.im.measure)));
+    v("intensity", "units", S(im_units(x.im.measure)));
+    v("intensity", "description", describe(x.im));
+    v("intensity", "periods", x.im.periods);
+    v("intensity", "period_pair", x.period_pair);
+    v("intensity", "damping", x.im.damping);
+    v("intensity", "levels", x.levels);
+    v("intensity", "max_scale", x.max_scale);
+    v("intensity", "method", S(to_string(x.method)));
+    v("intensity", "tolerance", x.tolerance);
+  }
+  if (s.hazard.enabled) {
+    const HazardSpec& h = s.hazard;
+    v("hazard", "curve", h.curve);
+    v("hazard", "im", h.im);
+    v("hazard", "rate", h.rate);
+    v("hazard", "k0", h.k0);
+    v("hazard", "k", h.k);
+    v("hazard", "years", h.years);
+    v("hazard", "target", h.target);
+    v("hazard", "source", h.source);
+  }
 }
 
 }  // namespace pounding

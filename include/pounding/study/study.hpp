@@ -35,6 +35,8 @@
 //                study's Table 3 and eq. 10 beside ours; the paper studies set it). The old h1/h2 keys are refused:
 //                metres come from the buildings' own heights ([structures.building1/2] height).
 //   [outputs]    forces = true; amplification = true   (what the impacts scene must deliver; `auto` reads it)
+//   [intensity]  [hazard]   a fragility study: records scaled to IM levels (stripes), fragility per gap, the site's
+//                annual rate of pounding and the risk-targeted separation (study/intensity.hpp)
 //
 // Sanity limits (errors naming the file, line and key, not a report full of nan or a std::bad_alloc):
 //   - every record must pass require_analysable (records.hpp) after units and scale: at least 2 s long,
@@ -53,6 +55,7 @@
 #include "pounding/physics/batch.hpp"
 #include "pounding/motion/records.hpp"
 #include "pounding/sampling/sampler.hpp"
+#include "pounding/study/intensity.hpp"
 
 namespace pounding {
 
@@ -116,6 +119,9 @@ struct Study {
   std::string compare_with;  // "" or "stochastic-pounding"
   // outputs wanted from the impacts scene
   bool want_forces = true, want_amplification = true;
+  // [intensity] and [hazard] (study/intensity.hpp): a fragility study
+  IntensitySpec intensity;
+  HazardSpec hazard;
 };
 
 // Bytes of the per-model result arrays rank 0 gathers for `records` records (src/study/run.cpp): per record

@@ -1,0 +1,201 @@
+#include "pounding/study/intensity.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include <fmt/format.h>
+
+#include "pounding/config/config.hpp"
+#include "pounding/core/error.hpp"
+#include "pounding/sampling/sampler.hpp"
+
+namespace pounding {
+
+namespace fs = std::filesystem;
+using config::TableReader;
+
+double median_period(const StructureModel& structures, int b) {
+  std::vector<double> p = structures.building(b).periods;  // a distribution: {its median}
+  std::sort(p.begin(), p.end());
+  const std::size_t n = p.size();
+  return n % 2 ? p[n / 2] : std::sqrt(p[n / 2 - 1] * p[n / 2]);
+}
+
+namespace {
+
+template <class E, std::size_t N>
+E parse_named(const EnumName<E> (&table)[N], const std::string& name, std::string_view what) {
+  if (auto v = parse_enum(table, name)) return *v;
+  throw InputError(fmt::format("unknown {} '{}'", what, name), std::string(what), "use " + enum_name_list(table, " or ", "\""));
+}
+
+// periods = [..] or {min, max, count} (count log-spaced periods from min to max)
+std::vector<double> read_periods(TableReader& r, const std::string& path) {
+  const toml::node* n = r.get("periods");
+  if (!n) return {};
+  if (const toml::table* t = n->as_table()) {
+    TableReader g(t, path, "intensity.periods");
+    const double lo = g.number("min", 0.0, 0.01, 20.0, "[0.01, 20] s");
+    const double hi = g.number("max", 0.0, 0.01, 20.0, "[0.01, 20] s");
+    const long count = g.integer("count", 10, 2, 200);
+    g.finish("min, max, count");
+    if (!(hi > lo)) throw InputError("periods: max must exceed min", r.where("periods"), "give {min = 0.2, max = 2.0, count = 10}");
+    std::vector<double> p(static_cast<std::size_t>(count));
+    for (long i = 0; i < count; ++i)
+      p[static_cast<std::size_t>(i)] = lo * std::pow(hi / lo, static_cast<double>(i) / static_cast<double>(count - 1));
+    return p;
+  }
+  return r.numbers("periods", {}, 0.01, 20.0, "[0.01, 20] s");
+}
+
+void read_period(IntensitySpec& x, TableReader& r, const std::string& path, const StructureModel& structures) {
+  const bool needs = x.im.measure == ImMeasure::sa;
+  const toml::node* p = r.get("period");
+  std::vector<double> periods = read_periods(r, path);
+  if (x.im.measure == ImMeasure::sa_avg) {
+    if (p) throw InputError("Sa_avg averages over periods, not one period", r.where("period"), "write periods = [0.2, 0.5, 1.0, 2.0] or {min, max, count}");
+    if (periods.size() < 2)
+      throw InputError("Sa_avg needs at least two periods", r.where("periods"),
+                       "write periods = [0.2, 0.5, 1.0, 2.0] or periods = {min = 0.2, max = 3.0, count = 10}");
+    x.im.periods = periods;
+    return;
+  }
+  if (!periods.empty()) throw InputError(fmt::format("{} takes no periods", to_string(x.im.measure)), r.where("periods"), "delete periods (it is for Sa_avg)");
+  if (!needs) {
+    if (p) throw InputError(fmt::format("{} takes no period", to_string(x.im.measure)), r.where("period"), "delete period (it is for Sa)");
+    return;
+  }
+  if (!p) throw InputError("Sa needs a period", r.where("period"), "write period = <s> or period = \"pair\"");
+  if (p->is_string()) {
+    if (p->value<std::string>() != "pair")
+      throw InputError(fmt::format("period = \"{}\" is not a period", *p->value<std::string>()), r.where("period"),
+                       "write period = <s> or period = \"pair\" (the geometric mean of the buildings' median periods)");
+    x.period_pair = true;
+    x.im.periods = {std::sqrt(median_period(structures, 0) * median_period(structures, 1))};
+    return;
+  }
+  x.im.periods = {r.number("period", 0.0, 0.01, 20.0, "[0.01, 20] s")};
+}
+
+void read_levels(IntensitySpec& x, TableReader& r) {
+  const bool pgv = x.im.measure == ImMeasure::pgv;
+  if (!r.get("levels"))
+    throw InputError("[intensity] needs the stripes' levels", r.where("levels"),
+                     pgv ? "write levels = [0.1, 0.2, 0.4, 0.6, 0.8, 1.0] (m/s)" : "write levels = [0.1, 0.2, 0.4, 0.6, 0.8, 1.0] (g)");
+  x.levels = r.numbers("levels", {}, pgv ? 1e-4 : 1e-4, pgv ? 20.0 : 10.0, pgv ? "(0, 20] m/s" : "(0, 10] g");
+  for (std::size_t i = 1; i < x.levels.size(); ++i)
+    if (!(x.levels[i] > x.levels[i - 1]))
+      throw InputError("levels must be strictly increasing", r.where("levels"), "sort them and remove duplicates");
+  if (x.method == FragilityMethod::msa && x.levels.size() < 2)
+    throw InputError("a fragility needs at least two stripes", r.where("levels"), "give 8 to 12 levels that bracket the median (Baker 2015)");
+}
+
+}  // namespace
+
+IntensitySpec parse_intensity(const toml::table* t, const std::string& path, const StructureModel& structures) {
+  IntensitySpec x;
+  if (!t) return x;
+  x.enabled = true;
+  TableReader r(t, path, "intensity");
+  x.im.measure = r.choice("measure", "Sa", [](const std::string& n) { return parse_named(im_measure_names, n, "measure"); });
+  x.method = r.choice("method", "msa", [](const std::string& n) { return parse_named(fragility_method_names, n, "method"); });
+  read_period(x, r, path, structures);
+  x.im.damping = r.number("damping", 0.05, 0.0, 0.5, "[0, 0.5]");
+  read_levels(x, r);
+  x.max_scale = r.number("max_scale", 10.0, 1.0, 1000.0, "[1, 1000]");
+  x.tolerance = r.number("tolerance", 0.01, 1e-6, 0.5, "[1e-6, 0.5] (relative width of the IM bracket)");
+  r.finish("measure, period, periods, damping, levels, max_scale, method, tolerance");
+  return x;
+}
+
+void read_hazard_csv(const std::string& file, std::vector<double>& im, std::vector<double>& rate) {
+  std::ifstream in(file);
+  if (!in) throw InputError("cannot read the hazard curve", file, "check [hazard] curve (relative to the study file)");
+  std::string line;
+  int no = 0;
+  im.clear(), rate.clear();
+  while (std::getline(in, line)) {
+    ++no;
+    const auto b = line.find_first_not_of(" \t\r");
+    if (b == std::string::npos || line[b] == '#') continue;
+    std::replace(line.begin(), line.end(), ',', ' ');
+    std::istringstream row(line);
+    double x = 0, l = 0;
+    std::string rest;
+    if (!(row >> x >> l)) {
+      if (im.empty() && std::isalpha(static_cast<unsigned char>(line[b]))) continue;  // a header
+      throw InputError("a hazard row must be two numbers: IM, annual rate of exceedance", fmt::format("{}:{}", file, no), "fix the row");
+    }
+    if (row >> rest) throw InputError("a hazard row has more than two columns", fmt::format("{}:{}", file, no), "keep IM, annual rate");
+    const std::string where = fmt::format("{}:{}", file, no);
+    if (!(std::isfinite(x) && x > 0)) throw InputError(fmt::format("IM {} is not positive", x), where, "IM levels are > 0");
+    if (!(std::isfinite(l) && l > 0 && l < 10))
+      throw InputError(fmt::format("annual rate {} is not in (0, 10)", l), where, "rates of exceedance are per year, > 0");
+    if (!im.empty() && !(x > im.back())) throw InputError("IM must increase down the table", where, "sort by IM, no duplicates");
+    if (!rate.empty() && !(l < rate.back()))
+      throw InputError("the annual rate of exceedance must decrease as IM increases", where, "check the curve (a hazard curve is strictly decreasing)");
+    im.push_back(x), rate.push_back(l);
+  }
+  if (im.size() < 2) throw InputError("a hazard curve needs at least two rows", file, "give IM, rate rows");
+}
+
+HazardSpec parse_hazard(const toml::table* t, const std::string& path, const IntensitySpec& intensity) {
+  HazardSpec h;
+  if (!t) return h;
+  TableReader r(t, path, "hazard");
+  if (!intensity.enabled)
+    throw InputError("[hazard] needs fragility curves", r.where("curve"), "add [intensity] (measure, levels) to the study");
+  h.enabled = true;
+  h.curve = r.string("curve", "");
+  const bool power = r.get("k0") || r.get("k");
+  if (!h.curve.empty() == power)
+    throw InputError(power ? "[hazard] gives both a curve and a power law" : "[hazard] gives no hazard", r.where("curve"),
+                     "give curve = \"hazard.csv\" (IM, annual rate) or k0 = <1/yr> and k = <slope>");
+  if (power) {
+    h.k0 = r.number("k0", 0.0, 1e-12, 10.0, "(0, 10] per year");
+    h.k = r.number("k", 0.0, 0.1, 20.0, "[0.1, 20]");
+  } else {
+    if (!fs::path(h.curve).is_absolute()) h.curve = (fs::path(path).parent_path() / h.curve).lexically_normal().string();
+    try {
+      read_hazard_csv(h.curve, h.im, h.rate);
+    } catch (const InputError& e) {
+      throw InputError(e.what_part(), e.where(), e.fix() + fmt::format(" ({})", r.where("curve")));
+    }
+  }
+  h.years = r.number("years", 50.0, 1.0, 10000.0, "[1, 10000] years");
+  h.target = r.number("target", 2.0, 1e-4, 99.0, "(0, 99] % in `years`");
+  h.source = r.string("source", "");
+  r.finish("curve, k0, k, years, target, source");
+  return h;
+}
+
+}  // namespace pounding
+
+namespace pounding {
+
+std::size_t StripePlan::dropped_count(std::size_t stripe) const {
+  std::size_t n = 0;
+  for (std::size_t r = 0; r < records; ++r) n += dropped[stripe * records + r];
+  return n;
+}
+
+StripePlan plan_stripes(const IntensitySpec& spec, std::span<const double> im) {
+  StripePlan p;
+  p.records = im.size();
+  p.im.assign(im.begin(), im.end());
+  p.stripes = spec.stripes();
+  p.scale.resize(p.stripes * p.records);
+  p.dropped.resize(p.stripes * p.records);
+  for (std::size_t s = 0; s < p.stripes; ++s)
+    for (std::size_t r = 0; r < p.records; ++r) {
+      const double f = scale_to_level(im[r], spec.levels[s]);
+      p.scale[s * p.records + r] = f;
+      p.dropped[s * p.records + r] = !(f <= spec.max_scale);  // also an IM of 0 (f infinite) or NaN
+    }
+  return p;
+}
+
+}  // namespace pounding
