@@ -13,6 +13,7 @@
 #include "pounding/core/random.hpp"
 #include "pounding/physics/batch.hpp"
 #include "pounding/physics/resolution.hpp"
+#include "pounding/report/fragility.hpp"
 
 namespace pounding {
 
@@ -432,6 +433,12 @@ Curve probability_curve(const results::Results& r, double step, double xmax, int
 }
 
 std::string report_markdown(const results::Results& results) {
+  if (is_fragility_study(results)) {
+    if (results.group("fragility")) return fragility_markdown(results);
+    results::Results r = results;  // a file written without the analysis hook: analyse it now
+    analyse_fragility(r);
+    return fragility_markdown(r);
+  }
   const Data r(results);
   Markdown md(r);
   md.overview();
@@ -453,6 +460,12 @@ std::string report_markdown(const results::Results& results) {
 }
 
 std::string report_csv(const results::Results& results) {
+  if (is_fragility_study(results)) {
+    if (results.group("fragility")) return fragility_csv(results);
+    results::Results r = results;
+    analyse_fragility(r);
+    return fragility_csv(r);
+  }
   const Data r(results);
   std::string s = "table,record,gap_ratio,T1,T2,hits,n,probability,gap_m,lo,hi,name\n";
   const auto& ratios = r.set.gap_ratios;

@@ -15,6 +15,7 @@
 #include "cli/commands.hpp"
 #include "pounding/core/error.hpp"
 #include "pounding/parallel/executor.hpp"
+#include "pounding/report/fragility.hpp"
 #include "pounding/report/report.hpp"
 #include "pounding/results/reader.hpp"
 #include "pounding/study/run.hpp"
@@ -79,6 +80,7 @@ int run_job(const RunOpts& o) {
     ro.out_given = o.out_given;
     ro.resume = o.resume;
     ro.force = o.force;
+    ro.analyse = analyse_fragility;  // a fragility study's /fragility and /hazard (nothing for other studies)
     RunContext ctx;
     ctx.cancel = &stop_requested;
     if (session.root()) {

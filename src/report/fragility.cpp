@@ -1,0 +1,199 @@
+#include "pounding/report/fragility.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <optional>
+
+#include <fmt/format.h>
+
+#include "pounding/analysis/hazard.hpp"
+#include "pounding/analysis/stripes.hpp"
+#include "pounding/report/report.hpp"
+
+namespace pounding {
+
+namespace {
+
+using results::Group;
+using results::Results;
+
+bool setting_is(const Results& r, std::string_view section, std::string_view key, std::string_view value) {
+  const results::SettingValue* v = r.settings.find(section, key);
+  const auto* s = v ? std::get_if<std::string>(v) : nullptr;
+  return s && *s == value;
+}
+
+bool pair_study(const Results& r) {
+  const results::SettingValue* v = r.settings.find("structures", "heights_specified");
+  const auto* i = v ? std::get_if<std::int64_t>(v) : nullptr;
+  return i && *i != 0 && !r.models.code_gap.empty();
+}
+
+// Both buildings elastic: the peak closing scales exactly with the record's amplitude.
+bool linear_pair(const Results& r) {
+  return setting_is(r, "structures.building1", "hysteresis", "elastic") &&
+         setting_is(r, "structures.building2", "hysteresis", "elastic");
+}
+
+std::optional<HazardCurve> hazard_of(const Results& r) {
+  if (!r.settings.find("hazard", "years")) return std::nullopt;
+  const std::vector<double> im = r.settings.numbers("hazard", "im");
+  if (!im.empty()) return HazardCurve::from_table(im, r.settings.numbers("hazard", "rate"));
+  return HazardCurve::power_law(r.settings.number("hazard", "k0"), r.settings.number("hazard", "k"));
+}
+
+stripes::Settings stripe_settings(const Results& r) {
+  stripes::Settings s;
+  s.bootstrap = static_cast<int>(r.settings.number("report", "bootstrap"));
+  s.confidence = r.settings.number("report", "confidence");
+  s.seed = static_cast<std::uint64_t>(r.header.seed) ^ 0x66726167696c6974ULL;  // "fragilit": its own stream
+  s.years = r.settings.find("hazard", "years") ? r.settings.number("hazard", "years") : 50.0;
+  return s;
+}
+
+// The demands of every (stripe or run, record, model) in gap units: peak closing / d (d the model's code gap);
+// NaN for an analysis left out (diverged, non-finite, coarse unless kept, or a record dropped from the stripe).
+std::vector<double> demand_ratios(const Results& r) {
+  const auto& pc = r.column<double>("uncoupled", "peak_closing");
+  const auto& st = r.column<std::uint8_t>("uncoupled", "status");
+  const bool keep = setting_is(r, "analysis", "coarse", "keep");
+  const std::size_t M = r.model_count();
+  std::vector<double> d(pc.size(), NAN);
+  for (std::size_t i = 0; i < pc.size(); ++i)
+    if (st[i] == 0 || (keep && st[i] == 3)) d[i] = pc[i] / r.models.code_gap[i % M];
+  return d;
+}
+
+void add_fit_rows(Group& g, const std::vector<stripes::GapFragility>& fits, std::size_t S, const std::string& units) {
+  const std::size_t G = fits.size();
+  std::vector<double> theta(G), beta(G), tlo(G), thi(G), blo(G), bhi(G), fitted(G * S, NAN);
+  std::vector<std::int64_t> n(G * S, 0), z(G * S, 0), failed(G);
+  std::vector<std::string> status(G), note(G);
+  for (std::size_t k = 0; k < G; ++k) {
+    const auto& f = fits[k];
+    const bool ok = f.fit.ok();
+    theta[k] = ok ? f.fit.fragility.theta : NAN, beta[k] = ok ? f.fit.fragility.beta : NAN;
+    tlo[k] = f.theta_ci.lo, thi[k] = f.theta_ci.hi, blo[k] = f.beta_ci.lo, bhi[k] = f.beta_ci.hi;
+    status[k] = to_string(f.fit.status), note[k] = f.note.empty() ? f.fit.message : f.note;
+    failed[k] = f.replicates_failed;
+    for (std::size_t s = 0; s < S && s < f.observed.size(); ++s) n[k * S + s] = f.observed[s].n, z[k * S + s] = f.observed[s].z;
+    for (std::size_t s = 0; s < S && s < f.fitted.size(); ++s) fitted[k * S + s] = f.fitted[s];
+  }
+  g.add("theta", theta, units, "median of the lognormal fragility P(pound | IM = x) = Phi(ln(x / theta) / beta); NaN: no fit (see status)");
+  g.add("beta", beta, "1", "log standard deviation of the fragility");
+  g.add("theta_lo", tlo, units, "lower end of theta's bootstrap interval (records resampled)");
+  g.add("theta_hi", thi, units, "upper end of theta's bootstrap interval");
+  g.add("beta_lo", blo, "1", "lower end of beta's bootstrap interval");
+  g.add("beta_hi", bhi, "1", "upper end of beta's bootstrap interval");
+  g.add("replicates_failed", failed, "1", "bootstrap replicates whose fit was not ok (treated as in status/note)");
+  g.add("status", status, "1", "ok, no_pounding, all_pounded, separated, decreasing or not_converged");
+  g.add("note", note, "1", "what the fit did at this gap, in words");
+  g.add("observed_n", n, "1", "analyses counted at each stripe; [gaps, stripes]", {G, S});
+  g.add("observed_z", z, "1", "analyses that pounded (peak closing > gap) at each stripe; [gaps, stripes]", {G, S});
+  g.add("fitted", fitted, "1", "fitted P(pound) at each stripe level; [gaps, stripes]", {G, S});
+}
+
+void add_hazard_group(Results& r, const HazardCurve& hz, const std::vector<stripes::GapFragility>& fits,
+                      const stripes::Settings& st, const std::vector<double>& demand, const std::vector<double>& levels) {
+  Group& h = r.group_for("hazard");
+  const std::string units = r.settings.text("intensity", "units");
+  const double years = st.years, target = r.settings.number("hazard", "target");
+  const double lambda_target = rate_for_probability(target / 100.0, years);
+  h.set("years", years), h.set("target_percent", target), h.set("lambda_target", lambda_target);
+  h.set("source", r.settings.text("hazard", "source"));
+  h.set("curve", r.settings.text("hazard", "curve"));
+  h.set("k0", r.settings.number("hazard", "k0")), h.set("k", r.settings.number("hazard", "k"));
+  std::vector<double> im = r.settings.numbers("hazard", "im"), rate = r.settings.numbers("hazard", "rate");
+  if (im.empty())  // a power law: tabulate it over the stripes' range and a decade either side, for plots
+    for (int i = 0; i <= 40; ++i) {
+      const double x = levels.front() / 10 * std::pow(100 * levels.back() / levels.front(), i / 40.0);
+      im.push_back(x), rate.push_back(hz.rate(x));
+    }
+  h.add("im", im, units, "the hazard curve used: IM levels");
+  h.add("rate", rate, "1/year", "the hazard curve used: annual rate of exceedance of each IM level");
+  const std::size_t G = fits.size();
+  std::vector<double> lam(G), llo(G), lhi(G), p(G), plo(G), phi(G), tail(G);
+  for (std::size_t k = 0; k < G; ++k) {
+    const auto& f = fits[k];
+    lam[k] = f.annual_rate, llo[k] = f.rate_lo, lhi[k] = f.rate_hi;
+    p[k] = f.probability, plo[k] = f.probability_lo, phi[k] = f.probability_hi, tail[k] = f.tail_share;
+  }
+  h.add("annual_rate", lam, "1/year", "annual rate of pounding at each gap: integral of P(pound | x) |d lambda_IM(x)|");
+  h.add("rate_lo", llo, "1/year", "lower end of the annual rate's bootstrap interval");
+  h.add("rate_hi", lhi, "1/year", "upper end of the annual rate's bootstrap interval");
+  h.add("probability", p, "1", "probability of at least one pounding in `years`: 1 - exp(-rate years)");
+  h.add("probability_lo", plo, "1", "lower end of the probability's bootstrap interval");
+  h.add("probability_hi", phi, "1", "upper end of the probability's bootstrap interval");
+  h.add("tail_share", tail, "1", "share of the rate from IM beyond the hazard table (its end slopes extended)");
+  (void)demand;
+}
+
+}  // namespace
+
+bool is_fragility_study(const Results& r) { return r.group("intensity") != nullptr; }
+
+void analyse_fragility(Results& r) {
+  if (!is_fragility_study(r) || r.group("fragility")) return;
+  const Group& in = *r.group("intensity");
+  const std::vector<double> levels = in.get<double>("levels");
+  const std::string units = in.text("units"), method = in.text("method");
+  const std::optional<HazardCurve> hz = hazard_of(r);
+  const stripes::Settings st = stripe_settings(r);
+  const std::vector<double>& gaps = r.gaps.ratios;
+  std::vector<double> demand = demand_ratios(r);
+  std::vector<stripes::GapFragility> fits;
+  stripes::TargetGap target;
+  stripes::RateCurve curve;
+  const double lambda_target =
+      hz ? rate_for_probability(r.settings.number("hazard", "target") / 100.0, st.years) : 0.0;
+  if (method == "msa") {
+    const stripes::Demands D{levels, r.record_count(), r.model_count(), demand};
+    fits = stripes::fit_msa(D, gaps, st, hz ? &*hz : nullptr);
+    if (hz) {
+      target = stripes::risk_targeted_gap(D, *hz, lambda_target, st);
+      std::vector<double> grid;
+      for (double x = r.settings.number("gaps", "curve_step"); x <= r.settings.number("gaps", "curve_max") + 1e-12;
+           x += r.settings.number("gaps", "curve_step"))
+        grid.push_back(x);
+      curve = stripes::rate_curve(D, *hz, grid, st.years);
+    }
+  } else {  // ida on a linear pair: every capacity exact from the run at the records' own intensity
+    const std::vector<double>& im = in.get<double>("im");
+    const double max_scale = in.number("max_scale");
+    std::vector<double> cap(im.size());
+    for (std::size_t k = 0; k < im.size(); ++k) cap[k] = im[k] * max_scale;
+    for (double x : gaps) {
+      const stripes::Capacities C = stripes::linear_capacities(im, demand, r.model_count(), x, cap);
+      fits.push_back(stripes::fit_ida(C, levels, st, hz ? &*hz : nullptr, x));
+    }
+    if (hz) target = stripes::risk_targeted_gap_linear_ida(im, demand, r.model_count(), cap, *hz, lambda_target, st);
+  }
+  Group& g = r.group_for("fragility");
+  g.set("method", method);
+  g.set("confidence", st.confidence);
+  g.set("replicates", static_cast<std::int64_t>(st.bootstrap));
+  g.set("im_units", units);
+  g.set("gap_units", std::string("ratio of the code gap d"));
+  g.add("gaps", gaps, "1", "the gaps, as ratios of each model's code gap d");
+  if (pair_study(r)) {
+    std::vector<double> m;
+    for (double x : gaps) m.push_back(x * r.models.code_gap[0]);
+    g.add("gaps_m", m, "m", "the gaps in metres (this pair's d times the ratio)");
+  }
+  g.add("levels", levels, units, "the stripes' IM levels (the observed and fitted columns)");
+  add_fit_rows(g, fits, levels.size(), units);
+  if (!hz) return;
+  add_hazard_group(r, *hz, fits, st, demand, levels);
+  Group& h = *const_cast<Group*>(r.group("hazard"));
+  const double d = pair_study(r) ? r.models.code_gap[0] : NAN;
+  h.set("target_gap", target.gap), h.set("target_gap_lo", target.lo), h.set("target_gap_hi", target.hi);
+  h.set("target_gap_m", target.gap * d), h.set("target_gap_m_lo", target.lo * d), h.set("target_gap_m_hi", target.hi * d);
+  h.set("target_status", target.status), h.set("target_note", target.note);
+  if (!curve.gap.empty()) {
+    h.add("curve_gap", curve.gap, "1", "gaps (ratios of d) of the rate-versus-separation curve");
+    h.add("curve_rate", curve.rate, "1/year", "annual rate of pounding at each curve gap (point estimate)");
+    h.add("curve_probability", curve.probability, "1", "probability of pounding in `years` at each curve gap");
+  }
+}
+
+}  // namespace pounding

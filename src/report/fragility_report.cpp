@@ -1,0 +1,231 @@
+// The report of a fragility study: the risk-targeted separation first, then the fragility per gap, observed versus
+// fitted at each stripe, the hazard and the stripes' scale factors (report/fragility.hpp).
+#include <algorithm>
+#include <cmath>
+
+#include <fmt/format.h>
+
+#include "pounding/report/fragility.hpp"
+
+namespace pounding {
+
+namespace {
+
+using results::Group;
+using results::Results;
+
+std::string num(double x, const char* fmt_ = "{:.3g}") { return std::isfinite(x) ? fmt::format(fmt::runtime(fmt_), x) : "n/a"; }
+std::string pct(double p) { return std::isfinite(p) ? fmt::format("{:.2f}%", 100 * p) : "n/a"; }
+std::string interval(double lo, double hi, const char* f = "{:.3g}") { return fmt::format("[{}, {}]", num(lo, f), num(hi, f)); }
+
+struct View {
+  const Results& r;
+  const Group& in;
+  const Group& fr;
+  const Group* hz;
+  std::vector<double> levels, gaps, gaps_m;
+  std::string units;
+  bool pair;
+  View(const Results& res)
+      : r(res), in(*res.group("intensity")), fr(*res.group("fragility")), hz(res.group("hazard")),
+        levels(fr.get<double>("levels")), gaps(fr.get<double>("gaps")), units(in.text("units")),
+        pair(fr.find("gaps_m") != nullptr) {
+    if (pair) gaps_m = fr.get<double>("gaps_m");
+  }
+  std::string gap_name(std::size_t k) const {
+    return pair ? fmt::format("{:g} d = {:.3f} m", gaps[k], gaps_m[k]) : fmt::format("{:g} d", gaps[k]);
+  }
+  std::string gap_value(double ratio, double metres) const {
+    return pair ? fmt::format("{:.3f} m ({:.3g} d)", metres, ratio) : fmt::format("{:.3g} d", ratio);
+  }
+};
+
+std::string overview(const View& v) {
+  const Results& r = v.r;
+  std::string s = fmt::format("# Pounding fragility study: {}\n\n", r.header.title);
+  s += fmt::format("- results: `{}` (written {}, commit {}, {} rank(s), wall time {:.2f} s)\n", r.path, r.header.date,
+                   r.header.git_commit.substr(0, 12), r.header.ranks, r.header.wall_time_s);
+  s += fmt::format("- intensity measure: **{}**{}\n", v.in.text("description"),
+                   v.r.settings.find("intensity", "period_pair") && v.r.settings.number("intensity", "period_pair") != 0
+                       ? " — period \"pair\": the geometric mean of the two buildings' median periods"
+                       : "");
+  const std::string method = v.fr.text("method");
+  if (method == "msa")
+    s += fmt::format("- method: multiple-stripe analysis, {} stripes ({} to {} {}): every record amplitude-scaled to "
+                     "each level, the same {} models at every stripe (common random numbers); fit: Baker (2015) "
+                     "maximum likelihood over the stripes\n",
+                     v.levels.size(), num(v.levels.front()), num(v.levels.back()), v.units, r.model_count());
+  else
+    s += "- method: IDA on a linear pair: the peak closing scales exactly with the record, so each model's IM at first "
+         "contact is exact from one run (IM x gap / peak closing); fit: lognormal by moments (censored maximum "
+         "likelihood where a capacity lies beyond max_scale)\n";
+  s += fmt::format("- {} records, {} models per record, seed {}; intervals: percentile bootstrap over records "
+                   "({} replicates, {:.0f} %), so they include record-to-record variability\n",
+                   r.record_count(), r.model_count(), r.header.seed, v.fr.number("replicates"),
+                   100 * v.fr.number("confidence"));
+  s += fmt::format("- excluded (diverged or non-finite) analyses: **{}** of {}\n", r.header.excluded_analyses,
+                   r.header.total_analyses);
+  if (!r.header.exclusion_warning.empty()) s += fmt::format("\n> **WARNING**: {}\n", r.header.exclusion_warning);
+  return s + "\n";
+}
+
+std::string target_section(const View& v) {
+  if (!v.hz) return "";
+  const Group& h = *v.hz;
+  const double years = h.number("years"), target = h.number("target_percent");
+  std::string s = fmt::format("## Risk-targeted separation: P(pounding in {:g} years) = {:g} %\n\n", years, target);
+  const std::string status = h.text("target_status");
+  if (status == "ok") {
+    s += fmt::format("**{}**, {:.0f} % interval {}; **advice: at least {}** (the upper end).\n\n",
+                     v.gap_value(h.number("target_gap"), h.number("target_gap_m")), 100 * v.fr.number("confidence"),
+                     v.pair ? interval(h.number("target_gap_m_lo"), h.number("target_gap_m_hi"), "{:.3f}") + " m"
+                            : interval(h.number("target_gap_lo"), h.number("target_gap_hi")) + " d",
+                     v.pair ? fmt::format("{:.3f} m", h.number("target_gap_m_hi")) : fmt::format("{:.3g} d", h.number("target_gap_hi")));
+  } else {
+    s += fmt::format("**not found ({})**: {}\n\n", status, h.text("target_note"));
+  }
+  s += fmt::format("The separation is the gap at which the annual rate of pounding, lambda = integral of P(pound | "
+                   "IM = x) |d lambda_IM(x)|, equals {:.4g} per year (1 - exp(-lambda {:g}) = {:g} %), found by "
+                   "bisection on the continuum of gaps with the fragility refitted at each; its interval comes from "
+                   "the same record bootstrap.\n\n",
+                   h.number("lambda_target"), years, target);
+  return s;
+}
+
+std::string fragility_table(const View& v) {
+  std::string s = fmt::format("## Fragility per gap: P(pound | {} = x) = Phi(ln(x / theta) / beta)\n\n", v.in.text("measure"));
+  const auto& theta = v.fr.get<double>("theta");
+  const auto& beta = v.fr.get<double>("beta");
+  const auto& status = v.fr.get<std::string>("status");
+  const auto& note = v.fr.get<std::string>("note");
+  const bool hz = v.hz != nullptr;
+  const double conf = 100 * v.fr.number("confidence");
+  s += fmt::format("| gap | theta {} | {:.0f} % interval | beta | {:.0f} % interval | status |{}\n", v.units, conf, conf,
+                   hz ? fmt::format(" annual rate | P in {:g} years | {:.0f} % interval |", v.hz->number("years"), conf) : "");
+  s += fmt::format("|---|---|---|---|---|---|{}\n", hz ? "---|---|---|" : "");
+  for (std::size_t k = 0; k < v.gaps.size(); ++k) {
+    s += fmt::format("| {} | {} | {} | {} | {} | {} |", v.gap_name(k), num(theta[k], "{:.4g}"),
+                     interval(v.fr.get<double>("theta_lo")[k], v.fr.get<double>("theta_hi")[k], "{:.4g}"),
+                     num(beta[k], "{:.3f}"),
+                     interval(v.fr.get<double>("beta_lo")[k], v.fr.get<double>("beta_hi")[k], "{:.3f}"), status[k]);
+    if (hz)
+      s += fmt::format(" {} | {} | [{}, {}] |", num(v.hz->get<double>("annual_rate")[k], "{:.3e}"),
+                       pct(v.hz->get<double>("probability")[k]), pct(v.hz->get<double>("probability_lo")[k]),
+                       pct(v.hz->get<double>("probability_hi")[k]));
+    s += "\n";
+  }
+  std::string notes;
+  for (std::size_t k = 0; k < v.gaps.size(); ++k)
+    if (status[k] != "ok" && !note[k].empty()) notes += fmt::format("- {}: {}\n", v.gap_name(k), note[k]);
+  return s + (notes.empty() ? "" : "\n" + notes) + "\n";
+}
+
+std::string observed_table(const View& v) {
+  const std::size_t S = v.levels.size(), G = v.gaps.size();
+  const auto& n = v.fr.get<std::int64_t>("observed_n");
+  const auto& z = v.fr.get<std::int64_t>("observed_z");
+  const auto& fit = v.fr.get<double>("fitted");
+  std::string s = "## Observed versus fitted at each stripe\n\nEach cell: poundings / analyses (observed %) and the "
+                  "fitted curve's P.\n\n| " + v.in.text("measure") + " " + v.units + " |";
+  for (std::size_t k = 0; k < G; ++k) s += " " + v.gap_name(k) + " |";
+  s += "\n|---|";
+  for (std::size_t k = 0; k < G; ++k) s += "---|";
+  s += "\n";
+  for (std::size_t j = 0; j < S; ++j) {
+    s += fmt::format("| {} |", num(v.levels[j], "{:.4g}"));
+    for (std::size_t k = 0; k < G; ++k) {
+      const std::int64_t nn = n[k * S + j], zz = z[k * S + j];
+      s += nn ? fmt::format(" {}/{} ({}) fit {} |", zz, nn, pct(static_cast<double>(zz) / static_cast<double>(nn)),
+                            pct(fit[k * S + j]))
+              : " — |";
+    }
+    s += "\n";
+  }
+  return s + "\n";
+}
+
+std::string stripes_section(const View& v) {
+  const Group& in = v.in;
+  if (!in.find("scale")) return "";
+  const auto& scale = in.get<double>("scale");
+  const auto& dropped = in.get<std::uint8_t>("dropped");
+  const std::size_t S = v.levels.size(), R = v.r.record_count();
+  std::string s = fmt::format("## Stripes and scale factors\n\nEach record is scaled by level / IM; a factor above "
+                              "max_scale = {:g} drops the record from that stripe. Factors outside [0.25, 4] distort "
+                              "the record's spectral shape relative to its IM (research note 1.5): counted below.\n\n"
+                              "| level {} | records | dropped | factor min | median | max | outside [0.25, 4] |\n"
+                              "|---|---|---|---|---|---|---|\n",
+                              in.number("max_scale"), v.units);
+  for (std::size_t j = 0; j < S; ++j) {
+    std::vector<double> f;
+    std::size_t drop = 0, outside = 0;
+    for (std::size_t k = 0; k < R; ++k) {
+      if (dropped[j * R + k]) { ++drop; continue; }
+      const double x = scale[j * R + k];
+      f.push_back(x), outside += x < 0.25 || x > 4;
+    }
+    std::sort(f.begin(), f.end());
+    s += f.empty() ? fmt::format("| {} | 0 | {} | — | — | — | — |\n", num(v.levels[j], "{:.4g}"), drop)
+                   : fmt::format("| {} | {} | {} | {:.3g} | {:.3g} | {:.3g} | {} |\n", num(v.levels[j], "{:.4g}"),
+                                 f.size(), drop, f.front(), f[f.size() / 2], f.back(), outside);
+  }
+  return s + "\n";
+}
+
+std::string hazard_section(const View& v) {
+  if (!v.hz) return "";
+  const Group& h = *v.hz;
+  std::string s = "## Site hazard\n\n";
+  const std::string curve = h.text("curve");
+  s += curve.empty() ? fmt::format("- power law lambda(x) = k0 x^-k, k0 = {:.4g} per year, k = {:.3g}\n", h.number("k0"), h.number("k"))
+                     : fmt::format("- hazard curve `{}` ({} points, log-log interpolation; beyond its ends the end "
+                                   "slopes are extended and the share of the rate they give is reported)\n",
+                                   curve, h.get<double>("im").size());
+  if (!h.text("source").empty()) s += fmt::format("- source: {}\n", h.text("source"));
+  const auto& tail = h.get<double>("tail_share");
+  const double worst = tail.empty() ? 0 : *std::max_element(tail.begin(), tail.end());
+  if (worst > 0.01)
+    s += fmt::format("- **WARNING**: up to {:.1f} % of a gap's rate comes from beyond the hazard table: extend the table\n", 100 * worst);
+  s += "- the hazard's IM must be the fragility's IM (same period and damping; a RotD50 or geometric-mean hazard with "
+       "single-component records)\n";
+  return s + "\n";
+}
+
+}  // namespace
+
+std::string fragility_markdown(const Results& r) {
+  const View v(r);
+  return overview(v) + target_section(v) + fragility_table(v) + observed_table(v) + hazard_section(v) + stripes_section(v);
+}
+
+std::string fragility_csv(const Results& r) {
+  const View v(r);
+  const std::size_t S = v.levels.size();
+  std::string s = "table,gap_ratio,gap_m,level,theta,beta,lo,hi,n,z,observed,fitted,annual_rate,probability\n";
+  const auto& theta = v.fr.get<double>("theta");
+  const auto& beta = v.fr.get<double>("beta");
+  for (std::size_t k = 0; k < v.gaps.size(); ++k) {
+    const double gm = v.pair ? v.gaps_m[k] : NAN;
+    s += fmt::format("fragility,{},{},,{},{},{},{},,,,,{},{}\n", v.gaps[k], gm, theta[k], beta[k],
+                     v.fr.get<double>("theta_lo")[k], v.fr.get<double>("theta_hi")[k],
+                     v.hz ? v.hz->get<double>("annual_rate")[k] : NAN, v.hz ? v.hz->get<double>("probability")[k] : NAN);
+    for (std::size_t j = 0; j < S; ++j) {
+      const auto n = v.fr.get<std::int64_t>("observed_n")[k * S + j], z = v.fr.get<std::int64_t>("observed_z")[k * S + j];
+      s += fmt::format("stripe,{},{},{},,,,,{},{},{},{},,\n", v.gaps[k], gm, v.levels[j], n, z,
+                       n ? static_cast<double>(z) / static_cast<double>(n) : NAN, v.fr.get<double>("fitted")[k * S + j]);
+    }
+  }
+  if (v.hz && v.hz->find("curve_gap")) {
+    const auto& cg = v.hz->get<double>("curve_gap");
+    for (std::size_t k = 0; k < cg.size(); ++k)
+      s += fmt::format("rate_curve,{},{},,,,,,,,,,{},{}\n", cg[k], v.pair ? cg[k] * v.r.models.code_gap[0] : NAN,
+                       v.hz->get<double>("curve_rate")[k], v.hz->get<double>("curve_probability")[k]);
+  }
+  if (v.hz)
+    s += fmt::format("risk_targeted_gap,{},{},,,,{},{},,,,,{},{}\n", v.hz->number("target_gap"), v.hz->number("target_gap_m"),
+                     v.hz->number("target_gap_lo"), v.hz->number("target_gap_hi"), v.hz->number("lambda_target"),
+                     v.hz->number("target_percent") / 100);
+  return s;
+}
+
+}  // namespace pounding
