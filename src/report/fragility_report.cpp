@@ -115,8 +115,14 @@ std::string fragility_table(const View& v) {
     s += "\n";
   }
   std::string notes;
-  for (std::size_t k = 0; k < v.gaps.size(); ++k)
+  for (std::size_t k = 0; k < v.gaps.size(); ++k) {
     if (status[k] != "ok" && !note[k].empty()) notes += fmt::format("- {}: {}\n", v.gap_name(k), note[k]);
+    if (status[k] == "ok" && (theta[k] > v.levels.back() || theta[k] < v.levels.front()))
+      notes += fmt::format("- {}: **the median theta = {:.3g} {} lies {} the stripes**: the fit extrapolates from one "
+                           "tail; add levels {} it (Baker 2015: the stripes should bracket the median)\n",
+                           v.gap_name(k), theta[k], v.units, theta[k] > v.levels.back() ? "above" : "below",
+                           theta[k] > v.levels.back() ? "above" : "below");
+  }
   return s + (notes.empty() ? "" : "\n" + notes) + "\n";
 }
 
