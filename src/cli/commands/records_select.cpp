@@ -5,12 +5,13 @@
 //     period (--period), Sa_avg two or more (--periods; geometric mean of Sa). --units/--dt-record are the
 //     units of the values in text files and the step of one-column files, as for `records show`.
 //
-//   records select TARGET --period T[,T2] [--range 0.2,2.0] [--rule "ASCE 7-16"] [--count 11] [--points 30]
+//   records select TARGET --period T[,T2] [--range 0.2,2.0] [--rule RULE] [--count 11] [--points 30]
 //                  [--min-scale 0.25 --max-scale 4] [--damping 0.05] (--directory DIR | FILES...) [-o FILE.csv]
 //     Chooses the --count records whose log-space least-squares fit to the target over the period range is best
 //     (smallest MSE, factor within the scale limits) and one suite factor F >= 1 so the code's condition holds
 //     (motion/selection.hpp). The range is [lo min(T), hi max(T)] for --range lo,hi and --period T or T1,T2
-//     (a pair: both periods); --range defaults to 0.2,1.5 for ASCE 7-10 and 0.2,2.0 otherwise.
+//     (a pair: both periods); --range defaults to 0.2,1.5 for ASCE 7-10 and 0.2,2.0 otherwise. RULE is
+//     "ASCE 7-16", "ASCE 7-10", "EC8" or "none"; default EC8 with --ec8, ASCE 7-16 with any other target.
 //     TARGET, exactly one of (design_spectrum.hpp):
 //       --asce7 SDS,SD1,TL              ASCE 7-16 11.4.6 design spectrum (g, g, s); --mcer multiplies it by 1.5
 //                                       (the MCER spectrum ASCE 7-16 16.2 scales to)
@@ -108,7 +109,7 @@ struct SelectOpts {
   ReadOpts read;
   std::string asce7, ec8, iran2800, target_csv;
   bool mcer = false;
-  std::string period, range, rule = "ASCE 7-16", out;
+  std::string period, range, rule, out;  // rule "": EC8 with --ec8, else ASCE 7-16
   std::size_t count = 11;
   int points = 30;
   double min_scale = 0.25, max_scale = 4.0, damping = 0.05;
@@ -215,7 +216,8 @@ Library read_library(const SelectOpts& o) {
 
 SelectionOptions selection_options(const SelectOpts& o) {
   SelectionOptions so;
-  so.rule = as_option("--rule", [&] { return parse_scaling_rule(o.rule); });
+  const std::string rule = !o.rule.empty() ? o.rule : !o.ec8.empty() ? "EC8" : "ASCE 7-16";
+  so.rule = as_option("--rule", [&] { return parse_scaling_rule(rule); });
   const auto T = parse_number_list(o.period, "--period", "period", "give the period(s) in s, e.g. 1.2 or 0.9,1.3", 0, true);
   if (T.size() > 2) throw InputError("more than two periods", "--period", "give T or T1,T2 (a pair)");
   const std::string range = !o.range.empty() ? o.range : so.rule == ScalingRule::asce7_10 ? "0.2,1.5" : "0.2,2.0";
@@ -279,7 +281,7 @@ void add_records_select(CLI::App* records) {
   c->add_option("--target-csv", o->target_csv, "target: tabulated period,sa lines (s, g)");
   c->add_option("--period", o->period, "the structure's period T in s, or T1,T2 for a pair")->required();
   c->add_option("--range", o->range, "period range as multiples lo,hi of T (default 0.2,2.0; ASCE 7-10: 0.2,1.5)");
-  c->add_option("--rule", o->rule, "\"ASCE 7-16\", \"ASCE 7-10\", \"EC8\" or \"none\"")->capture_default_str();
+  c->add_option("--rule", o->rule, "\"ASCE 7-16\", \"ASCE 7-10\", \"EC8\" or \"none\" (default: EC8 with --ec8, else ASCE 7-16)");
   c->add_option("--count", o->count, "number of records to choose")->capture_default_str();
   c->add_option("--points", o->points, "log-spaced periods in the range")->capture_default_str();
   c->add_option("--min-scale", o->min_scale, "smallest eligible least-squares factor")->capture_default_str();
