@@ -77,8 +77,14 @@ def plot_selection(a, meta, names, data, plt):
         lo, hi = (float(x) for x in meta["range_s"].split())
         ax.axvspan(lo, hi, color="tab:orange", alpha=0.1, label=f"period range {lo:g}-{hi:g} s")
     if a.loglog:
+        from matplotlib.ticker import FuncFormatter
+
         ax.set_xscale("log")
         ax.set_yscale("log")
+        plain = FuncFormatter(lambda v, _: f"{v:g}")
+        for axis in (ax.xaxis, ax.yaxis):  # plain numbers on the few decades a selection spans
+            axis.set_major_formatter(plain)
+            axis.set_minor_formatter(plain)
     elif a.logx:
         ax.set_xscale("log")
     ax.set_xlabel("period T (s)")
