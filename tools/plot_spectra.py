@@ -7,6 +7,14 @@ stochastic-pounding-monte-carlo.txt (5 %-damped elastic pseudo-acceleration spec
 
 Real records are drawn solid, synthetic stand-ins dashed (the CSV's `#kind` row says which); the mean
 (arithmetic, as in the paper) is thick black, the mean +- one standard deviation shaded.
+
+A selection written by `pounding records select ... -o selection.csv` (detected from its header
+`period_s,target_g,mean_g,...`) is drawn as the target (thick), each scaled record (thin), the mean of the
+scaled records (thick black), the rule's line (90 % or 100 % of the target, dashed) and the period range
+(shaded); --loglog for logarithmic axes:
+
+    pounding records select --asce7 1.0,0.6,8 --period 1.0 --directory ../shared/records/real -o sel.csv
+    tools/plot_spectra.py sel.csv -o sel.png --loglog
 """
 import argparse
 import csv
@@ -35,12 +43,68 @@ def read_csv(path):
     return quantity, names, kinds or ["real"] * len(names), data[:, 0], data[:, 1:]
 
 
+def read_selection(path):
+    """The "# key: value" header and the table of a `records select` CSV, or None for another CSV."""
+    meta, header, rows = {}, None, []
+    with open(path, newline="") as f:
+        for line in f:
+            line = line.rstrip("\n")
+            if line.startswith("# ") and ": " in line:
+                key, value = line[2:].split(": ", 1)
+                meta[key] = value
+            elif line.startswith("period_s,"):
+                header = line.split(",")
+            elif line and not line.startswith("#") and header is not None:
+                rows.append([float(x) for x in line.split(",")])
+    if header is None or header[1:3] != ["target_g", "mean_g"]:
+        return None
+    if not rows:
+        sys.exit(f"{path}: a `records select` CSV without rows")
+    return meta, header[3:], np.array(rows)
+
+
+def plot_selection(a, meta, names, data, plt):
+    T, target, mean, S = data[:, 0], data[:, 1], data[:, 2], data[:, 3:]
+    fig, ax = plt.subplots(figsize=(8, 5))
+    for j in range(S.shape[1]):
+        ax.plot(T, S[:, j], lw=0.7, alpha=0.55, label="scaled records" if j == 0 else None)
+    ax.plot(T, target, color="tab:red", lw=3, label="target")
+    ax.plot(T, mean, color="k", lw=2.5, label=f"mean of {S.shape[1]} scaled")
+    frac = float(meta.get("rule_fraction", "0"))
+    if frac > 0:
+        ax.plot(T, frac * target, color="tab:red", lw=1.5, ls="--", label=f"{frac * 100:g} % of the target")
+    if "range_s" in meta:
+        lo, hi = (float(x) for x in meta["range_s"].split())
+        ax.axvspan(lo, hi, color="tab:orange", alpha=0.1, label=f"period range {lo:g}-{hi:g} s")
+    if a.loglog:
+        from matplotlib.ticker import FuncFormatter
+
+        ax.set_xscale("log")
+        ax.set_yscale("log")
+        plain = FuncFormatter(lambda v, _: f"{v:g}")
+        for axis in (ax.xaxis, ax.yaxis):  # plain numbers on the few decades a selection spans
+            axis.set_major_formatter(plain)
+            axis.set_minor_formatter(plain)
+    elif a.logx:
+        ax.set_xscale("log")
+    ax.set_xlabel("period T (s)")
+    ax.set_ylabel("pseudo-acceleration Sa (g)")
+    ax.set_title(a.title or f"{meta.get('rule', 'selection')}\nsuite factor {float(meta.get('suite_factor', 1)):.3f}, "
+                 f"condition holds: {meta.get('condition_holds', '?')}", fontsize=9)
+    ax.grid(True, which="both", alpha=0.3)
+    ax.legend(fontsize=8)
+    fig.tight_layout()
+    fig.savefig(a.output, dpi=150)
+    print(f"wrote {a.output}: selection of {S.shape[1]} records, min mean/target {np.min(mean / target):.4f}")
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("csv")
     ap.add_argument("-o", "--output", default="spectra.png")
     ap.add_argument("--normalize", action="store_true", help="divide each spectrum by its value at T = 0 (PGA)")
     ap.add_argument("--logx", action="store_true", help="logarithmic period axis")
+    ap.add_argument("--loglog", action="store_true", help="logarithmic period and Sa axes (selection CSVs)")
     ap.add_argument("--title", default="")
     a = ap.parse_args()
 
@@ -49,6 +113,10 @@ def main():
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
+    selection = read_selection(a.csv)
+    if selection is not None:
+        plot_selection(a, *selection, plt)
+        return
     quantity, names, kinds, T, S = read_csv(a.csv)
     unit = {"psa": "g", "psv": "m/s", "sd": "m"}.get(quantity, "")
     if a.normalize:

@@ -11,6 +11,8 @@ void add_simulate(CLI::App& app);  // src/cli/commands/simulate.cpp
 void add_collide(CLI::App& app);   // src/cli/commands/collide.cpp
 void add_bench(CLI::App& app);     // src/cli/commands/bench.cpp
 void add_records(CLI::App& app);   // src/cli/commands/records.cpp (ground motions)
+void add_records_im(CLI::App* records);      // src/cli/commands/records_select.cpp (`records im`)
+void add_records_select(CLI::App* records);  // src/cli/commands/records_select.cpp (`records select`)
 void add_sample(CLI::App& app);    // src/cli/commands/sample.cpp (stochastic structure model)
 void add_run(CLI::App& app);       // src/cli/commands/run.cpp (the study)
 void add_report(CLI::App& app);    // src/cli/commands/run.cpp

@@ -4,6 +4,8 @@
 //   synth               one Rezaeian & Der Kiureghian (2010) record for (M, R, Vs30, F, seed) as AT2
 //                       (a record that `run`/`simulate` would refuse -- shorter than 2 s, PGA above 5 g -- is
 //                       shown with a WARNING on stderr; records.hpp)
+//   im FILE...          one intensity measure per record: PGA, PGV, Sa(T), Sa_avg (records_select.cpp)
+//   select              choose and scale records to a code design spectrum (records_select.cpp)
 //   suite [FILE]        resolve a suite (default: the embedded seed-study suite): which records are
 //                       real, which synthetic; --write DIR writes every resolved record as AT2
 #include <cstdio>
@@ -13,6 +15,7 @@
 #include <fmt/format.h>
 
 #include "cli/commands.hpp"
+#include "cli/commands/records_options.hpp"
 #include "pounding/core/error.hpp"
 #include "pounding/core/files.hpp"
 #include "pounding/motion/records.hpp"
@@ -23,23 +26,6 @@
 namespace pounding::cli {
 
 namespace {
-
-struct ReadOpts {
-  std::string units = "g";
-  double dt_record = 0.0;
-  ReadOptions get() const {
-    ReadOptions r;
-    r.units = parse_units(units);
-    r.dt = dt_record;
-    return r;
-  }
-};
-
-void add_read_options(CLI::App* c, ReadOpts& o) {
-  c->add_option("--units", o.units, "units of the values in text files: g, m/s2, cm/s2 (AT2 headers that name "
-                                    "their units win)")->capture_default_str();
-  c->add_option("--dt-record", o.dt_record, "time step of one-column files (s)");
-}
 
 struct SuiteOpts {
   std::string suite, records_dir;
@@ -61,32 +47,9 @@ std::vector<ResolvedRecord> resolve(const SuiteOpts& o, const std::string& suite
   return resolve_suite(s, ro);
 }
 
-// `show` and `spectrum` display a record that an analysis would refuse (they are how one inspects it), with
-// the analysis' message as a warning on stderr; exit code 0.
-void warn_if_not_analysable(const Record& r) {
-  if (auto e = analysis_problem(r, {1.0, "", "add --units cm/s2"}))
-    fmt::print(stderr, " WARNING: {} (pounding run and simulate refuse this record)\n", e->what());
-}
-
 std::vector<double> parse_periods(const std::string& text) {
   if (text.empty()) return default_periods();
-  std::vector<double> p;
-  std::size_t pos = 0;
-  while (pos <= text.size()) {
-    std::size_t end = text.find(',', pos);
-    if (end == std::string::npos) end = text.size();
-    const std::string tok = text.substr(pos, end - pos);
-    try {
-      std::size_t used = 0;
-      double v = std::stod(tok, &used);
-      if (used != tok.size() || !(v >= 0)) throw std::invalid_argument(tok);
-      p.push_back(v);
-    } catch (const std::exception&) {
-      throw InputError(fmt::format("'{}' is not a period", tok), "--periods", "give periods in s, e.g. 0.1,0.5,1,2");
-    }
-    pos = end + 1;
-  }
-  return p;
+  return parse_number_list(text, "--periods", "period", "give periods in s, e.g. 0.1,0.5,1,2");
 }
 
 // The spectra as CSV: a comment line, the header, a "#kind" row (real or synthetic), one row per period.
@@ -277,10 +240,12 @@ void add_suite(CLI::App* records) {
 }  // namespace
 
 void add_records(CLI::App& app) {
-  auto* records = app.add_subcommand("records", "ground motions: show, spectrum, synth, suite");
+  auto* records = app.add_subcommand("records", "ground motions: show, spectrum, im, select, synth, suite");
   records->require_subcommand(1);
   add_show(records);
   add_spectrum(records);
+  add_records_im(records);
+  add_records_select(records);
   add_synth(records);
   add_suite(records);
 }
