@@ -607,7 +607,14 @@ std::vector<GapFragility> fit_msa(const Demands& d, std::span<const double> gaps
   check_settings(s);
   for (double g : gaps)
     if (!std::isfinite(g) || g <= 0) throw std::invalid_argument("stripes: every gap must be finite and > 0");
-  const StripeIndex ix(d, thread_count(s.threads, d.levels.size() * d.records));
+  return fit_msa(StripeIndex(d, thread_count(s.threads, d.levels.size() * d.records)), gaps, s, hazard);
+}
+
+std::vector<GapFragility> fit_msa(const StripeIndex& ix, std::span<const double> gaps, const Settings& s,
+                                  const HazardCurve* hazard) {
+  check_settings(s);
+  for (double g : gaps)
+    if (!std::isfinite(g) || g <= 0) throw std::invalid_argument("stripes: every gap must be finite and > 0");
   const std::size_t SR = ix.stripes() * ix.records();
   std::vector<std::size_t> pos(gaps.size() * SR);
   std::vector<GapFragility> out;
@@ -662,7 +669,12 @@ GapFragility fit_ida(const Capacities& c, std::span<const double> levels, const 
 TargetGap risk_targeted_gap(const Demands& d, const HazardCurve& hazard, double target, const Settings& s) {
   check_settings(s);
   if (!(target > 0) || !std::isfinite(target)) throw std::invalid_argument("stripes: lambda_target must be > 0");
-  const StripeIndex ix(d, thread_count(s.threads, d.levels.size() * d.records));
+  return risk_targeted_gap(StripeIndex(d, thread_count(s.threads, d.levels.size() * d.records)), hazard, target, s);
+}
+
+TargetGap risk_targeted_gap(const StripeIndex& ix, const HazardCurve& hazard, double target, const Settings& s) {
+  check_settings(s);
+  if (!(target > 0) || !std::isfinite(target)) throw std::invalid_argument("stripes: lambda_target must be > 0");
   if (std::isnan(ix.min_positive())) throw std::invalid_argument("stripes: no positive demand to search gaps over");
   const std::size_t SR = ix.stripes() * ix.records();
   const std::vector<double> grid = log_grid(ix.min_positive(), ix.max_positive());
@@ -707,7 +719,10 @@ TargetGap risk_targeted_gap_linear_ida(std::span<const double> im, std::span<con
 }
 
 RateCurve rate_curve(const Demands& d, const HazardCurve& hazard, std::span<const double> gaps, double years) {
-  const StripeIndex ix(d, 1);
+  return rate_curve(StripeIndex(d, 1), hazard, gaps, years);
+}
+
+RateCurve rate_curve(const StripeIndex& ix, const HazardCurve& hazard, std::span<const double> gaps, double years) {
   RateCurve c;
   for (double g : gaps) {
     const std::vector<Stripe> st = ix.stripes_at(g);

@@ -504,6 +504,16 @@ TEST(StripesIndex, CountsAreBinarySearchesOfTheSortedSlices) {
       EXPECT_EQ(st[s].z, z);
     }
   }
+  // the StripeIndex overloads give what the Demands ones do
+  const HazardCurve h = HazardCurve::power_law(4e-4, 2.5);
+  const std::vector<double> gaps{0.5, 1.5};
+  const auto a = fit_msa(d, gaps, quick(50), &h), b = fit_msa(ix, gaps, quick(50), &h);
+  for (std::size_t g = 0; g < gaps.size(); ++g) {
+    EXPECT_EQ(a[g].fit.fragility.theta, b[g].fit.fragility.theta);
+    EXPECT_EQ(a[g].rate_hi, b[g].rate_hi);
+  }
+  EXPECT_EQ(risk_targeted_gap(d, h, 1e-3, quick(20)).hi, risk_targeted_gap(ix, h, 1e-3, quick(20)).hi);
+  EXPECT_EQ(rate_curve(d, h, gaps, 50).rate, rate_curve(ix, h, gaps, 50).rate);
   double lo = kInf, hi = 0;
   for (double v : d.demand) lo = std::min(lo, v), hi = std::max(hi, v);
   EXPECT_EQ(ix.min_positive(), lo);
