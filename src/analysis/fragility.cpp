@@ -151,6 +151,17 @@ void fill_result(const Pooled& p, double a, double c, const Score& s, FragilityF
   fit.se_beta = std::abs(gb1) * std::sqrt(v11);
   fit.neg_log_likelihood = -(s.ll + binomial_constants(p));
   fit.message = "converged";
+  // A maximum far outside the stripes can overflow or underflow theta (e.g. a median many decades below the lowest
+  // level, where everything pounds): never an "ok" fit with theta 0 or infinite.
+  const double lo = p.level.front(), hi = p.level.back();
+  if (!(std::isfinite(fit.fragility.theta) && fit.fragility.theta > 1e-6 * lo && fit.fragility.theta < 1e6 * hi &&
+        std::isfinite(fit.fragility.beta) && fit.fragility.beta > 0)) {
+    fit.status = FragilityStatus::not_converged;
+    std::ostringstream m;
+    m << "the likelihood's maximum lies far outside the stripes (theta = " << fit.fragility.theta
+      << ", beta = " << fit.fragility.beta << "): no fit; add stripes where P is between 0 and 1";
+    fit.message = m.str();
+  }
 }
 
 }  // namespace

@@ -123,6 +123,7 @@ struct RateValue {
 RateValue rate_of(const FragilityFit& f, const HazardCurve& h, double x_low, double x_top) {
   switch (f.status) {
     case FragilityStatus::ok: {
+      if (!(f.fragility.theta > 0 && std::isfinite(f.fragility.theta))) return {};  // defensive: never thrown in a thread
       const PoundingRate r = pounding_rate(h, f.fragility);
       return {r.rate, {r.rate, r.rate}, r.tail_share};
     }
