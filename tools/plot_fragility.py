@@ -21,6 +21,7 @@ PROG = "plot_fragility.py"
 try:
     import h5py
     import matplotlib
+    import matplotlib.lines
 
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
@@ -149,7 +150,7 @@ def im_axis(fr, log):
 def plot_fragility(fr, sel, a, prefix, title):
     ncol = 1 if len(sel) == 1 else (2 if len(sel) in (2, 4) else 3)
     nrow = math.ceil(len(sel) / ncol)
-    fig, axes = plt.subplots(nrow, ncol, figsize=(4.2 * ncol + 0.6, 3.4 * nrow + 1.0), sharex=True, sharey=True,
+    fig, axes = plt.subplots(nrow, ncol, figsize=(max(4.2 * ncol + 0.6, 9.0), 3.4 * nrow + (1.6 if ncol == 3 else 2.2)), sharex=True, sharey=True,
                              squeeze=False)
     x, xlo, xhi = im_axis(fr, not a.linear)
     conf = f"{100 * fr.confidence:g} %"
@@ -161,25 +162,39 @@ def plot_fragility(fr, sel, a, prefix, title):
         lo, hi = wilson(z[has], n[has])
         ok = fr.status[i] == "ok" and np.isfinite(fr.theta[i]) and np.isfinite(fr.beta[i])
         if ok:
-            ax.plot(x, lognormal_cdf(x, fr.theta[i], fr.beta[i]), "C0", lw=2,
-                    label=f"fit: theta = {fr.theta[i]:.3g} {fr.units}, beta = {fr.beta[i]:.2f}")
+            ax.plot(x, lognormal_cdf(x, fr.theta[i], fr.beta[i]), "C0", lw=2)
             if np.isfinite(fr.theta_lo[i]) and np.isfinite(fr.theta_hi[i]):
-                for t, ls in ((fr.theta_lo[i], "--"), (fr.theta_hi[i], ":")):
-                    ax.plot(x, lognormal_cdf(x, t, fr.beta[i]), "C0", ls=ls, lw=1)
-                ax.plot([], [], "C0", ls="--", lw=1,
-                        label=f"same beta at theta_lo, theta_hi = {fr.theta_lo[i]:.3g}, {fr.theta_hi[i]:.3g} "
-                              f"({conf} bootstrap interval of theta only, not a band)")
+                ax.plot(x, lognormal_cdf(x, fr.theta_lo[i], fr.beta[i]), "C0", ls="--", lw=1)
+                ax.plot(x, lognormal_cdf(x, fr.theta_hi[i], fr.beta[i]), "C0", ls=":", lw=1)
+            ax.text(0.03, 0.96, f"theta = {fr.theta[i]:.3g} {fr.units} [{fr.theta_lo[i]:.3g}, {fr.theta_hi[i]:.3g}]\n"
+                    f"beta = {fr.beta[i]:.2f} [{fr.beta_lo[i]:.2f}, {fr.beta_hi[i]:.2f}]", transform=ax.transAxes,
+                    ha="left", va="top", fontsize=7,
+                    bbox=dict(facecolor="white", edgecolor="0.8", alpha=0.85, pad=2))
             head = fr.label(i)
         else:
             head = f"{fr.label(i)}  (no fit: {fr.status[i]})"
-        ax.errorbar(fr.levels[has], p[has], yerr=[p[has] - lo, hi - p[has]], fmt="o", color="C3", ms=4, capsize=2,
-                    label="observed z / n, 95 % Wilson interval (analyses as independent)")
+            ax.text(0.03, 0.96, f"no fit: {fr.status[i]}\n{fr.note[i]}", transform=ax.transAxes, ha="left",
+                    va="top", fontsize=7, color="C3")
+        ax.errorbar(fr.levels[has], p[has], yerr=[p[has] - lo, hi - p[has]], fmt="o", color="C3", ms=4, capsize=2)
         ax.set_title(head, fontsize=9)
         ax.set_xscale("linear" if a.linear else "log")
         ax.set_xlim(xlo, xhi)
         ax.set_ylim(-0.02, 1.02)
         ax.grid(alpha=0.3, which="both")
-        ax.legend(fontsize=5.5, loc="upper left")
+    handles = [
+        matplotlib.lines.Line2D([], [], color="C0", lw=2,
+                                label="fitted lognormal (maximum likelihood over the stripes), theta [and beta] "
+                                      f"with their {conf} bootstrap intervals"),
+        matplotlib.lines.Line2D([], [], color="C0", lw=1, ls="--",
+                                label="same beta at theta_lo (dashed) ..."),
+        matplotlib.lines.Line2D([], [], color="C0", lw=1, ls=":",
+                                label=f"... and at theta_hi (dotted): the {conf} bootstrap interval of theta only, "
+                                      "NOT a confidence band of the curve"),
+        matplotlib.lines.Line2D([], [], color="C3", marker="o", ls="none", ms=4,
+                                label="observed z / n at each stripe, 95 % Wilson interval (analyses taken as independent; the "
+                                      "models of one record are not, so it is too narrow)"),
+    ]
+    fig.legend(handles=handles, loc="lower center", ncol=2 if ncol == 3 else 1, fontsize=7, frameon=False)
     for k in range(len(sel), nrow * ncol):
         axes[k // ncol][k % ncol].set_visible(False)
     for ax in axes[-1]:
@@ -188,7 +203,7 @@ def plot_fragility(fr, sel, a, prefix, title):
         row[0].set_ylabel("P(pounding | IM)")
     fig.suptitle(f"{title}\nfragility per gap: P = Phi(ln(x / theta) / beta)" + ("" if fr.pair else
                  " (gaps as ratios of each model's code gap d)"), fontsize=9)
-    fig.tight_layout()
+    fig.tight_layout(rect=(0, 0.07 if ncol == 3 and nrow > 1 else (0.12 if ncol == 3 else 0.36 / (1 + nrow)), 1, 1))
     return save(fig, prefix + "-fragility", a.format)
 
 
@@ -273,9 +288,11 @@ def plot_rate(f, fr, sel, a, prefix, title):
     ax_r.legend(fontsize=6.5, loc="upper right")
     ax_p.set_ylabel(f"P(pounding in {years:g} years) (%)")
     ax_p.set_xlabel(xlabel)
-    ax_p.set_ylim(0, 100)
+    ax_p.set_yscale("log")
+    pos = np.concatenate([cp[cp > 0], plo[s][plo[s] > 0], [target / 100]])
+    ax_p.set_ylim(max(100 * pos.min() / 2, 1e-4), 150)
     ax_p.set_xlim(0, cx.max())
-    ax_p.grid(alpha=0.3)
+    ax_p.grid(alpha=0.3, which="both")
     ax_p.legend(fontsize=6.5, loc="upper right")
 
     im, hr = h["im"][()], h["rate"][()]
