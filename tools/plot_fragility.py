@@ -14,6 +14,7 @@ Every figure: PNG at 200 dpi, plus each --format given (svg, pdf).
 Usage: tools/plot_fragility.py RESULTS.h5 [-o out/study] [--format svg pdf] [--gaps 0.5 1.0] [--linear]"""
 import argparse
 import math
+import textwrap
 import os
 import sys
 
@@ -197,8 +198,8 @@ def plot_fragility(fr, sel, a, prefix, title):
     fig.legend(handles=handles, loc="lower center", ncol=2 if ncol == 3 else 1, fontsize=7, frameon=False)
     for k in range(len(sel), nrow * ncol):
         axes[k // ncol][k % ncol].set_visible(False)
-    for ax in axes[-1]:
-        ax.set_xlabel(fr.im_label)
+    for k in range(max(0, len(sel) - ncol), len(sel)):  # the lowest panel of each column
+        axes[k // ncol][k % ncol].set_xlabel(textwrap.fill(fr.im_label, 48), fontsize=8)
     for row in axes:
         row[0].set_ylabel("P(pounding | IM)")
     fig.suptitle(f"{title}\nfragility per gap: P = Phi(ln(x / theta) / beta)" + ("" if fr.pair else
