@@ -10,6 +10,8 @@
 #include <stdexcept>
 #include <thread>
 
+#include <fmt/format.h>
+
 #include "pounding/core/random.hpp"
 
 namespace pounding::stripes {
@@ -693,6 +695,67 @@ TargetGap risk_targeted_gap(const StripeIndex& ix, const HazardCurve& hazard, do
   });
   out.note = describe_target(out);
   return out;
+}
+
+namespace {
+
+// The smallest x at which the piecewise ln-linear interpolant of (x[i], rate[i]) reaches `target` (rate falls with
+// x): -1 when rate[0] already does, +inf when none does.
+double interpolated_crossing(std::span<const double> x, std::span<const double> rate, double target) {
+  for (std::size_t j = 0; j < x.size(); ++j) {
+    if (!(rate[j] <= target)) continue;
+    if (j == 0) return -1.0;
+    const double r0 = rate[j - 1], r1 = rate[j];
+    const double t = r1 > 0 ? (std::log(r0) - std::log(target)) / (std::log(r0) - std::log(r1)) : (r0 - target) / (r0 - r1);
+    return x[j - 1] + t * (x[j] - x[j - 1]);
+  }
+  return INFINITY;
+}
+
+}  // namespace
+
+TargetGap risk_targeted_gap_at_gaps(std::span<const GapFragility> fits, double lambda_target) {
+  if (!(lambda_target > 0) || !std::isfinite(lambda_target))
+    throw std::invalid_argument("risk_targeted_gap_at_gaps: lambda_target must be finite and > 0");
+  std::vector<const GapFragility*> f;
+  for (const GapFragility& g : fits) {
+    if (!g.has_hazard) throw std::invalid_argument("risk_targeted_gap_at_gaps: a fit without a hazard");
+    if (std::isfinite(g.annual_rate)) f.push_back(&g);
+  }
+  std::sort(f.begin(), f.end(), [](const GapFragility* a, const GapFragility* b) { return a->gap < b->gap; });
+  TargetGap t;
+  t.lambda_target = lambda_target;
+  if (f.size() < 2) {
+    t.status = "not found";
+    t.note = "fewer than two gaps have an annual rate: give more gap ratios, or stripes that bracket the medians";
+    return t;
+  }
+  std::vector<double> x, rate, lo, hi;
+  for (const GapFragility* g : f) {
+    x.push_back(g->gap), rate.push_back(g->annual_rate);
+    lo.push_back(std::isnan(g->rate_lo) ? g->annual_rate : g->rate_lo);
+    hi.push_back(std::isnan(g->rate_hi) ? g->annual_rate : g->rate_hi);
+  }
+  t.range_lo = x.front(), t.range_hi = x.back();
+  const double p = interpolated_crossing(x, rate, lambda_target);
+  const double plo = interpolated_crossing(x, lo, lambda_target), phi = interpolated_crossing(x, hi, lambda_target);
+  t.lo = plo < 0 ? 0.0 : plo;
+  t.hi = phi < 0 ? x.front() : phi;
+  const std::string where = fmt::format("interpolated (ln lambda linear in the gap) between the study's gaps {:g} ... {:g}: "
+                                        "the bisection IDA gives capacities only at the listed gaps; the interval "
+                                        "joins the gaps' pointwise bootstrap intervals",
+                                        x.front(), x.back());
+  if (p < 0) {
+    t.gap = x.front(), t.status = "below range", t.rate = rate.front();
+    t.note = fmt::format("the smallest gap, {:g}, already meets the target: add smaller gap ratios ({})", x.front(), where);
+  } else if (std::isinf(p)) {
+    t.gap = x.back(), t.status = "above range", t.rate = rate.back();
+    t.note = fmt::format("even the largest gap, {:g}, has a rate above the target: add larger gap ratios ({})", x.back(), where);
+  } else {
+    t.gap = p, t.status = "ok", t.rate = lambda_target;
+    t.note = where;
+  }
+  return t;
 }
 
 TargetGap risk_targeted_gap_linear_ida(std::span<const double> im, std::span<const double> demand1, std::size_t models,

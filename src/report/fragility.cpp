@@ -29,12 +29,6 @@ bool pair_study(const Results& r) {
   return i && *i != 0 && !r.models.code_gap.empty();
 }
 
-// Both buildings elastic: the peak closing scales exactly with the record's amplitude.
-bool linear_pair(const Results& r) {
-  return setting_is(r, "structures.building1", "hysteresis", "elastic") &&
-         setting_is(r, "structures.building2", "hysteresis", "elastic");
-}
-
 std::optional<HazardCurve> hazard_of(const Results& r) {
   if (!r.settings.find("hazard", "years")) return std::nullopt;
   const std::vector<double> im = r.settings.numbers("hazard", "im");
@@ -157,6 +151,21 @@ void analyse_fragility(Results& r) {
         grid.push_back(x);
       curve = stripes::rate_curve(D, *hz, grid, st.years);
     }
+  } else if (const Group* ida = r.group("ida")) {  // ida on yielding pairs: the capacities of the bisection
+    const std::vector<double>& cap = ida->get<double>("cap");
+    const std::vector<double>& capacity = ida->get<double>("capacity");
+    const std::size_t RM = r.record_count() * r.model_count(), G = gaps.size();
+    for (std::size_t k = 0; k < G; ++k) {
+      stripes::Capacities C{r.record_count(), r.model_count(), std::vector<double>(RM), cap};
+      for (std::size_t q = 0; q < RM; ++q) C.capacity[q] = capacity[q * G + k];
+      fits.push_back(stripes::fit_ida(C, levels, st, hz ? &*hz : nullptr, gaps[k]));
+    }
+    if (hz) {
+      target = stripes::risk_targeted_gap_at_gaps(fits, lambda_target);
+      for (const auto& f : fits) {
+        curve.gap.push_back(f.gap), curve.rate.push_back(f.annual_rate), curve.probability.push_back(f.probability);
+      }
+    }
   } else {  // ida on a linear pair: every capacity exact from the run at the records' own intensity
     const std::vector<double>& im = in.get<double>("im");
     const double max_scale = in.number("max_scale");
@@ -170,6 +179,7 @@ void analyse_fragility(Results& r) {
   }
   Group& g = r.group_for("fragility");
   g.set("method", method);
+  if (method == "ida") g.set("ida", std::string(r.group("ida") ? "bisection" : "linear"));
   g.set("confidence", st.confidence);
   g.set("replicates", static_cast<std::int64_t>(st.bootstrap));
   g.set("im_units", units);

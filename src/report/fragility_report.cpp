@@ -55,6 +55,14 @@ std::string overview(const View& v) {
                      "each level, the same {} models at every stripe (common random numbers); fit: Baker (2015) "
                      "maximum likelihood over the stripes\n",
                      v.levels.size(), num(v.levels.front()), num(v.levels.back()), v.units, r.model_count());
+  else if (v.r.group("ida"))
+    s += fmt::format("- method: IDA of yielding buildings: for every record, model and gap the record scale factor at "
+                     "first contact, hunted at the stripes' factors (up to max_scale), then bisected to a relative "
+                     "width of {:g} ({} uncoupled analyses in all); fit: lognormal by moments (censored maximum "
+                     "likelihood where no contact occurred up to a record's last factor); {} models diverged in the "
+                     "hunt (their records are censored below that factor)\n",
+                     v.r.group("ida")->number("tolerance"), v.r.group("ida")->number("analyses_total"),
+                     v.r.group("ida")->number("diverged_models"));
   else
     s += "- method: IDA on a linear pair: the peak closing scales exactly with the record, so each model's IM at first "
          "contact is exact from one run (IM x gap / peak closing); fit: lognormal by moments (censored maximum "
@@ -84,11 +92,16 @@ std::string target_section(const View& v) {
   } else {
     s += fmt::format("**not found ({})**: {}\n\n", status, h.text("target_note"));
   }
-  s += fmt::format("The separation is the gap at which the annual rate of pounding, lambda = integral of P(pound | "
-                   "IM = x) |d lambda_IM(x)|, equals {:.4g} per year (1 - exp(-lambda {:g}) = {:g} %), found by "
-                   "bisection on the continuum of gaps with the fragility refitted at each; its interval comes from "
-                   "the same record bootstrap.\n\n",
-                   h.number("lambda_target"), years, target);
+  if (v.r.group("ida"))
+    s += fmt::format("The separation is the gap at which the annual rate of pounding, lambda = integral of P(pound | "
+                     "IM = x) |d lambda_IM(x)|, equals {:.4g} per year (1 - exp(-lambda {:g}) = {:g} %), {}.\n\n",
+                     h.number("lambda_target"), years, target, h.text("target_note"));
+  else
+    s += fmt::format("The separation is the gap at which the annual rate of pounding, lambda = integral of P(pound | "
+                     "IM = x) |d lambda_IM(x)|, equals {:.4g} per year (1 - exp(-lambda {:g}) = {:g} %), found by "
+                     "bisection on the continuum of gaps with the fragility refitted at each; its interval comes from "
+                     "the same record bootstrap.\n\n",
+                     h.number("lambda_target"), years, target);
   return s;
 }
 

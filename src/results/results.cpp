@@ -20,11 +20,18 @@ std::size_t column_size(const Column& c) {
   return std::visit([](const auto& v) { return v.size(); }, c);
 }
 
-std::vector<FieldSpec> unit_schema(bool with_gaps) {
+std::vector<FieldSpec> unit_schema(bool with_gaps, bool ida) {
   std::vector<FieldSpec> s;
   for (const FieldSpec& f : unit_fields)
     if (with_gaps || f.extent == Extent::lane) s.push_back(f);
+  if (ida) s.insert(s.end(), std::begin(ida_fields), std::end(ida_fields));
   return s;
+}
+
+std::size_t field_index(std::span<const FieldSpec> schema, std::string_view group, std::string_view name) {
+  for (std::size_t k = 0; k < schema.size(); ++k)
+    if (schema[k].group == group && schema[k].name == name) return k;
+  throw std::logic_error(fmt::format("no field {}/{} in this schema", group, name));
 }
 
 GapTable gap_table(std::span<const double> ratios, std::span<const double> code_gap) {

@@ -182,6 +182,18 @@ std::size_t StripePlan::dropped_count(std::size_t stripe) const {
   return n;
 }
 
+std::vector<double> ida_hunt_factors(const IntensitySpec& spec, double im) {
+  std::vector<double> f;
+  bool beyond = false;
+  for (double level : spec.levels) {
+    const double x = scale_to_level(im, level);
+    if (x < spec.max_scale) f.push_back(x);
+    else beyond = true;
+  }
+  if (beyond) f.push_back(spec.max_scale);
+  return f;
+}
+
 StripePlan plan_stripes(const IntensitySpec& spec, std::span<const double> im) {
   StripePlan p;
   p.records = im.size();

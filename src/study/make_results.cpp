@@ -179,6 +179,69 @@ results::Group intensity_group(const Study& study, const StripePlan& p) {
   return g;
 }
 
+namespace {
+
+// The bisection IDA's unit rows (results::ida_fields) as the module group /ida, with the capacities in IM units
+// and each record's censoring point: im times the smallest scale_limit of its models (a model whose analysis
+// diverged in the hunt censors the record just below; one that diverged at the first factor is excluded instead).
+results::Group ida_group(const Study& study, const WorkPlan& plan, const StripePlan& p, std::vector<results::Field>& fields) {
+  const IntensitySpec& x = study.intensity;
+  const std::string units(im_units(x.im.measure));
+  const std::size_t R = plan.records, M = plan.models(), G = plan.gaps;
+  results::Group g{"ida", {}, {}};
+  g.set("method", std::string("hunt at the stripes' factors (up to max_scale), then bisection on ln(scale)"));
+  g.set("tolerance", x.tolerance);
+  g.set("max_scale", x.max_scale);
+  std::vector<double> lo, hi, limit;
+  std::vector<std::int64_t> analyses;
+  for (auto it = fields.begin(); it != fields.end();) {
+    if (it->spec.group != "ida") {
+      ++it;
+      continue;
+    }
+    if (it->spec.name == "analyses")
+      for (std::int32_t a : std::get<std::vector<std::int32_t>>(it->data)) analyses.push_back(a);
+    else if (it->spec.name == "scale_limit") limit = std::move(std::get<std::vector<double>>(it->data));
+    else (it->spec.name == "scale_lo" ? lo : hi) = std::move(std::get<std::vector<double>>(it->data));
+    it = fields.erase(it);
+  }
+  std::vector<double> cap(R);
+  std::int64_t diverged = 0, total = 0;
+  for (std::size_t r = 0; r < R; ++r) {
+    const std::vector<double> hunt = ida_hunt_factors(x, p.im[r]);
+    double f = hunt.back();
+    for (std::size_t m = 0; m < M; ++m) {
+      const double l = limit[r * M + m];
+      diverged += l < hunt.back();
+      if (l > 0) f = std::min(f, l);
+    }
+    cap[r] = p.im[r] * f;
+  }
+  std::vector<double> capacity(lo.size());
+  for (std::size_t k = 0; k < lo.size(); ++k) {
+    const double im = p.im[k / (M * G)];
+    capacity[k] = std::isnan(lo[k]) ? NAN : std::isinf(hi[k]) ? INFINITY : im * std::sqrt(lo[k] * hi[k]);
+  }
+  for (std::int64_t a : analyses) total += a;
+  g.set("analyses_total", total);
+  g.set("diverged_models", diverged);
+  g.add("gaps", study.gap_ratios, "1", "the gap axis: ratios of each model's code gap d");
+  g.add("cap", cap, units,
+        "each record's censoring point: its IM times the smallest scale_limit of its models; a capacity above it "
+        "counts as censored there");
+  g.add("analyses", analyses, "1", std::string(results::ida_fields[0].description), {R, M});
+  g.add("scale_limit", limit, "1", std::string(results::ida_fields[1].description), {R, M});
+  g.add("scale_lo", lo, "1", std::string(results::ida_fields[2].description), {R, M, G});
+  g.add("scale_hi", hi, "1", std::string(results::ida_fields[3].description), {R, M, G});
+  g.add("capacity", capacity, units,
+        "IM at first contact: the record's IM times the geometric mean of the final bracket (within tolerance); "
+        "+inf: no contact up to the last factor analysed (censored); NaN: excluded; [records, models, gaps]",
+        {R, M, G});
+  return g;
+}
+
+}  // namespace
+
 results::Results make_results(const Study& study, const std::vector<StudyRecord>& records, const WorkPlan& plan,
                               Tally& tally, const Exclusions& ex, const RunFacts& facts, const StripePlan& stripes) {
   results::Results r;
@@ -192,6 +255,7 @@ results::Results make_results(const Study& study, const std::vector<StudyRecord>
   r.stripes = stripes.stripes;
   results::add_derived_fields(r);
   if (study.intensity.enabled) r.groups.push_back(intensity_group(study, stripes));
+  if (plan.ida) r.groups.push_back(ida_group(study, plan, stripes, r.fields));
   return r;
 }
 

@@ -69,6 +69,12 @@ class UnitComputer {
     ks_base_.displacement_limit = s.displacement_limit;
     uncoupled_ = s.contact;
     uncoupled_.law = ContactLaw::none;
+    if (plan.ida) {
+      ida_analyses_ = results::field_index(plan.fields, "ida", "analyses");
+      ida_limit_ = results::field_index(plan.fields, "ida", "scale_limit");
+      ida_lo_ = results::field_index(plan.fields, "ida", "scale_lo");
+      ida_hi_ = results::field_index(plan.fields, "ida", "scale_hi");
+    }
   }
 
   UnitResult operator()(std::size_t unit) {
@@ -98,6 +104,7 @@ class UnitComputer {
     }
     if (plan_.impacts)
       for (std::size_t g = 0; g < plan_.gaps; ++g) coupled(g, gm, ks, out);
+    if (plan_.ida) ida(rec, u.record, ks, out);
     return out;
   }
 
@@ -112,6 +119,95 @@ class UnitComputer {
     scaled_.resize(rec.acc.size());
     for (std::size_t i = 0; i < scaled_.size(); ++i) scaled_[i] = f * rec.acc[i];
     return scaled_;
+  }
+
+  // The bisection IDA of yielding pairs (method = "ida"): for every lane and gap ratio x, the record scale factor
+  // at which the pair first touches, i.e. the smallest f with peak closing D(f) > x d.
+  //  1. Hunt: the record scaled (like a stripe, bit-identical to MSA's analysis at that factor) to each factor of
+  //     ida_hunt_factors -- the stripes' levels below max_scale, then max_scale. The first factor whose run
+  //     touches brackets f* between it and the factor before (0 before the first); no touch up to the last factor:
+  //     censored. A diverged analysis ends the lane's hunt: its open gaps are censored at the factor before (the
+  //     record's cap comes down to it in make_results), or excluded when that was the first factor.
+  //  2. Bisection on ln f (halving from 0 while the bracket starts there) until hi <= lo (1 + tolerance). Each
+  //     step runs every open (lane, gap) as its own kernel lane with its own factor, using the exact identity of
+  //     bilinear (kinematic hardening) and elastic restoring forces R(f w; fy) = f R(w; fy / f): the response to
+  //     f ag is f times the response to ag of the same structure with yield forces fy / f. So the record stays
+  //     unscaled, each lane's fy is divided by its factor, and the peaks are multiplied by it (the displacement
+  //     limit is applied to the multiplied peaks). Checked against the scaled record in tests/study.
+  // With several crossings of D(f) = x d (a "resurrection"), the hunt's first bracket is kept: f* is the first
+  // crossing to the resolution of the hunt.
+  void ida(const Record& rec, std::size_t record, const KernelSettings& ks, UnitResult& out) {
+    const std::size_t n = pairs_.size(), G = plan_.gaps;
+    const std::vector<double> hunt = ida_hunt_factors(s_.intensity, stripes_.im[record]);
+    enum : std::uint8_t { open, found, excluded };
+    std::vector<std::uint8_t> state(n * G, open);
+    std::vector<double> lo(n * G, 0.0), hi(n * G, INFINITY);
+    auto analyses = out.values<std::int32_t>(ida_analyses_);
+    auto limit = out.values<double>(ida_limit_);
+    for (std::size_t i = 0; i < n; ++i) analyses[i] = static_cast<std::int32_t>(1 + hunt.size()), limit[i] = hunt.back();
+    std::vector<std::uint8_t> diverged(n, 0);
+    PairBatch batch;
+    batch.resize(n);
+    for (std::size_t i = 0; i < n; ++i) batch.set(i, pairs_[i].pair_params(0.0, s_.e));
+    const double duration = rec.duration() + s_.free_vibration;
+    for (std::size_t h = 0; h < hunt.size(); ++h) {
+      const double f = hunt[h];
+      scaled_.resize(rec.acc.size());
+      for (std::size_t t = 0; t < scaled_.size(); ++t) scaled_[t] = f * rec.acc[t];
+      run_batch(batch, uncoupled_, GroundMotion{rec.dt, scaled_, duration}, ks, hres_);
+      for (std::size_t i = 0; i < n; ++i) {
+        if (diverged[i]) continue;
+        if (hres_.status[i] != 0) {
+          // no contact known up to the factor before: censored there (the record's cap goes down to it, make_results);
+          // at the first factor nothing is known: excluded
+          diverged[i] = 1, limit[i] = h ? hunt[h - 1] : 0.0;
+          for (std::size_t g = 0; g < G; ++g)
+            if (state[i * G + g] == open && h == 0) state[i * G + g] = excluded;
+          continue;
+        }
+        for (std::size_t g = 0; g < G; ++g) {
+          const std::size_t k = i * G + g;
+          if (state[k] != open) continue;
+          if (hres_.peak_closing[i] > s_.gap_ratios[g] * pairs_[i].d) state[k] = found, hi[k] = f;
+          else lo[k] = f;
+        }
+      }
+    }
+    const GroundMotion gm{rec.dt, rec.acc, duration};
+    for (int step = 0; step < 200; ++step) {
+      todo_.clear();
+      for (std::size_t k = 0; k < n * G; ++k)
+        if (state[k] == found && !(hi[k] <= lo[k] * (1.0 + s_.intensity.tolerance))) todo_.push_back(k);
+      if (todo_.empty()) break;
+      sub_.resize(todo_.size());
+      mid_.resize(todo_.size());
+      double f_min = INFINITY;
+      for (std::size_t j = 0; j < todo_.size(); ++j) {
+        const std::size_t k = todo_[j];
+        mid_[j] = lo[k] > 0 ? std::sqrt(lo[k] * hi[k]) : 0.5 * hi[k];
+        f_min = std::min(f_min, mid_[j]);
+        PairParams pp = pairs_[k / G].pair_params(0.0, s_.e);
+        pp.s1.fy /= mid_[j], pp.s2.fy /= mid_[j];
+        sub_.set(j, pp);
+      }
+      KernelSettings kb = ks;
+      kb.displacement_limit = ks.displacement_limit / f_min;  // the exact limit is applied per lane below
+      run_batch(sub_, uncoupled_, gm, kb, bres_);
+      for (std::size_t j = 0; j < todo_.size(); ++j) {
+        const std::size_t k = todo_[j], i = k / G, g = k % G;
+        const double f = mid_[j];
+        ++analyses[i];
+        if (bres_.status[j] != 0 || f * std::max(bres_.peak_u1[j], bres_.peak_u2[j]) > ks.displacement_limit)
+          state[k] = excluded;
+        else if (f * bres_.peak_closing[j] > s_.gap_ratios[g] * pairs_[i].d) hi[k] = f;
+        else lo[k] = f;
+      }
+    }
+    auto slo = out.values<double>(ida_lo_), shi = out.values<double>(ida_hi_);
+    for (std::size_t k = 0; k < n * G; ++k) {
+      const bool ok = state[k] != excluded;
+      slo[k] = ok ? lo[k] : NAN, shi[k] = ok ? hi[k] : NAN;  // open: censored, [last factor analysed, inf)
+    }
   }
 
   // A record dropped from a stripe (its factor exceeds max_scale): nothing is analysed, status dropped_status.
@@ -170,8 +266,10 @@ class UnitComputer {
   std::vector<SampledPair> pairs_;
   std::vector<std::size_t> lanes_;
   PairBatch sub_;
-  BatchResult res_, cres_;
-  std::vector<double> scaled_;
+  BatchResult res_, cres_, hres_, bres_;
+  std::vector<double> scaled_, mid_;
+  std::vector<std::size_t> todo_;
+  std::size_t ida_analyses_ = 0, ida_limit_ = 0, ida_lo_ = 0, ida_hi_ = 0;  // the ida rows' positions in the plan's schema
 };
 
 }  // namespace
@@ -229,7 +327,8 @@ WorkPlan plan_work(const Inputs& in) {
   L.blocks = (L.samples + L.batch - 1) / L.batch;
   L.gaps = s.gap_ratios.size();
   L.impacts = s.scene == Scene::impacts;
-  L.fields = results::unit_schema(L.impacts);
+  L.ida = s.intensity.bisection;
+  L.fields = results::unit_schema(L.impacts, L.ida);
   return L;
 }
 

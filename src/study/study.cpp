@@ -210,12 +210,10 @@ Study parse_study(const std::string& text, const std::string& path) {
   s.intensity = parse_intensity(top.table("intensity"), path, s.structures);
   s.hazard = parse_hazard(top.table("hazard"), path, s.intensity);
   top.finish("title, seed, scene, output, records, structures, gaps, contact, analysis, report, outputs, intensity, hazard");
-  if (s.intensity.method == FragilityMethod::ida &&
-      !(s.structures.building(0).hysteresis == Hysteresis::elastic && s.structures.building(1).hysteresis == Hysteresis::elastic))
-    throw InputError("method = \"ida\" needs linear buildings here: only their capacities are exact from one run",
-                     fmt::format("{} [intensity] method", path),
-                     "set hysteresis = \"elastic\" in [structures] (both buildings), or use method = \"msa\" for "
-                     "yielding buildings (stripes; the bisection IDA of yielding pairs is not built yet)");
+  // ida: linear pairs take every capacity exactly from one run; yielding ones need the bisection (study/run.cpp)
+  s.intensity.bisection =
+      s.intensity.method == FragilityMethod::ida &&
+      !(s.structures.building(0).hysteresis == Hysteresis::elastic && s.structures.building(1).hysteresis == Hysteresis::elastic);
   if (s.intensity.enabled && s.scene_requested != Scene::probability)
     throw InputError("a fragility study ([intensity]) runs in the probability scene", top.where("scene"),
                      "write scene = \"probability\": whether a pair touches at a gap is decided by the uncoupled motion");

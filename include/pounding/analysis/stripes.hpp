@@ -195,6 +195,15 @@ TargetGap risk_targeted_gap_linear_ida(std::span<const double> im, std::span<con
                                        std::size_t models, std::span<const double> cap, const HazardCurve& hazard,
                                        double lambda_target, const Settings& settings);
 
+// Bisection IDA of yielding pairs: capacities, hence rates, exist only at the study's gaps, so x* is interpolated
+// with ln lambda_P linear in x between the two listed gaps whose point rates bracket lambda_target (lambda_P falls
+// as x grows; a rate of 0 is interpolated linearly). The interval is the same interpolation of the gaps' pointwise
+// bootstrap ends: rate_lo gives the lower gap, rate_hi the upper (a pointwise, not a joint, interval; the note
+// says so). Fits without a finite rate are skipped. Status "ok"; "below range" when the smallest listed gap already
+// meets the target (x* at most it); "above range" when the largest does not (x* beyond it; hi = +inf when its
+// rate_hi does not either). Throws std::invalid_argument for lambda_target not > 0 or fits without a hazard.
+TargetGap risk_targeted_gap_at_gaps(std::span<const GapFragility> fits, double lambda_target);
+
 // lambda_P and P(years) of the MSA point estimates on a gap grid (the "lambda versus separation" plot):
 // rate_of(fit) at each gap (bounds for the degenerate fits, NaN when there is no rate).
 struct RateCurve {

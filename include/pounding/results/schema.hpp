@@ -80,6 +80,23 @@ inline constexpr FieldSpec unit_fields[] = {
      "or diverged); status 3 above the stepper's limit"},
 };
 
+// What a unit of a fragility study with method = "ida" on yielding buildings returns besides the uncoupled rows
+// (study/run.cpp, the bisection IDA): per lane the analyses it took, per lane and gap the bracket of the record
+// scale factor at first contact. make_results moves them into the module group /ida ([records, models(, gaps)]).
+inline constexpr FieldSpec ida_fields[] = {
+    {"ida", "analyses", Dtype::i32, Extent::lane, -1, "1",
+     "uncoupled analyses this (record, model) took: the record as it is, the hunt and every bisection step"},
+    {"ida", "scale_limit", Dtype::f64, Extent::lane, NAN, "1",
+     "largest hunt factor up to which this model's analyses stayed within the displacement limit (the hunt's last "
+     "factor when none diverged; 0 when the first diverged); the record's capacities are censored at the smallest"},
+    {"ida", "scale_lo", Dtype::f64, Extent::lane_gap, NAN, "1",
+     "largest record scale factor known to give no contact at this gap (0: the pair touched at the hunt's first "
+     "factor and the bracket started at 0); NaN: excluded (diverged at the hunt's first factor or in the bisection)"},
+    {"ida", "scale_hi", Dtype::f64, Extent::lane_gap, NAN, "1",
+     "smallest record scale factor known to give contact at this gap; +inf: no contact up to the hunt's last "
+     "factor, or up to a diverged analysis (right-censored at scale_lo); NaN: excluded"},
+};
+
 // Written after the run from the unit fields (results::add_derived_fields).
 inline constexpr FieldSpec derived_fields[] = {
     {"impacts", "amplification_u1", Dtype::f64, Extent::lane_gap, NAN, "1",
@@ -99,7 +116,10 @@ consteval std::size_t unit_field(std::string_view group, std::string_view name) 
   throw "no such unit field";
 }
 
-// The unit fields of a scene: the per-lane rows, and the per-gap rows when it runs coupled analyses.
-std::vector<FieldSpec> unit_schema(bool with_gaps);
+// The unit fields of a scene: the per-lane rows, the per-gap rows when it runs coupled analyses, and the
+// ida_fields after them for the bisection IDA.
+std::vector<FieldSpec> unit_schema(bool with_gaps, bool ida = false);
+// The position of a row in a schema; std::logic_error when absent.
+std::size_t field_index(std::span<const FieldSpec> schema, std::string_view group, std::string_view name);
 
 }  // namespace pounding::results

@@ -44,6 +44,8 @@ struct IntensitySpec {
   double max_scale = 10.0;
   FragilityMethod method = FragilityMethod::msa;
   double tolerance = 0.01;
+  bool bisection = false;         // ida on yielding buildings: hunt and bisection per (record, model, gap); set by
+                                  // parse_study (linear pairs take the exact capacities of one run instead)
   std::size_t stripes() const { return enabled && method == FragilityMethod::msa ? levels.size() : 0; }
 };
 
@@ -67,6 +69,11 @@ struct StripePlan {
 };
 // The IM of every record (motion/intensity.hpp) and the factors; no stripes without [intensity] (or for ida).
 StripePlan plan_stripes(const IntensitySpec& spec, std::span<const double> im);
+
+// The bisection IDA's hunt (study/run.cpp): the scale factors at which a record of intensity `im` is analysed
+// before bisecting, ascending: each level's factor below max_scale, then max_scale itself when a level lies beyond
+// it. Capacities are censored at the last of them: at the top level, or at im max_scale when that is lower.
+std::vector<double> ida_hunt_factors(const IntensitySpec& spec, double im);
 
 // Parse the sections (null table: absent). `structures` resolves period = "pair".
 IntensitySpec parse_intensity(const toml::table* t, const std::string& path, const StructureModel& structures);

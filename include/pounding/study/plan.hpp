@@ -16,7 +16,8 @@ struct UnitIndex {
 struct WorkPlan {
   std::size_t records = 0, pairs = 0, blocks = 0, batch = 0, samples = 0, gaps = 0;
   bool impacts = false;                       // the scene runs coupled analyses per gap
-  std::vector<results::FieldSpec> fields;     // what a unit returns (results::unit_schema(impacts))
+  bool ida = false;                           // the bisection IDA of yielding pairs (study/run.cpp)
+  std::vector<results::FieldSpec> fields;     // what a unit returns (results::unit_schema(impacts, ida))
 
   std::size_t units() const { return records * pairs * blocks; }
   std::size_t models() const { return pairs * samples; }
