@@ -106,6 +106,9 @@ IntensitySpec parse_intensity(const toml::table* t, const std::string& path, con
   x.im.damping = r.number("damping", 0.05, 0.0, 0.5, "[0, 0.5]");
   read_levels(x, r);
   x.max_scale = r.number("max_scale", 10.0, 1.0, 1000.0, "[1, 1000]");
+  if (x.method != FragilityMethod::ida && r.get("tolerance"))
+    throw InputError("tolerance is for method = \"ida\" (the bisection's bracket width)", r.where("tolerance"),
+                     "delete tolerance, or set method = \"ida\"");
   x.tolerance = r.number("tolerance", 0.01, 1e-6, 0.5, "[1e-6, 0.5] (relative width of the IM bracket)");
   r.finish("measure, period, periods, damping, levels, max_scale, method, tolerance");
   return x;

@@ -520,3 +520,37 @@ TEST(StripesIndex, CountsAreBinarySearchesOfTheSortedSlices) {
   EXPECT_EQ(ix.min_positive(), lo);
   EXPECT_EQ(ix.max_positive(), hi);
 }
+
+// The bisection IDA's risk-targeted gap: ln lambda linear in the gap between the study's gaps. With rates exactly
+// lambda(x) = a exp(-b x) the interpolation is exact: x* = ln(a / target) / b; the interval joins the pointwise
+// ends the same way; the range statuses when the target lies outside the listed gaps.
+TEST(StripesTargetAtGaps, InterpolatesLnRateExactlyAndFlagsTheRange) {
+  const double a = 0.05, b = 3.0;
+  std::vector<GapFragility> fits;
+  for (double x : {0.25, 0.5, 1.0, 1.5, 2.0}) {
+    GapFragility g;
+    g.gap = x, g.has_hazard = true;
+    g.annual_rate = a * std::exp(-b * x);
+    g.rate_lo = 0.5 * g.annual_rate, g.rate_hi = 2.0 * g.annual_rate;
+    fits.push_back(g);
+  }
+  std::swap(fits[0], fits[3]);  // any order
+  const double target = 4.0e-4;
+  const TargetGap t = risk_targeted_gap_at_gaps(fits, target);
+  EXPECT_EQ(t.status, "ok");
+  EXPECT_NEAR(t.gap, std::log(a / target) / b, 1e-12);
+  EXPECT_NEAR(t.lo, std::log(0.5 * a / target) / b, 1e-12);  // rate_lo crosses earlier
+  EXPECT_NEAR(t.hi, std::log(2.0 * a / target) / b, 1e-12);
+  EXPECT_LT(t.lo, t.gap);
+  EXPECT_GT(t.hi, t.gap);
+  const TargetGap below = risk_targeted_gap_at_gaps(fits, 0.1);
+  EXPECT_EQ(below.status, "below range");
+  EXPECT_EQ(below.gap, 0.25);
+  const TargetGap above = risk_targeted_gap_at_gaps(fits, 1e-9);
+  EXPECT_EQ(above.status, "above range");
+  EXPECT_EQ(above.gap, 2.0);
+  EXPECT_TRUE(std::isinf(above.hi));
+  EXPECT_THROW(risk_targeted_gap_at_gaps(fits, 0.0), std::invalid_argument);
+  fits[1].has_hazard = false;
+  EXPECT_THROW(risk_targeted_gap_at_gaps(fits, target), std::invalid_argument);
+}

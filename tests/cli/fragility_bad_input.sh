@@ -47,9 +47,13 @@ levels = [0.1, 0.2]'
 expect_error max_scale 'max_scale' "$I
 levels = [0.1, 0.2]
 max_scale = 0.5"
-expect_error ida_yielding 'method = "ida" needs linear buildings' "$I
+expect_error ida_tolerance 'tolerance.*out of range' "$I
 levels = [0.1, 0.2]
-method = \"ida\""
+method = \"ida\"
+tolerance = 0.9"
+expect_error msa_tolerance 'tolerance is for method = \"ida\"' "$I
+levels = [0.1, 0.2]
+tolerance = 0.01"
 expect_error hazard_alone '\[hazard\] needs fragility curves' '[hazard]
 k0 = 1e-4
 k = 2.5'
