@@ -57,9 +57,9 @@ period = "pair"
 levels = [0.05, 0.1, 0.2, 0.3, 0.45, 0.7, 1.0, ${6:-1.5}]
 max_scale = ${7:-10}
 method = "$2"
-tolerance = 0.002
+$([ "$2" = ida ] && echo "tolerance = 0.002")
 TOML
-  "$bin" run "$1.toml" > "$1.log" 2>&1
+  "$bin" run "$1.toml" > "$1.log" 2>&1 || { cat "$1.log"; exit 1; }
 }
 # max_scale 3 and a top level beyond every record's reach: both paths censor at IM x 3 (<= 4.8 g, below the Cy = 5 g
 # at which the stiff twin would yield)
@@ -70,7 +70,7 @@ study msa msa '' 'yield_coefficient = {lognormal = {median = 0.15, cov = 0.2}}' 
 # batch width 7 instead of 256: other sub-batches in the bisection, the same bits (lanes are independent)
 sed -e 's/^output = "yield.h5"/output = "yield7.h5"/' yield.toml > yield7.toml
 printf '[analysis]\nbatch = 7\n' >> yield7.toml
-"$bin" run yield7.toml > yield7.log 2>&1
+"$bin" run yield7.toml > yield7.log 2>&1 || { cat yield7.log; exit 1; }
 grep -q "IDA of yielding buildings" stiff.log
 grep -q "IDA on a linear pair" elastic.log
 
