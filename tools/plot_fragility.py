@@ -113,6 +113,11 @@ class Fragility:
         self.n, self.z = g["observed_n"][()], g["observed_z"][()]
         self.fitted = g["fitted"][()]
         self.confidence = float(g.attrs.get("confidence", 0.95))
+        method = text(g.attrs.get("method", "msa"))
+        self.ida = text(g.attrs.get("ida", "")) if method == "ida" else ""
+        self.fit_words = {"": "maximum likelihood over the stripes",
+                          "linear": "IDA capacities of a linear pair, by moments",
+                          "bisection": "bisection-IDA capacities, by moments"}.get(self.ida, "IDA capacities")
         self.replicates = int(g.attrs.get("replicates", 0))
         it = f["intensity"].attrs if "intensity" in f else {}
         self.units = text(it.get("units", g.attrs.get("im_units", "")))
@@ -184,7 +189,7 @@ def plot_fragility(fr, sel, a, prefix, title):
         ax.grid(alpha=0.3, which="both")
     handles = [
         matplotlib.lines.Line2D([], [], color="C0", lw=2,
-                                label="fitted lognormal (maximum likelihood over the stripes), theta [and beta] "
+                                label=f"fitted lognormal ({fr.fit_words}), theta [and beta] "
                                       f"with their {conf} bootstrap intervals"),
         matplotlib.lines.Line2D([], [], color="C0", lw=1, ls="--",
                                 label="same beta at theta_lo (dashed) ..."),
@@ -262,7 +267,9 @@ def plot_rate(f, fr, sel, a, prefix, title):
     ax_r = fig.add_subplot(gs[0, :2])
     ax_p = fig.add_subplot(gs[1, :2], sharex=ax_r)
     ax_h = fig.add_subplot(gs[:, 2])
-    ax_r.plot(cx, cr, "C0", lw=1.5, label="rate versus separation (fragility refitted at each gap, point estimate)")
+    ax_r.plot(cx, cr, "C0", lw=1.5,
+              label="rate at the study's gaps, ln-linear between them (bisection IDA)" if fr.ida == "bisection"
+              else "rate versus separation (fragility refitted at each gap, point estimate)")
     ax_p.plot(cx, 100 * cp, "C0", lw=1.5, label=f"P(pounding in {years:g} years) = 1 - exp(-rate {years:g})")
     s = np.array(sel)
     ax_r.errorbar(xs[s], rate[s], yerr=[rate[s] - rlo[s], rhi[s] - rate[s]], fmt="o", color="C3", capsize=3,

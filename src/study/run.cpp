@@ -389,6 +389,28 @@ void announce(const parallel::Session& session, const Inputs& in, const WorkPlan
                         dropped.empty() ? "" : fmt::format("; records dropped (factor above max_scale = {:g}): {}",
                                                            x.max_scale, dropped)));
   }
+  if (const StripePlan& p = in.stripes; p.stripes) {
+    // Heavy amplitude scaling distorts a record's magnitude-duration-shape consistency (the research note, 2.3;
+    // practice keeps factors within about [0.25, 4]): name each record scaled outside that range, and where.
+    const IntensitySpec& x = in.study.intensity;
+    std::size_t outside = 0;
+    for (std::size_t r = 0; r < p.records; ++r) {
+      std::string at;
+      for (std::size_t s = 0; s < p.stripes; ++s) {
+        const double f = p.scale[s * p.records + r];
+        if (!p.dropped[s * p.records + r] && (f < 0.25 || f > 4.0))
+          at += fmt::format("{}x{:.3g} at {:g}", at.empty() ? "" : ", ", f, x.levels[s]);
+      }
+      if (at.empty()) continue;
+      ++outside;
+      ctx.say(fmt::format("record {}: scale factor outside [0.25, 4] (IM {:.3g} {}): {}", in.records[r].id, p.im[r],
+                          im_units(x.im.measure), at));
+    }
+    if (outside)
+      ctx.say(fmt::format("{} of {} records are scaled outside [0.25, 4] at some stripe: large factors can bias "
+                          "the response (Baker 2015 prefers records selected near each level); the report counts them",
+                          outside, p.records));
+  }
   for (const auto& rr : in.records)
     if (rr.synthetic) ctx.say(fmt::format("record {}: synthetic stand-in ({})", rr.id, rr.note));
 }
