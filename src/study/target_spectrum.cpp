@@ -60,8 +60,8 @@ E one_of(TableReader& r, std::string_view key, const char* const (&names)[N], st
   const std::string v = r.string(key, "");
   for (std::size_t i = 0; i < N; ++i)
     if (v == names[i]) return static_cast<E>(i);
-  throw InputError(fmt::format("{} = \"{}\" is not a {} {}", key, escaped_excerpt(v), code,
-                               key == "ground" ? "ground type" : "soil type"),
+  throw InputError(fmt::format("{} = \"{}\" is not one of the {} {}", key, escaped_excerpt(v), code,
+                               key == "ground" ? "ground types" : "soil types"),
                    r.where(key), "use " + allowed);
 }
 
