@@ -22,24 +22,9 @@ py=${POUNDING_PYTHON:-/usr/bin/python3}
 [ "$(ls "$tmp/lib" | wc -l)" = 25 ] || fail "records suite --write: not 25 AT2 files"
 printf 'period_s,sa_g\n0.0,0.4\n0.1,1.0\n0.5,1.0\n1.0,0.55\n2.0,0.3\n4.0,0.12\n' > "$tmp/target.csv"
 
-study() {  # <name> <select> <target section>: a small pair study (median periods 0.9 and 1.3 s) on the library
-  cat > "$tmp/$1.toml" <<TOML
-title = "select test $1"
-seed = 5
-scene = "probability"
-[records]
-directory = "lib"
-select = $2
-[structures]
-samples_per_pair = 2
-[structures.building1]
-period = 0.9
-height = 28.0
-[structures.building2]
-period = 1.3
-height = 42.0
-$3
-TOML
+study() {  # <name> <select> <target section>: tests/data/study-select-pair.toml on the library
+  { cat "$src/tests/data/study-select-pair.toml"; printf '[records]\ndirectory = "lib"\nselect = %s\n%s\n' "$2" "$3"; } \
+    > "$tmp/$1.toml"
 }
 
 rows() {  # the summary from "target:" to "condition", without the file column (the study shows the record's source)

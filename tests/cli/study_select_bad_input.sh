@@ -5,17 +5,7 @@
 set -uo pipefail
 bin=$1; src=$2
 tmp=$(mktemp -d); trap 'rm -rf "$tmp"' EXIT
-body='title = "bad selection inputs"
-seed = 3
-scene = "probability"
-[structures]
-samples_per_pair = 2
-[structures.building1]
-period = 0.9
-height = 28.0
-[structures.building2]
-period = 1.3
-height = 42.0'
+body=$(cat "$src/tests/data/study-select-pair.toml")
 fails=0; passes=0
 expect_error() {  # name, pattern expected in the message (grep -E), sections appended to the base study
   local name=$1 pattern=$2

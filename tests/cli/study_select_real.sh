@@ -12,27 +12,9 @@ needs_real_records
 tmp=$(mktemp -d); trap 'rm -rf "$tmp"' EXIT
 fail() { echo "FAIL: $*" >&2; exit 1; }
 real=$(cd "$real" && pwd)
-cat > "$tmp/real.toml" <<TOML
-title = "select from the real records"
-seed = 7
-scene = "probability"
-[records]
-directory = "$real"
-select = 11
-[structures]
-samples_per_pair = 2
-[structures.building1]
-period = 0.9
-height = 28.0
-[structures.building2]
-period = 1.3
-height = 42.0
-[target_spectrum]
-code = "ASCE 7-16"
-sds = 1.0
-sd1 = 0.6
-tl = 8.0
-TOML
+{ cat "$src/tests/data/study-select-pair.toml"
+  printf '[records]\ndirectory = "%s"\nselect = 11\n[target_spectrum]\ncode = "ASCE 7-16"\nsds = 1.0\nsd1 = 0.6\ntl = 8.0\n' "$real"
+} > "$tmp/real.toml"
 "$bin" run "$tmp/real.toml" --out "$tmp/real.h5" > "$tmp/run.log" 2>&1 || fail "run: $(cat "$tmp/run.log")"
 mapfile -t files < <(ls "$real"/*.AT2 "$real"/*.txt | LC_ALL=C sort)
 [ "${#files[@]}" = 85 ] || fail "expected 85 records in $real, found ${#files[@]}"
