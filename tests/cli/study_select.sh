@@ -8,7 +8,7 @@
 # with its PGA condition) and a tabulated csv (rule ASCE 7-10, range 0.2-1.5 T). For each: the printed rows (rank,
 # record, f_i, MSE, scale), the suite factor, the smallest mean/target and the verdict are identical; the results'
 # /selection (ids, scale, mean) agrees with the command line's CSV to 1e-8; /records holds the chosen records in
-# that order with their PGA multiplied by the factor. Args: <pounding binary> <source dir>
+# that order with their PGA multiplied by the factor. 1 and 2 ranks: cli.study_select_ranks. Args: <pounding binary> <source dir>
 set -euo pipefail
 bin=$1; src=$2
 tmp=$(mktemp -d); trap 'rm -rf "$tmp"' EXIT
@@ -106,23 +106,6 @@ rule = "ASCE 7-10"
 points = 20
 min_scale = 0.2' --target-csv "$tmp/target.csv" --rule "ASCE 7-10" --points 20 --min-scale 0.2
 grep -q "0.18-1.95 s" "$tmp/csv.log" || fail "csv: ASCE 7-10 range 0.2 min T - 1.5 max T: $(grep '^rule' "$tmp/csv.log")"
-# every rank selects the same records bit for bit: 2 ranks write the same file (a serial build refuses mpirun with
-# exit 2: that part is then skipped, cli.study_ranks says why)
-if command -v mpirun > /dev/null && mpirun -np 2 "$bin" run "$tmp/asce.toml" --out "$tmp/asce2.h5" --quiet \
-     > "$tmp/mpi.out" 2>&1; then
-  "$py" - "$tmp/asce.h5" "$tmp/asce2.h5" <<'PY'
-import sys, h5py, numpy as np
-a, b = h5py.File(sys.argv[1]), h5py.File(sys.argv[2])
-names = []
-a.visit(lambda n: names.append(n) if isinstance(a[n], h5py.Dataset) and not n.startswith("settings") else None)
-bad = [n for n in names if not np.array_equal(a[n][()], b[n][()], equal_nan=a[n].dtype.kind == "f")]
-assert not bad, ("1 and 2 ranks differ", bad)
-assert dict(a["selection"].attrs) == dict(b["selection"].attrs)
-print(f"1 and 2 ranks: {len(names)} datasets bit-identical")
-PY
-else
-  echo "2 ranks: not checked ($(head -c 200 "$tmp/mpi.out"))"
-fi
 # the report prints the section
 "$bin" report "$tmp/asce.h5" | sed -n '/^## Records selected to the design spectrum/,$p' > "$tmp/asce.md"
 grep -q "## Records selected to the design spectrum" "$tmp/asce.md" || fail "report: no selection section"
