@@ -15,6 +15,11 @@ scaled records (thick black), the rule's line (90 % or 100 % of the target, dash
 
     pounding records select --asce7 1.0,0.6,8 --period 1.0 --directory ../shared/records/real -o sel.csv
     tools/plot_spectra.py sel.csv -o sel.png --loglog
+
+A results file (.h5) of a study with [records] select = N and [target_spectrum] is drawn the same way from its
+/selection group (target, each chosen record scaled by f_i F, their mean, the rule's line); h5py reads it:
+
+    pounding run studies/fragility-select.toml && tools/plot_spectra.py fragility-select.h5 -o sel.png --loglog
 """
 import argparse
 import csv
@@ -63,6 +68,29 @@ def read_selection(path):
     return meta, header[3:], np.array(rows)
 
 
+def is_hdf5(path):
+    with open(path, "rb") as f:
+        return f.read(8) == b"\x89HDF\r\n\x1a\n"
+
+
+def read_results_selection(path):
+    """The /selection group of a results file as read_selection() returns a CSV: (meta, names, table)."""
+    import h5py
+
+    with h5py.File(path, "r") as f:
+        if "selection" not in f:
+            sys.exit(f"{path}: a results file without /selection (the study has no [records] select = N)")
+        g = f["selection"]
+        at = {k: (v.decode() if isinstance(v, bytes) else v) for k, v in g.attrs.items()}
+        names = [x.decode() if isinstance(x, bytes) else str(x) for x in g["records"][()]]
+        periods, target, mean = g["periods"][()], g["target"][()], g["mean"][()]
+        spectra = g["spectra"][()]  # [records, periods], scaled by f_i F
+    meta = {"rule": str(at["rule_text"]), "rule_fraction": str(at["rule_fraction"]),
+            "range_s": f"{at['t_min']} {at['t_max']}", "suite_factor": str(at["suite_factor"]),
+            "condition_holds": "yes" if int(at["meets"]) else "no", "target": str(at["target_description"])}
+    return meta, names, np.column_stack([periods, target, mean, spectra.T])
+
+
 def plot_selection(a, meta, names, data, plt):
     T, target, mean, S = data[:, 0], data[:, 1], data[:, 2], data[:, 3:]
     fig, ax = plt.subplots(figsize=(8, 5))
@@ -100,7 +128,7 @@ def plot_selection(a, meta, names, data, plt):
 
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("csv")
+    ap.add_argument("csv", help="a `records spectrum` or `records select` CSV, or a results file with /selection")
     ap.add_argument("-o", "--output", default="spectra.png")
     ap.add_argument("--normalize", action="store_true", help="divide each spectrum by its value at T = 0 (PGA)")
     ap.add_argument("--logx", action="store_true", help="logarithmic period axis")
@@ -113,7 +141,7 @@ def main():
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
-    selection = read_selection(a.csv)
+    selection = read_results_selection(a.csv) if is_hdf5(a.csv) else read_selection(a.csv)
     if selection is not None:
         plot_selection(a, *selection, plt)
         return

@@ -432,7 +432,16 @@ Curve probability_curve(const results::Results& r, double step, double xmax, int
   return curve_of(Data(r), step, xmax, record);
 }
 
+namespace {
+std::string study_markdown(const results::Results& results);
+}  // namespace
+
 std::string report_markdown(const results::Results& results) {
+  return study_markdown(results) + report_detail::selection_section(results);
+}
+
+namespace {
+std::string study_markdown(const results::Results& results) {
   if (is_fragility_study(results)) {
     if (results.group("fragility")) return fragility_markdown(results);
     results::Results r = results;  // a file written without the analysis hook: analyse it now
@@ -458,6 +467,7 @@ std::string report_markdown(const results::Results& results) {
   md.impacts_table();
   return std::move(md).text();
 }
+}  // namespace
 
 std::string report_csv(const results::Results& results) {
   if (is_fragility_study(results)) {

@@ -28,7 +28,7 @@ StudyRecord from_file(const std::string& path, double scale, const Study& s, con
 }
 }  // namespace
 
-std::vector<StudyRecord> load_study_records(const Study& s) {
+std::vector<StudyRecord> load_study_records(const Study& s, StudySelection* selection) {
   std::vector<StudyRecord> out;
   if (!s.files.empty()) {
     for (const auto& f : s.files)
@@ -50,6 +50,10 @@ std::vector<StudyRecord> load_study_records(const Study& s) {
     for (const auto& p : paths) out.push_back(from_file(p, s.scale, s, "[records] scale in " + s.path));
   } else {
     out = load_suite_records(s);
+  }
+  if (s.select > 0) {
+    StudySelection local;
+    out = select_study_records(s, std::move(out), selection ? *selection : local);
   }
   if (s.record_limit > 0 && out.size() > static_cast<std::size_t>(s.record_limit)) out.resize(static_cast<std::size_t>(s.record_limit));
   check_result_memory(s, out.size());  // parse_study could only count a lower bound of the records

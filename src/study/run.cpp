@@ -282,6 +282,7 @@ struct Inputs {
   std::string out, out_where;
   std::vector<StudyRecord> records;
   StripePlan stripes;  // a fragility study's stripes (none otherwise)
+  std::optional<StudySelection> selection;  // [records] select: the records chosen to [target_spectrum]
 };
 
 // Every rank parses the same text (rank 0 reads the file) and loads the same records. The output is checked
@@ -294,7 +295,7 @@ Inputs load_inputs(const parallel::Session& session, const std::string& study_pa
   });
   session.broadcast(text);
   std::optional<Inputs> in;
-  session.agree([&] { in.emplace(Inputs{parse_study(text, study_path), {}, {}, {}, {}}); });
+  session.agree([&] { in.emplace(Inputs{parse_study(text, study_path), {}, {}, {}, {}, {}}); });
   in->out = opt.out_given ? opt.out : in->study.output;
   in->out_where = opt.out_given ? "--out" : study_path + ": output";
   session.agree([&] {
@@ -305,7 +306,8 @@ Inputs load_inputs(const parallel::Session& session, const std::string& study_pa
   });
   session.agree([&] {
     inject_fault("load", session.rank());
-    in->records = load_study_records(in->study);
+    if (in->study.select > 0) in->selection.emplace();
+    in->records = load_study_records(in->study, in->selection ? &*in->selection : nullptr);
     if (in->records.empty()) throw InputError("the study resolves to no records", study_path, "check [records]");
     if (in->study.intensity.enabled) {
       std::vector<double> im;
@@ -376,6 +378,11 @@ void announce(const parallel::Session& session, const Inputs& in, const WorkPlan
                       in.records.size(), L.models(), to_string(in.study.scene), L.units(), session.size(),
                       session.size() > 1 ? "s" : ""));
   ctx.say(in.study.scene_reason);
+  if (in.selection) {
+    ctx.say(fmt::format("records selected to the design spectrum ([records] select = {}, [target_spectrum]):",
+                        in.study.select));
+    for (const auto& line : in.selection->summary()) ctx.say(line);
+  }
   if (const StripePlan& p = in.stripes; p.stripes) {
     const IntensitySpec& x = in.study.intensity;
     std::string dropped;
@@ -459,6 +466,7 @@ int finish(const parallel::Session& session, const Inputs& in, const WorkPlan& L
     if (L.impacts) coarse_line = physics::describe(ex.coarse);
     try {
       results::Results res = make_results(in.study, in.records, L, tally, ex, {key.build, session.size(), wall}, in.stripes);
+      if (in.selection) res.groups.push_back(selection_group(*in.selection));
       if (opt.analyse) opt.analyse(res);  // the analyses the caller adds (fragility, hazard: report/fragility.hpp)
       results::write(in.out, res);
     } catch (const InputError& e) {

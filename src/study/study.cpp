@@ -63,8 +63,15 @@ void parse_records(Study& s, const toml::table* t, const std::string& path) {
   s.dt_one_column = r.number("dt", 0.0, 0.0, 1.0, "[0, 1] s");
   s.record_limit = static_cast<int>(r.integer("limit", 0, 0, 100000));
   s.synthetic_only = r.boolean("synthetic_only", false);
+  if (r.get("select")) {
+    s.select = static_cast<int>(r.integer("select", 0, 1, 100000));
+    s.select_where = r.where("select");
+    if (s.record_limit > 0)
+      throw InputError("limit and select both shorten the record list", r.where("limit"),
+                       "delete limit: select = N already chooses N records (the best matches to [target_spectrum])");
+  }
   parse_record_files(s, r, path);
-  r.finish("suite, real_dir, directory, files, scale, units, dt, limit, synthetic_only");
+  r.finish("suite, real_dir, directory, files, scale, units, dt, limit, synthetic_only, select");
   int sources = !s.suite.empty() + !s.directory.empty() + !s.files.empty();
   if (sources != 1)
     throw InputError(sources == 0 ? "the study names no records" : "the study names records in more than one way",
@@ -180,6 +187,19 @@ void choose_scene(Study& s) {
   if (!max_dt_given) s.max_dt = s.scene == Scene::impacts ? 0.0025 : 0.0;
 }
 
+// [records] select and [target_spectrum] come together.
+void check_selection(const Study& s, const TableReader& top) {
+  if (s.select > 0 && !s.target.enabled)
+    throw InputError("[records] select = N chooses records to a design spectrum, but the study has no [target_spectrum]",
+                     s.select_where,
+                     "add [target_spectrum] with code = \"ASCE 7-16\" (sds, sd1, tl), \"EC8\" (type, ground, agr), "
+                     "\"Standard 2800\" (a, soil) or \"csv\" (file), or delete select");
+  if (s.target.enabled && s.select == 0)
+    throw InputError("[target_spectrum] is given but [records] has no select = N", top.where("target_spectrum"),
+                     "add select = N to [records] (N records are chosen from the library and scaled to the spectrum; "
+                     "ASCE 7-16 asks for at least 11), or delete [target_spectrum]");
+}
+
 }  // namespace
 
 Study parse_study(const std::string& text, const std::string& path) {
@@ -209,7 +229,10 @@ Study parse_study(const std::string& text, const std::string& path) {
   parse_outputs(s, top.table("outputs"), path);
   s.intensity = parse_intensity(top.table("intensity"), path, s.structures);
   s.hazard = parse_hazard(top.table("hazard"), path, s.intensity);
-  top.finish("title, seed, scene, output, records, structures, gaps, contact, analysis, report, outputs, intensity, hazard");
+  s.target = parse_target_spectrum(top.table("target_spectrum"), path, s.structures);
+  top.finish("title, seed, scene, output, records, structures, gaps, contact, analysis, report, outputs, intensity, "
+             "hazard, target_spectrum");
+  check_selection(s, top);
   // ida: linear pairs take every capacity exactly from one run; yielding ones need the bisection (study/run.cpp)
   s.intensity.bisection =
       s.intensity.method == FragilityMethod::ida &&
@@ -220,8 +243,9 @@ Study parse_study(const std::string& text, const std::string& path) {
 
   choose_scene(s);
   // the results must fit in memory; the suite's record count is not known yet, so count at least one record
-  check_result_memory(s, std::max<std::size_t>({std::size_t{1}, s.files.size(),
-                                                 static_cast<std::size_t>(std::max(0, s.record_limit))}));
+  check_result_memory(s, s.select > 0 ? static_cast<std::size_t>(s.select)
+                                      : std::max<std::size_t>({std::size_t{1}, s.files.size(),
+                                                               static_cast<std::size_t>(std::max(0, s.record_limit))}));
   if (s.scene == Scene::impacts)
     s.scene_reason += s.skip_untouched
                           ? "; pairs whose uncoupled peak closing stays below a gap never touch there and are not rerun "

@@ -36,6 +36,20 @@ void visit_settings(const Study& s, V&& v) {
   v("records", "dt", s.dt_one_column);
   v("records", "limit", static_cast<std::int64_t>(s.record_limit));
   v("records", "synthetic_only", s.synthetic_only);
+  v("records", "select", static_cast<std::int64_t>(s.select));
+  if (s.target.enabled) {  // [target_spectrum] (study/target_spectrum.hpp); absent otherwise
+    const TargetSpectrumSection& x = s.target;
+    v("target_spectrum", "code", S(to_string(x.spec.code)));
+    v("target_spectrum", "description", x.target_text);
+    v("target_spectrum", "rule", S(to_string(x.options.rule)));
+    v("target_spectrum", "t_min", x.options.t_lo);
+    v("target_spectrum", "t_max", x.options.t_hi);
+    v("target_spectrum", "range_given", x.range_given);
+    v("target_spectrum", "points", static_cast<std::int64_t>(x.options.points));
+    v("target_spectrum", "damping", x.options.damping);
+    v("target_spectrum", "min_scale", x.options.min_scale);
+    v("target_spectrum", "max_scale", x.options.max_scale);
+  }
 
   const StructureModel& m = s.structures;
   v("structures", "periods", m.periods);

@@ -8,7 +8,8 @@
 //                | files = ["a.AT2", {path = "b.AT2", scale = 1.2}]
 //                | directory = "..."; real_dir = "..." (resolve suite entries to real PEER files);
 //                scale = 1.0; units = "g" | "m/s2" | "cm/s2"; dt = <s, one-column files>; limit = <first N>;
-//                synthetic_only = false
+//                synthetic_only = false; select = N (choose N records from that library and scale them to the
+//                [target_spectrum]; not with limit)
 //   [structures] the stochastic structure model (see sampler.hpp): the defaults of both buildings; equal_heights = false
 //                [structures.building1] / [structures.building2]: one building's overrides and its own period, height,
 //                mass, zeta, yield_coefficient (a number or {lognormal = {median, cov}} / {uniform = {min, max}};
@@ -37,6 +38,10 @@
 //   [outputs]    forces = true; amplification = true   (what the impacts scene must deliver; `auto` reads it)
 //   [intensity]  [hazard]   a fragility study: records scaled to IM levels (stripes), fragility per gap, the site's
 //                annual rate of pounding and the risk-targeted separation (study/intensity.hpp)
+//   [target_spectrum] code = "ASCE 7-16" | "EC8" | "Standard 2800" | "csv" and its parameters; rule, t_min, t_max,
+//                points = 30, damping = 0.05, min_scale = 0.25, max_scale = 4: the records of [records] select = N
+//                are chosen and amplitude-scaled to this design spectrum (study/target_spectrum.hpp lists every key;
+//                one without the other is an error)
 //
 // Sanity limits (errors naming the file, line and key, not a report full of nan or a std::bad_alloc):
 //   - every record must pass require_analysable (records.hpp) after units and scale: at least 2 s long,
@@ -56,6 +61,7 @@
 #include "pounding/motion/records.hpp"
 #include "pounding/sampling/sampler.hpp"
 #include "pounding/study/intensity.hpp"
+#include "pounding/study/target_spectrum.hpp"
 
 namespace pounding {
 
@@ -93,6 +99,8 @@ struct Study {
   double dt_one_column = 0.0;
   int record_limit = 0;
   bool synthetic_only = false;  // suite: every entry a synthetic stand-in, even where a real file exists
+  int select = 0;               // [records] select: choose this many records to [target_spectrum] (0: keep all)
+  std::string select_where;     // "file:line [records].select" for errors found when the records load
   // structures
   StructureModel structures;
   // gaps
@@ -122,6 +130,8 @@ struct Study {
   // [intensity] and [hazard] (study/intensity.hpp): a fragility study
   IntensitySpec intensity;
   HazardSpec hazard;
+  // [target_spectrum] (study/target_spectrum.hpp): the design spectrum the `select` records are scaled to
+  TargetSpectrumSection target;
 };
 
 // Bytes of the per-model result arrays rank 0 gathers for `records` records (src/study/run.cpp): per record
@@ -153,7 +163,14 @@ struct StudyRecord {
   std::string id;    // suite id (EQ1...) or file stem
   std::string note;  // how it was resolved
 };
-std::vector<StudyRecord> load_study_records(const Study& study);
+// With [records] select: the chosen records, best match first, each multiplied by its factor f_i F; the
+// selection goes to *selection when given (the run log prints it, /selection stores it). Deterministic: every
+// rank computes the same records bit for bit.
+std::vector<StudyRecord> load_study_records(const Study& study, StudySelection* selection = nullptr);
+// The selection step of load_study_records (src/study/target_spectrum.cpp): `library` is every record the
+// [records] section names.
+std::vector<StudyRecord> select_study_records(const Study& study, std::vector<StudyRecord> library,
+                                              StudySelection& selection);
 // The suite part of load_study_records (src/study/suite.cpp).
 std::vector<StudyRecord> load_suite_records(const Study& study);
 

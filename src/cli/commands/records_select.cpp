@@ -37,6 +37,7 @@
 #include "pounding/motion/intensity.hpp"
 #include "pounding/motion/records.hpp"
 #include "pounding/motion/selection.hpp"
+#include "pounding/motion/target_spectrum.hpp"
 
 namespace pounding::cli {
 
@@ -135,10 +136,10 @@ double spec_number(const std::string& field, const char* flag, const char* form)
   return parse_number_list(field, flag, "number", fmt::format("give {}", form), 0, true).front();
 }
 
-DesignSpectrum ec8_target(const SelectOpts& o) {
+void ec8_fields(const SelectOpts& o, TargetSpectrumSpec& spec) {
   const char* form = "TYPE,GROUND,AGR[,GAMMA_I], e.g. 1,C,0.25";
   const auto f = spec_fields(o.ec8, "--ec8", 3, 4, form);
-  Ec8Spectrum s;
+  Ec8Spectrum& s = spec.ec8;
   if (f[0] != "1" && f[0] != "2") throw InputError(fmt::format("EC8 type '{}'", escaped_excerpt(f[0])), "--ec8", "TYPE is 1 or 2");
   s.type = f[0] == "1" ? Ec8Type::type1 : Ec8Type::type2;
   const std::string grounds = "ABCDE";
@@ -148,14 +149,12 @@ DesignSpectrum ec8_target(const SelectOpts& o) {
   s.ground = static_cast<Ec8Ground>(g);
   s.agr = spec_number(f[2], "--ec8", form);
   if (f.size() > 3) s.importance = spec_number(f[3], "--ec8", form);
-  s.damping_percent = 100 * o.damping;  // the target at the damping of the record spectra
-  return as_option("--ec8", [&] { return DesignSpectrum(s); });
 }
 
-DesignSpectrum iran_target(const SelectOpts& o) {
+void iran_fields(const SelectOpts& o, TargetSpectrumSpec& spec) {
   const char* form = "A,SOIL[,I], e.g. 0.35,III";
   const auto f = spec_fields(o.iran2800, "--iran2800", 2, 3, form);
-  Iran2800Spectrum s;
+  Iran2800Spectrum& s = spec.iran2800;
   s.a = spec_number(f[0], "--iran2800", form);
   const char* soils[] = {"I", "II", "III", "IV"};
   const auto* it = std::find(std::begin(soils), std::end(soils), f[1]);
@@ -163,26 +162,44 @@ DesignSpectrum iran_target(const SelectOpts& o) {
     throw InputError(fmt::format("soil '{}'", escaped_excerpt(f[1])), "--iran2800", "SOIL is one of I, II, III, IV");
   s.soil = static_cast<Iran2800Soil>(it - std::begin(soils));
   if (f.size() > 2) s.importance = spec_number(f[2], "--iran2800", form);
-  return as_option("--iran2800", [&] { return DesignSpectrum(s); });
 }
 
-DesignSpectrum make_target(const SelectOpts& o) {
+// The target flags as a TargetSpectrumSpec (motion/target_spectrum.hpp, shared with a study's [target_spectrum]).
+TargetSpectrumSpec target_spec(const SelectOpts& o) {
   const int given = !o.asce7.empty() + !o.ec8.empty() + !o.iran2800.empty() + !o.target_csv.empty();
   if (given != 1)
     throw InputError(fmt::format("{} target spectra given", given), "--asce7/--ec8/--iran2800/--target-csv",
                      "give exactly one target, e.g. --asce7 1.0,0.6,8");
   if (o.mcer && o.asce7.empty()) throw InputError("--mcer without --asce7", "--mcer", "--mcer scales the --asce7 spectrum");
+  TargetSpectrumSpec spec;
   if (!o.asce7.empty()) {
     const char* form = "SDS,SD1,TL in g, g, s, e.g. 1.0,0.6,8";
     const auto f = spec_fields(o.asce7, "--asce7", 3, 3, form);
-    const double k = o.mcer ? 1.5 : 1.0;  // MCER = 1.5 x the design spectrum (research note 3.1)
-    const Asce7Spectrum s{k * spec_number(f[0], "--asce7", form), k * spec_number(f[1], "--asce7", form),
-                          spec_number(f[2], "--asce7", form)};
-    return as_option("--asce7", [&] { return DesignSpectrum(s); });
+    spec.code = TargetCode::asce7_16;
+    spec.asce7 = {spec_number(f[0], "--asce7", form), spec_number(f[1], "--asce7", form),
+                  spec_number(f[2], "--asce7", form)};
+    spec.mcer = o.mcer;
+  } else if (!o.ec8.empty()) {
+    spec.code = TargetCode::ec8;
+    ec8_fields(o, spec);
+  } else if (!o.iran2800.empty()) {
+    spec.code = TargetCode::iran2800;
+    iran_fields(o, spec);
+  } else {
+    spec.code = TargetCode::csv;
+    spec.table = read_tabulated_spectrum(o.target_csv);
   }
-  if (!o.ec8.empty()) return ec8_target(o);
-  if (!o.iran2800.empty()) return iran_target(o);
-  return DesignSpectrum(read_tabulated_spectrum(o.target_csv));
+  return spec;
+}
+
+const char* target_flag(TargetCode code) {
+  switch (code) {
+    case TargetCode::asce7_16: return "--asce7";
+    case TargetCode::ec8: return "--ec8";
+    case TargetCode::iran2800: return "--iran2800";
+    case TargetCode::csv: return "--target-csv";
+  }
+  return "--target-csv";
 }
 
 struct Library {
@@ -216,11 +233,12 @@ Library read_library(const SelectOpts& o) {
 
 SelectionOptions selection_options(const SelectOpts& o) {
   SelectionOptions so;
-  const std::string rule = !o.rule.empty() ? o.rule : !o.ec8.empty() ? "EC8" : "ASCE 7-16";
-  so.rule = as_option("--rule", [&] { return parse_scaling_rule(rule); });
+  so.rule = o.rule.empty() ? default_scaling_rule(!o.ec8.empty() ? TargetCode::ec8 : TargetCode::asce7_16)
+                           : as_option("--rule", [&] { return parse_scaling_rule(o.rule); });
   const auto T = parse_number_list(o.period, "--period", "period", "give the period(s) in s, e.g. 1.2 or 0.9,1.3", 0, true);
   if (T.size() > 2) throw InputError("more than two periods", "--period", "give T or T1,T2 (a pair)");
-  const std::string range = !o.range.empty() ? o.range : so.rule == ScalingRule::asce7_10 ? "0.2,1.5" : "0.2,2.0";
+  const auto def = default_range_multiples(so.rule);
+  const std::string range = !o.range.empty() ? o.range : fmt::format("{},{}", def[0], def[1]);
   const auto r = parse_number_list(range, "--range", "multiple of the period", "give e.g. 0.2,2.0", 0, true);
   if (r.size() != 2) throw InputError(fmt::format("--range '{}'", range), "--range", "give two multiples, e.g. 0.2,2.0");
   so.t_lo = r[0] * *std::min_element(T.begin(), T.end());
@@ -250,20 +268,9 @@ std::string selection_csv(const Selection& s, const std::vector<SelectionCandida
 
 void print_selection(const Selection& s, const Library& lib, const std::vector<SelectionCandidate>& c,
                      const std::string& target, const SelectionOptions& so) {
-  fmt::print("target: {}\nrule: {}\nperiods: {} log-spaced over {:.3f}-{:.3f} s, damping {:g} %\n", target,
-             s.rule_text, so.points, so.t_lo, so.t_hi, 100 * so.damping);
-  fmt::print("candidates: {}, eligible (factor within [{:g}, {:g}]): {}, chosen: {}\n", c.size(), so.min_scale,
-             so.max_scale, s.eligible, s.chosen.size());
-  fmt::print("{:>4} {:<40} {:>9} {:>9} {:>9}  {}\n", "rank", "record", "f_i", "MSE", "scale", "file");
-  for (std::size_t k = 0; k < s.chosen.size(); ++k)
-    fmt::print("{:>4} {:<40} {:>9.4f} {:>9.5f} {:>9.4f}  {}\n", k + 1, c[s.chosen[k]].id, s.individual_scale[k],
-               s.mse[k], s.scale[k], lib.files[s.chosen[k]]);
-  fmt::print("suite factor F = {:.6f}\n", s.suite_factor);
-  fmt::print("min mean/target over the range = {:.6f}{}\n", s.min_ratio,
-             so.rule == ScalingRule::ec8 ? fmt::format(" (mean PGA / ag S = {:.6f})", s.pga_ratio) : std::string());
-  if (so.rule == ScalingRule::none) fmt::print("condition: none (rule \"none\")\n");
-  else fmt::print("condition holds: {}\n", s.meets ? "yes" : "no");
-  for (const auto& w : s.warnings) fmt::print(" WARNING: {}\n", w);
+  std::vector<std::string> ids;
+  for (const auto& x : c) ids.push_back(x.id);
+  for (const auto& line : selection_summary(s, ids, lib.files, target, so)) fmt::print("{}\n", line);
 }
 
 }  // namespace
@@ -293,9 +300,9 @@ void add_records_select(CLI::App* records) {
     if (!(o->damping >= 0 && o->damping < 1))
       throw InputError(fmt::format("--damping {} is outside [0, 1)", o->damping), "--damping", "give e.g. 0.05");
     const SelectionOptions so = selection_options(*o);
-    const DesignSpectrum target = make_target(*o);
-    const std::string target_text =
-        (o->mcer ? "MCER, 1.5 x the design spectrum (SDS and SD1 below include the 1.5): " : "") + target.describe();
+    const TargetSpectrumSpec spec = target_spec(*o);
+    const DesignSpectrum target = as_option(target_flag(spec.code), [&] { return make_target_spectrum(spec, o->damping); });
+    const std::string target_text = describe_target(spec, target);
     const Library lib = read_library(*o);
     std::vector<SelectionCandidate> cands;
     for (const auto& r : lib.records) cands.push_back({r.name, &r});

@@ -1,0 +1,257 @@
+// [target_spectrum] and [records] select (study/target_spectrum.hpp): parsing, the selection of a study's
+// records, and the /selection group.
+#include "pounding/study/target_spectrum.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+
+#include <fmt/format.h>
+
+#include "pounding/config/config.hpp"
+#include "pounding/core/error.hpp"
+#include "pounding/sampling/sampler.hpp"
+#include "pounding/study/intensity.hpp"
+#include "pounding/study/study.hpp"
+
+namespace pounding {
+
+namespace fs = std::filesystem;
+using config::TableReader;
+
+namespace {
+
+constexpr double any_lo = -1e300, any_hi = 1e300;  // the range is validate()'s (design_spectrum.hpp)
+
+// The study key of a parameter named by a validate() of design_spectrum.hpp or selection.hpp.
+std::string key_of(const std::string& param) {
+  static const std::pair<const char*, const char*> keys[] = {
+      {"SDS", "sds"}, {"SD1", "sd1"}, {"TL", "tl"}, {"agR", "agr"}, {"importance factor gammaI", "importance"},
+      {"importance factor I", "importance"}, {"damping ratio xi (%)", "damping"}, {"A", "a"},
+      {"ground type", "ground"}, {"soil type", "soil"}, {"--count", "select"}, {"--range", "t_max"},
+      {"--points", "points"}, {"--min-scale/--max-scale", "max_scale"}, {"--damping", "damping"}};
+  for (const auto& [p, k] : keys)
+    if (param == p) return k;
+  return "";
+}
+
+// Runs f (a validate() or a constructor that validates) and points its InputError at the study key.
+template <class F>
+auto at_key(TableReader& r, F f) {
+  try {
+    return f();
+  } catch (const InputError& e) {
+    const std::string key = key_of(e.where());
+    throw InputError(e.what_part(), key.empty() ? r.where("code") : r.where(key), e.fix());
+  }
+}
+
+double required(TableReader& r, std::string_view key, std::string_view code, const std::string& example) {
+  if (!r.get(key))
+    throw InputError(fmt::format("code = \"{}\" needs {}", code, key), r.where(key), "write " + example);
+  return r.number(key, 0.0, any_lo, any_hi, "any number");
+}
+
+template <class E, std::size_t N>
+E one_of(TableReader& r, std::string_view key, const char* const (&names)[N], std::string_view code,
+         const std::string& allowed) {
+  if (!r.get(key))
+    throw InputError(fmt::format("code = \"{}\" needs {}", code, key), r.where(key), "write " + std::string(key) + " = " + allowed);
+  const std::string v = r.string(key, "");
+  for (std::size_t i = 0; i < N; ++i)
+    if (v == names[i]) return static_cast<E>(i);
+  throw InputError(fmt::format("{} = \"{}\" is not one of the {} {}", key, escaped_excerpt(v), code,
+                               key == "ground" ? "ground types" : "soil types"),
+                   r.where(key), "use " + allowed);
+}
+
+// The code's own keys; returns the list of them for finish().
+std::string read_code_parameters(TargetSpectrumSpec& spec, TableReader& r, const std::string& path) {
+  const std::string code(to_string(spec.code));
+  switch (spec.code) {
+    case TargetCode::asce7_16:
+      spec.asce7.sds = required(r, "sds", code, "sds = 1.0 (g, the design short-period Sa)");
+      spec.asce7.sd1 = required(r, "sd1", code, "sd1 = 0.6 (g, the design 1-s Sa)");
+      spec.asce7.tl = r.number("tl", 8.0, any_lo, any_hi, "any number");
+      spec.mcer = r.boolean("mcer", false);
+      return "sds, sd1, tl, mcer";
+    case TargetCode::ec8: {
+      const char* const grounds[] = {"A", "B", "C", "D", "E"};
+      spec.ec8.type = r.integer("type", 1, 1, 2) == 1 ? Ec8Type::type1 : Ec8Type::type2;
+      spec.ec8.ground = one_of<Ec8Ground>(r, "ground", grounds, code, "\"A\", \"B\", \"C\", \"D\" or \"E\"");
+      spec.ec8.agr = required(r, "agr", code, "agr = 0.25 (g, the reference PGA on ground A)");
+      spec.ec8.importance = r.number("importance", 1.0, any_lo, any_hi, "any number");
+      return "type, ground, agr, importance";
+    }
+    case TargetCode::iran2800: {
+      const char* const soils[] = {"I", "II", "III", "IV"};
+      spec.iran2800.a = required(r, "a", code, "a = 0.35 (the design base acceleration ratio)");
+      spec.iran2800.soil = one_of<Iran2800Soil>(r, "soil", soils, code, "\"I\", \"II\", \"III\" or \"IV\"");
+      spec.iran2800.importance = r.number("importance", 1.0, any_lo, any_hi, "any number");
+      return "a, soil, importance";
+    }
+    case TargetCode::csv: {
+      std::string file = r.string("file", "");
+      if (file.empty())
+        throw InputError("code = \"csv\" needs the table's file", r.where("file"),
+                         "write file = \"target.csv\" (period,sa lines in s, g; relative to the study file)");
+      if (!fs::path(file).is_absolute()) file = (fs::path(path).parent_path() / file).lexically_normal().string();
+      try {
+        spec.table = read_tabulated_spectrum(file);
+      } catch (const InputError& e) {
+        throw InputError(e.what_part(), e.where(), e.fix() + fmt::format(" ({})", r.where("file")));
+      }
+      return "file";
+    }
+  }
+  return "";
+}
+
+void read_range(TargetSpectrumSection& x, TableReader& r, const StructureModel& structures) {
+  const double t1 = median_period(structures, 0), t2 = median_period(structures, 1);
+  const auto m = default_range_multiples(x.options.rule);
+  x.range_given = r.get("t_min") || r.get("t_max");
+  x.options.t_lo = r.number("t_min", m[0] * std::min(t1, t2), 1e-3, 20.0, "[0.001, 20] s");
+  x.options.t_hi = r.number("t_max", m[1] * std::max(t1, t2), 1e-3, 20.0, "[0.001, 20] s");
+  if (!(x.options.t_hi > x.options.t_lo))
+    throw InputError(fmt::format("the period range {}-{} s is empty", x.options.t_lo, x.options.t_hi), r.where("t_max"),
+                     fmt::format("give t_max > t_min (the default is {:g} min(T1, T2) to {:g} max(T1, T2), T1 = {:.3g} "
+                                 "s and T2 = {:.3g} s the buildings' median periods)", m[0], m[1], t1, t2));
+}
+
+}  // namespace
+
+TargetSpectrumSection parse_target_spectrum(const toml::table* t, const std::string& path,
+                                            const StructureModel& structures) {
+  TargetSpectrumSection x;
+  if (!t) return x;
+  x.enabled = true;
+  TableReader r(t, path, "target_spectrum");
+  x.where = config::location(path, t->source()) + " [target_spectrum]";
+  if (!r.get("code"))
+    throw InputError("[target_spectrum] names no code", r.where("code"),
+                     "write code = " + enum_name_list(target_code_names, " | ", "\""));
+  x.spec.code = r.choice("code", "", [](const std::string& name) {
+    if (auto c = parse_enum(target_code_names, name)) return *c;
+    throw InputError(fmt::format("unknown design code '{}'", escaped_excerpt(name)), "code",
+                     "use " + enum_name_list(target_code_names, " or ", "\""));
+  });
+  const std::string code_keys = read_code_parameters(x.spec, r, path);
+  x.options.rule = r.get("rule") ? r.choice("rule", "", parse_scaling_rule) : default_scaling_rule(x.spec.code);
+  read_range(x, r, structures);
+  x.options.points = static_cast<int>(r.integer("points", 30, 2, 1000));
+  x.options.damping = r.number("damping", 0.05, 0.0, 0.5, "[0, 0.5]");
+  x.options.min_scale = r.number("min_scale", 0.25, 1e-3, 1000.0, "[0.001, 1000]");
+  x.options.max_scale = r.number("max_scale", 4.0, 1e-3, 1000.0, "[0.001, 1000]");
+  r.finish("code, " + code_keys + ", rule, t_min, t_max, points, damping, min_scale, max_scale");
+  at_key(r, [&] { validate(x.options); return 0; });
+  const DesignSpectrum target = at_key(r, [&] { return make_target_spectrum(x.spec, x.options.damping); });
+  x.target_text = describe_target(x.spec, target);
+  return x;
+}
+
+std::vector<std::string> StudySelection::summary() const {
+  return selection_summary(selection, ids, sources, target_text, options);
+}
+
+namespace {
+
+// select_records' errors speak of command-line flags; here they are study keys.
+InputError in_study_terms(const InputError& e, const Study& s) {
+  std::string fix = e.fix();
+  for (const auto& [flag, key] : {std::pair<std::string, std::string>{"--max-scale", "[target_spectrum] max_scale"},
+                                  {"--min-scale", "[target_spectrum] min_scale"},
+                                  {"--count", "[records] select"},
+                                  {"--rule", "[target_spectrum] rule"}})
+    for (std::size_t p = fix.find(flag); p != std::string::npos; p = fix.find(flag, p + key.size()))
+      fix.replace(p, flag.size(), key);
+  const bool scale = e.where().find("--count") != std::string::npos;
+  return InputError(e.what_part(),
+                    scale ? fmt::format("{} and {} min_scale, max_scale", s.select_where, s.target.where)
+                          : s.target.where,
+                    fix);
+}
+
+}  // namespace
+
+std::vector<StudyRecord> select_study_records(const Study& s, std::vector<StudyRecord> library, StudySelection& out) {
+  const auto n = static_cast<std::size_t>(s.select);
+  if (library.size() < n)
+    throw InputError(fmt::format("select = {} but the library holds {} record{}", n, library.size(),
+                                 library.size() == 1 ? "" : "s"),
+                     s.select_where, fmt::format("give select <= {}, or name a larger library in [records]", library.size()));
+  const TargetSpectrumSection& t = s.target;
+  out.options = t.options;
+  out.options.count = n;
+  out.target_text = t.target_text;
+  std::vector<SelectionCandidate> candidates;
+  for (const auto& r : library) {
+    candidates.push_back({r.id, &r.record});
+    out.ids.push_back(r.id);
+    out.sources.push_back(r.record.source.empty() ? r.note : r.record.source);
+  }
+  try {
+    out.selection = select_records(candidates, make_target_spectrum(t.spec, t.options.damping), out.options);
+  } catch (const InputError& e) {
+    throw in_study_terms(e, s);
+  }
+  const Selection& sel = out.selection;
+  std::vector<StudyRecord> chosen;
+  for (std::size_t k = 0; k < sel.chosen.size(); ++k) {
+    StudyRecord r = library[sel.chosen[k]];
+    for (double& a : r.record.acc) a *= sel.scale[k];
+    r.note += fmt::format("; selected to the design spectrum ({}): x {:.6g} (f_i {:.6g} x F {:.6g})",
+                          to_string(out.options.rule), sel.scale[k], sel.individual_scale[k], sel.suite_factor);
+    require_analysable(r.record, {sel.scale[k], fmt::format("the selection's factor of record {} ({} and {})", r.id,
+                                                            s.select_where, t.where),
+                                  "set [records] units = \"cm/s2\" in " + s.path});
+    chosen.push_back(std::move(r));
+  }
+  return chosen;
+}
+
+results::Group selection_group(const StudySelection& x) {
+  const Selection& s = x.selection;
+  const std::size_t n = s.chosen.size(), p = s.periods.size();
+  results::Group g{"selection", {}, {}};
+  std::vector<std::string> ids;
+  std::vector<std::int64_t> index;
+  std::vector<double> scaled;  // [records, periods]
+  for (std::size_t k = 0; k < n; ++k) {
+    ids.push_back(x.ids[s.chosen[k]]);
+    index.push_back(static_cast<std::int64_t>(s.chosen[k]));
+    for (std::size_t j = 0; j < p; ++j) scaled.push_back(s.scale[k] * s.spectra[k][j]);
+  }
+  g.set("target_description", x.target_text);
+  g.set("rule", std::string(to_string(x.options.rule)));
+  g.set("rule_text", s.rule_text);
+  g.set("rule_fraction", rule_fraction(x.options.rule));
+  g.set("suite_factor", s.suite_factor);
+  g.set("meets", static_cast<std::int64_t>(s.meets));
+  g.set("min_ratio", s.min_ratio);
+  g.set("pga_ratio", s.pga_ratio);
+  g.set("candidates", static_cast<std::int64_t>(x.ids.size()));
+  g.set("eligible", static_cast<std::int64_t>(s.eligible));
+  g.set("t_min", x.options.t_lo);
+  g.set("t_max", x.options.t_hi);
+  g.set("damping", x.options.damping);
+  g.set("min_scale", x.options.min_scale);
+  g.set("max_scale", x.options.max_scale);
+  if (!s.warnings.empty()) g.set("warnings", s.warnings);
+  g.add("records", ids, "1", "the chosen records' ids, best match (smallest misfit) first: the order of /records");
+  g.add("candidate_index", index, "1", "each chosen record's index among the candidates (the library, in its order)");
+  g.add("individual_scale", s.individual_scale, "1",
+        "f_i: each chosen record's log-space least-squares factor to the target over the periods");
+  g.add("scale", s.scale, "1", "f_i F: the factor each record is analysed with (suite_factor F is an attribute)");
+  g.add("mse", s.mse, "1", "misfit: mean squared error of ln Sa (target against f_i x record) over the periods");
+  g.add("periods", s.periods, "s", "the log-spaced periods of the match and of the code check");
+  g.add("target", s.target, "g", "the target spectrum at the periods (" + x.target_text + ")");
+  g.add("mean", s.mean, "g", "arithmetic mean of the scaled spectra (f_i F Sa_i) at the periods");
+  g.add("spectra", scaled, "g",
+        fmt::format("pseudo-spectral acceleration of each chosen record, scaled by f_i F, damping {:g}; "
+                    "[records, periods]", x.options.damping),
+        {n, p});
+  return g;
+}
+
+}  // namespace pounding
