@@ -20,10 +20,11 @@ std::size_t column_size(const Column& c) {
   return std::visit([](const auto& v) { return v.size(); }, c);
 }
 
-std::vector<FieldSpec> unit_schema(bool with_gaps, bool ida) {
+std::vector<FieldSpec> unit_schema(bool with_gaps, bool ida, bool stripes) {
   std::vector<FieldSpec> s;
   for (const FieldSpec& f : unit_fields)
     if (with_gaps || f.extent == Extent::lane) s.push_back(f);
+  if (stripes) s.insert(s.end(), std::begin(stripe_fields), std::end(stripe_fields));
   if (ida) s.insert(s.end(), std::begin(ida_fields), std::end(ida_fields));
   return s;
 }

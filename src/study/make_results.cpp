@@ -119,7 +119,7 @@ Exclusions count_exclusions(const Study& study, const WorkPlan& L, const Tally& 
   };
   if (L.impacts) ex.coarse = coarse_summary(study, L, t, records);
   std::vector<std::string> lost;
-  for (std::size_t r = 0; r < L.records; ++r) {
+  for (std::size_t r = 0; r < L.analysis_records(); ++r) {  // (stripe, record) in a multiple-stripe study
     std::int64_t bad_unc = 0, bad_cpl = 0;
     std::int64_t dropped = 0;
     for (std::size_t m = 0; m < M; ++m) bad_unc += bad(us[r * M + m]), dropped += us[r * M + m] == results::dropped_status;

@@ -69,6 +69,7 @@ class UnitComputer {
     ks_base_.displacement_limit = s.displacement_limit;
     uncoupled_ = s.contact;
     uncoupled_.law = ContactLaw::none;
+    if (plan.stripes) stripe_scaled_ = results::field_index(plan.fields, "uncoupled", "scaled");
     if (plan.ida) {
       ida_analyses_ = results::field_index(plan.fields, "ida", "analyses");
       ida_limit_ = results::field_index(plan.fields, "ida", "scale_limit");
@@ -81,27 +82,22 @@ class UnitComputer {
     if (++computed_ == 3) inject_fault("compute", rank_);
     const UnitIndex u = plan_.decode(unit);
     const std::size_t n = plan_.lanes(u.block);
-    // a fragility study's analysis record u.record is (stripe, record), stripe-major
-    const bool dropped = stripes_.stripes && stripes_.dropped[u.record];
-    if (dropped) return dropped_unit(n);
     pairs_.resize(n);
     const SampleId pair = s_.structures.pair_id(static_cast<std::int64_t>(u.pair));  // slots i1, i2
     sampler_.sample_block(pair.i1, pair.i2, static_cast<std::int64_t>(u.block * plan_.batch), pairs_);
-    const Record& rec = records_[u.record % records_.size()].record;
-    const GroundMotion gm{rec.dt, ground(rec, u.record), rec.duration() + s_.free_vibration};
+    const Record& rec = records_[u.record].record;
     KernelSettings ks = ks_base_;
     ks.substeps = substeps_for(rec.dt);
-    PairBatch batch;
-    batch.resize(n);
-    for (std::size_t i = 0; i < n; ++i) batch.set(i, pairs_[i].pair_params(0.0, s_.e));
-    run_batch(batch, uncoupled_, gm, ks, res_);
+    batch_.resize(n);
+    for (std::size_t i = 0; i < n; ++i) batch_.set(i, pairs_[i].pair_params(0.0, s_.e));
     UnitResult out(plan_, n);
-    for (std::size_t i = 0; i < n; ++i) {
-      out.values<std::uint8_t>(field::unc_status)[i] = res_.status[i];
-      out.values<double>(field::unc_peak_u1)[i] = res_.peak_u1[i];
-      out.values<double>(field::unc_peak_u2)[i] = res_.peak_u2[i];
-      out.values<double>(field::unc_peak_closing)[i] = res_.peak_closing[i];
+    if (plan_.stripes) {
+      stripes(rec, u.record, ks, out);
+      return out;
     }
+    const GroundMotion gm{rec.dt, rec.acc, rec.duration() + s_.free_vibration};
+    run_batch(batch_, uncoupled_, gm, ks, res_);
+    for (std::size_t i = 0; i < n; ++i) put_uncoupled(out, i, res_.status[i], res_.peak_u1[i], res_.peak_u2[i], res_.peak_closing[i]);
     if (plan_.impacts)
       for (std::size_t g = 0; g < plan_.gaps; ++g) coupled(g, gm, ks, out);
     if (plan_.ida) ida(rec, u.record, ks, out);
@@ -111,14 +107,88 @@ class UnitComputer {
  private:
   int substeps_for(double dt) const { return study_substeps(s_, dt); }
 
-  // The record's acceleration, scaled to its stripe's level in a fragility study (one scaled copy per unit; the
-  // record itself is loaded or synthesised once).
-  std::span<const double> ground(const Record& rec, std::size_t analysis_record) {
-    if (!stripes_.stripes) return rec.acc;
-    const double f = stripes_.scale[analysis_record];
+  // Value k of the uncoupled per-lane fields ([stripe][lane] in a multiple-stripe unit).
+  static void put_uncoupled(UnitResult& out, std::size_t k, std::uint8_t status, double u1, double u2, double closing) {
+    out.values<std::uint8_t>(field::unc_status)[k] = status;
+    out.values<double>(field::unc_peak_u1)[k] = u1;
+    out.values<double>(field::unc_peak_u2)[k] = u2;
+    out.values<double>(field::unc_peak_closing)[k] = closing;
+  }
+
+  // record * f into scaled_ (the record itself is loaded or synthesised once)
+  std::span<const double> scaled(const Record& rec, double f) {
     scaled_.resize(rec.acc.size());
-    for (std::size_t i = 0; i < scaled_.size(); ++i) scaled_[i] = f * rec.acc[i];
+    for (std::size_t t = 0; t < scaled_.size(); ++t) scaled_[t] = f * rec.acc[t];
     return scaled_;
+  }
+
+  // A multiple-stripe unit: the block of models under record r scaled to every stripe's level, lowest first. A
+  // record dropped from a stripe (factor above max_scale) is not analysed there (status dropped_status). The first
+  // stripe analysed runs every model (the anchor, factor fa). At a higher stripe with factor f a model whose
+  // buildings stayed elastic in the anchor run and stay so at f -- ratio f / fa times each anchor peak |u| below
+  // (1 - 1e-9) fy / k, and ratio times (peak |u1| + peak |u2|) within the displacement limit -- is not rerun: an
+  // elastic response scales exactly with the record, so its peaks are the anchor's times the ratio
+  // ([analysis] scale_elastic; tests/cli/fragility_scale_elastic.sh compares it with every model run). The others
+  // (and all of them with scale_elastic = false) are run on the scaled record.
+  void stripes(const Record& rec, std::size_t r, const KernelSettings& ks, UnitResult& out) {
+    const std::size_t n = pairs_.size(), R = stripes_.records;
+    double fa = 0;
+    for (std::size_t s = 0; s < plan_.stripes; ++s) {
+      const std::size_t k = s * R + r, at = s * n;
+      if (stripes_.dropped[k]) {
+        for (std::size_t i = 0; i < n; ++i) out.values<std::uint8_t>(field::unc_status)[at + i] = results::dropped_status;
+        continue;
+      }
+      const bool anchor = fa == 0;
+      peaks_at(rec, stripes_.scale[k], fa, ks);
+      for (std::size_t i = 0; i < n; ++i) put_uncoupled(out, at + i, st_[i], pu1_[i], pu2_[i], pc_[i]);
+      if (anchor) continue;
+      auto scaled_flag = out.values<std::uint8_t>(stripe_scaled_);
+      for (std::size_t i = 0; i < n; ++i) scaled_flag[at + i] = 1;
+      for (std::size_t i : lanes_) scaled_flag[at + i] = 0;
+    }
+  }
+
+  // The peaks of every lane under the record scaled by f, into st_, pu1_, pu2_, pc_: with fa == 0 the anchor run
+  // (fa becomes f); else the anchor's peaks times f / fa for the lanes elastic at f, a run for the others. The
+  // same for the stripes and the IDA's hunt, so the hunt is MSA's own analysis, bit for bit.
+  void peaks_at(const Record& rec, double f, double& fa, const KernelSettings& ks) {
+    const std::size_t n = pairs_.size();
+    st_.resize(n), pu1_.resize(n), pu2_.resize(n), pc_.resize(n);
+    const GroundMotion gm{rec.dt, scaled(rec, f), rec.duration() + s_.free_vibration};
+    if (fa == 0) {
+      fa = f;
+      run_batch(batch_, uncoupled_, gm, ks, anchor_);
+      for (std::size_t i = 0; i < n; ++i)
+        st_[i] = anchor_.status[i], pu1_[i] = anchor_.peak_u1[i], pu2_[i] = anchor_.peak_u2[i], pc_[i] = anchor_.peak_closing[i];
+      return;
+    }
+    const double ratio = f / fa;
+    lanes_.clear();
+    for (std::size_t i = 0; i < n; ++i)
+      if (!(s_.scale_elastic && elastic_at(i, ratio, ks.displacement_limit))) lanes_.push_back(i);
+    if (!lanes_.empty()) {
+      sub_.resize(lanes_.size());
+      for (std::size_t j = 0; j < lanes_.size(); ++j) sub_.set(j, batch_.get(lanes_[j]));
+      run_batch(sub_, uncoupled_, gm, ks, res_);
+    }
+    for (std::size_t i = 0, j = 0; i < n; ++i) {
+      if (j < lanes_.size() && lanes_[j] == i) {
+        st_[i] = res_.status[j], pu1_[i] = res_.peak_u1[j], pu2_[i] = res_.peak_u2[j], pc_[i] = res_.peak_closing[j];
+        ++j;
+      } else {
+        st_[i] = 0, pu1_[i] = ratio * anchor_.peak_u1[i], pu2_[i] = ratio * anchor_.peak_u2[i];
+        pc_[i] = ratio * anchor_.peak_closing[i];
+      }
+    }
+  }
+
+  // Lane i of the anchor run stays elastic when the record is scaled by `ratio` more (see stripes()).
+  bool elastic_at(std::size_t i, double ratio, double limit) const {
+    constexpr double margin = 1.0 - 1e-9;
+    const double u1 = ratio * anchor_.peak_u1[i], u2 = ratio * anchor_.peak_u2[i];
+    return anchor_.status[i] == 0 && u1 <= margin * batch_.fy1[i] / batch_.k1[i] &&
+           u2 <= margin * batch_.fy2[i] / batch_.k2[i] && u1 + u2 <= limit;
   }
 
   // The bisection IDA of yielding pairs (method = "ida"): for every lane and gap ratio x, the record scale factor
@@ -144,20 +214,20 @@ class UnitComputer {
     std::vector<double> lo(n * G, 0.0), hi(n * G, INFINITY);
     auto analyses = out.values<std::int32_t>(ida_analyses_);
     auto limit = out.values<double>(ida_limit_);
-    for (std::size_t i = 0; i < n; ++i) analyses[i] = static_cast<std::int32_t>(1 + hunt.size()), limit[i] = hunt.back();
+    for (std::size_t i = 0; i < n; ++i) analyses[i] = 1, limit[i] = hunt.back();  // 1: the record as it is
     std::vector<std::uint8_t> diverged(n, 0);
-    PairBatch batch;
-    batch.resize(n);
-    for (std::size_t i = 0; i < n; ++i) batch.set(i, pairs_[i].pair_params(0.0, s_.e));
     const double duration = rec.duration() + s_.free_vibration;
+    double fa = 0;
     for (std::size_t h = 0; h < hunt.size(); ++h) {
       const double f = hunt[h];
-      scaled_.resize(rec.acc.size());
-      for (std::size_t t = 0; t < scaled_.size(); ++t) scaled_[t] = f * rec.acc[t];
-      run_batch(batch, uncoupled_, GroundMotion{rec.dt, scaled_, duration}, ks, hres_);
+      peaks_at(rec, f, fa, ks);
+      if (h == 0)
+        for (std::size_t i = 0; i < n; ++i) ++analyses[i];
+      else
+        for (std::size_t i : lanes_) ++analyses[i];  // the lanes run, not scaled from the anchor
       for (std::size_t i = 0; i < n; ++i) {
         if (diverged[i]) continue;
-        if (hres_.status[i] != 0) {
+        if (st_[i] != 0) {
           // no contact known up to the factor before: censored there (the record's cap goes down to it, make_results);
           // at the first factor nothing is known: excluded
           diverged[i] = 1, limit[i] = h ? hunt[h - 1] : 0.0;
@@ -168,7 +238,7 @@ class UnitComputer {
         for (std::size_t g = 0; g < G; ++g) {
           const std::size_t k = i * G + g;
           if (state[k] != open) continue;
-          if (hres_.peak_closing[i] > s_.gap_ratios[g] * pairs_[i].d) state[k] = found, hi[k] = f;
+          if (pc_[i] > s_.gap_ratios[g] * pairs_[i].d) state[k] = found, hi[k] = f;
           else lo[k] = f;
         }
       }
@@ -197,7 +267,8 @@ class UnitComputer {
         const std::size_t k = todo_[j], i = k / G, g = k % G;
         const double f = mid_[j];
         ++analyses[i];
-        if (bres_.status[j] != 0 || f * std::max(bres_.peak_u1[j], bres_.peak_u2[j]) > ks.displacement_limit)
+        // the kernel's limit is on |u1| + |u2| at one instant; the sum of the peaks bounds it (conservative)
+        if (bres_.status[j] != 0 || f * (bres_.peak_u1[j] + bres_.peak_u2[j]) > ks.displacement_limit)
           state[k] = excluded;
         else if (f * bres_.peak_closing[j] > s_.gap_ratios[g] * pairs_[i].d) hi[k] = f;
         else lo[k] = f;
@@ -208,13 +279,6 @@ class UnitComputer {
       const bool ok = state[k] != excluded;
       slo[k] = ok ? lo[k] : NAN, shi[k] = ok ? hi[k] : NAN;  // open: censored, [last factor analysed, inf)
     }
-  }
-
-  // A record dropped from a stripe (its factor exceeds max_scale): nothing is analysed, status dropped_status.
-  UnitResult dropped_unit(std::size_t n) const {
-    UnitResult out(plan_, n);
-    for (std::size_t i = 0; i < n; ++i) out.values<std::uint8_t>(field::unc_status)[i] = results::dropped_status;
-    return out;
   }
 
   // A pair whose uncoupled peak closing stays <= g never touches at gap g, and its coupled run is
@@ -266,9 +330,12 @@ class UnitComputer {
   std::vector<SampledPair> pairs_;
   std::vector<std::size_t> lanes_;
   PairBatch sub_;
-  BatchResult res_, cres_, hres_, bres_;
-  std::vector<double> scaled_, mid_;
+  PairBatch batch_;
+  BatchResult res_, cres_, bres_, anchor_;
+  std::vector<std::uint8_t> st_;
+  std::vector<double> scaled_, mid_, pu1_, pu2_, pc_;
   std::vector<std::size_t> todo_;
+  std::size_t stripe_scaled_ = 0;
   std::size_t ida_analyses_ = 0, ida_limit_ = 0, ida_lo_ = 0, ida_hi_ = 0;  // the ida rows' positions in the plan's schema
 };
 
@@ -322,7 +389,8 @@ Inputs load_inputs(const parallel::Session& session, const std::string& study_pa
 WorkPlan plan_work(const Inputs& in) {
   const Study& s = in.study;
   WorkPlan L;
-  L.records = in.records.size() * std::max<std::size_t>(1, in.stripes.stripes);  // (stripe, record) in a fragility study
+  L.records = in.records.size();
+  L.stripes = in.stripes.stripes;  // a multiple-stripe unit analyses its block at every stripe
   L.pairs = static_cast<std::size_t>(s.structures.period_pair_count());
   L.samples = static_cast<std::size_t>(s.structures.samples_per_pair);
   L.batch = static_cast<std::size_t>(s.batch);
@@ -330,7 +398,7 @@ WorkPlan plan_work(const Inputs& in) {
   L.gaps = s.gap_ratios.size();
   L.impacts = s.scene == Scene::impacts;
   L.ida = s.intensity.bisection;
-  L.fields = results::unit_schema(L.impacts, L.ida);
+  L.fields = results::unit_schema(L.impacts, L.ida, L.stripes > 0);
   return L;
 }
 
@@ -436,7 +504,7 @@ bool execute(const parallel::Session& session, const Inputs& in, const WorkPlan&
     if (!ctx.progress) return;
     ProgressReport p;
     p.units_done = tally.units_done(), p.units_total = L.units(), p.units_at_start = at_start;
-    p.models_per_unit = static_cast<double>(L.samples) / static_cast<double>(L.blocks);
+    p.models_per_unit = static_cast<double>(L.samples * L.unit_stripes()) / static_cast<double>(L.blocks);
     p.elapsed_s = std::chrono::duration<double>(now - t0).count();
     p.final = tally.units_done() == L.units();
     ctx.progress(p);
@@ -458,12 +526,22 @@ bool execute(const parallel::Session& session, const Inputs& in, const WorkPlan&
 int finish(const parallel::Session& session, const Inputs& in, const WorkPlan& L, Checkpoint* ckpt, Tally& tally,
            const CheckpointKey& key, double wall, const RunContext& ctx, const RunOptions& opt) {
   int rc = 0;
-  std::string coarse_line;
+  std::string summary_line;
   session.agree([&] {
     if (!session.root()) return;
     inject_fault("write", 0);
     const Exclusions ex = count_exclusions(in.study, L, tally, in.records);
-    if (L.impacts) coarse_line = physics::describe(ex.coarse);
+    if (L.impacts) summary_line = physics::describe(ex.coarse);
+    if (L.stripes) {
+      const auto& sc = tally.values<std::uint8_t>(results::field_index(L.fields, "uncoupled", "scaled"));
+      const auto& st = tally.values<std::uint8_t>(results::unit_field("uncoupled", "status"));
+      std::size_t scaled = 0, analysed = 0;
+      for (std::size_t k = 0; k < sc.size(); ++k) scaled += sc[k], analysed += st[k] != results::dropped_status;
+      summary_line = fmt::format("multiple stripes: {} of {} analyses ({:.1f} %) scaled from the lowest stripe (elastic "
+                                "buildings, [analysis] scale_elastic), {} run",
+                                scaled, analysed, analysed ? 100.0 * static_cast<double>(scaled) / static_cast<double>(analysed) : 0.0,
+                                analysed - scaled);
+    }
     try {
       results::Results res = make_results(in.study, in.records, L, tally, ex, {key.build, session.size(), wall}, in.stripes);
       if (in.selection) res.groups.push_back(selection_group(*in.selection));
@@ -478,7 +556,7 @@ int finish(const parallel::Session& session, const Inputs& in, const WorkPlan& L
   });
   session.broadcast(rc);
   if (session.root()) {
-    if (!coarse_line.empty()) ctx.say(coarse_line);
+    if (!summary_line.empty()) ctx.say(summary_line);
     ctx.say(fmt::format("results: {} (wall time {:.2f} s, {} ranks)", in.out, wall, session.size()));
     if (rc == 3) ctx.say(" WARNING: too many excluded analyses; the results file says so (exit code 3)");
   }

@@ -126,9 +126,10 @@ void parse_analysis(Study& s, const toml::table* t, const std::string& path) {
   s.free_vibration = a.number("free_vibration", 0.0, 0.0, 1000.0, "[0, 1000] s");
   s.displacement_limit = a.number("displacement_limit", 10.0, 1e-6, 1e6, "(0, 1e6] m");
   s.skip_untouched = a.boolean("skip_untouched", true);
+  s.scale_elastic = a.boolean("scale_elastic", true);
   s.max_excluded_fraction = a.number("max_excluded_fraction", 0.001, 0.0, 1.0, "[0, 1] (0.001 = 0.1 % of all analyses)");
   s.coarse = a.choice("coarse", "exclude", parse_coarse_policy);
-  a.finish("stepper, substeps, max_dt, batch, free_vibration, displacement_limit, skip_untouched, "
+  a.finish("stepper, substeps, max_dt, batch, free_vibration, displacement_limit, skip_untouched, scale_elastic, "
            "max_excluded_fraction, coarse");
 }
 
@@ -246,6 +247,12 @@ Study parse_study(const std::string& text, const std::string& path) {
   check_result_memory(s, s.select > 0 ? static_cast<std::size_t>(s.select)
                                       : std::max<std::size_t>({std::size_t{1}, s.files.size(),
                                                                static_cast<std::size_t>(std::max(0, s.record_limit))}));
+  if (s.intensity.stripes())
+    s.scene_reason += s.scale_elastic
+                          ? "; at each stripe above the lowest, a model whose buildings stayed elastic at the lowest "
+                            "stripe and stay within yield at this one takes the lowest stripe's peaks times the ratio of "
+                            "the scale factors (an elastic response scales exactly with the record) instead of a run"
+                          : "; every model is analysed at every stripe (scale_elastic = false)";
   if (s.scene == Scene::impacts)
     s.scene_reason += s.skip_untouched
                           ? "; pairs whose uncoupled peak closing stays below a gap never touch there and are not rerun "

@@ -10,30 +10,33 @@
 namespace pounding {
 
 Tally::Tally(const WorkPlan& plan) : plan_(plan) {
-  const std::size_t rm = plan.records * plan.models();
+  const std::size_t rm = plan.analysis_records() * plan.models();
   for (const results::FieldSpec& f : plan.fields) columns_.push_back(results::make_column(f, rm * plan.per_lane(f)));
   done_.assign(plan.units(), 0);
 }
 
 // A unit's lanes are consecutive models of one record, so each field's block is one contiguous range of its
-// column: [lane] at (r M + m0 + lane), [lane][gap] at (r M + m0 + lane) G + gap.
+// column per stripe: [lane] at (r' M + m0 + lane), [lane][gap] at (r' M + m0 + lane) G + gap, where r' = s R + r
+// is the (stripe, record) analysis record (r' = r without stripes).
 void Tally::store(std::size_t unit, std::span<const std::byte> payload) {
   const UnitIndex i = plan_.decode(unit);
   const std::size_t lanes = plan_.lanes(i.block);
   if (payload.size() != serialised_size(plan_, lanes))
     throw std::runtime_error(fmt::format("unit {}: payload of {} bytes, expected {}", unit, payload.size(),
                                          serialised_size(plan_, lanes)));
-  const std::size_t first = i.record * plan_.models() + plan_.first_model(i);
   std::size_t at = 0;
   for (std::size_t k = 0; k < columns_.size(); ++k) {
     const std::size_t per = plan_.per_lane(plan_.fields[k]);
-    std::visit(
-        [&](auto& v) {
-          const std::size_t n = lanes * per * sizeof(v[0]);
-          std::memcpy(v.data() + first * per, payload.data() + at, n);
-          at += n;
-        },
-        columns_[k]);
+    for (std::size_t s = 0; s < plan_.unit_stripes(); ++s) {
+      const std::size_t first = (s * plan_.records + i.record) * plan_.models() + plan_.first_model(i);
+      std::visit(
+          [&](auto& v) {
+            const std::size_t n = lanes * per * sizeof(v[0]);
+            std::memcpy(v.data() + first * per, payload.data() + at, n);
+            at += n;
+          },
+          columns_[k]);
+    }
   }
   if (!done_[unit]) ++n_done_;
   done_[unit] = 1;

@@ -10,7 +10,8 @@ namespace pounding {
 
 UnitResult::UnitResult(const WorkPlan& plan, std::size_t lanes) : lanes_(lanes) {
   columns_.reserve(plan.fields.size());
-  for (const results::FieldSpec& f : plan.fields) columns_.push_back(results::make_column(f, lanes * plan.per_lane(f)));
+  for (const results::FieldSpec& f : plan.fields)
+    columns_.push_back(results::make_column(f, plan.unit_stripes() * lanes * plan.per_lane(f)));
 }
 
 template <class T>
@@ -26,7 +27,8 @@ template std::span<double> UnitResult::values(std::size_t);
 
 std::size_t serialised_size(const WorkPlan& plan, std::size_t lanes) {
   std::size_t n = 0;
-  for (const results::FieldSpec& f : plan.fields) n += lanes * plan.per_lane(f) * results::dtype_size(f.dtype);
+  for (const results::FieldSpec& f : plan.fields)
+    n += plan.unit_stripes() * lanes * plan.per_lane(f) * results::dtype_size(f.dtype);
   return n;
 }
 

@@ -80,6 +80,13 @@ inline constexpr FieldSpec unit_fields[] = {
      "or diverged); status 3 above the stepper's limit"},
 };
 
+// What a unit of a multiple-stripe study returns besides the uncoupled rows ([analysis] scale_elastic).
+inline constexpr FieldSpec stripe_fields[] = {
+    {"uncoupled", "scaled", Dtype::u8, Extent::lane, 0, "1",
+     "1: not run -- the buildings stay elastic, so the peaks are the lowest stripe's times the ratio of the scale "
+     "factors (exact for an elastic response); 0: analysed"},
+};
+
 // What a unit of a fragility study with method = "ida" on yielding buildings returns besides the uncoupled rows
 // (study/run.cpp, the bisection IDA): per lane the analyses it took, per lane and gap the bracket of the record
 // scale factor at first contact. make_results moves them into the module group /ida ([records, models(, gaps)]).
@@ -116,9 +123,9 @@ consteval std::size_t unit_field(std::string_view group, std::string_view name) 
   throw "no such unit field";
 }
 
-// The unit fields of a scene: the per-lane rows, the per-gap rows when it runs coupled analyses, and the
-// ida_fields after them for the bisection IDA.
-std::vector<FieldSpec> unit_schema(bool with_gaps, bool ida = false);
+// The unit fields of a scene: the per-lane rows, the per-gap rows when it runs coupled analyses, then the
+// stripe_fields of a multiple-stripe study and the ida_fields of the bisection IDA.
+std::vector<FieldSpec> unit_schema(bool with_gaps, bool ida = false, bool stripes = false);
 // The position of a row in a schema; std::logic_error when absent.
 std::size_t field_index(std::span<const FieldSpec> schema, std::string_view group, std::string_view name);
 

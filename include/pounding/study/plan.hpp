@@ -15,6 +15,11 @@ struct UnitIndex {
 
 struct WorkPlan {
   std::size_t records = 0, pairs = 0, blocks = 0, batch = 0, samples = 0, gaps = 0;
+  // A multiple-stripe study: every unit analyses its block at each of the `stripes` levels (0: no stripes) and
+  // returns [stripe][lane] per lane field; the columns hold (stripe, record) analysis records, stripe-major.
+  std::size_t stripes = 0;
+  std::size_t unit_stripes() const { return std::max<std::size_t>(1, stripes); }
+  std::size_t analysis_records() const { return records * unit_stripes(); }
   bool impacts = false;                       // the scene runs coupled analyses per gap
   bool ida = false;                           // the bisection IDA of yielding pairs (study/run.cpp)
   std::vector<results::FieldSpec> fields;     // what a unit returns (results::unit_schema(impacts, ida))

@@ -123,6 +123,7 @@ void visit_settings(const Study& s, V&& v) {
   v("analysis", "free_vibration", s.free_vibration);
   v("analysis", "displacement_limit", s.displacement_limit);
   v("analysis", "skip_untouched", s.skip_untouched);
+  v("analysis", "scale_elastic", s.scale_elastic);
   v("analysis", "max_excluded_fraction", s.max_excluded_fraction);
   v("analysis", "coarse", S(to_string(s.coarse)));
 

@@ -21,6 +21,9 @@
 //                scene (cheapest step with 1 % peak force, docs/accuracy.md), 0 in the probability scene>; batch = 256; free_vibration = 0.0 (s);
 //                displacement_limit = 10.0 (m); skip_untouched = true (impacts scene: pairs whose uncoupled
 //                peak closing stays below the gap are not rerun with contact; their results are identical);
+//                scale_elastic = true (multiple stripes: a model whose buildings stay elastic -- peak |u| below fy / k at
+//                the lowest stripe times the ratio of the factors -- takes the lowest stripe's peaks times that ratio at
+//                the higher stripe instead of a run: the elastic response scales exactly with the record);
 //                max_excluded_fraction = 0.001 (in [0, 1]: the largest fraction of all analyses that may be
 //                excluded (diverged, non-finite) before the run ends with exit code 3 and a warning banner);
 //                coarse = "exclude" | "keep" (default "exclude"): what to do with a coupled analysis the resolution
@@ -117,6 +120,7 @@ struct Study {
   double free_vibration = 0.0;
   double displacement_limit = 10.0;
   bool skip_untouched = true;  // impacts scene: pairs that never touch take their uncoupled results
+  bool scale_elastic = true;   // stripes: models elastic at the lowest stripe and within yield take its peaks x ratio
   double max_excluded_fraction = 0.001;  // [analysis]: more excluded analyses than this fraction -> exit code 3
   CoarsePolicy coarse = CoarsePolicy::exclude;  // [analysis] coarse: analyses marked coarse by the resolution guard
   // report

@@ -1,6 +1,6 @@
 #pragma once
 // One work unit's results: a typed column per row of the plan's schema (results/schema.hpp), `lanes` values
-// per lane field and lanes x gaps ([lane][gap]) per lane x gap field. Serialised as typed bytes -- each
+// per lane field and lanes x gaps ([lane][gap]) per lane x gap field, times the plan's stripes ([stripe][...]). Serialised as typed bytes -- each
 // column's values in schema order, native byte order, no padding -- for MPI and the checkpoint; the size is
 // implied by the schema and the lane count, and checked when read back.
 #include <cstddef>
