@@ -22,17 +22,7 @@ PairParams yielding_pair(double fy_scale) {
 }
 
 BatchResult run(const PairParams& p, const std::vector<double>& ag, Stepper stepper) {
-  PairBatch b;
-  b.resize(1);
-  b.set(0, p);
-  KernelSettings ks;
-  ks.stepper = stepper;
-  ks.displacement_limit = 1e3;
-  ContactModel none;
-  none.law = ContactLaw::none;
-  BatchResult r;
-  run_batch(b, none, GroundMotion{0.005, ag, 0.0}, ks, r);
-  return r;
+  return test::run_one(p, test::contact(ContactLaw::none), ag, 0.005, 0.0, stepper, 1);
 }
 
 TEST(IdaScaling, ScaledRecordEqualsScaledYieldForces) {
