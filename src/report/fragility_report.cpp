@@ -58,7 +58,8 @@ std::string overview(const View& v) {
   else if (v.r.group("ida"))
     s += fmt::format("- method: IDA of yielding buildings: for every record, model and gap the record scale factor at "
                      "first contact, hunted at the stripes' factors (up to max_scale), then bisected to a relative "
-                     "width of {:g} ({} uncoupled analyses in all); fit: lognormal by moments (censored maximum "
+                     "width of {:g}, or exact by linear scaling where both buildings were still elastic when they "
+                     "touched ({} uncoupled analyses in all); fit: lognormal by moments (censored maximum "
                      "likelihood where no contact occurred up to a record's last factor); {} models diverged in the "
                      "hunt (their records are censored below that factor)\n",
                      v.r.group("ida")->number("tolerance"), v.r.group("ida")->number("analyses_total"),

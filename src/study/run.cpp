@@ -1,6 +1,7 @@
 #include "pounding/study/run.hpp"
 
 #include <atomic>
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdlib>
@@ -204,19 +205,19 @@ class UnitComputer {
   //     f ag is f times the response to ag of the same structure with yield forces fy / f. So the record stays
   //     unscaled, each lane's fy is divided by its factor, and the peaks are multiplied by it (the displacement
   //     limit is applied to the multiplied peaks). Checked against the scaled record in tests/study.
+  //  A lane whose buildings are still elastic at the factor that closed its bracket needs no bisection: its first
+  //  contact is the anchor's linear extrapolation, exact (scale_lo = scale_hi).
   // With several crossings of D(f) = x d (a "resurrection"), the hunt's first bracket is kept: f* is the first
   // crossing to the resolution of the hunt.
   void ida(const Record& rec, std::size_t record, const KernelSettings& ks, UnitResult& out) {
     const std::size_t n = pairs_.size(), G = plan_.gaps;
     const std::vector<double> hunt = ida_hunt_factors(s_.intensity, stripes_.im[record]);
-    enum : std::uint8_t { open, found, excluded };
     std::vector<std::uint8_t> state(n * G, open);
     std::vector<double> lo(n * G, 0.0), hi(n * G, INFINITY);
     auto analyses = out.values<std::int32_t>(ida_analyses_);
     auto limit = out.values<double>(ida_limit_);
     for (std::size_t i = 0; i < n; ++i) analyses[i] = 1, limit[i] = hunt.back();  // 1: the record as it is
     std::vector<std::uint8_t> diverged(n, 0);
-    const double duration = rec.duration() + s_.free_vibration;
     double fa = 0;
     for (std::size_t h = 0; h < hunt.size(); ++h) {
       const double f = hunt[h];
@@ -243,10 +244,33 @@ class UnitComputer {
         }
       }
     }
-    const GroundMotion gm{rec.dt, rec.acc, duration};
+    // A lane still elastic where it first touched is linear on [0, hi]: D(f) = (f / fa) D(fa), so its first contact
+    // is exactly at fa x d / D(fa), no bisection needed ([analysis] scale_elastic; the bracket closes on it)
+    if (s_.scale_elastic)
+      for (std::size_t k = 0; k < n * G; ++k) {
+        const std::size_t i = k / G;
+        if (state[k] != found || !elastic_at(i, hi[k] / fa, ks.displacement_limit)) continue;
+        const double f = fa * s_.gap_ratios[k % G] * pairs_[i].d / anchor_.peak_closing[i];
+        lo[k] = hi[k] = std::clamp(f, lo[k], hi[k]);
+      }
+    bisect(rec, ks, state, lo, hi, analyses);
+    auto slo = out.values<double>(ida_lo_), shi = out.values<double>(ida_hi_);
+    for (std::size_t k = 0; k < n * G; ++k) {
+      const bool ok = state[k] != excluded;
+      slo[k] = ok ? lo[k] : NAN, shi[k] = ok ? hi[k] : NAN;  // open: censored, [last factor analysed, inf)
+    }
+  }
+
+  // The IDA's bisection (see ida()): every found (lane, gap) bracket narrowed to the tolerance, one kernel lane
+  // per open bracket with the yield forces divided by its factor.
+  void bisect(const Record& rec, const KernelSettings& ks, std::vector<std::uint8_t>& state, std::vector<double>& lo,
+              std::vector<double>& hi, std::span<std::int32_t> analyses) {
+    const std::size_t nG = state.size();
+    const std::size_t G = plan_.gaps;
+    const GroundMotion gm{rec.dt, rec.acc, rec.duration() + s_.free_vibration};
     for (int step = 0; step < 200; ++step) {
       todo_.clear();
-      for (std::size_t k = 0; k < n * G; ++k)
+      for (std::size_t k = 0; k < nG; ++k)
         if (state[k] == found && !(hi[k] <= lo[k] * (1.0 + s_.intensity.tolerance))) todo_.push_back(k);
       if (todo_.empty()) break;
       sub_.resize(todo_.size());
@@ -273,11 +297,6 @@ class UnitComputer {
         else if (f * bres_.peak_closing[j] > s_.gap_ratios[g] * pairs_[i].d) hi[k] = f;
         else lo[k] = f;
       }
-    }
-    auto slo = out.values<double>(ida_lo_), shi = out.values<double>(ida_hi_);
-    for (std::size_t k = 0; k < n * G; ++k) {
-      const bool ok = state[k] != excluded;
-      slo[k] = ok ? lo[k] : NAN, shi[k] = ok ? hi[k] : NAN;  // open: censored, [last factor analysed, inf)
     }
   }
 
@@ -335,6 +354,7 @@ class UnitComputer {
   std::vector<std::uint8_t> st_;
   std::vector<double> scaled_, mid_, pu1_, pu2_, pc_;
   std::vector<std::size_t> todo_;
+  enum : std::uint8_t { open, found, excluded };  // the IDA's (lane, gap) states
   std::size_t stripe_scaled_ = 0;
   std::size_t ida_analyses_ = 0, ida_limit_ = 0, ida_lo_ = 0, ida_hi_ = 0;  // the ida rows' positions in the plan's schema
 };
