@@ -19,18 +19,12 @@ for s in $(seq 1 14); do
 done
 
 check_csv() {  # <csv> <fraction>: pure Python, no numpy
-  "$py" - "$1" "$2" <<'PY'
+  "$py" - "$1" "$2" "$src/tests/lib" <<'PY'
 import sys
 path, frac = sys.argv[1], float(sys.argv[2])
-meta, rows, header = {}, [], None
-for line in open(path):
-    line = line.rstrip("\n")
-    if line.startswith("# ") and ": " in line:
-        k, v = line[2:].split(": ", 1); meta[k] = v
-    elif line.startswith("period_s,"):
-        header = line.split(",")
-    elif line and header:
-        rows.append([float(x) for x in line.split(",")])
+sys.path.insert(0, sys.argv[-1])
+from selection_csv import read_selection_csv
+meta, header, rows = read_selection_csv(path)
 assert header[:3] == ["period_s", "target_g", "mean_g"], header
 assert meta["condition_holds"] == "yes", meta
 F = float(meta["suite_factor"])

@@ -44,18 +44,12 @@ compare() {  # <name> <select> <target section> <records select flags...>
   diff "$tmp/$name.cli.rows" "$tmp/$name.study.rows" > "$tmp/$name.diff" ||
     fail "$name: the study's selection differs from records select:
 $(cat "$tmp/$name.diff")"
-  "$py" - "$tmp/$name.h5" "$tmp/$name.csv" "$n" <<'PY'
+  "$py" - "$tmp/$name.h5" "$tmp/$name.csv" "$n" "$src/tests/lib" <<'PY'
 import sys, h5py, numpy as np
 h5, csv, n = sys.argv[1], sys.argv[2], int(sys.argv[3])
-meta, header, rows = {}, None, []
-for line in open(csv):
-    line = line.rstrip("\n")
-    if line.startswith("# ") and ": " in line:
-        k, v = line[2:].split(": ", 1); meta[k] = v
-    elif line.startswith("period_s,"):
-        header = line.split(",")
-    elif line and header:
-        rows.append([float(x) for x in line.split(",")])
+sys.path.insert(0, sys.argv[-1])
+from selection_csv import read_selection_csv
+meta, header, rows = read_selection_csv(csv)
 data = np.array(rows)
 with h5py.File(h5) as f:
     g = f["selection"]
