@@ -12,7 +12,7 @@
 #      crossing: they differ only by "resurrections", counted and printed);
 #   1b. with the default scale_elastic the elastic lanes skip the bisection: their capacity is the hunt anchor's
 #      linear extrapolation, equal to the exact one to 1e-9, with fewer analyses;
-#   3. batch width 7 and 256 give the same bits (1, 2 and 3 ranks too: checked by hand, see the README);
+#   3. batch width 7 and 256 give the same bits (1, 2 and 3 ranks: cli.fragility_ranks);
 #   4. the cost against the stripes (analyses per model-record) is printed, not asserted.
 # Args: <pounding binary> <source dir>
 set -euo pipefail
