@@ -197,6 +197,7 @@ void set_intervals(GapFragility& g, const std::vector<ReplicateFit>& reps, const
   for (const ReplicateFit& r : reps) {
     theta.push_back(r.theta), beta.push_back(r.beta), rate.push_back(r.rate);
     g.replicates_failed += r.failed;
+    if (g.has_hazard) g.replicate_rate_lo.push_back(r.rate.lo), g.replicate_rate_hi.push_back(r.rate.hi);
   }
   g.theta_ci = percentile_interval(theta, s.confidence);
   g.beta_ci = percentile_interval(beta, s.confidence);
@@ -706,17 +707,39 @@ double interpolated_crossing(std::span<const double> x, std::span<const double> 
     if (!(rate[j] <= target)) continue;
     if (j == 0) return -1.0;
     const double r0 = rate[j - 1], r1 = rate[j];
+    if (std::isinf(r0)) return x[j];  // an unbounded rate range (a failed replicate's upper end): the interval's end
     const double t = r1 > 0 ? (std::log(r0) - std::log(target)) / (std::log(r0) - std::log(r1)) : (r0 - target) / (r0 - r1);
     return x[j - 1] + t * (x[j] - x[j - 1]);
   }
   return INFINITY;
 }
 
+// The bootstrap interval of risk_targeted_gap_at_gaps (stripes.hpp): replicate b's root from the fits' replicate b.
+void joint_interval(const std::vector<const GapFragility*>& f, const std::vector<double>& x, double target,
+                    double confidence, TargetGap& t) {
+  const std::size_t B = f.front()->replicate_rate_lo.size();
+  for (const GapFragility* g : f)
+    if (g->replicate_rate_lo.size() != B || g->replicate_rate_hi.size() != B) return;
+  if (B == 0) return;
+  std::vector<Range> reps(B);
+  std::vector<double> lo(f.size()), hi(f.size());
+  for (std::size_t b = 0; b < B; ++b) {
+    for (std::size_t j = 0; j < f.size(); ++j) lo[j] = f[j]->replicate_rate_lo[b], hi[j] = f[j]->replicate_rate_hi[b];
+    const double a = interpolated_crossing(x, lo, target), c = interpolated_crossing(x, hi, target);
+    reps[b] = {a < 0 ? 0.0 : std::isinf(a) ? x.back() : a, c < 0 ? x.front() : c};
+    t.replicates_below += c < 0, t.replicates_above += std::isinf(a);
+  }
+  t.replicates = static_cast<int>(B);
+  const Interval i = percentile_interval(reps, confidence);
+  t.lo = i.lo, t.hi = i.hi;
+}
+
 }  // namespace
 
-TargetGap risk_targeted_gap_at_gaps(std::span<const GapFragility> fits, double lambda_target) {
+TargetGap risk_targeted_gap_at_gaps(std::span<const GapFragility> fits, double lambda_target, double confidence) {
   if (!(lambda_target > 0) || !std::isfinite(lambda_target))
     throw std::invalid_argument("risk_targeted_gap_at_gaps: lambda_target must be finite and > 0");
+  if (!(confidence > 0 && confidence < 1)) throw std::invalid_argument("risk_targeted_gap_at_gaps: confidence in (0, 1)");
   std::vector<const GapFragility*> f;
   for (const GapFragility& g : fits) {
     if (!g.has_hazard) throw std::invalid_argument("risk_targeted_gap_at_gaps: a fit without a hazard");
@@ -730,20 +753,14 @@ TargetGap risk_targeted_gap_at_gaps(std::span<const GapFragility> fits, double l
     t.note = "fewer than two gaps have an annual rate: give more gap ratios, or stripes that bracket the medians";
     return t;
   }
-  std::vector<double> x, rate, lo, hi;
-  for (const GapFragility* g : f) {
-    x.push_back(g->gap), rate.push_back(g->annual_rate);
-    lo.push_back(std::isnan(g->rate_lo) ? g->annual_rate : g->rate_lo);
-    hi.push_back(std::isnan(g->rate_hi) ? g->annual_rate : g->rate_hi);
-  }
+  std::vector<double> x, rate;
+  for (const GapFragility* g : f) x.push_back(g->gap), rate.push_back(g->annual_rate);
   t.range_lo = x.front(), t.range_hi = x.back();
   const double p = interpolated_crossing(x, rate, lambda_target);
-  const double plo = interpolated_crossing(x, lo, lambda_target), phi = interpolated_crossing(x, hi, lambda_target);
-  t.lo = plo < 0 ? 0.0 : plo;
-  t.hi = phi < 0 ? x.front() : phi;
+  joint_interval(f, x, lambda_target, confidence, t);
   const std::string where = fmt::format("interpolated (ln lambda linear in the gap) between the study's gaps {:g} ... {:g}: "
                                         "the bisection IDA gives capacities only at the listed gaps; the interval "
-                                        "joins the gaps' pointwise bootstrap intervals",
+                                        "interpolates each bootstrap replicate the same way",
                                         x.front(), x.back());
   if (p < 0) {
     t.gap = x.front(), t.status = "below range", t.rate = rate.front();

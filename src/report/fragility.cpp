@@ -161,7 +161,7 @@ void analyse_fragility(Results& r) {
       fits.push_back(stripes::fit_ida(C, levels, st, hz ? &*hz : nullptr, gaps[k]));
     }
     if (hz) {
-      target = stripes::risk_targeted_gap_at_gaps(fits, lambda_target);
+      target = stripes::risk_targeted_gap_at_gaps(fits, lambda_target, st.confidence);
       for (const auto& f : fits) {
         curve.gap.push_back(f.gap), curve.rate.push_back(f.annual_rate), curve.probability.push_back(f.probability);
       }

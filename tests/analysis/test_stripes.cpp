@@ -522,35 +522,87 @@ TEST(StripesIndex, CountsAreBinarySearchesOfTheSortedSlices) {
 }
 
 // The bisection IDA's risk-targeted gap: ln lambda linear in the gap between the study's gaps. With rates exactly
-// lambda(x) = a exp(-b x) the interpolation is exact: x* = ln(a / target) / b; the interval joins the pointwise
-// ends the same way; the range statuses when the target lies outside the listed gaps.
+// lambda(x) = a exp(-b x) the interpolation is exact: x* = ln(a / target) / b; each replicate is interpolated the
+// same way; the range statuses when the target lies outside the listed gaps.
+// Rates a exp(-b x) at the gaps, and B = 5 replicates whose rates are c_b times them at every gap: each replicate's
+// root is exactly ln(c_b a / target) / b, and at confidence 0.5 the type-7 quartiles of 5 sorted roots are the
+// 2nd and 4th.
 TEST(StripesTargetAtGaps, InterpolatesLnRateExactlyAndFlagsTheRange) {
   const double a = 0.05, b = 3.0;
+  const std::vector<double> c{2.0, 0.5, 1.0, 1.25, 0.8};
   std::vector<GapFragility> fits;
   for (double x : {0.25, 0.5, 1.0, 1.5, 2.0}) {
     GapFragility g;
     g.gap = x, g.has_hazard = true;
     g.annual_rate = a * std::exp(-b * x);
-    g.rate_lo = 0.5 * g.annual_rate, g.rate_hi = 2.0 * g.annual_rate;
+    for (double cb : c) g.replicate_rate_lo.push_back(cb * g.annual_rate), g.replicate_rate_hi.push_back(cb * g.annual_rate);
     fits.push_back(g);
   }
   std::swap(fits[0], fits[3]);  // any order
   const double target = 4.0e-4;
-  const TargetGap t = risk_targeted_gap_at_gaps(fits, target);
+  const TargetGap t = risk_targeted_gap_at_gaps(fits, target, 0.5);
   EXPECT_EQ(t.status, "ok");
   EXPECT_NEAR(t.gap, std::log(a / target) / b, 1e-12);
-  EXPECT_NEAR(t.lo, std::log(0.5 * a / target) / b, 1e-12);  // rate_lo crosses earlier
-  EXPECT_NEAR(t.hi, std::log(2.0 * a / target) / b, 1e-12);
-  EXPECT_LT(t.lo, t.gap);
-  EXPECT_GT(t.hi, t.gap);
-  const TargetGap below = risk_targeted_gap_at_gaps(fits, 0.1);
+  EXPECT_NEAR(t.lo, std::log(0.8 * a / target) / b, 1e-12);
+  EXPECT_NEAR(t.hi, std::log(1.25 * a / target) / b, 1e-12);
+  EXPECT_EQ(t.replicates, 5);
+  EXPECT_EQ(t.replicates_below + t.replicates_above, 0);
+  // a failed fit of replicate 3 (c = 1.25, root 1.684) at gap 2.0: its rate range [0, inf] there makes its root
+  // the range [1.71 (the lower ends reach 0 at 2.0), +inf]: the upper quartile of the upper ends moves up to the
+  // next root (c = 2), the lower quartile stays
+  for (GapFragility& g : fits)
+    if (g.gap == 2.0) g.replicate_rate_lo[3] = 0.0, g.replicate_rate_hi[3] = INFINITY;
+  const TargetGap f = risk_targeted_gap_at_gaps(fits, target, 0.5);
+  EXPECT_NEAR(f.gap, t.gap, 1e-15);
+  EXPECT_NEAR(f.hi, std::log(2.0 * a / target) / b, 1e-12);
+  EXPECT_NEAR(f.lo, t.lo, 1e-12);
+  const TargetGap below = risk_targeted_gap_at_gaps(fits, 0.1, 0.95);
   EXPECT_EQ(below.status, "below range");
   EXPECT_EQ(below.gap, 0.25);
-  const TargetGap above = risk_targeted_gap_at_gaps(fits, 1e-9);
+  EXPECT_GE(below.replicates_below, 3);
+  const TargetGap above = risk_targeted_gap_at_gaps(fits, 1e-9, 0.95);
   EXPECT_EQ(above.status, "above range");
   EXPECT_EQ(above.gap, 2.0);
   EXPECT_TRUE(std::isinf(above.hi));
-  EXPECT_THROW(risk_targeted_gap_at_gaps(fits, 0.0), std::invalid_argument);
+  EXPECT_EQ(above.replicates_above, 4);  // replicate 3's lower ends reach 0 at gap 2.0
+  fits[2].replicate_rate_hi.pop_back();  // replicates that do not line up across the gaps: no interval
+  EXPECT_TRUE(std::isnan(risk_targeted_gap_at_gaps(fits, target, 0.95).lo));
+  EXPECT_THROW(risk_targeted_gap_at_gaps(fits, 0.0, 0.95), std::invalid_argument);
+  EXPECT_THROW(risk_targeted_gap_at_gaps(fits, target, 1.0), std::invalid_argument);
   fits[1].has_hazard = false;
-  EXPECT_THROW(risk_targeted_gap_at_gaps(fits, target), std::invalid_argument);
+  EXPECT_THROW(risk_targeted_gap_at_gaps(fits, target, 0.95), std::invalid_argument);
+}
+
+// The interpolated gap of the bisection IDA against the continuum search of linear IDA on the same linear pairs
+// (risk_targeted_gap_linear_ida, itself checked against the closed form above): fit_ida at 41 gaps close together
+// around x*, same Settings, so every replicate draws the same records in both; the joint interval must match the
+// continuum's to the interpolation error (ln lambda is linear in ln x here, not in x: ~1e-4 at this spacing).
+TEST(StripesTargetAtGaps, DenseGapsReproduceTheContinuumInterval) {
+  LinearData L = linear_data(20, 150, 0.8, 0.45, 21);
+  std::mt19937_64 rng(22);
+  std::normal_distribution<double> n01;
+  for (std::size_t r = 0; r < L.im.size(); ++r) {  // a record effect, so that the interval is a real one
+    const double e = std::exp(0.3 * n01(rng));
+    for (std::size_t m = 0; m < L.models; ++m) L.demand1[r * L.models + m] *= e;
+  }
+  const HazardCurve h = HazardCurve::power_law(4e-4, 2.5);
+  const double target = 4.04054e-4;
+  const Settings s = quick(300);
+  const TargetGap cont = risk_targeted_gap_linear_ida(L.im, L.demand1, L.models, L.cap, h, target, s);
+  ASSERT_EQ(cont.status, "ok") << cont.note;
+  std::vector<GapFragility> fits;
+  for (int i = 0; i <= 40; ++i) {
+    const double x = cont.gap * std::exp(-0.5 + i * 0.025);
+    fits.push_back(fit_ida(linear_capacities(L.im, L.demand1, L.models, x, L.cap), {}, s, &h, x));
+  }
+  const TargetGap at = risk_targeted_gap_at_gaps(fits, target, s.confidence);
+  ASSERT_EQ(at.status, "ok") << at.note;
+  ASSERT_GT(cont.lo, fits.front().gap);
+  ASSERT_LT(cont.hi, fits.back().gap);
+  EXPECT_NEAR(at.gap, cont.gap, 2e-4 * cont.gap);
+  EXPECT_NEAR(at.lo, cont.lo, 2e-4 * cont.lo);
+  EXPECT_NEAR(at.hi, cont.hi, 2e-4 * cont.hi);
+  EXPECT_LT(cont.lo, 0.95 * cont.gap);  // a real interval, not a point
+  std::printf("x* %.6f [%.6f, %.6f] continuum, %.6f [%.6f, %.6f] interpolated\n", cont.gap, cont.lo, cont.hi, at.gap,
+              at.lo, at.hi);
 }

@@ -147,6 +147,8 @@ struct GapFragility {
   double probability_lo = NAN, probability_hi = NAN;        // from rate_lo, rate_hi
   double tail_share = 0;            // share of annual_rate from the hazard table's extrapolated tails (ok only)
   std::string note;                 // the fit's message, and what a bound means when the rate is one
+  std::vector<double> replicate_rate_lo, replicate_rate_hi;  // with a hazard: each replicate's rate range (B each),
+                                    //   in replicate order; risk_targeted_gap_at_gaps joins them across gaps
 };
 
 // One GapFragility per gap (any order, > 0 finite). hazard may be null. Throws std::invalid_argument for
@@ -197,12 +199,16 @@ TargetGap risk_targeted_gap_linear_ida(std::span<const double> im, std::span<con
 
 // Bisection IDA of yielding pairs: capacities, hence rates, exist only at the study's gaps, so x* is interpolated
 // with ln lambda_P linear in x between the two listed gaps whose point rates bracket lambda_target (lambda_P falls
-// as x grows; a rate of 0 is interpolated linearly). The interval is the same interpolation of the gaps' pointwise
-// bootstrap ends: rate_lo gives the lower gap, rate_hi the upper (a pointwise, not a joint, interval; the note
-// says so). Fits without a finite rate are skipped. Status "ok"; "below range" when the smallest listed gap already
-// meets the target (x* at most it); "above range" when the largest does not (x* beyond it; hi = +inf when its
-// rate_hi does not either). Throws std::invalid_argument for lambda_target not > 0 or fits without a hazard.
-TargetGap risk_targeted_gap_at_gaps(std::span<const GapFragility> fits, double lambda_target);
+// as x grows; a rate of 0 is interpolated linearly). The interval is the same interpolation in each of the fits'
+// bootstrap replicates: the fits must come from one Settings (same seed and B), so replicate b drew the same records
+// at every gap; replicate b's rates at the gaps (their ranges when a fit failed: the lower ends give the root's
+// lower end, the upper ends its upper end) are interpolated the same way, its root is a range like the MSA
+// replicates' ([0, smallest gap] below range, [largest gap, +inf] above), and the interval is their percentile
+// interval (a joint interval, as the MSA one). Without replicates (B = 0, or fits with different B) lo and hi are
+// NaN. Fits without a finite rate are skipped. Status "ok"; "below range" when the smallest listed gap already
+// meets the target (x* at most it); "above range" when the largest does not (x* beyond it). Throws
+// std::invalid_argument for lambda_target not > 0 or fits without a hazard.
+TargetGap risk_targeted_gap_at_gaps(std::span<const GapFragility> fits, double lambda_target, double confidence);
 
 // lambda_P and P(years) of the MSA point estimates on a gap grid (the "lambda versus separation" plot):
 // rate_of(fit) at each gap (bounds for the degenerate fits, NaN when there is no rate).
