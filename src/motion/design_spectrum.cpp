@@ -90,7 +90,7 @@ void validate(const Ec8Spectrum& s) {
 
 // ---- Iranian Standard 2800, 4th edition ----
 Iran2800SoilParams iran2800_soil_params(Iran2800Soil soil, double a) {
-  // VERIFY against the standard's soil table (secondary source: civilTools building/soil.py).
+  // VERIFY against the standard's soil table (two secondary sources agree: design_spectrum.hpp).
   static constexpr std::array<Iran2800SoilParams, 4> high{{
       {0.10, 0.4, 1.5, 1.0}, {0.10, 0.5, 1.5, 1.0}, {0.15, 0.7, 1.75, 1.1}, {0.15, 1.0, 1.75, 1.1}}};
   static constexpr std::array<Iran2800SoilParams, 4> low{{
@@ -106,7 +106,7 @@ double iran2800_b(const Iran2800Spectrum& s, double period) {
   if (period < p.t0) b1 = p.s0 + (p.s - p.s0 + 1.0) * period / p.t0;
   else if (period < p.ts) b1 = p.s + 1.0;
   else b1 = (p.s + 1.0) * p.ts / period;
-  const double k = high_hazard(s.a) ? 0.7 : 0.4;  // VERIFY (secondary source: civilTools spectral.py)
+  const double k = high_hazard(s.a) ? 0.7 : 0.4;  // VERIFY (two secondary sources agree: design_spectrum.hpp)
   double n = 1.0;
   if (period >= 4.0) n = 1.0 + k;
   else if (period >= p.ts) n = 1.0 + k * (period - p.ts) / (4.0 - p.ts);

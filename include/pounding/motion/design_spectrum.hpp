@@ -11,8 +11,10 @@
 //   Iranian Standard 2800, 4th edition: Sa = A B I with B = B1 N,
 //     B1 = S0 + (S - S0 + 1) T/T0 (T < T0), S + 1 (T0 <= T < Ts), (S + 1) Ts/T (T >= Ts);
 //     N = 1 (T < Ts), 1 + k (T - Ts)/(4 - Ts) (Ts <= T < 4), 1 + k (T >= 4), k = 0.7 for A >= 0.30, 0.4 for
-//     A <= 0.25. VERIFY: the soil table (T0, Ts, S, S0) and the N factor come from a secondary source
-//     (ebrahimraeyat/civilTools, building/soil.py and spectral.py), not from the standard's own text.
+//     A <= 0.25. VERIFY: the soil table (T0, Ts, S, S0) and the N factor come from secondary sources, not from
+//     the standard's own text: ebrahimraeyat/civilTools (building/soil.py, spectral.py), and, checked on
+//     2026-11-25, a second, independent implementation (a Persian-language building calculator's soilCoef and
+//     N factor, found through the code index) that agrees in every value, the A >= 0.30 / A <= 0.25 split too.
 //   Tabulated: the user's (T, Sa) points, linear in T between them; outside the table is an error.
 #include <string>
 #include <variant>
