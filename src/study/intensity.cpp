@@ -158,7 +158,7 @@ HazardSpec parse_hazard(const toml::table* t, const std::string& path, const Int
     throw InputError(power ? "[hazard] gives both a curve and a power law" : "[hazard] gives no hazard", r.where("curve"),
                      "give curve = \"hazard.csv\" (IM, annual rate) or k0 = <1/yr> and k = <slope>");
   if (power) {
-    h.k0 = r.number("k0", 0.0, 1e-12, 10.0, "(0, 10] per year");
+    h.k0 = r.number("k0", 0.0, 1e-12, 10.0, "[1e-12, 10] per year");
     h.k = r.number("k", 0.0, 0.1, 20.0, "[0.1, 20]");
   } else {
     if (!fs::path(h.curve).is_absolute()) h.curve = (fs::path(path).parent_path() / h.curve).lexically_normal().string();
@@ -169,7 +169,7 @@ HazardSpec parse_hazard(const toml::table* t, const std::string& path, const Int
     }
   }
   h.years = r.number("years", 50.0, 1.0, 10000.0, "[1, 10000] years");
-  h.target = r.number("target", 2.0, 1e-4, 99.0, "(0, 99] % in `years`");
+  h.target = r.number("target", 2.0, 1e-4, 99.0, "[0.0001, 99] % in `years`");
   h.source = r.string("source", "");
   r.finish("curve, k0, k, years, target, source");
   return h;

@@ -72,6 +72,23 @@ expect_error hazard_missing 'cannot read the hazard curve' "$I
 levels = [0.1, 0.2]
 [hazard]
 curve = \"nowhere.csv\""
+expect_error hazard_target 'target = 1e-09 is out of range.*\[hazard\].target.*\[0.0001, 99\]' "$I
+levels = [0.1, 0.2]
+[hazard]
+k0 = 1e-4
+k = 2.5
+target = 1e-9"
+expect_error hazard_years 'years = 0 is out of range.*\[hazard\].years' "$I
+levels = [0.1, 0.2]
+[hazard]
+k0 = 1e-4
+k = 2.5
+years = 0"
+expect_error hazard_slope 'k = -2 is out of range.*\[hazard\].k' "$I
+levels = [0.1, 0.2]
+[hazard]
+k0 = 1e-4
+k = -2"
 body=$impacts expect_error impacts_scene 'runs in the probability scene' "$I
 levels = [0.1, 0.2]"
 echo "$passes passed, $fails failed"
