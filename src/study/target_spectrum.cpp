@@ -144,6 +144,9 @@ TargetSpectrumSection parse_target_spectrum(const toml::table* t, const std::str
   x.options.min_scale = r.number("min_scale", 0.25, 1e-3, 1000.0, "[0.001, 1000]");
   x.options.max_scale = r.number("max_scale", 4.0, 1e-3, 1000.0, "[0.001, 1000]");
   r.finish("code, " + code_keys + ", rule, t_min, t_max, points, damping, min_scale, max_scale");
+  if (x.options.min_scale > x.options.max_scale)
+    throw InputError(fmt::format("min_scale = {:g} is above max_scale = {:g}", x.options.min_scale, x.options.max_scale),
+                     r.where("min_scale"), "give min_scale <= max_scale, e.g. min_scale = 0.25 and max_scale = 4");
   at_key(r, [&] { validate(x.options); return 0; });
   const DesignSpectrum target = at_key(r, [&] { return make_target_spectrum(x.spec, x.options.damping); });
   x.target_text = describe_target(x.spec, target);

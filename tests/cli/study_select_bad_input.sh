@@ -90,5 +90,9 @@ expect_error too_few_eligible "only [0-9]+ of 25 candidate records.*\[records\]\
 select = 20
 $T
 max_scale = 1.5"
+expect_error scale_limits_crossed "min_scale = 5 is above max_scale = 4.*\[target_spectrum\]\.min_scale.*min_scale = 0.25 and max_scale = 4" "$R
+select = 11
+$T
+min_scale = 5"
 echo "$passes passed, $fails failed"
 [ $fails -eq 0 ]
