@@ -299,7 +299,7 @@ def plot_rate(f, fr, sel, a, prefix, title):
     ax_p.set_yscale("log")
     pos = np.concatenate([cp[cp > 0], plo[s][plo[s] > 0], [target / 100]])
     ax_p.set_ylim(max(100 * pos.min() / 2, 1e-4), 150)
-    ax_p.set_xlim(0, cx.max())
+    ax_p.set_xlim(0, max(cx.max(), 1.04 * xs.max()))  # the largest gap's marker and bar in view
     ax_p.grid(alpha=0.3, which="both")
     ax_p.legend(fontsize=6.5, loc="upper right")
 
