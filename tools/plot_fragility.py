@@ -255,10 +255,14 @@ def plot_rate(f, fr, sel, a, prefix, title):
         xs, cx, unit = fr.gaps_m, cg * d, "m"
         xlabel = f"separation between the buildings (m); d = {d:.3f} m"
         tg, tlo, thi = (float(at.get(k, np.nan)) for k in ("target_gap_m", "target_gap_m_lo", "target_gap_m_hi"))
+        jlo, jhi, adv = (float(at.get(k, np.nan)) for k in ("target_gap_m_jack_lo", "target_gap_m_jack_hi",
+                                                             "target_gap_m_advice"))
     else:
         xs, cx, unit = fr.gaps, cg, "d"
         xlabel = "gap as a ratio of each model's code gap d"
         tg, tlo, thi = (float(at.get(k, np.nan)) for k in ("target_gap", "target_gap_lo", "target_gap_hi"))
+        jlo, jhi, adv = (float(at.get(k, np.nan)) for k in ("target_gap_jack_lo", "target_gap_jack_hi",
+                                                             "target_gap_advice"))
     status = text(at.get("target_status", ""))
     conf = f"{100 * fr.confidence:g} %"
 
@@ -283,10 +287,19 @@ def plot_rate(f, fr, sel, a, prefix, title):
         for ax in (ax_r, ax_p):
             if np.isfinite(tlo) and np.isfinite(thi):
                 ax.axvspan(tlo, thi, color="C2", alpha=0.2,
-                           label=f"its {conf} interval [{tlo:.3g}, {thi:.3g}] {unit}" if ax is ax_r else None)
+                           label=f"bootstrap {conf} interval [{tlo:.3g}, {thi:.3g}] {unit}" if ax is ax_r else None)
             ax.axvline(tg, color="C2", lw=1.5,
                        label=f"risk-targeted separation {tg:.3g} {unit} ({tlabel})" if ax is ax_r else None)
+            if np.isfinite(jhi):  # files written before the jackknife have none
+                ax.axvline(jlo, color="C2", ls=":", lw=1.2,
+                           label=f"jackknife {conf} interval [{jlo:.3g}, {jhi:.3g}] {unit}" if ax is ax_r else None)
+                ax.axvline(jhi, color="C2", ls=":", lw=1.2)
+            if np.isfinite(adv):
+                ax.axvline(adv, color="C1", ls="--", lw=1.5,
+                           label=f"advice: at least {adv:.3g} {unit} (the larger upper end)" if ax is ax_r else None)
         head = f"risk-targeted separation for {tlabel}: {tg:.3g} {unit}, {conf} interval [{tlo:.3g}, {thi:.3g}]"
+        if np.isfinite(adv):
+            head += f", advice {adv:.3g} {unit}"
     else:
         head = f"no risk-targeted separation ({status}: {text(at.get('target_note', ''))})"
     ax_r.set_yscale("log")

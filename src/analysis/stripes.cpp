@@ -10,6 +10,7 @@
 #include <stdexcept>
 #include <thread>
 
+#include <boost/math/distributions/students_t.hpp>
 #include <fmt/format.h>
 
 #include "pounding/core/random.hpp"
@@ -491,6 +492,21 @@ Solution solve_target(const std::vector<double>& grid, double target, Rate&& rat
   return {grid.back(), 1};
 }
 
+// The jackknife interval of a target gap from ln x*_(j), j = 1..R (stripes.hpp, TargetGap); any NaN: none.
+void set_jackknife(TargetGap& t, const std::vector<double>& ln, double confidence) {
+  const auto R = static_cast<double>(ln.size());
+  if (ln.size() < 3 || std::any_of(ln.begin(), ln.end(), [](double v) { return std::isnan(v); })) return;
+  double mean = 0, ss = 0;
+  for (double v : ln) mean += v;
+  mean /= R;
+  for (double v : ln) ss += (v - mean) * (v - mean);
+  t.jack_se = std::sqrt((R - 1.0) / R * ss);
+  const double q = boost::math::quantile(boost::math::students_t(R - 1.0), 0.5 * (1.0 + confidence));
+  t.jack_lo = t.gap * std::exp(-q * t.jack_se), t.jack_hi = t.gap * std::exp(q * t.jack_se);
+}
+
+void set_advice(TargetGap& t) { t.advice = std::fmax(t.hi, t.jack_hi); }  // a NaN end is ignored
+
 // Point estimate and bootstrap of a target gap; rate_for(w) makes the rate(x, a, b) of multiplicities w.
 template <class RateFor>
 TargetGap target_gap(std::size_t records, double lo, double hi, double target, const Settings& s, RateFor&& rate_for) {
@@ -520,6 +536,19 @@ TargetGap target_gap(std::size_t records, double lo, double hi, double target, c
     const Interval i = percentile_interval(reps, s.confidence);
     out.lo = i.lo, out.hi = i.hi;
   }
+  if (out.status == "ok" && records >= 3) {
+    std::vector<double> ln(records, NAN);
+    parallel_blocks(records, thread_count(s.threads, records), [&](std::size_t first, std::size_t last) {
+      for (std::size_t j = first; j < last; ++j) {
+        std::vector<int> w(records, 1);
+        w[j] = 0;
+        const Solution r = solve_target(grid, target, rate_for(std::move(w)));
+        if (r.where == 0) ln[j] = std::log(r.x);
+      }
+    });
+    set_jackknife(out, ln, s.confidence);
+  }
+  set_advice(out);
   return out;
 }
 
@@ -667,6 +696,17 @@ GapFragility fit_ida(const Capacities& c, std::span<const double> levels, const 
     }
   });
   set_intervals(g, reps, s);
+  if (hazard) {
+    g.jackknife_rate.assign(c.records, NAN);
+    parallel_blocks(c.records, thread_count(s.threads, c.records), [&](std::size_t first, std::size_t last) {
+      for (std::size_t j = first; j < last; ++j) {
+        std::vector<int> w(c.records, 1);
+        w[j] = 0;
+        const FragilityFit f = fit_capacity_sample(sample_at(L, 0, w), L.y0, 1.0);
+        if (f.ok()) g.jackknife_rate[j] = rate_of(f, *hazard, x_low, x_top).value;
+      }
+    });
+  }
   return g;
 }
 
@@ -734,6 +774,22 @@ void joint_interval(const std::vector<const GapFragility*>& f, const std::vector
   t.lo = i.lo, t.hi = i.hi;
 }
 
+// The jackknife of risk_targeted_gap_at_gaps: the gaps' leave-one-record-out rates interpolated the same way.
+void jackknife_at_gaps(const std::vector<const GapFragility*>& f, const std::vector<double>& x, double target,
+                       double confidence, TargetGap& t) {
+  const std::size_t R = f.front()->jackknife_rate.size();
+  for (const GapFragility* g : f)
+    if (g->jackknife_rate.size() != R) return;
+  std::vector<double> ln(R, NAN), rate(f.size());
+  for (std::size_t j = 0; j < R; ++j) {
+    for (std::size_t k = 0; k < f.size(); ++k) rate[k] = f[k]->jackknife_rate[j];
+    if (std::any_of(rate.begin(), rate.end(), [](double v) { return std::isnan(v); })) return;
+    const double r = interpolated_crossing(x, rate, target);
+    if (r > 0 && std::isfinite(r)) ln[j] = std::log(r);
+  }
+  set_jackknife(t, ln, confidence);
+}
+
 }  // namespace
 
 TargetGap risk_targeted_gap_at_gaps(std::span<const GapFragility> fits, double lambda_target, double confidence) {
@@ -771,7 +827,9 @@ TargetGap risk_targeted_gap_at_gaps(std::span<const GapFragility> fits, double l
   } else {
     t.gap = p, t.status = "ok", t.rate = lambda_target;
     t.note = where;
+    jackknife_at_gaps(f, x, lambda_target, confidence, t);
   }
+  set_advice(t);
   return t;
 }
 

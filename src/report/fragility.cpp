@@ -122,6 +122,18 @@ void add_hazard_group(Results& r, const HazardCurve& hz, const std::vector<strip
   (void)demand;
 }
 
+// The risk-targeted separation's attributes of /hazard (docs/results-format.md); d: the pair's code gap in m (NaN
+// for a grid study).
+void set_target_attributes(Group& h, const stripes::TargetGap& t, double d) {
+  h.set("target_gap", t.gap), h.set("target_gap_lo", t.lo), h.set("target_gap_hi", t.hi);
+  h.set("target_gap_m", t.gap * d), h.set("target_gap_m_lo", t.lo * d), h.set("target_gap_m_hi", t.hi * d);
+  h.set("target_gap_jack_se", t.jack_se);
+  h.set("target_gap_jack_lo", t.jack_lo), h.set("target_gap_jack_hi", t.jack_hi);
+  h.set("target_gap_m_jack_lo", t.jack_lo * d), h.set("target_gap_m_jack_hi", t.jack_hi * d);
+  h.set("target_gap_advice", t.advice), h.set("target_gap_m_advice", t.advice * d);
+  h.set("target_status", t.status), h.set("target_note", t.note);
+}
+
 }  // namespace
 
 bool is_fragility_study(const Results& r) { return r.group("intensity") != nullptr; }
@@ -196,9 +208,7 @@ void analyse_fragility(Results& r) {
   add_hazard_group(r, *hz, fits, st, demand, levels);
   Group& h = *const_cast<Group*>(r.group("hazard"));
   const double d = pair_study(r) ? r.models.code_gap[0] : NAN;
-  h.set("target_gap", target.gap), h.set("target_gap_lo", target.lo), h.set("target_gap_hi", target.hi);
-  h.set("target_gap_m", target.gap * d), h.set("target_gap_m_lo", target.lo * d), h.set("target_gap_m_hi", target.hi * d);
-  h.set("target_status", target.status), h.set("target_note", target.note);
+  set_target_attributes(h, target, d);
   if (!curve.gap.empty()) {
     h.add("curve_gap", curve.gap, "1", "gaps (ratios of d) of the rate-versus-separation curve");
     h.add("curve_rate", curve.rate, "1/year", "annual rate of pounding at each curve gap (point estimate)");

@@ -18,6 +18,9 @@ std::string num(double x, const char* fmt_ = "{:.3g}") { return std::isfinite(x)
 std::string pct(double p) { return std::isfinite(p) ? fmt::format("{:.2f}%", 100 * p) : "n/a"; }
 std::string interval(double lo, double hi, const char* f = "{:.3g}") { return fmt::format("[{}, {}]", num(lo, f), num(hi, f)); }
 
+// An attribute that files written before it existed lack: NaN there.
+double optional_number(const Group& g, std::string_view key) { return g.attribute(key) ? g.number(key) : NAN; }
+
 struct View {
   const Results& r;
   const Group& in;
@@ -78,6 +81,27 @@ std::string overview(const View& v) {
   return s + "\n";
 }
 
+// The headline: x*, its bootstrap and jackknife intervals, and the advice (the larger upper end).
+std::string target_headline(const View& v, const Group& h) {
+  const char* f = v.pair ? "{:.3f}" : "{:.3g}";
+  const std::string unit = v.pair ? " m" : " d", m = v.pair ? "_m" : "";
+  const double jlo = optional_number(h, "target_gap" + m + "_jack_lo"), jhi = optional_number(h, "target_gap" + m + "_jack_hi");
+  double advice = optional_number(h, "target_gap" + m + "_advice");
+  if (std::isnan(advice)) advice = h.number("target_gap" + m + "_hi");  // a file written before the jackknife
+  std::string s = fmt::format("**{}**, {:.0f} % interval {}{} (bootstrap over records)",
+                              v.gap_value(h.number("target_gap"), h.number("target_gap_m")), 100 * v.fr.number("confidence"),
+                              interval(h.number("target_gap" + m + "_lo"), h.number("target_gap" + m + "_hi"), f), unit);
+  if (!std::isnan(jhi)) s += fmt::format(", {}{} (jackknife over records)", interval(jlo, jhi, f), unit);
+  s += fmt::format("; **advice: at least {}{}** ({}).\n\n", num(advice, f), unit,
+                   std::isnan(jhi) ? "the upper end" : "the larger upper end");
+  if (!std::isnan(jhi))
+    s += "With few records the percentile bootstrap runs short for a separation that hangs on the fragility's "
+         "dispersion beta; the jackknife (the study without each record in turn, Student t) less so. In simulated "
+         "studies with a known answer and 25 records, the bootstrap's 95 % interval held the true separation in "
+         "86 % of them, the jackknife's in 92 % (60 records: 91.5 %, 93.5 %), hence the advice.\n\n";
+  return s;
+}
+
 std::string target_section(const View& v) {
   if (!v.hz) return "";
   const Group& h = *v.hz;
@@ -85,11 +109,7 @@ std::string target_section(const View& v) {
   std::string s = fmt::format("## Risk-targeted separation: P(pounding in {:g} years) = {:g} %\n\n", years, target);
   const std::string status = h.text("target_status");
   if (status == "ok") {
-    s += fmt::format("**{}**, {:.0f} % interval {}; **advice: at least {}** (the upper end).\n\n",
-                     v.gap_value(h.number("target_gap"), h.number("target_gap_m")), 100 * v.fr.number("confidence"),
-                     v.pair ? interval(h.number("target_gap_m_lo"), h.number("target_gap_m_hi"), "{:.3f}") + " m"
-                            : interval(h.number("target_gap_lo"), h.number("target_gap_hi")) + " d",
-                     v.pair ? fmt::format("{:.3f} m", h.number("target_gap_m_hi")) : fmt::format("{:.3g} d", h.number("target_gap_hi")));
+    s += target_headline(v, h);
   } else {
     s += fmt::format("**not found ({})**: {}\n\n", status, h.text("target_note"));
   }
@@ -241,10 +261,19 @@ std::string fragility_csv(const Results& r) {
       s += fmt::format("rate_curve,{},{},,,,,,,,,,{},{}\n", cg[k], v.pair ? cg[k] * v.r.models.code_gap[0] : NAN,
                        v.hz->get<double>("curve_rate")[k], v.hz->get<double>("curve_probability")[k]);
   }
-  if (v.hz)
-    s += fmt::format("risk_targeted_gap,{},{},,,,{},{},,,,,{},{}\n", v.hz->number("target_gap"), v.hz->number("target_gap_m"),
-                     v.hz->number("target_gap_lo"), v.hz->number("target_gap_hi"), v.hz->number("lambda_target"),
-                     v.hz->number("target_percent") / 100);
+  if (v.hz) {
+    const Group& h = *v.hz;
+    s += fmt::format("risk_targeted_gap,{},{},,,,{},{},,,,,{},{}\n", h.number("target_gap"), h.number("target_gap_m"),
+                     h.number("target_gap_lo"), h.number("target_gap_hi"), h.number("lambda_target"),
+                     h.number("target_percent") / 100);
+    s += fmt::format("risk_targeted_gap_jackknife,{},{},,,,{},{},,,,,{},{}\n", h.number("target_gap"),
+                     h.number("target_gap_m"), optional_number(h, "target_gap_jack_lo"),
+                     optional_number(h, "target_gap_jack_hi"), h.number("lambda_target"), h.number("target_percent") / 100);
+    double advice = optional_number(h, "target_gap_advice"), advice_m = optional_number(h, "target_gap_m_advice");
+    if (std::isnan(advice)) advice = h.number("target_gap_hi"), advice_m = h.number("target_gap_m_hi");
+    s += fmt::format("separation_advice,{},{},,,,,,,,,,{},{}\n", advice, advice_m, h.number("lambda_target"),
+                     h.number("target_percent") / 100);
+  }
   return s;
 }
 

@@ -138,5 +138,27 @@ got = ida["hazard"].attrs["target_gap"]
 print(f"IDA risk-targeted gap {got:.6f} d, closed form {xstar:.6f} d; MSA {msa['hazard'].attrs['target_gap']:.6f} d")
 assert abs(got / xstar - 1) < 1e-4, (got, xstar)
 assert abs(msa["hazard"].attrs["target_gap"] / xstar - 1) < 0.15
+# its jackknife over records, in closed form: without record j, theta1 and beta are the moments of the other
+# records' ln capacities at gap 1, x*_(j) as above; se = sqrt((R-1)/R sum (ln x*_(j) - mean)^2), Student t
+c1 = np.log(im[:, None] * d[None, :] / d1)      # ln capacity at gap ratio 1, [records, models]
+lnx = []
+for j in range(R):
+    rest = np.delete(c1, j, axis=0).ravel()
+    lnx.append(np.log((k0 * np.exp(kk * kk * rest.var(ddof=1) / 2) / lt) ** (1 / kk) / np.exp(rest.mean())))
+lnx = np.array(lnx)
+se = np.sqrt((R - 1) / R * np.sum((lnx - lnx.mean()) ** 2))
+q = stats.t.ppf(0.975, R - 1)
+h = ida["hazard"].attrs
+print(f"IDA jackknife: se of ln x* {h['target_gap_jack_se']:.6f} (closed form {se:.6f}), interval "
+      f"[{h['target_gap_jack_lo']:.5f}, {h['target_gap_jack_hi']:.5f}] d, bootstrap [{h['target_gap_lo']:.5f}, "
+      f"{h['target_gap_hi']:.5f}] d, advice {h['target_gap_advice']:.5f} d")
+assert abs(h["target_gap_jack_se"] / se - 1) < 1e-3, (h["target_gap_jack_se"], se)
+assert abs(h["target_gap_jack_hi"] / (got * np.exp(q * se)) - 1) < 1e-4
+assert abs(h["target_gap_jack_lo"] / (got * np.exp(-q * se)) - 1) < 1e-4
+assert h["target_gap_advice"] == max(h["target_gap_hi"], h["target_gap_jack_hi"])
+for f in (msa, ida):
+    a = f["hazard"].attrs
+    assert a["target_gap_jack_lo"] < a["target_gap"] < a["target_gap_jack_hi"], dict(a)
+    assert abs(a["target_gap_m_advice"] / a["target_gap_advice"] - d[0]) < 1e-12 * d[0] or np.isnan(a["target_gap_m_advice"])
 PY
 echo "1 passed, 0 failed"

@@ -149,6 +149,8 @@ struct GapFragility {
   std::string note;                 // the fit's message, and what a bound means when the rate is one
   std::vector<double> replicate_rate_lo, replicate_rate_hi;  // with a hazard: each replicate's rate range (B each),
                                     //   in replicate order; risk_targeted_gap_at_gaps joins them across gaps
+  std::vector<double> jackknife_rate;  // fit_ida with a hazard: the rate without record j (R values; NaN when that
+                                    //   fit has no exact rate); risk_targeted_gap_at_gaps' jackknife
 };
 
 // One GapFragility per gap (any order, > 0 finite). hazard may be null. Throws std::invalid_argument for
@@ -174,6 +176,16 @@ struct TargetGap {
   double rate = NAN;            // lambda_P(gap) of the point estimate
   double range_lo = NAN, range_hi = NAN;  // the gaps searched
   int replicates = 0, replicates_below = 0, replicates_above = 0;
+  // Jackknife over records (status ok only): x*_(j) without record j (R solves), se = the jackknife standard error
+  // of ln x*, sqrt((R - 1)/R sum (ln x*_(j) - mean)^2), and the interval x* exp(-+ t se), t the Student quantile
+  // ((1 + confidence)/2, R - 1 degrees of freedom). NaN when R < 3 or some x*_(j) leaves the gaps searched. Why:
+  // with few records the percentile bootstrap runs short for a separation that hangs on beta (the bootstrap of a
+  // variance-type statistic underestimates its spread, ~13 % in sd at 25 records); the jackknife's variance is
+  // not biased low that way (Efron & Stein 1981). Simulated studies with a known answer (test_stripes,
+  // StripesTarget.DISABLED_CoverageExperiment): 25 records, 95 %: bootstrap 0.86, jackknife 0.92, the union 0.92
+  // (the truth above its upper end 10 %, 5.5 %, 5.5 %); 60 records 0.915, 0.935, 0.945.
+  double jack_se = NAN, jack_lo = NAN, jack_hi = NAN;
+  double advice = NAN;          // max(hi, jack_hi): the separation to advise (hi alone without a jackknife)
   std::string status;           // "ok", "below range", "above range"
   std::string note;
 };
