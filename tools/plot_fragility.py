@@ -280,6 +280,15 @@ def plot_rate(f, fr, sel, a, prefix, title):
                   label=f"the study's gaps, {conf} bootstrap interval over records")
     ax_p.errorbar(xs[s], 100 * prob[s], yerr=[100 * (prob[s] - plo[s]), 100 * (phi_[s] - prob[s])], fmt="o",
                   color="C3", capsize=3, label=f"the study's gaps, {conf} bootstrap interval")
+    if "rate_jack_hi" in h:  # files written before the jackknife have none
+        jl, jh = h["rate_jack_lo"][()][s], h["rate_jack_hi"][()][s]
+        pjl, pjh = h["probability_jack_lo"][()][s], h["probability_jack_hi"][()][s]
+        ok = np.isfinite(jl) & np.isfinite(jh)
+        dx = 0.012 * (cx.max() if len(cx) else xs.max())  # beside the bootstrap bars
+        ax_r.errorbar(xs[s][ok] + dx, rate[s][ok], yerr=[rate[s][ok] - jl[ok], jh[ok] - rate[s][ok]], fmt="none",
+                      ecolor="C1", capsize=3, label=f"{conf} jackknife interval over records")
+        ax_p.errorbar(xs[s][ok] + dx, 100 * prob[s][ok], yerr=[100 * (prob[s][ok] - pjl[ok]), 100 * (pjh[ok] - prob[s][ok])],
+                      fmt="none", ecolor="C1", capsize=3, label=f"{conf} jackknife interval")
     tlabel = f"{target:g} % in {years:g} years"
     ax_r.axhline(lam, color="k", ls="--", lw=1, label=f"{tlabel}: lambda = {lam:.3g} per year")
     ax_p.axhline(target, color="k", ls="--", lw=1, label=tlabel)

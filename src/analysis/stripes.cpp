@@ -209,6 +209,37 @@ void set_intervals(GapFragility& g, const std::vector<ReplicateFit>& reps, const
   g.probability_hi = probability_or_nan(ri.hi, s.years);
 }
 
+// Jackknife-t interval of ln v from the leave-one-out values ln_j (stripes.hpp): {se, lo, hi} of v = exp(centre);
+// NaN when fewer than 3 or any NaN.
+struct Jackknife {
+  double se = NAN, lo = NAN, hi = NAN;
+};
+Jackknife jackknife_log(const std::vector<double>& ln, double centre, double confidence) {
+  const auto R = static_cast<double>(ln.size());
+  if (ln.size() < 3 || !std::isfinite(centre) ||
+      std::any_of(ln.begin(), ln.end(), [](double v) { return !std::isfinite(v); }))
+    return {};
+  double mean = 0, ss = 0;
+  for (double v : ln) mean += v;
+  mean /= R;
+  for (double v : ln) ss += (v - mean) * (v - mean);
+  Jackknife j;
+  j.se = std::sqrt((R - 1.0) / R * ss);
+  const double q = boost::math::quantile(boost::math::students_t(R - 1.0), 0.5 * (1.0 + confidence));
+  j.lo = std::exp(centre - q * j.se), j.hi = std::exp(centre + q * j.se);
+  return j;
+}
+
+// The rate's jackknife interval of an ok fit from its jackknife_rate (stripes.hpp, GapFragility).
+void set_rate_jackknife(GapFragility& g, const Settings& s) {
+  if (!g.fit.ok() || !(g.annual_rate > 0)) return;
+  std::vector<double> ln;
+  for (double v : g.jackknife_rate) ln.push_back(v > 0 ? std::log(v) : NAN);
+  const Jackknife j = jackknife_log(ln, std::log(g.annual_rate), s.confidence);
+  g.rate_jack_lo = j.lo, g.rate_jack_hi = j.hi;
+  g.probability_jack_lo = probability_or_nan(j.lo, s.years), g.probability_jack_hi = probability_or_nan(j.hi, s.years);
+}
+
 // ---------------------------------------------------------------- MSA counting
 
 FragilityFit fit_stripes(const std::vector<Stripe>& s) {
@@ -286,6 +317,21 @@ void msa_bootstrap(const StripeIndex& ix, const std::vector<std::size_t>& pos, c
     for (std::size_t b = 0; b < B; ++b) one[b] = reps[b * G + g];
     set_intervals(out[g], one, s);
   }
+  if (!h) return;
+  const std::size_t R = ix.records();
+  for (GapFragility& g : out) g.jackknife_rate.assign(R, NAN);
+  parallel_blocks(R, thread_count(s.threads, R), [&](std::size_t first, std::size_t last) {
+    for (std::size_t j = first; j < last; ++j) {
+      std::vector<int> w(R, 1);
+      w[j] = 0;
+      for (std::size_t g = 0; g < G; ++g) {
+        const std::vector<Stripe> st = stripes_from(ix, &pos[g * SR], w);
+        const auto [x_low, x_top] = level_span(st);
+        if (const FragilityFit f = fit_stripes(st); f.ok()) out[g].jackknife_rate[j] = rate_of(f, *h, x_low, x_top).value;
+      }
+    }
+  });
+  for (GapFragility& g : out) set_rate_jackknife(g, s);
 }
 
 // ---------------------------------------------------------------- IDA: log capacities with censoring
@@ -494,15 +540,8 @@ Solution solve_target(const std::vector<double>& grid, double target, Rate&& rat
 
 // The jackknife interval of a target gap from ln x*_(j), j = 1..R (stripes.hpp, TargetGap); any NaN: none.
 void set_jackknife(TargetGap& t, const std::vector<double>& ln, double confidence) {
-  const auto R = static_cast<double>(ln.size());
-  if (ln.size() < 3 || std::any_of(ln.begin(), ln.end(), [](double v) { return std::isnan(v); })) return;
-  double mean = 0, ss = 0;
-  for (double v : ln) mean += v;
-  mean /= R;
-  for (double v : ln) ss += (v - mean) * (v - mean);
-  t.jack_se = std::sqrt((R - 1.0) / R * ss);
-  const double q = boost::math::quantile(boost::math::students_t(R - 1.0), 0.5 * (1.0 + confidence));
-  t.jack_lo = t.gap * std::exp(-q * t.jack_se), t.jack_hi = t.gap * std::exp(q * t.jack_se);
+  const Jackknife j = jackknife_log(ln, std::log(t.gap), confidence);
+  t.jack_se = j.se, t.jack_lo = j.lo, t.jack_hi = j.hi;
 }
 
 void set_advice(TargetGap& t) { t.advice = std::fmax(t.hi, t.jack_hi); }  // a NaN end is ignored
@@ -706,6 +745,7 @@ GapFragility fit_ida(const Capacities& c, std::span<const double> levels, const 
         if (f.ok()) g.jackknife_rate[j] = rate_of(f, *hazard, x_low, x_top).value;
       }
     });
+    set_rate_jackknife(g, s);
   }
   return g;
 }

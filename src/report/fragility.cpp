@@ -119,6 +119,14 @@ void add_hazard_group(Results& r, const HazardCurve& hz, const std::vector<strip
   h.add("probability_lo", plo, "1", "lower end of the probability's bootstrap interval");
   h.add("probability_hi", phi, "1", "upper end of the probability's bootstrap interval");
   h.add("tail_share", tail, "1", "share of the rate from IM beyond the hazard table (its end slopes extended)");
+  std::vector<double> jlo(G), jhi(G), pjlo(G), pjhi(G);
+  for (std::size_t k = 0; k < G; ++k)
+    jlo[k] = fits[k].rate_jack_lo, jhi[k] = fits[k].rate_jack_hi, pjlo[k] = fits[k].probability_jack_lo,
+    pjhi[k] = fits[k].probability_jack_hi;
+  h.add("rate_jack_lo", jlo, "1/year", "lower end of the annual rate's jackknife interval over records (NaN: none)");
+  h.add("rate_jack_hi", jhi, "1/year", "upper end of the annual rate's jackknife interval over records (NaN: none)");
+  h.add("probability_jack_lo", pjlo, "1", "lower end of the probability's jackknife interval over records");
+  h.add("probability_jack_hi", pjhi, "1", "upper end of the probability's jackknife interval over records");
   (void)demand;
 }
 

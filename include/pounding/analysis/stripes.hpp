@@ -149,8 +149,10 @@ struct GapFragility {
   std::string note;                 // the fit's message, and what a bound means when the rate is one
   std::vector<double> replicate_rate_lo, replicate_rate_hi;  // with a hazard: each replicate's rate range (B each),
                                     //   in replicate order; risk_targeted_gap_at_gaps joins them across gaps
-  std::vector<double> jackknife_rate;  // fit_ida with a hazard: the rate without record j (R values; NaN when that
-                                    //   fit has no exact rate); risk_targeted_gap_at_gaps' jackknife
+  std::vector<double> jackknife_rate;  // with a hazard: the rate without record j (R values; NaN when that fit has
+                                    //   no exact rate); risk_targeted_gap_at_gaps' jackknife
+  double rate_jack_lo = NAN, rate_jack_hi = NAN;  // jackknife-t interval of ln annual_rate (ok fits; NaN when any
+  double probability_jack_lo = NAN, probability_jack_hi = NAN;  //   jackknife_rate is not > 0): see TargetGap
 };
 
 // One GapFragility per gap (any order, > 0 finite). hazard may be null. Throws std::invalid_argument for
