@@ -44,6 +44,17 @@ Demands lognormal_demands(std::size_t R, std::size_t M, std::vector<double> leve
   return d;
 }
 
+// The demands with record j deleted (the jackknife's reference: the data without it, not a weight of 0).
+Demands without_record(const Demands& d, std::size_t j) {
+  Demands dj;
+  dj.levels = d.levels, dj.records = d.records - 1, dj.models = d.models;
+  for (std::size_t st = 0; st < d.levels.size(); ++st)
+    for (std::size_t r = 0; r < d.records; ++r)
+      if (r != j)
+        for (std::size_t m = 0; m < d.models; ++m) dj.demand.push_back(d.demand[(st * d.records + r) * d.models + m]);
+  return dj;
+}
+
 Settings quick(int bootstrap, int threads = 2, std::uint64_t seed = 11) {
   Settings s;
   s.bootstrap = bootstrap, s.threads = threads, s.seed = seed;
@@ -617,12 +628,7 @@ TEST(StripesTarget, JackknifeEqualsDeletingEachRecord) {
   ASSERT_EQ(t.status, "ok") << t.note;
   std::vector<double> ln;
   for (std::size_t j = 0; j < d.records; ++j) {
-    Demands dj;
-    dj.levels = d.levels, dj.records = d.records - 1, dj.models = d.models;
-    for (std::size_t st = 0; st < d.levels.size(); ++st)
-      for (std::size_t r = 0; r < d.records; ++r)
-        if (r != j)
-          for (std::size_t m = 0; m < d.models; ++m) dj.demand.push_back(d.demand[(st * d.records + r) * d.models + m]);
+    const Demands dj = without_record(d, j);
     const TargetGap tj = risk_targeted_gap(dj, h, target, quick(0));
     ASSERT_EQ(tj.status, "ok");
     ln.push_back(std::log(tj.gap));
@@ -652,12 +658,7 @@ TEST(StripesMsa, RateJackknifeEqualsDeletingEachRecord) {
     ASSERT_EQ(f[g].jackknife_rate.size(), 12u);
     std::vector<double> ln;
     for (std::size_t j = 0; j < d.records; ++j) {
-      Demands dj;
-      dj.levels = d.levels, dj.records = d.records - 1, dj.models = d.models;
-      for (std::size_t st = 0; st < d.levels.size(); ++st)
-        for (std::size_t r = 0; r < d.records; ++r)
-          if (r != j)
-            for (std::size_t m = 0; m < d.models; ++m) dj.demand.push_back(d.demand[(st * d.records + r) * d.models + m]);
+      const Demands dj = without_record(d, j);
       const double want = fit_msa(dj, std::vector<double>{gaps[g]}, quick(0), &h)[0].annual_rate;
       EXPECT_NEAR(f[g].jackknife_rate[j], want, 1e-12 * want) << g << " " << j;
       ln.push_back(std::log(want));
