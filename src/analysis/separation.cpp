@@ -205,7 +205,7 @@ BootstrapResult bootstrap(const Demands& d, std::span<const double> targets, std
 // ---------------------------------------------------------------- code rules
 
 double ddc_rho(double T1, double T2, double z1, double z2) {
-  const double r = T2 / T1;
+  const double r = T1 / T2;  // = omega2 / omega1: (z1 + r z2) pairs z2 with the frequency in r's numerator
   const double num = 8.0 * std::sqrt(z1 * z2) * (z1 + r * z2) * std::pow(r, 1.5);
   const double den = (1.0 - r * r) * (1.0 - r * r) + 4.0 * z1 * z2 * r * (1.0 + r * r) + 4.0 * (z1 * z1 + z2 * z2) * r * r;
   return num / den;

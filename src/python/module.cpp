@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "pounding/analysis/separation.hpp"
 #include "pounding/contact/model.hpp"
 #include "pounding/core/error.hpp"
 #include "pounding/core/version.hpp"
@@ -128,6 +129,10 @@ PYBIND11_MODULE(pounding, m) {
         "Runs every pair (dict of 1-D arrays: m1 k1 c1 fy1 alpha1 m2 k2 c2 fy2 alpha2 gap kc e [u1_0 v1_0 u2_0 "
         "v2_0]; SI units) through the ground acceleration ag (m/s^2, spacing dt s) in lockstep; returns a dict "
         "of per-pair arrays (peaks, impact counts, status 0 ok / 1 diverged / 2 non-finite, energies).");
+  py::module_ a = m.def_submodule("analysis", "the statistics and code rules of the analysis layer");
+  a.def("ddc_rho", &separation::ddc_rho, py::arg("T1"), py::arg("T2"), py::arg("zeta1"), py::arg("zeta2"),
+        "CQC correlation of two oscillators (Der Kiureghian 1981) that the DDC code rule uses; periods in s, damping "
+        "ratios as fractions.");
   py::module_ t = m.def_submodule("testing", "deterministic workloads (the kernel digests' inputs)");
   t.def("benchmark_batch", [](std::size_t width) { return batch_to_dict(benchmark_batch(width)); }, py::arg("width"));
   t.def("builtin_motion", [](double dt, double duration) { return to_numpy(builtin_motion(dt, duration)); },

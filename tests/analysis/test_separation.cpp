@@ -144,7 +144,13 @@ TEST(CodeRules, DdcCorrelationMatchesClosedForms) {
   EXPECT_NEAR(ddc_rho(1.2, 1.2, 0.05, 0.02), 2 * std::sqrt(0.05 * 0.02) / 0.07, 1e-15);
   // symmetric in the buildings
   EXPECT_NEAR(ddc_rho(1.0, 1.3, 0.05, 0.02), ddc_rho(1.3, 1.0, 0.02, 0.05), 1e-15);
-  EXPECT_NEAR(ddc_rho(1.0, 1.3, 0.05, 0.02), 0.055912741972146636, 1e-15);  // SciPy-free hand evaluation
+  // unequal damping: the white-noise correlation of the two transfer functions, integrated by SciPy quad
+  // (tests/python/test_ddc_scipy.py; the closed form with (z1 + (T2/T1) z2) gave 0.055913, 0.023121, 0.007087)
+  EXPECT_NEAR(ddc_rho(1.0, 1.3, 0.05, 0.02), 0.0625339877320062, 1e-14);
+  EXPECT_NEAR(ddc_rho(1.0, 1.5, 0.05, 0.02), 0.02745601028963657, 1e-14);
+  EXPECT_NEAR(ddc_rho(1.0, 2.0, 0.05, 0.02), 0.00944983825673445, 1e-14);
+  // swapping the damping ratios between the buildings gives the other value (the old code's for the first order)
+  EXPECT_NEAR(ddc_rho(1.0, 1.5, 0.02, 0.05), 0.02312085077022021, 1e-14);
 }
 
 TEST(CodeRules, GapsInMetres) {

@@ -63,9 +63,13 @@ BootstrapResult bootstrap(const Demands& d, std::span<const double> targets, std
 
 // ---------------------------------------------------------------- code rules
 
-// The CQC correlation of two oscillators with unequal damping (Der Kiureghian 1981, EESD 9(5)), r = T2 / T1
-// (= omega1 / omega2): 8 sqrt(z1 z2) (z1 + r z2) r^1.5 / ((1 - r^2)^2 + 4 z1 z2 r (1 + r^2) + 4 (z1^2 + z2^2) r^2).
-// Equals cqc_rho(r, z) when z1 = z2 = z.
+// The CQC correlation of two oscillators with unequal damping (Der Kiureghian 1981, EESD 9(5)), r = omega2 / omega1
+// = T1 / T2: 8 sqrt(z1 z2) (z1 + r z2) r^1.5 / ((1 - r^2)^2 + 4 z1 z2 r (1 + r^2) + 4 (z1^2 + z2^2) r^2). The damping
+// ratio beside r belongs to the oscillator whose frequency is r's numerator; with r = T2 / T1 the factor would be
+// (z2 + r z1) (issue 23, item 4: the other pairing is 16 % low at T2/T1 = 1.5, 25 % at 2). It is the white-noise
+// correlation of the two oscillators' responses, integral Re(H1 conj H2) / sqrt(integral |H1|^2 integral |H2|^2),
+// H_i = 1 / (omega_i^2 - omega^2 + 2 i z_i omega_i omega) (tests/python/test_ddc_scipy.py checks that with SciPy
+// quad). Equals cqc_rho(r, z) when z1 = z2 = z.
 double ddc_rho(double T1, double T2, double zeta1, double zeta2);
 
 // The design values the rules combine: each building's peak displacement (m) and its period and damping.
