@@ -16,6 +16,7 @@ void add_records_select(CLI::App* records);  // src/cli/commands/records_select.
 void add_sample(CLI::App& app);    // src/cli/commands/sample.cpp (stochastic structure model)
 void add_run(CLI::App& app);       // src/cli/commands/run.cpp (the study)
 void add_report(CLI::App& app);    // src/cli/commands/run.cpp
+void add_study_reference(CLI::App& app);  // src/cli/commands/study_reference.cpp (docs/study-reference.md)
 void add_accuracy(CLI::App& app);  // src/cli/commands/accuracy.cpp (accuracy/speed chart, stability, restitution, validation)
 
 // Runs a shared parser (parse_stepper, parse_units, ...) and names the command-line option in its InputError.

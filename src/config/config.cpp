@@ -2,9 +2,11 @@
 #include "pounding/config/config.hpp"
 
 #include <cmath>
+#include <stdexcept>
 
 #include <fmt/format.h>
 
+#include "pounding/config/study_keys.hpp"
 #include "pounding/core/error.hpp"
 
 namespace pounding::config {
@@ -99,7 +101,7 @@ void check_keys(const toml::table& t, const std::function<bool(std::string_view 
 // ---------------------------------------------------------------- TableReader
 
 TableReader::TableReader(const toml::table* t, std::string file, std::string name)
-    : t_(t), file_(std::move(file)), name_(std::move(name)) {}
+    : t_(t), file_(std::move(file)), name_(std::move(name)), section_(study_section_of(name_)) {}
 
 std::string TableReader::where(std::string_view key) const {
   const toml::node* n = t_ ? t_->get(key) : nullptr;
@@ -109,7 +111,25 @@ std::string TableReader::where(std::string_view key) const {
   return line > 0 ? fmt::format("{}:{} {}", file_, line, k) : fmt::format("{} {}", file_, k);
 }
 
+namespace {
+const StudyKey& described(std::string_view section, std::string_view key) {
+  const StudyKey* k = find_study_key(section, key);
+  if (!k)
+    throw std::logic_error(fmt::format("the study key [{}].{} is read but not described: add it to "
+                                       "src/config/study_keys.cpp and regenerate docs/study-reference.md",
+                                       section, key));
+  return *k;
+}
+
+bool has_range(const StudyKey& k) { return !std::isnan(k.lo) && !std::isnan(k.hi); }
+
+std::string range_text(const StudyKey& k) {
+  return k.units.empty() ? std::string(k.range) : fmt::format("{} {}", k.range, k.units);
+}
+}  // namespace
+
 const toml::node* TableReader::get(std::string_view key) {
+  described(section_, key);
   seen_.emplace(key);
   return t_ ? t_->get(key) : nullptr;
 }
@@ -129,6 +149,24 @@ double TableReader::number(std::string_view key, double def, double lo, double h
   if (!std::isfinite(v) || v < lo || v > hi)
     throw InputError(fmt::format("{} = {} is out of range", key, v), where(key), fmt::format("give a value in {}", range));
   return v;
+}
+
+double TableReader::number(std::string_view key, double def) {
+  const StudyKey& k = described(section_, key);
+  if (!has_range(k)) throw std::logic_error(fmt::format("study key [{}].{} has no lo, hi", section_, key));
+  return number(key, def, k.lo, k.hi, range_text(k));
+}
+
+long TableReader::integer(std::string_view key, long def) {
+  const StudyKey& k = described(section_, key);
+  if (!has_range(k)) throw std::logic_error(fmt::format("study key [{}].{} has no lo, hi", section_, key));
+  return integer(key, def, static_cast<long>(k.lo), static_cast<long>(k.hi));
+}
+
+std::vector<double> TableReader::numbers(std::string_view key, std::vector<double> def) {
+  const StudyKey& k = described(section_, key);
+  if (!has_range(k)) throw std::logic_error(fmt::format("study key [{}].{} has no lo, hi", section_, key));
+  return numbers(key, std::move(def), k.lo, k.hi, range_text(k));
 }
 
 long TableReader::integer(std::string_view key, long def, long lo, long hi) {

@@ -52,17 +52,25 @@ void check_keys(const toml::table& t, const std::function<bool(std::string_view 
 // "file:line [name].key" (line of the key, or of the table when the key is absent; name empty: the top level).
 class TableReader {
  public:
-  // t may be null (the table is absent: every key takes its default).
+  // t may be null (the table is absent: every key takes its default). `name` is the table's dotted name in the
+  // study file ("records", "structures.building1"; "" the top level); its keys must be described in
+  // study_keys.cpp (study_section_of(name) maps it to the registry's section).
   TableReader(const toml::table* t, std::string file, std::string name);
 
   std::string where(std::string_view key) const;
-  // The node of `key` (null when absent), marking the key as known.
+  // The node of `key` (null when absent), marking the key as known. std::logic_error when study_keys.cpp does
+  // not describe the key (a programming error: describe every key the parser reads).
   const toml::node* get(std::string_view key);
   // Sub-table `key` (null when absent); InputError when `key` holds something else.
   const toml::table* table(std::string_view key);
 
-  // Typed reads with a default for an absent key; numbers outside [lo, hi] (or not finite) are errors
-  // naming `range`.
+  // Typed reads with a default for an absent key, the allowed range taken from the key's description
+  // (study_keys.cpp: lo, hi, range, units); a value outside it (or not finite) is an error naming the range.
+  double number(std::string_view key, double def);
+  long integer(std::string_view key, long def);
+  std::vector<double> numbers(std::string_view key, std::vector<double> def);
+  // The same with a range the caller computes (one that depends on other keys); numbers outside [lo, hi] (or
+  // not finite) are errors naming `range`.
   double number(std::string_view key, double def, double lo, double hi, std::string_view range);
   long integer(std::string_view key, long def, long lo, long hi);
   std::string string(std::string_view key, std::string def);
@@ -86,7 +94,7 @@ class TableReader {
 
  private:
   const toml::table* t_;
-  std::string file_, name_;
+  std::string file_, name_, section_;
   std::set<std::string, std::less<>> seen_;
 };
 

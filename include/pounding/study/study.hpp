@@ -1,5 +1,7 @@
 #pragma once
 // A study file (studies/*.toml) parsed once into a validated, immutable Study.
+// Every key's type, default, units, range and meaning: src/config/study_keys.cpp (the parsers read no key it
+// does not describe), published as docs/study-reference.md (`pounding study-reference`). Overview:
 //
 //   title = "..."                 seed = 20240601 (required)
 //   scene = "probability" | "impacts" | "auto"

@@ -278,7 +278,8 @@ void print_selection(const Selection& s, const Library& lib, const std::vector<S
 void add_records_select(CLI::App* records) {
   auto o = std::make_shared<SelectOpts>();
   auto* c = records->add_subcommand("select", "choose and scale records to a code design spectrum (ASCE 7-16, "
-                                              "ASCE 7-10 or EC8 rule); see src/cli/commands/records_select.cpp");
+                                              "ASCE 7-10 or EC8 rule); README.md \"Records to a design spectrum\" explains the "
+                                              "method; inside a study: [target_spectrum] in docs/study-reference.md");
   c->add_option("files", o->files, "record files (or --directory)");
   c->add_option("--directory", o->directory, "a folder: every *.AT2 file in it, sorted by name");
   c->add_option("--asce7", o->asce7, "target: ASCE 7-16 design spectrum SDS,SD1,TL (g, g, s)");

@@ -108,7 +108,8 @@ void add_run(CLI::App& app) {
   auto o = std::make_shared<RunOpts>();
   auto* c = app.add_subcommand("run", "run a study (Monte Carlo over records x period pairs x samples); "
                                       "under mpirun the ranks share the work");
-  c->add_option("study", o->study, "study file (studies/*.toml)")->required();
+  c->add_option("study", o->study, "study file (studies/*.toml; every key: docs/study-reference.md or "
+                                   "`pounding study-reference`)")->required();
   auto* out = c->add_option("--out", o->out, "results file (default: the study's output)");
   c->add_flag("--resume", o->resume, "continue a killed, interrupted or failed run from its checkpoint (<out>.ckpt)");
   c->add_flag("--force", o->force, "discard the progress in <out>.ckpt and start afresh");

@@ -1,0 +1,55 @@
+#pragma once
+// Every key of the study file, described once (issue 23, item 10): its type, default, units, allowed values and
+// meaning. docs/study-reference.md is generated from this list (`pounding study-reference`), and the parsers
+// cannot drift from it:
+//   - config::TableReader refuses to look up a key that is not listed here for its section (std::logic_error,
+//     so every test that parses a study fails until the key is described);
+//   - TableReader::number(key, def) / integer(key, def) / numbers(key, def) take the allowed range from here,
+//     so the documented range is the checked one (keys checked elsewhere, e.g. [structures] in
+//     validate_building, give lo/hi here and tests/config/test_study_keys.cpp checks that a value just outside
+//     is refused);
+//   - tests/config/test_study_keys.cpp checks defaults against a parsed study and enum lists against their
+//     tables; ctest `docs.study_reference` compares the committed docs/study-reference.md with the output.
+//
+// A new key: one entry in src/config/study_keys.cpp, in its section, then
+//   build/pounding study-reference -o docs/study-reference.md
+#include <limits>
+#include <span>
+#include <string>
+#include <string_view>
+
+namespace pounding::config {
+
+inline constexpr double no_limit = std::numeric_limits<double>::quiet_NaN();
+
+struct StudyKey {
+  std::string_view section;  // "" (top level), "records", "structures.buildingN", "distribution.lognormal", ...
+  std::string_view key;
+  std::string_view type;     // "number", "integer", "string", "boolean", "array of numbers", "table", ...
+  std::string_view def;      // the default as written in a study file, or a sentence ("required", "from ...")
+  std::string_view units;    // "" for dimensionless
+  std::string_view range;    // the allowed values, as shown in errors ("(0, 1000]", "\"g\" | \"m/s2\"")
+  std::string_view meaning;
+  double lo = no_limit, hi = no_limit;  // numeric keys: the closed bounds the parser checks (NaN: no numeric check)
+};
+
+struct StudySection {
+  std::string_view name;     // as in StudyKey::section
+  std::string_view heading;  // "[records]", "[structures.building1] and [structures.building2]"
+  std::string_view text;     // what the section is for
+};
+
+std::span<const StudySection> study_sections();
+std::span<const StudyKey> study_keys();
+
+// The registry's section of a TableReader's table name: "structures.building1" -> "structures.buildingN",
+// "structures.building2.height" -> "distribution", "...height.lognormal" -> "distribution.lognormal".
+std::string study_section_of(std::string_view table_name);
+
+// The key's description, or nullptr.
+const StudyKey* find_study_key(std::string_view section, std::string_view key);
+
+// docs/study-reference.md.
+std::string study_reference_markdown();
+
+}  // namespace pounding::config

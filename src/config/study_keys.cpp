@@ -1,0 +1,397 @@
+// Every key of the study file (see study_keys.hpp). One entry per key, in its section; the order here is the
+// order of docs/study-reference.md. After an edit: build/pounding study-reference -o docs/study-reference.md
+#include "pounding/config/study_keys.hpp"
+
+#include <cmath>
+
+#include <fmt/format.h>
+
+namespace pounding::config {
+
+namespace {
+
+constexpr double inf = std::numeric_limits<double>::infinity();
+
+constexpr StudySection sections[] = {
+    {"", "Top level", "Keys before any [table]."},
+    {"records", "[records]",
+     "The ground motions: exactly one of `suite`, `directory` or `files` names them."},
+    {"records.files", "[records] files entries",
+     "An entry of `files` is a path string or an inline table `{path = \"b.AT2\", scale = 1.5}`."},
+    {"structures", "[structures]",
+     "The stochastic structure model (stochastic-pounding-monte-carlo.txt, sections 2.1-3.1): the defaults of both "
+     "buildings and the settings they share."},
+    {"structures.buildingN", "[structures.building1] and [structures.building2]",
+     "One building's overrides of [structures] and its own period, height, mass, damping and strength. Every key is "
+     "optional; an absent key takes the value of [structures]. Heights given to both buildings make a pair study "
+     "(answers in metres). period, height, mass, zeta and yield_coefficient take a number or a distribution table "
+     "(below)."},
+    {"distribution", "Distribution tables",
+     "`key = {lognormal = {median = .., cov = ..}}` or `key = {uniform = {min = .., max = ..}}` for period, height, "
+     "mass, zeta or yield_coefficient of a building. Every draw is truncated exactly (inverse CDF) to the key's "
+     "valid range (period (0, 100] s, height (0, 1000] m, mass (0, 1e10] kg, zeta [0, 1), Cy (0, 5]) and refused "
+     "when that keeps less than 50 % of the probability."},
+    {"distribution.lognormal", "lognormal = {median, cov}",
+     "ln X ~ N(ln median, sigma^2), sigma^2 = ln(1 + cov^2)."},
+    {"distribution.uniform", "uniform = {min, max}", "X uniform on [min, max], min <= max."},
+    {"gaps", "[gaps]", "The gaps analysed, as ratios of the code separation d = code_gap_coefficient (h1 + h2)."},
+    {"contact", "[contact]", "The contact element between the buildings."},
+    {"analysis", "[analysis]", "Time integration and the treatment of analyses that fail."},
+    {"report", "[report]", "What the report derives from the results."},
+    {"outputs", "[outputs]", "What the impacts scene must deliver (scene = \"auto\" reads it)."},
+    {"intensity", "[intensity]",
+     "A fragility study: the records are scaled to intensity-measure levels (stripes) and a fragility is fitted "
+     "per gap."},
+    {"intensity.periods", "[intensity] periods = {min, max, count}", "count log-spaced periods from min to max."},
+    {"hazard", "[hazard]",
+     "The site hazard of a fragility study: the annual rate of pounding and the risk-targeted separation."},
+    {"target_spectrum", "[target_spectrum]",
+     "The design spectrum the records of `[records] select = N` are chosen and amplitude-scaled to. Needs select; "
+     "select needs it. Which keys a code takes is listed in each key's meaning."},
+};
+
+constexpr StudyKey keys[] = {
+    // ---------------------------------------------------------------- top level
+    {"", "title", "string", "the study file's stem", "", "any", "Shown in the log and the report."},
+    {"", "seed", "integer", "required", "", "[0, 2^63 - 1]",
+     "Master seed of every random stream (structures, synthetic records, bootstrap)."},
+    {"", "scene", "string", "\"probability\"", "", "\"probability\" | \"impacts\" | \"auto\"",
+     "probability: one uncoupled run per model answers every gap (whether a pair touches depends only on the "
+     "motion before the first contact); impacts: coupled contact runs at every gap (forces, amplification); "
+     "auto: impacts when [outputs] asks for forces or amplification, else probability."},
+    {"", "output", "string", "<study stem>.h5", "", "a non-empty path",
+     "The results file (HDF5), relative to the working directory."},
+    {"", "records", "table", "required", "", "", "Section [records]."},
+    {"", "structures", "table", "all defaults", "", "", "Section [structures]."},
+    {"", "gaps", "table", "all defaults", "", "", "Section [gaps]."},
+    {"", "contact", "table", "all defaults", "", "", "Section [contact]."},
+    {"", "analysis", "table", "all defaults", "", "", "Section [analysis]."},
+    {"", "report", "table", "all defaults", "", "", "Section [report]."},
+    {"", "outputs", "table", "all defaults", "", "", "Section [outputs]."},
+    {"", "intensity", "table", "absent", "", "", "Section [intensity]; present: a fragility study."},
+    {"", "hazard", "table", "absent", "", "", "Section [hazard]; needs [intensity]."},
+    {"", "target_spectrum", "table", "absent", "", "", "Section [target_spectrum]; needs [records] select."},
+
+    // ---------------------------------------------------------------- [records]
+    {"records", "suite", "string", "none", "", "a suite file path, or \"builtin\"",
+     "A records suite file (relative to the study file); \"builtin\" is the embedded 25-record synthetic suite."},
+    {"records", "real_dir", "string", "none", "", "a directory",
+     "Where the suite's real PEER records are (relative to the study file)."},
+    {"records", "directory", "string", "none", "", "a directory",
+     "Every record file in this directory (relative to the study file)."},
+    {"records", "files", "array", "none", "", "paths or {path, scale} tables",
+     "The record files, each a path (relative to the study file) or {path = .., scale = ..}."},
+    {"records", "scale", "number", "1.0", "", "(0, 1000]", "Factor applied to every record.", 1e-6, 1e3},
+    {"records", "units", "string", "\"g\"", "", "\"g\" | \"m/s2\" | \"cm/s2\"",
+     "Units of the acceleration values in the record files."},
+    {"records", "dt", "number", "0", "s", "[0, 1]",
+     "Time step of one-column record files (files with a header give their own).", 0.0, 1.0},
+    {"records", "limit", "integer", "0", "", "[0, 100000]",
+     "Use only the first N records (0: all). Not together with select.", 0, 100000},
+    {"records", "synthetic_only", "boolean", "false", "", "true | false",
+     "Use only the suite's synthetic records."},
+    {"records", "select", "integer", "none", "", "[1, 100000]",
+     "Choose N records from the library named above and scale them to [target_spectrum] (ASCE 7-16 asks for at "
+     "least 11). Needs [target_spectrum]; not with limit.", 1, 100000},
+
+    {"records.files", "path", "string", "required", "", "a record file", "The record file (relative to the study)."},
+    {"records.files", "scale", "number", "1.0", "", "(0, 1000]", "Factor applied to this record.", 1e-6, 1e3},
+
+    // ---------------------------------------------------------------- [structures]
+    {"structures", "periods", "array of numbers", "[1.00, 1.05, ..., 1.50]", "s", "(0, 100], strictly increasing, 1 to 1000 values",
+     "The period grid of both buildings: every pair (T1, T2) of the grid is a period pair. Not with "
+     "period_min/period_max/period_step.", 1e-300, 100.0},
+    {"structures", "period_min", "number", "1.00", "s", "(0, 100]", "First period of a grid period_min:period_step:period_max.",
+     1e-300, 100.0},
+    {"structures", "period_max", "number", "1.50", "s", "(0, 100]", "Last period of the grid.", 1e-300, 100.0},
+    {"structures", "period_step", "number", "0.05", "s", "> 0", "Step of the grid."},
+    {"structures", "samples_per_pair", "integer", "256", "", "[1, 2^40] (and the results must fit in 64 GiB)",
+     "Random structure pairs per period pair (the paper: 256 x 121 pairs = 30,976 models).", 1, 1099511627776.0},
+    {"structures", "aspect_ratios", "array of numbers", "[1.0, 2.0, 3.0]", "", "(0, 100], 1 to 100 values",
+     "Aspect ratios h/r of the foundation (equally likely); r = h / aspect.", 1e-300, 100.0},
+    {"structures", "rho_mean", "number", "1800", "kg/m^3", "(0, 1e5]", "Mean of the lognormal soil density rho.",
+     1e-300, 1e5},
+    {"structures", "rho_cov", "number", "0.068", "", "[0, 2]", "CoV of the soil density.", 0.0, 2.0},
+    {"structures", "mbar_mean", "number", "0.6", "", "(0, 100]",
+     "Mean of the parent lognormal of the mass index mbar (m = mbar rho r^2 h).", 1e-300, 100.0},
+    {"structures", "mbar_cov", "number", "0.20", "", "(0, 2]", "CoV of the mass index's parent lognormal.", 1e-300, 2.0},
+    {"structures", "mbar_min", "number", "0.4", "", "(0, 100]", "Lower truncation of the mass index.", 1e-300, 100.0},
+    {"structures", "mbar_max", "number", "0.8", "", "(mbar_min, 1000]", "Upper truncation of the mass index.",
+     1e-300, 1000.0},
+    {"structures", "zeta", "number", "0.05", "", "[0, 1)", "Viscous damping ratio: c = 2 zeta sqrt(k m).", 0.0, 0.999999},
+    {"structures", "hysteresis", "string", "\"bilinear\"", "", "\"bilinear\" | \"elastic\"",
+     "bilinear: kinematic hardening, fy from drift/ductility (or yield_coefficient) and alpha; elastic: linear."},
+    {"structures", "drift", "number", "0.02", "", "(0, 1]", "Yield drift: u_y = drift h / ductility.", 1e-300, 1.0},
+    {"structures", "ductility", "number", "6", "", "[1, 100]", "Ductility in u_y = drift h / ductility.", 1.0, 100.0},
+    {"structures", "alpha", "number", "0.05", "", "[0, 1)", "Post-yield stiffness ratio.", 0.0, 0.999999},
+    {"structures", "height_min", "number", "30", "m", "(0, 1000]", "Lower height limit of the period-height rule.",
+     1e-300, 1000.0},
+    {"structures", "height_max", "number", "50", "m", "[height_min, 1000]", "Upper height limit of the period-height rule.",
+     1e-300, 1000.0},
+    {"structures", "ct_lower", "number", "0.05", "s/m^x", "(0, 10]",
+     "Period-height rule ct_lower h^x <= T <= ct_upper h^x (eq. 6): the lower coefficient.", 1e-300, 10.0},
+    {"structures", "ct_upper", "number", "0.08", "s/m^x", "(ct_lower, 10]", "The rule's upper coefficient.", 1e-300, 10.0},
+    {"structures", "height_exponent", "number", "0.75", "", "(0, 2]", "The rule's exponent x.", 1e-300, 2.0},
+    {"structures", "code_gap_coefficient", "number", "0.005", "", "(0, 1]",
+     "Code separation d = coefficient (h1 + h2) (Standard 2800, eq. 5); gap ratios are multiples of d.", 1e-300, 1.0},
+    {"structures", "contact_density", "number", "2400", "kg/m^3", "(0, 1e5]",
+     "Density of the equivalent spheres of the Hertz contact stiffness.", 1e-300, 1e5},
+    {"structures", "contact_youngs_modulus", "number", "24.86e9", "Pa", "(0, 1e13]",
+     "Young's modulus of the equivalent spheres (57000 sqrt(4000) psi).", 1e-300, 1e13},
+    {"structures", "contact_poisson", "number", "0.15", "", "[0, 0.5)", "Poisson's ratio of the equivalent spheres.",
+     0.0, 0.499999},
+    {"structures", "kh", "number", "0", "N/m^1.5", "[0, inf)",
+     "The Hertz stiffness for every pair; 0: from equivalent spheres of the two buildings.", 0.0, inf},
+    {"structures", "equal_heights", "boolean", "false", "", "true | false",
+     "One height for both buildings, uniform on the intersection of their rule intervals (needs heights from the "
+     "rule and grid or fixed periods)."},
+    {"structures", "building1", "table", "the [structures] defaults", "", "", "Building 1 (the left one)."},
+    {"structures", "building2", "table", "the [structures] defaults", "", "", "Building 2 (the right one)."},
+
+    // ---------------------------------------------------------------- [structures.building1], [structures.building2]
+    {"structures.buildingN", "periods", "array of numbers", "[structures] periods", "s", "(0, 100], strictly increasing",
+     "This building's period grid. Not with period.", 1e-300, 100.0},
+    {"structures.buildingN", "period_min", "number", "1.00", "s", "(0, 100]", "Grid form of periods, as in [structures].",
+     1e-300, 100.0},
+    {"structures.buildingN", "period_max", "number", "1.50", "s", "(0, 100]", "Grid form of periods.", 1e-300, 100.0},
+    {"structures.buildingN", "period_step", "number", "0.05", "s", "> 0", "Grid form of periods."},
+    {"structures.buildingN", "period", "number or distribution", "none (the grid)", "s", "(0, 100]",
+     "A fixed period (a grid of one point) or a distribution drawn per sample (with the period-height rule: "
+     "truncated to the periods the rule admits, refused when that keeps less than 50 %). Not with a grid.",
+     1e-300, 100.0},
+    {"structures.buildingN", "height", "number or distribution", "the period-height rule", "m", "(0, 1000]",
+     "The building's height; default uniform on the rule interval for its period.", 1e-300, 1000.0},
+    {"structures.buildingN", "mass", "number or distribution", "the mass-index model", "kg", "(0, 1e10]",
+     "The mass; default m = mbar rho r^2 h.", 1e-300, 1e10},
+    {"structures.buildingN", "zeta", "number or distribution", "[structures] zeta", "", "[0, 1)",
+     "Viscous damping ratio.", 0.0, 0.999999},
+    {"structures.buildingN", "yield_coefficient", "number or distribution", "the drift/ductility rule", "", "(0, 5]",
+     "Cy = Vy / W: fy = Cy m g (g = 9.80665 m/s^2). Not with drift or ductility, nor for an elastic building.",
+     1e-300, 5.0},
+    {"structures.buildingN", "alpha", "number", "[structures] alpha", "", "[0, 1)", "As in [structures].", 0.0, 0.999999},
+    {"structures.buildingN", "hysteresis", "string", "[structures] hysteresis", "", "\"bilinear\" | \"elastic\"",
+     "As in [structures]."},
+    {"structures.buildingN", "aspect_ratios", "array of numbers", "[structures] aspect_ratios", "", "(0, 100]",
+     "As in [structures].", 1e-300, 100.0},
+    {"structures.buildingN", "rho_mean", "number", "[structures] rho_mean", "kg/m^3", "(0, 1e5]", "As in [structures].",
+     1e-300, 1e5},
+    {"structures.buildingN", "rho_cov", "number", "[structures] rho_cov", "", "[0, 2]", "As in [structures].", 0.0, 2.0},
+    {"structures.buildingN", "mbar_mean", "number", "[structures] mbar_mean", "", "(0, 100]", "As in [structures].",
+     1e-300, 100.0},
+    {"structures.buildingN", "mbar_cov", "number", "[structures] mbar_cov", "", "(0, 2]", "As in [structures].",
+     1e-300, 2.0},
+    {"structures.buildingN", "mbar_min", "number", "[structures] mbar_min", "", "(0, 100]", "As in [structures].",
+     1e-300, 100.0},
+    {"structures.buildingN", "mbar_max", "number", "[structures] mbar_max", "", "(mbar_min, 1000]", "As in [structures].",
+     1e-300, 1000.0},
+    {"structures.buildingN", "drift", "number", "[structures] drift", "", "(0, 1]", "As in [structures].", 1e-300, 1.0},
+    {"structures.buildingN", "ductility", "number", "[structures] ductility", "", "[1, 100]", "As in [structures].",
+     1.0, 100.0},
+    {"structures.buildingN", "height_min", "number", "[structures] height_min", "m", "(0, 1000]", "As in [structures].",
+     1e-300, 1000.0},
+    {"structures.buildingN", "height_max", "number", "[structures] height_max", "m", "[height_min, 1000]",
+     "As in [structures].", 1e-300, 1000.0},
+    {"structures.buildingN", "ct_lower", "number", "[structures] ct_lower", "s/m^x", "(0, 10]",
+     "As in [structures]; giving ct_lower, ct_upper or height_exponent checks a given height against the rule.",
+     1e-300, 10.0},
+    {"structures.buildingN", "ct_upper", "number", "[structures] ct_upper", "s/m^x", "(ct_lower, 10]",
+     "As in [structures].", 1e-300, 10.0},
+    {"structures.buildingN", "height_exponent", "number", "[structures] height_exponent", "", "(0, 2]",
+     "As in [structures].", 1e-300, 2.0},
+
+    // ---------------------------------------------------------------- distributions
+    {"distribution", "lognormal", "table", "", "", "{median, cov}", "A lognormal law (not with uniform)."},
+    {"distribution", "uniform", "table", "", "", "{min, max}", "A uniform law (not with lognormal)."},
+    {"distribution.lognormal", "median", "number", "required", "the key's", "the key's range", "The median."},
+    {"distribution.lognormal", "cov", "number", "required", "", "[0, 2]", "CoV of X; 0 means fixed."},
+    {"distribution.uniform", "min", "number", "required", "the key's", "the key's range", "Lower end."},
+    {"distribution.uniform", "max", "number", "required", "the key's", ">= min", "Upper end."},
+
+    // ---------------------------------------------------------------- [gaps]
+    {"gaps", "ratios", "array of numbers", "[0.1, 0.2, 0.3, 0.5, 0.7, 1.0]", "", "(0, 100], strictly increasing",
+     "The gaps analysed (impacts scene) as ratios of the code separation d.", 1e-9, 100.0},
+    {"gaps", "curve_max", "number", "max(1.5, the largest ratio)", "", "[0.01, 100]",
+     "Upper end of the probability-versus-gap curve.", 0.01, 100.0},
+    {"gaps", "curve_step", "number", "0.005", "", "[1e-4, 1]", "Step of the probability-versus-gap curve.", 1e-4, 1.0},
+
+    // ---------------------------------------------------------------- [contact]
+    {"contact", "law", "string", "\"hertzdamp\"", "",
+     "\"linear\" | \"kelvin\" | \"hertz\" | \"hertzdamp\" | \"jankowski\" | \"stereomechanical\"",
+     "The contact law (\"none\" is refused: it cannot count impacts)."},
+    {"contact", "damping_law", "string", "\"lankarani-nikravesh\"", "",
+     "\"lankarani-nikravesh\" | \"hunt-crossley\" | \"flores\" | \"hu-guo\" | \"gonthier\" | \"calibrated\"",
+     "How Hertzdamp's damping follows from e (calibrated: one free impact returns exactly e)."},
+    {"contact", "e", "number", "0.65", "", "(0, 1]", "Coefficient of restitution.", 1e-6, 1.0},
+    {"contact", "n", "number", "1.5", "", "[1, 3]", "Exponent of the Hertz-family force k delta^n.", 1.0, 3.0},
+    {"contact", "v0_min", "number", "1e-3", "m/s", "(0, 1]",
+     "Smallest approach velocity used to set the contact damping.", 1e-12, 1.0},
+    {"contact", "stiffness", "number", "0 (Hertz family: equivalent spheres)", "N/m^n (N/m for linear, kelvin)",
+     "(0, 1e20]", "Contact stiffness; required for linear and kelvin.", 0.0, 1e20},
+
+    // ---------------------------------------------------------------- [analysis]
+    {"analysis", "stepper", "string", "\"central-difference\"", "",
+     "\"central-difference\" | \"newmark\" | \"rk4\" | \"nigam-jennings\"", "The time integrator."},
+    {"analysis", "substeps", "integer", "1", "", "[1, 10000]", "Integration steps per record step.", 1, 10000},
+    {"analysis", "max_dt", "number", "0.0025 in the impacts scene, 0 in the probability scene", "s", "[0, 1] (0: no cap)",
+     "Largest integration step (docs/accuracy.md: 2.5 ms gives 1 % peak forces).", 0.0, 1.0},
+    {"analysis", "batch", "integer", "256", "", "[1, 65536]",
+     "Models integrated together (results do not depend on it).", 1, 65536},
+    {"analysis", "free_vibration", "number", "0", "s", "[0, 1000]", "Time analysed after the record ends.", 0.0, 1000.0},
+    {"analysis", "displacement_limit", "number", "10", "m", "(0, 1e6]",
+     "A model whose displacement exceeds this is marked diverged.", 1e-6, 1e6},
+    {"analysis", "skip_untouched", "boolean", "true", "", "true | false",
+     "Impacts scene: pairs whose uncoupled peak closing stays below a gap are not rerun with contact (their "
+     "coupled run would be identical)."},
+    {"analysis", "scale_elastic", "boolean", "true", "", "true | false",
+     "Multiple stripes: a model that stays elastic takes the lowest stripe's peaks times the ratio of the scale "
+     "factors instead of a run (an elastic response scales exactly with the record)."},
+    {"analysis", "max_excluded_fraction", "number", "0.001", "", "[0, 1]",
+     "Largest fraction of all analyses that may be excluded (diverged, non-finite, coarse) before the run ends "
+     "with exit code 3.", 0.0, 1.0},
+    {"analysis", "coarse", "string", "\"exclude\"", "", "\"exclude\" | \"keep\"",
+     "A coupled analysis the resolution guard marks coarse (its peak force is off by more than 1 %): excluded "
+     "from the statistics like a diverged one, or kept (still counted and reported)."},
+
+    // ---------------------------------------------------------------- [report]
+    {"report", "targets", "array of numbers", "[10, 5, 1]", "%", "(0, 100)",
+     "Probabilities of pounding whose separations the report gives.", 1e-6, 99.999},
+    {"report", "fit_min", "number", "0.1", "", "[0, 100]", "Lowest gap ratio of the cubic fit.", 0.0, 100.0},
+    {"report", "fit_max", "number", "1.0", "", "[0, 100], > fit_min", "Highest gap ratio of the cubic fit.", 0.0, 100.0},
+    {"report", "confidence", "number", "0.95", "", "[0.5, 0.999]", "Level of the bootstrap intervals.", 0.5, 0.999},
+    {"report", "bootstrap", "integer", "2000", "", "[0, 100000]",
+     "Replicates of the two-stage bootstrap (records, then models within records); 0: no interval.", 0, 100000},
+    {"report", "compare_with", "string", "\"\"", "", "\"\" | \"stochastic-pounding\"",
+     "Print the published study's Table 3 and eq. 10 beside ours (the paper studies set it)."},
+    {"report", "h1", "refused", "", "", "", "No longer a setting: heights come from [structures.building1] height."},
+    {"report", "h2", "refused", "", "", "", "No longer a setting: heights come from [structures.building2] height."},
+
+    // ---------------------------------------------------------------- [outputs]
+    {"outputs", "forces", "boolean", "true", "", "true | false", "Peak impact forces (impacts scene)."},
+    {"outputs", "amplification", "boolean", "true", "", "true | false",
+     "Amplification of the peak displacement by pounding (impacts scene)."},
+
+    // ---------------------------------------------------------------- [intensity]
+    {"intensity", "measure", "string", "\"Sa\"", "", "\"PGA\" | \"PGV\" | \"Sa\" | \"Sa_avg\"",
+     "The intensity measure of the stripes."},
+    {"intensity", "method", "string", "\"msa\"", "", "\"msa\" | \"ida\"",
+     "Multiple stripes (Baker 2015 MLE) or incremental dynamic analysis."},
+    {"intensity", "period", "number or \"pair\"", "required for Sa", "s", "[0.01, 20]",
+     "Sa's period; \"pair\": the geometric mean of the buildings' median periods. Only for Sa.", 0.01, 20.0},
+    {"intensity", "periods", "array of numbers or {min, max, count}", "required for Sa_avg", "s", "[0.01, 20], at least 2",
+     "Sa_avg's periods (the geometric mean of Sa over them). Only for Sa_avg.", 0.01, 20.0},
+    {"intensity", "damping", "number", "0.05", "", "[0, 0.5]", "Damping ratio of Sa and Sa_avg.", 0.0, 0.5},
+    {"intensity", "levels", "array of numbers", "required", "g (PGV: m/s)", "(0, 10] g, (0, 20] m/s; increasing",
+     "The stripes' IM levels (msa: at least 2)."},
+    {"intensity", "max_scale", "number", "10", "", "[1, 1000]",
+     "A record whose factor to a level exceeds this is dropped from that stripe.", 1.0, 1000.0},
+    {"intensity", "tolerance", "number", "0.01", "", "[1e-6, 0.5]",
+     "ida, yielding structures: bisection until the bracket of the IM at first contact is within this relative "
+     "width. Only for method = \"ida\".", 1e-6, 0.5},
+
+    {"intensity.periods", "min", "number", "required", "s", "[0.01, 20]", "First period.", 0.01, 20.0},
+    {"intensity.periods", "max", "number", "required", "s", "[0.01, 20], > min", "Last period.", 0.01, 20.0},
+    {"intensity.periods", "count", "integer", "10", "", "[2, 200]", "Number of log-spaced periods.", 2, 200},
+
+    // ---------------------------------------------------------------- [hazard]
+    {"hazard", "curve", "string", "none", "", "a CSV file",
+     "The hazard curve: rows of IM, annual rate of exceedance (IM increasing, rate decreasing; relative to the "
+     "study file). Not with k0, k."},
+    {"hazard", "k0", "number", "none", "1/year", "[1e-12, 10]",
+     "Power-law hazard lambda(IM) = k0 IM^-k. Not with curve.", 1e-12, 10.0},
+    {"hazard", "k", "number", "none", "", "[0.1, 20]", "Slope of the power-law hazard.", 0.1, 20.0},
+    {"hazard", "years", "number", "50", "years", "[1, 10000]", "Exposure time of the probability of pounding.", 1.0,
+     10000.0},
+    {"hazard", "target", "number", "2.0", "% in `years`", "[0.0001, 99]",
+     "Target probability of pounding of the risk-targeted separation.", 1e-4, 99.0},
+    {"hazard", "source", "string", "\"\"", "", "any", "Where the hazard comes from (cited in the report)."},
+
+    // ---------------------------------------------------------------- [target_spectrum]
+    {"target_spectrum", "code", "string", "required", "", "\"ASCE 7-16\" | \"EC8\" | \"Standard 2800\" | \"csv\"",
+     "The design spectrum."},
+    {"target_spectrum", "sds", "number", "required (ASCE 7-16)", "g", "(0, 5]", "ASCE 7-16: design short-period Sa.",
+     1e-6, 5.0},
+    {"target_spectrum", "sd1", "number", "required (ASCE 7-16)", "g", "(0, 5]", "ASCE 7-16: design 1-s Sa.", 1e-6, 5.0},
+    {"target_spectrum", "tl", "number", "8", "s", "[1, 20]", "ASCE 7-16: long-period transition period.", 1.0, 20.0},
+    {"target_spectrum", "mcer", "boolean", "false", "", "true | false",
+     "ASCE 7-16: true scales to the MCER spectrum, 1.5 x the design one (16.2)."},
+    {"target_spectrum", "type", "integer", "1", "", "1 | 2", "EC8: spectrum type.", 1, 2},
+    {"target_spectrum", "ground", "string", "required (EC8)", "", "\"A\" | \"B\" | \"C\" | \"D\" | \"E\"",
+     "EC8: ground type."},
+    {"target_spectrum", "agr", "number", "required (EC8)", "g", "(0, 2]", "EC8: reference peak ground acceleration on "
+     "ground A.", 1e-6, 2.0},
+    {"target_spectrum", "importance", "number", "1", "", "[0.8, 1.4]",
+     "EC8 (gammaI) and Standard 2800 (I): importance factor.", 0.8, 1.4},
+    {"target_spectrum", "a", "number", "required (Standard 2800)", "", "0.20 | 0.25 | 0.30 | 0.35",
+     "Standard 2800: design base acceleration ratio A (zone value)."},
+    {"target_spectrum", "soil", "string", "required (Standard 2800)", "", "\"I\" | \"II\" | \"III\" | \"IV\"",
+     "Standard 2800: soil type."},
+    {"target_spectrum", "file", "string", "required (csv)", "", "a CSV file",
+     "csv: the spectrum as \"period,sa\" lines in s and g (relative to the study file)."},
+    {"target_spectrum", "rule", "string", "\"ASCE 7-16\" (\"EC8\" for an EC8 target)", "",
+     "\"ASCE 7-16\" | \"ASCE 7-10\" | \"EC8\" | \"none\"",
+     "The scaling condition the suite mean must meet over the period range."},
+    {"target_spectrum", "t_min", "number", "0.2 min(T1, T2)", "s", "[0.001, 20]",
+     "Lower end of the period range (T1, T2: the buildings' median periods).", 1e-3, 20.0},
+    {"target_spectrum", "t_max", "number", "2.0 max(T1, T2) (ASCE 7-10: 1.5 max(T1, T2))", "s", "[0.001, 20], > t_min",
+     "Upper end of the period range.", 1e-3, 20.0},
+    {"target_spectrum", "points", "integer", "30", "", "[2, 1000]", "Periods at which the match is computed.", 2, 1000},
+    {"target_spectrum", "damping", "number", "0.05", "", "[0, 0.5]", "Damping ratio of the spectra.", 0.0, 0.5},
+    {"target_spectrum", "min_scale", "number", "0.25", "", "[0.001, 1000], <= max_scale",
+     "Smallest amplitude factor of a record.", 1e-3, 1000.0},
+    {"target_spectrum", "max_scale", "number", "4", "", "[0.001, 1000]", "Largest amplitude factor of a record.", 1e-3,
+     1000.0},
+};
+
+std::string cell(std::string_view s) {
+  std::string out;
+  for (char c : s) out += c == '|' ? std::string("\\|") : c == '<' ? std::string("&lt;") : c == '>' ? std::string("&gt;") : std::string(1, c);
+  return out;
+}
+
+}  // namespace
+
+std::span<const StudySection> study_sections() { return sections; }
+std::span<const StudyKey> study_keys() { return keys; }
+
+std::string study_section_of(std::string_view name) {
+  auto starts = [&](std::string_view p) { return name.substr(0, p.size()) == p; };
+  auto ends = [&](std::string_view s) { return name.size() >= s.size() && name.substr(name.size() - s.size()) == s; };
+  for (std::string_view b : {"structures.building1", "structures.building2"}) {
+    if (name == b) return "structures.buildingN";
+    if (starts(std::string(b) + ".")) {  // a distribution of one of its keys
+      if (ends(".lognormal")) return "distribution.lognormal";
+      if (ends(".uniform")) return "distribution.uniform";
+      return "distribution";
+    }
+  }
+  return std::string(name);
+}
+
+const StudyKey* find_study_key(std::string_view section, std::string_view key) {
+  for (const StudyKey& k : keys)
+    if (k.section == section && k.key == key) return &k;
+  return nullptr;
+}
+
+std::string study_reference_markdown() {
+  std::string out =
+      "# Study-file reference\n\n"
+      "<!-- Generated by `pounding study-reference` from src/config/study_keys.cpp; do not edit by hand. After a\n"
+      "     change there: build/pounding study-reference -o docs/study-reference.md (ctest docs.study_reference\n"
+      "     fails while this file differs). -->\n\n"
+      "A study is a TOML file (studies/*.toml). Every key is optional unless its default says \"required\"; an\n"
+      "unknown key, a value of the wrong type or one outside its allowed range is refused before any work starts,\n"
+      "with the file, line and key. Numbers are SI inside the engine; accelerations are in g at the edges.\n"
+      "Intervals: `[a, b]` includes both ends, `(a, b]` excludes a.\n";
+  for (const StudySection& s : sections) {
+    out += fmt::format("\n## {}\n\n{}\n\n", s.heading, s.text);
+    out += "| key | type | default | units | allowed | meaning |\n|---|---|---|---|---|---|\n";
+    for (const StudyKey& k : keys)
+      if (k.section == s.name)
+        out += fmt::format("| `{}` | {} | {} | {} | {} | {} |\n", k.key, cell(k.type), cell(k.def), cell(k.units),
+                           cell(k.range), cell(k.meaning));
+  }
+  return out;
+}
+
+}  // namespace pounding::config

@@ -1,0 +1,252 @@
+// The study-file key registry (src/config/study_keys.cpp, issue 23 item 10) against the parsers: every key a
+// parser reads is described (TableReader refuses an undescribed one, and every shipped study parses), a value
+// just outside each documented numeric range is refused naming that key, the documented defaults are the
+// parsed ones, and the documented choices are the enum tables' names. docs.study_reference checks the
+// committed docs/study-reference.md against the generator.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <map>
+#include <stdexcept>
+#include <string>
+#include <variant>
+#include <vector>
+
+#include <fmt/format.h>
+#include <toml++/toml.h>
+
+#include "pounding/config/config.hpp"
+#include "pounding/config/study_keys.hpp"
+#include "pounding/core/error.hpp"
+#include "pounding/core/files.hpp"
+#include "pounding/physics/steppers/registry.hpp"
+#include "pounding/study/settings.hpp"
+#include "pounding/study/study.hpp"
+
+#include "test_data.hpp"
+
+using namespace pounding;
+namespace fs = std::filesystem;
+
+namespace {
+
+template <class Names>
+std::string choices(const Names& names, std::string_view skip = "") {
+  std::string out;
+  for (const auto& n : names) {
+    std::string_view name;
+    if constexpr (std::is_convertible_v<decltype(n), std::string_view>) name = n;
+    else name = n.name;
+    if (name == skip) continue;
+    out += fmt::format("{}\"{}\"", out.empty() ? "" : " | ", name);
+  }
+  return out;
+}
+
+// A study of sections, each a map key -> TOML literal; tables render in a fixed order.
+using Section = std::map<std::string, std::string>;
+struct StudyText {
+  std::map<std::string, Section> sections{{"", {{"seed", "1"}}}, {"records", {{"suite", "\"builtin\""}}}};
+  std::string text() const {
+    std::string out;
+    for (const auto& [k, v] : sections.at("")) out += fmt::format("{} = {}\n", k, v);
+    for (const auto& [name, keys] : sections) {
+      if (name.empty()) continue;
+      out += fmt::format("[{}]\n", name);
+      for (const auto& [k, v] : keys) out += fmt::format("{} = {}\n", k, v);
+    }
+    return out;
+  }
+};
+
+StudyText with_intensity(bool sa_avg = false) {
+  StudyText s;
+  s.sections["intensity"] = sa_avg ? Section{{"measure", "\"Sa_avg\""}, {"periods", "[0.5, 1.0]"}, {"levels", "[0.1, 0.2]"}}
+                                   : Section{{"measure", "\"Sa\""}, {"period", "1.0"}, {"levels", "[0.1, 0.2]"}};
+  return s;
+}
+
+StudyText with_target(bool ec8 = false) {
+  StudyText s;
+  s.sections["records"]["select"] = "11";
+  s.sections["target_spectrum"] = ec8 ? Section{{"code", "\"EC8\""}, {"ground", "\"B\""}, {"agr", "0.25"}}
+                                      : Section{{"code", "\"ASCE 7-16\""}, {"sds", "1.0"}, {"sd1", "0.6"}};
+  return s;
+}
+
+// A valid study in which `key` of `section` is read, with `value` (a TOML literal) for it.
+std::string study_with(const config::StudyKey& k, const std::string& value) {
+  const std::string key(k.key), section(k.section);
+  StudyText s;
+  if (section == "records.files") {
+    s.sections["records"] = {{"files", fmt::format("[{{path = \"a.AT2\", {} = {}}}]", key, value)}};
+    return s.text();
+  }
+  if (section == "intensity") {
+    s = with_intensity(key == "periods");
+    if (key == "tolerance") s.sections["intensity"]["method"] = "\"ida\"";
+  } else if (section == "intensity.periods") {
+    s = with_intensity(true);
+    Section p{{"min", "0.2"}, {"max", "2.0"}, {"count", "5"}};
+    p[key] = value;
+    std::string inline_table;
+    for (const auto& [pk, pv] : p) inline_table += fmt::format("{}{} = {}", inline_table.empty() ? "" : ", ", pk, pv);
+    s.sections["intensity"]["periods"] = "{" + inline_table + "}";
+    return s.text();
+  } else if (section == "hazard") {
+    s = with_intensity();
+    s.sections["hazard"] = {{"k0", "1e-4"}, {"k", "2.0"}};
+  } else if (section == "target_spectrum") {
+    s = with_target(key == "agr" || key == "importance" || key == "type");
+  }
+  const std::string table = section == "structures.buildingN" ? "structures.building1" : section;
+  s.sections[table][key] = value;
+  return s.text();
+}
+
+bool numeric(const config::StudyKey& k) {
+  return k.type == "number" || k.type == "integer" || k.type == "array of numbers" ||
+         k.type == "number or distribution" || k.type == "number or \"pair\"" ||
+         k.type == "array of numbers or {min, max, count}";
+}
+
+std::string literal(const config::StudyKey& k, double v) {
+  const std::string x = k.type == "integer" ? fmt::format("{:.0f}", v) : fmt::format("{:.17g}", v);
+  return k.type.substr(0, 5) == "array" ? "[" + x + "]" : x;
+}
+
+}  // namespace
+
+TEST(StudyKeys, ReadingAnUndescribedKeyIsAProgrammingError) {
+  const toml::table root = config::parse("[records]\nsuite = \"builtin\"\n", "s.toml", "fix it");
+  config::TableReader r(root.get_as<toml::table>("records"), "s.toml", "records");
+  EXPECT_NO_THROW(r.get("suite"));
+  EXPECT_THROW(r.get("no_such_key"), std::logic_error);
+  config::TableReader b(nullptr, "s.toml", "structures.building2");  // maps to the shared building section
+  EXPECT_NO_THROW(b.get("yield_coefficient"));
+  EXPECT_THROW(b.get("code_gap_coefficient"), std::logic_error);  // a [structures]-only key
+}
+
+TEST(StudyKeys, EveryKeyIsDescribedOnceWithASectionThatExists) {
+  std::map<std::pair<std::string, std::string>, int> seen;
+  for (const config::StudyKey& k : config::study_keys()) {
+    const std::pair<std::string, std::string> id{std::string(k.section), std::string(k.key)};
+    EXPECT_EQ(++seen[id], 1) << k.section << "." << k.key;
+    bool section = false;
+    for (const config::StudySection& s : config::study_sections()) section |= s.name == k.section;
+    EXPECT_TRUE(section) << k.section << "." << k.key;
+    EXPECT_FALSE(k.type.empty()) << k.key;
+    EXPECT_FALSE(k.meaning.empty()) << k.key;
+  }
+}
+
+// Every shipped and test study parses: the parsers read no key the registry does not describe on their paths.
+TEST(StudyKeys, EveryShippedStudyParses) {
+  int n = 0;
+  for (const std::string& dir : {testdata::source_dir() + "/studies", testdata::data_dir()})
+    for (const auto& e : fs::directory_iterator(dir)) {
+      if (e.path().extension() != ".toml") continue;
+      // a base that tests complete with their own [records] (tests/data/study-select-pair.toml) gets the builtin suite
+      std::string text = files::read_text(e.path().string(), "a study");
+      if (text.find("\n[records]") == std::string::npos) text += "\n[records]\nsuite = \"builtin\"\n";
+      try {
+        parse_study(text, e.path().string());
+        ++n;
+      } catch (const InputError& err) {
+        ADD_FAILURE() << e.path() << ": " << err.what();
+      } catch (const std::logic_error& err) {
+        ADD_FAILURE() << e.path() << ": " << err.what();
+      }
+    }
+  EXPECT_GE(n, 10);
+}
+
+// The documented range is the checked one: a value just outside [lo, hi] is refused, naming the key.
+TEST(StudyKeys, AValueJustOutsideTheDocumentedRangeIsRefused) {
+  int checked = 0;
+  for (const config::StudyKey& k : config::study_keys()) {
+    if (!numeric(k) || std::isnan(k.lo) || k.section.substr(0, 12) == "distribution") continue;
+    const bool integer = k.type == "integer";
+    for (const double v : {integer ? k.lo - 1 : k.lo - std::max(std::abs(k.lo) * 1e-3, 1e-3),
+                           integer ? k.hi + 1 : k.hi + std::max(std::abs(k.hi) * 1e-3, 1e-3)}) {
+      if (!std::isfinite(v)) continue;
+      const std::string text = study_with(k, literal(k, v));
+      try {
+        parse_study(text, "s.toml");
+        ADD_FAILURE() << "[" << k.section << "]." << k.key << " = " << literal(k, v) << " was accepted; documented "
+                      << k.range << "\n" << text;
+      } catch (const InputError& e) {
+        EXPECT_NE(e.where().find(std::string(k.key)), std::string::npos)
+            << "[" << k.section << "]." << k.key << " = " << literal(k, v) << ": " << e.what();
+        ++checked;
+      }
+    }
+  }
+  EXPECT_GE(checked, 100);
+}
+
+// The documented default (where it is a TOML value) is what a study without the key gets.
+TEST(StudyKeys, DocumentedDefaultsAreTheParsedOnes) {
+  int compared = 0;
+  for (const StudyText& st : {StudyText{}, with_intensity(), with_target()}) {
+    StudyText s = st;
+    if (s.sections.count("intensity")) s.sections["hazard"] = {{"k0", "1e-4"}, {"k", "2.0"}};
+    const Study study = parse_study(s.text(), "s.toml");
+    visit_settings(study, [&](const std::string& section, const std::string& key, const auto& value) {
+      const config::StudyKey* k = config::find_study_key(section, key);
+      if (!k || s.sections[section].count(key)) return;  // not a study key (resolved settings), or given
+      toml::table parsed;
+      try {
+        parsed = toml::parse("x = " + std::string(k->def));
+      } catch (const toml::parse_error&) {
+        return;  // a sentence ("required", "the period-height rule")
+      }
+      const toml::node& d = *parsed.get("x");
+      using V = std::decay_t<decltype(value)>;
+      const std::string what = fmt::format("[{}].{} default {}", section, key, k->def);
+      if constexpr (std::is_same_v<V, double> || std::is_same_v<V, std::int64_t>) {
+        ASSERT_TRUE(d.is_number()) << what;
+        EXPECT_DOUBLE_EQ(static_cast<double>(value), d.value<double>().value()) << what;
+      } else if constexpr (std::is_same_v<V, bool>) {
+        ASSERT_TRUE(d.is_boolean()) << what;
+        EXPECT_EQ(value, d.value<bool>().value()) << what;
+      } else if constexpr (std::is_same_v<V, std::string>) {
+        ASSERT_TRUE(d.is_string()) << what;
+        EXPECT_EQ(value, d.value<std::string>().value()) << what;
+      } else if constexpr (std::is_same_v<V, std::vector<double>>) {
+        ASSERT_TRUE(d.is_array()) << what;
+        std::vector<double> doc;
+        for (const auto& e : *d.as_array()) doc.push_back(e.value<double>().value());
+        EXPECT_EQ(value, doc) << what;
+      } else {
+        return;
+      }
+      ++compared;
+    });
+  }
+  EXPECT_GE(compared, 50);
+}
+
+// Choices are listed as the parsers' own name tables give them.
+TEST(StudyKeys, DocumentedChoicesAreTheEnumTables) {
+  const std::map<std::pair<std::string, std::string>, std::string> tables{
+      {{"", "scene"}, choices(scene_names)},
+      {{"records", "units"}, choices(acc_units_names)},
+      {{"structures", "hysteresis"}, choices(hysteresis_names)},
+      {{"structures.buildingN", "hysteresis"}, choices(hysteresis_names)},
+      {{"contact", "law"}, choices(contact_law_table, "none")},
+      {{"contact", "damping_law"}, choices(damping_law_table)},
+      {{"analysis", "stepper"}, choices(kernel::stepper_names)},
+      {{"analysis", "coarse"}, choices(coarse_policy_names)},
+      {{"intensity", "measure"}, choices(im_measure_names)},
+      {{"intensity", "method"}, choices(fragility_method_names)},
+      {{"target_spectrum", "code"}, choices(target_code_names)},
+      {{"target_spectrum", "rule"}, choices(scaling_rule_names)},
+  };
+  for (const auto& [sk, names] : tables) {
+    const config::StudyKey* k = config::find_study_key(sk.first, sk.second);
+    ASSERT_NE(k, nullptr) << sk.first << "." << sk.second;
+    EXPECT_EQ(k->range, names) << "[" << sk.first << "]." << sk.second;
+  }
+}
