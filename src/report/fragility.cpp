@@ -58,6 +58,22 @@ std::vector<double> demand_ratios(const Results& r) {
   return d;
 }
 
+bool any_positive(const std::vector<double>& demand) {
+  return std::any_of(demand.begin(), demand.end(), [](double v) { return std::isfinite(v) && v > 0; });
+}
+
+// Every analysis excluded (diverged, non-finite) or none closing at all: there are no gaps to search. The run still
+// writes its results (and exits 3 when the exclusions are too many, with the banner), so this is a status, not an
+// error after the work is done (issue 24, item 4).
+stripes::TargetGap no_target(double lambda_target) {
+  stripes::TargetGap t;
+  t.lambda_target = lambda_target;
+  t.status = "not found";
+  t.note = "no counted analysis has a positive peak closing (every one excluded, or the buildings never approach): "
+           "there is no gap to search; see the excluded analyses above";
+  return t;
+}
+
 void add_fit_rows(Group& g, const std::vector<stripes::GapFragility>& fits, std::size_t S, const std::string& units) {
   const std::size_t G = fits.size();
   std::vector<double> theta(G), beta(G), tlo(G), thi(G), blo(G), bhi(G), fitted(G * S, NAN);
@@ -164,7 +180,7 @@ void analyse_fragility(Results& r) {
     const stripes::Demands D{levels, r.record_count(), r.model_count(), demand};
     fits = stripes::fit_msa(D, gaps, st, hz ? &*hz : nullptr);
     if (hz) {
-      target = stripes::risk_targeted_gap(D, *hz, lambda_target, st);
+      target = any_positive(demand) ? stripes::risk_targeted_gap(D, *hz, lambda_target, st) : no_target(lambda_target);
       std::vector<double> grid;
       for (double x = r.settings.number("gaps", "curve_step"); x <= r.settings.number("gaps", "curve_max") + 1e-12;
            x += r.settings.number("gaps", "curve_step"))

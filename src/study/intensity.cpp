@@ -145,6 +145,22 @@ void read_hazard_csv(const std::string& file, std::vector<double>& im, std::vect
   if (im.size() < 2) throw InputError("a hazard curve needs at least two rows", file, "give IM, rate rows");
 }
 
+// A table that lies wholly above or below the stripes' levels gives a rate that comes entirely from its extended end
+// slopes (issue 24, item 4: 177 poundings a year, 100 % from beyond the table) -- most often a curve in other units
+// (cm/s^2, m/s^2, or PGV in cm/s) or for another IM. A table that overlaps the stripes is integrated, and the share
+// of the rate from beyond it is reported and warned about.
+void check_hazard_covers_stripes(const HazardSpec& h, const IntensitySpec& in, const std::string& where) {
+  if (in.levels.empty() || h.im.empty()) return;
+  if (h.im.back() >= in.levels.front() && h.im.front() <= in.levels.back()) return;
+  throw InputError(fmt::format("the hazard curve covers IM {:g} to {:g}, {} the stripes' levels {:g} to {:g}: its rate "
+                               "would come entirely from extending the table's end slopes",
+                               h.im.front(), h.im.back(), h.im.back() < in.levels.front() ? "wholly below" : "wholly above",
+                               in.levels.front(), in.levels.back()),
+                   where,
+                   "give the hazard of the fragility's IM in its units (g for PGA, Sa, Sa_avg; m/s for PGV) over a range "
+                   "that covers [intensity] levels");
+}
+
 HazardSpec parse_hazard(const toml::table* t, const std::string& path, const IntensitySpec& intensity) {
   HazardSpec h;
   if (!t) return h;
@@ -167,6 +183,7 @@ HazardSpec parse_hazard(const toml::table* t, const std::string& path, const Int
     } catch (const InputError& e) {
       throw InputError(e.what_part(), e.where(), e.fix() + fmt::format(" ({})", r.where("curve")));
     }
+    check_hazard_covers_stripes(h, intensity, r.where("curve"));
   }
   h.years = r.number("years", 50.0);
   h.target = r.number("target", 2.0);

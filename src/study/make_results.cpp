@@ -1,5 +1,6 @@
 #include "pounding/study/make_results.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <ctime>
 #include <type_traits>
@@ -118,7 +119,8 @@ Exclusions count_exclusions(const Study& study, const WorkPlan& L, const Tally& 
     return s != 0 && s != results::dropped_status && !(keep && s == static_cast<std::uint8_t>(LaneStatus::coarse));
   };
   if (L.impacts) ex.coarse = coarse_summary(study, L, t, records);
-  std::vector<std::string> lost;
+  std::vector<std::string> lost;  // each record once, in order
+  std::vector<int> lost_at;       // ... and at how many stripes (1 without stripes)
   for (std::size_t r = 0; r < L.analysis_records(); ++r) {  // (stripe, record) in a multiple-stripe study
     std::int64_t bad_unc = 0, bad_cpl = 0;
     std::int64_t dropped = 0;
@@ -128,9 +130,16 @@ Exclusions count_exclusions(const Study& study, const WorkPlan& L, const Tally& 
       for (std::size_t i = r * M * G; i < (r + 1) * M * G; ++i) bad_cpl += bad(t.values<std::uint8_t>(imp_status)[i]);
     ex.excluded += bad_unc + bad_cpl;
     ex.total += static_cast<std::int64_t>(M + (L.impacts ? M * G : 0));
-    if (M > 0 && (bad_unc == static_cast<std::int64_t>(M) || (L.impacts && bad_cpl == static_cast<std::int64_t>(M * G))))
-      lost.push_back(records[r % records.size()].id);
+    if (M > 0 && (bad_unc == static_cast<std::int64_t>(M) || (L.impacts && bad_cpl == static_cast<std::int64_t>(M * G)))) {
+      const std::string& id = records[r % records.size()].id;
+      const auto it = std::find(lost.begin(), lost.end(), id);
+      if (it == lost.end()) lost.push_back(id), lost_at.push_back(1);
+      else ++lost_at[static_cast<std::size_t>(it - lost.begin())];
+    }
   }
+  const std::size_t stripes = records.empty() ? 1 : L.analysis_records() / records.size();
+  if (stripes > 1)  // a multiple-stripe study: say at how many of the stripes, not the name once per stripe
+    for (std::size_t i = 0; i < lost.size(); ++i) lost[i] += fmt::format(" ({} of {} stripes)", lost_at[i], stripes);
   const double frac = ex.total ? static_cast<double>(ex.excluded) / static_cast<double>(ex.total) : 0.0;
   if (!lost.empty())
     ex.verdict = fmt::format("every {}analysis of record(s) {} diverged or was non-finite",

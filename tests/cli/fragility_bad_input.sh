@@ -89,6 +89,18 @@ levels = [0.1, 0.2]
 [hazard]
 k0 = 1e-4
 k = -2"
+# a hazard table wholly above or below the stripes (here in thousandths of g, and in g/1000): the rate would be all
+# extrapolation (issue 24, item 4: 177 poundings a year, "100 % from beyond the hazard table", exit 0)
+printf 'Sa_g,annual_rate\n100,0.1\n300,0.01\n1000,0.001\n' > "$tmp/high.csv"
+expect_error hazard_above 'covers IM 100 to 1000, wholly above the stripes. levels 0.1 to 0.2.*\[hazard\].curve.*units' "$I
+levels = [0.1, 0.2]
+[hazard]
+curve = \"high.csv\""
+printf 'Sa_g,annual_rate\n0.0001,0.1\n0.0003,0.01\n0.001,0.001\n' > "$tmp/low.csv"
+expect_error hazard_below 'wholly below the stripes' "$I
+levels = [0.1, 0.2]
+[hazard]
+curve = \"low.csv\""
 body=$impacts expect_error impacts_scene 'runs in the probability scene' "$I
 levels = [0.1, 0.2]"
 echo "$passes passed, $fails failed"

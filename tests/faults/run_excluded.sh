@@ -47,6 +47,38 @@ sed 's/^batch = 8/batch = 8\nmax_excluded_fraction = 1.0/' "$tmp/stiff.toml" > "
 rc=0; "$bin" run "$tmp/allow.toml" --out "$tmp/allow.h5" --quiet > "$tmp/allow.md" 2>/dev/null || rc=$?
 [ "$rc" -eq 0 ] || fail "max_excluded_fraction = 1: exit $rc (want 0)"
 grep -q "WARNING" "$tmp/allow.md" && fail "banner although the study allows the exclusions"
+# a multiple-stripe fragility study with a hazard in which every analysis is excluded (displacement_limit far below
+# any response): exit 3 with the banner and "not found" for the separation, not exit 2 "no positive demand" after
+# the work (issue 24, item 4)
+cat > "$tmp/msa.toml" <<'TOML'
+title = "every stripe analysis excluded"
+seed = 3
+scene = "probability"
+[records]
+suite = "builtin"
+synthetic_only = true
+limit = 3
+[structures]
+samples_per_pair = 4
+[analysis]
+displacement_limit = 1e-6
+[intensity]
+measure = "Sa"
+period = 1.0
+levels = [0.1, 0.2, 0.4]
+[hazard]
+k0 = 1e-4
+k = 2.5
+[report]
+bootstrap = 10
+TOML
+rc=0; "$bin" run "$tmp/msa.toml" --out "$tmp/msa.h5" --quiet > "$tmp/msa.md" 2> "$tmp/msa.err" || rc=$?
+[ "$rc" -eq 3 ] || { fail "stripes, every analysis excluded: exit $rc (want 3)"; cat "$tmp/msa.err"; }
+[ -f "$tmp/msa.h5" ] || fail "stripes, every analysis excluded: no results file"
+head -3 "$tmp/msa.md" | grep -q "WARNING — results not trustworthy as they stand:.*EQ1 (3 of 3 stripes)" ||
+  { fail "stripes: no banner naming each record once at the top of the report"; head -5 "$tmp/msa.md"; }
+grep -q "not found (not found).*no counted analysis has a positive peak closing" "$tmp/msa.md" ||
+  fail "stripes: the separation is not reported as not found"
 # a healthy study: exit 0, no banner
 cat > "$tmp/ok.toml" <<'TOML'
 title = "healthy"
