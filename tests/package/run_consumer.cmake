@@ -36,10 +36,19 @@ endforeach()
 run("consumer configure" ${CMAKE_COMMAND} -S ${SOURCE_DIR}/tests/package/consumer -B ${WORK_DIR}/consumer
     -G ${GENERATOR} -DCMAKE_CXX_COMPILER=${CXX} -DCMAKE_BUILD_TYPE=Release -DCMAKE_PREFIX_PATH=${prefix}
     -DPOUNDING_EXPECTED_VERSION=${VERSION})
+# the consumer enables only CXX, and find_package(pounding) must not have enabled C behind its back
+file(STRINGS ${WORK_DIR}/consumer/CMakeCache.txt c_compiler REGEX "^CMAKE_C_COMPILER:")
+if(c_compiler)
+  message(FATAL_ERROR "find_package(pounding) enabled the C language in a C++-only consumer: ${c_compiler}")
+endif()
 run("consumer build" ${CMAKE_COMMAND} --build ${WORK_DIR}/consumer)
-run("consumer run" ${WORK_DIR}/consumer/consumer)
+execute_process(COMMAND ${WORK_DIR}/consumer/consumer WORKING_DIRECTORY ${WORK_DIR} RESULT_VARIABLE rc
+                OUTPUT_VARIABLE last_output ERROR_VARIABLE err)
+if(NOT rc EQUAL 0)
+  message(FATAL_ERROR "consumer run failed (${rc}):\n${last_output}\n${err}")
+endif()
 message("${last_output}")
-if(NOT last_output MATCHES "peak closing [0-9.e+-]+ m")
-  message(FATAL_ERROR "the consumer printed no peak closing")
+if(NOT last_output MATCHES "peak closing [0-9.e+-]+ m" OR NOT last_output MATCHES "HDF5 round trip: ok")
+  message(FATAL_ERROR "the consumer printed no peak closing or no HDF5 round trip")
 endif()
 file(REMOVE_RECURSE ${WORK_DIR})

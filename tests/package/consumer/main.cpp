@@ -3,12 +3,14 @@
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
+#include <span>
 #include <string>
 #include <vector>
 
 #include "pounding/contact/model.hpp"
 #include "pounding/physics/batch.hpp"
 #include "pounding/core/version.hpp"
+#include "pounding/io/hdf5.hpp"
 #include "pounding/testing/workloads.hpp"
 
 int main() {
@@ -38,5 +40,15 @@ int main() {
                   out.peak_closing[0] > 0;
   std::printf("pounding %s: peak closing %.6g m, %d impacts, status %s\n", program_version, out.peak_closing[0],
               out.impact_count[0], std::string(to_string(static_cast<LaneStatus>(out.status[0]))).c_str());
-  return ok ? 0 : 1;
+  // HDF5 through pounding::io: the package's HDF5 link dependency works without FindHDF5 in this C++-only project
+  const std::string h5 = "consumer-peak.h5";
+  {
+    h5::AtomicFile file(h5);
+    h5::write_dataset(file.root(), "peak_closing", std::span<const double>(out.peak_closing.data(), 1));
+    file.commit();
+  }
+  const std::vector<double> back = h5::read_doubles(h5::open_read(h5).get(), "peak_closing");
+  std::remove(h5.c_str());
+  std::printf("HDF5 round trip: %s\n", back.size() == 1 && back[0] == out.peak_closing[0] ? "ok" : "FAILED");
+  return ok && back.size() == 1 && back[0] == out.peak_closing[0] ? 0 : 1;
 }
