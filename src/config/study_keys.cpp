@@ -93,6 +93,12 @@ constexpr StudyKey keys[] = {
     {"records", "select", "integer", "none", "", "[1, 100000]",
      "Choose N records from the library named above and scale them to [target_spectrum] (ASCE 7-16 asks for at "
      "least 11). Needs [target_spectrum]; not with limit.", 1, 100000},
+    {"records", "max_per_event", "integer", "2", "", "[0, 100000]",
+     "With select: at most this many records of one earthquake (0: no limit). FEMA P-695's far-field set takes at "
+     "most two per event, against event bias. Event from MANIFEST.tsv or the PEER header.", 0, 100000},
+    {"records", "components", "string", "\"one\"", "", "\"one\" | \"both\"",
+     "With select: one = one component per station (the better match); both = both may be chosen. A second copy of "
+     "one recording (same event, station and axis) is never chosen."},
 
     {"records.files", "path", "string", "required", "", "a record file", "The record file (relative to the study)."},
     {"records.files", "scale", "number", "1.0", "", "(0, 1000]", "Factor applied to this record.", 1e-6, 1e3},
@@ -330,10 +336,11 @@ constexpr StudyKey keys[] = {
     {"target_spectrum", "rule", "string", "\"ASCE 7-16\" (\"EC8\" for an EC8 target)", "",
      "\"ASCE 7-16\" | \"ASCE 7-10\" | \"EC8\" | \"none\"",
      "The scaling condition the suite mean must meet over the period range."},
-    {"target_spectrum", "t_min", "number", "0.2 min(T1, T2)", "s", "[0.001, 20]",
-     "Lower end of the period range (T1, T2: the buildings' median periods).", 1e-3, 20.0},
-    {"target_spectrum", "t_max", "number", "2.0 max(T1, T2) (ASCE 7-10: 1.5 max(T1, T2))", "s", "[0.001, 20], > t_min",
-     "Upper end of the period range.", 1e-3, 20.0},
+    {"target_spectrum", "t_min", "number", "0.2 min(T1, T2)", "s", "[0.01, 20]",
+     "Lower end of the period range (T1, T2: the buildings' median periods); the range of records select --period.",
+     0.01, 20.0},
+    {"target_spectrum", "t_max", "number", "2.0 max(T1, T2) (ASCE 7-10: 1.5 max(T1, T2))", "s", "[0.01, 20], > t_min",
+     "Upper end of the period range.", 0.01, 20.0},
     {"target_spectrum", "points", "integer", "30", "", "[2, 1000]", "Periods at which the match is computed.", 2, 1000},
     {"target_spectrum", "damping", "number", "0.05", "", "[0, 0.5]", "Damping ratio of the spectra.", 0.0, 0.5},
     {"target_spectrum", "min_scale", "number", "0.25", "", "[0.001, 1000], <= max_scale",

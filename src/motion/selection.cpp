@@ -29,19 +29,35 @@ double rule_fraction(ScalingRule rule) {
   return 0.0;
 }
 
+ComponentRule parse_component_rule(const std::string& name) {
+  if (auto r = parse_enum(component_rule_names, name)) return *r;
+  throw InputError(fmt::format("unknown components rule '{}'", escaped_excerpt(name)), "--components",
+                   "use " + enum_name_list(component_rule_names, " or ", "\""));
+}
+
 void validate(const SelectionOptions& o) {
   if (o.count < 1) throw InputError("count 0", "--count", "choose at least 1 record");
   if (!(o.t_lo > 0) || !std::isfinite(o.t_lo) || !(o.t_hi > o.t_lo) || !std::isfinite(o.t_hi))
     throw InputError(fmt::format("period range {}-{} s is not 0 < t_lo < t_hi", o.t_lo, o.t_hi), "--range",
                      "give a range such as 0.2,2.0 (multiples of --period, which must be > 0)");
-  if (o.points < 2) throw InputError(fmt::format("{} periods", o.points), "--points", "give at least 2 periods");
-  if (!(o.min_scale > 0) || !(o.max_scale >= o.min_scale) || !std::isfinite(o.max_scale))
-    throw InputError(fmt::format("scale limits [{}, {}] are not 0 < min <= max", o.min_scale, o.max_scale),
+  if (o.t_lo < selection_period_min || o.t_hi > selection_period_max)
+    throw InputError(fmt::format("period range {:g}-{:g} s is outside the spectra's [{:g}, {:g}] s", o.t_lo, o.t_hi,
+                                 selection_period_min, selection_period_max),
+                     "--range", "give periods of a building (the range is 0.2 T to 2 T by default)");
+  if (o.points < 2 || o.points > selection_points_max)
+    throw InputError(fmt::format("{} periods is outside [2, {}]", o.points, selection_points_max), "--points",
+                     "give 2 to 1000 periods (30 is usual)");
+  if (!(o.min_scale >= selection_scale_min) || !(o.max_scale >= o.min_scale) || !(o.max_scale <= selection_scale_max))
+    throw InputError(fmt::format("scale limits [{}, {}] are not {:g} <= min <= max <= {:g}", o.min_scale, o.max_scale,
+                                 selection_scale_min, selection_scale_max),
                      "--min-scale/--max-scale", "give e.g. --min-scale 0.25 --max-scale 4");
-  if (!(o.damping >= 0 && o.damping < 1))
-    throw InputError(fmt::format("damping ratio {} is outside [0, 1)", o.damping), "--damping", "give e.g. 0.05");
+  if (!(o.damping >= 0 && o.damping <= selection_damping_max))
+    throw InputError(fmt::format("damping ratio {} is outside [0, {:g}]", o.damping, selection_damping_max), "--damping",
+                     "give e.g. 0.05");
   if (static_cast<std::size_t>(o.rule) >= std::size(scaling_rule_names))
     throw InputError("scaling rule out of range", "--rule", "use " + enum_name_list(scaling_rule_names, " or "));
+  if (static_cast<std::size_t>(o.components) >= std::size(component_rule_names))
+    throw InputError("components rule out of range", "--components", "use one or both");
 }
 
 std::vector<double> log_spaced(double t_lo, double t_hi, int points) {
@@ -229,7 +245,73 @@ void add_warnings(Selection& s, const SelectionOptions& o, std::span<const Selec
   if (!s.meets) s.warnings.push_back("the code condition does not hold: " + s.rule_text);
 }
 
+std::string component_text(const RecordIdentity& id) { return id.component.empty() ? "?" : id.component; }
+
+// Why candidate c may not join `chosen` (empty: it may): one recording twice, a station's second component, an
+// event's quota.
+std::string refusal(std::size_t c, const std::vector<std::size_t>& chosen, const std::vector<RecordIdentity>& ids,
+                    std::span<const SelectionCandidate> cands, const SelectionOptions& o) {
+  const RecordIdentity& me = ids[c];
+  if (!me.known()) return "";
+  std::vector<std::string> same_event_ids;
+  for (std::size_t k : chosen) {
+    const RecordIdentity& other = ids[k];
+    if (same_recording(me, other))
+      return fmt::format("the same recording as {} ({}, {}, component {} ~ {}: one motion, two files)", cands[k].id,
+                         me.event_text(), me.station, component_text(me), component_text(other));
+    if (o.components == ComponentRule::one && same_station(me, other))
+      return fmt::format("the other component of station {} ({}), already chosen as {} (components = one)",
+                         me.station, me.event_text(), cands[k].id);
+    if (same_event(me, other)) same_event_ids.push_back(cands[k].id);
+  }
+  if (o.max_per_event > 0 && same_event_ids.size() >= o.max_per_event) {
+    std::string list;
+    for (const auto& x : same_event_ids) list += (list.empty() ? "" : ", ") + x;
+    return fmt::format("{} already has {} record{} chosen ({}; max_per_event = {})", me.event_text(),
+                       same_event_ids.size(), same_event_ids.size() == 1 ? "" : "s", list, o.max_per_event);
+  }
+  return "";
+}
+
 }  // namespace
+
+std::vector<std::size_t> apply_recording_rules(Selection& s, std::span<const SelectionCandidate> candidates,
+                                               const std::vector<std::size_t>& ranked, const SelectionOptions& o) {
+  std::vector<RecordIdentity> ids;
+  ids.reserve(candidates.size());
+  for (const auto& c : candidates) {
+    ids.push_back(c.record ? identity_of(*c.record) : RecordIdentity{});
+    s.unidentified += !ids.back().known();
+  }
+  std::vector<std::size_t> chosen;
+  std::vector<RefusedCandidate> refused;
+  for (std::size_t c : ranked) {
+    if (chosen.size() == o.count) break;
+    std::string why = refusal(c, chosen, ids, candidates, o);
+    if (why.empty()) chosen.push_back(c);
+    else refused.push_back({c, std::move(why)});
+  }
+  if (chosen.size() < o.count) {
+    std::size_t dup = 0, comp = 0, event = 0;
+    for (const auto& r : refused) {
+      if (r.reason.rfind("the same recording", 0) == 0) ++dup;
+      else if (r.reason.rfind("the other component", 0) == 0) ++comp;
+      else ++event;
+    }
+    std::string fix;
+    if (event > 0) fix += fmt::format("raise --max-per-event (now {}; {} passed over for it)", o.max_per_event, event);
+    if (comp > 0) fix += fmt::format("{}allow both components of a station (--components both; {} passed over)",
+                                     fix.empty() ? "" : ", ", comp);
+    fix += fmt::format("{}lower the count, or add records of other events and stations", fix.empty() ? "" : ", ");
+    throw InputError(fmt::format("only {} of the {} eligible records are distinct recordings within the event and "
+                                 "component rules ({} second copies of one recording, {} second components, {} over "
+                                 "an event's quota), {} needed",
+                                 chosen.size(), ranked.size(), dup, comp, event, o.count),
+                     "--max-per-event/--components", fix);
+  }
+  s.refused = std::move(refused);
+  return chosen;
+}
 
 Selection select_records(std::span<const SelectionCandidate> candidates, const DesignSpectrum& target,
                          const SelectionOptions& options) {
@@ -247,12 +329,13 @@ Selection select_records(std::span<const SelectionCandidate> candidates, const D
   s.eligible = order.size();
   if (s.eligible < options.count) too_few_eligible(all, s.eligible, options);
   std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return all[a].mse < all[b].mse; });
-  order.resize(options.count);
+  order = apply_recording_rules(s, candidates, order, options);
   std::vector<double> pgas;
   for (std::size_t i : order) {
     s.chosen.push_back(i);
     s.individual_scale.push_back(all[i].scale);
     s.mse.push_back(all[i].mse);
+    s.identity.push_back(identity_of(*candidates[i].record));
     s.spectra.push_back(all[i].spectrum);
     pgas.push_back(candidates[i].record->pga() / g_accel);
   }

@@ -47,10 +47,24 @@ std::vector<std::string> selection_summary(const Selection& s, std::span<const s
                             so.t_hi, 100 * so.damping));
   out.push_back(fmt::format("candidates: {}, eligible (factor within [{:g}, {:g}]): {}, chosen: {}", ids.size(),
                             so.min_scale, so.max_scale, s.eligible, s.chosen.size()));
-  out.push_back(fmt::format("{:>4} {:<40} {:>9} {:>9} {:>9}  {}", "rank", "record", "f_i", "MSE", "scale", "file"));
-  for (std::size_t k = 0; k < s.chosen.size(); ++k)
-    out.push_back(fmt::format("{:>4} {:<40} {:>9.4f} {:>9.5f} {:>9.4f}  {}", k + 1, ids[s.chosen[k]],
-                              s.individual_scale[k], s.mse[k], s.scale[k], sources[s.chosen[k]]));
+  out.push_back(fmt::format("{:>4} {:<44} {:>9} {:>9} {:>9}  {:<30} {:<32} {:<5} {}", "rank", "record", "f_i", "MSE",
+                            "scale", "event", "station", "comp", "file"));
+  for (std::size_t k = 0; k < s.chosen.size(); ++k) {
+    const RecordIdentity& id = s.identity[k];
+    out.push_back(fmt::format("{:>4} {:<44} {:>9.4f} {:>9.5f} {:>9.4f}  {:<30} {:<32} {:<5} {}", k + 1, ids[s.chosen[k]],
+                              s.individual_scale[k], s.mse[k], s.scale[k], id.known() ? id.event_text() : "-",
+                              id.known() ? id.station : "-", id.known() && !id.component.empty() ? id.component : "-",
+                              sources[s.chosen[k]]));
+  }
+  out.push_back(fmt::format("rules: at most {} per event, components = {}; {} record{} passed over{}",
+                            so.max_per_event == 0 ? std::string("any number") : std::to_string(so.max_per_event),
+                            to_string(so.components), s.refused.size(), s.refused.size() == 1 ? "" : "s",
+                            s.refused.empty() ? "" : ":"));
+  for (const auto& r : s.refused) out.push_back(fmt::format("  refused {}: {}", ids[r.candidate], r.reason));
+  if (s.unidentified > 0)
+    out.push_back(fmt::format("  {} of {} candidates have no recorded event/station (synthetic, or a file without a "
+                              "MANIFEST.tsv row or PEER header line): not checked for duplicates",
+                              s.unidentified, ids.size()));
   out.push_back(fmt::format("suite factor F = {:.6f}", s.suite_factor));
   out.push_back(fmt::format("min mean/target over the range = {:.6f}{}", s.min_ratio,
                             so.rule == ScalingRule::ec8 ? fmt::format(" (mean PGA / ag S = {:.6f})", s.pga_ratio)

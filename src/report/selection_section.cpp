@@ -19,9 +19,26 @@ std::string selection_section(const results::Results& r) {
                    g->text("target_description"), ids.size(), static_cast<long>(g->number("candidates")),
                    static_cast<long>(g->number("eligible")), g->number("min_scale"), g->number("max_scale"),
                    g->get<double>("periods").size(), g->number("suite_factor"));
-  s += "| record | factor f_i F | f_i | misfit (MSE of ln Sa) |\n|---|---|---|---|\n";
+  // event/station: results written before issue 23 item 7 have none ("-")
+  const bool has_identity = g->find("event") != nullptr;
+  auto text_at = [&](const char* name, std::size_t k) {
+    if (!has_identity) return std::string("-");
+    const auto& v = g->get<std::string>(name);
+    return k < v.size() && !v[k].empty() ? v[k] : std::string("-");
+  };
+  s += "| record | event | station | comp. | factor f_i F | f_i | misfit (MSE of ln Sa) |\n"
+       "|---|---|---|---|---|---|---|\n";
   for (std::size_t k = 0; k < ids.size(); ++k)
-    s += fmt::format("| {} | {:.4f} | {:.4f} | {:.5f} |\n", ids[k], scale[k], f[k], mse[k]);
+    s += fmt::format("| {} | {} | {} | {} | {:.4f} | {:.4f} | {:.5f} |\n", ids[k], text_at("event", k),
+                     text_at("station", k), text_at("component", k), scale[k], f[k], mse[k]);
+  if (has_identity) {
+    const auto mpe = static_cast<long>(g->number("max_per_event"));
+    s += fmt::format("\nRules: at most {} per event, components = {}; a second copy of one recording is never "
+                     "chosen.\n", mpe == 0 ? std::string("any number") : std::to_string(mpe), g->text("components"));
+    if (const auto* w = g->attribute("refused"))
+      if (const auto* list = std::get_if<std::vector<std::string>>(w))
+        for (const auto& line : *list) s += "- passed over: " + line + "\n";
+  }
   const bool none = g->text("rule") == "none";
   s += fmt::format("\n{}: {} (smallest mean/target {:.4f}{}).\n", g->text("rule_text"),
                    none ? "no condition" : g->number("meets") != 0 ? "**holds**" : "**does NOT hold**",

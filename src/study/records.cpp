@@ -5,6 +5,7 @@
 #include <fmt/format.h>
 
 #include "pounding/core/error.hpp"
+#include "pounding/motion/library.hpp"
 #include "pounding/study/study.hpp"
 
 namespace pounding {
@@ -13,12 +14,15 @@ namespace fs = std::filesystem;
 
 namespace {
 // scale_setting: where the user set `scale` ("[records] scale", or a files entry's scale).
-StudyRecord from_file(const std::string& path, double scale, const Study& s, const std::string& scale_setting) {
+// manifests: the MANIFEST.tsv rows read so far (event, station, component for the selection's rules).
+StudyRecord from_file(const std::string& path, double scale, const Study& s, const std::string& scale_setting,
+                      RecordManifests& manifests) {
   ReadOptions ro;
   ro.units = s.units;
   ro.dt = s.dt_one_column;
   StudyRecord r;
   r.record = read_record(path, ro);
+  manifests.annotate(r.record);
   for (double& a : r.record.acc) a *= scale;
   // a PGA of 499 g (a file in cm/s^2 read as g, or scale = 1000) would make every analysis diverge
   require_analysable(r.record, {scale, scale_setting, "set [records] units = \"cm/s2\" in " + s.path});
@@ -30,24 +34,18 @@ StudyRecord from_file(const std::string& path, double scale, const Study& s, con
 
 std::vector<StudyRecord> load_study_records(const Study& s, StudySelection* selection) {
   std::vector<StudyRecord> out;
+  RecordManifests manifests;
   if (!s.files.empty()) {
     for (const auto& f : s.files)
       out.push_back(from_file(f.path, f.scale * s.scale, s,
                               f.scale != 1.0 ? fmt::format("the [records] files entry's scale ({}) x [records] scale ({}) "
                                                            "in {}", f.scale, s.scale, s.path)
-                                             : "[records] scale in " + s.path));
+                                             : "[records] scale in " + s.path,
+                              manifests));
   } else if (!s.directory.empty()) {
-    if (!fs::is_directory(s.directory))
-      throw InputError("records directory not found", s.directory, "fix [records] directory");
-    std::vector<std::string> paths;
-    for (const auto& e : fs::directory_iterator(s.directory)) {
-      auto ext = e.path().extension().string();
-      std::transform(ext.begin(), ext.end(), ext.begin(), ::tolower);
-      if (e.is_regular_file() && (ext == ".at2" || ext == ".txt")) paths.push_back(e.path().string());
-    }
-    std::sort(paths.begin(), paths.end());
-    if (paths.empty()) throw InputError("no .AT2 or .txt records in the directory", s.directory, "point [records] directory at PEER files");
-    for (const auto& p : paths) out.push_back(from_file(p, s.scale, s, "[records] scale in " + s.path));
+    // the one directory reader (motion/library.hpp), the files `records select --directory` reads
+    for (const auto& p : record_files_in(s.directory, "[records] directory in " + s.path))
+      out.push_back(from_file(p, s.scale, s, "[records] scale in " + s.path, manifests));
   } else {
     out = load_suite_records(s);
   }

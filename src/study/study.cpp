@@ -70,8 +70,15 @@ void parse_records(Study& s, const toml::table* t, const std::string& path) {
       throw InputError("limit and select both shorten the record list", r.where("limit"),
                        "delete limit: select = N already chooses N records (the best matches to [target_spectrum])");
   }
+  if (r.get("max_per_event") || r.get("components")) {
+    if (s.select == 0)
+      throw InputError("max_per_event and components are rules of a selection", r.where(r.get("max_per_event") ? "max_per_event" : "components"),
+                       "add select = N and a [target_spectrum], or delete the key");
+    s.max_per_event = static_cast<std::size_t>(r.integer("max_per_event", static_cast<long>(default_max_per_event)));
+    s.components = r.choice("components", "one", parse_component_rule);
+  }
   parse_record_files(s, r, path);
-  r.finish("suite, real_dir, directory, files, scale, units, dt, limit, synthetic_only, select");
+  r.finish("suite, real_dir, directory, files, scale, units, dt, limit, synthetic_only, select, max_per_event, components");
   int sources = !s.suite.empty() + !s.directory.empty() + !s.files.empty();
   if (sources != 1)
     throw InputError(sources == 0 ? "the study names no records" : "the study names records in more than one way",

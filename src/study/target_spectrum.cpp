@@ -139,6 +139,7 @@ TargetSpectrumSection parse_target_spectrum(const toml::table* t, const std::str
   const std::string code_keys = read_code_parameters(x.spec, r, path);
   x.options.rule = r.get("rule") ? r.choice("rule", "", parse_scaling_rule) : default_scaling_rule(x.spec.code);
   read_range(x, r, structures);
+  // the ranges of src/config/study_keys.cpp are validate()'s (selection.hpp: selection_period_min ...)
   x.options.points = static_cast<int>(r.integer("points", 30));
   x.options.damping = r.number("damping", 0.05);
   x.options.min_scale = r.number("min_scale", 0.25);
@@ -165,13 +166,17 @@ InputError in_study_terms(const InputError& e, const Study& s) {
   for (const auto& [flag, key] : {std::pair<std::string, std::string>{"--max-scale", "[target_spectrum] max_scale"},
                                   {"--min-scale", "[target_spectrum] min_scale"},
                                   {"--count", "[records] select"},
+                                  {"--max-per-event", "[records] max_per_event"},
+                                  {"--components both", "[records] components = \"both\""},
                                   {"--rule", "[target_spectrum] rule"}})
     for (std::size_t p = fix.find(flag); p != std::string::npos; p = fix.find(flag, p + key.size()))
       fix.replace(p, flag.size(), key);
   const bool scale = e.where().find("--count") != std::string::npos;
+  const bool rules = e.where().find("--max-per-event") != std::string::npos;
   return InputError(e.what_part(),
-                    scale ? fmt::format("{} and {} min_scale, max_scale", s.select_where, s.target.where)
-                          : s.target.where,
+                    scale   ? fmt::format("{} and {} min_scale, max_scale", s.select_where, s.target.where)
+                    : rules ? s.select_where
+                            : s.target.where,
                     fix);
 }
 
@@ -186,6 +191,8 @@ std::vector<StudyRecord> select_study_records(const Study& s, std::vector<StudyR
   const TargetSpectrumSection& t = s.target;
   out.options = t.options;
   out.options.count = n;
+  out.options.max_per_event = s.max_per_event;
+  out.options.components = s.components;
   out.target_text = t.target_text;
   std::vector<SelectionCandidate> candidates;
   for (const auto& r : library) {
@@ -220,7 +227,11 @@ results::Group selection_group(const StudySelection& x) {
   std::vector<std::string> ids;
   std::vector<std::int64_t> index;
   std::vector<double> scaled;  // [records, periods]
+  std::vector<std::string> events, stations, components, refused;
   for (std::size_t k = 0; k < n; ++k) {
+    events.push_back(s.identity[k].event_text());
+    stations.push_back(s.identity[k].station);
+    components.push_back(s.identity[k].component);
     ids.push_back(x.ids[s.chosen[k]]);
     index.push_back(static_cast<std::int64_t>(s.chosen[k]));
     for (std::size_t j = 0; j < p; ++j) scaled.push_back(s.scale[k] * s.spectra[k][j]);
@@ -241,7 +252,15 @@ results::Group selection_group(const StudySelection& x) {
   g.set("min_scale", x.options.min_scale);
   g.set("max_scale", x.options.max_scale);
   if (!s.warnings.empty()) g.set("warnings", s.warnings);
+  g.set("max_per_event", static_cast<std::int64_t>(x.options.max_per_event));
+  g.set("components", std::string(to_string(x.options.components)));
+  g.set("unidentified", static_cast<std::int64_t>(s.unidentified));
+  for (const auto& r : s.refused) refused.push_back(x.ids[r.candidate] + ": " + r.reason);
+  if (!refused.empty()) g.set("refused", refused);
   g.add("records", ids, "1", "the chosen records' ids, best match (smallest misfit) first: the order of /records");
+  g.add("event", events, "1", "each chosen record's earthquake and year (\"\": unknown; MANIFEST.tsv or AT2 header)");
+  g.add("station", stations, "1", "each chosen record's station (\"\": unknown)");
+  g.add("component", components, "1", "each chosen record's component as its source names it (\"\": unknown)");
   g.add("candidate_index", index, "1", "each chosen record's index among the candidates (the library, in its order)");
   g.add("individual_scale", s.individual_scale, "1",
         "f_i: each chosen record's log-space least-squares factor to the target over the periods");

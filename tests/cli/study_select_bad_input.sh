@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# Bad [records] select and [target_spectrum] inputs fail before any work (issue 14 part 4): exit 2, one " ERROR:"
+# Bad [records] select, max_per_event, components and [target_spectrum] inputs fail before any work (issue 14 part
+# 4, issue 23 item 7): exit 2, one " ERROR:"
 # line naming the file, line and key (and the fix), no results file and no checkpoint left behind.
 # Args: <pounding binary> <source dir>
 set -uo pipefail
@@ -94,5 +95,20 @@ expect_error scale_limits_crossed "min_scale = 5 is above max_scale = 4.*\[targe
 select = 11
 $T
 min_scale = 5"
+# issue 23 item 7: the recording rules, only with select; issue 24 item 5: the command line's ranges are these
+expect_error rules_without_select "max_per_event and components are rules of a selection.*\[records\]\.max_per_event.*add select = N" "$R
+max_per_event = 1"
+expect_error bad_components "unknown components rule 'all'.*\[records\]\.components.*\"one\" or \"both\"" "$R
+select = 11
+components = \"all\"
+$T"
+expect_error negative_max_per_event "max_per_event = -1 is out of range.*\[records\]\.max_per_event" "$R
+select = 11
+max_per_event = -1
+$T"
+expect_error t_max_above_20 "t_max = 25 is out of range.*\[target_spectrum\]\.t_max.*\[0.01, 20\]" "$R
+select = 11
+$T
+t_max = 25"
 echo "$passes passed, $fails failed"
 [ $fails -eq 0 ]

@@ -99,6 +99,8 @@ std::string study_with(const config::StudyKey& k, const std::string& value) {
     s.sections["hazard"] = {{"k0", "1e-4"}, {"k", "2.0"}};
   } else if (section == "target_spectrum") {
     s = with_target(key == "agr" || key == "importance" || key == "type");
+  } else if (section == "records" && (key == "max_per_event" || key == "components")) {
+    s = with_target();  // rules of a selection
   }
   const std::string table = section == "structures.buildingN" ? "structures.building1" : section;
   s.sections[table][key] = value;
@@ -243,6 +245,7 @@ TEST(StudyKeys, DocumentedChoicesAreTheEnumTables) {
       {{"intensity", "method"}, choices(fragility_method_names)},
       {{"target_spectrum", "code"}, choices(target_code_names)},
       {{"target_spectrum", "rule"}, choices(scaling_rule_names)},
+      {{"records", "components"}, choices(component_rule_names)},
   };
   for (const auto& [sk, names] : tables) {
     const config::StudyKey* k = config::find_study_key(sk.first, sk.second);

@@ -227,6 +227,120 @@ TEST(SelectionEndToEnd, InvalidOptions) {
   EXPECT_EQ(where([&] { auto x = o; x.points = 1; return x; }()), "--points");
   EXPECT_EQ(where([&] { auto x = o; x.min_scale = 2, x.max_scale = 1; return x; }()), "--min-scale/--max-scale");
   EXPECT_EQ(where([&] { auto x = o; x.damping = 1; return x; }()), "--damping");
+  // issue 24 item 5: the study file's ranges (points <= 1000, periods within [0.01, 20] s, damping <= 0.5)
+  EXPECT_EQ(where([&] { auto x = o; x.points = 1001; return x; }()), "--points");
+  EXPECT_EQ(where([&] { auto x = o; x.t_lo = 200, x.t_hi = 2000; return x; }()), "--range");
+  EXPECT_EQ(where([&] { auto x = o; x.t_lo = 0.005; return x; }()), "--range");
+  EXPECT_EQ(where([&] { auto x = o; x.damping = 0.6; return x; }()), "--damping");
+  EXPECT_EQ(where([&] { auto x = o; x.min_scale = 1e-6; return x; }()), "--min-scale/--max-scale");
   const std::vector<SelectionCandidate> null_record{{"x", nullptr}};
   EXPECT_THROW(select_records(null_record, asce7, o), InputError);
+}
+
+// Issue 23 item 7: one recording is never chosen twice. Identities as the MANIFEST.tsv and the PEER headers of
+// ../shared/records/real give them (the El Centro 1940 N-S motion as NGA-West2's "El Centro Array #9, 180" and as
+// the textbook Peknold digitisation "El Centro (Peknold digitization), NS").
+namespace {
+Record with_identity(std::string event, std::string year, std::string station, std::string component) {
+  Record r;
+  r.dt = 0.01;
+  r.acc.assign(500, 0.1);
+  r.meta = {{"event", event}, {"year", year}, {"station", station}, {"component", component},
+            {"identity_from", "MANIFEST.tsv:2"}};
+  return r;
+}
+Record nga_west2(std::string line2_event, std::string date, std::string station, std::string component) {
+  Record r;
+  r.meta = {{"format", "PEER_AT2_NGAW2"}, {"event", line2_event}, {"date", date}, {"station", station},
+            {"component", component}};
+  return r;
+}
+}  // namespace
+
+TEST(SelectionRecordings, IdentityFromManifestAndHeaders) {
+  const RecordIdentity nga = identity_of(nga_west2("Imperial Valley-02", "5/19/1940", "El Centro Array #9", "180"));
+  const RecordIdentity peknold =
+      identity_of(with_identity("Imperial Valley-02", "1940", "El Centro (Peknold digitization)", "NS"));
+  ASSERT_TRUE(nga.known());
+  EXPECT_EQ(nga.year, 1940);
+  EXPECT_EQ(nga.event_text(), "Imperial Valley-02 (1940)");
+  EXPECT_TRUE(same_recording(nga, peknold)) << "two digitisations of one motion";
+  const RecordIdentity r228 = identity_of(nga_west2("Northridge-01", "1/17/1994", "Rinaldi Receiving Sta", "228"));
+  const RecordIdentity r318 = identity_of(nga_west2("Northridge-01", "1/17/1994", "Rinaldi Receiving Sta", "318"));
+  EXPECT_TRUE(same_station(r228, r318));
+  EXPECT_FALSE(same_recording(r228, r318)) << "228 and 318 are two axes";
+  // NGA-West1 line 2: event, 2-digit year, station, component
+  Record w1;
+  w1.meta = {{"format", "PEER_AT2_NGAW1"}, {"header2", "NORTHRIDGE 01/17/94 1231, ARLETA, 360 (CDMG STATION 24461)"}};
+  const RecordIdentity arleta = identity_of(w1);
+  ASSERT_TRUE(arleta.known());
+  EXPECT_EQ(arleta.event, "NORTHRIDGE");
+  EXPECT_EQ(arleta.year, 1994);
+  EXPECT_EQ(arleta.station, "ARLETA");
+  EXPECT_EQ(arleta.component, "360");
+  EXPECT_TRUE(same_event(arleta, r228)) << "Northridge (West1) is Northridge-01 (West2) of the same year";
+  EXPECT_FALSE(same_station(arleta, r228));
+  // not one event: Imperial Valley-02 (1940) and -06 (1979); not one station: El Centro Array #6 and #11,
+  // El Centro - Meloland and El Centro Array #6
+  const RecordIdentity iv6 = identity_of(with_identity("Imperial Valley-06", "1979", "El Centro Array #6", "140"));
+  const RecordIdentity iv11 = identity_of(with_identity("Imperial Valley-06", "1979", "El Centro Array #11", "140"));
+  const RecordIdentity melo =
+      identity_of(with_identity("Imperial Valley-06", "1979", "El Centro - Meloland Geot. Array", "000"));
+  EXPECT_FALSE(same_event(nga, iv6));
+  EXPECT_TRUE(same_event(iv6, iv11));
+  EXPECT_FALSE(same_station(iv6, iv11));
+  EXPECT_FALSE(same_station(iv6, melo));
+  // axes: 000 ~ 180 ~ N ~ S00E; 090 ~ 270 ~ E ~ N90W; 045 ~ 225 ~ N45E
+  auto axis_same = [](const char* a, const char* b) {
+    return same_recording(identity_of(with_identity("E", "2000", "S", a)), identity_of(with_identity("E", "2000", "S", b)));
+  };
+  EXPECT_TRUE(axis_same("000", "180"));
+  EXPECT_TRUE(axis_same("0", "N"));
+  EXPECT_TRUE(axis_same("S00E", "360"));
+  EXPECT_TRUE(axis_same("090", "E"));
+  EXPECT_TRUE(axis_same("270", "N90W"));
+  EXPECT_TRUE(axis_same("N45E", "225"));
+  EXPECT_FALSE(axis_same("000", "090"));
+  EXPECT_FALSE(axis_same("LN", "TR"));
+  EXPECT_TRUE(axis_same("LN", "ln"));
+  // synthetic records and records without a source of identity have none
+  Record syn = with_identity("A", "2000", "B", "000");
+  syn.source = "synthetic:R&DK";
+  EXPECT_FALSE(identity_of(syn).known());
+  EXPECT_FALSE(identity_of(Record{}).known());
+}
+
+TEST(SelectionRecordings, RulesPassOverDuplicatesComponentsAndEventQuota) {
+  std::vector<Record> recs{with_identity("Event A", "1990", "Station S", "000"),
+                           with_identity("Event A", "1990", "Station S (second digitization)", "180"),
+                           with_identity("Event A", "1990", "Station S", "090"),
+                           with_identity("Event A", "1990", "Station T", "000"),
+                           with_identity("Event A", "1990", "Station U", "000"),
+                           with_identity("Event B", "1995", "Station S", "000")};
+  std::vector<SelectionCandidate> cands;
+  for (std::size_t i = 0; i < recs.size(); ++i) cands.push_back({"r" + std::to_string(i), &recs[i]});
+  const std::vector<std::size_t> ranked{0, 1, 2, 3, 4, 5};
+  SelectionOptions o;
+  o.count = 3;  // defaults: max_per_event 2, components one
+  Selection s;
+  EXPECT_EQ(apply_recording_rules(s, cands, ranked, o), (std::vector<std::size_t>{0, 3, 5}));
+  ASSERT_EQ(s.refused.size(), 3u);
+  EXPECT_EQ(s.refused[0].candidate, 1u);
+  EXPECT_NE(s.refused[0].reason.find("the same recording as r0"), std::string::npos) << s.refused[0].reason;
+  EXPECT_EQ(s.refused[1].candidate, 2u);
+  EXPECT_NE(s.refused[1].reason.find("the other component"), std::string::npos) << s.refused[1].reason;
+  EXPECT_EQ(s.refused[2].candidate, 4u);
+  EXPECT_NE(s.refused[2].reason.find("max_per_event = 2"), std::string::npos) << s.refused[2].reason;
+  // both components, no event limit: only the second copy of r0 is refused
+  o.components = ComponentRule::both, o.max_per_event = 0;
+  Selection b;
+  EXPECT_EQ(apply_recording_rules(b, cands, ranked, o), (std::vector<std::size_t>{0, 2, 3}));
+  ASSERT_EQ(b.refused.size(), 1u);
+  EXPECT_EQ(b.refused[0].candidate, 1u);
+  // six wanted, five distinct recordings: an error naming the rules
+  o.count = 6;
+  Selection c;
+  const InputError e = testdata::input_error([&] { apply_recording_rules(c, cands, ranked, o); });
+  EXPECT_NE(e.what_part().find("only 5 of the 6"), std::string::npos) << e.what_part();
+  EXPECT_EQ(e.where(), "--max-per-event/--components");
 }

@@ -43,8 +43,9 @@ ScalingRule default_scaling_rule(TargetCode code);
 std::array<double, 2> default_range_multiples(ScalingRule rule);
 
 // The summary `records select` prints and a study's run log says, one string per line: target, rule, periods,
-// candidates, one row per chosen record (rank, id, f_i, MSE, scale, source), suite factor, the smallest
-// mean/target ratio, whether the condition holds, then " WARNING: ..." lines. ids/sources: per candidate.
+// candidates, one row per chosen record (rank, id, f_i, MSE, scale, event (year), station, component, source),
+// the rules and every record passed over ("  refused <id>: <why>"), suite factor, the smallest mean/target ratio,
+// whether the condition holds, then " WARNING: ..." lines. ids/sources: per candidate.
 std::vector<std::string> selection_summary(const Selection& s, std::span<const std::string> ids,
                                            std::span<const std::string> sources, const std::string& target_text,
                                            const SelectionOptions& options);

@@ -49,6 +49,8 @@ void visit_settings(const Study& s, V&& v) {
     v("target_spectrum", "damping", x.options.damping);
     v("target_spectrum", "min_scale", x.options.min_scale);
     v("target_spectrum", "max_scale", x.options.max_scale);
+    v("records", "max_per_event", static_cast<std::int64_t>(s.max_per_event));  // selection rules (with select)
+    v("records", "components", S(to_string(s.components)));
   }
 
   const StructureModel& m = s.structures;

@@ -11,7 +11,10 @@
 //                | directory = "..."; real_dir = "..." (resolve suite entries to real PEER files);
 //                scale = 1.0; units = "g" | "m/s2" | "cm/s2"; dt = <s, one-column files>; limit = <first N>;
 //                synthetic_only = false; select = N (choose N records from that library and scale them to the
-//                [target_spectrum]; not with limit)
+//                [target_spectrum]; not with limit); with select: max_per_event = 2 (records of one earthquake at
+//                most, 0: no limit; FEMA P-695's far-field set takes 2) and components = "one" | "both" (one: one
+//                component per station, the better match); a second copy of one recording is never chosen
+//                (motion/library.hpp says how event, station and component are read)
 //   [structures] the stochastic structure model (see sampler.hpp): the defaults of both buildings; equal_heights = false
 //                [structures.building1] / [structures.building2]: one building's overrides and its own period, height,
 //                mass, zeta, yield_coefficient (a number or {lognormal = {median, cov}} / {uniform = {min, max}};
@@ -106,6 +109,8 @@ struct Study {
   bool synthetic_only = false;  // suite: every entry a synthetic stand-in, even where a real file exists
   int select = 0;               // [records] select: choose this many records to [target_spectrum] (0: keep all)
   std::string select_where;     // "file:line [records].select" for errors found when the records load
+  std::size_t max_per_event = default_max_per_event;  // [records] max_per_event (with select; selection.hpp)
+  ComponentRule components = ComponentRule::one;      // [records] components (with select)
   // structures
   StructureModel structures;
   // gaps

@@ -7,6 +7,11 @@
 //   [records]          select = N    choose N records (integer >= 1) from the library the section names
 //                                    (directory, files or suite); the study uses exactly those, each multiplied
 //                                    by its final factor f_i F. Needs [target_spectrum]; not with limit.
+//                     max_per_event = 2  (with select) at most this many records of one earthquake (0: no limit;
+//                                    FEMA P-695's far-field set takes 2, against event bias)
+//                     components = "one" | "both"  (with select) one: one component per station, the better
+//                                    match; both: both may be chosen. A second copy of one recording (same event,
+//                                    station and axis, motion/library.hpp) is never chosen.
 //   [target_spectrum]  code = "ASCE 7-16" | "EC8" | "Standard 2800" | "csv", and the code's parameters:
 //                        ASCE 7-16      sds, sd1 (g, required), tl = 8 (s), mcer = false (true: 1.5 x, the MCER
 //                                       spectrum ASCE 7-16 16.2 scales to)

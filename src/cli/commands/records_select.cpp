@@ -19,7 +19,14 @@
 //                                       (default 1); its damping is --damping
 //       --iran2800 A,SOIL[,I]           Standard 2800 (4th ed.) A B I: A 0.2-0.35, SOIL I-IV, I (default 1)
 //       --target-csv FILE               tabulated "period,sa" (s, g) lines
-//     --directory DIR takes every *.AT2 file in DIR (sorted by name); FILES are any record files.
+//     --directory DIR takes every .AT2 and .txt file in DIR (sorted by name; record_files_in, the reader of a
+//     study's [records] directory); FILES are any record files. A MANIFEST.tsv beside the files names each one's
+//     event, station and component (else the PEER header does, motion/library.hpp); --max-per-event N (default 2)
+//     and --components one|both (default one) keep one recording, one station and N records of an event at most,
+//     and the table says what was passed over and why. Every candidate is checked as `run` checks a record
+//     (duration >= 2 s, PGA <= 5 g) before any work, and again with its final factor.
+//     Ranges (the study file's): --period and the range within [0.01, 20] s, --points 2-1000, --damping
+//     [0, 0.5], scale limits within [0.001, 1000].
 //     -o writes the selection as CSV for tools/plot_spectra.py: "# key: value" lines (target, rule, fraction,
 //     range, suite factor, condition), then period_s,target_g,mean_g,<id>... with the SCALED spectra.
 #include <algorithm>
@@ -35,6 +42,7 @@
 #include "pounding/core/files.hpp"
 #include "pounding/motion/design_spectrum.hpp"
 #include "pounding/motion/intensity.hpp"
+#include "pounding/motion/library.hpp"
 #include "pounding/motion/records.hpp"
 #include "pounding/motion/selection.hpp"
 #include "pounding/motion/target_spectrum.hpp"
@@ -111,8 +119,9 @@ struct SelectOpts {
   std::string asce7, ec8, iran2800, target_csv;
   bool mcer = false;
   std::string period, range, rule, out;  // rule "": EC8 with --ec8, else ASCE 7-16
-  std::size_t count = 11;
+  std::size_t count = 11, max_per_event = default_max_per_event;
   int points = 30;
+  std::string components = "one";
   double min_scale = 0.25, max_scale = 4.0, damping = 0.05;
 };
 
@@ -207,27 +216,18 @@ struct Library {
   std::vector<Record> records;
 };
 
-Library read_library(const SelectOpts& o) {
+// The candidates: the files of --directory (record_files_in, the reader a study's [records] directory uses) or
+// the files given, read and annotated from their directories' MANIFEST.tsv (library.hpp), each checked as `run`
+// checks a record (require_analysable: duration, PGA) before any spectrum is computed.
+Library read_candidates(const SelectOpts& o) {
   Library lib;
   if (!o.directory.empty() && !o.files.empty())
     throw InputError("both --directory and record files", "--directory", "give either a directory or files");
-  if (!o.directory.empty()) {
-    std::error_code ec;
-    if (!std::filesystem::is_directory(o.directory, ec))
-      throw InputError("not a directory", o.directory, "give --directory a folder of .AT2 files");
-    for (const auto& e : std::filesystem::directory_iterator(o.directory, ec)) {
-      std::string ext = e.path().extension().string();
-      std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char ch) { return std::toupper(ch); });
-      if (e.is_regular_file() && ext == ".AT2") lib.files.push_back(e.path().string());
-    }
-    std::sort(lib.files.begin(), lib.files.end());
-    if (lib.files.empty()) throw InputError("no *.AT2 files", o.directory, "give --directory a folder of .AT2 files");
-  } else {
-    lib.files = o.files;
-  }
+  if (!o.directory.empty()) lib.files = record_files_in(o.directory, "--directory");
+  else lib.files = o.files;
   if (lib.files.empty()) throw InputError("no records", "records select", "give record files or --directory DIR");
-  const ReadOptions ro = o.read.get();
-  for (const auto& f : lib.files) lib.records.push_back(read_record(f, ro));
+  lib.records = read_library(lib.files, o.read.get());
+  for (const Record& r : lib.records) require_analysable(r, {1.0, "", "give --units cm/s2"});
   return lib;
 }
 
@@ -241,10 +241,21 @@ SelectionOptions selection_options(const SelectOpts& o) {
   const std::string range = !o.range.empty() ? o.range : fmt::format("{},{}", def[0], def[1]);
   const auto r = parse_number_list(range, "--range", "multiple of the period", "give e.g. 0.2,2.0", 0, true);
   if (r.size() != 2) throw InputError(fmt::format("--range '{}'", range), "--range", "give two multiples, e.g. 0.2,2.0");
+  for (double t : T)
+    if (t > selection_period_max)
+      throw InputError(fmt::format("--period {:g} s is above {:g} s", t, selection_period_max), "--period",
+                       "give the building's period in s (the spectra are defined to 20 s)");
   so.t_lo = r[0] * *std::min_element(T.begin(), T.end());
   so.t_hi = r[1] * *std::max_element(T.begin(), T.end());
+  if (so.t_lo < selection_period_min || so.t_hi > selection_period_max)
+    throw InputError(fmt::format("the period range {:g}-{:g} s ({} x --period {}) is outside [{:g}, {:g}] s", so.t_lo,
+                                 so.t_hi, range, o.period, selection_period_min, selection_period_max),
+                     o.range.empty() ? "--period" : "--period/--range",
+                     "give the building's period(s) and range multiples that keep the range within the spectra");
   so.count = o.count, so.points = o.points, so.min_scale = o.min_scale, so.max_scale = o.max_scale;
   so.damping = o.damping;
+  so.max_per_event = o.max_per_event;
+  so.components = as_option("--components", [&] { return parse_component_rule(o.components); });
   validate(so);
   return so;
 }
@@ -281,7 +292,7 @@ void add_records_select(CLI::App* records) {
                                               "ASCE 7-10 or EC8 rule); README.md \"Records to a design spectrum\" explains the "
                                               "method; inside a study: [target_spectrum] in docs/study-reference.md");
   c->add_option("files", o->files, "record files (or --directory)");
-  c->add_option("--directory", o->directory, "a folder: every *.AT2 file in it, sorted by name");
+  c->add_option("--directory", o->directory, "a folder: every .AT2 and .txt file in it, sorted by name");
   c->add_option("--asce7", o->asce7, "target: ASCE 7-16 design spectrum SDS,SD1,TL (g, g, s)");
   c->add_flag("--mcer", o->mcer, "with --asce7: the MCER spectrum, 1.5 x the design spectrum (ASCE 7-16 16.2)");
   c->add_option("--ec8", o->ec8, "target: EN 1998-1 elastic spectrum TYPE,GROUND,AGR[,GAMMA_I], e.g. 1,C,0.25");
@@ -295,6 +306,10 @@ void add_records_select(CLI::App* records) {
   c->add_option("--min-scale", o->min_scale, "smallest eligible least-squares factor")->capture_default_str();
   c->add_option("--max-scale", o->max_scale, "largest eligible least-squares factor")->capture_default_str();
   c->add_option("--damping", o->damping, "damping ratio of the spectra")->capture_default_str();
+  c->add_option("--max-per-event", o->max_per_event, "at most this many records of one earthquake (0: no limit; "
+                                                     "FEMA P-695 takes 2)")->capture_default_str();
+  c->add_option("--components", o->components, "one: one component per station (the better match); both: both "
+                                                "may be chosen")->capture_default_str();
   c->add_option("-o,--output", o->out, "CSV for tools/plot_spectra.py (scaled spectra, target, mean)");
   add_read_options(c, o->read);
   c->callback([o] {
@@ -304,10 +319,22 @@ void add_records_select(CLI::App* records) {
     const TargetSpectrumSpec spec = target_spec(*o);
     const DesignSpectrum target = as_option(target_flag(spec.code), [&] { return make_target_spectrum(spec, o->damping); });
     const std::string target_text = describe_target(spec, target);
-    const Library lib = read_library(*o);
+    const Library lib = read_candidates(*o);
+    if (so.count > lib.records.size())
+      throw InputError(fmt::format("--count {} but {} record{} given", so.count, lib.records.size(),
+                                   lib.records.size() == 1 ? "" : "s"),
+                       "--count", fmt::format("give --count <= {}, or more records", lib.records.size()));
     std::vector<SelectionCandidate> cands;
     for (const auto& r : lib.records) cands.push_back({r.name, &r});
     const Selection s = select_records(cands, target, so);
+    for (std::size_t k = 0; k < s.chosen.size(); ++k) {  // the factors must leave a record `run` accepts
+      Record scaled = lib.records[s.chosen[k]];
+      for (double& a : scaled.acc) a *= s.scale[k];
+      require_analysable(scaled, {s.scale[k], fmt::format("the selection's factor of {} (f_i {:.4g} x F {:.4g}; lower "
+                                                          "--max-scale or drop the record)", cands[s.chosen[k]].id,
+                                                          s.individual_scale[k], s.suite_factor),
+                                  "give --units cm/s2"});
+    }
     print_selection(s, lib, cands, target_text, so);
     if (!o->out.empty()) {
       files::write_text_atomically(o->out, selection_csv(s, cands, target_text, so));
