@@ -17,6 +17,7 @@
 #include "pounding/core/error.hpp"
 #include "pounding/core/files.hpp"
 #include "pounding/core/random.hpp"
+#include "pounding/motion/library.hpp"
 #include "embedded/stochastic_pounding_suite.hpp"
 
 namespace pounding {
@@ -209,9 +210,8 @@ struct Candidate {
 // What we know of each file in a directory: its name, its AT2 header line 2 (event, date, station,
 // component) and its MANIFEST.tsv row when the directory has one.
 std::vector<Candidate> scan_directory(const std::string& dir) {
-  std::error_code ec;
-  if (!fs::is_directory(dir, ec))
-    throw InputError("records directory not found", dir, "give a directory of PEER .AT2 or time/acc files");
+  // the files: record_files_in (library.hpp), the one reader of a records directory
+  const std::vector<std::string> paths = record_files_in(dir, "the records directory (--records-dir, [records] real_dir)");
   std::map<std::string, std::string> manifest;
   if (std::ifstream m(fs::path(dir) / "MANIFEST.tsv"); m) {
     std::string line;
@@ -224,14 +224,13 @@ std::vector<Candidate> scan_directory(const std::string& dir) {
     }
   }
   std::vector<Candidate> out;
-  for (const auto& de : fs::directory_iterator(dir, ec)) {
-    if (!de.is_regular_file()) continue;
-    const std::string name = de.path().filename().string();
-    const std::string ext = normalise(de.path().extension().string());
-    if (ext == "tsv" || ext == "md" || ext == "toml" || name == "README") continue;
-    Candidate c{de.path().string(), name};
+  for (const auto& path : paths) {
+    const fs::path p(path);
+    const std::string name = p.filename().string();
+    const std::string ext = normalise(p.extension().string());
+    Candidate c{path, name};
     if (ext == "at2") {
-      std::ifstream in(de.path());
+      std::ifstream in(p);
       std::string l1, l2;
       std::getline(in, l1), std::getline(in, l2);
       c.descriptor += " " + l2;

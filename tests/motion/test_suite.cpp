@@ -12,6 +12,8 @@
 #include <set>
 #include <sstream>
 
+#include <unistd.h>
+
 #include "pounding/core/error.hpp"
 #include "pounding/motion/suite.hpp"
 #include "test_data.hpp"
@@ -195,4 +197,24 @@ TEST(SuiteErrors, NameFileLineAndKey) {
   expect_suite_error("[suite]\nname = \"x\n", 2, "TOML syntax");
   expect_suite_error("[[record]]\nid = \"A\"\nM = 12\nR_km = 10\nvs30 = 300\nF = 0\n", 1, "M = 12");
   expect_suite_error("[[record]]\nid = \"A\"\nfile = \"a\"\nunits = \"furlongs\"\n", 4, "units = 'furlongs'");
+}
+
+// Issue 23 item 7: a suite's records directory is listed by record_files_in, the one reader of a records
+// directory (a study's [records] directory and `records select --directory` use it): a directory without .AT2 or
+// .txt files is an error naming it, not a silent fall-back to synthetic stand-ins for every entry.
+TEST(SuiteResolve, ADirectoryWithoutRecordsIsAnError) {
+  const fs::path dir = fs::temp_directory_path() / ("pounding_suite_empty_" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  std::ofstream(dir / "notes.dat") << "1 2 3\n";
+  ResolveOptions o;
+  o.records_dir = dir.string();
+  try {
+    resolve_suite(default_suite(), o);
+    ADD_FAILURE() << "a directory without records was accepted";
+  } catch (const InputError& e) {
+    EXPECT_NE(e.what_part().find("no .AT2 or .txt records"), std::string::npos) << e.what();
+    EXPECT_EQ(e.where(), dir.string());
+    EXPECT_NE(e.fix().find("real_dir"), std::string::npos) << e.fix();
+  }
+  fs::remove_all(dir);
 }

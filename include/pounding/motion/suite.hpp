@@ -63,7 +63,8 @@ std::string_view default_suite_text();
 std::uint64_t derive_seed(std::uint64_t suite_seed, const std::string& id);
 
 struct ResolveOptions {
-  std::string records_dir;       // directory of PEER/real files searched for each entry (empty: none)
+  std::string records_dir;       // directory of PEER/real files searched for each entry (empty: none); its .AT2
+                                 // and .txt files (record_files_in, library.hpp; none is an InputError)
   bool allow_synthetic = true;   // false: an entry without a real file is an error
   bool synthetic_only = false;   // ignore files and directories: every entry synthetic
 };
