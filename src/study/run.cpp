@@ -13,6 +13,7 @@
 #include "pounding/core/error.hpp"
 #include "pounding/core/files.hpp"
 #include "pounding/contact/registry.hpp"
+#include "pounding/motion/library.hpp"
 #include "pounding/physics/batch.hpp"
 #include "pounding/results/writer.hpp"
 #include "pounding/sampling/sampler.hpp"
@@ -470,6 +471,19 @@ void announce(const parallel::Session& session, const Inputs& in, const WorkPlan
     ctx.say(fmt::format("records selected to the design spectrum ([records] select = {}, [target_spectrum]):",
                         in.study.select));
     for (const auto& line : in.selection->summary()) ctx.say(line);
+  } else if (in.records.size() <= 500) {
+    // A library used whole counts one recording twice when it holds two files of it (the El Centro 1940 N-S
+    // motion is in ../shared/records/real as NGA's Array #9 180 and as Peknold's digitisation): say so
+    // (motion/library.hpp; the pairwise check is skipped for libraries above 500 records).
+    std::vector<RecordIdentity> ids;
+    for (const StudyRecord& r : in.records) ids.push_back(identity_of(r.record));
+    for (std::size_t i = 0; i < ids.size(); ++i)
+      for (std::size_t j = i + 1; j < ids.size(); ++j)
+        if (same_recording(ids[i], ids[j]))
+          ctx.say(fmt::format(" WARNING: records {} and {} are one recording ({}, {}, components {} and {}): the "
+                              "statistics count that motion twice; drop one file, or choose records with [records] "
+                              "select", in.records[i].id, in.records[j].id, ids[i].event_text(), ids[i].station,
+                              ids[i].component, ids[j].component));
   }
   if (const StripePlan& p = in.stripes; p.stripes) {
     const IntensitySpec& x = in.study.intensity;

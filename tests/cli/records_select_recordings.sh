@@ -3,7 +3,8 @@
 # a study's [records] directory reads (it read 47 .AT2 files); one recording is never chosen twice (the El Centro
 # 1940 N-S motion is both ImperialValley_1940_ElCentroArray9_180 (NGA-West2) and ..._ElCentro_NS_Peknold1559pts);
 # by default one component per station and at most 2 records of one earthquake; the table shows event, station and
-# component and says what was passed over and why. Checked against MANIFEST.tsv, not against the engine's own
+# component and says what was passed over and why; a study using its library whole warns when it holds one recording
+# twice. Checked against MANIFEST.tsv, not against the engine's own
 # grouping. Without ../shared it is skipped (exit 77), under CI=true it fails. Args: <pounding binary> <source dir>
 set -euo pipefail
 bin=$1; src=$2
@@ -65,4 +66,11 @@ grep -q "components both" "$tmp/rin1.out" || fail "Rinaldi, one: no way out name
 [ "$(grep -c '^ *[0-9]\+ Northridge_1994_Rinaldi' "$tmp/rin2.out")" = 2 ] || fail "components both: $(cat "$tmp/rin2.out")"
 grep "Northridge_1994_RinaldiReceivingSta_228" "$tmp/rin2.out" | grep -q "Northridge-01 (1994) *Rinaldi Receiving Sta *228" ||
   fail "event, station, component columns: $(cat "$tmp/rin2.out")"
+# a study that uses its library whole says when the library holds one recording twice (run log WARNING)
+{ cat "$src/tests/data/study-select-pair.toml"
+  printf '[records]\nfiles = ["%s", "%s", "%s"]\n' "$real/$ec1.AT2" "$real/$ec2.AT2" "$real/Kobe_1995_NishiAkashi_000.txt"
+} > "$tmp/dup.toml"
+"$bin" run "$tmp/dup.toml" --out "$tmp/dup.h5" > "$tmp/dup.log" 2>&1 || fail "run: $(cat "$tmp/dup.log")"
+grep -q "WARNING: records $ec1 and $ec2 are one recording" "$tmp/dup.log" || fail "no duplicate warning: $(cat "$tmp/dup.log")"
+[ "$(grep -c "are one recording" "$tmp/dup.log")" = 1 ] || fail "one warning expected: $(cat "$tmp/dup.log")"
 echo "records_select_recordings: ok ($(grep -c '^  refused' "$tmp/asce.out") passed over in the 85-record selection)"
