@@ -249,28 +249,35 @@ TEST(AccuracyStability, StiffContactPastTheLimitIsMarkedDiverged) {
 }
 
 // The contact term's own limit, measured on the linear contact (omega_c = sqrt(k / meff) = 2490 rad/s):
-// central difference is marked diverged from h omega_c = 1.92 up and runs from 1.78 down (its damped
-// free-vibration limit is 1.81); RK4 diverges from 3.11 and runs from 2.77 down (theory 2.83).
+// central difference runs from 1.78 down (its damped free-vibration limit is 1.81) and is marked diverged from
+// 2.0 up (the undamped limit: past it a contact step amplifies whatever the damping); RK4 diverges from 3.11 and
+// runs from 2.77 down (theory 2.83). Between 1.81 and 2.0 the growth per contact step is barely above 1, so
+// whether a 60-impact history grows past the guard within the record is decided by last bits: at 1.915 (13
+// substeps) the Release build is marked diverged and the sanitizer build (-O2) runs to the end, coarse. There
+// the test asks only that the lane is not returned as an accurate one.
 TEST(AccuracyStability, ContactTermLimits) {
   POUNDING_REQUIRE_REAL_RECORDS();
   auto rows = A::stiff_contact(record_dir);
-  int n = 0;
+  int n = 0, band = 0;
   for (const auto& r : rows) {
     if (r.law != "linear") continue;
     SCOPED_TRACE(r.stepper + " h*wc " + std::to_string(r.h_omega_contact));
     double lo = r.stepper == "central-difference" ? 1.78 : r.stepper == "rk4" ? 2.77 : -1.0;
-    double hi = r.stepper == "central-difference" ? 1.9 : r.stepper == "rk4" ? 3.0 : -1.0;
+    double hi = r.stepper == "central-difference" ? 2.0 : r.stepper == "rk4" ? 3.0 : -1.0;
     if (lo < 0) continue;
     if (r.h_omega_contact >= hi) {
       EXPECT_EQ(r.status, "diverged");
       ++n;
-    }
-    if (r.h_omega_contact <= lo) {  // runs; coarse above the resolution limit (0.304 / 0.261)
+    } else if (r.h_omega_contact <= lo) {  // runs; coarse above the resolution limit (0.304 / 0.261)
       EXPECT_EQ(r.status, r.h_omega_contact > 0.304 ? "coarse" : "ok");
       ++n;
+    } else {  // the boundary band: either mark, never ok
+      EXPECT_TRUE(r.status == "diverged" || r.status == "coarse") << r.status;
+      ++band;
     }
   }
   EXPECT_GT(n, 50);
+  EXPECT_EQ(band, 1);  // central difference at 13 substeps (1.915); no rk4 row lies between 2.77 and 3.0
 }
 
 // Newmark stays bounded past the explicit limit, but at h omega_c = 25 its Hertzdamp peak force is far from the
