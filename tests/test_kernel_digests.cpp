@@ -22,6 +22,9 @@
 #ifndef POUNDING_TEST_SOURCE_DIR
 #error "POUNDING_TEST_SOURCE_DIR is set by CMakeLists.txt for the test targets"
 #endif
+#ifndef POUNDING_BITS_NOT_CLAIMED
+#error "POUNDING_BITS_NOT_CLAIMED (empty, or why this build makes no identical-bits claim) is set by CMakeLists.txt"
+#endif
 
 using namespace pounding;
 
@@ -144,6 +147,9 @@ TEST(KernelDigests, Sha256KnownAnswers) {  // FIPS 180-4 examples: the digest it
 }
 
 TEST(KernelDigests, EveryConfigurationBitIdenticalToTheStoredBaseline) {
+  // The stored digests are claimed for the Release build only (CMakeLists.txt, POUNDING_BITS_NOT_CLAIMED).
+  if (const std::string why = POUNDING_BITS_NOT_CLAIMED; !why.empty() && !std::getenv("POUNDING_WRITE_DIGESTS"))
+    GTEST_SKIP() << "not applicable: " << why;
   const auto now = compute_all();
   if (const char* path = std::getenv("POUNDING_WRITE_DIGESTS")) {
     std::ofstream f(path);
