@@ -3,8 +3,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 #include <stdexcept>
 #include <thread>
+
+#include <boost/math/special_functions/erf.hpp>
 
 #include "pounding/core/random.hpp"
 
@@ -24,6 +27,30 @@ std::vector<double> Demands::pooled() const {
   for (double v : z)
     if (!std::isnan(v)) out.push_back(v);
   return out;
+}
+
+double LognormalFit::separation(double t) const {
+  if (!ok() || !(t > 0 && t < 1)) return NAN;
+  const double q = t / (1.0 - p0);  // P(z > g | z > 0)
+  if (q >= 1) return 0.0;
+  // Phi^-1(1 - q) = sqrt(2) erfc^-1(2 q)
+  return std::exp(mu + sigma * std::numbers::sqrt2 * boost::math::erfc_inv(2.0 * q));
+}
+
+LognormalFit fit_lognormal(std::span<const double> z) {
+  LognormalFit f;
+  double s = 0;
+  for (double v : z)
+    if (!std::isnan(v)) ++f.n, v > 0 ? (s += std::log(v), ++f.n_pos) : 0;
+  if (f.n == 0) return f;
+  f.p0 = static_cast<double>(f.n - f.n_pos) / static_cast<double>(f.n);
+  if (f.n_pos == 0) return f;
+  f.mu = s / static_cast<double>(f.n_pos);
+  double ss = 0;
+  for (double v : z)
+    if (!std::isnan(v) && v > 0) ss += (std::log(v) - f.mu) * (std::log(v) - f.mu);
+  f.sigma = std::sqrt(ss / static_cast<double>(f.n_pos));
+  return f;
 }
 
 double exceedance(std::span<const double> z, double g) {
@@ -91,6 +118,7 @@ struct Ranked {
   std::vector<std::vector<std::uint32_t>> ranks;  // per record, the rank of each of its ok analyses
   std::vector<std::size_t> gap_bound;             // per gap, the number of values <= gap
   std::vector<std::size_t> gap_order;             // gap indices by bound, descending
+  std::vector<double> log_sorted;                 // ln of sorted (NaN where <= 0): the lognormal refits
 };
 
 Ranked rank(const Demands& d, std::span<const double> gaps) {
@@ -108,6 +136,7 @@ Ranked rank(const Demands& d, std::span<const double> gaps) {
     r.sorted.push_back(all[i].first);
     r.ranks[all[i].second.first][all[i].second.second] = static_cast<std::uint32_t>(i);
   }
+  for (double v : r.sorted) r.log_sorted.push_back(v > 0 ? std::log(v) : NAN);
   for (double g : gaps)
     r.gap_bound.push_back(static_cast<std::size_t>(std::upper_bound(r.sorted.begin(), r.sorted.end(), g) - r.sorted.begin()));
   r.gap_order.resize(gaps.size());
@@ -141,10 +170,30 @@ void replicate_statistics(const Ranked& r, const std::vector<std::uint32_t>& cou
   for (; next_gap < G; ++next_gap) out[T + r.gap_order[next_gap]] = 1.0;  // bound 0: every value is above
 }
 
-// Replicates [first, last): stats[b * S + s].
+// The lognormal separations at targets of one replicate (counts per rank, n drawn): the fit of LognormalFit.
+void replicate_lognormal(const Ranked& r, const std::vector<std::uint32_t>& count, std::size_t n,
+                         std::span<const double> targets, double* out) {
+  LognormalFit f;
+  f.n = n;
+  double s = 0;
+  for (std::size_t i = 0; i < count.size(); ++i)
+    if (count[i] && !std::isnan(r.log_sorted[i])) s += count[i] * r.log_sorted[i], f.n_pos += count[i];
+  if (n) f.p0 = static_cast<double>(n - f.n_pos) / static_cast<double>(n);
+  if (f.n_pos) {
+    f.mu = s / static_cast<double>(f.n_pos);
+    double ss = 0;
+    for (std::size_t i = 0; i < count.size(); ++i)
+      if (count[i] && !std::isnan(r.log_sorted[i])) ss += count[i] * (r.log_sorted[i] - f.mu) * (r.log_sorted[i] - f.mu);
+    f.sigma = std::sqrt(ss / static_cast<double>(f.n_pos));
+  }
+  for (std::size_t t = 0; t < targets.size(); ++t) out[t] = f.separation(targets[t]);
+}
+
+// Replicates [first, last): stats[b * S + s] (S = targets + gaps, and targets again with the lognormal).
 void run_replicates(const Ranked& r, std::span<const double> targets, std::uint64_t seed, int first, int last,
-                    std::vector<double>& stats) {
-  const std::size_t R = r.ranks.size(), S = targets.size() + r.gap_bound.size();
+                    bool lognormal, std::vector<double>& stats) {
+  const std::size_t R = r.ranks.size(), S0 = targets.size() + r.gap_bound.size();
+  const std::size_t S = S0 + (lognormal ? targets.size() : 0);
   std::vector<std::uint32_t> count(r.sorted.size());
   for (int b = first; b < last; ++b) {
     Stream g{splitmix64(splitmix64(seed) ^ static_cast<std::uint64_t>(b))};
@@ -157,6 +206,7 @@ void run_replicates(const Ranked& r, std::span<const double> targets, std::uint6
       n += rec.size();
     }
     replicate_statistics(r, count, n, targets, &stats[static_cast<std::size_t>(b) * S]);
+    if (lognormal) replicate_lognormal(r, count, n, targets, &stats[static_cast<std::size_t>(b) * S + S0]);
   }
 }
 
@@ -173,8 +223,14 @@ BootstrapResult bootstrap(const Demands& d, std::span<const double> targets, std
                           const BootstrapSettings& s) {
   if (s.replicates < 0 || !(s.confidence > 0 && s.confidence < 1) || targets.size() > 64)
     throw std::invalid_argument("bootstrap: replicates >= 0, confidence in (0, 1), at most 64 targets");
-  const std::size_t T = targets.size(), S = T + gaps.size(), B = static_cast<std::size_t>(s.replicates);
+  const std::size_t T = targets.size(), S0 = T + gaps.size(), B = static_cast<std::size_t>(s.replicates);
+  const std::size_t S = S0 + (s.lognormal ? T : 0);
   std::vector<double> full(S), pooled = d.pooled();
+  BootstrapResult out;
+  if (s.lognormal) {
+    out.fit = fit_lognormal(pooled);
+    for (std::size_t i = 0; i < T; ++i) full[S0 + i] = out.fit.separation(targets[i]);
+  }
   statistics(pooled, targets, gaps, full.data());
 
   const Ranked ranked = rank(d, gaps);
@@ -183,11 +239,10 @@ BootstrapResult bootstrap(const Demands& d, std::span<const double> targets, std
   std::vector<std::thread> pool;
   for (int t = 0; t < threads; ++t) {
     const int first = s.replicates * t / threads, last = s.replicates * (t + 1) / threads;
-    pool.emplace_back([&, first, last] { run_replicates(ranked, targets, s.seed, first, last, stats); });
+    pool.emplace_back([&, first, last] { run_replicates(ranked, targets, s.seed, first, last, s.lognormal, stats); });
   }
   for (auto& th : pool) th.join();
 
-  BootstrapResult out;
   out.replicates = s.replicates;
   const double a = 0.5 * (1.0 - s.confidence);
   std::vector<double> v;
@@ -197,7 +252,7 @@ BootstrapResult bootstrap(const Demands& d, std::span<const double> targets, std
       if (!std::isnan(stats[b * S + i])) v.push_back(stats[b * S + i]);
     std::sort(v.begin(), v.end());
     Estimate e{full[i], B ? quantile7(v, a) : full[i], B ? quantile7(v, 1.0 - a) : full[i]};
-    (i < T ? out.separation : out.probability).push_back(e);
+    (i < T ? out.separation : i < S0 ? out.probability : out.lognormal).push_back(e);
   }
   return out;
 }

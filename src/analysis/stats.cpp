@@ -8,7 +8,12 @@ namespace pounding {
 
 Interval wilson_interval(std::int64_t k, std::int64_t n, double z) {
   if (n <= 0) return {0.0, 1.0};
-  const double nn = static_cast<double>(n), p = static_cast<double>(k) / nn, z2 = z * z;
+  return wilson_interval_effective(static_cast<double>(k) / static_cast<double>(n), static_cast<double>(n), z);
+}
+
+Interval wilson_interval_effective(double p, double nn, double z) {
+  if (!(nn > 0)) return {0.0, 1.0};
+  const double z2 = z * z;
   const double den = 1.0 + z2 / nn;
   const double centre = (p + z2 / (2.0 * nn)) / den;
   const double half = z * std::sqrt(p * (1.0 - p) / nn + z2 / (4.0 * nn * nn)) / den;

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "pounding/analysis/separation.hpp"
+#include "pounding/analysis/stats.hpp"
 #include "pounding/kernel/batch.hpp"
 #include "pounding/report/report.hpp"
 #include "pounding/results/results.hpp"
@@ -35,7 +36,15 @@ struct Data {
   explicit Data(const results::Results& r);
   // ok, or coarse kept in the statistics by [analysis] coarse = "keep"
   bool ok(std::uint8_t s) const { return s == 0 || (keep_coarse && s == static_cast<std::uint8_t>(LaneStatus::coarse)); }
-  std::size_t records() const { return rec.size(); }
+  std::size_t records() const { return rec.size(); }  // rows: (record, sign) analyses with polarity "both"
+  // [records] polarity: the rows per independent record (2 with "both": rows 2k, 2k + 1 are record k's two signs)
+  // and the independent records, which the per-record tables list and the bootstrap resamples.
+  std::size_t per_record = 1;
+  // Every model identical (one fixed pair): a record's analyses repeat one analysis (or its two signs), so they
+  // are not independent draws and the Wilson interval takes n = the independent records (wilson() below).
+  bool fixed_pair = false;
+  std::size_t independent() const { return rec.size() / per_record; }
+  std::string record_label(std::size_t row) const;  // the id, "(sign reversed)" on a reversed row
   std::size_t models() const { return mod.size(); }
   std::size_t gaps() const { return res.gap_ratios.size(); }
   bool paper() const { return set.compare_with == "stochastic-pounding"; }
@@ -44,7 +53,8 @@ struct Data {
   // The period grids of buildings 1 and 2 (the shared grid in files without per-building grids).
   const std::vector<double>& periods(int b) const;
   // The demand of every analysis: peak closing in metres (pair study) or in code gaps d (grid study); NaN
-  // where excluded.
+  // where excluded. Records are the independent ones: with polarity "both" a record's two signs are its
+  // 2 x models analyses (the rows are consecutive, so the flat order is the same).
   separation::Demands demands(bool metres) const;
   separation::BootstrapSettings bootstrap_settings() const;
 };
@@ -55,8 +65,13 @@ struct Count {
 };
 
 std::string pct(double p);
-// The uncoupled verdict "touches at least once at gap ratio x d", over one record (rec >= 0) and one period
-// pair (i1 >= 0), or all.
+// The 95 % Wilson interval of hits / n analyses: the models' sampling error under these records. For a fixed pair
+// (Data::fixed_pair) n analyses would be false precision (issue 23, item 8): the interval is Wilson's at the
+// observed fraction with n = the independent records instead; wilson_basis says which, in words.
+Interval wilson(const Data& r, std::int64_t hits, std::int64_t n);
+std::string wilson_basis(const Data& r);
+// The uncoupled verdict "touches at least once at gap ratio x d", over one independent record (rec >= 0: both
+// its signs with polarity "both") and one period pair (i1 >= 0), or all.
 Count count_uncoupled(const Data& r, double ratio, int rec, int pair_i1 = -1, int pair_i2 = -1);
 
 // Sections on separations (separation_sections.cpp).

@@ -176,8 +176,11 @@ void analyse_fragility(Results& r) {
   stripes::RateCurve curve;
   const double lambda_target =
       hz ? rate_for_probability(r.settings.number("hazard", "target") / 100.0, st.years) : 0.0;
+  // [records] polarity "both": record k's two signs (rows 2k, 2k + 1) are one record of 2 x models analyses, so
+  // the bootstrap and the jackknife over records keep them together (the flat order is the same)
+  const std::size_t P = r.polarities(), R = r.independent_records(), M = P * r.model_count();
   if (method == "msa") {
-    const stripes::Demands D{levels, r.record_count(), r.model_count(), demand};
+    const stripes::Demands D{levels, R, M, demand};
     fits = stripes::fit_msa(D, gaps, st, hz ? &*hz : nullptr);
     if (hz) {
       target = any_positive(demand) ? stripes::risk_targeted_gap(D, *hz, lambda_target, st) : no_target(lambda_target);
@@ -188,11 +191,13 @@ void analyse_fragility(Results& r) {
       curve = stripes::rate_curve(D, *hz, grid, st.years);
     }
   } else if (const Group* ida = r.group("ida")) {  // ida on yielding pairs: the capacities of the bisection
-    const std::vector<double>& cap = ida->get<double>("cap");
+    const std::vector<double>& row_cap = ida->get<double>("cap");
+    std::vector<double> cap(R, INFINITY);  // a record's censoring point: the smaller of its two signs'
+    for (std::size_t q = 0; q < row_cap.size(); ++q) cap[q / P] = std::min(cap[q / P], row_cap[q]);
     const std::vector<double>& capacity = ida->get<double>("capacity");
-    const std::size_t RM = r.record_count() * r.model_count(), G = gaps.size();
+    const std::size_t RM = R * M, G = gaps.size();
     for (std::size_t k = 0; k < G; ++k) {
-      stripes::Capacities C{r.record_count(), r.model_count(), std::vector<double>(RM), cap};
+      stripes::Capacities C{R, M, std::vector<double>(RM), cap};
       for (std::size_t q = 0; q < RM; ++q) C.capacity[q] = capacity[q * G + k];
       fits.push_back(stripes::fit_ida(C, levels, st, hz ? &*hz : nullptr, gaps[k]));
     }
@@ -203,15 +208,16 @@ void analyse_fragility(Results& r) {
       }
     }
   } else {  // ida on a linear pair: every capacity exact from the run at the records' own intensity
-    const std::vector<double>& im = in.get<double>("im");
+    std::vector<double> im;  // a record's two signs have one IM (negation is exact)
+    for (std::size_t q = 0; q < R; ++q) im.push_back(in.get<double>("im")[q * P]);
     const double max_scale = in.number("max_scale");
     std::vector<double> cap(im.size());
     for (std::size_t k = 0; k < im.size(); ++k) cap[k] = im[k] * max_scale;
     for (double x : gaps) {
-      const stripes::Capacities C = stripes::linear_capacities(im, demand, r.model_count(), x, cap);
+      const stripes::Capacities C = stripes::linear_capacities(im, demand, M, x, cap);
       fits.push_back(stripes::fit_ida(C, levels, st, hz ? &*hz : nullptr, x));
     }
-    if (hz) target = stripes::risk_targeted_gap_linear_ida(im, demand, r.model_count(), cap, *hz, lambda_target, st);
+    if (hz) target = stripes::risk_targeted_gap_linear_ida(im, demand, M, cap, *hz, lambda_target, st);
   }
   Group& g = r.group_for("fragility");
   g.set("method", method);

@@ -75,8 +75,14 @@ std::string overview(const View& v) {
          "likelihood where a capacity lies beyond max_scale)\n";
   s += fmt::format("- {} records, {} models per record, seed {}; intervals: percentile bootstrap over records "
                    "({} replicates, {:.0f} %), so they include record-to-record variability\n",
-                   r.record_count(), r.model_count(), r.header.seed, v.fr.number("replicates"),
+                   r.independent_records(), r.model_count(), r.header.seed, v.fr.number("replicates"),
                    100 * v.fr.number("confidence"));
+  s += fmt::format("- record polarity: **{}** — {}\n", r.polarity(),
+                   r.polarities() == 2
+                       ? "every record applied with both signs, as two analyses of the same record (pounding counts "
+                         "when building 1 moves towards building 2, and a ground motion's sign is arbitrary); the "
+                         "bootstrap and the jackknife resample records with both signs together"
+                       : "every record with its sign as recorded ([records] polarity = \"both\" adds the reversed sign)");
   s += fmt::format("- excluded (diverged or non-finite) analyses: **{}** of {}\n", r.header.excluded_analyses,
                    r.header.total_analyses);
   return s + "\n";
@@ -201,7 +207,7 @@ std::string stripes_section(const View& v) {
   if (!in.find("scale")) return "";
   const auto& scale = in.get<double>("scale");
   const auto& dropped = in.get<std::uint8_t>("dropped");
-  const std::size_t S = v.levels.size(), R = v.r.record_count();
+  const std::size_t S = v.levels.size(), R = v.r.record_count(), P = v.r.polarities();  // a record's signs: one
   std::string s = fmt::format("## Stripes and scale factors\n\nEach record is scaled by level / IM; a factor above "
                               "max_scale = {:g} drops the record from that stripe. Factors outside [0.25, 4] distort "
                               "the record's spectral shape relative to its IM (research note 1.5): counted below.\n\n"
@@ -211,7 +217,7 @@ std::string stripes_section(const View& v) {
   for (std::size_t j = 0; j < S; ++j) {
     std::vector<double> f;
     std::size_t drop = 0, outside = 0;
-    for (std::size_t k = 0; k < R; ++k) {
+    for (std::size_t k = 0; k < R; k += P) {
       if (dropped[j * R + k]) { ++drop; continue; }
       const double x = scale[j * R + k];
       f.push_back(x), outside += x < 0.25 || x > 4;

@@ -41,7 +41,38 @@ Data::Data(const results::Results& r)
       impact_count(column_or_empty<std::int32_t>(r, "impacts", "impact_count")),
       h_omega(column_or_empty<double>(r, "impacts", "h_omega_contact")),
       impacts(r.has_group("impacts")),
-      keep_coarse(r.settings.find("analysis", "coarse") && r.settings.text("analysis", "coarse") == "keep") {}
+      keep_coarse(r.settings.find("analysis", "coarse") && r.settings.text("analysis", "coarse") == "keep"),
+      per_record(r.polarities()) {
+  // what the analyses depend on (the mass model's aspect, rho, mbar are sampled but unused when masses are
+  // given; kh matters only with contact)
+  fixed_pair = true;
+  using results::ModelTable;
+  for (auto column : {&ModelTable::T1, &ModelTable::T2, &ModelTable::h1, &ModelTable::h2, &ModelTable::m1,
+                      &ModelTable::m2, &ModelTable::k1, &ModelTable::k2, &ModelTable::fy1, &ModelTable::fy2,
+                      &ModelTable::c1, &ModelTable::c2, &ModelTable::code_gap, &ModelTable::zeta1, &ModelTable::zeta2,
+                      &ModelTable::alpha1, &ModelTable::alpha2, &ModelTable::kh}) {
+    if (column == &ModelTable::kh && !impacts) continue;
+    const std::vector<double>& v = mod.*column;
+    if (!v.empty() && std::any_of(v.begin(), v.end(), [&](double x) { return !(x == v.front()); })) fixed_pair = false;
+  }
+}
+
+Interval wilson(const Data& r, std::int64_t hits, std::int64_t n) {
+  if (!r.fixed_pair || n <= 0) return wilson_interval(hits, n);
+  return wilson_interval_effective(static_cast<double>(hits) / static_cast<double>(n), static_cast<double>(r.independent()));
+}
+
+std::string wilson_basis(const Data& r) {
+  return r.fixed_pair
+             ? fmt::format("Wilson at the observed fraction with n = {} independent records, not the {} analyses: every "
+                           "model is the same pair, so a record's analyses{} are not independent draws",
+                           r.independent(), r.records() * r.models(), r.per_record == 2 ? " (and its two signs)" : "")
+             : std::string("Wilson on n = the analyses");
+}
+
+std::string Data::record_label(std::size_t row) const {
+  return rec.id[row] + (row < rec.polarity.size() && rec.polarity[row] < 0 ? " (sign reversed)" : "");
+}
 
 double Data::zeta(int b, std::size_t m) const {
   const std::vector<double>& z = b == 1 ? mod.zeta1 : mod.zeta2;
@@ -55,13 +86,11 @@ const std::vector<double>& Data::periods(int b) const {
 
 separation::Demands Data::demands(bool metres) const {
   separation::Demands d;
-  d.records = records(), d.models = models();
+  const std::size_t M = models();
+  d.records = independent(), d.models = per_record * M;
   d.z.resize(d.records * d.models, NAN);
-  for (std::size_t k = 0; k < d.records; ++k)
-    for (std::size_t m = 0; m < d.models; ++m) {
-      const std::size_t i = k * d.models + m;
-      if (ok(status[i])) d.z[i] = metres ? peak_closing[i] : peak_closing[i] / mod.code_gap[m];
-    }
+  for (std::size_t i = 0; i < d.z.size(); ++i)
+    if (ok(status[i])) d.z[i] = metres ? peak_closing[i] : peak_closing[i] / mod.code_gap[i % M];
   return d;
 }
 
@@ -80,7 +109,7 @@ Count count_uncoupled(const Data& r, double ratio, int rec, int pair_i1, int pai
   Count c;
   const std::size_t M = r.models();
   for (std::size_t k = 0; k < r.records(); ++k) {
-    if (rec >= 0 && static_cast<int>(k) != rec) continue;
+    if (rec >= 0 && static_cast<int>(k / r.per_record) != rec) continue;
     for (std::size_t m = 0; m < M; ++m) {
       if (pair_i1 >= 0 && (r.mod.i1[m] != pair_i1 || r.mod.i2[m] != pair_i2)) continue;
       const std::size_t idx = k * M + m;
@@ -115,7 +144,7 @@ Curve curve_of(const Data& r, double step, double xmax, int record) {
   std::vector<double> z;  // peak closing / code gap
   const std::size_t M = r.models();
   for (std::size_t k = 0; k < r.records(); ++k) {
-    if (record >= 0 && static_cast<int>(k) != record) continue;
+    if (record >= 0 && static_cast<int>(k / r.per_record) != record) continue;
     for (std::size_t m = 0; m < M; ++m) {
       const std::size_t idx = k * M + m;
       if (r.ok(r.status[idx])) z.push_back(r.peak_closing[idx] / r.mod.code_gap[m]);
@@ -186,8 +215,19 @@ void Markdown::overview() {
   out("- contact: {} ({}), e = {}; stepper {}\n", r.h.contact_law, r.h.damping_law, r.h.restitution, r.h.stepper);
   std::size_t synth = 0;
   for (auto v : r.rec.synthetic) synth += v;
-  out("- {} records ({} synthetic stand-ins, {} real), {} models per record, seed {}\n", R, synth, R - synth, M,
-      r.h.seed);
+  const std::size_t N = r.independent();
+  out("- {} records ({} synthetic stand-ins, {} real), {} models per record, seed {}\n", N, synth / r.per_record,
+      (R - synth) / r.per_record, M, r.h.seed);
+  out("- record polarity: **{}** — {}\n", r.res.polarity(),
+      r.per_record == 2
+          ? fmt::format("every record applied with both signs, as two analyses of the same record ({} analyses per "
+                        "model); pounding counts when building 1 moves towards building 2 (peak of u1 - u2), and a "
+                        "ground motion's sign is arbitrary. The statistics over records keep a record's two signs "
+                        "together",
+                        R)
+          : std::string("every record applied with its sign as recorded ([records] polarity = \"both\" adds the "
+                        "reversed sign: a ground motion's sign is arbitrary, and pounding counts only when building 1 "
+                        "moves towards building 2)"));
   out("- {}\n", r.set.pair ? "a pair study: both buildings' heights are given, so separations are in metres"
                            : "a grid study: heights come from the period-height rule, so gaps are ratios x of the "
                              "code gap d and no separation is given in metres");
@@ -208,7 +248,7 @@ void Markdown::excluded_uncoupled() {
   for (std::size_t k = 0; k < R && shown < 10; ++k)
     for (std::size_t m = 0; m < M && shown < 10; ++m)
       if (!r.ok(r.status[k * M + m])) {
-        out("  - record {} model (T1 {:.2f}, T2 {:.2f}, sample {}): status {}\n", r.rec.id[k], r.mod.T1[m],
+        out("  - record {} model (T1 {:.2f}, T2 {:.2f}, sample {}): status {}\n", r.record_label(k), r.mod.T1[m],
             r.mod.T2[m], r.mod.sample[m], to_string(static_cast<LaneStatus>(r.status[k * M + m])));
         ++shown;
       }
@@ -224,13 +264,16 @@ std::string gap_title(const Data& r, double x) {
 // Table 2: per record
 void Markdown::per_record() {
   const auto& ratios = r.set.gap_ratios;
-  out("\n## Probability of at least one impact per record (Table 2)\n\n| record | synthetic | PGA g |");
+  out("\n## Probability of at least one impact per record (Table 2)\n\n{}| record | synthetic | PGA g |",
+      r.per_record == 2 ? "Each record with both signs (polarity \"both\"): its two analyses per model counted together.\n\n"
+                        : "");
   for (double x : ratios) out(" {} |", gap_title(r, x));
   out("\n|---|---|---|");
   for (std::size_t i = 0; i < ratios.size(); ++i) out("---|");
   out("\n");
-  for (std::size_t k = 0; k < r.records(); ++k) {
-    out("| {} | {} | {:.2f} |", r.rec.id[k], r.rec.synthetic[k] ? "yes" : "no", r.rec.pga_g[k]);
+  for (std::size_t k = 0; k < r.independent(); ++k) {
+    const std::size_t row = k * r.per_record;
+    out("| {} | {} | {:.2f} |", r.rec.id[row], r.rec.synthetic[row] ? "yes" : "no", r.rec.pga_g[row]);
     for (double x : ratios) {
       Count c = count_uncoupled(r, x, static_cast<int>(k));
       out(" {} ({}) |", c.hits, pct(c.pct()));
@@ -243,14 +286,15 @@ void Markdown::per_record() {
 void Markdown::total() {
   out("\n## Total probability of pounding (Table 3), 95 % Wilson intervals\n\n");
   out("The Wilson interval is the sampling error of the models under this fixed set of records; it leaves out "
-      "record-to-record variability{}.\n\n",
-      r.set.pair ? " (the separation in metres above has the bootstrap interval that includes it)" : "");
+      "record-to-record variability{}.{}\n\n",
+      r.set.pair ? " (the separation in metres above has the bootstrap interval that includes it)" : "",
+      r.fixed_pair ? " Here: " + wilson_basis(r) + "." : "");
   const bool paper = r.paper();
   out("| gap ratio | models with impact | probability | 95 % interval |{}\n|---|---|---|---|{}\n",
       paper ? " paper |" : "", paper ? "---|" : "");
   for (double x : r.set.gap_ratios) {
     Count c = count_uncoupled(r, x, -1);
-    Interval w = wilson_interval(c.hits, c.n);
+    Interval w = wilson(r, c.hits, c.n);
     std::string paper_cell = "-";
     for (int j = 0; j < 6; ++j)
       if (std::abs(paper_ratios[j] - x) < 1e-12) paper_cell = pct(paper_total[j]);
@@ -317,7 +361,7 @@ std::string Markdown::excluded_coupled() {
         if (!r.ok(r.imp_status[(k * M + m) * G + g])) {
           if (++nbad <= 10)
             listing += fmt::format("  - record {} model (T1 {:.2f}, T2 {:.2f}, sample {}) at gap ratio {}: {}\n",
-                                   r.rec.id[k], r.mod.T1[m], r.mod.T2[m], r.mod.sample[m], r.res.gap_ratios[g],
+                                   r.record_label(k), r.mod.T1[m], r.mod.T2[m], r.mod.sample[m], r.res.gap_ratios[g],
                                    to_string(static_cast<LaneStatus>(r.imp_status[(k * M + m) * G + g])));
         }
   return nbad ? fmt::format("\nExcluded coupled analyses (diverged or non-finite, never counted as results): **{}**{}\n{}",
@@ -480,10 +524,11 @@ std::string report_csv(const results::Results& results) {
   std::string s = "table,record,gap_ratio,T1,T2,hits,n,probability,gap_m,lo,hi,name\n";
   const auto& ratios = r.set.gap_ratios;
   const auto &p1 = r.periods(1), &p2 = r.periods(2);
-  for (std::size_t k = 0; k < r.records(); ++k)
+  for (std::size_t k = 0; k < r.independent(); ++k)
     for (double x : ratios) {
       Count c = count_uncoupled(r, x, static_cast<int>(k));
-      s += fmt::format("per_record,{},{},,,{},{},{:.6f},,,,\n", r.rec.id[k], x, c.hits, c.n, c.pct() / 100);
+      s += fmt::format("per_record,{},{},,,{},{},{:.6f},,,,\n", r.rec.id[k * r.per_record], x, c.hits, c.n,
+                       c.pct() / 100);
     }
   for (double x : ratios) {
     Count c = count_uncoupled(r, x, -1);

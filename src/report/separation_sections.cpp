@@ -107,6 +107,9 @@ std::vector<separation::Rule> model_rules(const Data& r, std::size_t m) {
   return separation::code_rules(p, r.set.code_gap_coefficient);
 }
 
+// A target t (a fraction) is resolved by N independent records when floor(t N) >= 1 (some record may exceed it).
+bool resolved_by(double t, std::size_t N) { return std::floor(t * static_cast<double>(N)) >= 1; }
+
 std::string interval(const separation::Estimate& e, double scale, const char* f) {
   return fmt::format("[{}, {}]", fmt::format(fmt::runtime(f), scale * e.lo), fmt::format(fmt::runtime(f), scale * e.hi));
 }
@@ -127,14 +130,15 @@ std::string pair_rules(const Data& r) {
       "u2 = {:.4f} m — the mean because response-history provisions take the average over the suite "
       "(EN 1998-1 sec. 4.3.3.4.3: at least 7 records; ASCE 7-16 ch. 16: 11). DDC uses T1 = {:.3f} s, "
       "T2 = {:.3f} s, damping {:.3g} and {:.3g} (medians over the models): rho = {:.3f}. Interval: the two-stage "
-      "bootstrap ({} replicates); Wilson: the sampling error under these records only.\n\n"
+      "bootstrap ({} replicates); Wilson: {}.\n\n"
       "| rule | clause | formula | separation m | P(pounding) | {:.0f} % interval | Wilson 95 % |\n"
       "|---|---|---|---|---|---|---|\n",
       z.size(), p.u1, p.u2, p.T1, p.T2, p.zeta1, p.zeta2, separation::ddc_rho(p.T1, p.T2, p.zeta1, p.zeta2),
-      b.replicates, 100 * r.set.confidence);
+      b.replicates, r.fixed_pair ? wilson_basis(r) : "the sampling error under these records only",
+      100 * r.set.confidence);
   for (std::size_t i = 0; i < rules.size(); ++i) {
     const std::int64_t hits = std::count_if(z.begin(), z.end(), [&](double v) { return v > rules[i].gap; });
-    const Interval w = wilson_interval(hits, static_cast<std::int64_t>(z.size()));
+    const Interval w = wilson(r, hits, static_cast<std::int64_t>(z.size()));
     s += fmt::format("| {} | {} | {} | {:.3f} | {} | {} | [{:.2f}%, {:.2f}%] |\n", rules[i].name, rules[i].clause,
                      rules[i].formula, rules[i].gap, pct(100 * b.probability[i].value),
                      interval(b.probability[i], 100, "{:.2f}%"), 100 * w.lo, 100 * w.hi);
@@ -174,7 +178,15 @@ std::string grid_rules(const Data& r) {
 std::string pair_separation_section(const Data& r) {
   const std::vector<double> targets = fractions(r.set.targets);
   const separation::Demands d = r.demands(true);
-  const separation::BootstrapResult b = separation::bootstrap(d, targets, {}, r.bootstrap_settings());
+  separation::BootstrapSettings bs = r.bootstrap_settings();
+  bs.lognormal = true;
+  const separation::BootstrapResult b = separation::bootstrap(d, targets, {}, bs);
+  std::vector<double> record_peak;  // each independent record's largest ok demand (both signs, every model)
+  for (std::size_t k = 0; k < d.records; ++k) {
+    const std::vector<double> z = d.record(k);
+    if (!z.empty()) record_peak.push_back(*std::max_element(z.begin(), z.end()));
+  }
+  const std::size_t N = record_peak.size();
   const double dcode = median(r.mod.code_gap);
   const std::optional<CubicFit> f = metres_fit(r, d.pooled(), dcode);
   std::string s = fmt::format(
@@ -185,17 +197,36 @@ std::string pair_separation_section(const Data& r) {
       "seeded from the study's seed), so it includes record-to-record variability; **the advice is its upper "
       "end**. The code gap is d = {} (h1 + h2) = {:.3f} m{}. The cubic fit (P in % against metres over "
       "[{}, {}] d) is a secondary summary.\n\n"
-      "| P(at least one impact) | separation m | {:.0f} % interval m | advice: at least m | in code gaps d | cubic m |\n"
-      "|---|---|---|---|---|---|\n",
+      "The records, not the analyses, limit how fine a target can be: with N = {} independent records a target t "
+      "with floor(t N) = 0 is **not resolved by N records** -- no record is expected to exceed it, and the empirical "
+      "separation is (close to) the largest record's peak, whatever t. \"Records above\" counts the records with "
+      "at least one analysis above the separation. Beside it, a **parametric estimate (lognormal, extrapolated)**: "
+      "a lognormal fitted to the n demands (maximum likelihood: ln z has mean {:.4f} and standard deviation {:.4f}; "
+      "{:.1f} % of the demands <= 0 taken as a point mass at 0), with its interval from the same bootstrap "
+      "replicates refitted. Where a target is not resolved, the advice is the lognormal's upper end, so labelled.\n\n"
+      "| P(at least one impact) | separation m | {:.0f} % interval m | records above | advice: at least m | in code gaps d | "
+      "cubic m | lognormal m (parametric) | lognormal {:.0f} % interval m |\n"
+      "|---|---|---|---|---|---|---|---|---|\n",
       buildings(r), d.pooled().size(), b.replicates, 100 * r.set.confidence, r.set.code_gap_coefficient, dcode,
       std::all_of(r.mod.code_gap.begin(), r.mod.code_gap.end(), [&](double v) { return v == dcode; }) ? ""
                                                                                                           : " (median)",
-      r.set.fit_min, r.set.fit_max, 100 * r.set.confidence);
+      r.set.fit_min, r.set.fit_max, N, b.fit.mu, b.fit.sigma, 100 * b.fit.p0, 100 * r.set.confidence,
+      100 * r.set.confidence);
   for (std::size_t i = 0; i < targets.size(); ++i) {
     const separation::Estimate& e = b.separation[i];
+    const separation::Estimate& ln = b.lognormal[i];
     const auto xc = f ? solve_fit(*f, r.set.targets[i], r.set.fit_min * dcode, r.set.fit_max * dcode) : std::nullopt;
-    s += fmt::format("| {}% | {:.3f} | {} | **{:.3f}** | {:.2f} | {} |\n", r.set.targets[i], e.value,
-                     interval(e, 1, "{:.3f}"), e.hi, e.value / dcode, xc ? fmt::format("{:.3f}", *xc) : "outside fit range");
+    const bool resolved = resolved_by(targets[i], N);
+    const std::size_t above = std::count_if(record_peak.begin(), record_peak.end(), [&](double v) { return v > e.value; });
+    const std::string advice =
+        resolved ? fmt::format("**{:.3f}**", e.hi)
+                 : fmt::format("not resolved by {} records; lognormal: **{}**", N,
+                               std::isnan(ln.hi) ? "n/a" : fmt::format("{:.3f}", ln.hi));
+    s += fmt::format("| {}% | {:.3f} | {} | {} of {} | {} | {:.2f} | {} | {} | {} |\n", r.set.targets[i], e.value,
+                     interval(e, 1, "{:.3f}"), above, N, advice, e.value / dcode,
+                     xc ? fmt::format("{:.3f}", *xc) : "outside fit range",
+                     std::isnan(ln.value) ? "n/a" : fmt::format("{:.3f}", ln.value),
+                     std::isnan(ln.lo) ? "n/a" : interval(ln, 1, "{:.3f}"));
   }
   return s;
 }
@@ -216,14 +247,26 @@ std::string separation_csv(const Data& r) {
   const double unit = r.set.pair ? median(r.mod.code_gap) : 1.0;
   const int n = r.set.pair ? static_cast<int>(std::floor(r.set.curve_max / r.set.curve_step + 1e-9)) : 0;
   for (int i = 1; i <= n; ++i) gaps.push_back(r.set.curve_step * i * unit);
-  const separation::BootstrapResult b = separation::bootstrap(d, targets, gaps, r.bootstrap_settings());
+  separation::BootstrapSettings bs = r.bootstrap_settings();
+  bs.lognormal = r.set.pair;
+  const separation::BootstrapResult b = separation::bootstrap(d, targets, gaps, bs);
   const std::size_t N = d.pooled().size();
   std::string s;
   for (std::size_t i = 0; i < targets.size(); ++i) {
     const separation::Estimate& e = b.separation[i];
-    s += r.set.pair ? fmt::format("separation,,{:.6f},,,,{},{},{:.6f},{:.6f},{:.6f},\n", e.value / unit, N, targets[i],
-                                  e.value, e.lo, e.hi)
-                    : fmt::format("separation,,{:.6f},,,,{},{},,{:.6f},{:.6f},\n", e.value, N, targets[i], e.lo, e.hi);
+    // name: "not resolved by R records" where floor(t R) = 0 (R independent records)
+    const std::string note =
+        !r.set.pair || resolved_by(targets[i], d.records) ? "" : fmt::format("\"not resolved by {} records\"", d.records);
+    s += r.set.pair ? fmt::format("separation,,{:.6f},,,,{},{},{:.6f},{:.6f},{:.6f},{}\n", e.value / unit, N, targets[i],
+                                  e.value, e.lo, e.hi, note)
+                    : fmt::format("separation,,{:.6f},,,,{},{},,{:.6f},{:.6f},{}\n", e.value, N, targets[i], e.lo, e.hi,
+                                  note);
+  }
+  for (std::size_t i = 0; i < b.lognormal.size(); ++i) {  // pair studies: the parametric (lognormal) estimate
+    const separation::Estimate& e = b.lognormal[i];
+    s += fmt::format("separation_lognormal,,{:.6f},,,,{},{},{:.6f},{:.6f},{:.6f},\"lognormal fit: mu {:.9g} sigma {:.9g} "
+                     "p0 {:.9g}\"\n",
+                     e.value / unit, N, targets[i], e.value, e.lo, e.hi, b.fit.mu, b.fit.sigma, b.fit.p0);
   }
   for (std::size_t i = 0; i < gaps.size(); ++i) {
     const separation::Estimate& e = b.probability[i];

@@ -23,6 +23,8 @@ constexpr Row records_table[] = {
     {"duration", {"s", "record length (npts - 1) dt"}},
     {"pga_g", {"g", "peak ground acceleration as used (after scaling), in g = 9.80665 m/s^2"}},
     {"npts", {"1", "number of acceleration samples"}},
+    {"polarity", {"1", "+1: the record as recorded, -1: its sign reversed ([records] polarity = \"both\": record r's "
+                       "two analyses are rows 2r, 2r + 1 with the same id; the statistics keep them together)"}},
 };
 
 // /models: one entry per sampled pair (building 1 on the left, 2 on the right), and the period grid.

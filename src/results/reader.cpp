@@ -74,6 +74,7 @@ RecordTable read_records(h5::hid root) {
   read_opt(g.get(), "duration", t.duration);
   read_opt(g.get(), "pga_g", t.pga_g);
   read_opt(g.get(), "npts", t.npts);
+  read_opt(g.get(), "polarity", t.polarity);
   return t;
 }
 

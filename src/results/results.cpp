@@ -83,6 +83,24 @@ std::string Settings::text(std::string_view section, std::string_view key) const
   missing(section, key, "not a string");
 }
 
+std::string Results::polarity() const {
+  const SettingValue* v = settings.find("records", "polarity");
+  const auto* s = v ? std::get_if<std::string>(v) : nullptr;
+  return s ? *s : std::string("recorded");
+}
+
+std::size_t Results::polarities() const {
+  if (polarity() != "both") return 1;
+  const std::size_t R = records.size();
+  bool paired = R % 2 == 0;
+  for (std::size_t k = 0; paired && k < R && k < records.polarity.size(); ++k)
+    paired = records.polarity[k] == (k % 2 ? -1 : 1) && (k % 2 == 0 || records.id[k] == records.id[k - 1]);
+  if (!paired)
+    throw std::runtime_error(path + ": /settings/records polarity is \"both\" but /records does not hold each record "
+                                    "twice (+1, -1 in consecutive rows)");
+  return 2;
+}
+
 bool Results::has_group(std::string_view group) const {
   for (const Field& f : fields)
     if (f.spec.group == group) return true;

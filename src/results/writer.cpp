@@ -84,6 +84,7 @@ void write_records(h5::hid root, const RecordTable& t) {
   h5::write_dataset(g.get(), "duration", t.duration);
   h5::write_dataset(g.get(), "pga_g", t.pga_g);
   h5::write_dataset(g.get(), "npts", t.npts);
+  if (!t.polarity.empty()) h5::write_dataset(g.get(), "polarity", t.polarity);
 }
 
 void write_models(h5::hid root, const ModelTable& t) {

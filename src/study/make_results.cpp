@@ -50,6 +50,7 @@ results::RecordTable record_table(const std::vector<StudyRecord>& records) {
     t.dt.push_back(rr.record.dt), t.duration.push_back(rr.record.duration());
     t.pga_g.push_back(rr.record.pga() / g_accel);
     t.npts.push_back(static_cast<std::int64_t>(rr.record.acc.size()));
+    t.polarity.push_back(rr.polarity);
   }
   return t;
 }

@@ -55,6 +55,22 @@ std::vector<StudyRecord> load_study_records(const Study& s, StudySelection* sele
   }
   if (s.record_limit > 0 && out.size() > static_cast<std::size_t>(s.record_limit)) out.resize(static_cast<std::size_t>(s.record_limit));
   check_result_memory(s, out.size());  // parse_study could only count a lower bound of the records
+  if (s.polarity == Polarity::both) {
+    // Every record, then its sign reversed: two analyses of one record (rows 2r, 2r + 1). Negation is exact, so
+    // the reversed record's intensity (Sa, PGA) is the recorded one's bit for bit, and so are its stripes' factors.
+    std::vector<StudyRecord> both;
+    both.reserve(2 * out.size());
+    for (auto& rr : out) {
+      StudyRecord rev = rr;
+      for (double& a : rev.record.acc) a = -a;
+      rev.polarity = -1;
+      rev.note += rev.note.empty() ? "sign reversed ([records] polarity = \"both\")"
+                                   : "; sign reversed ([records] polarity = \"both\")";
+      both.push_back(std::move(rr));
+      both.push_back(std::move(rev));
+    }
+    out = std::move(both);
+  }
   return out;
 }
 

@@ -467,6 +467,9 @@ void announce(const parallel::Session& session, const Inputs& in, const WorkPlan
                       in.records.size(), L.models(), to_string(in.study.scene), L.units(), session.size(),
                       session.size() > 1 ? "s" : ""));
   ctx.say(in.study.scene_reason);
+  if (in.study.polarity == Polarity::both)
+    ctx.say(fmt::format("record polarity \"both\": each of the {} records applied with both signs, as two analyses of "
+                        "the same record", in.records.size() / 2));
   if (in.selection) {
     ctx.say(fmt::format("records selected to the design spectrum ([records] select = {}, [target_spectrum]):",
                         in.study.select));
@@ -503,7 +506,7 @@ void announce(const parallel::Session& session, const Inputs& in, const WorkPlan
     // practice keeps factors within about [0.25, 4]): name each record scaled outside that range, and where.
     const IntensitySpec& x = in.study.intensity;
     std::size_t outside = 0;
-    for (std::size_t r = 0; r < p.records; ++r) {
+    for (std::size_t r = 0; r < p.records; r += static_cast<std::size_t>(polarity_count(in.study.polarity))) {
       std::string at;
       for (std::size_t s = 0; s < p.stripes; ++s) {
         const double f = p.scale[s * p.records + r];
@@ -518,10 +521,10 @@ void announce(const parallel::Session& session, const Inputs& in, const WorkPlan
     if (outside)
       ctx.say(fmt::format("{} of {} records are scaled outside [0.25, 4] at some stripe: large factors can bias "
                           "the response (Baker 2015 prefers records selected near each level); the report counts them",
-                          outside, p.records));
+                          outside, p.records / static_cast<std::size_t>(polarity_count(in.study.polarity))));
   }
   for (const auto& rr : in.records)
-    if (rr.synthetic) ctx.say(fmt::format("record {}: synthetic stand-in ({})", rr.id, rr.note));
+    if (rr.synthetic && rr.polarity > 0) ctx.say(fmt::format("record {}: synthetic stand-in ({})", rr.id, rr.note));
 }
 
 // ---- phase 4: the work (every rank computes; rank 0 gathers, checkpoints and reports progress) -----

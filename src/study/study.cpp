@@ -77,8 +77,13 @@ void parse_records(Study& s, const toml::table* t, const std::string& path) {
     s.max_per_event = static_cast<std::size_t>(r.integer("max_per_event", static_cast<long>(default_max_per_event)));
     s.components = r.choice("components", "one", parse_component_rule);
   }
+  if (r.get("polarity")) {
+    s.polarity = r.choice("polarity", "recorded", parse_polarity);
+    s.polarity_given = true;
+  }
   parse_record_files(s, r, path);
-  r.finish("suite, real_dir, directory, files, scale, units, dt, limit, synthetic_only, select, max_per_event, components");
+  r.finish("suite, real_dir, directory, files, scale, units, dt, limit, synthetic_only, select, max_per_event, components, "
+           "polarity");
   int sources = !s.suite.empty() + !s.directory.empty() + !s.files.empty();
   if (sources != 1)
     throw InputError(sources == 0 ? "the study names no records" : "the study names records in more than one way",
@@ -113,6 +118,14 @@ void parse_contact(Study& s, const toml::table* t, const std::string& path) {
 }
 
 }  // namespace
+
+Polarity parse_polarity(std::string_view name) {
+  for (const auto& [v, n] : polarity_names)
+    if (n == name) return v;
+  throw InputError(fmt::format("unknown polarity '{}'", name), "polarity",
+                   "use \"both\" (every record applied with both signs, as two analyses of the same record) or "
+                   "\"recorded\" (the sign as recorded only)");
+}
 
 CoarsePolicy parse_coarse_policy(std::string_view name) {
   for (const auto& [v, n] : coarse_policy_names)
@@ -241,6 +254,8 @@ Study parse_study(const std::string& text, const std::string& path) {
   top.finish("title, seed, scene, output, records, structures, gaps, contact, analysis, report, outputs, intensity, "
              "hazard, target_spectrum");
   check_selection(s, top);
+  // a ground motion's sign is arbitrary: a pair study (one pair, answers in metres) takes both by default
+  if (!s.polarity_given) s.polarity = s.structures.heights_specified() ? Polarity::both : Polarity::recorded;
   // ida: linear pairs take every capacity exactly from one run; yielding ones need the bisection (study/run.cpp)
   s.intensity.bisection =
       s.intensity.method == FragilityMethod::ida &&
@@ -270,7 +285,8 @@ Study parse_study(const std::string& text, const std::string& path) {
 
 double result_bytes(const Study& s, std::size_t records) {
   const double per_model = 25.0 + (s.scene == Scene::impacts ? 45.0 * static_cast<double>(s.gap_ratios.size()) : 0.0);
-  return static_cast<double>(records) * static_cast<double>(std::max<std::size_t>(1, s.intensity.stripes())) * static_cast<double>(s.structures.period_pair_count()) *
+  return static_cast<double>(records) * polarity_count(s.polarity) *
+         static_cast<double>(std::max<std::size_t>(1, s.intensity.stripes())) * static_cast<double>(s.structures.period_pair_count()) *
          static_cast<double>(s.structures.samples_per_pair) * per_model;
 }
 

@@ -196,3 +196,51 @@ TEST(Separation, CurveBandIsConsistentWithThePointValues) {
   for (std::size_t t = 0; t < 3; ++t) EXPECT_EQ(b.separation[t].value, separation_at(z, targets[t]));
   EXPECT_EQ(b.probability.front().hi, 1.0);  // below every value
 }
+
+// Issue 23, item 2: the lognormal beside the order statistic. ln z = {0, 1, 2}: mu = 1, sigma = sqrt(2/3) (maximum
+// likelihood, divisor n); P(z > g) = 1 - Phi((ln g - mu) / sigma), so the median is e and the 1 - Phi(1) target is
+// exp(mu + sigma); a demand <= 0 is a point mass at 0 that scales the target by 1 / (1 - p0).
+TEST(SeparationLognormal, FitAndQuantilesInClosedForm) {
+  const double z[] = {1.0, std::exp(1.0), std::exp(2.0), NAN};
+  const LognormalFit f = fit_lognormal(z);
+  ASSERT_TRUE(f.ok());
+  EXPECT_EQ(f.n, 3u);
+  EXPECT_NEAR(f.mu, 1.0, 1e-15);
+  EXPECT_NEAR(f.sigma, std::sqrt(2.0 / 3.0), 1e-15);
+  EXPECT_EQ(f.p0, 0.0);
+  const double tail1 = 0.15865525393145707;  // 1 - Phi(1)
+  EXPECT_NEAR(f.separation(0.5), std::exp(1.0), 1e-12);
+  EXPECT_NEAR(f.separation(tail1), std::exp(1.0 + std::sqrt(2.0 / 3.0)), 1e-12);
+  const double z0[] = {1.0, std::exp(1.0), std::exp(2.0), 0.0};
+  const LognormalFit g = fit_lognormal(z0);
+  EXPECT_EQ(g.p0, 0.25);
+  EXPECT_NEAR(g.separation(0.75 * tail1), std::exp(1.0 + std::sqrt(2.0 / 3.0)), 1e-12);
+  EXPECT_EQ(g.separation(0.8), 0.0);  // more than the positive demands' share: no gap needed
+  EXPECT_FALSE(fit_lognormal(std::span<const double>(z, 1)).ok());
+}
+
+// The lognormal rides on the same replicates: the empirical results keep their bits, the lognormal's value is the
+// full-data fit, and a target finer than the records still moves the lognormal (the order statistic cannot).
+TEST(SeparationLognormal, SameReplicatesAndFinerTargetsMove) {
+  Demands d;
+  d.records = 20, d.models = 1;  // a fixed pair: one demand per record
+  for (std::size_t k = 0; k < d.records; ++k) d.z.push_back(std::exp(-2.0 + 0.1 * static_cast<double>(k)));
+  const double targets[] = {0.1, 0.01, 0.001}, gaps[] = {0.2, 0.4};
+  BootstrapSettings s{.replicates = 400, .confidence = 0.95, .seed = 3, .threads = 2};
+  const BootstrapResult a = bootstrap(d, targets, gaps, s);
+  s.lognormal = true;
+  const BootstrapResult b = bootstrap(d, targets, gaps, s);
+  ASSERT_EQ(b.lognormal.size(), 3u);
+  for (std::size_t i = 0; i < 3; ++i) {
+    EXPECT_EQ(a.separation[i].value, b.separation[i].value);
+    EXPECT_EQ(a.separation[i].lo, b.separation[i].lo);
+    EXPECT_EQ(a.separation[i].hi, b.separation[i].hi);
+    EXPECT_EQ(b.lognormal[i].value, fit_lognormal(d.z).separation(targets[i]));
+    EXPECT_LT(b.lognormal[i].lo, b.lognormal[i].value);
+    EXPECT_GT(b.lognormal[i].hi, b.lognormal[i].value);
+  }
+  for (std::size_t i = 0; i < 2; ++i) EXPECT_EQ(a.probability[i].hi, b.probability[i].hi);
+  EXPECT_EQ(b.separation[1].value, b.separation[2].value);  // 1 % and 0.1 % of 20 records: the largest
+  EXPECT_EQ(b.separation[2].value, d.z.back());
+  EXPECT_GT(b.lognormal[2].value, b.lognormal[1].value);
+}

@@ -163,3 +163,16 @@ TEST(Cqc, KnownPointsAndSymmetry) {
   EXPECT_GT(cqc_rho(0.9, 0.05), cqc_rho(0.5, 0.05));
   EXPECT_EQ(cqc_rho(0.0, 0.05), 0.0);
 }
+
+// Issue 23, item 8: Wilson at a fraction with an effective n (the independent records of a fixed pair).
+TEST(Stats, WilsonEffectiveEqualsWilsonForCountsAndWidensWithFewerRecords) {
+  const Interval a = wilson_interval(2, 85), b = wilson_interval_effective(2.0 / 85.0, 85.0);
+  EXPECT_EQ(a.lo, b.lo);
+  EXPECT_EQ(a.hi, b.hi);
+  // 2.35 % of 3400 analyses (SciPy: [1.89, 2.92] %) against 2.35 % of 85 records
+  const Interval analyses = wilson_interval(80, 3400), records = wilson_interval_effective(80.0 / 3400.0, 85.0);
+  EXPECT_NEAR(100 * analyses.lo, 1.89, 0.01);
+  EXPECT_GT(records.hi - records.lo, 4 * (analyses.hi - analyses.lo));
+  EXPECT_NEAR(100 * records.lo, 0.648, 0.001);  // scipy binomtest(2, 85).proportion_ci(method="wilson"): 0.00648
+  EXPECT_NEAR(100 * records.hi, 8.179, 0.001);  //   and 0.08179 (2 / 85 = 80 / 3400)
+}

@@ -14,7 +14,11 @@
 #   - the annual rate equals Cornell et al. (2002)'s closed form k0 theta^-k exp(k^2 beta^2 / 2) (1e-6), and the
 #     IDA's risk-targeted gap equals x* = (1/theta1) [k0 exp(k^2 beta^2 / 2) / lambda_target]^(1/k) (1e-4);
 #   - Sa at the pair's period comes from the engine; the scale factors are checked against it, and Sa itself
-#     against SciPy in cli.intensity_scipy.
+#     against SciPy in cli.intensity_scipy;
+#   - [records] polarity = "both" (issue 23; the studies above say "recorded"): a record's reversed copy has the
+#     same IM bit for bit, its recorded rows are the recorded study's bits, MSA counts 2 x R x M analyses per
+#     stripe, and the jackknife of the risk-targeted gap leaves out a record WITH BOTH SIGNS (closed form over
+#     R records of 2 M capacities each, not 2 R rows).
 # Args: <pounding binary> <source dir>
 set -euo pipefail
 bin=$1; src=$2
@@ -48,13 +52,14 @@ for k in range(12):
 levels = [0.05, 0.1, 0.15, 0.2, 0.3, 0.45, 0.6, 0.8, 1.1, 1.5, 2.0, 3.0]
 k0, kk = 4e-4, 2.5
 
-def study(name, method):
+def study(name, method, polarity="recorded"):
     text = f'''title = "linear fragility"
 seed = 5
 scene = "probability"
 output = "{name}.h5"
 [records]
 files = {files!r}
+polarity = "{polarity}"
 [structures]
 samples_per_pair = 40
 hysteresis = "elastic"
@@ -186,5 +191,29 @@ rep = subprocess.run([bin_, "report", "old.h5"], check=True, capture_output=True
 want = f"advice: at least {ida['hazard'].attrs['target_gap_m_hi']:.3f} m** (the upper end)"  # a pair: metres
 assert want in rep and "jackknife" not in rep, (want, rep[:2000])
 print("a file without the jackknife: the report advises the bootstrap's upper end")
+
+# polarity "both": two analyses per record, resampled and left out together
+idab, msab = study("ida_both", "ida", "both"), study("msa_both", "msa", "both")
+imb = idab["intensity/im"][()]
+assert np.array_equal(imb[0::2], im) and np.array_equal(imb[1::2], im), "a reversed record has the same IM"
+assert list(idab["records/polarity"][()]) == [1, -1] * R
+d1b = idab["uncoupled/peak_closing"][()]        # [2 R, models]
+assert np.array_equal(d1b[0::2], d1), "the recorded rows are the recorded study's bits"
+assert not np.array_equal(d1b[1::2], d1b[0::2])
+assert all(msab["fragility/observed_n"][0] == 2 * R * d1.shape[1])
+c1b = np.log(im.repeat(2)[:, None] * d[None, :] / d1b).reshape(R, -1)  # [records, 2 models]: both signs together
+lnx = []
+for j in range(R):
+    rest = np.delete(c1b, j, axis=0).ravel()
+    lnx.append(np.log((k0 * np.exp(kk * kk * rest.var(ddof=1) / 2) / lt) ** (1 / kk) / np.exp(rest.mean())))
+lnx = np.array(lnx)
+se = np.sqrt((R - 1) / R * np.sum((lnx - lnx.mean()) ** 2))
+hb = idab["hazard"].attrs
+print(f"polarity both: IDA jackknife se of ln x* {hb['target_gap_jack_se']:.6f}, closed form over {R} records with "
+      f"both signs {se:.6f}; x* {hb['target_gap']:.5f} d (recorded only {got:.5f} d)")
+assert abs(hb["target_gap_jack_se"] / se - 1) < 1e-3, (hb["target_gap_jack_se"], se)
+rep = subprocess.run([bin_, "report", "ida_both.h5"], check=True, capture_output=True, text=True).stdout
+assert "record polarity: **both**" in rep and f"- {R} records, " in rep, rep[:3000]
+print("polarity both: one IM per record, recorded rows unchanged, jackknife over records with both signs")
 PY
 echo "1 passed, 0 failed"

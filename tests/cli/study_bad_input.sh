@@ -35,5 +35,8 @@ expect_error syntax 'syntax' "$(echo "$body" | sed 's/^\[gaps\]/[gaps/')"
 expect_error bad_stepper 'unknown stepper' "$(echo "$body" | sed 's/^batch = 3/stepper = "euler"\nbatch = 3/')"
 expect_error bad_coarse ':26 \[analysis\].coarse, use "exclude".*"keep"' \
   "$(echo "$body" | sed 's/^batch = 3/coarse = "drop"\nbatch = 3/')"
+expect_error bad_polarity '\[records\].polarity, use "both".*"recorded"' \
+  "$(echo "$body" | sed 's|^suite = "builtin"|suite = "builtin"\npolarity = "negative"|')"
+expect_error scale_negative 'scale' "$(echo "$body" | sed 's|^suite = "builtin"|suite = "builtin"\nscale = -1|')"
 echo "$passes passed, $fails failed"
 [ $fails -eq 0 ]

@@ -17,6 +17,20 @@
 // sorted replicate values). Replicate b uses its own stream splitmix64-derived from (seed, b), so the result
 // does not depend on how replicates are spread over threads. The Wilson interval (stats.hpp) is the
 // sampling error of the models under a fixed record set, and ignores record-to-record scatter.
+//
+// Targets finer than the records resolve (issue 23, item 2). With R records, a target t with floor(t R) = 0 asks
+// for a demand that no record is expected to exceed: the empirical separation is then (nearly) the largest
+// record's peak, and a finer target returns the same number. Beside it, a parametric estimate: the lognormal
+// fitted to every ok demand, P(z > g) = (1 - p0) (1 - Phi((ln g - mu) / sigma)) with mu, sigma the maximum-
+// likelihood mean and standard deviation (divisor n) of ln z over the positive demands and p0 the fraction of
+// demands <= 0 (a pair that never closes), so separation_lognormal(t) = exp(mu + sigma Phi^-1(1 - t / (1 - p0)))
+// (0 when t >= 1 - p0). Why this model: the peak demand of a structure under a record is lognormal in the
+// PSDM tradition (Cornell et al. 2002), and with a record effect and a model effect both normal in ln z the
+// pooled demand of a study is exactly lognormal, sigma^2 = sigma_record^2 + sigma_model^2; a fixed pair has only
+// the record effect. Its interval is the same two-stage bootstrap (the same replicates, refitted), so it
+// includes record-to-record variability. It extrapolates: a target beyond the records rests on the lognormal
+// tail, and the report labels it so.
+#include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <span>
@@ -39,11 +53,21 @@ double exceedance(std::span<const double> z, double g);
 // The smallest g with exceedance(z, g) <= t (t in [0, 1)); NaN when z is empty. Takes a copy (nth_element).
 double separation_at(std::vector<double> z, double t);
 
+// The lognormal fit above over `z` (NaN ignored): mu, sigma of ln z over the n_pos > 0 values, p0 = share <= 0.
+struct LognormalFit {
+  double mu = NAN, sigma = NAN, p0 = NAN;
+  std::size_t n = 0, n_pos = 0;
+  bool ok() const { return n_pos >= 2 && sigma > 0; }
+  double separation(double t) const;  // the g with P(z > g) = t; NaN unless ok()
+};
+LognormalFit fit_lognormal(std::span<const double> z);
+
 struct BootstrapSettings {
   int replicates = 2000;
   double confidence = 0.95;
   std::uint64_t seed = 0;
   int threads = 2;  // the result does not depend on it
+  bool lognormal = false;  // also the lognormal separations (BootstrapResult::lognormal; an O(n) pass per replicate)
 };
 
 struct Estimate {
@@ -53,6 +77,8 @@ struct Estimate {
 struct BootstrapResult {
   std::vector<Estimate> separation;   // per target fraction
   std::vector<Estimate> probability;  // per gap (fraction)
+  std::vector<Estimate> lognormal;    // per target, with BootstrapSettings::lognormal (replicates refitted)
+  LognormalFit fit;                   // the full-data lognormal (with BootstrapSettings::lognormal)
   int replicates = 0;
 };
 

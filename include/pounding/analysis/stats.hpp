@@ -13,6 +13,9 @@ struct Interval {
 };
 // 95 % Wilson score interval for k successes out of n (z = 1.959963984540054).
 Interval wilson_interval(std::int64_t k, std::int64_t n, double z = 1.959963984540054);
+// The same score interval at an observed fraction p with an effective sample size n (not necessarily p n
+// successes of n trials: e.g. n independent records behind a fraction of their analyses).
+Interval wilson_interval_effective(double p, double n, double z = 1.959963984540054);
 
 // Least-squares polynomial y = c3 x^3 + c2 x^2 + c1 x + c0 (solved with Eigen's QR) and its R^2.
 struct CubicFit {

@@ -71,6 +71,7 @@ struct RecordTable {
   std::vector<std::uint8_t> synthetic;
   std::vector<double> dt, duration, pga_g;
   std::vector<std::int64_t> npts;
+  std::vector<std::int32_t> polarity;  // +1 as recorded, -1 sign reversed ([records] polarity); empty in older files
   std::size_t size() const { return id.size(); }
 };
 
@@ -180,6 +181,13 @@ struct Results {
 
   std::size_t record_count() const { return records.size(); }
   std::size_t model_count() const { return models.size(); }
+  // [records] polarity: "both" (rows 2r, 2r + 1 are record r's two signs) or "recorded" (also every file written
+  // before the key). polarities() is the number of analyses (rows) per independent record, 1 or 2, and
+  // independent_records() the records the statistics resample. Throws std::runtime_error for a "both" file whose
+  // rows do not pair up (odd count, or /records/polarity not +1, -1 alternating with equal ids).
+  std::string polarity() const;
+  std::size_t polarities() const;
+  std::size_t independent_records() const { return record_count() / polarities(); }
   bool has_group(std::string_view group) const;
   const Field* find(std::string_view group, std::string_view name) const;
   // The values of /<group>/<name>; throws std::runtime_error when absent or of another type.

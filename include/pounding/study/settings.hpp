@@ -37,6 +37,7 @@ void visit_settings(const Study& s, V&& v) {
   v("records", "limit", static_cast<std::int64_t>(s.record_limit));
   v("records", "synthetic_only", s.synthetic_only);
   v("records", "select", static_cast<std::int64_t>(s.select));
+  v("records", "polarity", S(to_string(s.polarity)));  // absent in older files: "recorded"
   if (s.target.enabled) {  // [target_spectrum] (study/target_spectrum.hpp); absent otherwise
     const TargetSpectrumSection& x = s.target;
     v("target_spectrum", "code", S(to_string(x.spec.code)));

@@ -14,7 +14,14 @@
 //                [target_spectrum]; not with limit); with select: max_per_event = 2 (records of one earthquake at
 //                most, 0: no limit; FEMA P-695's far-field set takes 2) and components = "one" | "both" (one: one
 //                component per station, the better match); a second copy of one recording is never chosen
-//                (motion/library.hpp says how event, station and component are read)
+//                (motion/library.hpp says how event, station and component are read);
+//                polarity = "recorded" | "both" (default "both" in a pair study -- both buildings' heights given --,
+//                "recorded" in a grid study): "both" applies every record with both signs, as two analyses of the
+//                same record (study/records.cpp): a ground motion's sign is arbitrary, and pounding counts only
+//                when building 1 moves towards building 2 (peak of u1 - u2). The statistics over records (bootstrap,
+//                jackknife, per-record tables) keep a record's two signs together as ONE record. A grid study's
+//                default is the published method's ("recorded"; its period grid holds both (Ta, Tb) and (Tb, Ta),
+//                which mirror each other's closing); the paper studies state it.
 //   [structures] the stochastic structure model (see sampler.hpp): the defaults of both buildings; equal_heights = false
 //                [structures.building1] / [structures.building2]: one building's overrides and its own period, height,
 //                mass, zeta, yield_coefficient (a number or {lognormal = {median, cov}} / {uniform = {min, max}};
@@ -85,6 +92,13 @@ inline constexpr EnumName<CoarsePolicy> coarse_policy_names[] = {{CoarsePolicy::
 constexpr const auto& enum_names(CoarsePolicy) { return coarse_policy_names; }
 CoarsePolicy parse_coarse_policy(std::string_view name);  // InputError naming the allowed values
 
+// [records] polarity: every record as recorded, or with both signs (record r's two analyses are rows 2r, 2r+1).
+enum class Polarity : std::uint8_t { recorded, both };
+inline constexpr EnumName<Polarity> polarity_names[] = {{Polarity::recorded, "recorded"}, {Polarity::both, "both"}};
+constexpr const auto& enum_names(Polarity) { return polarity_names; }
+Polarity parse_polarity(std::string_view name);  // InputError naming the allowed values
+inline int polarity_count(Polarity p) { return p == Polarity::both ? 2 : 1; }
+
 struct RecordFile {
   std::string path;
   double scale = 1.0;
@@ -111,6 +125,8 @@ struct Study {
   std::string select_where;     // "file:line [records].select" for errors found when the records load
   std::size_t max_per_event = default_max_per_event;  // [records] max_per_event (with select; selection.hpp)
   ComponentRule components = ComponentRule::one;      // [records] components (with select)
+  Polarity polarity = Polarity::recorded;  // [records] polarity, after its default (pair study: both)
+  bool polarity_given = false;
   // structures
   StructureModel structures;
   // gaps
@@ -173,7 +189,10 @@ struct StudyRecord {
   bool synthetic = false;
   std::string id;    // suite id (EQ1...) or file stem
   std::string note;  // how it was resolved
+  int polarity = 1;  // +1: as recorded; -1: the record with its sign reversed ([records] polarity = "both")
 };
+// With [records] polarity = "both" every record (after select and limit) is followed by its reversed copy
+// (-acc, polarity -1, the same id): record r's two analyses are rows 2r and 2r + 1.
 // With [records] select: the chosen records, best match first, each multiplied by its factor f_i F; the
 // selection goes to *selection when given (the run log prints it, /selection stores it). Deterministic: every
 // rank computes the same records bit for bit.
