@@ -463,8 +463,9 @@ std::vector<std::size_t> open_checkpoint(const parallel::Session& session, const
 
 void announce(const parallel::Session& session, const Inputs& in, const WorkPlan& L, const RunContext& ctx) {
   if (!session.root()) return;
-  ctx.say(fmt::format("pounding run: {} ({} records, {} models, scene {}, {} units on {} rank{})", in.study.title,
-                      in.records.size(), L.models(), to_string(in.study.scene), L.units(), session.size(),
+  ctx.say(fmt::format("pounding run: {} ({} records{}, {} models, scene {}, {} units on {} rank{})", in.study.title,
+                      in.records.size() / polarity_count(in.study.polarity),
+                      in.study.polarity == Polarity::both ? " x 2 signs" : "", L.models(), to_string(in.study.scene), L.units(), session.size(),
                       session.size() > 1 ? "s" : ""));
   ctx.say(in.study.scene_reason);
   if (in.study.polarity == Polarity::both)
