@@ -99,6 +99,12 @@ constexpr StudyKey keys[] = {
     {"records", "components", "string", "\"one\"", "", "\"one\" | \"both\"",
      "With select: one = one component per station (the better match); both = both may be chosen. A second copy of "
      "one recording (same event, station and axis) is never chosen."},
+    {"records", "polarity", "string", "\"both\" in a pair study (both heights given), \"recorded\" in a grid study", "",
+     "\"recorded\" | \"both\"",
+     "\"both\" applies every record with both signs, as two analyses of the same record: pounding counts when "
+     "building 1 moves towards building 2 (peak of u1 - u2), and a ground motion's sign is arbitrary. The bootstrap, "
+     "jackknife and per-record tables keep a record's two signs together as one record. \"recorded\": the sign as "
+     "recorded (the paper studies state it)."},
 
     {"records.files", "path", "string", "required", "", "a record file", "The record file (relative to the study)."},
     {"records.files", "scale", "number", "1.0", "", "(0, 1000]", "Factor applied to this record.", 1e-6, 1e3},

@@ -235,6 +235,7 @@ TEST(StudyKeys, DocumentedChoicesAreTheEnumTables) {
   const std::map<std::pair<std::string, std::string>, std::string> tables{
       {{"", "scene"}, choices(scene_names)},
       {{"records", "units"}, choices(acc_units_names)},
+      {{"records", "polarity"}, choices(polarity_names)},
       {{"structures", "hysteresis"}, choices(hysteresis_names)},
       {{"structures.buildingN", "hysteresis"}, choices(hysteresis_names)},
       {{"contact", "law"}, choices(contact_law_table, "none")},
