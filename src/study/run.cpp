@@ -475,18 +475,21 @@ void announce(const parallel::Session& session, const Inputs& in, const WorkPlan
     ctx.say(fmt::format("records selected to the design spectrum ([records] select = {}, [target_spectrum]):",
                         in.study.select));
     for (const auto& line : in.selection->summary()) ctx.say(line);
-  } else if (in.records.size() <= 500) {
+  } else if (in.records.size() <= 500 * static_cast<std::size_t>(polarity_count(in.study.polarity))) {
     // A library used whole counts one recording twice when it holds two files of it (the El Centro 1940 N-S
     // motion is in ../shared/records/real as NGA's Array #9 180 and as Peknold's digitisation): say so
     // (motion/library.hpp; the pairwise check is skipped for libraries above 500 records).
+    // (a record's reversed copy, [records] polarity = "both", is the same recording by design: left out)
     std::vector<RecordIdentity> ids;
-    for (const StudyRecord& r : in.records) ids.push_back(identity_of(r.record));
+    std::vector<std::size_t> row;
+    for (std::size_t k = 0; k < in.records.size(); ++k)
+      if (in.records[k].polarity > 0) ids.push_back(identity_of(in.records[k].record)), row.push_back(k);
     for (std::size_t i = 0; i < ids.size(); ++i)
       for (std::size_t j = i + 1; j < ids.size(); ++j)
         if (same_recording(ids[i], ids[j]))
           ctx.say(fmt::format(" WARNING: records {} and {} are one recording ({}, {}, components {} and {}): the "
                               "statistics count that motion twice; drop one file, or choose records with [records] "
-                              "select", in.records[i].id, in.records[j].id, ids[i].event_text(), ids[i].station,
+                              "select", in.records[row[i]].id, in.records[row[j]].id, ids[i].event_text(), ids[i].station,
                               ids[i].component, ids[j].component));
   }
   if (const StripePlan& p = in.stripes; p.stripes) {
