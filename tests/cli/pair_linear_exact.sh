@@ -170,6 +170,10 @@ for c, tt in zip(seps, (0.40, 0.20)):
     assert abs(float(c[8]) - want) < 1e-6, (tt, c, want)
 md = subprocess.run([bin_, "report", "both.h5"], check=True, capture_output=True, text=True).stdout
 assert "record polarity: **both**" in md, md[:2000]
+# the separation's bootstrap and its "records above" see 6 records of 2 signs x 2 models, not 12 rows
+assert "with N = 6 independent records" in md, md[:4000]
+sep_rows = [l for l in md.splitlines() if l.startswith("| 40% |") or l.startswith("| 20% |")]
+assert len(sep_rows) == 2 and all(l.split("|")[4].strip().endswith("of 6") for l in sep_rows), sep_rows
 print(f"polarity both: {len(ratios_b)} gaps and 2 targets equal the SciPy fractions over (record, sign); "
       "Table 2 one row per record")
 PY
