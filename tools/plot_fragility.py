@@ -23,6 +23,8 @@ try:
     import h5py
     import matplotlib
     import matplotlib.lines
+    import matplotlib.patches
+    import matplotlib.ticker
 
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
@@ -159,6 +161,8 @@ def plot_fragility(fr, sel, a, prefix, title):
     fig, axes = plt.subplots(nrow, ncol, figsize=(max(4.2 * ncol + 0.6, 9.0), 3.4 * nrow + (1.6 if ncol == 3 else 2.2)), sharex=True, sharey=True,
                              squeeze=False)
     x, xlo, xhi = im_axis(fr, not a.linear)
+    lmin, lmax = fr.levels.min(), fr.levels.max()
+    x = np.unique(np.concatenate([x, [lmin, lmax]]))
     conf = f"{100 * fr.confidence:g} %"
     for k, i in enumerate(sel):
         ax = axes[k // ncol][k % ncol]
@@ -168,10 +172,17 @@ def plot_fragility(fr, sel, a, prefix, title):
         lo, hi = wilson(z[has], n[has])
         ok = fr.status[i] == "ok" and np.isfinite(fr.theta[i]) and np.isfinite(fr.beta[i])
         if ok:
-            ax.plot(x, lognormal_cdf(x, fr.theta[i], fr.beta[i]), "C0", lw=2)
-            if np.isfinite(fr.theta_lo[i]) and np.isfinite(fr.theta_hi[i]):
-                ax.plot(x, lognormal_cdf(x, fr.theta_lo[i], fr.beta[i]), "C0", ls="--", lw=1)
-                ax.plot(x, lognormal_cdf(x, fr.theta_hi[i], fr.beta[i]), "C0", ls=":", lw=1)
+            # within the stripes the fit is drawn in full; below and above them it is an extrapolation, drawn
+            # faint over a grey band (legend: "beyond the stripes")
+            inside = (x >= lmin) & (x <= lmax)
+            for part, style in ((inside, dict(lw=2, alpha=1.0)), (x <= lmin, dict(lw=1.5, alpha=0.45)),
+                                (x >= lmax, dict(lw=1.5, alpha=0.45))):
+                gid = None if part is inside else "extrapolated"
+                ax.plot(x[part], lognormal_cdf(x[part], fr.theta[i], fr.beta[i]), "C0", gid=gid, **style)
+                if np.isfinite(fr.theta_lo[i]) and np.isfinite(fr.theta_hi[i]):
+                    thin = dict(lw=1, alpha=style["alpha"])
+                    ax.plot(x[part], lognormal_cdf(x[part], fr.theta_lo[i], fr.beta[i]), "C0", ls="--", gid=gid, **thin)
+                    ax.plot(x[part], lognormal_cdf(x[part], fr.theta_hi[i], fr.beta[i]), "C0", ls=":", gid=gid, **thin)
             ax.text(0.03, 0.96, f"theta = {fr.theta[i]:.3g} {fr.units} [{fr.theta_lo[i]:.3g}, {fr.theta_hi[i]:.3g}]\n"
                     f"beta = {fr.beta[i]:.2f} [{fr.beta_lo[i]:.2f}, {fr.beta_hi[i]:.2f}]", transform=ax.transAxes,
                     ha="left", va="top", fontsize=7,
@@ -185,6 +196,14 @@ def plot_fragility(fr, sel, a, prefix, title):
         ax.set_title(head, fontsize=9)
         ax.set_xscale("linear" if a.linear else "log")
         ax.set_xlim(xlo, xhi)
+        for span in ((xlo, lmin), (lmax, xhi)):
+            if span[1] > span[0]:
+                ax.axvspan(*span, color="0.88", alpha=0.6, lw=0, zorder=0, gid="beyond-stripes")
+        ax.tick_params(labelbottom=True, labelleft=True, labelsize=8)  # numbers on every panel, shared or not
+        if not a.linear:
+            ax.xaxis.set_major_locator(matplotlib.ticker.LogLocator(base=10, subs=(1.0, 2.0, 5.0)))
+            ax.xaxis.set_major_formatter(matplotlib.ticker.FuncFormatter(lambda v, _: f"{v:g}"))
+            ax.xaxis.set_minor_formatter(matplotlib.ticker.NullFormatter())
         ax.set_ylim(-0.02, 1.02)
         ax.grid(alpha=0.3, which="both")
     handles = [
@@ -196,6 +215,9 @@ def plot_fragility(fr, sel, a, prefix, title):
         matplotlib.lines.Line2D([], [], color="C0", lw=1, ls=":",
                                 label=f"... and at theta_hi (dotted): the {conf} bootstrap interval of theta only, "
                                       "NOT a confidence band of the curve"),
+        matplotlib.patches.Patch(color="0.88", alpha=0.6,
+                                 label=f"beyond the stripes ({lmin:g}-{lmax:g} {fr.units}): the fit extrapolated, "
+                                       "drawn faint"),
         matplotlib.lines.Line2D([], [], color="C3", marker="o", ls="none", ms=4,
                                 label="observed z / n at each stripe, 95 % Wilson interval (analyses taken as independent; the "
                                       "models of one record are not, so it is too narrow)"),
@@ -203,7 +225,7 @@ def plot_fragility(fr, sel, a, prefix, title):
     fig.legend(handles=handles, loc="lower center", ncol=2 if ncol == 3 else 1, fontsize=7, frameon=False)
     for k in range(len(sel), nrow * ncol):
         axes[k // ncol][k % ncol].set_visible(False)
-    for k in range(max(0, len(sel) - ncol), len(sel)):  # the lowest panel of each column
+    for k in range(max(0, len(sel) - ncol), len(sel)):  # the lowest visible panel of each column
         axes[k // ncol][k % ncol].set_xlabel(textwrap.fill(fr.im_label, 48), fontsize=8)
     for row in axes:
         row[0].set_ylabel("P(pounding | IM)")
@@ -329,7 +351,7 @@ def plot_rate(f, fr, sel, a, prefix, title):
     ax_h.loglog(im, hr, "k.-", lw=1, ms=3, label="hazard curve used")
     ax_h.axhline(lam, color="k", ls="--", lw=1, label=tlabel)
     ax_h.axvspan(fr.levels.min(), fr.levels.max(), color="C3", alpha=0.12, label="the stripes' IM range")
-    ax_h.set_xlabel(fr.im_label)
+    ax_h.set_xlabel(textwrap.fill(fr.im_label, 40))
     ax_h.set_ylabel("annual rate of exceedance (1/year)")
     src = text(at.get("source", ""))
     ax_h.set_title("site hazard" + (f"\n{src[:60]}{'...' if len(src) > 60 else ''}" if src else ""), fontsize=7)

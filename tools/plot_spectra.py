@@ -91,11 +91,30 @@ def read_results_selection(path):
     return meta, names, np.column_stack([periods, target, mean, spectra.T])
 
 
+def wrap(title, fig, share=1.0, fontsize=10):
+    """The title broken into lines that fit `share` of the figure's width (a long one was clipped)."""
+    import textwrap
+
+    return "\n".join(textwrap.fill(line, max(20, int(share * fig.get_figwidth() * 72 / (0.55 * fontsize))))
+                     for line in title.split("\n"))
+
+
+def plain_log_ticks(axis):
+    """Numbers at 1, 2 and 5 of every decade (0.1, 0.2, 0.5, 1, 2, 5 g), none at the minor ticks: on the few
+    decades a spectrum spans, decade labels alone left Sa above 1 g without a number."""
+    from matplotlib.ticker import FuncFormatter, LogLocator, NullFormatter
+
+    axis.set_major_locator(LogLocator(base=10, subs=(1.0, 2.0, 5.0)))
+    axis.set_major_formatter(FuncFormatter(lambda v, _: f"{v:g}"))
+    axis.set_minor_formatter(NullFormatter())
+
+
 def plot_selection(a, meta, names, data, plt):
     T, target, mean, S = data[:, 0], data[:, 1], data[:, 2], data[:, 3:]
-    fig, ax = plt.subplots(figsize=(8, 5))
-    for j in range(S.shape[1]):
-        ax.plot(T, S[:, j], lw=0.7, alpha=0.55, label="scaled records" if j == 0 else None)
+    fig, ax = plt.subplots(figsize=(11, 5.5))
+    for j in range(S.shape[1]):  # each record named (the legend beside the axes)
+        name = names[j] if j < len(names) else f"record {j + 1}"
+        ax.plot(T, S[:, j], lw=0.8, alpha=0.7, color=plt.cm.tab20(j % 20), label=name)
     ax.plot(T, target, color="tab:red", lw=3, label="target")
     ax.plot(T, mean, color="k", lw=2.5, label=f"mean of {S.shape[1]} scaled")
     frac = float(meta.get("rule_fraction", "0"))
@@ -105,22 +124,21 @@ def plot_selection(a, meta, names, data, plt):
         lo, hi = (float(x) for x in meta["range_s"].split())
         ax.axvspan(lo, hi, color="tab:orange", alpha=0.1, label=f"period range {lo:g}-{hi:g} s")
     if a.loglog:
-        from matplotlib.ticker import FuncFormatter
-
         ax.set_xscale("log")
         ax.set_yscale("log")
-        plain = FuncFormatter(lambda v, _: f"{v:g}")
-        for axis in (ax.xaxis, ax.yaxis):  # plain numbers on the few decades a selection spans
-            axis.set_major_formatter(plain)
-            axis.set_minor_formatter(plain)
+        plain_log_ticks(ax.xaxis)
+        plain_log_ticks(ax.yaxis)
     elif a.logx:
         ax.set_xscale("log")
+        plain_log_ticks(ax.xaxis)
     ax.set_xlabel("period T (s)")
     ax.set_ylabel("pseudo-acceleration Sa (g)")
-    ax.set_title(a.title or f"{meta.get('rule', 'selection')}\nsuite factor {float(meta.get('suite_factor', 1)):.3f}, "
+    ax.set_title(a.title or wrap(f"{meta.get('rule', 'selection')}", fig, 0.6, 9) +
+                 f"\nsuite factor {float(meta.get('suite_factor', 1)):.3f}, "
                  f"condition holds: {meta.get('condition_holds', '?')}", fontsize=9)
     ax.grid(True, which="both", alpha=0.3)
-    ax.legend(fontsize=8)
+    ax.legend(fontsize=7, loc="upper left", bbox_to_anchor=(1.01, 1.0), borderaxespad=0.0,
+              ncol=2 if S.shape[1] > 16 else 1)
     fig.tight_layout()
     fig.savefig(a.output, dpi=150)
     print(f"wrote {a.output}: selection of {S.shape[1]} records, min mean/target {np.min(mean / target):.4f}")
@@ -152,24 +170,28 @@ def main():
             sys.exit("--normalize needs the T = 0 row (PGA) in the CSV")
         S = S / S[0, :]
     keep = T > 0 if a.logx else np.ones_like(T, dtype=bool)
-    fig, ax = plt.subplots(figsize=(8, 5))
+    fig, ax = plt.subplots(figsize=(11, 5.5))
+    named = len(names) <= 30  # a suite of up to 30 records is named record by record in the legend
     for j, (n, k) in enumerate(zip(names, kinds)):
         ax.plot(T[keep], S[keep, j], lw=0.8, alpha=0.6, ls="--" if k == "synthetic" else "-",
-                color="tab:blue" if k == "synthetic" else "tab:red", label=None)
+                color=plt.cm.tab20(j % 20) if named else ("tab:blue" if k == "synthetic" else "tab:red"),
+                label=n if named else None)
     mean, sd = S.mean(axis=1), S.std(axis=1, ddof=1) if S.shape[1] > 1 else np.zeros(len(T))
     ax.fill_between(T[keep], (mean - sd)[keep], (mean + sd)[keep], color="k", alpha=0.12, label="mean ± 1 sd")
     ax.plot(T[keep], mean[keep], color="k", lw=2.5, label=f"mean of {S.shape[1]}")
     nsyn = sum(k == "synthetic" for k in kinds)
-    ax.plot([], [], color="tab:red", label=f"real ({len(kinds) - nsyn})")
-    ax.plot([], [], color="tab:blue", ls="--", label=f"synthetic ({nsyn})")
+    ax.plot([], [], color="0.3", label=f"real ({len(kinds) - nsyn}, solid)")
+    ax.plot([], [], color="0.3", ls="--", label=f"synthetic ({nsyn}, dashed)")
     if a.logx:
         ax.set_xscale("log")
+        plain_log_ticks(ax.xaxis)
     ax.set_xlabel("period T (s)")
     label = {"psa": "pseudo-acceleration", "psv": "pseudo-velocity", "sd": "deformation"}.get(quantity, quantity)
     ax.set_ylabel(f"{label} / PGA" if a.normalize else f"{label} ({unit})")
-    ax.set_title(a.title or f"5 %-damped elastic spectra ({a.csv})")
+    ax.set_title(a.title or wrap(f"5 %-damped elastic spectra ({a.csv})", fig, 0.6), fontsize=10)
     ax.grid(True, which="both", alpha=0.3)
-    ax.legend()
+    ax.legend(fontsize=6 if named else 8, loc="upper left", bbox_to_anchor=(1.01, 1.0), borderaxespad=0.0,
+              ncol=2 if named and len(names) > 15 else 1)
     fig.tight_layout()
     fig.savefig(a.output, dpi=150)
     print(f"wrote {a.output}: {S.shape[1]} spectra ({nsyn} synthetic), peak mean {mean.max():.3f} at T = {T[mean.argmax()]:.3g} s")

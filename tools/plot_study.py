@@ -17,6 +17,7 @@ import io
 import os
 import shutil
 import subprocess
+import textwrap
 
 import h5py
 import matplotlib
@@ -49,6 +50,12 @@ def save(fig, base, formats):
         fig.savefig(names[-1], dpi=DPI)
     plt.close(fig)
     return names
+
+
+def wrap_title(title, fig, share=1.0, fontsize=10):
+    """The title broken into lines that fit `share` of the figure's width (a long one was clipped on both sides)."""
+    chars = int(share * fig.get_figwidth() * 72 / (0.55 * fontsize))
+    return textwrap.fill(title, max(chars, 20))
 
 
 def attr_str(v):
@@ -91,45 +98,53 @@ def plot_pair(f, a, prefix):
     hi = 100 * np.array([float(r["hi"]) for r in band])
     n = band[0]["n"]
 
-    fig, ax = plt.subplots(figsize=(8, 5))
+    fig, ax = plt.subplots(figsize=(10, 5.5))
     ax.fill_between(g, lo, hi, color="C0", alpha=0.25,
                     label=f"{100 * conf:g} % bootstrap band over records and models")
     ax.plot(g, p, "C0", lw=2, label=f"this study (n = {n})")
 
-    # code rules: rules with equal separations share one line and one label
+    # code rules: rules with equal separations share one line; named in the legend (a label inside the axes was
+    # crossed by the other rules' lines)
     rules = {}
     for r in rows:
         if r["table"] == "code_rule":
             key = round(float(r["gap_m"]), 6)
             rules.setdefault(key, [float(r["probability"]), []])[1].append(r["name"])
     for i, (gm, (prob, names)) in enumerate(sorted(rules.items())):
-        colour = f"C{2 + i % 8}"
-        ax.axvline(gm, color=colour, lw=1, alpha=0.8)
-        ax.text(gm, 98 - 9 * (i % 6), "\n".join(names) + f": P = {100 * prob:.1f} %", rotation=0, fontsize=6,
-                color=colour, va="top", ha="left",
-                bbox=dict(facecolor="white", edgecolor="none", alpha=0.7, pad=1))
+        ax.axvline(gm, color=f"C{2 + i % 8}", lw=1.2, alpha=0.9,
+                   label=textwrap.fill(" / ".join(names), 44) + f":\n  {gm:.3f} m, P = {100 * prob:.1f} %")
 
-    # separation advice: target probability at the separation, with its interval; dashed at the upper end
+    # separation advice: the estimate (dot) with its interval, and the advised separation (its upper end, a
+    # diamond on a dashed line up to the target) labelled right beside that diamond
     first = True
+    ends = []
     for r in rows:
         if r["table"] != "separation":
             continue
         s, t = float(r["gap_m"]), 100 * float(r["probability"])
         slo, shi = float(r["lo"]), float(r["hi"])
-        ax.errorbar([s], [t], xerr=[[s - slo], [shi - s]], fmt="o", color="k", capsize=3,
+        ends.append(shi)
+        ax.errorbar([s], [t], xerr=[[s - slo], [shi - s]], fmt="o", color="k", capsize=3, ms=5,
                     label="separation for a target probability (interval)" if first else None)
-        ax.axvline(shi, color="k", ls="--", lw=1,
-                   label="advised separation (upper end of the interval)" if first else None)
-        ax.annotate(f"{t:g} %: {shi:.3f} m", (shi, t), textcoords="offset points", xytext=(4, 4), fontsize=7)
+        ax.plot([shi, shi], [0, t], color="k", ls="--", lw=1)
+        ax.plot([shi], [t], "D", color="k", ms=5,
+                label="advised separation (upper end of the interval)" if first else None)
+        ax.annotate(f"{t:g} %: {shi:.3f} m", (shi, t), textcoords="offset points", xytext=(6, 0), fontsize=7,
+                    va="center", ha="left", gid="advice", zorder=5,
+                    bbox=dict(facecolor="white", edgecolor="none", alpha=0.95, pad=1))
         first = False
 
-    ax.set_xlim(0, g.max())
+    # the x-axis ends a little past the last thing to read: the advice, the code rules, or where the band's
+    # upper edge falls below 0.5 % (the curve runs on to the study's curve_max, far past the data)
+    tail = g[hi >= 0.5]
+    x_end = max([tail.max() if tail.size else g.max()] + ends + list(rules))
+    ax.set_xlim(0, min(g.max(), 1.15 * x_end))
     ax.set_ylim(0, 100)
     ax.set_xlabel("separation between the buildings (m)")
     ax.set_ylabel("probability of at least one impact (%)")
-    ax.set_title(attr_str(f.attrs["title"]))
+    ax.set_title(wrap_title(attr_str(f.attrs["title"]), fig, 0.62), fontsize=10)
     ax.grid(alpha=0.3)
-    ax.legend(fontsize=7, loc="center right")
+    ax.legend(fontsize=7, loc="upper left", bbox_to_anchor=(1.01, 1.0), borderaxespad=0.0)
     fig.tight_layout()
     return save(fig, prefix + "-separation", a.format)
 
@@ -182,7 +197,7 @@ def main():
                     capsize=3)
     ax.set_xlabel("gap ratio g / d  (d = 0.005 (h1 + h2))")
     ax.set_ylabel("probability of at least one impact (%)")
-    ax.set_title(f.attrs["title"])
+    ax.set_title(wrap_title(attr_str(f.attrs["title"]), fig), fontsize=10)
     ax.grid(alpha=0.3)
     ax.legend(fontsize=8)
     fig.tight_layout()

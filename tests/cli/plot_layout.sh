@@ -1,0 +1,78 @@
+#!/usr/bin/env bash
+# Figures a client can receive (issue 23 item 9): every plot of every shipped study (studies/*.toml, run small:
+# 2 models per period pair, 100 bootstrap replicates) rendered by its tool -- tools/plot_study.py (pair and grid
+# studies), tools/plot_fragility.py (studies with [intensity]), tools/plot_spectra.py (studies that select
+# records, and the builtin suite's spectra) -- and each figure checked by tests/cli/plot_layout.py: texts inside
+# the figure, no two texts overlapping, no line across a label, tick numbers on every panel, the fragility's
+# extrapolation beyond the stripes marked, the pair plot's x-axis near the data and its advice labels beside
+# their points, the selected records named. example-pair also runs with a 150-character title (it was clipped).
+# Needs python3 with matplotlib, h5py, numpy: skipped (77) without them, a failure under CI=true.
+# real-records.toml needs ../shared/records/real (skipped without, as every real-record test).
+# Args: <pounding binary> <source dir>
+set -euo pipefail
+bin=$1; src=$(cd "$2" && pwd)
+. "$src/tests/lib/needs_real_records.sh"
+py=${POUNDING_PYTHON:-/usr/bin/python3}
+"$py" -c 'import matplotlib, h5py, numpy' 2>/dev/null ||
+  skip_or_fail "needs $py with matplotlib, h5py and numpy (Debian: python3-matplotlib python3-h5py python3-numpy; tools/setup.sh installs them)"
+tmp=$(mktemp -d); trap 'rm -rf "$tmp"' EXIT
+mkdir -p "$tmp/studies" "$tmp/out"
+ln -s "$src/records" "$tmp/records"
+cp "$src/studies/"*.csv "$tmp/studies/"
+check="$py $src/tests/cli/plot_layout.py"
+export MPLBACKEND=Agg
+real=$(cd "$src/.." && pwd)/shared/records/real
+fail=0; n=0
+for study in "$src"/studies/*.toml; do
+  name=$(basename "$study" .toml)
+  grep -q '^\[records\]' "$study" || { echo "skip $name: no [records] (a [structures] fragment)"; continue; }
+  if grep -q 'shared/records/real' "$study"; then
+    [ -d "$real" ] || { echo "skip $name: needs $real"; continue; }
+  fi
+  sed -e 's/^samples_per_pair = [0-9_]*/samples_per_pair = 2/' -e 's/^bootstrap = [0-9_]*/bootstrap = 100/' \
+      -e '/^output = /d' -e "s|^directory = \"../../shared/records/real\"|directory = \"$real\"|" "$study" \
+      > "$tmp/studies/$name.toml"
+  "$bin" run "$tmp/studies/$name.toml" --out "$tmp/$name.h5" --quiet > "$tmp/$name.md" 2> "$tmp/$name.log" || { cat "$tmp/$name.log"; exit 1; }
+  runs=("$name")
+  if [ "$name" = example-pair ]; then  # a title longer than the figure is wide
+    sed -e 's/^title = .*/title = "Example pair with a long client title: an 8-storey reinforced-concrete frame (T 0.9 s) next to a 12-storey steel frame (T 1.3 s), separate lots"/' \
+        "$tmp/studies/$name.toml" > "$tmp/studies/long-title.toml"
+    "$bin" run "$tmp/studies/long-title.toml" --out "$tmp/long-title.h5" --quiet > "$tmp/long-title.md" 2> "$tmp/long-title.log"
+    runs+=(long-title)
+  fi
+  for r in "${runs[@]}"; do
+    h5=$tmp/$r.h5
+    # what the results hold: line 1 the stripes' range (or "-"), line 2 the selected records (or "-")
+    info=$("$py" - "$h5" <<'PY'
+import sys, h5py
+f = h5py.File(sys.argv[1], "r")
+l = f["fragility/levels"][()] if "fragility" in f else None
+print(f"{l.min()!r},{l.max()!r}" if l is not None else "-")
+print(",".join(x.decode() for x in f["selection/records"][()]) if "selection" in f else "-")
+PY
+)
+    stripes=$(sed -n 1p <<<"$info"); names=$(sed -n 2p <<<"$info")
+    if [ "$stripes" != - ]; then
+      $check --stripes "$stripes" -- "$src/tools/plot_fragility.py" "$h5" -o "$tmp/out/$r" || fail=1
+    else
+      "$bin" report "$h5" --csv > "$tmp/$r.csv"
+      if grep -q '^curve_band,' "$tmp/$r.csv" || grep -q ',curve_band,' "$tmp/$r.csv"; then
+        $check --pair-report "$tmp/$r.csv" -- "$src/tools/plot_study.py" "$h5" --prefix "$tmp/out/$r" --pounding "$bin" || fail=1
+      else
+        $check -- "$src/tools/plot_study.py" "$h5" --prefix "$tmp/out/$r" || fail=1
+      fi
+    fi
+    if [ "$names" != - ]; then
+      $check --names "$names" -- "$src/tools/plot_spectra.py" "$h5" -o "$tmp/out/$r-selection.png" --loglog || fail=1
+    fi
+    n=$((n + 1))
+  done
+done
+# the builtin suite's spectra (tools/plot_spectra.py on a `records spectrum` CSV), linear and log period axis
+"$bin" records spectrum --suite default -o "$tmp/suite.csv" > /dev/null
+names=$(grep '^period_s,' "$tmp/suite.csv" | cut -d, -f2- )
+$check --names "$names" -- "$src/tools/plot_spectra.py" "$tmp/suite.csv" -o "$tmp/out/suite.png" || fail=1
+$check --names "$names" -- "$src/tools/plot_spectra.py" "$tmp/suite.csv" -o "$tmp/out/suite-log.png" --logx || fail=1
+[ "$fail" = 0 ] || { echo "FAIL: figures with layout defects (above)"; exit 1; }
+[ "$n" -ge 9 ] || { echo "FAIL: only $n studies plotted"; exit 1; }
+echo "plot_layout: every figure of $n study runs and the suite spectra passed"
