@@ -135,6 +135,23 @@ PoundingRate pounding_rate(const HazardCurve& hazard, const LognormalFragility& 
   return {total, total > 0 ? tails / total : 0.0};
 }
 
+RateShares rate_shares(const HazardCurve& hazard, const LognormalFragility& f, double x_low, double x_top) {
+  const PoundingRate all = pounding_rate(hazard, f);  // validates f
+  if (!(x_low > 0) || !(x_top >= x_low) || !std::isfinite(x_top)) throw std::invalid_argument("rate_shares: 0 < x_low <= x_top");
+  if (!(all.rate > 0)) return {};
+  const double ul = std::log(x_low), ut = std::log(x_top), mu = std::log(f.theta);
+  if (f.beta == 0) return {mu < ul ? 1.0 : 0.0, mu > ut ? 1.0 : 0.0};
+  double below = 0, above = 0;
+  for (const HazardCurve::Piece& p : hazard.pieces()) {
+    auto part = [&](double a, double b) {
+      return b > a ? p.c * (antiderivative(b, p.k, mu, f.beta) - antiderivative(a, p.k, mu, f.beta)) : 0.0;
+    };
+    below += part(p.ua, std::min(p.ub, ul));
+    above += part(std::max(p.ua, ut), p.ub);
+  }
+  return {std::clamp(below / all.rate, 0.0, 1.0), std::clamp(above / all.rate, 0.0, 1.0)};
+}
+
 PoundingRate pounding_rate_numeric(const HazardCurve& hazard, const std::function<double(double)>& fragility,
                                    const NumericRateOptions& options) {
   double total = 0, tails = 0;

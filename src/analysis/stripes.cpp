@@ -6,6 +6,7 @@
 #include <cmath>
 #include <limits>
 #include <numbers>
+#include <numeric>
 #include <sstream>
 #include <stdexcept>
 #include <thread>
@@ -120,6 +121,7 @@ struct RateValue {
   double value = NAN;
   Range range;
   double tail = 0;
+  double below = 0, above = 0;  // shares of value from IM below the lowest / above the highest stripe
 };
 
 // The annual rate of a fit whose stripes span [x_low, x_top] (stripes.hpp, "Annual rate of a fit").
@@ -128,7 +130,8 @@ RateValue rate_of(const FragilityFit& f, const HazardCurve& h, double x_low, dou
     case FragilityStatus::ok: {
       if (!(f.fragility.theta > 0 && std::isfinite(f.fragility.theta))) return {};  // defensive: never thrown in a thread
       const PoundingRate r = pounding_rate(h, f.fragility);
-      return {r.rate, {r.rate, r.rate}, r.tail_share};
+      const RateShares b = rate_shares(h, f.fragility, x_low, x_top);
+      return {r.rate, {r.rate, r.rate}, r.tail_share, b.below, b.above};
     }
     case FragilityStatus::separated: {
       const double v = h.rate(std::sqrt(f.bracket.lo) * std::sqrt(f.bracket.hi));
@@ -136,11 +139,11 @@ RateValue rate_of(const FragilityFit& f, const HazardCurve& h, double x_low, dou
     }
     case FragilityStatus::no_pounding: {
       const double v = f.bound * h.rate(x_low) + (1.0 - f.bound) * h.rate(x_top);
-      return {v, {0, v}, 0};
+      return {v, {0, v}, 0, 0, h.rate(x_top) / v};  // P <= 1 above x_top gives lambda(x_top) of it
     }
     case FragilityStatus::all_pounded: {
       const double v = f.bound * h.rate(x_low);
-      return {v, {v, kInf}, 0};
+      return {v, {v, kInf}, 0, 0, h.rate(x_top) / h.rate(x_low)};
     }
     default: return {};
   }
@@ -174,6 +177,7 @@ void set_rate(GapFragility& g, const HazardCurve* h, double x_low, double x_top,
   const RateValue r = rate_of(g.fit, *h, x_low, x_top);
   g.annual_rate = r.value;
   g.tail_share = r.tail;
+  g.share_below = r.below, g.share_above = r.above;
   g.probability = probability_or_nan(r.value, years);
   if (const std::string n = rate_note(g.fit.status); !n.empty()) g.note += "; " + n;
 }
@@ -906,9 +910,11 @@ RateCurve rate_curve(const StripeIndex& ix, const HazardCurve& hazard, std::span
   for (double g : gaps) {
     const std::vector<Stripe> st = ix.stripes_at(g);
     const auto [x_low, x_top] = level_span(st);
-    const double r = rate_of(fit_stripes(st), hazard, x_low, x_top).value;
-    c.gap.push_back(g), c.rate.push_back(r), c.probability.push_back(probability_or_nan(r, years));
+    const RateValue r = rate_of(fit_stripes(st), hazard, x_low, x_top);
+    c.gap.push_back(g), c.rate_fitted.push_back(r.value), c.share_below.push_back(r.below), c.share_above.push_back(r.above);
   }
+  c.rate = c.rate_fitted;
+  for (double r : c.rate) c.probability.push_back(probability_or_nan(r, years));
   return c;
 }
 

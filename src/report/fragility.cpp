@@ -135,6 +135,13 @@ void add_hazard_group(Results& r, const HazardCurve& hz, const std::vector<strip
   h.add("probability_lo", plo, "1", "lower end of the probability's bootstrap interval");
   h.add("probability_hi", phi, "1", "upper end of the probability's bootstrap interval");
   h.add("tail_share", tail, "1", "share of the rate from IM beyond the hazard table (its end slopes extended)");
+  std::vector<double> below(G), above(G);
+  for (std::size_t k = 0; k < G; ++k) below[k] = fits[k].share_below, above[k] = fits[k].share_above;
+  h.add("share_below_stripes", below, "1",
+        "share of the gap's fitted rate from IM below the lowest stripe (the fragility extrapolated, no data there)");
+  h.add("share_above_stripes", above, "1",
+        "share of the gap's fitted rate from IM above the highest stripe (the fragility extrapolated, or a bound's "
+        "P = 1 there)");
   std::vector<double> jlo(G), jhi(G), pjlo(G), pjhi(G);
   for (std::size_t k = 0; k < G; ++k)
     jlo[k] = fits[k].rate_jack_lo, jhi[k] = fits[k].rate_jack_hi, pjlo[k] = fits[k].probability_jack_lo,
@@ -205,6 +212,8 @@ void analyse_fragility(Results& r) {
       target = stripes::risk_targeted_gap_at_gaps(fits, lambda_target, st.confidence);
       for (const auto& f : fits) {
         curve.gap.push_back(f.gap), curve.rate.push_back(f.annual_rate), curve.probability.push_back(f.probability);
+        curve.rate_fitted.push_back(f.annual_rate);
+        curve.share_below.push_back(f.share_below), curve.share_above.push_back(f.share_above);
       }
     }
   } else {  // ida on a linear pair: every capacity exact from the run at the records' own intensity
@@ -243,6 +252,12 @@ void analyse_fragility(Results& r) {
     h.add("curve_gap", curve.gap, "1", "gaps (ratios of d) of the rate-versus-separation curve");
     h.add("curve_rate", curve.rate, "1/year", "annual rate of pounding at each curve gap (point estimate)");
     h.add("curve_probability", curve.probability, "1", "probability of pounding in `years` at each curve gap");
+    h.add("curve_rate_fitted", curve.rate_fitted, "1/year",
+          "each curve gap's own fitted rate");
+    h.add("curve_share_below_stripes", curve.share_below, "1",
+          "share of curve_rate_fitted from IM below the lowest stripe (extrapolated)");
+    h.add("curve_share_above_stripes", curve.share_above, "1",
+          "share of curve_rate_fitted from IM above the highest stripe (extrapolated, or a bound's P = 1)");
   }
 }
 

@@ -109,6 +109,36 @@ std::string target_headline(const View& v, const Group& h) {
   return s;
 }
 
+// A rate that rests on the fitted curve beyond the stripes rests on no analysis: say how much, warn above this.
+constexpr double kBeyondStripesWarning = 0.10;
+
+// The share of a rate from beyond the stripes, in words, with a WARNING above kBeyondStripesWarning.
+std::string beyond_stripes(const View& v, const std::string& what, double below, double above) {
+  if (!std::isfinite(below) || !std::isfinite(above)) return "";
+  const double share = below + above;
+  const std::string words = fmt::format("{:.1f} % of {} comes from IM beyond the stripes ({:.1f} % below {} {}, {:.1f} % "
+                                        "above {} {}), where the fitted fragility is extrapolated",
+                                        100 * share, what, 100 * below, num(v.levels.front()), v.units, 100 * above,
+                                        num(v.levels.back()), v.units);
+  if (share <= kBeyondStripesWarning) return words;
+  return fmt::format("**WARNING**: {}; more than {:.0f} % rests on no analysis: add stripes {}", words,
+                     100 * kBeyondStripesWarning, above >= below ? "above the highest" : "below the lowest");
+}
+
+// The curve point nearest the risk-targeted gap: its shares beyond the stripes (files before them: nothing).
+std::string target_beyond_stripes(const View& v, const Group& h) {
+  if (!h.find("curve_share_above_stripes") || h.text("target_status") != "ok") return "";
+  const auto& g = h.get<double>("curve_gap");
+  const double x = h.number("target_gap");
+  std::size_t best = 0;
+  for (std::size_t i = 1; i < g.size(); ++i)
+    if (std::abs(g[i] - x) < std::abs(g[best] - x)) best = i;
+  if (g.empty()) return "";
+  return beyond_stripes(v, fmt::format("the fitted rate at {:g} d (the curve's gap nearest the separation)", g[best]),
+                        h.get<double>("curve_share_below_stripes")[best], h.get<double>("curve_share_above_stripes")[best]) +
+         ".\n\n";
+}
+
 std::string target_section(const View& v) {
   if (!v.hz) return "";
   const Group& h = *v.hz;
@@ -116,7 +146,7 @@ std::string target_section(const View& v) {
   std::string s = fmt::format("## Risk-targeted separation: P(pounding in {:g} years) = {:g} %\n\n", years, target);
   const std::string status = h.text("target_status");
   if (status == "ok") {
-    s += target_headline(v, h);
+    s += target_headline(v, h) + target_beyond_stripes(v, h);
   } else {
     s += fmt::format("**not found ({})**: {}\n\n", status, h.text("target_note"));
   }
@@ -169,6 +199,12 @@ std::string fragility_table(const View& v) {
   std::string notes;
   for (std::size_t k = 0; k < v.gaps.size(); ++k) {
     if (status[k] != "ok" && !note[k].empty()) notes += fmt::format("- {}: {}\n", v.gap_name(k), note[k]);
+    if (status[k] == "ok" && note[k].find("held at") != std::string::npos)
+      notes += fmt::format("- {}: {}\n", v.gap_name(k), note[k].substr(note[k].find("the fit's own rate")));
+    if (hz && v.hz->find("share_above_stripes"))
+      if (const double b = v.hz->get<double>("share_below_stripes")[k], a = v.hz->get<double>("share_above_stripes")[k];
+          b + a > kBeyondStripesWarning)
+        notes += fmt::format("- {}: {}\n", v.gap_name(k), beyond_stripes(v, "the annual rate", b, a));
     if (status[k] == "ok" && (theta[k] > v.levels.back() || theta[k] < v.levels.front()))
       notes += fmt::format("- {}: **the median theta = {:.3g} {} lies {} the stripes**: the fit extrapolates from one "
                            "tail; add levels {} it (Baker 2015: the stripes should bracket the median)\n",

@@ -325,6 +325,30 @@ TEST(StripesTarget, MsaRateMeetsTheTargetAndDecreasesAroundIt) {
   EXPECT_GT(t1.gap, t.gap);
 }
 
+// rate_shares against a plain trapezoid integral of Phi((u - mu)/beta) k k0 e^{-ku} du over each region.
+TEST(StripesHazard, SharesBeyondTheStripesAreTheIntegralsThere) {
+  const double k0 = 4e-4, k = 2.5, theta = 0.8, beta = 0.5, lo = 0.2, hi = 1.2;
+  const HazardCurve h = HazardCurve::power_law(k0, k);
+  const LognormalFragility f{theta, beta};
+  auto integral = [&](double a, double b) {
+    const int n = 200000;
+    double sum = 0;
+    for (int i = 0; i <= n; ++i) {
+      const double u = a + (b - a) * i / n;
+      const double v = normal_cdf((u - std::log(theta)) / beta) * k * k0 * std::exp(-k * u);
+      sum += (i == 0 || i == n ? 0.5 : 1.0) * v;
+    }
+    return sum * (b - a) / n;
+  };
+  const double total = pounding_rate_closed_form(k0, k, f);
+  const RateShares s = rate_shares(h, f, lo, hi);
+  EXPECT_NEAR(s.below, integral(std::log(lo) - 12, std::log(lo)) / total, 1e-7);
+  EXPECT_NEAR(s.above, integral(std::log(hi), std::log(hi) + 12) / total, 1e-7);
+  EXPECT_GT(s.above, 0.1);
+  EXPECT_GT(s.below, 1e-4);
+  EXPECT_EQ(rate_shares(h, LognormalFragility{3.0, 0.0}, lo, hi).above, 1.0);  // a step above the stripes
+}
+
 TEST(StripesTarget, OutOfRangeStatuses) {
   const Demands d = lognormal_demands(10, 50, log_levels(0.05, 4.0, 8), 0.0, 0.3, 0.4, 14);
   const HazardCurve h = HazardCurve::power_law(4e-4, 2.5);

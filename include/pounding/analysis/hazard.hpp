@@ -63,6 +63,14 @@ struct NumericRateOptions {
 PoundingRate pounding_rate_numeric(const HazardCurve& hazard, const std::function<double(double)>& fragility,
                                    const NumericRateOptions& options = {});
 
+// The shares of pounding_rate(hazard, fragility).rate from IM below x_low and above x_top (a fragility study's lowest
+// and highest stripe: where the fitted curve is extrapolated rather than fitted to data), exact like the rate
+// itself; beta = 0 puts the whole rate where theta lies. Throws as pounding_rate does, or unless 0 < x_low <= x_top.
+struct RateShares {
+  double below = 0, above = 0;
+};
+RateShares rate_shares(const HazardCurve& hazard, const LognormalFragility& fragility, double x_low, double x_top);
+
 // Cornell, Jalayer, Hamburger & Foutch (2002): k0 theta^-k exp(k^2 beta^2 / 2).
 double pounding_rate_closed_form(double k0, double k, const LognormalFragility& fragility);
 

@@ -146,6 +146,8 @@ struct GapFragility {
   double probability = NAN;                                 // 1 - exp(-annual_rate years)
   double probability_lo = NAN, probability_hi = NAN;        // from rate_lo, rate_hi
   double tail_share = 0;            // share of annual_rate from the hazard table's extrapolated tails (ok only)
+  double share_below = 0;           // share of annual_rate from IM below the lowest stripe (ok: the fitted curve
+  double share_above = 0;           //   extrapolated; no_pounding / all_pounded: the bound's part) / above the highest
   std::string note;                 // the fit's message, and what a bound means when the rate is one
   std::vector<double> replicate_rate_lo, replicate_rate_hi;  // with a hazard: each replicate's rate range (B each),
                                     //   in replicate order; risk_targeted_gap_at_gaps joins them across gaps
@@ -225,12 +227,15 @@ TargetGap risk_targeted_gap_linear_ida(std::span<const double> im, std::span<con
 TargetGap risk_targeted_gap_at_gaps(std::span<const GapFragility> fits, double lambda_target, double confidence);
 
 // lambda_P and P(years) of the MSA point estimates on a gap grid (the "lambda versus separation" plot):
-// rate_of(fit) at each gap (bounds for the degenerate fits, NaN when there is no rate).
+// rate_of(fit) at each gap (bounds for the degenerate fits, NaN when there is no rate); rate_fitted the same.
+// share_below / share_above: of the rate, from IM below the lowest / above the highest stripe.
 struct RateCurve {
   std::vector<double> gap, rate, probability;
+  std::vector<double> rate_fitted, share_below, share_above;
 };
 RateCurve rate_curve(const Demands& demands, const HazardCurve& hazard, std::span<const double> gaps,
                      double years);
 RateCurve rate_curve(const StripeIndex& index, const HazardCurve& hazard, std::span<const double> gaps, double years);
+
 
 }  // namespace pounding::stripes
