@@ -913,9 +913,24 @@ RateCurve rate_curve(const StripeIndex& ix, const HazardCurve& hazard, std::span
     const RateValue r = rate_of(fit_stripes(st), hazard, x_low, x_top);
     c.gap.push_back(g), c.rate_fitted.push_back(r.value), c.share_below.push_back(r.below), c.share_above.push_back(r.above);
   }
-  c.rate = c.rate_fitted;
+  c.rate = non_increasing(c.gap, c.rate_fitted);
   for (double r : c.rate) c.probability.push_back(probability_or_nan(r, years));
   return c;
+}
+
+std::vector<double> non_increasing(std::span<const double> gaps, std::span<const double> rate) {
+  if (gaps.size() != rate.size()) throw std::invalid_argument("non_increasing: one rate per gap");
+  std::vector<std::size_t> order(gaps.size());
+  std::iota(order.begin(), order.end(), std::size_t{0});
+  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return gaps[a] < gaps[b]; });
+  std::vector<double> out(rate.begin(), rate.end());
+  double least = kInf;
+  for (std::size_t i : order) {
+    if (std::isnan(rate[i])) continue;  // no rate at this gap: neither lowered nor lowering
+    least = std::min(least, rate[i]);
+    out[i] = least;
+  }
+  return out;
 }
 
 }  // namespace pounding::stripes

@@ -58,6 +58,47 @@ std::vector<double> demand_ratios(const Results& r) {
   return d;
 }
 
+// lambda_P cannot rise with the gap (every analysis that exceeds a gap exceeds every smaller one), but each gap has its
+// own fit, and two fitted curves can cross (issue 23, item 3): the study's gaps and the curve's are held on one
+// non-increasing curve (stripes::non_increasing), and a study gap whose own rate was lowered says so.
+void hold_non_increasing(std::vector<stripes::GapFragility>& fits, stripes::RateCurve& curve, double years) {
+  std::vector<double> x, v;
+  for (const auto& f : fits) x.push_back(f.gap), v.push_back(f.annual_rate);
+  x.insert(x.end(), curve.gap.begin(), curve.gap.end());
+  v.insert(v.end(), curve.rate_fitted.begin(), curve.rate_fitted.end());
+  const std::vector<double> held = stripes::non_increasing(x, v);
+  for (std::size_t k = 0; k < fits.size(); ++k) {
+    auto& f = fits[k];
+    if (!(held[k] < f.annual_rate)) continue;
+    f.note += fmt::format("; the fit's own rate here, {:.4g} per year, exceeds the rate at a smaller gap: held at {:.4g} "
+                          "(lambda cannot rise with the gap)",
+                          f.annual_rate, held[k]);
+    f.annual_rate = held[k], f.probability = probability_in_years(held[k], years);
+  }
+  for (std::size_t i = 0; i < curve.gap.size(); ++i) {
+    curve.rate[i] = held[fits.size() + i];
+    curve.probability[i] = std::isnan(curve.rate[i]) ? NAN : probability_in_years(curve.rate[i], years);
+  }
+}
+
+// The rate-versus-separation curve's gaps: curve_step, 2 curve_step, ... up to curve_max.
+std::vector<double> curve_grid(const Results& r) {
+  std::vector<double> grid;
+  const double step = r.settings.number("gaps", "curve_step"), max = r.settings.number("gaps", "curve_max");
+  for (double x = step; x <= max + 1e-12; x += step) grid.push_back(x);
+  return grid;
+}
+
+// The bisection IDA's curve: its fits at the study's gaps.
+stripes::RateCurve curve_of_fits(const std::vector<stripes::GapFragility>& fits) {
+  stripes::RateCurve c;
+  for (const auto& f : fits) {
+    c.gap.push_back(f.gap), c.rate.push_back(f.annual_rate), c.probability.push_back(f.probability);
+    c.rate_fitted.push_back(f.annual_rate), c.share_below.push_back(f.share_below), c.share_above.push_back(f.share_above);
+  }
+  return c;
+}
+
 bool any_positive(const std::vector<double>& demand) {
   return std::any_of(demand.begin(), demand.end(), [](double v) { return std::isfinite(v) && v > 0; });
 }
@@ -191,11 +232,8 @@ void analyse_fragility(Results& r) {
     fits = stripes::fit_msa(D, gaps, st, hz ? &*hz : nullptr);
     if (hz) {
       target = any_positive(demand) ? stripes::risk_targeted_gap(D, *hz, lambda_target, st) : no_target(lambda_target);
-      std::vector<double> grid;
-      for (double x = r.settings.number("gaps", "curve_step"); x <= r.settings.number("gaps", "curve_max") + 1e-12;
-           x += r.settings.number("gaps", "curve_step"))
-        grid.push_back(x);
-      curve = stripes::rate_curve(D, *hz, grid, st.years);
+      curve = stripes::rate_curve(D, *hz, curve_grid(r), st.years);
+      hold_non_increasing(fits, curve, st.years);
     }
   } else if (const Group* ida = r.group("ida")) {  // ida on yielding pairs: the capacities of the bisection
     const std::vector<double>& row_cap = ida->get<double>("cap");
@@ -210,11 +248,8 @@ void analyse_fragility(Results& r) {
     }
     if (hz) {
       target = stripes::risk_targeted_gap_at_gaps(fits, lambda_target, st.confidence);
-      for (const auto& f : fits) {
-        curve.gap.push_back(f.gap), curve.rate.push_back(f.annual_rate), curve.probability.push_back(f.probability);
-        curve.rate_fitted.push_back(f.annual_rate);
-        curve.share_below.push_back(f.share_below), curve.share_above.push_back(f.share_above);
-      }
+      curve = curve_of_fits(fits);
+      hold_non_increasing(fits, curve, st.years);
     }
   } else {  // ida on a linear pair: every capacity exact from the run at the records' own intensity
     std::vector<double> im;  // a record's two signs have one IM (negation is exact)
@@ -253,7 +288,7 @@ void analyse_fragility(Results& r) {
     h.add("curve_rate", curve.rate, "1/year", "annual rate of pounding at each curve gap (point estimate)");
     h.add("curve_probability", curve.probability, "1", "probability of pounding in `years` at each curve gap");
     h.add("curve_rate_fitted", curve.rate_fitted, "1/year",
-          "each curve gap's own fitted rate");
+          "each curve gap's own fitted rate, before curve_rate holds it non-increasing (fits at two gaps can cross)");
     h.add("curve_share_below_stripes", curve.share_below, "1",
           "share of curve_rate_fitted from IM below the lowest stripe (extrapolated)");
     h.add("curve_share_above_stripes", curve.share_above, "1",

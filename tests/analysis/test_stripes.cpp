@@ -325,6 +325,41 @@ TEST(StripesTarget, MsaRateMeetsTheTargetAndDecreasesAroundIt) {
   EXPECT_GT(t1.gap, t.gap);
 }
 
+// Issue 23, item 3: lambda_P(gap) never rises. Stripes that stop below the demands' upper tail: at large gaps the fit
+// is extrapolated far above the top stripe, then no analysis pounds and the no_pounding bound (P = 1 above the top
+// stripe) takes over; the fits' own rates rise there, the curve does not.
+TEST(StripesTarget, RateCurveNeverRisesWithTheGap) {
+  const Demands d = lognormal_demands(12, 60, log_levels(0.05, 0.4, 5), 0.0, 0.35, 0.45, 31);
+  const StripeIndex ix(d, 1);
+  for (const HazardCurve& h : {HazardCurve::power_law(4e-4, 2.5),
+                               HazardCurve::from_table(std::vector<double>{0.01, 0.1, 1.0, 3.0},
+                                                       std::vector<double>{0.5, 2e-2, 3e-4, 2e-5})}) {
+    const RateCurve c = rate_curve(ix, h, log_levels(0.01, 1.5 * ix.max_positive(), 400), 50);
+    int rises = 0;
+    for (std::size_t i = 1; i < c.gap.size(); ++i) {
+      rises += c.rate_fitted[i] > c.rate_fitted[i - 1];
+      EXPECT_LE(c.rate[i], c.rate[i - 1]) << c.gap[i];
+      EXPECT_LE(c.rate[i], c.rate_fitted[i]) << c.gap[i];
+      EXPECT_LE(c.probability[i], c.probability[i - 1]) << c.gap[i];
+    }
+    EXPECT_GT(rises, 0) << "the case no longer makes the fits' own rates rise: the test checks nothing";
+    EXPECT_EQ(c.rate.front(), c.rate_fitted.front());
+    // the shares beyond the stripes are fractions; where nothing pounds, the bound's part above the top stripe
+    for (std::size_t i = 0; i < c.gap.size(); ++i) {
+      EXPECT_GE(c.share_below[i], 0.0);
+      EXPECT_LE(c.share_below[i] + c.share_above[i], 1.0 + 1e-12);
+    }
+    const RateCurve end = rate_curve(ix, h, std::vector<double>{1.01 * ix.max_positive()}, 50);
+    EXPECT_NEAR(end.share_above[0], h.rate(0.4) / end.rate_fitted[0], 1e-12);
+  }
+  // non_increasing: any order in, the running minimum in ascending gap order out, NaN kept
+  const std::vector<double> g{0.3, 0.1, 0.2, 0.4, 0.5}, r{2.0, 5.0, 4.0, NAN, 3.0};
+  EXPECT_EQ(non_increasing(g, r)[0], 2.0);
+  EXPECT_EQ(non_increasing(g, r)[2], 4.0);
+  EXPECT_TRUE(std::isnan(non_increasing(g, r)[3]));
+  EXPECT_EQ(non_increasing(g, r)[4], 2.0);
+}
+
 // rate_shares against a plain trapezoid integral of Phi((u - mu)/beta) k k0 e^{-ku} du over each region.
 TEST(StripesHazard, SharesBeyondTheStripesAreTheIntegralsThere) {
   const double k0 = 4e-4, k = 2.5, theta = 0.8, beta = 0.5, lo = 0.2, hi = 1.2;

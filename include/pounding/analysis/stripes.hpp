@@ -226,9 +226,15 @@ TargetGap risk_targeted_gap_linear_ida(std::span<const double> im, std::span<con
 // std::invalid_argument for lambda_target not > 0 or fits without a hazard.
 TargetGap risk_targeted_gap_at_gaps(std::span<const GapFragility> fits, double lambda_target, double confidence);
 
-// lambda_P and P(years) of the MSA point estimates on a gap grid (the "lambda versus separation" plot):
-// rate_of(fit) at each gap (bounds for the degenerate fits, NaN when there is no rate); rate_fitted the same.
-// share_below / share_above: of the rate, from IM below the lowest / above the highest stripe.
+// lambda_P and P(years) of the MSA point estimates on a gap grid (the "lambda versus separation" plot).
+// rate_fitted: rate_of(fit) at each gap (bounds for the degenerate fits, NaN when there is no rate); it can rise with
+// the gap, because each gap has its own fit and two fitted curves can cross (mostly where they are extrapolated
+// beyond the stripes: a median far above the top stripe, a bound that takes P = 1 above it after a fitted gap).
+// rate: non_increasing(gap, rate_fitted), the curve to use: every analysis that exceeds a gap exceeds every smaller
+// one, so lambda_P(x) <= lambda_P(x') for x > x', and an estimate at x above the one at a smaller x' (better
+// supported: more analyses pound there) is held at it. The risk-targeted gap (the smallest x whose rate_fitted
+// meets the target) is the same on either curve. share_below / share_above: of rate_fitted, from IM below the
+// lowest / above the highest stripe.
 struct RateCurve {
   std::vector<double> gap, rate, probability;
   std::vector<double> rate_fitted, share_below, share_above;
@@ -237,5 +243,8 @@ RateCurve rate_curve(const Demands& demands, const HazardCurve& hazard, std::spa
                      double years);
 RateCurve rate_curve(const StripeIndex& index, const HazardCurve& hazard, std::span<const double> gaps, double years);
 
+// The running minimum of rate over the gaps in ascending order (any order given; NaN rates stay NaN and lower
+// nothing): the largest non-increasing function of the gap that is nowhere above rate.
+std::vector<double> non_increasing(std::span<const double> gaps, std::span<const double> rate);
 
 }  // namespace pounding::stripes
