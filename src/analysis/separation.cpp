@@ -281,14 +281,22 @@ std::vector<Rule> code_rules(const DesignPair& p, double coefficient) {
       {"SRSS", "square root of the sum of squares", "sqrt(u1^2 + u2^2)", srss},
       {"DDC", "double difference combination (Jeng, Kasai & Maison 1992; Penzien 1997), rho of Der Kiureghian 1981",
        "sqrt(u1^2 + u2^2 - 2 rho u1 u2)", ddc},
-      {"ASCE 7-16, same property", "ASCE 7-16 sec. 12.12.3: delta_MT = sqrt(delta_M1^2 + delta_M2^2)", "sqrt(u1^2 + u2^2)",
-       srss},
-      {"ASCE 7-16, separate lots", "ASCE 7-16 sec. 12.12.3: each set back from the property line by its own delta_M",
-       "u1 + u2", abs},
-      {"EC8, separate properties", "EN 1998-1 sec. 4.4.2.7(2)a: each building its own peak from the property line",
-       "u1 + u2", abs},
-      {"EC8, same property", "EN 1998-1 sec. 4.4.2.7(2)b: SRSS of the two peaks at the level", "sqrt(u1^2 + u2^2)", srss},
-      {"EC8, same property, floor levels coincide", "EN 1998-1 sec. 4.4.2.7(3): 0.7 x the SRSS distance",
+      // The codes' formulas fed the mean record peaks u1, u2 -- not the codes' design displacements, which
+      // code_displacement.hpp computes from a design spectrum; the names and clauses say so.
+      {"ASCE 7-16 formula, same property (mean record peaks)",
+       "ASCE 7-16 sec. 12.12.3 delta_MT = sqrt(delta_M1^2 + delta_M2^2) fed the mean of the records' uncoupled peaks, "
+       "not delta_M", "sqrt(u1^2 + u2^2)", srss},
+      {"ASCE 7-16 formula, separate lots (mean record peaks)",
+       "ASCE 7-16 sec. 12.12.3 each set back from the property line by its own delta_M, fed the mean of the records' "
+       "uncoupled peaks, not delta_M", "u1 + u2", abs},
+      {"EC8 formula, separate properties (mean record peaks)",
+       "EN 1998-1 sec. 4.4.2.7(2)a each building its own d_s from the property line, fed the mean of the records' "
+       "uncoupled peaks, not d_s", "u1 + u2", abs},
+      {"EC8 formula, same property (mean record peaks)",
+       "EN 1998-1 sec. 4.4.2.7(2)b SRSS at the level, fed the mean of the records' uncoupled peaks, not d_s",
+       "sqrt(u1^2 + u2^2)", srss},
+      {"EC8 formula, same property, floor levels coincide (mean record peaks)",
+       "EN 1998-1 sec. 4.4.2.7(3) 0.7 x the SRSS distance, fed the mean of the records' uncoupled peaks, not d_s",
        "0.7 sqrt(u1^2 + u2^2)", 0.7 * srss},
   };
 }

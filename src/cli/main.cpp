@@ -56,6 +56,7 @@ int main(int argc, char** argv) {
   pounding::cli::add_bench(app);
   pounding::cli::add_records(app);
   pounding::cli::add_sample(app);
+  pounding::cli::add_spectrum(app);
   pounding::cli::add_accuracy(app);
   pounding::cli::add_study_reference(app);
   try {

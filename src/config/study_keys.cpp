@@ -210,6 +210,30 @@ constexpr StudyKey keys[] = {
      "As in [structures].", 1e-300, 10.0},
     {"structures.buildingN", "height_exponent", "number", "[structures] height_exponent", "", "(0, 2]",
      "As in [structures].", 1e-300, 2.0},
+    // the building's code design factors (sampling/code_factors.hpp; issue 23 item 5): the report's code design
+    // displacements from [target_spectrum] and the scope of Standard 2800's 0.005 h rule
+    {"structures.buildingN", "asce7_r", "number", "none", "", "[1, 8]",
+     "ASCE 7-16 Table 12.2-1 response modification coefficient R of the building's system (with asce7_cd): the "
+     "report's ASCE 7-16 design displacement delta_M = Cd delta_e / Ie.", 1.0, 8.0},
+    {"structures.buildingN", "asce7_cd", "number", "none", "", "[1, 6.5]",
+     "ASCE 7-16 Table 12.2-1 deflection amplification factor Cd (with asce7_r).", 1.0, 6.5},
+    {"structures.buildingN", "asce7_ie", "number", "1.0", "", "1.0 | 1.25 | 1.5",
+     "ASCE 7-16 Table 1.5-2 seismic importance factor Ie.", 1.0, 1.5},
+    {"structures.buildingN", "ec8_q", "number", "none", "", "[1, 8]",
+     "EN 1998-1 behaviour factor q: the report's EC8 design displacement d_s = q d_e (q_d = q, 4.3.4).", 1.0, 8.0},
+    {"structures.buildingN", "s2800_ru", "number", "none", "", "[1, 8]",
+     "Standard 2800 (4th ed.) behaviour factor Ru of the building's system (with s2800_cd): the report's design "
+     "drift Delta_M = Cd Delta_eu.", 1.0, 8.0},
+    {"structures.buildingN", "s2800_cd", "number", "none", "", "[1, 6.5]",
+     "Standard 2800 deflection amplification factor Cd (with s2800_ru).", 1.0, 6.5},
+    {"structures.buildingN", "s2800_importance", "number", "[target_spectrum] importance (Standard 2800), else not known",
+     "", "0.8 | 1.0 | 1.2 | 1.4",
+     "Standard 2800 importance factor I; 1.2 and 1.4 (high, very high) put the building outside the 0.005 h rule.",
+     0.8, 1.4},
+    {"structures.buildingN", "storeys", "integer", "round(height / storey_height), at least 1", "", "[1, 200]",
+     "Storeys above the base: Standard 2800's 0.005 h rule is for at most 8.", 1, 200},
+    {"structures.buildingN", "storey_height", "number", "3.2", "m", "[2, 10]",
+     "Only for the default of storeys.", 2.0, 10.0},
 
     // ---------------------------------------------------------------- distributions
     {"distribution", "lognormal", "table", "", "", "{median, cov}", "A lognormal law (not with uniform)."},
@@ -320,9 +344,19 @@ constexpr StudyKey keys[] = {
     // ---------------------------------------------------------------- [target_spectrum]
     {"target_spectrum", "code", "string", "required", "", "\"ASCE 7-16\" | \"EC8\" | \"Standard 2800\" | \"csv\"",
      "The design spectrum."},
-    {"target_spectrum", "sds", "number", "required (ASCE 7-16)", "g", "(0, 5]", "ASCE 7-16: design short-period Sa.",
+    {"target_spectrum", "sds", "number", "required (ASCE 7-16), or ss, s1 and site_class", "g", "(0, 5]",
+     "ASCE 7-16: design short-period Sa.", 1e-6, 5.0},
+    {"target_spectrum", "sd1", "number", "required (ASCE 7-16), or ss, s1 and site_class", "g", "(0, 5]",
+     "ASCE 7-16: design 1-s Sa.", 1e-6, 5.0},
+    {"target_spectrum", "ss", "number", "none (instead of sds, sd1)", "g", "(0, 5]",
+     "ASCE 7-16: mapped MCER Sa at 0.2 s (ch. 22); SDS = 2/3 Fa Ss, Fa from Table 11.4-1 (motion/asce7_site.hpp).",
      1e-6, 5.0},
-    {"target_spectrum", "sd1", "number", "required (ASCE 7-16)", "g", "(0, 5]", "ASCE 7-16: design 1-s Sa.", 1e-6, 5.0},
+    {"target_spectrum", "s1", "number", "none (instead of sds, sd1)", "g", "(0, 3]",
+     "ASCE 7-16: mapped MCER Sa at 1 s; SD1 = 2/3 Fv S1, Fv from Table 11.4-2 (Supplement 1).", 1e-6, 3.0},
+    {"target_spectrum", "site_class", "string", "required with ss and s1", "",
+     "\"A\" | \"B\" | \"C\" | \"D\" | \"D-default\" | \"E\" | \"F\"",
+     "ASCE 7-16 site class (D-default: 11.4.3's default, Fa >= 1.2). F and the 11.4.8 site-specific cases (E with "
+     "Ss >= 1, D and E with S1 >= 0.2) are refused: give sds and sd1 from a site-specific analysis."},
     {"target_spectrum", "tl", "number", "8", "s", "[1, 20]", "ASCE 7-16: long-period transition period.", 1.0, 20.0},
     {"target_spectrum", "mcer", "boolean", "false", "", "true | false",
      "ASCE 7-16: true scales to the MCER spectrum, 1.5 x the design one (16.2)."},

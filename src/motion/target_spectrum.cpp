@@ -23,10 +23,9 @@ DesignSpectrum make_target_spectrum(const TargetSpectrumSpec& spec, double dampi
 }
 
 std::string describe_target(const TargetSpectrumSpec& spec, const DesignSpectrum& target) {
-  return (spec.code == TargetCode::asce7_16 && spec.mcer
-              ? "MCER, 1.5 x the design spectrum (SDS and SD1 below include the 1.5): "
-              : "") +
-         target.describe();
+  const bool asce = spec.code == TargetCode::asce7_16;
+  return (asce && spec.mcer ? "MCER, 1.5 x the design spectrum (SDS and SD1 below include the 1.5): " : "") +
+         target.describe() + (asce && spec.from_maps ? " (from " + describe(spec.maps) + ")" : "");
 }
 
 ScalingRule default_scaling_rule(TargetCode code) {

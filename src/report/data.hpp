@@ -4,10 +4,12 @@
 // metres, code rules) share.
 #include <cmath>
 #include <cstdint>
+#include <optional>
 #include <span>
 #include <string>
 #include <vector>
 
+#include "pounding/analysis/code_displacement.hpp"
 #include "pounding/analysis/separation.hpp"
 #include "pounding/analysis/stats.hpp"
 #include "pounding/kernel/batch.hpp"
@@ -80,6 +82,15 @@ std::string code_rules_section(const Data& r);       // the code rules: in metre
 std::string grid_advice_section(const Data& r);      // a grid study's separation advice in gap ratios
 // "Records selected to the design spectrum" from /selection ([records] select); "" without it (selection_section.cpp)
 std::string selection_section(const results::Results& r);
-std::string separation_csv(const Data& r);           // rows pair_curve, separation, code_rule
+std::string separation_csv(const Data& r);           // rows pair_curve, separation, code_rule, code_design
+
+// The codes' own design displacements (code_design.cpp): the study's design spectrum from /settings (none without
+// [target_spectrum] or for files that do not store its parameters), a building as the codes see it (medians over
+// the models, or one model), the rows with their notes, and the scope of Standard 2800's 0.005 h rule (marks
+// rules[0] when outside it; returns the paragraph saying so, "" when nothing to say).
+std::optional<TargetSpectrumSpec> study_design_spectrum(const results::Settings& s);
+separation::BuildingCode building_code(const Data& r, int b, std::size_t model = static_cast<std::size_t>(-1));
+separation::CodeDesign code_design(const Data& r);
+std::string coefficient_scope(const Data& r, std::vector<separation::Rule>& rules);
 
 }  // namespace pounding::report_detail

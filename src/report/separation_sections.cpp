@@ -116,7 +116,10 @@ std::string interval(const separation::Estimate& e, double scale, const char* f)
 
 std::string pair_rules(const Data& r) {
   const separation::DesignPair p = design_pair(r);
-  const std::vector<separation::Rule> rules = separation::code_rules(p, r.set.code_gap_coefficient);
+  std::vector<separation::Rule> rules = separation::code_rules(p, r.set.code_gap_coefficient);
+  const std::string scope = coefficient_scope(r, rules);
+  const separation::CodeDesign design = code_design(r);  // the codes' own design displacements (code_design.cpp)
+  rules.insert(rules.end(), design.rules.begin(), design.rules.end());
   std::vector<double> gaps;
   for (const auto& rule : rules) gaps.push_back(rule.gap);
   const separation::Demands d = r.demands(true);
@@ -125,10 +128,11 @@ std::string pair_rules(const Data& r) {
   std::string s = fmt::format(
       "\n## Code separation rules in metres\n\n"
       "Each rule's separation for this pair, and the probability of at least one impact at that separation "
-      "according to this study. The displacements the rules combine are design values of each building: the "
-      "mean over all {} analyses (records x models) of the building's own uncoupled peak, u1 = {:.4f} m and "
-      "u2 = {:.4f} m — the mean because response-history provisions take the average over the suite "
-      "(EN 1998-1 sec. 4.3.3.4.3: at least 7 records; ASCE 7-16 ch. 16: 11). DDC uses T1 = {:.3f} s, "
+      "according to this study. The rows marked \"mean record peaks\" feed each code's formula the mean over all {} "
+      "analyses (records x models) of each building's own uncoupled peak, u1 = {:.4f} m and u2 = {:.4f} m — the "
+      "average over the suite as response-history provisions take it (EN 1998-1 sec. 4.3.3.4.3: at least 7 "
+      "records; ASCE 7-16 ch. 16: 11) — not the code's design displacement from its design spectrum; the rows "
+      "marked \"design\" (when the study gives a design spectrum and the buildings' factors) use those. DDC uses T1 = {:.3f} s, "
       "T2 = {:.3f} s, damping {:.3g} and {:.3g} (medians over the models): rho = {:.3f}. Interval: the two-stage "
       "bootstrap ({} replicates); Wilson: {}.\n\n"
       "| rule | clause | formula | separation m | P(pounding) | {:.0f} % interval | Wilson 95 % |\n"
@@ -143,6 +147,8 @@ std::string pair_rules(const Data& r) {
                      rules[i].formula, rules[i].gap, pct(100 * b.probability[i].value),
                      interval(b.probability[i], 100, "{:.2f}%"), 100 * w.lo, 100 * w.hi);
   }
+  if (!scope.empty() || !design.notes.empty()) s += "\n" + scope;
+  for (const std::string& note : design.notes) s += "- " + note + ".\n";
   return s;
 }
 
@@ -238,8 +244,13 @@ std::string separation_csv(const Data& r) {
   const separation::Demands d = r.demands(r.set.pair);
   std::vector<double> gaps;
   std::vector<separation::Rule> rules;
+  std::size_t formula_rules = 0;  // code_rule rows; after them code_design rows (the codes' design displacements)
   if (r.set.pair) {
     rules = separation::code_rules(design_pair(r), r.set.code_gap_coefficient);
+    coefficient_scope(r, rules);
+    formula_rules = rules.size();
+    const separation::CodeDesign design = code_design(r);
+    rules.insert(rules.end(), design.rules.begin(), design.rules.end());
     for (const auto& rule : rules) gaps.push_back(rule.gap);
   }
   // A pair study's curve with its band, in metres (a grid study's 10^5 analyses make 300 gaps x 2000 replicates
@@ -271,7 +282,8 @@ std::string separation_csv(const Data& r) {
   for (std::size_t i = 0; i < gaps.size(); ++i) {
     const separation::Estimate& e = b.probability[i];
     const bool rule = i < rules.size();
-    s += fmt::format("{},,{:.6f},,,,{},{:.6f},{},{:.6f},{:.6f},{}\n", rule ? "code_rule" : "curve_band",
+    s += fmt::format("{},,{:.6f},,,,{},{:.6f},{},{:.6f},{:.6f},{}\n",
+                     rule ? (i < formula_rules ? "code_rule" : "code_design") : "curve_band",
                      gaps[i] / unit, N, e.value, r.set.pair ? fmt::format("{:.6f}", gaps[i]) : "", e.lo, e.hi,
                      rule ? "\"" + rules[i].name + "\"" : "");
   }

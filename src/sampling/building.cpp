@@ -440,9 +440,14 @@ BuildingModel parse_building(const toml::table* t, const std::string& file, cons
   if (b.yield_coefficient.given() && (r.get("drift") || r.get("ductility")))
     throw InputError("both yield_coefficient and drift/ductility are given", r.where("yield_coefficient"),
                      "give either yield_coefficient (fy = Cy m g) or drift and ductility (fy = k drift h / ductility)");
-  r.finish("periods, period_min, period_max, period_step, period, height, mass, zeta, yield_coefficient, alpha, "
-           "hysteresis, aspect_ratios, rho_mean, rho_cov, mbar_mean, mbar_cov, mbar_min, mbar_max, drift, ductility, "
-           "height_min, height_max, ct_lower, ct_upper, height_exponent");
+  b.code = read_code_factors(t, file, name);
+  for (const char* key : {"asce7_r", "asce7_cd", "asce7_ie", "ec8_q", "s2800_ru", "s2800_cd", "s2800_importance",
+                          "storeys", "storey_height"})
+    r.get(key);  // code_factor_keys: known here, read and checked by read_code_factors
+  r.finish(std::string("periods, period_min, period_max, period_step, period, height, mass, zeta, yield_coefficient, "
+                       "alpha, hysteresis, aspect_ratios, rho_mean, rho_cov, mbar_mean, mbar_cov, mbar_min, mbar_max, "
+                       "drift, ductility, height_min, height_max, ct_lower, ct_upper, height_exponent, ") +
+           code_factor_keys);
   validate_building(b, where);
   return b;
 }

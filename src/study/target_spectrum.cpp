@@ -29,7 +29,8 @@ std::string key_of(const std::string& param) {
       {"SDS", "sds"}, {"SD1", "sd1"}, {"TL", "tl"}, {"agR", "agr"}, {"importance factor gammaI", "importance"},
       {"importance factor I", "importance"}, {"damping ratio xi (%)", "damping"}, {"A", "a"},
       {"ground type", "ground"}, {"soil type", "soil"}, {"--count", "select"}, {"--range", "t_max"},
-      {"--points", "points"}, {"--min-scale/--max-scale", "max_scale"}, {"--damping", "damping"}};
+      {"--points", "points"}, {"--min-scale/--max-scale", "max_scale"}, {"--damping", "damping"},
+      {"Ss", "ss"}, {"S1", "s1"}, {"site class", "site_class"}};
   for (const auto& [p, k] : keys)
     if (param == p) return k;
   return "";
@@ -69,12 +70,32 @@ E one_of(TableReader& r, std::string_view key, const char* const (&names)[N], st
 std::string read_code_parameters(TargetSpectrumSpec& spec, TableReader& r, const std::string& path) {
   const std::string code(to_string(spec.code));
   switch (spec.code) {
-    case TargetCode::asce7_16:
-      spec.asce7.sds = required(r, "sds", code, "sds = 1.0 (g, the design short-period Sa)");
-      spec.asce7.sd1 = required(r, "sd1", code, "sd1 = 0.6 (g, the design 1-s Sa)");
-      spec.asce7.tl = r.number("tl", 8.0, any_lo, any_hi, "any number");
+    case TargetCode::asce7_16: {
+      // either the design values (sds, sd1) or the mapped MCER values and the site class (asce7_site.hpp)
+      const bool design = r.get("sds") || r.get("sd1"), maps = r.get("ss") || r.get("s1") || r.get("site_class");
+      if (design && maps)
+        throw InputError("both sds/sd1 and ss/s1/site_class are given", r.where(r.get("ss") ? "ss" : r.get("s1") ? "s1" : "site_class"),
+                         "give either sds and sd1 (the design values) or ss, s1 and site_class (the mapped MCER values)");
+      const double tl = r.number("tl", 8.0, any_lo, any_hi, "any number");
+      if (maps) {
+        spec.from_maps = true;
+        spec.maps.ss = required(r, "ss", code, "ss = 1.5 (g, the mapped MCER Sa at 0.2 s)");
+        spec.maps.s1 = required(r, "s1", code, "s1 = 0.6 (g, the mapped MCER Sa at 1 s)");
+        if (!r.get("site_class"))
+          throw InputError(fmt::format("code = \"{}\" with ss and s1 needs site_class", code), r.where("site_class"),
+                           "write site_class = \"C\" (A, B, C, D, D-default, E or F)");
+        const std::string site = r.string("site_class", "");
+        spec.maps.site = parse_asce7_site_class(site, r.where("site_class"));
+        spec.maps.tl = tl;
+        spec.asce7 = at_key(r, [&] { return asce7_from_maps(spec.maps); });
+      } else {
+        spec.asce7.sds = required(r, "sds", code, "sds = 1.0 (g, the design short-period Sa), or ss, s1 and site_class");
+        spec.asce7.sd1 = required(r, "sd1", code, "sd1 = 0.6 (g, the design 1-s Sa)");
+        spec.asce7.tl = tl;
+      }
       spec.mcer = r.boolean("mcer", false);
-      return "sds, sd1, tl, mcer";
+      return "sds, sd1, ss, s1, site_class, tl, mcer";
+    }
     case TargetCode::ec8: {
       const char* const grounds[] = {"A", "B", "C", "D", "E"};
       spec.ec8.type = r.integer("type", 1) == 1 ? Ec8Type::type1 : Ec8Type::type2;

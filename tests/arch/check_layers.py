@@ -30,7 +30,7 @@ ALLOWED = {
     "sampling": {"physics", "model", "contact", "kernel", "config", "core"},
     "results": {"io", "core"},
     "study": {"physics", "contact", "model", "kernel", "motion", "sampling", "parallel", "results", "config", "core"},
-    "analysis": {"results", "core"},
+    "analysis": {"results", "motion", "kernel", "config", "core"},  # motion: design spectra (code_displacement)
     "report": {"analysis", "results", "study", "physics", "contact", "model", "kernel", "motion", "sampling",
                "io", "config", "core"},
     "accuracy": {"physics", "contact", "model", "kernel", "motion", "sampling", "analysis", "config", "core"},

@@ -310,7 +310,7 @@ TEST(BuildingErrors, ValuesOutOfRange) {
 
 TEST(BuildingErrors, KeysAndCombinations) {
   const std::string b1 = "[structures.building1]\n";
-  expect_error(b1 + "storeys = 8\n", "storeys", "check the spelling");
+  expect_error(b1 + "floors = 8\n", "floors", "check the spelling");  // storeys is a key (code_factors.hpp)
   expect_error("[structures.building3]\nperiod = 1.0\n", "building3");
   expect_error(b1 + "period = 1.0\nperiods = [1.0, 1.1]\n", "period", "both period and a period grid");
   expect_error(b1 + "period = 1.0\nperiod_max = 1.4\n", "period", "both period and a period grid");
@@ -364,4 +364,36 @@ TEST(Building, SettingsDescribeEachBuilding) {
   EXPECT_EQ(text["structures.building1/mass"], "4.2e+06 kg");
   EXPECT_EQ(text["structures.building2/zeta"], "0.05");
   EXPECT_EQ(text["structures.building2/yield"], "drift 0.02 / ductility 6");
+}
+
+TEST(BuildingErrors, CodeFactors) {  // issue 23 item 5: the code design factors of a building table
+  const std::string b1 = "[structures.building1]\n";
+  expect_error(b1 + "asce7_r = 9\nasce7_cd = 5\n", "asce7_r", "[1, 8]");
+  expect_error(b1 + "asce7_r = 8\n", "asce7_r", "both asce7_r and asce7_cd");
+  expect_error(b1 + "asce7_cd = 5\n", "asce7_cd", "both asce7_r and asce7_cd");
+  expect_error(b1 + "asce7_r = 8\nasce7_cd = 7\n", "asce7_cd", "[1, 6.5]");
+  expect_error(b1 + "asce7_ie = 1.1\n", "asce7_ie", "1.0, 1.25 or 1.5");
+  expect_error(b1 + "ec8_q = 0.5\n", "ec8_q", "[1, 8]");
+  expect_error(b1 + "s2800_ru = 7.5\n", "s2800_ru", "both s2800_ru and s2800_cd");
+  expect_error(b1 + "s2800_importance = 1.3\n", "s2800_importance", "0.8, 1.0, 1.2 or 1.4");
+  expect_error(b1 + "storeys = 0\n", "storeys", "[1, 200]");
+  expect_error(b1 + "storeys = 2.5\n", "storeys");
+  expect_error(b1 + "storey_height = 12\n", "storey_height", "[2, 10] m");
+  const StructureModel m = parse(b1 + "asce7_r = 8\nasce7_cd = 5.5\nasce7_ie = 1.25\nec8_q = 3.9\nstoreys = 6\n"
+                                      "[structures.building2]\ns2800_ru = 7.5\ns2800_cd = 5.5\ns2800_importance = 1.2\n"
+                                      "storey_height = 3.5\n");
+  const BuildingModel b1m = m.building(0), b2m = m.building(1);  // by value
+  const CodeFactors& a = b1m.code;
+  EXPECT_EQ(a.asce7_r, 8);
+  EXPECT_EQ(a.asce7_cd, 5.5);
+  EXPECT_EQ(a.asce7_ie, 1.25);
+  EXPECT_EQ(a.ec8_q, 3.9);
+  EXPECT_EQ(a.storeys, 6);
+  EXPECT_EQ(a.s2800_ru, 0);  // not given
+  const CodeFactors& b = b2m.code;
+  EXPECT_EQ(b.s2800_ru, 7.5);
+  EXPECT_EQ(b.s2800_cd, 5.5);
+  EXPECT_EQ(b.s2800_importance, 1.2);
+  EXPECT_EQ(b.storey_height, 3.5);
+  EXPECT_EQ(b.asce7_r, 0);
 }

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "pounding/core/enum_names.hpp"
+#include "pounding/motion/asce7_site.hpp"
 #include "pounding/motion/design_spectrum.hpp"
 #include "pounding/motion/selection.hpp"
 
@@ -25,6 +26,8 @@ constexpr const auto& enum_names(TargetCode) { return target_code_names; }  // t
 struct TargetSpectrumSpec {
   TargetCode code = TargetCode::asce7_16;
   Asce7Spectrum asce7;      // the design spectrum's SDS, SD1 (g), TL (s)
+  bool from_maps = false;   // ASCE: asce7 was computed from `maps` (asce7_from_maps, asce7_site.hpp)
+  Asce7MapValues maps;      // ASCE from the maps: Ss, S1, site class, TL
   bool mcer = false;        // ASCE: the MCER spectrum, 1.5 x the design spectrum (ASCE 7-16 16.2 scales to it)
   Ec8Spectrum ec8;          // its damping_percent is replaced by the selection's damping
   Iran2800Spectrum iran2800;

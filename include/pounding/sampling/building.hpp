@@ -16,6 +16,8 @@
 //                   drift/ductility rule fy = k drift h / ductility (not together with drift or ductility)
 //   alpha, hysteresis, aspect_ratios, rho_mean, rho_cov, mbar_mean, mbar_cov, mbar_min, mbar_max, drift,
 //   ductility, height_min, height_max, ct_lower, ct_upper, height_exponent   as in [structures]
+//   asce7_r, asce7_cd, asce7_ie, ec8_q, s2800_ru, s2800_cd, s2800_importance, storeys, storey_height   the
+//                   building's code design factors (code_factors.hpp; this table only, no [structures] default)
 //
 // Distributions: lognormal {median, cov}: ln X ~ N(ln median, sigma^2), sigma^2 = ln(1 + cov^2) (cov is the
 // CoV of X; 0 means fixed, at most 2); uniform {min, max} with min <= max. Every draw is truncated to the
@@ -31,6 +33,7 @@
 #include <toml++/toml.h>
 
 #include "pounding/core/enum_names.hpp"
+#include "pounding/sampling/code_factors.hpp"
 
 namespace pounding {
 
@@ -115,6 +118,7 @@ struct BuildingModel {
   double drift = 0, ductility = 0, alpha = 0;
   double height_min = 0, height_max = 0, ct_lower = 0, ct_upper = 0, height_exponent = 0;
   bool rule_explicit = false;  // ct_lower, ct_upper or height_exponent set in this table or [structures]
+  CodeFactors code;            // the code design factors of this table (code_factors.hpp)
 
   std::size_t slots() const { return periods.size(); }
   bool height_from_rule() const { return !height.given(); }

@@ -52,6 +52,34 @@ void visit_settings(const Study& s, V&& v) {
     v("target_spectrum", "max_scale", x.options.max_scale);
     v("records", "max_per_event", static_cast<std::int64_t>(s.max_per_event));  // selection rules (with select)
     v("records", "components", S(to_string(s.components)));
+    // the code's parameters, so the report can rebuild the design spectrum (code design displacements)
+    switch (x.spec.code) {
+      case TargetCode::asce7_16:
+        v("target_spectrum", "sds", x.spec.asce7.sds);  // the design values, without mcer's 1.5
+        v("target_spectrum", "sd1", x.spec.asce7.sd1);
+        v("target_spectrum", "tl", x.spec.asce7.tl);
+        v("target_spectrum", "mcer", x.spec.mcer);
+        if (x.spec.from_maps) {
+          v("target_spectrum", "ss", x.spec.maps.ss);
+          v("target_spectrum", "s1", x.spec.maps.s1);
+          v("target_spectrum", "site_class", S(to_string(x.spec.maps.site)));
+        }
+        break;
+      case TargetCode::ec8:
+        v("target_spectrum", "type", static_cast<std::int64_t>(x.spec.ec8.type == Ec8Type::type1 ? 1 : 2));
+        v("target_spectrum", "ground", S(1, "ABCDE"[static_cast<int>(x.spec.ec8.ground)]));
+        v("target_spectrum", "agr", x.spec.ec8.agr);
+        v("target_spectrum", "importance", x.spec.ec8.importance);
+        break;
+      case TargetCode::iran2800: {
+        const char* const soils[] = {"I", "II", "III", "IV"};
+        v("target_spectrum", "a", x.spec.iran2800.a);
+        v("target_spectrum", "soil", S(soils[static_cast<int>(x.spec.iran2800.soil)]));
+        v("target_spectrum", "importance", x.spec.iran2800.importance);
+        break;
+      }
+      case TargetCode::csv: break;
+    }
   }
 
   const StructureModel& m = s.structures;
@@ -106,6 +134,14 @@ void visit_settings(const Study& s, V&& v) {
     v(sec, "ct_lower", b.ct_lower);
     v(sec, "ct_upper", b.ct_upper);
     v(sec, "height_exponent", b.height_exponent);
+    // the code design factors, where given (sampling/code_factors.hpp)
+    const CodeFactors& f = b.code;
+    for (const auto& [key, value] : {std::pair<const char*, double>{"asce7_r", f.asce7_r}, {"asce7_cd", f.asce7_cd},
+                                     {"asce7_ie", f.asce7_ie}, {"ec8_q", f.ec8_q}, {"s2800_ru", f.s2800_ru},
+                                     {"s2800_cd", f.s2800_cd}, {"s2800_importance", f.s2800_importance},
+                                     {"storey_height", f.storey_height}})
+      if (value > 0) v(sec, key, value);
+    if (f.storeys > 0) v(sec, "storeys", static_cast<std::int64_t>(f.storeys));
   }
 
   v("gaps", "ratios", s.gap_ratios);

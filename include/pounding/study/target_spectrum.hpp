@@ -13,8 +13,12 @@
 //                                    match; both: both may be chosen. A second copy of one recording (same event,
 //                                    station and axis, motion/library.hpp) is never chosen.
 //   [target_spectrum]  code = "ASCE 7-16" | "EC8" | "Standard 2800" | "csv", and the code's parameters:
-//                        ASCE 7-16      sds, sd1 (g, required), tl = 8 (s), mcer = false (true: 1.5 x, the MCER
-//                                       spectrum ASCE 7-16 16.2 scales to)
+//                        ASCE 7-16      sds, sd1 (g, the design values), or instead ss, s1 (g, the mapped MCER
+//                                       values, (0, 5] and (0, 3]) and site_class = "A" | "B" | "C" | "D" |
+//                                       "D-default" | "E" | "F" (Fa, Fv from Tables 11.4-1/11.4-2; F and the
+//                                       11.4.8 site-specific cases are refused: motion/asce7_site.hpp);
+//                                       tl = 8 (s), mcer = false (true: 1.5 x, the MCER spectrum ASCE 7-16 16.2
+//                                       scales to)
 //                        EC8            type = 1 | 2, ground = "A".."E" (required), agr (g, required), importance = 1
 //                                       (the spectrum at `damping`)
 //                        Standard 2800  a (0.35, 0.30, 0.25 or 0.20, required), soil = "I".."IV" (required),
