@@ -170,8 +170,8 @@ CodeDesign code_design_rules(const TargetSpectrumSpec* spec, const BuildingCode&
   factor_notes(out, spec, b1, b2);
   if (!spec) {
     out.notes.push_back(
-        "The study gives no design spectrum ([target_spectrum]), so there are no code design displacements: the "
-        "rows above feed the codes' formulas the records' mean peaks");
+        "The study gives no design spectrum ([target_spectrum], with [records] select), so there are no code design "
+        "displacements: the rows above feed the codes' formulas the records' mean peaks");
     return out;
   }
   switch (spec->code) {

@@ -99,8 +99,8 @@ std::string coefficient_scope(const Data& r, std::vector<separation::Rule>& rule
       "design inelastic drift, Delta_M = Cd Delta_eu with P-Delta, {}.\n",
       scope.reason,
       drift_row ? "the row \"Standard 2800 design drift joint\" below (without P-Delta)"
-                : "which needs [target_spectrum] code = \"Standard 2800\" and s2800_ru, s2800_cd in both building "
-                  "tables");
+                : "which needs a Standard 2800 design spectrum ([target_spectrum] code = \"Standard 2800\", with "
+                  "[records] select) and s2800_ru, s2800_cd in both building tables");
 }
 
 separation::CodeDesign code_design(const Data& r) {
