@@ -14,6 +14,7 @@
 #include <boost/math/distributions/students_t.hpp>
 #include <fmt/format.h>
 
+#include "pounding/core/progress.hpp"
 #include "pounding/core/random.hpp"
 
 namespace pounding::stripes {
@@ -306,8 +307,10 @@ void msa_bootstrap(const StripeIndex& ix, const std::vector<std::size_t>& pos, c
                    const HazardCurve* h, std::vector<GapFragility>& out) {
   const std::size_t G = out.size(), SR = ix.stripes() * ix.records(), B = static_cast<std::size_t>(s.bootstrap);
   std::vector<ReplicateFit> reps(B * G);
+  Meter boot(s.hook, "fit: fragility bootstrap", B, "replicates");
   parallel_blocks(B, thread_count(s.threads, B), [&](std::size_t first, std::size_t last) {
     for (std::size_t b = first; b < last; ++b) {
+      if (!boot.step()) return;
       const std::vector<int> w = draw_records(s.seed, static_cast<int>(b), ix.records());
       for (std::size_t g = 0; g < G; ++g) {
         const std::vector<Stripe> st = stripes_from(ix, &pos[g * SR], w);
@@ -316,6 +319,7 @@ void msa_bootstrap(const StripeIndex& ix, const std::vector<std::size_t>& pos, c
       }
     }
   });
+  boot.finish();
   std::vector<ReplicateFit> one(B);
   for (std::size_t g = 0; g < G; ++g) {
     for (std::size_t b = 0; b < B; ++b) one[b] = reps[b * G + g];
@@ -324,8 +328,10 @@ void msa_bootstrap(const StripeIndex& ix, const std::vector<std::size_t>& pos, c
   if (!h) return;
   const std::size_t R = ix.records();
   for (GapFragility& g : out) g.jackknife_rate.assign(R, NAN);
+  Meter jack(s.hook, "fit: fragility jackknife", R, "records");
   parallel_blocks(R, thread_count(s.threads, R), [&](std::size_t first, std::size_t last) {
     for (std::size_t j = first; j < last; ++j) {
+      if (!jack.step()) return;
       std::vector<int> w(R, 1);
       w[j] = 0;
       for (std::size_t g = 0; g < G; ++g) {
@@ -335,6 +341,7 @@ void msa_bootstrap(const StripeIndex& ix, const std::vector<std::size_t>& pos, c
       }
     }
   });
+  jack.finish();
   for (GapFragility& g : out) set_rate_jackknife(g, s);
 }
 
@@ -566,13 +573,16 @@ TargetGap target_gap(std::size_t records, double lo, double hi, double target, c
   const auto B = static_cast<std::size_t>(s.bootstrap);
   std::vector<Range> reps(B);
   std::vector<int> where(B);
+  Meter boot(s.hook, "fit: risk-targeted gap bootstrap", B, "replicates");
   parallel_blocks(B, thread_count(s.threads, B), [&](std::size_t first, std::size_t last) {
     for (std::size_t b = first; b < last; ++b) {
+      if (!boot.step()) return;
       const Solution r = solve_target(grid, target, rate_for(draw_records(s.seed, static_cast<int>(b), records)));
       where[b] = r.where;
       reps[b] = r.where == 0 ? Range{r.x, r.x} : r.where < 0 ? Range{0, lo} : Range{hi, kInf};
     }
   });
+  boot.finish();
   out.replicates = s.bootstrap;
   for (int w : where) out.replicates_below += w < 0, out.replicates_above += w > 0;
   if (B) {
@@ -581,14 +591,17 @@ TargetGap target_gap(std::size_t records, double lo, double hi, double target, c
   }
   if (out.status == "ok" && records >= 3) {
     std::vector<double> ln(records, NAN);
+    Meter jack(s.hook, "fit: risk-targeted gap jackknife", records, "records");
     parallel_blocks(records, thread_count(s.threads, records), [&](std::size_t first, std::size_t last) {
       for (std::size_t j = first; j < last; ++j) {
+        if (!jack.step()) return;
         std::vector<int> w(records, 1);
         w[j] = 0;
         const Solution r = solve_target(grid, target, rate_for(std::move(w)));
         if (r.where == 0) ln[j] = std::log(r.x);
       }
     });
+    jack.finish();
     set_jackknife(out, ln, s.confidence);
   }
   set_advice(out);
@@ -732,23 +745,29 @@ GapFragility fit_ida(const Capacities& c, std::span<const double> levels, const 
   const double x_top = L.min_cap, x_low = levels.empty() ? x_top : std::min(x_top, *std::min_element(levels.begin(), levels.end()));
   set_rate(g, hazard, x_low, x_top, s.years);
   std::vector<ReplicateFit> reps(static_cast<std::size_t>(s.bootstrap));
+  Meter boot(s.hook, fmt::format("fit: IDA bootstrap at gap {:g}", gap), reps.size(), "replicates");
   parallel_blocks(reps.size(), thread_count(s.threads, reps.size()), [&](std::size_t first, std::size_t last) {
     for (std::size_t b = first; b < last; ++b) {
+      if (!boot.step()) return;
       const std::vector<int> w = draw_records(s.seed, static_cast<int>(b), c.records);
       reps[b] = replicate_fit(fit_capacity_sample(sample_at(L, 0, w), L.y0, 1.0), hazard, x_low, x_top);
     }
   });
+  boot.finish();
   set_intervals(g, reps, s);
   if (hazard) {
     g.jackknife_rate.assign(c.records, NAN);
+    Meter jack(s.hook, fmt::format("fit: IDA jackknife at gap {:g}", gap), c.records, "records");
     parallel_blocks(c.records, thread_count(s.threads, c.records), [&](std::size_t first, std::size_t last) {
       for (std::size_t j = first; j < last; ++j) {
+        if (!jack.step()) return;
         std::vector<int> w(c.records, 1);
         w[j] = 0;
         const FragilityFit f = fit_capacity_sample(sample_at(L, 0, w), L.y0, 1.0);
         if (f.ok()) g.jackknife_rate[j] = rate_of(f, *hazard, x_low, x_top).value;
       }
     });
+    jack.finish();
     set_rate_jackknife(g, s);
   }
   return g;

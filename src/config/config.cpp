@@ -146,7 +146,10 @@ double TableReader::number(std::string_view key, double def, double lo, double h
   const toml::node* n = get(key);
   if (!n) return def;
   const double v = config::number(*n, key, where(key));
-  if (!std::isfinite(v) || v < lo || v > hi)
+  if (!std::isfinite(v))
+    throw InputError(fmt::format("{} = {} is not a finite number", key, v), where(key),
+                     fmt::format("give a finite number ({})", range));
+  if (v < lo || v > hi)
     throw InputError(fmt::format("{} = {} is out of range", key, v), where(key), fmt::format("give a value in {}", range));
   return v;
 }

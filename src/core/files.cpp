@@ -64,7 +64,7 @@ std::uint64_t fnv1a(const void* data, std::size_t n, std::uint64_t h) {
   return h;
 }
 
-std::string read_text(const std::string& path, const std::string& what) {
+std::string read_text(const std::string& path, const std::string& what, std::size_t max_bytes, bool regular_only) {
   auto fail = [&](int err) {
     const char* fix = err == ENOENT || err == ENOTDIR ? "check the path"
                       : err == EISDIR             ? "give a file, not a folder"
@@ -72,14 +72,44 @@ std::string read_text(const std::string& path, const std::string& what) {
                                                       : "check the disk and the path";
     return InputError(fmt::format("cannot read {}: {}", what, os_error(err)), path, fix);
   };
-  int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
+  // O_NONBLOCK: opening a FIFO must not wait for a writer before we know what the path is
+  int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC | O_NONBLOCK);
   if (fd < 0) throw fail(errno);
   std::string text;
   struct stat st {};
-  if (::fstat(fd, &st) == 0 && S_ISREG(st.st_mode) && st.st_size > 0) text.reserve(static_cast<std::size_t>(st.st_size));
+  if (::fstat(fd, &st) != 0) {
+    const int err = errno;
+    ::close(fd);
+    throw fail(err);
+  }
+  const std::string limit = max_bytes % (1 << 20) == 0 ? fmt::format("{} MiB", max_bytes >> 20) : fmt::format("{} bytes", max_bytes);
+  if (S_ISDIR(st.st_mode)) {
+    ::close(fd);
+    throw fail(EISDIR);
+  }
+  if (!S_ISREG(st.st_mode) && regular_only) {
+    ::close(fd);
+    const char* kind = S_ISFIFO(st.st_mode) ? "a FIFO (named pipe)" : S_ISCHR(st.st_mode) ? "a character device"
+                       : S_ISBLK(st.st_mode) ? "a block device" : S_ISSOCK(st.st_mode) ? "a socket" : "not a regular file";
+    throw InputError(fmt::format("cannot read {}: the path is {}, not a regular file", what, kind), path,
+                     fmt::format("give an ordinary file (at most {})", limit));
+  }
+  if (S_ISREG(st.st_mode) && static_cast<std::uint64_t>(st.st_size) > max_bytes) {
+    ::close(fd);
+    throw InputError(fmt::format("cannot read {}: it holds {} bytes, more than the limit of {}", what,
+                                 static_cast<std::uint64_t>(st.st_size), limit),
+                     path, "check the path (is it the right file?)");
+  }
+  ::fcntl(fd, F_SETFL, ::fcntl(fd, F_GETFL) & ~O_NONBLOCK);  // a pipe allowed: wait for its data as usual
+  if (S_ISREG(st.st_mode) && st.st_size > 0) text.reserve(static_cast<std::size_t>(st.st_size));
   char buf[1 << 16];
   for (;;) {
     const ssize_t r = ::read(fd, buf, sizeof buf);
+    if (r > 0 && text.size() + static_cast<std::size_t>(r) > max_bytes) {
+      ::close(fd);
+      throw InputError(fmt::format("cannot read {}: more than the limit of {}", what, limit), path,
+                       "check the path (is it the right file?)");
+    }
     if (r == 0) break;
     if (r < 0) {
       if (errno == EINTR) continue;
@@ -108,7 +138,30 @@ void write_all(int fd, const void* data, std::size_t n, const std::string& path)
   }
 }
 
-void write_atomically(const std::string& path, std::span<const std::byte> bytes) {
+void check_replaceable(const std::string& path, const std::string& where) {
+  struct stat st {};
+  if (::stat(path.c_str(), &st) != 0) return;  // a new file (or a dangling link: the rename replaces the link)
+  if (S_ISREG(st.st_mode)) return;
+  const char* kind = S_ISDIR(st.st_mode)    ? "a folder"
+                     : S_ISFIFO(st.st_mode) ? "a FIFO (named pipe)"
+                     : S_ISCHR(st.st_mode)  ? "a character device"
+                     : S_ISBLK(st.st_mode)  ? "a block device"
+                     : S_ISSOCK(st.st_mode) ? "a socket"
+                                            : "not a regular file";
+  throw InputError(fmt::format("the output path '{}' exists and is {}; pounding replaces only regular files", path, kind),
+                   where.empty() ? path : where, "give the path of a new or ordinary file");
+}
+
+void write_atomically(const std::string& given, std::span<const std::byte> bytes) {
+  check_replaceable(given, "");
+  // a link to a regular file: replace the file it names (beside it), and keep the link
+  std::string path = given;
+  struct stat lst {};
+  if (::lstat(given.c_str(), &lst) == 0 && S_ISLNK(lst.st_mode)) {
+    std::error_code ec;
+    const fs::path target = fs::canonical(given, ec);
+    if (!ec) path = target.string();
+  }
   const std::string tmp = fmt::format("{}.tmp{}", path, static_cast<long>(getpid()));
   SignalHold hold;
   int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
@@ -158,14 +211,10 @@ void check_output_path(const std::string& path, const std::string& where) {
     throw InputError(fmt::format("the output path '{}' names a folder, not a file", path), where,
                      "give a file name, e.g. --out " + path + "results.h5");
   struct stat st {};
-  if (::stat(path.c_str(), &st) == 0) {
-    if (S_ISDIR(st.st_mode))
-      throw InputError(fmt::format("the output path '{}' is an existing folder", path), where,
-                       "give a file name inside it, e.g. --out " + path + "/results.h5");
-    if (!S_ISREG(st.st_mode))
-      throw InputError(fmt::format("the output path '{}' exists and is not a regular file", path), where,
-                       "give the path of a new or ordinary file");
-  }
+  if (::stat(path.c_str(), &st) == 0 && S_ISDIR(st.st_mode))
+    throw InputError(fmt::format("the output path '{}' is an existing folder", path), where,
+                     "give a file name inside it, e.g. --out " + path + "/results.h5");
+  check_replaceable(path, where);
   const std::string dir = parent_of(path);
   struct stat ds {};
   if (::stat(dir.c_str(), &ds) != 0 || !S_ISDIR(ds.st_mode))

@@ -210,13 +210,14 @@ void set_target_attributes(Group& h, const stripes::TargetGap& t, double d) {
 
 bool is_fragility_study(const Results& r) { return r.group("intensity") != nullptr; }
 
-void analyse_fragility(Results& r) {
+void analyse_fragility(Results& r, const WorkHook* hook) {
   if (!is_fragility_study(r) || r.group("fragility")) return;
   const Group& in = *r.group("intensity");
   const std::vector<double> levels = in.get<double>("levels");
   const std::string units = in.text("units"), method = in.text("method");
   const std::optional<HazardCurve> hz = hazard_of(r);
-  const stripes::Settings st = stripe_settings(r);
+  stripes::Settings st = stripe_settings(r);
+  st.hook = hook;
   const std::vector<double>& gaps = r.gaps.ratios;
   std::vector<double> demand = demand_ratios(r);
   std::vector<stripes::GapFragility> fits;

@@ -9,8 +9,16 @@ namespace pounding::results {
 namespace {
 
 // Readers that leave the default when a file predates the item.
+// A dataset that stands for an attribute too large for HDF5's limit (writer.cpp, `stored_attribute`), or "".
+std::string stored_attribute_kind(h5::hid g, const std::string& name) {
+  if (!h5::exists(g, name) || h5::is_group(g, name)) return "";
+  auto ds = h5::open_dataset(g, name);
+  return h5::attribute_exists(ds.get(), "stored_attribute") ? h5::read_string_attribute(ds.get(), "stored_attribute") : "";
+}
+
 void read_opt(h5::hid obj, const char* name, std::string& v) {
   if (h5::attribute_exists(obj, name)) v = h5::read_string_attribute(obj, name);
+  else if (stored_attribute_kind(obj, name) == "string") v = h5::read_strings(obj, name).at(0);
 }
 void read_opt(h5::hid obj, const char* name, double& v) {
   if (h5::attribute_exists(obj, name)) v = h5::read_double_attribute(obj, name);
@@ -49,6 +57,12 @@ void read_section(h5::hid g, const std::string& section, Settings& out) {
       case K::other: break;
     }
   }
+  for (const std::string& key : h5::member_names(g)) {  // attributes too large for HDF5's limit, stored as datasets
+    const std::string kind = stored_attribute_kind(g, key);
+    if (kind == "numbers") out.add(section, key, h5::read_doubles(g, key));
+    else if (kind == "string") out.add(section, key, h5::read_strings(g, key).at(0));
+    else if (kind == "strings") out.add(section, key, h5::read_strings(g, key));
+  }
 }
 
 Settings read_settings(h5::hid root) {
@@ -57,7 +71,7 @@ Settings read_settings(h5::hid root) {
   auto top = h5::open_group(root, "settings");
   read_section(top.get(), "", s);
   for (const std::string& section : h5::member_names(top.get()))
-    read_section(h5::open_group(top.get(), section).get(), section, s);
+    if (h5::is_group(top.get(), section)) read_section(h5::open_group(top.get(), section).get(), section, s);
   return s;
 }
 
@@ -138,6 +152,7 @@ void read_groups(h5::hid root, Results& r) {
     for (auto& a : attrs.entries)
       if (a.key != "module_group") gr.attributes.emplace_back(a.key, std::move(a.value));
     for (const std::string& d : h5::member_names(g.get())) {
+      if (!stored_attribute_kind(g.get(), d).empty()) continue;  // an attribute (read_section has it)
       GroupDataset ds{d, {}, h5::dataset_shape(g.get(), d), {}, {}};
       if (ds.shape.size() <= 1) ds.shape.clear();
       auto h = h5::open_dataset(g.get(), d);
@@ -157,6 +172,11 @@ void read_groups(h5::hid root, Results& r) {
 }
 
 }  // namespace
+
+Header load_header(const std::string& path) {
+  auto f = h5::open_read(path);
+  return read_header(f.get());
+}
 
 Results load(const std::string& path, std::span<const FieldSpec> extra) {
   Results r;

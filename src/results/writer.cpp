@@ -13,6 +13,54 @@ namespace pounding::results {
 
 namespace {
 
+// HDF5 keeps an attribute in its object's header, at most 64 KiB: a hazard table of 8,200 rows, 9,000 levels or gap
+// ratios, a long study text do not fit. Such a value is written as a dataset of the same name in the same group,
+// marked with the attribute `stored_attribute` (its kind: "numbers", "string", "strings"); the reader puts it back
+// among the attributes (reader.cpp). Smaller values stay attributes, as in every earlier file.
+constexpr std::size_t attribute_limit = 16 << 10;  // bytes; well below 64 KiB with the message's own overhead
+
+void mark_stored_attribute(h5::hid g, const std::string& key, const char* kind) {
+  auto ds = h5::open_dataset(g, key);
+  h5::write_attribute(ds.get(), "stored_attribute", std::string(kind));
+  h5::write_attribute(ds.get(), "units", std::string("those of the setting or attribute it holds"));
+  h5::write_attribute(ds.get(), "description",
+                      std::string("an attribute too large for HDF5's 64 KiB attribute limit, stored as a dataset"));
+}
+
+void write_value(h5::hid g, const std::string& key, const SettingValue& value) {
+  std::visit(
+      [&](const auto& v) {
+        using T = std::decay_t<decltype(v)>;
+        if constexpr (std::is_same_v<T, std::vector<double>>) {
+          if (v.size() * sizeof(double) > attribute_limit) {
+            h5::write_dataset(g, key, std::span<const double>(v));
+            mark_stored_attribute(g, key, "numbers");
+          } else {
+            h5::write_attribute(g, key, std::span<const double>(v));
+          }
+        } else if constexpr (std::is_same_v<T, std::string>) {
+          if (v.size() > attribute_limit) {
+            h5::write_strings(g, key, std::vector<std::string>{v});
+            mark_stored_attribute(g, key, "string");
+          } else {
+            h5::write_attribute(g, key, v);
+          }
+        } else if constexpr (std::is_same_v<T, std::vector<std::string>>) {
+          std::size_t n = 0;
+          for (const auto& s : v) n += s.size() + 16;
+          if (n > attribute_limit) {
+            h5::write_strings(g, key, v);
+            mark_stored_attribute(g, key, "strings");
+          } else {
+            h5::write_attribute(g, key, v);
+          }
+        } else {
+          h5::write_attribute(g, key, v);
+        }
+      },
+      value);
+}
+
 void write_header_start(h5::hid root, const Header& h) {
   visit_header_start(h, [&](const char* name, const auto& value) {
     if constexpr (std::is_same_v<std::decay_t<decltype(value)>, std::int64_t>)
@@ -20,22 +68,16 @@ void write_header_start(h5::hid root, const Header& h) {
         h5::write_attribute(root, name, results::format_version);
         return;
       }
-    h5::write_attribute(root, name, value);
+    if constexpr (std::is_same_v<std::decay_t<decltype(value)>, std::string>) write_value(root, name, value);  // long texts
+    else h5::write_attribute(root, name, value);
   });
 }
 
 void write_header_end(h5::hid root, const Header& h) {
-  visit_header_end(h, [&](const char* name, const auto& value) { h5::write_attribute(root, name, value); });
-}
-
-void write_value(h5::hid g, const std::string& key, const SettingValue& value) {
-  std::visit(
-      [&](const auto& v) {
-        using T = std::decay_t<decltype(v)>;
-        if constexpr (std::is_same_v<T, std::vector<double>>) h5::write_attribute(g, key, std::span<const double>(v));
-        else h5::write_attribute(g, key, v);
-      },
-      value);
+  visit_header_end(h, [&](const char* name, const auto& value) {
+    if constexpr (std::is_same_v<std::decay_t<decltype(value)>, std::string>) write_value(root, name, value);
+    else h5::write_attribute(root, name, value);
+  });
 }
 
 void write_settings(h5::hid root, const Settings& settings) {

@@ -42,11 +42,12 @@ struct KeyRange {
     return std::isfinite(x) && (lo_closed ? x >= lo : x > lo) && (hi_open ? x < hi : x <= hi);
   }
 };
-constexpr KeyRange period_range{0, max_period, false, false, "(0, 100] s", "s"};
-constexpr KeyRange height_range{0, max_height, false, false, "(0, 1000] m", "m"};
-constexpr KeyRange mass_range{0, max_mass, false, false, "(0, 1e10] kg", "kg"};
-constexpr KeyRange zeta_range{0, 1, true, true, "[0, 1)", ""};
-constexpr KeyRange cy_range{0, max_cy, false, false, "(0, 5]", ""};
+// The ranges a real building can have (building.hpp says why each end is where it is).
+constexpr KeyRange period_range{min_period, max_period, true, false, "[0.02, 20] s", "s"};
+constexpr KeyRange height_range{min_height, max_height, true, false, "[2, 1000] m", "m"};
+constexpr KeyRange mass_range{min_mass, max_mass, true, false, "[1e3, 1e10] kg", "kg"};
+constexpr KeyRange zeta_range{0, max_zeta, true, false, "[0, 0.5]", ""};
+constexpr KeyRange cy_range{min_cy, max_cy, true, false, "[0.005, 5]", ""};
 
 // Ranges of the parameters of d, then the probability the valid range keeps.
 void check_distribution(const Distribution& d, std::string_view key, const KeyRange& r, const WhereFn& where) {
@@ -244,7 +245,7 @@ void check_grid(const BuildingModel& b, const WhereFn& where) {
     throw InputError(fmt::format("the period grid has {} points", b.periods.size()), where(key),
                      "give 1 to 1000 periods");
   for (std::size_t i = 0; i < b.periods.size(); ++i) {
-    need(b.periods[i] > 0 && b.periods[i] <= max_period, key, b.periods[i], "(0, 100] s", where);
+    need(period_range.contains(b.periods[i]), key, b.periods[i], std::string(period_range.text), where);
     if (i > 0 && !(b.periods[i] > b.periods[i - 1]))
       throw InputError(fmt::format("periods are not strictly increasing at {} s", fmt_num(b.periods[i])),
                        where(key), "list each period once, in increasing order");
@@ -267,7 +268,7 @@ void check_parameters(const BuildingModel& b, const WhereFn& where) {
   need(b.drift > 0 && b.drift <= 1, "drift", b.drift, "(0, 1]", where);
   need(b.ductility >= 1 && b.ductility <= 100, "ductility", b.ductility, "[1, 100]", where);
   need(b.alpha >= 0 && b.alpha < 1, "alpha", b.alpha, "[0, 1)", where);
-  need(b.height_min > 0 && b.height_min <= max_height, "height_min", b.height_min, "(0, 1000] m", where);
+  need(height_range.contains(b.height_min), "height_min", b.height_min, std::string(height_range.text), where);
   need(b.height_max >= b.height_min && b.height_max <= max_height, "height_max", b.height_max,
        fmt::format("[height_min = {}, 1000] m", fmt_num(b.height_min)), where);
   need(b.ct_lower > 0 && b.ct_lower <= 10, "ct_lower", b.ct_lower, "(0, 10]", where);

@@ -272,12 +272,12 @@ StructureSampler::Side StructureSampler::make_side(BuildingModel b) {
   s.mbar_mu = mb.mu, s.mbar_sigma = mb.sigma;
   s.mbar = Truncated::lognormal_mu_sigma(mb.mu, mb.sigma, b.mbar_min, b.mbar_max);
   // Each drawn key truncated to its valid range; T also to the periods the rule admits when it gives h.
-  const HeightInterval pr = b.height_from_rule() ? b.rule_periods() : HeightInterval{0.0, max_period};
-  s.period = Truncated(b.period, pr.lo, std::min(pr.hi, max_period));
-  s.height = Truncated(b.height, 0.0, max_height);
-  s.mass = Truncated(b.mass, 0.0, max_mass);
-  s.zeta = Truncated(b.zeta, 0.0, std::nextafter(1.0, 0.0));
-  s.cy = Truncated(b.yield_coefficient, 0.0, max_cy);
+  const HeightInterval pr = b.height_from_rule() ? b.rule_periods() : HeightInterval{min_period, max_period};
+  s.period = Truncated(b.period, std::max(pr.lo, min_period), std::min(pr.hi, max_period));
+  s.height = Truncated(b.height, min_height, max_height);
+  s.mass = Truncated(b.mass, min_mass, max_mass);
+  s.zeta = Truncated(b.zeta, 0.0, max_zeta);
+  s.cy = Truncated(b.yield_coefficient, min_cy, max_cy);
   s.model = std::move(b);
   return s;
 }

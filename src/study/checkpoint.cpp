@@ -6,6 +6,7 @@
 #include <sys/sysmacros.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <cstring>
 #include <fstream>
@@ -128,6 +129,10 @@ Checkpoint::~Checkpoint() {
 CheckpointScan Checkpoint::scan(const CheckpointKey& key, const UnitFn& on_unit) {
   CheckpointScan s;
   std::ifstream in(path_, std::ios::binary);
+  {
+    struct stat st {};
+    if (::stat(path_.c_str(), &st) == 0) s.file_bytes = static_cast<std::uint64_t>(st.st_size);
+  }
   char m[8] = {};
   in.read(m, 8);
   if (in.gcount() == 0) return s;  // empty
@@ -173,11 +178,23 @@ CheckpointScan Checkpoint::scan(const CheckpointKey& key, const UnitFn& on_unit)
     std::uint64_t unit = 0, count = 0, sum = 0;
     in.read(reinterpret_cast<char*>(&unit), 8);
     in.read(reinterpret_cast<char*>(&count), 8);
-    if (!in || count > max_payload || unit >= n) break;
+    if (!in) break;  // the end (or a torn record header)
+    if (count > max_payload || unit >= n) {
+      s.stopped_at = fmt::format("record {} has an impossible {} (damaged)", s.units_done + 1,
+                                 unit >= n ? fmt::format("unit number {}", unit) : fmt::format("length {}", count));
+      break;
+    }
     data.resize(count);
     in.read(reinterpret_cast<char*>(data.data()), static_cast<std::streamsize>(count));
     in.read(reinterpret_cast<char*>(&sum), 8);
-    if (!in || record_checksum(unit, count, data.data()) != sum) break;
+    if (!in) {
+      s.stopped_at = fmt::format("record {} is cut short (a run killed while writing it)", s.units_done + 1);
+      break;
+    }
+    if (record_checksum(unit, count, data.data()) != sum) {
+      s.stopped_at = fmt::format("record {} (unit {}) fails its checksum (damaged bytes)", s.units_done + 1, unit);
+      break;
+    }
     s.good_bytes += 24 + count;
     ++s.units_done;
     if (deliver) on_unit(static_cast<std::size_t>(unit), std::move(data));
@@ -250,7 +267,7 @@ void Checkpoint::sync() {
 }
 
 std::uint64_t open_for_run(Checkpoint& ckpt, const CheckpointKey& key, bool resume, bool force,
-                           const Checkpoint::UnitFn& on_unit) {
+                           const Checkpoint::UnitFn& on_unit, std::string* dropped) {
   using K = CheckpointScan::Kind;
   const std::string& p = ckpt.path();
   if (resume && force)
@@ -293,7 +310,13 @@ std::uint64_t open_for_run(Checkpoint& ckpt, const CheckpointKey& key, bool resu
   const CheckpointScan s = ckpt.scan(key, on_unit);
   switch (s.kind) {
     case K::empty:
-      throw InputError("no checkpoint to resume from", p, "run without --resume to start the study");
+      if (ckpt.existed())
+        throw InputError(fmt::format("checkpoint {} is empty (0 bytes): it holds no finished unit (a run stopped before "
+                                     "its first unit, or a truncated file)",
+                                     p),
+                         p, "run without --resume to start the study afresh (the empty file is replaced)");
+      throw InputError(fmt::format("no checkpoint to resume from: {} does not exist", p), p,
+                       "run without --resume to start the study");
     case K::ours: break;
     case K::other_build:
       throw InputError(fmt::format("the checkpoint was written by a different build of pounding ({}; this is {}); "
@@ -308,6 +331,16 @@ std::uint64_t open_for_run(Checkpoint& ckpt, const CheckpointKey& key, bool resu
                        "finish it with that version, or rerun with --force to start afresh");
     case K::not_checkpoint:
       throw InputError("the checkpoint file is not a pounding checkpoint", p, "move it away and run with --force");
+  }
+  if (dropped && s.file_bytes > s.good_bytes) {
+    // the bytes after the last valid record: a torn last record of a killed run, or damage (then whole units go)
+    const std::uint64_t per_unit = s.units_done ? (s.good_bytes - 40 - s.build.size()) / s.units_done : 0;
+    const std::uint64_t lost = s.file_bytes - s.good_bytes;
+    *dropped = fmt::format("{}: the {} bytes after unit record {} are dropped{} and those units are computed again",
+                           s.stopped_at.empty() ? "the checkpoint's end is unreadable" : s.stopped_at, human(lost),
+                           human(s.units_done),
+                           per_unit ? fmt::format(" (about {} units)", human(std::max<std::uint64_t>(1, lost / per_unit)))
+                                    : "");
   }
   ckpt.resume(s);
   return s.units_done;

@@ -1,7 +1,9 @@
 #include "pounding/study/intensity.hpp"
 
 #include <algorithm>
+#include <cerrno>
 #include <cmath>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -10,6 +12,7 @@
 
 #include "pounding/config/config.hpp"
 #include "pounding/core/error.hpp"
+#include "pounding/core/files.hpp"
 #include "pounding/sampling/sampler.hpp"
 
 namespace pounding {
@@ -74,7 +77,14 @@ void read_period(IntensitySpec& x, TableReader& r, const std::string& path, cons
       throw InputError(fmt::format("period = \"{}\" is not a period", *p->value<std::string>()), r.where("period"),
                        "write period = <s> or period = \"pair\" (the geometric mean of the buildings' median periods)");
     x.period_pair = true;
-    x.im.periods = {std::sqrt(median_period(structures, 0) * median_period(structures, 1))};
+    const double t1 = median_period(structures, 0), t2 = median_period(structures, 1), t = std::sqrt(t1 * t2);
+    // the same range as a period given as a number: Sa(T) is defined on the spectrum's [0.01, 20] s
+    if (!(t >= 0.01 && t <= 20.0))
+      throw InputError(fmt::format("period = \"pair\" gives {:.4g} s (the geometric mean of the buildings' median "
+                                   "periods {:.4g} s and {:.4g} s), outside [0.01, 20] s",
+                                   t, t1, t2),
+                       r.where("period"), "give period = <s> in [0.01, 20], or check [structures] periods");
+    x.im.periods = {t};
     return;
   }
   x.im.periods = {r.number("period", 0.0)};
@@ -85,6 +95,7 @@ void read_levels(IntensitySpec& x, TableReader& r) {
   if (!r.get("levels"))
     throw InputError("[intensity] needs the stripes' levels", r.where("levels"),
                      pgv ? "write levels = [0.1, 0.2, 0.4, 0.6, 0.8, 1.0] (m/s)" : "write levels = [0.1, 0.2, 0.4, 0.6, 0.8, 1.0] (g)");
+  x.levels_where = r.where("levels");
   x.levels = r.numbers("levels", {}, pgv ? 1e-4 : 1e-4, pgv ? 20.0 : 10.0, pgv ? "(0, 20] m/s" : "(0, 10] g");
   for (std::size_t i = 1; i < x.levels.size(); ++i)
     if (!(x.levels[i] > x.levels[i - 1]))
@@ -114,26 +125,65 @@ IntensitySpec parse_intensity(const toml::table* t, const std::string& path, con
   return x;
 }
 
+namespace {
+
+// The fields of one CSV row (commas, spaces or tabs between them).
+std::vector<std::string> csv_fields(const std::string& line) {
+  std::vector<std::string> f(1);
+  for (char c : line) {
+    if (c == ',' || c == ' ' || c == '\t' || c == '\r') {
+      if (!f.back().empty()) f.emplace_back();
+    } else {
+      f.back() += c;
+    }
+  }
+  if (f.back().empty()) f.pop_back();
+  return f;
+}
+
+// A whole field as a number (strtod: "nan" and "inf" are numbers too, refused afterwards by range).
+bool parse_number(const std::string& s, double& v) {
+  if (s.empty()) return false;
+  char* end = nullptr;
+  errno = 0;
+  v = std::strtod(s.c_str(), &end);
+  return end == s.c_str() + s.size();
+}
+
+}  // namespace
+
 void read_hazard_csv(const std::string& file, std::vector<double>& im, std::vector<double>& rate) {
-  std::ifstream in(file);
-  if (!in) throw InputError("cannot read the hazard curve", file, "check [hazard] curve (relative to the study file)");
+  // a regular file of at most 16 MiB (a hazard table of 100,000 rows is ~3 MiB): a FIFO or /dev/zero is refused
+  std::string text = files::read_text(file, "the hazard curve", std::size_t{16} << 20, true);
+  if (text.starts_with("\xEF\xBB\xBF")) text.erase(0, 3);  // the UTF-8 byte-order mark of Excel's "CSV UTF-8"
+  std::istringstream in(text);
   std::string line;
   int no = 0;
+  bool header_seen = false;
   im.clear(), rate.clear();
   while (std::getline(in, line)) {
     ++no;
     const auto b = line.find_first_not_of(" \t\r");
     if (b == std::string::npos || line[b] == '#') continue;
-    std::replace(line.begin(), line.end(), ',', ' ');
-    std::istringstream row(line);
-    double x = 0, l = 0;
-    std::string rest;
-    if (!(row >> x >> l)) {
-      if (im.empty() && std::isalpha(static_cast<unsigned char>(line[b]))) continue;  // a header
-      throw InputError("a hazard row must be two numbers: IM, annual rate of exceedance", fmt::format("{}:{}", file, no), "fix the row");
-    }
-    if (row >> rest) throw InputError("a hazard row has more than two columns", fmt::format("{}:{}", file, no), "keep IM, annual rate");
     const std::string where = fmt::format("{}:{}", file, no);
+    const std::vector<std::string> f = csv_fields(line);
+    double x = 0, l = 0;
+    const bool numbers = f.size() >= 2 && parse_number(f[0], x) && parse_number(f[1], l);
+    if (!numbers) {
+      // a header: the first row only, and only when no field of it is a number (IM, rate; "Sa (g)", "lambda")
+      bool any_number = false;
+      for (const auto& s : f) {
+        double v = 0;
+        any_number |= parse_number(s, v);
+      }
+      if (im.empty() && !header_seen && !any_number && !f.empty()) {
+        header_seen = true;
+        continue;
+      }
+      throw InputError("a hazard row must be two numbers: IM, annual rate of exceedance", where,
+                       "fix the row (one header row of names is allowed before the first)");
+    }
+    if (f.size() > 2) throw InputError("a hazard row has more than two columns", where, "keep IM, annual rate");
     if (!(std::isfinite(x) && x > 0)) throw InputError(fmt::format("IM {} is not positive", x), where, "IM levels are > 0");
     if (!(std::isfinite(l) && l > 0 && l < 10))
       throw InputError(fmt::format("annual rate {} is not in (0, 10)", l), where, "rates of exceedance are per year, > 0");
@@ -174,6 +224,14 @@ HazardSpec parse_hazard(const toml::table* t, const std::string& path, const Int
     throw InputError(power ? "[hazard] gives both a curve and a power law" : "[hazard] gives no hazard", r.where("curve"),
                      "give curve = \"hazard.csv\" (IM, annual rate) or k0 = <1/yr> and k = <slope>");
   if (power) {
+    // both or neither: a power law lambda(x) = k0 x^-k needs both (found here, not after the work)
+    if (!r.get("k0") || !r.get("k")) {
+      const bool has_k0 = r.get("k0") != nullptr;
+      throw InputError(fmt::format("[hazard] gives {} without {}: a power-law hazard lambda(x) = k0 x^-k needs both",
+                                   has_k0 ? "k0" : "k", has_k0 ? "k" : "k0"),
+                       r.where(has_k0 ? "k0" : "k"),
+                       has_k0 ? "add k = <slope>, e.g. k = 3" : "add k0 = <annual rate at IM 1>, e.g. k0 = 1e-4");
+    }
     h.k0 = r.number("k0", 0.0);
     h.k = r.number("k", 0.0);
   } else {
@@ -212,6 +270,28 @@ std::vector<double> ida_hunt_factors(const IntensitySpec& spec, double im) {
   }
   if (beyond) f.push_back(spec.max_scale);
   return f;
+}
+
+void check_stripes_reachable(const IntensitySpec& spec, const StripePlan& p) {
+  if (!p.stripes) return;
+  std::size_t reached = 0;
+  for (std::size_t s = 0; s < p.stripes; ++s) reached += p.dropped_count(s) < p.records;
+  if (reached >= 2) return;
+  double lo = INFINITY, hi = 0;
+  for (double x : p.im)
+    if (std::isfinite(x) && x > 0) lo = std::min(lo, x), hi = std::max(hi, x);
+  const std::string units = im_units(spec.im.measure);
+  const std::string range = hi > 0 ? fmt::format("the records' {} spans {:.4g} to {:.4g} {}, so max_scale = {:g} reaches "
+                                                 "at most {:.4g} {}",
+                                                 describe(spec.im), lo, hi, units, spec.max_scale, hi * spec.max_scale, units)
+                                   : fmt::format("no record has a positive {}", describe(spec.im));
+  throw InputError(fmt::format("every record is dropped from {} of the {} stripes ({} of {} levels reached): {}; a "
+                               "fragility needs at least two stripes with records",
+                               p.stripes - reached, p.stripes, reached, p.stripes, range),
+                   spec.levels_where,
+                   fmt::format("give levels in {} (PGV in m/s, not cm/s; Sa and PGA in g) within the records' reach, or "
+                               "raise [intensity] max_scale",
+                               units));
 }
 
 StripePlan plan_stripes(const IntensitySpec& spec, std::span<const double> im) {

@@ -1,5 +1,7 @@
 #include "pounding/study/run.hpp"
 
+#include <sys/stat.h>
+
 #include <atomic>
 #include <algorithm>
 #include <chrono>
@@ -15,6 +17,7 @@
 #include "pounding/contact/registry.hpp"
 #include "pounding/motion/library.hpp"
 #include "pounding/physics/batch.hpp"
+#include "pounding/results/reader.hpp"
 #include "pounding/results/writer.hpp"
 #include "pounding/sampling/sampler.hpp"
 #include "pounding/study/checkpoint.hpp"
@@ -373,6 +376,24 @@ struct Inputs {
   std::optional<StudySelection> selection;  // [records] select: the records chosen to [target_spectrum]
 };
 
+// A finished results file is replaced by a rerun of its own study (the same study text) only: another study's
+// results, or a file that is not a results file, need --force (as a checkpoint with progress does).
+void check_replaceable_results(const std::string& out, const std::string& where, const Study& study) {
+  struct stat st {};
+  if (::stat(out.c_str(), &st) != 0 || !S_ISREG(st.st_mode) || st.st_size == 0) return;
+  results::Header h;
+  try {
+    h = results::load_header(out);
+  } catch (const std::exception&) {
+    throw InputError(fmt::format("{} exists and is not a pounding results file", out), where,
+                     "give another output path, or rerun with --force to replace it");
+  }
+  if (h.study_text == study.text) return;
+  throw InputError(fmt::format("{} holds the results of another study (\"{}\", {}, written {})", out, h.title,
+                               h.study_path, h.date),
+                   where, "give another output path, or rerun with --force to replace them");
+}
+
 // Every rank parses the same text (rank 0 reads the file) and loads the same records. The output is checked
 // and the checkpoint locked (rank 0) before any work: a bad path or a second run on one output stops here.
 Inputs load_inputs(const parallel::Session& session, const std::string& study_path, const RunOptions& opt,
@@ -389,6 +410,7 @@ Inputs load_inputs(const parallel::Session& session, const std::string& study_pa
   session.agree([&] {
     if (!session.root()) return;
     files::check_output_path(in->out, in->out_where);
+    if (!opt.force) check_replaceable_results(in->out, in->out_where, in->study);
     ckpt.emplace(in->out + ".ckpt");
     files::remove_stale_temporaries(in->out);
   });
@@ -401,6 +423,7 @@ Inputs load_inputs(const parallel::Session& session, const std::string& study_pa
       std::vector<double> im;
       for (const auto& rr : in->records) im.push_back(intensity(rr.record, in->study.intensity.im));
       in->stripes = plan_stripes(in->study.intensity, im);
+      check_stripes_reachable(in->study.intensity, in->stripes);  // before any work, not a failed fit after it
     }
   });
   return std::move(*in);
@@ -444,11 +467,13 @@ std::vector<std::size_t> open_checkpoint(const parallel::Session& session, const
   std::string todo_bytes;  // the remaining unit ids as u64, native order
   session.agree([&] {
     if (!session.root()) return;
+    std::string dropped;
     open_for_run(*ckpt, key, opt.resume, opt.force,
-                 [&](std::size_t u, std::vector<std::byte>&& d) { tally.store(u, d); });
+                 [&](std::size_t u, std::vector<std::byte>&& d) { tally.store(u, d); }, &dropped);
     for (std::uint64_t u = 0; u < L.units(); ++u)
       if (!tally.done(u)) todo_bytes.append(reinterpret_cast<const char*>(&u), sizeof u);
     if (opt.resume) ctx.say(fmt::format("resuming: {} of {} units already done", tally.units_done(), L.units()));
+    if (!dropped.empty()) ctx.say(fmt::format("checkpoint {}: {}", ckpt->path(), dropped));
   });
   session.broadcast(todo_bytes);
   std::vector<std::size_t> todo(todo_bytes.size() / sizeof(std::uint64_t));
@@ -564,10 +589,15 @@ bool execute(const parallel::Session& session, const Inputs& in, const WorkPlan&
 }
 
 // ---- phase 5: the results file (rank 0; the others wait for its outcome), then the checkpoint goes --
+// `started`: when run_study began; the wall time written and logged covers every phase of this invocation (reading,
+// the units, the fit, up to the write), `wall` is the units' share. A stop during the analysis (Cancelled, from the
+// hook's flag) ends with 130 and keeps the checkpoint, which holds every unit: --resume redoes only the analysis.
 int finish(const parallel::Session& session, const Inputs& in, const WorkPlan& L, Checkpoint* ckpt, Tally& tally,
-           const CheckpointKey& key, double wall, const RunContext& ctx, const RunOptions& opt) {
+           const CheckpointKey& key, double wall, const RunContext& ctx, const RunOptions& opt,
+           std::chrono::steady_clock::time_point started) {
   int rc = 0;
-  std::string summary_line;
+  std::string summary_line, stopped_in;
+  double total = 0, analysis = 0;
   session.agree([&] {
     if (!session.root()) return;
     inject_fault("write", 0);
@@ -586,8 +616,19 @@ int finish(const parallel::Session& session, const Inputs& in, const WorkPlan& L
     try {
       results::Results res = make_results(in.study, in.records, L, tally, ex, {key.build, session.size(), wall}, in.stripes);
       if (in.selection) res.groups.push_back(selection_group(*in.selection));
-      if (opt.analyse) opt.analyse(res);  // the analyses the caller adds (fragility, hazard: report/fragility.hpp)
+      const auto t_analysis = std::chrono::steady_clock::now();
+      // the analyses the caller adds (fragility, hazard: report/fragility.hpp), with progress and the stop flag
+      if (opt.analyse) opt.analyse(res, ctx.hook());
+      const auto now = std::chrono::steady_clock::now();
+      analysis = std::chrono::duration<double>(now - t_analysis).count();
+      total = std::chrono::duration<double>(now - started).count();
+      res.header.wall_time_s = total;
       results::write(in.out, res);
+    } catch (const Cancelled& c) {
+      ckpt->sync();
+      stopped_in = c.phase();
+      rc = 130;
+      return;
     } catch (const InputError& e) {
       throw InputError(e.what_part(), e.where(),
                        e.fix() + "; the checkpoint keeps every unit: --resume writes the results without recomputing");
@@ -596,9 +637,16 @@ int finish(const parallel::Session& session, const Inputs& in, const WorkPlan& L
     rc = ex.verdict.empty() ? 0 : 3;
   });
   session.broadcast(rc);
+  if (session.root() && rc == 130) {
+    ctx.say(fmt::format("\ninterrupted during the analysis ({}): all {} units are checkpointed in {}; --resume "
+                        "redoes only the analysis",
+                        stopped_in, L.units(), ckpt->path()));
+    return rc;
+  }
   if (session.root()) {
     if (!summary_line.empty()) ctx.say(summary_line);
-    ctx.say(fmt::format("results: {} (wall time {:.2f} s, {} ranks)", in.out, wall, session.size()));
+    ctx.say(fmt::format("results: {} (wall time {:.2f} s: units {:.2f} s, analysis {:.2f} s; {} ranks)", in.out, total,
+                        wall, analysis, session.size()));
     if (rc == 3) ctx.say(" WARNING: too many excluded analyses; the results file says so (exit code 3)");
   }
   return rc;
@@ -610,6 +658,7 @@ RunOutcome run_study(const parallel::Session& session, const std::string& study_
                      const RunContext& ctx) {
   // Every phase runs inside session.agree() or run_units: an error on any rank stops every rank together,
   // and rank 0 prints one message.
+  const auto started = std::chrono::steady_clock::now();
   std::optional<Checkpoint> ckpt;  // rank 0 only
   const Inputs in = load_inputs(session, study_path, opt, ckpt);
   const WorkPlan L = plan_work(in);
@@ -627,7 +676,7 @@ RunOutcome run_study(const parallel::Session& session, const std::string& study_
                   : fmt::format("\ninterrupted before any unit finished: nothing to keep, no checkpoint left"));
     return {130, in.out};
   }
-  return {finish(session, in, L, ckpt ? &*ckpt : nullptr, tally, key, wall, ctx, opt), in.out};
+  return {finish(session, in, L, ckpt ? &*ckpt : nullptr, tally, key, wall, ctx, opt, started), in.out};
 }
 
 }  // namespace pounding

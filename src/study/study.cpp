@@ -2,7 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <filesystem>
+#include <fstream>
 
 #include <fmt/format.h>
 #include <toml++/toml.h>
@@ -299,9 +301,56 @@ std::string human_bytes(double b) {
 }
 }  // namespace
 
+double available_memory_bytes() {
+  if (const char* v = std::getenv("POUNDING_TEST_MEMORY_AVAILABLE")) return std::atof(v);  // tests only
+  double avail = NAN;
+  {
+    std::ifstream in("/proc/meminfo");
+    std::string key;
+    double kb = 0;
+    std::string unit;
+    while (in >> key >> kb) {
+      std::getline(in, unit);
+      if (key == "MemAvailable:") {
+        avail = kb * 1024.0;
+        break;
+      }
+    }
+  }
+  // a container's limit (cgroup v2, then v1): what is left of it
+  auto read_number = [](const char* path) {
+    std::ifstream in(path);
+    std::string s;
+    if (!(in >> s) || s == "max") return static_cast<double>(NAN);
+    char* end = nullptr;
+    const double v = std::strtod(s.c_str(), &end);
+    return end && *end == 0 && v > 0 && v < 1e18 ? v : static_cast<double>(NAN);
+  };
+  for (const auto& [limit, usage] : {std::pair{"/sys/fs/cgroup/memory.max", "/sys/fs/cgroup/memory.current"},
+                                    std::pair{"/sys/fs/cgroup/memory/memory.limit_in_bytes",
+                                              "/sys/fs/cgroup/memory/memory.usage_in_bytes"}}) {
+    const double l = read_number(limit), u = read_number(usage);
+    if (std::isfinite(l) && std::isfinite(u)) avail = std::isfinite(avail) ? std::min(avail, l - u) : l - u;
+  }
+  return avail;
+}
+
+int ranks_on_this_node() {
+  for (const char* v : {"OMPI_COMM_WORLD_LOCAL_SIZE", "MPI_LOCALNRANKS", "MPI_LOCAL_NRANKS", "PMI_LOCAL_SIZE"})
+    if (const char* s = std::getenv(v); s && std::atoi(s) > 0) return std::atoi(s);
+  return 1;
+}
+
 void check_result_memory(const Study& s, std::size_t records) {
   const double need = result_bytes(s, records);
-  if (need <= max_result_bytes) return;
+  const double avail = available_memory_bytes();
+  const int local = ranks_on_this_node();
+  // rank 0's peak: the gathered arrays, the results built from them, the HDF5 image and its copy written out
+  const double models = static_cast<double>(s.structures.period_pair_count()) * static_cast<double>(s.structures.samples_per_pair);
+  const double peak = need * result_peak_factor + models * model_peak_bytes + rank_base_bytes;
+  const double share = avail - static_cast<double>(local - 1) * rank_base_bytes;  // the other ranks' part
+  const bool over_machine = std::isfinite(avail) && peak > share;
+  if (need <= max_result_bytes && !over_machine) return;
   // where samples_per_pair is (or would be) written
   std::string where = fmt::format("{} [structures].samples_per_pair", s.path);
   try {
@@ -312,18 +361,39 @@ void check_result_memory(const Study& s, std::size_t records) {
       where += fmt::format(" (default {})", s.structures.samples_per_pair);
   } catch (const toml::parse_error&) {
   }
-  const double per_model = need / (static_cast<double>(records) * static_cast<double>(s.structures.period_pair_count()) *
+  const double stripes = static_cast<double>(std::max<std::size_t>(1, s.intensity.stripes()));
+  const double per_model = need / (static_cast<double>(records) * stripes *
+                                   static_cast<double>(s.structures.period_pair_count()) *
                                    static_cast<double>(s.structures.samples_per_pair));
-  const double fits = std::floor(max_result_bytes / (need / static_cast<double>(s.structures.samples_per_pair)));
+  const double per_sample = need / static_cast<double>(s.structures.samples_per_pair);
+  const std::string sizes = fmt::format("{} record{} x {}{} period pairs x {} samples x {} bytes per model", records,
+                                        records == 1 ? "" : "s",
+                                        stripes > 1 ? fmt::format("{:.0f} stripes x ", stripes) : std::string(),
+                                        s.structures.period_pair_count(), s.structures.samples_per_pair, per_model);
+  if (need > max_result_bytes) {
+    const double fits = std::floor(max_result_bytes / per_sample);
+    throw InputError(fmt::format("samples_per_pair = {} needs {} of result arrays ({}), more than the {} limit",
+                                 s.structures.samples_per_pair, human_bytes(need), sizes, human_bytes(max_result_bytes)),
+                     where,
+                     fits >= 1 ? fmt::format("give samples_per_pair <= {:.0f} (the paper uses 256), or split the study", fits)
+                               : std::string("split the study into fewer records, period pairs or gaps"));
+  }
+  const double per_sample_peak = per_sample * result_peak_factor +
+                                 static_cast<double>(s.structures.period_pair_count()) * model_peak_bytes;
+  const double fits = std::floor((share - rank_base_bytes) / per_sample_peak);
   throw InputError(
-      fmt::format("samples_per_pair = {} needs {} of result arrays ({} record{} x {} period pairs x {} samples x {} "
-                  "bytes per model), more than the {} limit",
-                  s.structures.samples_per_pair, human_bytes(need), records, records == 1 ? "" : "s",
-                  s.structures.period_pair_count(), s.structures.samples_per_pair, per_model,
-                  human_bytes(max_result_bytes)),
+      fmt::format("samples_per_pair = {} needs {} of result arrays ({}); with the models' table and the copies made while "
+                  "the results are written rank 0 needs about {}, more than the {} of memory available on this machine{}",
+                  s.structures.samples_per_pair, human_bytes(need), sizes, human_bytes(peak),
+                  human_bytes(share),
+                  local > 1 ? fmt::format(" for rank 0 (MemAvailable less the other {} ranks on this node)", local - 1)
+                            : std::string(" (MemAvailable)")),
       where,
-      fits >= 1 ? fmt::format("give samples_per_pair <= {:.0f} (the paper uses 256), or split the study", fits)
-                : std::string("split the study into fewer records, period pairs or gaps"));
+      fits >= 1 ? fmt::format("give samples_per_pair <= {:.0f}, or split the study (fewer records, period pairs, "
+                              "stripes or gaps), or run on a machine with more memory",
+                              fits)
+                : std::string("split the study (fewer records, period pairs, stripes or gaps), or run on a machine with "
+                              "more memory"));
 }
 
 Study load_study(const std::string& path) { return parse_study(files::read_text(path, "the study file"), path); }

@@ -50,7 +50,7 @@ auto at_key(TableReader& r, F f) {
 double required(TableReader& r, std::string_view key, std::string_view code, const std::string& example) {
   if (!r.get(key))
     throw InputError(fmt::format("code = \"{}\" needs {}", code, key), r.where(key), "write " + example);
-  return r.number(key, 0.0, any_lo, any_hi, "any number");
+  return r.number(key, 0.0, any_lo, any_hi, "the code's own limits are checked next");
 }
 
 template <class E, std::size_t N>
@@ -76,7 +76,7 @@ std::string read_code_parameters(TargetSpectrumSpec& spec, TableReader& r, const
       if (design && maps)
         throw InputError("both sds/sd1 and ss/s1/site_class are given", r.where(r.get("ss") ? "ss" : r.get("s1") ? "s1" : "site_class"),
                          "give either sds and sd1 (the design values) or ss, s1 and site_class (the mapped MCER values)");
-      const double tl = r.number("tl", 8.0, any_lo, any_hi, "any number");
+      const double tl = r.number("tl", 8.0, any_lo, any_hi, "the code's own limits are checked next");
       if (maps) {
         spec.from_maps = true;
         spec.maps.ss = required(r, "ss", code, "ss = 1.5 (g, the mapped MCER Sa at 0.2 s)");
@@ -101,14 +101,14 @@ std::string read_code_parameters(TargetSpectrumSpec& spec, TableReader& r, const
       spec.ec8.type = r.integer("type", 1) == 1 ? Ec8Type::type1 : Ec8Type::type2;
       spec.ec8.ground = one_of<Ec8Ground>(r, "ground", grounds, code, "\"A\", \"B\", \"C\", \"D\" or \"E\"");
       spec.ec8.agr = required(r, "agr", code, "agr = 0.25 (g, the reference PGA on ground A)");
-      spec.ec8.importance = r.number("importance", 1.0, any_lo, any_hi, "any number");
+      spec.ec8.importance = r.number("importance", 1.0, any_lo, any_hi, "the code's own limits are checked next");
       return "type, ground, agr, importance";
     }
     case TargetCode::iran2800: {
       const char* const soils[] = {"I", "II", "III", "IV"};
       spec.iran2800.a = required(r, "a", code, "a = 0.35 (the design base acceleration ratio)");
       spec.iran2800.soil = one_of<Iran2800Soil>(r, "soil", soils, code, "\"I\", \"II\", \"III\" or \"IV\"");
-      spec.iran2800.importance = r.number("importance", 1.0, any_lo, any_hi, "any number");
+      spec.iran2800.importance = r.number("importance", 1.0, any_lo, any_hi, "the code's own limits are checked next");
       return "a, soil, importance";
     }
     case TargetCode::csv: {

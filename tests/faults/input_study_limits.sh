@@ -51,6 +51,17 @@ sed -i '1a scene = "impacts"' "$tmp/huge2.toml"
 expect "samples_per_pair = 4e8, impacts scene" "$tmp/huge2.toml" "295 bytes per model" "more than the 64 GiB limit"
 study "$tmp/fine.toml" 'samples_per_pair = 2' ''
 runs "samples_per_pair = 2" "$tmp/fine.toml"
+# issue 24.7: below the 64 GiB limit but above the memory this machine has (POUNDING_TEST_MEMORY_AVAILABLE stands in
+# for MemAvailable: 2 GiB): refused before any work, naming the size, the key and the way out, not std::bad_alloc
+study "$tmp/mem.toml" 'samples_per_pair = 20000000' ''
+export POUNDING_TEST_MEMORY_AVAILABLE=2147483648
+expect "samples_per_pair = 2e7 on a 2 GiB machine" "$tmp/mem.toml" "samples_per_pair = 20000000 needs 477 MiB of result arrays" \
+  "more than the 2 GiB of memory available on this machine (MemAvailable)" "mem.toml:8 [structures].samples_per_pair" \
+  "give samples_per_pair <= "
+# the other ranks on the node take their share (OMPI_COMM_WORLD_LOCAL_SIZE as mpirun sets it)
+study "$tmp/mem2.toml" 'samples_per_pair = 1000000' ''
+OMPI_COMM_WORLD_LOCAL_SIZE=8 expect "8 ranks on the node" "$tmp/mem2.toml" "for rank 0 (MemAvailable less the other 7 ranks on this node)"
+unset POUNDING_TEST_MEMORY_AVAILABLE
 
 # --- [analysis] max_excluded_fraction ------------------------------------------------------------------
 study "$tmp/mef.toml" 'samples_per_pair = 2' 'max_excluded_fraction = 0.05'
@@ -60,6 +71,7 @@ runs "max_excluded_fraction = 0" "$tmp/mef0.toml"
 for v in 1.5 -0.1 nan '"a lot"'; do
   study "$tmp/mefbad.toml" 'samples_per_pair = 2' "max_excluded_fraction = $v"
   want="max_excluded_fraction = $v is out of range"
+  [ "$v" = nan ] && want="max_excluded_fraction = nan is not a finite number"
   [ "$v" = '"a lot"' ] && want="max_excluded_fraction must be a number"
   expect "max_excluded_fraction = $v" "$tmp/mefbad.toml" "$want" "mefbad.toml:10 [analysis].max_excluded_fraction"
 done

@@ -122,7 +122,7 @@ check_path "--out DIR" "is an existing folder" --out "$tmp/dir"
 check_path "--out DIR/" "names a folder" --out "$tmp/dir/"
 check_path "--out ''" "output path is empty" --out ""
 check_path "missing parent" "does not exist" --out "$tmp/nope/r.h5"
-check_path "special file" "not a regular file" --out /dev/null
+check_path "special file" "exists and is a character device; pounding replaces only regular files" --out /dev/null
 if [ "$(id -u)" -eq 0 ] && id nobody > /dev/null 2>&1; then
   chmod 755 "$tmp"; mkdir -p "$tmp/ro"; chmod 555 "$tmp/ro"
   rc=0; runuser -u nobody -- "$bin" run "$tmp/s.toml" --quiet --out "$tmp/ro/r.h5" > "$tmp/out" 2> "$tmp/err" || rc=$?

@@ -292,17 +292,24 @@ TEST(BuildingErrors, ValuesOutOfRange) {
   const std::string b1 = "[structures.building1]\n";
   expect_error(b1 + "period = -1\nheight = 30\n", "period");
   expect_error(b1 + "period = 0\nheight = 30\n", "period");
-  expect_error(b1 + "period = 150\nheight = 30\n", "period", "(0, 100] s");
+  expect_error(b1 + "period = 150\nheight = 30\n", "period", "[0.02, 20] s");
+  // issue 24.8: physically absurd values (each accepted before) are refused with the range a real building has
+  expect_error(b1 + "period = 0.005\nheight = 30\n", "period", "[0.02, 20] s");
+  expect_error(b1 + "mass = 1e-30\n", "mass", "[1e3, 1e10] kg");
+  expect_error(b1 + "height = 1e-6\n", "height", "[2, 1000] m");
+  expect_error(b1 + "yield_coefficient = 1e-12\n", "yield_coefficient", "[0.005, 5]");
+  expect_error(b1 + "zeta = 0.999\n", "zeta", "[0, 0.5]");
+  expect_error(b1 + "mass = {lognormal = {median = 1e-3, cov = 0.2}}\n", "mass", "[1e3, 1e10] kg");
   expect_error(b1 + "period = {lognormal = {median = 1.0, cov = -0.1}}\nheight = 30\n", "cov");
   expect_error(b1 + "period = {lognormal = {median = 1.0, cov = 2.5}}\nheight = 30\n", "cov");
   expect_error(b1 + "period = {uniform = {min = 1.2, max = 1.0}}\nheight = 30\n", "min", "exceeds max");
   expect_error(b1 + "mass = 0\n", "mass");
   expect_error(b1 + "mass = -5e6\n", "mass");
   expect_error(b1 + "height = 0\n", "height");
-  expect_error(b1 + "height = 1500\n", "height", "(0, 1000] m");
-  expect_error(b1 + "zeta = 1.0\n", "zeta", "[0, 1)");
+  expect_error(b1 + "height = 1500\n", "height", "[2, 1000] m");
+  expect_error(b1 + "zeta = 1.0\n", "zeta", "[0, 0.5]");
   expect_error(b1 + "zeta = -0.01\n", "zeta");
-  expect_error(b1 + "yield_coefficient = 0\n", "yield_coefficient", "(0, 5]");
+  expect_error(b1 + "yield_coefficient = 0\n", "yield_coefficient", "[0.005, 5]");
   expect_error(b1 + "yield_coefficient = 6\n", "yield_coefficient");
   expect_error(b1 + "periods = [1.0, -1.0]\n", "periods");
   expect_error(b1 + "alpha = 1.5\n", "alpha");

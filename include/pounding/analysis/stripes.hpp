@@ -62,6 +62,7 @@
 #include "pounding/analysis/fragility.hpp"
 #include "pounding/analysis/hazard.hpp"
 #include "pounding/analysis/stats.hpp"
+#include "pounding/core/progress.hpp"
 
 namespace pounding::stripes {
 
@@ -126,6 +127,9 @@ struct Settings {
   std::uint64_t seed = 1;    // the replicates' streams derive from it
   double years = 50;         // of probability = 1 - exp(-rate years)
   int threads = 0;           // 0: std::thread::hardware_concurrency(); the results do not depend on it
+  // Progress of the bootstrap and jackknife loops, and a stop (core/progress.hpp): with the stop flag raised the
+  // loops end within one replicate and the call throws Cancelled. Null: neither. The results do not depend on it.
+  const WorkHook* hook = nullptr;
 };
 
 struct GapFragility {

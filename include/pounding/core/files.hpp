@@ -11,14 +11,27 @@ namespace pounding::files {
 
 // The whole file `path` as bytes (binary-safe: NUL bytes and CRLF kept). `what` names the file in the
 // message ("the study file"). Throws InputError naming the path and the OS error when it cannot be read
-// (missing, a folder, no permission, I/O error).
-std::string read_text(const std::string& path, const std::string& what);
+// (missing, a folder, no permission, I/O error), and naming the limit when it holds more than max_bytes (a
+// regular file is refused by its size before reading; a pipe or device once max_bytes have been read: no input
+// can eat memory, /dev/zero included). regular_only: a FIFO, device or socket is refused before reading (never
+// blocks); without it a pipe (`run <(...)`) is read as usual.
+inline constexpr std::size_t default_read_limit = std::size_t{256} << 20;  // 256 MiB
+std::string read_text(const std::string& path, const std::string& what, std::size_t max_bytes = default_read_limit,
+                      bool regular_only = false);
 
 // Writes all n bytes to fd (retrying short writes and EINTR). Throws InputError naming path and the OS
 // error (ENOSPC, EFBIG, EIO, ...) otherwise.
 void write_all(int fd, const void* data, std::size_t n, const std::string& path);
 
-// Replaces `path` by `bytes` atomically: a temporary `<path>.tmp<pid>` in the same directory is written in
+// Every file pounding writes goes through write_atomically (HDF5 files too: io/hdf5.hpp AtomicFile builds them in
+// memory and commits through it), so no writer can replace a device node, a FIFO, a socket or a folder: the
+// path must be new or a regular file (a symbolic link to a regular file replaces that file and keeps the link).
+// check_replaceable throws InputError otherwise (the existing-and-not-regular test alone; `where` names the
+// option or key, the path itself when empty). check_output_path calls it before any work; call it (or
+// check_output_path) at the start of a command so that the refusal comes before the work.
+void check_replaceable(const std::string& path, const std::string& where);
+
+// Replaces `path` by `bytes` atomically (refusing a path that exists and is not a regular file, see above): a temporary `<path>.tmp<pid>` in the same directory is written in
 // full, fsynced and renamed over `path`, then the directory is fsynced. SIGINT, SIGTERM and SIGHUP are held
 // back meanwhile (delivered afterwards), so an interrupt never leaves the temporary behind. On any failure
 // the temporary is removed, `path` is untouched and InputError names the path and the OS error.

@@ -7,6 +7,8 @@
 #include <functional>
 #include <string>
 
+#include "pounding/core/progress.hpp"
+
 namespace pounding {
 
 struct ProgressReport {
@@ -21,6 +23,11 @@ struct RunContext {
   std::function<void(const std::string&)> info;                // one line for the user (rank 0 only)
   std::function<void(const ProgressReport&)> progress;         // after each finished unit (rank 0 only)
   const std::atomic<bool>* cancel = nullptr;                   // raised: stop handing out work, keep progress
+  // Progress of the phases after the units (the fragility fit's bootstrap, ...; core/progress.hpp), rank 0 only.
+  std::function<void(const PhaseProgress&)> phase_progress;
+
+  // What the analyses below the study layer get: the phase progress and the same stop flag.
+  WorkHook hook() const { return WorkHook{phase_progress, cancel}; }
 
   void say(const std::string& line) const {
     if (info) info(line);

@@ -11,14 +11,16 @@
 //               separation as attributes (target_gap, target_gap_lo/hi, in metres too for a pair study)
 #include <string>
 
+#include "pounding/core/progress.hpp"
 #include "pounding/results/results.hpp"
 
 namespace pounding {
 
 // Adds /fragility (and /hazard with a [hazard] section) to the results of a fragility study; nothing otherwise.
 // `pounding run` calls it through RunOptions::analyse before the file is written; the report calls it for a file
-// that lacks the groups.
-void analyse_fragility(results::Results& r);
+// that lacks the groups. `hook` (may be null): progress of the bootstrap and jackknife loops and a stop flag
+// (core/progress.hpp); a raised stop ends the analysis within a replicate by throwing Cancelled.
+void analyse_fragility(results::Results& r, const WorkHook* hook = nullptr);
 bool is_fragility_study(const results::Results& r);
 
 std::string fragility_markdown(const results::Results& r);

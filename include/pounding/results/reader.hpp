@@ -12,5 +12,8 @@
 namespace pounding::results {
 
 Results load(const std::string& path, std::span<const FieldSpec> extra = {});
+// The root attributes alone (provenance, the study's text): cheap, for the checks made before a run replaces a file.
+// Throws InputError when `path` is not an HDF5 file.
+Header load_header(const std::string& path);
 
 }  // namespace pounding::results

@@ -20,9 +20,18 @@
 //                   building's code design factors (code_factors.hpp; this table only, no [structures] default)
 //
 // Distributions: lognormal {median, cov}: ln X ~ N(ln median, sigma^2), sigma^2 = ln(1 + cov^2) (cov is the
-// CoV of X; 0 means fixed, at most 2); uniform {min, max} with min <= max. Every draw is truncated to the
-// key's valid range (period (0, 100] s, height (0, 1000] m, mass (0, 1e10] kg, zeta [0, 1), Cy (0, 5]),
-// exactly by inverse CDF, and refused when that keeps less than 50 % of the probability.
+// CoV of X; 0 means fixed, at most 2); uniform {min, max} with min <= max. Every value given (a number, a median,
+// a uniform's ends) must lie in the key's valid range, a range a real building can have, and every draw is
+// truncated to it, exactly by inverse CDF (refused when that keeps less than 50 % of the probability):
+//   period   [0.02, 20] s     0.02 s is stiffer than any real building (a one-storey masonry box is ~0.05 s);
+//                             20 s is the response spectra's domain and above the tallest building's ~11 s
+//                             (also the grid periods, [structures] periods / period_min / period_max)
+//   height   [2, 1000] m      one low storey to above the tallest building (828 m); also height_min, height_max
+//   mass     [1e3, 1e10] kg   a one-room shed (~10 t) with a decade's margin to 20x the tallest building (~5e8 kg)
+//   zeta     [0, 0.5]         0 (undamped, an idealisation) to heavy supplemental damping (real buildings:
+//                             0.01-0.1, with dampers up to ~0.3-0.4)
+//   yield_coefficient Cy = Vy / W  [0.005, 5]  below the smallest code base shear (~0.01 W) with margin, up to a
+//                             structure kept elastic under the strongest short-period spectra (~3-4 g).
 #include <cstdint>
 #include <functional>
 #include <optional>
@@ -99,8 +108,10 @@ struct HeightInterval {
   double lo = 0.0, hi = 0.0;
 };
 
-// Valid ranges of the distribution keys (the truncation of their draws).
-inline constexpr double max_period = 100.0, max_height = 1000.0, max_mass = 1e10, max_cy = 5.0;
+// Valid ranges of the distribution keys (the truncation of their draws): what a real building can have (the
+// top of this header says why).
+inline constexpr double min_period = 0.02, max_period = 20.0, min_height = 2.0, max_height = 1000.0;
+inline constexpr double min_mass = 1e3, max_mass = 1e10, max_zeta = 0.5, min_cy = 0.005, max_cy = 5.0;
 
 // One building's resolved settings. `resolved` false: not yet resolved -- StructureModel::building(b) then
 // takes every value from the shared [structures] fields (a model built in code).

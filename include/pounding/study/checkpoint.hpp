@@ -29,6 +29,8 @@ struct CheckpointScan {
   std::uint64_t units_done = 0;   // valid unit records (ours, other_build)
   std::uint64_t units_total = 0;  // the unit count of the study that wrote it
   std::uint64_t good_bytes = 0;   // file length up to the end of the last valid record
+  std::uint64_t file_bytes = 0;   // the file's length: file_bytes - good_bytes are dropped on resume
+  std::string stopped_at;         // why the scan stopped before the end ("" at the end): a bad checksum, ...
   std::string build;              // the writer's build description
   int format = 0;                 // the file's format (1, 2: older; 3: this one), 0 when unknown
 };
@@ -64,6 +66,10 @@ class Checkpoint {
  private:
   std::string path_;
   int fd_ = -1;
+public:
+  bool existed() const { return !created_; }  // the file was there before this run opened it
+
+ private:
   bool created_ = false;  // the file did not exist: removed again on close if it never held a unit
   std::uint64_t good_ = 0, units_ = 0;
 };
@@ -72,9 +78,10 @@ class Checkpoint {
 // - resume: load this study's units through on_unit; refuse (InputError) a missing or empty checkpoint,
 //   another study's, another build's, or an unreadable file;
 // - fresh: start it, but refuse to discard progress (units of this or another study) unless `force`.
-// Returns the number of units loaded.
+// Returns the number of units loaded. `dropped` (may be null): on resume, what was cut off after the last valid
+// record and why, in words ("" when the file ended cleanly) -- the run says it, never drops units silently.
 std::uint64_t open_for_run(Checkpoint& ckpt, const CheckpointKey& key, bool resume, bool force,
-                           const Checkpoint::UnitFn& on_unit);
+                           const Checkpoint::UnitFn& on_unit, std::string* dropped = nullptr);
 
 // The build of this program: a hash of the executable's bytes (falls back to the description's hash) and
 // a description (version, git commit, compiler, vector ISA) for messages and the results' provenance.

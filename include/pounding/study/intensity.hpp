@@ -46,6 +46,7 @@ struct IntensitySpec {
   double tolerance = 0.01;
   bool bisection = false;         // ida on yielding buildings: hunt and bisection per (record, model, gap); set by
                                   // parse_study (linear pairs take the exact capacities of one run instead)
+  std::string levels_where;       // "file:line [intensity].levels", for the checks made after the records load
   std::size_t stripes() const { return enabled && method == FragilityMethod::msa ? levels.size() : 0; }
 };
 
@@ -69,6 +70,10 @@ struct StripePlan {
 };
 // The IM of every record (motion/intensity.hpp) and the factors; no stripes without [intensity] (or for ida).
 StripePlan plan_stripes(const IntensitySpec& spec, std::span<const double> im);
+// Before any work: a multiple-stripe fit needs at least two stripes that some record reaches within max_scale.
+// Throws InputError naming [intensity] levels, the records' IM range and the way out (levels in the IM's units,
+// a larger max_scale) otherwise -- found before the first unit, not after the work.
+void check_stripes_reachable(const IntensitySpec& spec, const StripePlan& plan);
 
 // The bisection IDA's hunt (study/run.cpp): the scale factors at which a record of intensity `im` is analysed
 // before bisecting, ascending: each level's factor below max_scale, then max_scale itself when a level lies beyond

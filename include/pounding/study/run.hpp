@@ -20,7 +20,10 @@ struct RunOptions {
   // fragility curves, hazard and risk-targeted separation of a fragility study, report/fragility.hpp) add their
   // groups here, so one results file holds them. An exception ends the run like any other error (the checkpoint
   // keeps the work).
-  std::function<void(results::Results&)> analyse;
+  // `hook` carries the phase progress and the stop flag of the RunContext (RunContext::hook()): a long analysis
+  // shows progress and honours a stop by throwing Cancelled (core/progress.hpp); the run then ends with 130 and
+  // keeps the checkpoint, so --resume redoes only the analysis.
+  std::function<void(results::Results&, const WorkHook& hook)> analyse;
 };
 
 struct RunOutcome {

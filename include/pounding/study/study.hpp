@@ -167,8 +167,20 @@ struct Study {
 // sizes do not overflow.
 double result_bytes(const Study& study, std::size_t records);
 inline constexpr double max_result_bytes = 64.0 * 1024 * 1024 * 1024;  // 64 GiB
+// Rank 0's peak memory is about result_peak_factor x result_bytes + model_peak_bytes per sampled model (the models'
+// table and its copies in the results and the HDF5 image) + rank_base_bytes, and each other rank on the node needs
+// about rank_base_bytes. Measured 2026-11-25 on this 2-core VM: 1 record x 1 period pair x 1e6 samples (probability
+// scene, 25 MB of result arrays) peaked at 610 MB RSS against 24 MB for 1,000 samples: 586 bytes per model.
+inline constexpr double result_peak_factor = 4.0;
+inline constexpr double model_peak_bytes = 500.0;
+inline constexpr double rank_base_bytes = 256.0 * 1024 * 1024;
+// The memory this process may still use: MemAvailable, or less when a cgroup (container) limit leaves less;
+// NaN when unknown (then only max_result_bytes applies). POUNDING_TEST_MEMORY_AVAILABLE (bytes) replaces it in tests.
+double available_memory_bytes();
 // Throws InputError naming [structures] samples_per_pair (file:line), the memory needed and the largest
-// samples_per_pair that fits, when result_bytes(study, records) > max_result_bytes.
+// samples_per_pair that fits, when result_bytes(study, records) > max_result_bytes, or when rank 0's peak
+// (result_peak_factor x result_bytes + rank_base_bytes) exceeds the memory available on this machine less
+// rank_base_bytes for each other rank on the node (OMPI_COMM_WORLD_LOCAL_SIZE, ...).
 void check_result_memory(const Study& study, std::size_t records);
 
 // Integration steps per record step of spacing dt: max(substeps, ceil(dt / max_dt)).

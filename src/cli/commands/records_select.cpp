@@ -313,6 +313,7 @@ void add_records_select(CLI::App* records) {
   c->add_option("-o,--output", o->out, "CSV for tools/plot_spectra.py (scaled spectra, target, mean)");
   add_read_options(c, o->read);
   c->callback([o] {
+    if (!o->out.empty()) files::check_output_path(o->out, "-o");  // before any work: no device or FIFO replaced
     if (!(o->damping >= 0 && o->damping < 1))
       throw InputError(fmt::format("--damping {} is outside [0, 1)", o->damping), "--damping", "give e.g. 0.05");
     const SelectionOptions so = selection_options(*o);

@@ -24,7 +24,8 @@ namespace pounding::cli {
 
 namespace {
 
-// The process-wide stop flag: set by SIGINT/SIGTERM, read by the run between units.
+// The process-wide stop flag: set by SIGINT/SIGTERM (and SIGUSR1/SIGUSR2, which mpirun forwards), read by the run
+// between units and by the fit's loops (RunContext::hook).
 std::atomic<bool> stop_requested{false};
 extern "C" void on_stop_signal(int) { stop_requested.store(true); }
 
@@ -56,10 +57,31 @@ class TerminalProgress {
                  p.units_total, 100 * frac, rate, hms(p.elapsed_s), hms(eta));
     }
   }
+  // The phases after the units (the fit's bootstrap and jackknife, core/progress.hpp): the same bar or lines, the
+  // first report of each phase at once.
+  void operator()(const PhaseProgress& p) {
+    const auto now = std::chrono::steady_clock::now();
+    const bool fresh = p.phase != phase_;
+    if (!fresh && !p.final && now - last_ < std::chrono::milliseconds(tty_ ? 250 : 10000)) return;
+    if (fresh && tty_ && !phase_.empty() && !phase_done_) fmt::print(stderr, "\n");
+    phase_ = p.phase, last_ = now, phase_done_ = p.final;
+    const double frac = p.total ? static_cast<double>(p.done) / static_cast<double>(p.total) : 1.0;
+    const double eta = p.done ? p.elapsed_s * static_cast<double>(p.total - p.done) / static_cast<double>(p.done) : NAN;
+    if (tty_) {
+      const int w = 30, fill = static_cast<int>(frac * w);
+      fmt::print(stderr, "\r{}: [{}{}] {:5.1f}%  {}/{} {}  ETA {}{}", p.phase, std::string(fill, '#'),
+                 std::string(w - fill, '.'), 100 * frac, p.done, p.total, p.unit, hms(eta), p.final ? "\n" : "");
+    } else {
+      fmt::print(stderr, "progress: {} {}/{} {} ({:.1f}%), elapsed {}, ETA {}\n", p.phase, p.done, p.total, p.unit,
+                 100 * frac, hms(p.elapsed_s), hms(eta));
+    }
+  }
 
  private:
   bool tty_;
   std::chrono::steady_clock::time_point last_{};
+  std::string phase_;
+  bool phase_done_ = false;
 };
 
 struct RunOpts {
@@ -74,18 +96,27 @@ int run_job(const RunOpts& o) {
   parallel::Session session(argc, argv);
   std::signal(SIGINT, on_stop_signal);
   std::signal(SIGTERM, on_stop_signal);
+  // Open MPI's mpirun forwards SIGUSR1/SIGUSR2 to every rank; signalled with SIGINT/SIGTERM itself it stops the ranks
+  // but exits 1 whatever they return (orterun's abort path). `kill -USR1 <mpirun>` is the stop that keeps 130.
+  std::signal(SIGUSR1, on_stop_signal);
+  std::signal(SIGUSR2, on_stop_signal);
   try {
     RunOptions ro;
     ro.out = o.out;
     ro.out_given = o.out_given;
     ro.resume = o.resume;
     ro.force = o.force;
-    ro.analyse = analyse_fragility;  // a fragility study's /fragility and /hazard (nothing for other studies)
+    // a fragility study's /fragility and /hazard (nothing for other studies)
+    ro.analyse = [](results::Results& r, const WorkHook& hook) { analyse_fragility(r, &hook); };
     RunContext ctx;
     ctx.cancel = &stop_requested;
     if (session.root()) {
       ctx.info = [](const std::string& line) { fmt::print(stderr, "{}\n", line); };
-      if (!o.quiet) ctx.progress = TerminalProgress();
+      if (!o.quiet) {
+        auto bar = std::make_shared<TerminalProgress>();
+        ctx.progress = [bar](const ProgressReport& p) { (*bar)(p); };
+        ctx.phase_progress = [bar](const PhaseProgress& p) { (*bar)(p); };
+      }
     }
     const RunOutcome r = run_study(session, o.study, ro, ctx);
     if (session.root() && (r.code == 0 || r.code == 3)) fmt::print("{}", report_markdown(results::load(r.out)));
