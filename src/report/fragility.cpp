@@ -206,6 +206,20 @@ void set_target_attributes(Group& h, const stripes::TargetGap& t, double d) {
   h.set("target_status", t.status), h.set("target_note", t.note);
 }
 
+// the rate-versus-separation curve of /hazard (MSA and bisection IDA; none for a linear IDA)
+void add_rate_curve(Group& h, const stripes::RateCurve& curve) {
+  if (curve.gap.empty()) return;
+  h.add("curve_gap", curve.gap, "1", "gaps (ratios of d) of the rate-versus-separation curve");
+  h.add("curve_rate", curve.rate, "1/year", "annual rate of pounding at each curve gap (point estimate)");
+  h.add("curve_probability", curve.probability, "1", "probability of pounding in `years` at each curve gap");
+  h.add("curve_rate_fitted", curve.rate_fitted, "1/year",
+        "each curve gap's own fitted rate, before curve_rate holds it non-increasing (fits at two gaps can cross)");
+  h.add("curve_share_below_stripes", curve.share_below, "1",
+        "share of curve_rate_fitted from IM below the lowest stripe (extrapolated)");
+  h.add("curve_share_above_stripes", curve.share_above, "1",
+        "share of curve_rate_fitted from IM above the highest stripe (extrapolated, or a bound's P = 1)");
+}
+
 }  // namespace
 
 bool is_fragility_study(const Results& r) { return r.group("intensity") != nullptr; }
@@ -284,17 +298,7 @@ void analyse_fragility(Results& r, const WorkHook* hook) {
   Group& h = *const_cast<Group*>(r.group("hazard"));
   const double d = pair_study(r) ? r.models.code_gap[0] : NAN;
   set_target_attributes(h, target, d);
-  if (!curve.gap.empty()) {
-    h.add("curve_gap", curve.gap, "1", "gaps (ratios of d) of the rate-versus-separation curve");
-    h.add("curve_rate", curve.rate, "1/year", "annual rate of pounding at each curve gap (point estimate)");
-    h.add("curve_probability", curve.probability, "1", "probability of pounding in `years` at each curve gap");
-    h.add("curve_rate_fitted", curve.rate_fitted, "1/year",
-          "each curve gap's own fitted rate, before curve_rate holds it non-increasing (fits at two gaps can cross)");
-    h.add("curve_share_below_stripes", curve.share_below, "1",
-          "share of curve_rate_fitted from IM below the lowest stripe (extrapolated)");
-    h.add("curve_share_above_stripes", curve.share_above, "1",
-          "share of curve_rate_fitted from IM above the highest stripe (extrapolated, or a bound's P = 1)");
-  }
+  add_rate_curve(h, curve);
 }
 
 }  // namespace pounding

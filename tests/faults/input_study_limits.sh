@@ -58,7 +58,7 @@ export POUNDING_TEST_MEMORY_AVAILABLE=2147483648
 expect "samples_per_pair = 2e7 on a 2 GiB machine" "$tmp/mem.toml" "samples_per_pair = 20000000 needs 477 MiB of result arrays" \
   "more than the 2 GiB of memory available on this machine (MemAvailable)" "mem.toml:8 [structures].samples_per_pair" \
   "give samples_per_pair <= "
-# the other ranks on the node take their share (OMPI_COMM_WORLD_LOCAL_SIZE as mpirun sets it)
+# the other ranks on the node take their share (OMPI_COMM_WORLD_LOCAL_SIZE as the MPI launcher sets it)
 study "$tmp/mem2.toml" 'samples_per_pair = 1000000' ''
 OMPI_COMM_WORLD_LOCAL_SIZE=8 expect "8 ranks on the node" "$tmp/mem2.toml" "for rank 0 (MemAvailable less the other 7 ranks on this node)"
 unset POUNDING_TEST_MEMORY_AVAILABLE
