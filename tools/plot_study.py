@@ -116,20 +116,32 @@ def plot_pair(f, a, prefix):
 
     # separation advice: the estimate (dot) with its interval, and the advised separation (its upper end, a
     # diamond on a dashed line up to the target) labelled right beside that diamond
-    first = True
+    # a target the records do not resolve (floor(t N) = 0: "not resolved by N records") is advised at the upper end
+    # of the report's lognormal estimate instead, drawn hollow and labelled so (issue 23 item 2)
+    lognormal = {r["probability"]: float(r["hi"]) for r in rows if r["table"] == "separation_lognormal"}
+    first, first_ln = True, True
     ends = []
     for r in rows:
         if r["table"] != "separation":
             continue
         s, t = float(r["gap_m"]), 100 * float(r["probability"])
         slo, shi = float(r["lo"]), float(r["hi"])
-        ends.append(shi)
+        unresolved = r["name"].startswith("not resolved") and r["probability"] in lognormal
+        adv = lognormal[r["probability"]] if unresolved else shi
+        ends.append(max(shi, adv))
         ax.errorbar([s], [t], xerr=[[s - slo], [shi - s]], fmt="o", color="k", capsize=3, ms=5,
+                    mfc="white" if unresolved else "k",
                     label="separation for a target probability (interval)" if first else None)
-        ax.plot([shi, shi], [0, t], color="k", ls="--", lw=1)
-        ax.plot([shi], [t], "D", color="k", ms=5,
-                label="advised separation (upper end of the interval)" if first else None)
-        ax.annotate(f"{t:g} %: {shi:.3f} m", (shi, t), textcoords="offset points", xytext=(6, 0), fontsize=7,
+        ax.plot([adv, adv], [0, t], color="k", ls="--" if not unresolved else ":", lw=1)
+        if unresolved:
+            ax.plot([adv], [t], "D", color="k", mfc="white", ms=5,
+                    label="target not resolved by the records: lognormal estimate's upper end" if first_ln else None)
+            first_ln = False
+        else:
+            ax.plot([adv], [t], "D", color="k", ms=5,
+                    label="advised separation (upper end of the interval)" if first else None)
+        ax.annotate(f"{t:g} %: {adv:.3f} m" + (" (lognormal)" if unresolved else ""), (adv, t),
+                    textcoords="offset points", xytext=(6, 0), fontsize=7,
                     va="center", ha="left", gid="advice", zorder=5,
                     bbox=dict(facecolor="white", edgecolor="none", alpha=0.95, pad=1))
         first = False

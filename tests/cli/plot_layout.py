@@ -132,7 +132,11 @@ def check(fig, name):
         band = [r for r in rows if r["table"] == "curve_band"]
         g = np.array([float(r["gap_m"]) for r in band])
         hi = np.array([100 * float(r["hi"]) for r in band])
-        seps = [(100 * float(r["probability"]), float(r["hi"])) for r in rows if r["table"] == "separation"]
+        # the advice: the interval's upper end, or the lognormal's where the records do not resolve the target
+        lognormal = {r["probability"]: float(r["hi"]) for r in rows if r["table"] == "separation_lognormal"}
+        seps = [(100 * float(r["probability"]),
+                 lognormal[r["probability"]] if r["name"].startswith("not resolved") else float(r["hi"]))
+                for r in rows if r["table"] == "separation"]
         rules = [float(r["gap_m"]) for r in rows if r["table"] == "code_rule"]
         x_end = max([g[hi >= 0.5].max()] + [s for _, s in seps] + rules)
         right = ax.get_xlim()[1]
