@@ -22,12 +22,12 @@ cp "$src/studies/"*.csv "$tmp/studies/"
 check="$py $src/tests/cli/plot_layout.py"
 export MPLBACKEND=Agg
 real=$(cd "$src/.." && pwd)/shared/records/real
-fail=0; n=0
+fail=0; n=0; skipped=0
 for study in "$src"/studies/*.toml; do
   name=$(basename "$study" .toml)
   grep -q '^\[records\]' "$study" || { echo "skip $name: no [records] (a [structures] fragment)"; continue; }
   if grep -q 'shared/records/real' "$study"; then
-    [ -d "$real" ] || { echo "skip $name: needs $real"; continue; }
+    [ -d "$real" ] || { echo "skip $name: needs $real"; skipped=$((skipped + 1)); continue; }
   fi
   sed -e 's/^samples_per_pair = [0-9_]*/samples_per_pair = 2/' -e 's/^bootstrap = [0-9_]*/bootstrap = 100/' \
       -e '/^output = /d' -e "s|^directory = \"../../shared/records/real\"|directory = \"$real\"|" "$study" \
@@ -74,5 +74,7 @@ names=$(grep '^period_s,' "$tmp/suite.csv" | cut -d, -f2- )
 $check --names "$names" -- "$src/tools/plot_spectra.py" "$tmp/suite.csv" -o "$tmp/out/suite.png" || fail=1
 $check --names "$names" -- "$src/tools/plot_spectra.py" "$tmp/suite.csv" -o "$tmp/out/suite-log.png" --logx || fail=1
 [ "$fail" = 0 ] || { echo "FAIL: figures with layout defects (above)"; exit 1; }
-[ "$n" -ge 9 ] || { echo "FAIL: only $n studies plotted"; exit 1; }
+# every study is plotted: 9 runs with the real records, each study that needs them fewer without (a failure on CI)
+case "${CI:-}" in "" | 0 | false | no) ;; *) [ "$skipped" = 0 ] || { echo "FAIL: $skipped studies skipped (CI=$CI)"; exit 1; } ;; esac
+[ "$n" -ge $((9 - skipped)) ] || { echo "FAIL: only $n studies plotted ($skipped skipped without the real records)"; exit 1; }
 echo "plot_layout: every figure of $n study runs and the suite spectra passed"
