@@ -14,7 +14,7 @@ fail() { echo "FAIL: $*" >&2; exit 1; }
 "$bin" records suite --records-dir "$real" --write "$tmp/suite" >"$tmp/suite2.out"
 grep -q "25 records: 4 real, 21 synthetic" "$tmp/suite2.out" || fail "suite with real records: $(tail -1 "$tmp/suite2.out")"
 [ "$(ls "$tmp/suite" | wc -l)" = 25 ] || fail "suite --write"
-"$bin" records show "$real/ImperialValley_1940_ElCentro_NS_Peknold1559pts.AT2" | grep -q "0.3188" || fail "El Centro PGA"
-"$bin" records spectrum --suite default --records-dir "$real" --periods 0.5,1 -o "$tmp/suite.csv" | grep -q "25 spectra, 21 synthetic" \
+"$bin" records show "$real/ImperialValley_1940_ElCentro_NS_Peknold1559pts.AT2" | grep "0.3188" > /dev/null || fail "El Centro PGA"
+"$bin" records spectrum --suite default --records-dir "$real" --periods 0.5,1 -o "$tmp/suite.csv" | grep "25 spectra, 21 synthetic" > /dev/null \
   || fail "suite spectrum"
 echo "records_real: ok"

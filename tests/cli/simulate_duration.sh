@@ -41,7 +41,7 @@ grep -q "^m2_kg: 2.46038e+07 (from h = 45 m" "$tmp/full.out" || fail "default m2
 sim --duration 2 --m1 1e7 --h2 60 > "$tmp/m.out"
 grep -q "^m1_kg: 1e+07 (--m1)$" "$tmp/m.out" && grep -q "^m2_kg: 5.832e+07 (from h = 60 m" "$tmp/m.out" ||
   fail "--m1 / --h2: $(grep _kg "$tmp/m.out")"
-"$bin" simulate --help | grep -q "default from --h1: m = mbar rho r^2 h" || fail "--help does not state the mass model"
+"$bin" simulate --help | grep "default from --h1: m = mbar rho r^2 h" > /dev/null || fail "--help does not state the mass model"
 rc=0; sim --h1 0 > /dev/null 2> "$tmp/err" || rc=$?
 [ "$rc" -eq 2 ] && grep -q "ERROR: --h1 = 0 must be a height > 0 (m), --h1, give the height in m .*or give --m1" "$tmp/err" ||
   fail "--h1 0: exit $rc, $(cat "$tmp/err")"
