@@ -1,0 +1,81 @@
+#pragma once
+// Per-lane numbers of a batch of systems (docs/architecture.md Part 2, §2.2.2) and what a run returns per DOF,
+// spring, element and lane (§2.6.1). Every array is [index][lane] flattened index-major, lane fastest:
+// value of index i in lane l at [i * width + l]. SI units (m, s, kg, N).
+//
+// run_system(batch, groups, motion, settings, out): every lane of `batch` through `motion` (one channel), with
+// groups[g] the contact model of contact group g. The SDOF pair (System::sdof_pair()) runs today's pair kernel
+// (physics/run_batch.hpp) through to_pair_batch / from_pair_result, bit for bit; every other topology runs the
+// system stepper (central difference). Validation first (bad input: InputError naming the lane and the field).
+#include <cstddef>
+#include <cstdint>
+#include <limits>
+#include <span>
+#include <vector>
+
+#include "pounding/contact/model.hpp"
+#include "pounding/kernel/batch.hpp"
+#include "pounding/model/system.hpp"
+
+namespace pounding::physics {
+
+// The description of one spring for its hysteresis law (law 0, bilinear kinematic hardening): kept un-derived
+// so that the driver's scaling by traits reproduces today's arithmetic (§2.2.2). fy = +inf: linear elastic.
+struct SpringSpec {
+  double k = 0.0, fy = std::numeric_limits<double>::infinity(), alpha = 0.0;
+};
+
+struct SystemBatch {
+  const model::System* system = nullptr;
+  std::size_t width = 0;
+  std::vector<double> m;           // [dof][lane] lumped mass (kg)
+  std::vector<double> c_floor;     // [dof][lane] floor dashpot to ground or to the body's base (N s/m)
+  std::vector<double> c_storey;    // [spring][lane] storey dashpot on the spring's deformation rate (N s/m);
+                                   // empty unless System::any_storey_dashpots()
+  std::vector<SpringSpec> spring;  // [spring][lane]
+  std::vector<double> gap;         // [element][lane] the element's gap (m), study gap plus offset for study-gap groups
+  std::vector<double> weight;      // [element][lane] N2 of an interpolated side (0 for point and wall sides)
+  std::vector<double> kc, e;       // [element][lane] contact stiffness (law units) and restitution
+  std::vector<double> u0, v0;      // [dof][lane] initial displacement and velocity (relative, m and m/s)
+
+  // Sizes every array for `system` (held by pointer: it must outlive the batch) and `width` lanes, zero-filled
+  // (e = 1, fy = inf, weight = 0).
+  void resize(const model::System& system, std::size_t width);
+  static std::size_t at(int index, std::size_t lane, std::size_t width) {
+    return static_cast<std::size_t>(index) * width + lane;
+  }
+};
+
+struct SystemResult {
+  std::size_t width = 0;
+  // per DOF [dof][lane]
+  std::vector<double> peak_u;     // max |u| (m)
+  std::vector<double> peak_acc;   // max |a + ag| (absolute acceleration, m/s^2)
+  std::vector<double> final_u, final_v;
+  // per spring [spring][lane]
+  std::vector<double> peak_drift;         // max |d| (storey drift, m)
+  std::vector<double> peak_spring_force;  // max |f| (storey shear, N)
+  // per element [element][lane]
+  std::vector<double> peak_closing, t_peak_closing;  // max (x_L - x_R) and when (s)
+  std::vector<double> t_first_impact;                // NaN when no impact
+  std::vector<std::int32_t> impact_count, clamp_count;
+  std::vector<double> peak_force, peak_penetration;
+  std::vector<double> contact_energy, contact_time;  // dissipated (J), time in contact (s)
+  std::vector<double> h_omega_contact;               // the resolution guard's h omega_c (physics/resolution.hpp)
+  // per lane [lane]
+  std::vector<std::uint8_t> status;  // LaneStatus
+  std::vector<double> e_input, e_kinetic, e_strain, e_viscous, e_hysteretic, e_contact_stored;  // NaN without energy
+
+  void resize(const model::System& system, std::size_t width);
+};
+
+// The pair, exactly: lane l of a PairBatch is lane l of System::sdof_pair() and back (§2.2.2).
+SystemBatch to_system(const PairBatch& batch, const model::System& pair);  // pair == System::sdof_pair()
+PairBatch to_pair_batch(const SystemBatch& batch);                          // batch.system->is_sdof_pair()
+SystemResult from_pair_result(const BatchResult& r);
+BatchResult to_pair_result(const SystemResult& r);
+
+void run_system(const SystemBatch& batch, std::span<const ContactModel> groups, const GroundMotion& motion,
+                const KernelSettings& settings, SystemResult& out);
+
+}  // namespace pounding::physics
