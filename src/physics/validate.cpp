@@ -1,6 +1,9 @@
 #include "pounding/physics/validate.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <stdexcept>
+#include <utility>
 
 #include <fmt/format.h>
 
@@ -11,32 +14,168 @@ namespace pounding::physics {
 
 namespace {
 
-// The wording of require_positive / require_range (core/error.hpp), as problems.
-void positive(std::vector<Problem>& out, double v, const std::string& name) {
+// The wording of require_positive / require_range (core/error.hpp), as problems. `name` is the quantity in the
+// message, `where` the place (the pair's lanes give one string for both: "m1 (lane 3)").
+void positive(std::vector<Problem>& out, double v, const std::string& name, const std::string& where) {
   if (!std::isfinite(v) || v <= 0.0)
-    out.push_back({fmt::format("{} = {} must be positive and finite", name, v), name, "give a value > 0"});
+    out.push_back({fmt::format("{} = {} must be positive and finite", name, v), where, "give a value > 0"});
+}
+void positive(std::vector<Problem>& out, double v, const std::string& name) { positive(out, v, name, name); }
+void in_range(std::vector<Problem>& out, double v, double lo, double hi, const std::string& name,
+              const std::string& where, const std::string& range) {
+  if (!std::isfinite(v) || v < lo || v > hi)
+    out.push_back({fmt::format("{} = {} is out of range", name, v), where, fmt::format("give a value in {}", range)});
 }
 void in_range(std::vector<Problem>& out, double v, double lo, double hi, const std::string& name,
               const std::string& range) {
-  if (!std::isfinite(v) || v < lo || v > hi)
-    out.push_back({fmt::format("{} = {} is out of range", name, v), name, fmt::format("give a value in {}", range)});
+  in_range(out, v, lo, hi, name, name, range);
+}
+
+// The checks of one quantity, shared by the pair's lanes and the system's (`name` the quantity, `where` the place).
+void mass(std::vector<Problem>& out, double m, const std::string& name, const std::string& where) {
+  positive(out, m, name, where);
+}
+// k > 0 (a system's springs), or k >= 0 (the pair: k = 0 is a free SDOF)
+void stiffness(std::vector<Problem>& out, double k, const std::string& name, const std::string& where, bool zero_ok) {
+  if (!std::isfinite(k) || k < 0 || (!zero_ok && k == 0)) positive(out, k, name, where);
+}
+void dashpot(std::vector<Problem>& out, double c, const std::string& name, const std::string& where) {
+  if (!std::isfinite(c) || c < 0)
+    out.push_back({fmt::format("{} = {} must be >= 0", name, c), where, "give c >= 0"});
+}
+void yield(std::vector<Problem>& out, double fy, const std::string& name, const std::string& where) {
+  if (!(fy > 0)) positive(out, fy, name, where);
+}
+void hardening(std::vector<Problem>& out, double alpha, const std::string& name, const std::string& where) {
+  in_range(out, alpha, 0.0, std::nextafter(1.0, 0.0), name, where, "[0, 1)");
+}
+void gap_value(std::vector<Problem>& out, double gap, const std::string& where) {
+  if (!std::isfinite(gap) || gap < 0)
+    out.push_back({fmt::format("gap = {} must be >= 0", gap), where, "give a gap >= 0 (m)"});
+}
+// kc and e as the law's traits require; names "kc" and "e" in the system's messages, the where strings in the pair's.
+void contact_values(std::vector<Problem>& out, double kc, double e, const contact::LawTraits& tr,
+                    const std::string& kc_name, const std::string& where_kc, const std::string& e_name,
+                    const std::string& where_e) {
+  if (tr.needs_stiffness) positive(out, kc, kc_name, where_kc);
+  if (tr.needs_restitution) in_range(out, e, std::nextafter(0.0, 1.0), 1.0, e_name, where_e, "(0, 1]");
+}
+// Settings and motion, then the Hertz exponent of each model.
+void run_settings(std::vector<Problem>& out, std::span<const ContactModel> models, const GroundMotion& motion,
+                  const KernelSettings& settings) {
+  if (settings.substeps < 1)
+    out.push_back({fmt::format("substeps = {} must be >= 1", settings.substeps), "substeps", "give 1 or more"});
+  positive(out, motion.dt, "record dt");
+  for (const ContactModel& cm : models)
+    if (contact::traits(cm.law).uses_exponent) in_range(out, cm.n, 1.0, 3.0, "Hertz exponent n", "[1, 3]");
 }
 
 void structure(std::vector<Problem>& out, const Structure& s, const std::string& sfx, Stepper stepper,
                const std::string& lane) {
   auto where = [&](const std::string& what) { return fmt::format("{} (lane {})", what, lane); };
-  positive(out, s.m, where("m" + sfx));
-  if (!std::isfinite(s.k) || s.k < 0) positive(out, s.k, where("k" + sfx));
-  if (!std::isfinite(s.c) || s.c < 0)
-    out.push_back({fmt::format("c{} = {} must be >= 0", sfx, s.c), where("c" + sfx), "give c >= 0"});
-  if (!(s.fy > 0)) positive(out, s.fy, where("fy" + sfx));
-  in_range(out, s.alpha, 0.0, std::nextafter(1.0, 0.0), where("alpha" + sfx), "[0, 1)");
+  mass(out, s.m, where("m" + sfx), where("m" + sfx));
+  stiffness(out, s.k, where("k" + sfx), where("k" + sfx), true);
+  dashpot(out, s.c, "c" + sfx, where("c" + sfx));
+  yield(out, s.fy, where("fy" + sfx), where("fy" + sfx));
+  hardening(out, s.alpha, where("alpha" + sfx), where("alpha" + sfx));
   if (stepper != Stepper::nigam_jennings) return;
   positive(out, s.k, where("k" + sfx + " (Nigam-Jennings needs k > 0)"));
   const double zeta = s.c / (2.0 * std::sqrt(s.k * s.m));
   if (!(zeta < 1.0))
     out.push_back({fmt::format("damping ratio {} of structure {} is not below 1", zeta, sfx), where("zeta"),
                    "the Nigam-Jennings stepper needs an under-damped structure"});
+}
+
+// Names of a system's places in messages: "building1 floor 2", "building1 storey 2", "contact 'level 3'".
+std::string dof_place(const model::System& sys, int d) {
+  const model::Body& b = sys.bodies()[static_cast<std::size_t>(sys.body_of(d))];
+  const auto pos = static_cast<int>(std::find(b.dofs.begin(), b.dofs.end(), d) - b.dofs.begin());
+  if (b.isolated) return pos == 0 ? b.label + " base" : fmt::format("{} floor {}", b.label, pos);
+  return fmt::format("{} floor {}", b.label, pos + 1);
+}
+std::string spring_place(const model::System& sys, std::size_t s) {
+  const model::Spring& sp = sys.springs()[s];
+  const std::string& label = sys.bodies()[static_cast<std::size_t>(sys.body_of(sp.j))].label;
+  switch (sp.role) {
+    case model::SpringRole::storey: return fmt::format("{} storey {}", label, sp.storey);
+    case model::SpringRole::isolator: return label + " isolator";
+    case model::SpringRole::link: break;
+  }
+  return fmt::format("link spring {}", s);
+}
+
+// h omega_max >= the stepper's limit, omega_max from Gershgorin's bound on M^-1 K0 (§2.2.7):
+// omega_max^2 <= max_i sum_j |K_ij| / m_i, K0 from the springs' initial stiffnesses (contact excluded: it is
+// guarded during the run).
+void structure_frequency(std::vector<Problem>& out, const SystemBatch& b, std::size_t lane, double dt,
+                         const KernelSettings& settings) {
+  double limit = 0.0;
+  if (settings.stepper == Stepper::central_difference) limit = 2.0;
+  else if (settings.stepper == Stepper::rk4) limit = 2.8;
+  else return;
+  const model::System& sys = *b.system;
+  const std::size_t w = b.width;
+  std::vector<double> row(static_cast<std::size_t>(sys.ndof()), 0.0);
+  for (std::size_t s = 0; s < sys.springs().size(); ++s) {
+    const model::Spring& sp = sys.springs()[s];
+    const double k = std::abs(b.spring[SystemBatch::at(static_cast<int>(s), lane, w)].k);
+    const double both = sp.i == model::ground ? k : 2.0 * k;  // |K_jj| gains k, |K_ji| too when i is a DOF
+    row[static_cast<std::size_t>(sp.j)] += both;
+    if (sp.i != model::ground) row[static_cast<std::size_t>(sp.i)] += both;
+  }
+  double w2 = 0.0;
+  int worst = 0;
+  for (int d = 0; d < sys.ndof(); ++d) {
+    const double r = row[static_cast<std::size_t>(d)] / b.m[SystemBatch::at(d, lane, w)];
+    if (r > w2) w2 = r, worst = d;
+  }
+  const double omega = std::sqrt(w2), h = dt / settings.substeps;
+  if (!(h * omega < limit)) {
+    const double need = std::floor(dt * omega / limit) + 1.0;
+    out.push_back({fmt::format("the time step {} s is too long for the structure's highest frequency (h omega_max = "
+                               "{:.3g} >= {} with omega_max <= {:.6g} rad/s, Gershgorin bound, largest at {})",
+                               h, h * omega, limit, omega, dof_place(sys, worst)),
+                   fmt::format("substeps (lane {})", lane),
+                   fmt::format("give substeps >= {} (or a smaller dt)", need)});
+  }
+}
+
+std::vector<Problem> validate_system_lane(const SystemBatch& b, std::span<const ContactModel> models,
+                                          const KernelSettings& settings, double dt, std::size_t lane) {
+  std::vector<Problem> out;
+  const model::System& sys = *b.system;
+  const std::size_t w = b.width;
+  auto where = [&](std::string_view field, const std::string& place) {
+    return fmt::format("{} ({}, lane {})", field, place, lane);
+  };
+  for (int d = 0; d < sys.ndof(); ++d) {
+    const std::string place = dof_place(sys, d);
+    const std::size_t i = SystemBatch::at(d, lane, w);
+    mass(out, b.m[i], "m", where("m", place));
+    dashpot(out, b.c_floor[i], "c", where("c", place));
+    for (const auto& [name, v] : {std::pair{"u0", b.u0[i]}, std::pair{"v0", b.v0[i]}})
+      if (!std::isfinite(v))
+        out.push_back({fmt::format("{} = {} must be finite", name, v), where(name, place), "give a finite value"});
+  }
+  for (std::size_t s = 0; s < sys.springs().size(); ++s) {
+    const std::string place = spring_place(sys, s);
+    const std::size_t i = SystemBatch::at(static_cast<int>(s), lane, w);
+    stiffness(out, b.spring[i].k, "k", where("k", place), false);
+    yield(out, b.spring[i].fy, "fy", where("fy", place));
+    hardening(out, b.spring[i].alpha, "alpha", where("alpha", place));
+    if (!b.c_storey.empty()) dashpot(out, b.c_storey[i], "c_storey", where("c_storey", place));
+  }
+  for (std::size_t el = 0; el < sys.contacts().size(); ++el) {
+    const model::ContactElement& ce = sys.contacts()[el];
+    const std::string place = fmt::format("contact '{}'", ce.label);
+    const std::size_t i = SystemBatch::at(static_cast<int>(el), lane, w);
+    gap_value(out, b.gap[i], where("gap", place));
+    in_range(out, b.weight[i], 0.0, 1.0, "weight", where("weight", place), "[0, 1]");
+    const ContactModel& cm = models[static_cast<std::size_t>(ce.group)];
+    contact_values(out, b.kc[i], b.e[i], contact::traits(cm.law), "kc", where("kc", place), "e", where("e", place));
+  }
+  if (out.empty()) structure_frequency(out, b, lane, dt, settings);
+  return out;
 }
 
 }  // namespace
@@ -46,21 +185,57 @@ std::vector<Problem> validate_lane(const PairParams& p, const ContactModel& cm, 
   const std::string ln = std::to_string(lane);
   structure(out, p.s1, "1", stepper, ln);
   structure(out, p.s2, "2", stepper, ln);
-  if (!std::isfinite(p.gap) || p.gap < 0)
-    out.push_back({fmt::format("gap = {} must be >= 0", p.gap), fmt::format("gap (lane {})", ln), "give a gap >= 0 (m)"});
-  const contact::LawTraits& tr = contact::traits(cm.law);
-  if (tr.needs_stiffness) positive(out, p.kc, fmt::format("kc (lane {})", ln));
-  if (tr.needs_restitution) in_range(out, p.e, std::nextafter(0.0, 1.0), 1.0, fmt::format("e (lane {})", ln), "(0, 1]");
+  gap_value(out, p.gap, fmt::format("gap (lane {})", ln));
+  const std::string kc = fmt::format("kc (lane {})", ln), e = fmt::format("e (lane {})", ln);
+  contact_values(out, p.kc, p.e, contact::traits(cm.law), kc, kc, e, e);
+  return out;
+}
+
+std::vector<Problem> validate(const SystemBatch& batch, std::span<const ContactModel> models,
+                              const GroundMotion& motion, const KernelSettings& settings) {
+  std::vector<Problem> out;
+  if (batch.system == nullptr) throw std::logic_error("validate: a SystemBatch without its System");
+  const model::System& sys = *batch.system;
+  if (models.size() != sys.groups().size()) {
+    out.push_back({fmt::format("{} contact models for {} contact groups", models.size(), sys.groups().size()),
+                   "contact groups", "give one contact model per contact group of the system"});
+    return out;
+  }
+  // The pair keeps today's checks and messages (its run goes to the pair kernel, whose guards catch the rest).
+  if (sys.is_sdof_pair()) return validate(to_pair_batch(batch), models[0], motion, settings);
+  run_settings(out, models, motion, settings);
+  if (settings.stepper != Stepper::central_difference)
+    out.push_back({fmt::format("the {} stepper runs SDOF pairs only", to_string(settings.stepper)), "stepper",
+                   "use central-difference for multi-storey buildings and other systems"});
+  for (std::size_t g = 0; g < models.size(); ++g)
+    if (contact::traits(models[g].law).impulsive && sys.contacts().size() != 1)
+      out.push_back({fmt::format("the impulsive (stereomechanical) law is defined for one contact element, and the "
+                                 "system has {}", sys.contacts().size()),
+                     fmt::format("contact law of group '{}'", sys.groups()[g].name),
+                     "use a force-based law (simultaneous impulses depend on their order)"});
+  for (const model::Body& body : sys.bodies())
+    if (body.damping != model::DampingForm::dashpots)
+      out.push_back({"classical modal damping is not supported by the system stepper yet",
+                     fmt::format("damping of {}", body.label), "use Rayleigh damping (dashpots)"});
+  const std::size_t w = batch.width;
+  const auto d = static_cast<std::size_t>(sys.ndof()), s = sys.springs().size(), e = sys.contacts().size();
+  const bool sized = batch.m.size() == d * w && batch.c_floor.size() == d * w && batch.u0.size() == d * w &&
+                     batch.v0.size() == d * w && batch.spring.size() == s * w && batch.gap.size() == e * w &&
+                     batch.weight.size() == e * w && batch.kc.size() == e * w && batch.e.size() == e * w &&
+                     batch.c_storey.size() == (sys.any_storey_dashpots() ? s * w : 0);
+  if (!sized) throw std::logic_error("validate: a SystemBatch not sized for its System (SystemBatch::resize)");
+  if (!out.empty()) return out;
+  for (std::size_t lane = 0; lane < w; ++lane) {
+    out = validate_system_lane(batch, models, settings, motion.dt, lane);
+    if (!out.empty()) return out;
+  }
   return out;
 }
 
 std::vector<Problem> validate(const PairBatch& batch, const ContactModel& cm, const GroundMotion& motion,
                               const KernelSettings& settings) {
   std::vector<Problem> out;
-  if (settings.substeps < 1)
-    out.push_back({fmt::format("substeps = {} must be >= 1", settings.substeps), "substeps", "give 1 or more"});
-  positive(out, motion.dt, "record dt");
-  if (contact::traits(cm.law).uses_exponent) in_range(out, cm.n, 1.0, 3.0, "Hertz exponent n", "[1, 3]");
+  run_settings(out, std::span<const ContactModel>(&cm, 1), motion, settings);
   if (!out.empty()) return out;
   for (std::size_t i = 0; i < batch.width(); ++i) {
     out = validate_lane(batch.get(i), cm, settings.stepper, i);

@@ -9,10 +9,13 @@
 // the builders; a spring's deformation is d = u_j - u_i (u_i = 0 for the support, i = ground: no subtraction is
 // formed), its force f acts -f on j and +f on i; a contact element's penetration is delta = x_L - x_R - gap and
 // its force F >= 0 pushes L left (-F) and R right (+F) -- for the SDOF pair, L = building 1, R = building 2.
+#include <cstddef>
 #include <cstdint>
 #include <limits>
 #include <string>
 #include <vector>
+
+#include "pounding/core/problem.hpp"
 
 namespace pounding::model {
 
@@ -86,9 +89,27 @@ class System {
   };
 
   System() = default;  // empty: ndof() == 0
+
+  // Every problem of `parts` (empty: build() may be called): at least one body; every DOF index in [0, ndof)
+  // and in exactly one body (ndof = the number of DOFs of all bodies); heights one per DOF, finite, > 0 and
+  // strictly increasing up each body; every DOF has exactly one storey or isolator spring with j == dof whose
+  // i is the DOF directly below j in its body (ground for the lowest), role isolator exactly at the base of an
+  // isolated body and storey numbers counting floors from 1 (spring.body = the body of j); link springs join two
+  // distinct DOFs; laws >= 0; sides' DOFs valid (a point: p; an interpolated point: p and q = the DOF directly
+  // above p in one body; a wall: a valid channel), at most one interpolated side and at most one wall per
+  // element, no DOF on both sides; groups in range with unique non-empty names; non-empty, unique body labels
+  // and non-empty element labels; channels >= 1 and bodies' channels in range. Each problem names the part
+  // ("body 1 (building2) dofs[2]") in `where`.
+  static std::vector<Problem> check(const Parts& parts);
+  // The system of `parts`, with the derived adjacency below. Precondition: check(parts) is empty (a violated
+  // precondition is a programming error: std::logic_error naming the first problem).
+  static System build(Parts parts);
+
   // The pair of today, the smallest system: DOF 0 = building 1 (left), DOF 1 = building 2 (right), spring s
   // from ground to DOF s (bilinear), floor dashpots to ground, no storey dashpots, one point-point element
-  // (L = DOF 0, R = DOF 1) in one study-gap group "pounding".
+  // (L = DOF 0, R = DOF 1, "level 1") in one study-gap group "pounding"; both floors at the default storey
+  // height 3.2 m, labels "building1", "building2". model::shear_buildings of two one-storey sticks of 3.2 m is
+  // this system (==); of other heights it differs only in heights, and is_sdof_pair() still holds.
   static System sdof_pair();
 
   int ndof() const { return ndof_; }
@@ -101,21 +122,26 @@ class System {
 
   // Derived once by build() (src/model/system.cpp):
   int body_of(int dof) const { return body_of_[static_cast<std::size_t>(dof)]; }
-  int spring_below(int dof) const { return below_[static_cast<std::size_t>(dof)]; }  // exactly one per DOF
-  const std::vector<int>& springs_above(int dof) const { return above_[static_cast<std::size_t>(dof)]; }  // i == dof
+  // the storey or isolator spring with j == dof (exactly one per DOF)
+  int spring_below(int dof) const { return below_[static_cast<std::size_t>(dof)]; }
+  // every spring with i == dof (storey springs of the floor above, links), in spring order
+  const std::vector<int>& springs_above(int dof) const { return above_[static_cast<std::size_t>(dof)]; }
+  // every element with a side on dof (p or q), in element order, each once
   const std::vector<int>& elements_at(int dof) const { return elements_at_[static_cast<std::size_t>(dof)]; }
   bool any_storey_dashpots() const;
-  bool is_sdof_pair() const { return *this == sdof_pair(); }
+  // The pair's structure (what run_system sends to the pair kernel): sdof_pair() up to heights and labels --
+  // two one-DOF bodies (DOF 0 left, DOF 1 right) on ground springs of law 0 with floor dashpots to ground, no
+  // storey dashpots, not isolated, one channel, and one point-point element L = 0, R = 1 in one study-gap group.
+  bool is_sdof_pair() const { return sdof_pair_; }
 
   bool operator==(const System& o) const { return parts_ == o.parts_; }
-
-  friend struct SystemBuilderAccess;  // src/model/system.cpp
 
  private:
   Parts parts_;
   int ndof_ = 0;
   std::vector<int> body_of_, below_;
   std::vector<std::vector<int>> above_, elements_at_;
+  bool sdof_pair_ = false;
 };
 
 }  // namespace pounding::model

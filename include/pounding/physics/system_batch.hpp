@@ -66,10 +66,16 @@ struct SystemResult {
   std::vector<std::uint8_t> status;  // LaneStatus
   std::vector<double> e_input, e_kinetic, e_strain, e_viscous, e_hysteretic, e_contact_stored;  // NaN without energy
 
+  // Sizes every array for `system` and `width` lanes: the observers a run always writes zero-filled, what it
+  // writes only when it happens NaN -- t_first_impact (until an impact) and the energy terms (until a run with
+  // KernelSettings::energy writes them); status ok, counts 0.
   void resize(const model::System& system, std::size_t width);
 };
 
-// The pair, exactly: lane l of a PairBatch is lane l of System::sdof_pair() and back (§2.2.2).
+// The pair, exactly: lane l of a PairBatch is lane l of System::sdof_pair() and back (§2.2.2): plain copies, so
+// PairBatch -> SystemBatch -> PairBatch and BatchResult -> SystemResult -> BatchResult are bit-identical.
+// from_pair_result also sets peak_drift = peak_u (an SDOF's drift is its displacement) and peak_spring_force NaN
+// (the pair kernel does not observe it). Each throws std::logic_error when its input is not the pair's.
 SystemBatch to_system(const PairBatch& batch, const model::System& pair);  // pair == System::sdof_pair()
 PairBatch to_pair_batch(const SystemBatch& batch);                          // batch.system->is_sdof_pair()
 SystemResult from_pair_result(const BatchResult& r);
