@@ -1,0 +1,49 @@
+#pragma once
+// Shear buildings side by side as one System (docs/architecture.md §2.2.3, §2.2.4 "Floor to floor", §2.1;
+// ../shared/research/systems-and-bridges.md §1, §4): n >= 1 sticks left to right, each a chain of floors on storey
+// springs (bilinear, law 0) to the ground, floor dashpots to ground and -- for Rayleigh damping -- a dashpot on
+// every storey spring; floor-to-floor point contacts between NEIGHBOURING buildings where floor levels agree
+// within a tolerance (only floors that exist on both sides, SB §1 pitfall 4; floors meeting columns come with
+// step 9), all in one study-gap group "pounding". The per-lane numbers are physics::set_shear_building's.
+//
+// Numbering (level-major, §2.1): floor 1 of every building left to right, then floor 2 of every building that has
+// one, and so on; spring d is the storey spring under DOF d (springs in DOF order). Two one-storey buildings give
+// DOF 0 = building 1, DOF 1 = building 2: exactly System::sdof_pair() when both storeys are 3.2 m high.
+// Elements in level order (the left floor's number), interfaces left to right within a level; element `level` is
+// the left floor's number, labelled "level k" ("level k/k'" when the right floor is k'; in a row of three or
+// more buildings prefixed with the interface, "1|2 level k").
+#include <span>
+#include <string>
+#include <vector>
+
+#include "pounding/model/system.hpp"
+
+namespace pounding::model {
+
+struct StickTopology {
+  int storeys = 1;
+  // m: one value for every storey, or one per storey (bottom first); floor levels are their running sums
+  std::vector<double> storey_heights{3.2};
+  // Rayleigh's stiffness-proportional part as a dashpot on each storey spring. Ignored for one storey: an SDOF's
+  // damping is its floor dashpot (Structure::from_period), so a one-storey building is today's SDOF.
+  bool storey_dashpots = true;
+  std::string label;  // empty: "building<b>" (b from 1, left to right)
+};
+
+enum class ContactLevels {
+  common,  // every pair of facing floors whose levels agree within the tolerance
+  top,     // only the lower roof of each neighbouring pair (with the other building's floor at that level)
+};
+
+// Floor levels above the ground (m), bottom first, of a stick: the running sums of its storey heights.
+std::vector<double> floor_levels(const StickTopology& stick);
+
+// The system of `sticks`, left to right. A floor of building b meets the floor of building b+1 nearest to its level
+// when they are within `level_tolerance` (m) of each other and each is the other's nearest. Throws
+// std::invalid_argument (a programming error: the command line and study validate first) for no sticks, storeys
+// < 1, heights not finite and > 0, a height list of neither 1 nor `storeys` values, or a tolerance not finite and
+// >= 0.
+System shear_buildings(std::span<const StickTopology> sticks, double level_tolerance = 0.05,
+                       ContactLevels levels = ContactLevels::common);
+
+}  // namespace pounding::model

@@ -1,0 +1,61 @@
+#pragma once
+// Per-lane numbers of shear buildings (docs/architecture.md §2.2.3 "Bodies and damping", "Stiffness and strength
+// profiles"; ../shared/research/systems-and-bridges.md §1): floor masses, storey stiffnesses (given, or a profile
+// scaled to T1), storey strengths, and damping -- Rayleigh C = a0 M + a1 K0 on two modes stored as dashpots (a0 m_j
+// on every floor to the ground, a1 k_i on every storey spring; K0 the INITIAL storey stiffnesses, contact excluded,
+// SB §1 pitfalls 1-2). A one-storey building is today's SDOF bit for bit: k and c from Structure::from_period (or
+// c = 2 zeta sqrt(k m) for a given k), fy as given or Cy m g, a floor dashpot and no storey dashpot.
+//
+// The topology comes from model::shear_buildings (model/shear_building.hpp); these functions fill one lane.
+// Bad numbers are the caller's to refuse (the command line and the study validate); these throw
+// std::invalid_argument (a programming error) for what they cannot compute.
+#include <cstddef>
+#include <span>
+#include <vector>
+
+#include "pounding/model/modes.hpp"
+#include "pounding/physics/system_batch.hpp"
+
+namespace pounding::physics {
+
+inline constexpr double standard_gravity = 9.80665;  // m/s^2: Vy = Cy M g
+
+struct ShearSpec {
+  std::vector<double> floor_mass;        // kg: one value for every floor, or one per floor (bottom first)
+  std::vector<double> storey_stiffness;  // N/m: one value for every storey, or one per storey; empty: from `period`
+  double period = 0.0;                   // T1 (s) when storey_stiffness is empty: `profile` scaled to it
+  model::StiffnessProfile profile = model::StiffnessProfile::uniform;
+  // Storey strength, the first given wins: storey_yield (Vy, N; one or one per storey), yield_drift (theta_y:
+  // Vy_i = k_i (theta_y h_i)), yield_coefficient (Cy: Vy_i = Cy M_total g V_i / V_1, V the shear profile's storey
+  // shears, model::stiffness_shape); none: linear elastic (fy = inf).
+  std::vector<double> storey_yield;
+  double yield_drift = 0.0;
+  double yield_coefficient = 0.0;
+  double alpha = 0.0;  // post-yield stiffness ratio of every storey
+  double zeta = 0.05;  // the damping ratio at modes mode_i and mode_j (Rayleigh), or of the SDOF
+  int mode_i = 1, mode_j = 2;  // Rayleigh's modes, from 1 (ignored for one storey)
+};
+
+// What the numbers came to (per floor / per storey, bottom first) and the damping ratio each mode gets.
+struct ShearNumbers {
+  std::vector<double> m, k, fy;
+  std::vector<double> c_floor, c_storey;  // c_storey all 0 for one storey
+  model::Rayleigh rayleigh{0.0, 0.0};     // a0, a1 (0, 0 for one storey)
+  model::Modes modes;
+  std::vector<double> zeta_modes;  // a0/(2 omega_n) + a1 omega_n / 2; for one storey c / (2 sqrt(k m))
+};
+
+// The numbers of a stick with these storey heights (m, bottom first; their count is the storey count).
+ShearNumbers shear_numbers(std::span<const double> storey_heights, const ShearSpec& spec);
+
+// Fills lane `lane` of body `body` of batch.system (a body of model::shear_buildings): masses, floor dashpots,
+// springs {k, fy, alpha} and storey dashpots (when the batch has them; a body without storey dashpots takes only
+// a0 M, and refuses a1 != 0). Storey heights from the body's floor levels. Returns the numbers.
+ShearNumbers set_shear_building(SystemBatch& batch, std::size_t lane, int body, const ShearSpec& spec);
+
+// Contact numbers of lane `lane` for every element: gap = study gap (+ level_offsets[level - 1] when given, for
+// elements of study-gap groups; elements of other groups keep their own gap), kc, e.
+void set_contacts(SystemBatch& batch, std::size_t lane, double gap, double kc, double e,
+                  std::span<const double> level_offsets = {});
+
+}  // namespace pounding::physics
