@@ -1,0 +1,430 @@
+#pragma once
+// Central difference (velocity Verlet with the velocity predictor) for every system of bodies: the dynamic
+// layout of docs/architecture.md Part 2 (§2.3.1 pool, §2.3.3 the step, §2.3.5 inner loops, §2.4.5 guards). The
+// SDOF pair keeps its own kernel (central_difference.hpp) as the fast path (revision of D3); this stepper is the
+// same physics for any topology, and tests/physics/test_system_kernel.cpp runs the pair through both.
+//
+// Pool: one allocation per run, rows [field][index][lane] of `tile` lanes (a multiple of simd::W), index = DOF,
+// spring or element. Lanes run in SIMD chunks of W lanes with the whole time loop inside the chunk loop, as the
+// pair does; a chunk touches only its own W-lane column of every row. Every sum over DOFs, springs or elements is
+// left-folded in index order with the first term assigned, and each contraction that decides bits is pinned
+// with lane::fma, so a lane's results depend only on its own inputs (not on its chunk neighbours, the tile width
+// or the lane order).
+//
+// One step (the order of §2.3.3):
+//  1. per DOF: vo = v, vh = v + hh a, du = h vh, u <- u + du, vp = vh + hh a
+//  2. stereomechanical (one point-point element): the exchange at the located closing instant
+//  3. per spring: increment dd = du_j (ground: no subtraction) or du_j - du_i, deformation d = u_j or u_j - u_i,
+//     f = H::restoring (bilinear kinematic hardening), t = f, or fma(cs, vp_j - vp_i, f) with a storey dashpot
+//  4. per DOF: q = t_below (assigned), q -= t_above..., q = fma(c, vp - vp_ref, q)
+//  5. per group (its law chosen once per run): per element delta = x_L - x_R - gap; the law only where some
+//     lane of the chunk touches (else F = 0 exactly): Hertzdamp latch at the interpolated closing instant,
+//     force, stability guard k_lin h^2 / meff > 4; contact bookkeeping
+//  6. per element in element order: q_L += F, q_R -= F (interpolated sides N1 F, N2 F)
+//  7. per DOF: na = -ag1 - q im, nv = vh + hh na
+//  8. energy (compile time): input, viscous (floor then storey dashpots), hysteretic
+//  9. divergence guard over bodies (sum of each body's max |u|), freeze of bad lanes
+// 10. observers: |u|, |a + ag| per DOF; |d|, |f| per spring (in 3); closing x_L - x_R and its time per element
+#include <cstddef>
+#include <cstdint>
+#include <cstdlib>
+#include <memory>
+#include <new>
+#include <type_traits>
+#include <vector>
+
+#include "pounding/contact/laws/stereomechanical.hpp"
+#include "pounding/contact/model.hpp"
+#include "pounding/contact/stability.hpp"
+#include "pounding/kernel/guard.hpp"
+#include "pounding/kernel/observers.hpp"
+#include "pounding/model/hysteresis/bilinear_kinematic.hpp"
+
+namespace pounding::kernel::sys {
+
+using simd::V;
+
+enum class SideKind : std::uint8_t { point, interpolated, wall };
+struct Side {
+  SideKind kind = SideKind::point;
+  int p = -1, q = -1;
+};
+
+// Rows of the pool. DOF: state (U holds the new displacement from step 1 on), constants, step scratch, observers.
+enum DofRow : int { U, Vel, A, M, IM, CF, VO, VH, DU, VP, Q, PU, PA, dof_rows };
+// Spring: bilinear parameters (k, alpha k, qy, kp), storey dashpot, force, step scratch T (force + dashpot),
+// observers (peak |d|, peak |f|).
+enum SpringRow : int { K, AK, QY, KP, CS, FS, T, PD, PF, spring_rows };
+// Element: constants (N1/N2 of interpolated sides), state, observers.
+enum ElemRow : int {
+  GAP, KC, CD, E, MEFF, H2M, N1L, N2L, N1R, N2R, F, IV0, DPREV,
+  PCLOSE, TPCLOSE, TFIRST, NIMP, NCLAMP, PFORCE, PPEN, WC, TCON, DIMP, elem_rows
+};
+enum LaneRow : int { BAD, EIN, EVIS, EHYS, lane_rows };
+
+// The topology as flat index lists, derived once per run from the System.
+struct Layout {
+  int ndof = 0, nspring = 0, nelem = 0;
+  std::vector<int> si, sj;            // spring ends (si = -1: ground)
+  std::vector<char> dashpot;          // storey dashpot on the spring
+  std::vector<int> below;             // spring below each DOF
+  std::vector<int> above_start, above;  // springs with i == dof (CSR)
+  std::vector<int> ref;               // floor dashpot reference per DOF (-1: ground)
+  std::vector<int> body_start, body_dofs;  // DOFs per body (CSR), for the guard
+  std::vector<Side> left, right;
+  bool any_dashpot = false;
+};
+
+// One pool per run: rows of `tile` lanes, 64-byte aligned.
+class Pool {
+ public:
+  Pool(const Layout& L, std::size_t tile)
+      : tile_(tile), spring0_(static_cast<std::size_t>(dof_rows) * L.ndof),
+        elem0_(spring0_ + static_cast<std::size_t>(spring_rows) * L.nspring),
+        lane0_(elem0_ + static_cast<std::size_t>(elem_rows) * L.nelem), ndof_(L.ndof), nspring_(L.nspring),
+        nelem_(L.nelem) {
+    const std::size_t n = (lane0_ + lane_rows) * tile_;
+    mem_.reset(static_cast<double*>(::operator new[](n * sizeof(double), std::align_val_t{64})));
+    for (std::size_t i = 0; i < n; ++i) mem_[i] = 0.0;
+  }
+  std::size_t tile() const { return tile_; }
+  double* dof(int f, int j) const { return row(static_cast<std::size_t>(f) * ndof_ + j); }
+  double* spring(int f, int s) const { return row(spring0_ + static_cast<std::size_t>(f) * nspring_ + s); }
+  double* elem(int f, int e) const { return row(elem0_ + static_cast<std::size_t>(f) * nelem_ + e); }
+  double* lane(int f) const { return row(lane0_ + f); }
+
+ private:
+  struct Free {
+    void operator()(double* p) const { ::operator delete[](p, std::align_val_t{64}); }
+  };
+  double* row(std::size_t r) const { return mem_.get() + r * tile_; }
+  std::size_t tile_, spring0_, elem0_, lane0_;
+  std::size_t ndof_, nspring_, nelem_;
+  std::unique_ptr<double[], Free> mem_;
+};
+
+// A chunk's view of the pool: the W-lane column starting at lane `base`.
+struct Chunk {
+  const Pool* pool;
+  int base;
+  POUNDING_INLINE V ld(double* row) const { return lane::load<V>(row + base); }
+  POUNDING_INLINE void st(const V& v, double* row) const { lane::store(v, row + base); }
+  POUNDING_INLINE V dof(int f, int j) const { return ld(pool->dof(f, j)); }
+  POUNDING_INLINE void dof(int f, int j, const V& v) const { st(v, pool->dof(f, j)); }
+  POUNDING_INLINE V spr(int f, int s) const { return ld(pool->spring(f, s)); }
+  POUNDING_INLINE void spr(int f, int s, const V& v) const { st(v, pool->spring(f, s)); }
+  POUNDING_INLINE V elm(int f, int e) const { return ld(pool->elem(f, e)); }
+  POUNDING_INLINE void elm(int f, int e, const V& v) const { st(v, pool->elem(f, e)); }
+  POUNDING_INLINE V lan(int f) const { return ld(pool->lane(f)); }
+  POUNDING_INLINE void lan(int f, const V& v) const { st(v, pool->lane(f)); }
+};
+
+// What one step needs besides the pool.
+struct StepCtx {
+  double h, hh, ag0, ag1;
+  V t, vh;
+  double lim;
+  bool any_bad;
+  char* force_prev;  // per element: some lane of the chunk touched in the previous step
+};
+
+// The displacement-like value of a side from DOF rows `f` (x = N1 u_p + N2 u_q as one pinned contraction).
+POUNDING_INLINE V side_value(const Chunk& c, const Side& s, int f, int e, bool left) {
+  switch (s.kind) {
+    case SideKind::point: return c.dof(f, s.p);
+    case SideKind::interpolated:
+      return lane::fma(c.elm(left ? N2L : N2R, e), c.dof(f, s.q), c.elm(left ? N1L : N1R, e) * c.dof(f, s.p));
+    case SideKind::wall: break;
+  }
+  return V(0.0);
+}
+POUNDING_INLINE V relative(const Chunk& c, const Layout& L, int f, int e) {
+  const Side &l = L.left[e], &r = L.right[e];
+  if (r.kind == SideKind::wall) return side_value(c, l, f, e, true);
+  if (l.kind == SideKind::wall) return -side_value(c, r, f, e, false);
+  return side_value(c, l, f, e, true) - side_value(c, r, f, e, false);
+}
+// q_side += s F on a side (s = +1 left, -1 right); a wall takes nothing.
+POUNDING_INLINE void contribute(const Chunk& c, const Side& side, int e, bool left, const V& F) {
+  switch (side.kind) {
+    case SideKind::point:
+      c.dof(Q, side.p, left ? c.dof(Q, side.p) + F : c.dof(Q, side.p) - F);
+      return;
+    case SideKind::interpolated: {
+      const V f1 = c.elm(left ? N1L : N1R, e) * F, f2 = c.elm(left ? N2L : N2R, e) * F;
+      c.dof(Q, side.p, left ? c.dof(Q, side.p) + f1 : c.dof(Q, side.p) - f1);
+      c.dof(Q, side.q, left ? c.dof(Q, side.q) + f2 : c.dof(Q, side.q) - f2);
+      return;
+    }
+    case SideKind::wall: return;
+  }
+}
+
+// Step 1: the kinematics before the forces at n+1.
+POUNDING_INLINE void predict(const Chunk& c, const Layout& L, const StepCtx& s) {
+  const V h(s.h), hh(s.hh);
+  for (int j = 0; j < L.ndof; ++j) {
+    const V v = c.dof(Vel, j), a = c.dof(A, j);
+    const V vh = v + hh * a, du = h * vh;
+    c.dof(VO, j, v), c.dof(VH, j, vh), c.dof(DU, j, du);
+    c.dof(U, j, c.dof(U, j) + du), c.dof(VP, j, vh + hh * a);
+  }
+}
+
+// Step 3: every spring's return map from the increment h vh; the hysteretic increments summed in spring order.
+template <bool WithEnergy> POUNDING_INLINE void springs(const Chunk& c, const Layout& L) {
+  using H = model::BilinearKinematic;
+  V dhys(0.0);
+  for (int s = 0; s < L.nspring; ++s) {
+    const int i = L.si[s], j = L.sj[s];
+    const V dd = i < 0 ? c.dof(DU, j) : c.dof(DU, j) - c.dof(DU, i);
+    const V d = i < 0 ? c.dof(U, j) : c.dof(U, j) - c.dof(U, i);
+    const H::Params<V> p{c.spr(K, s), c.spr(AK, s), c.spr(QY, s), c.spr(KP, s)};
+    const V fo = c.spr(FS, s);
+    const V f = H::restoring<V>(p, fo, dd, d);
+    if constexpr (WithEnergy) {
+      const V x = H::dissipated<V>(p, fo, dd, f);
+      dhys = s == 0 ? x : dhys + x;
+    }
+    c.spr(FS, s, f);
+    V t = f;
+    if (L.dashpot[static_cast<std::size_t>(s)])
+      t = lane::fma(c.spr(CS, s), i < 0 ? c.dof(VP, j) : c.dof(VP, j) - c.dof(VP, i), f);
+    c.spr(T, s, t);
+    c.spr(PD, s, lane::max(c.spr(PD, s), lane::abs(d)));
+    c.spr(PF, s, lane::max(c.spr(PF, s), lane::abs(f)));
+  }
+  if constexpr (WithEnergy) c.lan(EHYS, c.lan(EHYS) + dhys);
+}
+
+// Step 4: the nodal resisting force without contact.
+POUNDING_INLINE void nodal(const Chunk& c, const Layout& L) {
+  for (int j = 0; j < L.ndof; ++j) {
+    V q = c.spr(T, L.below[static_cast<std::size_t>(j)]);
+    for (int k = L.above_start[static_cast<std::size_t>(j)]; k < L.above_start[static_cast<std::size_t>(j) + 1]; ++k)
+      q -= c.spr(T, L.above[static_cast<std::size_t>(k)]);
+    const int r = L.ref[static_cast<std::size_t>(j)];
+    q = lane::fma(c.dof(CF, j), r < 0 ? c.dof(VP, j) : c.dof(VP, j) - c.dof(VP, r), q);
+    c.dof(Q, j, q);
+  }
+}
+
+// Step 5 for one element of law `Law`: the force at n+1 (muthukumar eq. 10's latch for Hertzdamp), the
+// stability guard, and the element's contact bookkeeping.
+template <class Law, class Exp>
+POUNDING_INLINE void element(const Chunk& c, const Layout& L, int e, StepCtx& s, double v0_min, Exp n) {
+  const V zero(0.0), one(1.0);
+  const V d = relative(c, L, U, e) - c.elm(GAP, e);
+  const simd::M touching = d > zero;
+  const bool any_touch = lane::any(touching);
+  const V dprev = c.elm(DPREV, e);
+  V nF = zero, onset = zero, clamp = zero;
+  if constexpr (Law::traits.has_force) {
+    if (any_touch) {
+      const V dd = relative(c, L, VP, e);
+      const simd::M on = (d > zero) && !(dprev > zero);
+      onset = lane::select(on, one, zero);
+      contact::State<V> st{c.elm(IV0, e)};
+      if constexpr (Law::traits.latches_v0) {
+        if (lane::any(on)) {  // approach velocity at the interpolated closing instant inside the step
+          const V den = d - dprev;
+          const V sc = lane::min(lane::max(-dprev / lane::select(den > zero, den, one), zero), one);
+          const V ddo = relative(c, L, VO, e);
+          Law::template on_onset<V>(st, on, ddo + sc * (dd - ddo), v0_min);
+          c.elm(IV0, e, st.iv0);
+        }
+      }
+      contact::Shared<V> sh{zero};
+      const contact::Kin<V> k{d, dd};
+      const contact::Params<V> prm{c.elm(KC, e), c.elm(CD, e)};
+      nF = Law::template force<V>(k, prm, st, n, sh, clamp);
+      const simd::M bad = contact::unstable<Law>(k, prm, st, n, sh, c.elm(H2M, e), limit2_central_difference);
+      if (lane::any(bad)) {
+        c.lan(BAD, lane::max(c.lan(BAD), lane::select(bad, one, zero)));
+        s.any_bad = true;
+      }
+    }
+  }
+  if constexpr (Law::traits.has_force || Law::traits.impulsive) {
+    if (any_touch || s.force_prev[e]) {
+      c.elm(WC, e, c.elm(WC, e) + contact_work(c.elm(F, e), nF, relative(c, L, DU, e)));
+      c.elm(TCON, e, c.elm(TCON, e) + lane::select(touching, s.vh, zero));
+      if constexpr (!Law::traits.impulsive) {
+        c.elm(TFIRST, e, lane::min(c.elm(TFIRST, e), lane::select(onset > zero, s.t, V(inf))));
+        c.elm(NIMP, e, c.elm(NIMP, e) + onset);
+      }
+      c.elm(NCLAMP, e, c.elm(NCLAMP, e) + clamp);
+      c.elm(PFORCE, e, lane::max(c.elm(PFORCE, e), nF));
+      c.elm(PPEN, e, lane::max(c.elm(PPEN, e), d));
+    }
+    s.force_prev[e] = any_touch;
+  }
+  c.elm(F, e, nF);
+  c.elm(DPREV, e, d);
+}
+
+// Step 2: muthukumar eq. 2 at the located closing instant, for the one point-point element e (validation
+// refuses the stereomechanical law with more than one element or another side).
+POUNDING_INLINE void impulsive(const Chunk& c, const Layout& L, int e, const StepCtx& s) {
+  const V zero(0.0);
+  const int p = L.left[e].p, q = L.right[e].p;
+  const V dprev = c.elm(DPREV, e);
+  const V vp1 = c.dof(VP, p), vp2 = c.dof(VP, q);
+  const V d = c.dof(U, p) - c.dof(U, q) - c.elm(GAP, e), closing = vp1 - vp2;
+  const simd::M hit = (d > zero) && ((closing > zero) || !(dprev > zero));
+  if (!lane::any(hit)) return;
+  const V m1 = c.dof(M, p), m2 = c.dof(M, q);
+  const auto x = contact::Stereomechanical::exchange<V>(
+      {d, dprev, closing, c.dof(VO, p), c.dof(VO, q), vp1, vp2, m1, m2, m1 + m2, c.elm(MEFF, e), c.elm(E, e), s.vh});
+  c.dof(U, p, c.dof(U, p) + x.dv1 * x.rest), c.dof(U, q, c.dof(U, q) + x.dv2 * x.rest);
+  c.dof(DU, p, c.dof(DU, p) + x.dv1 * x.rest), c.dof(DU, q, c.dof(DU, q) + x.dv2 * x.rest);
+  c.dof(VP, p, vp1 + x.dv1), c.dof(VP, q, vp2 + x.dv2);
+  c.dof(VH, p, c.dof(VH, p) + x.dv1), c.dof(VH, q, c.dof(VH, q) + x.dv2);
+  c.elm(DIMP, e, c.elm(DIMP, e) + x.loss);
+  const V onset = lane::select(x.hit, V(1.0), zero);
+  c.elm(TFIRST, e, lane::min(c.elm(TFIRST, e), lane::select(onset > zero, s.t, V(inf))));
+  c.elm(NIMP, e, c.elm(NIMP, e) + onset);
+}
+
+// Steps 6-7: contact contributions in element order, then the new accelerations and velocities.
+POUNDING_INLINE void accelerate(const Chunk& c, const Layout& L, const StepCtx& s) {
+  for (int e = 0; e < L.nelem; ++e) {
+    const V f = c.elm(F, e);
+    contribute(c, L.left[e], e, true, f);
+    contribute(c, L.right[e], e, false, f);
+  }
+  const V hh(s.hh);
+  for (int j = 0; j < L.ndof; ++j) {
+    const V na = -s.ag1 - c.dof(Q, j) * c.dof(IM, j);
+    c.dof(A, j, na), c.dof(Vel, j, c.dof(VH, j) + hh * na);
+  }
+}
+
+// Step 8: input and viscous energy, the sums over DOFs left-folded by pinned FMAs (for two DOFs exactly the
+// pair's fma(m2, in2, m1 in1)); storey dashpots after the floor dashpots.
+POUNDING_INLINE void energy(const Chunk& c, const Layout& L, const StepCtx& s) {
+  const V g0(s.ag0), g1(s.ag1), hh(s.hh);
+  V ein(0.0), evis(0.0);
+  for (int j = 0; j < L.ndof; ++j) {
+    const V vo = c.dof(VO, j), vn = c.dof(Vel, j);
+    const V in = lane::fma(g1, vn, g0 * vo);
+    ein = j == 0 ? c.dof(M, j) * in : lane::fma(c.dof(M, j), in, ein);
+    const int r = L.ref[static_cast<std::size_t>(j)];
+    const V ro = r < 0 ? vo : vo - c.dof(VO, r), rn = r < 0 ? vn : vn - c.dof(Vel, r);
+    const V sq = lane::fma(rn, rn, ro * ro);
+    evis = j == 0 ? c.dof(CF, j) * sq : lane::fma(c.dof(CF, j), sq, evis);
+  }
+  if (L.any_dashpot)
+    for (int k = 0; k < L.nspring; ++k) {
+      if (!L.dashpot[static_cast<std::size_t>(k)]) continue;
+      const int i = L.si[k], j = L.sj[k];
+      const V ro = i < 0 ? c.dof(VO, j) : c.dof(VO, j) - c.dof(VO, i);
+      const V rn = i < 0 ? c.dof(Vel, j) : c.dof(Vel, j) - c.dof(Vel, i);
+      evis = lane::fma(c.spr(CS, k), lane::fma(rn, rn, ro * ro), evis);
+    }
+  c.lan(EIN, lane::fma(-hh, ein, c.lan(EIN)));
+  c.lan(EVIS, lane::fma(hh, evis, c.lan(EVIS)));
+}
+
+// Step 9: the divergence guard (kernel/guard.hpp) over bodies: the sum in body order of each body's largest |u|,
+// the rate measure every |v| then every |a|; a bad lane is frozen at rest.
+POUNDING_INLINE void guard(const Chunk& c, const Layout& L, StepCtx& s) {
+  const V lim(s.lim), zero(0.0);
+  V dsum(0.0);
+  const int nb = static_cast<int>(L.body_start.size()) - 1;
+  for (int b = 0; b < nb; ++b) {
+    V mx(0.0);
+    for (int k = L.body_start[static_cast<std::size_t>(b)]; k < L.body_start[static_cast<std::size_t>(b) + 1]; ++k) {
+      const V x = lane::abs(c.dof(U, L.body_dofs[static_cast<std::size_t>(k)]));
+      mx = k == L.body_start[static_cast<std::size_t>(b)] ? x : lane::max(mx, x);
+    }
+    dsum = b == 0 ? mx : dsum + mx;
+  }
+  V rsum = lane::abs(c.dof(Vel, 0));
+  for (int j = 1; j < L.ndof; ++j) rsum += lane::abs(c.dof(Vel, j));
+  for (int j = 0; j < L.ndof; ++j) rsum += lane::abs(c.dof(A, j));
+  if (lane::all(within(dsum, rsum, lim)) && !s.any_bad) return;
+  s.any_bad = true;
+  const V bad = lane::max(c.lan(BAD), divergence_code(dsum, rsum, lim));
+  c.lan(BAD, bad);
+  const auto frozen = bad > zero;
+  for (int j = 0; j < L.ndof; ++j)
+    for (int f : {U, Vel, A}) c.dof(f, j, lane::select(frozen, zero, c.dof(f, j)));
+  for (int k = 0; k < L.nspring; ++k) c.spr(FS, k, lane::select(frozen, zero, c.spr(FS, k)));
+  for (int e = 0; e < L.nelem; ++e) c.elm(F, e, lane::select(frozen, zero, c.elm(F, e)));
+}
+
+// Step 10: the observers on the committed state.
+POUNDING_INLINE void observe(const Chunk& c, const Layout& L, const StepCtx& s) {
+  const V g1(s.ag1);
+  for (int j = 0; j < L.ndof; ++j) {
+    c.dof(PU, j, lane::max(c.dof(PU, j), lane::abs(c.dof(U, j))));
+    c.dof(PA, j, lane::max(c.dof(PA, j), lane::abs(c.dof(A, j) + g1)));
+  }
+  for (int e = 0; e < L.nelem; ++e) {
+    const V cl = relative(c, L, U, e), pc = c.elm(PCLOSE, e);
+    const auto up = cl > pc;
+    c.elm(PCLOSE, e, lane::select(up, cl, pc));
+    c.elm(TPCLOSE, e, lane::select(up, s.t, c.elm(TPCLOSE, e)));
+  }
+}
+
+// The elements of one contact group, with the group's law and exponent fixed once per run (a function pointer
+// per group: one indirect call per group and step, uniform across lanes).
+struct Group {
+  std::vector<int> elems;
+  double v0_min = 1e-3;
+  double n = 1.5;
+  bool impulsive = false;
+  void (*run)(const Chunk&, const Layout&, const Group&, StepCtx&) = nullptr;
+};
+template <class Law, class Exp> void group_elements(const Chunk& c, const Layout& L, const Group& g, StepCtx& s) {
+  Exp n{};
+  if constexpr (!std::is_same_v<Exp, contact::Exp15>) n = Exp{g.n};
+  for (int e : g.elems) element<Law, Exp>(c, L, e, s, g.v0_min, n);
+}
+
+struct Run {
+  const Layout* layout;
+  const std::vector<Group>* groups;
+  const double* ag;  // ground acceleration at every step (nsteps + 1)
+  long nsteps;
+  double h, lim;
+};
+
+template <bool WithEnergy> void step(const Chunk& c, const Run& R, long stepi, StepCtx& s) {
+  const Layout& L = *R.layout;
+  s.ag0 = R.ag[stepi], s.ag1 = R.ag[stepi + 1];
+  s.t = V(static_cast<double>(stepi + 1) * R.h);
+  predict(c, L, s);
+  for (const Group& g : *R.groups)
+    if (g.impulsive) impulsive(c, L, g.elems.front(), s);
+  springs<WithEnergy>(c, L);
+  nodal(c, L);
+  for (const Group& g : *R.groups) g.run(c, L, g, s);
+  accelerate(c, L, s);
+  if constexpr (WithEnergy) energy(c, L, s);
+  guard(c, L, s);
+  observe(c, L, s);
+}
+
+// Every chunk of the tile through the whole record (lanes [0, np) of the pool, np a multiple of W).
+template <bool WithEnergy> void run_tile(const Pool& pool, int np, const Run& R) {
+  std::vector<char> force_prev(static_cast<std::size_t>(R.layout->nelem));
+  for (int base = 0; base < np; base += simd::W) {
+    const Chunk c{&pool, base};
+    StepCtx s{R.h, 0.5 * R.h, 0.0, 0.0, V(0.0), V(R.h), R.lim, lane::any(c.lan(BAD) > V(0.0)), force_prev.data()};
+    for (int e = 0; e < R.layout->nelem; ++e) force_prev[static_cast<std::size_t>(e)] = lane::any(c.elm(F, e) > V(0.0));
+    for (long k = 0; k < R.nsteps; ++k) step<WithEnergy>(c, R, k, s);
+  }
+}
+
+extern template void run_tile<true>(const Pool&, int, const Run&);
+extern template void run_tile<false>(const Pool&, int, const Run&);
+
+// The element function of a group with contact law `law` (Exp15 when n == 1.5 for a law that reads n, else
+// RuntimeExponent, as run_batch does): src/physics/instantiate_system_central_difference.cpp.
+using GroupFn = void (*)(const Chunk&, const Layout&, const Group&, StepCtx&);
+GroupFn group_runner(ContactLaw law, double n);
+
+}  // namespace pounding::kernel::sys

@@ -1,0 +1,388 @@
+// run_system (physics/system_batch.hpp): the SDOF pair through today's pair kernel (the fast path, bit for bit),
+// every other system through the dynamic layout's central difference (physics/steppers/system_central_difference.hpp):
+// the topology's index lists, the pool's fill per tile, the run and the reductions into SystemResult.
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <string>
+
+#include <fmt/format.h>
+
+#include "pounding/contact/registry.hpp"
+#include "pounding/contact/resolution.hpp"
+#include "pounding/physics/run_batch.hpp"
+#include "pounding/physics/steppers/system_central_difference.hpp"
+#include "pounding/physics/system_stepper.hpp"
+
+namespace pounding::physics {
+
+namespace {
+
+namespace sys = kernel::sys;
+using sys::Chunk;
+using sys::Layout;
+using sys::Pool;
+
+constexpr double nan = std::numeric_limits<double>::quiet_NaN();
+
+sys::Side side_of(const model::Side& s) {
+  switch (s.kind) {
+    case model::SideKind::point: return {sys::SideKind::point, s.p, -1};
+    case model::SideKind::interpolated: return {sys::SideKind::interpolated, s.p, s.q};
+    case model::SideKind::wall: break;
+  }
+  return {sys::SideKind::wall, -1, -1};
+}
+
+Layout layout_of(const model::System& S) {
+  Layout L;
+  L.ndof = S.ndof();
+  L.nspring = static_cast<int>(S.springs().size());
+  L.nelem = static_cast<int>(S.contacts().size());
+  for (const model::Spring& s : S.springs()) {
+    L.si.push_back(s.i), L.sj.push_back(s.j);
+    const bool d = S.bodies()[static_cast<std::size_t>(s.body)].storey_dashpots;
+    L.dashpot.push_back(d ? 1 : 0);
+    L.any_dashpot = L.any_dashpot || d;
+  }
+  L.above_start.push_back(0);
+  for (int j = 0; j < L.ndof; ++j) {
+    L.below.push_back(S.spring_below(j));
+    for (int s : S.springs_above(j)) L.above.push_back(s);
+    L.above_start.push_back(static_cast<int>(L.above.size()));
+    const int r = S.bodies()[static_cast<std::size_t>(S.body_of(j))].floor_dashpot_ref;
+    L.ref.push_back(r == j ? model::ground : r);
+  }
+  L.body_start.push_back(0);
+  for (const model::Body& b : S.bodies()) {
+    for (int d : b.dofs) L.body_dofs.push_back(d);
+    L.body_start.push_back(static_cast<int>(L.body_dofs.size()));
+  }
+  for (const model::ContactElement& e : S.contacts()) L.left.push_back(side_of(e.left)), L.right.push_back(side_of(e.right));
+  return L;
+}
+
+// The per-lane inputs of batch lane `l` as scalars (side values over any per-DOF array).
+struct LaneView {
+  const SystemBatch& B;
+  const Layout& L;
+  std::size_t l;
+  double at(const std::vector<double>& v, int i) const { return v[SystemBatch::at(i, l, B.width)]; }
+  double n2(int e) const { return B.weight.empty() ? 0.0 : at(B.weight, e); }
+  double side(const sys::Side& s, int e, const std::vector<double>& x) const {
+    switch (s.kind) {
+      case sys::SideKind::point: return at(x, s.p);
+      case sys::SideKind::interpolated: return std::fma(n2(e), at(x, s.q), (1.0 - n2(e)) * at(x, s.p));
+      case sys::SideKind::wall: break;
+    }
+    return 0.0;
+  }
+  double relative(int e, const std::vector<double>& x) const {
+    const sys::Side &a = L.left[static_cast<std::size_t>(e)], &b = L.right[static_cast<std::size_t>(e)];
+    if (b.kind == sys::SideKind::wall) return side(a, e, x);
+    if (a.kind == sys::SideKind::wall) return -side(b, e, x);
+    return side(a, e, x) - side(b, e, x);
+  }
+  // 1 / (g' M^-1 g): point-point m_a m_b / (m_a + m_b) verbatim (the pair's), point-wall m_a, interpolated
+  // 1 / (N1^2/m_p + N2^2/m_q + 1/m_b) (§2.2.4)
+  double meff(int e) const {
+    const sys::Side &a = L.left[static_cast<std::size_t>(e)], &b = L.right[static_cast<std::size_t>(e)];
+    if (a.kind == sys::SideKind::point && b.kind == sys::SideKind::point) {
+      const double ma = at(B.m, a.p), mb = at(B.m, b.p);
+      return ma * mb / (ma + mb);
+    }
+    if (a.kind == sys::SideKind::point && b.kind == sys::SideKind::wall) return at(B.m, a.p);
+    if (b.kind == sys::SideKind::point && a.kind == sys::SideKind::wall) return at(B.m, b.p);
+    auto flex = [&](const sys::Side& s) {
+      if (s.kind == sys::SideKind::point) return 1.0 / at(B.m, s.p);
+      if (s.kind == sys::SideKind::wall) return 0.0;
+      const double w = n2(e);
+      return (1.0 - w) * (1.0 - w) / at(B.m, s.p) + w * w / at(B.m, s.q);
+    };
+    return 1.0 / (flex(a) + flex(b));
+  }
+};
+
+model::BilinearKinematic::Params<double> spring_params(const SpringSpec& s) {
+  Structure st;
+  st.k = s.k, st.fy = s.fy, st.alpha = s.alpha;
+  return model::BilinearKinematic::params(st);
+}
+
+// Per run: each group's model, runner and elements; each element's damping constant per lane (DampingTable: each
+// distinct e once per group and call, as run_batch).
+struct Plan {
+  Layout L;
+  std::vector<sys::Group> groups;
+  std::vector<ContactModel> models;
+  std::vector<int> group_of;
+  std::vector<double> cd;  // [element][lane]
+  double h = 0.0;
+};
+
+Plan make_plan(const SystemBatch& B, std::span<const ContactModel> models, double h) {
+  Plan P;
+  P.L = layout_of(*B.system);
+  P.h = h;
+  P.models.assign(models.begin(), models.end());
+  P.groups.resize(models.size());
+  for (std::size_t g = 0; g < models.size(); ++g) {
+    sys::Group& G = P.groups[g];
+    G.v0_min = models[g].v0_min, G.n = models[g].n;
+    G.impulsive = contact::traits(models[g].law).impulsive;
+    G.run = sys::group_runner(models[g].law, models[g].n);
+  }
+  const auto& els = B.system->contacts();
+  for (std::size_t e = 0; e < els.size(); ++e) {
+    P.group_of.push_back(els[e].group);
+    P.groups[static_cast<std::size_t>(els[e].group)].elems.push_back(static_cast<int>(e));
+  }
+  P.cd.assign(els.size() * B.width, 0.0);
+  for (std::size_t g = 0; g < models.size(); ++g)
+    contact::visit_law(models[g].law, [&]<class Law>() {
+      DampingTable<Law> damping(models[g]);
+      for (int e : P.groups[g].elems)
+        for (std::size_t l = 0; l < B.width; ++l) {
+          const LaneView v{B, P.L, l};
+          P.cd[SystemBatch::at(e, l, B.width)] = damping(v.at(B.kc, e), v.at(B.e, e), v.meff(e));
+        }
+    });
+  return P;
+}
+
+// Lane i of the pool from batch lane l: DOFs and springs (the initial forces at rest in u0).
+void fill_structure(const Pool& T, std::size_t i, const LaneView& v) {
+  const SystemBatch& B = v.B;
+  const Layout& L = v.L;
+  for (int j = 0; j < L.ndof; ++j) {
+    T.dof(sys::U, j)[i] = v.at(B.u0, j), T.dof(sys::Vel, j)[i] = v.at(B.v0, j);
+    T.dof(sys::M, j)[i] = v.at(B.m, j), T.dof(sys::IM, j)[i] = 1.0 / v.at(B.m, j);
+    T.dof(sys::CF, j)[i] = v.at(B.c_floor, j), T.dof(sys::PU, j)[i] = std::abs(v.at(B.u0, j));
+  }
+  for (int s = 0; s < L.nspring; ++s) {
+    const int a = L.si[static_cast<std::size_t>(s)], b = L.sj[static_cast<std::size_t>(s)];
+    const auto p = spring_params(B.spring[SystemBatch::at(s, v.l, B.width)]);
+    T.spring(sys::K, s)[i] = p.k, T.spring(sys::AK, s)[i] = p.ak, T.spring(sys::QY, s)[i] = p.qy;
+    T.spring(sys::KP, s)[i] = p.kp;
+    T.spring(sys::CS, s)[i] = B.c_storey.empty() ? 0.0 : v.at(B.c_storey, s);
+    const double d0 = a < 0 ? v.at(B.u0, b) : v.at(B.u0, b) - v.at(B.u0, a);
+    const double f0 = model::BilinearKinematic::initial_force(p, d0);
+    T.spring(sys::FS, s)[i] = f0, T.spring(sys::PD, s)[i] = std::abs(d0), T.spring(sys::PF, s)[i] = std::abs(f0);
+  }
+  for (int f : {sys::BAD, sys::EIN, sys::EVIS, sys::EHYS}) T.lane(f)[i] = 0.0;
+}
+
+// Lane i's elements: constants, the latch and the observers at rest; the initial force from the initial
+// penetration (std::pow for the Hertz family, as the pair's fill).
+void fill_elements(const Pool& T, std::size_t i, const LaneView& v, const Plan& P) {
+  const SystemBatch& B = v.B;
+  for (int e = 0; e < P.L.nelem; ++e) {
+    const auto row = [&](int f) -> double& { return T.elem(f, e)[i]; };
+    const ContactModel& cm = P.models[static_cast<std::size_t>(P.group_of[static_cast<std::size_t>(e)])];
+    const double meff = v.meff(e), w = v.n2(e);
+    row(sys::GAP) = v.at(B.gap, e), row(sys::KC) = v.at(B.kc, e), row(sys::E) = v.at(B.e, e);
+    row(sys::CD) = P.cd[SystemBatch::at(e, v.l, B.width)];
+    row(sys::MEFF) = meff, row(sys::H2M) = P.h * P.h / meff;
+    const bool il = P.L.left[static_cast<std::size_t>(e)].kind == sys::SideKind::interpolated;
+    row(il ? sys::N1L : sys::N1R) = 1.0 - w, row(il ? sys::N2L : sys::N2R) = w;
+    row(il ? sys::N1R : sys::N1L) = 0.0, row(il ? sys::N2R : sys::N2L) = 0.0;
+    const double x0 = v.relative(e, B.u0), d0 = x0 - row(sys::GAP), dd0 = v.relative(e, B.v0);
+    row(sys::IV0) = 1.0 / std::max(dd0, cm.v0_min), row(sys::DPREV) = d0;
+    row(sys::PCLOSE) = x0, row(sys::TPCLOSE) = 0.0, row(sys::TFIRST) = d0 > 0.0 ? 0.0 : kernel::inf;
+    row(sys::NIMP) = d0 > 0.0 ? 1.0 : 0.0, row(sys::NCLAMP) = 0.0, row(sys::PPEN) = d0;
+    row(sys::WC) = 0.0, row(sys::TCON) = 0.0, row(sys::DIMP) = 0.0;
+    double F = 0.0, clamp = 0.0;
+    contact::visit_law(cm.law, [&]<class Law>() {
+      contact::Shared<double> sh{0.0};
+      if (d0 > 0.0 && Law::traits.has_force)
+        F = Law::template force<double>({d0, dd0}, {row(sys::KC), row(sys::CD)}, {row(sys::IV0)},
+                                        contact::RuntimeExponent{cm.n}, sh, clamp);
+    });
+    row(sys::F) = F, row(sys::PFORCE) = F;
+  }
+}
+
+// Lane i's initial accelerations from the forces at rest (the pair's -ag0 - (c v + fs + F) im).
+void fill_accelerations(const Pool& T, std::size_t i, const LaneView& v, double ag0) {
+  const Layout& L = v.L;
+  std::vector<double> t(static_cast<std::size_t>(L.nspring)), q(static_cast<std::size_t>(L.ndof));
+  for (int s = 0; s < L.nspring; ++s) {
+    const int a = L.si[static_cast<std::size_t>(s)], b = L.sj[static_cast<std::size_t>(s)];
+    const double rate = a < 0 ? v.at(v.B.v0, b) : v.at(v.B.v0, b) - v.at(v.B.v0, a);
+    const double f = T.spring(sys::FS, s)[i];
+    t[static_cast<std::size_t>(s)] = L.dashpot[static_cast<std::size_t>(s)] ? std::fma(T.spring(sys::CS, s)[i], rate, f) : f;
+  }
+  for (int j = 0; j < L.ndof; ++j) {
+    double x = t[static_cast<std::size_t>(L.below[static_cast<std::size_t>(j)])];
+    for (int k = L.above_start[static_cast<std::size_t>(j)]; k < L.above_start[static_cast<std::size_t>(j) + 1]; ++k)
+      x -= t[static_cast<std::size_t>(L.above[static_cast<std::size_t>(k)])];
+    const int r = L.ref[static_cast<std::size_t>(j)];
+    const double vrel = r < 0 ? v.at(v.B.v0, j) : v.at(v.B.v0, j) - v.at(v.B.v0, r);
+    q[static_cast<std::size_t>(j)] = T.dof(sys::CF, j)[i] * vrel + x;
+  }
+  for (int e = 0; e < L.nelem; ++e) {
+    const double F = T.elem(sys::F, e)[i];
+    for (int sgn : {1, -1}) {
+      const sys::Side& s = sgn > 0 ? L.left[static_cast<std::size_t>(e)] : L.right[static_cast<std::size_t>(e)];
+      if (s.kind == sys::SideKind::wall) continue;
+      const double f1 = s.kind == sys::SideKind::point ? F : T.elem(sgn > 0 ? sys::N1L : sys::N1R, e)[i] * F;
+      q[static_cast<std::size_t>(s.p)] = sgn > 0 ? q[static_cast<std::size_t>(s.p)] + f1 : q[static_cast<std::size_t>(s.p)] - f1;
+      if (s.kind != sys::SideKind::interpolated) continue;
+      const double f2 = T.elem(sgn > 0 ? sys::N2L : sys::N2R, e)[i] * F;
+      q[static_cast<std::size_t>(s.q)] = sgn > 0 ? q[static_cast<std::size_t>(s.q)] + f2 : q[static_cast<std::size_t>(s.q)] - f2;
+    }
+  }
+  for (int j = 0; j < L.ndof; ++j) {
+    const double a = -ag0 - q[static_cast<std::size_t>(j)] * T.dof(sys::IM, j)[i];
+    T.dof(sys::A, j)[i] = a, T.dof(sys::PA, j)[i] = std::abs(a + ag0);
+  }
+}
+
+// Lane i's reductions into out at batch lane l; `bad` lanes report NaN (counts -1), as the pair's collect_lane.
+void collect_lane(const Pool& T, std::size_t i, const LaneView& v, const Plan& P, const KernelSettings& ks,
+                  SystemResult& out) {
+  const Layout& L = P.L;
+  const std::size_t l = v.l, w = out.width;
+  const double badv = T.lane(sys::BAD)[i];
+  const bool bad = badv > 0.0;
+  out.status[l] = static_cast<std::uint8_t>(badv >= 2.0 ? LaneStatus::non_finite : bad ? LaneStatus::diverged : LaneStatus::ok);
+  auto val = [&](double x) { return bad ? nan : x; };
+  auto at = [&](int k) { return SystemBatch::at(k, l, w); };
+  double ek = 0.0, es = 0.0, stored = 0.0;
+  // kinetic energy folded from the last DOF down with pinned contractions: for two DOFs the pair's
+  // collect_lane as GCC contracts it, fma(0.5 m1 v1, v1, 0.5 m2 v2 v2)
+  for (int j = L.ndof - 1; j >= 0; --j) {
+    out.peak_u[at(j)] = val(T.dof(sys::PU, j)[i]), out.peak_acc[at(j)] = val(T.dof(sys::PA, j)[i]);
+    const double u = T.dof(sys::U, j)[i], vel = T.dof(sys::Vel, j)[i], m = T.dof(sys::M, j)[i];
+    out.final_u[at(j)] = val(u), out.final_v[at(j)] = val(vel);
+    ek = j == L.ndof - 1 ? 0.5 * m * vel * vel : std::fma(0.5 * m * vel, vel, ek);
+  }
+  for (int s = 0; s < L.nspring; ++s) {
+    out.peak_drift[at(s)] = val(T.spring(sys::PD, s)[i]), out.peak_spring_force[at(s)] = val(T.spring(sys::PF, s)[i]);
+    const int a = L.si[static_cast<std::size_t>(s)], b = L.sj[static_cast<std::size_t>(s)];
+    const double d = a < 0 ? T.dof(sys::U, b)[i] : T.dof(sys::U, b)[i] - T.dof(sys::U, a)[i];
+    const model::BilinearKinematic::Params<double> p{T.spring(sys::K, s)[i], T.spring(sys::AK, s)[i],
+                                                     T.spring(sys::QY, s)[i], T.spring(sys::KP, s)[i]};
+    const double x = model::BilinearKinematic::strain_energy(p, d, T.spring(sys::FS, s)[i]);
+    es = s == 0 ? x : es + x;
+  }
+  for (int e = 0; e < L.nelem; ++e) {
+    const int g = P.group_of[static_cast<std::size_t>(e)];
+    const ContactModel& cm = P.models[static_cast<std::size_t>(g)];
+    const auto row = [&](int f) { return T.elem(f, e)[i]; };
+    out.peak_closing[at(e)] = val(row(sys::PCLOSE)), out.t_peak_closing[at(e)] = val(row(sys::TPCLOSE));
+    out.t_first_impact[at(e)] = std::isinf(row(sys::TFIRST)) ? nan : val(row(sys::TFIRST));
+    out.impact_count[at(e)] = bad ? -1 : static_cast<std::int32_t>(row(sys::NIMP));
+    out.clamp_count[at(e)] = bad ? -1 : static_cast<std::int32_t>(row(sys::NCLAMP));
+    out.peak_penetration[at(e)] = val(std::max(row(sys::PPEN), 0.0)), out.contact_time[at(e)] = val(row(sys::TCON));
+    contact::visit_law(cm.law, [&]<class Law>() {
+      const double dp = std::max(T.elem(sys::DPREV, e)[i], 0.0);
+      const double st = Law::template stored_energy<double>(dp, row(sys::KC), cm.n);
+      stored = e == 0 ? st : stored + st;
+      out.contact_energy[at(e)] = val(row(sys::WC) - st + row(sys::DIMP));
+      out.peak_force[at(e)] = Law::traits.impulsive ? nan : val(row(sys::PFORCE));
+      const double pen = contact::guard_penetration<Law>(out.peak_penetration[at(e)], out.peak_force[at(e)], row(sys::KC), cm.n);
+      const double k_t = contact::tangent_at_penetration<Law>(pen, row(sys::KC), row(sys::CD), cm.n);
+      out.h_omega_contact[at(e)] = bad ? nan : h_omega(P.h, k_t, row(sys::MEFF));
+      if (!bad && out.h_omega_contact[at(e)] > resolution_limit(ks, cm.law))
+        out.status[l] = static_cast<std::uint8_t>(LaneStatus::coarse);
+    });
+  }
+  if (!ks.energy) return;
+  out.e_input[l] = val(T.lane(sys::EIN)[i]), out.e_viscous[l] = val(T.lane(sys::EVIS)[i]);
+  out.e_hysteretic[l] = val(T.lane(sys::EHYS)[i]), out.e_kinetic[l] = val(ek), out.e_strain[l] = val(es);
+  out.e_contact_stored[l] = val(L.nelem > 0 ? stored : 0.0);
+}
+
+void run_dynamic(const SystemBatch& B, std::span<const ContactModel> models, const GroundMotion& motion,
+                 const KernelSettings& ks, SystemResult& out, std::size_t tile) {
+  out.resize(*B.system, B.width);
+  if (B.width == 0) return;
+  const Schedule s = make_schedule(motion, ks.substeps);
+  const Plan P = make_plan(B, models, s.h);
+  const std::size_t tw = tile == 0 ? default_system_tile(B.width) : tile;
+  const Pool T(P.L, tw);
+  const sys::Run R{&P.L, &P.groups, s.ag.data(), s.nsteps, s.h, ks.displacement_limit};
+  for (std::size_t base = 0; base < B.width; base += tw) {
+    const std::size_t n = std::min(tw, B.width - base);
+    // lanes past n up to the SIMD chunk boundary are copies of the tile's first lane
+    const std::size_t np = (n + simd::W - 1) / simd::W * simd::W;
+    for (std::size_t i = 0; i < np; ++i) {
+      const LaneView v{B, P.L, base + (i < n ? i : 0)};
+      fill_structure(T, i, v);
+      fill_elements(T, i, v, P);
+      fill_accelerations(T, i, v, s.ag[0]);
+    }
+    if (ks.energy)
+      sys::run_tile<true>(T, static_cast<int>(np), R);
+    else
+      sys::run_tile<false>(T, static_cast<int>(np), R);
+    for (std::size_t i = 0; i < n; ++i) collect_lane(T, i, LaneView{B, P.L, base + i}, P, ks, out);
+  }
+}
+
+std::string stepper_name(Stepper s) {
+  std::string name;
+  kernel::visit_stepper(s, [&]<class S>() { name = std::string(S::name); });
+  return name;
+}
+
+}  // namespace
+
+std::size_t default_system_tile(std::size_t) { return static_cast<std::size_t>(simd::W); }
+
+std::vector<Problem> system_stepper_problems(const SystemBatch& B, std::span<const ContactModel> groups,
+                                             const KernelSettings& ks) {
+  std::vector<Problem> out;
+  const model::System& S = *B.system;
+  const std::string shape = fmt::format("{} DOFs, {} contact elements", S.ndof(), S.contacts().size());
+  if (ks.stepper != Stepper::central_difference)
+    out.push_back({fmt::format("the {} stepper runs the SDOF pair only; this system ({}) is integrated by the "
+                               "system stepper, central difference", stepper_name(ks.stepper), shape),
+                   "[analysis] stepper", "use stepper = \"central-difference\""});
+  if (groups.size() != S.groups().size())
+    out.push_back({fmt::format("{} contact models for {} contact groups", groups.size(), S.groups().size()),
+                   "run_system groups", "give one ContactModel per System::groups() entry"});
+  for (std::size_t s = 0; s < S.springs().size(); ++s)
+    if (S.springs()[s].law != 0)
+      out.push_back({fmt::format("spring {} has hysteresis law {}; the system stepper runs law 0 (bilinear) only", s,
+                                 S.springs()[s].law), "system springs", "use the bilinear storey spring"});
+  for (std::size_t g = 0; g < groups.size() && g < S.groups().size(); ++g) {
+    if (!contact::traits(groups[g].law).impulsive) continue;
+    bool points = true;
+    for (const model::ContactElement& e : S.contacts())
+      points = points && e.left.kind == model::SideKind::point && e.right.kind == model::SideKind::point;
+    if (S.contacts().size() > 1 || !points)
+      out.push_back({fmt::format("the stereomechanical law is an impulse at one point-point element; this system "
+                                 "has {} (simultaneous impulses depend on their order)", shape),
+                     "[contact] law", "use a law with a force element (hertzdamp, kelvin, ...)"});
+  }
+  if (ks.series)
+    out.push_back({"a series recording is written for the SDOF pair only", "--series",
+                   "drop --series for a multi-storey system"});
+  return out;
+}
+
+void run_system(const SystemBatch& batch, std::span<const ContactModel> groups, const GroundMotion& motion,
+                const KernelSettings& settings, SystemResult& out) {
+  throw_first(validate(batch, groups, motion, settings));
+  if (batch.system->is_sdof_pair()) {
+    BatchResult r;
+    pounding::run_batch(to_pair_batch(batch), groups[0], motion, settings, r);
+    out = from_pair_result(r);
+    return;
+  }
+  throw_first(system_stepper_problems(batch, groups, settings));
+  run_dynamic(batch, groups, motion, settings, out, 0);
+}
+
+namespace testing {
+void run_system_dynamic(const SystemBatch& batch, std::span<const ContactModel> groups, const GroundMotion& motion,
+                        const KernelSettings& settings, SystemResult& out, std::size_t tile) {
+  throw_first(validate(batch, groups, motion, settings));
+  throw_first(system_stepper_problems(batch, groups, settings));
+  run_dynamic(batch, groups, motion, settings, out, tile);
+}
+}  // namespace testing
+
+}  // namespace pounding::physics
