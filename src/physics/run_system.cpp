@@ -302,7 +302,7 @@ void run_dynamic(const SystemBatch& B, std::span<const ContactModel> models, con
   const Plan P = make_plan(B, models, s.h);
   const std::size_t tw = tile == 0 ? default_system_tile(B.width) : tile;
   const Pool T(P.L, tw);
-  const sys::Run R{&P.L, &P.groups, s.ag.data(), s.nsteps, s.h, ks.displacement_limit};
+  const sys::Run R{&P.L, sys::Topo(P.L), &P.groups, s.ag.data(), s.nsteps, s.h, ks.displacement_limit};
   for (std::size_t base = 0; base < B.width; base += tw) {
     const std::size_t n = std::min(tw, B.width - base);
     // lanes past n up to the SIMD chunk boundary are copies of the tile's first lane

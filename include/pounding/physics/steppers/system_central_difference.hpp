@@ -6,7 +6,7 @@
 //
 // Pool: one allocation per run, rows [field][index][lane] of `tile` lanes (a multiple of simd::W), index = DOF,
 // spring or element. Lanes run in SIMD chunks of W lanes with the whole time loop inside the chunk loop, as the
-// pair does; a chunk touches only its own W-lane column of every row. Every sum over DOFs, springs or elements is
+// pair does; a chunk's W-lane column is copied into contiguous chunk rows for its run. Every sum over DOFs, springs or elements is
 // left-folded in index order with the first term assigned, and each contraction that decides bits is pinned
 // with lane::fma, so a lane's results depend only on its own inputs (not on its chunk neighbours, the tile width
 // or the lane order).
@@ -75,48 +75,88 @@ struct Layout {
   bool any_dashpot = false;
 };
 
-// One pool per run: rows of `tile` lanes, 64-byte aligned.
+// The Layout's lists as raw pointers, passed by value into the step's phases: locals the compiler keeps in
+// registers (the chunk's vector stores may alias any memory, so members read through a reference would be
+// reloaded after every store).
+struct Topo {
+  int ndof, nspring, nelem, nbody;
+  const int *si, *sj, *below, *above_start, *above, *ref, *body_start, *body_dofs;
+  const char* dashpot;
+  const Side *left, *right;
+  bool any_dashpot;
+  explicit Topo(const Layout& L)
+      : ndof(L.ndof), nspring(L.nspring), nelem(L.nelem), nbody(static_cast<int>(L.body_start.size()) - 1),
+        si(L.si.data()), sj(L.sj.data()), below(L.below.data()), above_start(L.above_start.data()),
+        above(L.above.data()), ref(L.ref.data()), body_start(L.body_start.data()), body_dofs(L.body_dofs.data()),
+        dashpot(L.dashpot.data()), left(L.left.data()), right(L.right.data()), any_dashpot(L.any_dashpot) {}
+};
+
+// Where each row lives: rows [field][index] in the order DOF fields, spring fields, element fields, lane fields.
+struct Rows {
+  int ndof = 0, nspring = 0, nelem = 0;
+  int spring0 = 0, elem0 = 0, lane0 = 0, total = 0;
+  explicit Rows(const Layout& L)
+      : ndof(L.ndof), nspring(L.nspring), nelem(L.nelem), spring0(dof_rows * L.ndof),
+        elem0(spring0 + spring_rows * L.nspring), lane0(elem0 + elem_rows * L.nelem), total(lane0 + lane_rows) {}
+  POUNDING_INLINE int dof(int f, int j) const { return f * ndof + j; }
+  POUNDING_INLINE int spring(int f, int s) const { return spring0 + f * nspring + s; }
+  POUNDING_INLINE int elem(int f, int e) const { return elem0 + f * nelem + e; }
+  POUNDING_INLINE int lane(int f) const { return lane0 + f; }
+};
+
+// One allocation per run, 64-byte aligned: the tile's rows of `tile` lanes (filled and collected by the driver),
+// then one chunk's rows of W lanes, contiguous, which the time loop walks (a chunk's column of the tile is copied
+// in before its run and back after: in the tile its rows would sit tile x 8 bytes apart, in few L1 sets).
 class Pool {
  public:
-  Pool(const Layout& L, std::size_t tile)
-      : tile_(tile), spring0_(static_cast<std::size_t>(dof_rows) * L.ndof),
-        elem0_(spring0_ + static_cast<std::size_t>(spring_rows) * L.nspring),
-        lane0_(elem0_ + static_cast<std::size_t>(elem_rows) * L.nelem), ndof_(L.ndof), nspring_(L.nspring),
-        nelem_(L.nelem) {
-    const std::size_t n = (lane0_ + lane_rows) * tile_;
+  Pool(const Layout& L, std::size_t tile) : rows_(L), tile_(tile) {
+    const std::size_t n = static_cast<std::size_t>(rows_.total) * (tile_ + simd::W);
     mem_.reset(static_cast<double*>(::operator new[](n * sizeof(double), std::align_val_t{64})));
     for (std::size_t i = 0; i < n; ++i) mem_[i] = 0.0;
   }
   std::size_t tile() const { return tile_; }
-  double* dof(int f, int j) const { return row(static_cast<std::size_t>(f) * ndof_ + j); }
-  double* spring(int f, int s) const { return row(spring0_ + static_cast<std::size_t>(f) * nspring_ + s); }
-  double* elem(int f, int e) const { return row(elem0_ + static_cast<std::size_t>(f) * nelem_ + e); }
-  double* lane(int f) const { return row(lane0_ + f); }
+  const Rows& rows() const { return rows_; }
+  double* dof(int f, int j) const { return row(rows_.dof(f, j)); }
+  double* spring(int f, int s) const { return row(rows_.spring(f, s)); }
+  double* elem(int f, int e) const { return row(rows_.elem(f, e)); }
+  double* lane(int f) const { return row(rows_.lane(f)); }
+  double* chunk() const { return mem_.get() + static_cast<std::size_t>(rows_.total) * tile_; }
+  // the W lanes from `base` into the chunk rows, and back
+  void gather(int base) const {
+    for (int r = 0; r < rows_.total; ++r)
+      for (int k = 0; k < simd::W; ++k) chunk()[r * simd::W + k] = row(r)[base + k];
+  }
+  void scatter(int base) const {
+    for (int r = 0; r < rows_.total; ++r)
+      for (int k = 0; k < simd::W; ++k) row(r)[base + k] = chunk()[r * simd::W + k];
+  }
 
  private:
   struct Free {
     void operator()(double* p) const { ::operator delete[](p, std::align_val_t{64}); }
   };
-  double* row(std::size_t r) const { return mem_.get() + r * tile_; }
-  std::size_t tile_, spring0_, elem0_, lane0_;
-  std::size_t ndof_, nspring_, nelem_;
+  double* row(int r) const { return mem_.get() + static_cast<std::size_t>(r) * tile_; }
+  Rows rows_;
+  std::size_t tile_;
   std::unique_ptr<double[], Free> mem_;
 };
 
-// A chunk's view of the pool: the W-lane column starting at lane `base`.
+// The chunk's rows: W lanes each, contiguous (row r at p + r W).
 struct Chunk {
-  const Pool* pool;
-  int base;
-  POUNDING_INLINE V ld(double* row) const { return lane::load<V>(row + base); }
-  POUNDING_INLINE void st(const V& v, double* row) const { lane::store(v, row + base); }
-  POUNDING_INLINE V dof(int f, int j) const { return ld(pool->dof(f, j)); }
-  POUNDING_INLINE void dof(int f, int j, const V& v) const { st(v, pool->dof(f, j)); }
-  POUNDING_INLINE V spr(int f, int s) const { return ld(pool->spring(f, s)); }
-  POUNDING_INLINE void spr(int f, int s, const V& v) const { st(v, pool->spring(f, s)); }
-  POUNDING_INLINE V elm(int f, int e) const { return ld(pool->elem(f, e)); }
-  POUNDING_INLINE void elm(int f, int e, const V& v) const { st(v, pool->elem(f, e)); }
-  POUNDING_INLINE V lan(int f) const { return ld(pool->lane(f)); }
-  POUNDING_INLINE void lan(int f, const V& v) const { st(v, pool->lane(f)); }
+  double* p;
+  Rows R;
+  POUNDING_INLINE V ld(int r) const { return V(p + static_cast<std::ptrdiff_t>(r) * simd::W, simd::stdx::vector_aligned); }
+  POUNDING_INLINE void st(const V& v, int r) const {
+    v.copy_to(p + static_cast<std::ptrdiff_t>(r) * simd::W, simd::stdx::vector_aligned);
+  }
+  POUNDING_INLINE V dof(int f, int j) const { return ld(R.dof(f, j)); }
+  POUNDING_INLINE void dof(int f, int j, const V& v) const { st(v, R.dof(f, j)); }
+  POUNDING_INLINE V spr(int f, int s) const { return ld(R.spring(f, s)); }
+  POUNDING_INLINE void spr(int f, int s, const V& v) const { st(v, R.spring(f, s)); }
+  POUNDING_INLINE V elm(int f, int e) const { return ld(R.elem(f, e)); }
+  POUNDING_INLINE void elm(int f, int e, const V& v) const { st(v, R.elem(f, e)); }
+  POUNDING_INLINE V lan(int f) const { return ld(R.lane(f)); }
+  POUNDING_INLINE void lan(int f, const V& v) const { st(v, R.lane(f)); }
 };
 
 // What one step needs besides the pool.
@@ -125,11 +165,11 @@ struct StepCtx {
   V t, vh;
   double lim;
   bool any_bad;
-  char* force_prev;  // per element: some lane of the chunk touched in the previous step
+  bool* force_prev;  // per element: some lane of the chunk touched in the previous step (bool: no char aliasing)
 };
 
 // The displacement-like value of a side from DOF rows `f` (x = N1 u_p + N2 u_q as one pinned contraction).
-POUNDING_INLINE V side_value(const Chunk& c, const Side& s, int f, int e, bool left) {
+POUNDING_INLINE V side_value(Chunk c, const Side& s, int f, int e, bool left) {
   switch (s.kind) {
     case SideKind::point: return c.dof(f, s.p);
     case SideKind::interpolated:
@@ -138,14 +178,14 @@ POUNDING_INLINE V side_value(const Chunk& c, const Side& s, int f, int e, bool l
   }
   return V(0.0);
 }
-POUNDING_INLINE V relative(const Chunk& c, const Layout& L, int f, int e) {
+POUNDING_INLINE V relative(Chunk c, Topo L, int f, int e) {
   const Side &l = L.left[e], &r = L.right[e];
   if (r.kind == SideKind::wall) return side_value(c, l, f, e, true);
   if (l.kind == SideKind::wall) return -side_value(c, r, f, e, false);
   return side_value(c, l, f, e, true) - side_value(c, r, f, e, false);
 }
 // q_side += s F on a side (s = +1 left, -1 right); a wall takes nothing.
-POUNDING_INLINE void contribute(const Chunk& c, const Side& side, int e, bool left, const V& F) {
+POUNDING_INLINE void contribute(Chunk c, const Side& side, int e, bool left, const V& F) {
   switch (side.kind) {
     case SideKind::point:
       c.dof(Q, side.p, left ? c.dof(Q, side.p) + F : c.dof(Q, side.p) - F);
@@ -161,7 +201,7 @@ POUNDING_INLINE void contribute(const Chunk& c, const Side& side, int e, bool le
 }
 
 // Step 1: the kinematics before the forces at n+1.
-POUNDING_INLINE void predict(const Chunk& c, const Layout& L, const StepCtx& s) {
+POUNDING_INLINE void predict(Chunk c, Topo L, const StepCtx& s) {
   const V h(s.h), hh(s.hh);
   for (int j = 0; j < L.ndof; ++j) {
     const V v = c.dof(Vel, j), a = c.dof(A, j);
@@ -172,7 +212,7 @@ POUNDING_INLINE void predict(const Chunk& c, const Layout& L, const StepCtx& s) 
 }
 
 // Step 3: every spring's return map from the increment h vh; the hysteretic increments summed in spring order.
-template <bool WithEnergy> POUNDING_INLINE void springs(const Chunk& c, const Layout& L) {
+template <bool WithEnergy> POUNDING_INLINE void springs(Chunk c, Topo L) {
   using H = model::BilinearKinematic;
   V dhys(0.0);
   for (int s = 0; s < L.nspring; ++s) {
@@ -198,7 +238,7 @@ template <bool WithEnergy> POUNDING_INLINE void springs(const Chunk& c, const La
 }
 
 // Step 4: the nodal resisting force without contact.
-POUNDING_INLINE void nodal(const Chunk& c, const Layout& L) {
+POUNDING_INLINE void nodal(Chunk c, Topo L) {
   for (int j = 0; j < L.ndof; ++j) {
     V q = c.spr(T, L.below[static_cast<std::size_t>(j)]);
     for (int k = L.above_start[static_cast<std::size_t>(j)]; k < L.above_start[static_cast<std::size_t>(j) + 1]; ++k)
@@ -212,7 +252,7 @@ POUNDING_INLINE void nodal(const Chunk& c, const Layout& L) {
 // Step 5 for one element of law `Law`: the force at n+1 (muthukumar eq. 10's latch for Hertzdamp), the
 // stability guard, and the element's contact bookkeeping.
 template <class Law, class Exp>
-POUNDING_INLINE void element(const Chunk& c, const Layout& L, int e, StepCtx& s, double v0_min, Exp n) {
+POUNDING_INLINE void element(Chunk c, Topo L, int e, StepCtx& s, double v0_min, Exp n) {
   const V zero(0.0), one(1.0);
   const V d = relative(c, L, U, e) - c.elm(GAP, e);
   const simd::M touching = d > zero;
@@ -265,7 +305,7 @@ POUNDING_INLINE void element(const Chunk& c, const Layout& L, int e, StepCtx& s,
 
 // Step 2: muthukumar eq. 2 at the located closing instant, for the one point-point element e (validation
 // refuses the stereomechanical law with more than one element or another side).
-POUNDING_INLINE void impulsive(const Chunk& c, const Layout& L, int e, const StepCtx& s) {
+POUNDING_INLINE void impulsive(Chunk c, Topo L, int e, const StepCtx& s) {
   const V zero(0.0);
   const int p = L.left[e].p, q = L.right[e].p;
   const V dprev = c.elm(DPREV, e);
@@ -287,22 +327,23 @@ POUNDING_INLINE void impulsive(const Chunk& c, const Layout& L, int e, const Ste
 }
 
 // Steps 6-7: contact contributions in element order, then the new accelerations and velocities.
-POUNDING_INLINE void accelerate(const Chunk& c, const Layout& L, const StepCtx& s) {
+POUNDING_INLINE void accelerate(Chunk c, Topo L, const StepCtx& s) {
   for (int e = 0; e < L.nelem; ++e) {
     const V f = c.elm(F, e);
     contribute(c, L.left[e], e, true, f);
     contribute(c, L.right[e], e, false, f);
   }
   const V hh(s.hh);
+  const double ag1 = s.ag1;
   for (int j = 0; j < L.ndof; ++j) {
-    const V na = -s.ag1 - c.dof(Q, j) * c.dof(IM, j);
+    const V na = -ag1 - c.dof(Q, j) * c.dof(IM, j);
     c.dof(A, j, na), c.dof(Vel, j, c.dof(VH, j) + hh * na);
   }
 }
 
 // Step 8: input and viscous energy, the sums over DOFs left-folded by pinned FMAs (for two DOFs exactly the
 // pair's fma(m2, in2, m1 in1)); storey dashpots after the floor dashpots.
-POUNDING_INLINE void energy(const Chunk& c, const Layout& L, const StepCtx& s) {
+POUNDING_INLINE void energy(Chunk c, Topo L, const StepCtx& s) {
   const V g0(s.ag0), g1(s.ag1), hh(s.hh);
   V ein(0.0), evis(0.0);
   for (int j = 0; j < L.ndof; ++j) {
@@ -328,10 +369,10 @@ POUNDING_INLINE void energy(const Chunk& c, const Layout& L, const StepCtx& s) {
 
 // Step 9: the divergence guard (kernel/guard.hpp) over bodies: the sum in body order of each body's largest |u|,
 // the rate measure every |v| then every |a|; a bad lane is frozen at rest.
-POUNDING_INLINE void guard(const Chunk& c, const Layout& L, StepCtx& s) {
+POUNDING_INLINE void guard(Chunk c, Topo L, StepCtx& s) {
   const V lim(s.lim), zero(0.0);
   V dsum(0.0);
-  const int nb = static_cast<int>(L.body_start.size()) - 1;
+  const int nb = L.nbody;
   for (int b = 0; b < nb; ++b) {
     V mx(0.0);
     for (int k = L.body_start[static_cast<std::size_t>(b)]; k < L.body_start[static_cast<std::size_t>(b) + 1]; ++k) {
@@ -355,7 +396,7 @@ POUNDING_INLINE void guard(const Chunk& c, const Layout& L, StepCtx& s) {
 }
 
 // Step 10: the observers on the committed state.
-POUNDING_INLINE void observe(const Chunk& c, const Layout& L, const StepCtx& s) {
+POUNDING_INLINE void observe(Chunk c, Topo L, const StepCtx& s) {
   const V g1(s.ag1);
   for (int j = 0; j < L.ndof; ++j) {
     c.dof(PU, j, lane::max(c.dof(PU, j), lane::abs(c.dof(U, j))));
@@ -376,9 +417,9 @@ struct Group {
   double v0_min = 1e-3;
   double n = 1.5;
   bool impulsive = false;
-  void (*run)(const Chunk&, const Layout&, const Group&, StepCtx&) = nullptr;
+  void (*run)(Chunk, Topo, const Group&, StepCtx&) = nullptr;
 };
-template <class Law, class Exp> void group_elements(const Chunk& c, const Layout& L, const Group& g, StepCtx& s) {
+template <class Law, class Exp> void group_elements(Chunk c, Topo L, const Group& g, StepCtx& s) {
   Exp n{};
   if constexpr (!std::is_same_v<Exp, contact::Exp15>) n = Exp{g.n};
   for (int e : g.elems) element<Law, Exp>(c, L, e, s, g.v0_min, n);
@@ -386,14 +427,15 @@ template <class Law, class Exp> void group_elements(const Chunk& c, const Layout
 
 struct Run {
   const Layout* layout;
+  Topo topo;
   const std::vector<Group>* groups;
   const double* ag;  // ground acceleration at every step (nsteps + 1)
   long nsteps;
   double h, lim;
 };
 
-template <bool WithEnergy> void step(const Chunk& c, const Run& R, long stepi, StepCtx& s) {
-  const Layout& L = *R.layout;
+template <bool WithEnergy> void step(Chunk c, const Run& R, long stepi, StepCtx& s) {
+  const Topo L = R.topo;
   s.ag0 = R.ag[stepi], s.ag1 = R.ag[stepi + 1];
   s.t = V(static_cast<double>(stepi + 1) * R.h);
   predict(c, L, s);
@@ -410,12 +452,14 @@ template <bool WithEnergy> void step(const Chunk& c, const Run& R, long stepi, S
 
 // Every chunk of the tile through the whole record (lanes [0, np) of the pool, np a multiple of W).
 template <bool WithEnergy> void run_tile(const Pool& pool, int np, const Run& R) {
-  std::vector<char> force_prev(static_cast<std::size_t>(R.layout->nelem));
+  const auto force_prev = std::make_unique<bool[]>(static_cast<std::size_t>(R.layout->nelem) + 1);
   for (int base = 0; base < np; base += simd::W) {
-    const Chunk c{&pool, base};
-    StepCtx s{R.h, 0.5 * R.h, 0.0, 0.0, V(0.0), V(R.h), R.lim, lane::any(c.lan(BAD) > V(0.0)), force_prev.data()};
+    pool.gather(base);
+    const Chunk c{pool.chunk(), pool.rows()};
+    StepCtx s{R.h, 0.5 * R.h, 0.0, 0.0, V(0.0), V(R.h), R.lim, lane::any(c.lan(BAD) > V(0.0)), force_prev.get()};
     for (int e = 0; e < R.layout->nelem; ++e) force_prev[static_cast<std::size_t>(e)] = lane::any(c.elm(F, e) > V(0.0));
     for (long k = 0; k < R.nsteps; ++k) step<WithEnergy>(c, R, k, s);
+    pool.scatter(base);
   }
 }
 
@@ -424,7 +468,7 @@ extern template void run_tile<false>(const Pool&, int, const Run&);
 
 // The element function of a group with contact law `law` (Exp15 when n == 1.5 for a law that reads n, else
 // RuntimeExponent, as run_batch does): src/physics/instantiate_system_central_difference.cpp.
-using GroupFn = void (*)(const Chunk&, const Layout&, const Group&, StepCtx&);
+using GroupFn = void (*)(Chunk, Topo, const Group&, StepCtx&);
 GroupFn group_runner(ContactLaw law, double n);
 
 }  // namespace pounding::kernel::sys
