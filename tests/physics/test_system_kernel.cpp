@@ -324,6 +324,6 @@ TEST(SystemKernel, RefusesWhatTheSystemStepperDoesNotRun) {
   sm.law = ContactLaw::stereomechanical;
   const std::string b = message(KernelSettings{}, sm);
   EXPECT_NE(b.find("stereomechanical"), std::string::npos) << b;
-  EXPECT_NE(b.find("3 contact elements"), std::string::npos) << b;
+  EXPECT_NE(b.find("has 3"), std::string::npos) << b;
   EXPECT_EQ(message(KernelSettings{}, hertzdamp()), "");
 }

@@ -11,9 +11,9 @@
 
 namespace pounding::physics {
 
-// What the dynamic layout cannot run: a stepper other than central difference, a hysteresis law other than 0
-// (bilinear), the stereomechanical law with more than one element or a side that is not a point, a series
-// recorder, a group count other than the system's.
+// What the dynamic layout cannot run beyond physics::validate's refusals: a stepper other than central difference,
+// a hysteresis law other than 0 (bilinear), the stereomechanical law at a side that is not a point, a series
+// recorder.
 std::vector<Problem> system_stepper_problems(const SystemBatch& batch, std::span<const ContactModel> groups,
                                              const KernelSettings& settings);
 
