@@ -6,6 +6,7 @@
 
 #include <vector>
 
+#include "pounding/contact/registry.hpp"
 #include "pounding/physics/batch.hpp"
 #include "pounding/testing/workloads.hpp"
 
@@ -38,8 +39,7 @@ void register_all() {
   using pounding::ContactLaw;
   using pounding::Stepper;
   for (Stepper s : {Stepper::central_difference, Stepper::newmark, Stepper::rk4, Stepper::nigam_jennings}) {
-    for (ContactLaw law : {ContactLaw::none, ContactLaw::linear, ContactLaw::kelvin, ContactLaw::hertz,
-                           ContactLaw::hertzdamp, ContactLaw::jankowski, ContactLaw::stereomechanical}) {
+    for (ContactLaw law : pounding::contact::law_ids) {
       std::string name = std::string("kernel/") + std::string(pounding::to_string(s)) + "/" +
                          std::string(pounding::to_string(law));
       auto* b = benchmark::RegisterBenchmark(name.c_str(), BM_kernel, s, law);

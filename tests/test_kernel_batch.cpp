@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "kernel_test_support.hpp"
+#include "pounding/contact/registry.hpp"
 #include "pounding/core/error.hpp"
 
 namespace pounding {
@@ -21,9 +22,7 @@ namespace {
 using test::all_steppers;
 using test::run_one;
 
-constexpr ContactLaw all_laws[] = {ContactLaw::none,      ContactLaw::linear,    ContactLaw::kelvin,
-                                   ContactLaw::hertz,     ContactLaw::hertzdamp, ContactLaw::jankowski,
-                                   ContactLaw::stereomechanical};
+constexpr auto all_laws = contact::law_ids;
 
 // Every double observer of lane i, in a fixed order.
 std::vector<const std::vector<double>*> double_observers(const BatchResult& r) {

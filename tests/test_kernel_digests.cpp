@@ -15,7 +15,7 @@
 
 #include <gtest/gtest.h>
 
-#include "pounding/contact/model.hpp"
+#include "pounding/contact/registry.hpp"
 #include "pounding/physics/batch.hpp"
 #include "pounding/testing/workloads.hpp"
 
@@ -115,8 +115,7 @@ std::map<std::string, std::string> compute_all() {
   GroundMotion gm{0.005, ag, 0.0};
   std::map<std::string, std::string> out;
   for (Stepper st : {Stepper::central_difference, Stepper::newmark, Stepper::rk4, Stepper::nigam_jennings})
-    for (ContactLaw law : {ContactLaw::none, ContactLaw::linear, ContactLaw::kelvin, ContactLaw::hertz,
-                           ContactLaw::hertzdamp, ContactLaw::jankowski, ContactLaw::stereomechanical})
+    for (ContactLaw law : contact::law_ids)
       for (double n : {1.5, 1.3})
         for (bool energy : {false, true})
           for (DampingLaw dl : {DampingLaw::lankarani_nikravesh, DampingLaw::calibrated}) {

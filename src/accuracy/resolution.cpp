@@ -1,4 +1,4 @@
-// The accuracy limit of every stepper x force law (the resolution guard's table, physics/resolution.hpp), measured
+// The accuracy limit of every stepper x force law (the laws' declared resolution limits, physics/resolution.hpp), measured
 // on one free impact. See include/pounding/accuracy/accuracy.hpp, "Resolution".
 #include <algorithm>
 #include <cmath>
@@ -114,7 +114,8 @@ std::vector<ResolutionPoint> resolution_sweep(const std::vector<std::string>& sc
     const Impact im = impact_of(law);
     if (!contact::traits(im.cm.law).has_force)
       throw InputError("contact law '" + law + "' has no force element, so no contact frequency", "--laws",
-                       "give laws with a force element (linear, kelvin, hertz, hertzdamp, jankowski)");
+                       "give laws with a force element (" +
+                           contact::law_names_where([](const contact::LawTraits& t) { return t.has_force; }) + ")");
     // the converged impact: rk4 with located onset at h omega_c = 0.002, one phase
     const auto steps_of = [&](double x) { return std::lround(3.0 * im.tc * im.omega_nominal / x); };
     const BatchResult ref = run_impact(im, {Stepper::rk4, true}, steps_of(h_omega_converged), 1);

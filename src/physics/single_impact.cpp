@@ -64,12 +64,16 @@ void check_impact_inputs(const ContactModel& cm, double e, bool e_given, double 
   const contact::LawTraits& law = contact::traits(cm.law);
   if (!law.has_force && !law.impulsive)
     throw InputError("contact law 'none' has no contact element: nothing collides", "--law",
-                     fmt::format("choose a contact law: {}", contact_law_names.substr(6)));
+                     fmt::format("choose a contact law: {}", contact::law_names_where([](const contact::LawTraits& t) {
+                                   return t.has_force || t.impulsive;
+                                 })));
   const RestitutionPromise p = restitution_promise(cm);
   if (p.kind == RestitutionKind::elastic && e_given && e != 1.0)
     throw InputError(fmt::format("--e = {} with the elastic {} law: {}", e, to_string(cm.law), p.note), "--e",
-                     "drop --e (or give --e 1), or choose a damped law for e < 1 (kelvin, hertzdamp, jankowski, "
-                     "stereomechanical)");
+                     fmt::format("drop --e (or give --e 1), or choose a damped law for e < 1 ({})",
+                                 contact::law_names_where([](const contact::LawTraits& t) {
+                                   return t.restitution != RestitutionKind::elastic;
+                                 })));
   if (p.kind != RestitutionKind::elastic && !law.impulsive && e < collide_e_min) {
     std::string why = fmt::format(
         "below e = {} an impact is plastic for any structural purpose (it keeps less than {} of its energy) and the "

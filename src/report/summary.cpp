@@ -53,7 +53,7 @@ std::string format_summary(const BatchResult& r, std::size_t i, const ContactMod
   line("stepper", to_string(ks.stepper));
   num("integration_dt_s", rec.dt / ks.substeps);
   line("contact_law", to_string(cm.law));
-  if (cm.law == ContactLaw::hertzdamp) {
+  if (contact::traits(cm.law).restitution_from_damping) {
     line("damping_law", to_string(cm.damping));
     num("xibar", hertzdamp_xibar(cm.damping, p.e, cm.n));
   }

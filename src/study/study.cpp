@@ -10,6 +10,7 @@
 #include <toml++/toml.h>
 
 #include "pounding/config/config.hpp"
+#include "pounding/contact/registry.hpp"
 #include "pounding/core/error.hpp"
 #include "pounding/core/files.hpp"
 
@@ -107,13 +108,13 @@ void parse_contact(Study& s, const toml::table* t, const std::string& path) {
   TableReader c(t, path, "contact");
   s.contact.law = c.choice("law", "hertzdamp", parse_contact_law);
   s.contact.damping = c.choice("damping_law", "lankarani-nikravesh", parse_damping_law);
-  if (s.contact.law == ContactLaw::none)
+  if (!contact::traits(s.contact.law).has_force && !contact::traits(s.contact.law).impulsive)
     throw InputError("contact law 'none' cannot count impacts", c.where("law"), "choose a contact law (hertzdamp, kelvin, ...)");
   s.e = c.number("e", 0.65);
   s.contact.n = c.number("n", 1.5);
   s.contact.v0_min = c.number("v0_min", 1e-3);
   s.contact_stiffness = c.number("stiffness", 0.0);
-  if ((s.contact.law == ContactLaw::linear || s.contact.law == ContactLaw::kelvin) && !(s.contact_stiffness > 0))
+  if (contact::traits(s.contact.law).explicit_stiffness && !(s.contact_stiffness > 0))
     throw InputError(fmt::format("contact law '{}' needs a linear stiffness", to_string(s.contact.law)), c.where("stiffness"),
                      "add stiffness = <N/m> to [contact] (the sampled Hertz kh is in N/m^1.5)");
   c.finish("law, damping_law, e, n, v0_min, stiffness");

@@ -1,4 +1,4 @@
-// C10 (architecture.md 4): a contact law that is not in the registry, defined here in 27 lines (the struct
+// C10 (architecture.md 4): a contact law that is not in the registry, defined here in 28 lines (the struct
 // below, from its comment to its closing brace), runs on all 4 steppers through physics::run_batch_t<Law>
 // (instantiated in this TU from physics/tile_runner_impl.hpp), closes the energy balance
 //   e_input = e_kinetic + e_strain + e_viscous + e_hysteretic + e_contact_stored + contact_energy
@@ -22,13 +22,14 @@ namespace {
 
 namespace pc = contact;
 
-// ---- the extension law: 27 lines (comment to closing brace; <= 60) ----
+// ---- the extension law: 28 lines (comment to closing brace; <= 60) ----
 // A linear spring with a viscous dashpot that acts only while the bodies approach:
 // F = kc delta + c max(ddelta, 0) for delta > 0, else 0; c = 2 xi sqrt(kc meff) with Kelvin's xi(e).
 // Elastic restitution stroke, so F >= 0 everywhere (no tensile clamp is ever needed).
 struct ApproachDashpot {
   static constexpr std::string_view name = "approach-dashpot";
   static constexpr pc::LawTraits traits{.needs_restitution = true};
+  static constexpr auto resolution = pc::ResolutionLimits::unmeasured();  // not measured: no coarse status
   template <class T, class Exp>
   POUNDING_INLINE static T force(pc::Kin<T> k, pc::Params<T> p, pc::State<T>, Exp, pc::Shared<T>&, T& clamp) {
     const T zero(0.0);

@@ -5,6 +5,9 @@
 // type T (double or simd::V), written once; its expression order is the kernel's (FMA contraction under
 // -march follows the expression shape, architecture.md 2.12 risk 1).
 #include <concepts>
+#include <cstddef>
+#include <cstdint>
+#include <limits>
 #include <string_view>
 
 #include "pounding/contact/model.hpp"
@@ -34,6 +37,8 @@ struct LawTraits {
   bool has_force = true;          // a force element (false: none, the impulsive stereomechanical)
   bool impulsive = false;         // momentum exchange at the located closing instant (stereomechanical)
   bool needs_stiffness = true;    // kc > 0 required
+  bool explicit_stiffness = false; // kc must be given: the Hertz kh of equivalent spheres (N/m^1.5) is not this
+                                   // law's stiffness (linear, kelvin: N/m)
   bool needs_restitution = false; // 0 < e <= 1 required
   bool latches_v0 = false;        // the force depends on the approach velocity latched at onset
   bool uses_exponent = false;     // the Hertz exponent n of ContactModel applies
@@ -43,6 +48,38 @@ struct LawTraits {
   bool restitution_from_damping = false;   // the damping law (ContactModel::damping) decides (Hertzdamp)
   DurationForm duration = DurationForm::hertz;
 };
+
+// The integration schemes a law's resolution limits distinguish (physics::scheme_of maps a stepper onto one):
+// rk4 with located contact onset differs from rk4.
+enum class Scheme : std::uint8_t { central_difference, newmark, rk4, rk4_located, nigam_jennings };
+inline constexpr std::size_t scheme_count = 5;
+
+// A law's accuracy limits on h omega_c, one per scheme (the resolution guard, physics/resolution.hpp): the
+// largest h omega_c up to which one free impact's peak force stays within 1 % of the converged impact, measured
+// by `pounding accuracy resolution` and checked by ctest AccuracyStability.ResolutionLimitsEqualTheMeasurement.
+// Every law declares `static constexpr ResolutionLimits resolution{...}` (the contact::Law concept requires it),
+// so a new law cannot run with no limit or another law's: measure it, or declare unmeasured() (no coarse status).
+struct ResolutionLimits {
+  double central_difference, newmark, rk4, rk4_located, nigam_jennings;
+  constexpr double operator[](Scheme s) const {
+    switch (s) {
+      case Scheme::central_difference: return central_difference;
+      case Scheme::newmark: return newmark;
+      case Scheme::rk4: return rk4;
+      case Scheme::rk4_located: return rk4_located;
+      case Scheme::nigam_jennings: return nigam_jennings;
+    }
+    return std::numeric_limits<double>::quiet_NaN();
+  }
+  // no force element (none, stereomechanical): no contact frequency, no limit
+  static constexpr ResolutionLimits no_force_element() {
+    constexpr double inf = std::numeric_limits<double>::infinity();
+    return {inf, inf, inf, inf, inf};
+  }
+  // a law not (yet) measured, e.g. a test law outside the registry: no limit, so never marked coarse
+  static constexpr ResolutionLimits unmeasured() { return no_force_element(); }
+};
+static_assert(sizeof(ResolutionLimits) == scheme_count * sizeof(double), "one limit per Scheme");
 
 // The Hertz exponent: FixedExponent<3, 2> takes d^1.5 as d sqrt(d) and shares sqrt(d) with the guard;
 // RuntimeExponent takes std::pow (replaces the kernel's former N15 flag).
@@ -87,9 +124,15 @@ struct NoForceElement {
   static double damping_constant(const ContactModel&, double, double, double) { return 0.0; }
 };
 
-// Every law: a name, traits, and the five functions the kernel calls.
+// A law declares its resolution limits (a required trait, architecture.md 2.4.5).
 template <class L>
-concept Law = requires(Kin<double> k, Params<double> p, State<double> s, Shared<double> sh, double x,
+concept DeclaresResolutionLimits = requires {
+  { L::resolution } -> std::convertible_to<ResolutionLimits>;
+};
+
+// Every law: a name, traits, its resolution limits, and the five functions the kernel calls.
+template <class L>
+concept Law = DeclaresResolutionLimits<L> && requires(Kin<double> k, Params<double> p, State<double> s, Shared<double> sh, double x,
                        const ContactModel& cm) {
   { L::name } -> std::convertible_to<std::string_view>;
   { L::traits } -> std::convertible_to<LawTraits>;

@@ -18,16 +18,9 @@ enum class ContactLaw : std::uint8_t {
   jankowski,         // F = kc delta^1.5 + c(delta) ddelta, damper only while approaching (rc-buildings eqs 4-5)
   stereomechanical,  // instantaneous momentum exchange with restitution e (muthukumar eq. 2)
 };
-inline constexpr EnumName<ContactLaw> contact_law_table[] = {
-    {ContactLaw::none, "none"},           {ContactLaw::linear, "linear"},
-    {ContactLaw::kelvin, "kelvin"},       {ContactLaw::hertz, "hertz"},
-    {ContactLaw::hertzdamp, "hertzdamp"}, {ContactLaw::jankowski, "jankowski"},
-    {ContactLaw::stereomechanical, "stereomechanical"},
-};
-constexpr const auto& enum_names(ContactLaw) { return contact_law_table; }  // to_string(ContactLaw) (core)
+// The names, to_string(ContactLaw) and contact_law_names come from contact::Laws (contact/registry.hpp), which
+// checks that enumerator i names the list's i-th law: a new law adds its enumerator here, in the list's order.
 ContactLaw parse_contact_law(std::string_view name);  // InputError listing the names (src/physics/names.cpp)
-inline constexpr std::string_view contact_law_names =
-    "none, linear, kelvin, hertz, hertzdamp, jankowski, stereomechanical";
 
 // How Hertzdamp's xibar follows from e.
 enum class DampingLaw : std::uint8_t {

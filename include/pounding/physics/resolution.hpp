@@ -2,31 +2,30 @@
 // The resolution guard (issue 12, "stable but wrong, reported ok"): a lane that ran to the end but whose contact
 // was integrated with too large a step is marked LaneStatus::coarse. Per lane, h omega_c with omega_c =
 // sqrt(k_t / meff), k_t the law's tangent at the lane's peak penetration (contact/resolution.hpp), is compared
-// with the accuracy limit of the stepper x law below.
+// with the accuracy limit of the stepper x law: a required trait of each law (`resolution`, contact/law.hpp),
+// read here through contact::Laws (contact/registry.hpp).
 //
 // The limits are measured, not assumed: `pounding accuracy resolution --out docs/resolution.csv` drives one free
 // impact per stepper x law through the kernel at h omega_c from 0.01 to 2 and takes the largest h omega_c up to
 // which the peak contact force stays within resolution_tolerance of the converged impact (docs/accuracy.md,
 // "Resolution guard"). The ctest AccuracyStability.ResolutionLimitsEqualTheMeasurement re-measures them and
-// compares with this table. Laws without a force element (none, stereomechanical) have no limit (inf).
-#include <array>
+// compares with the laws' declarations. Laws without a force element (none, stereomechanical) have no limit (inf).
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <limits>
 #include <string>
 
-#include "pounding/contact/model.hpp"
+#include "pounding/contact/registry.hpp"
 #include "pounding/kernel/batch.hpp"
 
 namespace pounding::physics {
 
 inline constexpr double resolution_tolerance = 0.01;  // relative peak-force error of one impact
 
-// The integration schemes the limits distinguish: rk4 with located contact onset differs from rk4.
-enum class Scheme : std::uint8_t { central_difference, newmark, rk4, rk4_located, nigam_jennings };
-inline constexpr std::size_t scheme_count = 5;
-inline constexpr std::size_t law_count = 7;  // ContactLaw's values (contact/model.hpp)
+// The integration schemes the limits distinguish (contact/law.hpp): rk4 with located contact onset differs from rk4.
+using contact::Scheme;
+using contact::scheme_count;
 constexpr Scheme scheme_of(Stepper s, bool locate_contact) {
   switch (s) {
     case Stepper::central_difference: return Scheme::central_difference;
@@ -38,16 +37,9 @@ constexpr Scheme scheme_of(Stepper s, bool locate_contact) {
 }
 
 inline constexpr double no_limit = std::numeric_limits<double>::infinity();
-// [scheme][law]: none, linear, kelvin, hertz, hertzdamp, jankowski, stereomechanical (measured, see above)
-inline constexpr std::array<std::array<double, law_count>, scheme_count> resolution_limits{{
-    {no_limit, 0.304, 0.079, 0.366, 0.274, 0.099, no_limit},  // central-difference
-    {no_limit, 0.214, 0.079, 0.215, 0.214, 0.092, no_limit},  // newmark
-    {no_limit, 0.261, 0.114, 0.274, 0.268, 0.124, no_limit},  // rk4
-    {no_limit, 0.285, 0.174, 0.281, 0.268, 0.181, no_limit},  // rk4 + locate_contact
-    {no_limit, 0.248, 0.079, 0.241, 0.235, 0.099, no_limit},  // nigam-jennings
-}};
+// The limit of the stepper x law: the registered law's declared ResolutionLimits.
 constexpr double resolution_limit(Stepper s, bool locate_contact, ContactLaw law) {
-  return resolution_limits[static_cast<std::size_t>(scheme_of(s, locate_contact))][static_cast<std::size_t>(law)];
+  return contact::resolution(law)[scheme_of(s, locate_contact)];
 }
 constexpr double resolution_limit(const KernelSettings& ks, ContactLaw law) {
   return resolution_limit(ks.stepper, ks.locate_contact, law);

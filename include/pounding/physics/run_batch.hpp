@@ -125,9 +125,8 @@ void run_batch_t(const PairBatch& batch, const ContactModel& cm, const GroundMot
   }
   const kernel::Context C{&ks, s.ag.data(), s.nsteps, s.h, cm.v0_min, ks.displacement_limit, nullptr, 0};
   DampingTable<Law> damping(cm);
-  // a law outside the registry has no measured limit (no coarse status)
-  const bool registered = contact::law_names[static_cast<std::size_t>(cm.law)] == Law::name;
-  const double limit = registered ? resolution_limit(ks, cm.law) : no_limit;
+  // the law's declared limit (a test law outside the registry declares unmeasured(): no coarse status)
+  const double limit = Law::resolution[scheme_of(ks.stepper, ks.locate_contact)];
   auto tile = std::make_unique<kernel::Tile>();
   kernel::Tile& T = *tile;
   for (std::size_t base = 0; base < width; base += kernel::tile_width) {

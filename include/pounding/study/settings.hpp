@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "pounding/contact/registry.hpp"
 #include "pounding/study/study.hpp"
 
 namespace pounding {

@@ -9,6 +9,7 @@
 
 #include "cli/commands.hpp"
 #include "pounding/core/error.hpp"
+#include "pounding/contact/registry.hpp"
 #include "pounding/physics/batch.hpp"
 #include "pounding/testing/workloads.hpp"
 

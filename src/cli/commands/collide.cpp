@@ -60,7 +60,7 @@ void add_collide(CLI::App& app) {
     const double e_target = promise.kind == RestitutionKind::elastic ? 1.0 : o->e;
     ImpactResult r = single_impact(cm, stepper, o->e, o->v0, o->m1, o->m2, o->kh, o->steps);
     fmt::print("law: {}\n", to_string(cm.law));
-    if (cm.law == ContactLaw::hertzdamp) {
+    if (contact::traits(cm.law).restitution_from_damping) {
       fmt::print("damping_law: {}\n", to_string(cm.damping));
       fmt::print("xibar: {:.9g}\n", hertzdamp_xibar(cm.damping, o->e, cm.n));
     }

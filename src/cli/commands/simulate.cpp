@@ -10,7 +10,7 @@
 #include <fmt/format.h>
 
 #include "cli/commands.hpp"
-#include "pounding/contact/model.hpp"
+#include "pounding/contact/registry.hpp"
 #include "pounding/core/error.hpp"
 #include "pounding/core/files.hpp"
 #include "pounding/io/hdf5.hpp"
@@ -200,8 +200,8 @@ int substeps_for(const SimulateOptions& o, double record_dt) {
 PairParams pair_params(const SimulateOptions& o, const ContactModel& cm, const Structure& s1, const Structure& s2) {
   PairParams p;
   p.s1 = s1, p.s2 = s2, p.gap = o.gap, p.e = o.e;
-  if (cm.law == ContactLaw::linear || cm.law == ContactLaw::kelvin) {
-    if (!o.kh_given) require_positive(0.0, "--kh (linear/Kelvin stiffness, N/m)");
+  if (contact::traits(cm.law).explicit_stiffness) {
+    if (!o.kh_given) require_positive(0.0, fmt::format("--kh ({} stiffness, N/m)", to_string(cm.law)));
     p.kc = o.kh;
   } else {
     p.kc = o.kh_given ? o.kh : hertz_stiffness_spheres(s1.m, s2.m, o.density, o.youngs, o.poisson);

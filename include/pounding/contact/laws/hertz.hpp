@@ -9,6 +9,9 @@ struct Hertz {
   static constexpr LawTraits traits{
       .uses_exponent = true, .stiffness_unit = "N/m^n", .restitution = RestitutionKind::elastic,
       .restitution_note = "the hertz law has no damping: it delivers e = 1 whatever e is asked"};
+  // measured h omega_c limits (physics/resolution.hpp; docs/resolution_limits.csv)
+  static constexpr ResolutionLimits resolution{.central_difference = 0.366, .newmark = 0.215, .rk4 = 0.274,
+                                               .rk4_located = 0.281, .nigam_jennings = 0.241};
   template <class T, class Exp>
   POUNDING_INLINE static T force(Kin<T> k, Params<T> p, State<T>, Exp n, Shared<T>& sh, T& clamp) {
     clamp = T(0.0);

@@ -9,6 +9,9 @@ struct Hertzdamp {
   static constexpr std::string_view name = "hertzdamp";
   static constexpr LawTraits traits{.needs_restitution = true, .latches_v0 = true, .uses_exponent = true,
                                     .stiffness_unit = "N/m^n", .restitution_from_damping = true};
+  // measured h omega_c limits (physics/resolution.hpp; docs/resolution_limits.csv)
+  static constexpr ResolutionLimits resolution{.central_difference = 0.274, .newmark = 0.214, .rk4 = 0.268,
+                                               .rk4_located = 0.268, .nigam_jennings = 0.235};
   template <class T, class Exp>
   POUNDING_INLINE static T force(Kin<T> k, Params<T> p, State<T> s, Exp n, Shared<T>& sh, T& clamp) {
     const T zero(0.0);

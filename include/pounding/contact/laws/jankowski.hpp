@@ -12,6 +12,9 @@ struct Jankowski {
   static constexpr LawTraits traits{
       .needs_restitution = true, .stiffness_unit = "N/m^1.5", .restitution = RestitutionKind::approximate,
       .restitution_note = "Jankowski's damping ratio (rc-buildings eq. 5) delivers e within 0.01 (docs/accuracy.md)"};
+  // measured h omega_c limits (physics/resolution.hpp; docs/resolution_limits.csv)
+  static constexpr ResolutionLimits resolution{.central_difference = 0.099, .newmark = 0.092, .rk4 = 0.124,
+                                               .rk4_located = 0.181, .nigam_jennings = 0.099};
   template <class T, class Exp>
   POUNDING_INLINE static T force(Kin<T> k, Params<T> p, State<T>, Exp, Shared<T>& sh, T& clamp) {
     const T zero(0.0);

@@ -10,11 +10,14 @@ namespace pounding::contact {
 struct Kelvin {
   static constexpr std::string_view name = "kelvin";
   static constexpr LawTraits traits{
-      .needs_restitution = true, .restitution = RestitutionKind::approximate,
+      .explicit_stiffness = true, .needs_restitution = true, .restitution = RestitutionKind::approximate,
       .restitution_note = "the damping ratio xi = -ln e / sqrt(pi^2 + ln^2 e) is exact for the tension-carrying "
                           "oscillator; the non-tensile contact ends early and delivers more than e at low e (0.675 "
                           "at 0.65, 0.397 at 0.3; docs/accuracy.md)",
       .duration = DurationForm::linear};
+  // measured h omega_c limits (physics/resolution.hpp; docs/resolution_limits.csv)
+  static constexpr ResolutionLimits resolution{.central_difference = 0.079, .newmark = 0.079, .rk4 = 0.114,
+                                               .rk4_located = 0.174, .nigam_jennings = 0.079};
   template <class T, class Exp> POUNDING_INLINE static T force(Kin<T> k, Params<T> p, State<T>, Exp, Shared<T>&, T& clamp) {
     const T zero(0.0);
     T raw = lane::select(k.d > zero, lane::fma(p.cd, k.dd, p.kc * lane::max(k.d, zero)), zero);

@@ -7,9 +7,12 @@ namespace pounding::contact {
 struct Linear {
   static constexpr std::string_view name = "linear";
   static constexpr LawTraits traits{
-      .restitution = RestitutionKind::elastic,
+      .explicit_stiffness = true, .restitution = RestitutionKind::elastic,
       .restitution_note = "the linear law has no damping: it delivers e = 1 whatever e is asked",
       .duration = DurationForm::linear};
+  // measured h omega_c limits (physics/resolution.hpp; docs/resolution_limits.csv)
+  static constexpr ResolutionLimits resolution{.central_difference = 0.304, .newmark = 0.214, .rk4 = 0.261,
+                                               .rk4_located = 0.285, .nigam_jennings = 0.248};
   template <class T, class Exp> POUNDING_INLINE static T force(Kin<T> k, Params<T> p, State<T>, Exp, Shared<T>&, T& clamp) {
     clamp = T(0.0);
     return p.kc * lane::max(k.d, T(0.0));

@@ -26,6 +26,7 @@ struct Stereomechanical : NoForceElement {
       .has_force = false, .impulsive = true, .needs_stiffness = false, .needs_restitution = true,
       .restitution_note = "instantaneous momentum exchange with e: delivers e by construction",
       .duration = DurationForm::impulsive};
+  static constexpr ResolutionLimits resolution = ResolutionLimits::no_force_element();
 
   // An impact: the gap closed in this step, or the bodies still overlap and approach.
   template <class T> POUNDING_INLINE static ImpactOut<T> exchange(const ImpactIn<T>& in) {
