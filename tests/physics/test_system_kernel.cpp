@@ -13,7 +13,7 @@
 #include <string>
 #include <vector>
 
-#include "pounding/contact/model.hpp"
+#include "pounding/contact/registry.hpp"
 #include "pounding/core/enum_names.hpp"
 #include "pounding/core/error.hpp"
 #include "pounding/physics/batch.hpp"
