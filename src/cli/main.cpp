@@ -57,6 +57,7 @@ int main(int argc, char** argv) {
   pounding::cli::add_records(app);
   pounding::cli::add_sample(app);
   pounding::cli::add_spectrum(app);
+  pounding::cli::add_modes(app);
   pounding::cli::add_accuracy(app);
   pounding::cli::add_study_reference(app);
   try {

@@ -89,12 +89,16 @@ void participation(std::span<const double> m, Modes& out) {
       L += m[i] * phi[i];
       Mj += m[i] * phi[i] * phi[i];
     }
-    const double roof = phi[n - 1];
+    double peak = 0.0;
+    for (double v : phi) peak = std::max(peak, std::abs(v));
+    const bool roof_moves = phi[n - 1] >= 1e-6 * peak;  // phi[n - 1] >= 0 by the sign convention
+    const double scale = roof_moves ? phi[n - 1] : peak;
     std::vector<double> shape(n);
-    for (std::size_t i = 0; i < n; ++i) shape[i] = phi[i] / roof;
+    for (std::size_t i = 0; i < n; ++i) shape[i] = phi[i] / scale;
     out.phi_roof.push_back(std::move(shape));
+    out.roof_normalised.push_back(roof_moves);
     out.gamma.push_back(L / Mj);
-    out.gamma_roof.push_back(L / Mj * roof);  // φ_roof = φ/roof: Γ scales by roof
+    out.gamma_roof.push_back(L / Mj * scale);  // the shape φ/scale: Γ scales by `scale`
     out.meff.push_back(L * L / Mj);
     out.meff_ratio.push_back(L * L / Mj / total);
   }
@@ -138,7 +142,11 @@ Modes shear_stick_modes(std::span<const double> m, std::span<const double> k) {
   for (std::size_t col : order) {
     std::vector<double> phi(n);
     for (std::size_t i = 0; i < n; ++i) phi[i] = z[i][col] * rs[i];
-    if (phi[n - 1] < 0.0)
+    // sign: roof positive; for a mode confined below the roof (roof < 1e-6 of its largest, where the roof's
+    // sign is rounding noise) its largest value positive, as participation() scales it
+    const auto big = std::max_element(phi.begin(), phi.end(), [](double a, double b) { return std::abs(a) < std::abs(b); });
+    const double ref = std::abs(phi[n - 1]) >= 1e-6 * std::abs(*big) ? phi[n - 1] : *big;
+    if (ref < 0.0)
       for (double& v : phi) v = -v;
     // ω² as the Rayleigh quotient Σ k_i d_i² / Σ m_i φ_i² (d_i the storey drift): sums of positive terms, and
     // its error is quadratic in the eigenvector's. QL's own eigenvalue carries an absolute error ε ω_n², which

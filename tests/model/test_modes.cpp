@@ -116,6 +116,7 @@ TEST(Modes, NonUniformSticks) {
 
   std::mt19937_64 rng(25);
   std::uniform_real_distribution<double> u(0.0, 1.0);
+  int confined = 0;
   for (int trial = 0; trial < 50; ++trial) {
     const std::size_t n = 1 + trial % 30;
     std::vector<double> ms(n), ks(n);
@@ -129,8 +130,26 @@ TEST(Modes, NonUniformSticks) {
     for (std::size_t i = 0; i < n; ++i) total += ms[i], meff += r.meff[i], share += r.meff_ratio[i];
     EXPECT_LT(rel(meff, total), 1e-12) << "trial " << trial;
     EXPECT_NEAR(share, 1.0, 1e-12) << "trial " << trial;
-    for (std::size_t j = 0; j < n; ++j) EXPECT_GT(r.phi[j][n - 1], 0.0) << "the roof value is positive";
+    for (std::size_t j = 0; j < n; ++j) {  // the printed normalisation: roof = 1, or largest = 1 when confined
+      double peak = 0.0, largest = 0.0;
+      for (std::size_t i = 0; i < n; ++i) {
+        peak = std::max(peak, std::abs(r.phi[j][i]));
+        if (std::abs(r.phi_roof[j][i]) > std::abs(largest)) largest = r.phi_roof[j][i];
+      }
+      const bool moves = std::abs(r.phi[j][n - 1]) >= 1e-6 * peak;
+      EXPECT_EQ(bool(r.roof_normalised[j]), moves) << "trial " << trial << " mode " << j + 1;
+      if (moves) {
+        EXPECT_GT(r.phi[j][n - 1], 0.0) << "the roof value is positive";
+        EXPECT_DOUBLE_EQ(r.phi_roof[j][n - 1], 1.0);
+      } else {
+        EXPECT_DOUBLE_EQ(largest, 1.0) << "trial " << trial << " mode " << j + 1;
+        ++confined;
+      }
+      EXPECT_NEAR(r.gamma_roof[j] * r.phi_roof[j][0], r.gamma[j] * r.phi[j][0], 1e-12 * std::abs(r.gamma[j]) * peak);
+    }
   }
+  // disorder confines high modes below the roof (Anderson localisation): both normalisations occur above
+  EXPECT_GT(confined, 0);
 }
 
 // T1.2: the T1.1 building, ζ = 0.05 on modes 1 and 3.

@@ -27,12 +27,17 @@ struct Modes {
   std::vector<double> omega;   // ω_j, rad/s, ascending
   std::vector<double> period;  // T_j = 2π/ω_j, s
   // phi[j][i]: mode j at floor i (bottom first), MASS-NORMALISED (φ_jᵀ M φ_j = 1, units kg^-1/2), signed so
-  // that the roof value is positive (it is never zero: the end components of an eigenvector of an unreduced
-  // tridiagonal matrix are non-zero).
+  // that the roof value is positive (it is never zero in exact arithmetic: the end components of an
+  // eigenvector of an unreduced tridiagonal matrix are non-zero); for a mode confined below the roof (see
+  // phi_roof) the largest value is positive instead.
   std::vector<std::vector<double>> phi;
-  std::vector<std::vector<double>> phi_roof;  // the same shapes scaled to a roof value of 1 (for printing)
+  // The same shapes scaled to a roof value of 1, for printing: roof_normalised[j]. A mode confined below the
+  // roof (roof value < 1e-6 of its largest, as high modes of irregular sticks are: disorder localises them)
+  // is scaled to a largest |value| of 1 instead (roof_normalised[j] false), so no printed value is huge.
+  std::vector<std::vector<double>> phi_roof;
+  std::vector<bool> roof_normalised;
   std::vector<double> gamma;       // Γ_j of the mass-normalised φ_j (= L_j, kg^1/2)
-  std::vector<double> gamma_roof;  // Γ_j of the roof-normalised shape: the roof-displacement participation
+  std::vector<double> gamma_roof;  // Γ_j of phi_roof[j]: with roof = 1, the roof-displacement participation
   std::vector<double> meff;        // M*_j = L_j²/M_j, kg (independent of the normalisation)
   std::vector<double> meff_ratio;  // M*_j / Σ m
 };
