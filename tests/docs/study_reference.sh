@@ -21,7 +21,7 @@ echo "docs/study-reference.md matches the generator ($(grep -c '^| `' "$out") ke
 # --help texts point to the reference and README, never to source files (issue 23 item 10: `records select
 # --help` said "see src/cli/commands/records_select.cpp")
 bad=0
-for cmd in "" run report simulate collide bench sample accuracy study-reference records "records select" "records im"; do
+for cmd in "" run report simulate collide bench sample accuracy study-reference records "records select" "records im" modes; do
   # shellcheck disable=SC2086
   help=$("$pounding" $cmd --help 2>&1 || true)
   if grep -nE '(src|include)/[A-Za-z0-9_/]+\.(cpp|hpp)' <<<"$help"; then
