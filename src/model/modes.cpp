@@ -177,6 +177,29 @@ Rayleigh rayleigh(double omega_i, double zeta_i, double omega_j, double zeta_j) 
 
 double rayleigh_ratio(const Rayleigh& r, double omega) { return r.a0 / (2.0 * omega) + r.a1 * omega / 2.0; }
 
+double modal_ratio(std::span<const double> zeta, std::size_t j) {
+  if (zeta.empty()) throw std::invalid_argument("modal_ratio: no ratios");
+  return zeta[std::min(j, zeta.size() - 1)];
+}
+
+std::vector<double> modal_damping_matrix(std::span<const double> m, const Modes& modes, std::span<const double> zeta) {
+  const std::size_t n = m.size();
+  if (modes.phi.size() != n || modes.omega.size() != n || zeta.empty() ||
+      !std::all_of(zeta.begin(), zeta.end(), [](double z) { return std::isfinite(z); }))
+    throw std::invalid_argument("modal_damping_matrix: modes of other masses, or no finite ratios");
+  // φ mass-normalised (M_j = 1): C_ab = m_a m_b Σ_j 2 ζ_j ω_j φ_j(a) φ_j(b)
+  std::vector<double> C(n * n, 0.0);
+  for (std::size_t j = 0; j < n; ++j) {
+    const double c = 2.0 * modal_ratio(zeta, j) * modes.omega[j];
+    const std::vector<double>& phi = modes.phi[j];
+    for (std::size_t a = 0; a < n; ++a)
+      for (std::size_t b = 0; b < n; ++b) C[a * n + b] += c * phi[a] * phi[b];
+  }
+  for (std::size_t a = 0; a < n; ++a)
+    for (std::size_t b = 0; b < n; ++b) C[a * n + b] *= m[a] * m[b];
+  return C;
+}
+
 std::vector<double> stiffness_shape(std::span<const double> m, std::span<const double> storey_heights,
                                     StiffnessProfile profile) {
   const std::size_t n = m.size();

@@ -7,6 +7,7 @@
 #    7 % of 2.0976 / 6.285 / 10.455 Hz;
 #  - T1.2 of ../shared/research/systems-and-bridges.md: n = 5, m 1e5 kg, k 1e8 N/m, zeta 0.05 on modes 1 and 3 ->
 #    each mode's ratio 0.05, 0.0401266873, 0.05, 0.0597130883, 0.0662729700 (1e-9);
+#  - --modal-zeta gives each mode its ratio (the last repeating);
 #  - --period with both profiles gives T1 (1e-10); one storey gets zeta itself; --modes K prints K rows; the
 #    table, --csv and --json agree;
 #  - bad input: one " ERROR:" line naming the option, exit 2, nothing on stdout.
@@ -43,6 +44,9 @@ check t12 zeta 0.05,0.0401266873,0.05,0.0597130883,0.0662729700 1e-9 --storeys 5
   --zeta 0.05 --rayleigh-modes 1,3
 check t11 period_s 0.698071149,0.239148513,0.151705359,0.118092678,0.103539979 1e-8 --storeys 5 --mass 1e5 --stiffness 1e8
 check t11_gamma gamma 1.25170170,-0.362148406,0.158578455,-0.0631725011,0.0150407532 1e-8 --storeys 5 --mass 1e5 --stiffness 1e8
+
+# classical modal damping: each mode its ratio, the last repeating
+check modal zeta 0.05,0.03,0.03,0.03 1e-15 --storeys 4 --mass 1e5 --stiffness 1e8 --modal-zeta 0.05,0.03
 
 # --period: T1 for both profiles, uniform and per-storey heights; one storey: zeta itself
 check period_uniform period_s 0.8 1e-10 --storeys 12 --mass 3e5 --period 0.8
@@ -126,6 +130,10 @@ refuse --rayleigh-modes --storeys 3 --mass 1e5 --stiffness 1e8 --rayleigh-modes 
 refuse --rayleigh-modes --storeys 3 --mass 1e5 --stiffness 1e8 --rayleigh-modes 1,4
 refuse --rayleigh-modes --storeys 3 --mass 1e5 --stiffness 1e8 --rayleigh-modes 1,2,3
 refuse --rayleigh-modes --storeys 1 --mass 1e5 --stiffness 1e8 --rayleigh-modes 1,2
+refuse --modal-zeta --storeys 3 --mass 1e5 --stiffness 1e8 --modal-zeta 0.05 --zeta 0.05
+refuse --modal-zeta --storeys 3 --mass 1e5 --stiffness 1e8 --modal-zeta 0.05 --rayleigh-modes 1,3
+refuse --modal-zeta --storeys 2 --mass 1e5 --stiffness 1e8 --modal-zeta 0.05,0.04,0.03
+refuse --modal-zeta --storeys 2 --mass 1e5 --stiffness 1e8 --modal-zeta 0.05,0.6
 refuse --modes --storeys 3 --mass 1e5 --stiffness 1e8 --modes 4
 refuse --masses/--stiffnesses --masses 0.001,1e10 --stiffnesses 1e8,1e8
 refuse --csv/--json --storeys 3 --mass 1e5 --stiffness 1e8 --csv --json

@@ -178,6 +178,35 @@ TEST(Modes, RayleighMatchesTableT12AndTheFormula) {
   EXPECT_THROW(rayleigh(0.0, z, wi, z), std::invalid_argument);
 }
 
+// T1.3: m = (2e5, 2e5, 1.5e5) kg, k = (3e8, 2.5e8, 2e8) N/m, ζ = (0.05, 0.03, 0.02): the note's C (scipy) to 1e-8,
+// and Φᵀ C Φ = diag(2 ζ_j ω_j) (M_j = 1) on a random stick with the last ratio repeating.
+TEST(Modes, ClassicalDampingMatrixMatchesTableT13) {
+  const std::vector<double> m{2.0e5, 2.0e5, 1.5e5}, k{3.0e8, 2.5e8, 2.0e8}, zeta{0.05, 0.03, 0.02};
+  const std::vector<double> C = modal_damping_matrix(m, shear_stick_modes(m, k), zeta);
+  const double want[] = {504892.435, -22590.5323, -43037.0829, -22590.5323, 449950.000,
+                         -66847.7865, -43037.0829, -66847.7865, 331851.912};
+  for (int i = 0; i < 9; ++i) EXPECT_LT(rel(C[i], want[i]), 1e-8) << "C[" << i / 3 << "][" << i % 3 << "]";
+
+  std::mt19937_64 rng(3);
+  std::uniform_real_distribution<double> u(0.5, 2.0);
+  const std::size_t n = 7;
+  std::vector<double> mr(n), kr(n);
+  for (std::size_t i = 0; i < n; ++i) mr[i] = 1e5 * u(rng), kr[i] = 1e8 * u(rng);
+  const std::vector<double> z{0.02, 0.04};  // modes 2..7 get 0.04
+  const Modes md = shear_stick_modes(mr, kr);
+  const std::vector<double> Cr = modal_damping_matrix(mr, md, z);
+  for (std::size_t a = 0; a < n; ++a)
+    for (std::size_t b = 0; b < n; ++b) {
+      double q = 0.0;
+      for (std::size_t i = 0; i < n; ++i)
+        for (std::size_t l = 0; l < n; ++l) q += md.phi[a][i] * Cr[i * n + l] * md.phi[b][l];
+      const double expect = a == b ? 2.0 * (a == 0 ? 0.02 : 0.04) * md.omega[a] : 0.0;
+      EXPECT_NEAR(q, expect, 1e-9 * md.omega.back()) << "modes " << a + 1 << ", " << b + 1;
+    }
+  EXPECT_EQ(modal_ratio(z, 5), 0.04);
+  EXPECT_THROW(modal_damping_matrix(mr, md, std::vector<double>{}), std::invalid_argument);
+}
+
 TEST(Modes, StiffnessForPeriodGivesT1) {
   std::mt19937_64 rng(7);
   std::uniform_real_distribution<double> u(0.5, 2.0);

@@ -60,6 +60,14 @@ Rayleigh rayleigh(double omega_i, double zeta_i, double omega_j, double zeta_j);
 // The ratio every mode gets: ζ(ω) = a0/(2ω) + a1 ω/2.
 double rayleigh_ratio(const Rayleigh& r, double omega);
 
+// Classical (modal) damping C = M Φ diag(2 ζ_j ω_j / M_j) Φᵀ M over all n modes (systems-and-bridges.md §1;
+// DampingForm::dense of model/system.hpp): row-major n x n, N s/m. zeta: per mode from mode 1, the last value
+// repeating for the higher modes (the study's `damping = {modal = {zeta = [...]}}`). Throws
+// std::invalid_argument for an empty or non-finite zeta, or modes not of these masses.
+std::vector<double> modal_damping_matrix(std::span<const double> m, const Modes& modes, std::span<const double> zeta);
+// The ratio of mode j (0-based) under that rule.
+double modal_ratio(std::span<const double> zeta, std::size_t j);
+
 // Storey-stiffness shapes (architecture.md §2.2.3): `uniform` k_i = const; `shear` k_i ∝ V_i = Σ_{j>=i} m_j z_j,
 // the storey shear of the inverted-triangle equivalent lateral forces F_j ∝ m_j z_j (EN 1998-1 §4.3.3.2.3),
 // z_j the height of floor j above the ground.

@@ -3,12 +3,12 @@
 //
 //   modes (--storeys N --mass M | --masses m1,m2,...)
 //         (--stiffness K | --stiffnesses k1,k2,... | --period T1 [--profile uniform|shear] [--storey-height h|h1,h2,...])
-//         [--zeta 0.05] [--rayleigh-modes i,j] [--modes K] [--csv | --json]
+//         [--zeta 0.05] [--rayleigh-modes i,j | --modal-zeta z1,z2,...] [--modes K] [--csv | --json]
 //
 // SI: kg per floor, N/m per storey (storey i between floor i and the one below), floors bottom first. With
 // --period the profile's storey stiffnesses are scaled so that the first period is T1 (model::stiffness_for_period).
 // Damping: Rayleigh C = a0 M + a1 K on modes i and j (default 1 and 2) with ratio --zeta; each mode's ratio is
-// printed. One storey: the floor dashpot c = 2 zeta sqrt(k m), the SDOF's (Structure::from_period).
+// printed; --modal-zeta gives classical modal damping instead (model::modal_damping_matrix). One storey: the floor dashpot c = 2 zeta sqrt(k m), the SDOF's (Structure::from_period).
 // Every option is checked before any output; a bad one is one InputError naming it (exit 2).
 #include <algorithm>
 #include <cmath>
@@ -33,7 +33,7 @@ constexpr int max_storeys = 200;  // as the study key `storeys` (sampling/code_f
 
 struct ModesOpts {
   std::string storeys, mass, masses, stiffness, stiffnesses, period, profile, storey_height, zeta, rayleigh_modes,
-      modes;
+      modal_zeta, modes;
   bool csv = false, json = false;
 };
 
@@ -43,6 +43,7 @@ struct Building {
   std::string stiffness_text;   // how k was given, for the header
   double zeta = 0.05;
   int mode_i = 1, mode_j = 2;   // Rayleigh modes (1-based); n = 1: none
+  std::vector<double> modal_zeta;  // classical modal damping instead of Rayleigh: per mode, the last repeating
   int shown = 0;                // modes printed
 };
 
@@ -156,6 +157,15 @@ void storey_stiffnesses(const ModesOpts& o, Building& b) {
 
 void damping(const ModesOpts& o, Building& b) {
   const int n = static_cast<int>(b.m.size());
+  if (given(o.modal_zeta)) {
+    if (given(o.zeta) || given(o.rayleigh_modes))
+      throw InputError(fmt::format("--modal-zeta with {}", given(o.zeta) ? "--zeta" : "--rayleigh-modes"), "--modal-zeta",
+                       "give either --modal-zeta z1,z2,... (classical damping) or --zeta [--rayleigh-modes i,j] (Rayleigh)");
+    b.modal_zeta = numbers(o.modal_zeta, "--modal-zeta", zeta_range, "damping ratio");
+    if (b.modal_zeta.size() > b.m.size())
+      throw InputError(fmt::format("--modal-zeta has {} ratios for {} modes", b.modal_zeta.size(), n), "--modal-zeta",
+                       "give at most one ratio per mode, from mode 1 (the last repeats for the higher modes)");
+  }
   if (given(o.zeta)) b.zeta = number(o.zeta, "--zeta", zeta_range, "damping ratio");
   if (given(o.rayleigh_modes)) {
     if (n == 1)
@@ -186,6 +196,11 @@ Building building(const ModesOpts& o) {
 
 // Each mode's damping ratio: Rayleigh on modes i, j; the SDOF's ζ for one storey.
 std::vector<double> mode_ratios(const Building& b, const model::Modes& md, model::Rayleigh& r) {
+  if (!b.modal_zeta.empty()) {
+    std::vector<double> z;
+    for (std::size_t j = 0; j < md.omega.size(); ++j) z.push_back(model::modal_ratio(b.modal_zeta, j));
+    return z;
+  }
   if (b.m.size() == 1) {
     r = {2.0 * b.zeta * md.omega[0], 0.0};  // c = a0 m = 2 ζ ω m = 2 ζ √(k m)
     return {b.zeta};
@@ -207,7 +222,8 @@ std::string as_json(const Building& b, const model::Modes& md, const std::vector
   for (double m : b.m) total += m;
   std::string s = fmt::format("{{\"storeys\": {}, \"masses\": {}, \"stiffnesses\": {}, \"total_mass\": {},\n",
                               b.m.size(), json_list(b.m), json_list(b.k), total);
-  s += b.m.size() == 1
+  s += !b.modal_zeta.empty() ? fmt::format(" \"damping\": {{\"kind\": \"modal\", \"zeta\": {}}},\n", json_list(b.modal_zeta))
+       : b.m.size() == 1
            ? fmt::format(" \"damping\": {{\"kind\": \"sdof\", \"zeta\": {}, \"a0\": {}, \"a1\": 0}},\n", b.zeta, r.a0)
            : fmt::format(" \"damping\": {{\"kind\": \"rayleigh\", \"modes\": [{}, {}], \"zeta\": {}, \"a0\": {}, "
                          "\"a1\": {}}},\n", b.mode_i, b.mode_j, b.zeta, r.a0, r.a1);
@@ -248,10 +264,14 @@ std::string as_table(const Building& b, const model::Modes& md, const std::vecto
   double total = 0.0;
   for (double m : b.m) total += m;
   std::string s = fmt::format("shear building: {} storeys, total mass {:g} kg, {}\n", b.m.size(), total, b.stiffness_text);
-  s += b.m.size() == 1 ? fmt::format("damping: zeta {:g}, floor dashpot c = 2 zeta sqrt(k m) = {:.6g} N s/m\n", b.zeta,
-                                     r.a0 * b.m[0])
-                       : fmt::format("damping: Rayleigh C = a0 M + a1 K, zeta {:g} at modes {} and {}: a0 = {:.6g} 1/s, "
-                                     "a1 = {:.6g} s\n", b.zeta, b.mode_i, b.mode_j, r.a0, r.a1);
+  if (!b.modal_zeta.empty())
+    s += "damping: classical modal, C = M Phi diag(2 zeta_j omega_j / M_j) Phi' M, zeta per mode as given (the last "
+         "repeating)\n";
+  else if (b.m.size() == 1)
+    s += fmt::format("damping: zeta {:g}, floor dashpot c = 2 zeta sqrt(k m) = {:.6g} N s/m\n", b.zeta, r.a0 * b.m[0]);
+  else
+    s += fmt::format("damping: Rayleigh C = a0 M + a1 K, zeta {:g} at modes {} and {}: a0 = {:.6g} 1/s, a1 = {:.6g} s\n",
+                     b.zeta, b.mode_i, b.mode_j, r.a0, r.a1);
   s += fmt::format("\n{:>4} {:>11} {:>11} {:>11} {:>10} {:>11} {:>8} {:>8} {:>8}\n", "mode", "period s", "freq Hz",
                    "omega r/s", "Gamma", "M* kg", "M*/M", "cum", "zeta");
   double cum = 0.0;
@@ -298,6 +318,8 @@ void add_modes(CLI::App& app) {
   c->add_option("--storey-height", o->storey_height, "with --period: storey height, m, one or one per storey (default 3.2)");
   c->add_option("--zeta", o->zeta, "damping ratio, [0, 0.5] (default 0.05): Rayleigh on --rayleigh-modes");
   c->add_option("--rayleigh-modes", o->rayleigh_modes, "the two modes that get --zeta exactly (default 1,2)");
+  c->add_option("--modal-zeta", o->modal_zeta, "classical modal damping instead: ratios per mode from mode 1, the "
+                                               "last repeating (e.g. 0.05,0.03)");
   c->add_option("--modes", o->modes, "print the first K modes (default all)");
   c->add_flag("--csv", o->csv, "one CSV row per mode, the roof-normalised shape in columns phi_1..phi_n");
   c->add_flag("--json", o->json, "one JSON object, full precision, both normalisations of each shape");
