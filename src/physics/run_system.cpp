@@ -59,6 +59,19 @@ Layout layout_of(const model::System& S) {
     L.body_start.push_back(static_cast<int>(L.body_dofs.size()));
   }
   for (const model::ContactElement& e : S.contacts()) L.left.push_back(side_of(e.left)), L.right.push_back(side_of(e.right));
+  L.contrib_start.push_back(0);
+  for (int j = 0; j < L.ndof; ++j) {
+    for (int e : S.elements_at(j)) {  // element order
+      const sys::Side &a = L.left[static_cast<std::size_t>(e)], &b = L.right[static_cast<std::size_t>(e)];
+      const bool left = a.kind != sys::SideKind::wall && (a.p == j || a.q == j);
+      const sys::Side& x = left ? a : b;
+      int how = left ? sys::left_point : sys::right_point;
+      if (x.kind == sys::SideKind::interpolated)
+        how = left ? (x.p == j ? sys::left_n1 : sys::left_n2) : (x.p == j ? sys::right_n1 : sys::right_n2);
+      L.contrib_elem.push_back(e), L.contrib_how.push_back(how);
+    }
+    L.contrib_start.push_back(static_cast<int>(L.contrib_elem.size()));
+  }
   return L;
 }
 

@@ -327,3 +327,49 @@ TEST(SystemKernel, RefusesWhatTheSystemStepperDoesNotRun) {
   EXPECT_NE(b.find("has 3"), std::string::npos) << b;
   EXPECT_EQ(message(KernelSettings{}, hertzdamp()), "");
 }
+
+// A floor striking a column between two floors (an interpolated side, SB §3, T3.1): B's floor 2 (7.0 m) against A's
+// column between floors 2 and 3 (6 and 9 m, N = (2/3, 1/3)), u_A2 = 0.030, u_A3 = 0.045, u_B2 = 0.030 m, gap 0,
+// Hertz kh = 1e10 N/m^1.5: F = 3535533.906 N, nodal forces A2 -2357022.604, A3 -1178511.302, B2 +3535533.906 N.
+// Unit masses and 1 N/m storeys make the initial accelerations these forces (plus the storeys' 0.015 N); one step
+// of 1e-9 s keeps them the peaks.
+TEST(SystemKernel, FloorAgainstColumnDistributesTheForceByShapeFunctions) {
+  model::System::Parts P;
+  P.bodies.push_back({{0, 1, 2}, {3.0, 6.0, 9.0}, 0, model::ground, false, model::DampingForm::dashpots, false, "A"});
+  P.bodies.push_back({{3, 4}, {3.5, 7.0}, 0, model::ground, false, model::DampingForm::dashpots, false, "B"});
+  P.springs = {{model::ground, 0, 0, model::SpringRole::storey, 0, 1}, {0, 1, 0, model::SpringRole::storey, 0, 2},
+               {1, 2, 0, model::SpringRole::storey, 0, 3}, {model::ground, 3, 0, model::SpringRole::storey, 1, 1},
+               {3, 4, 0, model::SpringRole::storey, 1, 2}};
+  P.contacts.push_back({{model::SideKind::interpolated, 1, 2, 0}, {model::SideKind::point, 4, -1, 0}, 0, 2, "B2 on A"});
+  P.groups.push_back(model::ContactGroup{});
+  const model::System S = model::System::build(P);
+  SystemBatch B;
+  B.resize(S, 1);
+  for (int j = 0; j < 5; ++j) B.m[static_cast<std::size_t>(j)] = 1.0;
+  for (auto& s : B.spring) s = {1.0, INFINITY, 0.0};
+  B.u0 = {0.015, 0.030, 0.045, 0.015, 0.030};
+  B.weight[0] = 1.0 / 3.0, B.kc[0] = 1e10, B.gap[0] = 0.0;
+  ContactModel cm;
+  cm.law = ContactLaw::hertz;
+  const ContactModel groups[] = {cm};
+  const std::vector<double> ag{0.0, 0.0};
+  SystemResult r;
+  run_system(B, groups, GroundMotion{1e-9, ag, 0.0}, KernelSettings{}, r);
+  ASSERT_EQ(r.status[0], static_cast<std::uint8_t>(LaneStatus::ok));
+  EXPECT_NEAR(r.peak_force[0], 3535533.906, 1e-3);
+  EXPECT_NEAR(r.peak_penetration[0], 5.0e-3, 1e-12);
+  // |a| = |q| / m: A2 = N1 F (its storeys' 0.015 N cancel), A3 = N2 F + 0.015 N (storey 3), B2 = F - 0.015 N
+  EXPECT_NEAR(r.peak_acc[1], 2357022.604, 1e-3);
+  EXPECT_NEAR(r.peak_acc[2], 1178511.302 + 0.015, 1e-3);
+  EXPECT_NEAR(r.peak_acc[4], 3535533.906 - 0.015, 1e-3);
+  EXPECT_LT(r.peak_acc[0], 1.0);  // floors without the element carry only their 1 N/m springs
+  // the same through 20 steps of 1 us: the element's nodal forces sum to zero, so the momentum stays that of the
+  // storeys' impulses (< 1e-6 N s) while the floors pick up ~60 m/s
+  const std::vector<double> still(21, 0.0);
+  run_system(B, groups, GroundMotion{1e-6, still, 0.0}, KernelSettings{}, r);
+  double p = 0, size = 0;
+  for (int j = 0; j < 5; ++j) p += r.final_v[static_cast<std::size_t>(j)], size += std::abs(r.final_v[static_cast<std::size_t>(j)]);
+  EXPECT_GT(size, 10.0);
+  EXPECT_LT(std::abs(p), 1e-6) << "momentum " << p << " of " << size;
+  EXPECT_NEAR(r.final_v[1] / r.final_v[2], 2.0, 1e-6) << "A2 and A3 take N1 : N2 = 2 : 1 of every impulse";
+}

@@ -11,20 +11,22 @@
 // with lane::fma, so a lane's results depend only on its own inputs (not on its chunk neighbours, the tile width
 // or the lane order).
 //
-// One step (the order of §2.3.3):
+// One step (the order of §2.3.3; the loops are fused where the order of the sums allows):
 //  1. per DOF: vo = v, vh = v + hh a, du = h vh, u <- u + du, vp = vh + hh a
 //  2. stereomechanical (one point-point element): the exchange at the located closing instant
 //  3. per spring: increment dd = du_j (ground: no subtraction) or du_j - du_i, deformation d = u_j or u_j - u_i,
-//     f = H::restoring (bilinear kinematic hardening), t = f, or fma(cs, vp_j - vp_i, f) with a storey dashpot
-//  4. per DOF: q = t_below (assigned), q -= t_above..., q = fma(c, vp - vp_ref, q)
+//     f = H::restoring (bilinear kinematic hardening), t = f, or fma(cs, vp_j - vp_i, f) with a storey dashpot;
+//     the |d| and |f| observers
 //  5. per group (its law chosen once per run): per element delta = x_L - x_R - gap; the law only where some
 //     lane of the chunk touches (else F = 0 exactly): Hertzdamp latch at the interpolated closing instant,
-//     force, stability guard k_lin h^2 / meff > 4; contact bookkeeping
-//  6. per element in element order: q_L += F, q_R -= F (interpolated sides N1 F, N2 F)
-//  7. per DOF: na = -ag1 - q im, nv = vh + hh na
+//     force, stability guard k_lin h^2 / meff > 4; contact bookkeeping; the closing observer
+//  4, 6, 7. per DOF: q = t_below (assigned), q -= t_above..., q = fma(c, vp - vp_ref, q), then the element forces
+//     in element order (q_L += F, q_R -= F, interpolated sides N1 F, N2 F); na = -ag1 - q im, nv = vh + hh na;
+//     the |a + ag| observer
 //  8. energy (compile time): input, viscous (floor then storey dashpots), hysteretic
-//  9. divergence guard over bodies (sum of each body's max |u|), freeze of bad lanes
-// 10. observers: |u|, |a + ag| per DOF; |d|, |f| per spring (in 3); closing x_L - x_R and its time per element
+//  9. divergence guard over bodies (sum of each body's max |u|, with the |u| observer), freeze of bad lanes
+// Observers updated before the freeze differ from the pair's order only in lanes that the freeze marks bad, which
+// report NaN. The SDOF pair through this stepper gives the pair kernel's bits (test_system_kernel).
 #include <cstddef>
 #include <cstdint>
 #include <cstdlib>
@@ -51,7 +53,7 @@ struct Side {
 };
 
 // Rows of the pool. DOF: state (U holds the new displacement from step 1 on), constants, step scratch, observers.
-enum DofRow : int { U, Vel, A, M, IM, CF, VO, VH, DU, VP, Q, PU, PA, dof_rows };
+enum DofRow : int { U, Vel, A, M, IM, CF, VO, VH, DU, VP, PU, PA, dof_rows };
 // Spring: bilinear parameters (k, alpha k, qy, kp), storey dashpot, force, step scratch T (force + dashpot),
 // observers (peak |d|, peak |f|).
 enum SpringRow : int { K, AK, QY, KP, CS, FS, T, PD, PF, spring_rows };
@@ -72,8 +74,13 @@ struct Layout {
   std::vector<int> ref;               // floor dashpot reference per DOF (-1: ground)
   std::vector<int> body_start, body_dofs;  // DOFs per body (CSR), for the guard
   std::vector<Side> left, right;
+  // per DOF, in element order, the element contributions to its force: element e and `how` (Contribution)
+  std::vector<int> contrib_start, contrib_elem, contrib_how;
   bool any_dashpot = false;
 };
+// How an element's force enters a DOF's resisting force q (step 6): +F (left point), -F (right point),
+// +N F / -N F with N the element's N1L, N2L, N1R or N2R row (interpolated sides, as pinned fmas).
+enum Contribution : int { left_point, right_point, left_n1, left_n2, right_n1, right_n2 };
 
 // The Layout's lists as raw pointers, passed by value into the step's phases: locals the compiler keeps in
 // registers (the chunk's vector stores may alias any memory, so members read through a reference would be
@@ -83,12 +90,15 @@ struct Topo {
   const int *si, *sj, *below, *above_start, *above, *ref, *body_start, *body_dofs;
   const char* dashpot;
   const Side *left, *right;
+  const int *contrib_start, *contrib_elem, *contrib_how;
   bool any_dashpot;
   explicit Topo(const Layout& L)
       : ndof(L.ndof), nspring(L.nspring), nelem(L.nelem), nbody(static_cast<int>(L.body_start.size()) - 1),
         si(L.si.data()), sj(L.sj.data()), below(L.below.data()), above_start(L.above_start.data()),
         above(L.above.data()), ref(L.ref.data()), body_start(L.body_start.data()), body_dofs(L.body_dofs.data()),
-        dashpot(L.dashpot.data()), left(L.left.data()), right(L.right.data()), any_dashpot(L.any_dashpot) {}
+        dashpot(L.dashpot.data()), left(L.left.data()), right(L.right.data()),
+        contrib_start(L.contrib_start.data()), contrib_elem(L.contrib_elem.data()), contrib_how(L.contrib_how.data()),
+        any_dashpot(L.any_dashpot) {}
 };
 
 // Where each row lives: rows [field][index] in the order DOF fields, spring fields, element fields, lane fields.
@@ -163,6 +173,7 @@ struct Chunk {
 struct StepCtx {
   double h, hh, ag0, ag1;
   V t, vh;
+  V rate;  // the divergence guard's rate measure of this step
   double lim;
   bool any_bad;
   bool* force_prev;  // per element: some lane of the chunk touched in the previous step (bool: no char aliasing)
@@ -184,28 +195,14 @@ POUNDING_INLINE V relative(Chunk c, Topo L, int f, int e) {
   if (l.kind == SideKind::wall) return -side_value(c, r, f, e, false);
   return side_value(c, l, f, e, true) - side_value(c, r, f, e, false);
 }
-// q_side += s F on a side (s = +1 left, -1 right); a wall takes nothing.
-POUNDING_INLINE void contribute(Chunk c, const Side& side, int e, bool left, const V& F) {
-  switch (side.kind) {
-    case SideKind::point:
-      c.dof(Q, side.p, left ? c.dof(Q, side.p) + F : c.dof(Q, side.p) - F);
-      return;
-    case SideKind::interpolated: {
-      const V f1 = c.elm(left ? N1L : N1R, e) * F, f2 = c.elm(left ? N2L : N2R, e) * F;
-      c.dof(Q, side.p, left ? c.dof(Q, side.p) + f1 : c.dof(Q, side.p) - f1);
-      c.dof(Q, side.q, left ? c.dof(Q, side.q) + f2 : c.dof(Q, side.q) - f2);
-      return;
-    }
-    case SideKind::wall: return;
-  }
-}
-
 // Step 1: the kinematics before the forces at n+1.
 POUNDING_INLINE void predict(Chunk c, Topo L, const StepCtx& s) {
   const V h(s.h), hh(s.hh);
   for (int j = 0; j < L.ndof; ++j) {
     const V v = c.dof(Vel, j), a = c.dof(A, j);
     const V vh = v + hh * a, du = h * vh;
+    // du kept as a row (not recomputed from vh where read): with one use the compiler would fuse u + h vh into
+    // an fma, which the pair kernel does not (its du has three uses)
     c.dof(VO, j, v), c.dof(VH, j, vh), c.dof(DU, j, du);
     c.dof(U, j, c.dof(U, j) + du), c.dof(VP, j, vh + hh * a);
   }
@@ -237,24 +234,19 @@ template <bool WithEnergy> POUNDING_INLINE void springs(Chunk c, Topo L) {
   if constexpr (WithEnergy) c.lan(EHYS, c.lan(EHYS) + dhys);
 }
 
-// Step 4: the nodal resisting force without contact.
-POUNDING_INLINE void nodal(Chunk c, Topo L) {
-  for (int j = 0; j < L.ndof; ++j) {
-    V q = c.spr(T, L.below[static_cast<std::size_t>(j)]);
-    for (int k = L.above_start[static_cast<std::size_t>(j)]; k < L.above_start[static_cast<std::size_t>(j) + 1]; ++k)
-      q -= c.spr(T, L.above[static_cast<std::size_t>(k)]);
-    const int r = L.ref[static_cast<std::size_t>(j)];
-    q = lane::fma(c.dof(CF, j), r < 0 ? c.dof(VP, j) : c.dof(VP, j) - c.dof(VP, r), q);
-    c.dof(Q, j, q);
-  }
-}
-
 // Step 5 for one element of law `Law`: the force at n+1 (muthukumar eq. 10's latch for Hertzdamp), the
 // stability guard, and the element's contact bookkeeping.
 template <class Law, class Exp>
 POUNDING_INLINE void element(Chunk c, Topo L, int e, StepCtx& s, double v0_min, Exp n) {
   const V zero(0.0), one(1.0);
-  const V d = relative(c, L, U, e) - c.elm(GAP, e);
+  const V cl = relative(c, L, U, e), d = cl - c.elm(GAP, e);
+  {  // step 10's closing observer (x_L - x_R and when), on this step's unfrozen state: only bad lanes differ, and
+     // they report NaN
+    const V pc = c.elm(PCLOSE, e);
+    const auto up = cl > pc;
+    c.elm(PCLOSE, e, lane::select(up, cl, pc));
+    c.elm(TPCLOSE, e, lane::select(up, s.t, c.elm(TPCLOSE, e)));
+  }
   const simd::M touching = d > zero;
   const bool any_touch = lane::any(touching);
   const V dprev = c.elm(DPREV, e);
@@ -326,19 +318,37 @@ POUNDING_INLINE void impulsive(Chunk c, Topo L, int e, const StepCtx& s) {
   c.elm(NIMP, e, c.elm(NIMP, e) + onset);
 }
 
-// Steps 6-7: contact contributions in element order, then the new accelerations and velocities.
-POUNDING_INLINE void accelerate(Chunk c, Topo L, const StepCtx& s) {
-  for (int e = 0; e < L.nelem; ++e) {
-    const V f = c.elm(F, e);
-    contribute(c, L.left[e], e, true, f);
-    contribute(c, L.right[e], e, false, f);
-  }
-  const V hh(s.hh);
+// Steps 4, 6, 7 per DOF: q = t_below (assigned: 0 + (-0) would change a sign of zero), minus the springs above,
+// the floor dashpot fma(c, vp - vp_ref, q), the element forces in element order (+F left, -F right, N F at an
+// interpolated side); then na = -ag1 - q im, nv = vh + hh na, the |a + ag| observer and the rate measure's sums.
+POUNDING_INLINE void forces(Chunk c, Topo L, StepCtx& s) {
+  const V hh(s.hh), g1(s.ag1);
   const double ag1 = s.ag1;
+  V sv(0.0), sa(0.0);
   for (int j = 0; j < L.ndof; ++j) {
-    const V na = -ag1 - c.dof(Q, j) * c.dof(IM, j);
-    c.dof(A, j, na), c.dof(Vel, j, c.dof(VH, j) + hh * na);
+    V q = c.spr(T, L.below[j]);
+    for (int k = L.above_start[j]; k < L.above_start[j + 1]; ++k) q -= c.spr(T, L.above[k]);
+    const int r = L.ref[j];
+    q = lane::fma(c.dof(CF, j), r < 0 ? c.dof(VP, j) : c.dof(VP, j) - c.dof(VP, r), q);
+    for (int k = L.contrib_start[j]; k < L.contrib_start[j + 1]; ++k) {
+      const int e = L.contrib_elem[k];
+      const V f = c.elm(F, e);
+      switch (L.contrib_how[k]) {
+        case left_point: q += f; break;
+        case right_point: q -= f; break;
+        case left_n1: q = lane::fma(c.elm(N1L, e), f, q); break;
+        case left_n2: q = lane::fma(c.elm(N2L, e), f, q); break;
+        case right_n1: q = lane::fma(-c.elm(N1R, e), f, q); break;
+        default: q = lane::fma(-c.elm(N2R, e), f, q); break;
+      }
+    }
+    const V na = -ag1 - q * c.dof(IM, j), nv = c.dof(VH, j) + hh * na;
+    c.dof(A, j, na), c.dof(Vel, j, nv);
+    c.dof(PA, j, lane::max(c.dof(PA, j), lane::abs(na + g1)));
+    sv = j == 0 ? lane::abs(nv) : sv + lane::abs(nv);
+    sa = j == 0 ? lane::abs(na) : sa + lane::abs(na);
   }
+  s.rate = sv + sa;
 }
 
 // Step 8: input and viscous energy, the sums over DOFs left-folded by pinned FMAs (for two DOFs exactly the
@@ -367,47 +377,31 @@ POUNDING_INLINE void energy(Chunk c, Topo L, const StepCtx& s) {
   c.lan(EVIS, lane::fma(hh, evis, c.lan(EVIS)));
 }
 
-// Step 9: the divergence guard (kernel/guard.hpp) over bodies: the sum in body order of each body's largest |u|,
-// the rate measure every |v| then every |a|; a bad lane is frozen at rest.
+// Step 9: the divergence guard (kernel/guard.hpp) over bodies: the sum in body order of each body's largest |u|
+// (with step 10's |u| observer), the rate measure from forces() (sum |v| + sum |a|: only its finiteness is read);
+// a bad lane is frozen at rest.
 POUNDING_INLINE void guard(Chunk c, Topo L, StepCtx& s) {
   const V lim(s.lim), zero(0.0);
   V dsum(0.0);
-  const int nb = L.nbody;
-  for (int b = 0; b < nb; ++b) {
+  for (int b = 0; b < L.nbody; ++b) {
     V mx(0.0);
-    for (int k = L.body_start[static_cast<std::size_t>(b)]; k < L.body_start[static_cast<std::size_t>(b) + 1]; ++k) {
-      const V x = lane::abs(c.dof(U, L.body_dofs[static_cast<std::size_t>(k)]));
-      mx = k == L.body_start[static_cast<std::size_t>(b)] ? x : lane::max(mx, x);
+    for (int k = L.body_start[b]; k < L.body_start[b + 1]; ++k) {
+      const int j = L.body_dofs[k];
+      const V x = lane::abs(c.dof(U, j));
+      c.dof(PU, j, lane::max(c.dof(PU, j), x));
+      mx = k == L.body_start[b] ? x : lane::max(mx, x);
     }
     dsum = b == 0 ? mx : dsum + mx;
   }
-  V rsum = lane::abs(c.dof(Vel, 0));
-  for (int j = 1; j < L.ndof; ++j) rsum += lane::abs(c.dof(Vel, j));
-  for (int j = 0; j < L.ndof; ++j) rsum += lane::abs(c.dof(A, j));
-  if (lane::all(within(dsum, rsum, lim)) && !s.any_bad) return;
+  if (lane::all(within(dsum, s.rate, lim)) && !s.any_bad) return;
   s.any_bad = true;
-  const V bad = lane::max(c.lan(BAD), divergence_code(dsum, rsum, lim));
+  const V bad = lane::max(c.lan(BAD), divergence_code(dsum, s.rate, lim));
   c.lan(BAD, bad);
   const auto frozen = bad > zero;
   for (int j = 0; j < L.ndof; ++j)
     for (int f : {U, Vel, A}) c.dof(f, j, lane::select(frozen, zero, c.dof(f, j)));
   for (int k = 0; k < L.nspring; ++k) c.spr(FS, k, lane::select(frozen, zero, c.spr(FS, k)));
   for (int e = 0; e < L.nelem; ++e) c.elm(F, e, lane::select(frozen, zero, c.elm(F, e)));
-}
-
-// Step 10: the observers on the committed state.
-POUNDING_INLINE void observe(Chunk c, Topo L, const StepCtx& s) {
-  const V g1(s.ag1);
-  for (int j = 0; j < L.ndof; ++j) {
-    c.dof(PU, j, lane::max(c.dof(PU, j), lane::abs(c.dof(U, j))));
-    c.dof(PA, j, lane::max(c.dof(PA, j), lane::abs(c.dof(A, j) + g1)));
-  }
-  for (int e = 0; e < L.nelem; ++e) {
-    const V cl = relative(c, L, U, e), pc = c.elm(PCLOSE, e);
-    const auto up = cl > pc;
-    c.elm(PCLOSE, e, lane::select(up, cl, pc));
-    c.elm(TPCLOSE, e, lane::select(up, s.t, c.elm(TPCLOSE, e)));
-  }
 }
 
 // The elements of one contact group, with the group's law and exponent fixed once per run (a function pointer
@@ -442,12 +436,10 @@ template <bool WithEnergy> void step(Chunk c, const Run& R, long stepi, StepCtx&
   for (const Group& g : *R.groups)
     if (g.impulsive) impulsive(c, L, g.elems.front(), s);
   springs<WithEnergy>(c, L);
-  nodal(c, L);
   for (const Group& g : *R.groups) g.run(c, L, g, s);
-  accelerate(c, L, s);
+  forces(c, L, s);
   if constexpr (WithEnergy) energy(c, L, s);
   guard(c, L, s);
-  observe(c, L, s);
 }
 
 // Every chunk of the tile through the whole record (lanes [0, np) of the pool, np a multiple of W).
@@ -456,7 +448,7 @@ template <bool WithEnergy> void run_tile(const Pool& pool, int np, const Run& R)
   for (int base = 0; base < np; base += simd::W) {
     pool.gather(base);
     const Chunk c{pool.chunk(), pool.rows()};
-    StepCtx s{R.h, 0.5 * R.h, 0.0, 0.0, V(0.0), V(R.h), R.lim, lane::any(c.lan(BAD) > V(0.0)), force_prev.get()};
+    StepCtx s{R.h, 0.5 * R.h, 0.0, 0.0, V(0.0), V(R.h), V(0.0), R.lim, lane::any(c.lan(BAD) > V(0.0)), force_prev.get()};
     for (int e = 0; e < R.layout->nelem; ++e) force_prev[static_cast<std::size_t>(e)] = lane::any(c.elm(F, e) > V(0.0));
     for (long k = 0; k < R.nsteps; ++k) step<WithEnergy>(c, R, k, s);
     pool.scatter(base);
