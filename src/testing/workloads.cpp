@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <numbers>
+#include <string>
 
 #include "pounding/contact/model.hpp"
 #include "pounding/motion/records.hpp"
@@ -44,6 +45,58 @@ PairBatch benchmark_batch(std::size_t width) {
     b.set(i, p);
   }
   return b;
+}
+
+model::System shear_pair_system(int storeys) {
+  model::System::Parts P;
+  for (int b = 0; b < 2; ++b) {
+    model::Body body;
+    for (int k = 0; k < storeys; ++k) body.dofs.push_back(2 * k + b), body.heights.push_back(3.2 * (k + 1));
+    body.storey_dashpots = storeys > 1;
+    body.label = b == 0 ? "building1" : "building2";
+    P.bodies.push_back(body);
+    for (int k = 0; k < storeys; ++k)
+      P.springs.push_back({k == 0 ? model::ground : 2 * (k - 1) + b, 2 * k + b, 0, model::SpringRole::storey, b, k + 1});
+  }
+  for (int k = 0; k < storeys; ++k) {
+    model::ContactElement e;
+    e.left = {model::SideKind::point, 2 * k, -1, 0}, e.right = {model::SideKind::point, 2 * k + 1, -1, 0};
+    e.level = k + 1, e.label = "level " + std::to_string(k + 1);
+    P.contacts.push_back(e);
+  }
+  P.groups.push_back(model::ContactGroup{});
+  return model::System::build(P);
+}
+
+physics::SystemBatch shear_pair_batch(const model::System& S, std::size_t width) {
+  physics::SystemBatch B;
+  B.resize(S, width);
+  const int n = static_cast<int>(S.bodies()[0].dofs.size());
+  for (std::size_t l = 0; l < width; ++l) {
+    const double s = std::fmod(0.6180339887498949 * static_cast<double>(l + 1), 1.0);
+    const double r = std::fmod(0.7548776662466927 * static_cast<double>(l + 1), 1.0);
+    for (int b = 0; b < 2; ++b) {
+      const double x = b == 0 ? s : r, m = 2.5e5 * (0.8 + 0.4 * (b == 0 ? r : s));
+      const double T1 = (b == 0 ? 0.1 : 0.13) * n * (1.0 + 0.5 * x), w1 = 2.0 * std::numbers::pi / T1;
+      // uniform stick: omega_j = 2 sqrt(k/m) sin((2j - 1) pi / (2 (2n + 1))) (SB §1)
+      auto sine = [n](int j) { return std::sin((2 * j - 1) * std::numbers::pi / (2.0 * (2 * n + 1))); };
+      const double k = m * std::pow(w1 / (2.0 * sine(1)), 2), w2 = n > 1 ? w1 * sine(2) / sine(1) : 3.0 * w1;
+      const double a0 = 2.0 * 0.05 * w1 * w2 / (w1 + w2), a1 = 2.0 * 0.05 / (w1 + w2);
+      for (int f = 0; f < n; ++f) {
+        const int dof = S.bodies()[static_cast<std::size_t>(b)].dofs[static_cast<std::size_t>(f)];
+        const int spring = b * n + f;
+        B.m[physics::SystemBatch::at(dof, l, width)] = m;
+        B.c_floor[physics::SystemBatch::at(dof, l, width)] = n > 1 ? a0 * m : 2.0 * 0.05 * std::sqrt(k * m);
+        B.spring[physics::SystemBatch::at(spring, l, width)] = {k, k * 0.032, 0.05};
+        if (!B.c_storey.empty()) B.c_storey[physics::SystemBatch::at(spring, l, width)] = a1 * k;
+      }
+    }
+    for (int e = 0; e < n; ++e) {
+      const std::size_t at = physics::SystemBatch::at(e, l, width);
+      B.gap[at] = 0.3 * 0.005 * 3.2 * n * (2.0 + s + r), B.kc[at] = 2e9 * (0.8 + 0.4 * s), B.e[at] = 0.65;
+    }
+  }
+  return B;
 }
 
 }  // namespace pounding

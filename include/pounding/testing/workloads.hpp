@@ -3,7 +3,9 @@
 #include <cstddef>
 #include <vector>
 
+#include "pounding/model/system.hpp"
 #include "pounding/physics/batch.hpp"
+#include "pounding/physics/system_batch.hpp"
 
 namespace pounding {
 
@@ -15,5 +17,15 @@ std::vector<double> builtin_motion(double dt, double duration);
 // heights 30-50 m, yield at 2 % drift / 6, alpha 0.05, 5 % damping), gap 0.3 x 0.005 (h1 + h2),
 // equivalent-sphere Hertz stiffness, e = 0.65. Parameters vary per lane with a fixed formula.
 PairBatch benchmark_batch(std::size_t width);
+
+// The system benchmark (`pounding bench --storeys N`): two N-storey shear buildings side by side, DOFs level-major,
+// Rayleigh floor and storey dashpots, one point-point element at every floor in one group (N = 1: the SDOF pair's
+// structure).
+model::System shear_pair_system(int storeys);
+// `width` lanes of it: storey masses 2.5e5 kg x [0.8, 1.2], uniform storey stiffness giving T1 = 0.1 N s x [1, 1.5]
+// (left) and 0.13 N s x [1, 1.5] (right), 5 % Rayleigh damping on modes 1 and 2, bilinear storeys yielding at
+// 1 % drift of 3.2 m with alpha 0.05, gap 0.3 x 0.005 x (H1 + H2) x [1, 2], kc 2e9 N/m^1.5 x [0.8, 1.2], e = 0.65
+// (varied per lane with the same low-discrepancy rule as benchmark_batch).
+physics::SystemBatch shear_pair_batch(const model::System& system, std::size_t width);
 
 }  // namespace pounding
