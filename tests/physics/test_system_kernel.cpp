@@ -373,3 +373,57 @@ TEST(SystemKernel, FloorAgainstColumnDistributesTheForceByShapeFunctions) {
   EXPECT_LT(std::abs(p), 1e-6) << "momentum " << p << " of " << size;
   EXPECT_NEAR(r.final_v[1] / r.final_v[2], 2.0, 1e-6) << "A2 and A3 take N1 : N2 = 2 : 1 of every impulse";
 }
+
+// A floor against a wall (a wall side: x_R = 0, meff = m): one free mass at 1 m/s into a Hertz wall (e = 1) at
+// h = 1 us against Hertz theory, peak penetration (5 m v0^2 / (4 kh))^(2/5) and contact duration
+// 2.9432752 delta_max / v0 (Goldsmith; contact/model.hpp); it leaves at -v0.
+TEST(SystemKernel, FloorAgainstAWallIsAHertzImpact) {
+  model::System::Parts P;
+  P.bodies.push_back({{0}, {3.2}, 0, model::ground, false, model::DampingForm::dashpots, false, "building1"});
+  P.springs = {{model::ground, 0, 0, model::SpringRole::storey, 0, 1}};
+  P.contacts.push_back({{model::SideKind::point, 0, -1, 0}, {model::SideKind::wall, -1, -1, 0}, 0, 1, "wall"});
+  P.groups.push_back(model::ContactGroup{"moat", false});
+  const model::System S = model::System::build(P);
+  SystemBatch B;
+  B.resize(S, 1);
+  const double m = 2.0e5, kh = 5.0e9, v0 = 1.0;
+  B.m[0] = m, B.spring[0] = {1e-6, INFINITY, 0.0}, B.v0[0] = v0, B.kc[0] = kh, B.gap[0] = 0.0;
+  ContactModel cm;
+  cm.law = ContactLaw::hertz;
+  const ContactModel groups[] = {cm};
+  const double dmax = std::pow(5.0 * m * v0 * v0 / (4.0 * kh), 0.4), T = 2.9432752 * dmax / v0;
+  const std::vector<double> still(static_cast<std::size_t>(std::lround(1.5 * T / 1e-5)) + 1, 0.0);
+  KernelSettings ks;
+  ks.substeps = 10;
+  SystemResult r;
+  run_system(B, groups, GroundMotion{1e-5, still, 0.0}, ks, r);
+  ASSERT_EQ(r.status[0], static_cast<std::uint8_t>(LaneStatus::ok));
+  EXPECT_NEAR(r.peak_penetration[0], dmax, 1e-6 * dmax);
+  EXPECT_NEAR(r.contact_time[0], T, 2e-6 + 1e-4 * T);  // whole steps of 1 us
+  EXPECT_NEAR(r.final_v[0], -v0, 1e-6);
+  EXPECT_EQ(r.impact_count[0], 1);
+}
+
+// The resolution guard per element: the 3- vs 5-storey pair at h = 10 ms resolves none of its Hertzdamp impacts
+// (h omega_c above 0.274) and is marked coarse, with h_omega_contact reported per element; at h = 0.5 ms it is ok.
+TEST(SystemKernel, CoarseContactIsMarkedPerLane) {
+  const model::System S = test::shear_row({3, 5}, true);
+  const SystemBatch B = pair_3_5(S, 4, 1.0, 0.005);
+  const std::vector<double> ag = builtin_motion(0.01, 10.0);
+  const ContactModel groups[] = {hertzdamp()};
+  for (int sub : {1, 20}) {
+    KernelSettings ks;
+    ks.substeps = sub;
+    SystemResult r;
+    run_system(B, groups, GroundMotion{0.01, ag, 0.0}, ks, r);
+    for (std::size_t l = 0; l < B.width; ++l) {
+      double hw = 0;
+      for (int e = 0; e < 3; ++e) hw = std::max(hw, r.h_omega_contact[SystemBatch::at(e, l, B.width)]);
+      EXPECT_GT(hw, 0.0) << "lane " << l << " must pound";
+      EXPECT_EQ(r.status[l], static_cast<std::uint8_t>(hw > 0.274 ? LaneStatus::coarse : LaneStatus::ok))
+          << "lane " << l << " h omega_c " << hw;
+      if (sub == 1) EXPECT_GT(hw, 0.274) << "lane " << l;
+      if (sub == 20) EXPECT_LT(hw, 0.274) << "lane " << l;
+    }
+  }
+}
