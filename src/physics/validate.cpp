@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 #include <utility>
 
@@ -109,32 +110,14 @@ std::string spring_place(const model::System& sys, std::size_t s) {
 // guarded during the run).
 void structure_frequency(std::vector<Problem>& out, const SystemBatch& b, std::size_t lane, double dt,
                          const KernelSettings& settings) {
-  double limit = 0.0;
-  if (settings.stepper == Stepper::central_difference) limit = 2.0;
-  else if (settings.stepper == Stepper::rk4) limit = 2.8;
-  else return;
-  const model::System& sys = *b.system;
-  const std::size_t w = b.width;
-  std::vector<double> row(static_cast<std::size_t>(sys.ndof()), 0.0);
-  for (std::size_t s = 0; s < sys.springs().size(); ++s) {
-    const model::Spring& sp = sys.springs()[s];
-    const double k = std::abs(b.spring[SystemBatch::at(static_cast<int>(s), lane, w)].k);
-    const double both = sp.i == model::ground ? k : 2.0 * k;  // |K_jj| gains k, |K_ji| too when i is a DOF
-    row[static_cast<std::size_t>(sp.j)] += both;
-    if (sp.i != model::ground) row[static_cast<std::size_t>(sp.i)] += both;
-  }
-  double w2 = 0.0;
-  int worst = 0;
-  for (int d = 0; d < sys.ndof(); ++d) {
-    const double r = row[static_cast<std::size_t>(d)] / b.m[SystemBatch::at(d, lane, w)];
-    if (r > w2) w2 = r, worst = d;
-  }
-  const double omega = std::sqrt(w2), h = dt / settings.substeps;
-  if (!(h * omega < limit)) {
-    const double need = std::floor(dt * omega / limit) + 1.0;
+  const double limit = structure_step_limit(settings.stepper);
+  const StructureFrequency f = structure_omega_max(b, lane);
+  const double h = dt / settings.substeps;
+  if (!(h * f.omega_max < limit)) {
+    const double need = std::floor(dt * f.omega_max / limit) + 1.0;
     out.push_back({fmt::format("the time step {} s is too long for the structure's highest frequency (h omega_max = "
                                "{:.3g} >= {} with omega_max <= {:.6g} rad/s, Gershgorin bound, largest at {})",
-                               h, h * omega, limit, omega, dof_place(sys, worst)),
+                               h, h * f.omega_max, limit, f.omega_max, dof_place(*b.system, f.dof)),
                    fmt::format("substeps (lane {})", lane),
                    fmt::format("give substeps >= {} (or a smaller dt)", need)});
   }
@@ -179,6 +162,34 @@ std::vector<Problem> validate_system_lane(const SystemBatch& b, std::span<const 
 }
 
 }  // namespace
+
+double structure_step_limit(Stepper stepper) {
+  if (stepper == Stepper::central_difference) return 2.0;
+  if (stepper == Stepper::rk4) return 2.8;
+  return std::numeric_limits<double>::infinity();
+}
+
+// Gershgorin on M^-1 K0: row i of K0 holds k on the diagonal for every spring at i, and -k off it when the other
+// end is a DOF (contact excluded: it is guarded during the run).
+StructureFrequency structure_omega_max(const SystemBatch& b, std::size_t lane) {
+  const model::System& sys = *b.system;
+  const std::size_t w = b.width;
+  std::vector<double> row(static_cast<std::size_t>(sys.ndof()), 0.0);
+  for (std::size_t s = 0; s < sys.springs().size(); ++s) {
+    const model::Spring& sp = sys.springs()[s];
+    const double k = std::abs(b.spring[SystemBatch::at(static_cast<int>(s), lane, w)].k);
+    const double both = sp.i == model::ground ? k : 2.0 * k;  // |K_jj| gains k, |K_ji| too when i is a DOF
+    row[static_cast<std::size_t>(sp.j)] += both;
+    if (sp.i != model::ground) row[static_cast<std::size_t>(sp.i)] += both;
+  }
+  double w2 = 0.0;
+  int worst = 0;
+  for (int d = 0; d < sys.ndof(); ++d) {
+    const double r = row[static_cast<std::size_t>(d)] / b.m[SystemBatch::at(d, lane, w)];
+    if (r > w2) w2 = r, worst = d;
+  }
+  return {std::sqrt(w2), worst};
+}
 
 std::vector<Problem> validate_lane(const PairParams& p, const ContactModel& cm, Stepper stepper, std::size_t lane) {
   std::vector<Problem> out;

@@ -1,10 +1,14 @@
 #include "pounding/report/summary.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <limits>
 
 #include <fmt/format.h>
 
 #include "pounding/physics/resolution.hpp"
+#include "pounding/report/json.hpp"
 
 namespace pounding {
 
@@ -85,6 +89,206 @@ std::string format_summary(const BatchResult& r, std::size_t i, const ContactMod
     num("energy_balance_error_rel", (r.e_input[i] - out) / std::max(std::abs(r.e_input[i]), 1e-300));
   }
   return s;
+}
+
+}  // namespace pounding
+
+namespace pounding {
+
+namespace {
+
+// The lane's values of index i's row of a [index][lane] observer.
+double at(const std::vector<double>& v, int i, const physics::SystemResult& r, std::size_t lane) {
+  return v[physics::SystemBatch::at(i, lane, r.width)];
+}
+std::int32_t at(const std::vector<std::int32_t>& v, int i, const physics::SystemResult& r, std::size_t lane) {
+  return v[physics::SystemBatch::at(i, lane, r.width)];
+}
+
+// One building's per-floor (per DOF) or per-storey (per spring below each DOF) values, bottom first.
+std::vector<double> per_floor(const SystemRunReport& run, const model::Body& b, const std::vector<double>& v,
+                              double divisor = 1.0, bool springs = false) {
+  std::vector<double> out;
+  for (int d : b.dofs)
+    out.push_back(at(v, springs ? run.system->spring_below(d) : d, *run.result, run.lane) / divisor);
+  return out;
+}
+
+// The totals over elements: impacts summed, peaks the largest, the first impact the earliest (NaN: none).
+struct Totals {
+  std::int64_t impacts = 0, clamps = 0;
+  double peak_force = 0.0, peak_penetration = 0.0, peak_closing = std::numeric_limits<double>::quiet_NaN();
+  double t_first_impact = std::numeric_limits<double>::quiet_NaN(), h_omega = 0.0, energy = 0.0;
+};
+Totals totals(const SystemRunReport& run) {
+  Totals t;
+  const auto& r = *run.result;
+  for (int e = 0; e < static_cast<int>(run.system->contacts().size()); ++e) {
+    t.impacts += at(r.impact_count, e, r, run.lane);
+    t.clamps += at(r.clamp_count, e, r, run.lane);
+    t.peak_force = std::max(t.peak_force, at(r.peak_force, e, r, run.lane));
+    t.peak_penetration = std::max(t.peak_penetration, at(r.peak_penetration, e, r, run.lane));
+    const double closing = at(r.peak_closing, e, r, run.lane);
+    if (!(closing <= t.peak_closing)) t.peak_closing = closing;  // NaN until the first element
+    const double t1 = at(r.t_first_impact, e, r, run.lane);  // NaN: no impact at this element
+    if (!std::isnan(t1) && !(t1 >= t.t_first_impact)) t.t_first_impact = t1;
+    const double ho = at(r.h_omega_contact, e, r, run.lane);  // NaN (no force element, diverged) wins
+    if (!(ho <= t.h_omega)) t.h_omega = std::isnan(t.h_omega) ? t.h_omega : ho;
+    t.energy += at(r.contact_energy, e, r, run.lane);
+  }
+  return t;
+}
+
+struct EnergyTerm {
+  std::string_view name;
+  std::vector<double> physics::SystemResult::*values;
+};
+constexpr EnergyTerm energy_terms[] = {{"energy_input_J", &physics::SystemResult::e_input},
+                                       {"energy_kinetic_J", &physics::SystemResult::e_kinetic},
+                                       {"energy_strain_J", &physics::SystemResult::e_strain},
+                                       {"energy_viscous_J", &physics::SystemResult::e_viscous},
+                                       {"energy_hysteretic_J", &physics::SystemResult::e_hysteretic},
+                                       {"energy_contact_stored_J", &physics::SystemResult::e_contact_stored}};
+
+double balance_error(const SystemRunReport& run, const Totals& t) {
+  const auto& r = *run.result;
+  const std::size_t l = run.lane;
+  const double out = r.e_kinetic[l] + r.e_strain[l] + r.e_viscous[l] + r.e_hysteretic[l] + r.e_contact_stored[l] + t.energy;
+  return (r.e_input[l] - out) / std::max(std::abs(r.e_input[l]), 1e-300);
+}
+
+std::string list(const std::vector<double>& v) {
+  std::string s;
+  for (double x : v) s += fmt::format("{}{:.6g}", s.empty() ? "" : " ", x);
+  return s;
+}
+
+}  // namespace
+
+std::string format_system_summary(const SystemRunReport& run) {
+  std::string s;
+  auto line = [&](std::string_view name, const auto& value) { s += fmt::format("{}: {}\n", name, value); };
+  auto num = [&](std::string_view name, double v) { s += fmt::format("{}: {:.6g}\n", name, v); };
+  const Record& rec = *run.record;
+  const KernelSettings& ks = *run.settings;
+  const ContactModel& cm = *run.contact;
+  const physics::SystemResult& r = *run.result;
+  const model::System& sys = *run.system;
+  line("record", rec.name);
+  line("record_source", rec.source);
+  num("record_dt_s", rec.dt);
+  num("record_pga_g", rec.pga() / g_accel);
+  line("stepper", to_string(ks.stepper));
+  num("integration_dt_s", rec.dt / ks.substeps);
+  line("contact_law", to_string(cm.law));
+  if (contact::traits(cm.law).restitution_from_damping) {
+    line("damping_law", to_string(cm.damping));
+    num("xibar", hertzdamp_xibar(cm.damping, run.e_target, cm.n));
+  }
+  num("e_target", run.e_target);
+  num("gap_m", run.gap);
+  for (const BuildingReport& b : run.buildings) {
+    line(b.label + "_storeys", b.floor_levels.size());
+    line(b.label + "_floor_levels_m", list(b.floor_levels));
+    line(b.label + "_floor_mass_kg", list(b.floor_mass));
+    line(b.label + "_storey_stiffness_N_m", list(b.storey_stiffness));
+    line(b.label + "_storey_yield_N", list(b.storey_yield));
+    line(b.label + "_periods_s", list(b.periods));
+    line(b.label + "_modal_damping", list(b.modal_damping));
+  }
+  line("status", to_string(static_cast<LaneStatus>(r.status[run.lane])));
+  const Totals t = totals(run);
+  num("h_omega_contact", t.h_omega);
+  num("h_omega_limit", physics::resolution_limit(ks, cm.law));
+  for (std::size_t b = 0; b < sys.bodies().size(); ++b) {
+    const model::Body& body = sys.bodies()[b];
+    const std::string k = std::to_string(b + 1);
+    line("peak_u" + k + "_m", list(per_floor(run, body, r.peak_u)));
+    line("peak_drift" + k + "_m", list(per_floor(run, body, r.peak_drift, 1.0, true)));
+    line("peak_abs_acc" + k + "_g", list(per_floor(run, body, r.peak_acc, g_accel)));
+  }
+  line("contact_levels", sys.contacts().empty() ? std::string("none (no floors face each other)")
+                                                 : std::to_string(sys.contacts().size()));
+  for (int e = 0; e < static_cast<int>(sys.contacts().size()); ++e)
+    line(sys.contacts()[static_cast<std::size_t>(e)].label,
+         fmt::format("impacts {}, peak_force_N {:.6g}, peak_penetration_m {:.6g}, peak_closing_m {:.6g}, "
+                     "t_first_impact_s {:.6g}, contact_energy_dissipated_J {:.6g}, contact_stiffness {:.6g}",
+                     at(r.impact_count, e, r, run.lane), at(r.peak_force, e, r, run.lane),
+                     at(r.peak_penetration, e, r, run.lane), at(r.peak_closing, e, r, run.lane),
+                     at(r.t_first_impact, e, r, run.lane), at(r.contact_energy, e, r, run.lane),
+                     run.contact_stiffness[static_cast<std::size_t>(e)]));
+  line("impact_count", t.impacts);
+  num("peak_contact_force_N", t.peak_force);
+  num("t_first_impact_s", t.t_first_impact);
+  line("tensile_force_clamps", t.clamps);
+  if (ks.energy) {
+    for (const EnergyTerm& e : energy_terms) num(e.name, (r.*e.values)[run.lane]);
+    num("energy_contact_dissipated_J", t.energy);
+    num("energy_balance_error_rel", balance_error(run, t));
+  }
+  return s;
+}
+
+std::string format_system_json(const SystemRunReport& run) {
+  const Record& rec = *run.record;
+  const KernelSettings& ks = *run.settings;
+  const ContactModel& cm = *run.contact;
+  const physics::SystemResult& r = *run.result;
+  const model::System& sys = *run.system;
+  report::JsonWriter w;
+  w.begin_object();
+  w.member("record", rec.name).member("record_source", rec.source).member("record_dt_s", rec.dt);
+  w.member("record_pga_g", rec.pga() / g_accel).member("analysis_duration_s", run.analysis_duration);
+  w.member("stepper", to_string(ks.stepper)).member("integration_dt_s", rec.dt / ks.substeps);
+  w.member("contact_law", to_string(cm.law));
+  if (contact::traits(cm.law).restitution_from_damping)
+    w.member("damping_law", to_string(cm.damping)).member("xibar", hertzdamp_xibar(cm.damping, run.e_target, cm.n));
+  w.member("e_target", run.e_target).member("gap", run.gap);
+  w.key("buildings").begin_array();
+  for (const BuildingReport& b : run.buildings) {
+    w.begin_object().member("label", b.label).member("storeys", static_cast<int>(b.floor_levels.size()));
+    w.member("floor_levels", b.floor_levels).member("floor_mass", b.floor_mass);
+    w.member("storey_stiffness", b.storey_stiffness).member("storey_yield", b.storey_yield);
+    w.member("periods", b.periods).member("modal_damping", b.modal_damping).end_object();
+  }
+  w.end_array();
+  w.member("status", to_string(static_cast<LaneStatus>(r.status[run.lane])));
+  const Totals t = totals(run);
+  for (std::size_t b = 0; b < sys.bodies().size(); ++b) {
+    const model::Body& body = sys.bodies()[b];
+    const std::string k = std::to_string(b + 1);
+    w.member("peak_u" + k, per_floor(run, body, r.peak_u));
+    w.member("peak_drift" + k, per_floor(run, body, r.peak_drift, 1.0, true));
+    w.member("peak_abs_acc" + k + "_g", per_floor(run, body, r.peak_acc, g_accel));
+    w.member("final_u" + k, per_floor(run, body, r.final_u));
+  }
+  w.key("levels").begin_array();
+  for (int e = 0; e < static_cast<int>(sys.contacts().size()); ++e) {
+    const model::ContactElement& ce = sys.contacts()[static_cast<std::size_t>(e)];
+    w.begin_object().member("level", ce.level).member("label", ce.label);
+    w.member("impacts", static_cast<std::int64_t>(at(r.impact_count, e, r, run.lane)));
+    w.member("peak_force", at(r.peak_force, e, r, run.lane));
+    w.member("peak_penetration", at(r.peak_penetration, e, r, run.lane));
+    w.member("peak_closing", at(r.peak_closing, e, r, run.lane));
+    w.member("t_peak_closing", at(r.t_peak_closing, e, r, run.lane));
+    w.member("t_first_impact", at(r.t_first_impact, e, r, run.lane));
+    w.member("contact_energy", at(r.contact_energy, e, r, run.lane));
+    w.member("contact_time", at(r.contact_time, e, r, run.lane));
+    w.member("clamps", static_cast<std::int64_t>(at(r.clamp_count, e, r, run.lane)));
+    w.member("h_omega_contact", at(r.h_omega_contact, e, r, run.lane));
+    w.member("contact_stiffness", run.contact_stiffness[static_cast<std::size_t>(e)]);
+    w.end_object();
+  }
+  w.end_array();
+  w.member("impact_count", t.impacts).member("peak_force", t.peak_force);
+  w.member("peak_penetration", t.peak_penetration).member("peak_closing", t.peak_closing);
+  w.member("t_first_impact", t.t_first_impact).member("tensile_force_clamps", t.clamps);
+  w.member("h_omega_contact", t.h_omega).member("h_omega_limit", physics::resolution_limit(ks, cm.law));
+  if (ks.energy) {
+    for (const EnergyTerm& e : energy_terms) w.member(e.name, (r.*e.values)[run.lane]);
+    w.member("energy_contact_dissipated_J", t.energy).member("energy_balance_error_rel", balance_error(run, t));
+  }
+  return w.end_object().str();
 }
 
 }  // namespace pounding

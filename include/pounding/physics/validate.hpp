@@ -27,6 +27,16 @@ std::vector<Problem> validate_lane(const PairParams& p, const ContactModel& cm, 
 // validation above (today's checks and messages). std::logic_error for a batch not sized for its system.
 std::vector<Problem> validate(const SystemBatch& batch, std::span<const ContactModel> models,
                               const GroundMotion& motion, const KernelSettings& settings);
+// The structure's highest circular frequency bound of one lane, Gershgorin on M^-1 K0 (initial spring stiffnesses,
+// contact excluded): omega_max^2 <= max_i sum_j |K0_ij| / m_i, and the DOF where the bound is largest.
+struct StructureFrequency {
+  double omega_max;
+  int dof;
+};
+StructureFrequency structure_omega_max(const SystemBatch& batch, std::size_t lane);
+// The stepper's limit on h omega for the structure: 2 (central difference), 2.8 (RK4), infinity (the implicit and
+// exact steppers).
+double structure_step_limit(Stepper stepper);
 // Throws InputError for problems.front(); nothing when empty.
 void throw_first(const std::vector<Problem>& problems);
 

@@ -1,14 +1,42 @@
 #pragma once
 // Text summaries of kernel results: one `name: value` per line (SI units in the names).
 #include <string>
+#include <vector>
 
 #include "pounding/contact/model.hpp"
 #include "pounding/physics/batch.hpp"
+#include "pounding/model/system.hpp"
 #include "pounding/motion/records.hpp"
+#include "pounding/physics/system_batch.hpp"
 
 namespace pounding {
 
 std::string format_summary(const BatchResult& r, std::size_t lane, const ContactModel& cm, const PairParams& p,
                            const Record& rec, const KernelSettings& ks);
+
+// One building of a system run as the outputs describe it (per floor / per storey, bottom first).
+struct BuildingReport {
+  std::string label;
+  std::vector<double> floor_levels, floor_mass, storey_stiffness, storey_yield, periods, modal_damping;
+};
+
+// A run of one lane of a system (`pounding simulate`): what it was and every observer.
+struct SystemRunReport {
+  const model::System* system = nullptr;
+  const physics::SystemResult* result = nullptr;
+  std::size_t lane = 0;
+  const Record* record = nullptr;
+  const KernelSettings* settings = nullptr;
+  const ContactModel* contact = nullptr;
+  double e_target = 1.0, gap = 0.0, analysis_duration = 0.0;
+  std::vector<double> contact_stiffness;  // per element
+  std::vector<BuildingReport> buildings;  // one per body
+};
+
+// `name: value` lines (lists space-separated), per building, per level, then the totals and the energy terms.
+std::string format_system_summary(const SystemRunReport& run);
+// One JSON object (report/json.hpp): peak_u<b>, peak_drift<b>, peak_abs_acc<b>_g (lists, one per floor from the
+// first), levels (one object per contact element: level, label, impacts, peak_force, ...), the totals, energies.
+std::string format_system_json(const SystemRunReport& run);
 
 }  // namespace pounding

@@ -3,6 +3,10 @@
 // delivered restitution is within --e-tolerance of the target, "off-target" that it is not (with the numbers
 // and, in e_law, what the law promises).
 #include <cmath>
+#include <cstdint>
+#include <string>
+#include <string_view>
+#include <vector>
 #include <memory>
 #include <numbers>
 
@@ -12,15 +16,108 @@
 #include "pounding/physics/resolution.hpp"
 #include "pounding/physics/single_impact.hpp"
 #include "pounding/core/error.hpp"
+#include "pounding/report/json.hpp"
 
 namespace pounding::cli {
 
-void add_collide(CLI::App& app) {
-  struct Opts {
-    std::string law = "hertzdamp", damping_law = "lankarani-nikravesh", stepper = "rk4";
-    double e = 0.65, v0 = 1.0, m1 = 1.0e6, m2 = 1.0e6, kh = 2.808e10, n = 1.5, tolerance = default_e_tolerance;
-    int steps = 20000;
+namespace {
+
+// Named outputs in order: `name: text` lines, or one JSON object with the numbers at full precision.
+class Outputs {
+ public:
+  void number(std::string name, double v, std::string_view spec) {
+    items_.push_back({std::move(name), fmt::format(fmt::runtime(spec), v), v, 0, Kind::number, {}});
+  }
+  void integer(std::string name, std::int64_t v) {
+    items_.push_back({std::move(name), std::to_string(v), 0.0, v, Kind::integer, {}});
+  }
+  // text: the JSON value; line: the text format's value when it says more (status)
+  void text(std::string name, std::string_view value, std::string line = "") {
+    std::string text(value);
+    items_.push_back({std::move(name), line.empty() ? text : line, 0.0, 0, Kind::text, text});
+  }
+  std::string lines() const {
+    std::string s;
+    for (const Item& i : items_) s += fmt::format("{}: {}\n", i.name, i.line);
+    return s;
+  }
+  std::string json() const {
+    report::JsonWriter w;
+    w.begin_object();
+    for (const Item& i : items_) {
+      w.key(i.name);
+      if (i.kind == Kind::number) w.value(i.v);
+      else if (i.kind == Kind::integer) w.value(i.n);
+      else w.value(i.text);
+      if (i.kind == Kind::text && i.line != i.text) w.member(i.name + "_note", i.line);
+    }
+    return w.end_object().str();
+  }
+
+ private:
+  enum class Kind { number, integer, text };
+  struct Item {
+    std::string name, line;
+    double v;
+    std::int64_t n;
+    Kind kind;
+    std::string text;
   };
+  std::vector<Item> items_;
+};
+
+struct Opts {
+  std::string law = "hertzdamp", damping_law = "lankarani-nikravesh", stepper = "rk4";
+  double e = 0.65, v0 = 1.0, m1 = 1.0e6, m2 = 1.0e6, kh = 2.808e10, n = 1.5, tolerance = default_e_tolerance;
+  int steps = 20000;
+  bool json = false;
+};
+
+// One list of outputs, printed as `name: value` lines (the text format) or as one JSON object (--json); `code` the
+// exit code (3 when the kernel's status is not ok).
+Outputs collide_outputs(const Opts& o, const ContactModel& cm, Stepper stepper, const ImpactResult& r, double e_target,
+                        const RestitutionPromise& promise, int& code) {
+  Outputs out;
+  out.text("law", to_string(cm.law));
+  if (contact::traits(cm.law).restitution_from_damping) {
+    out.text("damping_law", to_string(cm.damping));
+    out.number("xibar", hertzdamp_xibar(cm.damping, o.e, cm.n), "{:.9g}");
+  }
+  const double miss = r.e_effective - e_target;
+  out.number("e_target", e_target, "{:.9g}");
+  out.number("e_effective", r.e_effective, "{:.9g}");
+  out.number("e_miss", miss, "{:+.3g}");
+  out.number("e_tolerance", o.tolerance, "{:.9g}");
+  out.text("e_law", fmt::format("{}: {}", to_string(promise.kind), promise.note));
+  out.number("peak_force_N", r.peak_force, "{:.9g}");
+  out.number("peak_penetration_m", r.peak_penetration, "{:.9g}");
+  out.number("contact_duration_s", r.duration, "{:.9g}");
+  out.number("energy_lost_J", r.energy_lost, "{:.9g}");
+  // the basis of each fraction: the whole initial kinetic energy (mass 2 at rest), and the kinetic energy of the
+  // pre-impact relative motion, the most an impact can take (momentum is conserved): 1 - e^2 of it is lost
+  const double ke_relative = 0.5 * o.m1 * o.m2 / (o.m1 + o.m2) * o.v0 * o.v0;
+  out.number("energy_lost_fraction_of_initial_kinetic", r.energy_lost_fraction, "{:.9g}");
+  out.number("energy_lost_fraction_of_relative_kinetic", r.energy_lost / ke_relative, "{:.9g}");
+  out.integer("tensile_force_clamps", r.clamps);
+  out.number("h_omega_contact", r.h_omega_contact, "{:.6g}");
+  out.number("h_omega_limit", physics::resolution_limit(stepper, false, cm.law), "{:.6g}");
+  if (r.status != LaneStatus::ok) {
+    out.text("status", std::string(to_string(r.status)));
+    code = 3;
+  } else if (!(std::abs(miss) <= o.tolerance)) {
+    out.text("status", "off-target",
+             fmt::format("off-target (e_effective {:.4g} misses e_target {:.4g} by {:+.3g}, more than the tolerance "
+                         "{:.3g})",
+                         r.e_effective, e_target, miss, o.tolerance));
+  } else {
+    out.text("status", "ok");
+  }
+  return out;
+}
+
+}  // namespace
+
+void add_collide(CLI::App& app) {
   auto o = std::make_shared<Opts>();
   auto* c = app.add_subcommand("collide", "two free masses meeting at v0: effective restitution, peak force, "
                                           "penetration, duration, energy lost");
@@ -38,6 +135,8 @@ void add_collide(CLI::App& app) {
   c->add_option("--steps", o->steps, "integration steps per estimated contact duration")->capture_default_str();
   c->add_option("--e-tolerance", o->tolerance, "status is ok when |e_effective - e_target| <= this")
       ->capture_default_str();
+  c->add_flag("--json", o->json, "print the outputs as one JSON object (numbers at full precision, the same names; "
+                                 "status_note carries the off-target explanation)");
   c->footer("status: ok (the delivered restitution is within --e-tolerance of the target), off-target (it is not: "
             "a property of laws that do not deliver their nominal e, e.g. lankarani-nikravesh, see e_law; exit code 0), "
             "or the kernel's status (diverged, non-finite: exit code 3). Elastic laws (linear, hertz) target e = 1.\n"
@@ -59,39 +158,10 @@ void add_collide(CLI::App& app) {
     // an elastic law is asked for nothing: its target is the e = 1 it delivers
     const double e_target = promise.kind == RestitutionKind::elastic ? 1.0 : o->e;
     ImpactResult r = single_impact(cm, stepper, o->e, o->v0, o->m1, o->m2, o->kh, o->steps);
-    fmt::print("law: {}\n", to_string(cm.law));
-    if (contact::traits(cm.law).restitution_from_damping) {
-      fmt::print("damping_law: {}\n", to_string(cm.damping));
-      fmt::print("xibar: {:.9g}\n", hertzdamp_xibar(cm.damping, o->e, cm.n));
-    }
-    const double miss = r.e_effective - e_target;
-    fmt::print("e_target: {:.9g}\n", e_target);
-    fmt::print("e_effective: {:.9g}\n", r.e_effective);
-    fmt::print("e_miss: {:+.3g}\n", miss);
-    fmt::print("e_tolerance: {:.9g}\n", o->tolerance);
-    fmt::print("e_law: {}: {}\n", to_string(promise.kind), promise.note);
-    fmt::print("peak_force_N: {:.9g}\n", r.peak_force);
-    fmt::print("peak_penetration_m: {:.9g}\n", r.peak_penetration);
-    fmt::print("contact_duration_s: {:.9g}\n", r.duration);
-    fmt::print("energy_lost_J: {:.9g}\n", r.energy_lost);
-    // the basis of each fraction: the whole initial kinetic energy (mass 2 at rest), and the kinetic energy of the
-    // pre-impact relative motion, the most an impact can take (momentum is conserved): 1 - e^2 of it is lost
-    const double ke_relative = 0.5 * o->m1 * o->m2 / (o->m1 + o->m2) * o->v0 * o->v0;
-    fmt::print("energy_lost_fraction_of_initial_kinetic: {:.9g}\n", r.energy_lost_fraction);
-    fmt::print("energy_lost_fraction_of_relative_kinetic: {:.9g}\n", r.energy_lost / ke_relative);
-    fmt::print("tensile_force_clamps: {}\n", r.clamps);
-    fmt::print("h_omega_contact: {:.6g}\n", r.h_omega_contact);
-    fmt::print("h_omega_limit: {:.6g}\n", physics::resolution_limit(stepper, false, cm.law));
-    if (r.status != LaneStatus::ok) {
-      fmt::print("status: {}\n", to_string(r.status));
-      throw ExitRequest{3};
-    } else if (!(std::abs(miss) <= o->tolerance)) {
-      fmt::print("status: off-target (e_effective {:.4g} misses e_target {:.4g} by {:+.3g}, more than the tolerance "
-                 "{:.3g})\n",
-                 r.e_effective, e_target, miss, o->tolerance);
-    } else {
-      fmt::print("status: ok\n");
-    }
+    int code = 0;
+    const Outputs out = collide_outputs(*o, cm, stepper, r, e_target, promise, code);
+    fmt::print("{}", o->json ? out.json() : out.lines());
+    if (code != 0) throw ExitRequest{code};
   });
 }
 

@@ -5,6 +5,10 @@
 #include <filesystem>
 #include <limits>
 #include <memory>
+#include <numbers>
+#include <span>
+#include <string>
+#include <vector>
 #include <tuple>
 
 #include <fmt/format.h>
@@ -14,7 +18,11 @@
 #include "pounding/core/error.hpp"
 #include "pounding/core/files.hpp"
 #include "pounding/io/hdf5.hpp"
+#include "pounding/model/shear_building.hpp"
 #include "pounding/physics/batch.hpp"
+#include "pounding/physics/shear_building.hpp"
+#include "pounding/physics/system_batch.hpp"
+#include "pounding/physics/validate.hpp"
 #include "pounding/motion/records.hpp"
 #include "pounding/report/summary.hpp"
 #include "pounding/testing/workloads.hpp"
@@ -45,7 +53,17 @@ struct SimulateOptions {
   double dt = 0, duration = 0, u_limit = 10.0;
   bool locate = false;
   bool k1_given = false, k2_given = false, fy1_given = false, fy2_given = false, dt_given = false, kh_given = false;
-  bool duration_given = false, m1_given = false, m2_given = false;
+  bool duration_given = false, m1_given = false, m2_given = false, h1_given = false, h2_given = false;
+  bool json = false;
+  // multi-storey buildings (issue 25 §4): any of these options makes both buildings shear buildings
+  struct Storeys {
+    int storeys = 1;
+    double mass = 0, stiffness = 0, height = 3.2;
+    bool storeys_given = false, mass_given = false, stiffness_given = false, height_given = false;
+    bool any() const { return storeys_given || mass_given || stiffness_given || height_given; }
+  };
+  Storeys b[2];
+  bool storey_mode() const { return b[0].any() || b[1].any(); }
 };
 
 // --m1/--m2, or the mass model's value at --h1/--h2.
@@ -61,12 +79,8 @@ void resolve_masses(SimulateOptions& o) {
 
 // What the pair and the analysis are beyond the summary: the masses and where they came from, and the analysis
 // length against the record's.
-std::string describe_run(const SimulateOptions& o, double record_length, double analysis_length) {
-  std::string t;
-  for (const auto& [name, m, given, h] : {std::tuple{"m1", o.m1, o.m1_given, o.h1}, {"m2", o.m2, o.m2_given, o.h2}})
-    t += fmt::format("{}_kg: {:.6g} ({})\n", name, m,
-                     given ? std::string("--") + name : fmt::format("from h = {:g} m: {}", h, mass_model_text));
-  t += fmt::format("analysis_duration_s: {:.6g}\n", analysis_length);
+std::string describe_duration(double record_length, double analysis_length) {
+  std::string t = fmt::format("analysis_duration_s: {:.6g}\n", analysis_length);
   if (analysis_length < record_length - 1e-12)
     t += fmt::format("analysis_note: --duration shortened the analysis to the first {:.6g} s of the record's {:.6g} s\n",
                      analysis_length, record_length);
@@ -74,6 +88,13 @@ std::string describe_run(const SimulateOptions& o, double record_length, double 
     t += fmt::format("analysis_note: --duration runs {:.6g} s: the record's {:.6g} s, then free vibration\n",
                      analysis_length, record_length);
   return t;
+}
+std::string describe_run(const SimulateOptions& o, double record_length, double analysis_length) {
+  std::string t;
+  for (const auto& [name, m, given, h] : {std::tuple{"m1", o.m1, o.m1_given, o.h1}, {"m2", o.m2, o.m2_given, o.h2}})
+    t += fmt::format("{}_kg: {:.6g} ({})\n", name, m,
+                     given ? std::string("--") + name : fmt::format("from h = {:g} m: {}", h, mass_model_text));
+  return t + describe_duration(record_length, analysis_length);
 }
 
 // --duration shorter than the record keeps its first duration / dt steps (rounded to a whole step); longer, the
@@ -209,13 +230,147 @@ PairParams pair_params(const SimulateOptions& o, const ContactModel& cm, const S
   return p;
 }
 
+// ---- multi-storey buildings (issue 25 §4; docs/architecture.md §2.7.3) ----
+
+// The storey options, checked before any work: counts, heights, masses and stiffnesses, and the SDOF options that
+// mean nothing for a building of several storeys.
+void validate_storeys(const SimulateOptions& o) {
+  for (int i = 0; i < 2; ++i) {
+    const SimulateOptions::Storeys& b = o.b[i];
+    const std::string k = std::to_string(i + 1);
+    if (b.storeys < 1 || b.storeys > 200)
+      throw InputError(fmt::format("--storeys{} = {} is out of range", k, b.storeys), "--storeys" + k,
+                       "give a number of storeys in [1, 200]");
+    require_range(b.height, 0.01, 100.0, "--storey-height" + k, "[0.01, 100] m");
+    if (b.mass_given) require_positive(b.mass, "--storey-mass" + k);
+    if (b.stiffness_given) require_positive(b.stiffness, "--storey-stiffness" + k);
+    if (b.storeys == 1) continue;
+    const bool given[] = {i == 0 ? o.m1_given : o.m2_given, i == 0 ? o.k1_given : o.k2_given,
+                          i == 0 ? o.fy1_given : o.fy2_given, i == 0 ? o.h1_given : o.h2_given};
+    const char* name[] = {"--m", "--k", "--fy", "--h"};
+    const std::string fix[] = {"give the mass of each floor with --storey-mass" + k,
+                               "give --storey-stiffness" + k + " (or --T" + k + ")",
+                               "drop --fy" + k + ": storeys yield at a drift of 0.02 h / 6 (or give --elastic)",
+                               "give each storey's height with --storey-height" + k};
+    for (int j = 0; j < 4; ++j)
+      if (given[j])
+        throw InputError(fmt::format("{}{} describes an SDOF, and building {} has {} storeys", name[j], k, k, b.storeys),
+                         name[j] + k, fix[j]);
+  }
+  if (!o.series.empty())
+    throw InputError("--series records an SDOF pair only", "--series", "drop --series or the storey options");
+}
+
+// Building i's numbers. One storey: the SDOF options unchanged (make_structure), so two one-storey buildings of
+// equal storey heights are today's pair bit for bit; several: uniform floors and storeys, the storeys from
+// --storey-stiffness or scaled to --T, yield drift 0.02/6 (the SDOF's yield displacement 0.02 h / 6 per storey),
+// Rayleigh --zeta on modes 1 and 2.
+physics::ShearSpec shear_spec(const SimulateOptions& o, int i, const Structure& sdof) {
+  const SimulateOptions::Storeys& b = o.b[i];
+  physics::ShearSpec spec;
+  spec.alpha = o.alpha;
+  spec.zeta = o.zeta;
+  if (b.storeys == 1) {
+    spec.floor_mass = {sdof.m}, spec.storey_stiffness = {sdof.k}, spec.storey_yield = {sdof.fy};
+    return spec;
+  }
+  spec.floor_mass = {b.mass_given ? b.mass : mass_from_height(b.storeys * b.height) / b.storeys};
+  if (b.stiffness_given) spec.storey_stiffness = {b.stiffness};
+  else spec.period = i == 0 ? o.T1 : o.T2;
+  if (spec.storey_stiffness.empty()) require_positive(spec.period, i == 0 ? "--T1" : "--T2");
+  if (!o.elastic) spec.yield_drift = 0.02 / 6.0;
+  return spec;
+}
+
+// The buildings' own highest frequency against the stepper's limit, as a --dt error (physics::validate says the same
+// in substeps): a stiff storey over a light floor is far above T1 and invisible to the user.
+void check_step(const SimulateOptions& o, const physics::SystemBatch& batch, const KernelSettings& ks, double record_dt) {
+  const physics::StructureFrequency f = physics::structure_omega_max(batch, 0);
+  const double limit = physics::structure_step_limit(ks.stepper), h = record_dt / ks.substeps;
+  if (h * f.omega_max < limit) return;
+  const double need = std::floor(record_dt * f.omega_max / limit) + 1.0;
+  throw InputError(fmt::format("the integration step {} s is too long for the buildings' highest frequency (h omega_max "
+                               "= {:.3g} >= {}, omega_max <= {:.6g} rad/s by Gershgorin's bound)",
+                               h, h * f.omega_max, limit, f.omega_max),
+                   o.dt_given ? "--dt" : "--dt (default: the record step)",
+                   fmt::format("give --dt <= {:.6g} s (the record step {} s / {})", record_dt / need, record_dt, need));
+}
+
+int run_storeys(SimulateOptions& o, const ContactModel& cm, KernelSettings& ks) {
+  validate_storeys(o);
+  // the one-storey buildings' SDOF numbers, checked as today
+  if (o.b[0].storeys == 1 && o.b[0].mass_given) o.m1 = o.b[0].mass, o.m1_given = true;
+  if (o.b[1].storeys == 1 && o.b[1].mass_given) o.m2 = o.b[1].mass, o.m2_given = true;
+  if (o.b[0].storeys == 1 && o.b[0].stiffness_given) o.k1 = o.b[0].stiffness, o.k1_given = true;
+  if (o.b[1].storeys == 1 && o.b[1].stiffness_given) o.k2 = o.b[1].stiffness, o.k2_given = true;
+  resolve_masses(o);
+  const Structure sdof[2] = {
+      make_structure(o.m1, o.T1, o.k1, o.h1, o.fy1, o.alpha, o.zeta, o.elastic, "1", o.k1_given, o.fy1_given),
+      make_structure(o.m2, o.T2, o.k2, o.h2, o.fy2, o.alpha, o.zeta, o.elastic, "2", o.k2_given, o.fy2_given)};
+  std::vector<model::StickTopology> sticks(2);
+  for (int i = 0; i < 2; ++i) sticks[i].storeys = o.b[i].storeys, sticks[i].storey_heights = {o.b[i].height};
+  const model::System sys = model::shear_buildings(sticks);
+  physics::SystemBatch batch;
+  batch.resize(sys, 1);
+  SystemRunReport run;
+  for (int i = 0; i < 2; ++i) {
+    const physics::ShearNumbers num = physics::set_shear_building(batch, 0, i, shear_spec(o, i, sdof[i]));
+    run.buildings.push_back({sys.bodies()[static_cast<std::size_t>(i)].label, model::floor_levels(sticks[i]), num.m,
+                             num.k, num.fy, num.modes.period, num.zeta_modes});
+  }
+  const bool needs_kh = cm.law == ContactLaw::linear || cm.law == ContactLaw::kelvin;
+  if (needs_kh && !o.kh_given) require_positive(0.0, "--kh (linear/Kelvin stiffness, N/m)");
+  physics::set_contacts(batch, 0, o.gap, 0.0, o.e);
+  for (std::size_t e = 0; e < sys.contacts().size(); ++e) {
+    const model::ContactElement& ce = sys.contacts()[e];
+    const double kc = o.kh_given ? o.kh
+                                 : hertz_stiffness_spheres(batch.m[static_cast<std::size_t>(ce.left.p)],
+                                                           batch.m[static_cast<std::size_t>(ce.right.p)], o.density,
+                                                           o.youngs, o.poisson);  // width 1: index = DOF
+    batch.kc[e] = kc;
+    run.contact_stiffness.push_back(kc);
+  }
+  Record rec = ground_motion(o);
+  const double record_length = rec.duration();
+  const double analysis_length = cut_to_duration(o, rec);
+  if (o.dt_given) ks.substeps = substeps_for(o, rec.dt);
+  if (!sys.is_sdof_pair()) check_step(o, batch, ks, rec.dt);
+  GroundMotion gm{rec.dt, rec.acc, analysis_length > record_length ? analysis_length : 0.0};
+  physics::SystemResult r;
+  physics::run_system(batch, std::span<const ContactModel>(&cm, 1), gm, ks, r);
+
+  run.system = &sys, run.result = &r, run.record = &rec, run.settings = &ks, run.contact = &cm;
+  run.e_target = o.e, run.gap = o.gap, run.analysis_duration = analysis_length;
+  if (o.json) {
+    fmt::print("{}", format_system_json(run));
+  } else {
+    fmt::print("{}{}", describe_duration(record_length, analysis_length), format_system_summary(run));
+  }
+  return r.status[0] != 0 ? 3 : 0;
+}
+
+// The pair's observers as one JSON object (--json without storey options): the same run as the text output.
+void print_pair_json(const SimulateOptions& o, const BatchResult& r, const ContactModel& cm, const PairParams& p,
+                     const Record& rec, const KernelSettings& ks, double analysis_length) {
+  static const model::System pair = model::System::sdof_pair();
+  const physics::SystemResult sr = physics::from_pair_result(r);
+  SystemRunReport run;
+  run.system = &pair, run.result = &sr, run.record = &rec, run.settings = &ks, run.contact = &cm;
+  run.e_target = p.e, run.gap = p.gap, run.analysis_duration = analysis_length, run.contact_stiffness = {p.kc};
+  for (const auto& [s, h, label] : {std::tuple{p.s1, o.h1, "building1"}, {p.s2, o.h2, "building2"}})
+    run.buildings.push_back({label, {h}, {s.m}, {s.k}, {s.fy}, {2 * std::numbers::pi * std::sqrt(s.m / s.k)},
+                             {s.c / (2.0 * std::sqrt(s.k * s.m))}});
+  fmt::print("{}", format_system_json(run));
+}
+
 // Runs the pair, prints the summary and writes --series; returns the exit code (3: diverged, the numbers
 // printed are not results).
 int run_simulate(SimulateOptions& o) {
   validate_scalars(o);  // everything is validated before any work or output
-  resolve_masses(o);
   const ContactModel cm = contact_model(o);
   KernelSettings ks = kernel_settings(o);
+  if (o.storey_mode()) return run_storeys(o, cm, ks);
+  resolve_masses(o);
   Structure s1 = make_structure(o.m1, o.T1, o.k1, o.h1, o.fy1, o.alpha, o.zeta, o.elastic, "1", o.k1_given, o.fy1_given);
   Structure s2 = make_structure(o.m2, o.T2, o.k2, o.h2, o.fy2, o.alpha, o.zeta, o.elastic, "2", o.k2_given, o.fy2_given);
   Record rec = ground_motion(o);
@@ -238,6 +393,10 @@ int run_simulate(SimulateOptions& o) {
   BatchResult r;
   run_batch(b, cm, gm, ks, r);
 
+  if (o.json) {
+    print_pair_json(o, r, cm, p, rec, ks, analysis_length);
+    return r.status[0] != 0 ? 3 : 0;
+  }
   std::string text = describe_run(o, record_length, analysis_length) + format_summary(r, 0, cm, p, rec, ks);
   fmt::print("{}", text);
   if (!o.series.empty()) {
@@ -253,7 +412,7 @@ int run_simulate(SimulateOptions& o) {
 
 void add_simulate(CLI::App& app) {
   auto o = std::make_shared<SimulateOptions>();
-  auto* c = app.add_subcommand("simulate", "one pair of SDOF structures through one record; prints every observer");
+  auto* c = app.add_subcommand("simulate", "one pair of SDOF structures (or multi-storey shear buildings, --storeys1/2) through one record; prints every observer");
   c->add_option("--record", o->record, "ground motion file (PEER .AT2, time/acc text, one-column text); "
                                        "default: built-in 0.4 g sweep");
   c->add_option("--units", o->units, "units of the record values: g, m/s2, cm/s2")->capture_default_str();
@@ -272,7 +431,7 @@ void add_simulate(CLI::App& app) {
   c->add_option("--fy2", o->fy2, "yield force of structure 2 (N), instead of --h2");
   c->add_flag("--elastic", o->elastic, "linear elastic structures (no yielding)");
   c->add_option("--alpha", o->alpha, "post-yield stiffness ratio, [0, 1)")->capture_default_str();
-  c->add_option("--zeta", o->zeta, "viscous damping ratio of both structures")->capture_default_str();
+  c->add_option("--zeta", o->zeta, "viscous damping ratio of both structures (multi-storey: Rayleigh damping with this ratio at modes 1 and 2)")->capture_default_str();
   c->add_option("--gap", o->gap, "at-rest separation (m)")->capture_default_str();
   c->add_option("--contact", o->contact, std::string("contact law: ") + std::string(contact_law_names))
       ->capture_default_str();
@@ -293,12 +452,36 @@ void add_simulate(CLI::App& app) {
   c->add_option("--u-limit", o->u_limit, "|u1| + |u2| above this (m) marks the run diverged")->capture_default_str();
   c->add_flag("--locate-contact", o->locate, "rk4: locate each contact onset inside its step (high-accuracy mode)");
   c->add_option("--series", o->series, "write the time series to FILE.csv or FILE.h5");
+  for (int i = 0; i < 2; ++i) {
+    const std::string k = std::to_string(i + 1);
+    c->add_option("--storeys" + k, o->b[i].storeys,
+                  "storeys of building " + k + " (a shear building; any storey option makes both buildings shear "
+                  "buildings, a one-storey one keeps the SDOF options)")
+        ->capture_default_str();
+    c->add_option("--storey-mass" + k, o->b[i].mass,
+                  "mass of each floor of building " + k + " (kg); default: the mass model's at storeys x storey "
+                  "height, split equally");
+    c->add_option("--storey-stiffness" + k, o->b[i].stiffness,
+                  "stiffness of each storey of building " + k + " (N/m); default: uniform storeys scaled to --T" + k);
+    c->add_option("--storey-height" + k, o->b[i].height,
+                  "height of each storey of building " + k + " (m); floors at levels within 0.05 m pound")
+        ->capture_default_str();
+  }
+  c->add_flag("--json", o->json, "print every observer as one JSON object (per floor: peak_u1, peak_u2, ...; per "
+                                 "contact level: levels)");
   c->callback([o, c] {
     o->k1_given = c->count("--k1") > 0, o->k2_given = c->count("--k2") > 0;
     o->fy1_given = c->count("--fy1") > 0, o->fy2_given = c->count("--fy2") > 0;
     o->dt_given = c->count("--dt") > 0, o->kh_given = c->count("--kh") > 0;
     o->duration_given = c->count("--duration") > 0;
     o->m1_given = c->count("--m1") > 0, o->m2_given = c->count("--m2") > 0;
+    o->h1_given = c->count("--h1") > 0, o->h2_given = c->count("--h2") > 0;
+    for (int i = 0; i < 2; ++i) {
+      const std::string k = std::to_string(i + 1);
+      o->b[i].storeys_given = c->count("--storeys" + k) > 0, o->b[i].mass_given = c->count("--storey-mass" + k) > 0;
+      o->b[i].stiffness_given = c->count("--storey-stiffness" + k) > 0;
+      o->b[i].height_given = c->count("--storey-height" + k) > 0;
+    }
     if (const int code = run_simulate(*o)) throw ExitRequest{code};
   });
 }
