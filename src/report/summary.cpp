@@ -124,8 +124,10 @@ Totals totals(const SystemRunReport& run) {
   Totals t;
   const auto& r = *run.result;
   for (int e = 0; e < static_cast<int>(run.system->contacts().size()); ++e) {
-    t.impacts += at(r.impact_count, e, r, run.lane);
-    t.clamps += at(r.clamp_count, e, r, run.lane);
+    // -1 marks a diverged or non-finite lane (physics/run_batch.cpp): the total says the same
+    const std::int32_t n = at(r.impact_count, e, r, run.lane), c = at(r.clamp_count, e, r, run.lane);
+    t.impacts = t.impacts < 0 || n < 0 ? -1 : t.impacts + n;
+    t.clamps = t.clamps < 0 || c < 0 ? -1 : t.clamps + c;
     t.peak_force = std::max(t.peak_force, at(r.peak_force, e, r, run.lane));
     t.peak_penetration = std::max(t.peak_penetration, at(r.peak_penetration, e, r, run.lane));
     const double closing = at(r.peak_closing, e, r, run.lane);
@@ -155,6 +157,14 @@ double balance_error(const SystemRunReport& run, const Totals& t) {
   const std::size_t l = run.lane;
   const double out = r.e_kinetic[l] + r.e_strain[l] + r.e_viscous[l] + r.e_hysteretic[l] + r.e_contact_stored[l] + t.energy;
   return (r.e_input[l] - out) / std::max(std::abs(r.e_input[l]), 1e-300);
+}
+
+// Peak drift / storey height per storey (the storey heights from the report's floor levels, bottom first).
+std::vector<double> drift_ratios(const std::vector<double>& drift, const BuildingReport& b) {
+  std::vector<double> out(drift.size());
+  for (std::size_t i = 0; i < drift.size() && i < b.floor_levels.size(); ++i)
+    out[i] = drift[i] / (b.floor_levels[i] - (i == 0 ? 0.0 : b.floor_levels[i - 1]));
+  return out;
 }
 
 std::string list(const std::vector<double>& v) {
@@ -204,7 +214,9 @@ std::string format_system_summary(const SystemRunReport& run) {
     const model::Body& body = sys.bodies()[b];
     const std::string k = std::to_string(b + 1);
     line("peak_u" + k + "_m", list(per_floor(run, body, r.peak_u)));
-    line("peak_drift" + k + "_m", list(per_floor(run, body, r.peak_drift, 1.0, true)));
+    const std::vector<double> drift = per_floor(run, body, r.peak_drift, 1.0, true);
+    line("peak_drift" + k + "_m", list(drift));
+    line("peak_drift_ratio" + k, list(drift_ratios(drift, run.buildings[b])));
     line("peak_abs_acc" + k + "_g", list(per_floor(run, body, r.peak_acc, g_accel)));
   }
   line("contact_levels", sys.contacts().empty() ? std::string("none (no floors face each other)")
@@ -258,7 +270,8 @@ std::string format_system_json(const SystemRunReport& run) {
     const model::Body& body = sys.bodies()[b];
     const std::string k = std::to_string(b + 1);
     w.member("peak_u" + k, per_floor(run, body, r.peak_u));
-    w.member("peak_drift" + k, per_floor(run, body, r.peak_drift, 1.0, true));
+    const std::vector<double> drift = per_floor(run, body, r.peak_drift, 1.0, true);
+    w.member("peak_drift" + k, drift).member("peak_drift_ratio" + k, drift_ratios(drift, run.buildings[b]));
     w.member("peak_abs_acc" + k + "_g", per_floor(run, body, r.peak_acc, g_accel));
     w.member("final_u" + k, per_floor(run, body, r.final_u));
   }
