@@ -12,7 +12,7 @@
 // or the lane order).
 //
 // One step (the order of §2.3.3; the loops are fused where the order of the sums allows):
-//  1. per DOF: vo = v, vh = v + hh a, du = h vh, u <- u + du, vp = vh + hh a
+//  1. per DOF: vh = v + hh a, du = h vh, u <- u + du, vp = vh + hh a (vo = v kept only for the energy terms)
 //  2. stereomechanical (one point-point element): the exchange at the located closing instant
 //  3. per spring: increment dd = du_j (ground: no subtraction) or du_j - du_i, deformation d = u_j or u_j - u_i,
 //     f = H::restoring (bilinear kinematic hardening), t = f, or fma(cs, vp_j - vp_i, f) with a storey dashpot;
@@ -114,9 +114,11 @@ struct Rows {
   POUNDING_INLINE int lane(int f) const { return lane0 + f; }
 };
 
-// One allocation per run, 64-byte aligned: the tile's rows of `tile` lanes (filled and collected by the driver),
-// then one chunk's rows of W lanes, contiguous, which the time loop walks (a chunk's column of the tile is copied
-// in before its run and back after: in the tile its rows would sit tile x 8 bytes apart, in few L1 sets).
+// One allocation per run, 64-byte aligned: the tile's rows [field][index][lane] of `tile` lanes (filled and
+// collected by the driver), then one chunk's W lanes, which the time loop walks, stored [index][field][W]: every
+// field of DOF j (spring s, element e) lies at a constant offset from the DOF's base, so an access is one address
+// with an immediate offset (with [field][index] rows each access cost four integer instructions, measured to be
+// the bottleneck: ~190 instructions per DOF and step). A chunk's column is copied in before its run and back after.
 class Pool {
  public:
   Pool(const Layout& L, std::size_t tile) : rows_(L), tile_(tile) {
@@ -131,42 +133,53 @@ class Pool {
   double* elem(int f, int e) const { return row(rows_.elem(f, e)); }
   double* lane(int f) const { return row(rows_.lane(f)); }
   double* chunk() const { return mem_.get() + static_cast<std::size_t>(rows_.total) * tile_; }
-  // the W lanes from `base` into the chunk rows, and back
-  void gather(int base) const {
-    for (int r = 0; r < rows_.total; ++r)
-      for (int k = 0; k < simd::W; ++k) chunk()[r * simd::W + k] = row(r)[base + k];
-  }
-  void scatter(int base) const {
-    for (int r = 0; r < rows_.total; ++r)
-      for (int k = 0; k < simd::W; ++k) row(r)[base + k] = chunk()[r * simd::W + k];
-  }
+  // the W lanes from `base` into the chunk, and back
+  void gather(int base) const { copy(base, true); }
+  void scatter(int base) const { copy(base, false); }
 
  private:
   struct Free {
     void operator()(double* p) const { ::operator delete[](p, std::align_val_t{64}); }
   };
   double* row(int r) const { return mem_.get() + static_cast<std::size_t>(r) * tile_; }
+  void copy(int base, bool in) const {
+    auto move = [&](int r, int slot) {
+      double* c = chunk() + static_cast<std::ptrdiff_t>(slot) * simd::W;
+      for (int k = 0; k < simd::W; ++k) (in ? c[k] : row(r)[base + k]) = in ? row(r)[base + k] : c[k];
+    };
+    const Rows& R = rows_;
+    for (int f = 0; f < dof_rows; ++f)
+      for (int j = 0; j < R.ndof; ++j) move(R.dof(f, j), j * dof_rows + f);
+    for (int f = 0; f < spring_rows; ++f)
+      for (int s = 0; s < R.nspring; ++s) move(R.spring(f, s), R.spring0 + s * spring_rows + f);
+    for (int f = 0; f < elem_rows; ++f)
+      for (int e = 0; e < R.nelem; ++e) move(R.elem(f, e), R.elem0 + e * elem_rows + f);
+    for (int f = 0; f < lane_rows; ++f) move(R.lane(f), R.lane0 + f);
+  }
   Rows rows_;
   std::size_t tile_;
   std::unique_ptr<double[], Free> mem_;
 };
 
-// The chunk's rows: W lanes each, contiguous (row r at p + r W).
+// The chunk: W lanes per value, [index][field] (see Pool), base pointers per kind held by value.
 struct Chunk {
-  double* p;
-  Rows R;
-  POUNDING_INLINE V ld(int r) const { return V(p + static_cast<std::ptrdiff_t>(r) * simd::W, simd::stdx::vector_aligned); }
-  POUNDING_INLINE void st(const V& v, int r) const {
-    v.copy_to(p + static_cast<std::ptrdiff_t>(r) * simd::W, simd::stdx::vector_aligned);
+  double *pd, *ps, *pe, *pl;
+  Chunk(double* p, const Rows& R)
+      : pd(p), ps(p + static_cast<std::ptrdiff_t>(R.spring0) * simd::W),
+        pe(p + static_cast<std::ptrdiff_t>(R.elem0) * simd::W), pl(p + static_cast<std::ptrdiff_t>(R.lane0) * simd::W) {}
+  POUNDING_INLINE static V ld(const double* q) { return V(q, simd::stdx::vector_aligned); }
+  POUNDING_INLINE static void st(const V& v, double* q) { v.copy_to(q, simd::stdx::vector_aligned); }
+  POUNDING_INLINE static std::ptrdiff_t at(int i, int rows, int f) {
+    return (static_cast<std::ptrdiff_t>(i) * rows + f) * simd::W;
   }
-  POUNDING_INLINE V dof(int f, int j) const { return ld(R.dof(f, j)); }
-  POUNDING_INLINE void dof(int f, int j, const V& v) const { st(v, R.dof(f, j)); }
-  POUNDING_INLINE V spr(int f, int s) const { return ld(R.spring(f, s)); }
-  POUNDING_INLINE void spr(int f, int s, const V& v) const { st(v, R.spring(f, s)); }
-  POUNDING_INLINE V elm(int f, int e) const { return ld(R.elem(f, e)); }
-  POUNDING_INLINE void elm(int f, int e, const V& v) const { st(v, R.elem(f, e)); }
-  POUNDING_INLINE V lan(int f) const { return ld(R.lane(f)); }
-  POUNDING_INLINE void lan(int f, const V& v) const { st(v, R.lane(f)); }
+  POUNDING_INLINE V dof(int f, int j) const { return ld(pd + at(j, dof_rows, f)); }
+  POUNDING_INLINE void dof(int f, int j, const V& v) const { st(v, pd + at(j, dof_rows, f)); }
+  POUNDING_INLINE V spr(int f, int s) const { return ld(ps + at(s, spring_rows, f)); }
+  POUNDING_INLINE void spr(int f, int s, const V& v) const { st(v, ps + at(s, spring_rows, f)); }
+  POUNDING_INLINE V elm(int f, int e) const { return ld(pe + at(e, elem_rows, f)); }
+  POUNDING_INLINE void elm(int f, int e, const V& v) const { st(v, pe + at(e, elem_rows, f)); }
+  POUNDING_INLINE V lan(int f) const { return ld(pl + static_cast<std::ptrdiff_t>(f) * simd::W); }
+  POUNDING_INLINE void lan(int f, const V& v) const { st(v, pl + static_cast<std::ptrdiff_t>(f) * simd::W); }
 };
 
 // What one step needs besides the pool.
@@ -196,14 +209,17 @@ POUNDING_INLINE V relative(Chunk c, Topo L, int f, int e) {
   return side_value(c, l, f, e, true) - side_value(c, r, f, e, false);
 }
 // Step 1: the kinematics before the forces at n+1.
-POUNDING_INLINE void predict(Chunk c, Topo L, const StepCtx& s) {
+template <bool WithEnergy> POUNDING_INLINE void predict(Chunk c, Topo L, const StepCtx& s) {
   const V h(s.h), hh(s.hh);
   for (int j = 0; j < L.ndof; ++j) {
     const V v = c.dof(Vel, j), a = c.dof(A, j);
     const V vh = v + hh * a, du = h * vh;
     // du kept as a row (not recomputed from vh where read): with one use the compiler would fuse u + h vh into
     // an fma, which the pair kernel does not (its du has three uses)
-    c.dof(VO, j, v), c.dof(VH, j, vh), c.dof(DU, j, du);
+    // v itself stays in Vel until step 7 writes the new one, so the exchange and the latch read it there; the
+    // energy terms, after step 7, need the copy
+    if constexpr (WithEnergy) c.dof(VO, j, v);
+    c.dof(VH, j, vh), c.dof(DU, j, du);
     c.dof(U, j, c.dof(U, j) + du), c.dof(VP, j, vh + hh * a);
   }
 }
@@ -261,7 +277,7 @@ POUNDING_INLINE void element(Chunk c, Topo L, int e, StepCtx& s, double v0_min, 
         if (lane::any(on)) {  // approach velocity at the interpolated closing instant inside the step
           const V den = d - dprev;
           const V sc = lane::min(lane::max(-dprev / lane::select(den > zero, den, one), zero), one);
-          const V ddo = relative(c, L, VO, e);
+          const V ddo = relative(c, L, Vel, e);  // v at the start of the step (step 7 has not run)
           Law::template on_onset<V>(st, on, ddo + sc * (dd - ddo), v0_min);
           c.elm(IV0, e, st.iv0);
         }
@@ -307,7 +323,7 @@ POUNDING_INLINE void impulsive(Chunk c, Topo L, int e, const StepCtx& s) {
   if (!lane::any(hit)) return;
   const V m1 = c.dof(M, p), m2 = c.dof(M, q);
   const auto x = contact::Stereomechanical::exchange<V>(
-      {d, dprev, closing, c.dof(VO, p), c.dof(VO, q), vp1, vp2, m1, m2, m1 + m2, c.elm(MEFF, e), c.elm(E, e), s.vh});
+      {d, dprev, closing, c.dof(Vel, p), c.dof(Vel, q), vp1, vp2, m1, m2, m1 + m2, c.elm(MEFF, e), c.elm(E, e), s.vh});
   c.dof(U, p, c.dof(U, p) + x.dv1 * x.rest), c.dof(U, q, c.dof(U, q) + x.dv2 * x.rest);
   c.dof(DU, p, c.dof(DU, p) + x.dv1 * x.rest), c.dof(DU, q, c.dof(DU, q) + x.dv2 * x.rest);
   c.dof(VP, p, vp1 + x.dv1), c.dof(VP, q, vp2 + x.dv2);
@@ -432,7 +448,7 @@ template <bool WithEnergy> void step(Chunk c, const Run& R, long stepi, StepCtx&
   const Topo L = R.topo;
   s.ag0 = R.ag[stepi], s.ag1 = R.ag[stepi + 1];
   s.t = V(static_cast<double>(stepi + 1) * R.h);
-  predict(c, L, s);
+  predict<WithEnergy>(c, L, s);
   for (const Group& g : *R.groups)
     if (g.impulsive) impulsive(c, L, g.elems.front(), s);
   springs<WithEnergy>(c, L);
@@ -447,7 +463,7 @@ template <bool WithEnergy> void run_tile(const Pool& pool, int np, const Run& R)
   const auto force_prev = std::make_unique<bool[]>(static_cast<std::size_t>(R.layout->nelem) + 1);
   for (int base = 0; base < np; base += simd::W) {
     pool.gather(base);
-    const Chunk c{pool.chunk(), pool.rows()};
+    const Chunk c(pool.chunk(), pool.rows());
     StepCtx s{R.h, 0.5 * R.h, 0.0, 0.0, V(0.0), V(R.h), V(0.0), R.lim, lane::any(c.lan(BAD) > V(0.0)), force_prev.get()};
     for (int e = 0; e < R.layout->nelem; ++e) force_prev[static_cast<std::size_t>(e)] = lane::any(c.elm(F, e) > V(0.0));
     for (long k = 0; k < R.nsteps; ++k) step<WithEnergy>(c, R, k, s);
