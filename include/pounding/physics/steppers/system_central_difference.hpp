@@ -427,9 +427,12 @@ struct Group {
   double v0_min = 1e-3;
   double n = 1.5;
   bool impulsive = false;
-  void (*run)(Chunk, Topo, const Group&, StepCtx&) = nullptr;
+  void (*run)(const Chunk&, const Topo&, const Group&, StepCtx&) = nullptr;
 };
-template <class Law, class Exp> void group_elements(Chunk c, Topo L, const Group& g, StepCtx& s) {
+template <class Law, class Exp>
+void group_elements(const Chunk& chunk, const Topo& topo, const Group& g, StepCtx& s) {
+  const Chunk c = chunk;  // locals: by reference through the function pointer, no copy of the call's arguments
+  const Topo L = topo;
   Exp n{};
   if constexpr (!std::is_same_v<Exp, contact::Exp15>) n = Exp{g.n};
   for (int e : g.elems) element<Law, Exp>(c, L, e, s, g.v0_min, n);
@@ -444,7 +447,7 @@ struct Run {
   double h, lim;
 };
 
-template <bool WithEnergy> void step(Chunk c, const Run& R, long stepi, StepCtx& s) {
+template <bool WithEnergy> POUNDING_INLINE void step(Chunk c, const Run& R, long stepi, StepCtx& s) {
   const Topo L = R.topo;
   s.ag0 = R.ag[stepi], s.ag1 = R.ag[stepi + 1];
   s.t = V(static_cast<double>(stepi + 1) * R.h);
@@ -476,7 +479,7 @@ extern template void run_tile<false>(const Pool&, int, const Run&);
 
 // The element function of a group with contact law `law` (Exp15 when n == 1.5 for a law that reads n, else
 // RuntimeExponent, as run_batch does): src/physics/instantiate_system_central_difference.cpp.
-using GroupFn = void (*)(Chunk, Topo, const Group&, StepCtx&);
+using GroupFn = void (*)(const Chunk&, const Topo&, const Group&, StepCtx&);
 GroupFn group_runner(ContactLaw law, double n);
 
 }  // namespace pounding::kernel::sys
