@@ -159,6 +159,10 @@ double balance_error(const SystemRunReport& run, const Totals& t) {
   return (r.e_input[l] - out) / std::max(std::abs(r.e_input[l]), 1e-300);
 }
 
+double element_gap(const SystemRunReport& run, int e) {
+  return run.contact_gap.empty() ? run.gap : run.contact_gap[static_cast<std::size_t>(e)];
+}
+
 // Peak drift / storey height per storey (the storey heights from the report's floor levels, bottom first).
 std::vector<double> drift_ratios(const std::vector<double>& drift, const BuildingReport& b) {
   std::vector<double> out(drift.size());
@@ -224,11 +228,11 @@ std::string format_system_summary(const SystemRunReport& run) {
   for (int e = 0; e < static_cast<int>(sys.contacts().size()); ++e)
     line(sys.contacts()[static_cast<std::size_t>(e)].label,
          fmt::format("impacts {}, peak_force_N {:.6g}, peak_penetration_m {:.6g}, peak_closing_m {:.6g}, "
-                     "t_first_impact_s {:.6g}, contact_energy_dissipated_J {:.6g}, contact_stiffness {:.6g}",
+                     "t_first_impact_s {:.6g}, contact_energy_dissipated_J {:.6g}, contact_stiffness {:.6g}, gap_m {:.6g}",
                      at(r.impact_count, e, r, run.lane), at(r.peak_force, e, r, run.lane),
                      at(r.peak_penetration, e, r, run.lane), at(r.peak_closing, e, r, run.lane),
                      at(r.t_first_impact, e, r, run.lane), at(r.contact_energy, e, r, run.lane),
-                     run.contact_stiffness[static_cast<std::size_t>(e)]));
+                     run.contact_stiffness[static_cast<std::size_t>(e)], element_gap(run, e)));
   line("impact_count", t.impacts);
   num("peak_contact_force_N", t.peak_force);
   num("t_first_impact_s", t.t_first_impact);
@@ -290,6 +294,7 @@ std::string format_system_json(const SystemRunReport& run) {
     w.member("clamps", static_cast<std::int64_t>(at(r.clamp_count, e, r, run.lane)));
     w.member("h_omega_contact", at(r.h_omega_contact, e, r, run.lane));
     w.member("contact_stiffness", run.contact_stiffness[static_cast<std::size_t>(e)]);
+    w.member("gap", element_gap(run, e));
     w.end_object();
   }
   w.end_array();

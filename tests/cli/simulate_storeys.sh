@@ -89,6 +89,28 @@ print(f"ok:   3 vs 5 storeys: {j['impact_count']} impacts at levels "
       f"{[l['impacts'] for l in j['levels']]}, peak_u2 roof {j['peak_u2'][-1]:.4g} m")
 PY
 
+# which floors pound: the lower roof only; a gap offset per level (level 3 at 1.01 m never touches)
+sim --storeys1 3 --storey-mass1 2e5 --storey-stiffness1 3e8 --storeys2 5 --storey-mass2 2.5e5 \
+    --storey-stiffness2 2.2e8 --gap 0.01 --dt 0.001 --json --contact-levels top > "$tmp/top.json"
+sim --storeys1 3 --storey-mass1 2e5 --storey-stiffness1 3e8 --storeys2 5 --storey-mass2 2.5e5 \
+    --storey-stiffness2 2.2e8 --gap 0.01 --dt 0.001 --json --gap-offsets 0,0,1 > "$tmp/off.json"
+"$py" - "$tmp/top.json" "$tmp/off.json" <<'PY' || fail "--contact-levels top / --gap-offsets"
+import json, sys
+top, off = (json.load(open(p)) for p in sys.argv[1:3])
+assert [(l["level"], l["label"]) for l in top["levels"]] == [(3, "level 3")], top["levels"]
+assert top["impact_count"] == top["levels"][0]["impacts"] > 0
+assert [l["gap"] for l in off["levels"]] == [0.01, 0.01, 1.01], [l["gap"] for l in off["levels"]]
+assert off["levels"][2]["impacts"] == 0 and off["levels"][2]["t_first_impact"] is None
+assert off["levels"][2]["peak_closing"] < 1.01 and off["levels"][0]["impacts"] > 0
+print(f"ok:   --contact-levels top: {top['impact_count']} impacts at the lower roof; --gap-offsets 0,0,1: level 3 free")
+PY
+# storeys of 3.0 and 3.1 m: floors meet within --level-tolerance 0.35 (3.0/3.1, 6.0/6.2, 9.0/9.3 m), none within 0.05
+sim --storeys1 3 --storey-height1 3.0 --storeys2 5 --storey-height2 3.1 --elastic --gap 5 --dt 0.001 --json \
+    --level-tolerance 0.35 > "$tmp/tol.json"
+sim --storeys1 3 --storey-height1 3.0 --storeys2 5 --storey-height2 3.1 --elastic --gap 5 --dt 0.001 --json > "$tmp/tol0.json"
+"$py" -c 'import json, sys; a, b = (json.load(open(p)) for p in sys.argv[1:3]); assert [l["label"] for l in a["levels"]] == ["level 1", "level 2", "level 3"] and b["levels"] == [], (a["levels"], b["levels"])' \
+  "$tmp/tol.json" "$tmp/tol0.json" || fail "--level-tolerance"
+
 # a diverged run (Hertz contact of 3.2e10 N/m^1.5 at the record step 0.01 s): exit 3, status diverged, the totals
 # -1 like every per-level count (the kernel's mark of a lane without results), not a sum of marks
 set +e
@@ -160,6 +182,10 @@ bad "--storey-stiffness1" --storeys1 3 --storey-stiffness1 nan
 bad "--k1" --storeys1 3 --k1 1e8
 bad "--h2" --storeys2 4 --h2 20
 bad "--series" --storeys1 3 --series "$tmp/s.csv"
+bad "--contact-levels" --storeys1 3 --contact-levels roof
+bad "--level-tolerance" --storeys1 3 --level-tolerance 2
+bad "--gap-offsets" --storeys1 3 --storeys2 3 --gap-offsets 0,0
+bad "--gap-offsets" --storeys1 3 --gap 0.1 --gap-offsets -0.2
 [ ! -e "$tmp/s.csv" ] || fail "a refused run wrote its series"
 # the structure's own top frequency beyond central difference's limit: refused with the substeps that satisfy it
 bad "--dt (default: the record step), give --dt <= 5.74713e-05 s" --storeys1 5 --storey-mass1 1e3 --storey-stiffness1 3e11

@@ -30,6 +30,7 @@ struct SystemRunReport {
   const ContactModel* contact = nullptr;
   double e_target = 1.0, gap = 0.0, analysis_duration = 0.0;
   std::vector<double> contact_stiffness;  // per element
+  std::vector<double> contact_gap;        // per element (m): empty -> `gap` for every element
   std::vector<BuildingReport> buildings;  // one per body
 };
 

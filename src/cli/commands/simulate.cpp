@@ -63,7 +63,12 @@ struct SimulateOptions {
     bool any() const { return storeys_given || mass_given || stiffness_given || height_given; }
   };
   Storeys b[2];
-  bool storey_mode() const { return b[0].any() || b[1].any(); }
+  // which floors pound (issue 25 §3): common levels or the lower roof only, the level tolerance, gap offsets per level
+  std::string contact_levels = "common";
+  double level_tolerance = 0.05;
+  std::vector<double> gap_offsets;
+  bool levels_given = false;
+  bool storey_mode() const { return b[0].any() || b[1].any() || levels_given; }
 };
 
 // --m1/--m2, or the mass model's value at --h1/--h2.
@@ -259,6 +264,13 @@ void validate_storeys(const SimulateOptions& o) {
   }
   if (!o.series.empty())
     throw InputError("--series records an SDOF pair only", "--series", "drop --series or the storey options");
+  if (o.contact_levels != "common" && o.contact_levels != "top")
+    throw unknown_key_error(o.contact_levels, "--contact-levels", "--contact-levels", "common, top", "argument");
+  require_range(o.level_tolerance, 0.0, 1.0, "--level-tolerance", "[0, 1] m");
+  for (double off : o.gap_offsets)
+    if (!std::isfinite(off) || o.gap + off < 0)
+      throw InputError(fmt::format("--gap-offsets value {} makes a gap of {} m", off, o.gap + off), "--gap-offsets",
+                       "give offsets (m) with --gap + offset >= 0");
 }
 
 // Building i's numbers. One storey: the SDOF options unchanged (make_structure), so two one-storey buildings of
@@ -296,6 +308,32 @@ void check_step(const SimulateOptions& o, const physics::SystemBatch& batch, con
                    fmt::format("give --dt <= {:.6g} s (the record step {} s / {})", record_dt / need, record_dt, need));
 }
 
+// The contact elements' numbers: gap = --gap (+ --gap-offsets per level), kc = --kh or the equivalent-sphere Hertz
+// stiffness of the element's two floor masses, e = --e. Checked before the run.
+void set_storey_contacts(const SimulateOptions& o, const ContactModel& cm, physics::SystemBatch& batch,
+                         SystemRunReport& run) {
+  const model::System& sys = *batch.system;
+  const bool needs_kh = cm.law == ContactLaw::linear || cm.law == ContactLaw::kelvin;
+  if (needs_kh && !o.kh_given) require_positive(0.0, "--kh (linear/Kelvin stiffness, N/m)");
+  int top = 0;
+  for (const model::ContactElement& ce : sys.contacts()) top = std::max(top, ce.level);
+  if (!o.gap_offsets.empty() && static_cast<int>(o.gap_offsets.size()) < top)
+    throw InputError(fmt::format("--gap-offsets has {} values and the buildings pound up to level {}",
+                                 o.gap_offsets.size(), top),
+                     "--gap-offsets", fmt::format("give one offset (m) per level from level 1 to {}", top));
+  physics::set_contacts(batch, 0, o.gap, 0.0, o.e, o.gap_offsets);
+  for (std::size_t e = 0; e < sys.contacts().size(); ++e) {
+    const model::ContactElement& ce = sys.contacts()[e];
+    const double kc = o.kh_given ? o.kh
+                                 : hertz_stiffness_spheres(batch.m[static_cast<std::size_t>(ce.left.p)],
+                                                           batch.m[static_cast<std::size_t>(ce.right.p)], o.density,
+                                                           o.youngs, o.poisson);  // width 1: index = DOF
+    batch.kc[e] = kc;
+    run.contact_stiffness.push_back(kc);
+    run.contact_gap.push_back(batch.gap[e]);
+  }
+}
+
 int run_storeys(SimulateOptions& o, const ContactModel& cm, KernelSettings& ks) {
   validate_storeys(o);
   // the one-storey buildings' SDOF numbers, checked as today
@@ -309,7 +347,9 @@ int run_storeys(SimulateOptions& o, const ContactModel& cm, KernelSettings& ks) 
       make_structure(o.m2, o.T2, o.k2, o.h2, o.fy2, o.alpha, o.zeta, o.elastic, "2", o.k2_given, o.fy2_given)};
   std::vector<model::StickTopology> sticks(2);
   for (int i = 0; i < 2; ++i) sticks[i].storeys = o.b[i].storeys, sticks[i].storey_heights = {o.b[i].height};
-  const model::System sys = model::shear_buildings(sticks);
+  const model::ContactLevels levels =
+      o.contact_levels == "top" ? model::ContactLevels::top : model::ContactLevels::common;
+  const model::System sys = model::shear_buildings(sticks, o.level_tolerance, levels);
   physics::SystemBatch batch;
   batch.resize(sys, 1);
   SystemRunReport run;
@@ -318,18 +358,7 @@ int run_storeys(SimulateOptions& o, const ContactModel& cm, KernelSettings& ks) 
     run.buildings.push_back({sys.bodies()[static_cast<std::size_t>(i)].label, model::floor_levels(sticks[i]), num.m,
                              num.k, num.fy, num.modes.period, num.zeta_modes});
   }
-  const bool needs_kh = cm.law == ContactLaw::linear || cm.law == ContactLaw::kelvin;
-  if (needs_kh && !o.kh_given) require_positive(0.0, "--kh (linear/Kelvin stiffness, N/m)");
-  physics::set_contacts(batch, 0, o.gap, 0.0, o.e);
-  for (std::size_t e = 0; e < sys.contacts().size(); ++e) {
-    const model::ContactElement& ce = sys.contacts()[e];
-    const double kc = o.kh_given ? o.kh
-                                 : hertz_stiffness_spheres(batch.m[static_cast<std::size_t>(ce.left.p)],
-                                                           batch.m[static_cast<std::size_t>(ce.right.p)], o.density,
-                                                           o.youngs, o.poisson);  // width 1: index = DOF
-    batch.kc[e] = kc;
-    run.contact_stiffness.push_back(kc);
-  }
+  set_storey_contacts(o, cm, batch, run);
   Record rec = ground_motion(o);
   const double record_length = rec.duration();
   const double analysis_length = cut_to_duration(o, rec);
@@ -408,6 +437,34 @@ int run_simulate(SimulateOptions& o) {
   return r.status[0] != 0 ? 3 : 0;
 }
 
+// The multi-storey options (issue 25 §4): storeys, floors, levels.
+void add_storey_options(CLI::App* c, SimulateOptions& opts) {
+  SimulateOptions* o = &opts;
+  for (int i = 0; i < 2; ++i) {
+    const std::string k = std::to_string(i + 1);
+    c->add_option("--storeys" + k, o->b[i].storeys,
+                  "storeys of building " + k + " (a shear building; any storey option makes both buildings shear "
+                  "buildings, a one-storey one keeps the SDOF options)")
+        ->capture_default_str();
+    c->add_option("--storey-mass" + k, o->b[i].mass,
+                  "mass of each floor of building " + k + " (kg); default: the mass model's at storeys x storey "
+                  "height, split equally");
+    c->add_option("--storey-stiffness" + k, o->b[i].stiffness,
+                  "stiffness of each storey of building " + k + " (N/m); default: uniform storeys scaled to --T" + k);
+    c->add_option("--storey-height" + k, o->b[i].height,
+                  "height of each storey of building " + k + " (m); floors at levels within 0.05 m pound")
+        ->capture_default_str();
+  }
+  c->add_option("--contact-levels", o->contact_levels,
+                "which floors pound (multi-storey): common (every pair of floors at the same level) or top (the lower "
+                "roof only)")
+      ->capture_default_str();
+  c->add_option("--level-tolerance", o->level_tolerance, "floors whose levels differ by at most this (m) pound")
+      ->capture_default_str();
+  c->add_option("--gap-offsets", o->gap_offsets, "per contact level from level 1, added to --gap (m), comma-separated")
+      ->delimiter(',');
+}
+
 }  // namespace
 
 void add_simulate(CLI::App& app) {
@@ -452,21 +509,7 @@ void add_simulate(CLI::App& app) {
   c->add_option("--u-limit", o->u_limit, "|u1| + |u2| above this (m) marks the run diverged")->capture_default_str();
   c->add_flag("--locate-contact", o->locate, "rk4: locate each contact onset inside its step (high-accuracy mode)");
   c->add_option("--series", o->series, "write the time series to FILE.csv or FILE.h5");
-  for (int i = 0; i < 2; ++i) {
-    const std::string k = std::to_string(i + 1);
-    c->add_option("--storeys" + k, o->b[i].storeys,
-                  "storeys of building " + k + " (a shear building; any storey option makes both buildings shear "
-                  "buildings, a one-storey one keeps the SDOF options)")
-        ->capture_default_str();
-    c->add_option("--storey-mass" + k, o->b[i].mass,
-                  "mass of each floor of building " + k + " (kg); default: the mass model's at storeys x storey "
-                  "height, split equally");
-    c->add_option("--storey-stiffness" + k, o->b[i].stiffness,
-                  "stiffness of each storey of building " + k + " (N/m); default: uniform storeys scaled to --T" + k);
-    c->add_option("--storey-height" + k, o->b[i].height,
-                  "height of each storey of building " + k + " (m); floors at levels within 0.05 m pound")
-        ->capture_default_str();
-  }
+  add_storey_options(c, *o);
   c->add_flag("--json", o->json, "print every observer as one JSON object (per floor: peak_u1, peak_u2, ...; per "
                                  "contact level: levels)");
   c->callback([o, c] {
@@ -482,6 +525,7 @@ void add_simulate(CLI::App& app) {
       o->b[i].stiffness_given = c->count("--storey-stiffness" + k) > 0;
       o->b[i].height_given = c->count("--storey-height" + k) > 0;
     }
+    o->levels_given = c->count("--contact-levels") + c->count("--level-tolerance") + c->count("--gap-offsets") > 0;
     if (const int code = run_simulate(*o)) throw ExitRequest{code};
   });
 }
