@@ -354,6 +354,14 @@ std::vector<Problem> system_stepper_problems(const SystemBatch& B, std::span<con
     out.push_back({fmt::format("the {} stepper runs the SDOF pair only", stepper_name(ks.stepper)), "stepper",
                    "use central-difference for multi-storey buildings and other systems"});
   for (std::size_t s = 0; s < S.springs().size(); ++s)
+    if (S.springs()[s].role == model::SpringRole::link)
+      out.push_back({fmt::format("spring {} is a link between two DOFs; the system stepper integrates storey and "
+                                 "isolator springs only (links come with issue 26)", s),
+                     "system springs", "model the connection as a contact element or leave it out"});
+  if (S.channels() > 1)
+    out.push_back({fmt::format("the system has {} ground-motion channels; the system stepper runs one", S.channels()),
+                   "system channels", "give every support the same ground motion (one channel)"});
+  for (std::size_t s = 0; s < S.springs().size(); ++s)
     if (S.springs()[s].law != 0)
       out.push_back({fmt::format("spring {} has hysteresis law {}; the system stepper runs law 0 (bilinear) only", s,
                                  S.springs()[s].law), "system springs", "use the bilinear storey spring"});

@@ -326,6 +326,26 @@ TEST(SystemKernel, RefusesWhatTheSystemStepperDoesNotRun) {
   EXPECT_NE(b.find("stereomechanical"), std::string::npos) << b;
   EXPECT_NE(b.find("has 3"), std::string::npos) << b;
   EXPECT_EQ(message(KernelSettings{}, hertzdamp()), "");
+  // a link spring (issue 26) between the two roofs would lose its force on j: refused, not integrated wrongly
+  model::System::Parts P = S.parts();
+  P.springs.push_back({S.bodies()[0].dofs.back(), S.bodies()[1].dofs.back(), 0, model::SpringRole::link, 0, 0});
+  ASSERT_TRUE(model::System::check(P).empty()) << model::System::check(P).front().what;
+  {
+    const model::System linked = model::System::build(P);
+    SystemBatch L;
+    L.resize(linked, 1);
+    for (std::size_t i = 0; i < L.m.size(); ++i) L.m[i] = 1e5, L.u0[i] = 0.0;
+    for (auto& sp : L.spring) sp = {1e8, INFINITY, 0.0};
+    for (std::size_t e = 0; e < L.kc.size(); ++e) L.kc[e] = 1e9, L.e[e] = 0.65, L.gap[e] = 0.01;
+    const ContactModel groups[] = {hertzdamp()};
+    SystemResult r;
+    try {
+      run_system(L, groups, gm, KernelSettings{}, r);
+      ADD_FAILURE() << "a link spring was integrated";
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.what()).find("link"), std::string::npos) << e.what();
+    }
+  }
 }
 
 // A floor striking a column between two floors (an interpolated side, SB §3, T3.1): B's floor 2 (7.0 m) against A's
