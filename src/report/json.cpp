@@ -36,6 +36,11 @@ void JsonWriter::before_value() {
     after_key_ = false;
     return;
   }
+  if (!object_.empty() && object_.back()) throw std::logic_error("JsonWriter: a value in an object without its key");
+  separator();
+}
+
+void JsonWriter::separator() {
   if (first_.empty()) {
     if (!out_.empty()) throw std::logic_error("JsonWriter: a second top-level value");
     return;
@@ -53,10 +58,13 @@ void JsonWriter::raw(std::string_view text) {
 JsonWriter& JsonWriter::begin_object() {
   raw("{");
   first_.push_back(true);
+  object_.push_back(true);
   return *this;
 }
 JsonWriter& JsonWriter::end_object() {
-  if (first_.empty()) throw std::logic_error("JsonWriter: end_object without an open object");
+  if (first_.empty() || !object_.back() || after_key_)
+    throw std::logic_error("JsonWriter: end_object without an open object (or after a key)");
+  object_.pop_back();
   const bool top = first_.size() == 1, empty = first_.back();
   first_.pop_back();
   out_ += top && !empty ? "\n}" : "}";
@@ -66,18 +74,20 @@ JsonWriter& JsonWriter::end_object() {
 JsonWriter& JsonWriter::begin_array() {
   raw("[");
   first_.push_back(true);
+  object_.push_back(false);
   return *this;
 }
 JsonWriter& JsonWriter::end_array() {
-  if (first_.empty()) throw std::logic_error("JsonWriter: end_array without an open array");
+  if (first_.empty() || object_.back()) throw std::logic_error("JsonWriter: end_array without an open array");
+  object_.pop_back();
   first_.pop_back();
   out_ += "]";
   if (first_.empty()) out_ += "\n";
   return *this;
 }
 JsonWriter& JsonWriter::key(std::string_view name) {
-  if (first_.empty() || after_key_) throw std::logic_error("JsonWriter: a key outside an object");
-  before_value();
+  if (first_.empty() || !object_.back() || after_key_) throw std::logic_error("JsonWriter: a key outside an object");
+  separator();
   out_ += json_string(name) + ": ";
   after_key_ = true;
   return *this;

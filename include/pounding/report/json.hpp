@@ -32,10 +32,12 @@ class JsonWriter {
   const std::string& str() const { return out_; }
 
  private:
-  void before_value();
+  void before_value();  // a value: after its key in an object, else with the separator
+  void separator();
   void raw(std::string_view text);
   std::string out_;
-  std::vector<bool> first_;  // per open container: no element yet
+  std::vector<bool> first_;   // per open container: no element yet
+  std::vector<bool> object_;  // per open container: an object (true) or an array
   bool after_key_ = false;
 };
 
