@@ -163,6 +163,26 @@ double element_gap(const SystemRunReport& run, int e) {
   return run.contact_gap.empty() ? run.gap : run.contact_gap[static_cast<std::size_t>(e)];
 }
 
+// The amplifications of one building: coupled / uncoupled peak per floor (displacement, drift, absolute
+// acceleration); NaN where the uncoupled run has no result or a zero peak.
+struct Amplification {
+  std::string_view name;
+  std::vector<double> physics::SystemResult::*values;
+  bool springs;
+};
+constexpr Amplification amplifications[] = {{"amplification_u", &physics::SystemResult::peak_u, false},
+                                            {"amplification_drift", &physics::SystemResult::peak_drift, true},
+                                            {"amplification_acc", &physics::SystemResult::peak_acc, false}};
+std::vector<double> amplification(const SystemRunReport& run, const model::Body& body, const Amplification& a) {
+  const std::vector<double> c = per_floor(run, body, (*run.result).*a.values, 1.0, a.springs);
+  const std::vector<double> u = per_floor(run, body, (*run.uncoupled).*a.values, 1.0, a.springs);
+  const bool ok = run.uncoupled->status[run.lane] == static_cast<std::uint8_t>(LaneStatus::ok);
+  std::vector<double> out(c.size());
+  for (std::size_t i = 0; i < c.size(); ++i)
+    out[i] = ok && u[i] > 0.0 ? c[i] / u[i] : std::numeric_limits<double>::quiet_NaN();
+  return out;
+}
+
 // Peak drift / storey height per storey (the storey heights from the report's floor levels, bottom first).
 std::vector<double> drift_ratios(const std::vector<double>& drift, const BuildingReport& b) {
   std::vector<double> out(drift.size());
@@ -222,6 +242,8 @@ std::string format_system_summary(const SystemRunReport& run) {
     line("peak_drift" + k + "_m", list(drift));
     line("peak_drift_ratio" + k, list(drift_ratios(drift, run.buildings[b])));
     line("peak_abs_acc" + k + "_g", list(per_floor(run, body, r.peak_acc, g_accel)));
+    if (run.uncoupled != nullptr)
+      for (const Amplification& a : amplifications) line(std::string(a.name) + k, list(amplification(run, body, a)));
   }
   line("contact_levels", sys.contacts().empty() ? std::string("none (no floors face each other)")
                                                  : std::to_string(sys.contacts().size()));
@@ -278,6 +300,8 @@ std::string format_system_json(const SystemRunReport& run) {
     w.member("peak_drift" + k, drift).member("peak_drift_ratio" + k, drift_ratios(drift, run.buildings[b]));
     w.member("peak_abs_acc" + k + "_g", per_floor(run, body, r.peak_acc, g_accel));
     w.member("final_u" + k, per_floor(run, body, r.final_u));
+    if (run.uncoupled != nullptr)
+      for (const Amplification& a : amplifications) w.member(std::string(a.name) + k, amplification(run, body, a));
   }
   w.key("levels").begin_array();
   for (int e = 0; e < static_cast<int>(sys.contacts().size()); ++e) {

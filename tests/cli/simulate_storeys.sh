@@ -4,6 +4,7 @@
 #  - --json of the SDOF pair holds the text output's numbers (the same run, full precision);
 #  - two one-storey buildings given by storey options are the same pair: every observer bit-identical;
 #  - 3 vs 5 storeys of 3.2 m: peak_u1/peak_u2 one per floor, three contact levels, totals consistent with them;
+#    amplification per floor = coupled peak / the peak of the same buildings never touching (exactly 1 there);
 #  - a linear 3-storey building without contact (Rayleigh 5 % on modes 1 and 2) against an independent SciPy
 #    solution (eigh for the Rayleigh coefficients, lsim of the state-space model on the same piecewise-linear
 #    ground motion): peak floor displacements within 5e-4 at h = dt/10 (measured 6.1e-5; central difference
@@ -65,10 +66,24 @@ sim --storeys1 3 --storey-mass1 2e5 --storey-stiffness1 3e8 --storeys2 5 --store
     --storey-stiffness2 2.2e8 --gap 0.01 --dt 0.001 --json > "$tmp/35.json"
 sim --storeys1 3 --storey-mass1 2e5 --storey-stiffness1 3e8 --storeys2 5 --storey-mass2 2.5e5 \
     --storey-stiffness2 2.2e8 --gap 0.01 --dt 0.001 > "$tmp/35.txt"
-"$py" - "$tmp/35.json" "$tmp/35.txt" <<'PY' || fail "3 vs 5 storeys"
+# the same buildings 5 m apart: never touching, the uncoupled run
+sim --storeys1 3 --storey-mass1 2e5 --storey-stiffness1 3e8 --storeys2 5 --storey-mass2 2.5e5 \
+    --storey-stiffness2 2.2e8 --gap 5 --dt 0.001 --json > "$tmp/35free.json"
+"$py" - "$tmp/35.json" "$tmp/35.txt" "$tmp/35free.json" <<'PY' || fail "3 vs 5 storeys"
 import json, math, sys
 j = json.load(open(sys.argv[1]))
 text = open(sys.argv[2]).read()
+free = json.load(open(sys.argv[3]))
+# amplification per floor = coupled peak / the peak of the run without contact (here: 5 m apart, no impact)
+assert free["impact_count"] == 0
+for b in ("1", "2"):
+    for key, peak in (("u", "peak_u"), ("drift", "peak_drift")):
+        want = [c / f for c, f in zip(j[peak + b], free[peak + b])]
+        got = j["amplification_" + key + b]
+        assert all(abs(g - w) <= 1e-14 * w for g, w in zip(got, want)), (key + b, got, want)
+        assert all(a == 1.0 for a in free["amplification_" + key + b]), free["amplification_" + key + b]
+assert max(j["amplification_acc1"]) > 1.5, j["amplification_acc1"]  # pounding raises floor accelerations
+assert "amplification_u2: " in text
 assert len(j["peak_u1"]) == 3 and len(j["peak_u2"]) == 5, (j["peak_u1"], j["peak_u2"])
 assert [l["level"] for l in j["levels"]] == [1, 2, 3], j["levels"]
 assert j["impact_count"] == sum(l["impacts"] for l in j["levels"]) and j["impact_count"] > 0

@@ -24,6 +24,9 @@ struct BuildingReport {
 struct SystemRunReport {
   const model::System* system = nullptr;
   const physics::SystemResult* result = nullptr;
+  // the same run without pounding (contact law none): when given, the outputs add the amplification per floor,
+  // coupled peak / uncoupled peak of displacement, drift and absolute acceleration (issue 25 §3)
+  const physics::SystemResult* uncoupled = nullptr;
   std::size_t lane = 0;
   const Record* record = nullptr;
   const KernelSettings* settings = nullptr;

@@ -367,6 +367,12 @@ int run_storeys(SimulateOptions& o, const ContactModel& cm, KernelSettings& ks) 
   GroundMotion gm{rec.dt, rec.acc, analysis_length > record_length ? analysis_length : 0.0};
   physics::SystemResult r;
   physics::run_system(batch, std::span<const ContactModel>(&cm, 1), gm, ks, r);
+  // the uncoupled run (no pounding) for the amplification per floor
+  ContactModel none;
+  none.law = ContactLaw::none;
+  physics::SystemResult free;
+  physics::run_system(batch, std::span<const ContactModel>(&none, 1), gm, ks, free);
+  run.uncoupled = &free;
 
   run.system = &sys, run.result = &r, run.record = &rec, run.settings = &ks, run.contact = &cm;
   run.e_target = o.e, run.gap = o.gap, run.analysis_duration = analysis_length;
