@@ -30,7 +30,8 @@ sim() { "$bin" simulate --record "$tmp/rec.txt" "$@"; }
 
 # 1. the pair: --json against the text output
 sim --gap 0.02 --dt 0.001 > "$tmp/pair.txt"
-sim --gap 0.02 --dt 0.001 --json > "$tmp/pair.json"
+sim --gap 0.02 --dt 0.001 --json --series "$tmp/pair.csv" > "$tmp/pair.json"
+[ "$(wc -l < "$tmp/pair.csv")" -eq 12002 ] || fail "--json --series: $(wc -l < "$tmp/pair.csv") lines, want 12002"
 ! grep -q storeys "$tmp/pair.txt" || fail "the pair's text output changed: it names storeys"
 "$py" - "$tmp/pair.txt" "$tmp/pair.json" <<'PY' || fail "pair --json differs from its text output"
 import json, sys
@@ -47,6 +48,7 @@ for name, v in pairs:
     ok = t == v if isinstance(v, str) else abs(float(t) - v) <= 5e-6 * abs(v) + 1e-300
     assert ok, f"{name}: text {t}, json {v}"
 assert len(j["levels"]) == 1 and j["levels"][0]["level"] == 1 and j["levels"][0]["impacts"] == j["impact_count"]
+assert j["amplification_u1"][0] != 1.0 and len(j["amplification_acc2"]) == 1  # against the pair without pounding
 print(f"ok:   pair --json = text ({j['impact_count']} impacts, peak force {j['peak_force']:.6g} N)")
 PY
 

@@ -385,17 +385,26 @@ int run_storeys(SimulateOptions& o, const ContactModel& cm, KernelSettings& ks) 
 }
 
 // The pair's observers as one JSON object (--json without storey options): the same run as the text output.
-void print_pair_json(const SimulateOptions& o, const BatchResult& r, const ContactModel& cm, const PairParams& p,
-                     const Record& rec, const KernelSettings& ks, double analysis_length) {
+std::string pair_json(const SimulateOptions& o, const PairBatch& b, const BatchResult& r, const ContactModel& cm,
+                      const PairParams& p, const Record& rec, const KernelSettings& ks, const GroundMotion& gm,
+                      double analysis_length) {
   static const model::System pair = model::System::sdof_pair();
   const physics::SystemResult sr = physics::from_pair_result(r);
+  // the same pair without pounding, for the amplifications (no series: that is the coupled run's)
+  KernelSettings free_settings = ks;
+  free_settings.series = nullptr;
+  ContactModel none;
+  none.law = ContactLaw::none;
+  BatchResult free;
+  run_batch(b, none, gm, free_settings, free);
+  const physics::SystemResult sf = physics::from_pair_result(free);
   SystemRunReport run;
-  run.system = &pair, run.result = &sr, run.record = &rec, run.settings = &ks, run.contact = &cm;
+  run.system = &pair, run.result = &sr, run.uncoupled = &sf, run.record = &rec, run.settings = &ks, run.contact = &cm;
   run.e_target = p.e, run.gap = p.gap, run.analysis_duration = analysis_length, run.contact_stiffness = {p.kc};
   for (const auto& [s, h, label] : {std::tuple{p.s1, o.h1, "building1"}, {p.s2, o.h2, "building2"}})
     run.buildings.push_back({label, {h}, {s.m}, {s.k}, {s.fy}, {2 * std::numbers::pi * std::sqrt(s.m / s.k)},
                              {s.c / (2.0 * std::sqrt(s.k * s.m))}});
-  fmt::print("{}", format_system_json(run));
+  return format_system_json(run);
 }
 
 // Runs the pair, prints the summary and writes --series; returns the exit code (3: diverged, the numbers
@@ -428,12 +437,8 @@ int run_simulate(SimulateOptions& o) {
   BatchResult r;
   run_batch(b, cm, gm, ks, r);
 
-  if (o.json) {
-    print_pair_json(o, r, cm, p, rec, ks, analysis_length);
-    return r.status[0] != 0 ? 3 : 0;
-  }
   std::string text = describe_run(o, record_length, analysis_length) + format_summary(r, 0, cm, p, rec, ks);
-  fmt::print("{}", text);
+  fmt::print("{}", o.json ? pair_json(o, b, r, cm, p, rec, ks, gm, analysis_length) : text);
   if (!o.series.empty()) {
     if (std::filesystem::path(o.series).extension() == ".csv")
       write_series_csv(o.series, series);
