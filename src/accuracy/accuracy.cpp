@@ -676,13 +676,18 @@ std::vector<RestitutionRow> restitution_table(const std::vector<double>& targets
                                               const std::vector<std::string>& laws) {
   std::vector<RestitutionRow> out;
   const double m = 1e6, kh = 2.808e10, v0 = 1.0;
-  const std::vector<std::string> all{"lankarani-nikravesh", "hunt-crossley", "flores", "hu-guo", "gonthier",
-                                     "calibrated", "jankowski", "kelvin"};
+  // Hertzdamp with every damping law (contact/model.hpp damping_laws), then Jankowski and Kelvin
+  std::vector<std::string> all;
+  for (const auto& d : damping_laws) all.emplace_back(d.name);
+  all.insert(all.end(), {"jankowski", "kelvin"});
   for (const auto& l : laws)
     if (std::find(all.begin(), all.end(), l) == all.end())
       throw InputError(fmt::format("'{}' is not a law of the restitution table", l), "--laws",
-                       "give some of lankarani-nikravesh, hunt-crossley, flores, hu-guo, gonthier, calibrated, "
-                       "jankowski, kelvin");
+                       "give some of " + [&] {
+                         std::string list;
+                         for (const auto& a : all) list += (list.empty() ? "" : ", ") + a;
+                         return list;
+                       }());
   for (const std::string& law : all) {
     if (!laws.empty() && std::find(laws.begin(), laws.end(), law) == laws.end()) continue;
     for (double e : targets) {

@@ -255,8 +255,10 @@ constexpr StudyKey keys[] = {
      "\"linear\" | \"kelvin\" | \"hertz\" | \"hertzdamp\" | \"jankowski\" | \"stereomechanical\"",
      "The contact law (\"none\" is refused: it cannot count impacts)."},
     {"contact", "damping_law", "string", "\"lankarani-nikravesh\"", "",
-     "\"lankarani-nikravesh\" | \"hunt-crossley\" | \"flores\" | \"hu-guo\" | \"gonthier\" | \"calibrated\"",
-     "How Hertzdamp's damping follows from e (calibrated: one free impact returns exactly e)."},
+     "\"lankarani-nikravesh\" | \"hunt-crossley\" | \"flores\" | \"hu-guo\" | \"gonthier\" | \"calibrated\" | "
+     "\"ye\" | \"three-spring\"",
+     "How Hertzdamp's damping follows from e (calibrated: one free impact returns exactly e; ye and three-spring: the "
+     "link-element paper's laws, three-spring acting on 1.5 x the contact stiffness)."},
     {"contact", "e", "number", "0.65", "", "(0, 1]", "Coefficient of restitution.", 1e-6, 1.0},
     {"contact", "n", "number", "1.5", "", "[1, 3]", "Exponent of the Hertz-family force k delta^n.", 1.0, 3.0},
     {"contact", "v0_min", "number", "1e-3", "m/s", "(0, 1]",

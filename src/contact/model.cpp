@@ -1,6 +1,7 @@
 #include "pounding/contact/model.hpp"
 
 #include <charconv>
+#include <iterator>
 #include <cmath>
 #include <string>
 #include <numbers>
@@ -20,16 +21,18 @@ std::string shortest(double x) {
 }
 }  // namespace
 
+namespace xibar {
+double lankarani_nikravesh(double e, double) { return 3.0 * (1.0 - e * e) / 4.0; }
+double hunt_crossley(double e, double) { return 3.0 * (1.0 - e) / 2.0; }
+double flores(double e, double) { return 8.0 * (1.0 - e) / (5.0 * e); }
+double hu_guo(double e, double) { return 3.0 * (1.0 - e) / (2.0 * e); }
+double gonthier(double e, double) { return (1.0 - e * e) / e; }
+double calibrated(double e, double n) { return calibrated_xibar(e, n); }
+}  // namespace xibar
+
 double hertzdamp_xibar(DampingLaw law, double e, double n) {
-  switch (law) {
-    case DampingLaw::lankarani_nikravesh: return 3.0 * (1.0 - e * e) / 4.0;
-    case DampingLaw::hunt_crossley: return 3.0 * (1.0 - e) / 2.0;
-    case DampingLaw::flores: return 8.0 * (1.0 - e) / (5.0 * e);
-    case DampingLaw::hu_guo: return 3.0 * (1.0 - e) / (2.0 * e);
-    case DampingLaw::gonthier: return (1.0 - e * e) / e;
-    case DampingLaw::calibrated: return calibrated_xibar(e, n);
-  }
-  throw std::logic_error("hertzdamp_xibar: bad law");
+  if (static_cast<std::size_t>(law) >= std::size(damping_laws)) throw std::logic_error("hertzdamp_xibar: bad law");
+  return damping_law(law).xibar(e, n);
 }
 
 double hertzdamp_restitution(double xi, double n) {

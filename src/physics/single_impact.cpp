@@ -19,37 +19,33 @@ RestitutionPromise restitution_promise(const ContactModel& cm) {
     p.note = std::string(law.restitution_note);
     return p;
   }
-  switch (cm.damping) {
-    case DampingLaw::calibrated:
+  // the damping law's entry says what it delivers (contact/model.hpp damping_laws)
+  const DampingLawEntry& d = damping_law(cm.damping);
+  p.kind = d.delivers;
+  switch (d.delivers) {
+    case RestitutionKind::exact:
       p.note = "xibar solved so that one free impact returns e (within 1e-6): delivers e by construction";
-      return p;
-    case DampingLaw::flores:
-    case DampingLaw::hu_guo:
-    case DampingLaw::gonthier:
-      p.kind = RestitutionKind::approximate;
+      break;
+    case RestitutionKind::approximate:
       p.note = fmt::format("{}'s closed-form xibar delivers e within 0.05 over (0, 1] (docs/accuracy.md); "
                            "use --damping-law calibrated for e exactly",
-                           to_string(cm.damping));
-      return p;
-    case DampingLaw::lankarani_nikravesh:
-    case DampingLaw::hunt_crossley: {
-      p.kind = RestitutionKind::saturating;
-      const double xi_max = hertzdamp_xibar(cm.damping, 0.0, cm.n);  // the bound of xibar as e -> 0
-      p.floor = hertzdamp_restitution(xi_max, cm.n);
-      const bool ln = cm.damping == DampingLaw::lankarani_nikravesh;
+                           d.name);
+      break;
+    case RestitutionKind::saturating:
+      p.floor = hertzdamp_restitution(d.xibar(0.0, cm.n), cm.n);  // the bound of xibar as e -> 0
       p.note = fmt::format("{}'s xibar = {} is derived for e near 1: it delivers more than e away from 1 ({} at "
                            "e = 0.65, docs/accuracy.md) and never less than {:.3f}; use --damping-law calibrated for "
                            "e exactly",
-                           to_string(cm.damping), ln ? "3 (1 - e^2) / 4" : "3 (1 - e) / 2", ln ? "0.775" : "0.739",
-                           p.floor);
-      return p;
-    }
+                           d.name, d.formula, d.at_065, p.floor);
+      break;
+    case RestitutionKind::elastic: break;
   }
   return p;
 }
 
-double estimated_contact_duration(const ContactModel& cm, double v0, double m1, double m2, double kc) {
+double estimated_contact_duration(const ContactModel& cm, double v0, double m1, double m2, double kc_given) {
   const double meff = m1 * m2 / (m1 + m2);
+  const double kc = kc_given * contact::stiffness_factor(cm);  // the stiffness the kernel uses
   const contact::DurationForm form = contact::traits(cm.law).duration;
   if (form == contact::DurationForm::linear) return std::numbers::pi * std::sqrt(meff / kc);
   if (form == contact::DurationForm::impulsive) return 1e-3;

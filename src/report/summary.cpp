@@ -60,6 +60,7 @@ std::string format_summary(const BatchResult& r, std::size_t i, const ContactMod
   if (contact::traits(cm.law).restitution_from_damping) {
     line("damping_law", to_string(cm.damping));
     num("xibar", hertzdamp_xibar(cm.damping, p.e, cm.n));
+    if (contact::stiffness_factor(cm) != 1.0) num("contact_stiffness_factor", contact::stiffness_factor(cm));
   }
   num("e_target", p.e);
   num("contact_stiffness", p.kc);

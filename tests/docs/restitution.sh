@@ -15,9 +15,9 @@ src=${2:?source dir}
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 stored="$src/docs/restitution.csv"
-laws=lankarani-nikravesh,hunt-crossley,flores,hu-guo,gonthier,calibrated,jankowski,kelvin
+laws=lankarani-nikravesh,hunt-crossley,flores,hu-guo,gonthier,calibrated,ye,three-spring,jankowski,kelvin
 targets=0.1,0.3,0.65,0.95
-nrows=32
+nrows=40
 compare() {
   python3 "$src/tests/docs/compare_csv.py" "$1" "$work/rows.csv" --key law,e_target --cols e_effective,clamps \
     --rtol 1e-6 --tol clamps=0:0 --min-rows "$nrows"

@@ -62,6 +62,12 @@ verdict "flores at e = 0.65 (within 0.05)" "ok" "e_law: approximate:" -- --dampi
 verdict "kelvin at e = 0.3 delivers 0.397" "off-target" "e_law: approximate:" -- --law kelvin --kh 1e9 --e 0.3
 verdict "stereomechanical at e = 0.001" "ok" "e_law: exact:" -- --law stereomechanical --e 0.001
 verdict "linear law without --e: target 1" "ok" "e_target: 1" "e_law: elastic:" -- --law linear --kh 1e9
+# the link-element paper's presets (issue 25 section 3): Ye's eq. 9 is Hu-Guo's xibar on k (delivers 0.4877 at 0.5);
+# the three-spring link is Flores's xibar on k_eq = 1.5 k (delivers Flores's 0.4704)
+verdict "ye at e = 0.5" "ok" "damping_law: ye" "xibar: 1.5" "e_effective: 0.48774" "e_law: approximate:" \
+  -- --law hertzdamp --damping-law ye --e 0.5
+verdict "three-spring at e = 0.5" "ok" "damping_law: three-spring" "xibar: 1.6" "stiffness_factor: 1.5" \
+  "e_effective: 0.47044" "e_law: approximate:" -- --law hertzdamp --damping-law three-spring --e 0.5
 
 # the energy fractions name their basis: with e delivered exactly (calibrated), 1 - e^2 = 0.5775 of the relative
 # kinetic energy 1/2 m1 m2 / (m1 + m2) v0^2, and m2 / (m1 + m2) of that of the initial 1/2 m1 v0^2 (0.75 here)

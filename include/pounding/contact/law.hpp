@@ -22,13 +22,8 @@ template <class T> struct State { T iv0; };        // latched 1/v0 (Hertzdamp)
 template <class T> struct Shared { T sq; };        // sqrt of the penetration, reused by the stability guard
 template <class T> struct Tangent { T F, dFd, dFv; };  // Newmark: force and its derivatives by d and dd
 
-// What one free impact with the law delivers against the restitution e it is given (`pounding collide`).
-enum class RestitutionKind : std::uint8_t { elastic, exact, approximate, saturating };
-inline constexpr EnumName<RestitutionKind> restitution_kind_table[] = {{RestitutionKind::elastic, "elastic"},
-                                                                       {RestitutionKind::exact, "exact"},
-                                                                       {RestitutionKind::approximate, "approximate"},
-                                                                       {RestitutionKind::saturating, "saturating"}};
-constexpr const auto& enum_names(RestitutionKind) { return restitution_kind_table; }
+// RestitutionKind (what one free impact delivers against the e asked) is in contact/model.hpp, beside the damping
+// laws that declare it too.
 // How long one impact lasts, for the time step of a single-impact analysis: Hertz theory, half a period
 // of the linear spring (pi sqrt(meff / kc)), or instantaneous (impulsive laws).
 enum class DurationForm : std::uint8_t { hertz, linear, impulsive };

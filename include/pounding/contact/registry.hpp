@@ -17,12 +17,9 @@
 #include "pounding/contact/laws/linear.hpp"
 #include "pounding/contact/laws/none.hpp"
 #include "pounding/contact/laws/stereomechanical.hpp"
+#include "pounding/core/type_list.hpp"
 
 namespace pounding {
-
-template <class... Ts> struct TypeList {
-  static constexpr std::size_t size = sizeof...(Ts);
-};
 
 namespace contact {
 
@@ -58,6 +55,11 @@ template <std::size_t... I> constexpr auto ids_of(std::index_sequence<I...>) {
   return std::array<ContactLaw, sizeof...(I)>{static_cast<ContactLaw>(I)...};
 }
 inline constexpr auto law_ids = ids_of(std::make_index_sequence<Laws::size>{});
+// The contact stiffness the kernel uses per unit of the stiffness given (PairParams::kc): the damping law's
+// stiffness_factor for a law whose restitution follows from it (Hertzdamp: 1.5 for three-spring), else 1.
+inline double stiffness_factor(const ContactModel& cm) {
+  return traits(cm.law).restitution_from_damping ? damping_law(cm.damping).stiffness_factor : 1.0;
+}
 // The names of the registered laws whose traits satisfy `keep`, joined by ", " (for help texts and errors).
 template <class Pred> std::string law_names_where(Pred keep) {
   std::string out;

@@ -127,14 +127,19 @@ void run_batch_t(const PairBatch& batch, const ContactModel& cm, const GroundMot
   DampingTable<Law> damping(cm);
   // the law's declared limit (a test law outside the registry declares unmeasured(): no coarse status)
   const double limit = Law::resolution[scheme_of(ks.stepper, ks.locate_contact)];
+  // a damping law that acts on a multiple of the stiffness given (three-spring: k_eq = 1.5 k, contact/model.hpp)
+  const double kc_factor = Law::traits.restitution_from_damping ? damping_law(cm.damping).stiffness_factor : 1.0;
   auto tile = std::make_unique<kernel::Tile>();
   kernel::Tile& T = *tile;
   for (std::size_t base = 0; base < width; base += kernel::tile_width) {
     T.n = static_cast<int>(std::min<std::size_t>(kernel::tile_width, width - base));
     // lanes past n up to the SIMD chunk boundary are padded with copies of the tile's first lane
     T.np = std::min(kernel::tile_width, (T.n + simd::W - 1) / simd::W * simd::W);
-    for (int i = 0; i < T.np; ++i)
-      fill_lane<Law, Model>(T, i, batch.get(base + static_cast<std::size_t>(i < T.n ? i : 0)), cm, ks.stepper, s, damping);
+    for (int i = 0; i < T.np; ++i) {
+      PairParams p = batch.get(base + static_cast<std::size_t>(i < T.n ? i : 0));
+      if (kc_factor != 1.0) p.kc *= kc_factor;
+      fill_lane<Law, Model>(T, i, p, cm, ks.stepper, s, damping);
+    }
     const kernel::Context Ct = tile_context(C, ks, T, base, s.ag[0]);
     kernel::visit_stepper(ks.stepper, [&]<class S>() { run_tile<S, Law, Model>(T, Ct, cm); });
     collect<Law, Model>(T, base, cm, s.h, limit, out);

@@ -82,6 +82,8 @@ Outputs collide_outputs(const Opts& o, const ContactModel& cm, Stepper stepper, 
   if (contact::traits(cm.law).restitution_from_damping) {
     out.text("damping_law", to_string(cm.damping));
     out.number("xibar", hertzdamp_xibar(cm.damping, o.e, cm.n), "{:.9g}");
+    // the law acts on this multiple of --kh (three-spring: k_eq = 1.5 k, contact/model.hpp damping_laws)
+    if (const double f = contact::stiffness_factor(cm); f != 1.0) out.number("stiffness_factor", f, "{:.9g}");
   }
   const double miss = r.e_effective - e_target;
   out.number("e_target", e_target, "{:.9g}");
