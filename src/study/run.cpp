@@ -15,6 +15,8 @@
 #include "pounding/core/error.hpp"
 #include "pounding/core/files.hpp"
 #include "pounding/contact/registry.hpp"
+#include "pounding/model/hysteresis/registry.hpp"
+#include "pounding/model/sdof.hpp"
 #include "pounding/motion/library.hpp"
 #include "pounding/physics/batch.hpp"
 #include "pounding/results/reader.hpp"
@@ -29,6 +31,9 @@
 namespace pounding {
 
 namespace fs = std::filesystem;
+// The hysteresis model of the springs the kernel runs (model::Registered), asked for its driver traits.
+using Spring = model::Registered::Spring;
+static_assert(model::Hysteresis<Spring>);
 
 namespace {
 
@@ -188,12 +193,14 @@ class UnitComputer {
     }
   }
 
-  // Lane i of the anchor run stays elastic when the record is scaled by `ratio` more (see stripes()).
+  // Lane i of the anchor run stays elastic when the record is scaled by `ratio` more (see stripes()): each spring's
+  // hysteresis model answers (stays_elastic, model/hysteresis/registry.hpp), not a value test here.
   bool elastic_at(std::size_t i, double ratio, double limit) const {
     constexpr double margin = 1.0 - 1e-9;
     const double u1 = ratio * anchor_.peak_u1[i], u2 = ratio * anchor_.peak_u2[i];
-    return anchor_.status[i] == 0 && u1 <= margin * batch_.fy1[i] / batch_.k1[i] &&
-           u2 <= margin * batch_.fy2[i] / batch_.k2[i] && u1 + u2 <= limit;
+    if (anchor_.status[i] != 0) return false;
+    const PairParams p = batch_.get(i);
+    return Spring::stays_elastic(p.s1, u1, margin) && Spring::stays_elastic(p.s2, u2, margin) && u1 + u2 <= limit;
   }
 
   // The bisection IDA of yielding pairs (method = "ida"): for every lane and gap ratio x, the record scale factor
@@ -265,8 +272,18 @@ class UnitComputer {
     }
   }
 
+  // The pair whose response to the unscaled record, times f, is the response of `pp` to the record times f: each
+  // spring's unscaled_equivalent (bilinear: fy / f). Every registered model the study runs has one; a model
+  // without (answering std::nullopt) would need its lane run on the scaled record, which the bisection does not do.
+  static PairParams unscaled_equivalent(PairParams pp, double f) {
+    const std::optional<Structure> s1 = Spring::unscaled_equivalent(pp.s1, f), s2 = Spring::unscaled_equivalent(pp.s2, f);
+    if (!s1 || !s2) throw std::logic_error("IDA bisection: the structure model does not scale with the record");
+    pp.s1 = *s1, pp.s2 = *s2;
+    return pp;
+  }
+
   // The IDA's bisection (see ida()): every found (lane, gap) bracket narrowed to the tolerance, one kernel lane
-  // per open bracket with the yield forces divided by its factor.
+  // per open bracket with each spring replaced by its unscaled equivalent at the lane's factor.
   void bisect(const Record& rec, const KernelSettings& ks, std::vector<std::uint8_t>& state, std::vector<double>& lo,
               std::vector<double>& hi, std::span<std::int32_t> analyses) {
     const std::size_t nG = state.size();
@@ -284,9 +301,7 @@ class UnitComputer {
         const std::size_t k = todo_[j];
         mid_[j] = lo[k] > 0 ? std::sqrt(lo[k] * hi[k]) : 0.5 * hi[k];
         f_min = std::min(f_min, mid_[j]);
-        PairParams pp = pairs_[k / G].pair_params(0.0, s_.e);
-        pp.s1.fy /= mid_[j], pp.s2.fy /= mid_[j];
-        sub_.set(j, pp);
+        sub_.set(j, unscaled_equivalent(pairs_[k / G].pair_params(0.0, s_.e), mid_[j]));
       }
       KernelSettings kb = ks;
       kb.displacement_limit = ks.displacement_limit / f_min;  // the exact limit is applied per lane below

@@ -7,6 +7,7 @@
 namespace pounding::model {
 
 template <class H> struct Sdof {
+  using Spring = H;  // the hysteresis model (model/hysteresis/registry.hpp)
   static constexpr int dofs = 1, contact_dof = 0;
   template <class T> using Params = typename H::template Params<T>;
   template <class T> struct State { T u, fs; };  // committed displacement and restoring force

@@ -4,6 +4,8 @@
 // Its per-lane parameters live in the tile's four slots of each body (k, ak, qy, kp; kernel/tile.hpp).
 #include <algorithm>
 #include <cmath>
+#include <optional>
+#include <string_view>
 
 #include "pounding/kernel/lane.hpp"
 #include "pounding/kernel/tile.hpp"
@@ -11,6 +13,8 @@
 namespace pounding::model {
 
 struct BilinearKinematic {
+  static constexpr std::string_view name = "bilinear";
+  using Spec = Structure;  // k, fy (inf: elastic), alpha; m and c belong to the body
   // Per-lane constants: k, alpha k, (1 - alpha) fy (qy), (1 - alpha) k (kp, 1 when k = 0).
   template <class T> struct Params { T k, ak, qy, kp; };
 
@@ -54,6 +58,18 @@ struct BilinearKinematic {
   static double strain_energy(const Params<double>& p, double u, double fs) {
     const double q = std::fma(-p.ak, u, fs), kp = p.k - p.ak;
     return std::fma(0.5 * p.ak * u, u, kp > 0 ? 0.5 * q * q / kp : 0.0);
+  }
+
+  // Driver traits (model/hysteresis/registry.hpp). Elastic while |u| <= fy / k: the expression study/run.cpp's
+  // elastic_at evaluated before the registry, verbatim (margin * fy / k), so its decisions keep their bits.
+  static bool stays_elastic(const Spec& s, double peak_abs_deformation, double margin) {
+    return peak_abs_deformation <= margin * s.fy / s.k;
+  }
+  // R(f w; k, fy, alpha) = f R(w; k, fy / f, alpha): both branches are homogeneous of degree 1 in (w, fy).
+  static std::optional<Spec> unscaled_equivalent(const Spec& s, double f) {
+    Spec out = s;
+    out.fy /= f;
+    return out;
   }
 };
 

@@ -1,0 +1,35 @@
+#pragma once
+// The registered hysteresis models (architecture.md 2.5.2), and what each tells the driver through traits
+// instead of value tests in the driver (STYLE.md "A model tells the driver what it can do"; D9):
+//   stays_elastic(spec, peak_abs_deformation, margin): the spring stays on its initial elastic branch when its
+//     peak |deformation| is `peak_abs_deformation` (a response scaled from a linear run stays exact only then);
+//     a model without an elastic range answers false.
+//   unscaled_equivalent(spec, f): the Spec' with R(f w; spec) = f R(w; spec'), so that the response to f ag is f
+//     times the response to ag of spec' (the IDA's bisection runs the record unscaled); std::nullopt when no
+//     such Spec exists (the record must then be scaled).
+// A new model is its header (model/hysteresis/<model>.hpp, with the functions the StructureModel calls and these
+// two traits) and one entry in Hystereses.
+#include <optional>
+#include <string_view>
+
+#include "pounding/core/type_list.hpp"
+#include "pounding/model/hysteresis/bilinear_kinematic.hpp"
+
+namespace pounding::model {
+
+template <class H>
+concept Hysteresis = requires(const typename H::Spec& s, double x) {
+  { H::name } -> std::convertible_to<std::string_view>;
+  { H::params(s) } -> std::same_as<typename H::template Params<double>>;
+  { H::stays_elastic(s, x, x) } -> std::same_as<bool>;
+  { H::unscaled_equivalent(s, x) } -> std::same_as<std::optional<typename H::Spec>>;
+};
+
+using Hystereses = TypeList<BilinearKinematic>;
+
+template <class... Hs> constexpr bool all_hystereses(TypeList<Hs...>) { return (Hysteresis<Hs> && ...); }
+static_assert(all_hystereses(Hystereses{}),
+              "every registered hysteresis model satisfies model::Hysteresis: a name, Spec, params(Spec), "
+              "stays_elastic(Spec, peak, margin) and unscaled_equivalent(Spec, f) (model/hysteresis/registry.hpp)");
+
+}  // namespace pounding::model
