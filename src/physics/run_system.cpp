@@ -193,7 +193,10 @@ void fill_elements(const Pool& T, std::size_t i, const LaneView& v, const Plan& 
     const auto row = [&](int f) -> double& { return T.elem(f, e)[i]; };
     const ContactModel& cm = P.models[static_cast<std::size_t>(P.group_of[static_cast<std::size_t>(e)])];
     const double meff = v.meff(e), w = v.n2(e);
-    row(sys::GAP) = v.at(B.gap, e), row(sys::KC) = v.at(B.kc, e), row(sys::E) = v.at(B.e, e);
+    // kc times the damping law's stiffness factor where it is not 1 (three-spring: k_eq = 1.5 k), as run_batch
+    const double kf = contact::stiffness_factor(cm);
+    row(sys::GAP) = v.at(B.gap, e), row(sys::KC) = kf == 1.0 ? v.at(B.kc, e) : kf * v.at(B.kc, e);
+    row(sys::E) = v.at(B.e, e);
     row(sys::CD) = P.cd[SystemBatch::at(e, v.l, B.width)];
     row(sys::MEFF) = meff, row(sys::H2M) = P.h * P.h / meff;
     const bool il = P.L.left[static_cast<std::size_t>(e)].kind == sys::SideKind::interpolated;

@@ -102,6 +102,7 @@ TEST(SystemKernel, SdofPairThroughTheDynamicLayoutIsThePairKernel) {
                         {ContactLaw::hertzdamp, 1.5, DampingLaw::lankarani_nikravesh},
                         {ContactLaw::hertzdamp, 1.5, DampingLaw::calibrated},
                         {ContactLaw::hertzdamp, 1.3, DampingLaw::calibrated},
+                        {ContactLaw::hertzdamp, 1.5, DampingLaw::three_spring},  // stiffness factor 1.5
                         {ContactLaw::jankowski, 1.5, DampingLaw::lankarani_nikravesh},
                         {ContactLaw::stereomechanical, 1.5, DampingLaw::lankarani_nikravesh}};
   int impacts = 0;
