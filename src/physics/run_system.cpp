@@ -53,6 +53,12 @@ Layout layout_of(const model::System& S) {
     const int r = S.bodies()[static_cast<std::size_t>(S.body_of(j))].floor_dashpot_ref;
     L.ref.push_back(r == j ? model::ground : r);
   }
+  L.refd_start.push_back(0);
+  for (int j = 0; j < L.ndof; ++j) {
+    for (int d = 0; d < L.ndof; ++d)
+      if (L.ref[static_cast<std::size_t>(d)] == j) L.refd.push_back(d);
+    L.refd_start.push_back(static_cast<int>(L.refd.size()));
+  }
   L.body_start.push_back(0);
   for (const model::Body& b : S.bodies()) {
     for (int d : b.dofs) L.body_dofs.push_back(d);
@@ -235,6 +241,10 @@ void fill_accelerations(const Pool& T, std::size_t i, const LaneView& v, double 
     const int r = L.ref[static_cast<std::size_t>(j)];
     const double vrel = r < 0 ? v.at(v.B.v0, j) : v.at(v.B.v0, j) - v.at(v.B.v0, r);
     q[static_cast<std::size_t>(j)] = T.dof(sys::CF, j)[i] * vrel + x;
+    for (int k = L.refd_start[static_cast<std::size_t>(j)]; k < L.refd_start[static_cast<std::size_t>(j) + 1]; ++k) {
+      const int d = L.refd[static_cast<std::size_t>(k)];
+      q[static_cast<std::size_t>(j)] -= T.dof(sys::CF, d)[i] * (v.at(v.B.v0, d) - v.at(v.B.v0, j));
+    }
   }
   for (int e = 0; e < L.nelem; ++e) {
     const double F = T.elem(sys::F, e)[i];

@@ -72,6 +72,7 @@ struct Layout {
   std::vector<int> below;             // spring below each DOF
   std::vector<int> above_start, above;  // springs with i == dof (CSR)
   std::vector<int> ref;               // floor dashpot reference per DOF (-1: ground)
+  std::vector<int> refd_start, refd;  // DOFs whose floor dashpot references this DOF (CSR): they take its reaction
   std::vector<int> body_start, body_dofs;  // DOFs per body (CSR), for the guard
   std::vector<Side> left, right;
   // per DOF, in element order, the element contributions to its force: element e and `how` (Contribution)
@@ -87,7 +88,7 @@ enum Contribution : int { left_point, right_point, left_n1, left_n2, right_n1, r
 // reloaded after every store).
 struct Topo {
   int ndof, nspring, nelem, nbody;
-  const int *si, *sj, *below, *above_start, *above, *ref, *body_start, *body_dofs;
+  const int *si, *sj, *below, *above_start, *above, *ref, *refd_start, *refd, *body_start, *body_dofs;
   const char* dashpot;
   const Side *left, *right;
   const int *contrib_start, *contrib_elem, *contrib_how;
@@ -95,7 +96,8 @@ struct Topo {
   explicit Topo(const Layout& L)
       : ndof(L.ndof), nspring(L.nspring), nelem(L.nelem), nbody(static_cast<int>(L.body_start.size()) - 1),
         si(L.si.data()), sj(L.sj.data()), below(L.below.data()), above_start(L.above_start.data()),
-        above(L.above.data()), ref(L.ref.data()), body_start(L.body_start.data()), body_dofs(L.body_dofs.data()),
+        above(L.above.data()), ref(L.ref.data()), refd_start(L.refd_start.data()), refd(L.refd.data()),
+        body_start(L.body_start.data()), body_dofs(L.body_dofs.data()),
         dashpot(L.dashpot.data()), left(L.left.data()), right(L.right.data()),
         contrib_start(L.contrib_start.data()), contrib_elem(L.contrib_elem.data()), contrib_how(L.contrib_how.data()),
         any_dashpot(L.any_dashpot) {}
@@ -346,6 +348,10 @@ POUNDING_INLINE void forces(Chunk c, Topo L, StepCtx& s) {
     for (int k = L.above_start[j]; k < L.above_start[j + 1]; ++k) q -= c.spr(T, L.above[k]);
     const int r = L.ref[j];
     q = lane::fma(c.dof(CF, j), r < 0 ? c.dof(VP, j) : c.dof(VP, j) - c.dof(VP, r), q);
+    // the reaction of the floor dashpots that reference j (an isolated base): -c_d (vp_d - vp_j), so the
+    // superstructure's C acts internally (symmetric C, momentum kept; none for fixed bodies: bits unchanged)
+    for (int k = L.refd_start[j]; k < L.refd_start[j + 1]; ++k)
+      q = lane::fma(-c.dof(CF, L.refd[k]), c.dof(VP, L.refd[k]) - c.dof(VP, j), q);
     for (int k = L.contrib_start[j]; k < L.contrib_start[j + 1]; ++k) {
       const int e = L.contrib_elem[k];
       const V f = c.elm(F, e);
