@@ -62,6 +62,7 @@ std::vector<double> floor_levels(const StickTopology& stick) {
 System shear_buildings(std::span<const StickTopology> sticks, double level_tolerance, ContactLevels levels) {
   require(!sticks.empty(), "no buildings");
   require(std::isfinite(level_tolerance) && level_tolerance >= 0.0, "the level tolerance must be finite and >= 0");
+  for (const StickTopology& s : sticks) require(s.isolated || !s.moat, "a moat needs an isolated building");
   const std::size_t nb = sticks.size();
   std::vector<std::vector<double>> z(nb);
   int top = 0;
@@ -76,31 +77,41 @@ System shear_buildings(std::span<const StickTopology> sticks, double level_toler
     body.heights = z[b];
     body.storey_dashpots = sticks[b].storey_dashpots && sticks[b].storeys > 1;
     body.label = sticks[b].label.empty() ? "building" + std::to_string(b + 1) : sticks[b].label;
+    if (sticks[b].isolated) {
+      body.isolated = true;
+      body.heights.insert(body.heights.begin(), 0.0);
+    }
   }
-  // level-major: floor k of every building that has it, left to right; spring d under DOF d
+  // level-major: floor k (0: isolated bases) of every building that has it, left to right; spring d under DOF d
   int d = 0;
-  for (int k = 0; k < top; ++k)
+  for (int k = -1; k < top; ++k)
     for (std::size_t b = 0; b < nb; ++b) {
-      if (k >= sticks[b].storeys) continue;
+      if (k >= sticks[b].storeys || (k < 0 && !sticks[b].isolated)) continue;
       Body& body = p.bodies[b];
       Spring s;
-      s.i = k == 0 ? ground : body.dofs.back();
+      s.i = body.dofs.empty() ? ground : body.dofs.back();
       s.j = d;
       s.body = static_cast<int>(b);
       s.storey = k + 1;
+      s.role = k < 0 ? SpringRole::isolator : SpringRole::storey;
       p.springs.push_back(s);
       body.dofs.push_back(d++);
     }
+  for (Body& body : p.bodies)
+    if (body.isolated) body.floor_dashpot_ref = body.dofs[0];
   // floor-to-floor elements, ordered by the left floor's level, interfaces left to right
   struct Facing {
     int level, interface, left, right;  // level: the left floor's number (from 1); left/right: DOFs
     int right_floor;
   };
   std::vector<Facing> facing;
-  for (std::size_t b = 0; b + 1 < nb; ++b)
+  for (std::size_t b = 0; b + 1 < nb; ++b) {
+    // floors above the base: z[b] holds the superstructure's levels; an isolated body's DOFs start at the base
+    const std::size_t ol = sticks[b].isolated ? 1 : 0, orr = sticks[b + 1].isolated ? 1 : 0;
     for (const auto& [i, j] : facing_floors(z[b], z[b + 1], level_tolerance, levels))
-      facing.push_back({i + 1, static_cast<int>(b), p.bodies[b].dofs[static_cast<std::size_t>(i)],
-                        p.bodies[b + 1].dofs[static_cast<std::size_t>(j)], j + 1});
+      facing.push_back({i + 1, static_cast<int>(b), p.bodies[b].dofs[static_cast<std::size_t>(i) + ol],
+                        p.bodies[b + 1].dofs[static_cast<std::size_t>(j) + orr], j + 1});
+  }
   std::stable_sort(facing.begin(), facing.end(), [](const Facing& a, const Facing& b) {
     return a.level != b.level ? a.level < b.level : a.interface < b.interface;
   });
@@ -117,6 +128,23 @@ System shear_buildings(std::span<const StickTopology> sticks, double level_toler
     p.contacts.push_back(std::move(e));
   }
   p.groups.push_back(ContactGroup{"pounding", true});
+  for (std::size_t b = 0; b < nb; ++b) {
+    if (!sticks[b].moat) continue;
+    const Body& body = p.bodies[b];
+    const int g = static_cast<int>(p.groups.size());
+    p.groups.push_back(ContactGroup{"moat " + body.label, false});
+    ContactElement left, right;
+    left.left = {SideKind::wall, -1, -1, body.channel};
+    left.right = {SideKind::point, body.dofs[0], -1, 0};
+    right.left = {SideKind::point, body.dofs[0], -1, 0};
+    right.right = {SideKind::wall, -1, -1, body.channel};
+    left.group = right.group = g;
+    left.level = right.level = 0;
+    left.label = body.label + " moat left";
+    right.label = body.label + " moat right";
+    p.contacts.push_back(std::move(left));
+    p.contacts.push_back(std::move(right));
+  }
   return System::build(std::move(p));
 }
 

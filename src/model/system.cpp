@@ -47,7 +47,8 @@ void check_bodies(const System::Parts& p, int ndof, Placement& at, std::vector<P
     for (std::size_t k = 0; k < body.heights.size(); ++k) {
       const double h = body.heights[k];
       const std::string wk = where + " heights[" + std::to_string(k) + "]";
-      if (!std::isfinite(h) || h <= 0.0)
+      const bool base0 = k == 0 && body.isolated && h == 0.0;  // an isolated base sits at the support's level
+      if (!std::isfinite(h) || (h <= 0.0 && !base0))
         out.push_back({"floor height " + num(h) + " must be positive and finite", wk,
                        "give the floor's level above its support in m"});
       else if (k > 0 && !(h > body.heights[k - 1]))

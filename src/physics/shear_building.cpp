@@ -86,7 +86,7 @@ ShearNumbers set_shear_building(SystemBatch& batch, std::size_t lane, int body, 
   const model::System& sys = *batch.system;
   require(body >= 0 && static_cast<std::size_t>(body) < sys.bodies().size(), "no such body");
   const model::Body& b = sys.bodies()[static_cast<std::size_t>(body)];
-  require(!b.isolated, "an isolated body is not a shear building");
+  require(!b.isolated, "an isolated body is not a shear building (set_isolated_building)");
   std::vector<double> h(b.heights.size());
   for (std::size_t i = 0; i < h.size(); ++i) h[i] = i == 0 ? b.heights[0] : b.heights[i] - b.heights[i - 1];
   ShearNumbers num = shear_numbers(h, spec);
@@ -102,6 +102,76 @@ ShearNumbers set_shear_building(SystemBatch& batch, std::size_t lane, int body, 
     if (!batch.c_storey.empty()) batch.c_storey[SystemBatch::at(s, lane, w)] = num.c_storey[i];
   }
   return num;
+}
+
+IsolationNumbers isolation_numbers(std::span<const double> h, const ShearSpec& spec, const IsolationSpec& iso) {
+  require(std::isfinite(iso.base_mass) && iso.base_mass > 0.0, "the base mass must be finite and > 0");
+  IsolationNumbers out;
+  out.super = shear_numbers(h, spec);
+  out.m_base = iso.base_mass;
+  out.m_total = iso.base_mass;
+  for (double m : out.super.m) out.m_total += m;
+  if (iso.bearing == Bearing::linear) {
+    require(std::isfinite(iso.k_eff) && iso.k_eff > 0.0, "k_eff must be finite and > 0");
+    require(std::isfinite(iso.zeta_eff) && iso.zeta_eff >= 0.0 && iso.zeta_eff < 1.0, "zeta_eff must be in [0, 1)");
+    out.isolator = {iso.k_eff, std::numeric_limits<double>::infinity(), 0.0};
+    out.c_base = 2.0 * iso.zeta_eff * std::sqrt(iso.k_eff * out.m_total);
+  } else {
+    require(std::isfinite(iso.k1) && iso.k1 > 0.0, "k1 must be finite and > 0");
+    require(std::isfinite(iso.k2) && iso.k2 >= 0.0 && iso.k2 < iso.k1, "k2 must be in [0, k1)");
+    require(std::isfinite(iso.qd) && iso.qd > 0.0, "Qd must be finite and > 0");
+    out.isolator = {iso.k1, iso.qd * iso.k1 / (iso.k1 - iso.k2), iso.k2 / iso.k1};  // SB §2: Fy = Qd/(1 - k2/k1)
+  }
+  return out;
+}
+
+IsolationNumbers set_isolated_building(SystemBatch& batch, std::size_t lane, int body, const ShearSpec& spec,
+                                       const IsolationSpec& iso) {
+  require(batch.system != nullptr && lane < batch.width, "the batch is not sized (SystemBatch::resize)");
+  const model::System& sys = *batch.system;
+  require(body >= 0 && static_cast<std::size_t>(body) < sys.bodies().size(), "no such body");
+  const model::Body& b = sys.bodies()[static_cast<std::size_t>(body)];
+  require(b.isolated && b.dofs.size() >= 2 && b.floor_dashpot_ref == b.dofs[0],
+          "not an isolated stick (model::StickTopology::isolated)");
+  std::vector<double> h(b.heights.size() - 1);
+  for (std::size_t i = 0; i < h.size(); ++i) h[i] = b.heights[i + 1] - b.heights[i];
+  IsolationNumbers num = isolation_numbers(h, spec, iso);
+  const bool dashpots = b.storey_dashpots && !batch.c_storey.empty();
+  for (double c : num.super.c_storey)
+    require(dashpots || c == 0.0, "Rayleigh's stiffness part needs storey dashpots (StickTopology::storey_dashpots)");
+  const std::size_t w = batch.width;
+  const int base = b.dofs[0], sb = sys.spring_below(base);
+  batch.m[SystemBatch::at(base, lane, w)] = num.m_base;
+  batch.c_floor[SystemBatch::at(base, lane, w)] = num.c_base;  // to ground: the isolator's deformation rate
+  batch.spring[SystemBatch::at(sb, lane, w)] = num.isolator;
+  if (!batch.c_storey.empty()) batch.c_storey[SystemBatch::at(sb, lane, w)] = 0.0;
+  for (std::size_t i = 1; i < b.dofs.size(); ++i) {
+    const int d = b.dofs[i], s = sys.spring_below(d);
+    batch.m[SystemBatch::at(d, lane, w)] = num.super.m[i - 1];
+    batch.c_floor[SystemBatch::at(d, lane, w)] = num.super.c_floor[i - 1];
+    batch.spring[SystemBatch::at(s, lane, w)] = {num.super.k[i - 1], num.super.fy[i - 1], spec.alpha};
+    if (!batch.c_storey.empty()) batch.c_storey[SystemBatch::at(s, lane, w)] = num.super.c_storey[i - 1];
+  }
+  return num;
+}
+
+void set_moat(SystemBatch& batch, std::size_t lane, int body, double gap_left, double gap_right, double kc, double e) {
+  require(batch.system != nullptr && lane < batch.width, "the batch is not sized (SystemBatch::resize)");
+  const model::System& sys = *batch.system;
+  require(body >= 0 && static_cast<std::size_t>(body) < sys.bodies().size(), "no such body");
+  const int base = sys.bodies()[static_cast<std::size_t>(body)].dofs[0];
+  int found = 0;
+  for (int el : sys.elements_at(base)) {
+    const model::ContactElement& ce = sys.contacts()[static_cast<std::size_t>(el)];
+    const bool wall_left = ce.left.kind == model::SideKind::wall, wall_right = ce.right.kind == model::SideKind::wall;
+    if (!wall_left && !wall_right) continue;
+    const std::size_t i = SystemBatch::at(el, lane, batch.width);
+    batch.gap[i] = wall_left ? gap_left : gap_right;
+    batch.kc[i] = kc;
+    batch.e[i] = e;
+    ++found;
+  }
+  require(found == 2, "the body has no moat (model::StickTopology::moat)");
 }
 
 void set_contacts(SystemBatch& batch, std::size_t lane, double gap, double kc, double e,

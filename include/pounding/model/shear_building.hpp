@@ -6,7 +6,7 @@
 // within a tolerance (only floors that exist on both sides, SB §1 pitfall 4; floors meeting columns come with
 // step 9), all in one study-gap group "pounding". The per-lane numbers are physics::set_shear_building's.
 //
-// Numbering (level-major, §2.1): floor 1 of every building left to right, then floor 2 of every building that has
+// Numbering (level-major, §2.1): the bases of isolated buildings (floor 0) left to right, then floor 1 of every building left to right, then floor 2 of every building that has
 // one, and so on; spring d is the storey spring under DOF d (springs in DOF order). Two one-storey buildings give
 // DOF 0 = building 1, DOF 1 = building 2: exactly System::sdof_pair() when both storeys are 3.2 m high.
 // Elements in level order (the left floor's number), interfaces left to right within a level; element `level` is
@@ -28,6 +28,14 @@ struct StickTopology {
   // damping is its floor dashpot (Structure::from_period), so a one-storey building is today's SDOF.
   bool storey_dashpots = true;
   std::string label;  // empty: "building<b>" (b from 1, left to right)
+  // Base isolation (docs/architecture.md §2.2.3 "Isolated stick", §2.2.4 "Walls"): a base mass (floor 0, level 0 m)
+  // on an isolator spring (role isolator, storey 0) under the `storeys` floors; the superstructure's floor dashpots
+  // reference the base (Body::floor_dashpot_ref = dofs[0]). The base meets no neighbour's floor.
+  bool isolated = false;
+  // Moat walls (isolated only): two wall elements on the base, "<label> moat left" (L = wall, R = base: delta =
+  // -u_b - gap) and "<label> moat right" (L = base, R = wall: delta = u_b - gap), in their own group "moat <label>"
+  // (study_gap = false: their gaps are the moat's, physics::set_moat), after the floor-to-floor elements.
+  bool moat = false;
 };
 
 enum class ContactLevels {

@@ -53,6 +53,36 @@ ShearNumbers shear_numbers(std::span<const double> storey_heights, const ShearSp
 // a0 M, and refuses a1 != 0). Storey heights from the body's floor levels. Returns the numbers.
 ShearNumbers set_shear_building(SystemBatch& batch, std::size_t lane, int body, const ShearSpec& spec);
 
+// Base isolation (docs/architecture.md §2.2.3 "Isolated stick", "Isolated building"; ../shared/research/
+// systems-and-bridges.md §2, T2.1): a linear bearing (k_eff, zeta_eff: a dashpot c_b = 2 zeta_eff sqrt(k_eff
+// M_total) on the base to ground, i.e. on the isolator's deformation rate, M_total = base + superstructure) or a
+// bilinear lead-rubber bearing (k1, k2, Qd: k = k1, fy = Qd k1 / (k1 - k2) = Qd / (1 - k2/k1), alpha = k2/k1 -- SB §2
+// "F_y = Q_d/(1 - k2/k1)", AASHTO Guide Spec. for Seismic Isolation Design, Naeim & Kelly 1999; no viscous damping
+// of its own: its hysteresis is the damping).
+enum class Bearing { linear, lead_rubber };
+struct IsolationSpec {
+  Bearing bearing = Bearing::linear;
+  double base_mass = 0.0;               // kg, > 0 (a massless base makes the system singular, SB §2 pitfalls)
+  double k_eff = 0.0, zeta_eff = 0.0;   // linear: N/m, ratio
+  double k1 = 0.0, k2 = 0.0, qd = 0.0;  // lead-rubber: N/m, N/m (0 <= k2 < k1), N (> 0)
+};
+struct IsolationNumbers {
+  double m_base = 0.0, m_total = 0.0;
+  SpringSpec isolator;  // {k, fy, alpha}
+  double c_base = 0.0;  // the linear bearing's dashpot (N s/m), 0 for lead-rubber
+  ShearNumbers super;   // the FIXED-BASE superstructure's numbers (its Rayleigh from its own modes)
+};
+// The numbers of an isolated stick: superstructure storey heights (m, bottom first), its spec and the bearing's.
+IsolationNumbers isolation_numbers(std::span<const double> storey_heights, const ShearSpec& spec,
+                                   const IsolationSpec& iso);
+// Fills lane `lane` of isolated body `body` (model::StickTopology::isolated): the base mass and dashpot, the
+// isolator spring, and the superstructure as set_shear_building does, its floor dashpots referencing the base
+// (Body::floor_dashpot_ref, so the rigid-body mode on the isolators gets no superstructure damping).
+IsolationNumbers set_isolated_building(SystemBatch& batch, std::size_t lane, int body, const ShearSpec& spec,
+                                       const IsolationSpec& iso);
+// Moat walls of isolated body `body` (StickTopology::moat): gaps (m) left and right of the base, kc and e.
+void set_moat(SystemBatch& batch, std::size_t lane, int body, double gap_left, double gap_right, double kc, double e);
+
 // Contact numbers of lane `lane` for every element: gap = study gap (+ level_offsets[level - 1] when given, for
 // elements of study-gap groups; elements of other groups keep their own gap), kc, e.
 void set_contacts(SystemBatch& batch, std::size_t lane, double gap, double kc, double e,
