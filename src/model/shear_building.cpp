@@ -41,6 +41,28 @@ std::vector<std::pair<int, int>> facing_floors(const std::vector<double>& a, con
   return out;
 }
 
+// Two wall elements per moated (isolated) stick on its base, in a group "moat <label>" each (study_gap false).
+void add_moats(System::Parts& p, std::span<const StickTopology> sticks) {
+  const std::size_t nb = sticks.size();
+  for (std::size_t b = 0; b < nb; ++b) {
+    if (!sticks[b].moat) continue;
+    const Body& body = p.bodies[b];
+    const int g = static_cast<int>(p.groups.size());
+    p.groups.push_back(ContactGroup{"moat " + body.label, false});
+    ContactElement left, right;
+    left.left = {SideKind::wall, -1, -1, body.channel};
+    left.right = {SideKind::point, body.dofs[0], -1, 0};
+    right.left = {SideKind::point, body.dofs[0], -1, 0};
+    right.right = {SideKind::wall, -1, -1, body.channel};
+    left.group = right.group = g;
+    left.level = right.level = 0;
+    left.label = body.label + " moat left";
+    right.label = body.label + " moat right";
+    p.contacts.push_back(std::move(left));
+    p.contacts.push_back(std::move(right));
+  }
+}
+
 }  // namespace
 
 std::vector<double> floor_levels(const StickTopology& stick) {
@@ -128,23 +150,7 @@ System shear_buildings(std::span<const StickTopology> sticks, double level_toler
     p.contacts.push_back(std::move(e));
   }
   p.groups.push_back(ContactGroup{"pounding", true});
-  for (std::size_t b = 0; b < nb; ++b) {
-    if (!sticks[b].moat) continue;
-    const Body& body = p.bodies[b];
-    const int g = static_cast<int>(p.groups.size());
-    p.groups.push_back(ContactGroup{"moat " + body.label, false});
-    ContactElement left, right;
-    left.left = {SideKind::wall, -1, -1, body.channel};
-    left.right = {SideKind::point, body.dofs[0], -1, 0};
-    right.left = {SideKind::point, body.dofs[0], -1, 0};
-    right.right = {SideKind::wall, -1, -1, body.channel};
-    left.group = right.group = g;
-    left.level = right.level = 0;
-    left.label = body.label + " moat left";
-    right.label = body.label + " moat right";
-    p.contacts.push_back(std::move(left));
-    p.contacts.push_back(std::move(right));
-  }
+  add_moats(p, sticks);
   return System::build(std::move(p));
 }
 

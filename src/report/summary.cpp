@@ -106,12 +106,15 @@ std::int32_t at(const std::vector<std::int32_t>& v, int i, const physics::System
   return v[physics::SystemBatch::at(i, lane, r.width)];
 }
 
-// One building's per-floor (per DOF) or per-storey (per spring below each DOF) values, bottom first.
+// One building's per-floor (per DOF) or per-storey (per spring below each DOF) values, bottom first; an isolated
+// building's floors above its base (the base and isolator: base_values).
 std::vector<double> per_floor(const SystemRunReport& run, const model::Body& b, const std::vector<double>& v,
                               double divisor = 1.0, bool springs = false) {
   std::vector<double> out;
-  for (int d : b.dofs)
+  for (std::size_t i = b.isolated ? 1 : 0; i < b.dofs.size(); ++i) {
+    const int d = b.dofs[i];
     out.push_back(at(v, springs ? run.system->spring_below(d) : d, *run.result, run.lane) / divisor);
+  }
   return out;
 }
 
@@ -192,9 +195,46 @@ std::vector<double> drift_ratios(const std::vector<double>& drift, const Buildin
   return out;
 }
 
+// An isolated building's base (issue 25 §2): the bearing's displacement (the base relative to the ground), its
+// residual, the isolator's peak force and the impacts at its moat walls (elements with a wall side on the base).
+struct BaseValues {
+  double peak_u = 0, final_u = 0, peak_force = 0;
+  std::int64_t moat_impacts = 0;
+  double moat_peak_force = 0;
+};
+BaseValues base_values(const SystemRunReport& run, const model::Body& b) {
+  const physics::SystemResult& r = *run.result;
+  const int base = b.dofs[0];
+  BaseValues v{at(r.peak_u, base, r, run.lane), at(r.final_u, base, r, run.lane),
+               at(r.peak_spring_force, run.system->spring_below(base), r, run.lane), 0, 0.0};
+  for (int e : run.system->elements_at(base)) {
+    const model::ContactElement& ce = run.system->contacts()[static_cast<std::size_t>(e)];
+    if (ce.left.kind != model::SideKind::wall && ce.right.kind != model::SideKind::wall) continue;
+    v.moat_impacts += at(r.impact_count, e, r, run.lane);
+    v.moat_peak_force = std::max(v.moat_peak_force, at(r.peak_force, e, r, run.lane));
+  }
+  return v;
+}
+
 std::string list(const std::vector<double>& v) {
   std::string s;
   for (double x : v) s += fmt::format("{}{:.6g}", s.empty() ? "" : " ", x);
+  return s;
+}
+
+std::string isolation_lines(const std::string& label, const IsolationReport& iso) {
+  std::string s = fmt::format("{}_bearing: {}\n", label, iso.bearing);
+  s += fmt::format("{}_base_mass_kg: {:.6g}\n{}_isolator_k_N_m: {:.6g}\n", label, iso.base_mass, label, iso.k);
+  s += fmt::format("{}_isolator_fy_N: {:.6g}\n{}_isolator_alpha: {:.6g}\n", label, iso.fy, label, iso.alpha);
+  s += fmt::format("{}_bearing_c_N_s_m: {:.6g}\n{}_isolated_periods_s: {}\n", label, iso.c_base, label,
+                   list(iso.periods));
+  return s;
+}
+
+std::string base_lines(const std::string& k, const BaseValues& bv) {
+  std::string s = fmt::format("peak_bearing_u{}_m: {:.6g}\nfinal_bearing_u{}_m: {:.6g}\n", k, bv.peak_u, k, bv.final_u);
+  s += fmt::format("peak_bearing_force{}_N: {:.6g}\nmoat_impacts{}: {}\n", k, bv.peak_force, k, bv.moat_impacts);
+  s += fmt::format("moat_peak_force{}_N: {:.6g}\n", k, bv.moat_peak_force);
   return s;
 }
 
@@ -230,6 +270,7 @@ std::string format_system_summary(const SystemRunReport& run) {
     line(b.label + "_storey_yield_N", list(b.storey_yield));
     line(b.label + "_periods_s", list(b.periods));
     line(b.label + "_modal_damping", list(b.modal_damping));
+    if (b.isolation) s += isolation_lines(b.label, *b.isolation);
   }
   line("status", to_string(static_cast<LaneStatus>(r.status[run.lane])));
   const Totals t = totals(run);
@@ -245,6 +286,7 @@ std::string format_system_summary(const SystemRunReport& run) {
     line("peak_abs_acc" + k + "_g", list(per_floor(run, body, r.peak_acc, g_accel)));
     if (run.uncoupled != nullptr)
       for (const Amplification& a : amplifications) line(std::string(a.name) + k, list(amplification(run, body, a)));
+    if (body.isolated) s += base_lines(k, base_values(run, body));
   }
   line("contact_levels", sys.contacts().empty() ? std::string("none (no floors face each other)")
                                                  : std::to_string(sys.contacts().size()));
@@ -288,7 +330,14 @@ std::string format_system_json(const SystemRunReport& run) {
     w.begin_object().member("label", b.label).member("storeys", static_cast<int>(b.floor_levels.size()));
     w.member("floor_levels", b.floor_levels).member("floor_mass", b.floor_mass);
     w.member("storey_stiffness", b.storey_stiffness).member("storey_yield", b.storey_yield);
-    w.member("periods", b.periods).member("modal_damping", b.modal_damping).end_object();
+    w.member("periods", b.periods).member("modal_damping", b.modal_damping);
+    if (b.isolation) {
+      const IsolationReport& iso = *b.isolation;
+      w.key("isolation").begin_object().member("bearing", iso.bearing).member("base_mass", iso.base_mass);
+      w.member("isolator_k", iso.k).member("isolator_fy", iso.fy).member("isolator_alpha", iso.alpha);
+      w.member("bearing_c", iso.c_base).member("isolated_periods", iso.periods).end_object();
+    }
+    w.end_object();
   }
   w.end_array();
   w.member("status", to_string(static_cast<LaneStatus>(r.status[run.lane])));
@@ -303,6 +352,11 @@ std::string format_system_json(const SystemRunReport& run) {
     w.member("final_u" + k, per_floor(run, body, r.final_u));
     if (run.uncoupled != nullptr)
       for (const Amplification& a : amplifications) w.member(std::string(a.name) + k, amplification(run, body, a));
+    if (!body.isolated) continue;
+    const BaseValues bv = base_values(run, body);
+    w.member("peak_bearing_u" + k, bv.peak_u).member("final_bearing_u" + k, bv.final_u);
+    w.member("peak_bearing_force" + k, bv.peak_force).member("moat_impacts" + k, bv.moat_impacts);
+    w.member("moat_peak_force" + k, bv.moat_peak_force);
   }
   w.key("levels").begin_array();
   for (int e = 0; e < static_cast<int>(sys.contacts().size()); ++e) {

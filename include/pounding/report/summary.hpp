@@ -1,5 +1,6 @@
 #pragma once
 // Text summaries of kernel results: one `name: value` per line (SI units in the names).
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -15,9 +16,19 @@ std::string format_summary(const BatchResult& r, std::size_t lane, const Contact
                            const Record& rec, const KernelSettings& ks);
 
 // One building of a system run as the outputs describe it (per floor / per storey, bottom first).
+// A base-isolated building's bearing (issue 25 §2): its kind, base mass, isolator {k, fy, alpha} (fy inf: linear),
+// the linear bearing's dashpot and the periods of the isolated building with the isolator's initial stiffness.
+struct IsolationReport {
+  std::string bearing;
+  double base_mass = 0, k = 0, fy = 0, alpha = 0, c_base = 0;
+  std::vector<double> periods;
+};
+
+// periods / modal_damping: of the fixed-base superstructure for an isolated building (its Rayleigh's modes)
 struct BuildingReport {
   std::string label;
   std::vector<double> floor_levels, floor_mass, storey_stiffness, storey_yield, periods, modal_damping;
+  std::optional<IsolationReport> isolation;
 };
 
 // A run of one lane of a system (`pounding simulate`): what it was and every observer.

@@ -63,12 +63,27 @@ struct SimulateOptions {
     bool any() const { return storeys_given || mass_given || stiffness_given || height_given; }
   };
   Storeys b[2];
+  // base isolation (issue 25 §2): bearing, base mass, bearing numbers, moat walls; any of these makes building i
+  // an isolated shear building
+  struct Isolation {
+    std::string bearing;  // "", "linear", "lead-rubber"
+    double base_mass = 0, k_eff = 0, zeta_eff = 0.1, k1 = 0, k2 = 0, qd = 0;
+    double moat_gap = 0, moat_stiffness = 0, moat_e = 0;
+    std::string moat_law = "hertzdamp";
+    bool base_mass_given = false, k_eff_given = false, zeta_given = false, lrb_given = false, moat_given = false;
+    bool moat_options_given = false, moat_stiffness_given = false, moat_e_given = false;
+    bool any() const {
+      return !bearing.empty() || base_mass_given || k_eff_given || zeta_given || lrb_given || moat_given ||
+             moat_options_given;
+    }
+  };
+  Isolation iso[2];
   // which floors pound (issue 25 §3): common levels or the lower roof only, the level tolerance, gap offsets per level
   std::string contact_levels = "common";
   double level_tolerance = 0.05;
   std::vector<double> gap_offsets;
   bool levels_given = false;
-  bool storey_mode() const { return b[0].any() || b[1].any() || levels_given; }
+  bool storey_mode() const { return b[0].any() || b[1].any() || levels_given || iso[0].any() || iso[1].any(); }
 };
 
 // --m1/--m2, or the mass model's value at --h1/--h2.
@@ -237,6 +252,53 @@ PairParams pair_params(const SimulateOptions& o, const ContactModel& cm, const S
 
 // ---- multi-storey buildings (issue 25 §4; docs/architecture.md §2.7.3) ----
 
+// Building i's isolation options (issue 25 §2), checked before any work: a bearing named for any of them, its
+// numbers present and physical (SB §2: a massless base is singular; k2 < k1), the moat's gap, law, stiffness and e.
+void validate_isolation(const SimulateOptions& o, int i) {
+  const SimulateOptions::Isolation& s = o.iso[i];
+  const std::string k = std::to_string(i + 1);
+  if (!s.any()) return;
+  if (s.bearing.empty())
+    throw InputError("isolation options without a bearing", "--isolation" + k,
+                     "give --isolation" + k + " linear|lead-rubber, or drop the bearing/moat options of building " + k);
+  if (s.bearing != "linear" && s.bearing != "lead-rubber")
+    throw unknown_key_error(s.bearing, "--isolation" + k, "--isolation" + k, "linear, lead-rubber", "argument");
+  if (s.base_mass_given) require_range(s.base_mass, 1e3, 1e10, "--base-mass" + k, "[1e3, 1e10] kg");
+  if (s.bearing == "linear") {
+    if (s.lrb_given)
+      throw InputError("--bearing-k1/k2/qd describe a lead-rubber bearing and --isolation" + k + " is linear",
+                       "--bearing-k1-" + k, "give --bearing-keff" + k + " (and --bearing-zeta" + k + ") for linear");
+    if (!s.k_eff_given)
+      throw InputError("a linear bearing needs its effective stiffness", "--bearing-keff" + k,
+                       "give --bearing-keff" + k + " in N/m (e.g. 4 pi^2 M_total / T_iso^2)");
+    require_range(s.k_eff, 1e3, 1e12, "--bearing-keff" + k, "[1e3, 1e12] N/m");
+    require_range(s.zeta_eff, 0.0, 0.5, "--bearing-zeta" + k, "[0, 0.5]");
+  } else {
+    if (s.k_eff_given || s.zeta_given)
+      throw InputError("--bearing-keff/--bearing-zeta describe a linear bearing and --isolation" + k + " is lead-rubber",
+                       s.k_eff_given ? "--bearing-keff" + k : "--bearing-zeta" + k,
+                       "give --bearing-k1-" + k + ", --bearing-k2-" + k + " and --bearing-qd" + k);
+    require_range(s.k1, 1e3, 1e12, "--bearing-k1-" + k, "[1e3, 1e12] N/m (give it)");
+    require_range(s.k2, 0.0, 1e12, "--bearing-k2-" + k, "[0, 1e12] N/m");
+    if (!(s.k2 < s.k1))
+      throw InputError(fmt::format("--bearing-k2-{} = {} is not below --bearing-k1-{} = {}", k, s.k2, k, s.k1),
+                       "--bearing-k2-" + k, "give the post-yield stiffness k2 < k1 (typically k1 / 10)");
+    require_range(s.qd, 1.0, 1e10, "--bearing-qd" + k, "[1, 1e10] N (give it)");
+  }
+  if (s.moat_options_given && !s.moat_given)
+    throw InputError("moat options without a moat", "--moat-gap" + k, "give --moat-gap" + k + " (m)");
+  if (!s.moat_given) return;
+  require_range(s.moat_gap, 0.0, 5.0, "--moat-gap" + k, "[0, 5] m");
+  const ContactLaw law = parse_contact_law(s.moat_law);
+  if (law == ContactLaw::stereomechanical || law == ContactLaw::none)
+    throw InputError("--moat-law" + k + " = " + s.moat_law + " cannot act at a moat wall", "--moat-law" + k,
+                     "give a force law (linear, kelvin, hertz, hertzdamp, jankowski)");
+  if (s.moat_stiffness_given) require_range(s.moat_stiffness, 1e3, 1e15, "--moat-stiffness" + k, "[1e3, 1e15]");
+  else if (law == ContactLaw::linear || law == ContactLaw::kelvin)
+    require_positive(0.0, "--moat-stiffness" + k + " (linear/Kelvin stiffness, N/m)");
+  if (s.moat_e_given) require_range(s.moat_e, 0.01, 1.0, "--moat-e" + k, "[0.01, 1]");
+}
+
 // The storey options, checked before any work: counts, heights, masses and stiffnesses, and the SDOF options that
 // mean nothing for a building of several storeys.
 void validate_storeys(const SimulateOptions& o) {
@@ -262,6 +324,7 @@ void validate_storeys(const SimulateOptions& o) {
         throw InputError(fmt::format("{}{} describes an SDOF, and building {} has {} storeys", name[j], k, k, b.storeys),
                          name[j] + k, fix[j]);
   }
+  for (int i = 0; i < 2; ++i) validate_isolation(o, i);
   if (!o.series.empty())
     throw InputError("--series records an SDOF pair only", "--series", "drop --series or the storey options");
   if (o.contact_levels != "common" && o.contact_levels != "top")
@@ -324,6 +387,10 @@ void set_storey_contacts(const SimulateOptions& o, const ContactModel& cm, physi
   physics::set_contacts(batch, 0, o.gap, 0.0, o.e, o.gap_offsets);
   for (std::size_t e = 0; e < sys.contacts().size(); ++e) {
     const model::ContactElement& ce = sys.contacts()[e];
+    if (!sys.groups()[static_cast<std::size_t>(ce.group)].study_gap) {  // a moat: set_moat's numbers
+      run.contact_stiffness.push_back(0.0), run.contact_gap.push_back(0.0);
+      continue;
+    }
     const double kc = o.kh_given ? o.kh
                                  : hertz_stiffness_spheres(batch.m[static_cast<std::size_t>(ce.left.p)],
                                                            batch.m[static_cast<std::size_t>(ce.right.p)], o.density,
@@ -332,6 +399,55 @@ void set_storey_contacts(const SimulateOptions& o, const ContactModel& cm, physi
     run.contact_stiffness.push_back(kc);
     run.contact_gap.push_back(batch.gap[e]);
   }
+}
+
+// The buildings' numbers (shear or isolated) in lane 0 and their report lines.
+void set_buildings(const SimulateOptions& o, const Structure (&sdof)[2], const std::vector<model::StickTopology>& sticks,
+                   physics::SystemBatch& batch, SystemRunReport& run) {
+  const model::System& sys = *batch.system;
+  for (int i = 0; i < 2; ++i) {
+    const std::string label = sys.bodies()[static_cast<std::size_t>(i)].label;
+    if (!sticks[i].isolated) {
+      const physics::ShearNumbers num = physics::set_shear_building(batch, 0, i, shear_spec(o, i, sdof[i]));
+      run.buildings.push_back({label, model::floor_levels(sticks[i]), num.m, num.k, num.fy, num.modes.period,
+                               num.zeta_modes, {}});
+      continue;
+    }
+    const physics::ShearSpec spec = shear_spec(o, i, sdof[i]);
+    const SimulateOptions::Isolation& s = o.iso[i];
+    physics::IsolationSpec iso;
+    iso.bearing = s.bearing == "linear" ? physics::Bearing::linear : physics::Bearing::lead_rubber;
+    iso.base_mass = s.base_mass_given ? s.base_mass : spec.floor_mass[0];  // default: one floor's mass
+    iso.k_eff = s.k_eff, iso.zeta_eff = s.zeta_eff, iso.k1 = s.k1, iso.k2 = s.k2, iso.qd = s.qd;
+    const physics::IsolationNumbers num = physics::set_isolated_building(batch, 0, i, spec, iso);
+    std::vector<double> chain_m{num.m_base}, chain_k{num.isolator.k};
+    chain_m.insert(chain_m.end(), num.super.m.begin(), num.super.m.end());
+    chain_k.insert(chain_k.end(), num.super.k.begin(), num.super.k.end());
+    BuildingReport br{label, model::floor_levels(sticks[i]), num.super.m, num.super.k, num.super.fy,
+                      num.super.modes.period, num.super.zeta_modes, {}};
+    br.isolation = IsolationReport{s.bearing, num.m_base, num.isolator.k, num.isolator.fy, num.isolator.alpha,
+                                   num.c_base, model::shear_stick_modes(chain_m, chain_k).period};
+    run.buildings.push_back(std::move(br));
+  }
+}
+
+// The moat walls' numbers (--moat-*: gap each side, stiffness, e) and the contact models per group: group 0 the
+// pounding between the buildings, then one per moat.
+std::vector<ContactModel> set_moats(const SimulateOptions& o, const ContactModel& cm, physics::SystemBatch& batch) {
+  const model::System& sys = *batch.system;
+  std::vector<ContactModel> groups{cm};
+  for (int i = 0; i < 2; ++i) {
+    const SimulateOptions::Isolation& s = o.iso[i];
+    if (!s.moat_given) continue;
+    ContactModel moat = cm;
+    moat.law = parse_contact_law(s.moat_law);
+    groups.push_back(moat);
+    const double m_base = batch.m[static_cast<std::size_t>(sys.bodies()[static_cast<std::size_t>(i)].dofs[0])];
+    const double kc = s.moat_stiffness_given ? s.moat_stiffness
+                                             : hertz_stiffness_spheres(m_base, m_base, o.density, o.youngs, o.poisson);
+    physics::set_moat(batch, 0, i, s.moat_gap, s.moat_gap, kc, s.moat_e_given ? s.moat_e : o.e);
+  }
+  return groups;
 }
 
 int run_storeys(SimulateOptions& o, const ContactModel& cm, KernelSettings& ks) {
@@ -346,19 +462,22 @@ int run_storeys(SimulateOptions& o, const ContactModel& cm, KernelSettings& ks) 
       make_structure(o.m1, o.T1, o.k1, o.h1, o.fy1, o.alpha, o.zeta, o.elastic, "1", o.k1_given, o.fy1_given),
       make_structure(o.m2, o.T2, o.k2, o.h2, o.fy2, o.alpha, o.zeta, o.elastic, "2", o.k2_given, o.fy2_given)};
   std::vector<model::StickTopology> sticks(2);
-  for (int i = 0; i < 2; ++i) sticks[i].storeys = o.b[i].storeys, sticks[i].storey_heights = {o.b[i].height};
+  for (int i = 0; i < 2; ++i) {
+    sticks[i].storeys = o.b[i].storeys, sticks[i].storey_heights = {o.b[i].height};
+    sticks[i].isolated = !o.iso[i].bearing.empty(), sticks[i].moat = o.iso[i].moat_given;
+  }
   const model::ContactLevels levels =
       o.contact_levels == "top" ? model::ContactLevels::top : model::ContactLevels::common;
   const model::System sys = model::shear_buildings(sticks, o.level_tolerance, levels);
   physics::SystemBatch batch;
   batch.resize(sys, 1);
   SystemRunReport run;
-  for (int i = 0; i < 2; ++i) {
-    const physics::ShearNumbers num = physics::set_shear_building(batch, 0, i, shear_spec(o, i, sdof[i]));
-    run.buildings.push_back({sys.bodies()[static_cast<std::size_t>(i)].label, model::floor_levels(sticks[i]), num.m,
-                             num.k, num.fy, num.modes.period, num.zeta_modes});
-  }
+  set_buildings(o, sdof, sticks, batch, run);
   set_storey_contacts(o, cm, batch, run);
+  const std::vector<ContactModel> groups = set_moats(o, cm, batch);
+  // the moat elements' stiffness and gap in the report (set_storey_contacts wrote the floor elements')
+  for (std::size_t e = 0; e < sys.contacts().size(); ++e)
+    run.contact_stiffness[e] = batch.kc[e], run.contact_gap[e] = batch.gap[e];
   Record rec = ground_motion(o);
   const double record_length = rec.duration();
   const double analysis_length = cut_to_duration(o, rec);
@@ -366,12 +485,12 @@ int run_storeys(SimulateOptions& o, const ContactModel& cm, KernelSettings& ks) 
   if (!sys.is_sdof_pair()) check_step(o, batch, ks, rec.dt);
   GroundMotion gm{rec.dt, rec.acc, analysis_length > record_length ? analysis_length : 0.0};
   physics::SystemResult r;
-  physics::run_system(batch, std::span<const ContactModel>(&cm, 1), gm, ks, r);
-  // the uncoupled run (no pounding) for the amplification per floor
-  ContactModel none;
-  none.law = ContactLaw::none;
+  physics::run_system(batch, groups, gm, ks, r);
+  // the uncoupled run (no pounding between the buildings; moats stay, architecture §2.6.2) for the amplification
+  std::vector<ContactModel> free_groups = groups;
+  free_groups[0].law = ContactLaw::none;
   physics::SystemResult free;
-  physics::run_system(batch, std::span<const ContactModel>(&none, 1), gm, ks, free);
+  physics::run_system(batch, free_groups, gm, ks, free);
   run.uncoupled = &free;
 
   run.system = &sys, run.result = &r, run.record = &rec, run.settings = &ks, run.contact = &cm;
@@ -403,7 +522,7 @@ std::string pair_json(const SimulateOptions& o, const PairBatch& b, const BatchR
   run.e_target = p.e, run.gap = p.gap, run.analysis_duration = analysis_length, run.contact_stiffness = {p.kc};
   for (const auto& [s, h, label] : {std::tuple{p.s1, o.h1, "building1"}, {p.s2, o.h2, "building2"}})
     run.buildings.push_back({label, {h}, {s.m}, {s.k}, {s.fy}, {2 * std::numbers::pi * std::sqrt(s.m / s.k)},
-                             {s.c / (2.0 * std::sqrt(s.k * s.m))}});
+                             {s.c / (2.0 * std::sqrt(s.k * s.m))}, {}});
   return format_system_json(run);
 }
 
@@ -465,6 +584,25 @@ void add_storey_options(CLI::App* c, SimulateOptions& opts) {
     c->add_option("--storey-height" + k, o->b[i].height,
                   "height of each storey of building " + k + " (m); floors at levels within 0.05 m pound")
         ->capture_default_str();
+  }
+  for (int i = 0; i < 2; ++i) {
+    const std::string k = std::to_string(i + 1);
+    SimulateOptions::Isolation& s = o->iso[i];
+    c->add_option("--isolation" + k, s.bearing,
+                  "base-isolate building " + k + ": linear (--bearing-keff, --bearing-zeta) or lead-rubber (bilinear: "
+                  "--bearing-k1-, --bearing-k2-, --bearing-qd); a base mass at level 0 under the storeys");
+    c->add_option("--base-mass" + k, s.base_mass, "mass of building " + k + "'s base (kg); default: one floor's mass");
+    c->add_option("--bearing-keff" + k, s.k_eff, "linear bearing: effective stiffness of all isolators (N/m)");
+    c->add_option("--bearing-zeta" + k, s.zeta_eff,
+                  "linear bearing: damping ratio, c_b = 2 zeta sqrt(k_eff M_total) (default 0.1)");
+    c->add_option("--bearing-k1-" + k, s.k1, "lead-rubber: elastic stiffness k1 (N/m)");
+    c->add_option("--bearing-k2-" + k, s.k2, "lead-rubber: post-yield stiffness k2 < k1 (N/m)");
+    c->add_option("--bearing-qd" + k, s.qd, "lead-rubber: characteristic strength Qd (N; Fy = Qd k1/(k1 - k2))");
+    c->add_option("--moat-gap" + k, s.moat_gap, "moat walls left and right of building " + k + "'s base, this far (m)");
+    c->add_option("--moat-law" + k, s.moat_law, "contact law at the moat walls (default hertzdamp)");
+    c->add_option("--moat-stiffness" + k, s.moat_stiffness,
+                  "moat contact stiffness (N/m^n; default: equivalent-sphere Hertz of two base masses)");
+    c->add_option("--moat-e" + k, s.moat_e, "moat coefficient of restitution (default: --e)");
   }
   c->add_option("--contact-levels", o->contact_levels,
                 "which floors pound (multi-storey): common (every pair of floors at the same level) or top (the lower "
@@ -535,6 +673,16 @@ void add_simulate(CLI::App& app) {
       o->b[i].storeys_given = c->count("--storeys" + k) > 0, o->b[i].mass_given = c->count("--storey-mass" + k) > 0;
       o->b[i].stiffness_given = c->count("--storey-stiffness" + k) > 0;
       o->b[i].height_given = c->count("--storey-height" + k) > 0;
+    }
+    for (int i = 0; i < 2; ++i) {
+      const std::string k = std::to_string(i + 1);
+      SimulateOptions::Isolation& s = o->iso[i];
+      s.base_mass_given = c->count("--base-mass" + k) > 0, s.k_eff_given = c->count("--bearing-keff" + k) > 0;
+      s.zeta_given = c->count("--bearing-zeta" + k) > 0;
+      s.lrb_given = c->count("--bearing-k1-" + k) + c->count("--bearing-k2-" + k) + c->count("--bearing-qd" + k) > 0;
+      s.moat_given = c->count("--moat-gap" + k) > 0;
+      s.moat_stiffness_given = c->count("--moat-stiffness" + k) > 0, s.moat_e_given = c->count("--moat-e" + k) > 0;
+      s.moat_options_given = c->count("--moat-law" + k) > 0 || s.moat_stiffness_given || s.moat_e_given;
     }
     o->levels_given = c->count("--contact-levels") + c->count("--level-tolerance") + c->count("--gap-offsets") > 0;
     if (const int code = run_simulate(*o)) throw ExitRequest{code};
