@@ -124,7 +124,12 @@ TEST(SystemKernel, SdofPairThroughTheDynamicLayoutIsThePairKernel) {
                                std::string(to_string(k.dl)) + " energy=" + std::to_string(energy);
       std::printf("%-58s %zu/%zu observers bit-equal, worst relative difference %.3g (%s)\n", name.c_str(), c.bits,
                   c.n, c.worst, c.where.c_str());
-      EXPECT_LE(c.worst, 1e-12) << name << ": " << c.where;
+      // Where identical bits are not claimed (sanitize.kernel: the stepper instrumented at -O1 beside the pair
+      // kernel at -O3; RelWithDebInfo) the two contract other multiply-adds: measured 2026-11-26 worst 3.4e-12
+      // relative on displacements (final_u2, stereomechanical) and 4.4e-9 on the elastic Hertz law's
+      // contact_energy, which is the cancellation residual work - stored of a law that dissipates nothing:
+      // rounding, not physics (a wrong term moves an observer by 1e-3 or more), so 1e-7 there.
+      EXPECT_LE(c.worst, bits_claimed() ? 1e-12 : 1e-7) << name << ": " << c.where;
       if (bits_claimed()) EXPECT_EQ(c.bits, c.n) << name << ": not bit-identical, worst " << c.where;
     }
   EXPECT_GT(impacts, 100) << "the workload must pound";
