@@ -157,6 +157,21 @@ constexpr StudyKey keys[] = {
     {"structures", "equal_heights", "boolean", "false", "", "true | false",
      "One height for both buildings, uniform on the intersection of their rule intervals (needs heights from the "
      "rule and grid or fixed periods)."},
+    {"structures", "model", "string", "\"sdof\"", "", "\"sdof\" | \"shear\"",
+     "The buildings' structural model (each building may override it): sdof = one DOF at the effective height "
+     "(the paper's model); shear = a shear building of `storeys` floors, each storey storey_height high: floor "
+     "masses from floor_mass or the building's mass split equally, storey stiffnesses from storey_stiffness or "
+     "stiffness_profile scaled to the building's period T1, every storey yielding at the drift ratio drift / "
+     "ductility (Vy_i = k_i storey_height drift / ductility; with yield_coefficient Cy: base shear Cy M g, upper "
+     "storeys by the shear profile), Rayleigh damping zeta on modes 1 and 2; contact at the floors both buildings "
+     "have at the same level (within 0.05 m). A shear building of one storey is the SDOF bit for bit. Not with "
+     "[intensity] (fragility, IDA)."},
+    {"structures", "storey_height", "number", "3.2", "m", "(0, 10] ([2, 10] for model = \"sdof\")",
+     "The storey height of both buildings (each may override it): the code rules' storey count and the shear "
+     "model's storeys (max(1, round(height / storey_height)) per sample) and floor levels.", 1e-300, 10.0},
+    {"structures", "stiffness_profile", "string", "\"uniform\"", "", "\"uniform\" | \"shear\"",
+     "Shear model, storey stiffnesses from T1: uniform = equal storeys; shear = proportional to the storey shear of "
+     "an inverted-triangle load (model::stiffness_shape), both scaled so the fundamental period is T1."},
     {"structures", "building1", "table", "the [structures] defaults", "", "", "Building 1 (the left one)."},
     {"structures", "building2", "table", "the [structures] defaults", "", "", "Building 2 (the right one)."},
 
@@ -232,8 +247,23 @@ constexpr StudyKey keys[] = {
      0.8, 1.4},
     {"structures.buildingN", "storeys", "integer", "round(height / storey_height), at least 1", "", "[1, 200]",
      "Storeys above the base: Standard 2800's 0.005 h rule is for at most 8.", 1, 200},
-    {"structures.buildingN", "storey_height", "number", "3.2", "m", "[2, 10]",
-     "Only for the default of storeys.", 2.0, 10.0},
+    {"structures.buildingN", "storey_height", "number", "[structures] storey_height (3.2)", "m",
+     "(0, 10] ([2, 10] for model = \"sdof\")",
+     "The default of storeys (max(1, round(height / storey_height))) and, for model = \"shear\", every storey's "
+     "height: floor k at k storey_height (a scale model's frames may be 0.1 m).", 1e-300, 10.0},
+    {"structures.buildingN", "model", "string", "[structures] model", "", "\"sdof\" | \"shear\"",
+     "As in [structures]: an SDOF building may pair with a shear building (it meets the floor nearest its height, "
+     "its roof if the other is lower)."},
+    {"structures.buildingN", "floor_mass", "number", "the building's mass / storeys", "kg", "[1e-3, 1e9]",
+     "Shear model: the mass of every floor. Absent: the building's mass (given or the mass-index model) split "
+     "equally over its floors.", 1e-3, 1e9},
+    {"structures.buildingN", "storey_stiffness", "number", "stiffness_profile scaled to the period", "N/m",
+     "[1, 1e12]",
+     "Shear model: the stiffness of every storey. Absent: stiffness_profile scaled so the fundamental period is the "
+     "building's period (sampled or given); given, the building's T1 is this stiffness's and the period only "
+     "selects the height.", 1.0, 1e12},
+    {"structures.buildingN", "stiffness_profile", "string", "[structures] stiffness_profile", "",
+     "\"uniform\" | \"shear\"", "As in [structures]."},
 
     // ---------------------------------------------------------------- distributions
     {"distribution", "lognormal", "table", "", "", "{median, cov}", "A lognormal law (not with uniform)."},

@@ -349,6 +349,40 @@ double required_number(config::TableReader& r, std::string_view key) {
 
 }  // namespace
 
+// The shear model's keys against the building's model: floor_mass and storey_stiffness need model = "shear", and a
+// storey_height below 2 m (the 1/30-scale frames' 0.1 m) is a model's, not a real building's code storey.
+void check_shear_keys(const BuildingModel& b, const WhereFn& where) {
+  if (!b.shear()) {
+    for (auto [key, v] : {std::pair{"floor_mass", b.floor_mass}, {"storey_stiffness", b.storey_stiffness}})
+      if (v > 0)
+        throw InputError(fmt::format("{} is given for an SDOF building", key), where(key),
+                         fmt::format("add model = \"shear\" to this table (or [structures]), or remove {}", key));
+    if (b.code.storey_height > 0 && b.code.storey_height < 2.0)
+      throw InputError(fmt::format("storey_height = {:g} m is below 2 m for an SDOF building", b.code.storey_height),
+                       where("storey_height"),
+                       "give a storey height in [2, 10] m, or model = \"shear\" for a scale model's storeys (0, 10] m");
+  }
+}
+
+void read_shear_defaults(config::TableReader& r, BuildingModel& b) {
+  b.kind = r.choice("model", std::string(to_string(b.kind)), [](const std::string& name) {
+    if (const auto k = parse_enum(structure_kind_names, name)) return *k;
+    throw InputError(fmt::format("model = \"{}\" is not a structural model", name), "model",
+                     "write model = " + enum_name_list(structure_kind_names, " or ", "\""));
+  });
+  b.profile = r.choice("stiffness_profile", std::string(to_string(b.profile)), [](const std::string& name) {
+    if (const auto p = parse_enum(model::stiffness_profile_names, name)) return *p;
+    throw InputError(fmt::format("stiffness_profile = \"{}\" is not a profile", name), "stiffness_profile",
+                     "write stiffness_profile = " + enum_name_list(model::stiffness_profile_names, " or ", "\""));
+  });
+}
+
+
+int BuildingModel::storeys_at(double h) const {
+  if (code.storeys > 0) return static_cast<int>(code.storeys);
+  return std::max(1, static_cast<int>(std::lround(h / storey_height())));
+}
+
 Distribution parse_distribution(const toml::node& n, std::string_view key, const std::string& file,
                                 const std::string& name, const std::string& where) {
   const std::string fix = fmt::format("write {0} = <number>, "
@@ -441,14 +475,24 @@ BuildingModel parse_building(const toml::table* t, const std::string& file, cons
   if (b.yield_coefficient.given() && (r.get("drift") || r.get("ductility")))
     throw InputError("both yield_coefficient and drift/ductility are given", r.where("yield_coefficient"),
                      "give either yield_coefficient (fy = Cy m g) or drift and ductility (fy = k drift h / ductility)");
+  const double shared_storey_height = b.code.storey_height;  // [structures] storey_height (0: not given)
   b.code = read_code_factors(t, file, name);
   for (const char* key : {"asce7_r", "asce7_cd", "asce7_ie", "ec8_q", "s2800_ru", "s2800_cd", "s2800_importance",
                           "storeys", "storey_height"})
     r.get(key);  // code_factor_keys: known here, read and checked by read_code_factors
+  const bool own_storey_height = b.code.storey_height > 0;
+  if (!own_storey_height) b.code.storey_height = shared_storey_height;
+  read_shear_defaults(r, b);
+  if (r.get("floor_mass")) b.floor_mass = r.number("floor_mass", 0.0);
+  if (r.get("storey_stiffness")) b.storey_stiffness = r.number("storey_stiffness", 0.0);
   r.finish(std::string("periods, period_min, period_max, period_step, period, height, mass, zeta, yield_coefficient, "
                        "alpha, hysteresis, aspect_ratios, rho_mean, rho_cov, mbar_mean, mbar_cov, mbar_min, mbar_max, "
-                       "drift, ductility, height_min, height_max, ct_lower, ct_upper, height_exponent, ") +
+                       "drift, ductility, height_min, height_max, ct_lower, ct_upper, height_exponent, model, "
+                       "floor_mass, storey_stiffness, stiffness_profile, ") +
            code_factor_keys);
+  check_shear_keys(b, [&](std::string_view key) {
+    return key == "storey_height" && !own_storey_height ? fallback(key) : where(key);
+  });
   validate_building(b, where);
   return b;
 }

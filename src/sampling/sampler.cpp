@@ -139,6 +139,7 @@ BuildingModel StructureModel::default_building() const {
   b.drift = drift, b.ductility = ductility, b.alpha = alpha;
   b.height_min = height_min, b.height_max = height_max;
   b.ct_lower = ct_lower, b.ct_upper = ct_upper, b.height_exponent = height_exponent;
+  b.kind = kind, b.profile = profile, b.code.storey_height = storey_height;
   return b;
 }
 
@@ -173,6 +174,17 @@ void resolve_buildings(StructureModel& m, const std::array<const toml::table*, 2
   for (int i = 0; i < 2; ++i)
     m.buildings[i] = parse_building(tables[i], file, fmt::format("structures.building{}", i + 1), defaults, where);
   check_equal_heights(m, where("equal_heights"));
+  const BuildingModel &b1 = m.buildings[0], &b2 = m.buildings[1];
+  if (b1.shear() && b2.shear() && b1.storey_height() != b2.storey_height())
+    // floors meet floors at equal levels; floors against columns between two floors are not built yet
+    throw InputError(fmt::format("the shear buildings' storey heights differ ({:g} m and {:g} m): their floors would "
+                                 "meet the other's columns, which the shear model does not hold",
+                                 b1.storey_height(), b2.storey_height()),
+                     tables[1] && tables[1]->get("storey_height")
+                         ? config::location(file, tables[1]->get("storey_height")->source()) +
+                               " [structures.building2].storey_height"
+                         : where("storey_height"),
+                     "give both buildings the same storey_height");
 }
 
 }  // namespace
@@ -204,6 +216,14 @@ StructureModel parse_structure_model(const toml::table& table, const std::string
   bool rule_explicit = false;
   for (const char* key : {"ct_lower", "ct_upper", "height_exponent"}) rule_explicit |= r.get(key) != nullptr;
   m.equal_heights = r.boolean("equal_heights", false);
+  {
+    BuildingModel shared;
+    read_shear_defaults(r, shared);
+    m.kind = shared.kind, m.profile = shared.profile;
+    if (r.get("storey_height"))
+      m.storey_height = r.number("storey_height", 0.0);
+    check_shear_keys(m.default_building(), [&](std::string_view key) { return r.where(key); });
+  }
   const std::array<const toml::table*, 2> buildings{r.table("building1"), r.table("building2")};
   if (const toml::node* n = r.get("aspect_ratios")) m.aspect_ratios = config::numbers(*n, "aspect_ratios", r.where("aspect_ratios"));
   if (const toml::node* n = r.get("samples_per_pair"))
@@ -217,7 +237,8 @@ StructureModel parse_structure_model(const toml::table& table, const std::string
   r.finish("periods, period_min, period_max, period_step, samples_per_pair, aspect_ratios, rho_mean, rho_cov, "
            "mbar_mean, mbar_cov, mbar_min, mbar_max, zeta, hysteresis, drift, ductility, alpha, height_min, "
            "height_max, ct_lower, ct_upper, height_exponent, code_gap_coefficient, contact_density, "
-           "contact_youngs_modulus, contact_poisson, kh, equal_heights, building1, building2 (tables "
+           "contact_youngs_modulus, contact_poisson, kh, equal_heights, model, storey_height, stiffness_profile, "
+           "building1, building2 (tables "
            "[structures.building1], [structures.building2])");
 
   if (periods && (pmin || pmax || pstep))

@@ -263,6 +263,19 @@ Study parse_study(const std::string& text, const std::string& path) {
   s.intensity.bisection =
       s.intensity.method == FragilityMethod::ida &&
       !(s.structures.building(0).hysteresis == Hysteresis::elastic && s.structures.building(1).hysteresis == Hysteresis::elastic);
+  if (s.intensity.enabled && s.structures.any_shear()) {
+    // the stripes' elastic scaling and the IDA's unscaled equivalents are written for the SDOF pair's springs
+    std::string where = top.where("intensity");
+    for (const char* b : {"building2", "building1", ""}) {
+      const toml::table* t = !structures ? nullptr : *b ? structures->get_as<toml::table>(b) : structures;
+      if (const toml::node* n = t ? t->get("model") : nullptr; n && n->value_or(std::string()) == "shear")
+        where = fmt::format("{}:{} [structures{}{}].model", path, n->source().begin.line, *b ? "." : "", b);
+    }
+    throw InputError("a fragility study ([intensity]: stripes, IDA) runs SDOF buildings only, not model = \"shear\"",
+                     where,
+                     "remove [intensity] to run the shear buildings in the probability or impacts scene, or use "
+                     "model = \"sdof\"");
+  }
   if (s.intensity.enabled && s.scene_requested != Scene::probability)
     throw InputError("a fragility study ([intensity]) runs in the probability scene", top.where("scene"),
                      "write scene = \"probability\": whether a pair touches at a gap is decided by the uncoupled motion");

@@ -17,7 +17,23 @@
 //   alpha, hysteresis, aspect_ratios, rho_mean, rho_cov, mbar_mean, mbar_cov, mbar_min, mbar_max, drift,
 //   ductility, height_min, height_max, ct_lower, ct_upper, height_exponent   as in [structures]
 //   asce7_r, asce7_cd, asce7_ie, ec8_q, s2800_ru, s2800_cd, s2800_importance, storeys, storey_height   the
-//                   building's code design factors (code_factors.hpp; this table only, no [structures] default)
+//                   building's code design factors (code_factors.hpp; storey_height may also be given in
+//                   [structures], the default of both buildings)
+//   model           "sdof" (today: one DOF at the effective height) or "shear" (a shear building of `storeys`
+//                   floors, docs/architecture.md §2.7.1; also a [structures] default). For "shear":
+//     storeys       given, or max(1, round(h / storey_height)) PER SAMPLE from its sampled height h
+//     storey_height every storey this high (m, (0, 10]; sdof buildings keep [2, 10]); floor k at k storey_height
+//     floor_mass    kg per floor (> 0); absent: the sampled total mass m split equally over the floors
+//     storey_stiffness  N/m per storey (> 0); absent: stiffness_profile scaled to the sampled period T1
+//                   (model::stiffness_for_period)
+//     stiffness_profile  "uniform" | "shear" (also a [structures] default)
+//     strength      the SDOF's rule per storey: drift/ductility -> every storey yields at the drift ratio
+//                   theta_y = drift / ductility (Vy_i = k_i theta_y storey_height, the SDOF's u_y = drift h /
+//                   ductility spread evenly over the height); yield_coefficient Cy -> Vy_i = Cy M g V_i / V_1 (the
+//                   base shear Cy M g, upper storeys by the shear profile); hysteresis "elastic": no yield
+//     damping       the building's zeta, Rayleigh on modes 1 and 2 (each mode's ratio in the settings' docs)
+//   One storey (storeys = 1, or a sampled height below 1.5 storey_height) with neither floor_mass nor
+//   storey_stiffness is the SDOF of the same sample bit for bit.
 //
 // Distributions: lognormal {median, cov}: ln X ~ N(ln median, sigma^2), sigma^2 = ln(1 + cov^2) (cov is the
 // CoV of X; 0 means fixed, at most 2); uniform {min, max} with min <= max. Every value given (a number, a median,
@@ -42,9 +58,14 @@
 #include <toml++/toml.h>
 
 #include "pounding/core/enum_names.hpp"
+#include "pounding/model/modes.hpp"
 #include "pounding/sampling/code_factors.hpp"
 
 namespace pounding {
+
+namespace config {
+class TableReader;
+}
 
 enum class Hysteresis : std::uint8_t {
   bilinear,  // kinematic hardening with fy from drift/ductility (or Cy) and alpha (the paper's model)
@@ -53,6 +74,12 @@ enum class Hysteresis : std::uint8_t {
 inline constexpr EnumName<Hysteresis> hysteresis_names[] = {{Hysteresis::bilinear, "bilinear"},
                                                             {Hysteresis::elastic, "elastic"}};
 constexpr const auto& enum_names(Hysteresis) { return hysteresis_names; }  // to_string(Hysteresis), enum_names.hpp
+
+// The structural model of a building (docs/architecture.md §2.7.1).
+enum class StructureKind : std::uint8_t { sdof, shear };
+inline constexpr EnumName<StructureKind> structure_kind_names[] = {{StructureKind::sdof, "sdof"},
+                                                                   {StructureKind::shear, "shear"}};
+constexpr const auto& enum_names(StructureKind) { return structure_kind_names; }
 
 // A value or the law it is drawn from. Kind::none: the key is not given (its model's default applies).
 struct Distribution {
@@ -130,6 +157,16 @@ struct BuildingModel {
   double height_min = 0, height_max = 0, ct_lower = 0, ct_upper = 0, height_exponent = 0;
   bool rule_explicit = false;  // ct_lower, ct_upper or height_exponent set in this table or [structures]
   CodeFactors code;            // the code design factors of this table (code_factors.hpp)
+  // The structural model (the top of this header): sdof, or a shear building with these numbers (0: absent).
+  StructureKind kind = StructureKind::sdof;
+  double floor_mass = 0, storey_stiffness = 0;
+  model::StiffnessProfile profile = model::StiffnessProfile::uniform;
+
+  bool shear() const { return kind == StructureKind::shear; }
+  // The storey height (m): storey_height given here or in [structures], else 3.2.
+  double storey_height() const { return code.storey_height > 0 ? code.storey_height : default_storey_height; }
+  // Storeys of a sample of height h: `storeys` given, else max(1, round(h / storey_height())).
+  int storeys_at(double h) const;
 
   std::size_t slots() const { return periods.size(); }
   bool height_from_rule() const { return !height.given(); }
@@ -167,6 +204,12 @@ BuildingModel parse_building(const toml::table* t, const std::string& file, cons
 // Checks every value and cross-condition of one resolved building (ranges, the period grid, the rule interval
 // of every grid period, the truncations, a given height against an explicit rule); where(key) locates a key.
 void validate_building(const BuildingModel& b, const WhereFn& where);
+
+// model and stiffness_profile of a table ([structures] or a building's) over b's values: InputError for unknown names.
+void read_shear_defaults(config::TableReader& r, BuildingModel& b);
+
+// floor_mass / storey_stiffness / a storey_height below 2 m given to an SDOF building: InputError at where(key).
+void check_shear_keys(const BuildingModel& b, const WhereFn& where);
 
 // The rule interval at T, or InputError naming T and both bounds (where) when it is empty.
 HeightInterval checked_rule_heights(const BuildingModel& b, double T, const std::string& where);

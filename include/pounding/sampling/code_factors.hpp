@@ -13,7 +13,8 @@
 //                       importance) put the building outside the 0.005 h rule
 //   storeys             number of storeys above the base, integer [1, 200] (default: round(height /
 //                       storey_height), at least 1, from the building's median height)
-//   storey_height       m, [2, 10], default 3.2: only for the default of storeys
+//   storey_height       m, [2, 10] (a shear model's (0, 10], building.hpp), default 3.2: the default of storeys
+//                       and the storey height of a shear building (building.hpp)
 #include <string>
 
 #include <toml++/toml.h>

@@ -101,6 +101,12 @@ struct StructureModel {
   double kh = 0.0;  // > 0: the Hertz stiffness (N/m^1.5) for every pair; 0: equivalent spheres
   // One height for both buildings: uniform on the intersection of their rule intervals (building 1's uniform).
   bool equal_heights = false;
+  // The buildings' structural model defaults (building.hpp): model, storey_height (0: 3.2 m), stiffness_profile.
+  StructureKind kind = StructureKind::sdof;
+  double storey_height = 0.0;
+  model::StiffnessProfile profile = model::StiffnessProfile::uniform;
+  // Either building is a shear building (the study runs Systems, study/run.cpp).
+  bool any_shear() const { return building(0).shear() || building(1).shear(); }
   // Index 0 = building 1 (left). parse_structure_model resolves both; a model built in code may leave them
   // unresolved, and building(b) then makes them from the fields above.
   std::array<BuildingModel, 2> buildings;
@@ -137,6 +143,7 @@ void validate(const StructureModel& model, const std::string& where = "[structur
 //   rho_mean, rho_cov; mbar_mean, mbar_cov, mbar_min, mbar_max; zeta; hysteresis = "bilinear"|"elastic";
 //   drift, ductility, alpha; height_min, height_max; ct_lower, ct_upper, height_exponent;
 //   code_gap_coefficient; contact_density, contact_youngs_modulus, contact_poisson; kh; equal_heights (bool);
+//   model = "sdof" | "shear", storey_height, stiffness_profile (the buildings' defaults, building.hpp);
 //   and the sub-tables [structures.building1], [structures.building2] (keys in building.hpp), resolved into
 //   StructureModel::buildings over these defaults.
 // Unknown keys, wrong types and out-of-range values throw InputError naming file:line, the key and the

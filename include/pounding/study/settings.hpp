@@ -143,6 +143,13 @@ void visit_settings(const Study& s, V&& v) {
                                      {"storey_height", f.storey_height}})
       if (value > 0) v(sec, key, value);
     if (f.storeys > 0) v(sec, "storeys", static_cast<std::int64_t>(f.storeys));
+    if (m.any_shear()) {  // the structural model (sampling/building.hpp); absent from SDOF studies (their bits)
+      v(sec, "model", S(to_string(b.kind)));
+      v(sec, "stiffness_profile", S(to_string(b.profile)));
+      if (f.storey_height <= 0) v(sec, "storey_height", b.storey_height());
+      if (b.floor_mass > 0) v(sec, "floor_mass", b.floor_mass);
+      if (b.storey_stiffness > 0) v(sec, "storey_stiffness", b.storey_stiffness);
+    }
   }
 
   v("gaps", "ratios", s.gap_ratios);
