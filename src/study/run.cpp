@@ -25,6 +25,7 @@
 #include "pounding/study/checkpoint.hpp"
 #include "pounding/study/make_results.hpp"
 #include "pounding/study/plan.hpp"
+#include "pounding/study/system_block.hpp"
 #include "pounding/study/tally.hpp"
 #include "pounding/study/unit_result.hpp"
 
@@ -79,6 +80,7 @@ class UnitComputer {
     ks_base_.displacement_limit = s.displacement_limit;
     uncoupled_ = s.contact;
     uncoupled_.law = ContactLaw::none;
+    if (sampler.model().any_shear()) block_.emplace(sampler.model());
     if (plan.stripes) stripe_scaled_ = results::field_index(plan.fields, "uncoupled", "scaled");
     if (plan.ida) {
       ida_analyses_ = results::field_index(plan.fields, "ida", "analyses");
@@ -98,9 +100,13 @@ class UnitComputer {
     const Record& rec = records_[u.record].record;
     KernelSettings ks = ks_base_;
     ks.substeps = substeps_for(rec.dt);
+    UnitResult out(plan_, n);
+    if (block_) {  // shear buildings: Systems (study/system_block.hpp)
+      systems(rec, ks, out);
+      return out;
+    }
     batch_.resize(n);
     for (std::size_t i = 0; i < n; ++i) batch_.set(i, pairs_[i].pair_params(0.0, s_.e));
-    UnitResult out(plan_, n);
     if (plan_.stripes) {
       stripes(rec, u.record, ks, out);
       return out;
@@ -357,6 +363,47 @@ class UnitComputer {
     }
   }
 
+  // A block with a shear building (model = "shear"): the uncoupled Systems give status, the buildings' largest
+  // floor displacements and D = the largest peak closing over the floor contacts (system_block.hpp), so the
+  // probability scene answers every gap exactly as for the pair; the impacts scene runs coupled only the lanes that
+  // touch (D > gap) or failed (all with skip_untouched = false), as coupled() does for pairs. [intensity] is refused
+  // for shear buildings when the study is read (study.cpp).
+  void systems(const Record& rec, const KernelSettings& ks, UnitResult& out) {
+    const std::size_t n = pairs_.size(), G = plan_.gaps;
+    const GroundMotion gm{rec.dt, rec.acc, rec.duration() + s_.free_vibration};
+    block_->uncoupled(pairs_, uncoupled_, gm, ks, peaks_);
+    for (std::size_t i = 0; i < n; ++i) put_uncoupled(out, i, peaks_.status[i], peaks_.u1[i], peaks_.u2[i], peaks_.closing[i]);
+    if (!plan_.impacts) return;
+    auto status = out.values<std::uint8_t>(field::imp_status);
+    auto count = out.values<std::int32_t>(field::imp_count);
+    auto force = out.values<double>(field::imp_peak_force), first = out.values<double>(field::imp_t_first);
+    auto u1 = out.values<double>(field::imp_peak_u1), u2 = out.values<double>(field::imp_peak_u2);
+    auto hw = out.values<double>(field::imp_h_omega);
+    for (std::size_t g = 0; g < G; ++g) {
+      lanes_.clear();
+      for (std::size_t i = 0; i < n; ++i) {
+        const bool untouched = peaks_.status[i] == 0 && !(peaks_.closing[i] > s_.gap_ratios[g] * pairs_[i].d);
+        if (!s_.skip_untouched || !untouched) lanes_.push_back(i);
+      }
+      if (!lanes_.empty())
+        block_->coupled(pairs_, lanes_, s_.gap_ratios[g], s_.contact, ContactNumbers{s_.e, s_.contact_stiffness}, gm,
+                        ks, coupled_);
+      for (std::size_t i = 0, j = 0; i < n; ++i) {
+        const std::size_t k = i * G + g;  // [lane][gap]
+        if (j < lanes_.size() && lanes_[j] == i) {
+          status[k] = coupled_.status[j], count[k] = coupled_.impact_count[j], force[k] = coupled_.peak_force[j];
+          u1[k] = coupled_.u1[j], u2[k] = coupled_.u2[j], first[k] = coupled_.t_first_impact[j];
+          hw[k] = coupled_.h_omega_contact[j];
+          ++j;
+        } else {
+          status[k] = peaks_.status[i], count[k] = 0, force[k] = 0.0;
+          u1[k] = peaks_.u1[i], u2[k] = peaks_.u2[i], first[k] = NAN;
+          hw[k] = peaks_.status[i] == 0 && contact::traits(s_.contact.law).has_force ? 0.0 : NAN;  // never touched
+        }
+      }
+    }
+  }
+
   const Study& s_;
   const std::vector<StudyRecord>& records_;
   const StripePlan& stripes_;
@@ -370,6 +417,8 @@ class UnitComputer {
   PairBatch sub_;
   PairBatch batch_;
   BatchResult res_, cres_, bres_, anchor_;
+  std::optional<SystemBlock> block_;
+  BlockPeaks peaks_, coupled_;
   std::vector<std::uint8_t> st_;
   std::vector<double> scaled_, mid_, pu1_, pu2_, pc_;
   std::vector<std::size_t> todo_;

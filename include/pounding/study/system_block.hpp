@@ -1,0 +1,100 @@
+#pragma once
+// A block of sampled pairs whose buildings include a shear building ([structures] model = "shear",
+// sampling/building.hpp), run as Systems (docs/architecture.md §2.6.2, §2.6.4, §2.7.1).
+//
+// Per lane: building b gets storeys_at(h_b) storeys of storey_height each (an SDOF building facing a shear one is
+// one storey that reaches the other building's floor nearest its height, its roof when that is lower), the numbers
+// of shear_spec() and contact at the floors both have at one level (model::shear_buildings, tolerance 0.05 m).
+// Lanes are bucketed by topology (a stable sort by LaneTopology, then by position in the block, i.e. by global
+// sample index) and each bucket runs as one SystemBatch; a lane's numbers depend only on its own inputs, so its
+// bits do not depend on the bucketing or the batch width.
+//
+// Uncoupled (the study-gap group's law none): peak_u1 / peak_u2 = each building's largest |u| relative to the
+// ground over its floors; closing = D = max over the study-gap elements of their peak closing (no per-level
+// offsets: every element's gap is the study gap), so the lane touches at gap g exactly when D > g, for every g at
+// once (the first-passage property of systems, tests/study/test_system_block.cpp). Coupled at one gap: only the
+// lanes that touch (D > g) or failed are run (skip_untouched), with impact_count = the sum over elements,
+// peak_force = the maximum, t_first_impact = the earliest, h_omega_contact = the largest; the others take the
+// uncoupled peaks.
+#include <array>
+#include <compare>
+#include <cstdint>
+#include <map>
+#include <memory>
+#include <span>
+#include <vector>
+
+#include "pounding/model/system.hpp"
+#include "pounding/physics/shear_building.hpp"
+#include "pounding/physics/system_batch.hpp"
+#include "pounding/sampling/sampler.hpp"
+
+namespace pounding {
+
+// One lane's topology: building b (0 = left) has storeys[b] storeys of storey_height[b] m.
+struct LaneTopology {
+  std::array<int, 2> storeys{1, 1};
+  std::array<double, 2> storey_height{3.2, 3.2};
+  friend auto operator<=>(const LaneTopology&, const LaneTopology&) = default;
+};
+
+// The topology of pair p under the model (both buildings resolved).
+LaneTopology lane_topology(const StructureModel& model, const SampledPair& p);
+
+// Building b's numbers for `storeys` storeys from its sample s: one storey without floor_mass / storey_stiffness is
+// the SDOF of the sample (m, T1 through Structure::from_period, fy); otherwise floor masses floor_mass or m /
+// storeys, storey stiffnesses storey_stiffness or the profile scaled to T1, storey yield from the yield rule per
+// storey (drift/ductility as a drift ratio; Cy as the base shear), alpha, Rayleigh zeta on modes 1 and 2.
+physics::ShearSpec shear_spec(const BuildingModel& b, const SampledStructure& s, int storeys);
+
+// What one run of a block gives per lane (index = the lane's position in the block).
+struct BlockPeaks {
+  std::vector<std::uint8_t> status;
+  std::vector<double> u1, u2, closing;  // closing: D (uncoupled runs)
+  std::vector<std::int32_t> impact_count;
+  std::vector<double> peak_force, t_first_impact, h_omega_contact;
+  void resize(std::size_t n);
+};
+
+// How the contacts of a coupled run are set.
+struct ContactNumbers {
+  double e = 0.65;
+  double stiffness = 0.0;  // > 0: every element's kc; 0: the model's kh, else equivalent spheres of the two floors
+};
+
+class SystemBlock {
+ public:
+  explicit SystemBlock(const StructureModel& model) : model_(model) {}
+
+  // Every lane of `pairs`, uncoupled: `none` is the study's contact model with law none (the study-gap group's law);
+  // status, u1, u2, closing = D.
+  void uncoupled(std::span<const SampledPair> pairs, const ContactModel& none, const GroundMotion& gm,
+                 const KernelSettings& ks, BlockPeaks& out);
+  // The lanes `lanes` (positions in `pairs`) coupled at gap = ratio d with contact model `cm`; out[j] is lane
+  // lanes[j]'s.
+  void coupled(std::span<const SampledPair> pairs, std::span<const std::size_t> lanes, double ratio,
+               const ContactModel& cm, const ContactNumbers& cn, const GroundMotion& gm, const KernelSettings& ks,
+               BlockPeaks& out);
+
+  // The System of a topology (built once, kept for the block's lifetime).
+  const model::System& system(const LaneTopology& t);
+  // Lane `lane` of b (sized for system(t)) from pair p: both buildings' numbers (shear_spec), every element's gap,
+  // e and kc (cn.stiffness, else the model's kh, else equivalent spheres of the two floors' masses; two one-storey
+  // buildings: the pair's kh, as the SDOF study).
+  void set_lane(physics::SystemBatch& b, std::size_t lane, const SampledPair& p, const LaneTopology& t, double gap,
+                const ContactNumbers& cn) const;
+
+ private:
+  // lanes[j] of `pairs` bucketed by topology, one run_system per bucket, out[j] lane lanes[j]'s
+  void run(std::span<const SampledPair> pairs, std::span<const std::size_t> lanes, double ratio, const ContactModel& cm,
+           const ContactNumbers& cn, const GroundMotion& gm, const KernelSettings& ks, BlockPeaks& out);
+
+  const StructureModel& model_;
+  std::map<LaneTopology, std::unique_ptr<model::System>> systems_;
+  std::vector<LaneTopology> keys_;
+  std::vector<std::size_t> order_, bucket_, all_;
+  physics::SystemBatch batch_;
+  physics::SystemResult res_;
+};
+
+}  // namespace pounding

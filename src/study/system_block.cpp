@@ -1,0 +1,160 @@
+// Shear buildings in studies: see system_block.hpp.
+#include "pounding/study/system_block.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numeric>
+
+#include "pounding/contact/registry.hpp"
+#include "pounding/model/shear_building.hpp"
+
+namespace pounding {
+
+namespace {
+constexpr double nan = std::numeric_limits<double>::quiet_NaN();
+}  // namespace
+
+LaneTopology lane_topology(const StructureModel& model, const SampledPair& p) {
+  const BuildingModel b[2] = {model.building(0), model.building(1)};
+  const SampledStructure* s[2] = {&p.s1, &p.s2};
+  LaneTopology t;
+  for (int i = 0; i < 2; ++i) {
+    t.storeys[i] = b[i].shear() ? b[i].storeys_at(s[i]->h) : 1;
+    t.storey_height[i] = b[i].storey_height();
+  }
+  for (int i = 0; i < 2; ++i) {
+    if (b[i].shear()) continue;
+    // an SDOF facing a shear building: one storey reaching the other's floor nearest its height (its roof at most)
+    const int o = 1 - i;
+    const long k = std::clamp<long>(std::lround(s[i]->h / t.storey_height[o]), 1, t.storeys[o]);
+    t.storey_height[i] = static_cast<double>(k) * t.storey_height[o];
+  }
+  return t;
+}
+
+physics::ShearSpec shear_spec(const BuildingModel& b, const SampledStructure& s, int storeys) {
+  physics::ShearSpec spec;
+  spec.zeta = s.zeta;
+  spec.alpha = s.alpha;
+  spec.profile = b.profile;
+  if (storeys == 1 && !(b.floor_mass > 0) && !(b.storey_stiffness > 0)) {
+    // the SDOF of the sample, bit for bit: k and c by Structure::from_period(m, T, zeta), its fy
+    spec.floor_mass = {s.m};
+    spec.period = s.T;
+    spec.storey_yield = {s.fy};
+    return spec;
+  }
+  const double n = storeys;
+  spec.floor_mass = {b.floor_mass > 0 ? b.floor_mass : s.m / n};
+  if (b.storey_stiffness > 0) spec.storey_stiffness = {b.storey_stiffness};
+  else spec.period = s.T;
+  if (b.hysteresis == Hysteresis::elastic) return spec;  // fy = inf
+  if (b.yield_coefficient.given()) spec.yield_coefficient = s.fy / (s.m * physics::standard_gravity);  // the drawn Cy
+  else spec.yield_drift = b.drift / b.ductility;  // the SDOF's u_y = drift h / ductility as a drift ratio per storey
+  return spec;
+}
+
+void BlockPeaks::resize(std::size_t n) {
+  status.assign(n, 0);
+  u1.assign(n, 0.0), u2.assign(n, 0.0), closing.assign(n, 0.0);
+  impact_count.assign(n, 0);
+  peak_force.assign(n, 0.0), t_first_impact.assign(n, nan), h_omega_contact.assign(n, nan);
+}
+
+const model::System& SystemBlock::system(const LaneTopology& t) {
+  auto& slot = systems_[t];
+  if (!slot) {
+    std::vector<model::StickTopology> sticks(2);
+    for (int i = 0; i < 2; ++i) sticks[i].storeys = t.storeys[i], sticks[i].storey_heights = {t.storey_height[i]};
+    slot = std::make_unique<model::System>(model::shear_buildings(sticks));
+  }
+  return *slot;
+}
+
+void SystemBlock::set_lane(physics::SystemBatch& b, std::size_t lane, const SampledPair& p, const LaneTopology& t,
+                           double gap, const ContactNumbers& cn) const {
+  const SampledStructure* s[2] = {&p.s1, &p.s2};
+  for (int i = 0; i < 2; ++i) physics::set_shear_building(b, lane, i, shear_spec(model_.building(i), *s[i], t.storeys[i]));
+  physics::set_contacts(b, lane, gap, p.kh, cn.e);
+  const model::System& sys = *b.system;
+  const std::size_t w = b.width;
+  for (std::size_t e = 0; e < sys.contacts().size(); ++e) {
+    const model::ContactElement& ce = sys.contacts()[e];
+    double kc = cn.stiffness > 0 ? cn.stiffness : p.kh;
+    if (!(cn.stiffness > 0) && !(model_.kh > 0) && !(t.storeys[0] == 1 && t.storeys[1] == 1))
+      kc = hertz_stiffness_spheres(b.m[physics::SystemBatch::at(ce.left.p, lane, w)],
+                                   b.m[physics::SystemBatch::at(ce.right.p, lane, w)], model_.contact_density,
+                                   model_.contact_youngs_modulus, model_.contact_poisson);  // the two floors' masses
+    b.kc[physics::SystemBatch::at(static_cast<int>(e), lane, w)] = kc;
+  }
+}
+
+void SystemBlock::run(std::span<const SampledPair> pairs, std::span<const std::size_t> lanes, double ratio,
+                      const ContactModel& cm, const ContactNumbers& cn, const GroundMotion& gm,
+                      const KernelSettings& ks, BlockPeaks& out) {
+  const std::size_t n = lanes.size();
+  out.resize(n);
+  keys_.resize(n);
+  for (std::size_t j = 0; j < n; ++j) keys_[j] = lane_topology(model_, pairs[lanes[j]]);
+  order_.resize(n);
+  std::iota(order_.begin(), order_.end(), std::size_t{0});
+  std::stable_sort(order_.begin(), order_.end(), [&](std::size_t a, std::size_t b) { return keys_[a] < keys_[b]; });
+  const std::vector<ContactModel> groups{cm};
+  for (std::size_t at = 0; at < n;) {
+    std::size_t end = at;
+    while (end < n && keys_[order_[end]] == keys_[order_[at]]) ++end;
+    const LaneTopology& t = keys_[order_[at]];
+    const model::System& sys = system(t);
+    batch_.resize(sys, end - at);
+    for (std::size_t j = at; j < end; ++j) {
+      const SampledPair& p = pairs[lanes[order_[j]]];
+      set_lane(batch_, j - at, p, t, ratio * p.d, cn);
+    }
+    physics::run_system(batch_, groups, gm, ks, res_);
+    const std::size_t w = end - at;
+    for (std::size_t j = at; j < end; ++j) {
+      const std::size_t l = j - at, k = order_[j];
+      out.status[k] = res_.status[l];
+      double u[2] = {0.0, 0.0};
+      for (std::size_t b = 0; b < 2; ++b)
+        for (int d : sys.bodies()[b].dofs) u[b] = std::max(u[b], res_.peak_u[physics::SystemBatch::at(d, l, w)]);
+      out.u1[k] = u[0], out.u2[k] = u[1];
+      // over the study-gap elements: D and force the largest, the counts summed (-1: a failed lane), the first impact
+      // the earliest, h omega_c the largest known; with one element its own values
+      double D = -std::numeric_limits<double>::infinity(), force = nan, first = nan, hw = nan;
+      std::int32_t count = 0;
+      bool any = false;
+      for (std::size_t e = 0; e < sys.contacts().size(); ++e) {
+        if (!sys.groups()[static_cast<std::size_t>(sys.contacts()[e].group)].study_gap) continue;
+        const std::size_t x = physics::SystemBatch::at(static_cast<int>(e), l, w);
+        const double f = res_.peak_force[x], tf = res_.t_first_impact[x], h = res_.h_omega_contact[x];
+        D = std::max(D, res_.peak_closing[x]);
+        count = count < 0 || res_.impact_count[x] < 0 ? -1 : count + res_.impact_count[x];
+        force = !any ? f : std::isnan(force) || std::isnan(f) ? nan : std::max(force, f);
+        if (!std::isnan(tf) && !(tf >= first)) first = tf;
+        if (!std::isnan(h) && !(h <= hw)) hw = h;
+        any = true;
+      }
+      if (!any) force = 0.0;
+      out.closing[k] = D, out.impact_count[k] = count, out.peak_force[k] = force;
+      out.t_first_impact[k] = first, out.h_omega_contact[k] = hw;
+    }
+    at = end;
+  }
+}
+
+void SystemBlock::uncoupled(std::span<const SampledPair> pairs, const ContactModel& none, const GroundMotion& gm,
+                            const KernelSettings& ks, BlockPeaks& out) {
+  all_.resize(pairs.size());
+  std::iota(all_.begin(), all_.end(), std::size_t{0});
+  run(pairs, all_, 0.0, none, ContactNumbers{}, gm, ks, out);
+}
+
+void SystemBlock::coupled(std::span<const SampledPair> pairs, std::span<const std::size_t> lanes, double ratio,
+                          const ContactModel& cm, const ContactNumbers& cn, const GroundMotion& gm,
+                          const KernelSettings& ks, BlockPeaks& out) {
+  run(pairs, lanes, ratio, cm, cn, gm, ks, out);
+}
+
+}  // namespace pounding

@@ -1,0 +1,94 @@
+#!/usr/bin/env bash
+# Shear buildings in studies ([structures] model = "shear", issue 25 §6, docs/architecture.md §2.6.2, §2.7.1):
+#  1. studies/quick-storeys.toml gives bit-identical results at 1 and 2 MPI ranks, at batch width 1 and its
+#     default, and with skip_untouched = false (every model rerun with contact: the first passage of systems);
+#  2. its coupled runs touch exactly where the uncoupled D = max over levels of the peak closing exceeds the gap;
+#  3. model = "shear" with one storey per building is the SDOF study bit for bit (the results differ only in the
+#     settings that name the model);
+#  4. bad shear keys get one ERROR naming file:line and the key, exit 2, before any work.
+# Synthetic records only (no ../shared needed). Args: <pounding binary> <source dir>
+set -euo pipefail
+bin=$1; src=$2
+export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMPI_MCA_rmaps_base_oversubscribe=1
+tmp=$(mktemp -d); trap 'rm -rf "$tmp"' EXIT
+cmp() { /usr/bin/python3 "$src/tests/cli/compare_results.py" "$@"; }
+study=$src/studies/quick-storeys.toml
+
+# 1. ranks, batch width, skip_untouched
+"$bin" run "$study" --out "$tmp/r0.h5" --quiet > /dev/null 2>&1
+timeout 120 mpirun -np 1 "$bin" run "$study" --out "$tmp/r1.h5" --quiet > /dev/null 2>&1
+timeout 120 mpirun -np 2 "$bin" run "$study" --out "$tmp/r2.h5" --quiet > /dev/null 2>&1
+cmp "$tmp/r0.h5" "$tmp/r1.h5"
+cmp "$tmp/r0.h5" "$tmp/r2.h5"
+sed 's/^\[contact\]/[analysis]\nbatch = 1\n\n[contact]/' "$study" > "$tmp/narrow.toml"
+"$bin" run "$tmp/narrow.toml" --out "$tmp/narrow.h5" --quiet > /dev/null 2>&1
+cmp "$tmp/r0.h5" "$tmp/narrow.h5" --ignore=study_text,batch,output
+sed 's/^\[contact\]/[analysis]\nskip_untouched = false\n\n[contact]/' "$study" > "$tmp/full.toml"
+"$bin" run "$tmp/full.toml" --out "$tmp/full.h5" --quiet > /dev/null 2>&1
+cmp "$tmp/r0.h5" "$tmp/full.h5" --ignore=study_text,skip_untouched,output,scene_reason
+
+# 2. touch <=> D > gap, in the run where every model is run with contact; both outcomes occur
+/usr/bin/python3 - "$tmp/full.h5" <<'PY'
+import sys, h5py, numpy as np
+f = h5py.File(sys.argv[1], "r")
+R, M = f["uncoupled/peak_closing"].shape
+G = len(f["impacts/gap_ratios"])
+D = f["uncoupled/peak_closing"][()]
+d = f["models/code_gap"][()]
+cnt = f["impacts/impact_count"][()].reshape(R, M, G)
+ok = (f["uncoupled/status"][()].reshape(R, M) == 0)[:, :, None] & (f["impacts/status"][()].reshape(R, M, G) == 0)
+touch = D[:, :, None] > f["impacts/gap_ratios"][()][None, None, :] * d[None, :, None]
+assert ok.all(), "failed analyses"
+assert np.array_equal(touch, cnt > 0), (touch.sum(), (cnt > 0).sum())
+assert 0 < touch.sum() < touch.size, touch.sum()
+print(f"{touch.sum()} of {touch.size} analyses touch, coupled and uncoupled agree")
+# the storeys vary per sample (9 to 16 at 3.2 m): the heights span more than one storey count
+h = np.concatenate([f["models/h1"][()], f["models/h2"][()]])
+assert len(set(np.maximum(1, np.round(h / 3.2)).astype(int))) >= 3
+PY
+
+# 3. one storey each: the SDOF study's numbers
+base=$src/tests/data/study-small-synthetic.toml
+"$bin" run "$base" --out "$tmp/sdof.h5" --quiet > /dev/null 2>&1
+sed 's/^samples_per_pair = 8/samples_per_pair = 8\nmodel = "shear"\n[structures.building1]\nstoreys = 1\n[structures.building2]\nstoreys = 1/' \
+  "$base" > "$tmp/one.toml"
+"$bin" run "$tmp/one.toml" --out "$tmp/one.h5" --quiet > /dev/null 2>&1
+cmp "$tmp/sdof.h5" "$tmp/one.h5" --ignore=study_text,output,model,stiffness_profile,storey_height,storeys --allow-added
+
+# 4. bad input
+fails=0
+expect_error() {  # name, pattern expected in the message, study text
+  local name=$1 pattern=$2
+  printf '%s\n' "$3" > "$tmp/$name.toml"
+  local rc=0
+  "$bin" run "$tmp/$name.toml" --out "$tmp/$name.h5" --quiet > "$tmp/$name.out" 2>&1 || rc=$?
+  if [ $rc -ne 2 ] || [ "$(grep -c "ERROR:" "$tmp/$name.out")" -ne 1 ] || ! grep -q -- "$pattern" "$tmp/$name.out" \
+     || [ -e "$tmp/$name.h5" ] || [ -e "$tmp/$name.h5.ckpt" ]; then
+    echo "FAIL $name (rc $rc):"; cat "$tmp/$name.out"; fails=$((fails+1))
+  else
+    echo "ok   $name: $(grep ERROR "$tmp/$name.out")"
+  fi
+}
+body=$(cat "$study")
+expect_error model_name ':22 \[structures\].model, write model = "sdof" or "shear"' \
+  "$(echo "$body" | sed 's/^model = "shear"/model = "frame"/')"
+expect_error storey_height_zero ':23 \[structures\].storey_height' \
+  "$(echo "$body" | sed 's/^storey_height = 3.2/storey_height = 0/')"
+expect_error storey_height_sdof 'below 2 m for an SDOF building.*:23 \[structures\].storey_height' \
+  "$(echo "$body" | sed -e 's/^model = "shear"/model = "sdof"/' -e 's/^storey_height = 3.2/storey_height = 0.1/')"
+expect_error floor_mass_sdof 'floor_mass is given for an SDOF building.*\[structures.building1\].floor_mass' \
+  "$(echo "$body" | sed -e 's/^model = "shear"/model = "sdof"/' -e 's/^\[gaps\]/[structures.building1]\nfloor_mass = 1e5\n\n[gaps]/')"
+expect_error floor_mass_range '\[structures.building2\].floor_mass' \
+  "$(echo "$body" | sed 's/^\[gaps\]/[structures.building2]\nfloor_mass = -5\n\n[gaps]/')"
+expect_error storey_stiffness_range '\[structures.building1\].storey_stiffness' \
+  "$(echo "$body" | sed 's/^\[gaps\]/[structures.building1]\nstorey_stiffness = 1e15\n\n[gaps]/')"
+expect_error profile '\[structures\].stiffness_profile, write stiffness_profile = "uniform" or "shear"' \
+  "$(echo "$body" | sed 's/^model = "shear"/model = "shear"\nstiffness_profile = "parabolic"/')"
+expect_error storeys_zero '\[structures.building2\].storeys' \
+  "$(echo "$body" | sed 's/^\[gaps\]/[structures.building2]\nstoreys = 0\n\n[gaps]/')"
+expect_error storey_heights_differ 'storey heights differ.*\[structures.building2\].storey_height, give both' \
+  "$(echo "$body" | sed 's/^\[gaps\]/[structures.building2]\nstorey_height = 3.0\n\n[gaps]/')"
+expect_error fragility 'runs SDOF buildings only.*:22 \[structures\].model' \
+  "$(echo "$body" | sed -e 's/^scene = "impacts"/scene = "probability"/' -e 's/^\[gaps\]/[intensity]\nmeasure = "Sa"\nperiod = 1.0\nlevels = [0.1, 0.2]\n\n[gaps]/')"
+[ $fails -eq 0 ]
+echo "1 passed, 0 failed"
