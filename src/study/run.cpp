@@ -550,6 +550,24 @@ std::vector<std::size_t> open_checkpoint(const parallel::Session& session, const
   return todo;
 }
 
+// "building1: shear building, storeys from each sample's height at 3.2 m, ..." (a study with a shear building)
+std::string describe_structure(const StructureModel& m, int i) {
+  const BuildingModel b = m.building(i);
+  if (!b.shear()) return fmt::format("building{}: SDOF (one storey facing the other building's floor nearest its height)", i + 1);
+  const std::string yield = b.hysteresis == Hysteresis::elastic ? "elastic storeys"
+                            : b.yield_coefficient.given()       ? "storey yield from the base shear Cy M g"
+                                                                 : fmt::format("storeys yielding at drift ratio {:.4g}",
+                                                                               b.drift / b.ductility);
+  return fmt::format("building{}: shear building, {}, {}, {}, {}, Rayleigh damping on modes 1 and 2", i + 1,
+                     b.code.storeys > 0 ? fmt::format("{} storeys of {:g} m", b.code.storeys, b.storey_height())
+                                        : fmt::format("storeys of {0:g} m, max(1, round(h / {0:g} m)) per sample",
+                                                      b.storey_height()),
+                     b.floor_mass > 0 ? fmt::format("floors of {:g} kg", b.floor_mass) : "the mass split equally over the floors",
+                     b.storey_stiffness > 0 ? fmt::format("storeys of {:g} N/m", b.storey_stiffness)
+                                            : fmt::format("{} storey stiffnesses scaled to T1", to_string(b.profile)),
+                     yield);
+}
+
 void announce(const parallel::Session& session, const Inputs& in, const WorkPlan& L, const RunContext& ctx) {
   if (!session.root()) return;
   ctx.say(fmt::format("pounding run: {} ({} records{}, {} models, scene {}, {} units on {} rank{})", in.study.title,
@@ -557,6 +575,7 @@ void announce(const parallel::Session& session, const Inputs& in, const WorkPlan
                       in.study.polarity == Polarity::both ? " x 2 signs" : "", L.models(), to_string(in.study.scene), L.units(), session.size(),
                       session.size() > 1 ? "s" : ""));
   ctx.say(in.study.scene_reason);
+  for (int b = 0; b < 2 && in.study.structures.any_shear(); ++b) ctx.say(describe_structure(in.study.structures, b));
   if (in.study.polarity == Polarity::both)
     ctx.say(fmt::format("record polarity \"both\": each of the {} records applied with both signs, as two analyses of "
                         "the same record", in.records.size() / 2));
