@@ -263,6 +263,14 @@ Study parse_study(const std::string& text, const std::string& path) {
   s.intensity.bisection =
       s.intensity.method == FragilityMethod::ida &&
       !(s.structures.building(0).hysteresis == Hysteresis::elastic && s.structures.building(1).hysteresis == Hysteresis::elastic);
+  if (s.structures.any_shear() && s.stepper != Stepper::central_difference) {
+    const toml::table* a = top.table("analysis");
+    const toml::node* n = a ? a->get("stepper") : nullptr;
+    throw InputError(fmt::format("the {} stepper runs SDOF pairs only, and the study has a shear building",
+                                 to_string(s.stepper)),
+                     n ? fmt::format("{}:{} [analysis].stepper", path, n->source().begin.line) : path + " [analysis].stepper",
+                     "write stepper = \"central-difference\" (the system stepper), or use model = \"sdof\"");
+  }
   if (s.intensity.enabled && s.structures.any_shear()) {
     // the stripes' elastic scaling and the IDA's unscaled equivalents are written for the SDOF pair's springs
     std::string where = top.where("intensity");

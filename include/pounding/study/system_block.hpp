@@ -28,6 +28,7 @@
 #include "pounding/physics/shear_building.hpp"
 #include "pounding/physics/system_batch.hpp"
 #include "pounding/sampling/sampler.hpp"
+#include "pounding/study/study.hpp"
 
 namespace pounding {
 
@@ -96,5 +97,13 @@ class SystemBlock {
   physics::SystemBatch batch_;
   physics::SystemResult res_;
 };
+
+// Before any work: every sample's shear buildings against the integration step of every record: central
+// difference with damping needs h^2 omega^2 + 4 h (2 zeta omega) < 4 for every mode, checked with Gershgorin's
+// bounds on M^-1 K0 and M^-1 C (stricter than physics::validate's h omega_max < 2, which leaves out the damping:
+// tall Rayleigh-damped sticks of short storeys diverge between the two). InputError naming [analysis] substeps / max_dt, the sample and the step that would do, for the first
+// study-wide worst case. Scans up to `max_models` models (the first of each period pair beyond that: the run's own
+// per-lane check still refuses the rest, later).
+void check_shear_steps(const Study& study, std::span<const StudyRecord> records, std::size_t max_models = 250000);
 
 }  // namespace pounding
