@@ -2,13 +2,17 @@
 #include "pounding/analysis/separation.hpp"
 
 #include <algorithm>
+#include <bit>
+#include <limits>
 #include <cmath>
 #include <numbers>
 #include <stdexcept>
 #include <thread>
 
 #include <boost/math/special_functions/erf.hpp>
+#include <boost/random/binomial_distribution.hpp>
 
+#include "pounding/core/progress.hpp"
 #include "pounding/core/random.hpp"
 
 namespace pounding::separation {
@@ -68,38 +72,20 @@ std::size_t separation_index(std::size_t n, double t) {
   return j >= n ? 0 : n - 1 - j;
 }
 
-// SplitMix64 as a counter-based generator; index draws by the multiply-shift map (bias < n / 2^64).
+// SplitMix64 as a counter-based generator; index draws by the multiply-shift map (bias < n / 2^64). Also a
+// UniformRandomBitGenerator for the binomial draws.
 struct Stream {
+  using result_type = std::uint64_t;
   std::uint64_t state;
-  std::size_t below(std::size_t n) {
+  static constexpr result_type min() { return 0; }
+  static constexpr result_type max() { return ~result_type{0}; }
+  result_type operator()() {
     const std::uint64_t r = splitmix64(state);
     state += 0x9e3779b97f4a7c15ULL;
-    return static_cast<std::size_t>((static_cast<unsigned __int128>(r) * n) >> 64);
+    return r;
   }
+  std::size_t below(std::size_t n) { return static_cast<std::size_t>((static_cast<unsigned __int128>((*this)()) * n) >> 64); }
 };
-
-// The statistics of one pooled sample: separations at targets, then probabilities at gaps. Reorders z.
-void statistics(std::vector<double>& z, std::span<const double> targets, std::span<const double> gaps,
-                double* out) {
-  const std::size_t n = z.size(), T = targets.size();
-  if (n == 0) {
-    std::fill(out, out + T + gaps.size(), NAN);
-    return;
-  }
-  if (gaps.size() > 16) {  // many gaps: sort once, then binary searches
-    std::sort(z.begin(), z.end());
-    for (std::size_t i = 0; i < T; ++i) out[i] = z[separation_index(n, targets[i])];
-    for (std::size_t i = 0; i < gaps.size(); ++i)
-      out[T + i] = static_cast<double>(z.end() - std::upper_bound(z.begin(), z.end(), gaps[i])) / static_cast<double>(n);
-    return;
-  }
-  for (std::size_t i = 0; i < T; ++i) {
-    auto nth = z.begin() + static_cast<std::ptrdiff_t>(separation_index(n, targets[i]));
-    std::nth_element(z.begin(), nth, z.end());
-    out[i] = *nth;
-  }
-  for (std::size_t i = 0; i < gaps.size(); ++i) out[T + i] = exceedance(z, gaps[i]);
-}
 
 // Type-7 quantile of sorted values (NaN-free).
 double quantile7(const std::vector<double>& v, double p) {
@@ -110,104 +96,181 @@ double quantile7(const std::vector<double>& v, double p) {
   return v[lo] + (h - static_cast<double>(lo)) * (v[lo + 1] - v[lo]);
 }
 
-// The replicates work on ranks: every ok analysis has its rank in the sorted pooled values, a replicate is a
-// count per rank, and its order statistics and exceedances are one walk down the ranks -- O(n) per replicate
-// without comparisons (nth_element on the values was 5x slower).
-struct Ranked {
-  std::vector<double> sorted;                     // the pooled ok values, ascending
-  std::vector<std::vector<std::uint32_t>> ranks;  // per record, the rank of each of its ok analyses
-  std::vector<std::size_t> gap_bound;             // per gap, the number of values <= gap
-  std::vector<std::size_t> gap_order;             // gap indices by bound, descending
-  std::vector<double> log_sorted;                 // ln of sorted (NaN where <= 0): the lognormal refits
+template <class F>
+void parallel_blocks(std::size_t n, int threads, F&& f) {
+  const std::size_t T = std::max<std::size_t>(1, std::min<std::size_t>(static_cast<std::size_t>(std::max(threads, 1)), n));
+  if (T == 1) return f(std::size_t{0}, n);
+  std::vector<std::thread> pool;
+  for (std::size_t t = 0; t < T; ++t) pool.emplace_back([&, t] { f(n * t / T, n * (t + 1) / T); });
+  for (auto& th : pool) th.join();
+}
+
+}  // namespace
+
+std::size_t Prepared::bound(double g) const {
+  std::size_t n = 0;
+  for (const auto& v : values) n += static_cast<std::size_t>(std::upper_bound(v.begin(), v.end(), g) - v.begin());
+  return n;
+}
+
+double Prepared::at(std::size_t i) const {
+  for (std::size_t k = 0; k < ranks.size(); ++k) {
+    const auto it = std::lower_bound(ranks[k].begin(), ranks[k].end(), static_cast<std::uint32_t>(i));
+    if (it != ranks[k].end() && *it == i) return values[k][static_cast<std::size_t>(it - ranks[k].begin())];
+  }
+  return NAN;
+}
+
+std::shared_ptr<const Prepared> prepare(const Demands& d, int threads) {
+  auto p = std::make_shared<Prepared>();
+  const std::size_t R = d.records;
+  p->values.resize(R), p->ranks.resize(R);
+  parallel_blocks(R, threads, [&](std::size_t first, std::size_t last) {
+    for (std::size_t k = first; k < last; ++k) {
+      p->values[k] = d.record(k);
+      std::sort(p->values[k].begin(), p->values[k].end());
+      p->ranks[k].resize(p->values[k].size());
+    }
+  });
+  for (const auto& v : p->values) p->N += v.size();
+  if (p->N > std::numeric_limits<std::uint32_t>::max())
+    throw std::invalid_argument("separation bootstrap: more than 2^32 - 1 ok analyses");
+  // k-way merge: the pooled ranks, equal values ordered by record (a heap of each record's next value)
+  using Head = std::pair<double, std::uint32_t>;  // value, record
+  std::vector<Head> heap;
+  std::vector<std::size_t> next(R, 0);
+  for (std::size_t k = 0; k < R; ++k)
+    if (!p->values[k].empty()) heap.push_back({p->values[k][0], static_cast<std::uint32_t>(k)});
+  const auto later = [](const Head& x, const Head& y) { return x > y; };
+  std::make_heap(heap.begin(), heap.end(), later);
+  for (std::uint32_t i = 0; !heap.empty(); ++i) {
+    std::pop_heap(heap.begin(), heap.end(), later);
+    const std::uint32_t k = heap.back().second;
+    p->ranks[k][next[k]++] = i;
+    if (next[k] < p->values[k].size())
+      heap.back().first = p->values[k][next[k]], std::push_heap(heap.begin(), heap.end(), later);
+    else
+      heap.pop_back();
+  }
+  return p;
+}
+
+namespace {
+
+// One replicate's counts, revealed on the tree over the pooled ranks (separation.hpp). A node's entries: record k's
+// sorted positions [lo, hi) in the node and its c draws there (only c > 0 is kept).
+struct Entry {
+  std::uint32_t k, lo, hi;
+  std::uint64_t c;
 };
 
-Ranked rank(const Demands& d, std::span<const double> gaps) {
-  Ranked r;
-  std::vector<std::pair<double, std::pair<std::uint32_t, std::uint32_t>>> all;  // value, (record, index)
-  r.ranks.resize(d.records);
-  for (std::size_t k = 0; k < d.records; ++k) {
-    const std::vector<double> z = d.record(k);
-    r.ranks[k].resize(z.size());
-    for (std::size_t j = 0; j < z.size(); ++j)
-      all.push_back({z[j], {static_cast<std::uint32_t>(k), static_cast<std::uint32_t>(j)}});
-  }
-  std::sort(all.begin(), all.end());
-  for (std::size_t i = 0; i < all.size(); ++i) {
-    r.sorted.push_back(all[i].first);
-    r.ranks[all[i].second.first][all[i].second.second] = static_cast<std::uint32_t>(i);
-  }
-  for (double v : r.sorted) r.log_sorted.push_back(v > 0 ? std::log(v) : NAN);
-  for (double g : gaps)
-    r.gap_bound.push_back(static_cast<std::size_t>(std::upper_bound(r.sorted.begin(), r.sorted.end(), g) - r.sorted.begin()));
-  r.gap_order.resize(gaps.size());
-  for (std::size_t i = 0; i < gaps.size(); ++i) r.gap_order[i] = i;
-  std::stable_sort(r.gap_order.begin(), r.gap_order.end(),
-                   [&](std::size_t a, std::size_t b) { return r.gap_bound[a] > r.gap_bound[b]; });
-  return r;
-}
+class Replicate {
+ public:
+  Replicate(const Prepared& p, std::uint64_t key, std::span<const std::size_t> gap_bound,
+            std::span<const std::size_t> gap_order, double* gap_out, std::span<const std::uint64_t> want, double* target_out)
+      : p_(p), key_(key), bound_(gap_bound), order_(gap_order), gap_out_(gap_out), want_(want), target_out_(target_out) {}
 
-// Separations and exceedances of one replicate from its counts per rank (n drawn analyses in all): one walk
-// down the ranks, gaps visited in the order of their bounds (gap_order: by bound, descending).
-void replicate_statistics(const Ranked& r, const std::vector<std::uint32_t>& count, std::size_t n,
-                          std::span<const double> targets, double* out) {
-  const std::size_t T = targets.size(), G = r.gap_bound.size(), N = r.sorted.size();
-  if (n == 0) {
-    std::fill(out, out + T + G, NAN);
-    return;
+  // The replicate's multiplicities per record are in `entries` (c = d M_k): every gap with 0 < bound < N and
+  // every target, walked down from the root [0, N); n draws in all.
+  void run(std::vector<Entry>& buf, std::size_t gap_first, std::size_t gap_last, std::uint64_t n) {
+    n_ = static_cast<double>(n);
+    std::uint64_t mask = 0;
+    for (std::size_t t = 0; t < want_.size(); ++t) mask |= std::uint64_t{1} << t;
+    buf_ = &buf;
+    visit(1, 0, p_.N, 0, 0, buf.size(), gap_first, gap_last, mask);
   }
-  std::size_t want[64];  // more than this many above: the (want + 1)-th largest
-  for (std::size_t i = 0; i < T; ++i) want[i] = static_cast<std::size_t>(std::floor(targets[i] * static_cast<double>(n)));
-  std::size_t above = 0, found = 0, next_gap = 0;
-  const auto fraction = [&] { return static_cast<double>(above) / static_cast<double>(n); };
-  for (std::size_t i = N; i-- > 0;) {
-    // gaps with `i + 1` values at or below them: exceeded by what is counted so far
-    for (; next_gap < G && r.gap_bound[r.gap_order[next_gap]] == i + 1; ++next_gap) out[T + r.gap_order[next_gap]] = fraction();
-    above += count[i];
-    for (std::size_t t = 0; t < T; ++t)
-      if (above > want[t] && std::isnan(out[t])) out[t] = r.sorted[i], ++found;
-    if (found == T && (next_gap == G || r.gap_bound[r.gap_order[next_gap]] == 0)) break;
-  }
-  for (; next_gap < G; ++next_gap) out[T + r.gap_order[next_gap]] = 1.0;  // bound 0: every value is above
-}
 
-// The lognormal separations at targets of one replicate (counts per rank, n drawn): the fit of LognormalFit.
-void replicate_lognormal(const Ranked& r, const std::vector<std::uint32_t>& count, std::size_t n,
+ private:
+  std::uint64_t binomial(std::uint64_t node, std::uint32_t k, std::uint64_t c, double q) {
+    Stream g{splitmix64(key_ ^ splitmix64(node * 0x100000001b3ULL + k))};
+    return static_cast<std::uint64_t>(boost::random::binomial_distribution<std::int64_t, double>(static_cast<std::int64_t>(c), q)(g));
+  }
+
+  // Node `id` = ranks [a, b), `above` draws at ranks >= b, its entries buf[e0, e1), the gaps order_[g0, g1) (their
+  // bounds in (a, b)) and the targets in `mask` (their answer's rank in [a, b)).
+  void visit(std::uint64_t id, std::size_t a, std::size_t b, std::uint64_t above, std::size_t e0, std::size_t e1,
+             std::size_t g0, std::size_t g1, std::uint64_t mask) {
+    std::vector<Entry>& buf = *buf_;
+    if (b - a == 1) {  // a leaf: the one record with a value of rank a
+      for (; mask; mask &= mask - 1) {
+        const int t = std::countr_zero(mask);
+        for (std::size_t e = e0; e < e1; ++e) target_out_[t] = p_.values[buf[e].k][buf[e].lo];
+      }
+      return;
+    }
+    const std::size_t m = a + (b - a) / 2;
+    const std::size_t up0 = buf.size();
+    std::uint64_t U = 0;
+    for (std::size_t e = e0; e < e1; ++e) {  // the upper child's entries
+      const Entry x = buf[e];
+      const auto& r = p_.ranks[x.k];
+      const auto mk = static_cast<std::uint32_t>(std::lower_bound(r.begin() + x.lo, r.begin() + x.hi, m) - r.begin());
+      const std::uint64_t u = mk == x.lo ? x.c : mk == x.hi ? 0 : binomial(id, x.k, x.c, static_cast<double>(x.hi - mk) / static_cast<double>(x.hi - x.lo));
+      if (u) buf.push_back({x.k, mk, x.hi, u}), U += u;
+    }
+    const std::size_t lo0 = buf.size();
+    for (std::size_t e = e0, j = up0; e < e1; ++e) {  // the lower child's entries
+      const Entry x = buf[e];
+      std::uint64_t u = 0;
+      std::uint32_t mk = x.hi;
+      if (j < lo0 && buf[j].k == x.k) u = buf[j].c, mk = buf[j].lo, ++j;
+      else {
+        const auto& r = p_.ranks[x.k];
+        mk = static_cast<std::uint32_t>(std::lower_bound(r.begin() + x.lo, r.begin() + x.hi, m) - r.begin());
+      }
+      if (x.c > u) buf.push_back({x.k, x.lo, mk, x.c - u});
+    }
+    const std::size_t end = buf.size();
+    // gaps: bound == m read here; above m to the upper child, below to the lower
+    std::size_t gm = g0;
+    while (gm < g1 && bound_[order_[gm]] < m) ++gm;
+    std::size_t gu = gm;
+    while (gu < g1 && bound_[order_[gu]] == m) gap_out_[order_[gu++]] = static_cast<double>(above + U) / n_;
+    std::uint64_t up = 0, down = 0;
+    for (std::uint64_t t = mask; t; t &= t - 1) {
+      const int i = std::countr_zero(t);
+      (above + U > want_[i] ? up : down) |= std::uint64_t{1} << i;
+    }
+    if (gu < g1 || up) visit(2 * id + 1, m, b, above, up0, lo0, gu, g1, up);
+    if (g0 < gm || down) visit(2 * id, a, m, above + U, lo0, end, g0, gm, down);
+    buf.resize(up0);
+  }
+
+  const Prepared& p_;
+  std::uint64_t key_;
+  std::span<const std::size_t> bound_, order_;
+  double* gap_out_;
+  std::span<const std::uint64_t> want_;
+  double* target_out_;
+  std::vector<Entry>* buf_ = nullptr;
+  double n_ = 0;
+};
+
+// The lognormal separations at targets of one replicate: its drawn records' models drawn one by one (stream `g`),
+// the fit of LognormalFit (ln z shifted by the full-data mu for a stable one-pass sum of squares).
+void replicate_lognormal(const Prepared& p, const std::vector<std::uint32_t>& drawn, Stream g, double shift,
                          std::span<const double> targets, double* out) {
   LognormalFit f;
-  f.n = n;
-  double s = 0;
-  for (std::size_t i = 0; i < count.size(); ++i)
-    if (count[i] && !std::isnan(r.log_sorted[i])) s += count[i] * r.log_sorted[i], f.n_pos += count[i];
-  if (n) f.p0 = static_cast<double>(n - f.n_pos) / static_cast<double>(n);
+  double s = 0, ss = 0;
+  for (std::size_t k = 0; k < drawn.size(); ++k) {
+    const std::vector<double>& v = p.values[k];
+    const std::size_t M = v.size();
+    for (std::size_t j = 0, draws = static_cast<std::size_t>(drawn[k]) * M; j < draws; ++j) {
+      const double z = v[g.below(M)];
+      ++f.n;
+      if (z > 0) {
+        const double l = std::log(z) - shift;
+        s += l, ss += l * l, ++f.n_pos;
+      }
+    }
+  }
+  if (f.n) f.p0 = static_cast<double>(f.n - f.n_pos) / static_cast<double>(f.n);
   if (f.n_pos) {
-    f.mu = s / static_cast<double>(f.n_pos);
-    double ss = 0;
-    for (std::size_t i = 0; i < count.size(); ++i)
-      if (count[i] && !std::isnan(r.log_sorted[i])) ss += count[i] * (r.log_sorted[i] - f.mu) * (r.log_sorted[i] - f.mu);
-    f.sigma = std::sqrt(ss / static_cast<double>(f.n_pos));
+    const double mean = s / static_cast<double>(f.n_pos);
+    f.mu = shift + mean;
+    f.sigma = std::sqrt(std::max(0.0, ss / static_cast<double>(f.n_pos) - mean * mean));
   }
   for (std::size_t t = 0; t < targets.size(); ++t) out[t] = f.separation(targets[t]);
-}
-
-// Replicates [first, last): stats[b * S + s] (S = targets + gaps, and targets again with the lognormal).
-void run_replicates(const Ranked& r, std::span<const double> targets, std::uint64_t seed, int first, int last,
-                    bool lognormal, std::vector<double>& stats) {
-  const std::size_t R = r.ranks.size(), S0 = targets.size() + r.gap_bound.size();
-  const std::size_t S = S0 + (lognormal ? targets.size() : 0);
-  std::vector<std::uint32_t> count(r.sorted.size());
-  for (int b = first; b < last; ++b) {
-    Stream g{splitmix64(splitmix64(seed) ^ static_cast<std::uint64_t>(b))};
-    std::fill(count.begin(), count.end(), 0u);
-    std::fill_n(&stats[static_cast<std::size_t>(b) * S], S, NAN);
-    std::size_t n = 0;
-    for (std::size_t i = 0; i < R; ++i) {
-      const std::vector<std::uint32_t>& rec = r.ranks[g.below(R)];
-      for (std::size_t j = 0; j < rec.size(); ++j) ++count[rec[g.below(rec.size())]];
-      n += rec.size();
-    }
-    replicate_statistics(r, count, n, targets, &stats[static_cast<std::size_t>(b) * S]);
-    if (lognormal) replicate_lognormal(r, count, n, targets, &stats[static_cast<std::size_t>(b) * S + S0]);
-  }
 }
 
 }  // namespace
@@ -221,27 +284,66 @@ double separation_at(std::vector<double> z, double t) {
 
 BootstrapResult bootstrap(const Demands& d, std::span<const double> targets, std::span<const double> gaps,
                           const BootstrapSettings& s) {
+  return bootstrap(*prepare(d, s.threads), targets, gaps, s);
+}
+
+BootstrapResult bootstrap(const Prepared& p, std::span<const double> targets, std::span<const double> gaps,
+                          const BootstrapSettings& s) {
   if (s.replicates < 0 || !(s.confidence > 0 && s.confidence < 1) || targets.size() > 64)
     throw std::invalid_argument("bootstrap: replicates >= 0, confidence in (0, 1), at most 64 targets");
-  const std::size_t T = targets.size(), S0 = T + gaps.size(), B = static_cast<std::size_t>(s.replicates);
-  const std::size_t S = S0 + (s.lognormal ? T : 0);
-  std::vector<double> full(S), pooled = d.pooled();
+  const std::size_t T = targets.size(), G = gaps.size(), S0 = T + G, B = static_cast<std::size_t>(s.replicates);
+  const std::size_t S = S0 + (s.lognormal ? T : 0), R = p.values.size(), N = p.N;
+  // the full data: exact order statistics and exceedances
+  std::vector<double> full(S, NAN);
+  std::vector<std::size_t> bound(G), order(G);
+  for (std::size_t i = 0; i < G; ++i) bound[i] = p.bound(gaps[i]), order[i] = i;
+  std::stable_sort(order.begin(), order.end(), [&](std::size_t x, std::size_t y) { return bound[x] < bound[y]; });
+  if (N) {
+    for (std::size_t i = 0; i < T; ++i) full[i] = p.at(separation_index(N, targets[i]));
+    for (std::size_t i = 0; i < G; ++i) full[T + i] = static_cast<double>(N - bound[i]) / static_cast<double>(N);
+  }
   BootstrapResult out;
   if (s.lognormal) {
+    std::vector<double> pooled;
+    pooled.reserve(N);
+    for (const auto& v : p.values) pooled.insert(pooled.end(), v.begin(), v.end());
     out.fit = fit_lognormal(pooled);
     for (std::size_t i = 0; i < T; ++i) full[S0 + i] = out.fit.separation(targets[i]);
   }
-  statistics(pooled, targets, gaps, full.data());
+  // gaps strictly inside (0, N) are read in the tree; bound 0: every draw is above, bound N: none
+  std::size_t gap_first = 0, gap_last = G;
+  while (gap_first < G && bound[order[gap_first]] == 0) ++gap_first;
+  while (gap_last > gap_first && bound[order[gap_last - 1]] >= N) --gap_last;
 
-  const Ranked ranked = rank(d, gaps);
-  std::vector<double> stats(B * S);
-  const int threads = std::max(1, std::min(s.threads, s.replicates));
-  std::vector<std::thread> pool;
-  for (int t = 0; t < threads; ++t) {
-    const int first = s.replicates * t / threads, last = s.replicates * (t + 1) / threads;
-    pool.emplace_back([&, first, last] { run_replicates(ranked, targets, s.seed, first, last, s.lognormal, stats); });
-  }
-  for (auto& th : pool) th.join();
+  std::vector<double> stats(B * S, NAN);
+  Meter meter(s.hook, "report: separation bootstrap", B);
+  parallel_blocks(B, s.replicates ? s.threads : 1, [&](std::size_t first, std::size_t last) {
+    std::vector<std::uint32_t> drawn(R);
+    std::vector<Entry> buf;
+    std::vector<std::uint64_t> want(T);
+    for (std::size_t b = first; b < last; ++b) {
+      if (!meter.step()) return;
+      double* o = &stats[b * S];
+      const std::uint64_t key = splitmix64(splitmix64(s.seed) ^ static_cast<std::uint64_t>(b));
+      Stream g{key};
+      std::fill(drawn.begin(), drawn.end(), 0u);
+      for (std::size_t i = 0; i < R; ++i) ++drawn[g.below(R)];
+      buf.clear();
+      std::uint64_t n = 0;
+      for (std::size_t k = 0; k < R; ++k)
+        if (const std::size_t M = p.values[k].size(); drawn[k] && M)
+          buf.push_back({static_cast<std::uint32_t>(k), 0, static_cast<std::uint32_t>(M), std::uint64_t{drawn[k]} * M}),
+              n += drawn[k] * M;
+      if (n == 0) continue;  // NaN: left out of the interval
+      for (std::size_t i = 0; i < T; ++i)
+        want[i] = std::min<std::uint64_t>(static_cast<std::uint64_t>(std::floor(targets[i] * static_cast<double>(n))), n - 1);
+      for (std::size_t i = 0; i < gap_first; ++i) o[T + order[i]] = 1.0;
+      for (std::size_t i = gap_last; i < G; ++i) o[T + order[i]] = 0.0;
+      Replicate(p, splitmix64(key ^ 0x74726565ULL), bound, order, o + T, want, o).run(buf, gap_first, gap_last, n);
+      if (s.lognormal) replicate_lognormal(p, drawn, Stream{splitmix64(key ^ 0x6c6f676eULL)}, out.fit.mu, targets, o + S0);
+    }
+  });
+  meter.finish();
 
   out.replicates = s.replicates;
   const double a = 0.5 * (1.0 - s.confidence);

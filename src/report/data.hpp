@@ -4,6 +4,7 @@
 // metres, code rules) share.
 #include <cmath>
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <span>
 #include <string>
@@ -35,7 +36,8 @@ struct Data {
   std::span<const double> h_omega;
   bool impacts, keep_coarse;
 
-  explicit Data(const results::Results& r);
+  explicit Data(const results::Results& r, const WorkHook* hook = nullptr);
+  const WorkHook* hook = nullptr;  // progress and stop of the bootstrap (core/progress.hpp)
   // ok, or coarse kept in the statistics by [analysis] coarse = "keep"
   bool ok(std::uint8_t s) const { return s == 0 || (keep_coarse && s == static_cast<std::uint8_t>(LaneStatus::coarse)); }
   std::size_t records() const { return rec.size(); }  // rows: (record, sign) analyses with polarity "both"
@@ -59,6 +61,14 @@ struct Data {
   // 2 x models analyses (the rows are consecutive, so the flat order is the same).
   separation::Demands demands(bool metres) const;
   separation::BootstrapSettings bootstrap_settings() const;
+  // The two-stage bootstrap of demands(metres) with the report's settings (and the hook): the demands are ranked
+  // once per report and shared by every section's targets and gaps, which all see the same replicates.
+  separation::BootstrapResult bootstrap(bool metres, std::span<const double> targets, std::span<const double> gaps,
+                                        bool lognormal = false) const;
+  const separation::Prepared& prepared(bool metres) const;  // demands(metres) ranked (once per report)
+
+ private:
+  mutable std::shared_ptr<const separation::Prepared> prepared_[2];  // demands(false), demands(true)
 };
 
 struct Count {

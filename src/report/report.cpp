@@ -28,7 +28,7 @@ constexpr double paper_total[] = {71.09, 45.56, 25.26, 6.12, 1.14, 0.0};
 
 namespace report_detail {
 
-Data::Data(const results::Results& r)
+Data::Data(const results::Results& r, const WorkHook* hook_)
     : res(r), h(r.header), rec(r.records), mod(r.models), set(report_settings(r)),
       status(column_or_empty<std::uint8_t>(r, "uncoupled", "status")),
       imp_status(column_or_empty<std::uint8_t>(r, "impacts", "status")),
@@ -42,7 +42,7 @@ Data::Data(const results::Results& r)
       h_omega(column_or_empty<double>(r, "impacts", "h_omega_contact")),
       impacts(r.has_group("impacts")),
       keep_coarse(r.settings.find("analysis", "coarse") && r.settings.text("analysis", "coarse") == "keep"),
-      per_record(r.polarities()) {
+      hook(hook_), per_record(r.polarities()) {
   // what the analyses depend on (the mass model's aspect, rho, mbar are sampled but unused when masses are
   // given; kh matters only with contact)
   fixed_pair = true;
@@ -99,7 +99,20 @@ separation::BootstrapSettings Data::bootstrap_settings() const {
   b.replicates = set.bootstrap;
   b.confidence = set.confidence;
   b.seed = splitmix64(set.seed ^ 0x7265706f7274ULL);  // the report's own stream ("report")
+  b.hook = hook;
   return b;
+}
+
+separation::BootstrapResult Data::bootstrap(bool metres, std::span<const double> targets, std::span<const double> gaps,
+                                            bool lognormal) const {
+  separation::BootstrapSettings b = bootstrap_settings();
+  b.lognormal = lognormal;
+  return separation::bootstrap(prepared(metres), targets, gaps, b);
+}
+
+const separation::Prepared& Data::prepared(bool metres) const {
+  if (!prepared_[metres]) prepared_[metres] = separation::prepare(demands(metres), bootstrap_settings().threads);
+  return *prepared_[metres];
 }
 
 std::string pct(double p) { return std::isnan(p) ? "n/a" : fmt::format("{:.2f}%", p); }
@@ -141,19 +154,29 @@ Count count_coupled(const Data& r, std::size_t g, int rec) {
 }
 
 Curve curve_of(const Data& r, double step, double xmax, int record) {
+  Curve c;
+  const int n = static_cast<int>(std::floor(xmax / step + 1e-9));
+  if (record < 0) {  // every ok analysis: the ranked demands in gap ratios the bootstrap shares (no sort here)
+    const separation::Prepared& p = r.prepared(false);
+    c.n = static_cast<std::int64_t>(p.N);
+    for (int i = 1; i <= n; ++i) {
+      const double x = step * i;  // hits: z > x (strict, like delta > 0)
+      c.x.push_back(x);
+      c.p.push_back(p.N ? static_cast<double>(p.N - p.bound(x)) / static_cast<double>(p.N) : NAN);
+    }
+    return c;
+  }
   std::vector<double> z;  // peak closing / code gap
   const std::size_t M = r.models();
   for (std::size_t k = 0; k < r.records(); ++k) {
-    if (record >= 0 && static_cast<int>(k / r.per_record) != record) continue;
+    if (static_cast<int>(k / r.per_record) != record) continue;
     for (std::size_t m = 0; m < M; ++m) {
       const std::size_t idx = k * M + m;
       if (r.ok(r.status[idx])) z.push_back(r.peak_closing[idx] / r.mod.code_gap[m]);
     }
   }
   std::sort(z.begin(), z.end());
-  Curve c;
   c.n = static_cast<std::int64_t>(z.size());
-  const int n = static_cast<int>(std::floor(xmax / step + 1e-9));
   for (int i = 1; i <= n; ++i) {
     double x = step * i;
     // hits: z > x (strict, like delta > 0)
@@ -432,7 +455,7 @@ std::string grid_advice_section(const Data& r) {
   const ReportSettings& set = r.set;
   std::vector<double> targets;
   for (double t : set.targets) targets.push_back(t / 100.0);
-  const separation::BootstrapResult b = separation::bootstrap(r.demands(false), targets, {}, r.bootstrap_settings());
+  const separation::BootstrapResult b = r.bootstrap(false, targets, {});
   const std::optional<CubicFit> f = ratio_fit(r);
   std::string s = fmt::format(
       "\n## Separation advice in gap ratios x of the code gap d\n\n"
@@ -477,22 +500,22 @@ Curve probability_curve(const results::Results& r, double step, double xmax, int
 }
 
 namespace {
-std::string study_markdown(const results::Results& results);
+std::string study_markdown(const results::Results& results, const WorkHook* hook);
 }  // namespace
 
-std::string report_markdown(const results::Results& results) {
-  return study_markdown(results) + report_detail::selection_section(results);
+std::string report_markdown(const results::Results& results, const WorkHook* hook) {
+  return study_markdown(results, hook) + report_detail::selection_section(results);
 }
 
 namespace {
-std::string study_markdown(const results::Results& results) {
+std::string study_markdown(const results::Results& results, const WorkHook* hook) {
   if (is_fragility_study(results)) {
     if (results.group("fragility")) return fragility_markdown(results);
     results::Results r = results;  // a file written without the analysis hook: analyse it now
-    analyse_fragility(r);
+    analyse_fragility(r, hook);
     return fragility_markdown(r);
   }
-  const Data r(results);
+  const Data r(results, hook);
   Markdown md(r);
   md.overview();
   if (r.set.pair) {
@@ -513,14 +536,14 @@ std::string study_markdown(const results::Results& results) {
 }
 }  // namespace
 
-std::string report_csv(const results::Results& results) {
+std::string report_csv(const results::Results& results, const WorkHook* hook) {
   if (is_fragility_study(results)) {
     if (results.group("fragility")) return fragility_csv(results);
     results::Results r = results;
-    analyse_fragility(r);
+    analyse_fragility(r, hook);
     return fragility_csv(r);
   }
-  const Data r(results);
+  const Data r(results, hook);
   std::string s = "table,record,gap_ratio,T1,T2,hits,n,probability,gap_m,lo,hi,name\n";
   const auto& ratios = r.set.gap_ratios;
   const auto &p1 = r.periods(1), &p2 = r.periods(2);

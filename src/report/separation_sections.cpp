@@ -124,7 +124,7 @@ std::string pair_rules(const Data& r) {
   for (const auto& rule : rules) gaps.push_back(rule.gap);
   const separation::Demands d = r.demands(true);
   const std::vector<double> z = d.pooled();
-  const separation::BootstrapResult b = separation::bootstrap(d, {}, gaps, r.bootstrap_settings());
+  const separation::BootstrapResult b = r.bootstrap(true, {}, gaps);
   std::string s = fmt::format(
       "\n## Code separation rules in metres\n\n"
       "Each rule's separation for this pair, and the probability of at least one impact at that separation "
@@ -184,9 +184,7 @@ std::string grid_rules(const Data& r) {
 std::string pair_separation_section(const Data& r) {
   const std::vector<double> targets = fractions(r.set.targets);
   const separation::Demands d = r.demands(true);
-  separation::BootstrapSettings bs = r.bootstrap_settings();
-  bs.lognormal = true;
-  const separation::BootstrapResult b = separation::bootstrap(d, targets, {}, bs);
+  const separation::BootstrapResult b = r.bootstrap(true, targets, {}, true);
   std::vector<double> record_peak;  // each independent record's largest ok demand (both signs, every model)
   for (std::size_t k = 0; k < d.records; ++k) {
     const std::vector<double> z = d.record(k);
@@ -258,9 +256,7 @@ std::string separation_csv(const Data& r) {
   const double unit = r.set.pair ? median(r.mod.code_gap) : 1.0;
   const int n = r.set.pair ? static_cast<int>(std::floor(r.set.curve_max / r.set.curve_step + 1e-9)) : 0;
   for (int i = 1; i <= n; ++i) gaps.push_back(r.set.curve_step * i * unit);
-  separation::BootstrapSettings bs = r.bootstrap_settings();
-  bs.lognormal = r.set.pair;
-  const separation::BootstrapResult b = separation::bootstrap(d, targets, gaps, bs);
+  const separation::BootstrapResult b = r.bootstrap(r.set.pair, targets, gaps, r.set.pair);
   const std::size_t N = d.pooled().size();
   std::string s;
   for (std::size_t i = 0; i < targets.size(); ++i) {

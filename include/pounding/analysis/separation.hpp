@@ -14,9 +14,27 @@
 // the "cluster bootstrap"): a replicate draws R records with replacement and, inside each drawn record, as many
 // of its ok analyses as it has, with replacement; the statistic is recomputed on the pooled replicate, and the
 // interval is the percentile interval of `replicates` replicates at `confidence` (type-7 quantiles of the
-// sorted replicate values). Replicate b uses its own stream splitmix64-derived from (seed, b), so the result
-// does not depend on how replicates are spread over threads. The Wilson interval (stats.hpp) is the
-// sampling error of the models under a fixed record set, and ignores record-to-record scatter.
+// sorted replicate values). The Wilson interval (stats.hpp) is the sampling error of the models under a fixed
+// record set, and ignores record-to-record scatter.
+//
+// How a replicate is drawn without touching every analysis (issue 27, item 1). A record drawn d times contributes
+// d M_k draws with replacement from its M_k ok analyses, i.e. (in distribution) one multinomial count vector over
+// them with d M_k trials. The statistics only ask how many drawn values lie above a rank of the pooled sorted
+// values, so the multinomial is revealed lazily on a fixed binary tree over the pooled ranks [0, N): a node
+// [a, b) splits at m = a + (b - a) / 2, and the draws of record k in the node go above m with
+// Binomial(c, (its values in [m, b)) / (its values in [a, b))) -- the conditional law of a multinomial, so every
+// path down the tree gives exact multinomial counts. A separation (an order statistic) walks one path to its
+// leaf; a probability at a gap reads the node whose split is the gap's rank. The cost per replicate is about
+// (targets x log2 N + gaps) x (records drawn), not n: it does not grow with the models per record.
+// Reproducibility: replicate b draws its records from a stream splitmix64-derived from (seed, b) and the
+// binomial at (node, record) from a stream derived from (seed, b, node, record), so the replicate's counts are
+// one fixed function of (seed, b) whatever was asked: every target and gap of every call sees the same
+// replicates (the report's tables and CSV agree), and threads do not matter. The lognormal refit needs every
+// drawn value (sums of ln z): it draws the models of each drawn record one by one from a third stream, O(n)
+// per replicate, and only when BootstrapSettings::lognormal asks for it.
+// Before issue 27 a replicate drew every analysis (O(n)): the same bootstrap distribution, other random
+// numbers, so intervals moved by their Monte Carlo error (README, "Speed"; tests/analysis/test_separation.cpp
+// checks the two against each other and the coverage).
 //
 // Targets finer than the records resolve (issue 23, item 2). With R records, a target t with floor(t R) = 0 asks
 // for a demand that no record is expected to exceed: the empirical separation is then (nearly) the largest
@@ -33,9 +51,14 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <memory>
 #include <span>
 #include <string>
 #include <vector>
+
+namespace pounding {
+struct WorkHook;
+}
 
 namespace pounding::separation {
 
@@ -68,6 +91,7 @@ struct BootstrapSettings {
   std::uint64_t seed = 0;
   int threads = 2;  // the result does not depend on it
   bool lognormal = false;  // also the lognormal separations (BootstrapResult::lognormal; an O(n) pass per replicate)
+  const WorkHook* hook = nullptr;  // progress ("report: separation bootstrap", per replicate) and stop (Cancelled)
 };
 
 struct Estimate {
@@ -82,8 +106,22 @@ struct BootstrapResult {
   int replicates = 0;
 };
 
+// The demands prepared once for any number of bootstrap calls: every record's ok values sorted, and each one's
+// rank among the pooled values (ties ordered by record). O(n log n) once, with `threads` threads (at most 2^32 - 1
+// ok analyses).
+struct Prepared {
+  std::size_t N = 0;                              // ok analyses
+  std::vector<std::vector<double>> values;        // per record, its ok values ascending
+  std::vector<std::vector<std::uint32_t>> ranks;  // per record, the pooled rank of each of its sorted values
+  std::size_t bound(double g) const;              // pooled values <= g (the rank of the first value above g)
+  double at(std::size_t i) const;                 // the pooled value of rank i < N
+};
+std::shared_ptr<const Prepared> prepare(const Demands& d, int threads = 2);
+
 // Separations at `targets` (fractions) and probabilities at `gaps`, each with its two-stage interval. With
-// replicates = 0 the intervals are the values themselves.
+// replicates = 0 the intervals are the values themselves. A stop through s.hook throws Cancelled.
+BootstrapResult bootstrap(const Prepared& p, std::span<const double> targets, std::span<const double> gaps,
+                          const BootstrapSettings& s);
 BootstrapResult bootstrap(const Demands& d, std::span<const double> targets, std::span<const double> gaps,
                           const BootstrapSettings& s);
 

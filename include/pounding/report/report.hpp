@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "pounding/core/progress.hpp"
 #include "pounding/results/results.hpp"
 
 namespace pounding {
@@ -33,7 +34,9 @@ struct Curve {
 };
 Curve probability_curve(const results::Results& r, double step, double xmax, int record = -1);
 
-std::string report_markdown(const results::Results& r);
-std::string report_csv(const results::Results& r);
+// `hook` (may be null): progress of the long loops (the separation bootstrap, a fragility study's fit when the
+// file lacks it) and a stop flag (Cancelled, core/progress.hpp).
+std::string report_markdown(const results::Results& r, const WorkHook* hook = nullptr);
+std::string report_csv(const results::Results& r, const WorkHook* hook = nullptr);
 
 }  // namespace pounding

@@ -119,7 +119,17 @@ int run_job(const RunOpts& o) {
       }
     }
     const RunOutcome r = run_study(session, o.study, ro, ctx);
-    if (session.root() && (r.code == 0 || r.code == 3)) fmt::print("{}", report_markdown(results::load(r.out)));
+    if (session.root() && (r.code == 0 || r.code == 3)) {
+      // the report's bootstrap shows progress and honours a stop like the phases before it
+      const WorkHook hook{ctx.phase_progress, &stop_requested};
+      try {
+        fmt::print("{}", report_markdown(results::load(r.out), &hook));
+      } catch (const Cancelled& c) {
+        fmt::print(stderr, "\ninterrupted during the report ({}): the results file {} is complete; `pounding report {}` "
+                           "writes the report\n", c.phase(), r.out, r.out);
+        return 130;
+      }
+    }
     return r.code;
   } catch (const InputError& e) {
     // thrown on every rank after the job stopped together (Session::agree, run_units): one message
