@@ -40,6 +40,28 @@ constexpr Field energy_fields[] = {{"energy_input_J", &BatchResult::e_input},
                                    {"energy_contact_stored_J", &BatchResult::e_contact_stored},
                                    {"energy_contact_dissipated_J", &BatchResult::contact_energy}};
 
+// The header lines every summary opens with: the record, the stepper and the contact law (with its damping law,
+// xibar and -- for a law such as three-spring -- the stiffness factor applied to kc), for the pair and the system.
+std::string run_header(const Record& rec, const KernelSettings& ks, const ContactModel& cm, double e_target) {
+  std::string s;
+  auto line = [&](std::string_view name, const auto& value) { s += fmt::format("{}: {}\n", name, value); };
+  auto num = [&](std::string_view name, double v) { s += fmt::format("{}: {:.6g}\n", name, v); };
+  line("record", rec.name);
+  line("record_source", rec.source);
+  num("record_dt_s", rec.dt);
+  num("record_pga_g", rec.pga() / g_accel);
+  line("stepper", to_string(ks.stepper));
+  num("integration_dt_s", rec.dt / ks.substeps);
+  line("contact_law", to_string(cm.law));
+  if (contact::traits(cm.law).restitution_from_damping) {
+    line("damping_law", to_string(cm.damping));
+    num("xibar", hertzdamp_xibar(cm.damping, e_target, cm.n));
+    if (contact::stiffness_factor(cm) != 1.0) num("contact_stiffness_factor", contact::stiffness_factor(cm));
+  }
+  num("e_target", e_target);
+  return s;
+}
+
 }  // namespace
 
 std::string format_summary(const BatchResult& r, std::size_t i, const ContactModel& cm, const PairParams& p,
@@ -50,19 +72,7 @@ std::string format_summary(const BatchResult& r, std::size_t i, const ContactMod
   auto fields = [&](const auto& table) {
     for (const Field& f : table) num(f.name, (r.*f.values)[i] / f.divisor);
   };
-  line("record", rec.name);
-  line("record_source", rec.source);
-  num("record_dt_s", rec.dt);
-  num("record_pga_g", rec.pga() / g_accel);
-  line("stepper", to_string(ks.stepper));
-  num("integration_dt_s", rec.dt / ks.substeps);
-  line("contact_law", to_string(cm.law));
-  if (contact::traits(cm.law).restitution_from_damping) {
-    line("damping_law", to_string(cm.damping));
-    num("xibar", hertzdamp_xibar(cm.damping, p.e, cm.n));
-    if (contact::stiffness_factor(cm) != 1.0) num("contact_stiffness_factor", contact::stiffness_factor(cm));
-  }
-  num("e_target", p.e);
+  s += run_header(rec, ks, cm, p.e);
   num("contact_stiffness", p.kc);
   num("gap_m", p.gap);
   num("T1_s", 2 * M_PI * std::sqrt(p.s1.m / p.s1.k));
@@ -249,18 +259,7 @@ std::string format_system_summary(const SystemRunReport& run) {
   const ContactModel& cm = *run.contact;
   const physics::SystemResult& r = *run.result;
   const model::System& sys = *run.system;
-  line("record", rec.name);
-  line("record_source", rec.source);
-  num("record_dt_s", rec.dt);
-  num("record_pga_g", rec.pga() / g_accel);
-  line("stepper", to_string(ks.stepper));
-  num("integration_dt_s", rec.dt / ks.substeps);
-  line("contact_law", to_string(cm.law));
-  if (contact::traits(cm.law).restitution_from_damping) {
-    line("damping_law", to_string(cm.damping));
-    num("xibar", hertzdamp_xibar(cm.damping, run.e_target, cm.n));
-  }
-  num("e_target", run.e_target);
+  s += run_header(rec, ks, cm, run.e_target);
   num("gap_m", run.gap);
   for (const BuildingReport& b : run.buildings) {
     line(b.label + "_storeys", b.floor_levels.size());
