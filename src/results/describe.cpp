@@ -1,6 +1,7 @@
 #include "pounding/results/describe.hpp"
 
 #include <optional>
+#include <string>
 #include <span>
 #include <utility>
 
@@ -67,6 +68,44 @@ constexpr Row gaps_table[] = {
     {"ratios", {"1", "the study's gap ratios x ([gaps] ratios): a gap of x times the code gap d"}},
     {"metres", {"m", "gap in metres of each model at each ratio: ratios x /models/code_gap"}},
 };
+// /system (format 3): the study's System, one row per building, DOF, spring, contact element and contact group.
+constexpr Row system_table[] = {
+    {"building_label", {"1", "label of each building (a body of the System), left to right"}},
+    {"building_floors", {"1", "floors (DOFs) of each building: the floors axis of its per-floor fields (the study's "
+                              "tallest when samples differ)"}},
+    {"building_isolated", {"1", "1: the building stands on isolators and its first DOF is the base (floor 0)"}},
+    {"dof_building", {"1", "building of each DOF (index into building_label)"}},
+    {"dof_floor", {"1", "floor number of each DOF in its building: 0 an isolated base, 1 the first floor"}},
+    {"dof_height", {"m", "height of each DOF's floor above its building's support"}},
+    {"spring_i", {"1", "lower DOF of each spring (hysteretic element); -1 the ground"}},
+    {"spring_j", {"1", "upper DOF of each spring: its deformation is u_j - u_i (the storey drift)"}},
+    {"spring_building", {"1", "building of each spring (that of DOF j)"}},
+    {"spring_storey", {"1", "storey number of each storey spring (storey s joins floors s-1 and s); 0 an isolator"}},
+    {"spring_role", {"1", "role of each spring: storey, isolator or link"}},
+    {"spring_law", {"1", "hysteresis model of each spring (model/hysteresis/registry.hpp), e.g. bilinear-kinematic"}},
+    {"element_left_kind", {"1", "left side L of each contact element: point (a DOF), interpolated (between dof and "
+                                "dof2, floor to column) or wall (the support)"}},
+    {"element_left_dof", {"1", "DOF of the left side; -1 for a wall"}},
+    {"element_left_dof2", {"1", "second DOF of an interpolated left side (the DOF above dof); -1 otherwise"}},
+    {"element_left_xi", {"1", "weight of dof2 on the left side: x = (1 - xi) u_dof + xi u_dof2; 0 for a point or wall"}},
+    {"element_right_kind", {"1", "right side R of each contact element: point, interpolated or wall"}},
+    {"element_right_dof", {"1", "DOF of the right side; -1 for a wall"}},
+    {"element_right_dof2", {"1", "second DOF of an interpolated right side; -1 otherwise"}},
+    {"element_right_xi", {"1", "weight of dof2 on the right side; 0 for a point or wall"}},
+    {"element_level", {"1", "floor number where each contact element acts (1 = the first floor; 0 an isolated base)"}},
+    {"element_level_height", {"m", "height above the support where each contact element acts"}},
+    {"element_group", {"1", "contact group of each element (index into group_name): the group's law acts there"}},
+    {"element_gap_offset", {"m", "gap of each element: for a study-gap group, added to the study's gap x code_gap; "
+                                 "for another group (moat walls), the element's whole gap"}},
+    {"element_label", {"1", "label of each contact element: the per-element fields' element axis (\"level 3\")"}},
+    {"group_name", {"1", "name of each contact group (\"pounding\": the study-gap pounding between buildings)"}},
+    {"group_law", {"1", "contact law of each group (contact/registry.hpp names)"}},
+    {"group_damping_law", {"1", "damping law of each group's contact law"}},
+    {"group_study_gap", {"1", "1: the group's gap is the study gap (switched off in the uncoupled run); 0: its own "
+                              "(moat walls)"}},
+    {"group_elements", {"1", "number of contact elements in each group"}},
+};
+
 constexpr Row field_group_table[] = {
     {"gap_ratios", {"1", "the gap axis of this group (= /gaps/ratios; kept for format-1 readers)"}},
 };
@@ -84,14 +123,30 @@ std::optional<Description> find(std::span<const FieldSpec> fields, std::string_v
   return std::nullopt;
 }
 
+// A floor_fields row's name for some building ("peak_u_floors2" for "peak_u_floors{b}"): its text for that building.
+std::optional<Description> find_floor_field(std::string_view group, std::string_view name) {
+  for (const FieldSpec& f : floor_fields) {
+    const std::string_view prefix = f.name.substr(0, f.name.find("{b}"));
+    if (f.group != group || !name.starts_with(prefix) || name.size() == prefix.size()) continue;
+    const std::string_view digits = name.substr(prefix.size());
+    if (digits.find_first_not_of("0123456789") != std::string_view::npos || digits[0] == '0') continue;
+    const FieldSpec e = floor_field(f, std::stoul(std::string(digits)), 0);
+    return Description{e.units, e.description};
+  }
+  return std::nullopt;
+}
+
 }  // namespace
 
 std::optional<Description> describe(std::string_view group, std::string_view name) {
   if (group == "records") return find(records_table, name);
   if (group == "models") return find(models_table, name);
   if (group == "gaps") return find(gaps_table, name);
+  if (group == "system") return find(system_table, name);
   if (auto d = find(field_group_table, name)) return d;
   if (auto d = find(unit_fields, group, name)) return d;
+  if (auto d = find(element_fields, group, name)) return d;
+  if (auto d = find_floor_field(group, name)) return d;
   return find(derived_fields, group, name);
 }
 

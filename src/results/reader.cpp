@@ -1,5 +1,6 @@
 #include "pounding/results/reader.hpp"
 
+#include <stdexcept>
 #include <type_traits>
 
 #include "pounding/io/hdf5.hpp"
@@ -132,7 +133,7 @@ void read_fields(h5::hid root, std::span<const FieldSpec> specs, Results& r) {
     if (!h5::exists(root, group)) continue;
     auto g = h5::open_group(root, group);
     if (!h5::exists(g.get(), name)) continue;
-    if (spec.extent == Extent::lane_gap && r.gap_ratios.empty()) read_opt(g.get(), "gap_ratios", r.gap_ratios);
+    if (per_gap(spec.extent) && r.gap_ratios.empty()) read_opt(g.get(), "gap_ratios", r.gap_ratios);
     Column c = make_column(spec, 0);
     std::visit([&](auto& v) { read_opt(g.get(), name.c_str(), v); }, c);
     r.fields.push_back({spec, std::move(c)});
@@ -171,6 +172,15 @@ void read_groups(h5::hid root, Results& r) {
   }
 }
 
+// Format 3: /system (absent in format 1 and 2: empty).
+SystemTable read_system(h5::hid root) {
+  SystemTable t;
+  if (!h5::exists(root, "system")) return t;
+  auto g = h5::open_group(root, "system");
+  visit_system(t, [&](const char* name, auto& v) { read_opt(g.get(), name, v); });
+  return t;
+}
+
 }  // namespace
 
 Header load_header(const std::string& path) {
@@ -190,6 +200,13 @@ Results load(const std::string& path, std::span<const FieldSpec> extra) {
   std::vector<FieldSpec> specs(std::begin(unit_fields), std::end(unit_fields));
   specs.insert(specs.end(), std::begin(derived_fields), std::end(derived_fields));
   specs.insert(specs.end(), extra.begin(), extra.end());
+  r.system = read_system(root);  // format 3: its extents name the per-floor and per-element fields
+  if (!r.system.empty()) {
+    if (const std::string p = r.system.check(); !p.empty())
+      throw std::runtime_error(path + ": /system is inconsistent: " + p);
+    const std::vector<FieldSpec> sys = system_fields(r.system.extents(), true);
+    specs.insert(specs.end(), sys.begin(), sys.end());
+  }
   read_fields(root, specs, r);  // format 1 stored some flat, format 2 with their shape: the values are the same
   r.gaps = read_gaps(root, r);
   if (h5::exists(root, "uncoupled")) {

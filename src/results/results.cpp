@@ -1,6 +1,12 @@
 #include "pounding/results/results.hpp"
 
+#include <algorithm>
+#include <functional>
+#include <initializer_list>
+#include <mutex>
+#include <set>
 #include <stdexcept>
+#include <string>
 
 #include <fmt/format.h>
 
@@ -20,12 +26,60 @@ std::size_t column_size(const Column& c) {
   return std::visit([](const auto& v) { return v.size(); }, c);
 }
 
-std::vector<FieldSpec> unit_schema(bool with_gaps, bool ida, bool stripes) {
+std::vector<FieldSpec> unit_schema(bool with_gaps, bool ida, bool stripes, const Extents& system) {
   std::vector<FieldSpec> s;
   for (const FieldSpec& f : unit_fields)
     if (with_gaps || f.extent == Extent::lane) s.push_back(f);
   if (stripes) s.insert(s.end(), std::begin(stripe_fields), std::end(stripe_fields));
   if (ida) s.insert(s.end(), std::begin(ida_fields), std::end(ida_fields));
+  const std::vector<FieldSpec> sys = system_fields(system, with_gaps);
+  s.insert(s.end(), sys.begin(), sys.end());
+  return s;
+}
+
+namespace {
+
+// Stable storage for expanded row texts: a node-based set never moves its strings.
+std::string_view intern(std::string text) {
+  static std::mutex mutex;
+  static std::set<std::string, std::less<>> texts;
+  const std::lock_guard lock(mutex);
+  return *texts.insert(std::move(text)).first;
+}
+
+std::string replace_b(std::string_view text, std::size_t building) {
+  std::string out(text);
+  const std::string b = std::to_string(building);
+  for (std::size_t at = out.find("{b}"); at != std::string::npos; at = out.find("{b}", at + b.size()))
+    out.replace(at, 3, b);
+  return out;
+}
+
+}  // namespace
+
+std::string building_name(std::string_view row_name, std::size_t building) { return replace_b(row_name, building); }
+
+FieldSpec floor_field(const FieldSpec& row, std::size_t building, std::size_t floors) {
+  if (row.extent != Extent::lane_floor || building == 0)
+    throw std::logic_error(fmt::format("floor_field: /{}/{} is not a per-floor row, or building 0", row.group, row.name));
+  FieldSpec f = row;
+  f.name = intern(replace_b(row.name, building));
+  f.description = intern(replace_b(row.description, building));
+  f.count = static_cast<std::uint32_t>(floors);
+  f.building = static_cast<std::uint32_t>(building);
+  return f;
+}
+
+std::vector<FieldSpec> system_fields(const Extents& system, bool with_gaps) {
+  std::vector<FieldSpec> s;
+  if (system.empty()) return s;
+  for (const FieldSpec& row : floor_fields)
+    for (std::size_t b = 0; b < system.floors.size(); ++b) s.push_back(floor_field(row, b + 1, system.floors[b]));
+  for (FieldSpec f : element_fields)
+    if (with_gaps || !per_gap(f.extent)) {
+      f.count = static_cast<std::uint32_t>(system.elements);
+      s.push_back(f);
+    }
   return s;
 }
 
@@ -210,6 +264,64 @@ Group& Results::group_for(std::string g) {
     if (x.name == g) return x;
   groups.push_back({std::move(g), {}, {}});
   return groups.back();
+}
+
+}  // namespace pounding::results
+
+namespace pounding::results {
+
+Extents SystemTable::extents() const {
+  Extents e;
+  for (std::int32_t n : building_floors) e.floors.push_back(static_cast<std::size_t>(std::max(0, n)));
+  e.elements = element_label.size();
+  return e;
+}
+
+std::string SystemTable::check() const {
+  const std::size_t B = building_label.size(), D = dof_building.size(), S = spring_i.size(),
+                    E = element_label.size(), G = group_name.size();
+  const auto sizes = [](std::string_view what, std::size_t n, std::initializer_list<std::size_t> of) {
+    for (std::size_t m : of)
+      if (m != n) return fmt::format("the per-{} columns differ in length ({} and {})", what, n, m);
+    return std::string();
+  };
+  for (const std::string& p :
+       {sizes("building", B, {building_floors.size(), building_isolated.size()}),
+        sizes("DOF", D, {dof_floor.size(), dof_height.size()}),
+        sizes("spring", S, {spring_j.size(), spring_building.size(), spring_storey.size(), spring_role.size(),
+                            spring_law.size()}),
+        sizes("element", E, {element_left_kind.size(), element_left_dof.size(), element_left_dof2.size(),
+                             element_left_xi.size(), element_right_kind.size(), element_right_dof.size(),
+                             element_right_dof2.size(), element_right_xi.size(), element_level.size(),
+                             element_level_height.size(), element_group.size(), element_gap_offset.size()}),
+        sizes("group", G, {group_law.size(), group_damping_law.size(), group_study_gap.size(), group_elements.size()})})
+    if (!p.empty()) return p;
+  const auto in = [](std::int32_t v, std::size_t n, bool none_ok) {
+    return (none_ok && v == -1) || (v >= 0 && static_cast<std::size_t>(v) < n);
+  };
+  std::vector<std::int32_t> per_building(B, 0), per_group(G, 0);
+  for (std::size_t d = 0; d < D; ++d) {
+    if (!in(dof_building[d], B, false)) return fmt::format("dof_building[{}] = {} is not a building", d, dof_building[d]);
+    ++per_building[static_cast<std::size_t>(dof_building[d])];
+  }
+  for (std::size_t b = 0; b < B; ++b)
+    if (per_building[b] != building_floors[b])
+      return fmt::format("building_floors[{}] = {} but {} DOFs name building {}", b, building_floors[b],
+                         per_building[b], b);
+  for (std::size_t s = 0; s < S; ++s)
+    if (!in(spring_i[s], D, true) || !in(spring_j[s], D, false) || !in(spring_building[s], B, false))
+      return fmt::format("spring {} joins DOFs {} and {} of building {}, outside the {} DOFs", s, spring_i[s],
+                         spring_j[s], spring_building[s], D);
+  for (std::size_t e = 0; e < E; ++e) {
+    for (std::int32_t v : {element_left_dof[e], element_left_dof2[e], element_right_dof[e], element_right_dof2[e]})
+      if (!in(v, D, true)) return fmt::format("element {} names DOF {}, outside the {} DOFs", e, v, D);
+    if (!in(element_group[e], G, false)) return fmt::format("element_group[{}] = {} is not a group", e, element_group[e]);
+    ++per_group[static_cast<std::size_t>(element_group[e])];
+  }
+  for (std::size_t g = 0; g < G; ++g)
+    if (per_group[g] != group_elements[g])
+      return fmt::format("group_elements[{}] = {} but {} elements name group {}", g, group_elements[g], per_group[g], g);
+  return "";
 }
 
 }  // namespace pounding::results

@@ -61,11 +61,12 @@ void write_value(h5::hid g, const std::string& key, const SettingValue& value) {
       value);
 }
 
-void write_header_start(h5::hid root, const Header& h) {
+// `version`: the layout written (format 2 for an SDOF pair, 3 with /system), whatever the Header says.
+void write_header_start(h5::hid root, const Header& h, std::int64_t version) {
   visit_header_start(h, [&](const char* name, const auto& value) {
     if constexpr (std::is_same_v<std::decay_t<decltype(value)>, std::int64_t>)
-      if (std::string_view(name) == "format_version") {  // the layout written is always the current one
-        h5::write_attribute(root, name, results::format_version);
+      if (std::string_view(name) == "format_version") {
+        h5::write_attribute(root, name, version);
         return;
       }
     if constexpr (std::is_same_v<std::decay_t<decltype(value)>, std::string>) write_value(root, name, value);  // long texts
@@ -150,12 +151,26 @@ void write_gaps(h5::hid root, const GapTable& t, std::size_t models) {
   h5::write_dataset(g.get(), "metres", std::span<const double>(t.metres), dims);
 }
 
+// The axes of a format-3 field, its dataset's `axes` attribute; "" for the [records, models(, gaps)] extents,
+// which the group's `shape` attribute names.
+std::string axes(const FieldSpec& s, bool stripes) {
+  const char* lead = stripes ? "[stripes, records, models" : "[records, models";
+  switch (s.extent) {
+    case Extent::lane:
+    case Extent::lane_gap: return "";
+    case Extent::lane_floor: return fmt::format("{}, floors of building {} (bottom first)]", lead, s.building);
+    case Extent::lane_element: return fmt::format("{}, elements]", lead);
+    case Extent::lane_gap_element: return fmt::format("{}, gaps, elements]", lead);
+  }
+  return "";
+}
+
 // A field group starts with its shape (and, for lane x gap fields, its gap axis) when first met.
 h5::hid field_group(h5::hid root, const Results& r, const FieldSpec& spec, std::map<std::string, h5::Handle>& groups) {
   const std::string name(spec.group);
   if (auto it = groups.find(name); it != groups.end()) return it->second.get();
   auto g = h5::create_group(root, name);
-  const bool gaps = spec.extent == Extent::lane_gap;
+  const bool gaps = per_gap(spec.extent);
   const char* lead = r.stripes ? "[stripes, records, models" : "[records, models";
   h5::write_attribute(g.get(), "shape", fmt::format("{}{}]", lead, gaps ? ", gaps" : ""));
   if (r.stripes) h5::write_attribute(g.get(), "stripes", static_cast<std::int64_t>(r.stripes));
@@ -176,7 +191,10 @@ void write_fields(h5::hid root, const Results& r) {
     std::vector<std::size_t> shape;
     if (r.stripes) shape.push_back(r.stripes);
     shape.insert(shape.end(), {r.record_count(), r.model_count()});
-    if (f.spec.extent == Extent::lane_gap) shape.push_back(r.gap_ratios.size());
+    if (per_gap(f.spec.extent)) shape.push_back(r.gap_ratios.size());
+    if (f.spec.extent == Extent::lane_floor || f.spec.extent == Extent::lane_element ||
+        f.spec.extent == Extent::lane_gap_element)
+      shape.push_back(f.spec.count);
     std::visit(
         [&](const auto& v) {
           using T = typename std::decay_t<decltype(v)>::value_type;
@@ -184,6 +202,47 @@ void write_fields(h5::hid root, const Results& r) {
         },
         f.data);
     label(g, f.spec.group, name, {f.spec.units, f.spec.description});
+    if (const std::string a = axes(f.spec, r.stripes > 0); !a.empty())
+      h5::write_attribute(h5::open_dataset(g, name).get(), "axes", a);
+  }
+}
+
+// Format 3: /system, every dataset labelled from describe.cpp's table.
+void write_system(h5::hid root, const SystemTable& t) {
+  auto g = h5::create_group(root, "system");
+  h5::write_attribute(g.get(), "buildings", static_cast<std::int64_t>(t.building_label.size()));
+  h5::write_attribute(g.get(), "elements", static_cast<std::int64_t>(t.element_label.size()));
+  visit_system(t, [&](const char* name, const auto& v) {
+    using T = typename std::decay_t<decltype(v)>::value_type;
+    if constexpr (std::is_same_v<T, std::string>) h5::write_strings(g.get(), name, v);
+    else h5::write_dataset(g.get(), name, std::span<const T>(v));
+  });
+  label_group(root, "system");
+}
+
+// The writer's refusal (std::logic_error, before any file exists): a SystemTable that contradicts itself,
+// per-floor or per-element fields without one, or whose floors or elements differ from it.
+void check_system(const Results& r) {
+  const SystemTable& t = r.system;
+  if (!t.empty())
+    if (const std::string p = t.check(); !p.empty()) throw std::logic_error("results: /system is inconsistent: " + p);
+  const Extents x = t.extents();
+  for (const Field& f : r.fields) {
+    const FieldSpec& s = f.spec;
+    if (s.extent == Extent::lane || s.extent == Extent::lane_gap) continue;
+    const std::string where = fmt::format("results: /{}/{}", s.group, s.name);
+    if (t.empty())
+      throw std::logic_error(where + " is per floor or per element but the Results has no /system (SystemTable)");
+    if (s.extent == Extent::lane_floor) {
+      if (s.building < 1 || s.building > x.floors.size())
+        throw std::logic_error(fmt::format("{} is for building {} but /system has {} buildings", where, s.building,
+                                           x.floors.size()));
+      if (s.count != x.floors[s.building - 1])
+        throw std::logic_error(fmt::format("{} has {} floors but /system gives building {} {}", where, s.count,
+                                           s.building, x.floors[s.building - 1]));
+    } else if (s.count != x.elements) {
+      throw std::logic_error(fmt::format("{} has {} elements but /system has {}", where, s.count, x.elements));
+    }
   }
 }
 
@@ -211,9 +270,10 @@ void write_group(h5::hid root, const Group& gr) {
 }  // namespace
 
 void write(const std::string& path, const Results& r) {
+  check_system(r);
   h5::AtomicFile f(path);
   const auto root = f.root();
-  write_header_start(root, r.header);
+  write_header_start(root, r.header, r.system.empty() ? pair_format_version : format_version);
   write_settings(root, r.settings);
   write_header_end(root, r.header);
   write_records(root, r.records);
@@ -223,6 +283,7 @@ void write(const std::string& path, const Results& r) {
     if (h5::exists(root, group)) label_group(root, group);
   write_fields(root, r);  // labelled from their schema rows
   for (const Group& g : r.groups) write_group(root, g);
+  if (!r.system.empty()) write_system(root, r.system);
   f.commit();
 }
 

@@ -3,12 +3,16 @@
 #include <algorithm>
 #include <cmath>
 #include <ctime>
+#include <stdexcept>
 #include <type_traits>
 
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 
+#include "pounding/contact/registry.hpp"
+#include "pounding/core/type_list.hpp"
 #include "pounding/core/version.hpp"
+#include "pounding/model/hysteresis/registry.hpp"
 #include "pounding/sampling/sampler.hpp"
 #include "pounding/study/settings.hpp"
 
@@ -166,6 +170,109 @@ results::Settings settings_of(const Study& study) {
   return s;
 }
 
+namespace {
+
+// The name of hysteresis model `law` (its index in model::Hystereses).
+template <class... Hs>
+std::string_view hysteresis_name(int law, TypeList<Hs...>) {
+  std::string_view out;
+  int k = 0;
+  ((k++ == law ? (out = Hs::name, true) : false) || ...);
+  if (out.empty()) throw std::logic_error(fmt::format("system_table: no hysteresis model {}", law));
+  return out;
+}
+
+constexpr std::string_view role_name(model::SpringRole r) {
+  switch (r) {
+    case model::SpringRole::storey: return "storey";
+    case model::SpringRole::isolator: return "isolator";
+    case model::SpringRole::link: return "link";
+  }
+  return "";
+}
+
+constexpr std::string_view side_name(model::SideKind k) {
+  switch (k) {
+    case model::SideKind::point: return "point";
+    case model::SideKind::interpolated: return "interpolated";
+    case model::SideKind::wall: return "wall";
+  }
+  return "";
+}
+
+}  // namespace
+
+results::Extents extents_of(const model::System& system) {
+  results::Extents x;
+  if (system.ndof() == 0 || system.is_sdof_pair()) return x;
+  for (const model::Body& b : system.bodies()) x.floors.push_back(b.dofs.size());
+  x.elements = system.contacts().size();
+  return x;
+}
+
+results::SystemTable system_table(const model::System& system, std::span<const ContactModel> groups,
+                                  std::span<const double> gap_offsets) {
+  results::SystemTable t;
+  if (system.ndof() == 0 || system.is_sdof_pair()) return t;
+  const auto& elements = system.contacts();
+  if (groups.size() != system.groups().size() || (!gap_offsets.empty() && gap_offsets.size() != elements.size()))
+    throw std::logic_error(fmt::format("system_table: {} contact models for {} groups, {} gap offsets for {} elements",
+                                       groups.size(), system.groups().size(), gap_offsets.size(), elements.size()));
+  const std::size_t D = static_cast<std::size_t>(system.ndof());
+  t.dof_building.resize(D), t.dof_floor.resize(D), t.dof_height.resize(D);
+  for (std::size_t b = 0; b < system.bodies().size(); ++b) {
+    const model::Body& body = system.bodies()[b];
+    t.building_label.push_back(body.label);
+    t.building_floors.push_back(static_cast<std::int32_t>(body.dofs.size()));
+    t.building_isolated.push_back(body.isolated ? 1 : 0);
+    for (std::size_t k = 0; k < body.dofs.size(); ++k) {
+      const auto d = static_cast<std::size_t>(body.dofs[k]);
+      t.dof_building[d] = static_cast<std::int32_t>(b);
+      t.dof_floor[d] = static_cast<std::int32_t>(body.isolated ? k : k + 1);
+      t.dof_height[d] = body.heights[k];
+    }
+  }
+  for (const model::Spring& s : system.springs()) {
+    t.spring_i.push_back(s.i), t.spring_j.push_back(s.j);
+    t.spring_building.push_back(s.body), t.spring_storey.push_back(s.role == model::SpringRole::storey ? s.storey : 0);
+    t.spring_role.emplace_back(role_name(s.role));
+    t.spring_law.emplace_back(hysteresis_name(s.law, model::Hystereses{}));
+  }
+  const auto height = [&](int dof) { return t.dof_height[static_cast<std::size_t>(dof)]; };
+  t.group_elements.assign(system.groups().size(), 0);
+  for (std::size_t e = 0; e < elements.size(); ++e) {
+    const model::ContactElement& c = elements[e];
+    // where it acts: the height of a point side (the left one first), else the lower DOF of an interpolated side
+    const model::Side& at = c.left.kind == model::SideKind::point     ? c.left
+                            : c.right.kind == model::SideKind::point  ? c.right
+                            : c.left.kind != model::SideKind::wall    ? c.left
+                                                                      : c.right;
+    const double level = at.kind == model::SideKind::wall ? 0.0 : height(at.p);
+    const auto side = [&](const model::Side& s, std::vector<std::string>& kind, std::vector<std::int32_t>& dof,
+                          std::vector<std::int32_t>& dof2, std::vector<double>& xi) {
+      kind.emplace_back(side_name(s.kind));
+      const bool wall = s.kind == model::SideKind::wall, interp = s.kind == model::SideKind::interpolated;
+      dof.push_back(wall ? -1 : s.p);
+      dof2.push_back(interp ? s.q : -1);
+      xi.push_back(interp ? (level - height(s.p)) / (height(s.q) - height(s.p)) : 0.0);
+    };
+    side(c.left, t.element_left_kind, t.element_left_dof, t.element_left_dof2, t.element_left_xi);
+    side(c.right, t.element_right_kind, t.element_right_dof, t.element_right_dof2, t.element_right_xi);
+    t.element_level.push_back(c.level), t.element_level_height.push_back(level);
+    t.element_group.push_back(c.group), t.element_label.push_back(c.label);
+    t.element_gap_offset.push_back(gap_offsets.empty() ? 0.0 : gap_offsets[e]);
+    ++t.group_elements.at(static_cast<std::size_t>(c.group));
+  }
+  for (std::size_t g = 0; g < system.groups().size(); ++g) {
+    t.group_name.push_back(system.groups()[g].name);
+    t.group_law.emplace_back(to_string(groups[g].law));
+    t.group_damping_law.emplace_back(to_string(groups[g].damping));
+    t.group_study_gap.push_back(system.groups()[g].study_gap ? 1 : 0);
+  }
+  if (const std::string p = t.check(); !p.empty()) throw std::logic_error("system_table: " + p);
+  return t;
+}
+
 results::Group intensity_group(const Study& study, const StripePlan& p) {
   const IntensitySpec& x = study.intensity;
   const std::string units(im_units(x.im.measure));
@@ -263,6 +370,7 @@ results::Results make_results(const Study& study, const std::vector<StudyRecord>
   if (plan.impacts) r.gap_ratios = study.gap_ratios;
   r.fields = tally.take_fields();
   r.stripes = stripes.stripes;
+  r.system = plan.system;  // empty for the SDOF pair: format 2
   results::add_derived_fields(r);
   if (study.intensity.enabled) r.groups.push_back(intensity_group(study, stripes));
   if (plan.ida) r.groups.push_back(ida_group(study, plan, stripes, r.fields));

@@ -508,7 +508,7 @@ WorkPlan plan_work(const Inputs& in) {
   L.gaps = s.gap_ratios.size();
   L.impacts = s.scene == Scene::impacts;
   L.ida = s.intensity.bisection;
-  L.fields = results::unit_schema(L.impacts, L.ida, L.stripes > 0);
+  L.fields = results::unit_schema(L.impacts, L.ida, L.stripes > 0, L.system.extents());
   return L;
 }
 
@@ -516,7 +516,8 @@ WorkPlan plan_work(const Inputs& in) {
 CheckpointKey checkpoint_key(const Inputs& in, const WorkPlan& L) {
   CheckpointKey key = this_build();
   std::uint64_t hash = files::fnv1a(in.study.text.data(), in.study.text.size());
-  hash = files::fnv1a(&results::format_version, sizeof results::format_version, hash);
+  const std::int64_t version = L.format_version();  // 2 for the SDOF pair: its checkpoints' keys as before
+  hash = files::fnv1a(&version, sizeof version, hash);
   for (const auto& rr : in.records) {
     hash = files::fnv1a(rr.record.acc.data(), rr.record.acc.size() * sizeof(double), hash);
     hash = files::fnv1a(&rr.record.dt, sizeof(double), hash);

@@ -8,10 +8,12 @@
 
 namespace pounding {
 
-UnitResult::UnitResult(const WorkPlan& plan, std::size_t lanes) : lanes_(lanes) {
+UnitResult::UnitResult(const WorkPlan& plan, std::size_t lanes) : lanes_(lanes), stripes_(plan.unit_stripes()) {
   columns_.reserve(plan.fields.size());
-  for (const results::FieldSpec& f : plan.fields)
+  for (const results::FieldSpec& f : plan.fields) {
+    per_.push_back(plan.per_lane(f));
     columns_.push_back(results::make_column(f, plan.unit_stripes() * lanes * plan.per_lane(f)));
+  }
 }
 
 template <class T>
@@ -20,6 +22,18 @@ std::span<T> UnitResult::values(std::size_t field) {
   if (!v) throw std::logic_error(fmt::format("UnitResult: field {} has another element type", field));
   return *v;
 }
+template <class T>
+std::span<T> UnitResult::lane_values(std::size_t field, std::size_t lane, std::size_t stripe) {
+  if (lane >= lanes_ || stripe >= stripes_)
+    throw std::out_of_range(fmt::format("UnitResult: lane {} of {}, stripe {} of {}", lane, lanes_, stripe, stripes_));
+  const std::size_t per = per_.at(field);
+  return values<T>(field).subspan((stripe * lanes_ + lane) * per, per);
+}
+template std::span<std::uint8_t> UnitResult::lane_values(std::size_t, std::size_t, std::size_t);
+template std::span<std::int32_t> UnitResult::lane_values(std::size_t, std::size_t, std::size_t);
+template std::span<std::int64_t> UnitResult::lane_values(std::size_t, std::size_t, std::size_t);
+template std::span<double> UnitResult::lane_values(std::size_t, std::size_t, std::size_t);
+
 template std::span<std::uint8_t> UnitResult::values(std::size_t);
 template std::span<std::int32_t> UnitResult::values(std::size_t);
 template std::span<std::int64_t> UnitResult::values(std::size_t);

@@ -92,4 +92,67 @@ inline results::Results sample_results() {
   return r;
 }
 
+// The /system of a 3-storey building (left) beside a 5-storey one, storeys of 3.2 m, written out by hand from
+// model::shear_buildings' numbering (level-major: floor k of every building left to right; spring d under DOF d;
+// one element per common level 1-3 in the study-gap group "pounding"): DOFs 0 2 4 are building 1's floors 1-3,
+// 1 3 5 6 7 building 2's floors 1-5.
+inline results::SystemTable sample_system_table() {
+  results::SystemTable t;
+  t.building_label = {"building1", "building2"};
+  t.building_floors = {3, 5};
+  t.building_isolated = {0, 0};
+  t.dof_building = {0, 1, 0, 1, 0, 1, 1, 1};
+  t.dof_floor = {1, 1, 2, 2, 3, 3, 4, 5};
+  t.dof_height = {3.2, 3.2, 6.4, 6.4, 9.600000000000001, 9.600000000000001, 12.8, 16.0};
+  t.spring_i = {-1, -1, 0, 1, 2, 3, 5, 6};
+  t.spring_j = {0, 1, 2, 3, 4, 5, 6, 7};
+  t.spring_building = {0, 1, 0, 1, 0, 1, 1, 1};
+  t.spring_storey = {1, 1, 2, 2, 3, 3, 4, 5};
+  t.spring_role = std::vector<std::string>(8, "storey");
+  t.spring_law = std::vector<std::string>(8, "bilinear");
+  t.element_left_kind = t.element_right_kind = {"point", "point", "point"};
+  t.element_left_dof = {0, 2, 4}, t.element_right_dof = {1, 3, 5};
+  t.element_left_dof2 = t.element_right_dof2 = {-1, -1, -1};
+  t.element_left_xi = t.element_right_xi = {0.0, 0.0, 0.0};
+  t.element_level = {1, 2, 3};
+  t.element_level_height = {3.2, 6.4, 9.600000000000001};
+  t.element_group = {0, 0, 0};
+  t.element_gap_offset = {0.0, 0.0, 0.0};
+  t.element_label = {"level 1", "level 2", "level 3"};
+  t.group_name = {"pounding"}, t.group_law = {"hertzdamp"}, t.group_damping_law = {"lankarani-nikravesh"};
+  t.group_study_gap = {1}, t.group_elements = {3};
+  return t;
+}
+
+// sample_results() as a format-3 file of that system: every per-floor and per-element field, each value naming
+// its place (1000 x field + flat index; the i32 counts the flat index), and building 2 of model 1 a 4-storey
+// sample in the 5-floor extent: its floor 5 is NaN in every per-floor field of building 2.
+inline double system_value(std::size_t field, std::size_t k) {
+  return 1000.0 * static_cast<double>(field) + 0.25 * static_cast<double>(k);
+}
+inline results::Results sample_system_results() {
+  using namespace pounding::results;
+  Results r = sample_results();
+  r.header.format_version = format_version;
+  r.system = sample_system_table();
+  const std::size_t R = r.record_count(), M = r.model_count(), G = r.gap_ratios.size();
+  const std::vector<FieldSpec> specs = system_fields(r.system.extents(), true);
+  for (std::size_t f = 0; f < specs.size(); ++f) {
+    const FieldSpec& s = specs[f];
+    const std::size_t per = per_lane(s, G), n = R * M * per;
+    if (s.dtype == Dtype::i32) {
+      std::vector<std::int32_t> v(n);
+      for (std::size_t k = 0; k < n; ++k) v[k] = static_cast<std::int32_t>(k);
+      r.fields.push_back({s, std::move(v)});
+      continue;
+    }
+    std::vector<double> v(n);
+    for (std::size_t k = 0; k < n; ++k) v[k] = system_value(f, k);
+    if (s.extent == Extent::lane_floor && s.building == 2)
+      for (std::size_t rec = 0; rec < R; ++rec) v[(rec * M + 1) * per + 4] = NAN;  // model 1: 4 storeys
+    r.fields.push_back({s, std::move(v)});
+  }
+  return r;
+}
+
 }  // namespace pounding::testdata

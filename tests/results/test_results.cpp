@@ -4,6 +4,8 @@
 #include <gtest/gtest.h>
 
 #include <array>
+#include <cmath>
+#include <cstdlib>
 #include <filesystem>
 #include <set>
 
@@ -141,6 +143,18 @@ TEST(Results, AnUndescribedDatasetIsRefused) {
     EXPECT_TRUE(results::describe("models", name)) << "/models/" << name << " has no row in describe.cpp";
   for (const auto& spec : results::unit_fields) EXPECT_TRUE(results::describe(spec.group, spec.name)) << spec.name;
   for (const auto& spec : results::derived_fields) EXPECT_TRUE(results::describe(spec.group, spec.name)) << spec.name;
+  // format 3: /system's datasets, the per-element rows and the per-floor rows of any building
+  const results::SystemTable table = testdata::sample_system_table();
+  results::visit_system(table, [](const char* name, const auto&) {
+    EXPECT_TRUE(results::describe("system", name)) << "/system/" << name << " has no row in describe.cpp";
+  });
+  for (const auto& spec : results::element_fields) EXPECT_TRUE(results::describe(spec.group, spec.name)) << spec.name;
+  EXPECT_EQ(std::string(results::describe("uncoupled", "peak_acc_floors12")->units), "g");
+  EXPECT_NE(std::string(results::describe("uncoupled", "peak_drift3")->description).find("building 3"), std::string::npos);
+  EXPECT_FALSE(results::describe("uncoupled", "peak_drift"));
+  EXPECT_FALSE(results::describe("uncoupled", "peak_drift0"));
+  EXPECT_FALSE(results::describe("uncoupled", "peak_drift1x"));
+  EXPECT_FALSE(results::describe("system", "peak_u1"));
   EXPECT_FALSE(results::describe("models", "no_such_dataset"));
   EXPECT_FALSE(results::describe("records", "peak_u1"));
   TempDir t;
@@ -220,4 +234,152 @@ TEST(Results, SettingsLookUpsNameWhatIsMissing) {
   }
   EXPECT_THROW(r.settings.numbers("", "title"), std::runtime_error);
   EXPECT_THROW(r.column<double>("uncoupled", "status"), std::runtime_error);  // stored as u8
+}
+
+// Format 3 (architecture.md 2.6.3): a 3- vs 5-storey pair's per-floor and per-element fields and /system, written
+// and read back, every value (NaN padding above a shorter sample's roof included) and every /system column equal.
+TEST(Results, FormatThreeRoundTripKeepsEveryValue) {
+  TempDir t;
+  const results::Results a = testdata::sample_system_results();
+  results::write(t.file("a.h5"), a);
+  const results::Results b = results::load(t.file("a.h5"));
+  EXPECT_EQ(b.header.format_version, 3);
+  testdata::expect_same_results(a, b);
+  EXPECT_EQ(b.system, a.system);
+  for (const results::Field& f : a.fields) {  // the rows read back carry their extents
+    const results::Field* g = b.find(f.spec.group, f.spec.name);
+    ASSERT_NE(g, nullptr) << f.spec.name;
+    EXPECT_EQ(g->spec.extent, f.spec.extent) << f.spec.name;
+    EXPECT_EQ(g->spec.count, f.spec.count) << f.spec.name;
+    EXPECT_EQ(g->spec.building, f.spec.building) << f.spec.name;
+    EXPECT_EQ(std::string(g->spec.units), std::string(f.spec.units)) << f.spec.name;
+  }
+  const auto& u2 = b.column<double>("uncoupled", "peak_u_floors2");
+  ASSERT_EQ(u2.size(), 2u * 4u * 5u);
+  EXPECT_TRUE(std::isnan(u2[1 * 5 + 4]) && std::isnan(u2[(4 + 1) * 5 + 4]));  // model 1's 5th floor, both records
+  EXPECT_FALSE(std::isnan(u2[1 * 5 + 3]));
+  // and again: what was read writes the same file
+  results::write(t.file("b.h5"), b);
+  const results::Results c = results::load(t.file("b.h5"));
+  testdata::expect_same_results(a, c);
+  EXPECT_EQ(c.system, a.system);
+
+  // the layout: /system, the datasets' shapes ([records, models, floors | elements | gaps, elements]), units, axes
+  auto f = h5::open_read(t.file("a.h5"));
+  const h5::hid root = f.get();
+  EXPECT_EQ(h5::read_int64_attribute(root, "format_version"), 3);
+  auto sys = h5::open_group(root, "system");
+  EXPECT_EQ(h5::member_names(sys.get()).size(), 30u);
+  EXPECT_EQ(h5::read_strings(sys.get(), "element_label"), (std::vector<std::string>{"level 1", "level 2", "level 3"}));
+  auto unc = h5::open_group(root, "uncoupled");
+  auto imp = h5::open_group(root, "impacts");
+  EXPECT_EQ(h5::read_string_attribute(unc.get(), "shape"), "[records, models]");  // the [R, M] fields' as in format 2
+  EXPECT_EQ(h5::dataset_shape(unc.get(), "peak_u_floors1"), (Shape{2, 4, 3}));
+  EXPECT_EQ(h5::dataset_shape(unc.get(), "peak_drift2"), (Shape{2, 4, 5}));
+  EXPECT_EQ(h5::dataset_shape(unc.get(), "peak_acc_floors2"), (Shape{2, 4, 5}));
+  EXPECT_EQ(h5::dataset_shape(unc.get(), "peak_closing_elements"), (Shape{2, 4, 3}));
+  EXPECT_EQ(h5::dataset_shape(imp.get(), "element_peak_force"), (Shape{2, 4, 2, 3}));
+  EXPECT_EQ(h5::dataset_shape(imp.get(), "element_impact_count"), (Shape{2, 4, 2, 3}));
+  const auto attr = [](h5::hid g, const char* ds, const char* a) {
+    return h5::read_string_attribute(h5::open_dataset(g, ds).get(), a);
+  };
+  EXPECT_EQ(attr(unc.get(), "peak_acc_floors1", "units"), "g");
+  EXPECT_EQ(attr(unc.get(), "peak_u_floors2", "units"), "m");
+  EXPECT_NE(attr(unc.get(), "peak_u_floors2", "description").find("building 2"), std::string::npos);
+  EXPECT_EQ(attr(unc.get(), "peak_u_floors2", "axes"), "[records, models, floors of building 2 (bottom first)]");
+  EXPECT_EQ(attr(imp.get(), "element_energy", "units"), "J");
+  EXPECT_EQ(attr(imp.get(), "element_t_first_impact", "axes"), "[records, models, gaps, elements]");
+  EXPECT_EQ(attr(sys.get(), "dof_height", "units"), "m");
+  std::vector<std::array<std::string, 3>> all;
+  datasets(root, "", all);
+  for (const auto& [path, units, description] : all) {
+    EXPECT_FALSE(units.empty()) << path << " has no units";
+    EXPECT_FALSE(description.empty()) << path << " has no description";
+  }
+}
+
+// An SDOF-pair Results (no SystemTable) is format 2 exactly: no /system, no per-floor or per-element dataset, no
+// `axes`; a format-3 Results of the same fields without the system's extras is format 2 again.
+TEST(Results, PairResultsStayFormatTwo) {
+  TempDir t;
+  results::write(t.file("p.h5"), testdata::sample_results());
+  auto f = h5::open_read(t.file("p.h5"));
+  EXPECT_EQ(h5::read_int64_attribute(f.get(), "format_version"), 2);
+  EXPECT_FALSE(h5::exists(f.get(), "system"));
+  const results::Results p = results::load(t.file("p.h5"));
+  EXPECT_TRUE(p.system.empty());
+  EXPECT_EQ(p.header.format_version, 2);
+  // unit_schema without extents is today's schema, row for row
+  EXPECT_EQ(results::unit_schema(true).size(), std::size(results::unit_fields));
+  EXPECT_TRUE(results::system_fields({}, true).empty());
+}
+
+// The writer refuses, before any file exists, fields whose extents contradict /system, per-floor or per-element
+// fields without /system, and a /system that contradicts itself.
+TEST(Results, FormatThreeWriterRefusesAMismatch) {
+  TempDir t;
+  const std::string path = t.file("x.h5");
+  const auto refused = [&](const results::Results& r, const std::string& says) {
+    try {
+      results::write(path, r);
+      ADD_FAILURE() << "written: " << says;
+    } catch (const std::logic_error& e) {
+      EXPECT_NE(std::string(e.what()).find(says), std::string::npos) << e.what();
+    }
+    EXPECT_FALSE(fs::exists(path));
+  };
+  const auto field = [](results::Results& r, const char* name) -> results::Field& {
+    for (results::Field& f : r.fields)
+      if (f.spec.name == name) return f;
+    throw std::logic_error(name);
+  };
+  {  // building 1 drawn with 4 floors while /system gives it 3
+    results::Results r = testdata::sample_system_results();
+    results::Field& f = field(r, "peak_u_floors1");
+    f.spec = results::floor_field(results::floor_fields[0], 1, 4);
+    f.data = std::vector<double>(2 * 4 * 4, 0.0);
+    refused(r, "/uncoupled/peak_u_floors1 has 4 floors but /system gives building 1 3");
+  }
+  {  // a building /system does not have
+    results::Results r = testdata::sample_system_results();
+    r.fields.push_back({results::floor_field(results::floor_fields[1], 3, 2), std::vector<double>(2 * 4 * 2, 0.0)});
+    refused(r, "is for building 3 but /system has 2 buildings");
+  }
+  {  // elements
+    results::Results r = testdata::sample_system_results();
+    results::Field& f = field(r, "element_peak_force");
+    f.spec.count = 2;
+    f.data = std::vector<double>(2 * 4 * 2 * 2, 0.0);
+    refused(r, "/impacts/element_peak_force has 2 elements but /system has 3");
+  }
+  {  // per-floor fields without /system
+    results::Results r = testdata::sample_system_results();
+    r.system = {};
+    refused(r, "has no /system");
+  }
+  {  // a /system that contradicts itself
+    results::Results r = testdata::sample_system_results();
+    r.system.building_floors = {4, 4};
+    refused(r, "/system is inconsistent: building_floors[0] = 4 but 3 DOFs name building 0");
+    r = testdata::sample_system_results();
+    r.system.element_group = {0, 0, 1};
+    refused(r, "element_group[2] = 1 is not a group");
+    r = testdata::sample_system_results();
+    r.system.spring_law.pop_back();
+    refused(r, "per-spring columns differ in length");
+  }
+  results::write(path, testdata::sample_system_results());  // and the consistent one is written
+  EXPECT_TRUE(fs::exists(path));
+}
+
+// The datasets' names and units read through h5py (Python's HDF5), strings included: what a user's script sees.
+TEST(Results, FormatThreeReadsWithH5py) {
+  const char* env = std::getenv("POUNDING_PYTHON");
+  const std::string py = env && *env ? env : "/usr/bin/python3";
+  if (std::system((py + " -c 'import h5py, numpy' 2>/dev/null").c_str()) != 0)
+    POUNDING_SKIP_OR_FAIL("needs " + py + " with h5py and numpy (Debian: python3-h5py python3-numpy; tools/setup.sh)");
+  TempDir t;
+  results::write(t.file("a.h5"), testdata::sample_system_results());
+  const std::string cmd = py + " " + testdata::source_dir() + "/tests/results/check_format3.py " + t.file("a.h5");
+  EXPECT_EQ(std::system(cmd.c_str()), 0) << cmd;
 }

@@ -3,14 +3,18 @@
 // the HDF5 writer and the reader, with every value in its place.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <filesystem>
 #include <map>
 
+#include "pounding/model/shear_building.hpp"
 #include "pounding/results/reader.hpp"
 #include "pounding/results/writer.hpp"
 #include "pounding/study/checkpoint.hpp"
+#include "pounding/study/make_results.hpp"
 #include "pounding/study/tally.hpp"
 #include "pounding/study/unit_result.hpp"
+#include "results/sample_results.hpp"
 #include "temp_dir.hpp"
 
 namespace fs = std::filesystem;
@@ -146,4 +150,149 @@ TEST(Tally, RefusesAPayloadOfTheWrongSize) {
   EXPECT_EQ(tally.units_done(), 1u);
   tally.store(2, bytes);
   EXPECT_EQ(tally.units_done(), 1u);
+}
+
+// Format 3 through the study's path: a plan whose /system is a 3- vs 5-storey pair sizes the per-floor and
+// per-element rows from it; a UnitComputer fills them with lane_values; the tally scatters them to
+// [records, models, floors | elements | gaps, elements]; the file holds each value in its place.
+TEST(UnitResult, PerFloorAndPerElementValuesReachTheirPlaceInTheFile) {
+  WorkPlan plan;
+  plan.records = 2, plan.pairs = 1, plan.samples = 5, plan.batch = 2, plan.blocks = 3, plan.gaps = 2, plan.impacts = true;
+  plan.system = testdata::sample_system_table();
+  plan.fields = results::unit_schema(true, false, false, plan.system.extents());
+  EXPECT_EQ(plan.format_version(), 3);
+  const std::size_t u2 = results::field_index(plan.fields, "uncoupled", results::building_name("peak_u_floors{b}", 2));
+  const std::size_t acc1 = results::field_index(plan.fields, "uncoupled", "peak_acc_floors1");
+  const std::size_t force = results::field_index(plan.fields, "impacts", "element_peak_force");
+  const std::size_t count = results::field_index(plan.fields, "impacts", "element_impact_count");
+  EXPECT_EQ(plan.per_lane(plan.fields[u2]), 5u);
+  EXPECT_EQ(plan.per_lane(plan.fields[acc1]), 3u);
+  EXPECT_EQ(plan.per_lane(plan.fields[force]), 2u * 3u);
+  // unit_fields keep their indices (run.cpp's constexpr field numbers)
+  for (std::size_t k = 0; k < std::size(results::unit_fields); ++k) EXPECT_EQ(plan.fields[k].name, results::unit_fields[k].name);
+  const auto at = [](std::size_t unit, std::size_t lane, std::size_t j) {
+    return static_cast<double>(100 * unit + 10 * lane + j);
+  };
+  Tally tally(plan);
+  for (std::size_t u = 0; u < plan.units(); ++u) {
+    const std::size_t lanes = plan.lanes(plan.decode(u).block);
+    UnitResult r(plan, lanes);
+    for (std::size_t lane = 0; lane < lanes; ++lane) {
+      auto floors = r.lane_values<double>(u2, lane);
+      ASSERT_EQ(floors.size(), 5u);
+      for (std::size_t j = 0; j < 5; ++j) floors[j] = at(u, lane, j);
+      auto e = r.lane_values<double>(force, lane);  // [gap][element]
+      for (std::size_t j = 0; j < e.size(); ++j) e[j] = at(u, lane, j);
+      auto c = r.lane_values<std::int32_t>(count, lane);
+      for (std::size_t j = 0; j < c.size(); ++j) c[j] = static_cast<std::int32_t>(at(u, lane, j));
+    }
+    EXPECT_THROW(r.lane_values<double>(u2, lanes), std::out_of_range);
+    EXPECT_THROW(r.lane_values<double>(count, 0), std::logic_error);  // i32
+    tally.store(u, UnitResult::deserialise(plan, lanes, r.serialise()).serialise());
+  }
+  TempDir t;
+  results::Results res;
+  res.records.id = {"R1", "R2"};
+  for (const auto& [name, member] : results::model_doubles) (res.models.*member).assign(plan.models(), 1.0);
+  res.gap_ratios = {0.3, 0.6};
+  res.fields = tally.take_fields();
+  res.system = plan.system;
+  results::write(t.file("r.h5"), res);
+  const results::Results back = results::load(t.file("r.h5"));
+  EXPECT_EQ(back.header.format_version, 3);
+  const auto& fl = back.column<double>("uncoupled", "peak_u_floors2");
+  const auto& ef = back.column<double>("impacts", "element_peak_force");
+  const auto& ec = back.column<std::int32_t>("impacts", "element_impact_count");
+  const auto& a1 = back.column<double>("uncoupled", "peak_acc_floors1");
+  const std::size_t M = plan.models();
+  ASSERT_EQ(fl.size(), 2 * M * 5);
+  ASSERT_EQ(ef.size(), 2 * M * 2 * 3);
+  for (std::size_t u = 0; u < plan.units(); ++u) {
+    const UnitIndex i = plan.decode(u);
+    for (std::size_t lane = 0; lane < plan.lanes(i.block); ++lane) {
+      const std::size_t q = i.record * M + plan.first_model(i) + lane;
+      for (std::size_t j = 0; j < 5; ++j) EXPECT_EQ(fl[q * 5 + j], at(u, lane, j)) << "unit " << u << " floor " << j;
+      for (std::size_t g = 0; g < 2; ++g)
+        for (std::size_t e = 0; e < 3; ++e) {
+          EXPECT_EQ(ef[(q * 2 + g) * 3 + e], at(u, lane, g * 3 + e)) << "unit " << u << " gap " << g << " element " << e;
+          EXPECT_EQ(ec[(q * 2 + g) * 3 + e], static_cast<std::int32_t>(at(u, lane, g * 3 + e)));
+        }
+      for (std::size_t j = 0; j < 3; ++j) EXPECT_TRUE(std::isnan(a1[q * 3 + j]));  // not filled: the row's fill
+    }
+  }
+}
+
+// The study's conversion of a model::System into /system (make_results.hpp system_table): the 3- vs 5-storey pair of
+// model::shear_buildings is the table written out by hand; the SDOF pair gives none (format 2).
+TEST(SystemTable, OfAShearPairIsItsTopology) {
+  const model::StickTopology sticks[] = {{.storeys = 3}, {.storeys = 5}};
+  const model::System s = model::shear_buildings(sticks);
+  const ContactModel pounding{};  // hertzdamp, lankarani-nikravesh
+  const results::SystemTable t = system_table(s, std::span(&pounding, 1));
+  EXPECT_EQ(t, testdata::sample_system_table());
+  EXPECT_EQ(extents_of(s), t.extents());
+  EXPECT_EQ(extents_of(s), (results::Extents{{3, 5}, 3}));
+  EXPECT_TRUE(system_table(model::System::sdof_pair(), std::span(&pounding, 1)).empty());
+  EXPECT_TRUE(extents_of(model::System::sdof_pair()).empty());
+  EXPECT_THROW(system_table(s, {}), std::logic_error);  // one ContactModel per group
+  const double offsets[] = {0.0, 0.01};
+  EXPECT_THROW(system_table(s, std::span(&pounding, 1), offsets), std::logic_error);  // one offset per element
+}
+
+// An isolated building with its moat beside a fixed one: the base is floor 0 at 0 m, the isolator spring storey 0,
+// the moat's wall sides have no DOF, its group its own law.
+TEST(SystemTable, IsolatedBaseAndMoatWalls) {
+  model::StickTopology iso{.storeys = 2};
+  iso.isolated = true, iso.moat = true;
+  const model::StickTopology sticks[] = {iso, {.storeys = 2}};
+  const model::System s = model::shear_buildings(sticks);
+  ASSERT_EQ(s.groups().size(), 2u);
+  const ContactModel groups[] = {{}, {.law = ContactLaw::linear}};
+  const double offsets[] = {0.0, 0.0, 0.3, 0.3};
+  const results::SystemTable t = system_table(s, groups, offsets);
+  EXPECT_EQ(t.building_floors, (std::vector<std::int32_t>{3, 2}));
+  EXPECT_EQ(t.building_isolated, (std::vector<std::uint8_t>{1, 0}));
+  const std::size_t base = static_cast<std::size_t>(s.bodies()[0].dofs[0]);
+  EXPECT_EQ(t.dof_floor[base], 0);
+  EXPECT_EQ(t.dof_height[base], 0.0);
+  EXPECT_EQ(t.spring_role[static_cast<std::size_t>(s.spring_below(static_cast<int>(base)))], "isolator");
+  EXPECT_EQ(t.spring_storey[static_cast<std::size_t>(s.spring_below(static_cast<int>(base)))], 0);
+  ASSERT_EQ(t.element_label.size(), 4u);
+  EXPECT_EQ(t.element_label[2], "building1 moat left");
+  EXPECT_EQ(t.element_left_kind[2], "wall");
+  EXPECT_EQ(t.element_left_dof[2], -1);
+  EXPECT_EQ(t.element_right_dof[2], static_cast<std::int32_t>(base));
+  EXPECT_EQ(t.element_level_height[2], 0.0);
+  EXPECT_EQ(t.element_gap_offset[3], 0.3);
+  EXPECT_EQ(t.group_name, (std::vector<std::string>{"pounding", "moat building1"}));
+  EXPECT_EQ(t.group_law, (std::vector<std::string>{"hertzdamp", "linear"}));
+  EXPECT_EQ(t.group_study_gap, (std::vector<std::uint8_t>{1, 0}));
+  EXPECT_EQ(t.group_elements, (std::vector<std::int32_t>{2, 2}));
+  EXPECT_EQ(t.check(), "");
+}
+
+// A floor meeting a column between two floors: the interpolated side's weight xi = (level - h_p) / (h_q - h_p).
+TEST(SystemTable, FloorToColumnWeight) {
+  model::System::Parts p;
+  p.bodies = {{.dofs = {0}, .heights = {4.8}, .label = "building1"},
+              {.dofs = {1, 2}, .heights = {3.2, 6.4}, .label = "building2"}};
+  p.springs = {{.i = model::ground, .j = 0, .body = 0, .storey = 1},
+               {.i = model::ground, .j = 1, .body = 1, .storey = 1},
+               {.i = 1, .j = 2, .body = 1, .storey = 2}};
+  p.contacts = {{.left = {.kind = model::SideKind::point, .p = 0},
+                 .right = {.kind = model::SideKind::interpolated, .p = 1, .q = 2},
+                 .level = 1,
+                 .label = "floor 1 to column"}};
+  p.groups = {{}};
+  const auto problems = model::System::check(p);
+  ASSERT_TRUE(problems.empty()) << problems[0].what << " at " << problems[0].where;
+  const model::System s = model::System::build(p);
+  const ContactModel pounding{};
+  const results::SystemTable t = system_table(s, std::span(&pounding, 1));
+  EXPECT_EQ(t.element_right_kind[0], "interpolated");
+  EXPECT_EQ(t.element_right_dof[0], 1);
+  EXPECT_EQ(t.element_right_dof2[0], 2);
+  EXPECT_DOUBLE_EQ(t.element_right_xi[0], 0.5);
+  EXPECT_EQ(t.element_left_xi[0], 0.0);
+  EXPECT_EQ(t.element_level_height[0], 4.8);
 }

@@ -18,7 +18,9 @@ namespace pounding::results {
 
 // Root attributes, in the file's order (provenance, the run's choices, exclusions, wall time).
 struct Header {
-  std::int64_t format_version = results::format_version;
+  // The file's format (reader); in a Results built in memory the writer ignores it and writes
+  // pair_format_version (2) without a SystemTable, format_version (3) with one.
+  std::int64_t format_version = results::pair_format_version;
   std::string program_version, git_commit, date;
   std::int64_t seed = 0;
   std::string study_text, study_path, title, scene, scene_reason, contact_law, damping_law;
@@ -162,6 +164,78 @@ struct Group {
   std::string text(std::string_view key) const;
 };
 
+// /system (format 3): the study's System as plain tables, so that results depends on no model type (the study
+// converts model::System: study/make_results.hpp system_table). Indices are 0-based; -1 is the ground (a spring's
+// i) or "none" (an element side without a second DOF or without a DOF). Per building b the per-floor fields have
+// building_floors[b] floors: when samples of a study differ in storeys this is the tallest (max) topology.
+struct SystemTable {
+  // per building (a body of the System), left to right
+  std::vector<std::string> building_label;      // "building1"
+  std::vector<std::int32_t> building_floors;    // its DOFs: the floors axis of its per-floor fields
+  std::vector<std::uint8_t> building_isolated;  // 1: its first DOF is the base on isolators (floor 0)
+  // per DOF
+  std::vector<std::int32_t> dof_building, dof_floor;  // floor 0 = an isolated base, 1 = the first floor
+  std::vector<double> dof_height;                     // m above the building's support
+  // per spring (hysteretic element between DOF i, or the ground, and DOF j)
+  std::vector<std::int32_t> spring_i, spring_j, spring_building, spring_storey;
+  std::vector<std::string> spring_role, spring_law;  // storey | isolator | link; the hysteresis model's name
+  // per contact element: penetration x_L - x_R - gap; a side is a point (dof), an interpolated point
+  // (x = (1 - xi) u_dof + xi u_dof2) or a wall (the support)
+  std::vector<std::string> element_left_kind, element_right_kind;  // point | interpolated | wall
+  std::vector<std::int32_t> element_left_dof, element_left_dof2, element_right_dof, element_right_dof2;
+  std::vector<double> element_left_xi, element_right_xi;  // weight of dof2 (0 for a point or a wall)
+  std::vector<std::int32_t> element_level, element_group;  // floor number where it acts; index into group_*
+  std::vector<double> element_level_height;                // m above the support
+  std::vector<double> element_gap_offset;  // m: study-gap groups, added to the study gap; others, the gap itself
+  std::vector<std::string> element_label;  // "level 3", "building1 moat left"
+  // per contact group (one contact law each)
+  std::vector<std::string> group_name, group_law, group_damping_law;
+  std::vector<std::uint8_t> group_study_gap;  // 1: the elements' gap is the study gap (plus their offset)
+  std::vector<std::int32_t> group_elements;   // elements in the group
+
+  bool empty() const { return building_label.empty(); }
+  // The per-floor and per-element extents this table gives the fields (building_floors, elements).
+  Extents extents() const;
+  // "" or the first inconsistency (sizes of the per-building, per-DOF, per-spring, per-element, per-group
+  // columns; building_floors against dof_building; indices in range; group_elements against element_group).
+  std::string check() const;
+  bool operator==(const SystemTable&) const = default;
+};
+
+// The datasets of /system in the file's order, by name: the writer, the reader and describe share this list.
+template <class T, class F> void visit_system(T& t, F&& f) {
+  f("building_label", t.building_label);
+  f("building_floors", t.building_floors);
+  f("building_isolated", t.building_isolated);
+  f("dof_building", t.dof_building);
+  f("dof_floor", t.dof_floor);
+  f("dof_height", t.dof_height);
+  f("spring_i", t.spring_i);
+  f("spring_j", t.spring_j);
+  f("spring_building", t.spring_building);
+  f("spring_storey", t.spring_storey);
+  f("spring_role", t.spring_role);
+  f("spring_law", t.spring_law);
+  f("element_left_kind", t.element_left_kind);
+  f("element_left_dof", t.element_left_dof);
+  f("element_left_dof2", t.element_left_dof2);
+  f("element_left_xi", t.element_left_xi);
+  f("element_right_kind", t.element_right_kind);
+  f("element_right_dof", t.element_right_dof);
+  f("element_right_dof2", t.element_right_dof2);
+  f("element_right_xi", t.element_right_xi);
+  f("element_level", t.element_level);
+  f("element_level_height", t.element_level_height);
+  f("element_group", t.element_group);
+  f("element_gap_offset", t.element_gap_offset);
+  f("element_label", t.element_label);
+  f("group_name", t.group_name);
+  f("group_law", t.group_law);
+  f("group_damping_law", t.group_damping_law);
+  f("group_study_gap", t.group_study_gap);
+  f("group_elements", t.group_elements);
+}
+
 struct Results {
   std::string path;  // where it was read from (not stored in the file)
   Header header;
@@ -175,6 +249,10 @@ struct Results {
   // models]; 0 otherwise. The fields stay flat, stripe-major.
   std::size_t stripes = 0;
   std::vector<Group> groups;       // module groups, in writing order
+  // Format 3: the study's System (not the SDOF pair); empty for an SDOF-pair study and every format-1/2 file.
+  // The writer writes format 3 and /system when it is not empty, and refuses per-floor or per-element fields
+  // whose extents differ from it (or that come without it).
+  SystemTable system;
 
   const Group* group(std::string_view name) const;
   Group& group_for(std::string name);  // the group, created (at the end) when absent

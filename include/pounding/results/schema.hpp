@@ -9,22 +9,39 @@
 // [records, models, gaps] (format 1 stored uncoupled/status and impacts/* flat; the reader still reads it), and
 // every dataset carries `units` and `description` attributes: a field's come from its row here, the other
 // datasets' from results/describe.hpp. In memory every field stays flat, record-major.
+//
+// Format 3 (architecture.md 2.6.3) adds, for a study whose System is not the SDOF pair, per-floor and
+// per-element fields (the extents lane_floor, lane_element, lane_gap_element: floor_fields and element_fields
+// below, sized by Extents) and the /system group (results.hpp SystemTable). An SDOF-pair study writes format 2,
+// byte for byte as before.
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <span>
+#include <string>
 #include <string_view>
 #include <variant>
 #include <vector>
 
 namespace pounding::results {
 
-inline constexpr std::int64_t format_version = 2;
+// The newest layout: what a study of any System other than the SDOF pair writes (per-floor and per-element fields,
+// /system). The reader reads it, 2 and 1.
+inline constexpr std::int64_t format_version = 3;
+// What an SDOF-pair study writes (no /system, no per-floor or per-element field): format 2, unchanged.
+inline constexpr std::int64_t pair_format_version = 2;
 
 // Element types of a field; the order is the alternatives' order in Column.
 enum class Dtype : std::uint8_t { u8, i32, i64, f64 };
-// Per lane (one value per model) or per lane and gap ratio ([lane][gap] inside a unit).
-enum class Extent : std::uint8_t { lane, lane_gap };
+// Values per lane (inside a unit, lane-major; in the file after [records, models]):
+//   lane             one                                    [R, M]
+//   lane_gap         one per gap ratio, [lane][gap]          [R, M, G]
+//   lane_floor       one per floor of building `building`, [lane][floor] bottom first       [R, M, n_b]
+//   lane_element     one per contact element, [lane][element] (System element order)        [R, M, E]
+//   lane_gap_element one per gap and element, [lane][gap][element]                          [R, M, G, E]
+// (a fragility study puts [stripes] in front). `count` of the row holds n_b or E.
+enum class Extent : std::uint8_t { lane, lane_gap, lane_floor, lane_element, lane_gap_element };
+constexpr bool per_gap(Extent e) { return e == Extent::lane_gap || e == Extent::lane_gap_element; }
 
 // A typed column: the values of one field for a unit, or for the whole study.
 using Column = std::variant<std::vector<std::uint8_t>, std::vector<std::int32_t>, std::vector<std::int64_t>,
@@ -37,6 +54,10 @@ struct FieldSpec {
   double fill;                   // value of a model not computed (yet)
   std::string_view units;        // SI unit, the dataset's `units` ("1": dimensionless, codes, counts)
   std::string_view description;  // one line, the dataset's `description` (the writer refuses an empty one)
+  // Format 3 only (lane_floor, lane_element, lane_gap_element; 0 for the other extents): the floors of building
+  // `building` (1-based, left to right) or the contact elements -- set by unit_schema from the Extents.
+  std::uint32_t count = 0;
+  std::uint32_t building = 0;
 };
 
 constexpr std::size_t dtype_size(Dtype t) {
@@ -112,6 +133,53 @@ inline constexpr FieldSpec derived_fields[] = {
      "peak_u2 with contact / /uncoupled/peak_u2 of the same record and model"},
 };
 
+// Format 3: per floor of each building, one row per building ("{b}" in name and description is the building's
+// number, 1 = the left one; floor_field() gives the row of building b). A building's floors are its DOFs bottom
+// first -- an isolated building's base (floor 0, on the isolators) first -- as many as the most that building has
+// over the study; a sample with fewer floors leaves the values above its roof NaN.
+inline constexpr FieldSpec floor_fields[] = {
+    {"uncoupled", "peak_u_floors{b}", Dtype::f64, Extent::lane_floor, NAN, "m",
+     "peak |u| of each floor of building {b} relative to the ground, without contact; [records, models, floors] "
+     "bottom first (an isolated building's base first); NaN above the roof of a building with fewer floors"},
+    {"uncoupled", "peak_drift{b}", Dtype::f64, Extent::lane_floor, NAN, "m",
+     "peak |drift| of the storey below each floor of building {b} (u of the floor minus u of the floor below; the "
+     "isolator's deformation at an isolated base), without contact; bottom first; NaN above the roof"},
+    {"uncoupled", "peak_acc_floors{b}", Dtype::f64, Extent::lane_floor, NAN, "g",
+     "peak absolute acceleration |a + ag| of each floor of building {b}, without contact, in g = 9.80665 m/s^2; "
+     "bottom first; NaN above the roof"},
+};
+
+// Format 3: per contact element of the System (element order of /system/element_*), without contact (lane_element)
+// and with contact at each gap (lane_gap_element).
+inline constexpr FieldSpec element_fields[] = {
+    {"uncoupled", "peak_closing_elements", Dtype::f64, Extent::lane_element, NAN, "m",
+     "peak closing x_L - x_R of each contact element without contact: a study-gap element touches at gap g exactly "
+     "when its value minus /system/element_gap_offset exceeds g (peak_closing is the largest of those)"},
+    {"impacts", "element_impact_count", Dtype::i32, Extent::lane_gap_element, -1, "1",
+     "number of impacts (separated-to-contact transitions) at each contact element; -1 not computed"},
+    {"impacts", "element_peak_force", Dtype::f64, Extent::lane_gap_element, NAN, "N",
+     "peak contact force of each contact element (0 when it never touched)"},
+    {"impacts", "element_peak_penetration", Dtype::f64, Extent::lane_gap_element, NAN, "m",
+     "peak penetration x_L - x_R - gap of each contact element (0 when it never touched)"},
+    {"impacts", "element_t_first_impact", Dtype::f64, Extent::lane_gap_element, NAN, "s",
+     "time of the first impact at each contact element from the start of the record; NaN when it never touched"},
+    {"impacts", "element_energy", Dtype::f64, Extent::lane_gap_element, NAN, "J",
+     "energy dissipated by each contact element (work of the contact force less what it stores, plus impulsive "
+     "losses); NaN when the run did not compute energy"},
+    {"impacts", "element_h_omega_contact", Dtype::f64, Extent::lane_gap_element, NAN, "1",
+     "resolution of each contact element: step h times its contact frequency omega_c (0 never touched, NaN no "
+     "force law or diverged); impacts/h_omega_contact is the largest"},
+};
+
+// The per-floor and per-element extents of a study's System (the study computes them from its model::System:
+// study/make_results.hpp extents_of). Empty (no buildings): the SDOF pair, whose file is format 2.
+struct Extents {
+  std::vector<std::size_t> floors;  // per building, left to right: the most floors (DOFs) it has over the study
+  std::size_t elements = 0;         // contact elements
+  bool empty() const { return floors.empty(); }
+  bool operator==(const Extents&) const = default;
+};
+
 // uncoupled/status of a (stripe, record) a fragility study does not analyse: the record's factor to the stripe's
 // level exceeds [intensity] max_scale. Not an exclusion: the record is simply not in that stripe.
 inline constexpr std::uint8_t dropped_status = 254;
@@ -124,9 +192,29 @@ consteval std::size_t unit_field(std::string_view group, std::string_view name) 
 }
 
 // The unit fields of a scene: the per-lane rows, the per-gap rows when it runs coupled analyses, then the
-// stripe_fields of a multiple-stripe study and the ida_fields of the bisection IDA.
-std::vector<FieldSpec> unit_schema(bool with_gaps, bool ida = false, bool stripes = false);
+// stripe_fields of a multiple-stripe study and the ida_fields of the bisection IDA, then (format 3, `system` not
+// empty) system_fields(system, with_gaps). unit_fields keep their indices (unit_field()) in every schema.
+std::vector<FieldSpec> unit_schema(bool with_gaps, bool ida = false, bool stripes = false, const Extents& system = {});
+// The format-3 rows of `system`: floor_fields for each building (b = 1, 2, ...; count = its floors), then
+// element_fields (count = the elements), the per-gap ones only `with_gaps`. Empty for empty extents.
+std::vector<FieldSpec> system_fields(const Extents& system, bool with_gaps);
+// A templated row ("{b}" in its name and description) for building b (1-based) with `floors` floors; the expanded
+// texts are interned for the program's life (FieldSpec holds views).
+FieldSpec floor_field(const FieldSpec& row, std::size_t building, std::size_t floors);
+// "peak_u_floors{b}" with b = building: the name of a floor_fields row for building b.
+std::string building_name(std::string_view row_name, std::size_t building);
 // The position of a row in a schema; std::logic_error when absent.
 std::size_t field_index(std::span<const FieldSpec> schema, std::string_view group, std::string_view name);
+// Values per lane of a row: 1, `gaps`, its count, or gaps x count (the Extent table above).
+constexpr std::size_t per_lane(const FieldSpec& f, std::size_t gaps) {
+  switch (f.extent) {
+    case Extent::lane: return 1;
+    case Extent::lane_gap: return gaps;
+    case Extent::lane_floor:
+    case Extent::lane_element: return f.count;
+    case Extent::lane_gap_element: return gaps * f.count;
+  }
+  return 0;
+}
 
 }  // namespace pounding::results

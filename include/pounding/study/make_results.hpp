@@ -2,9 +2,12 @@
 // The end of a run: the analyses excluded from the probabilities, and the Results (results/results.hpp) of a
 // finished study -- provenance, settings (visit_settings), records, sampled models and the tally's fields.
 #include <cstdint>
+#include <span>
 #include <string>
 #include <vector>
 
+#include "pounding/contact/model.hpp"
+#include "pounding/model/system.hpp"
 #include "pounding/results/results.hpp"
 #include "pounding/study/plan.hpp"
 #include "pounding/physics/resolution.hpp"
@@ -29,13 +32,25 @@ Exclusions count_exclusions(const Study& study, const WorkPlan& plan, const Tall
 // Every setting of the study as /settings/<section>/<key> entries (booleans as 0/1 integers).
 results::Settings settings_of(const Study& study);
 
+// /system of a study whose System is not the SDOF pair (format 3, architecture.md 2.6.3): the topology of `system`
+// as plain tables -- per building, DOF, spring (with its hysteresis model's name), contact element (sides, the
+// interpolated side's weight xi from the System's heights, level, height, label) and group (`groups[g]`: the
+// group's ContactModel, one per System group as run_system gets them). `gap_offsets`: each element's offset (m)
+// added to the study gap (the whole gap for a group that is not study_gap); empty: 0. The SDOF pair (and an empty
+// System) gives an empty table: the study writes format 2. std::logic_error when `groups` or `gap_offsets` do
+// not match the System. Put it in WorkPlan::system before the plan's fields (plan.hpp).
+results::SystemTable system_table(const model::System& system, std::span<const ContactModel> groups,
+                                  std::span<const double> gap_offsets = {});
+// The per-floor and per-element extents of `system` (results::Extents; empty for the SDOF pair).
+results::Extents extents_of(const model::System& system);
+
 struct RunFacts {
   std::string build;  // this_build().build
   int ranks = 1;
   double wall_time_s = 0;
 };
 // Takes the tally's fields (the tally is left empty). A fragility study's stripes give the fields their leading
-// [stripes] dimension and the /intensity group.
+// [stripes] dimension and the /intensity group; plan.system (not empty: format 3) becomes /system.
 results::Results make_results(const Study& study, const std::vector<StudyRecord>& records, const WorkPlan& plan,
                               Tally& tally, const Exclusions& ex, const RunFacts& facts, const StripePlan& stripes = {});
 // /intensity: the measure, the levels, each record's IM, and (stripes) the factors and dropped records.
