@@ -16,6 +16,7 @@ void add_records_select(CLI::App* records);  // src/cli/commands/records_select.
 void add_sample(CLI::App& app);    // src/cli/commands/sample.cpp (stochastic structure model)
 void add_run(CLI::App& app);       // src/cli/commands/run.cpp (the study)
 void add_report(CLI::App& app);    // src/cli/commands/run.cpp
+void add_results(CLI::App& app);   // src/cli/commands/results.cpp (the datasets of a results file)
 void add_study_reference(CLI::App& app);  // src/cli/commands/study_reference.cpp (docs/study-reference.md)
 void add_spectrum(CLI::App& app);  // src/cli/commands/spectrum.cpp (a code design spectrum at given periods)
 void add_modes(CLI::App& app);     // src/cli/commands/modes.cpp (modes and Rayleigh damping of a shear building)

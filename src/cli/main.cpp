@@ -51,6 +51,7 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
   pounding::cli::add_run(app);
   pounding::cli::add_report(app);
+  pounding::cli::add_results(app);
   pounding::cli::add_simulate(app);
   pounding::cli::add_collide(app);
   pounding::cli::add_bench(app);

@@ -5,6 +5,7 @@
 #include <span>
 #include <utility>
 
+#include "pounding/io/hdf5.hpp"
 #include "pounding/results/schema.hpp"
 
 namespace pounding::results {
@@ -148,6 +149,47 @@ std::optional<Description> describe(std::string_view group, std::string_view nam
   if (auto d = find(element_fields, group, name)) return d;
   if (auto d = find_floor_field(group, name)) return d;
   return find(derived_fields, group, name);
+}
+
+namespace {
+
+void list_group(h5::hid g, const std::string& at, std::vector<DatasetInfo>& out) {
+  for (const std::string& name : h5::member_names(g)) {
+    const std::string path = at + "/" + name;
+    if (h5::is_group(g, name)) {
+      list_group(h5::open_group(g, name).get(), path, out);
+      continue;
+    }
+    DatasetInfo d;
+    d.path = path;
+    using K = h5::DatasetKind;
+    switch (h5::dataset_kind(g, name)) {
+      case K::strings: d.type = "string"; break;
+      case K::f64: d.type = "f64"; break;
+      case K::i64: d.type = "i64"; break;
+      case K::i32: d.type = "i32"; break;
+      case K::u8: d.type = "u8"; break;
+      case K::other: d.type = "other"; break;
+    }
+    d.shape = h5::dataset_shape(g, name);
+    const auto ds = h5::open_dataset(g, name);
+    const auto text = [&](const char* a) {
+      return h5::attribute_exists(ds.get(), a) && h5::attribute_kind(ds.get(), a) == h5::AttributeKind::string
+                 ? h5::read_string_attribute(ds.get(), a)
+                 : std::string();
+    };
+    d.units = text("units"), d.description = text("description"), d.axes = text("axes");
+    out.push_back(std::move(d));
+  }
+}
+
+}  // namespace
+
+std::vector<DatasetInfo> inventory(const std::string& path) {
+  const auto f = h5::open_read(path);
+  std::vector<DatasetInfo> out;
+  list_group(f.get(), "", out);
+  return out;
 }
 
 }  // namespace pounding::results

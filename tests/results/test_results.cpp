@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <set>
 
+#include "pounding/core/error.hpp"
 #include "pounding/io/hdf5.hpp"
 #include "pounding/report/report.hpp"
 #include "pounding/results/describe.hpp"
@@ -382,4 +383,33 @@ TEST(Results, FormatThreeReadsWithH5py) {
   results::write(t.file("a.h5"), testdata::sample_system_results());
   const std::string cmd = py + " " + testdata::source_dir() + "/tests/results/check_format3.py " + t.file("a.h5");
   EXPECT_EQ(std::system(cmd.c_str()), 0) << cmd;
+}
+
+// What `pounding results FILE` lists: every dataset with its type, shape and attributes, format 3's included.
+TEST(Results, InventoryListsEveryDatasetWithShapeAndUnits) {
+  TempDir t;
+  results::write(t.file("a.h5"), testdata::sample_system_results());
+  const auto all = results::inventory(t.file("a.h5"));
+  const auto find = [&](const std::string& path) {
+    for (const auto& d : all)
+      if (d.path == path) return d;
+    return results::DatasetInfo{};
+  };
+  const auto u2 = find("/uncoupled/peak_u_floors2");
+  EXPECT_EQ(u2.type, "f64");
+  EXPECT_EQ(u2.shape, (Shape{2, 4, 5}));
+  EXPECT_EQ(u2.units, "m");
+  EXPECT_EQ(u2.axes, "[records, models, floors of building 2 (bottom first)]");
+  const auto count = find("/impacts/element_impact_count");
+  EXPECT_EQ(count.type, "i32");
+  EXPECT_EQ(count.shape, (Shape{2, 4, 2, 3}));
+  const auto label = find("/system/element_label");
+  EXPECT_EQ(label.type, "string");
+  EXPECT_EQ(label.shape, Shape{3});
+  EXPECT_EQ(find("/system/dof_height").units, "m");
+  EXPECT_EQ(find("/uncoupled/peak_u1").axes, "");
+  std::vector<std::array<std::string, 3>> files;
+  datasets(h5::open_read(t.file("a.h5")).get(), "", files);
+  EXPECT_EQ(all.size(), files.size());
+  EXPECT_THROW(results::inventory(t.file("none.h5")), InputError);
 }
