@@ -259,6 +259,10 @@ TEST(Results, FormatThreeRoundTripKeepsEveryValue) {
   ASSERT_EQ(u2.size(), 2u * 4u * 5u);
   EXPECT_TRUE(std::isnan(u2[1 * 5 + 4]) && std::isnan(u2[(4 + 1) * 5 + 4]));  // model 1's 5th floor, both records
   EXPECT_FALSE(std::isnan(u2[1 * 5 + 3]));
+  // the report reads a format-3 file as it reads the pair's: the same tables from the [R, M] fields
+  results::Results pair = testdata::sample_results();
+  pair.path = b.path;
+  EXPECT_EQ(report_markdown(b), report_markdown(pair));
   // and again: what was read writes the same file
   results::write(t.file("b.h5"), b);
   const results::Results c = results::load(t.file("b.h5"));
