@@ -130,7 +130,8 @@ std::optional<Description> find_floor_field(std::string_view group, std::string_
     const std::string_view prefix = f.name.substr(0, f.name.find("{b}"));
     if (f.group != group || !name.starts_with(prefix) || name.size() == prefix.size()) continue;
     const std::string_view digits = name.substr(prefix.size());
-    if (digits.find_first_not_of("0123456789") != std::string_view::npos || digits[0] == '0') continue;
+    if (digits.size() > 6 || digits.find_first_not_of("0123456789") != std::string_view::npos || digits[0] == '0')
+      continue;  // a building number: 1 to 999999
     const FieldSpec e = floor_field(f, std::stoul(std::string(digits)), 0);
     return Description{e.units, e.description};
   }

@@ -155,6 +155,7 @@ TEST(Results, AnUndescribedDatasetIsRefused) {
   EXPECT_FALSE(results::describe("uncoupled", "peak_drift"));
   EXPECT_FALSE(results::describe("uncoupled", "peak_drift0"));
   EXPECT_FALSE(results::describe("uncoupled", "peak_drift1x"));
+  EXPECT_FALSE(results::describe("uncoupled", "peak_drift99999999999999999999999"));  // no throw either
   EXPECT_FALSE(results::describe("system", "peak_u1"));
   EXPECT_FALSE(results::describe("models", "no_such_dataset"));
   EXPECT_FALSE(results::describe("records", "peak_u1"));
