@@ -26,6 +26,13 @@ constexpr StudySection sections[] = {
      "optional; an absent key takes the value of [structures]. Heights given to both buildings make a pair study "
      "(answers in metres). period, height, mass, zeta and yield_coefficient take a number or a distribution table "
      "(below)."},
+    {"isolation", "[structures.buildingK] isolation = {...}",
+     "Base isolation of a shear building (model = \"shear\"): a base mass on a bearing under the storeys "
+     "(physics::IsolationSpec; docs/architecture.md §2.2.3). The superstructure keeps its fixed-base Rayleigh damping, "
+     "its floor dashpots referencing the base. Peak displacements (peak_u1/2) include the base."},
+    {"moat", "[structures.buildingK] moat = {...}",
+     "Rigid moat walls either side of an isolated base (needs isolation): two contact elements in their own group, "
+     "active in both scenes (they do not depend on the study gap), not counted in the pounding's impacts."},
     {"distribution", "Distribution tables",
      "`key = {lognormal = {median = .., cov = ..}}` or `key = {uniform = {min = .., max = ..}}` for period, height, "
      "mass, zeta or yield_coefficient of a building. Every draw is truncated exactly (inverse CDF) to the key's "
@@ -264,6 +271,32 @@ constexpr StudyKey keys[] = {
      "selects the height.", 1.0, 1e12},
     {"structures.buildingN", "stiffness_profile", "string", "[structures] stiffness_profile", "",
      "\"uniform\" | \"shear\"", "As in [structures]."},
+    {"structures.buildingN", "isolation", "table", "none (fixed base)", "", "{bearing, base_mass, ...}",
+     "Shear model: base isolation (keys under \"[structures.buildingK] isolation\")."},
+    {"structures.buildingN", "moat", "table", "none", "", "{gap, law, stiffness, e}",
+     "Shear model with isolation: moat walls (keys under \"[structures.buildingK] moat\")."},
+
+    // ---------------------------------------------------------------- isolation, moat
+    {"isolation", "bearing", "string", "\"linear\"", "", "\"linear\" | \"lead-rubber\"",
+     "linear: a spring k_eff and a dashpot 2 zeta_eff sqrt(k_eff M_total) on the bearing's deformation; lead-rubber: "
+     "bilinear kinematic hardening k1, k2 with characteristic strength qd (Fy = qd / (1 - k2 / k1)), no viscous "
+     "damping of its own."},
+    {"isolation", "base_mass", "number", "one floor's mass", "kg", "[1e-3, 1e10]",
+     "The base slab's mass above the bearings.", 1e-3, 1e10},
+    {"isolation", "k_eff", "number", "required (linear)", "N/m", "[1, 1e12]", "Linear bearing: effective stiffness.",
+     1.0, 1e12},
+    {"isolation", "zeta_eff", "number", "0", "", "[0, 0.5]", "Linear bearing: effective damping ratio.", 0.0, 0.5},
+    {"isolation", "k1", "number", "required (lead-rubber)", "N/m", "[1, 1e12]",
+     "Lead-rubber bearing: elastic (pre-yield) stiffness.", 1.0, 1e12},
+    {"isolation", "k2", "number", "required (lead-rubber)", "N/m", "[0, 1e12], below k1",
+     "Lead-rubber bearing: post-yield stiffness.", 0.0, 1e12},
+    {"isolation", "qd", "number", "required (lead-rubber)", "N", "[1e-3, 1e10]",
+     "Lead-rubber bearing: characteristic strength (force at zero displacement on the hysteresis loop).", 1e-3, 1e10},
+    {"moat", "gap", "number", "required", "m", "[1e-4, 10]", "Clearance from the base to each wall.", 1e-4, 10.0},
+    {"moat", "law", "string", "[contact] law", "", "a contact law except \"none\"", "The walls' contact law."},
+    {"moat", "stiffness", "number", "equivalent spheres of the base mass with itself", "law units", "[0, 1e13]",
+     "Contact stiffness (N/m for linear and Kelvin, N/m^1.5 for Hertz laws); 0: the default.", 0.0, 1e13},
+    {"moat", "e", "number", "[contact] e", "", "(0, 1]", "Coefficient of restitution at the walls.", 1e-6, 1.0},
 
     // ---------------------------------------------------------------- distributions
     {"distribution", "lognormal", "table", "", "", "{median, cov}", "A lognormal law (not with uniform)."},
@@ -437,6 +470,8 @@ std::string study_section_of(std::string_view name) {
   auto ends = [&](std::string_view s) { return name.size() >= s.size() && name.substr(name.size() - s.size()) == s; };
   for (std::string_view b : {"structures.building1", "structures.building2"}) {
     if (name == b) return "structures.buildingN";
+    if (name == std::string(b) + ".isolation") return "isolation";
+    if (name == std::string(b) + ".moat") return "moat";
     if (starts(std::string(b) + ".")) {  // a distribution of one of its keys
       if (ends(".lognormal")) return "distribution.lognormal";
       if (ends(".uniform")) return "distribution.uniform";

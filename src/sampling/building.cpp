@@ -11,6 +11,7 @@
 #include <fmt/format.h>
 
 #include "pounding/config/config.hpp"
+#include "pounding/contact/registry.hpp"
 #include "pounding/core/error.hpp"
 
 namespace pounding {
@@ -357,12 +358,94 @@ void check_shear_keys(const BuildingModel& b, const WhereFn& where) {
       if (v > 0)
         throw InputError(fmt::format("{} is given for an SDOF building", key), where(key),
                          fmt::format("add model = \"shear\" to this table (or [structures]), or remove {}", key));
+    for (auto [key, given] : {std::pair{"isolation", b.isolated}, {"moat", b.moat}})
+      if (given)
+        throw InputError(fmt::format("{} is given for an SDOF building", key), where(key),
+                         fmt::format("add model = \"shear\" to this table (or [structures]), or remove {}", key));
     if (b.code.storey_height > 0 && b.code.storey_height < 2.0)
       throw InputError(fmt::format("storey_height = {:g} m is below 2 m for an SDOF building", b.code.storey_height),
                        where("storey_height"),
                        "give a storey height in [2, 10] m, or model = \"shear\" for a scale model's storeys (0, 10] m");
   }
 }
+
+namespace {
+
+std::string bearing_list() { return enum_name_list(bearing_names, " or ", "\""); }
+std::string_view bearing_name(physics::Bearing b) {
+  for (const auto& n : bearing_names)
+    if (n.value == b) return n.name;
+  return "?";
+}
+
+// isolation = {bearing, base_mass, k_eff, zeta_eff | k1, k2, qd} of a building table
+void read_isolation(config::TableReader& r, const std::string& file, const std::string& name, BuildingModel& b) {
+  const toml::table* t = r.table("isolation");
+  if (!t) return;
+  config::TableReader q(t, file, name + ".isolation");
+  physics::IsolationSpec& iso = b.isolation;
+  iso.bearing = q.choice("bearing", "linear", [](const std::string& v) {
+    if (const auto x = parse_enum(bearing_names, v)) return *x;
+    throw InputError(fmt::format("bearing = \"{}\" is not a bearing the study runs", v), "bearing",
+                     "write bearing = " + bearing_list());
+  });
+  iso.base_mass = q.number("base_mass", 0.0);
+  const bool linear = iso.bearing == physics::Bearing::linear;
+  // a linear bearing takes k_eff (required) and zeta_eff; a lead-rubber one k1, k2 and qd (all required)
+  for (const char* key : {"k_eff", "zeta_eff", "k1", "k2", "qd"}) {
+    const std::string_view k(key);
+    const bool mine = (k == "k_eff" || k == "zeta_eff") == linear;
+    if (q.get(key) && !mine)
+      throw InputError(fmt::format("{} is not a key of a {} bearing", key, bearing_name(iso.bearing)), q.where(key),
+                       linear ? "a linear bearing takes k_eff and zeta_eff" : "a lead-rubber bearing takes k1, k2 and qd");
+    if (mine && k != "zeta_eff" && !q.get(key))
+      throw InputError(fmt::format("the {} bearing has no {}", bearing_name(iso.bearing), key), q.where(key),
+                       linear ? "give k_eff (N/m) and zeta_eff" : "give k1, k2 (N/m, 0 <= k2 < k1) and qd (N)");
+  }
+  iso.k_eff = q.number("k_eff", 0.0), iso.zeta_eff = q.number("zeta_eff", 0.0);
+  iso.k1 = q.number("k1", 0.0), iso.k2 = q.number("k2", 0.0), iso.qd = q.number("qd", 0.0);
+  if (!linear && !(iso.k2 < iso.k1))
+    throw InputError(fmt::format("k2 = {:g} N/m is not below k1 = {:g} N/m", iso.k2, iso.k1), q.where("k2"),
+                     "give the post-yield stiffness k2 below the elastic k1 (0 <= k2 < k1)");
+  q.finish("bearing, base_mass, k_eff, zeta_eff, k1, k2, qd");
+  b.isolated = true;
+}
+
+// moat = {gap, law, stiffness, e} of a building table
+void read_moat(config::TableReader& r, const std::string& file, const std::string& name, BuildingModel& b) {
+  const toml::table* t = r.table("moat");
+  if (!t) return;
+  config::TableReader q(t, file, name + ".moat");
+  if (!q.get("gap")) throw InputError("the moat has no gap", q.where("gap"), "give gap = <m> (the base's clearance to each wall)");
+  b.moat_gap = q.number("gap", 0.0);
+  b.moat_law = q.string("law", "");
+  if (!b.moat_law.empty()) {
+    const auto law = parse_enum(contact_law_table, b.moat_law);
+    if (!law || *law == ContactLaw::none)
+    {
+      std::string names;
+      for (const auto& n : contact_law_table)
+        if (n.value != ContactLaw::none) names += fmt::format("{}\"{}\"", names.empty() ? "" : ", ", n.name);
+      throw InputError(fmt::format("law = \"{}\" is not a contact law for a moat wall", b.moat_law), q.where("law"),
+                       "write law = one of " + names);
+    }
+    if (*law == ContactLaw::stereomechanical)
+      throw InputError("the stereomechanical law runs one contact element (the SDOF pair), not moat walls",
+                       q.where("law"), "choose a force law for the walls (hertzdamp, kelvin, ...)");
+    if (contact::traits(*law).explicit_stiffness && !q.get("stiffness"))
+      throw InputError(fmt::format("the moat's law '{}' needs a stiffness", b.moat_law), q.where("law"),
+                       "give stiffness = <N/m> in the moat table");
+  }
+  b.moat_stiffness = q.number("stiffness", 0.0);
+  b.moat_e = q.number("e", -1.0);
+  q.finish("gap, law, stiffness, e");
+  if (!b.isolated)
+    throw InputError("a moat is given for a building without isolation", r.where("moat"),
+                     "give the building an isolation table, or remove the moat (a moat surrounds an isolated base)");
+  b.moat = true;
+}
+
+}  // namespace
 
 void read_shear_defaults(config::TableReader& r, BuildingModel& b) {
   b.kind = r.choice("model", std::string(to_string(b.kind)), [](const std::string& name) {
@@ -377,6 +460,23 @@ void read_shear_defaults(config::TableReader& r, BuildingModel& b) {
   });
 }
 
+
+std::string BuildingModel::isolation_text() const {
+  if (!isolated) return "";
+  const physics::IsolationSpec& i = isolation;
+  const std::string base = i.base_mass > 0 ? fmt::format("base {:g} kg", i.base_mass) : "base one floor's mass";
+  return i.bearing == physics::Bearing::linear
+             ? fmt::format("{} bearing k_eff {:g} N/m, zeta_eff {:g}; {}", bearing_name(i.bearing), i.k_eff, i.zeta_eff, base)
+             : fmt::format("{} bearing k1 {:g} N/m, k2 {:g} N/m, qd {:g} N; {}", bearing_name(i.bearing), i.k1, i.k2, i.qd, base);
+}
+
+std::string BuildingModel::moat_text() const {
+  if (!moat) return "";
+  return fmt::format("walls {:g} m either side of the base; law {}; stiffness {}; e {}", moat_gap,
+                     moat_law.empty() ? "[contact] law" : moat_law,
+                     moat_stiffness > 0 ? fmt::format("{:g}", moat_stiffness) : "equivalent spheres of the base",
+                     moat_e >= 0 ? fmt::format("{:g}", moat_e) : "[contact] e");
+}
 
 int BuildingModel::storeys_at(double h) const {
   if (code.storeys > 0) return static_cast<int>(code.storeys);
@@ -485,10 +585,12 @@ BuildingModel parse_building(const toml::table* t, const std::string& file, cons
   read_shear_defaults(r, b);
   if (r.get("floor_mass")) b.floor_mass = r.number("floor_mass", 0.0);
   if (r.get("storey_stiffness")) b.storey_stiffness = r.number("storey_stiffness", 0.0);
+  read_isolation(r, file, name, b);
+  read_moat(r, file, name, b);
   r.finish(std::string("periods, period_min, period_max, period_step, period, height, mass, zeta, yield_coefficient, "
                        "alpha, hysteresis, aspect_ratios, rho_mean, rho_cov, mbar_mean, mbar_cov, mbar_min, mbar_max, "
                        "drift, ductility, height_min, height_max, ct_lower, ct_upper, height_exponent, model, "
-                       "floor_mass, storey_stiffness, stiffness_profile, ") +
+                       "floor_mass, storey_stiffness, stiffness_profile, isolation, moat, ") +
            code_factor_keys);
   check_shear_keys(b, [&](std::string_view key) {
     return key == "storey_height" && !own_storey_height ? fallback(key) : where(key);

@@ -80,7 +80,7 @@ class UnitComputer {
     ks_base_.displacement_limit = s.displacement_limit;
     uncoupled_ = s.contact;
     uncoupled_.law = ContactLaw::none;
-    if (sampler.model().any_shear()) block_.emplace(sampler.model());
+    if (sampler.model().any_shear()) block_.emplace(sampler.model(), s.contact, s.e);
     if (plan.stripes) stripe_scaled_ = results::field_index(plan.fields, "uncoupled", "scaled");
     if (plan.ida) {
       ida_analyses_ = results::field_index(plan.fields, "ida", "analyses");

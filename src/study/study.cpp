@@ -226,6 +226,42 @@ void check_selection(const Study& s, const TableReader& top) {
 
 }  // namespace
 
+// A study with a shear building (model = "shear") runs the system stepper: central difference only, force laws
+// only (a contact at every common floor), and no [intensity] (the stripes' elastic scaling and the IDA's yield
+// scaling are the SDOF pair's).
+static void check_shear_study(const Study& s, config::TableReader& top, const toml::table* structures, const std::string& path) {
+  if (!s.structures.any_shear()) return;
+  if (s.stepper != Stepper::central_difference) {
+    const toml::table* a = top.table("analysis");
+    const toml::node* n = a ? a->get("stepper") : nullptr;
+    throw InputError(fmt::format("the {} stepper runs SDOF pairs only, and the study has a shear building",
+                                 to_string(s.stepper)),
+                     n ? fmt::format("{}:{} [analysis].stepper", path, n->source().begin.line) : path + " [analysis].stepper",
+                     "write stepper = \"central-difference\" (the system stepper), or use model = \"sdof\"");
+  }
+  if (s.contact.law == ContactLaw::stereomechanical) {
+    const toml::table* c = top.table("contact");
+    const toml::node* n = c ? c->get("law") : nullptr;
+    throw InputError("the stereomechanical law runs one contact element (the SDOF pair), and the study has a shear "
+                     "building (a contact at every common floor)",
+                     n ? fmt::format("{}:{} [contact].law", path, n->source().begin.line) : path + " [contact].law",
+                     "choose a force law (hertzdamp, kelvin, ...), or use model = \"sdof\"");
+  }
+  if (s.intensity.enabled) {
+    // the stripes' elastic scaling and the IDA's unscaled equivalents are written for the SDOF pair's springs
+    std::string where = top.where("intensity");
+    for (const char* b : {"building2", "building1", ""}) {
+      const toml::table* t = !structures ? nullptr : *b ? structures->get_as<toml::table>(b) : structures;
+      if (const toml::node* n = t ? t->get("model") : nullptr; n && n->value_or(std::string()) == "shear")
+        where = fmt::format("{}:{} [structures{}{}].model", path, n->source().begin.line, *b ? "." : "", b);
+    }
+    throw InputError("a fragility study ([intensity]: stripes, IDA) runs SDOF buildings only, not model = \"shear\"",
+                     where,
+                     "remove [intensity] to run the shear buildings in the probability or impacts scene, or use "
+                     "model = \"sdof\"");
+  }
+}
+
 Study parse_study(const std::string& text, const std::string& path) {
   Study s;
   s.path = path;
@@ -263,27 +299,7 @@ Study parse_study(const std::string& text, const std::string& path) {
   s.intensity.bisection =
       s.intensity.method == FragilityMethod::ida &&
       !(s.structures.building(0).hysteresis == Hysteresis::elastic && s.structures.building(1).hysteresis == Hysteresis::elastic);
-  if (s.structures.any_shear() && s.stepper != Stepper::central_difference) {
-    const toml::table* a = top.table("analysis");
-    const toml::node* n = a ? a->get("stepper") : nullptr;
-    throw InputError(fmt::format("the {} stepper runs SDOF pairs only, and the study has a shear building",
-                                 to_string(s.stepper)),
-                     n ? fmt::format("{}:{} [analysis].stepper", path, n->source().begin.line) : path + " [analysis].stepper",
-                     "write stepper = \"central-difference\" (the system stepper), or use model = \"sdof\"");
-  }
-  if (s.intensity.enabled && s.structures.any_shear()) {
-    // the stripes' elastic scaling and the IDA's unscaled equivalents are written for the SDOF pair's springs
-    std::string where = top.where("intensity");
-    for (const char* b : {"building2", "building1", ""}) {
-      const toml::table* t = !structures ? nullptr : *b ? structures->get_as<toml::table>(b) : structures;
-      if (const toml::node* n = t ? t->get("model") : nullptr; n && n->value_or(std::string()) == "shear")
-        where = fmt::format("{}:{} [structures{}{}].model", path, n->source().begin.line, *b ? "." : "", b);
-    }
-    throw InputError("a fragility study ([intensity]: stripes, IDA) runs SDOF buildings only, not model = \"shear\"",
-                     where,
-                     "remove [intensity] to run the shear buildings in the probability or impacts scene, or use "
-                     "model = \"sdof\"");
-  }
+  check_shear_study(s, top, structures, path);
   if (s.intensity.enabled && s.scene_requested != Scene::probability)
     throw InputError("a fragility study ([intensity]) runs in the probability scene", top.where("scene"),
                      "write scene = \"probability\": whether a pair touches at a gap is decided by the uncoupled motion");

@@ -26,6 +26,7 @@ LaneTopology lane_topology(const StructureModel& model, const SampledPair& p) {
   for (int i = 0; i < 2; ++i) {
     t.storeys[i] = b[i].shear() ? b[i].storeys_at(s[i]->h) : 1;
     t.storey_height[i] = b[i].storey_height();
+    t.isolated[i] = b[i].shear() && b[i].isolated, t.moat[i] = t.isolated[i] && b[i].moat;
   }
   for (int i = 0; i < 2; ++i) {
     if (b[i].shear()) continue;
@@ -70,7 +71,10 @@ const model::System& SystemBlock::system(const LaneTopology& t) {
   auto& slot = systems_[t];
   if (!slot) {
     std::vector<model::StickTopology> sticks(2);
-    for (int i = 0; i < 2; ++i) sticks[i].storeys = t.storeys[i], sticks[i].storey_heights = {t.storey_height[i]};
+    for (int i = 0; i < 2; ++i) {
+      sticks[i].storeys = t.storeys[i], sticks[i].storey_heights = {t.storey_height[i]};
+      sticks[i].isolated = t.isolated[i], sticks[i].moat = t.moat[i];
+    }
     slot = std::make_unique<model::System>(model::shear_buildings(sticks));
   }
   return *slot;
@@ -79,12 +83,32 @@ const model::System& SystemBlock::system(const LaneTopology& t) {
 void SystemBlock::set_lane(physics::SystemBatch& b, std::size_t lane, const SampledPair& p, const LaneTopology& t,
                            double gap, const ContactNumbers& cn) const {
   const SampledStructure* s[2] = {&p.s1, &p.s2};
-  for (int i = 0; i < 2; ++i) physics::set_shear_building(b, lane, i, shear_spec(model_.building(i), *s[i], t.storeys[i]));
+  for (int i = 0; i < 2; ++i) {
+    const BuildingModel bm = model_.building(i);
+    const physics::ShearSpec spec = shear_spec(bm, *s[i], t.storeys[i]);
+    if (!t.isolated[i]) {
+      physics::set_shear_building(b, lane, i, spec);
+      continue;
+    }
+    physics::IsolationSpec iso = bm.isolation;
+    if (!(iso.base_mass > 0)) iso.base_mass = spec.floor_mass[0];  // one floor's mass
+    physics::set_isolated_building(b, lane, i, spec, iso);
+  }
   physics::set_contacts(b, lane, gap, p.kh, cn.e);
   const model::System& sys = *b.system;
   const std::size_t w = b.width;
+  for (int i = 0; i < 2; ++i) {
+    if (!t.moat[i]) continue;
+    const BuildingModel bm = model_.building(i);
+    const double m_base = b.m[physics::SystemBatch::at(sys.bodies()[static_cast<std::size_t>(i)].dofs[0], lane, w)];
+    const double kc = bm.moat_stiffness > 0 ? bm.moat_stiffness
+                                            : hertz_stiffness_spheres(m_base, m_base, model_.contact_density,
+                                                                      model_.contact_youngs_modulus, model_.contact_poisson);
+    physics::set_moat(b, lane, i, bm.moat_gap, bm.moat_gap, kc, bm.moat_e >= 0 ? bm.moat_e : e_);
+  }
   for (std::size_t e = 0; e < sys.contacts().size(); ++e) {
     const model::ContactElement& ce = sys.contacts()[e];
+    if (!sys.groups()[static_cast<std::size_t>(ce.group)].study_gap) continue;  // a moat wall: set_moat's
     double kc = cn.stiffness > 0 ? cn.stiffness : p.kh;
     if (!(cn.stiffness > 0) && !(model_.kh > 0) && !(t.storeys[0] == 1 && t.storeys[1] == 1))
       kc = hertz_stiffness_spheres(b.m[physics::SystemBatch::at(ce.left.p, lane, w)],
@@ -92,6 +116,17 @@ void SystemBlock::set_lane(physics::SystemBatch& b, std::size_t lane, const Samp
                                    model_.contact_youngs_modulus, model_.contact_poisson);  // the two floors' masses
     b.kc[physics::SystemBatch::at(static_cast<int>(e), lane, w)] = kc;
   }
+}
+
+std::vector<ContactModel> SystemBlock::groups(const LaneTopology& t, const ContactModel& pounding) const {
+  std::vector<ContactModel> out{pounding};
+  for (int i = 0; i < 2; ++i) {
+    if (!t.moat[i]) continue;
+    ContactModel moat = contact_;
+    if (const std::string& law = model_.building(i).moat_law; !law.empty()) moat.law = parse_contact_law(law);
+    out.push_back(moat);
+  }
+  return out;
 }
 
 void SystemBlock::run(std::span<const SampledPair> pairs, std::span<const std::size_t> lanes, double ratio,
@@ -104,12 +139,12 @@ void SystemBlock::run(std::span<const SampledPair> pairs, std::span<const std::s
   order_.resize(n);
   std::iota(order_.begin(), order_.end(), std::size_t{0});
   std::stable_sort(order_.begin(), order_.end(), [&](std::size_t a, std::size_t b) { return keys_[a] < keys_[b]; });
-  const std::vector<ContactModel> groups{cm};
   for (std::size_t at = 0; at < n;) {
     std::size_t end = at;
     while (end < n && keys_[order_[end]] == keys_[order_[at]]) ++end;
     const LaneTopology& t = keys_[order_[at]];
     const model::System& sys = system(t);
+    const std::vector<ContactModel> groups = this->groups(t, cm);
     batch_.resize(sys, end - at);
     for (std::size_t j = at; j < end; ++j) {
       const SampledPair& p = pairs[lanes[order_[j]]];
@@ -170,6 +205,14 @@ double damping_bound(const physics::SystemBatch& b, std::size_t lane) {
   const std::size_t w = b.width;
   std::vector<double> row(static_cast<std::size_t>(sys.ndof()), 0.0);
   for (int d = 0; d < sys.ndof(); ++d) row[static_cast<std::size_t>(d)] = b.c_floor[physics::SystemBatch::at(d, lane, w)];
+  for (const model::Body& body : sys.bodies())  // floor dashpots to an isolated base: c in both rows, twice
+    if (body.floor_dashpot_ref != model::ground)
+      for (int d : body.dofs) {
+        if (d == body.floor_dashpot_ref) continue;
+        const double c = b.c_floor[physics::SystemBatch::at(d, lane, w)];
+        row[static_cast<std::size_t>(d)] += c;
+        row[static_cast<std::size_t>(body.floor_dashpot_ref)] += 2.0 * c;
+      }
   if (!b.c_storey.empty())
     for (std::size_t k = 0; k < sys.springs().size(); ++k) {
       const model::Spring& x = sys.springs()[k];
@@ -195,7 +238,7 @@ void check_shear_steps(const Study& study, std::span<const StudyRecord> records,
     if (x > h) h = x, dt = r.record.dt;
   }
   const StructureSampler sampler(model, study.seed);
-  SystemBlock block(model);
+  SystemBlock block(model, study.contact, study.e);
   const auto pairs = model.period_pair_count();
   const auto per_pair = std::min<std::int64_t>(model.samples_per_pair,
                                                std::max<std::int64_t>(1, static_cast<std::int64_t>(max_models) / pairs));

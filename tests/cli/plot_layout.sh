@@ -30,7 +30,8 @@ for study in "$src"/studies/*.toml; do
     [ -d "$real" ] || { echo "skip $name: needs $real"; skipped=$((skipped + 1)); continue; }
   fi
   sed -e 's/^samples_per_pair = [0-9_]*/samples_per_pair = 2/' -e 's/^bootstrap = [0-9_]*/bootstrap = 100/' \
-      -e '/^output = /d' -e "s|^directory = \"../../shared/records/real\"|directory = \"$real\"|" "$study" \
+      -e '/^output = /d' -e "s|^directory = \"../../shared/records/real\"|directory = \"$real\"|" \
+      -e "s|\"../../shared/records/real/|\"$real/|g" "$study" \
       > "$tmp/studies/$name.toml"
   "$bin" run "$tmp/studies/$name.toml" --out "$tmp/$name.h5" --quiet > "$tmp/$name.md" 2> "$tmp/$name.log" || { cat "$tmp/$name.log"; exit 1; }
   runs=("$name")

@@ -90,6 +90,27 @@ expect_error storey_heights_differ 'storey heights differ.*\[structures.building
   "$(echo "$body" | sed 's/^\[gaps\]/[structures.building2]\nstorey_height = 3.0\n\n[gaps]/')"
 expect_error fragility 'runs SDOF buildings only.*:22 \[structures\].model' \
   "$(echo "$body" | sed -e 's/^scene = "impacts"/scene = "probability"/' -e 's/^\[gaps\]/[intensity]\nmeasure = "Sa"\nperiod = 1.0\nlevels = [0.1, 0.2]\n\n[gaps]/')"
+b1() { echo "$body" | sed "s/^\[gaps\]/[structures.building1]\n$1\n\n[gaps]/"; }
+expect_error isolation_sdof 'isolation is given for an SDOF building.*\[structures.building1\].isolation' \
+  "$(b1 'model = "sdof"\nisolation = {bearing = "linear", k_eff = 1e6}')"
+expect_error bearing_name ':28 \[structures.building1.isolation\].bearing, write bearing = "linear" or "lead-rubber"' \
+  "$(b1 'isolation = {bearing = "rubber-duck", k_eff = 1e6}')"
+expect_error keff_missing 'the linear bearing has no k_eff.*\[structures.building1.isolation\].k_eff' \
+  "$(b1 'isolation = {bearing = "linear", base_mass = 1e5}')"
+expect_error lrb_keff 'k_eff is not a key of a lead-rubber bearing' \
+  "$(b1 'isolation = {bearing = "lead-rubber", k_eff = 1e6, k1 = 1e7, k2 = 1e6, qd = 1e5}')"
+expect_error lrb_k2 'k2 = 2e+07 N/m is not below k1.*\[structures.building1.isolation\].k2' \
+  "$(b1 'isolation = {bearing = "lead-rubber", k1 = 1e7, k2 = 2e7, qd = 1e5}')"
+expect_error moat_alone 'a moat is given for a building without isolation.*\[structures.building1\].moat' \
+  "$(b1 'moat = {gap = 0.1}')"
+expect_error moat_gap_missing 'the moat has no gap' \
+  "$(b1 'isolation = {bearing = "linear", k_eff = 1e6}\nmoat = {e = 0.5}')"
+expect_error moat_law_none 'law = "none" is not a contact law for a moat wall.*\[structures.building1.moat\].law' \
+  "$(b1 'isolation = {bearing = "linear", k_eff = 1e6}\nmoat = {gap = 0.1, law = "none"}')"
+expect_error moat_linear_no_k "the moat's law 'linear' needs a stiffness" \
+  "$(b1 'isolation = {bearing = "linear", k_eff = 1e6}\nmoat = {gap = 0.1, law = "linear"}')"
+expect_error stereomechanical ':[0-9]* \[contact\].law, choose a force law' \
+  "$(echo "$body" | sed 's/^law = "hertzdamp"/law = "stereomechanical"/')"
 # the stepper's damped stability limit the check uses, against the spectral radius of its one-step matrix
 /usr/bin/python3 "$src/tools/stability_damped_cd.py" > /dev/null
 expect_error stepper ':[0-9]* \[analysis\].stepper, write stepper = "central-difference"' \

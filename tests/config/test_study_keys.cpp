@@ -83,6 +83,25 @@ std::string study_with(const config::StudyKey& k, const std::string& value) {
     s.sections["records"] = {{"files", fmt::format("[{{path = \"a.AT2\", {} = {}}}]", key, value)}};
     return s.text();
   }
+  if (section == "isolation" || section == "moat") {  // inline tables of a shear building
+    const auto inline_table = [](const Section& t) {
+      std::string out;
+      for (const auto& [tk, tv] : t) out += fmt::format("{}{} = {}", out.empty() ? "" : ", ", tk, tv);
+      return "{" + out + "}";
+    };
+    s.sections["structures"]["model"] = "\"shear\"";
+    const bool lrb = section == "isolation" && (key == "k1" || key == "k2" || key == "qd");
+    Section iso = lrb ? Section{{"bearing", "\"lead-rubber\""}, {"k1", "1e8"}, {"k2", "1e7"}, {"qd", "1e5"}}
+                      : Section{{"bearing", "\"linear\""}, {"k_eff", "1e6"}};
+    if (section == "isolation") iso[key] = value;
+    s.sections["structures.building1"]["isolation"] = inline_table(iso);
+    if (section == "moat") {
+      Section m{{"gap", "0.1"}};
+      m[key] = value;
+      s.sections["structures.building1"]["moat"] = inline_table(m);
+    }
+    return s.text();
+  }
   if (section == "intensity") {
     s = with_intensity(key == "periods");
     if (key == "tolerance") s.sections["intensity"]["method"] = "\"ida\"";

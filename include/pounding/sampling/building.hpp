@@ -32,6 +32,9 @@
 //                   ductility spread evenly over the height); yield_coefficient Cy -> Vy_i = Cy M g V_i / V_1 (the
 //                   base shear Cy M g, upper storeys by the shear profile); hysteresis "elastic": no yield
 //     damping       the building's zeta, Rayleigh on modes 1 and 2 (each mode's ratio in the settings' docs)
+//     isolation     {bearing = "linear", base_mass, k_eff, zeta_eff} | {bearing = "lead-rubber", base_mass, k1, k2,
+//                   qd}: a base mass (default one floor's) on the bearing under the storeys (physics::IsolationSpec)
+//     moat          {gap, law, stiffness, e}: rigid walls gap m either side of the isolated base (needs isolation)
 //   One storey (storeys = 1, or a sampled height below 1.5 storey_height) with neither floor_mass nor
 //   storey_stiffness is the SDOF of the same sample bit for bit.
 //
@@ -59,6 +62,7 @@
 
 #include "pounding/core/enum_names.hpp"
 #include "pounding/model/modes.hpp"
+#include "pounding/physics/shear_building.hpp"
 #include "pounding/sampling/code_factors.hpp"
 
 namespace pounding {
@@ -74,6 +78,10 @@ enum class Hysteresis : std::uint8_t {
 inline constexpr EnumName<Hysteresis> hysteresis_names[] = {{Hysteresis::bilinear, "bilinear"},
                                                             {Hysteresis::elastic, "elastic"}};
 constexpr const auto& enum_names(Hysteresis) { return hysteresis_names; }  // to_string(Hysteresis), enum_names.hpp
+
+// The bearings a study's isolation table names (physics::IsolationSpec; one entry per bearing law).
+inline constexpr EnumName<physics::Bearing> bearing_names[] = {{physics::Bearing::linear, "linear"},
+                                                               {physics::Bearing::lead_rubber, "lead-rubber"}};
 
 // The structural model of a building (docs/architecture.md §2.7.1).
 enum class StructureKind : std::uint8_t { sdof, shear };
@@ -157,6 +165,15 @@ struct BuildingModel {
   double height_min = 0, height_max = 0, ct_lower = 0, ct_upper = 0, height_exponent = 0;
   bool rule_explicit = false;  // ct_lower, ct_upper or height_exponent set in this table or [structures]
   CodeFactors code;            // the code design factors of this table (code_factors.hpp)
+  // Base isolation of a shear building ([structures.buildingK] isolation = {...}, physics::IsolationSpec): given
+  // when `isolated`; base_mass 0: one floor's mass per sample. A moat ({gap, law, stiffness, e}) needs isolation:
+  // two walls `moat_gap` m either side of the base; law empty: [contact] law; stiffness 0: equivalent spheres of
+  // the base mass with itself; e < 0: [contact] e.
+  bool isolated = false;
+  physics::IsolationSpec isolation;
+  bool moat = false;
+  double moat_gap = 0.0, moat_stiffness = 0.0, moat_e = -1.0;
+  std::string moat_law;
   // The structural model (the top of this header): sdof, or a shear building with these numbers (0: absent).
   StructureKind kind = StructureKind::sdof;
   double floor_mass = 0, storey_stiffness = 0;
@@ -167,6 +184,9 @@ struct BuildingModel {
   double storey_height() const { return code.storey_height > 0 ? code.storey_height : default_storey_height; }
   // Storeys of a sample of height h: `storeys` given, else max(1, round(h / storey_height())).
   int storeys_at(double h) const;
+  // "linear bearing k_eff 1e+06 N/m, zeta_eff 0; base 300000 kg", "walls 0.1 m either side ..." ("" when absent)
+  std::string isolation_text() const;
+  std::string moat_text() const;
 
   std::size_t slots() const { return periods.size(); }
   bool height_from_rule() const { return !height.given(); }

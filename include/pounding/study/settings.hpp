@@ -149,6 +149,8 @@ void visit_settings(const Study& s, V&& v) {
       if (f.storey_height <= 0) v(sec, "storey_height", b.storey_height());
       if (b.floor_mass > 0) v(sec, "floor_mass", b.floor_mass);
       if (b.storey_stiffness > 0) v(sec, "storey_stiffness", b.storey_stiffness);
+      if (b.isolated) v(sec, "isolation", b.isolation_text());
+      if (b.moat) v(sec, "moat", b.moat_text());
     }
   }
 

@@ -36,6 +36,7 @@ namespace pounding {
 struct LaneTopology {
   std::array<int, 2> storeys{1, 1};
   std::array<double, 2> storey_height{3.2, 3.2};
+  std::array<bool, 2> isolated{false, false}, moat{false, false};  // base isolation, moat walls (the building's keys)
   friend auto operator<=>(const LaneTopology&, const LaneTopology&) = default;
 };
 
@@ -65,7 +66,9 @@ struct ContactNumbers {
 
 class SystemBlock {
  public:
-  explicit SystemBlock(const StructureModel& model) : model_(model) {}
+  // contact, e: the study's [contact] model and restitution, the moat walls' defaults
+  explicit SystemBlock(const StructureModel& model, const ContactModel& contact = {}, double e = 0.65)
+      : model_(model), contact_(contact), e_(e) {}
 
   // Every lane of `pairs`, uncoupled: `none` is the study's contact model with law none (the study-gap group's law);
   // status, u1, u2, closing = D.
@@ -79,18 +82,23 @@ class SystemBlock {
 
   // The System of a topology (built once, kept for the block's lifetime).
   const model::System& system(const LaneTopology& t);
-  // Lane `lane` of b (sized for system(t)) from pair p: both buildings' numbers (shear_spec), every element's gap,
-  // e and kc (cn.stiffness, else the model's kh, else equivalent spheres of the two floors' masses; two one-storey
-  // buildings: the pair's kh, as the SDOF study).
+  // Lane `lane` of b (sized for system(t)) from pair p: both buildings' numbers (shear_spec; an isolated one through
+  // physics::set_isolated_building, its base mass one floor's unless given), every pounding element's gap, e and kc
+  // (cn.stiffness, else the model's kh, else equivalent spheres of the two floors' masses; two one-storey buildings:
+  // the pair's kh, as the SDOF study), and the moat walls' numbers (physics::set_moat).
   void set_lane(physics::SystemBatch& b, std::size_t lane, const SampledPair& p, const LaneTopology& t, double gap,
                 const ContactNumbers& cn) const;
 
  private:
+  // The contact models of a run: group 0 the pounding (`pounding`), then one per moat, building order.
+  std::vector<ContactModel> groups(const LaneTopology& t, const ContactModel& pounding) const;
   // lanes[j] of `pairs` bucketed by topology, one run_system per bucket, out[j] lane lanes[j]'s
   void run(std::span<const SampledPair> pairs, std::span<const std::size_t> lanes, double ratio, const ContactModel& cm,
            const ContactNumbers& cn, const GroundMotion& gm, const KernelSettings& ks, BlockPeaks& out);
 
   const StructureModel& model_;
+  ContactModel contact_;
+  double e_;
   std::map<LaneTopology, std::unique_ptr<model::System>> systems_;
   std::vector<LaneTopology> keys_;
   std::vector<std::size_t> order_, bucket_, all_;
