@@ -135,23 +135,47 @@ std::shared_ptr<const Prepared> prepare(const Demands& d, int threads) {
   for (const auto& v : p->values) p->N += v.size();
   if (p->N > std::numeric_limits<std::uint32_t>::max())
     throw std::invalid_argument("separation bootstrap: more than 2^32 - 1 ok analyses");
-  // k-way merge: the pooled ranks, equal values ordered by record (a heap of each record's next value)
-  using Head = std::pair<double, std::uint32_t>;  // value, record
-  std::vector<Head> heap;
-  std::vector<std::size_t> next(R, 0);
-  for (std::size_t k = 0; k < R; ++k)
-    if (!p->values[k].empty()) heap.push_back({p->values[k][0], static_cast<std::uint32_t>(k)});
-  const auto later = [](const Head& x, const Head& y) { return x > y; };
-  std::make_heap(heap.begin(), heap.end(), later);
-  for (std::uint32_t i = 0; !heap.empty(); ++i) {
-    std::pop_heap(heap.begin(), heap.end(), later);
-    const std::uint32_t k = heap.back().second;
-    p->ranks[k][next[k]++] = i;
-    if (next[k] < p->values[k].size())
-      heap.back().first = p->values[k][next[k]], std::push_heap(heap.begin(), heap.end(), later);
-    else
-      heap.pop_back();
-  }
+  // The pooled ranks by a k-way merge (a heap of each record's next value; equal values ordered by record), the
+  // value range cut at `threads - 1` pivots (quantiles of a sample of every record) and each part merged on its own
+  // thread: a value's rank is its part's offset (the values below the part's lower pivot) plus its rank inside.
+  std::vector<double> sample;
+  for (const auto& v : p->values)
+    for (std::size_t j = 0; j < 64 && !v.empty(); ++j) sample.push_back(v[j * v.size() / 64]);
+  std::sort(sample.begin(), sample.end());
+  const std::size_t parts = std::max<std::size_t>(1, std::min<std::size_t>(static_cast<std::size_t>(std::max(threads, 1)), sample.size()));
+  std::vector<double> pivot(parts + 1);
+  pivot[0] = -std::numeric_limits<double>::infinity(), pivot[parts] = std::numeric_limits<double>::infinity();
+  for (std::size_t t = 1; t < parts; ++t) pivot[t] = sample[t * sample.size() / parts];
+  // first[t][k]: record k's first position at or above pivot t (the last pivot: its end)
+  std::vector<std::vector<std::size_t>> first(parts + 1, std::vector<std::size_t>(R));
+  for (std::size_t t = 0; t <= parts; ++t)
+    for (std::size_t k = 0; k < R; ++k)
+      first[t][k] = t == parts ? p->values[k].size()
+                               : static_cast<std::size_t>(std::lower_bound(p->values[k].begin(), p->values[k].end(), pivot[t]) -
+                                                          p->values[k].begin());
+  parallel_blocks(parts, static_cast<int>(parts), [&](std::size_t t0, std::size_t t1) {
+    for (std::size_t t = t0; t < t1; ++t) {
+      using Head = std::pair<double, std::uint32_t>;  // value, record
+      std::vector<Head> heap;
+      std::vector<std::size_t> next(first[t]);
+      std::size_t offset = 0;
+      for (std::size_t k = 0; k < R; ++k) {
+        offset += first[t][k];
+        if (next[k] < first[t + 1][k]) heap.push_back({p->values[k][next[k]], static_cast<std::uint32_t>(k)});
+      }
+      const auto later = [](const Head& x, const Head& y) { return x > y; };
+      std::make_heap(heap.begin(), heap.end(), later);
+      for (auto i = static_cast<std::uint32_t>(offset); !heap.empty(); ++i) {
+        std::pop_heap(heap.begin(), heap.end(), later);
+        const std::uint32_t k = heap.back().second;
+        p->ranks[k][next[k]++] = i;
+        if (next[k] < first[t + 1][k])
+          heap.back().first = p->values[k][next[k]], std::push_heap(heap.begin(), heap.end(), later);
+        else
+          heap.pop_back();
+      }
+    }
+  });
   return p;
 }
 

@@ -8,6 +8,7 @@
 
 #include "cli/commands.hpp"
 #include "pounding/core/error.hpp"
+#include "pounding/core/timing.hpp"
 #include "pounding/core/version.hpp"
 
 namespace {
@@ -46,6 +47,7 @@ bool unknown_name_error(const CLI::App& app, pounding::InputError& out) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  pounding::timing::program_start();  // the clock of the run's wall time and phases (core/timing.hpp)
   CLI::App app{"pounding: probability of seismic pounding between adjacent structures"};
   app.set_version_flag("--version", std::string(pounding::program_version) + " (" + pounding::git_commit + ")");
   app.require_subcommand(1);

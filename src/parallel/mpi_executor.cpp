@@ -249,6 +249,13 @@ void Session::broadcast(int& v) const {
   if (mpi_) MPI_Bcast(&v, 1, MPI_INT, 0, MPI_COMM_WORLD);
 }
 
+void Session::max_to_root(std::vector<double>& v) const {
+  if (!mpi_ || size_ == 1 || v.empty()) return;
+  std::vector<double> out(v.size());
+  MPI_Reduce(v.data(), out.data(), static_cast<int>(v.size()), MPI_DOUBLE, MPI_MAX, 0, MPI_COMM_WORLD);
+  if (rank_ == 0) v = std::move(out);
+}
+
 void Session::abort(int code) const {
   if (mpi_) MPI_Abort(MPI_COMM_WORLD, code);
   std::exit(code);

@@ -54,6 +54,8 @@ void Session::broadcast(std::string&) const {}
 
 void Session::broadcast(int&) const {}
 
+void Session::max_to_root(std::vector<double>&) const {}
+
 void Session::abort(int code) const { std::exit(code); }
 
 void Session::agree(const std::function<void()>& phase) const { phase(); }

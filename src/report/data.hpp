@@ -36,8 +36,9 @@ struct Data {
   std::span<const double> h_omega;
   bool impacts, keep_coarse;
 
-  explicit Data(const results::Results& r, const WorkHook* hook = nullptr);
+  explicit Data(const results::Results& r, const WorkHook* hook = nullptr, double* bootstrap_s = nullptr);
   const WorkHook* hook = nullptr;  // progress and stop of the bootstrap (core/progress.hpp)
+  double* bootstrap_s = nullptr;   // seconds in prepared() and bootstrap() are added here (may be null)
   // ok, or coarse kept in the statistics by [analysis] coarse = "keep"
   bool ok(std::uint8_t s) const { return s == 0 || (keep_coarse && s == static_cast<std::uint8_t>(LaneStatus::coarse)); }
   std::size_t records() const { return rec.size(); }  // rows: (record, sign) analyses with polarity "both"

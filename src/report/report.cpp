@@ -8,6 +8,7 @@
 #include <fmt/format.h>
 
 #include "data.hpp"
+#include "pounding/core/timing.hpp"
 #include "legacy_v1.hpp"
 #include "pounding/analysis/stats.hpp"
 #include "pounding/core/random.hpp"
@@ -28,7 +29,7 @@ constexpr double paper_total[] = {71.09, 45.56, 25.26, 6.12, 1.14, 0.0};
 
 namespace report_detail {
 
-Data::Data(const results::Results& r, const WorkHook* hook_)
+Data::Data(const results::Results& r, const WorkHook* hook_, double* bootstrap_s_)
     : res(r), h(r.header), rec(r.records), mod(r.models), set(report_settings(r)),
       status(column_or_empty<std::uint8_t>(r, "uncoupled", "status")),
       imp_status(column_or_empty<std::uint8_t>(r, "impacts", "status")),
@@ -42,7 +43,7 @@ Data::Data(const results::Results& r, const WorkHook* hook_)
       h_omega(column_or_empty<double>(r, "impacts", "h_omega_contact")),
       impacts(r.has_group("impacts")),
       keep_coarse(r.settings.find("analysis", "coarse") && r.settings.text("analysis", "coarse") == "keep"),
-      hook(hook_), per_record(r.polarities()) {
+      hook(hook_), bootstrap_s(bootstrap_s_), per_record(r.polarities()) {
   // what the analyses depend on (the mass model's aspect, rho, mbar are sampled but unused when masses are
   // given; kh matters only with contact)
   fixed_pair = true;
@@ -107,11 +108,18 @@ separation::BootstrapResult Data::bootstrap(bool metres, std::span<const double>
                                             bool lognormal) const {
   separation::BootstrapSettings b = bootstrap_settings();
   b.lognormal = lognormal;
-  return separation::bootstrap(prepared(metres), targets, gaps, b);
+  const separation::Prepared& p = prepared(metres);
+  double unused = 0;
+  timing::Stopwatch w(bootstrap_s ? *bootstrap_s : unused);
+  return separation::bootstrap(p, targets, gaps, b);
 }
 
 const separation::Prepared& Data::prepared(bool metres) const {
-  if (!prepared_[metres]) prepared_[metres] = separation::prepare(demands(metres), bootstrap_settings().threads);
+  if (!prepared_[metres]) {
+    double unused = 0;
+    timing::Stopwatch w(bootstrap_s ? *bootstrap_s : unused);
+    prepared_[metres] = separation::prepare(demands(metres), bootstrap_settings().threads);
+  }
   return *prepared_[metres];
 }
 
@@ -500,22 +508,22 @@ Curve probability_curve(const results::Results& r, double step, double xmax, int
 }
 
 namespace {
-std::string study_markdown(const results::Results& results, const WorkHook* hook);
+std::string study_markdown(const results::Results& results, const WorkHook* hook, double* bootstrap_s);
 }  // namespace
 
-std::string report_markdown(const results::Results& results, const WorkHook* hook) {
-  return study_markdown(results, hook) + report_detail::selection_section(results);
+std::string report_markdown(const results::Results& results, const WorkHook* hook, double* bootstrap_s) {
+  return study_markdown(results, hook, bootstrap_s) + report_detail::selection_section(results);
 }
 
 namespace {
-std::string study_markdown(const results::Results& results, const WorkHook* hook) {
+std::string study_markdown(const results::Results& results, const WorkHook* hook, double* bootstrap_s) {
   if (is_fragility_study(results)) {
     if (results.group("fragility")) return fragility_markdown(results);
     results::Results r = results;  // a file written without the analysis hook: analyse it now
     analyse_fragility(r, hook);
     return fragility_markdown(r);
   }
-  const Data r(results, hook);
+  const Data r(results, hook, bootstrap_s);
   Markdown md(r);
   md.overview();
   if (r.set.pair) {
@@ -536,14 +544,14 @@ std::string study_markdown(const results::Results& results, const WorkHook* hook
 }
 }  // namespace
 
-std::string report_csv(const results::Results& results, const WorkHook* hook) {
+std::string report_csv(const results::Results& results, const WorkHook* hook, double* bootstrap_s) {
   if (is_fragility_study(results)) {
     if (results.group("fragility")) return fragility_csv(results);
     results::Results r = results;
     analyse_fragility(r, hook);
     return fragility_csv(r);
   }
-  const Data r(results, hook);
+  const Data r(results, hook, bootstrap_s);
   std::string s = "table,record,gap_ratio,T1,T2,hits,n,probability,gap_m,lo,hi,name\n";
   const auto& ratios = r.set.gap_ratios;
   const auto &p1 = r.periods(1), &p2 = r.periods(2);

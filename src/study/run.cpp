@@ -644,15 +644,21 @@ void announce(const parallel::Session& session, const Inputs& in, const WorkPlan
 
 // ---- phase 4: the work (every rank computes; rank 0 gathers, checkpoints and reports progress) -----
 bool execute(const parallel::Session& session, const Inputs& in, const WorkPlan& L, const std::vector<std::size_t>& todo,
-             Checkpoint* ckpt, Tally& tally, const RunContext& ctx, double& wall) {
+             Checkpoint* ckpt, Tally& tally, const RunContext& ctx, double& wall, timing::Times& T) {
+  const auto t_setup = std::chrono::steady_clock::now();
   const StructureSampler sampler(in.study.structures, in.study.seed);
   UnitComputer compute(in.study, in.records, in.stripes, sampler, L, session.rank());
+  T[timing::Phase::structures] = timing::seconds_since(t_setup);
+  using timing::Phase, timing::Stopwatch;
   const auto t0 = std::chrono::steady_clock::now();
   auto last_sync = t0;
   const std::size_t at_start = tally.units_done();
   auto tick = [&] {
     const auto now = std::chrono::steady_clock::now();
-    if (now - last_sync > std::chrono::seconds(5)) ckpt->sync(), last_sync = now;
+    if (now - last_sync > std::chrono::seconds(5)) {
+      Stopwatch w(T[Phase::checkpoint]);
+      ckpt->sync(), last_sync = now;
+    }
     if (!ctx.progress) return;
     ProgressReport p;
     p.units_done = tally.units_done(), p.units_total = L.units(), p.units_at_start = at_start;
@@ -663,24 +669,57 @@ bool execute(const parallel::Session& session, const Inputs& in, const WorkPlan&
   };
   static const std::atomic<bool> never{false};
   const bool complete = parallel::run_units(
-      session, todo, [&](std::size_t u) { return compute(u).serialise(); },
+      session, todo,
+      [&](std::size_t u) {
+        Stopwatch w(T[Phase::compute]);
+        return compute(u).serialise();
+      },
       [&](std::size_t u, parallel::Payload&& d) {
-        tally.store(u, d);
+        {
+          Stopwatch w(T[Phase::reduce]);
+          tally.store(u, d);
+        }
+        Stopwatch w(T[Phase::checkpoint]);
         ckpt->append(u, d);
       },
       tick, ctx.cancel ? *ctx.cancel : never);
+  if (session.root()) {
+    Stopwatch w(T[Phase::checkpoint]);
+    ckpt->sync();
+  }
   wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  if (session.root()) ckpt->sync();
+  T[Phase::units] = wall;
   return complete && (!session.root() || tally.units_done() == L.units());
 }
 
 // ---- phase 5: the results file (rank 0; the others wait for its outcome), then the checkpoint goes --
-// `started`: when run_study began; the wall time written and logged covers every phase of this invocation (reading,
-// the units, the fit, up to the write), `wall` is the units' share. A stop during the analysis (Cancelled, from the
+// The wall time written and logged runs from the process's start (timing::program_start) to the results write: MPI
+// start-up, reading, the units, the fit and the report of this invocation; `wall` is the units' share. A stop during the analysis (Cancelled, from the
 // hook's flag) ends with 130 and keeps the checkpoint, which holds every unit: --resume redoes only the analysis.
+// /timing: each phase's seconds on rank 0 and the largest over the ranks (core/timing.hpp; docs/results-format.md).
+results::Group timing_group(const timing::Times& T, std::size_t units_resumed) {
+  results::Group g{"timing", {}, {}};
+  std::vector<std::string> names, meanings;
+  for (std::size_t i = 0; i < timing::phase_count; ++i)
+    names.emplace_back(timing::phase_names[i]), meanings.emplace_back(timing::phase_meanings[i]);
+  g.add("phase", names, "1", "the phases of this invocation (core/timing.hpp); they overlap: compute, reduce and "
+                             "checkpoint are inside units, bootstrap inside report");
+  g.add("meaning", meanings, "1", "what each phase covers");
+  g.add("rank0_s", std::vector<double>(T.rank0.begin(), T.rank0.end()), "s", "rank 0's seconds in each phase");
+  g.add("max_s", std::vector<double>(T.max.begin(), T.max.end()), "s",
+        "the largest seconds over the ranks (phases after the units run on rank 0 only: its seconds)");
+  g.set("wall_s", T.wall);
+  g.set("units_resumed", static_cast<std::int64_t>(units_resumed));
+  g.set("description", std::string("wall_s: from this process's start (before MPI start-up) to the start of the "
+                                   "results write, so it holds every phase but results_write; after --resume only "
+                                   "this invocation (units_resumed units came from the checkpoint)"));
+  return g;
+}
+
 int finish(const parallel::Session& session, const Inputs& in, const WorkPlan& L, Checkpoint* ckpt, Tally& tally,
-           const CheckpointKey& key, double wall, const RunContext& ctx, const RunOptions& opt,
-           std::chrono::steady_clock::time_point started) {
+           const CheckpointKey& key, double wall, const RunContext& ctx, const RunOptions& opt, timing::Times& T,
+           std::size_t units_resumed, std::string& report) {
+  using timing::Phase;
   int rc = 0;
   std::string summary_line, stopped_in;
   double total = 0, analysis = 0;
@@ -705,11 +744,24 @@ int finish(const parallel::Session& session, const Inputs& in, const WorkPlan& L
       const auto t_analysis = std::chrono::steady_clock::now();
       // the analyses the caller adds (fragility, hazard: report/fragility.hpp), with progress and the stop flag
       if (opt.analyse) opt.analyse(res, ctx.hook());
-      const auto now = std::chrono::steady_clock::now();
-      analysis = std::chrono::duration<double>(now - t_analysis).count();
-      total = std::chrono::duration<double>(now - started).count();
+      analysis = T[Phase::analysis] = timing::seconds_since(t_analysis);
+      if (opt.report) {  // the report pounding run prints, from these results (its wall time filled in below)
+        const auto t_report = std::chrono::steady_clock::now();
+        res.path = in.out;
+        res.header.wall_time_s = NAN;
+        report = opt.report(res, ctx.hook(), T[Phase::bootstrap]);
+        T[Phase::report] = timing::seconds_since(t_report);
+      }
+      total = T.wall = timing::seconds_since(timing::program_start());
       res.header.wall_time_s = total;
+      if (const auto at = report.find("wall time nan s"); at != std::string::npos)
+        report.replace(at, 15, fmt::format("wall time {:.2f} s", total));
+      for (std::size_t i = static_cast<std::size_t>(Phase::analysis); i < timing::phase_count; ++i) T.max[i] = T.rank0[i];
+      res.groups.push_back(timing_group(T, units_resumed));
+      const auto t_write = std::chrono::steady_clock::now();
       results::write(in.out, res);
+      T.max[static_cast<std::size_t>(Phase::results_write)] = T[Phase::results_write] = timing::seconds_since(t_write);
+      T.wall = timing::seconds_since(timing::program_start());
     } catch (const Cancelled& c) {
       ckpt->sync();
       stopped_in = c.phase();
@@ -744,7 +796,9 @@ RunOutcome run_study(const parallel::Session& session, const std::string& study_
                      const RunContext& ctx) {
   // Every phase runs inside session.agree() or run_units: an error on any rank stops every rank together,
   // and rank 0 prints one message.
-  const auto started = std::chrono::steady_clock::now();
+  timing::Times T;
+  T[timing::Phase::mpi_start] = opt.mpi_start_s;
+  const auto t_inputs = std::chrono::steady_clock::now();
   std::optional<Checkpoint> ckpt;  // rank 0 only
   const Inputs in = load_inputs(session, study_path, opt, ckpt);
   const WorkPlan L = plan_work(in);
@@ -752,17 +806,26 @@ RunOutcome run_study(const parallel::Session& session, const std::string& study_
   if (session.root()) tally = Tally(L);
   const CheckpointKey key = session.root() ? checkpoint_key(in, L) : CheckpointKey{};
   const std::vector<std::size_t> todo = open_checkpoint(session, opt, in, L, ckpt ? &*ckpt : nullptr, key, tally, ctx);
+  const std::size_t units_resumed = tally.units_done();
+  T[timing::Phase::inputs] = timing::seconds_since(t_inputs);
   announce(session, in, L, ctx);
   double wall = 0.0;
-  if (!execute(session, in, L, todo, ckpt ? &*ckpt : nullptr, tally, ctx, wall)) {
+  const bool complete = execute(session, in, L, todo, ckpt ? &*ckpt : nullptr, tally, ctx, wall, T);
+  std::vector<double> phases(T.rank0.begin(), T.rank0.end());  // every rank: the maxima of the phases so far
+  session.max_to_root(phases);
+  std::copy(phases.begin(), phases.end(), T.max.begin());
+  if (!complete) {
     if (session.root())
       ctx.say(tally.units_done() > 0
                   ? fmt::format("\ninterrupted: {} of {} units done and checkpointed in {}; continue with --resume",
                                 tally.units_done(), L.units(), ckpt->path())
                   : fmt::format("\ninterrupted before any unit finished: nothing to keep, no checkpoint left"));
-    return {130, in.out};
+    return {130, in.out, {}, T};
   }
-  return {finish(session, in, L, ckpt ? &*ckpt : nullptr, tally, key, wall, ctx, opt, started), in.out};
+  RunOutcome r{0, in.out, {}, {}};
+  r.code = finish(session, in, L, ckpt ? &*ckpt : nullptr, tally, key, wall, ctx, opt, T, units_resumed, r.report);
+  r.times = T;
+  return r;
 }
 
 }  // namespace pounding

@@ -365,3 +365,27 @@ TEST(SeparationBootstrap, ReportsProgressAndHonoursAStop) {
   EXPECT_THROW(bootstrap(d, targets, {}, s), Cancelled);
   EXPECT_TRUE(phase.empty() || phase == "report: separation bootstrap") << phase;
 }
+
+// The pooled ranks (a k-way merge cut at pivots, one part per thread) are the positions in the pooled values
+// sorted by (value, record), whatever the thread count -- ties across records included.
+TEST(SeparationBootstrap, RanksAreThePooledOrderForAnyThreadCount) {
+  const Demands d = lumpy_study(13, 37, 4);
+  std::vector<std::pair<double, std::size_t>> all;
+  for (std::size_t k = 0; k < d.records; ++k)
+    for (double v : d.record(k)) all.push_back({v, k});
+  std::sort(all.begin(), all.end());
+  for (int threads : {1, 2, 3, 7}) {
+    const auto p = prepare(d, threads);
+    ASSERT_EQ(p->N, all.size());
+    std::vector<int> seen(all.size(), 0);
+    for (std::size_t k = 0; k < d.records; ++k)
+      for (std::size_t j = 0; j < p->values[k].size(); ++j) {
+        const std::uint32_t r = p->ranks[k][j];
+        ASSERT_LT(r, all.size());
+        EXPECT_EQ(all[r].first, p->values[k][j]) << threads;
+        EXPECT_EQ(all[r].second, k) << threads;
+        ++seen[r];
+      }
+    EXPECT_TRUE(std::all_of(seen.begin(), seen.end(), [](int c) { return c == 1; })) << threads;
+  }
+}

@@ -24,6 +24,8 @@ class Session {
   // rank 0's value is sent to every rank
   void broadcast(std::string& s) const;
   void broadcast(int& v) const;
+  // element-wise maximum over the ranks, on rank 0 (the other ranks' v is left as it was)
+  void max_to_root(std::vector<double>& v) const;
   [[noreturn]] void abort(int code) const;
   // Runs `phase` on this rank. If it throws on any rank, every rank throws the error of the lowest failing
   // rank (as an InputError with the same what/where/fix), so the whole job stops together, promptly, and

@@ -36,7 +36,8 @@ Curve probability_curve(const results::Results& r, double step, double xmax, int
 
 // `hook` (may be null): progress of the long loops (the separation bootstrap, a fragility study's fit when the
 // file lacks it) and a stop flag (Cancelled, core/progress.hpp).
-std::string report_markdown(const results::Results& r, const WorkHook* hook = nullptr);
-std::string report_csv(const results::Results& r, const WorkHook* hook = nullptr);
+// `bootstrap_s` (may be null): the seconds spent ranking the demands and in the separation bootstrap are added to it.
+std::string report_markdown(const results::Results& r, const WorkHook* hook = nullptr, double* bootstrap_s = nullptr);
+std::string report_csv(const results::Results& r, const WorkHook* hook = nullptr, double* bootstrap_s = nullptr);
 
 }  // namespace pounding

@@ -4,8 +4,9 @@
 #include <functional>
 #include <string>
 
-#include "pounding/parallel/executor.hpp"
 #include "pounding/core/run_context.hpp"
+#include "pounding/core/timing.hpp"
+#include "pounding/parallel/executor.hpp"
 #include "pounding/results/results.hpp"
 #include "pounding/study/study.hpp"
 
@@ -24,11 +25,19 @@ struct RunOptions {
   // shows progress and honours a stop by throwing Cancelled (core/progress.hpp); the run then ends with 130 and
   // keeps the checkpoint, so --resume redoes only the analysis.
   std::function<void(results::Results&, const WorkHook& hook)> analyse;
+  // Called on rank 0 after `analyse`, before the results are written: the report `pounding run` prints, rendered
+  // from the complete results (their path set, wall_time_s NaN until known: "wall time nan s" in the text is
+  // replaced by the written value), so its time is in the results' /timing. Adds the seconds of its separation
+  // bootstrap to `bootstrap_s`. A stop (Cancelled) ends the run like a stop in the analysis.
+  std::function<std::string(const results::Results&, const WorkHook& hook, double& bootstrap_s)> report;
+  double mpi_start_s = 0;  // the caller's MPI start-up (timing::Phase::mpi_start), measured before run_study
 };
 
 struct RunOutcome {
   int code = 0;     // 0 done, 3 done with too many excluded analyses, 130 interrupted
   std::string out;  // the results file (written when code is 0 or 3)
+  std::string report;    // RunOptions::report's text (rank 0, code 0 or 3)
+  timing::Times times;   // rank 0: this rank's phases and the maximum over the ranks, wall time to the write's end
 };
 
 // Returns the process exit code on every rank: 0 done, 3 done but too many analyses excluded (the results

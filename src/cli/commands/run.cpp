@@ -86,14 +86,35 @@ class TerminalProgress {
 
 struct RunOpts {
   std::string study, out;
-  bool resume = false, force = false, quiet = false, out_given = false;
+  bool resume = false, force = false, quiet = false, out_given = false, timings = false;
 };
+
+// The run's phases (core/timing.hpp) in one line, and with --timings as a table (rank 0 and the largest over ranks).
+void print_timings(const timing::Times& T, int ranks, bool table) {
+  using timing::Phase;
+  const auto at = [&](Phase p) { return T[p]; };
+  fmt::print(stderr,
+             "timing: wall {:.2f} s from program start to results written and report printed = MPI start {:.2f} + inputs "
+             "{:.2f} + structures {:.2f} + units {:.2f} (compute {:.2f}, largest rank {:.2f}; reduce {:.2f}; checkpoint "
+             "{:.2f}) + analysis {:.2f} + report {:.2f} (bootstrap {:.2f}) + results write {:.2f} s; rank 0 of {}\n",
+             T.wall, at(Phase::mpi_start), at(Phase::inputs), at(Phase::structures), at(Phase::units), at(Phase::compute),
+             T.max[static_cast<std::size_t>(Phase::compute)], at(Phase::reduce), at(Phase::checkpoint),
+             at(Phase::analysis), at(Phase::report), at(Phase::bootstrap), at(Phase::results_write), ranks);
+  if (!table) return;
+  fmt::print(stderr, "\n| phase | rank 0 s | max over ranks s | what it covers |\n|---|---|---|---|\n");
+  for (std::size_t i = 0; i < timing::phase_count; ++i)
+    fmt::print(stderr, "| {} | {:.3f} | {:.3f} | {} |\n", timing::phase_names[i], T.rank0[i], T.max[i],
+               timing::phase_meanings[i]);
+  fmt::print(stderr, "| wall | {:.3f} | | program start to results written and report printed |\n", T.wall);
+}
 
 // One `pounding run` on this rank; returns the exit code (the MPI session has ended when it returns).
 int run_job(const RunOpts& o) {
   int argc = 0;
   char** argv = nullptr;
+  const auto t_mpi = std::chrono::steady_clock::now();
   parallel::Session session(argc, argv);
+  const double mpi_start_s = timing::seconds_since(t_mpi);
   std::signal(SIGINT, on_stop_signal);
   std::signal(SIGTERM, on_stop_signal);
   // Open MPI's mpirun forwards SIGUSR1/SIGUSR2 to every rank; signalled with SIGINT/SIGTERM itself it stops the ranks
@@ -108,6 +129,11 @@ int run_job(const RunOpts& o) {
     ro.force = o.force;
     // a fragility study's /fragility and /hazard (nothing for other studies)
     ro.analyse = [](results::Results& r, const WorkHook& hook) { analyse_fragility(r, &hook); };
+    // the report, rendered before the results are written so that its time is in them (a stop there: exit 130)
+    ro.report = [](const results::Results& r, const WorkHook& hook, double& bootstrap_s) {
+      return report_markdown(r, &hook, &bootstrap_s);
+    };
+    ro.mpi_start_s = mpi_start_s;
     RunContext ctx;
     ctx.cancel = &stop_requested;
     if (session.root()) {
@@ -118,17 +144,12 @@ int run_job(const RunOpts& o) {
         ctx.phase_progress = [bar](const PhaseProgress& p) { (*bar)(p); };
       }
     }
-    const RunOutcome r = run_study(session, o.study, ro, ctx);
+    RunOutcome r = run_study(session, o.study, ro, ctx);
     if (session.root() && (r.code == 0 || r.code == 3)) {
-      // the report's bootstrap shows progress and honours a stop like the phases before it
-      const WorkHook hook{ctx.phase_progress, &stop_requested};
-      try {
-        fmt::print("{}", report_markdown(results::load(r.out), &hook));
-      } catch (const Cancelled& c) {
-        fmt::print(stderr, "\ninterrupted during the report ({}): the results file {} is complete; `pounding report {}` "
-                           "writes the report\n", c.phase(), r.out, r.out);
-        return 130;
-      }
+      fmt::print("{}", r.report);
+      std::fflush(stdout);
+      r.times.wall = timing::seconds_since(timing::program_start());
+      print_timings(r.times, session.size(), o.timings);
     }
     return r.code;
   } catch (const InputError& e) {
@@ -155,6 +176,7 @@ void add_run(CLI::App& app) {
   c->add_flag("--resume", o->resume, "continue a killed, interrupted or failed run from its checkpoint (<out>.ckpt)");
   c->add_flag("--force", o->force, "discard the progress in <out>.ckpt and start afresh");
   c->add_flag("--quiet", o->quiet, "no progress display");
+  c->add_flag("--timings", o->timings, "print the table of phases (rank 0 and the largest over the ranks) after the run");
   c->callback([o, out] {
     // A write beyond the file-size limit (ulimit -f) must be an EFBIG error we report, not SIGXFSZ.
     std::signal(SIGXFSZ, SIG_IGN);

@@ -1,0 +1,67 @@
+#pragma once
+// Where a run's wall time goes (issue 27, item 2). One number per phase, each as rank 0's seconds and the largest
+// over the ranks; `pounding run` stores them in the results' /timing group, prints them in one line at the end
+// and as a table with --timings (README, "What a run prints"; docs/results-format.md, /timing).
+//
+// The clock starts at the process's start (program_start(): main() calls it first), so the wall time covers MPI
+// start-up, reading the study and records, the units, the analysis and the report -- everything the user waits
+// for. Phases are not exclusive: `units` is the work phase's wall time and `compute`, `reduce`, `checkpoint` are
+// the parts of it spent computing units, storing the workers' results (rank 0) and writing the checkpoint (rank 0);
+// `bootstrap` is the part of `report` spent in the separation bootstrap.
+#include <array>
+#include <chrono>
+#include <cstddef>
+#include <string_view>
+
+namespace pounding::timing {
+
+enum class Phase : std::size_t {
+  mpi_start, inputs, structures, units, compute, reduce, checkpoint, analysis, report, bootstrap, results_write
+};
+inline constexpr std::size_t phase_count = 11;
+inline constexpr std::array<std::string_view, phase_count> phase_names{
+    "mpi_start", "inputs", "structures", "units", "compute", "reduce", "checkpoint", "analysis", "report",
+    "bootstrap", "results_write"};
+inline constexpr std::array<std::string_view, phase_count> phase_meanings{
+    "MPI start-up (MPI_Init, ranks and size)",
+    "reading the study, the records read or synthesised (and selected or scaled), the checkpoint opened",
+    "the structure sampler and the unit computer set up (the samples themselves are drawn inside compute)",
+    "the work phase: every unit computed, gathered and checkpointed (wall time)",
+    "computing units on this rank (inside units)",
+    "storing the units' results in the tally (rank 0, inside units)",
+    "appending and flushing the checkpoint (rank 0, inside units)",
+    "the analyses after the units (a fragility study's fit, hazard; rank 0)",
+    "the Markdown report that pounding run prints (rank 0)",
+    "the separation bootstrap inside the report (rank 0)",
+    "writing the results file (rank 0; not in the file's own /timing, which is written by it)"};
+
+struct Times {
+  std::array<double, phase_count> rank0{}, max{};  // s
+  double wall = 0;                                  // s, program start to the last phase measured
+  double& operator[](Phase p) { return rank0[static_cast<std::size_t>(p)]; }
+  double operator[](Phase p) const { return rank0[static_cast<std::size_t>(p)]; }
+};
+
+// The process's start (the first call; main() calls it before anything else).
+inline std::chrono::steady_clock::time_point program_start() {
+  static const std::chrono::steady_clock::time_point t = std::chrono::steady_clock::now();
+  return t;
+}
+inline double seconds_since(std::chrono::steady_clock::time_point t) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
+}
+
+// Adds the seconds of its lifetime to `sink`.
+class Stopwatch {
+ public:
+  explicit Stopwatch(double& sink) : sink_(sink), t0_(std::chrono::steady_clock::now()) {}
+  ~Stopwatch() { sink_ += seconds_since(t0_); }
+  Stopwatch(const Stopwatch&) = delete;
+  Stopwatch& operator=(const Stopwatch&) = delete;
+
+ private:
+  double& sink_;
+  std::chrono::steady_clock::time_point t0_;
+};
+
+}  // namespace pounding::timing
