@@ -81,6 +81,7 @@ class UnitComputer {
     uncoupled_ = s.contact;
     uncoupled_.law = ContactLaw::none;
     if (sampler.model().any_shear()) block_.emplace(sampler.model(), s.contact, s.e);
+    if (block_ && !plan.system.empty()) table_fields(plan);
     if (plan.stripes) stripe_scaled_ = results::field_index(plan.fields, "uncoupled", "scaled");
     if (plan.ida) {
       ida_analyses_ = results::field_index(plan.fields, "ida", "analyses");
@@ -372,7 +373,11 @@ class UnitComputer {
     const std::size_t n = pairs_.size(), G = plan_.gaps;
     const GroundMotion gm{rec.dt, rec.acc, rec.duration() + s_.free_vibration};
     block_->uncoupled(pairs_, uncoupled_, gm, ks, peaks_);
-    for (std::size_t i = 0; i < n; ++i) put_uncoupled(out, i, peaks_.status[i], peaks_.u1[i], peaks_.u2[i], peaks_.closing[i]);
+    const bool table = !block_->layout().empty();
+    for (std::size_t i = 0; i < n; ++i) {
+      put_uncoupled(out, i, peaks_.status[i], peaks_.u1[i], peaks_.u2[i], peaks_.closing[i]);
+      if (table) put_table_uncoupled(out, i);
+    }
     if (!plan_.impacts) return;
     auto status = out.values<std::uint8_t>(field::imp_status);
     auto count = out.values<std::int32_t>(field::imp_count);
@@ -394,12 +399,67 @@ class UnitComputer {
           status[k] = coupled_.status[j], count[k] = coupled_.impact_count[j], force[k] = coupled_.peak_force[j];
           u1[k] = coupled_.u1[j], u2[k] = coupled_.u2[j], first[k] = coupled_.t_first_impact[j];
           hw[k] = coupled_.h_omega_contact[j];
+          if (table) put_table_coupled(out, i, g, j);
           ++j;
         } else {
           status[k] = peaks_.status[i], count[k] = 0, force[k] = 0.0;
           u1[k] = peaks_.u1[i], u2[k] = peaks_.u2[i], first[k] = NAN;
           hw[k] = peaks_.status[i] == 0 && contact::traits(s_.contact.law).has_force ? 0.0 : NAN;  // never touched
+          if (table) put_table_coupled(out, i, g, std::string::npos);
         }
+      }
+    }
+  }
+
+  // Results format 3 (plan.system not empty): the per-floor and per-element rows, laid out as the study's largest
+  // topology (table_topology, the plan's /system).
+  void table_fields(const WorkPlan& plan) {
+    const std::optional<LaneTopology> t = table_topology(sampler_.model(), sampler_.seed());
+    block_->set_table(block_->system(*t));
+    for (std::size_t b = 0; b < 2; ++b) {
+      f_floor_u_[b] = results::field_index(plan.fields, "uncoupled", results::building_name("peak_u_floors{b}", b + 1));
+      f_floor_drift_[b] = results::field_index(plan.fields, "uncoupled", results::building_name("peak_drift{b}", b + 1));
+      f_floor_acc_[b] = results::field_index(plan.fields, "uncoupled", results::building_name("peak_acc_floors{b}", b + 1));
+    }
+    f_e_closing_ = results::field_index(plan.fields, "uncoupled", "peak_closing_elements");
+    if (!plan.impacts) return;
+    f_e_count_ = results::field_index(plan.fields, "impacts", "element_impact_count");
+    f_e_force_ = results::field_index(plan.fields, "impacts", "element_peak_force");
+    f_e_pen_ = results::field_index(plan.fields, "impacts", "element_peak_penetration");
+    f_e_first_ = results::field_index(plan.fields, "impacts", "element_t_first_impact");
+    f_e_hw_ = results::field_index(plan.fields, "impacts", "element_h_omega_contact");
+  }
+
+  // lane i's per-floor rows and per-element closings from the uncoupled run
+  void put_table_uncoupled(UnitResult& out, std::size_t i) {
+    const TableLayout& t = block_->layout();
+    for (std::size_t b = 0; b < 2; ++b)
+      for (auto [field, from] : {std::pair{f_floor_u_[b], &peaks_.floor_u[b]}, {f_floor_drift_[b], &peaks_.floor_drift[b]},
+                                 {f_floor_acc_[b], &peaks_.floor_acc[b]}}) {
+        auto v = out.lane_values<double>(field, i);
+        std::copy_n(from->begin() + static_cast<std::ptrdiff_t>(i * t.floors[b]), t.floors[b], v.begin());
+      }
+    auto c = out.lane_values<double>(f_e_closing_, i);
+    std::copy_n(peaks_.e_closing.begin() + static_cast<std::ptrdiff_t>(i * t.elements), t.elements, c.begin());
+  }
+
+  // lane i's per-element impacts at gap g: from coupled_ lane j, or (j = npos) untouched: no impacts at the elements
+  // its topology has (those with an uncoupled closing)
+  void put_table_coupled(UnitResult& out, std::size_t i, std::size_t g, std::size_t j) {
+    const std::size_t E = block_->layout().elements;
+    auto count = out.lane_values<std::int32_t>(f_e_count_, i);
+    auto force = out.lane_values<double>(f_e_force_, i), pen = out.lane_values<double>(f_e_pen_, i);
+    auto first = out.lane_values<double>(f_e_first_, i), hw = out.lane_values<double>(f_e_hw_, i);
+    const bool has_force = contact::traits(s_.contact.law).has_force;
+    for (std::size_t e = 0; e < E; ++e) {
+      const std::size_t o = g * E + e;
+      if (j != std::string::npos) {
+        const std::size_t x = j * E + e;
+        count[o] = coupled_.e_count[x], force[o] = coupled_.e_force[x], pen[o] = coupled_.e_penetration[x];
+        first[o] = coupled_.e_first[x], hw[o] = coupled_.e_hw[x];
+      } else if (!std::isnan(peaks_.e_closing[i * E + e])) {
+        count[o] = 0, force[o] = 0.0, pen[o] = 0.0, first[o] = NAN;
+        hw[o] = peaks_.status[i] == 0 && has_force ? 0.0 : NAN;
       }
     }
   }
@@ -419,6 +479,8 @@ class UnitComputer {
   BatchResult res_, cres_, bres_, anchor_;
   std::optional<SystemBlock> block_;
   BlockPeaks peaks_, coupled_;
+  std::array<std::size_t, 2> f_floor_u_{}, f_floor_drift_{}, f_floor_acc_{};
+  std::size_t f_e_closing_ = 0, f_e_count_ = 0, f_e_force_ = 0, f_e_pen_ = 0, f_e_first_ = 0, f_e_hw_ = 0;
   std::vector<std::uint8_t> st_;
   std::vector<double> scaled_, mid_, pu1_, pu2_, pc_;
   std::vector<std::size_t> todo_;
@@ -508,6 +570,13 @@ WorkPlan plan_work(const Inputs& in) {
   L.gaps = s.gap_ratios.size();
   L.impacts = s.scene == Scene::impacts;
   L.ida = s.intensity.bisection;
+  // shear buildings: results format 3 with the study's largest topology as /system (format 2 for an SDOF facing a
+  // shear building, and for one storey each: system_table gives the SDOF pair nothing)
+  if (s.structures.any_shear())
+    if (const std::optional<LaneTopology> t = table_topology(s.structures, s.seed)) {
+      SystemBlock block(s.structures, s.contact, s.e);
+      L.system = system_table(block.system(*t), block.groups(*t, s.contact));
+    }
   L.fields = results::unit_schema(L.impacts, L.ida, L.stripes > 0, L.system.extents());
   return L;
 }

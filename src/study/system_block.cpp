@@ -60,11 +60,37 @@ physics::ShearSpec shear_spec(const BuildingModel& b, const SampledStructure& s,
   return spec;
 }
 
-void BlockPeaks::resize(std::size_t n) {
+void BlockPeaks::resize(std::size_t n, const TableLayout& t) {
   status.assign(n, 0);
   u1.assign(n, 0.0), u2.assign(n, 0.0), closing.assign(n, 0.0);
   impact_count.assign(n, 0);
   peak_force.assign(n, 0.0), t_first_impact.assign(n, nan), h_omega_contact.assign(n, nan);
+  for (std::size_t b = 0; b < 2; ++b)
+    for (auto* v : {&floor_u[b], &floor_drift[b], &floor_acc[b]}) v->assign(n * t.floors[b], nan);
+  for (auto* v : {&e_closing, &e_force, &e_penetration, &e_first, &e_hw}) v->assign(n * t.elements, nan);
+  e_count.assign(n * t.elements, -1);
+}
+
+std::optional<LaneTopology> table_topology(const StructureModel& model, std::uint64_t seed) {
+  if (!model.building(0).shear() || !model.building(1).shear()) return std::nullopt;
+  const StructureSampler sampler(model, seed);
+  LaneTopology most;
+  bool first = true;
+  for (std::int64_t p = 0; p < model.period_pair_count(); ++p)
+    for (std::int64_t k = 0; k < model.samples_per_pair; ++k) {
+      const LaneTopology t = lane_topology(model, sampler.sample(model.pair_id(p, k)));
+      if (first) most = t, first = false;
+      for (int b = 0; b < 2; ++b) most.storeys[b] = std::max(most.storeys[b], t.storeys[b]);
+    }
+  return most;
+}
+
+void SystemBlock::set_table(const model::System& table) {
+  layout_ = TableLayout{};
+  table_elements_.clear();
+  for (std::size_t b = 0; b < 2; ++b) layout_.floors[b] = table.bodies()[b].dofs.size();
+  layout_.elements = table.contacts().size();
+  for (std::size_t e = 0; e < table.contacts().size(); ++e) table_elements_[table.contacts()[e].label] = e;
 }
 
 const model::System& SystemBlock::system(const LaneTopology& t) {
@@ -133,7 +159,7 @@ void SystemBlock::run(std::span<const SampledPair> pairs, std::span<const std::s
                       const ContactModel& cm, const ContactNumbers& cn, const GroundMotion& gm,
                       const KernelSettings& ks, BlockPeaks& out) {
   const std::size_t n = lanes.size();
-  out.resize(n);
+  out.resize(n, layout_);
   keys_.resize(n);
   for (std::size_t j = 0; j < n; ++j) keys_[j] = lane_topology(model_, pairs[lanes[j]]);
   order_.resize(n);
@@ -152,6 +178,11 @@ void SystemBlock::run(std::span<const SampledPair> pairs, std::span<const std::s
     }
     physics::run_system(batch_, groups, gm, ks, res_);
     const std::size_t w = end - at;
+    // this topology's elements in the table's order (by label: level k is level k, a moat wall its wall)
+    std::vector<std::size_t> to_table(sys.contacts().size(), layout_.elements);
+    if (!layout_.empty())
+      for (std::size_t e = 0; e < sys.contacts().size(); ++e)
+        if (auto it = table_elements_.find(sys.contacts()[e].label); it != table_elements_.end()) to_table[e] = it->second;
     for (std::size_t j = at; j < end; ++j) {
       const std::size_t l = j - at, k = order_[j];
       out.status[k] = res_.status[l];
@@ -176,6 +207,24 @@ void SystemBlock::run(std::span<const SampledPair> pairs, std::span<const std::s
         any = true;
       }
       if (!any) force = 0.0;
+      if (!layout_.empty()) {
+        for (std::size_t b = 0; b < 2; ++b) {
+          const auto& dofs = sys.bodies()[b].dofs;
+          for (std::size_t f = 0; f < dofs.size() && f < layout_.floors[b]; ++f) {
+            const std::size_t x = physics::SystemBatch::at(dofs[f], l, w), o = k * layout_.floors[b] + f;
+            out.floor_u[b][o] = res_.peak_u[x];
+            out.floor_drift[b][o] = res_.peak_drift[physics::SystemBatch::at(sys.spring_below(dofs[f]), l, w)];
+            out.floor_acc[b][o] = res_.peak_acc[x] / physics::standard_gravity;
+          }
+        }
+        for (std::size_t e = 0; e < sys.contacts().size(); ++e) {
+          if (to_table[e] >= layout_.elements) continue;
+          const std::size_t x = physics::SystemBatch::at(static_cast<int>(e), l, w), o = k * layout_.elements + to_table[e];
+          out.e_closing[o] = res_.peak_closing[x], out.e_count[o] = res_.impact_count[x];
+          out.e_force[o] = res_.peak_force[x], out.e_penetration[o] = res_.peak_penetration[x];
+          out.e_first[o] = res_.t_first_impact[x], out.e_hw[o] = res_.h_omega_contact[x];
+        }
+      }
       out.closing[k] = D, out.impact_count[k] = count, out.peak_force[k] = force;
       out.t_first_impact[k] = first, out.h_omega_contact[k] = hw;
     }

@@ -42,6 +42,18 @@ assert ok.all(), "failed analyses"
 assert np.array_equal(touch, cnt > 0), (touch.sum(), (cnt > 0).sum())
 assert 0 < touch.sum() < touch.size, touch.sum()
 print(f"{touch.sum()} of {touch.size} analyses touch, coupled and uncoupled agree")
+# results format 3: the per-floor and per-element rows agree with the [R, M] totals (NaN above a shorter roof)
+assert f.attrs["format_version"] == 3
+u = f["uncoupled"]
+for b in (1, 2):
+    fl = u[f"peak_u_floors{b}"][()]
+    assert fl.shape == (R, M, 16) and np.array_equal(np.nanmax(fl, axis=2), u[f"peak_u{b}"][()])
+    assert np.isnan(fl).any() and not np.isnan(fl[:, :, :9]).any()  # 9 to 16 storeys
+assert np.array_equal(np.nanmax(u["peak_closing_elements"][()], axis=2), D)
+ec = f["impacts/element_impact_count"][()].reshape(R, M, G, -1)
+assert np.array_equal(np.where(ec < 0, 0, ec).sum(axis=3), cnt)
+ef = f["impacts/element_peak_force"][()].reshape(R, M, G, -1)
+assert np.array_equal(np.nanmax(ef, axis=3), f["impacts/peak_force"][()].reshape(R, M, G))
 # the storeys vary per sample (9 to 16 at 3.2 m): the heights span more than one storey count
 h = np.concatenate([f["models/h1"][()], f["models/h2"][()]])
 assert len(set(np.maximum(1, np.round(h / 3.2)).astype(int))) >= 3

@@ -21,6 +21,7 @@
 #include <cstdint>
 #include <map>
 #include <memory>
+#include <optional>
 #include <span>
 #include <vector>
 
@@ -49,13 +50,31 @@ LaneTopology lane_topology(const StructureModel& model, const SampledPair& p);
 // storey (drift/ductility as a drift ratio; Cy as the base shear), alpha, Rayleigh zeta on modes 1 and 2.
 physics::ShearSpec shear_spec(const BuildingModel& b, const SampledStructure& s, int storeys);
 
+// The results' largest topology (results format 3, /system): per building its most storeys over every sample of the
+// study (a scan of the sampled heights). nullopt when a building is an SDOF facing a shear one (its one contact
+// changes level from sample to sample: the study writes format 2, the [R, M] totals only).
+std::optional<LaneTopology> table_topology(const StructureModel& model, std::uint64_t seed);
+
+// Where a lane's values go in the results' per-floor / per-element rows (the table topology's floors and elements).
+struct TableLayout {
+  std::array<std::size_t, 2> floors{0, 0};  // floors (DOFs) of each building, an isolated base first
+  std::size_t elements = 0;
+  bool empty() const { return elements == 0 && floors[0] == 0; }
+};
+
 // What one run of a block gives per lane (index = the lane's position in the block).
 struct BlockPeaks {
   std::vector<std::uint8_t> status;
   std::vector<double> u1, u2, closing;  // closing: D (uncoupled runs)
   std::vector<std::int32_t> impact_count;
   std::vector<double> peak_force, t_first_impact, h_omega_contact;
-  void resize(std::size_t n);
+  // With a TableLayout: [lane][floor] per building (peak |u|, storey drift, peak |a + ag| in g) and [lane][element]
+  // (peak closing; impact count, peak force, peak penetration, first impact, h omega_c), NaN / -1 where the lane's
+  // topology has no such floor or element.
+  std::array<std::vector<double>, 2> floor_u, floor_drift, floor_acc;
+  std::vector<double> e_closing, e_force, e_penetration, e_first, e_hw;
+  std::vector<std::int32_t> e_count;
+  void resize(std::size_t n, const TableLayout& t = {});
 };
 
 // How the contacts of a coupled run are set.
@@ -82,6 +101,9 @@ class SystemBlock {
 
   // The System of a topology (built once, kept for the block's lifetime).
   const model::System& system(const LaneTopology& t);
+  // Fill BlockPeaks' per-floor / per-element rows laid out as `table` (the System of table_topology()).
+  void set_table(const model::System& table);
+  const TableLayout& layout() const { return layout_; }
   // Lane `lane` of b (sized for system(t)) from pair p: both buildings' numbers (shear_spec; an isolated one through
   // physics::set_isolated_building, its base mass one floor's unless given), every pounding element's gap, e and kc
   // (cn.stiffness, else the model's kh, else equivalent spheres of the two floors' masses; two one-storey buildings:
@@ -89,9 +111,10 @@ class SystemBlock {
   void set_lane(physics::SystemBatch& b, std::size_t lane, const SampledPair& p, const LaneTopology& t, double gap,
                 const ContactNumbers& cn) const;
 
- private:
   // The contact models of a run: group 0 the pounding (`pounding`), then one per moat, building order.
   std::vector<ContactModel> groups(const LaneTopology& t, const ContactModel& pounding) const;
+
+ private:
   // lanes[j] of `pairs` bucketed by topology, one run_system per bucket, out[j] lane lanes[j]'s
   void run(std::span<const SampledPair> pairs, std::span<const std::size_t> lanes, double ratio, const ContactModel& cm,
            const ContactNumbers& cn, const GroundMotion& gm, const KernelSettings& ks, BlockPeaks& out);
@@ -104,6 +127,8 @@ class SystemBlock {
   std::vector<std::size_t> order_, bucket_, all_;
   physics::SystemBatch batch_;
   physics::SystemResult res_;
+  TableLayout layout_;
+  std::map<std::string, std::size_t> table_elements_;  // element label -> index in the table topology
 };
 
 // Before any work: every sample's shear buildings against the integration step of every record: central
