@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# `pounding modes --json` on non-uniform shear buildings against tools/reference_mdof.py (scipy.linalg.eigh(K, M),
+# `pounding modes --json` on non-uniform shear buildings against tools/reference_systems.py (scipy.linalg.eigh(K, M),
 # none of our code; issue 25 §5, docs/architecture.md §2.8 "non-uniform modes"). 40 random sticks (numpy seed 25):
 # 1 to 40 storeys, floor masses 1e4 to 1e6 kg and storey stiffnesses 1e7 to 1e9 N/m (log-uniform, each floor
 # and storey drawn alone, so neighbours differ by up to 100x), zeta 0 to 0.2, a random Rayleigh pair. Compared at 1e-9:
@@ -16,7 +16,7 @@ py=${POUNDING_PYTHON:-/usr/bin/python3}
 "$py" -c 'import numpy, scipy' 2>/dev/null ||
   skip_or_fail "needs $py with numpy and scipy (Debian: python3-numpy python3-scipy; tools/setup.sh installs them)"
 tmp=$(mktemp -d); trap 'rm -rf "$tmp"' EXIT
-"$py" "$src/tools/reference_mdof.py" selftest > "$tmp/selftest.txt" || { cat "$tmp/selftest.txt"; exit 1; }
+"$py" "$src/tools/reference_systems.py" selftest > "$tmp/selftest.txt" || { cat "$tmp/selftest.txt"; exit 1; }
 
 "$py" - "$tmp/cases.txt" "$tmp/cases.json" <<'PY'
 import json, sys, numpy as np
@@ -34,7 +34,7 @@ with open(sys.argv[1], "w") as f:
                           f"{pair[0]},{pair[1]}"]) + "\n")
 json.dump(cases, open(sys.argv[2], "w"))
 PY
-"$py" "$src/tools/reference_mdof.py" modes --input "$tmp/cases.json" > "$tmp/scipy.json"
+"$py" "$src/tools/reference_systems.py" modes --input "$tmp/cases.json" > "$tmp/scipy.json"
 case=0
 while read -r masses stiffnesses zeta pair; do
   case=$((case + 1))

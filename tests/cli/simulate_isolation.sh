@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # `pounding simulate` with base isolation and moat walls (issue 25 §2; docs/architecture.md §2.2.3, §2.2.4):
 #  - a linear isolated 3-storey building (k_eff, zeta_eff 0.1, superstructure Rayleigh 5 % on its FIXED-BASE modes
-#    1 and 2) beside a fixed one far away: the base (bearing) and floor peaks against tools/reference_isolation.py
+#    1 and 2) beside a fixed one far away: the base (bearing) and floor peaks against tools/reference_systems.py isolation
 #    (lsim of Kelly's relative-coordinate assembly; the Rayleigh coefficients from scipy.linalg.eigh here) within
 #    1e-3 at h = dt/10;
 #  - a lead-rubber isolated 3-storey building with a moat 0.1 m each side beside a fixed 5-storey one 0.05 m away:
@@ -26,7 +26,7 @@ sim() { "$bin" simulate --record "$tmp/rec.txt" --dt 0.001 "$@"; }
 # 1. linear bearing against lsim
 sim --storeys1 3 --storeys2 3 --storey-mass1 3e5 --storey-stiffness1 9.81e7 --isolation1 linear --base-mass1 3e5 \
     --bearing-keff1 1.2e7 --bearing-zeta1 0.1 --gap 5 --elastic --json > "$tmp/lin.json"
-"$py" - "$tmp/lin.json" "$tmp/rec.txt" "$src/tools/reference_isolation.py" "$tmp" <<'PY'
+"$py" - "$tmp/lin.json" "$tmp/rec.txt" "$src/tools/reference_systems.py" "$tmp" <<'PY'
 import json, subprocess, sys
 import numpy as np
 from scipy import linalg
@@ -41,7 +41,7 @@ cb = 2 * zb * np.sqrt(keff * (mb + sum(m)))
 inp = {"m_base": mb, "k_b": keff, "c_b": cb, "m": m, "k": k, "a0": a0, "a1": a1, "dt": 0.01,
        "ag": list(rec[:, 1] * 9.80665), "substeps": 10}
 json.dump(inp, open(sys.argv[4] + "/in.json", "w"))
-subprocess.run([sys.executable, sys.argv[3], sys.argv[4] + "/in.json", sys.argv[4] + "/out.txt"], check=True)
+subprocess.run([sys.executable, sys.argv[3], "isolation", sys.argv[4] + "/in.json", sys.argv[4] + "/out.txt"], check=True)
 ref = {}
 for line in open(sys.argv[4] + "/out.txt"):
     key, i, v = line.split()

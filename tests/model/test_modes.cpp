@@ -7,7 +7,7 @@
 //   - the impact-stiffness paper's frames (seeds-models.md §2.1, V13/V14; Table 1 of
 //     ../shared/papers/impact-stiffness-linear-viscoelastic-experiment.txt);
 //   - identities any correct solver satisfies (K φ = ω² M φ, M-orthonormality, Σ M* = Σ m).
-// The non-uniform sticks against scipy.linalg.eigh are the ctest cli.modes_scipy (tools/reference_mdof.py).
+// The non-uniform sticks against scipy.linalg.eigh are the ctest cli.modes_scipy (tools/reference_systems.py).
 #include <gtest/gtest.h>
 
 #include <cmath>

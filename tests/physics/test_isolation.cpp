@@ -1,5 +1,5 @@
 // Base isolation (issue 25 §2; docs/architecture.md §2.2.3 "Isolated stick", §2.2.4 "Walls"): the isolated stick's
-// topology, its modes and linear response against an independent SciPy assembly (tools/reference_isolation.py:
+// topology, its modes and linear response against an independent SciPy assembly (tools/reference_systems.py isolation:
 // Kelly's relative-coordinate formulation, none of our code), the lead-rubber preset's loop against the closed-form
 // bilinear cycle (SB §2, T2.1), the superstructure damping leaving the rigid-body mode undamped, a moat impact
 // against Hertz's closed form, and the energy balance of an isolated-fixed pair with a moat.
@@ -42,7 +42,7 @@ std::map<std::string, std::map<int, double>> reference(const std::string& json) 
   testdata::TempDir tmp("isolation-scipy");
   const std::string in = tmp.file("in.json"), out = tmp.file("out.txt");
   std::ofstream(in) << json;
-  const std::string cmd = python() + " " + testdata::source_dir() + "/tools/reference_isolation.py " + in + " " + out;
+  const std::string cmd = python() + " " + testdata::source_dir() + "/tools/reference_systems.py isolation " + in + " " + out;
   EXPECT_EQ(std::system(cmd.c_str()), 0) << cmd;
   std::map<std::string, std::map<int, double>> R;
   std::ifstream f(out);

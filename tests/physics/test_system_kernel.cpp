@@ -1,6 +1,6 @@
 // The system stepper (physics/steppers/system_central_difference.hpp, dynamic layout) against the pair kernel it
 // generalises, and its own invariants: lanes independent of their neighbours and of the tile width, stability.
-// The references for multi-storey systems are outside our code (tools/reference_system.py, test_system_scipy.cpp).
+// The references for multi-storey systems are outside our code (tools/reference_systems.py system, test_system_scipy.cpp).
 #include <gtest/gtest.h>
 
 #include <algorithm>

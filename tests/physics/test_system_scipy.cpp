@@ -1,4 +1,4 @@
-// The system stepper against an independent SciPy solution (tools/reference_system.py, none of our code): linear
+// The system stepper against an independent SciPy solution (tools/reference_systems.py system, none of our code): linear
 // shear buildings under a real record (scipy.signal.lsim) and a 3- vs 5-storey pair pounding with Hertzdamp at its
 // three common levels (solve_ivp with event-located contact onsets). Needs /usr/bin/python3 (or $POUNDING_PYTHON)
 // with numpy and scipy and the real records: skipped without them, a failure under CI=true.
@@ -54,7 +54,7 @@ Reference run_reference(const std::string& json) {
   testdata::TempDir tmp("system-scipy");
   const std::string in = tmp.file("in.json"), out = tmp.file("out.txt");
   std::ofstream(in) << json;
-  const std::string cmd = python() + " " + testdata::source_dir() + "/tools/reference_system.py " + in + " " + out;
+  const std::string cmd = python() + " " + testdata::source_dir() + "/tools/reference_systems.py system " + in + " " + out;
   EXPECT_EQ(std::system(cmd.c_str()), 0) << cmd;
   Reference R;
   std::ifstream f(out);

@@ -1,0 +1,646 @@
+#!/usr/bin/env python3
+"""Independent SciPy references for systems of bodies (issue 25; docs/architecture.md §2.8): none of the engine's code.
+One module for what were tools/reference_mdof.py, reference_system.py and reference_isolation.py (their linear
+parts shared: stick_stiffness, state_space), plus the smooth isolators. Subcommands:
+
+  modes, response, selftest   shear buildings: modes, Rayleigh, linear response (below, "mdof")
+  system IN OUT               systems of shear buildings, linear and pounding (below, "system")
+  isolation IN OUT            a linear base-isolated building, Kelly's assembly (below, "isolation")
+  smooth IN OUT               a building on a friction-pendulum or Bouc-Wen isolator (below, "smooth")
+
+---- mdof ----
+Independent reference for shear buildings (issue 25 §5; docs/architecture.md §2.8): modes, Rayleigh ratios and
+the linear response to a ground acceleration, with NumPy/SciPy and none of the engine's code.
+
+Floors bottom first; floor i has mass m_i (kg), storey i (between floor i and the one below) stiffness k_i (N/m);
+M = diag(m), K_ii = k_i + k_{i+1}, K_{i,i+1} = -k_{i+1} (../shared/research/systems-and-bridges.md §1).
+
+    tools/reference_systems.py modes --masses 2e5,2e5,1.5e5 --stiffnesses 3e8,2.5e8,2e8 [--zeta 0.05] [--rayleigh-modes 1,2]
+    tools/reference_systems.py modes --input building.json
+        (building.json: {"masses": [...], "stiffnesses": [...], "zeta": 0.05, "rayleigh_modes": [1, 2]}, or a
+        list of such objects, answered by a list.) Modes by scipy.linalg.eigh(K, M); Gamma_j = L_j/M_j of the roof-normalised shape, M*_j = L_j^2/M_j,
+        M*_j / sum m; Rayleigh a0, a1 on the two modes (Chopra: a0 = 2 wi wj (zi wj - zj wi)/(wj^2 - wi^2),
+        a1 = 2 (zj wj - zi wi)/(wj^2 - wi^2)) and each mode's zeta_n = a0/(2 w_n) + a1 w_n/2; one storey:
+        zeta itself (c = 2 zeta sqrt(k m)). Prints one JSON object with the keys of `pounding modes --json`:
+        storeys, masses, stiffnesses, total_mass, damping {kind, modes, zeta, a0, a1}, modes [{mode, period,
+        frequency, omega, gamma, effective_mass, effective_mass_ratio, cumulative_ratio, zeta, shape (roof = 1, or
+        largest |value| = 1 for a mode confined below the roof: roof value < 1e-6 of its largest)}].
+
+    tools/reference_systems.py response --input building.json [--method lsim|modal|both] [--substeps N]
+                                     [--series out.csv]
+        Linear response to the ground acceleration, M u'' + C u' + K u = -M 1 ag (u relative to the ground),
+        from rest. building.json: {"masses": [...], "stiffnesses": [...],
+          "damping": {"rayleigh": {"modes": [1, 2], "zeta": 0.05}} | {"modal": {"zeta": [z1, z2, ...]}}
+                     (modal: per mode from mode 1, the last value repeating; default Rayleigh 1, 2 with 0.05),
+          and the motion: "dt" (s) with "ag" (m/s^2), or "record": a PEER AT2 file (g), with optional
+          "scale" (a factor on ag) and "duration" (s; zeros after the record, default the record's length)}.
+        The ground acceleration is linear between samples. lsim: scipy.signal.lsim on the state-space model
+        [u, v] (first-order hold: exact for a piecewise-linear input); modal: each mode's SDOF
+        q'' + 2 zeta_j w_j q' + w_j^2 q = -Gamma_j ag by lsim, u = sum phi_j q_j (exact for classical damping,
+        which Rayleigh and modal damping are). --substeps N samples the output N times per record step
+        (the input stays the same piecewise-linear signal), so peaks are the continuous ones within ~(pi/N/20)^2.
+        Prints JSON: {method: {peak_u: [per floor, m], peak_drift: [per storey, m], peak_abs_acc: [per floor,
+        m/s^2], peak_base_shear (N), time_of_peak_roof (s)}} and, with both, "max_rel_difference".
+        --series writes t, ag, u_1..u_n, a_abs_1..a_abs_n of the first method as CSV.
+
+    tools/reference_systems.py selftest
+        The reference against closed forms: eigh against the uniform stick's omega_j = 2 sqrt(k/m)
+        sin((2j-1) pi / (2(2n+1))); a damped SDOF under a step in ag against its closed-form response, by lsim
+        and modal; lsim against modal on a 3-storey building under noise. Exit 1 on a failure.
+
+---- system ----
+Independent SciPy reference for systems of shear buildings (the system stepper's checks,
+tests/physics/test_system_scipy.cpp). None of the engine's code: the matrices are assembled here from the storey
+masses, stiffnesses and Rayleigh coefficients, with the DOFs numbered body by body (the engine numbers them level
+by level), and results are keyed by (body, floor).
+
+  linear:    M u'' + C u' + K u = -M 1 ag(t), ag linear between record samples (zero after the record), solved by
+             scipy.signal.lsim on the state-space model (interp=True: exact for piecewise-linear input) on the
+             finest grid of the engine, then sampled on each coarser grid.
+  nonlinear: the same buildings pounding at floor-to-floor elements with Hertzdamp,
+             F = kc delta^n max(1 + xibar ddelta / v0, 0) for delta > 0 (muthukumar eq. 10), v0 = max(approach
+             speed, v0_min) latched at the exact contact onset; solve_ivp (DOP853, rtol 1e-11) record interval by
+             record interval (ag is smooth inside one), with terminal events at every element's onset and
+             separation, restarting after each with the new latch (the clamp's kink at the tensile instant is
+             left to the error control: the force stays continuous there).
+
+Usage: tools/reference_systems.py system INPUT.json OUTPUT.txt
+INPUT: {"mode": "linear"|"nonlinear", "dt": s, "ag": [m/s^2], "duration": s, "substeps": [ints],
+        "bodies": [{"m": [kg], "k": [N/m], "a0": 1/s, "a1": s}],
+        "contacts": [{"left": [body, floor], "right": [body, floor], "gap": m, "kc": N/m^n, "n": 1.5, "e": e,
+                      "v0_min": m/s}]}   (floors 1-based, xibar = 3 (1 - e^2) / 4, Lankarani-Nikravesh)
+OUTPUT lines: "peak_u S body floor value", "final_u S body floor value" for every grid S (substeps per record
+step); nonlinear also "impacts element count" (continuous onsets) and "peak_force S element value" (sampled on
+grid S).
+
+---- isolation ----
+Independent SciPy reference for a linear base-isolated shear building (tests/physics/test_isolation.cpp).
+None of the engine's code: the superstructure's fixed-base matrices Ms, Ks, Cs = a0 Ms + a1 Ks act on the floors'
+displacements RELATIVE TO THE BASE, x = u_s - 1 u_b (Kelly's formulation; Naeim & Kelly 1999 ch. 2), so in the
+engine's coordinates u = [u_b, u_1..u_n] (relative to the ground) K = T' Ks T + k_b e0 e0', C = T' Cs T + c_b e0 e0',
+M = diag(m_b, Ms) with T = [-1 | I]. Then
+  modes:    scipy.linalg.eigh(K, M) -> "omega j value" (rad/s), j from 1
+  response: M u'' + C u' + K u = -M 1 ag(t), ag linear between record samples, scipy.signal.lsim (interp=True) on
+            the grid dt/substeps -> "peak_u dof value", "final_u dof value" (dof 0 = the base).
+Usage: tools/reference_systems.py isolation INPUT.json OUTPUT.txt
+INPUT: {"m_base": kg, "k_b": N/m, "c_b": N s/m, "m": [kg], "k": [N/m], "a0": 1/s, "a1": s,
+        "dt": s, "ag": [m/s^2], "substeps": int}   (ag empty: modes only)
+
+---- smooth ----
+A base-isolated shear building (Kelly's assembly of "isolation", the bearing's viscous c_b = 0) on a smooth
+hysteretic isolator at the base DOF: F_b = k u_b + Q(v_b) z, Q(v) = Q_fast - (Q_fast - Q_slow) exp(-rate |v|),
+u_y z' = (A - |z|^eta (gamma + beta sgn(z v_b))) v_b (Wen 1976, beta on the |v| term) -- the friction pendulum is
+k = W/R, Q = mu W, A = 1, beta = gamma = 0.5, eta = 2; Bouc-Wen k = alpha k0, Q = (1 - alpha) k0 u_y. The state
+[u, v, z, E] (E' = Q z v_b, the hysteretic part's work) by solve_ivp (DOP853, rtol 1e-10, atol 1e-13) record
+interval by record interval (ag linear inside one), sampled on each grid dt/S.
+Usage: tools/reference_systems.py smooth INPUT.json OUTPUT.txt
+INPUT: {"m_base", "m": [kg], "k": [N/m], "a0", "a1", "bearing": {"k", "q_slow", "q_fast", "rate", "uy", "A", "beta",
+        "gamma", "eta"}, "dt", "ag": [m/s^2], "duration": s, "substeps": [ints]}
+OUTPUT lines: "peak_u S dof value", "final_u S dof value" (dof 0 the base), "peak_bearing_force S value",
+"e_hysteretic value" (E at the end minus the recoverable Q z^2 u_y / (2 A), J), "final_z value".
+"""
+import argparse
+import json
+import math
+import re
+import sys
+
+import numpy as np
+from scipy import integrate, linalg, signal
+
+G = 9.80665
+
+
+def stick_stiffness(k):
+    """K of one shear stick on the ground: storey i joins floor i-1 (the ground for i = 0) and floor i."""
+    k = np.asarray(k, float)
+    n = len(k)
+    K = np.zeros((n, n))
+    for i in range(n):
+        K[i, i] += k[i]
+        if i > 0:
+            K[i - 1, i - 1] += k[i]
+            K[i - 1, i] -= k[i]
+            K[i, i - 1] -= k[i]
+    return K
+
+
+def state_space(M, C, K):
+    """x = [u, v], x' = A x + B ag for M u'' + C u' + K u = -M 1 ag."""
+    n = M.shape[0]
+    Mi = np.linalg.inv(M)
+    A = np.block([[np.zeros((n, n)), np.eye(n)], [-Mi @ K, -Mi @ C]])
+    B = np.concatenate([np.zeros(n), -np.ones(n)]).reshape(-1, 1)
+    return A, B, Mi
+
+
+def lsim_displacements(M, C, K, t, ag):
+    """u(t) (len(t) x n) from rest, ag piecewise linear (lsim interp=True: first-order hold, exact for it)."""
+    n = M.shape[0]
+    A, B, _ = state_space(M, C, K)
+    Cout = np.hstack([np.eye(n), np.zeros((n, n))])
+    _, y, _ = signal.lsim((A, B, Cout, np.zeros((n, 1))), ag, t, interp=True)
+    return y.reshape(len(t), n)
+
+def matrices(m, k):
+    m = np.asarray(m, float)
+    k = np.asarray(k, float)
+    n = len(m)
+    if len(k) != n or n == 0:
+        sys.exit(f"reference_systems: {n} masses but {len(k)} stiffnesses")
+    return np.diag(m), stick_stiffness(k)
+
+
+def modes(m, k, with_roof=False):
+    """omega (ascending), Phi (columns, roof = 1, or largest |value| = 1 for a mode whose roof value is below 1e-6
+    of its largest, as `pounding modes` does), Gamma of those shapes, M*, M*/sum m."""
+    M, K = matrices(m, k)
+    w2, phi = linalg.eigh(K, M)
+    peak = np.max(np.abs(phi), axis=0)
+    roof = np.abs(phi[-1, :]) >= 1e-6 * peak  # else a mode confined below the roof: scaled to its largest value
+    largest = phi[np.argmax(np.abs(phi), axis=0), np.arange(phi.shape[1])]
+    phi = phi / np.where(roof, phi[-1, :], largest)
+    ones = np.ones(len(m))
+    L = phi.T @ M @ ones
+    Mj = np.einsum("ij,ik,kj->j", phi, M, phi)
+    gamma = L / Mj
+    meff = L * L / Mj
+    out = (np.sqrt(w2), phi, gamma, meff, meff / np.sum(m))
+    return out + (roof,) if with_roof else out
+
+
+def rayleigh(wi, zi, wj, zj):
+    den = wj * wj - wi * wi
+    return 2 * wi * wj * (zi * wj - zj * wi) / den, 2 * (zj * wj - zi * wi) / den
+
+
+def mode_ratios(m, omega, zeta, pair):
+    if len(m) == 1:
+        return {"kind": "sdof", "zeta": zeta, "a0": 2 * zeta * omega[0], "a1": 0.0}, [zeta]
+    i, j = pair
+    a0, a1 = rayleigh(omega[i - 1], zeta, omega[j - 1], zeta)
+    return ({"kind": "rayleigh", "modes": [i, j], "zeta": zeta, "a0": a0, "a1": a1},
+            [a0 / (2 * w) + a1 * w / 2 for w in omega])
+
+
+def modes_json(m, k, zeta=0.05, pair=(1, 2)):
+    omega, phi, gamma, meff, ratio, roof = modes(m, k, with_roof=True)
+    damping, zetas = mode_ratios(m, omega, zeta, pair)
+    out = {"storeys": len(m), "masses": list(map(float, m)), "stiffnesses": list(map(float, k)),
+           "total_mass": float(np.sum(m)), "damping": damping, "modes": []}
+    cum = np.cumsum(ratio)
+    for j in range(len(m)):
+        out["modes"].append({"mode": j + 1, "period": 2 * math.pi / omega[j], "frequency": omega[j] / (2 * math.pi),
+                             "omega": omega[j], "gamma": gamma[j], "effective_mass": meff[j],
+                             "effective_mass_ratio": ratio[j], "cumulative_ratio": cum[j], "zeta": zetas[j],
+                             "shape_normalisation": "roof" if roof[j] else "largest", "shape": list(phi[:, j])})
+    return out
+
+
+def damping_matrix(m, k, spec):
+    """C and the per-mode ratios for {"rayleigh": {...}} or {"modal": {...}}."""
+    M, K = matrices(m, k)
+    omega, phi, *_ = modes(m, k)
+    n = len(m)
+    spec = spec or {"rayleigh": {"modes": [1, 2], "zeta": 0.05}}
+    if "modal" in spec:
+        z = list(spec["modal"]["zeta"])
+        z = np.array([z[min(j, len(z) - 1)] for j in range(n)], float)
+        Mj = np.einsum("ij,ik,kj->j", phi, M, phi)
+        C = M @ phi @ np.diag(2 * z * omega / Mj) @ phi.T @ M
+        return C, z
+    r = spec["rayleigh"]
+    zeta = float(r.get("zeta", 0.05))
+    if n == 1:
+        return np.array([[2 * zeta * math.sqrt(k[0] * m[0])]]), np.array([zeta])
+    i, j = r.get("modes", [1, 2])
+    a0, a1 = rayleigh(omega[i - 1], zeta, omega[j - 1], zeta)
+    return a0 * M + a1 * K, a0 / (2 * omega) + a1 * omega / 2
+
+
+def read_at2(path):
+    lines = open(path, encoding="latin-1").read().splitlines()
+    mt = re.search(r"NPTS\s*=\s*(\d+)\s*,\s*DT\s*=\s*([0-9.Ee+-]+)", lines[3], re.I)
+    if not mt:
+        sys.exit(f"{path}: line 4 has no NPTS= ..., DT= ...")
+    values = np.array([float(x) for line in lines[4:] for x in line.replace(",", " ").split()])
+    return float(mt.group(2)), values[: int(mt.group(1))] * G
+
+
+def motion(spec):
+    if "record" in spec:
+        dt, ag = read_at2(spec["record"])
+    else:
+        dt, ag = float(spec["dt"]), np.asarray(spec["ag"], float)
+    ag = ag * float(spec.get("scale", 1.0))
+    duration = float(spec.get("duration", dt * (len(ag) - 1)))
+    steps = int(round(duration / dt)) + 1
+    if steps > len(ag):
+        ag = np.concatenate([ag, np.zeros(steps - len(ag))])
+    return dt, ag[:steps]
+
+
+def fine_grid(dt, ag, substeps):
+    t = np.arange(len(ag)) * dt
+    tf = np.linspace(0.0, t[-1], (len(ag) - 1) * substeps + 1)
+    return tf, np.interp(tf, t, ag)  # the same piecewise-linear signal
+
+
+def response_lsim(m, k, C, t, ag):
+    M, K = matrices(m, k)
+    n = len(m)
+    A, B, Mi = state_space(M, C, K)
+    Cout = np.eye(2 * n)
+    _, y, _ = signal.lsim((A, B, Cout, np.zeros((2 * n, 1))), ag, t, interp=True)
+    y = y.reshape(len(t), 2 * n)
+    u, v = y[:, :n], y[:, n:]
+    acc_abs = -(Mi @ (K @ u.T + C @ v.T)).T  # u''+ag = -M^-1 (K u + C v)
+    return u, acc_abs
+
+
+def response_modal(m, k, zetas, t, ag):
+    omega, phi, gamma, *_ = modes(m, k)
+    n = len(m)
+    u = np.zeros((len(t), n))
+    acc_abs = np.zeros((len(t), n))
+    for j in range(n):
+        w, z = omega[j], zetas[j]
+        sys_j = (np.array([[0.0, 1.0], [-w * w, -2 * z * w]]), np.array([[0.0], [-gamma[j]]]),
+                 np.eye(2), np.zeros((2, 1)))
+        _, q, _ = signal.lsim(sys_j, ag, t, interp=True)
+        q = q.reshape(len(t), 2)
+        u += np.outer(q[:, 0], phi[:, j])
+        acc_abs += np.outer(-(w * w * q[:, 0] + 2 * z * w * q[:, 1]), phi[:, j])
+    return u, acc_abs
+
+
+def peaks(m, k, t, u, acc_abs):
+    drift = np.diff(np.hstack([np.zeros((len(t), 1)), u]), axis=1)
+    base_shear = k[0] * drift[:, 0]  # the first storey's spring force (damping forces excluded)
+    return {"peak_u": list(np.max(np.abs(u), axis=0)), "peak_drift": list(np.max(np.abs(drift), axis=0)),
+            "peak_abs_acc": list(np.max(np.abs(acc_abs), axis=0)),
+            "peak_base_shear": float(np.max(np.abs(base_shear))),
+            "time_of_peak_roof": float(t[np.argmax(np.abs(u[:, -1]))])}
+
+
+def response(b, method="lsim", substeps=1, series=None):
+    m, k = np.asarray(b["masses"], float), np.asarray(b["stiffnesses"], float)
+    C, zetas = damping_matrix(m, k, b.get("damping"))
+    dt, ag = motion(b)
+    t, agf = fine_grid(dt, ag, substeps)
+    out, first = {}, None
+    for name in (["lsim", "modal"] if method == "both" else [method]):
+        u, acc = response_lsim(m, k, C, t, agf) if name == "lsim" else response_modal(m, k, zetas, t, agf)
+        out[name] = peaks(m, k, t, u, acc)
+        if first is None:
+            first = (u, acc)
+    if method == "both":
+        a, b2 = out["lsim"], out["modal"]
+        out["max_rel_difference"] = max(abs(x - y) / max(abs(x), 1e-300)
+                                        for key in ("peak_u", "peak_drift", "peak_abs_acc")
+                                        for x, y in zip(a[key], b2[key]))
+    if series:
+        u, acc = first
+        with open(series, "w") as f:
+            n = len(m)
+            f.write("t,ag," + ",".join(f"u_{i + 1}" for i in range(n)) + "," +
+                    ",".join(f"a_abs_{i + 1}" for i in range(n)) + "\n")
+            for r in range(len(t)):
+                f.write(",".join(repr(float(x)) for x in [t[r], agf[r], *u[r], *acc[r]]) + "\n")
+    return out
+
+
+def selftest():
+    bad = []
+
+    def check(name, got, want, tol):
+        err = float(np.max(np.abs(np.asarray(got) - np.asarray(want)) / np.maximum(np.abs(np.asarray(want)), 1e-300)))
+        print(f"{name:<52} rel err {err:.2e} (tol {tol:g})")
+        if not err <= tol:
+            bad.append(name)
+
+    for n in (1, 2, 5, 20):
+        m, k = np.full(n, 1e5), np.full(n, 1e8)
+        j = np.arange(1, n + 1)
+        check(f"uniform stick n = {n}: omega", modes(m, k)[0],
+              2 * np.sqrt(1e8 / 1e5) * np.sin((2 * j - 1) * np.pi / (2 * (2 * n + 1))), 1e-10)
+    # SDOF under a step ag = a: u = -(a/w^2) (1 - e^{-z w t} (cos wd t + z/sqrt(1-z^2) sin wd t))
+    m1, k1, z, a = 2e5, 8e7, 0.05, 1.5
+    w = math.sqrt(k1 / m1)
+    wd = w * math.sqrt(1 - z * z)
+    dt = 0.01
+    ag = np.full(801, a)
+    t = np.arange(len(ag)) * dt
+    exact = -(a / w ** 2) * (1 - np.exp(-z * w * t) * (np.cos(wd * t) + z / math.sqrt(1 - z * z) * np.sin(wd * t)))
+    b = {"masses": [m1], "stiffnesses": [k1], "damping": {"rayleigh": {"zeta": z}}, "dt": dt, "ag": list(ag)}
+    C, zetas = damping_matrix(np.array([m1]), np.array([k1]), b["damping"])
+    u_l, _ = response_lsim(np.array([m1]), np.array([k1]), C, t, ag)
+    u_m, _ = response_modal(np.array([m1]), np.array([k1]), zetas, t, ag)
+    check("SDOF step, lsim against the closed form", u_l[1:, 0], exact[1:], 1e-7)
+    check("SDOF step, modal against the closed form", u_m[1:, 0], exact[1:], 1e-7)
+    rng = np.random.default_rng(25)
+    noise = {"masses": [2e5, 2e5, 1.5e5], "stiffnesses": [3e8, 2.5e8, 2e8],
+             "damping": {"rayleigh": {"modes": [1, 3], "zeta": 0.04}}, "dt": 0.01,
+             "ag": list(signal.lfilter([1.0], [1.0, -0.9], rng.standard_normal(1500)))}
+    r = response(noise, "both", 4)
+    check("3 storeys under noise: lsim against modal (peaks)", r["lsim"]["peak_u"] + r["lsim"]["peak_abs_acc"],
+          r["modal"]["peak_u"] + r["modal"]["peak_abs_acc"], 1e-8)
+    print("selftest:", "FAILED " + ", ".join(bad) if bad else "ok")
+    return 1 if bad else 0
+
+
+def numbers(text):
+    return [float(x) for x in text.split(",")]
+
+
+def system_assemble(bodies):
+    dofs = []  # (body, floor)
+    for b, body in enumerate(bodies):
+        for f in range(len(body["m"])):
+            dofs.append((b, f + 1))
+    n = len(dofs)
+    M = np.zeros((n, n))
+    K = np.zeros((n, n))
+    C = np.zeros((n, n))
+    base = 0
+    for body in bodies:
+        m = np.array(body["m"], float)
+        k = np.array(body["k"], float)
+        nb = len(m)
+        Kb = stick_stiffness(k)
+        sl = slice(base, base + nb)
+        M[sl, sl] = np.diag(m)
+        K[sl, sl] = Kb
+        C[sl, sl] = body["a0"] * np.diag(m) + body["a1"] * Kb
+        base += nb
+    return dofs, M, K, C
+
+
+def grid(cfg):
+    dt, smax = cfg["dt"], max(cfg["substeps"])
+    h = dt / smax
+    nsteps = int(round(cfg["duration"] / h))
+    t = np.arange(nsteps + 1) * h
+    ag = np.asarray(cfg["ag"], float)
+    trec = np.arange(len(ag)) * dt
+    agf = np.interp(t, trec, ag, right=0.0)
+    return t, agf, smax
+
+
+def write_peaks(out, cfg, dofs, u, smax):
+    for s in cfg["substeps"]:
+        sub = u[:: smax // s]
+        for i, (b, f) in enumerate(dofs):
+            out.write(f"peak_u {s} {b} {f} {np.max(np.abs(sub[:, i])):.17g}\n")
+            out.write(f"final_u {s} {b} {f} {sub[-1, i]:.17g}\n")
+
+
+def system_linear(cfg, out):
+    dofs, M, K, C = system_assemble(cfg["bodies"])
+    t, agf, smax = grid(cfg)
+    write_peaks(out, cfg, dofs, lsim_displacements(M, C, K, t, agf), smax)
+
+
+class Pounding:
+    def __init__(self, cfg):
+        self.dofs, self.M, self.K, self.C = system_assemble(cfg["bodies"])
+        self.n = len(self.dofs)
+        self.Mi = 1.0 / np.diag(self.M)
+        index = {d: i for i, d in enumerate(self.dofs)}
+        self.el = []
+        for c in cfg["contacts"]:
+            self.el.append(dict(L=index[tuple(c["left"])], R=index[tuple(c["right"])], gap=c["gap"], kc=c["kc"],
+                                n=c["n"], xi=0.75 * (1.0 - c["e"] ** 2), v0_min=c["v0_min"]))
+        self.active = [False] * len(self.el)
+        self.v0 = [1.0] * len(self.el)
+
+    def delta(self, e, y):
+        el = self.el[e]
+        return y[el["L"]] - y[el["R"]] - el["gap"], y[self.n + el["L"]] - y[self.n + el["R"]]
+
+    def force(self, e, y):
+        if not self.active[e]:
+            return 0.0
+        d, dd = self.delta(e, y)
+        el = self.el[e]
+        return el["kc"] * max(d, 0.0) ** el["n"] * max(1.0 + el["xi"] * dd / self.v0[e], 0.0)
+
+    def rhs(self, t, y, a0, a1, t0, t1):
+        u, v = y[: self.n], y[self.n:]
+        ag = a0 + (a1 - a0) * (t - t0) / (t1 - t0)
+        f = -self.C @ v - self.K @ u
+        for e, el in enumerate(self.el):
+            F = self.force(e, y)
+            f[el["L"]] -= F
+            f[el["R"]] += F
+        return np.concatenate([v, f * self.Mi - ag])
+
+    def events(self):
+        evs = []
+        for e in range(len(self.el)):
+            def gap_ev(t, y, *args, e=e):
+                return self.delta(e, y)[0]
+            gap_ev.terminal = True
+            gap_ev.direction = -1.0 if self.active[e] else 1.0
+            evs.append(gap_ev)
+        return evs
+
+
+def system_nonlinear(cfg, out):
+    P = Pounding(cfg)
+    t, agf, smax = grid(cfg)
+    h = t[1] - t[0]
+    dt = cfg["dt"]
+    nrec = int(round(cfg["duration"] / dt))
+    ag = np.asarray(cfg["ag"], float)
+    agr = np.concatenate([ag, np.zeros(max(0, nrec + 2 - len(ag)))])
+    y = np.zeros(2 * P.n)
+    U = np.zeros((len(t), P.n))
+    Fg = np.zeros((len(t), len(P.el)))
+    impacts = [0] * len(P.el)
+    for k in range(nrec):
+        t0, t1 = k * dt, (k + 1) * dt
+        ta = t0
+        while ta < t1 - 1e-15:
+            sol = integrate.solve_ivp(P.rhs, (ta, t1), y, method="DOP853", rtol=1e-11, atol=1e-14,
+                                      events=P.events(), dense_output=True, args=(agr[k], agr[k + 1], t0, t1))
+            tb = sol.t[-1]
+            j0, j1 = int(np.ceil(ta / h - 1e-9)), int(np.floor(tb / h + 1e-9))
+            for j in range(max(j0, 0), min(j1, len(t) - 1) + 1):
+                yj = sol.sol(t[j])
+                U[j] = yj[: P.n]
+                for e in range(len(P.el)):
+                    Fg[j, e] = P.force(e, yj)
+            y = sol.y[:, -1].copy()
+            if sol.status == 1:  # an event: the element whose gap closed or opened flips its state
+                for e in range(len(P.el)):
+                    if len(sol.t_events[e]) == 0:
+                        continue
+                    P.active[e] = not P.active[e]
+                    if P.active[e]:
+                        impacts[e] += 1
+                        P.v0[e] = max(P.delta(e, y)[1], P.el[e]["v0_min"])
+            ta = tb
+    write_peaks(out, cfg, P.dofs, U, smax)
+    for e in range(len(P.el)):
+        out.write(f"impacts {e} {impacts[e]}\n")
+        for s in cfg["substeps"]:
+            out.write(f"peak_force {s} {e} {np.max(Fg[:: smax // s, e]):.17g}\n")
+
+
+def isolation_assemble(d):
+    m = np.array(d["m"], float)
+    k = np.array(d["k"], float)
+    n = len(m)
+    Ks = stick_stiffness(k)  # storey i joins floor i-1 (the base for i = 0) and floor i
+    Ms = np.diag(m)
+    Cs = d["a0"] * Ms + d["a1"] * Ks
+    T = np.hstack([-np.ones((n, 1)), np.eye(n)])
+    e0 = np.zeros((n + 1, n + 1))
+    e0[0, 0] = 1.0
+    K = T.T @ Ks @ T + d["k_b"] * e0
+    C = T.T @ Cs @ T + d["c_b"] * e0
+    M = np.diag(np.concatenate([[d["m_base"]], m]))
+    return M, K, C
+
+
+def isolation_main(path_in, path_out):
+    d = json.load(open(path_in))
+    M, K, C = isolation_assemble(d)
+    out = []
+    w2 = linalg.eigh(K, M, eigvals_only=True)
+    for j, v in enumerate(w2):
+        out.append(f"omega {j + 1} {np.sqrt(v):.17g}")
+    ag = np.array(d.get("ag", []), float)
+    if len(ag):
+        n = M.shape[0]
+        s = int(d["substeps"])
+        h = d["dt"] / s
+        t = np.arange((len(ag) - 1) * s + 1) * h
+        agf = np.interp(t, np.arange(len(ag)) * d["dt"], ag)
+        y = lsim_displacements(M, C, K, t, agf)
+        for i in range(n):
+            out.append(f"peak_u {i} {np.max(np.abs(y[:, i])):.17g}")
+            out.append(f"final_u {i} {y[-1, i]:.17g}")
+    open(path_out, "w").write("\n".join(out) + "\n")
+
+
+
+class Smooth:
+    """The smooth-isolated building of the "smooth" subcommand."""
+
+    def __init__(self, d):
+        self.M, self.K, self.C = isolation_assemble(dict(d, k_b=0.0, c_b=0.0))
+        self.n = self.M.shape[0]
+        self.Mi = 1.0 / np.diag(self.M)
+        b = d["bearing"]
+        self.k, self.qs, self.qf, self.rate = b["k"], b["q_slow"], b["q_fast"], b["rate"]
+        self.uy, self.A, self.beta, self.gamma, self.eta = b["uy"], b["A"], b["beta"], b["gamma"], b["eta"]
+
+    def strength(self, v):
+        return self.qf - (self.qf - self.qs) * math.exp(-self.rate * abs(v))
+
+    def rhs(self, t, y, a0, a1, t0, t1):
+        n = self.n
+        u, v, z = y[:n], y[n:2 * n], y[2 * n]
+        ag = a0 + (a1 - a0) * (t - t0) / (t1 - t0)
+        vb = v[0]
+        q = self.strength(vb)
+        f = -self.C @ v - self.K @ u
+        f[0] -= self.k * u[0] + q * z
+        az = abs(z)
+        sgn = 1.0 if z * vb >= 0 else -1.0
+        zdot = (self.A - az ** self.eta * (self.gamma + self.beta * sgn)) * vb / self.uy
+        return np.concatenate([v, f * self.Mi - ag, [zdot, q * z * vb]])
+
+
+def smooth_main(path_in, path_out):
+    d = json.load(open(path_in))
+    P = Smooth(d)
+    n = P.n
+    dt, smax = d["dt"], max(d["substeps"])
+    h = dt / smax
+    nrec = int(round(d["duration"] / dt))
+    ag = np.asarray(d["ag"], float)
+    agr = np.concatenate([ag, np.zeros(max(0, nrec + 2 - len(ag)))])
+    t = np.arange(nrec * smax + 1) * h
+    U = np.zeros((len(t), n))
+    Fb = np.zeros(len(t))
+    y = np.zeros(2 * n + 2)
+    for k in range(nrec):
+        t0, t1 = k * dt, (k + 1) * dt
+        sol = integrate.solve_ivp(P.rhs, (t0, t1), y, method="DOP853", rtol=1e-10, atol=1e-13, dense_output=True,
+                                  args=(agr[k], agr[k + 1], t0, t1))
+        for j in range(k * smax, (k + 1) * smax + 1):
+            yj = sol.sol(t[j])
+            U[j] = yj[:n]
+            Fb[j] = P.k * yj[0] + P.strength(yj[n]) * yj[2 * n]
+        y = sol.y[:, -1].copy()
+    z, E = y[2 * n], y[2 * n + 1]
+    q_end = P.strength(y[n])
+    with open(path_out, "w") as out:
+        for s in d["substeps"]:
+            sub = U[:: smax // s]
+            for i in range(n):
+                out.write(f"peak_u {s} {i} {np.max(np.abs(sub[:, i])):.17g}\n")
+                out.write(f"final_u {s} {i} {sub[-1, i]:.17g}\n")
+            out.write(f"peak_bearing_force {s} {np.max(np.abs(Fb[:: smax // s])):.17g}\n")
+        out.write(f"e_hysteretic {E - q_end * z * z * P.uy / (2 * P.A):.17g}\n")
+        out.write(f"final_z {z:.17g}\n")
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    sub = ap.add_subparsers(dest="cmd", required=True)
+    pm = sub.add_parser("modes")
+    pm.add_argument("--masses")
+    pm.add_argument("--stiffnesses")
+    pm.add_argument("--zeta", type=float, default=0.05)
+    pm.add_argument("--rayleigh-modes", default="1,2")
+    pm.add_argument("--input", help="a JSON file with masses, stiffnesses (and zeta, rayleigh_modes)")
+    pr = sub.add_parser("response")
+    pr.add_argument("--input", required=True)
+    pr.add_argument("--method", choices=["lsim", "modal", "both"], default="both")
+    pr.add_argument("--substeps", type=int, default=1)
+    pr.add_argument("--series")
+    sub.add_parser("selftest")
+    for name, what in (("system", "systems of shear buildings, linear or pounding"),
+                       ("isolation", "a linear base-isolated building"),
+                       ("smooth", "a building on a friction-pendulum or Bouc-Wen isolator")):
+        p = sub.add_parser(name, help=what)
+        p.add_argument("input")
+        p.add_argument("output")
+    a = ap.parse_args()
+    if a.cmd == "system":
+        cfg = json.load(open(a.input))
+        with open(a.output, "w") as out:
+            (system_linear if cfg["mode"] == "linear" else system_nonlinear)(cfg, out)
+        return 0
+    if a.cmd == "isolation":
+        isolation_main(a.input, a.output)
+        return 0
+    if a.cmd == "smooth":
+        smooth_main(a.input, a.output)
+        return 0
+    if a.cmd == "selftest":
+        return selftest()
+    if a.cmd == "modes":
+        if a.input:
+            b = json.load(sys.stdin if a.input == "-" else open(a.input))
+            one = lambda c: modes_json(np.array(c["masses"], float), np.array(c["stiffnesses"], float),
+                                       c.get("zeta", a.zeta), tuple(c.get("rayleigh_modes", [1, 2])))
+            json.dump([one(c) for c in b] if isinstance(b, list) else one(b), sys.stdout, indent=1, default=float)
+            print()
+            return 0
+        else:
+            m, k = numbers(a.masses), numbers(a.stiffnesses)
+            zeta, pair = a.zeta, tuple(int(x) for x in a.rayleigh_modes.split(","))
+        json.dump(modes_json(np.array(m), np.array(k), zeta, pair), sys.stdout, indent=1, default=float)
+    else:
+        b = json.load(sys.stdin if a.input == "-" else open(a.input))
+        json.dump(response(b, a.method, a.substeps, a.series), sys.stdout, indent=1, default=float)
+    print()
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
