@@ -85,6 +85,8 @@ System shear_buildings(std::span<const StickTopology> sticks, double level_toler
   require(!sticks.empty(), "no buildings");
   require(std::isfinite(level_tolerance) && level_tolerance >= 0.0, "the level tolerance must be finite and >= 0");
   for (const StickTopology& s : sticks) require(s.isolated || !s.moat, "a moat needs an isolated building");
+  for (const StickTopology& s : sticks)
+    require(s.isolator_law == 0 || (s.isolated && s.isolator_law > 0), "an isolator law needs an isolated building");
   const std::size_t nb = sticks.size();
   std::vector<std::vector<double>> z(nb);
   int top = 0;
@@ -116,6 +118,7 @@ System shear_buildings(std::span<const StickTopology> sticks, double level_toler
       s.body = static_cast<int>(b);
       s.storey = k + 1;
       s.role = k < 0 ? SpringRole::isolator : SpringRole::storey;
+      if (k < 0) s.law = sticks[b].isolator_law;
       p.springs.push_back(s);
       body.dofs.push_back(d++);
     }

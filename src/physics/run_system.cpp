@@ -10,6 +10,7 @@
 
 #include "pounding/contact/registry.hpp"
 #include "pounding/contact/resolution.hpp"
+#include "pounding/model/hysteresis/registry.hpp"
 #include "pounding/physics/run_batch.hpp"
 #include "pounding/physics/steppers/system_central_difference.hpp"
 #include "pounding/physics/system_stepper.hpp"
@@ -44,6 +45,8 @@ Layout layout_of(const model::System& S) {
     const bool d = S.bodies()[static_cast<std::size_t>(s.body)].storey_dashpots;
     L.dashpot.push_back(d ? 1 : 0);
     L.any_dashpot = L.any_dashpot || d;
+    L.law.push_back(s.law);
+    L.any_smooth = L.any_smooth || s.law != model::law_bilinear;
   }
   L.above_start.push_back(0);
   for (int j = 0; j < L.ndof; ++j) {
@@ -180,12 +183,24 @@ void fill_structure(const Pool& T, std::size_t i, const LaneView& v) {
   }
   for (int s = 0; s < L.nspring; ++s) {
     const int a = L.si[static_cast<std::size_t>(s)], b = L.sj[static_cast<std::size_t>(s)];
-    const auto p = spring_params(B.spring[SystemBatch::at(s, v.l, B.width)]);
-    T.spring(sys::K, s)[i] = p.k, T.spring(sys::AK, s)[i] = p.ak, T.spring(sys::QY, s)[i] = p.qy;
-    T.spring(sys::KP, s)[i] = p.kp;
-    T.spring(sys::CS, s)[i] = B.c_storey.empty() ? 0.0 : v.at(B.c_storey, s);
+    const SpringSpec& spec = B.spring[SystemBatch::at(s, v.l, B.width)];
     const double d0 = a < 0 ? v.at(B.u0, b) : v.at(B.u0, b) - v.at(B.u0, a);
-    const double f0 = model::BilinearKinematic::initial_force(p, d0);
+    double f0 = 0.0;
+    T.spring(sys::Z, s)[i] = 0.0;
+    if (L.law[static_cast<std::size_t>(s)] == model::law_bilinear) {
+      const auto p = spring_params(spec);
+      T.spring(sys::K, s)[i] = p.k, T.spring(sys::AK, s)[i] = p.ak, T.spring(sys::QY, s)[i] = p.qy;
+      T.spring(sys::KP, s)[i] = p.kp;
+      f0 = model::BilinearKinematic::initial_force(p, d0);
+    } else {  // a smooth spring starts at z = 0: its force at rest in u0 is k d0
+      const model::SmoothParams<double>& p = spec.smooth;
+      T.spring(sys::K, s)[i] = p.k, T.spring(sys::AK, s)[i] = p.q_slow, T.spring(sys::QY, s)[i] = p.q_fast;
+      T.spring(sys::KP, s)[i] = p.rate, T.spring(sys::ZA, s)[i] = p.a_uy, T.spring(sys::ZB, s)[i] = p.b_uy;
+      T.spring(sys::ZG, s)[i] = p.g_uy, T.spring(sys::ZM, s)[i] = p.z_max, T.spring(sys::ZE, s)[i] = p.eta;
+      T.spring(sys::ZS, s)[i] = p.uy_2a;
+      f0 = p.k * d0;
+    }
+    T.spring(sys::CS, s)[i] = B.c_storey.empty() ? 0.0 : v.at(B.c_storey, s);
     T.spring(sys::FS, s)[i] = f0, T.spring(sys::PD, s)[i] = std::abs(d0), T.spring(sys::PF, s)[i] = std::abs(f0);
   }
   for (int f : {sys::BAD, sys::EIN, sys::EVIS, sys::EHYS}) T.lane(f)[i] = 0.0;
@@ -287,9 +302,16 @@ void collect_lane(const Pool& T, std::size_t i, const LaneView& v, const Plan& P
     out.peak_drift[at(s)] = val(T.spring(sys::PD, s)[i]), out.peak_spring_force[at(s)] = val(T.spring(sys::PF, s)[i]);
     const int a = L.si[static_cast<std::size_t>(s)], b = L.sj[static_cast<std::size_t>(s)];
     const double d = a < 0 ? T.dof(sys::U, b)[i] : T.dof(sys::U, b)[i] - T.dof(sys::U, a)[i];
-    const model::BilinearKinematic::Params<double> p{T.spring(sys::K, s)[i], T.spring(sys::AK, s)[i],
-                                                     T.spring(sys::QY, s)[i], T.spring(sys::KP, s)[i]};
-    const double x = model::BilinearKinematic::strain_energy(p, d, T.spring(sys::FS, s)[i]);
+    double x = 0.0;
+    if (L.law[static_cast<std::size_t>(s)] == model::law_bilinear) {
+      const model::BilinearKinematic::Params<double> p{T.spring(sys::K, s)[i], T.spring(sys::AK, s)[i],
+                                                       T.spring(sys::QY, s)[i], T.spring(sys::KP, s)[i]};
+      x = model::BilinearKinematic::strain_energy(p, d, T.spring(sys::FS, s)[i]);
+    } else {
+      model::SmoothParams<double> p{};
+      p.k = T.spring(sys::K, s)[i], p.uy_2a = T.spring(sys::ZS, s)[i];
+      x = model::Smooth::strain_energy(p, d, T.spring(sys::FS, s)[i] - p.k * d, T.spring(sys::Z, s)[i]);
+    }
     es = s == 0 ? x : es + x;
   }
   for (int e = 0; e < L.nelem; ++e) {
@@ -375,9 +397,10 @@ std::vector<Problem> system_stepper_problems(const SystemBatch& B, std::span<con
     out.push_back({fmt::format("the system has {} ground-motion channels; the system stepper runs one", S.channels()),
                    "system channels", "give every support the same ground motion (one channel)"});
   for (std::size_t s = 0; s < S.springs().size(); ++s)
-    if (S.springs()[s].law != 0)
-      out.push_back({fmt::format("spring {} has hysteresis law {}; the system stepper runs law 0 (bilinear) only", s,
-                                 S.springs()[s].law), "system springs", "use the bilinear storey spring"});
+    if (S.springs()[s].law < 0 || S.springs()[s].law >= static_cast<int>(model::Hystereses::size))
+      out.push_back({fmt::format("spring {} has hysteresis law {}; the system stepper runs laws 0 (bilinear), 1 "
+                                 "(Bouc-Wen) and 2 (friction pendulum)", s, S.springs()[s].law),
+                     "system springs", "use a registered hysteresis law (model/hysteresis/registry.hpp)"});
   for (std::size_t g = 0; g < groups.size(); ++g) {
     if (!contact::traits(groups[g].law).impulsive) continue;
     for (const model::ContactElement& e : S.contacts())

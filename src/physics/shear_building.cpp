@@ -1,6 +1,8 @@
 // Per-lane numbers of shear buildings (physics/shear_building.hpp; docs/architecture.md §2.2.3).
 #include "pounding/physics/shear_building.hpp"
 
+#include "pounding/model/hysteresis/registry.hpp"
+
 #include <cmath>
 #include <limits>
 #include <numeric>
@@ -116,13 +118,40 @@ IsolationNumbers isolation_numbers(std::span<const double> h, const ShearSpec& s
     require(std::isfinite(iso.zeta_eff) && iso.zeta_eff >= 0.0 && iso.zeta_eff < 1.0, "zeta_eff must be in [0, 1)");
     out.isolator = {iso.k_eff, std::numeric_limits<double>::infinity(), 0.0};
     out.c_base = 2.0 * iso.zeta_eff * std::sqrt(iso.k_eff * out.m_total);
+  } else if (iso.bearing == Bearing::friction_pendulum) {
+    require(std::isfinite(iso.radius) && iso.radius > 0.0, "the radius must be finite and > 0");
+    require(std::isfinite(iso.mu_slow) && iso.mu_slow > 0.0 && iso.mu_slow < 1.0, "mu_slow must be in (0, 1)");
+    require(std::isfinite(iso.mu_fast) && iso.mu_fast > 0.0 && iso.mu_fast < 1.0, "mu_fast must be in (0, 1)");
+    require(std::isfinite(iso.rate) && iso.rate >= 0.0, "the rate must be finite and >= 0");
+    require(std::isfinite(iso.uy) && iso.uy > 0.0, "u_y must be finite and > 0");
+    out.weight = standard_gravity * out.m_total;
+    out.isolator = smooth_spring(model::FrictionPendulum::params(
+        {out.weight, iso.radius, iso.mu_slow, iso.mu_fast, iso.rate, iso.uy}));
   } else {
     require(std::isfinite(iso.k1) && iso.k1 > 0.0, "k1 must be finite and > 0");
     require(std::isfinite(iso.k2) && iso.k2 >= 0.0 && iso.k2 < iso.k1, "k2 must be in [0, k1)");
     require(std::isfinite(iso.qd) && iso.qd > 0.0, "Qd must be finite and > 0");
-    out.isolator = {iso.k1, iso.qd * iso.k1 / (iso.k1 - iso.k2), iso.k2 / iso.k1};  // SB §2: Fy = Qd/(1 - k2/k1)
+    if (iso.bearing == Bearing::bouc_wen) {
+      require(std::isfinite(iso.bw_a) && iso.bw_a > 0.0, "A must be finite and > 0");
+      require(std::isfinite(iso.bw_beta) && std::isfinite(iso.bw_gamma) && iso.bw_beta + iso.bw_gamma > 0.0,
+              "beta + gamma must be > 0");
+      require(iso.bw_eta >= 1 && iso.bw_eta <= model::smooth_max_eta, "eta must be an integer in [1, 8]");
+      const double alpha = iso.k2 / iso.k1;
+      out.isolator = smooth_spring(model::BoucWen::params(
+          {iso.k1, alpha, iso.qd / (iso.k1 - iso.k2), iso.bw_a, iso.bw_beta, iso.bw_gamma, iso.bw_eta}));
+    } else {
+      out.isolator = {iso.k1, iso.qd * iso.k1 / (iso.k1 - iso.k2), iso.k2 / iso.k1};  // SB §2: Fy = Qd/(1 - k2/k1)
+    }
   }
   return out;
+}
+
+int isolator_law(Bearing bearing) {
+  switch (bearing) {
+    case Bearing::friction_pendulum: return model::law_friction_pendulum;
+    case Bearing::bouc_wen: return model::law_bouc_wen;
+    default: return model::law_bilinear;
+  }
 }
 
 IsolationNumbers set_isolated_building(SystemBatch& batch, std::size_t lane, int body, const ShearSpec& spec,

@@ -64,6 +64,20 @@ template <class N, class W> void yield(std::vector<Problem>& out, double fy, con
 template <class N, class W> void hardening(std::vector<Problem>& out, double alpha, const N& name, const W& where) {
   in_range(out, alpha, 0.0, std::nextafter(1.0, 0.0), name, where, "[0, 1)");
 }
+// A smooth spring's constants (model/hysteresis/smooth.hpp): k >= 0, Q_slow > 0, Q_fast >= 0, rate >= 0, A / u_y > 0,
+// beta + gamma > 0, z_max finite and > 0, eta an integer in [1, smooth_max_eta], u_y / (2 A) > 0.
+template <class W> void smooth_values(std::vector<Problem>& out, const model::SmoothParams<double>& p, const W& where) {
+  const bool ok = std::isfinite(p.k) && p.k >= 0 && std::isfinite(p.q_slow) && p.q_slow > 0 &&
+                  std::isfinite(p.q_fast) && p.q_fast >= 0 && std::isfinite(p.rate) && p.rate >= 0 &&
+                  std::isfinite(p.a_uy) && p.a_uy > 0 && std::isfinite(p.b_uy) && std::isfinite(p.g_uy) &&
+                  p.b_uy + p.g_uy > 0 && std::isfinite(p.z_max) && p.z_max > 0 && p.eta >= 1 &&
+                  p.eta <= model::smooth_max_eta && p.eta == std::floor(p.eta) && std::isfinite(p.uy_2a) && p.uy_2a > 0;
+  if (!ok)
+    out.push_back({fmt::format("the smooth hysteresis constants (k {}, Q_slow {}, Q_fast {}, rate {}, A/u_y {}, beta/u_y "
+                               "{}, gamma/u_y {}, eta {}) are not valid", p.k, p.q_slow, p.q_fast, p.rate, p.a_uy,
+                               p.b_uy, p.g_uy, p.eta),
+                   text(where), "build them with BoucWen::params or FrictionPendulum::params from a valid spec"});
+}
 template <class W> void gap_value(std::vector<Problem>& out, double gap, const W& where) {
   if (!std::isfinite(gap) || gap < 0)
     out.push_back({fmt::format("gap = {} must be >= 0", gap), text(where), "give a gap >= 0 (m)"});
@@ -162,6 +176,7 @@ std::vector<Problem> validate_system_lane(const SystemBatch& b, std::span<const 
     stiffness(out, b.spring[i].k, "k", where("k", place), false);
     yield(out, b.spring[i].fy, "fy", where("fy", place));
     hardening(out, b.spring[i].alpha, "alpha", where("alpha", place));
+    if (sys.springs()[s].law != 0) smooth_values(out, b.spring[i].smooth, where("smooth", place));
     if (!b.c_storey.empty()) dashpot(out, b.c_storey[i], "c_storey", where("c_storey", place));
   }
   for (std::size_t el = 0; el < sys.contacts().size(); ++el) {

@@ -238,6 +238,7 @@ std::string isolation_lines(const std::string& label, const IsolationReport& iso
   s += fmt::format("{}_isolator_fy_N: {:.6g}\n{}_isolator_alpha: {:.6g}\n", label, iso.fy, label, iso.alpha);
   s += fmt::format("{}_bearing_c_N_s_m: {:.6g}\n{}_isolated_periods_s: {}\n", label, iso.c_base, label,
                    list(iso.periods));
+  for (const auto& [name, v] : iso.law_numbers) s += fmt::format("{}_bearing_{}: {:.6g}\n", label, name, v);
   return s;
 }
 
@@ -334,7 +335,9 @@ std::string format_system_json(const SystemRunReport& run) {
       const IsolationReport& iso = *b.isolation;
       w.key("isolation").begin_object().member("bearing", iso.bearing).member("base_mass", iso.base_mass);
       w.member("isolator_k", iso.k).member("isolator_fy", iso.fy).member("isolator_alpha", iso.alpha);
-      w.member("bearing_c", iso.c_base).member("isolated_periods", iso.periods).end_object();
+      w.member("bearing_c", iso.c_base).member("isolated_periods", iso.periods);
+      for (const auto& [name, v] : iso.law_numbers) w.member("bearing_" + name, v);
+      w.end_object();
     }
     w.end_object();
   }

@@ -7,21 +7,16 @@
 #  - a lead-rubber isolated 3-storey building with a moat 0.1 m each side beside a fixed 5-storey one 0.05 m away:
 #    the moat is hit, moat_impacts1 = the moat elements' impacts, the energy balance closes within 1e-4, --json and
 #    the text agree;
+#  - friction-pendulum and Bouc-Wen bearings with the moat: their numbers, the moat hit, the energy balance (their
+#    response against SciPy is tests/physics/test_isolation_smooth.cpp);
 #  - bad isolation options: one ERROR line naming the option, exit 2, nothing on stdout.
 # Needs /usr/bin/python3 with numpy and scipy: skipped (exit 77) without them, a failure under CI=true.
 # Args: <pounding binary> <source dir>
 set -euo pipefail
 bin=$1; src=$2
-. "$src/tests/lib/needs_real_records.sh"
-py=${POUNDING_PYTHON:-/usr/bin/python3}
-"$py" -c 'import numpy, scipy' 2>/dev/null ||
-  skip_or_fail "needs $py with numpy and scipy (Debian: python3-numpy python3-scipy; tools/setup.sh installs them)"
-tmp=$(mktemp -d); trap 'rm -rf "$tmp"' EXIT
-fail() { echo "FAIL: $*"; exit 1; }
-awk 'BEGIN { dt = 0.01; for (i = 0; i <= 1200; i++) { t = i * dt;
-             a = 0.15 * sin(2 * 3.14159265 * 0.5 * t) + 0.10 * sin(2 * 3.14159265 * 3.1 * t + 0.4);
-             printf "%.2f %.8f\n", t, a } }' > "$tmp/rec.txt"
-sim() { "$bin" simulate --record "$tmp/rec.txt" --dt 0.001 "$@"; }
+. "$src/tests/lib/simulate_cli.sh"  # $py, $tmp, fail, two_tone_record, sim, bad
+two_tone_record 0.5
+sim() { "$bin" simulate --record "$tmp/rec.txt" --dt 0.001 "$@"; }  # bad() calls this one too
 
 # 1. linear bearing against lsim
 sim --storeys1 3 --storeys2 3 --storey-mass1 3e5 --storey-stiffness1 9.81e7 --isolation1 linear --base-mass1 3e5 \
@@ -75,15 +70,55 @@ print(f"lead-rubber + moat: bearing peak {out['peak_bearing_u1']:.4g} m, moat im
       f"energy balance {out['energy_balance_error_rel']:.2g}")
 PY
 
-# 3. bad options
-bad() {
-  local want=$1; shift
-  set +e; sim "$@" > "$tmp/o" 2> "$tmp/e"; rc=$?; set -e
-  [ "$rc" = 2 ] || fail "$* -> exit $rc"
-  [ ! -s "$tmp/o" ] || fail "$* wrote stdout"
-  [ "$(wc -l < "$tmp/e")" = 1 ] && grep -q "ERROR: .*$want" "$tmp/e" || fail "$*: $(cat "$tmp/e")"
-}
+# 3. friction pendulum (R 2 m, mu 0.05 -> 0.10 at 20 s/m, u_y 0.5 mm) and Bouc-Wen (the lead-rubber numbers, eta 2)
+#    with the moat: the bearing's numbers (W = g M_total, W/R), the moat hit, the energy balance within 1e-3
+for bearing in friction-pendulum bouc-wen; do
+  if [ $bearing = friction-pendulum ]; then
+    opts=(--bearing-radius1 2 --bearing-mu-slow1 0.05 --bearing-mu-fast1 0.1 --bearing-rate1 20 --bearing-uy1 5e-4)
+  else
+    opts=(--bearing-k1-1 1.2e8 --bearing-k2-1 1.2e7 --bearing-qd1 6e5 --bearing-eta1 2 --bearing-beta1 0.9
+          --bearing-gamma1 0.1)
+  fi
+  args=(--storeys1 3 --storeys2 5 --storey-mass1 3e5 --storey-stiffness1 9.81e7 --isolation1 $bearing --base-mass1 3e5
+        "${opts[@]}" --moat-gap1 0.1 --gap 0.05)
+  sim "${args[@]}" > "$tmp/$bearing.txt"
+  sim "${args[@]}" --json > "$tmp/$bearing.json"
+  "$py" - "$tmp/$bearing.json" "$tmp/$bearing.txt" $bearing <<'PY'
+import json, math, sys
+out = json.load(open(sys.argv[1]))
+text = dict(l.split(": ", 1) for l in open(sys.argv[2]) if ": " in l)
+iso = out["buildings"][0]["isolation"]
+assert iso["bearing"] == sys.argv[3] and iso["bearing_c"] == 0, iso
+if sys.argv[3] == "friction-pendulum":
+    W = 9.80665 * 1.2e6
+    assert abs(iso["bearing_weight_N"] - W) < 1e-9 * W and abs(iso["bearing_pendulum_k_N_m"] - W / 2) < 1e-9 * W, iso
+    assert iso["isolated_periods"][0] > 2 * math.pi * math.sqrt(2 / 9.80665), iso  # a flexible superstructure: longer
+    assert float(text["building1_bearing_mu_fast"]) == 0.1
+else:
+    assert abs(iso["bearing_uy_m"] - 6e5 / 1.08e8) < 1e-15 and iso["bearing_eta"] == 2, iso
+assert iso["isolator_fy"] is None and iso["isolator_alpha"] is None, iso  # no yield point: null (nan in the text)
+assert out["moat_impacts1"] > 0 and out["status"] == "ok", (out["moat_impacts1"], out["status"])
+assert abs(out["energy_balance_error_rel"]) < 1e-3, out["energy_balance_error_rel"]
+assert abs(float(text["peak_bearing_u1_m"]) - out["peak_bearing_u1"]) < 1e-5 * out["peak_bearing_u1"]
+print(f"{sys.argv[3]} + moat: bearing peak {out['peak_bearing_u1']:.4g} m, residual {out['final_bearing_u1']:.3g} m, "
+      f"moat impacts {out['moat_impacts1']}, energy balance {out['energy_balance_error_rel']:.2g}")
+PY
+done
+
+# 4. bad options
 bad "--isolation1" --isolation1 friction
+bad "--bearing-radius1" --isolation1 friction-pendulum --bearing-mu-slow1 0.05
+bad "--bearing-radius1" --isolation1 friction-pendulum --bearing-radius1 0 --bearing-mu-slow1 0.05
+bad "--bearing-mu-slow1" --isolation1 friction-pendulum --bearing-radius1 2
+bad "--bearing-mu-slow1" --isolation1 friction-pendulum --bearing-radius1 2 --bearing-mu-slow1 0.9
+bad "--bearing-rate1" --isolation1 friction-pendulum --bearing-radius1 2 --bearing-mu-slow1 0.05 --bearing-mu-fast1 0.1
+bad "--bearing-uy1" --isolation1 friction-pendulum --bearing-radius1 2 --bearing-mu-slow1 0.05 --bearing-uy1 0.5
+bad "--bearing-keff1" --isolation1 friction-pendulum --bearing-radius1 2 --bearing-mu-slow1 0.05 --bearing-keff1 1e7
+bad "--bearing-radius1" --isolation1 lead-rubber --bearing-k1-1 1e7 --bearing-k2-1 1e6 --bearing-qd1 1e5 --bearing-radius1 2
+bad "--bearing-beta1" --isolation1 lead-rubber --bearing-k1-1 1e7 --bearing-k2-1 1e6 --bearing-qd1 1e5 --bearing-eta1 2
+bad "--bearing-gamma1" --isolation1 bouc-wen --bearing-k1-1 1e7 --bearing-k2-1 1e6 --bearing-qd1 1e5 --bearing-gamma1 0.9
+bad "--bearing-eta1" --isolation1 bouc-wen --bearing-k1-1 1e7 --bearing-k2-1 1e6 --bearing-qd1 1e5 --bearing-eta1 9
+bad "--bearing-k2-1" --isolation1 bouc-wen --bearing-k1-1 1e7 --bearing-k2-1 1e7 --bearing-qd1 1e5
 bad "--bearing-keff1" --isolation1 linear
 bad "--bearing-zeta1" --isolation1 linear --bearing-keff1 1e7 --bearing-zeta1 0.9
 bad "--bearing-k2-1" --isolation1 lead-rubber --bearing-k1-1 1e7 --bearing-k2-1 2e7 --bearing-qd1 1e5

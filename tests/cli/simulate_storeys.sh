@@ -15,17 +15,9 @@
 # Args: <pounding binary> <source dir>
 set -euo pipefail
 bin=$1; src=$2
-. "$src/tests/lib/needs_real_records.sh"
-py=${POUNDING_PYTHON:-/usr/bin/python3}
-"$py" -c 'import numpy, scipy' 2>/dev/null ||
-  skip_or_fail "needs $py with numpy and scipy (Debian: python3-numpy python3-scipy; tools/setup.sh installs them)"
-tmp=$(mktemp -d); trap 'rm -rf "$tmp"' EXIT
-fail() { echo "FAIL: $*"; exit 1; }
+. "$src/tests/lib/simulate_cli.sh"  # $py, $tmp, fail, two_tone_record, sim, bad
 # a 12 s two-column record (time s, acceleration g): two tones, 0.25 g
-awk 'BEGIN { dt = 0.01; for (i = 0; i <= 1200; i++) { t = i * dt;
-             a = 0.15 * sin(2 * 3.14159265 * 1.3 * t) + 0.10 * sin(2 * 3.14159265 * 3.1 * t + 0.4);
-             printf "%.2f %.8f\n", t, a } }' > "$tmp/rec.txt"
-sim() { "$bin" simulate --record "$tmp/rec.txt" "$@"; }
+two_tone_record 1.3
 # --dt 0.001 (10 substeps) resolves the contacts of the pair (status ok; at the record step it is "coarse", exit 3)
 
 # 1. the pair: --json against the text output
@@ -183,14 +175,6 @@ print(f"ok:   linear 3 storeys: peaks {np.array2string(got, precision=5)} m, Sci
 PY
 
 # 5. bad storey options: one ERROR line naming the option, exit 2, nothing on stdout
-bad() {
-  local want=$1; shift
-  set +e; sim "$@" > "$tmp/bad.out" 2> "$tmp/bad.err"; local rc=$?; set -e
-  [ $rc -eq 2 ] || fail "$*: exit $rc, want 2"
-  [ ! -s "$tmp/bad.out" ] || fail "$*: wrote to stdout: $(head -3 "$tmp/bad.out")"
-  grep -q "ERROR: .*$want" "$tmp/bad.err" || fail "$*: the error does not name $want: $(cat "$tmp/bad.err")"
-  [ "$(grep -c ERROR "$tmp/bad.err")" -eq 1 ] || fail "$*: more than one ERROR line"
-}
 bad "--storeys1" --storeys1 0
 bad "--storeys2" --storeys2 500
 bad "--storey-height1" --storeys1 3 --storey-height1 0

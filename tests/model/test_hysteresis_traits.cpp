@@ -18,8 +18,9 @@ namespace {
 
 using model::BilinearKinematic;
 
-static_assert(model::Hystereses::size == 1);
+static_assert(model::Hystereses::size == 3);  // bilinear, Bouc-Wen, friction pendulum (step 7)
 static_assert(model::Hysteresis<BilinearKinematic>);
+static_assert(model::Hysteresis<model::BoucWen> && model::Hysteresis<model::FrictionPendulum>);
 
 Structure random_spec(std::mt19937_64& rng) {
   std::uniform_real_distribution<double> u(0.0, 1.0);

@@ -36,6 +36,9 @@ struct StickTopology {
   // -u_b - gap) and "<label> moat right" (L = base, R = wall: delta = u_b - gap), in their own group "moat <label>"
   // (study_gap = false: their gaps are the moat's, physics::set_moat), after the floor-to-floor elements.
   bool moat = false;
+  // The isolator spring's hysteresis law (isolated only; model/hysteresis/registry.hpp: 0 bilinear -- linear and
+  // lead-rubber bearings --, 1 Bouc-Wen, 2 friction pendulum; physics::isolator_law(Bearing) gives it).
+  int isolator_law = 0;
 };
 
 enum class ContactLevels {

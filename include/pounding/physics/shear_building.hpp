@@ -59,17 +59,33 @@ ShearNumbers set_shear_building(SystemBatch& batch, std::size_t lane, int body, 
 // bilinear lead-rubber bearing (k1, k2, Qd: k = k1, fy = Qd k1 / (k1 - k2) = Qd / (1 - k2/k1), alpha = k2/k1 -- SB §2
 // "F_y = Q_d/(1 - k2/k1)", AASHTO Guide Spec. for Seismic Isolation Design, Naeim & Kelly 1999; no viscous damping
 // of its own: its hysteresis is the damping).
-enum class Bearing { linear, lead_rubber };
+//
+// Friction pendulum (model/hysteresis/friction_pendulum.hpp, law 2): F = (W/R) u + mu(v) W z, W = g M_total (the
+// building's whole weight on its bearings, constant: vertical motion not modelled), mu(v) = mu_fast - (mu_fast -
+// mu_slow) exp(-rate |v|) (Constantinou et al. 1990), z the Bouc-Wen smoothing (A = 1, beta = gamma = 0.5, eta = 2)
+// with yield displacement u_y. Bouc-Wen (model/hysteresis/bouc_wen.hpp, law 1): given as the lead-rubber bearing's
+// k1, k2, Qd plus A, beta, gamma, eta: the standard form's k = k1, alpha = k2/k1, u_y = Qd / (k1 - k2) (so Q = Qd and,
+// for A = 1, the initial tangent is k1). Neither has a viscous dashpot: the hysteresis is the damping.
+enum class Bearing { linear, lead_rubber, friction_pendulum, bouc_wen };
 struct IsolationSpec {
   Bearing bearing = Bearing::linear;
   double base_mass = 0.0;               // kg, > 0 (a massless base makes the system singular, SB §2 pitfalls)
   double k_eff = 0.0, zeta_eff = 0.0;   // linear: N/m, ratio
-  double k1 = 0.0, k2 = 0.0, qd = 0.0;  // lead-rubber: N/m, N/m (0 <= k2 < k1), N (> 0)
+  double k1 = 0.0, k2 = 0.0, qd = 0.0;  // lead-rubber and Bouc-Wen: N/m, N/m (0 <= k2 < k1), N (> 0)
+  // friction pendulum: radius R (m), friction at rest and at high speed, rate (s/m), smoothing u_y (m)
+  double radius = 0.0, mu_slow = 0.0, mu_fast = 0.0, rate = 0.0, uy = 2.5e-4;
+  // Bouc-Wen: A, beta (on |du|), gamma, eta (an integer in [1, model::smooth_max_eta])
+  double bw_a = 1.0, bw_beta = 0.5, bw_gamma = 0.5;
+  int bw_eta = 1;
 };
+// The hysteresis law of the isolator spring of `bearing` (model/hysteresis/registry.hpp): what
+// model::StickTopology::isolator_law takes.
+int isolator_law(Bearing bearing);
 struct IsolationNumbers {
   double m_base = 0.0, m_total = 0.0;
-  SpringSpec isolator;  // {k, fy, alpha}
-  double c_base = 0.0;  // the linear bearing's dashpot (N s/m), 0 for lead-rubber
+  SpringSpec isolator;  // {k, fy, alpha}; the smooth bearings: smooth_spring(params)
+  double c_base = 0.0;  // the linear bearing's dashpot (N s/m), 0 for the hysteretic bearings
+  double weight = 0.0;  // W = g M_total (N): the friction pendulum's normal force
   ShearNumbers super;   // the FIXED-BASE superstructure's numbers (its Rayleigh from its own modes)
 };
 // The numbers of an isolated stick: superstructure storey heights (m, bottom first), its spec and the bearing's.

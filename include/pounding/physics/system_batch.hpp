@@ -15,15 +15,24 @@
 
 #include "pounding/contact/model.hpp"
 #include "pounding/kernel/batch.hpp"
+#include "pounding/model/hysteresis/smooth.hpp"
 #include "pounding/model/system.hpp"
 
 namespace pounding::physics {
 
 // The description of one spring for its hysteresis law (law 0, bilinear kinematic hardening): kept un-derived
 // so that the driver's scaling by traits reproduces today's arithmetic (§2.2.2). fy = +inf: linear elastic.
+// A spring of law 1 (Bouc-Wen) or 2 (friction pendulum) runs `smooth` (model/hysteresis/smooth.hpp; from
+// BoucWen::params / FrictionPendulum::params); its k is then the initial tangent k + max(Q_slow, Q_fast) A / u_y (what validation
+// and the structure's omega_max read), fy = inf, alpha = 0.
 struct SpringSpec {
   double k = 0.0, fy = std::numeric_limits<double>::infinity(), alpha = 0.0;
+  model::SmoothParams<double> smooth{};
 };
+// The SpringSpec of a smooth spring (laws 1, 2) from its parameters.
+inline SpringSpec smooth_spring(const model::SmoothParams<double>& p) {
+  return {p.k + (p.q_fast > p.q_slow ? p.q_fast : p.q_slow) * p.a_uy, std::numeric_limits<double>::infinity(), 0.0, p};
+}
 
 struct SystemBatch {
   const model::System* system = nullptr;

@@ -2,6 +2,7 @@
 // Text summaries of kernel results: one `name: value` per line (SI units in the names).
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "pounding/contact/model.hpp"
@@ -22,6 +23,8 @@ struct IsolationReport {
   std::string bearing;
   double base_mass = 0, k = 0, fy = 0, alpha = 0, c_base = 0;
   std::vector<double> periods;
+  // the smooth bearings' own numbers (name with units, value), printed as <label>_bearing_<name>
+  std::vector<std::pair<std::string, double>> law_numbers;
 };
 
 // periods / modal_damping: of the fixed-base superstructure for an isolated building (its Rayleigh's modes)

@@ -66,15 +66,19 @@ struct SimulateOptions {
   // base isolation (issue 25 §2): bearing, base mass, bearing numbers, moat walls; any of these makes building i
   // an isolated shear building
   struct Isolation {
-    std::string bearing;  // "", "linear", "lead-rubber"
+    std::string bearing;  // "", "linear", "lead-rubber", "friction-pendulum", "bouc-wen"
     double base_mass = 0, k_eff = 0, zeta_eff = 0.1, k1 = 0, k2 = 0, qd = 0;
+    double radius = 0, mu_slow = 0, mu_fast = 0, rate = 0, uy = 2.5e-4;  // friction pendulum
+    double bw_a = 1.0, bw_beta = 0.5, bw_gamma = 0.5;                    // Bouc-Wen (with k1, k2, qd)
+    int bw_eta = 1;
+    bool fps_given = false, mu_fast_given = false, bw_given = false;
     double moat_gap = 0, moat_stiffness = 0, moat_e = 0;
     std::string moat_law = "hertzdamp";
     bool base_mass_given = false, k_eff_given = false, zeta_given = false, lrb_given = false, moat_given = false;
     bool moat_options_given = false, moat_stiffness_given = false, moat_e_given = false;
     bool any() const {
       return !bearing.empty() || base_mass_given || k_eff_given || zeta_given || lrb_given || moat_given ||
-             moat_options_given;
+             moat_options_given || fps_given || bw_given;
     }
   };
   Isolation iso[2];
@@ -252,6 +256,14 @@ PairParams pair_params(const SimulateOptions& o, const ContactModel& cm, const S
 
 // ---- multi-storey buildings (issue 25 §4; docs/architecture.md §2.7.3) ----
 
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+physics::Bearing bearing_of(const std::string& name) {
+  if (name == "linear") return physics::Bearing::linear;
+  if (name == "friction-pendulum") return physics::Bearing::friction_pendulum;
+  if (name == "bouc-wen") return physics::Bearing::bouc_wen;
+  return physics::Bearing::lead_rubber;
+}
+
 // Building i's isolation options (issue 25 §2), checked before any work: a bearing named for any of them, its
 // numbers present and physical (SB §2: a massless base is singular; k2 < k1), the moat's gap, law, stiffness and e.
 void validate_isolation(const SimulateOptions& o, int i) {
@@ -260,11 +272,34 @@ void validate_isolation(const SimulateOptions& o, int i) {
   if (!s.any()) return;
   if (s.bearing.empty())
     throw InputError("isolation options without a bearing", "--isolation" + k,
-                     "give --isolation" + k + " linear|lead-rubber, or drop the bearing/moat options of building " + k);
-  if (s.bearing != "linear" && s.bearing != "lead-rubber")
-    throw unknown_key_error(s.bearing, "--isolation" + k, "--isolation" + k, "linear, lead-rubber", "argument");
+                     "give --isolation" + k + " linear|lead-rubber|friction-pendulum|bouc-wen, or drop the bearing/moat "
+                     "options of building " + k);
+  if (s.bearing != "linear" && s.bearing != "lead-rubber" && s.bearing != "friction-pendulum" && s.bearing != "bouc-wen")
+    throw unknown_key_error(s.bearing, "--isolation" + k, "--isolation" + k,
+                            "linear, lead-rubber, friction-pendulum, bouc-wen", "argument");
+  if (s.fps_given && s.bearing != "friction-pendulum")
+    throw InputError("--bearing-radius/mu-slow/mu-fast/rate/uy describe a friction pendulum and --isolation" + k +
+                         " is " + s.bearing, "--bearing-radius" + k,
+                     "give --isolation" + k + " friction-pendulum, or drop those options");
+  if (s.bw_given && s.bearing != "bouc-wen")
+    throw InputError("--bearing-a/beta/gamma/eta describe a Bouc-Wen bearing and --isolation" + k + " is " + s.bearing,
+                     "--bearing-beta" + k, "give --isolation" + k + " bouc-wen, or drop those options");
   if (s.base_mass_given) require_range(s.base_mass, 1e3, 1e10, "--base-mass" + k, "[1e3, 1e10] kg");
-  if (s.bearing == "linear") {
+  if (s.bearing == "friction-pendulum") {
+    if (s.k_eff_given || s.zeta_given || s.lrb_given)
+      throw InputError("--bearing-keff/zeta/k1/k2/qd describe other bearings and --isolation" + k + " is friction-pendulum",
+                       s.lrb_given ? "--bearing-k1-" + k : "--bearing-keff" + k,
+                       "give --bearing-radius" + k + " and --bearing-mu-slow" + k + " (W is the building's weight)");
+    require_range(s.radius, 0.1, 50.0, "--bearing-radius" + k, "[0.1, 50] m (give it; T = 2 pi sqrt(R/g))");
+    require_range(s.mu_slow, 1e-3, 0.5, "--bearing-mu-slow" + k, "[0.001, 0.5] (give it)");
+    if (s.mu_fast_given) require_range(s.mu_fast, 1e-3, 0.5, "--bearing-mu-fast" + k, "[0.001, 0.5]");
+    require_range(s.rate, 0.0, 1e3, "--bearing-rate" + k, "[0, 1000] s/m");
+    if (s.mu_fast_given && s.mu_fast != s.mu_slow && !(s.rate > 0))
+      throw InputError("--bearing-mu-fast" + k + " differs from --bearing-mu-slow" + k + " but --bearing-rate" + k +
+                           " is 0, so mu(v) would stay mu_slow", "--bearing-rate" + k,
+                       "give the rate a of mu(v) = mu_fast - (mu_fast - mu_slow) exp(-a |v|) (s/m, e.g. 20)");
+    require_range(s.uy, 1e-6, 0.02, "--bearing-uy" + k, "[1e-6, 0.02] m (the smoothing's yield displacement)");
+  } else if (s.bearing == "linear") {
     if (s.lrb_given)
       throw InputError("--bearing-k1/k2/qd describe a lead-rubber bearing and --isolation" + k + " is linear",
                        "--bearing-k1-" + k, "give --bearing-keff" + k + " (and --bearing-zeta" + k + ") for linear");
@@ -275,7 +310,7 @@ void validate_isolation(const SimulateOptions& o, int i) {
     require_range(s.zeta_eff, 0.0, 0.5, "--bearing-zeta" + k, "[0, 0.5]");
   } else {
     if (s.k_eff_given || s.zeta_given)
-      throw InputError("--bearing-keff/--bearing-zeta describe a linear bearing and --isolation" + k + " is lead-rubber",
+      throw InputError("--bearing-keff/--bearing-zeta describe a linear bearing and --isolation" + k + " is " + s.bearing,
                        s.k_eff_given ? "--bearing-keff" + k : "--bearing-zeta" + k,
                        "give --bearing-k1-" + k + ", --bearing-k2-" + k + " and --bearing-qd" + k);
     require_range(s.k1, 1e3, 1e12, "--bearing-k1-" + k, "[1e3, 1e12] N/m (give it)");
@@ -284,6 +319,18 @@ void validate_isolation(const SimulateOptions& o, int i) {
       throw InputError(fmt::format("--bearing-k2-{} = {} is not below --bearing-k1-{} = {}", k, s.k2, k, s.k1),
                        "--bearing-k2-" + k, "give the post-yield stiffness k2 < k1 (typically k1 / 10)");
     require_range(s.qd, 1.0, 1e10, "--bearing-qd" + k, "[1, 1e10] N (give it)");
+    if (s.bearing == "bouc-wen") {
+      require_range(s.bw_a, 0.1, 10.0, "--bearing-a" + k, "[0.1, 10]");
+      require_range(s.bw_beta, 1e-3, 10.0, "--bearing-beta" + k, "[0.001, 10]");
+      if (!(std::abs(s.bw_gamma) <= s.bw_beta))
+        throw InputError(fmt::format("--bearing-gamma{} = {} is outside [-beta, beta] = [{}, {}]", k, s.bw_gamma,
+                                     -s.bw_beta, s.bw_beta),
+                         "--bearing-gamma" + k,
+                         "give |gamma| <= beta (the stable, passive Bouc-Wen class; beta is the |du| term's coefficient)");
+      if (s.bw_eta < 1 || s.bw_eta > model::smooth_max_eta)
+        throw InputError(fmt::format("--bearing-eta{} = {} is out of range", k, s.bw_eta), "--bearing-eta" + k,
+                         "give an integer exponent in [1, 8]");
+    }
   }
   if (s.moat_options_given && !s.moat_given)
     throw InputError("moat options without a moat", "--moat-gap" + k, "give --moat-gap" + k + " (m)");
@@ -416,17 +463,33 @@ void set_buildings(const SimulateOptions& o, const Structure (&sdof)[2], const s
     const physics::ShearSpec spec = shear_spec(o, i, sdof[i]);
     const SimulateOptions::Isolation& s = o.iso[i];
     physics::IsolationSpec iso;
-    iso.bearing = s.bearing == "linear" ? physics::Bearing::linear : physics::Bearing::lead_rubber;
+    iso.bearing = bearing_of(s.bearing);
     iso.base_mass = s.base_mass_given ? s.base_mass : spec.floor_mass[0];  // default: one floor's mass
     iso.k_eff = s.k_eff, iso.zeta_eff = s.zeta_eff, iso.k1 = s.k1, iso.k2 = s.k2, iso.qd = s.qd;
+    iso.radius = s.radius, iso.mu_slow = s.mu_slow, iso.mu_fast = s.mu_fast_given ? s.mu_fast : s.mu_slow;
+    iso.rate = s.rate, iso.uy = s.uy;
+    iso.bw_a = s.bw_a, iso.bw_beta = s.bw_beta, iso.bw_gamma = s.bw_gamma, iso.bw_eta = s.bw_eta;
     const physics::IsolationNumbers num = physics::set_isolated_building(batch, 0, i, spec, iso);
-    std::vector<double> chain_m{num.m_base}, chain_k{num.isolator.k};
+    const bool smooth = iso.bearing == physics::Bearing::friction_pendulum || iso.bearing == physics::Bearing::bouc_wen;
+    // the periods on the isolator's initial stiffness (linear, lead-rubber, Bouc-Wen) or, for the friction
+    // pendulum, on its pendulum stiffness W/R alone (sliding; T -> 2 pi sqrt(R/g) for a rigid superstructure)
+    const double k_chain = iso.bearing == physics::Bearing::friction_pendulum ? num.isolator.smooth.k : num.isolator.k;
+    std::vector<double> chain_m{num.m_base}, chain_k{k_chain};
     chain_m.insert(chain_m.end(), num.super.m.begin(), num.super.m.end());
     chain_k.insert(chain_k.end(), num.super.k.begin(), num.super.k.end());
     BuildingReport br{label, model::floor_levels(sticks[i]), num.super.m, num.super.k, num.super.fy,
                       num.super.modes.period, num.super.zeta_modes, {}};
-    br.isolation = IsolationReport{s.bearing, num.m_base, num.isolator.k, num.isolator.fy, num.isolator.alpha,
-                                   num.c_base, model::shear_stick_modes(chain_m, chain_k).period};
+    br.isolation = IsolationReport{s.bearing, num.m_base, num.isolator.k, smooth ? kNaN : num.isolator.fy,
+                                   smooth ? kNaN : num.isolator.alpha, num.c_base,
+                                   model::shear_stick_modes(chain_m, chain_k).period, {}};
+    if (iso.bearing == physics::Bearing::friction_pendulum)
+      br.isolation->law_numbers = {{"weight_N", num.weight}, {"radius_m", iso.radius}, {"mu_slow", iso.mu_slow},
+                                   {"mu_fast", iso.mu_fast}, {"rate_s_m", iso.rate}, {"uy_m", iso.uy},
+                                   {"pendulum_k_N_m", num.isolator.smooth.k}};
+    else if (iso.bearing == physics::Bearing::bouc_wen)
+      br.isolation->law_numbers = {{"alpha", iso.k2 / iso.k1}, {"uy_m", iso.qd / (iso.k1 - iso.k2)},
+                                   {"qd_N", iso.qd}, {"A", iso.bw_a}, {"beta", iso.bw_beta}, {"gamma", iso.bw_gamma},
+                                   {"eta", static_cast<double>(iso.bw_eta)}};
     run.buildings.push_back(std::move(br));
   }
 }
@@ -465,6 +528,7 @@ int run_storeys(SimulateOptions& o, const ContactModel& cm, KernelSettings& ks) 
   for (int i = 0; i < 2; ++i) {
     sticks[i].storeys = o.b[i].storeys, sticks[i].storey_heights = {o.b[i].height};
     sticks[i].isolated = !o.iso[i].bearing.empty(), sticks[i].moat = o.iso[i].moat_given;
+    if (sticks[i].isolated) sticks[i].isolator_law = physics::isolator_law(bearing_of(o.iso[i].bearing));
   }
   const model::ContactLevels levels =
       o.contact_levels == "top" ? model::ContactLevels::top : model::ContactLevels::common;
@@ -589,8 +653,10 @@ void add_storey_options(CLI::App* c, SimulateOptions& opts) {
     const std::string k = std::to_string(i + 1);
     SimulateOptions::Isolation& s = o->iso[i];
     c->add_option("--isolation" + k, s.bearing,
-                  "base-isolate building " + k + ": linear (--bearing-keff, --bearing-zeta) or lead-rubber (bilinear: "
-                  "--bearing-k1-, --bearing-k2-, --bearing-qd); a base mass at level 0 under the storeys");
+                  "base-isolate building " + k + ": linear (--bearing-keff, --bearing-zeta), lead-rubber (bilinear: "
+                  "--bearing-k1-, --bearing-k2-, --bearing-qd), friction-pendulum (--bearing-radius, --bearing-mu-slow, "
+                  "--bearing-mu-fast, --bearing-rate, --bearing-uy) or bouc-wen (--bearing-k1-, -k2-, -qd and "
+                  "--bearing-a, -beta, -gamma, -eta); a base mass at level 0 under the storeys");
     c->add_option("--base-mass" + k, s.base_mass, "mass of building " + k + "'s base (kg); default: one floor's mass");
     c->add_option("--bearing-keff" + k, s.k_eff, "linear bearing: effective stiffness of all isolators (N/m)");
     c->add_option("--bearing-zeta" + k, s.zeta_eff,
@@ -598,6 +664,18 @@ void add_storey_options(CLI::App* c, SimulateOptions& opts) {
     c->add_option("--bearing-k1-" + k, s.k1, "lead-rubber: elastic stiffness k1 (N/m)");
     c->add_option("--bearing-k2-" + k, s.k2, "lead-rubber: post-yield stiffness k2 < k1 (N/m)");
     c->add_option("--bearing-qd" + k, s.qd, "lead-rubber: characteristic strength Qd (N; Fy = Qd k1/(k1 - k2))");
+    c->add_option("--bearing-radius" + k, s.radius, "friction pendulum: effective radius R (m)");
+    c->add_option("--bearing-mu-slow" + k, s.mu_slow, "friction pendulum: friction coefficient at rest, mu_slow");
+    c->add_option("--bearing-mu-fast" + k, s.mu_fast,
+                  "friction pendulum: friction at high speed (default mu_slow: constant friction)");
+    c->add_option("--bearing-rate" + k, s.rate,
+                  "friction pendulum: a in mu(v) = mu_fast - (mu_fast - mu_slow) exp(-a |v|) (s/m, default 0)");
+    c->add_option("--bearing-uy" + k, s.uy,
+                  "friction pendulum: yield displacement of the smoothed stick-slip (m, default 0.00025)");
+    c->add_option("--bearing-a" + k, s.bw_a, "Bouc-Wen: A (default 1)");
+    c->add_option("--bearing-beta" + k, s.bw_beta, "Bouc-Wen: beta, the |du| term (default 0.5)");
+    c->add_option("--bearing-gamma" + k, s.bw_gamma, "Bouc-Wen: gamma, the du term, |gamma| <= beta (default 0.5)");
+    c->add_option("--bearing-eta" + k, s.bw_eta, "Bouc-Wen: the integer exponent eta in [1, 8] (default 1)");
     c->add_option("--moat-gap" + k, s.moat_gap, "moat walls left and right of building " + k + "'s base, this far (m)");
     c->add_option("--moat-law" + k, s.moat_law, "contact law at the moat walls (default hertzdamp)");
     c->add_option("--moat-stiffness" + k, s.moat_stiffness,
@@ -681,6 +759,11 @@ void add_simulate(CLI::App& app) {
       s.zeta_given = c->count("--bearing-zeta" + k) > 0;
       s.lrb_given = c->count("--bearing-k1-" + k) + c->count("--bearing-k2-" + k) + c->count("--bearing-qd" + k) > 0;
       s.moat_given = c->count("--moat-gap" + k) > 0;
+      s.mu_fast_given = c->count("--bearing-mu-fast" + k) > 0;
+      s.fps_given = c->count("--bearing-radius" + k) + c->count("--bearing-mu-slow" + k) + c->count("--bearing-rate" + k) +
+                        c->count("--bearing-uy" + k) + (s.mu_fast_given ? 1 : 0) > 0;
+      s.bw_given = c->count("--bearing-a" + k) + c->count("--bearing-beta" + k) + c->count("--bearing-gamma" + k) +
+                       c->count("--bearing-eta" + k) > 0;
       s.moat_stiffness_given = c->count("--moat-stiffness" + k) > 0, s.moat_e_given = c->count("--moat-e" + k) > 0;
       s.moat_options_given = c->count("--moat-law" + k) > 0 || s.moat_stiffness_given || s.moat_e_given;
     }

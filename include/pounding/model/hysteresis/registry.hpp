@@ -14,6 +14,8 @@
 
 #include "pounding/core/type_list.hpp"
 #include "pounding/model/hysteresis/bilinear_kinematic.hpp"
+#include "pounding/model/hysteresis/bouc_wen.hpp"
+#include "pounding/model/hysteresis/friction_pendulum.hpp"
 
 namespace pounding::model {
 
@@ -25,7 +27,10 @@ concept Hysteresis = requires(const typename H::Spec& s, double x) {
   { H::unscaled_equivalent(s, x) } -> std::same_as<std::optional<typename H::Spec>>;
 };
 
-using Hystereses = TypeList<BilinearKinematic>;
+// A spring's `law` (model::Spring) is its model's index here: 0 bilinear, 1 Bouc-Wen, 2 friction pendulum (the last
+// two run in the system stepper only, through model/hysteresis/smooth.hpp).
+using Hystereses = TypeList<BilinearKinematic, BoucWen, FrictionPendulum>;
+inline constexpr int law_bilinear = 0, law_bouc_wen = 1, law_friction_pendulum = 2;
 
 template <class... Hs> constexpr bool all_hystereses(TypeList<Hs...>) { return (Hysteresis<Hs> && ...); }
 static_assert(all_hystereses(Hystereses{}),

@@ -15,7 +15,8 @@
 //  1. per DOF: vh = v + hh a, du = h vh, u <- u + du, vp = vh + hh a (vo = v kept only for the energy terms)
 //  2. stereomechanical (one point-point element): the exchange at the located closing instant
 //  3. per spring: increment dd = du_j (ground: no subtraction) or du_j - du_i, deformation d = u_j or u_j - u_i,
-//     f = H::restoring (bilinear kinematic hardening), t = f, or fma(cs, vp_j - vp_i, f) with a storey dashpot;
+//     f = H::restoring (bilinear kinematic hardening; the smooth laws: z by model::Smooth::z_next over dd, Q at
+//     the predicted rate vp_j - vp_i), t = f, or fma(cs, vp_j - vp_i, f) with a storey dashpot;
 //     the |d| and |f| observers
 //  5. per group (its law chosen once per run): per element delta = x_L - x_R - gap; the law only where some
 //     lane of the chunk touches (else F = 0 exactly): Hertzdamp latch at the interpolated closing instant,
@@ -41,6 +42,7 @@
 #include "pounding/kernel/guard.hpp"
 #include "pounding/kernel/observers.hpp"
 #include "pounding/model/hysteresis/bilinear_kinematic.hpp"
+#include "pounding/model/hysteresis/smooth.hpp"
 
 namespace pounding::kernel::sys {
 
@@ -55,8 +57,9 @@ struct Side {
 // Rows of the pool. DOF: state (U holds the new displacement from step 1 on), constants, step scratch, observers.
 enum DofRow : int { U, Vel, A, M, IM, CF, VO, VH, DU, VP, PU, PA, dof_rows };
 // Spring: bilinear parameters (k, alpha k, qy, kp), storey dashpot, force, step scratch T (force + dashpot),
-// observers (peak |d|, peak |f|).
-enum SpringRow : int { K, AK, QY, KP, CS, FS, T, PD, PF, spring_rows };
+// observers (peak |d|, peak |f|); a smooth spring (laws 1, 2: model/hysteresis/smooth.hpp) holds k, Q_slow, Q_fast,
+// rate in K, AK, QY, KP and its other constants and z in the rows after PF.
+enum SpringRow : int { K, AK, QY, KP, CS, FS, T, PD, PF, ZA, ZB, ZG, ZM, ZE, ZS, Z, spring_rows };
 // Element: constants (N1/N2 of interpolated sides), state, observers.
 enum ElemRow : int {
   GAP, KC, CD, E, MEFF, H2M, N1L, N2L, N1R, N2R, F, IV0, DPREV,
@@ -69,6 +72,8 @@ struct Layout {
   int ndof = 0, nspring = 0, nelem = 0;
   std::vector<int> si, sj;            // spring ends (si = -1: ground)
   std::vector<char> dashpot;          // storey dashpot on the spring
+  std::vector<int> law;               // hysteresis law per spring (model/hysteresis/registry.hpp): 0 bilinear, else smooth
+  bool any_smooth = false;
   std::vector<int> below;             // spring below each DOF
   std::vector<int> above_start, above;  // springs with i == dof (CSR)
   std::vector<int> ref;               // floor dashpot reference per DOF (-1: ground)
@@ -90,6 +95,8 @@ struct Topo {
   int ndof, nspring, nelem, nbody;
   const int *si, *sj, *below, *above_start, *above, *ref, *refd_start, *refd, *body_start, *body_dofs;
   const char* dashpot;
+  const int* law;
+  bool any_smooth;
   const Side *left, *right;
   const int *contrib_start, *contrib_elem, *contrib_how;
   bool any_dashpot;
@@ -98,7 +105,7 @@ struct Topo {
         si(L.si.data()), sj(L.sj.data()), below(L.below.data()), above_start(L.above_start.data()),
         above(L.above.data()), ref(L.ref.data()), refd_start(L.refd_start.data()), refd(L.refd.data()),
         body_start(L.body_start.data()), body_dofs(L.body_dofs.data()),
-        dashpot(L.dashpot.data()), left(L.left.data()), right(L.right.data()),
+        dashpot(L.dashpot.data()), law(L.law.data()), any_smooth(L.any_smooth), left(L.left.data()), right(L.right.data()),
         contrib_start(L.contrib_start.data()), contrib_elem(L.contrib_elem.data()), contrib_how(L.contrib_how.data()),
         any_dashpot(L.any_dashpot) {}
 };
@@ -234,12 +241,27 @@ template <bool WithEnergy> POUNDING_INLINE void springs(Chunk c, Topo L) {
     const int i = L.si[s], j = L.sj[s];
     const V dd = i < 0 ? c.dof(DU, j) : c.dof(DU, j) - c.dof(DU, i);
     const V d = i < 0 ? c.dof(U, j) : c.dof(U, j) - c.dof(U, i);
-    const H::Params<V> p{c.spr(K, s), c.spr(AK, s), c.spr(QY, s), c.spr(KP, s)};
     const V fo = c.spr(FS, s);
-    const V f = H::restoring<V>(p, fo, dd, d);
-    if constexpr (WithEnergy) {
-      const V x = H::dissipated<V>(p, fo, dd, f);
-      dhys = s == 0 ? x : dhys + x;
+    V f;
+    if (L.any_smooth && L.law[s] != 0) {  // Bouc-Wen, friction pendulum: z over the increment, Q at the predicted rate
+      using S = model::Smooth;
+      const model::SmoothParams<V> p{c.spr(K, s),  c.spr(AK, s), c.spr(QY, s), c.spr(KP, s), c.spr(ZA, s),
+                                     c.spr(ZB, s), c.spr(ZG, s), c.spr(ZM, s), c.spr(ZE, s), c.spr(ZS, s)};
+      const V z0 = c.spr(Z, s), z1 = S::z_next<V>(p, z0, dd);
+      V h1;
+      f = S::restoring<V>(p, z1, d, i < 0 ? c.dof(VP, j) : c.dof(VP, j) - c.dof(VP, i), h1);
+      if constexpr (WithEnergy) {
+        const V x = S::dissipated<V>(p, lane::fma(-p.k, d - dd, fo), z0, h1, z1, dd);
+        dhys = s == 0 ? x : dhys + x;
+      }
+      c.spr(Z, s, z1);
+    } else {
+      const H::Params<V> p{c.spr(K, s), c.spr(AK, s), c.spr(QY, s), c.spr(KP, s)};
+      f = H::restoring<V>(p, fo, dd, d);
+      if constexpr (WithEnergy) {
+        const V x = H::dissipated<V>(p, fo, dd, f);
+        dhys = s == 0 ? x : dhys + x;
+      }
     }
     c.spr(FS, s, f);
     V t = f;
@@ -423,6 +445,8 @@ POUNDING_INLINE void guard(Chunk c, Topo L, StepCtx& s) {
   for (int j = 0; j < L.ndof; ++j)
     for (int f : {U, Vel, A}) c.dof(f, j, lane::select(frozen, zero, c.dof(f, j)));
   for (int k = 0; k < L.nspring; ++k) c.spr(FS, k, lane::select(frozen, zero, c.spr(FS, k)));
+  if (L.any_smooth)
+    for (int k = 0; k < L.nspring; ++k) c.spr(Z, k, lane::select(frozen, zero, c.spr(Z, k)));
   for (int e = 0; e < L.nelem; ++e) c.elm(F, e, lane::select(frozen, zero, c.elm(F, e)));
 }
 

@@ -1,0 +1,38 @@
+#pragma once
+// The Bouc-Wen spring in its standard form (Wen 1976; Ismail, Ikhouane & Rodellar 2009; OpenSees'
+// ElastomericBearingBoucWen with beta on the |du| term): F = alpha k u + (1 - alpha) k u_y z,
+// u_y dz/du = A - |z|^eta (gamma + beta sgn(z du)); the initial tangent alpha k + (1 - alpha) k A (= k for A = 1),
+// the characteristic strength Q = (1 - alpha) k u_y. Integrated as model/hysteresis/smooth.hpp says. A lead-rubber
+// bearing (k1, k2, Qd) is k = k1, alpha = k2/k1, u_y = Qd / (k1 - k2) with A = 1 (research SB §2).
+#include <cmath>
+#include <optional>
+#include <string_view>
+
+#include "pounding/model/hysteresis/smooth.hpp"
+
+namespace pounding::model {
+
+struct BoucWen {
+  static constexpr std::string_view name = "bouc-wen";
+  struct Spec {
+    double k = 0.0, alpha = 0.0, uy = 0.0;  // N/m, ratio in [0, 1), m
+    double a = 1.0, beta = 0.5, gamma = 0.5;
+    int eta = 1;
+  };
+  template <class T> using Params = SmoothParams<T>;
+  static Params<double> params(const Spec& s) {
+    const double q = (1.0 - s.alpha) * s.k * s.uy;
+    return {s.alpha * s.k, q, q, 0.0, s.a / s.uy, s.beta / s.uy, s.gamma / s.uy,
+            std::pow(s.a / (s.beta + s.gamma), 1.0 / s.eta), static_cast<double>(s.eta), s.uy / (2.0 * s.a)};
+  }
+  // No elastic range: z moves from the first increment on.
+  static bool stays_elastic(const Spec&, double, double) { return false; }
+  // R(f u) = alpha k f u + (1 - alpha) k u_y z(f u / u_y) = f R(u; u_y / f): exact (z depends on u / u_y only).
+  static std::optional<Spec> unscaled_equivalent(const Spec& s, double f) {
+    Spec out = s;
+    out.uy /= f;
+    return out;
+  }
+};
+
+}  // namespace pounding::model
