@@ -8,7 +8,7 @@
 #include <cstdint>
 #include <cstring>
 #include <experimental/simd>
-#if defined(__AVX512F__) || defined(__FMA__)
+#if defined(__AVX512F__) || defined(__FMA__) || defined(__AVX2__)
 #include <immintrin.h>
 #endif
 
@@ -128,9 +128,33 @@ POUNDING_INLINE void exp2_parts(double t, double& s1, double& s2) {
   const std::uint64_t b1 = static_cast<std::uint64_t>(k1 + 1023) << 52, b2 = static_cast<std::uint64_t>(k2 + 1023) << 52;
   std::memcpy(&s1, &b1, sizeof s1), std::memcpy(&s2, &b2, sizeof s2);
 }
+// The same integer operations on a whole chunk: kb = k + 2048 >= 0, h = kb >> 1 (k >> 1 = h - 1024), so the exponent
+// fields are (h - 1) << 52 and (kb - h - 1) << 52 -- exact, hence the scalar form's bits.
 POUNDING_INLINE void exp2_parts(const simd::V& t, simd::V& s1, simd::V& s2) {
   alignas(64) double x[simd::W], a[simd::W], b[simd::W];
   t.copy_to(x, simd::stdx::vector_aligned);
+#if defined(__AVX512F__)
+  if constexpr (simd::W == 8) {
+    const __m512i kb = _mm512_add_epi64(_mm512_castpd_si512(_mm512_load_pd(x)),
+                                        _mm512_set1_epi64(2048 - std::int64_t{0x4338000000000000}));
+    const __m512i h = _mm512_srli_epi64(kb, 1), one = _mm512_set1_epi64(1);
+    _mm512_store_pd(a, _mm512_castsi512_pd(_mm512_slli_epi64(_mm512_sub_epi64(h, one), 52)));
+    _mm512_store_pd(b, _mm512_castsi512_pd(_mm512_slli_epi64(_mm512_sub_epi64(_mm512_sub_epi64(kb, h), one), 52)));
+    s1 = simd::V(a, simd::stdx::vector_aligned), s2 = simd::V(b, simd::stdx::vector_aligned);
+    return;
+  }
+#endif
+#if defined(__AVX2__)
+  if constexpr (simd::W == 4) {
+    const __m256i kb = _mm256_add_epi64(_mm256_castpd_si256(_mm256_load_pd(x)),
+                                        _mm256_set1_epi64x(2048 - std::int64_t{0x4338000000000000}));
+    const __m256i h = _mm256_srli_epi64(kb, 1), one = _mm256_set1_epi64x(1);
+    _mm256_store_pd(a, _mm256_castsi256_pd(_mm256_slli_epi64(_mm256_sub_epi64(h, one), 52)));
+    _mm256_store_pd(b, _mm256_castsi256_pd(_mm256_slli_epi64(_mm256_sub_epi64(_mm256_sub_epi64(kb, h), one), 52)));
+    s1 = simd::V(a, simd::stdx::vector_aligned), s2 = simd::V(b, simd::stdx::vector_aligned);
+    return;
+  }
+#endif
   for (int j = 0; j < simd::W; ++j) exp2_parts(x[j], a[j], b[j]);
   s1 = simd::V(a, simd::stdx::vector_aligned), s2 = simd::V(b, simd::stdx::vector_aligned);
 }
