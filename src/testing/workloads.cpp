@@ -5,7 +5,9 @@
 #include <string>
 
 #include "pounding/contact/model.hpp"
+#include "pounding/model/shear_building.hpp"
 #include "pounding/motion/records.hpp"
+#include "pounding/physics/shear_building.hpp"
 
 namespace pounding {
 
@@ -95,6 +97,46 @@ physics::SystemBatch shear_pair_batch(const model::System& S, std::size_t width)
       const std::size_t at = physics::SystemBatch::at(e, l, width);
       B.gap[at] = 0.3 * 0.005 * 3.2 * n * (2.0 + s + r), B.kc[at] = 2e9 * (0.8 + 0.4 * s), B.e[at] = 0.65;
     }
+  }
+  return B;
+}
+
+namespace {
+physics::Bearing bench_bearing(const std::string& name) {
+  if (name == "friction-pendulum") return physics::Bearing::friction_pendulum;
+  if (name == "bouc-wen") return physics::Bearing::bouc_wen;
+  return physics::Bearing::lead_rubber;
+}
+}  // namespace
+
+model::System isolated_pair_system(int storeys, const std::string& bearing) {
+  std::vector<model::StickTopology> t(2);
+  t[0].storeys = t[1].storeys = storeys;
+  t[0].isolated = true, t[0].isolator_law = physics::isolator_law(bench_bearing(bearing));
+  return model::shear_buildings(t);
+}
+
+physics::SystemBatch isolated_pair_batch(const model::System& S, std::size_t width, const std::string& bearing) {
+  physics::SystemBatch B;
+  B.resize(S, width);
+  const int n = static_cast<int>(S.bodies()[1].dofs.size());
+  for (std::size_t l = 0; l < width; ++l) {
+    const double s = std::fmod(0.6180339887498949 * static_cast<double>(l + 1), 1.0);
+    const double r = std::fmod(0.7548776662466927 * static_cast<double>(l + 1), 1.0);
+    physics::ShearSpec left, right;
+    left.floor_mass = {2.5e5 * (0.8 + 0.4 * r)};
+    left.storey_stiffness = {9.81e7 * n / 3.0 * (1.0 + 0.5 * s)};
+    right.floor_mass = {2.5e5 * (0.8 + 0.4 * s)};
+    right.period = 0.13 * n * (1.0 + 0.5 * r);
+    physics::IsolationSpec iso;
+    iso.bearing = bench_bearing(bearing), iso.base_mass = 2.5e5;
+    const double mt = iso.base_mass + n * left.floor_mass[0], W = physics::standard_gravity * mt;
+    iso.k2 = mt * std::pow(2.0 * std::numbers::pi / 2.5, 2), iso.k1 = 10.0 * iso.k2, iso.qd = 0.05 * W;
+    iso.bw_eta = 2, iso.bw_beta = 0.9, iso.bw_gamma = 0.1;
+    iso.radius = 1.55, iso.mu_slow = 0.05, iso.mu_fast = 0.10, iso.rate = 20.0, iso.uy = 5e-4;
+    physics::set_isolated_building(B, l, 0, left, iso);
+    physics::set_shear_building(B, l, 1, right);
+    physics::set_contacts(B, l, 0.1 * (1.0 + s), 2e9 * (0.8 + 0.4 * r), 0.65);
   }
   return B;
 }

@@ -1,6 +1,7 @@
 #pragma once
 // Named, deterministic workloads shared by `pounding bench`, the Google Benchmark and examples.
 #include <cstddef>
+#include <string>
 #include <vector>
 
 #include "pounding/model/system.hpp"
@@ -27,5 +28,14 @@ model::System shear_pair_system(int storeys);
 // 1 % drift of 3.2 m with alpha 0.05, gap 0.3 x 0.005 x (H1 + H2) x [1, 2], kc 2e9 N/m^1.5 x [0.8, 1.2], e = 0.65
 // (varied per lane with the same low-discrepancy rule as benchmark_batch).
 physics::SystemBatch shear_pair_batch(const model::System& system, std::size_t width);
+
+// `pounding bench --storeys N --isolation B`: the same pair with building 1 base-isolated (a base mass at level 0 on
+// bearing B: "lead-rubber", "friction-pendulum" or "bouc-wen") and building 2 fixed, Hertzdamp at the common floors,
+// no moat. Lanes: floors 2.5e5 kg x [0.8, 1.2], storeys 9.81e7 N/m x N/3 x [1, 1.5] (left), the fixed building as
+// shear_pair_batch's right one in spirit (T1 0.13 N s x [1, 1.5]); base 2.5e5 kg; lead-rubber / Bouc-Wen k1 = 10 k2,
+// k2 from T_iso = 2.5 s on the total mass, Qd = 0.05 W; friction pendulum R = 1.55 m (T 2.5 s), mu 0.05 -> 0.10 at
+// 20 s/m, u_y 0.5 mm; gap 0.1 m x [1, 2], kc 2e9 N/m^1.5 x [0.8, 1.2], e = 0.65.
+model::System isolated_pair_system(int storeys, const std::string& bearing);
+physics::SystemBatch isolated_pair_batch(const model::System& system, std::size_t width, const std::string& bearing);
 
 }  // namespace pounding

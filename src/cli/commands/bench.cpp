@@ -4,6 +4,7 @@
 #include <chrono>
 #include <ctime>
 #include <memory>
+#include <string>
 #include <thread>
 #include <vector>
 
@@ -24,13 +25,15 @@ struct SystemBenchOptions {
   int storeys, repeats;
   std::size_t width;
   bool dynamic;
+  std::string isolation;  // "": the shear pair; else building 1 on this bearing (isolated_pair_system)
 };
 
 // ns per DOF-step (wall / (lanes x DOFs x steps)) of the shear-pair workload through run_system.
 void bench_system(const SystemBenchOptions& o, const ContactModel& cm, const KernelSettings& ks,
                   const GroundMotion& gm) {
-  const model::System S = shear_pair_system(o.storeys);
-  const physics::SystemBatch b = shear_pair_batch(S, o.width);
+  const bool iso = !o.isolation.empty();
+  const model::System S = iso ? isolated_pair_system(o.storeys, o.isolation) : shear_pair_system(o.storeys);
+  const physics::SystemBatch b = iso ? isolated_pair_batch(S, o.width, o.isolation) : shear_pair_batch(S, o.width);
   const ContactModel groups[] = {cm};
   physics::SystemResult r;
   auto run = [&] {
@@ -59,8 +62,9 @@ void bench_system(const SystemBenchOptions& o, const ContactModel& cm, const Ker
   std::size_t bad = 0;
   for (auto s : r.status) bad += s != 0;
   std::sort(ns.begin(), ns.end());
-  fmt::print("workload: shear-pair ({} storeys each, {} DOFs, {} contact elements; {} s record at {} s, {} substeps)\n",
-             o.storeys, S.ndof(), S.contacts().size(), gm.total_duration(), gm.dt, ks.substeps);
+  fmt::print("workload: {} ({} storeys each, {} DOFs, {} contact elements; {} s record at {} s, {} substeps)\n",
+             iso ? "isolated-pair (building 1 on " + o.isolation + ")" : std::string("shear-pair"), o.storeys, S.ndof(),
+             S.contacts().size(), gm.total_duration(), gm.dt, ks.substeps);
   fmt::print("layout: {}\n", S.is_sdof_pair() && !o.dynamic ? "pair kernel" : "system stepper (dynamic)");
   fmt::print("stepper: {}\ncontact: {}\nwidth: {}\n", to_string(ks.stepper), to_string(cm.law), o.width);
   fmt::print("hardware_threads: {}\n", std::thread::hardware_concurrency());
@@ -82,6 +86,7 @@ void add_bench(CLI::App& app) {
     double duration = 40.0, dt = 0.005;
     bool energy = false, dynamic = false;
     int storeys = 0;
+    std::string isolation;
   };
   auto o = std::make_shared<Opts>();
   auto* c = app.add_subcommand("bench", "kernel benchmark: ns per pair-step on a 40 s record at 0.005 s, "
@@ -100,6 +105,10 @@ void add_bench(CLI::App& app) {
       ->check(CLI::Range(0, 100));
   c->add_flag("--dynamic", o->dynamic,
               "with --storeys 1: run the SDOF pair through the system stepper's dynamic layout, not the pair kernel");
+  c->add_option("--isolation", o->isolation,
+                "with --storeys N: workload 'isolated-pair', building 1 base-isolated on lead-rubber, friction-pendulum "
+                "or bouc-wen, building 2 fixed")
+      ->check(CLI::IsMember({"lead-rubber", "friction-pendulum", "bouc-wen"}));
   c->callback([o] {
     if (o->width < 1) throw InputError("--width must be >= 1", "--width", "give a batch width of 1 or more");
     if (o->repeats < 1) throw InputError("--repeats must be >= 1", "--repeats", "give 1 or more");
@@ -113,7 +122,9 @@ void add_bench(CLI::App& app) {
     ks.energy = o->energy;
     std::vector<double> ag = builtin_motion(o->dt, o->duration);
     GroundMotion gm{o->dt, ag, 0.0};
-    if (o->storeys > 0) return bench_system({o->storeys, o->repeats, o->width, o->dynamic}, cm, ks, gm);
+    if (!o->isolation.empty() && o->storeys < 1)
+      throw InputError("--isolation needs --storeys", "--isolation", "give --storeys N (1 or more)");
+    if (o->storeys > 0) return bench_system({o->storeys, o->repeats, o->width, o->dynamic, o->isolation}, cm, ks, gm);
     // enough pairs that one repeat takes a measurable time, in batches of `width`
     const double steps = static_cast<double>(ag.size() - 1) * o->substeps;
     const std::size_t batches = std::max<std::size_t>(1, static_cast<std::size_t>(2e7 / (steps * o->width)));
