@@ -5,7 +5,8 @@
 # records, and the builtin suite's spectra) -- and each figure checked by tests/cli/plot_layout.py: texts inside
 # the figure, no two texts overlapping, no line across a label, tick numbers on every panel, the fragility's
 # extrapolation beyond the stripes marked, the pair plot's x-axis near the data and its advice labels beside
-# their points, the selected records named. example-pair also runs with a 150-character title (it was clipped).
+# their points, the selected records named. Also tools/compare_sdof_mdof.py's figures (stochastic-pounding against
+# stochastic-pounding-storeys). example-pair also runs with a 150-character title (it was clipped).
 # Needs python3 with matplotlib, h5py, numpy: skipped (77) without them, a failure under CI=true.
 # real-records.toml needs ../shared/records/real (skipped without, as every real-record test).
 # Args: <pounding binary> <source dir>
@@ -69,6 +70,13 @@ PY
     n=$((n + 1))
   done
 done
+# issue 25 §6: the SDOF study against its shear-building copy (tools/compare_sdof_mdof.py: the T1 x T2 map and the curves)
+if [ -f "$tmp/stochastic-pounding.h5" ] && [ -f "$tmp/stochastic-pounding-storeys.h5" ]; then
+  $check -- "$src/tools/compare_sdof_mdof.py" "$tmp/stochastic-pounding.h5" "$tmp/stochastic-pounding-storeys.h5" \
+    --figure "$tmp/out/sdof-mdof" || fail=1
+else
+  echo "FAIL: studies/stochastic-pounding.toml or stochastic-pounding-storeys.toml was not run"; fail=1
+fi
 # the builtin suite's spectra (tools/plot_spectra.py on a `records spectrum` CSV), linear and log period axis
 "$bin" records spectrum --suite default -o "$tmp/suite.csv" > /dev/null
 names=$(grep '^period_s,' "$tmp/suite.csv" | cut -d, -f2- )
