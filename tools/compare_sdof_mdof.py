@@ -288,7 +288,7 @@ def figures(a, S, M, x, how, diff, XS, XM, okS, okM, XF):
 
     R, N = S["D"].shape
     title = textwrap.fill(f"Shear buildings minus SDOFs: probability of pounding at gap {x:.3f} d "
-                          f"({R} records, {N} models each)", 60)
+                          f"({R} records, {N:,} models per record)", 60)
     fig, ax = plt.subplots(figsize=(6.4, 5.4), layout="constrained")
     vmax = max(5.0, 5.0 * math.ceil(np.nanmax(np.abs(diff)) / 5.0)) if np.isfinite(diff).any() else 5.0
     mesh = ax.pcolormesh(edges(p2), edges(p1), diff, cmap="RdBu_r", vmin=-vmax, vmax=vmax, shading="flat")
