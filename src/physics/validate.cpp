@@ -134,22 +134,20 @@ std::string spring_place(const model::System& sys, std::size_t s) {
   return fmt::format("link spring {}", s);
 }
 
-// h omega_max >= the stepper's limit, omega_max from Gershgorin's bound on M^-1 K0 (§2.2.7):
-// omega_max^2 <= max_i sum_j |K_ij| / m_i, K0 from the springs' initial stiffnesses (contact excluded: it is
-// guarded during the run).
+// h >= the structure's longest stable step (structure_step_max: Gershgorin's bounds on M^-1 K0 and, for central
+// difference, M^-1 C; §2.2.7), K0 from the springs' initial stiffnesses (contact excluded: it is guarded during the
+// run).
 void structure_frequency(std::vector<Problem>& out, const SystemBatch& b, std::size_t lane, double dt,
                          const KernelSettings& settings) {
-  const double limit = structure_step_limit(settings.stepper);
-  const StructureFrequency f = structure_omega_max(b, lane);
+  const StructureStep s = structure_step_max(b, lane, settings.stepper);
   const double h = dt / settings.substeps;
-  if (!(h * f.omega_max < limit)) {
-    const double need = std::floor(dt * f.omega_max / limit) + 1.0;
-    out.push_back({fmt::format("the time step {} s is too long for the structure's highest frequency (h omega_max = "
-                               "{:.3g} >= {} with omega_max <= {:.6g} rad/s, Gershgorin bound, largest at {})",
-                               h, h * f.omega_max, limit, f.omega_max, dof_place(*b.system, f.dof)),
+  if (!(h < s.h_max))
+    out.push_back({fmt::format("the time step {} s is too long for the structure's highest frequency and damping (h "
+                               "<= {:.4g} s needed: h^2 omega^2 + 4 h (2 zeta omega) < 4 with omega_max <= {:.6g} rad/s, "
+                               "largest at {}, and 2 zeta omega <= {:.4g} 1/s, Gershgorin bounds)",
+                               h, s.h_max, s.omega_max, dof_place(*b.system, s.dof), s.damping),
                    fmt::format("substeps (lane {})", lane),
-                   fmt::format("give substeps >= {} (or a smaller dt)", need)});
-  }
+                   fmt::format("give substeps >= {} (or a smaller dt)", s.substeps(dt))});
 }
 
 std::vector<Problem> validate_system_lane(const SystemBatch& b, std::span<const ContactModel> models,
@@ -220,6 +218,50 @@ StructureFrequency structure_omega_max(const SystemBatch& b, std::size_t lane) {
     if (r > w2) w2 = r, worst = d;
   }
   return {std::sqrt(w2), worst};
+}
+
+// Gershgorin on M^-1 C: a dashpot between two DOFs puts c on the diagonal and -c off it in both rows; one to the
+// ground only c in its DOF's row. Floor dashpots go to the ground or to the body's base (floor_dashpot_ref).
+double structure_damping_bound(const SystemBatch& b, std::size_t lane) {
+  const model::System& sys = *b.system;
+  const std::size_t w = b.width;
+  std::vector<double> row(static_cast<std::size_t>(sys.ndof()), 0.0);
+  for (int d = 0; d < sys.ndof(); ++d) row[static_cast<std::size_t>(d)] = std::abs(b.c_floor[SystemBatch::at(d, lane, w)]);
+  for (const model::Body& body : sys.bodies())  // floor dashpots to an isolated base: c in both rows, twice
+    if (body.floor_dashpot_ref != model::ground)
+      for (int d : body.dofs) {
+        if (d == body.floor_dashpot_ref) continue;
+        const double c = std::abs(b.c_floor[SystemBatch::at(d, lane, w)]);
+        row[static_cast<std::size_t>(d)] += c;
+        row[static_cast<std::size_t>(body.floor_dashpot_ref)] += 2.0 * c;
+      }
+  if (!b.c_storey.empty())
+    for (std::size_t s = 0; s < sys.springs().size(); ++s) {
+      const model::Spring& sp = sys.springs()[s];
+      const double c = std::abs(b.c_storey[SystemBatch::at(static_cast<int>(s), lane, w)]);
+      row[static_cast<std::size_t>(sp.j)] += sp.i == model::ground ? c : 2.0 * c;
+      if (sp.i != model::ground) row[static_cast<std::size_t>(sp.i)] += 2.0 * c;
+    }
+  double bound = 0.0;
+  for (int d = 0; d < sys.ndof(); ++d)
+    bound = std::max(bound, row[static_cast<std::size_t>(d)] / b.m[SystemBatch::at(d, lane, w)]);
+  return bound;
+}
+
+double StructureStep::substeps(double dt) const { return std::floor(dt / h_max) + 1.0; }
+
+StructureStep structure_step_max(const SystemBatch& b, std::size_t lane, Stepper stepper) {
+  const StructureFrequency f = structure_omega_max(b, lane);
+  StructureStep s{std::numeric_limits<double>::infinity(), f.omega_max, 0.0, f.dof};
+  if (stepper == Stepper::central_difference) {
+    // 2 (sqrt(C^2 + W^2) - C) / W^2 without the cancellation (and 1 / C for W = 0)
+    s.damping = structure_damping_bound(b, lane);
+    const double r = s.damping + std::sqrt(s.damping * s.damping + f.omega_max * f.omega_max);
+    if (r > 0.0) s.h_max = 2.0 / r;
+  } else if (f.omega_max > 0.0) {
+    s.h_max = structure_step_limit(stepper) / f.omega_max;
+  }
+  return s;
 }
 
 std::vector<Problem> validate_lane(const PairParams& p, const ContactModel& cm, Stepper stepper, std::size_t lane) {

@@ -245,38 +245,6 @@ void SystemBlock::coupled(std::span<const SampledPair> pairs, std::span<const st
   run(pairs, lanes, ratio, cm, cn, gm, ks, out);
 }
 
-namespace {
-
-// Gershgorin's bound on M^-1 C of lane `lane`: max over DOFs of (floor dashpot + 2 x each storey dashpot on it, one for
-// a dashpot to the ground) / m. Every mode n has 2 zeta_n omega_n <= this.
-double damping_bound(const physics::SystemBatch& b, std::size_t lane) {
-  const model::System& sys = *b.system;
-  const std::size_t w = b.width;
-  std::vector<double> row(static_cast<std::size_t>(sys.ndof()), 0.0);
-  for (int d = 0; d < sys.ndof(); ++d) row[static_cast<std::size_t>(d)] = b.c_floor[physics::SystemBatch::at(d, lane, w)];
-  for (const model::Body& body : sys.bodies())  // floor dashpots to an isolated base: c in both rows, twice
-    if (body.floor_dashpot_ref != model::ground)
-      for (int d : body.dofs) {
-        if (d == body.floor_dashpot_ref) continue;
-        const double c = b.c_floor[physics::SystemBatch::at(d, lane, w)];
-        row[static_cast<std::size_t>(d)] += c;
-        row[static_cast<std::size_t>(body.floor_dashpot_ref)] += 2.0 * c;
-      }
-  if (!b.c_storey.empty())
-    for (std::size_t k = 0; k < sys.springs().size(); ++k) {
-      const model::Spring& x = sys.springs()[k];
-      const double c = b.c_storey[physics::SystemBatch::at(static_cast<int>(k), lane, w)];
-      row[static_cast<std::size_t>(x.j)] += x.i == model::ground ? c : 2.0 * c;
-      if (x.i != model::ground) row[static_cast<std::size_t>(x.i)] += 2.0 * c;
-    }
-  double bound = 0.0;
-  for (int d = 0; d < sys.ndof(); ++d)
-    bound = std::max(bound, row[static_cast<std::size_t>(d)] / b.m[physics::SystemBatch::at(d, lane, w)]);
-  return bound;
-}
-
-}  // namespace
-
 void check_shear_steps(const Study& study, std::span<const StudyRecord> records, std::size_t max_models) {
   const StructureModel& model = study.structures;
   if (!model.any_shear() || records.empty() || study.stepper != Stepper::central_difference) return;
@@ -291,13 +259,10 @@ void check_shear_steps(const Study& study, std::span<const StudyRecord> records,
   const auto pairs = model.period_pair_count();
   const auto per_pair = std::min<std::int64_t>(model.samples_per_pair,
                                                std::max<std::int64_t>(1, static_cast<std::int64_t>(max_models) / pairs));
-  // The system stepper (velocity Verlet, damping forces on the predicted velocity v + h a) is stable for a mode of
-  // circular frequency omega and ratio zeta when h omega <= 2 (sqrt(1 + (2 zeta)^2) - 2 zeta), i.e. h^2 omega^2 +
-  // 4 h (2 zeta omega) <= 4 (the spectral radius of its one-step matrix; tools/stability_damped_cd.py). Rayleigh
-  // damping is classical, so the modes decouple; with omega <= W (Gershgorin on M^-1 K0) and 2 zeta omega <= C
-  // (Gershgorin on M^-1 C) it suffices that h <= 2 (sqrt(C^2 + W^2) - C) / W^2. The storey dashpots make C grow with
-  // the stiffest storey: tall buildings of short storeys need it.
-  double h_min = INFINITY, w_at = 0.0, c_at = 0.0;
+  // physics::structure_step_max: the system stepper's damped limit h^2 omega^2 + 4 h (2 zeta omega) < 4 with
+  // Gershgorin's bounds on M^-1 K0 and M^-1 C (the storey dashpots make C grow with the stiffest storey: tall
+  // buildings of short storeys need it) -- the same bound physics::validate and pounding simulate check.
+  physics::StructureStep worst{INFINITY, 0.0, 0.0, 0};
   SampleId at;
   std::map<LaneTopology, physics::SystemBatch> batches;
   for (std::int64_t p = 0; p < pairs; ++p)
@@ -307,12 +272,12 @@ void check_shear_steps(const Study& study, std::span<const StudyRecord> records,
       physics::SystemBatch& b = batches[t];
       if (!b.system) b.resize(block.system(t), 1);
       block.set_lane(b, 0, pair, t, 0.0, ContactNumbers{});
-      const double W = physics::structure_omega_max(b, 0).omega_max, C = damping_bound(b, 0);
-      const double h_lane = 2.0 * (std::sqrt(C * C + W * W) - C) / (W * W);
-      if (h_lane < h_min) h_min = h_lane, at = pair.id, w_at = W, c_at = C;
+      const physics::StructureStep s = physics::structure_step_max(b, 0, Stepper::central_difference);
+      if (s.h_max < worst.h_max) worst = s, at = pair.id;
     }
+  const double h_min = worst.h_max, w_at = worst.omega_max, c_at = worst.damping;
   if (h < h_min) return;
-  const double need = std::floor(dt / h_min) + 1.0;
+  const double need = worst.substeps(dt);
   throw InputError(
       fmt::format("the integration step {:.4g} s (record step {:g} s / {}) is too long for the shear buildings: sample "
                   "({}, {}, {}) needs h <= {:.4g} s for central difference (omega_max <= {:.6g} rad/s, 2 zeta omega <= "

@@ -189,7 +189,17 @@ bad "--gap-offsets" --storeys1 3 --storeys2 3 --gap-offsets 0,0
 bad "--gap-offsets" --storeys1 3 --gap 0.1 --gap-offsets -0.2
 [ ! -e "$tmp/s.csv" ] || fail "a refused run wrote its series"
 # the structure's own top frequency beyond central difference's limit: refused with the substeps that satisfy it
-bad "--dt (default: the record step), give --dt <= 5.74713e-05 s" --storeys1 5 --storey-mass1 1e3 --storey-stiffness1 3e11
+bad "--dt (default: the record step), give --dt <= 4.7619e-05 s" --storeys1 5 --storey-mass1 1e3 --storey-stiffness1 3e11
+# Rayleigh-damped tall buildings of short storeys: 40 storeys of 1 m at --dt 0.005 pass the undamped h omega_max < 2
+# (1.62), but the storey dashpots on the stepper's predicted velocity need h^2 w^2 + 4 h (2 zeta w) < 4 (Gershgorin's
+# bounds: omega_max <= 324 rad/s, 2 zeta omega <= 418 1/s, h <= 0.00211 s; physics::structure_step_max): refused
+# before any work with the step that does. Before the check knew the damping, this run went through and DIVERGED.
+tall=(--storeys1 40 --storey-height1 1 --storeys2 40 --storey-height2 1 --gap 0.5)
+bad "--dt, give --dt <= 0.002 s (the record step 0.01 s / 5)" "${tall[@]}" --dt 0.005
+# and the step it advises runs without divergence
+sim "${tall[@]}" --dt 0.002 --json > "$tmp/tall.json" || fail "40 storeys of 1 m at the advised --dt 0.002: exit $?"
+"$py" -c 'import json, sys; j = json.load(open(sys.argv[1])); assert j["status"] == "ok", j["status"]' "$tmp/tall.json" ||
+  fail "40 storeys of 1 m at the advised --dt 0.002 did not run ok"
 echo "ok:   bad storey options refused with one error each"
 
 # 6. collide --json

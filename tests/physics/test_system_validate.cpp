@@ -1,8 +1,10 @@
 // physics::validate(const SystemBatch&, ...) (docs/architecture.md §2.2.7, issue 25 step 2): every value problem
 // of a lane, the group and stepper checks, the structure's highest frequency against central difference's
-// limit h omega_max < 2 (Gershgorin bound), and the SDOF pair's unchanged checks.
+// limit with damping h^2 omega^2 + 4 h (2 zeta omega) < 4 (Gershgorin bounds; structure_step_max, checked against
+// the spectral radius of the stepper's one-step matrix), and the SDOF pair's unchanged checks.
 #include <gtest/gtest.h>
 
+#include <Eigen/Dense>
 #include <cmath>
 #include <string>
 #include <vector>
@@ -140,8 +142,8 @@ TEST(SystemValidate, StructureFrequencyAgainstCentralDifference) {
       for (int s = 0; s < 8; ++s) b.spring[SystemBatch::at(s, l, 3)].k = 3e8;  // lanes 0 and 2 are fine
   const std::vector<Problem> ps = f.check(b);
   ASSERT_TRUE(first_is(ps, "too long for the structure's highest frequency", "substeps (lane 1)"));
-  EXPECT_NE(ps[0].what.find("h omega_max = 2.45"), std::string::npos) << ps[0].what;
   EXPECT_NE(ps[0].what.find("244.949"), std::string::npos) << ps[0].what;
+  EXPECT_NE(ps[0].what.find("largest at building1 floor 2"), std::string::npos) << ps[0].what;
   EXPECT_EQ(ps[0].fix, "give substeps >= 2 (or a smaller dt)");
   f.ks.substeps = 2;
   EXPECT_TRUE(f.check(b).empty());
@@ -149,6 +151,82 @@ TEST(SystemValidate, StructureFrequencyAgainstCentralDifference) {
   const double top = 2.0 * std::sqrt(3e9 / 2e5) * std::sin(9.0 * test::pi / 22.0);
   EXPECT_LT(top, std::sqrt(4.0 * 3e9 / 2e5));
   EXPECT_GT(0.01 * top, 2.0);  // so the refusal at 1 substep is no false alarm here
+}
+
+// The damped limit: building2's storey dashpots of c = 5e6 N s/m on k = 3e8, m = 2e5 (stiffness-proportional
+// a1 = 1/60 s) leave h omega_max = 0.77 < 2 at dt = 0.01, the check without damping passed it; Gershgorin gives
+// 2 zeta omega <= 4 c / m + the floor dashpot = 100.05 1/s and omega_max^2 <= 4 k / m, so h <= 2 / (C + sqrt(C^2 + 6000)) = 0.008827 s.
+// No false alarm: the true top mode of the 5-storey stick (omega = 74.3 rad/s, 2 zeta omega = a1 omega^2 = 92 1/s)
+// alone needs h < 0.0095 s.
+TEST(SystemValidate, StoreyDashpotsShortenTheStableStep) {
+  Fixture f;
+  SystemBatch b = uniform(f.sys, 2);
+  for (int s = 3; s < 8; ++s) b.c_storey[SystemBatch::at(s, 1, 2)] = 5e6;  // building2's storeys in lane 1
+  const std::vector<Problem> ps = f.check(b);
+  ASSERT_TRUE(first_is(ps, "too long for the structure's highest frequency and damping", "substeps (lane 1)"));
+  EXPECT_NE(ps[0].what.find("h <= 0.008827 s"), std::string::npos) << ps[0].what;
+  EXPECT_EQ(ps[0].fix, "give substeps >= 2 (or a smaller dt)");
+  const double top = 2.0 * std::sqrt(3e8 / 2e5) * std::sin(9.0 * test::pi / 22.0), a1 = 5e6 / 3e8;
+  const double x = a1 * top * top;
+  EXPECT_LT(2.0 / (x + std::sqrt(x * x + top * top)), 0.01);  // the true top mode is unstable at 0.01 s too
+  f.ks.substeps = 2;
+  EXPECT_TRUE(f.check(b).empty());
+}
+
+// One DOF on a ground spring k = omega^2 m, damped by a floor dashpot or a storey dashpot c = 2 zeta omega m.
+System one_dof(bool storey_dashpot) {
+  System::Parts p;
+  p.bodies.resize(1);
+  p.bodies[0].label = "building1", p.bodies[0].dofs = {0}, p.bodies[0].heights = {3.0};
+  p.bodies[0].storey_dashpots = storey_dashpot;
+  p.springs.push_back({model::ground, 0, 0, model::SpringRole::storey, 0, 1});
+  p.groups.push_back({});
+  return System::build(p);
+}
+
+// The spectral radius of the system stepper's one-step matrix on (u, v, a) for one mode (the step of
+// steppers/system_central_difference.hpp: vh = v + h/2 a, u += h vh, vp = vh + h/2 a, a = -omega^2 u - c vp,
+// v = vh + h/2 a), written here from the step, not from the bound.
+double radius(double h, double omega, double c) {
+  Eigen::Matrix3d A;
+  for (int k = 0; k < 3; ++k) {
+    const Eigen::Vector3d x = Eigen::Vector3d::Unit(k);
+    const double vh = x[1] + h / 2 * x[2], u1 = x[0] + h * vh, vp = vh + h / 2 * x[2];
+    const double a1 = -omega * omega * u1 - c * vp;
+    A.col(k) << u1, vh + h / 2 * a1, a1;
+  }
+  return A.eigenvalues().cwiseAbs().maxCoeff();
+}
+
+// structure_step_max against the largest h with spectral radius <= 1 (bisection on the one-step matrix), for an
+// SDOF where Gershgorin's bounds are exact (W = omega, C = 2 zeta omega): the bound IS the stability limit there.
+TEST(SystemValidate, StepBoundIsTheDampedCentralDifferenceLimit) {
+  for (const bool storey : {false, true})
+    for (const auto& [omega, zeta] : {std::pair{6.0, 0.02}, {80.0, 0.05}, {500.0, 0.2}, {3000.0, 1.0}}) {
+      const System sys = one_dof(storey);
+      SystemBatch b;
+      b.resize(sys, 1);
+      b.m[0] = 2e5, b.spring[0] = {omega * omega * 2e5, 1e9, 0.0};
+      (storey ? b.c_storey[0] : b.c_floor[0]) = 2.0 * zeta * omega * 2e5;
+      const StructureStep s = structure_step_max(b, 0, Stepper::central_difference);
+      const double c = 2.0 * zeta * omega;
+      double lo = 0.0, hi = 10.0 / omega;
+      for (int i = 0; i < 100; ++i) {
+        const double mid = 0.5 * (lo + hi);
+        (radius(mid, omega, c) <= 1.0 + 1e-12 ? lo : hi) = mid;
+      }
+      SCOPED_TRACE(::testing::Message() << "omega " << omega << " zeta " << zeta << (storey ? " storey" : " floor"));
+      EXPECT_NEAR(s.h_max, lo, 1e-9 * lo);
+      EXPECT_NEAR(s.omega_max, omega, 1e-12 * omega);
+      EXPECT_NEAR(s.damping, c, 1e-12 * c);
+      EXPECT_LE(radius(0.999 * s.h_max, omega, c), 1.0 + 1e-12);  // just inside: bounded
+      EXPECT_GT(radius(1.001 * s.h_max, omega, c), 1.0 + 1e-6);   // just outside: grows
+      EXPECT_LT(s.h_max, 2.0 / omega);  // damping shortens it below the undamped 2 / omega
+      // the substeps it advises are the fewest that reach inside
+      const double dt = 0.01, n = s.substeps(dt);
+      EXPECT_LT(dt / n, s.h_max);
+      if (n > 1) EXPECT_GE(dt / (n - 1), s.h_max);
+    }
 }
 
 // The pair keeps today's validation: the same problems as the PairBatch's, and no frequency check (its stiff

@@ -131,12 +131,12 @@ class SystemBlock {
   std::map<std::string, std::size_t> table_elements_;  // element label -> index in the table topology
 };
 
-// Before any work: every sample's shear buildings against the integration step of every record: central
-// difference with damping needs h^2 omega^2 + 4 h (2 zeta omega) < 4 for every mode, checked with Gershgorin's
-// bounds on M^-1 K0 and M^-1 C (stricter than physics::validate's h omega_max < 2, which leaves out the damping:
-// tall Rayleigh-damped sticks of short storeys diverge between the two). InputError naming [analysis] substeps / max_dt, the sample and the step that would do, for the first
-// study-wide worst case. Scans up to `max_models` models (the first of each period pair beyond that: the run's own
-// per-lane check still refuses the rest, later).
+// Before any work: every sample's shear buildings against the integration step of every record, with
+// physics::structure_step_max (central difference with damping needs h^2 omega^2 + 4 h (2 zeta omega) < 4 for every
+// mode, Gershgorin's bounds on M^-1 K0 and M^-1 C; the bound physics::validate checks per lane). InputError naming
+// [analysis] substeps / max_dt, the sample and the step that would do, for the study-wide worst case. Scans up to
+// `max_models` models (the first of each period pair beyond that: the run's own per-lane check, physics::validate,
+// still refuses the rest, later).
 void check_shear_steps(const Study& study, std::span<const StudyRecord> records, std::size_t max_models = 250000);
 
 }  // namespace pounding

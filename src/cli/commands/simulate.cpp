@@ -404,16 +404,21 @@ physics::ShearSpec shear_spec(const SimulateOptions& o, int i, const Structure& 
   return spec;
 }
 
-// The buildings' own highest frequency against the stepper's limit, as a --dt error (physics::validate says the same
-// in substeps): a stiff storey over a light floor is far above T1 and invisible to the user.
+// The buildings' longest stable step (physics::structure_step_max: highest frequency and damping, the bound
+// physics::validate checks in substeps) as a --dt error: a stiff storey over a light floor is far above T1, and the
+// storey dashpots of Rayleigh damping on short storeys shorten it further, invisible to the user.
 void check_step(const SimulateOptions& o, const physics::SystemBatch& batch, const KernelSettings& ks, double record_dt) {
-  const physics::StructureFrequency f = physics::structure_omega_max(batch, 0);
-  const double limit = physics::structure_step_limit(ks.stepper), h = record_dt / ks.substeps;
-  if (h * f.omega_max < limit) return;
-  const double need = std::floor(record_dt * f.omega_max / limit) + 1.0;
-  throw InputError(fmt::format("the integration step {} s is too long for the buildings' highest frequency (h omega_max "
-                               "= {:.3g} >= {}, omega_max <= {:.6g} rad/s by Gershgorin's bound)",
-                               h, h * f.omega_max, limit, f.omega_max),
+  const physics::StructureStep s = physics::structure_step_max(batch, 0, ks.stepper);
+  const double h = record_dt / ks.substeps;
+  if (h < s.h_max) return;
+  const double need = s.substeps(record_dt);
+  const std::string rule = ks.stepper == Stepper::central_difference
+                               ? std::string("h^2 omega^2 + 4 h (2 zeta omega) < 4")
+                               : fmt::format("h omega < {}", physics::structure_step_limit(ks.stepper));
+  throw InputError(fmt::format("the integration step {} s is too long for the buildings' highest frequency and damping "
+                               "(h <= {:.4g} s needed: {} with omega_max <= {:.6g} rad/s and 2 zeta omega <= {:.4g} 1/s "
+                               "by Gershgorin's bounds)",
+                               h, s.h_max, rule, s.omega_max, s.damping),
                    o.dt_given ? "--dt" : "--dt (default: the record step)",
                    fmt::format("give --dt <= {:.6g} s (the record step {} s / {})", record_dt / need, record_dt, need));
 }
