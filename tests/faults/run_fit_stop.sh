@@ -62,6 +62,7 @@ wait_fit() {  # wait_fit <stderr file> <pid>
 }
 stop_in_fit() {  # stop_in_fit <label> <signal> <seconds> <out> <args...>: runs pounding, signals it in the fit phase
   local label=$1 sig=$2 limit=$3 out=$4; shift 4
+  local want=130; [ "$sig" = TERM ] && want=143  # SIGTERM (a batch system's time limit) has its own code
   rm -f "$tmp/$out" "$tmp/$out.ckpt"
   "$@" > "$tmp/stdout" 2> "$tmp/err" &
   local pid=$!
@@ -69,11 +70,12 @@ stop_in_fit() {  # stop_in_fit <label> <signal> <seconds> <out> <args...>: runs 
   local t0; t0=$(date +%s.%N)
   kill "-$sig" "$pid"; rc=0; wait "$pid" || rc=$?
   local took; took=$(echo "$(date +%s.%N) - $t0" | bc)
-  if [ "$rc" -eq 130 ] && [ "$(echo "$took < $limit" | bc)" -eq 1 ] && [ ! -e "$tmp/$out" ] && [ -s "$tmp/$out.ckpt" ] \
+  if [ "$rc" -eq "$want" ] && [ "$(echo "$took < $limit" | bc)" -eq 1 ] && [ ! -e "$tmp/$out" ] && [ -s "$tmp/$out.ckpt" ] \
+     && { [ "$sig" != TERM ] || grep -q "stopped by SIGTERM .*: exit 143; .* --resume" "$tmp/err"; } \
      && grep -qE "interrupted during the analysis \(fit: .*\): all [0-9]+ units are checkpointed in $tmp/$out.ckpt; --resume redoes only the analysis" "$tmp/err"; then
-    ok "$label: exit 130 ${took} s after SIG$sig in the fit phase, checkpoint kept, no results file"
+    ok "$label: exit $want ${took} s after SIG$sig in the fit phase, checkpoint kept, no results file"
   else
-    fail "$label: exit $rc ${took} s after SIG$sig (want 130 within $limit s, no $out, $out.ckpt kept)"; cat "$tmp/err"
+    fail "$label: exit $rc ${took} s after SIG$sig (want $want within $limit s, no $out, $out.ckpt kept)"; cat "$tmp/err"
   fi
   ls "$tmp"/*.tmp[0-9]* > /dev/null 2>&1 && fail "$label: a temporary was left"
   return 0
@@ -98,10 +100,25 @@ if command -v mpirun > /dev/null; then
     kill -TERM "$pid"; rc=0; wait "$pid" || rc=$?
     # the ranks' last line ("interrupted during the analysis") can be lost in mpirun's own teardown (seen once in a
     # fresh clone's CI run), so only what stays on disk is checked here: no results, the checkpoint kept
-    if { [ "$rc" -eq 1 ] || [ "$rc" -eq 130 ]; } && [ ! -e "$tmp/e.h5" ] && [ -s "$tmp/e.h5.ckpt" ]; then
+    if { [ "$rc" -eq 1 ] || [ "$rc" -eq 143 ]; } && [ ! -e "$tmp/e.h5" ] && [ -s "$tmp/e.h5.ckpt" ]; then
       ok "SIGTERM to mpirun in the fit: the ranks stopped, checkpoint kept (mpirun's own exit code $rc)"
     else fail "SIGTERM to mpirun: exit $rc"; cat "$tmp/err"; fi
   else fail "mpirun: no fit progress"; cat "$tmp/err"; fi
+  # SIGTERM to every rank but not to mpirun, as Slurm's srun / a time limit delivers it to each task: every rank
+  # exits 143 (issue 27.6), and so does mpirun, which passes its ranks' code on
+  rm -f "$tmp/f.h5" "$tmp/f.h5.ckpt"
+  timeout 120 mpirun --oversubscribe -np 2 "$bin" run "$tmp/long.toml" --out "$tmp/f.h5" > /dev/null 2> "$tmp/err" &
+  pid=$!
+  if wait_fit "$tmp/err" "$pid"; then
+    mp=$(pgrep -P "$pid" -x mpirun || true)
+    ranks=$( [ -n "$mp" ] && pgrep -P "$mp" -d ' ' || true)
+    if [ -n "$ranks" ]; then
+      kill -TERM $ranks; rc=0; wait "$pid" || rc=$?
+      if [ "$rc" -eq 143 ] && [ ! -e "$tmp/f.h5" ] && [ -s "$tmp/f.h5.ckpt" ] && grep -q "stopped by SIGTERM" "$tmp/err"; then
+        ok "SIGTERM to each rank (a batch system's time limit): mpirun exits 143, checkpoint kept, no results"
+      else fail "SIGTERM to each rank: exit $rc (want 143)"; cat "$tmp/err"; fi
+    else fail "SIGTERM to each rank: no rank processes found under mpirun"; kill -9 "$pid" 2> /dev/null; fi
+  else fail "mpirun (ranks): no fit progress"; cat "$tmp/err"; fi
 elif [ "${CI:-}" = true ]; then
   fail "mpirun is missing (CI=true)"
 else

@@ -26,8 +26,26 @@ namespace {
 
 // The process-wide stop flag: set by SIGINT/SIGTERM (and SIGUSR1/SIGUSR2, which mpirun forwards), read by the run
 // between units and by the fit's loops (RunContext::hook).
+// The first stop signal is kept: SIGTERM (what Slurm and other batch systems send at a time limit, and `scancel`)
+// ends the run with its own exit code, 143, so a job script can tell "requeue and --resume" from a user's Ctrl-C (130).
 std::atomic<bool> stop_requested{false};
-extern "C" void on_stop_signal(int) { stop_requested.store(true); }
+std::atomic<int> stop_signal{0};
+extern "C" void on_stop_signal(int sig) {
+  int none = 0;
+  stop_signal.compare_exchange_strong(none, sig);
+  stop_requested.store(true);
+}
+
+// 130 (interrupted) becomes 143 when any rank was stopped by SIGTERM; every rank returns the same code. The ranks
+// all reach this with 130 together (run_study agrees on it), so the collectives match.
+int stop_code(const parallel::Session& session, int code) {
+  if (code != 130) return code;
+  std::vector<double> term{stop_signal.load() == SIGTERM ? 1.0 : 0.0};
+  session.max_to_root(term);
+  int out = term[0] > 0 ? 143 : 130;
+  session.broadcast(out);
+  return out;
+}
 
 std::string hms(double s) {
   if (!std::isfinite(s) || s < 0) return "--:--:--";
@@ -145,6 +163,10 @@ int run_job(const RunOpts& o) {
       }
     }
     RunOutcome r = run_study(session, o.study, ro, ctx);
+    r.code = stop_code(session, r.code);
+    if (session.root() && r.code == 143)
+      fmt::print(stderr, "stopped by SIGTERM (a batch system's time limit or scancel): exit 143; the checkpoint keeps "
+                         "every finished unit, rerun the same command with --resume (docs/cluster.md)\n");
     if (session.root() && (r.code == 0 || r.code == 3)) {
       fmt::print("{}", r.report);
       std::fflush(stdout);
