@@ -20,6 +20,8 @@ void add_results(CLI::App& app);   // src/cli/commands/results.cpp (the datasets
 void add_study_reference(CLI::App& app);  // src/cli/commands/study_reference.cpp (docs/study-reference.md)
 void add_spectrum(CLI::App& app);  // src/cli/commands/spectrum.cpp (a code design spectrum at given periods)
 void add_modes(CLI::App& app);     // src/cli/commands/modes.cpp (modes and Rayleigh damping of a shear building)
+void add_stiffness(CLI::App& app);   // src/cli/commands/stiffness.cpp (impact-stiffness rules)
+void add_similitude(CLI::App& app);  // src/cli/commands/stiffness.cpp (shake-table model scale factors)
 void add_accuracy(CLI::App& app);  // src/cli/commands/accuracy.cpp (accuracy/speed chart, stability, restitution, validation)
 
 // Runs a shared parser (parse_stepper, parse_units, ...) and names the command-line option in its InputError.

@@ -61,6 +61,8 @@ int main(int argc, char** argv) {
   pounding::cli::add_sample(app);
   pounding::cli::add_spectrum(app);
   pounding::cli::add_modes(app);
+  pounding::cli::add_stiffness(app);
+  pounding::cli::add_similitude(app);
   pounding::cli::add_accuracy(app);
   pounding::cli::add_study_reference(app);
   try {
