@@ -139,8 +139,8 @@ void add_options(CLI::App* c, Opts& o) {
   c->add_flag("--json", o.json, "print one JSON object (full precision)");
 }
 
-// Validates the options, then computes every row asked for (InputError before any output).
-std::vector<Row> compute(const CLI::App* c, const Opts& o, double& xi_out, double& meff_out) {
+// Every option's range; returns lambda (0 without --scale).
+double check_options(const CLI::App* c, const Opts& o) {
   auto has = [&](const char* opt) { return c->count(opt) > 0; };
   checked(c, "--youngs-modulus", o.E, modulus_range);
   checked(c, "--area", o.area, area_range);
@@ -163,9 +163,14 @@ std::vector<Row> compute(const CLI::App* c, const Opts& o, double& xi_out, doubl
   if (!o.rule.empty() && std::find(rule_names.begin(), rule_names.end(), o.rule) == rule_names.end())
     throw InputError(fmt::format("unknown rule '{}'", escaped_excerpt(o.rule)), "--rule",
                      "give one of axial, lateral, sphere, jankowski, xu, experimental (or leave --rule out for all)");
+  return lambda;
+}
+
+// The rules to compute: --rule (InputError when its options are missing) or every rule the options allow.
+std::vector<std::string> chosen_rules(const CLI::App* c, const Opts& o) {
+  auto has = [&](const char* opt) { return c->count(opt) > 0; };
 
   // what each rule needs: groups of alternatives
-  const bool masses = has("--mass1") && has("--mass2");
   const std::vector<Need> needs{
       {"axial", {{"--youngs-modulus"}, {"--area"}, {"--length"}}},
       {"lateral", {{"--lateral-stiffness"}}},
@@ -188,20 +193,86 @@ std::vector<Row> compute(const CLI::App* c, const Opts& o, double& xi_out, doubl
     }
     return "";
   };
-  std::vector<const Need*> chosen;
+  std::vector<std::string> chosen;
   for (const Need& n : needs) {
     if (!o.rule.empty() && o.rule != n.rule) continue;
     const std::string miss = missing(n);
     if (!o.rule.empty() && !miss.empty())
       throw InputError(fmt::format("rule '{}' needs {}", n.rule, miss), miss.substr(0, miss.find(' ')),
                        "give it (see pounding stiffness --help)");
-    if (miss.empty()) chosen.push_back(&n);
+    if (miss.empty()) chosen.push_back(n.rule);
   }
   if (chosen.empty())
     throw InputError("no rule can be computed from the options given", "pounding stiffness",
                      "give e.g. --youngs-modulus --area --length (axial), --lateral-stiffness (lateral), --scale "
                      "(jankowski, experimental); --rule NAME says what a rule needs");
+  return chosen;
+}
 
+// One rule's row (its options checked).
+Row make_row(const CLI::App* c, const Opts& o, const std::string& rule, double lambda) {
+  auto has = [&](const char* opt) { return c->count(opt) > 0; };
+  const double k_axial = (has("--youngs-modulus") && has("--area") && has("--length")) ? R::axial(o.E, o.area, o.length)
+                                                                                       : o.k1;
+  Row r;
+  r.rule = rule;
+  r.unit = "N/m";
+  if (rule == "axial") {
+    r.k = R::axial(o.E, o.area, o.length);
+    r.formula = "k = E A / L";
+    r.inputs = fmt::format("E = {} Pa, A = {} m^2, L = {} m", sci(o.E), sci(o.area), sci(o.length));
+    r.assumptions = "the member that hits stays elastic and is compressed uniformly over L (a bar); an upper "
+                    "bound for slab-to-slab contact (Maison & Kasai)";
+    r.source = "impact-stiffness paper eqs 5, 8 (Maison & Kasai)";
+  } else if (rule == "lateral") {
+    r.k = R::lateral_multiple(o.lateral, o.multiple);
+    r.formula = fmt::format("k = {} x K_lateral", sci(o.multiple));
+    r.inputs = fmt::format("K_lateral = {} N/m, multiple {} (50x: {} N/m, 100x: {} N/m)", sci(o.lateral),
+                           sci(o.multiple), sci(50.0 * o.lateral), sci(100.0 * o.lateral));
+    r.assumptions = "a rule of thumb (50 to 100 x the stiffer building's lateral stiffness), no contact "
+                    "mechanics; far softer than the measured contact";
+    r.source = "impact-stiffness paper eqs 6, 9 (Naserkhaki et al.)";
+  } else if (rule == "sphere") {
+    const double r1 = has("--radius1") ? o.r1 : R::sphere_radius(o.m1, o.density);
+    const double r2 = has("--radius2") ? o.r2 : R::sphere_radius(o.m2, o.density);
+    r.k = R::hertz_spheres(r1, r2, o.E, o.poisson);
+    r.unit = "N/m^1.5";
+    r.formula = "kh = 4 / (3 (h1 + h2)) sqrt(R1 R2 / (R1 + R2)), h = (1 - nu^2) / E, R = (3 m / (4 pi rho))^(1/3)";
+    r.inputs = fmt::format("R1 = {} m, R2 = {} m, E = {} Pa, nu = {}{}", sci(r1), sci(r2), sci(o.E), o.poisson,
+                           has("--density") ? fmt::format(", rho = {} kg/m^3", sci(o.density)) : "");
+    r.assumptions = "Hertz contact of two spheres of the bodies' masses and one material: a Hertz (n = 3/2) "
+                    "stiffness for hertz/hertzdamp/jankowski, not a linear one";
+    r.source = "Muthukumar & DesRoches eqs 11-13; bridge paper eqs 7-9";
+  } else if (rule == "jankowski") {
+    r.k = R::jankowski_scaled(lambda);
+    r.formula = "k = 482 kN/mm x lambda";
+    r.inputs = fmt::format("lambda = {}", sci(lambda));
+    r.assumptions = "Jankowski's steel-to-steel experimental stiffness, scaled linearly with the length scale";
+    r.source = "impact-stiffness paper section 3 (Jankowski)";
+  } else if (rule == "xu") {
+    r.k = R::xu(k_axial, o.m1, o.m2, o.e);
+    r.formula = "k = m_j / (m_i + m_j) k1 exp[(2 ln e / pi) asin(pi / sqrt(pi^2 + ln^2 e))]";
+    r.inputs = fmt::format("k1 = {} N/m ({}), m_i = {} kg, m_j = {} kg, e = {}", sci(k_axial),
+                           has("--k1") ? "--k1" : "E A / L", sci(o.m1), sci(o.m2), o.e);
+    r.assumptions = "the Kelvin contact's peak deformation matched to the axial member's (Xu et al. 2016)";
+    r.source = "impact-stiffness paper eq. 7 (Xu et al.)";
+  } else {
+    r.k = R::experimental_scaled(lambda);
+    r.formula = "k = 620 lambda kN/mm (20.66 kN/mm at 1/30)";
+    r.inputs = fmt::format("lambda = {}", sci(lambda));
+    r.assumptions = "identified from steel floor-to-floor impacts of 1/30-scale single-bay steel moment frames, "
+                    "elastic response; scaled linearly with the length scale";
+    r.source = "impact-stiffness paper eqs 11-13, section 7";
+  }
+  return r;
+}
+
+// Validates the options, then computes every row asked for (InputError before any output).
+std::vector<Row> compute(const CLI::App* c, const Opts& o, double& xi_out, double& meff_out) {
+  auto has = [&](const char* opt) { return c->count(opt) > 0; };
+  const double lambda = check_options(c, o);
+  const std::vector<std::string> chosen = chosen_rules(c, o);
+  const bool masses = has("--mass1") && has("--mass2");
   // the damping coefficient's ratio and effective mass
   double xi = NAN;
   if (has("--damping-ratio")) xi = o.xi;
@@ -211,60 +282,8 @@ std::vector<Row> compute(const CLI::App* c, const Opts& o, double& xi_out, doubl
   const bool with_c = masses && std::isfinite(xi);
 
   std::vector<Row> rows;
-  const double k_axial = (has("--youngs-modulus") && has("--area") && has("--length")) ? R::axial(o.E, o.area, o.length)
-                                                                                       : o.k1;
-  for (const Need* n : chosen) {
-    Row r;
-    r.rule = n->rule;
-    r.unit = "N/m";
-    const std::string rule = n->rule;
-    if (rule == "axial") {
-      r.k = R::axial(o.E, o.area, o.length);
-      r.formula = "k = E A / L";
-      r.inputs = fmt::format("E = {} Pa, A = {} m^2, L = {} m", sci(o.E), sci(o.area), sci(o.length));
-      r.assumptions = "the member that hits stays elastic and is compressed uniformly over L (a bar); an upper "
-                      "bound for slab-to-slab contact (Maison & Kasai)";
-      r.source = "impact-stiffness paper eqs 5, 8 (Maison & Kasai)";
-    } else if (rule == "lateral") {
-      r.k = R::lateral_multiple(o.lateral, o.multiple);
-      r.formula = fmt::format("k = {} x K_lateral", sci(o.multiple));
-      r.inputs = fmt::format("K_lateral = {} N/m, multiple {} (50x: {} N/m, 100x: {} N/m)", sci(o.lateral),
-                             sci(o.multiple), sci(50.0 * o.lateral), sci(100.0 * o.lateral));
-      r.assumptions = "a rule of thumb (50 to 100 x the stiffer building's lateral stiffness), no contact "
-                      "mechanics; far softer than the measured contact";
-      r.source = "impact-stiffness paper eqs 6, 9 (Naserkhaki et al.)";
-    } else if (rule == "sphere") {
-      const double r1 = has("--radius1") ? o.r1 : R::sphere_radius(o.m1, o.density);
-      const double r2 = has("--radius2") ? o.r2 : R::sphere_radius(o.m2, o.density);
-      r.k = R::hertz_spheres(r1, r2, o.E, o.poisson);
-      r.unit = "N/m^1.5";
-      r.formula = "kh = 4 / (3 (h1 + h2)) sqrt(R1 R2 / (R1 + R2)), h = (1 - nu^2) / E, R = (3 m / (4 pi rho))^(1/3)";
-      r.inputs = fmt::format("R1 = {} m, R2 = {} m, E = {} Pa, nu = {}{}", sci(r1), sci(r2), sci(o.E), o.poisson,
-                             has("--density") ? fmt::format(", rho = {} kg/m^3", sci(o.density)) : "");
-      r.assumptions = "Hertz contact of two spheres of the bodies' masses and one material: a Hertz (n = 3/2) "
-                      "stiffness for hertz/hertzdamp/jankowski, not a linear one";
-      r.source = "Muthukumar & DesRoches eqs 11-13; bridge paper eqs 7-9";
-    } else if (rule == "jankowski") {
-      r.k = R::jankowski_scaled(lambda);
-      r.formula = "k = 482 kN/mm x lambda";
-      r.inputs = fmt::format("lambda = {}", sci(lambda));
-      r.assumptions = "Jankowski's steel-to-steel experimental stiffness, scaled linearly with the length scale";
-      r.source = "impact-stiffness paper section 3 (Jankowski)";
-    } else if (rule == "xu") {
-      r.k = R::xu(k_axial, o.m1, o.m2, o.e);
-      r.formula = "k = m_j / (m_i + m_j) k1 exp[(2 ln e / pi) asin(pi / sqrt(pi^2 + ln^2 e))]";
-      r.inputs = fmt::format("k1 = {} N/m ({}), m_i = {} kg, m_j = {} kg, e = {}", sci(k_axial),
-                             has("--k1") ? "--k1" : "E A / L", sci(o.m1), sci(o.m2), o.e);
-      r.assumptions = "the Kelvin contact's peak deformation matched to the axial member's (Xu et al. 2016)";
-      r.source = "impact-stiffness paper eq. 7 (Xu et al.)";
-    } else {
-      r.k = R::experimental_scaled(lambda);
-      r.formula = "k = 620 lambda kN/mm (20.66 kN/mm at 1/30)";
-      r.inputs = fmt::format("lambda = {}", sci(lambda));
-      r.assumptions = "identified from steel floor-to-floor impacts of 1/30-scale single-bay steel moment frames, "
-                      "elastic response; scaled linearly with the length scale";
-      r.source = "impact-stiffness paper eqs 11-13, section 7";
-    }
+  for (const std::string& rule : chosen) {
+    Row r = make_row(c, o, rule, lambda);
     if (with_c && r.unit == "N/m") r.c = R::kelvin_c(r.k, o.m1, o.m2, xi);
     rows.push_back(std::move(r));
   }
