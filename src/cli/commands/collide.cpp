@@ -9,10 +9,13 @@
 #include <vector>
 #include <memory>
 #include <numbers>
+#include <optional>
 
 #include <fmt/format.h>
 
 #include "cli/commands.hpp"
+#include "cli/commands/restitution_options.hpp"
+#include "pounding/contact/registry.hpp"
 #include "pounding/physics/resolution.hpp"
 #include "pounding/physics/single_impact.hpp"
 #include "pounding/core/error.hpp"
@@ -71,21 +74,30 @@ struct Opts {
   double e = 0.65, v0 = 1.0, m1 = 1.0e6, m2 = 1.0e6, kh = 2.808e10, n = 1.5, tolerance = default_e_tolerance;
   int steps = 20000;
   bool json = false;
+  RestitutionOpts rest;  // e(v0) instead of --e (issue 26 §3)
+  std::string sweep;     // "lo,hi,n": a CSV of delivered against target e over v0, per damping law
 };
 
 // One list of outputs, printed as `name: value` lines (the text format) or as one JSON object (--json); `code` the
 // exit code (3 when the kernel's status is not ok).
 Outputs collide_outputs(const Opts& o, const ContactModel& cm, Stepper stepper, const ImpactResult& r, double e_target,
-                        const RestitutionPromise& promise, int& code) {
+                        const RestitutionPromise& promise, const contact::RestitutionCurve* curve, int& code) {
   Outputs out;
   out.text("law", to_string(cm.law));
   if (contact::traits(cm.law).restitution_from_damping) {
     out.text("damping_law", to_string(cm.damping));
-    out.number("xibar", hertzdamp_xibar(cm.damping, o.e, cm.n), "{:.9g}");
+    out.number("xibar", hertzdamp_xibar(cm.damping, curve ? e_target : o.e, cm.n), "{:.9g}");
     // the law acts on this multiple of --kh (three-spring: k_eq = 1.5 k, contact/model.hpp damping_laws)
     if (const double f = contact::stiffness_factor(cm); f != 1.0) out.number("stiffness_factor", f, "{:.9g}");
   }
   const double miss = r.e_effective - e_target;
+  if (curve) {  // the single impact's latched approach velocity is v0 (mass 2 at rest, gap 0 at t = 0)
+    out.text("restitution", curve->describe());
+    out.number("restitution_v0", o.v0, "{:.9g}");
+    out.number("restitution_e_raw", curve->raw(o.v0), "{:.9g}");
+    out.integer("restitution_clamped", curve->clamped(o.v0) ? 1 : 0);
+    out.integer("restitution_outside_valid", curve->in_range(o.v0) ? 0 : 1);
+  }
   out.number("e_target", e_target, "{:.9g}");
   out.number("e_effective", r.e_effective, "{:.9g}");
   out.number("e_miss", miss, "{:+.3g}");
@@ -117,6 +129,49 @@ Outputs collide_outputs(const Opts& o, const ContactModel& cm, Stepper stepper, 
   return out;
 }
 
+// --sweep-v0 lo,hi,n: every input checked first, then one impact per (damping law, v0); a CSV on stdout.
+void run_sweep(const Opts& o, const ContactModel& base, Stepper stepper, const contact::RestitutionCurve* curve,
+               bool e_given) {
+  if (o.json) throw InputError("--json with --sweep-v0", "--json", "drop --json: the sweep prints a CSV");
+  const std::vector<double> s = parse_number_list(o.sweep, "--sweep-v0", "number", "give lo,hi,n, e.g. 0.1,3.13,20");
+  if (s.size() != 3 || !(s[0] > 0.0 && s[0] < s[1]) || !(s[2] >= 2 && s[2] <= 200 && s[2] == std::floor(s[2])))
+    throw InputError(fmt::format("'{}' is not lo,hi,n with 0 < lo < hi and n an integer in [2, 200]",
+                                 escaped_excerpt(o.sweep)),
+                     "--sweep-v0", "give e.g. 0.1,3.13,20");
+  const int n = static_cast<int>(s[2]);
+  std::vector<double> v0s;
+  for (int i = 0; i < n; ++i) v0s.push_back(s[0] + (s[1] - s[0]) * i / (n - 1));
+  std::vector<ContactModel> models;
+  if (contact::traits(base.law).restitution_from_damping) {
+    for (const DampingLawEntry& d : damping_laws) models.push_back(base), models.back().damping = d.id;
+  } else {
+    models.push_back(base);
+  }
+  auto e_at = [&](double v0) { return curve ? (*curve)(v0) : o.e; };
+  for (const ContactModel& cm : models)
+    for (double v0 : v0s) {
+      try {
+        check_impact_inputs(cm, e_at(v0), curve || e_given, v0, o.m1, o.m2, o.kh);
+      } catch (const InputError& err) {
+        throw InputError(fmt::format("at v0 = {:g} m/s: {}", v0, err.what_part()),
+                         err.where() == "--v0" ? "--sweep-v0" : err.where(), err.fix());
+      }
+    }
+  fmt::print("law,damping_law,v0_mps,e_target,e_raw,e_effective,e_miss,in_valid_range,clamped,status,valid_min_mps,"
+             "valid_max_mps\n");
+  const double vlo = curve ? curve->vmin / curve->per_mps : NAN, vhi = curve ? curve->vmax / curve->per_mps : NAN;
+  for (const ContactModel& cm : models)
+    for (double v0 : v0s) {
+      const double e = e_at(v0);
+      const ImpactResult r = single_impact(cm, stepper, e, v0, o.m1, o.m2, o.kh, o.steps);
+      const bool damped = contact::traits(cm.law).restitution_from_damping;
+      fmt::print("{},{},{:.9g},{:.9g},{:.9g},{:.9g},{:.3g},{},{},{},{:.9g},{:.9g}\n", to_string(cm.law),
+                 damped ? std::string(to_string(cm.damping)) : std::string("-"), v0, e, curve ? curve->raw(v0) : e,
+                 r.e_effective, r.e_effective - e, curve && !curve->in_range(v0) ? 0 : 1,
+                 curve && curve->clamped(v0) ? 1 : 0, to_string(r.status), vlo, vhi);
+    }
+}
+
 }  // namespace
 
 void add_collide(CLI::App& app) {
@@ -145,6 +200,10 @@ void add_collide(CLI::App& app) {
             "energy_lost_fraction_of_initial_kinetic: energy_lost_J / (1/2 m1 v0^2), mass 2 at rest; "
             "energy_lost_fraction_of_relative_kinetic: energy_lost_J / (1/2 m1 m2 / (m1 + m2) v0^2), the kinetic energy "
             "of the pre-impact relative motion (= 1 - e_effective^2).");
+  o->rest.add(c);
+  c->add_option("--sweep-v0", o->sweep, "lo,hi,n: one impact at each of n approach speeds from lo to hi (m/s); "
+                                        "prints a CSV of the target e(v0) and the delivered e per damping law "
+                                        "(every damping law for hertzdamp; tools/plot_restitution_sweep.py charts it)");
   c->callback([o, c] {
     ContactModel cm;
     cm.law = as_option("--law", [&] { return parse_contact_law(o->law); });
@@ -152,16 +211,27 @@ void add_collide(CLI::App& app) {
     require_range(o->n, 1.0, 3.0, "--n", "[1, 3]");
     cm.n = o->n;
     require_range(o->tolerance, 0.0, 1.0, "--e-tolerance", "[0, 1]");
-    const bool e_given = c->count("--e") > 0;
-    check_impact_inputs(cm, o->e, e_given, o->v0, o->m1, o->m2, o->kh);
+    const std::optional<contact::RestitutionCurve> curve = o->rest.get(c);
+    if (curve && c->count("--e") > 0)
+      throw InputError("--e and a restitution curve both given", "--e", "drop --e: the curve gives e(v0)");
+    if (curve && restitution_promise(cm).kind == RestitutionKind::elastic)
+      throw InputError(fmt::format("a restitution curve with the elastic {} law (it delivers e = 1)", to_string(cm.law)),
+                       "--law", "choose a damped law (hertzdamp, kelvin, jankowski, stereomechanical)");
     if (o->steps < 100) throw InputError(fmt::format("--steps = {} is too few", o->steps), "--steps", "give >= 100");
     const Stepper stepper = as_option("--stepper", [&] { return parse_stepper(o->stepper); });
+    if (!o->sweep.empty()) {
+      run_sweep(*o, cm, stepper, curve ? &*curve : nullptr, c->count("--e") > 0);
+      return;
+    }
+    const double e = curve ? (*curve)(o->v0) : o->e;
+    const bool e_given = curve || c->count("--e") > 0;
+    check_impact_inputs(cm, e, e_given, o->v0, o->m1, o->m2, o->kh);
     const RestitutionPromise promise = restitution_promise(cm);
     // an elastic law is asked for nothing: its target is the e = 1 it delivers
-    const double e_target = promise.kind == RestitutionKind::elastic ? 1.0 : o->e;
-    ImpactResult r = single_impact(cm, stepper, o->e, o->v0, o->m1, o->m2, o->kh, o->steps);
+    const double e_target = promise.kind == RestitutionKind::elastic ? 1.0 : e;
+    ImpactResult r = single_impact(cm, stepper, e, o->v0, o->m1, o->m2, o->kh, o->steps);
     int code = 0;
-    const Outputs out = collide_outputs(*o, cm, stepper, r, e_target, promise, code);
+    const Outputs out = collide_outputs(*o, cm, stepper, r, e_target, promise, curve ? &*curve : nullptr, code);
     fmt::print("{}", o->json ? out.json() : out.lines());
     if (code != 0) throw ExitRequest{code};
   });
