@@ -22,6 +22,7 @@ void add_spectrum(CLI::App& app);  // src/cli/commands/spectrum.cpp (a code desi
 void add_modes(CLI::App& app);     // src/cli/commands/modes.cpp (modes and Rayleigh damping of a shear building)
 void add_stiffness(CLI::App& app);   // src/cli/commands/stiffness.cpp (impact-stiffness rules)
 void add_similitude(CLI::App& app);  // src/cli/commands/stiffness.cpp (shake-table model scale factors)
+void add_replay(CLI::App& app);      // src/cli/commands/replay.cpp (a contact law on imposed kinematics)
 void add_accuracy(CLI::App& app);  // src/cli/commands/accuracy.cpp (accuracy/speed chart, stability, restitution, validation)
 
 // Runs a shared parser (parse_stepper, parse_units, ...) and names the command-line option in its InputError.

@@ -63,6 +63,7 @@ int main(int argc, char** argv) {
   pounding::cli::add_modes(app);
   pounding::cli::add_stiffness(app);
   pounding::cli::add_similitude(app);
+  pounding::cli::add_replay(app);
   pounding::cli::add_accuracy(app);
   pounding::cli::add_study_reference(app);
   try {
