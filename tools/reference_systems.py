@@ -7,6 +7,7 @@ parts shared: stick_stiffness, state_space), plus the smooth isolators. Subcomma
   system IN OUT               systems of shear buildings, linear and pounding (below, "system")
   isolation IN OUT            a linear base-isolated building, Kelly's assembly (below, "isolation")
   smooth IN OUT               a building on a friction-pendulum or Bouc-Wen isolator (below, "smooth")
+  row IN OUT | row selftest   a row of n buildings pounding their neighbours (below, "row")
 
 ---- mdof ----
 Independent reference for shear buildings (issue 25 §5; docs/architecture.md §2.8): modes, Rayleigh ratios and
@@ -98,6 +99,24 @@ INPUT: {"m_base", "m": [kg], "k": [N/m], "a0", "a1", "bearing": {"k", "q_slow", 
         "gamma", "eta"}, "dt", "ag": [m/s^2], "duration": s, "substeps": [ints]}
 OUTPUT lines: "peak_u S dof value", "final_u S dof value" (dof 0 the base), "peak_bearing_force S value",
 "e_hysteretic value" (E at the end minus the recoverable Q z^2 u_y / (2 A), J), "final_z value".
+
+---- row ----
+A row of n shear buildings (an SDOF is a stick of one) left to right, each pounding its neighbours at the floors
+both have (floor f of building b against floor f of building b+1, f <= the lower one's storeys; equal storey
+heights), with "system"'s nonlinear solver (Hertzdamp, Lankarani-Nikravesh xibar = 3 (1 - e^2) / 4; e = 1 and
+n = 1.5 is pure Hertz, e = 1 and n = 1 a linear spring), and initial velocities. The uncoupled run (no contact) of
+the same row is solved too, so each building's amplification (coupled / uncoupled peak |u| over its floors) is
+the reference's own (../shared/research/systems-and-bridges.md §4).
+Usage: tools/reference_systems.py row INPUT.json OUTPUT.txt
+INPUT: "system"'s keys without "contacts" and "mode", plus "gap" (m, every joint) or "gaps" ([per joint]), "kc",
+       "n", "e", "v0_min", and optional "v_initial": [[per floor] per body] (m/s), "ag" may be all zeros.
+OUTPUT lines: "system"'s ("peak_u S body floor value", "final_u ...", "impacts element count", "peak_force S element
+value"; elements in the order joint by joint, floors bottom up), plus "final_v body floor value" (the finest grid),
+"peak_u_uncoupled S body floor value", "amplification S body value", "momentum_initial value", "momentum_final value".
+    tools/reference_systems.py row selftest
+        T4.1 (SB §4): three equal free masses at zero gaps, mass 1 moving at v0 toward 2 (touching 3), Hertz and
+        linear contacts: final velocities / v0 (-0.0709523537, 0.0764030391, 0.9945493146) and (-0.1302616951,
+        0.1502295694, 0.9800321256) to 1e-6, momentum and energy to 1e-9; exit 1 on a failure.
 """
 import argparse
 import json
@@ -488,6 +507,109 @@ def system_nonlinear(cfg, out):
             out.write(f"peak_force {s} {e} {np.max(Fg[:: smax // s, e]):.17g}\n")
 
 
+def row_contacts(cfg):
+    bodies = cfg["bodies"]
+    gaps = cfg.get("gaps") or [cfg["gap"]] * (len(bodies) - 1)
+    out = []
+    for b in range(len(bodies) - 1):
+        for f in range(1, min(len(bodies[b]["m"]), len(bodies[b + 1]["m"])) + 1):
+            out.append(dict(left=[b, f], right=[b + 1, f], gap=gaps[b], kc=cfg["kc"], n=cfg["n"], e=cfg["e"],
+                            v0_min=cfg["v0_min"], joint=b))
+    out.sort(key=lambda c: (c["left"][1], c["joint"]))  # the engine's order: level by level, joints left to right
+    return out
+
+
+def row_solve(cfg, contacts):
+    """The row with these contacts (none: uncoupled): U on the finest grid, forces, impacts, final state."""
+    c = dict(cfg)
+    c["contacts"] = contacts
+    P = Pounding(c)
+    t, agf, smax = grid(c)
+    h = t[1] - t[0]
+    dt = c["dt"]
+    nrec = int(round(c["duration"] / dt))
+    ag = np.asarray(c["ag"], float)
+    agr = np.concatenate([ag, np.zeros(max(0, nrec + 2 - len(ag)))])
+    y = np.zeros(2 * P.n)
+    if "v_initial" in c:
+        v = [x for body in c["v_initial"] for x in body]
+        y[P.n:] = np.asarray(v, float)
+    p0 = float(np.diag(P.M) @ y[P.n:])
+    U = np.zeros((len(t), P.n))
+    Fg = np.zeros((len(t), len(P.el)))
+    impacts = [0] * len(P.el)
+    for k in range(nrec):
+        t0, t1 = k * dt, (k + 1) * dt
+        ta = t0
+        while ta < t1 - 1e-15:
+            sol = integrate.solve_ivp(P.rhs, (ta, t1), y, method="DOP853", rtol=1e-11, atol=1e-14,
+                                      events=P.events() if P.el else None, dense_output=True,
+                                      args=(agr[k], agr[k + 1], t0, t1))
+            tb = sol.t[-1]
+            j0, j1 = int(np.ceil(ta / h - 1e-9)), int(np.floor(tb / h + 1e-9))
+            for j in range(max(j0, 0), min(j1, len(t) - 1) + 1):
+                yj = sol.sol(t[j])
+                U[j] = yj[: P.n]
+                for e in range(len(P.el)):
+                    Fg[j, e] = P.force(e, yj)
+            y = sol.y[:, -1].copy()
+            if sol.status == 1:
+                for e in range(len(P.el)):
+                    if len(sol.t_events[e]) == 0:
+                        continue
+                    P.active[e] = not P.active[e]
+                    if P.active[e]:
+                        impacts[e] += 1
+                        P.v0[e] = max(P.delta(e, y)[1], P.el[e]["v0_min"])
+            ta = tb
+    return P, t, smax, U, Fg, impacts, y, p0
+
+
+def row_main(path_in, path_out):
+    cfg = json.load(open(path_in))
+    P, t, smax, U, Fg, impacts, y, p0 = row_solve(cfg, row_contacts(cfg))
+    _, _, _, U0, _, _, _, _ = row_solve(cfg, [])
+    with open(path_out, "w") as out:
+        write_peaks(out, cfg, P.dofs, U, smax)
+        for e in range(len(P.el)):
+            out.write(f"impacts {e} {impacts[e]}\n")
+            for s in cfg["substeps"]:
+                out.write(f"peak_force {s} {e} {np.max(Fg[:: smax // s, e]):.17g}\n")
+        for i, (b, f) in enumerate(P.dofs):
+            out.write(f"final_v {b} {f} {y[P.n + i]:.17g}\n")
+        for s in cfg["substeps"]:
+            for i, (b, f) in enumerate(P.dofs):
+                out.write(f"peak_u_uncoupled {s} {b} {f} {np.max(np.abs(U0[:: smax // s, i])):.17g}\n")
+            for b in range(len(cfg["bodies"])):
+                cols = [i for i, (bb, _) in enumerate(P.dofs) if bb == b]
+                cu = np.max(np.abs(U[:: smax // s][:, cols]))
+                uu = np.max(np.abs(U0[:: smax // s][:, cols]))
+                out.write(f"amplification {s} {b} {cu / uu:.17g}\n")
+        out.write(f"momentum_initial {p0:.17g}\n")
+        out.write(f"momentum_final {float(np.diag(P.M) @ y[P.n:]):.17g}\n")
+
+
+def row_selftest():
+    """T4.1 (SB §4): three equal free masses, zero gaps, mass 1 at v0 toward 2 touching 3."""
+    ok = True
+    for law, n, want in (("hertz", 1.5, (-0.0709523537, 0.0764030391, 0.9945493146)),
+                         ("linear", 1.0, (-0.1302616951, 0.1502295694, 0.9800321256))):
+        for m, kc, v0 in ((1.0, 1e6, 1.0), (7.5, 3e7, 0.4)):  # the ratios do not depend on m, kc, v0
+            bodies = [dict(m=[m], k=[0.0], a0=0.0, a1=0.0) for _ in range(3)]
+            cfg = dict(bodies=bodies, gap=0.0, kc=kc, n=n, e=1.0, v0_min=1e-12, dt=0.01, duration=0.2,
+                       substeps=[1], ag=[0.0] * 21, v_initial=[[v0], [0.0], [0.0]])
+            P, t, smax, U, Fg, impacts, y, p0 = row_solve(cfg, row_contacts(cfg))
+            v = y[P.n:] / v0
+            e_kin = 0.5 * m * float(v @ v)
+            err = max(abs(a - b) for a, b in zip(v, want))
+            good = err < 1e-6 and abs(sum(v) - 1.0) < 1e-9 and abs(2 * e_kin / m - 1.0) < 1e-9
+            print(f"row T4.1 {law} m={m} kc={kc} v0={v0}: v/v0 = {v[0]:.10f} {v[1]:.10f} {v[2]:.10f} "
+                  f"(max error {err:.2e}), momentum {sum(v):.12f}, energy {2 * e_kin / m:.12f}: "
+                  f"{'ok' if good else 'FAIL'}")
+            ok = ok and good
+    return 0 if ok else 1
+
+
 def isolation_assemble(d):
     m = np.array(d["m"], float)
     k = np.array(d["k"], float)
@@ -605,11 +727,17 @@ def main():
     sub.add_parser("selftest")
     for name, what in (("system", "systems of shear buildings, linear or pounding"),
                        ("isolation", "a linear base-isolated building"),
-                       ("smooth", "a building on a friction-pendulum or Bouc-Wen isolator")):
+                       ("smooth", "a building on a friction-pendulum or Bouc-Wen isolator"),
+                       ("row", "a row of n buildings pounding their neighbours (or: row selftest)")):
         p = sub.add_parser(name, help=what)
         p.add_argument("input")
-        p.add_argument("output")
+        p.add_argument("output", nargs="?" if name == "row" else None)
     a = ap.parse_args()
+    if a.cmd == "row":
+        if a.input == "selftest":
+            return row_selftest()
+        row_main(a.input, a.output)
+        return 0
     if a.cmd == "system":
         cfg = json.load(open(a.input))
         with open(a.output, "w") as out:

@@ -142,6 +142,16 @@ const toml::table* TableReader::table(std::string_view key) {
   return n ? n->as_table() : nullptr;
 }
 
+const toml::table* TableReader::table(std::string_view key, std::string_view described_as) {
+  described(section_, described_as);
+  seen_.emplace(key);
+  const toml::node* n = t_ ? t_->get(key) : nullptr;
+  if (n && !n->is_table())
+    throw InputError(fmt::format("{} must be a table, not {}", key, type_name(*n)), where(key),
+                     fmt::format("write [{}] on its own line", key));
+  return n ? n->as_table() : nullptr;
+}
+
 double TableReader::number(std::string_view key, double def, double lo, double hi, std::string_view range) {
   const toml::node* n = get(key);
   if (!n) return def;

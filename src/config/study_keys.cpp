@@ -21,7 +21,7 @@ constexpr StudySection sections[] = {
     {"structures", "[structures]",
      "The stochastic structure model (stochastic-pounding-monte-carlo.txt, sections 2.1-3.1): the defaults of both "
      "buildings and the settings they share."},
-    {"structures.buildingN", "[structures.building1] and [structures.building2]",
+    {"structures.buildingN", "[structures.building1], [structures.building2] (and [structures.buildingK] of a row)",
      "One building's overrides of [structures] and its own period, height, mass, damping and strength. Every key is "
      "optional; an absent key takes the value of [structures]. Heights given to both buildings make a pair study "
      "(answers in metres). period, height, mass, zeta and yield_coefficient take a number or a distribution table "
@@ -180,7 +180,16 @@ constexpr StudyKey keys[] = {
      "Shear model, storey stiffnesses from T1: uniform = equal storeys; shear = proportional to the storey shear of "
      "an inverted-triangle load (model::stiffness_shape), both scaled so the fundamental period is T1."},
     {"structures", "building1", "table", "the [structures] defaults", "", "", "Building 1 (the left one)."},
-    {"structures", "building2", "table", "the [structures] defaults", "", "", "Building 2 (the right one)."},
+    {"structures", "building2", "table", "the [structures] defaults", "", "", "Building 2 (the right one of a pair)."},
+    {"structures", "buildings", "integer", "2", "", "[2, 16]",
+     "The number of buildings side by side, left to right (a row, docs/rows.md): each pounds its neighbours, every "
+     "joint with the study gap ratio x d, d = code_gap_coefficient x the largest (h_j + h_j+1) of the row's joints; "
+     "the probability scene counts an analysis as pounding when ANY joint touches. Buildings 3..n take one period "
+     "each (a fixed period or a distribution in [structures.buildingK]: the period grid spans buildings 1 and 2); "
+     "one model throughout (all sdof or all shear, one storey_height); not with equal_heights or [intensity].",
+     2.0, 16.0},
+    {"structures", "buildingK", "table", "the [structures] defaults", "", "",
+     "Building K of a row (K = 3..buildings, left to right after building 2); the same keys as building1."},
 
     // ---------------------------------------------------------------- [structures.building1], [structures.building2]
     {"structures.buildingN", "periods", "array of numbers", "[structures] periods", "s", "[0.02, 20] (a real building), strictly increasing",
@@ -468,7 +477,12 @@ std::span<const StudyKey> study_keys() { return keys; }
 std::string study_section_of(std::string_view name) {
   auto starts = [&](std::string_view p) { return name.substr(0, p.size()) == p; };
   auto ends = [&](std::string_view s) { return name.size() >= s.size() && name.substr(name.size() - s.size()) == s; };
-  for (std::string_view b : {"structures.building1", "structures.building2"}) {
+  // [structures.buildingK], K = 1, 2, ... (a row: [structures] buildings)
+  constexpr std::string_view stem = "structures.building";
+  if (starts(stem) && name.size() > stem.size() && name[stem.size()] >= '1' && name[stem.size()] <= '9') {
+    std::size_t end = stem.size();
+    while (end < name.size() && name[end] >= '0' && name[end] <= '9') ++end;
+    const std::string_view b = name.substr(0, end);
     if (name == b) return "structures.buildingN";
     if (name == std::string(b) + ".isolation") return "isolation";
     if (name == std::string(b) + ".moat") return "moat";

@@ -135,6 +135,17 @@ std::optional<Description> find_floor_field(std::string_view group, std::string_
     const FieldSpec e = floor_field(f, std::stoul(std::string(digits)), 0);
     return Description{e.units, e.description};
   }
+  for (const FieldSpec& f : row_fields) {  // a row's buildings 3..n: "peak_u3"
+    const std::string_view prefix = f.name.substr(0, f.name.find("{b}"));
+    if (f.group != group || !name.starts_with(prefix) || name.size() == prefix.size()) continue;
+    const std::string_view digits = name.substr(prefix.size());
+    if (digits.size() > 6 || digits.find_first_not_of("0123456789") != std::string_view::npos || digits[0] == '0')
+      continue;
+    const unsigned long b = std::stoul(std::string(digits));
+    if (b < 3) continue;
+    const FieldSpec e = row_field(f, b);
+    return Description{e.units, e.description};
+  }
   return std::nullopt;
 }
 

@@ -70,11 +70,24 @@ FieldSpec floor_field(const FieldSpec& row, std::size_t building, std::size_t fl
   return f;
 }
 
+FieldSpec row_field(const FieldSpec& row, std::size_t building) {
+  if ((row.extent != Extent::lane && row.extent != Extent::lane_gap) || building < 3)
+    throw std::logic_error(fmt::format("row_field: /{}/{} is not a per-building row, or building < 3", row.group, row.name));
+  FieldSpec f = row;
+  f.name = intern(replace_b(row.name, building));
+  f.description = intern(replace_b(row.description, building));
+  f.building = static_cast<std::uint32_t>(building);
+  return f;
+}
+
 std::vector<FieldSpec> system_fields(const Extents& system, bool with_gaps) {
   std::vector<FieldSpec> s;
   if (system.empty()) return s;
   for (const FieldSpec& row : floor_fields)
     for (std::size_t b = 0; b < system.floors.size(); ++b) s.push_back(floor_field(row, b + 1, system.floors[b]));
+  for (const FieldSpec& row : row_fields)  // a row's buildings 3..n
+    if (with_gaps || row.extent == Extent::lane)
+      for (std::size_t b = 3; b <= system.floors.size(); ++b) s.push_back(row_field(row, b));
   for (FieldSpec f : element_fields)
     if (with_gaps || !per_gap(f.extent)) {
       f.count = static_cast<std::uint32_t>(system.elements);

@@ -119,6 +119,10 @@ void validate_impl(const StructureModel& m, const WhereFn& where) {
       validate_building(m.buildings[i], [&](std::string_view key) {
         return fmt::format("{} (building{}.{})", where(key), i + 1, key);
       });
+  for (std::size_t i = 0; i < m.more.size(); ++i)
+    validate_building(m.more[i], [&](std::string_view key) {
+      return fmt::format("{} (building{}.{})", where(key), i + 3, key);
+    });
   check_equal_heights(m, where("equal_heights"));
 }
 
@@ -187,6 +191,53 @@ void resolve_buildings(StructureModel& m, const std::array<const toml::table*, 2
                      "give both buildings the same storey_height");
 }
 
+// A row's buildings 3..n (tables may be null: the defaults) and what a row needs: one period slot each beyond
+// building 2, one structural model throughout, one storey height for shear buildings, no common height.
+void resolve_row(StructureModel& m, const std::vector<const toml::table*>& tables, const std::string& file,
+                 const WhereFn& where, bool rule_explicit) {
+  if (tables.empty()) return;
+  BuildingModel defaults = m.default_building();
+  defaults.rule_explicit = rule_explicit;
+  const std::size_t n = tables.size() + 2;
+  // a building's own table, or [structures] for what it does not give
+  auto at = [&](std::size_t b, std::string_view key) {
+    const toml::table* t = b < 2 ? nullptr : tables[b - 2];
+    if (t && t->get(key))
+      return config::location(file, t->get(key)->source()) + fmt::format(" [structures.building{}].{}", b + 1, key);
+    if (t) return config::location(file, t->source()) + fmt::format(" [structures.building{}]", b + 1);
+    return fmt::format("{} (the default of [structures.building{}])", where(key), b + 1);
+  };
+  for (std::size_t k = 0; k < tables.size(); ++k) {
+    const std::size_t b = k + 2;
+    m.more.push_back(parse_building(tables[k], file, fmt::format("structures.building{}", b + 1), defaults, where));
+    const BuildingModel& x = m.more.back();
+    if (x.slots() != 1)
+      throw InputError(fmt::format("building{} of the row has a grid of {} periods; the period grid spans buildings 1 "
+                                   "and 2 only",
+                                   b + 1, x.slots()),
+                       at(b, "periods"),
+                       fmt::format("give [structures.building{}] period = <s> (fixed) or a distribution, e.g. period "
+                                   "= {{lognormal = {{median = 1.0, cov = 0.2}}}}",
+                                   b + 1));
+  }
+  if (m.equal_heights)
+    throw InputError(fmt::format("equal_heights = true is for a pair, and the row has {} buildings", n),
+                     where("equal_heights"), "set equal_heights = false, or buildings = 2");
+  for (std::size_t b = 1; b < n; ++b) {
+    const BuildingModel x = m.row_building(b), first = m.row_building(0);
+    if (x.kind != first.kind)
+      throw InputError(fmt::format("building{} is a {} model and building1 a {} model; a row of {} buildings has one "
+                                   "model throughout (an SDOF between two shear buildings has no floor to meet)",
+                                   b + 1, to_string(x.kind), to_string(first.kind), n),
+                       at(b, "model"), "give every building of the row the same model (in [structures] model)");
+    if (x.shear() && x.storey_height() != first.storey_height())
+      throw InputError(fmt::format("the shear buildings' storey heights differ ({:g} m and {:g} m): their floors would "
+                                   "meet the other's columns, which the shear model does not hold",
+                                   first.storey_height(), x.storey_height()),
+                       at(b, "storey_height"), "give every building of the row the same storey_height");
+  }
+}
+
 }  // namespace
 
 StructureModel parse_structure_model(const toml::table& table, const std::string& file) {
@@ -225,6 +276,22 @@ StructureModel parse_structure_model(const toml::table& table, const std::string
     check_shear_keys(m.default_building(), [&](std::string_view key) { return r.where(key); });
   }
   const std::array<const toml::table*, 2> buildings{r.table("building1"), r.table("building2")};
+  // a row (docs/architecture.md §2.7.1): buildings = n, tables [structures.buildingK] for K = 3..n
+  const long count = r.integer("buildings", 2);
+  for (const auto& [key, node] : table) {
+    const std::string_view k = key.str();
+    if (k.size() <= 8 || k.substr(0, 8) != "building" || k.find_first_not_of("0123456789", 8) != std::string_view::npos)
+      continue;
+    const long K = std::stol(std::string(k.substr(8)));
+    if (K >= 1 && K <= count) continue;
+    throw InputError(fmt::format("[structures.{}] is given but the row has buildings = {}", k, count),
+                     config::location(file, node.source()) + " [structures." + std::string(k) + "]",
+                     K >= 1 ? fmt::format("set [structures] buildings = {} (or more), or remove the table", K)
+                            : std::string("number the buildings from 1, left to right"));
+  }
+  std::vector<const toml::table*> row_tables;
+  for (long K = 3; K <= count; ++K)
+    row_tables.push_back(r.table(fmt::format("building{}", K), "buildingK"));
   if (const toml::node* n = r.get("aspect_ratios")) m.aspect_ratios = config::numbers(*n, "aspect_ratios", r.where("aspect_ratios"));
   if (const toml::node* n = r.get("samples_per_pair"))
     m.samples_per_pair = config::integer(*n, "samples_per_pair", r.where("samples_per_pair"));
@@ -238,8 +305,8 @@ StructureModel parse_structure_model(const toml::table& table, const std::string
            "mbar_mean, mbar_cov, mbar_min, mbar_max, zeta, hysteresis, drift, ductility, alpha, height_min, "
            "height_max, ct_lower, ct_upper, height_exponent, code_gap_coefficient, contact_density, "
            "contact_youngs_modulus, contact_poisson, kh, equal_heights, model, storey_height, stiffness_profile, "
-           "building1, building2 (tables "
-           "[structures.building1], [structures.building2])");
+           "buildings, building1, building2, ... (tables "
+           "[structures.building1], [structures.building2], ... [structures.building<buildings>])");
 
   if (periods && (pmin || pmax || pstep))
     throw InputError("both periods and period_min/period_max/period_step are given", r.where("periods"),
@@ -251,6 +318,7 @@ StructureModel parse_structure_model(const toml::table& table, const std::string
   validate_shared(m, where);
   validate_building(m.default_building(), where);
   resolve_buildings(m, buildings, file, where, rule_explicit);
+  resolve_row(m, row_tables, file, where, rule_explicit);
   return m;
 }
 
@@ -281,6 +349,7 @@ StructureSampler::StructureSampler(StructureModel model, std::uint64_t seed, std
     : model_(std::move(model)), seed_(seed), stream_(stream) {
   validate(model_);
   for (int b = 0; b < 2; ++b) side_[b] = make_side(model_.building(b));
+  for (const BuildingModel& b : model_.more) more_.push_back(make_side(b));
 }
 
 StructureSampler::Side StructureSampler::make_side(BuildingModel b) {
@@ -370,6 +439,17 @@ SampledPair StructureSampler::sample(const SampleId& id) const {
   p.kh = model_.kh > 0 ? model_.kh
                        : hertz_stiffness_spheres(p.s1.m, p.s2.m, model_.contact_density, model_.contact_youngs_modulus,
                                                  model_.contact_poisson);
+  // a row's buildings 3..n: each from its own stream at this identity (the same 7 uniforms in the same order as a
+  // building of the pair), its one period slot; the row's d is the largest joint's code separation
+  for (std::size_t k = 0; k < more_.size(); ++k) {
+    Engine gk = make_engine(stream_seed(seed_, row_stream(k + 2) ^ (stream_ << 48), id));
+    Uniforms x;
+    x.h = uniform01(gk), x.aspect = uniform01(gk), x.rho = uniform01(gk), x.mbar = uniform01(gk);
+    x.T = uniform01(gk), x.zeta = uniform01(gk), x.cy = uniform01(gk);
+    p.more.push_back(draw_structure(more_[k], x, 0, nullptr));
+  }
+  for (std::size_t b = 1; b + 1 < p.buildings(); ++b)
+    p.d = std::max(p.d, model_.code_gap_coefficient * (p.structure(b).h + p.structure(b + 1).h));
   return p;
 }
 

@@ -80,7 +80,7 @@ class UnitComputer {
     ks_base_.displacement_limit = s.displacement_limit;
     uncoupled_ = s.contact;
     uncoupled_.law = ContactLaw::none;
-    if (sampler.model().any_shear()) block_.emplace(sampler.model(), s.contact, s.e);
+    if (sampler.model().any_shear() || sampler.model().row()) block_.emplace(sampler.model(), s.contact, s.e);
     if (block_ && !plan.system.empty()) table_fields(plan);
     if (plan.stripes) stripe_scaled_ = results::field_index(plan.fields, "uncoupled", "scaled");
     if (plan.ida) {
@@ -374,9 +374,11 @@ class UnitComputer {
     const GroundMotion gm{rec.dt, rec.acc, rec.duration() + s_.free_vibration};
     block_->uncoupled(pairs_, uncoupled_, gm, ks, peaks_);
     const bool table = !block_->layout().empty();
+    const std::size_t nb = peaks_.buildings;
     for (std::size_t i = 0; i < n; ++i) {
       put_uncoupled(out, i, peaks_.status[i], peaks_.u1[i], peaks_.u2[i], peaks_.closing[i]);
       if (table) put_table_uncoupled(out, i);
+      for (std::size_t b = 2; b < nb; ++b) out.values<double>(f_row_unc_[b])[i] = peaks_.u[i * nb + b];
     }
     if (!plan_.impacts) return;
     auto status = out.values<std::uint8_t>(field::imp_status);
@@ -399,11 +401,13 @@ class UnitComputer {
           status[k] = coupled_.status[j], count[k] = coupled_.impact_count[j], force[k] = coupled_.peak_force[j];
           u1[k] = coupled_.u1[j], u2[k] = coupled_.u2[j], first[k] = coupled_.t_first_impact[j];
           hw[k] = coupled_.h_omega_contact[j];
+          for (std::size_t b = 2; b < nb; ++b) out.values<double>(f_row_imp_[b])[k] = coupled_.u[j * nb + b];
           if (table) put_table_coupled(out, i, g, j);
           ++j;
         } else {
           status[k] = peaks_.status[i], count[k] = 0, force[k] = 0.0;
           u1[k] = peaks_.u1[i], u2[k] = peaks_.u2[i], first[k] = NAN;
+          for (std::size_t b = 2; b < nb; ++b) out.values<double>(f_row_imp_[b])[k] = peaks_.u[i * nb + b];
           hw[k] = peaks_.status[i] == 0 && contact::traits(s_.contact.law).has_force ? 0.0 : NAN;  // never touched
           if (table) put_table_coupled(out, i, g, std::string::npos);
         }
@@ -416,7 +420,15 @@ class UnitComputer {
   void table_fields(const WorkPlan& plan) {
     const std::optional<LaneTopology> t = table_topology(sampler_.model(), sampler_.seed());
     block_->set_table(block_->system(*t));
-    for (std::size_t b = 0; b < 2; ++b) {
+    const std::size_t nb = t->buildings();
+    f_floor_u_.resize(nb), f_floor_drift_.resize(nb), f_floor_acc_.resize(nb);
+    f_row_unc_.assign(nb, 0), f_row_imp_.assign(nb, 0);
+    for (std::size_t b = 2; b < nb; ++b) {  // a row's buildings 3..n
+      f_row_unc_[b] = results::field_index(plan.fields, "uncoupled", results::building_name("peak_u{b}", b + 1));
+      if (plan.impacts)
+        f_row_imp_[b] = results::field_index(plan.fields, "impacts", results::building_name("peak_u{b}", b + 1));
+    }
+    for (std::size_t b = 0; b < nb; ++b) {
       f_floor_u_[b] = results::field_index(plan.fields, "uncoupled", results::building_name("peak_u_floors{b}", b + 1));
       f_floor_drift_[b] = results::field_index(plan.fields, "uncoupled", results::building_name("peak_drift{b}", b + 1));
       f_floor_acc_[b] = results::field_index(plan.fields, "uncoupled", results::building_name("peak_acc_floors{b}", b + 1));
@@ -433,7 +445,7 @@ class UnitComputer {
   // lane i's per-floor rows and per-element closings from the uncoupled run
   void put_table_uncoupled(UnitResult& out, std::size_t i) {
     const TableLayout& t = block_->layout();
-    for (std::size_t b = 0; b < 2; ++b)
+    for (std::size_t b = 0; b < t.floors.size(); ++b)
       for (auto [field, from] : {std::pair{f_floor_u_[b], &peaks_.floor_u[b]}, {f_floor_drift_[b], &peaks_.floor_drift[b]},
                                  {f_floor_acc_[b], &peaks_.floor_acc[b]}}) {
         auto v = out.lane_values<double>(field, i);
@@ -479,7 +491,8 @@ class UnitComputer {
   BatchResult res_, cres_, bres_, anchor_;
   std::optional<SystemBlock> block_;
   BlockPeaks peaks_, coupled_;
-  std::array<std::size_t, 2> f_floor_u_{}, f_floor_drift_{}, f_floor_acc_{};
+  std::vector<std::size_t> f_floor_u_, f_floor_drift_, f_floor_acc_;
+  std::vector<std::size_t> f_row_unc_, f_row_imp_;  // a row's buildings 3..n: uncoupled / impacts peak_u{b}
   std::size_t f_e_closing_ = 0, f_e_count_ = 0, f_e_force_ = 0, f_e_pen_ = 0, f_e_first_ = 0, f_e_hw_ = 0;
   std::vector<std::uint8_t> st_;
   std::vector<double> scaled_, mid_, pu1_, pu2_, pc_;
@@ -572,7 +585,7 @@ WorkPlan plan_work(const Inputs& in) {
   L.ida = s.intensity.bisection;
   // shear buildings: results format 3 with the study's largest topology as /system (format 2 for an SDOF facing a
   // shear building, and for one storey each: system_table gives the SDOF pair nothing)
-  if (s.structures.any_shear())
+  if (s.structures.any_shear() || s.structures.row())
     if (const std::optional<LaneTopology> t = table_topology(s.structures, s.seed)) {
       SystemBlock block(s.structures, s.contact, s.e);
       L.system = system_table(block.system(*t), block.groups(*t, s.contact));
@@ -624,7 +637,7 @@ std::vector<std::size_t> open_checkpoint(const parallel::Session& session, const
 
 // "building1: shear building, storeys from each sample's height at 3.2 m, ..." (a study with a shear building)
 std::string describe_structure(const StructureModel& m, int i) {
-  const BuildingModel b = m.building(i);
+  const BuildingModel b = m.row_building(static_cast<std::size_t>(i));
   if (!b.shear()) return fmt::format("building{}: SDOF (one storey facing the other building's floor nearest its height)", i + 1);
   const std::string yield = b.hysteresis == Hysteresis::elastic ? "elastic storeys"
                             : b.yield_coefficient.given()       ? "storey yield from the base shear Cy M g"
@@ -647,7 +660,12 @@ void announce(const parallel::Session& session, const Inputs& in, const WorkPlan
                       in.study.polarity == Polarity::both ? " x 2 signs" : "", L.models(), to_string(in.study.scene), L.units(), session.size(),
                       session.size() > 1 ? "s" : ""));
   ctx.say(in.study.scene_reason);
-  for (int b = 0; b < 2 && in.study.structures.any_shear(); ++b) ctx.say(describe_structure(in.study.structures, b));
+  const StructureModel& sm = in.study.structures;
+  if (sm.row())
+    ctx.say(fmt::format("a row of {} buildings, left to right: every joint with the study gap ratio x d (d = the row's "
+                        "largest joint code separation); an analysis pounds when ANY joint touches",
+                        sm.building_count()));
+  for (int b = 0; b < static_cast<int>(sm.building_count()) && sm.any_shear(); ++b) ctx.say(describe_structure(sm, b));
   if (in.study.polarity == Polarity::both)
     ctx.say(fmt::format("record polarity \"both\": each of the {} records applied with both signs, as two analyses of "
                         "the same record", in.records.size() / 2));

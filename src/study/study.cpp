@@ -229,7 +229,10 @@ void check_selection(const Study& s, const TableReader& top) {
 // A study with a shear building (model = "shear") runs the system stepper: central difference only, force laws
 // only (a contact at every common floor), and no [intensity] (the stripes' elastic scaling and the IDA's yield
 // scaling are the SDOF pair's).
+static void check_row_study(const Study& s, config::TableReader& top, const toml::table* structures, const std::string& path);
+
 static void check_shear_study(const Study& s, config::TableReader& top, const toml::table* structures, const std::string& path) {
+  check_row_study(s, top, structures, path);
   if (!s.structures.any_shear()) return;
   if (s.stepper != Stepper::central_difference) {
     const toml::table* a = top.table("analysis");
@@ -260,6 +263,37 @@ static void check_shear_study(const Study& s, config::TableReader& top, const to
                      "remove [intensity] to run the shear buildings in the probability or impacts scene, or use "
                      "model = \"sdof\"");
   }
+}
+
+// A row of n >= 3 buildings ([structures] buildings) runs the system stepper too, SDOF or shear: central difference,
+// a force law (several contact elements), no [intensity] (the stripes and the IDA are the pair's).
+static void check_row_study(const Study& s, config::TableReader& top, const toml::table* structures, const std::string& path) {
+  if (!s.structures.row()) return;
+  const std::size_t n = s.structures.building_count();
+  const toml::node* count = structures ? structures->get("buildings") : nullptr;
+  const std::string at_count =
+      count ? fmt::format("{}:{} [structures].buildings", path, count->source().begin.line) : path + " [structures].buildings";
+  auto at = [&](const char* table, const char* key) {
+    const toml::table* t = top.table(table);
+    const toml::node* k = t ? t->get(key) : nullptr;
+    return k ? fmt::format("{}:{} [{}].{}", path, k->source().begin.line, table, key)
+             : fmt::format("{} [{}].{}", path, table, key);
+  };
+  if (s.stepper != Stepper::central_difference)
+    throw InputError(fmt::format("the {} stepper runs SDOF pairs only, and the study is a row of {} buildings",
+                                 to_string(s.stepper), n),
+                     at("analysis", "stepper"),
+                     "write stepper = \"central-difference\" (the system stepper), or buildings = 2");
+  if (s.contact.law == ContactLaw::stereomechanical)
+    throw InputError(fmt::format("the stereomechanical law runs one contact element (the SDOF pair), and a row of {} "
+                                 "buildings has a contact at every joint",
+                                 n),
+                     at("contact", "law"), "choose a force law (hertzdamp, kelvin, ...), or buildings = 2");
+  if (s.intensity.enabled)
+    throw InputError(fmt::format("a fragility study ([intensity]: stripes, IDA) runs a pair, and the study is a row of "
+                                 "{} buildings",
+                                 n),
+                     at_count, "remove [intensity] to run the row in the probability or impacts scene, or set buildings = 2");
 }
 
 Study parse_study(const std::string& text, const std::string& path) {

@@ -20,19 +20,21 @@ constexpr double nan = std::numeric_limits<double>::quiet_NaN();
 }  // namespace
 
 LaneTopology lane_topology(const StructureModel& model, const SampledPair& p) {
-  const BuildingModel b[2] = {model.building(0), model.building(1)};
-  const SampledStructure* s[2] = {&p.s1, &p.s2};
+  const std::size_t n = p.buildings();
   LaneTopology t;
-  for (int i = 0; i < 2; ++i) {
-    t.storeys[i] = b[i].shear() ? b[i].storeys_at(s[i]->h) : 1;
-    t.storey_height[i] = b[i].storey_height();
-    t.isolated[i] = b[i].shear() && b[i].isolated, t.moat[i] = t.isolated[i] && b[i].moat;
+  t.storeys.resize(n), t.storey_height.resize(n), t.isolated.resize(n), t.moat.resize(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    const BuildingModel b = model.row_building(i);
+    t.storeys[i] = b.shear() ? b.storeys_at(p.structure(i).h) : 1;
+    // an SDOF of a row of SDOFs: its one floor at the pair's 3.2 m (System::sdof_pair()), so every joint has one element
+    t.storey_height[i] = b.shear() || n == 2 ? b.storey_height() : 3.2;
+    t.isolated[i] = b.shear() && b.isolated, t.moat[i] = t.isolated[i] && b.moat;
   }
-  for (int i = 0; i < 2; ++i) {
-    if (b[i].shear()) continue;
+  for (std::size_t i = 0; i < 2 && n == 2; ++i) {
+    if (model.building(static_cast<int>(i)).shear()) continue;
     // an SDOF facing a shear building: one storey reaching the other's floor nearest its height (its roof at most)
-    const int o = 1 - i;
-    const long k = std::clamp<long>(std::lround(s[i]->h / t.storey_height[o]), 1, t.storeys[o]);
+    const std::size_t o = 1 - i;
+    const long k = std::clamp<long>(std::lround(p.structure(i).h / t.storey_height[o]), 1, t.storeys[o]);
     t.storey_height[i] = static_cast<double>(k) * t.storey_height[o];
   }
   return t;
@@ -60,19 +62,23 @@ physics::ShearSpec shear_spec(const BuildingModel& b, const SampledStructure& s,
   return spec;
 }
 
-void BlockPeaks::resize(std::size_t n, const TableLayout& t) {
+void BlockPeaks::resize(std::size_t n, std::size_t nb, const TableLayout& t) {
   status.assign(n, 0);
   u1.assign(n, 0.0), u2.assign(n, 0.0), closing.assign(n, 0.0);
+  buildings = nb;
+  u.assign(n * nb, 0.0);
   impact_count.assign(n, 0);
   peak_force.assign(n, 0.0), t_first_impact.assign(n, nan), h_omega_contact.assign(n, nan);
-  for (std::size_t b = 0; b < 2; ++b)
-    for (auto* v : {&floor_u[b], &floor_drift[b], &floor_acc[b]}) v->assign(n * t.floors[b], nan);
+  for (auto* f : {&floor_u, &floor_drift, &floor_acc}) {
+    f->resize(t.floors.size());
+    for (std::size_t b = 0; b < t.floors.size(); ++b) (*f)[b].assign(n * t.floors[b], nan);
+  }
   for (auto* v : {&e_closing, &e_force, &e_penetration, &e_first, &e_hw}) v->assign(n * t.elements, nan);
   e_count.assign(n * t.elements, -1);
 }
 
 std::optional<LaneTopology> table_topology(const StructureModel& model, std::uint64_t seed) {
-  if (!model.building(0).shear() || !model.building(1).shear()) return std::nullopt;
+  if (!model.row() && (!model.building(0).shear() || !model.building(1).shear())) return std::nullopt;
   const StructureSampler sampler(model, seed);
   LaneTopology most;
   bool first = true;
@@ -80,7 +86,7 @@ std::optional<LaneTopology> table_topology(const StructureModel& model, std::uin
     for (std::int64_t k = 0; k < model.samples_per_pair; ++k) {
       const LaneTopology t = lane_topology(model, sampler.sample(model.pair_id(p, k)));
       if (first) most = t, first = false;
-      for (int b = 0; b < 2; ++b) most.storeys[b] = std::max(most.storeys[b], t.storeys[b]);
+      for (std::size_t b = 0; b < t.buildings(); ++b) most.storeys[b] = std::max(most.storeys[b], t.storeys[b]);
     }
   return most;
 }
@@ -88,7 +94,7 @@ std::optional<LaneTopology> table_topology(const StructureModel& model, std::uin
 void SystemBlock::set_table(const model::System& table) {
   layout_ = TableLayout{};
   table_elements_.clear();
-  for (std::size_t b = 0; b < 2; ++b) layout_.floors[b] = table.bodies()[b].dofs.size();
+  for (const model::Body& b : table.bodies()) layout_.floors.push_back(b.dofs.size());
   layout_.elements = table.contacts().size();
   for (std::size_t e = 0; e < table.contacts().size(); ++e) table_elements_[table.contacts()[e].label] = e;
 }
@@ -96,8 +102,8 @@ void SystemBlock::set_table(const model::System& table) {
 const model::System& SystemBlock::system(const LaneTopology& t) {
   auto& slot = systems_[t];
   if (!slot) {
-    std::vector<model::StickTopology> sticks(2);
-    for (int i = 0; i < 2; ++i) {
+    std::vector<model::StickTopology> sticks(t.buildings());
+    for (std::size_t i = 0; i < t.buildings(); ++i) {
       sticks[i].storeys = t.storeys[i], sticks[i].storey_heights = {t.storey_height[i]};
       sticks[i].isolated = t.isolated[i], sticks[i].moat = t.moat[i];
     }
@@ -108,10 +114,10 @@ const model::System& SystemBlock::system(const LaneTopology& t) {
 
 void SystemBlock::set_lane(physics::SystemBatch& b, std::size_t lane, const SampledPair& p, const LaneTopology& t,
                            double gap, const ContactNumbers& cn) const {
-  const SampledStructure* s[2] = {&p.s1, &p.s2};
-  for (int i = 0; i < 2; ++i) {
-    const BuildingModel bm = model_.building(i);
-    const physics::ShearSpec spec = shear_spec(bm, *s[i], t.storeys[i]);
+  const std::size_t nb = t.buildings();
+  for (int i = 0; i < static_cast<int>(nb); ++i) {
+    const BuildingModel bm = model_.row_building(static_cast<std::size_t>(i));
+    const physics::ShearSpec spec = shear_spec(bm, p.structure(static_cast<std::size_t>(i)), t.storeys[i]);
     if (!t.isolated[i]) {
       physics::set_shear_building(b, lane, i, spec);
       continue;
@@ -123,9 +129,9 @@ void SystemBlock::set_lane(physics::SystemBatch& b, std::size_t lane, const Samp
   physics::set_contacts(b, lane, gap, p.kh, cn.e);
   const model::System& sys = *b.system;
   const std::size_t w = b.width;
-  for (int i = 0; i < 2; ++i) {
+  for (int i = 0; i < static_cast<int>(nb); ++i) {
     if (!t.moat[i]) continue;
-    const BuildingModel bm = model_.building(i);
+    const BuildingModel bm = model_.row_building(static_cast<std::size_t>(i));
     const double m_base = b.m[physics::SystemBatch::at(sys.bodies()[static_cast<std::size_t>(i)].dofs[0], lane, w)];
     const double kc = bm.moat_stiffness > 0 ? bm.moat_stiffness
                                             : hertz_stiffness_spheres(m_base, m_base, model_.contact_density,
@@ -136,7 +142,8 @@ void SystemBlock::set_lane(physics::SystemBatch& b, std::size_t lane, const Samp
     const model::ContactElement& ce = sys.contacts()[e];
     if (!sys.groups()[static_cast<std::size_t>(ce.group)].study_gap) continue;  // a moat wall: set_moat's
     double kc = cn.stiffness > 0 ? cn.stiffness : p.kh;
-    if (!(cn.stiffness > 0) && !(model_.kh > 0) && !(t.storeys[0] == 1 && t.storeys[1] == 1))
+    // (a row of SDOFs: the spheres of the two floors are the two buildings', so joint 1|2 gets the pair's kh)
+    if (!(cn.stiffness > 0) && !(model_.kh > 0) && !(nb == 2 && t.storeys[0] == 1 && t.storeys[1] == 1))
       kc = hertz_stiffness_spheres(b.m[physics::SystemBatch::at(ce.left.p, lane, w)],
                                    b.m[physics::SystemBatch::at(ce.right.p, lane, w)], model_.contact_density,
                                    model_.contact_youngs_modulus, model_.contact_poisson);  // the two floors' masses
@@ -146,10 +153,10 @@ void SystemBlock::set_lane(physics::SystemBatch& b, std::size_t lane, const Samp
 
 std::vector<ContactModel> SystemBlock::groups(const LaneTopology& t, const ContactModel& pounding) const {
   std::vector<ContactModel> out{pounding};
-  for (int i = 0; i < 2; ++i) {
+  for (std::size_t i = 0; i < t.buildings(); ++i) {
     if (!t.moat[i]) continue;
     ContactModel moat = contact_;
-    if (const std::string& law = model_.building(i).moat_law; !law.empty()) moat.law = parse_contact_law(law);
+    if (const std::string& law = model_.row_building(i).moat_law; !law.empty()) moat.law = parse_contact_law(law);
     out.push_back(moat);
   }
   return out;
@@ -158,8 +165,8 @@ std::vector<ContactModel> SystemBlock::groups(const LaneTopology& t, const Conta
 void SystemBlock::run(std::span<const SampledPair> pairs, std::span<const std::size_t> lanes, double ratio,
                       const ContactModel& cm, const ContactNumbers& cn, const GroundMotion& gm,
                       const KernelSettings& ks, BlockPeaks& out) {
-  const std::size_t n = lanes.size();
-  out.resize(n, layout_);
+  const std::size_t n = lanes.size(), nb = model_.building_count();
+  out.resize(n, nb, layout_);
   keys_.resize(n);
   for (std::size_t j = 0; j < n; ++j) keys_[j] = lane_topology(model_, pairs[lanes[j]]);
   order_.resize(n);
@@ -186,8 +193,8 @@ void SystemBlock::run(std::span<const SampledPair> pairs, std::span<const std::s
     for (std::size_t j = at; j < end; ++j) {
       const std::size_t l = j - at, k = order_[j];
       out.status[k] = res_.status[l];
-      double u[2] = {0.0, 0.0};
-      for (std::size_t b = 0; b < 2; ++b)
+      double* u = out.u.data() + k * nb;
+      for (std::size_t b = 0; b < nb; ++b)
         for (int d : sys.bodies()[b].dofs) u[b] = std::max(u[b], res_.peak_u[physics::SystemBatch::at(d, l, w)]);
       out.u1[k] = u[0], out.u2[k] = u[1];
       // over the study-gap elements: D and force the largest, the counts summed (-1: a failed lane), the first impact
@@ -208,7 +215,7 @@ void SystemBlock::run(std::span<const SampledPair> pairs, std::span<const std::s
       }
       if (!any) force = 0.0;
       if (!layout_.empty()) {
-        for (std::size_t b = 0; b < 2; ++b) {
+        for (std::size_t b = 0; b < nb; ++b) {
           const auto& dofs = sys.bodies()[b].dofs;
           for (std::size_t f = 0; f < dofs.size() && f < layout_.floors[b]; ++f) {
             const std::size_t x = physics::SystemBatch::at(dofs[f], l, w), o = k * layout_.floors[b] + f;
@@ -247,7 +254,7 @@ void SystemBlock::coupled(std::span<const SampledPair> pairs, std::span<const st
 
 void check_shear_steps(const Study& study, std::span<const StudyRecord> records, std::size_t max_models) {
   const StructureModel& model = study.structures;
-  if (!model.any_shear() || records.empty() || study.stepper != Stepper::central_difference) return;
+  if ((!model.any_shear() && !model.row()) || records.empty() || study.stepper != Stepper::central_difference) return;
   // the longest integration step over the records
   double h = 0.0, dt = 0.0;
   for (const StudyRecord& r : records) {

@@ -63,6 +63,9 @@ class TableReader {
   const toml::node* get(std::string_view key);
   // Sub-table `key` (null when absent); InputError when `key` holds something else.
   const toml::table* table(std::string_view key);
+  // The same for a key of a numbered family described once: `key` ("building3") is looked up in study_keys.cpp
+  // as `described_as` ("buildingK").
+  const toml::table* table(std::string_view key, std::string_view described_as);
 
   // Typed reads with a default for an absent key, the allowed range taken from the key's description
   // (study_keys.cpp: lo, hi, range, units); a value outside it (or not finite) is an error naming the range.

@@ -149,6 +149,15 @@ inline constexpr FieldSpec floor_fields[] = {
      "bottom first; NaN above the roof"},
 };
 
+// Format 3, a row of n >= 3 buildings ([structures] buildings = n): the [R, M] and [R, M, G] peaks of buildings 3..n,
+// named as building 1's and 2's rows of unit_fields ("{b}" = 3..n; row_field() gives the row of building b).
+inline constexpr FieldSpec row_fields[] = {
+    {"uncoupled", "peak_u{b}", Dtype::f64, Extent::lane, NAN, "m",
+     "peak |u| of building {b} of the row relative to the ground (its largest floor), without contact"},
+    {"impacts", "peak_u{b}", Dtype::f64, Extent::lane_gap, NAN, "m",
+     "peak |u| of building {b} of the row relative to the ground (its largest floor), with contact at each gap"},
+};
+
 // Format 3: per contact element of the System (element order of /system/element_*), without contact (lane_element)
 // and with contact at each gap (lane_gap_element).
 inline constexpr FieldSpec element_fields[] = {
@@ -201,6 +210,8 @@ std::vector<FieldSpec> system_fields(const Extents& system, bool with_gaps);
 // A templated row ("{b}" in its name and description) for building b (1-based) with `floors` floors; the expanded
 // texts are interned for the program's life (FieldSpec holds views).
 FieldSpec floor_field(const FieldSpec& row, std::size_t building, std::size_t floors);
+// A row_fields row for building b (1-based, >= 3).
+FieldSpec row_field(const FieldSpec& row, std::size_t building);
 // "peak_u_floors{b}" with b = building: the name of a floor_fields row for building b.
 std::string building_name(std::string_view row_name, std::size_t building);
 // The position of a row in a schema; std::logic_error when absent.

@@ -106,10 +106,23 @@ struct StructureModel {
   double storey_height = 0.0;
   model::StiffnessProfile profile = model::StiffnessProfile::uniform;
   // Either building is a shear building (the study runs Systems, study/run.cpp).
-  bool any_shear() const { return building(0).shear() || building(1).shear(); }
+  bool any_shear() const {
+    bool any = building(0).shear() || building(1).shear();
+    for (const BuildingModel& b : more) any = any || b.shear();
+    return any;
+  }
   // Index 0 = building 1 (left). parse_structure_model resolves both; a model built in code may leave them
   // unresolved, and building(b) then makes them from the fields above.
   std::array<BuildingModel, 2> buildings;
+  // A row of n >= 3 buildings ([structures] buildings = n, docs/architecture.md §2.7.1; SB §4): buildings 3..n,
+  // left to right after building 2, each resolved from [structures.buildingK] over the defaults. Each has ONE
+  // period slot (a fixed period or a distribution: the period grid spans buildings 1 x 2) and is drawn per sample
+  // from its own stream (row_stream). Empty: the pair (buildings = 2), bit for bit as before.
+  std::vector<BuildingModel> more;
+  std::size_t building_count() const { return 2 + more.size(); }
+  bool row() const { return !more.empty(); }
+  // Building b (0 = building 1) of the row.
+  BuildingModel row_building(std::size_t b) const { return b < 2 ? building(static_cast<int>(b)) : more[b - 2]; }
 
   // 1.00, 1.05, ..., 1.50 s (section 3).
   static std::vector<double> default_periods();
@@ -145,7 +158,9 @@ void validate(const StructureModel& model, const std::string& where = "[structur
 //   code_gap_coefficient; contact_density, contact_youngs_modulus, contact_poisson; kh; equal_heights (bool);
 //   model = "sdof" | "shear", storey_height, stiffness_profile (the buildings' defaults, building.hpp);
 //   and the sub-tables [structures.building1], [structures.building2] (keys in building.hpp), resolved into
-//   StructureModel::buildings over these defaults.
+//   StructureModel::buildings over these defaults; buildings = n (2..16) makes a row, whose [structures.buildingK]
+//   K = 3..n resolve into StructureModel::more (each one period slot; one model and one storey height throughout;
+//   no equal_heights; a table beyond n is refused).
 // Unknown keys, wrong types and out-of-range values throw InputError naming file:line, the key and the
 // allowed range. The seed is NOT in this table (see parse_study_seed).
 StructureModel parse_structure_model(const toml::table& table, const std::string& file);
@@ -155,6 +170,9 @@ std::uint64_t parse_study_seed(const toml::table& root, const std::string& file)
 
 // Stream ids: one per consumer of random numbers, so they never share a stream.
 inline constexpr std::uint64_t structure_stream = 1;
+// Building b (0-based, b >= 2) of a row: its own stream at the same sample identity (i1, i2, sample), so buildings
+// 1 and 2 keep the pair's numbers and adding a building changes nobody else's.
+inline constexpr std::uint64_t row_stream(std::size_t b) { return 0x526f770000ull + b; }
 
 // The engine seed of one sample: splitmix64 chained over seed, stream, (i1, i2) and sample.
 std::uint64_t stream_seed(std::uint64_t seed, std::uint64_t stream, const SampleId& id);
@@ -170,10 +188,16 @@ struct SampledStructure {
 struct SampledPair {
   SampleId id;
   SampledStructure s1, s2;  // 1 = left, 2 = right
-  double d = 0;             // code separation 0.005 (h1 + h2) (eq. 5)
+  std::vector<SampledStructure> more;  // a row's buildings 3..n (StructureModel::more), left to right
+  // code separation 0.005 (h1 + h2) (eq. 5); in a row the largest over its joints, 0.005 max_j (h_j + h_j+1), the
+  // gap every joint gets (study gap = ratio d)
+  double d = 0;
   double kh = 0;            // Hertz contact stiffness (N/m^1.5)
   // The kernel's input: gap = gap_ratio d, kc = kh, restitution e, at rest.
   PairParams pair_params(double gap_ratio, double e) const;
+  // Building b (0 = building 1) of the pair or row.
+  const SampledStructure& structure(std::size_t b) const { return b == 0 ? s1 : b == 1 ? s2 : more[b - 2]; }
+  std::size_t buildings() const { return 2 + more.size(); }
 };
 
 // Draws pairs for one (model, seed, stream). Construction validates the model (InputError) and precomputes
@@ -222,6 +246,7 @@ class StructureSampler {
   StructureModel model_;
   std::uint64_t seed_, stream_;
   std::array<Side, 2> side_;
+  std::vector<Side> more_;  // a row's buildings 3..n
 };
 
 // One pair for (model, seed, stream, identity); builds a sampler each call (use StructureSampler in loops).

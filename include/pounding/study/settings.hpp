@@ -110,9 +110,11 @@ void visit_settings(const Study& s, V&& v) {
   v("structures", "kh", m.kh);
   v("structures", "equal_heights", m.equal_heights);
   v("structures", "heights_specified", m.heights_specified());
-  for (int i = 0; i < 2; ++i) {  // each building resolved; a distribution as its describe() text
-    const BuildingModel b = m.building(i);
-    const S sec = i == 0 ? "structures.building1" : "structures.building2";
+  // a row's building count (absent from pair studies: their bits)
+  if (m.row()) v("structures", "buildings", static_cast<std::int64_t>(m.building_count()));
+  for (std::size_t i = 0; i < m.building_count(); ++i) {  // each building resolved; a distribution as its describe() text
+    const BuildingModel b = m.row_building(i);
+    const S sec = "structures.building" + std::to_string(i + 1);
     v(sec, "periods", b.periods);
     v(sec, "period", b.period_text());
     v(sec, "height", b.height_text());
@@ -143,7 +145,7 @@ void visit_settings(const Study& s, V&& v) {
                                      {"storey_height", f.storey_height}})
       if (value > 0) v(sec, key, value);
     if (f.storeys > 0) v(sec, "storeys", static_cast<std::int64_t>(f.storeys));
-    if (m.any_shear()) {  // the structural model (sampling/building.hpp); absent from SDOF studies (their bits)
+    if (m.any_shear() || m.row()) {  // the structural model (sampling/building.hpp); absent from SDOF pair studies (their bits)
       v(sec, "model", S(to_string(b.kind)));
       v(sec, "stiffness_profile", S(to_string(b.profile)));
       if (f.storey_height <= 0) v(sec, "storey_height", b.storey_height());

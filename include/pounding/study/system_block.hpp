@@ -33,11 +33,13 @@
 
 namespace pounding {
 
-// One lane's topology: building b (0 = left) has storeys[b] storeys of storey_height[b] m.
+// One lane's topology: building b (0 = left) has storeys[b] storeys of storey_height[b] m; a pair has 2 buildings, a
+// row ([structures] buildings = n) n.
 struct LaneTopology {
-  std::array<int, 2> storeys{1, 1};
-  std::array<double, 2> storey_height{3.2, 3.2};
-  std::array<bool, 2> isolated{false, false}, moat{false, false};  // base isolation, moat walls (the building's keys)
+  std::vector<int> storeys{1, 1};
+  std::vector<double> storey_height{3.2, 3.2};
+  std::vector<std::uint8_t> isolated{0, 0}, moat{0, 0};  // base isolation, moat walls (the building's keys)
+  std::size_t buildings() const { return storeys.size(); }
   friend auto operator<=>(const LaneTopology&, const LaneTopology&) = default;
 };
 
@@ -52,29 +54,32 @@ physics::ShearSpec shear_spec(const BuildingModel& b, const SampledStructure& s,
 
 // The results' largest topology (results format 3, /system): per building its most storeys over every sample of the
 // study (a scan of the sampled heights). nullopt when a building is an SDOF facing a shear one (its one contact
-// changes level from sample to sample: the study writes format 2, the [R, M] totals only).
+// changes level from sample to sample: the study writes format 2, the [R, M] totals only). A row of n >= 3
+// buildings (all SDOF or all shear) always has one: its file is format 3.
 std::optional<LaneTopology> table_topology(const StructureModel& model, std::uint64_t seed);
 
 // Where a lane's values go in the results' per-floor / per-element rows (the table topology's floors and elements).
 struct TableLayout {
-  std::array<std::size_t, 2> floors{0, 0};  // floors (DOFs) of each building, an isolated base first
+  std::vector<std::size_t> floors;  // floors (DOFs) of each building, an isolated base first
   std::size_t elements = 0;
-  bool empty() const { return elements == 0 && floors[0] == 0; }
+  bool empty() const { return floors.empty(); }
 };
 
 // What one run of a block gives per lane (index = the lane's position in the block).
 struct BlockPeaks {
   std::vector<std::uint8_t> status;
   std::vector<double> u1, u2, closing;  // closing: D (uncoupled runs)
+  std::size_t buildings = 2;
+  std::vector<double> u;  // [lane][building]: each building's largest floor |u| (u1, u2 its first two)
   std::vector<std::int32_t> impact_count;
   std::vector<double> peak_force, t_first_impact, h_omega_contact;
   // With a TableLayout: [lane][floor] per building (peak |u|, storey drift, peak |a + ag| in g) and [lane][element]
   // (peak closing; impact count, peak force, peak penetration, first impact, h omega_c), NaN / -1 where the lane's
   // topology has no such floor or element.
-  std::array<std::vector<double>, 2> floor_u, floor_drift, floor_acc;
+  std::vector<std::vector<double>> floor_u, floor_drift, floor_acc;  // [building]
   std::vector<double> e_closing, e_force, e_penetration, e_first, e_hw;
   std::vector<std::int32_t> e_count;
-  void resize(std::size_t n, const TableLayout& t = {});
+  void resize(std::size_t n, std::size_t buildings = 2, const TableLayout& t = {});
 };
 
 // How the contacts of a coupled run are set.

@@ -87,7 +87,29 @@ struct SimulateOptions {
   double level_tolerance = 0.05;
   std::vector<double> gap_offsets;
   bool levels_given = false;
-  bool storey_mode() const { return b[0].any() || b[1].any() || levels_given || iso[0].any() || iso[1].any(); }
+  // a row of buildings (issue 25 step 8, docs/rows.md): --buildings N, buildings 3..N by --TK, --mK, --kK, --hK,
+  // --fyK and the storey options --storeysK ...; an option not given takes building 1's value for odd K and building
+  // 2's for even K
+  static constexpr int max_buildings = 8;
+  int buildings = 2;
+  struct RowBuilding {
+    double m = 0, T = 1.0, k = 0, h = 30.0, fy = 0;
+    bool m_given = false, T_given = false, k_given = false, h_given = false, fy_given = false;
+    bool m_user = false, k_user = false, fy_user = false;  // given for this building (not inherited)
+    Storeys st;
+  };
+  RowBuilding more[max_buildings - 2];
+  bool storey_mode() const {
+    return b[0].any() || b[1].any() || levels_given || iso[0].any() || iso[1].any() || buildings > 2;
+  }
+};
+
+// One building's options, whichever way they were given (--m1 ... or --mK of a row).
+struct Side {
+  std::string k;  // "1", "2", ...
+  SimulateOptions::Storeys st;
+  double m = 0, T = 0, kk = 0, h = 0, fy = 0;
+  bool m_given = false, k_given = false, fy_given = false, h_given = false;
 };
 
 // --m1/--m2, or the mass model's value at --h1/--h2.
@@ -387,8 +409,8 @@ void validate_storeys(const SimulateOptions& o) {
 // equal storey heights are today's pair bit for bit; several: uniform floors and storeys, the storeys from
 // --storey-stiffness or scaled to --T, yield drift 0.02/6 (the SDOF's yield displacement 0.02 h / 6 per storey),
 // Rayleigh --zeta on modes 1 and 2.
-physics::ShearSpec shear_spec(const SimulateOptions& o, int i, const Structure& sdof) {
-  const SimulateOptions::Storeys& b = o.b[i];
+physics::ShearSpec shear_spec(const SimulateOptions& o, const Side& side, const Structure& sdof) {
+  const SimulateOptions::Storeys& b = side.st;
   physics::ShearSpec spec;
   spec.alpha = o.alpha;
   spec.zeta = o.zeta;
@@ -398,8 +420,8 @@ physics::ShearSpec shear_spec(const SimulateOptions& o, int i, const Structure& 
   }
   spec.floor_mass = {b.mass_given ? b.mass : mass_from_height(b.storeys * b.height) / b.storeys};
   if (b.stiffness_given) spec.storey_stiffness = {b.stiffness};
-  else spec.period = i == 0 ? o.T1 : o.T2;
-  if (spec.storey_stiffness.empty()) require_positive(spec.period, i == 0 ? "--T1" : "--T2");
+  else spec.period = side.T;
+  if (spec.storey_stiffness.empty()) require_positive(spec.period, "--T" + side.k);
   if (!o.elastic) spec.yield_drift = 0.02 / 6.0;
   return spec;
 }
@@ -454,18 +476,18 @@ void set_storey_contacts(const SimulateOptions& o, const ContactModel& cm, physi
 }
 
 // The buildings' numbers (shear or isolated) in lane 0 and their report lines.
-void set_buildings(const SimulateOptions& o, const Structure (&sdof)[2], const std::vector<model::StickTopology>& sticks,
-                   physics::SystemBatch& batch, SystemRunReport& run) {
+void set_buildings(const SimulateOptions& o, const std::vector<Side>& sides, const std::vector<Structure>& sdof,
+                   const std::vector<model::StickTopology>& sticks, physics::SystemBatch& batch, SystemRunReport& run) {
   const model::System& sys = *batch.system;
-  for (int i = 0; i < 2; ++i) {
+  for (int i = 0; i < static_cast<int>(sticks.size()); ++i) {
     const std::string label = sys.bodies()[static_cast<std::size_t>(i)].label;
     if (!sticks[i].isolated) {
-      const physics::ShearNumbers num = physics::set_shear_building(batch, 0, i, shear_spec(o, i, sdof[i]));
+      const physics::ShearNumbers num = physics::set_shear_building(batch, 0, i, shear_spec(o, sides[i], sdof[i]));
       run.buildings.push_back({label, model::floor_levels(sticks[i]), num.m, num.k, num.fy, num.modes.period,
                                num.zeta_modes, {}});
       continue;
     }
-    const physics::ShearSpec spec = shear_spec(o, i, sdof[i]);
+    const physics::ShearSpec spec = shear_spec(o, sides[i], sdof[i]);
     const SimulateOptions::Isolation& s = o.iso[i];
     physics::IsolationSpec iso;
     iso.bearing = bearing_of(s.bearing);
@@ -518,20 +540,73 @@ std::vector<ContactModel> set_moats(const SimulateOptions& o, const ContactModel
   return groups;
 }
 
+// Buildings 3..N of a row (--buildings N): every option not given from building 1 (odd K) or 2 (even K), checked
+// as buildings 1 and 2 are.
+void resolve_row(SimulateOptions& o) {
+  for (int K = 3; K <= o.buildings; ++K) {
+    SimulateOptions::RowBuilding& x = o.more[K - 3];
+    const bool odd = K % 2 == 1;
+    const std::string k = std::to_string(K);
+    if (!x.T_given) x.T = odd ? o.T1 : o.T2;
+    if (!x.h_given) x.h = odd ? o.h1 : o.h2, x.h_given = odd ? o.h1_given : o.h2_given;
+    if (!x.m_given) x.m = odd ? o.m1 : o.m2, x.m_given = odd ? o.m1_given : o.m2_given;
+    if (!x.k_given) x.k = odd ? o.k1 : o.k2, x.k_given = odd ? o.k1_given : o.k2_given;
+    if (!x.fy_given) x.fy = odd ? o.fy1 : o.fy2, x.fy_given = odd ? o.fy1_given : o.fy2_given;
+    const SimulateOptions::Storeys& t = o.b[odd ? 0 : 1];
+    if (!x.st.storeys_given) x.st.storeys = t.storeys, x.st.storeys_given = t.storeys_given;
+    if (!x.st.mass_given) x.st.mass = t.mass, x.st.mass_given = t.mass_given;
+    if (!x.st.stiffness_given) x.st.stiffness = t.stiffness, x.st.stiffness_given = t.stiffness_given;
+    if (!x.st.height_given) x.st.height = t.height, x.st.height_given = t.height_given;
+    if (x.st.storeys < 1 || x.st.storeys > 200)
+      throw InputError(fmt::format("--storeys{} = {} is out of range", k, x.st.storeys), "--storeys" + k,
+                       "give a number of storeys in [1, 200]");
+    if (x.st.storeys > 1)
+      for (auto [user, name] : {std::pair{x.m_user, "--m"}, {x.k_user, "--k"}, {x.fy_user, "--fy"}})
+        if (user)
+          throw InputError(fmt::format("{}{} describes an SDOF, and building {} has {} storeys", name, k, k, x.st.storeys),
+                           name + k, "give the storey options --storey-mass" + k + " / --storey-stiffness" + k);
+    require_range(x.st.height, 0.01, 100.0, "--storey-height" + k, "[0.01, 100] m");
+    if (x.st.mass_given) require_positive(x.st.mass, "--storey-mass" + k);
+    if (x.st.stiffness_given) require_positive(x.st.stiffness, "--storey-stiffness" + k);
+    if (x.h_given) require_positive(x.h, "--h" + k);
+    if (x.m_given) require_positive(x.m, "--m" + k);
+    if (x.T_given) require_positive(x.T, "--T" + k);
+  }
+}
+
+// Every building's options, left to right.
+std::vector<Side> sides_of(const SimulateOptions& o) {
+  std::vector<Side> out;
+  out.push_back({"1", o.b[0], o.m1, o.T1, o.k1, o.h1, o.fy1, o.m1_given, o.k1_given, o.fy1_given, o.h1_given});
+  out.push_back({"2", o.b[1], o.m2, o.T2, o.k2, o.h2, o.fy2, o.m2_given, o.k2_given, o.fy2_given, o.h2_given});
+  for (int K = 3; K <= o.buildings; ++K) {
+    const SimulateOptions::RowBuilding& x = o.more[K - 3];
+    out.push_back({std::to_string(K), x.st, x.m, x.T, x.k, x.h, x.fy, x.m_given, x.k_given, x.fy_given, x.h_given});
+  }
+  return out;
+}
+
 int run_storeys(SimulateOptions& o, const ContactModel& cm, KernelSettings& ks) {
   validate_storeys(o);
+  resolve_row(o);
   // the one-storey buildings' SDOF numbers, checked as today
   if (o.b[0].storeys == 1 && o.b[0].mass_given) o.m1 = o.b[0].mass, o.m1_given = true;
   if (o.b[1].storeys == 1 && o.b[1].mass_given) o.m2 = o.b[1].mass, o.m2_given = true;
   if (o.b[0].storeys == 1 && o.b[0].stiffness_given) o.k1 = o.b[0].stiffness, o.k1_given = true;
   if (o.b[1].storeys == 1 && o.b[1].stiffness_given) o.k2 = o.b[1].stiffness, o.k2_given = true;
   resolve_masses(o);
-  const Structure sdof[2] = {
-      make_structure(o.m1, o.T1, o.k1, o.h1, o.fy1, o.alpha, o.zeta, o.elastic, "1", o.k1_given, o.fy1_given),
-      make_structure(o.m2, o.T2, o.k2, o.h2, o.fy2, o.alpha, o.zeta, o.elastic, "2", o.k2_given, o.fy2_given)};
-  std::vector<model::StickTopology> sticks(2);
-  for (int i = 0; i < 2; ++i) {
-    sticks[i].storeys = o.b[i].storeys, sticks[i].storey_heights = {o.b[i].height};
+  std::vector<Side> sides = sides_of(o);
+  std::vector<Structure> sdof;
+  for (Side& x : sides) {
+    if (x.st.storeys == 1 && x.st.mass_given) x.m = x.st.mass, x.m_given = true;
+    if (x.st.storeys == 1 && x.st.stiffness_given) x.kk = x.st.stiffness, x.k_given = true;
+    if (!x.m_given) x.m = mass_from_height(x.h);  // buildings 3..N (1 and 2: resolve_masses)
+    sdof.push_back(make_structure(x.m, x.T, x.kk, x.h, x.fy, o.alpha, o.zeta, o.elastic, x.k, x.k_given, x.fy_given));
+  }
+  std::vector<model::StickTopology> sticks(sides.size());
+  for (std::size_t i = 0; i < sides.size(); ++i) {
+    sticks[i].storeys = sides[i].st.storeys, sticks[i].storey_heights = {sides[i].st.height};
+    if (i >= 2) continue;  // isolation: buildings 1 and 2
     sticks[i].isolated = !o.iso[i].bearing.empty(), sticks[i].moat = o.iso[i].moat_given;
     if (sticks[i].isolated) sticks[i].isolator_law = physics::isolator_law(bearing_of(o.iso[i].bearing));
   }
@@ -541,7 +616,7 @@ int run_storeys(SimulateOptions& o, const ContactModel& cm, KernelSettings& ks) 
   physics::SystemBatch batch;
   batch.resize(sys, 1);
   SystemRunReport run;
-  set_buildings(o, sdof, sticks, batch, run);
+  set_buildings(o, sides, sdof, sticks, batch, run);
   set_storey_contacts(o, cm, batch, run);
   const std::vector<ContactModel> groups = set_moats(o, cm, batch);
   // the moat elements' stiffness and gap in the report (set_storey_contacts wrote the floor elements')
@@ -695,6 +770,48 @@ void add_storey_options(CLI::App* c, SimulateOptions& opts) {
       ->capture_default_str();
   c->add_option("--gap-offsets", o->gap_offsets, "per contact level from level 1, added to --gap (m), comma-separated")
       ->delimiter(',');
+  c->add_option("--buildings", o->buildings,
+                "a row of N buildings side by side, each pounding its neighbours (2..8; buildings 3..N by --T3, --m3, "
+                "--k3, --h3, --fy3, --storeys3, --storey-mass3, --storey-stiffness3, --storey-height3 ...; an option "
+                "not given: building 1's for odd K, building 2's for even K)")
+      ->capture_default_str();
+  for (int K = 3; K <= SimulateOptions::max_buildings; ++K) {
+    const std::string k = std::to_string(K);
+    SimulateOptions::RowBuilding& x = o->more[K - 3];
+    const std::string group = "Row (--buildings N >= 3)";
+    c->add_option("--T" + k, x.T, "period of building " + k + " (s)")->group(group);
+    c->add_option("--m" + k, x.m, "mass of building " + k + " (kg)")->group(group);
+    c->add_option("--k" + k, x.k, "initial stiffness of building " + k + " (N/m), instead of --T" + k)->group(group);
+    c->add_option("--h" + k, x.h, "height of building " + k + " (m)")->group(group);
+    c->add_option("--fy" + k, x.fy, "yield force of building " + k + " (N)")->group(group);
+    c->add_option("--storeys" + k, x.st.storeys, "storeys of building " + k)->group(group);
+    c->add_option("--storey-mass" + k, x.st.mass, "mass of each floor of building " + k + " (kg)")->group(group);
+    c->add_option("--storey-stiffness" + k, x.st.stiffness, "stiffness of each storey of building " + k + " (N/m)")
+        ->group(group);
+    c->add_option("--storey-height" + k, x.st.height, "height of each storey of building " + k + " (m)")->group(group);
+  }
+}
+
+// Which row options were given; an option of a building beyond --buildings is refused.
+void count_row_options(CLI::App* c, SimulateOptions& o) {
+  if (o.buildings < 2 || o.buildings > SimulateOptions::max_buildings)
+    throw InputError(fmt::format("--buildings = {} is out of range", o.buildings), "--buildings",
+                     fmt::format("give 2 (a pair) to {} buildings in a row", SimulateOptions::max_buildings));
+  for (int K = 3; K <= SimulateOptions::max_buildings; ++K) {
+    const std::string k = std::to_string(K);
+    SimulateOptions::RowBuilding& x = o.more[K - 3];
+    x.T_given = c->count("--T" + k) > 0, x.m_given = c->count("--m" + k) > 0, x.k_given = c->count("--k" + k) > 0;
+    x.h_given = c->count("--h" + k) > 0, x.fy_given = c->count("--fy" + k) > 0;
+    x.m_user = x.m_given, x.k_user = x.k_given, x.fy_user = x.fy_given;
+    x.st.storeys_given = c->count("--storeys" + k) > 0, x.st.mass_given = c->count("--storey-mass" + k) > 0;
+    x.st.stiffness_given = c->count("--storey-stiffness" + k) > 0, x.st.height_given = c->count("--storey-height" + k) > 0;
+    if (K <= o.buildings) continue;
+    for (const char* name : {"--T", "--m", "--k", "--h", "--fy", "--storeys", "--storey-mass", "--storey-stiffness",
+                             "--storey-height"})
+      if (c->count(name + k) > 0)
+        throw InputError(fmt::format("{}{} is for building {} and the row has --buildings {}", name, k, k, o.buildings),
+                         name + k, fmt::format("give --buildings {} (or more), or drop {}{}", K, name, k));
+  }
 }
 
 }  // namespace
@@ -773,6 +890,7 @@ void add_simulate(CLI::App& app) {
       s.moat_options_given = c->count("--moat-law" + k) > 0 || s.moat_stiffness_given || s.moat_e_given;
     }
     o->levels_given = c->count("--contact-levels") + c->count("--level-tolerance") + c->count("--gap-offsets") > 0;
+    count_row_options(c, *o);
     if (const int code = run_simulate(*o)) throw ExitRequest{code};
   });
 }

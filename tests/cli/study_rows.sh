@@ -1,0 +1,164 @@
+#!/usr/bin/env bash
+# Rows of buildings in studies ([structures] buildings = n, issue 25 step 8, docs/rows.md):
+#  1. studies/quick-row.toml gives bit-identical results at 1 and 2 MPI ranks, at batch width 1 and its default, and
+#     with skip_untouched = false (every model rerun with contact: a row's first passage);
+#  2. the probability scene stays exact: an analysis pounds at gap g exactly when ANY joint's uncoupled closing
+#     exceeds g (D = the largest over the elements); the per-element rows give the totals; buildings 3..n have
+#     their [R, M] and [R, M, G] peaks (uncoupled/peak_u3, impacts/peak_u3) equal to the per-floor rows' maxima;
+#     the row's d is 0.005 x the largest joint's (h_j + h_j+1); tools/row_amplification.py's statistics from the file
+#     are recomputed here;
+#  3. buildings = 2 written out is today's pair study bit for bit (SDOF and shear);
+#  4. a row of shear buildings runs (format 3 for three buildings);
+#  5. bad input for every new key and combination: one ERROR naming file:line and the key, exit 2, nothing written.
+# Synthetic records only (no ../shared needed). Args: <pounding binary> <source dir>
+set -euo pipefail
+bin=$1; src=$2
+export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMPI_MCA_rmaps_base_oversubscribe=1
+tmp=$(mktemp -d); trap 'rm -rf "$tmp"' EXIT
+cmp() { /usr/bin/python3 "$src/tests/cli/compare_results.py" "$@"; }
+study=$src/studies/quick-row.toml
+
+# 1. ranks, batch width, skip_untouched
+"$bin" run "$study" --out "$tmp/r0.h5" --quiet > /dev/null 2>&1
+timeout 120 mpirun -np 1 "$bin" run "$study" --out "$tmp/r1.h5" --quiet > /dev/null 2>&1
+timeout 120 mpirun -np 2 "$bin" run "$study" --out "$tmp/r2.h5" --quiet > /dev/null 2>&1
+cmp "$tmp/r0.h5" "$tmp/r1.h5"
+cmp "$tmp/r0.h5" "$tmp/r2.h5"
+sed 's/^\[contact\]/[analysis]\nbatch = 1\n\n[contact]/' "$study" > "$tmp/narrow.toml"
+"$bin" run "$tmp/narrow.toml" --out "$tmp/narrow.h5" --quiet > /dev/null 2>&1
+cmp "$tmp/r0.h5" "$tmp/narrow.h5" --ignore=study_text,batch,output
+sed 's/^\[contact\]/[analysis]\nskip_untouched = false\n\n[contact]/' "$study" > "$tmp/full.toml"
+"$bin" run "$tmp/full.toml" --out "$tmp/full.h5" --quiet > /dev/null 2>&1
+cmp "$tmp/r0.h5" "$tmp/full.h5" --ignore=study_text,skip_untouched,output,scene_reason
+
+# 2. touch <=> any joint's closing > gap; the rows of buildings 3..n; d; the amplification tool
+/usr/bin/python3 "$src/tools/row_amplification.py" "$tmp/full.h5" --json > "$tmp/amp.json"
+/usr/bin/python3 - "$tmp/full.h5" "$tmp/amp.json" <<'PY'
+import json, sys, h5py, numpy as np
+f = h5py.File(sys.argv[1], "r")
+R, M = f["uncoupled/peak_closing"].shape
+G = len(f["impacts/gap_ratios"])
+assert f.attrs["format_version"] == 3
+D = f["uncoupled/peak_closing"][()]
+d = f["models/code_gap"][()]
+cnt = f["impacts/impact_count"][()].reshape(R, M, G)
+ok = (f["uncoupled/status"][()].reshape(R, M) == 0)[:, :, None] & (f["impacts/status"][()].reshape(R, M, G) == 0)
+assert ok.all(), "failed analyses"
+x = f["impacts/gap_ratios"][()]
+touch = D[:, :, None] > x[None, None, :] * d[None, :, None]
+assert np.array_equal(touch, cnt > 0), (touch.sum(), (cnt > 0).sum())
+assert 0 < touch.sum() < touch.size, touch.sum()
+# ANY joint: per element (joint 1|2 and 2|3 of the one level) the closing, D their largest, both joints decide
+el = f["uncoupled/peak_closing_elements"][()]
+labels = [s.decode() if isinstance(s, bytes) else s for s in f["system/element_label"][()]]
+assert labels == ["1|2 level 1", "2|3 level 1"], labels
+assert np.array_equal(el.max(axis=2), D)
+only = [(el[:, :, j, None] > x[None, None, :] * d[None, :, None]) for j in range(2)]
+assert (only[0] & ~only[1]).any() and (only[1] & ~only[0]).any(), "each joint alone must decide some analysis"
+ec = f["impacts/element_impact_count"][()].reshape(R, M, G, -1)
+assert np.array_equal(np.where(ec < 0, 0, ec).sum(axis=3), cnt)
+# each joint's coupled impacts happen where that joint touched uncoupled (first passage, per joint) or the other did
+assert ((ec[:, :, :, 1] > 0) <= (only[1] | only[0])).all()
+# buildings 3..n: [R, M] and [R, M, G] peaks; the per-floor maxima
+u = f["uncoupled"]
+for b in (1, 2, 3):
+    fl = u[f"peak_u_floors{b}"][()]
+    assert fl.shape == (R, M, 1) and np.array_equal(fl[:, :, 0], u[f"peak_u{b}"][()]), b
+pu3 = f["impacts/peak_u3"][()].reshape(R, M, G)
+assert np.array_equal(pu3[~touch], np.broadcast_to(u["peak_u3"][()][:, :, None], touch.shape)[~touch])
+assert (pu3[touch] != np.broadcast_to(u["peak_u3"][()][:, :, None], touch.shape)[touch]).any()
+# the row's d: 0.005 x the largest joint's height sum; building 3's period drawn per sample (one slot)
+h1, h2 = f["models/h1"][()], f["models/h2"][()]
+assert (d >= 0.005 * (h1 + h2) - 1e-15).all() and (d > 0.005 * (h1 + h2) * (1 + 1e-12)).any()
+# the amplification statistics, recomputed from the datasets
+amp = json.load(open(sys.argv[2]))
+assert [p["position"] for p in amp["positions"]] == ["end-left", "interior", "end-right"]
+for g in range(G):
+    for p in amp["positions"]:
+        vals = []
+        for b in p["buildings"]:
+            c = f[f"impacts/peak_u{b}"][()].reshape(R, M, G)[:, :, g]
+            vals.append((c / u[f"peak_u{b}"][()]).ravel())
+        a = np.concatenate(vals)
+        s = p["gaps"][g]
+        assert abs(s["median"] - np.median(a)) <= 1e-12 * np.median(a), (s, np.median(a))
+        assert abs(s["p_amplified"] - np.mean(a > 1.0)) < 1e-12
+print(f"{touch.sum()} of {touch.size} analyses touch at some joint; per-joint and per-building rows consistent")
+print(json.dumps(amp["positions"][0]["gaps"][0]))
+PY
+
+# 3. buildings = 2 written out: the pair study bit for bit (SDOF, and shear)
+base=$src/tests/data/study-small-synthetic.toml
+"$bin" run "$base" --out "$tmp/pair.h5" --quiet > /dev/null 2>&1
+sed 's/^samples_per_pair = 8/samples_per_pair = 8\nbuildings = 2/' "$base" > "$tmp/two.toml"
+grep -q '^buildings = 2' "$tmp/two.toml"
+"$bin" run "$tmp/two.toml" --out "$tmp/two.h5" --quiet > /dev/null 2>&1
+cmp "$tmp/pair.h5" "$tmp/two.h5" --ignore=study_text,output
+storeys=$src/studies/quick-storeys.toml
+sed 's/^\[contact\]/[analysis]\nsubsteps = 2\n\n[contact]/' "$storeys" > "$tmp/s.toml"
+sed 's/^model = "shear"/model = "shear"\nbuildings = 2/' "$tmp/s.toml" > "$tmp/s2.toml"
+"$bin" run "$tmp/s.toml" --out "$tmp/s.h5" --quiet > /dev/null 2>&1
+"$bin" run "$tmp/s2.toml" --out "$tmp/s2.h5" --quiet > /dev/null 2>&1
+cmp "$tmp/s.h5" "$tmp/s2.h5" --ignore=study_text,output
+
+# 4. a row of three shear buildings (storeys from the sampled heights; building 3 fixed at 12 storeys)
+# (coarse = "keep": one of the 448 analyses is above the Hertz resolution limit at the record step, which this
+# check of the row's bookkeeping does not need)
+sed -e 's/^buildings = 3/buildings = 3\nmodel = "shear"/' -e 's/^period = {lognormal.*/period = 1.2\nstoreys = 12/' \
+  -e 's/^\[contact\]/[analysis]\ncoarse = "keep"\n\n[contact]/' "$study" > "$tmp/shear.toml"
+"$bin" run "$tmp/shear.toml" --out "$tmp/shear.h5" --quiet > /dev/null 2>&1
+/usr/bin/python3 - "$tmp/shear.h5" <<'PY'
+import sys, h5py, numpy as np
+f = h5py.File(sys.argv[1], "r")
+u = f["uncoupled"]
+assert u["peak_u_floors3"].shape[2] == 12, u["peak_u_floors3"].shape
+assert np.array_equal(np.nanmax(u["peak_u_floors3"][()], axis=2), u["peak_u3"][()])
+assert np.array_equal(np.nanmax(u["peak_closing_elements"][()], axis=2), u["peak_closing"][()])
+assert (f["impacts/impact_count"][()] > 0).any()
+print("shear row:", u["peak_closing_elements"].shape[2], "elements")
+PY
+
+# 5. bad input
+fails=0
+expect_error() {  # name, pattern expected in the message, study text
+  local name=$1 pattern=$2
+  printf '%s\n' "$3" > "$tmp/$name.toml"
+  local rc=0
+  "$bin" run "$tmp/$name.toml" --out "$tmp/$name.h5" --quiet > "$tmp/$name.out" 2>&1 || rc=$?
+  if [ $rc -ne 2 ] || [ "$(grep -c "ERROR:" "$tmp/$name.out")" -ne 1 ] || ! grep -q -- "$pattern" "$tmp/$name.out" \
+     || [ -e "$tmp/$name.h5" ] || [ -e "$tmp/$name.h5.ckpt" ]; then
+    echo "FAIL $name (rc $rc):"; cat "$tmp/$name.out"; fails=$((fails+1))
+  else
+    echo "ok   $name: $(grep ERROR "$tmp/$name.out")"
+  fi
+}
+body=$(cat "$study")
+expect_error buildings_one ':22 \[structures\].buildings' "$(echo "$body" | sed 's/^buildings = 3/buildings = 1/')"
+expect_error buildings_many ':22 \[structures\].buildings' "$(echo "$body" | sed 's/^buildings = 3/buildings = 17/')"
+expect_error buildings_text ':22 \[structures\].buildings' "$(echo "$body" | sed 's/^buildings = 3/buildings = "three"/')"
+expect_error table_beyond '\[structures.building4\] is given but the row has buildings = 3.*set \[structures\] buildings = 4' \
+  "$(echo "$body" | sed 's/^\[gaps\]/[structures.building4]\nperiod = 1.0\n\n[gaps]/')"
+expect_error table_in_pair '\[structures.building3\] is given but the row has buildings = 2' \
+  "$(echo "$body" | sed 's/^buildings = 3/buildings = 2/')"
+expect_error grid_third 'building3 of the row has a grid of 2 periods.*give \[structures.building3\] period' \
+  "$(echo "$body" | sed 's/^period = {lognormal.*/periods = [1.0, 1.5]/')"
+expect_error no_period_third 'building3 of the row has a grid of 2 periods.*\[structures.building3\]' \
+  "$(echo "$body" | sed 's/^period = {lognormal.*/zeta = 0.05/')"
+expect_error key_third ':28 .*colour' \
+  "$(echo "$body" | sed 's/^period = {lognormal.*/period = 1.0\ncolour = "red"/')"
+expect_error range_third '\[structures.building3\].period' \
+  "$(echo "$body" | sed 's/^period = {lognormal.*/period = 50.0/')"
+expect_error mixed_models 'building3 is a shear model and building1 a sdof model.*\[structures.building3\].model' \
+  "$(echo "$body" | sed 's/^period = {lognormal.*/period = 1.0\nmodel = "shear"/')"
+expect_error storey_heights 'storey heights differ.*\[structures.building3\].storey_height' \
+  "$(echo "$body" | sed -e 's/^buildings = 3/buildings = 3\nmodel = "shear"/' -e 's/^period = {lognormal.*/period = 1.0\nstorey_height = 3.0/')"
+expect_error equal_heights 'equal_heights = true is for a pair.*\[structures\].equal_heights' \
+  "$(echo "$body" | sed 's/^buildings = 3/buildings = 3\nequal_heights = true/')"
+expect_error stepper 'a row of 3 buildings.*\[analysis\].stepper, write stepper = "central-difference"' \
+  "$(echo "$body" | sed 's/^\[contact\]/[analysis]\nstepper = "newmark"\n\n[contact]/')"
+expect_error stereomechanical 'a row of 3 buildings has a contact at every joint.*\[contact\].law' \
+  "$(echo "$body" | sed 's/^law = "hertzdamp"/law = "stereomechanical"/')"
+expect_error fragility 'runs a pair, and the study is a row of 3 buildings.*:22 \[structures\].buildings' \
+  "$(echo "$body" | sed -e 's/^scene = "impacts"/scene = "probability"/' -e 's/^\[gaps\]/[intensity]\nmeasure = "Sa"\nperiod = 1.0\nlevels = [0.1, 0.2]\n\n[gaps]/')"
+[ $fails -eq 0 ]
+echo "1 passed, 0 failed"
