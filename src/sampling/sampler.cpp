@@ -191,6 +191,27 @@ void resolve_buildings(StructureModel& m, const std::array<const toml::table*, 2
                      "give both buildings the same storey_height");
 }
 
+// A row (docs/architecture.md §2.7.1): buildings = n and the tables [structures.buildingK] for K = 3..n (null when
+// absent); a table beyond n is refused.
+std::vector<const toml::table*> read_row_tables(config::TableReader& r, const toml::table& table, const std::string& file) {
+  const long count = r.integer("buildings", 2);
+  for (const auto& [key, node] : table) {
+    const std::string_view k = key.str();
+    if (k.size() <= 8 || k.substr(0, 8) != "building" || k.find_first_not_of("0123456789", 8) != std::string_view::npos)
+      continue;
+    const long K = std::stol(std::string(k.substr(8)));
+    if (K >= 1 && K <= count) continue;
+    throw InputError(fmt::format("[structures.{}] is given but the row has buildings = {}", k, count),
+                     config::location(file, node.source()) + " [structures." + std::string(k) + "]",
+                     K >= 1 ? fmt::format("set [structures] buildings = {} (or more), or remove the table", K)
+                            : std::string("number the buildings from 1, left to right"));
+  }
+  std::vector<const toml::table*> row_tables;
+  for (long K = 3; K <= count; ++K)
+    row_tables.push_back(r.table(fmt::format("building{}", K), "buildingK"));
+  return row_tables;
+}
+
 // A row's buildings 3..n (tables may be null: the defaults) and what a row needs: one period slot each beyond
 // building 2, one structural model throughout, one storey height for shear buildings, no common height.
 void resolve_row(StructureModel& m, const std::vector<const toml::table*>& tables, const std::string& file,
@@ -276,22 +297,7 @@ StructureModel parse_structure_model(const toml::table& table, const std::string
     check_shear_keys(m.default_building(), [&](std::string_view key) { return r.where(key); });
   }
   const std::array<const toml::table*, 2> buildings{r.table("building1"), r.table("building2")};
-  // a row (docs/architecture.md §2.7.1): buildings = n, tables [structures.buildingK] for K = 3..n
-  const long count = r.integer("buildings", 2);
-  for (const auto& [key, node] : table) {
-    const std::string_view k = key.str();
-    if (k.size() <= 8 || k.substr(0, 8) != "building" || k.find_first_not_of("0123456789", 8) != std::string_view::npos)
-      continue;
-    const long K = std::stol(std::string(k.substr(8)));
-    if (K >= 1 && K <= count) continue;
-    throw InputError(fmt::format("[structures.{}] is given but the row has buildings = {}", k, count),
-                     config::location(file, node.source()) + " [structures." + std::string(k) + "]",
-                     K >= 1 ? fmt::format("set [structures] buildings = {} (or more), or remove the table", K)
-                            : std::string("number the buildings from 1, left to right"));
-  }
-  std::vector<const toml::table*> row_tables;
-  for (long K = 3; K <= count; ++K)
-    row_tables.push_back(r.table(fmt::format("building{}", K), "buildingK"));
+  const std::vector<const toml::table*> row_tables = read_row_tables(r, table, file);
   if (const toml::node* n = r.get("aspect_ratios")) m.aspect_ratios = config::numbers(*n, "aspect_ratios", r.where("aspect_ratios"));
   if (const toml::node* n = r.get("samples_per_pair"))
     m.samples_per_pair = config::integer(*n, "samples_per_pair", r.where("samples_per_pair"));
