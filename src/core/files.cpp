@@ -64,6 +64,51 @@ std::uint64_t fnv1a(const void* data, std::size_t n, std::uint64_t h) {
   return h;
 }
 
+namespace {
+constexpr std::uint64_t xp1 = 0x9E3779B185EBCA87ULL, xp2 = 0xC2B2AE3D27D4EB4FULL, xp3 = 0x165667B19E3779F9ULL,
+                        xp4 = 0x85EBCA77C2B2AE63ULL, xp5 = 0x27D4EB2F165667C5ULL;
+constexpr std::uint64_t rotl(std::uint64_t x, int r) { return (x << r) | (x >> (64 - r)); }
+std::uint64_t read64(const unsigned char* p) {
+  std::uint64_t v;
+  std::memcpy(&v, p, 8);
+  return v;  // little-endian hosts (x86-64, AArch64 Linux), as the checkpoint's own integers
+}
+std::uint32_t read32(const unsigned char* p) {
+  std::uint32_t v;
+  std::memcpy(&v, p, 4);
+  return v;
+}
+std::uint64_t xround(std::uint64_t acc, std::uint64_t in) { return rotl(acc + in * xp2, 31) * xp1; }
+std::uint64_t xmerge(std::uint64_t acc, std::uint64_t v) { return (acc ^ xround(0, v)) * xp1 + xp4; }
+}  // namespace
+
+std::uint64_t xxh64(const void* data, std::size_t n, std::uint64_t seed) {
+  const auto* p = static_cast<const unsigned char*>(data);
+  const unsigned char* const end = p + n;
+  std::uint64_t h;
+  if (n >= 32) {
+    std::uint64_t v1 = seed + xp1 + xp2, v2 = seed + xp2, v3 = seed, v4 = seed - xp1;
+    const unsigned char* const limit = end - 32;
+    do {
+      v1 = xround(v1, read64(p));
+      v2 = xround(v2, read64(p + 8));
+      v3 = xround(v3, read64(p + 16));
+      v4 = xround(v4, read64(p + 24));
+      p += 32;
+    } while (p <= limit);
+    h = rotl(v1, 1) + rotl(v2, 7) + rotl(v3, 12) + rotl(v4, 18);
+    h = xmerge(h, v1), h = xmerge(h, v2), h = xmerge(h, v3), h = xmerge(h, v4);
+  } else {
+    h = seed + xp5;
+  }
+  h += static_cast<std::uint64_t>(n);
+  for (; p + 8 <= end; p += 8) h = rotl(h ^ xround(0, read64(p)), 27) * xp1 + xp4;
+  if (p + 4 <= end) h = rotl(h ^ (static_cast<std::uint64_t>(read32(p)) * xp1), 23) * xp2 + xp3, p += 4;
+  for (; p < end; ++p) h = rotl(h ^ (*p * xp5), 11) * xp1;
+  h ^= h >> 33, h *= xp2, h ^= h >> 29, h *= xp3, h ^= h >> 32;
+  return h;
+}
+
 std::string read_text(const std::string& path, const std::string& what, std::size_t max_bytes, bool regular_only) {
   auto fail = [&](int err) {
     const char* fix = err == ENOENT || err == ENOTDIR ? "check the path"

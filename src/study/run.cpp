@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <cstring>
+#include <map>
 #include <optional>
 
 #include <fmt/format.h>
@@ -729,6 +730,19 @@ void announce(const parallel::Session& session, const Inputs& in, const WorkPlan
     if (rr.synthetic && rr.polarity > 0) ctx.say(fmt::format("record {}: synthetic stand-in ({})", rr.id, rr.note));
 }
 
+// Test-only: POUNDING_MASTER_SERVICE=1 measures the master's service time per unit (issue 27.4; README "Speed",
+// tools/predict_scaling.py): units return stored results at once, rank 0 prints the master's time per unit and
+// bytes per unit after the units, and the run ends without results (the checkpoint is removed).
+bool master_service_mode() {
+  static const bool on = [] {
+    const char* v = std::getenv("POUNDING_MASTER_SERVICE");
+    return v != nullptr && std::string_view(v) == "1";
+  }();
+  return on;
+}
+
+double final_sync_s = 0;  // the units phase's closing fsync of the checkpoint (rank 0), for the line above
+
 // ---- phase 4: the work (every rank computes; rank 0 gathers, checkpoints and reports progress) -----
 bool execute(const parallel::Session& session, const Inputs& in, const WorkPlan& L, const std::vector<std::size_t>& todo,
              Checkpoint* ckpt, Tally& tally, const RunContext& ctx, double& wall, timing::Times& T) {
@@ -755,11 +769,19 @@ bool execute(const parallel::Session& session, const Inputs& in, const WorkPlan&
     ctx.progress(p);
   };
   static const std::atomic<bool> never{false};
+  // Test-only (issue 27.4, POUNDING_MASTER_SERVICE): every rank computes one unit of each size once and returns a
+  // copy of it for every later unit, so the workers answer at once and the run measures the master alone.
+  const bool stored = master_service_mode();
+  std::map<std::size_t, parallel::Payload> kept;
   const bool complete = parallel::run_units(
       session, todo,
       [&](std::size_t u) {
         Stopwatch w(T[Phase::compute]);
-        return compute(u).serialise();
+        if (!stored) return compute(u).serialise();
+        const std::size_t n = L.lanes(L.decode(u).block);
+        auto at = kept.find(n);
+        if (at == kept.end()) at = kept.emplace(n, compute(u).serialise()).first;
+        return at->second;
       },
       [&](std::size_t u, parallel::Payload&& d) {
         {
@@ -771,8 +793,13 @@ bool execute(const parallel::Session& session, const Inputs& in, const WorkPlan&
       },
       tick, ctx.cancel ? *ctx.cancel : never);
   if (session.root()) {
-    Stopwatch w(T[Phase::checkpoint]);
-    ckpt->sync();
+    double final_sync = 0;
+    {
+      Stopwatch w(final_sync);
+      ckpt->sync();
+    }
+    T[Phase::checkpoint] += final_sync;
+    final_sync_s = final_sync;
   }
   wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   T[Phase::units] = wall;
@@ -784,7 +811,7 @@ bool execute(const parallel::Session& session, const Inputs& in, const WorkPlan&
 // start-up, reading, the units, the fit and the report of this invocation; `wall` is the units' share. A stop during the analysis (Cancelled, from the
 // hook's flag) ends with 130 and keeps the checkpoint, which holds every unit: --resume redoes only the analysis.
 // /timing: each phase's seconds on rank 0 and the largest over the ranks (core/timing.hpp; docs/results-format.md).
-results::Group timing_group(const timing::Times& T, std::size_t units_resumed) {
+results::Group timing_group(const timing::Times& T, std::size_t units, std::size_t units_resumed) {
   results::Group g{"timing", {}, {}};
   std::vector<std::string> names, meanings;
   for (std::size_t i = 0; i < timing::phase_count; ++i)
@@ -796,6 +823,7 @@ results::Group timing_group(const timing::Times& T, std::size_t units_resumed) {
   g.add("max_s", std::vector<double>(T.max.begin(), T.max.end()), "s",
         "the largest seconds over the ranks (phases after the units run on rank 0 only: its seconds)");
   g.set("wall_s", T.wall);
+  g.set("units", static_cast<std::int64_t>(units));
   g.set("units_resumed", static_cast<std::int64_t>(units_resumed));
   g.set("description", std::string("wall_s: from this process's start (before MPI start-up) to the start of the "
                                    "results write, so it holds every phase but results_write; after --resume only "
@@ -844,7 +872,7 @@ int finish(const parallel::Session& session, const Inputs& in, const WorkPlan& L
       if (const auto at = report.find("wall time nan s"); at != std::string::npos)
         report.replace(at, 15, fmt::format("wall time {:.2f} s", total));
       for (std::size_t i = static_cast<std::size_t>(Phase::analysis); i < timing::phase_count; ++i) T.max[i] = T.rank0[i];
-      res.groups.push_back(timing_group(T, units_resumed));
+      res.groups.push_back(timing_group(T, L.units(), units_resumed));
       const auto t_write = std::chrono::steady_clock::now();
       results::write(in.out, res);
       T.max[static_cast<std::size_t>(Phase::results_write)] = T[Phase::results_write] = timing::seconds_since(t_write);
@@ -908,6 +936,22 @@ RunOutcome run_study(const parallel::Session& session, const std::string& study_
                                 tally.units_done(), L.units(), ckpt->path())
                   : fmt::format("\ninterrupted before any unit finished: nothing to keep, no checkpoint left"));
     return {130, in.out, {}, T};
+  }
+  if (master_service_mode()) {
+    if (session.root()) {
+      const double units = static_cast<double>(todo.size());
+      const std::size_t bytes = serialised_size(L, L.lanes(0));
+      const double served = wall - final_sync_s;
+      ctx.say(fmt::format("master service (test-only POUNDING_MASTER_SERVICE, stored unit results, no results "
+                          "written): {} units in {:.4f} s on {} ranks (+ {:.4f} s closing fsync) = {:.2f} us per unit "
+                          "({:.0f} units/s), {} bytes per full unit; of it checkpoint appends {:.2f} us, reduce {:.2f} "
+                          "us per unit",
+                          todo.size(), served, session.size(), final_sync_s, 1e6 * served / units, units / served,
+                          bytes, 1e6 * (T[timing::Phase::checkpoint] - final_sync_s) / units,
+                          1e6 * T[timing::Phase::reduce] / units));
+      ckpt->remove();
+    }
+    return {0, in.out, {}, T};
   }
   RunOutcome r{0, in.out, {}, {}};
   r.code = finish(session, in, L, ckpt ? &*ckpt : nullptr, tally, key, wall, ctx, opt, T, units_resumed, r.report);

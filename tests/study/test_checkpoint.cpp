@@ -154,6 +154,8 @@ TEST(Checkpoint, ResumeRefusesOtherStudyOtherBuildNothingAndOldFormat) {
   EXPECT_NE(message(key()).find("format 1"), std::string::npos);
   std::ofstream(p, std::ios::binary) << "PNDCKPT2" << std::string(16, '\0');  // payloads of doubles
   EXPECT_NE(message(key()).find("format 2"), std::string::npos);
+  std::ofstream(p, std::ios::binary) << "PNDCKPT3" << std::string(16, '\0');  // FNV-1a checksums
+  EXPECT_NE(message(key()).find("format 3"), std::string::npos);
   std::ofstream(p, std::ios::binary) << "hello, world";
   EXPECT_NE(message(key()).find("not a pounding checkpoint"), std::string::npos);
   fs::remove(p);
@@ -223,6 +225,25 @@ TEST(OutputPath, ProblemsFoundBeforeWork) {
   EXPECT_NO_THROW(files::check_output_path(t.file("r.h5"), "--out"));
   EXPECT_FALSE(fs::exists(t.file("r.h5")));
   EXPECT_EQ(std::distance(fs::directory_iterator(t.dir), fs::directory_iterator{}), 0) << "the probe was left";
+}
+
+// XXH64 against the reference implementation: xxhsum -H64 0.8.1 (Debian package xxhash) on these bytes.
+TEST(Xxh64, ReferenceVectors) {
+  EXPECT_EQ(files::xxh64("", 0), 0xef46db3751d8e999ULL);
+  EXPECT_EQ(files::xxh64("a", 1), 0xd24ec4f1a98c6e5bULL);
+  EXPECT_EQ(files::xxh64("foobar", 6), 0xa2aa05ed9085aaf9ULL);
+  EXPECT_EQ(files::xxh64("123456789", 9), 0x8cb841db40e6ae83ULL);
+  std::string m37, big;  // 37 bytes: one 32-byte stripe + 4 + 1; 6,403 bytes: stripes + 8 + 3 (a unit's size)
+  for (int i = 0; i < 37; ++i) m37.push_back(static_cast<char>((i * 31 + 1) % 256));
+  for (int i = 0; i < 6403; ++i) big.push_back(static_cast<char>((i * 131 + 7) % 256));
+  EXPECT_EQ(files::xxh64(m37.data(), m37.size()), 0x25f40690a522ac93ULL);
+  EXPECT_EQ(files::xxh64(big.data(), big.size()), 0xaf2f37993e7d7128ULL);
+  // every single-bit flip of a record changes its checksum (each byte position, stripes and tail)
+  for (std::size_t i = 0; i < m37.size(); ++i) {
+    std::string c = m37;
+    c[i] = static_cast<char>(c[i] ^ (1 << (i % 8)));
+    EXPECT_NE(files::xxh64(c.data(), c.size()), files::xxh64(m37.data(), m37.size())) << "byte " << i;
+  }
 }
 
 TEST(Fnv1a, PublishedTestVectors) {  // Fowler-Noll-Vo reference vectors for 64-bit FNV-1a

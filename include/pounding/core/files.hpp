@@ -55,4 +55,9 @@ int remove_stale_temporaries(const std::string& path);
 inline constexpr std::uint64_t fnv1a_offset_basis = 0xcbf29ce484222325ULL;  // 14695981039346656037
 std::uint64_t fnv1a(const void* data, std::size_t n, std::uint64_t h = fnv1a_offset_basis);
 
+// XXH64 (Yann Collet's xxHash, 64-bit, as published; checked against xxhsum 0.8.1): the checksum of checkpoint
+// records (format 4). About 0.1 cycle per byte against FNV-1a's ~4 (one multiply chain per byte), which made the
+// master's per-unit checksum the largest part of its service time (issue 27.4).
+std::uint64_t xxh64(const void* data, std::size_t n, std::uint64_t seed = 0);
+
 }  // namespace pounding::files
