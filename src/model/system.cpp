@@ -108,6 +108,9 @@ void check_springs(const System::Parts& p, int ndof, const Placement& at, std::v
         out.push_back({"DOF i = " + num(sp.i) + " is neither ground nor a DOF", where + " i", "give ground (-1) or a DOF"});
       else if (sp.i == sp.j)
         out.push_back({"a link joins DOF " + num(sp.j) + " to itself", where + " i", "give two distinct DOFs"});
+      if (sp.i == ground && (sp.channel < 0 || sp.channel >= p.channels))
+        out.push_back({"the wall channel " + num(sp.channel) + " is not a ground-motion channel", where + " channel",
+                       "give a channel in [0, channels)"});
       continue;
     }
     ++below[static_cast<std::size_t>(sp.j)];

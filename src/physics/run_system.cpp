@@ -49,7 +49,12 @@ Layout layout_of(const model::System& S) {
     L.any_smooth = L.any_smooth || s.law != model::law_bilinear;
   }
   L.above_start.push_back(0);
+  L.link_start.push_back(0);
   for (int j = 0; j < L.ndof; ++j) {
+    for (std::size_t k = 0; k < S.springs().size(); ++k)
+      if (S.springs()[k].role == model::SpringRole::link && S.springs()[k].j == j) L.link.push_back(static_cast<int>(k));
+    L.link_start.push_back(static_cast<int>(L.link.size()));
+    L.any_link = !L.link.empty();
     L.below.push_back(S.spring_below(j));
     for (int s : S.springs_above(j)) L.above.push_back(s);
     L.above_start.push_back(static_cast<int>(L.above.size()));
@@ -131,6 +136,13 @@ model::BilinearKinematic::Params<double> spring_params(const SpringSpec& s) {
   return model::BilinearKinematic::params(st);
 }
 
+// A gap link's per-lane constants (laws 3-5) from its SpringSpec.
+model::GapParams<double> gap_params(const SpringSpec& s, int law) {
+  if (law == model::law_hyperbolic_abutment)
+    return model::HyperbolicGap::params({s.k_max, s.k, s.rf, s.fy, s.gap, s.side > 0 ? 1 : -1});
+  return model::TensionGap::straight(s.k, s.fy, s.alpha, s.gap, s.side);
+}
+
 // Per run: each group's model, runner and elements; each element's damping constant per lane (DampingTable: each
 // distinct e once per group and call, as run_batch).
 struct Plan {
@@ -192,6 +204,22 @@ void fill_structure(const Pool& T, std::size_t i, const LaneView& v) {
       T.spring(sys::K, s)[i] = p.k, T.spring(sys::AK, s)[i] = p.ak, T.spring(sys::QY, s)[i] = p.qy;
       T.spring(sys::KP, s)[i] = p.kp;
       f0 = model::BilinearKinematic::initial_force(p, d0);
+    } else if (model::is_gap_law(L.law[static_cast<std::size_t>(s)])) {  // the gap at its given value
+      const auto p = gap_params(spec, L.law[static_cast<std::size_t>(s)]);
+      T.spring(sys::K, s)[i] = p.k, T.spring(sys::AK, s)[i] = p.c1, T.spring(sys::QY, s)[i] = p.c2;
+      T.spring(sys::KP, s)[i] = p.side, T.spring(sys::ZA, s)[i] = p.gap0;
+      double g = p.gap0;
+      f0 = L.law[static_cast<std::size_t>(s)] == model::law_hyperbolic_abutment ? model::GapSpring::force<true>(p, d0, g)
+                                                                                : model::GapSpring::force<false>(p, d0, g);
+      T.spring(sys::Z, s)[i] = g;
+    } else if (L.law[static_cast<std::size_t>(s)] == model::law_qhyst) {  // from rest at d = 0 to d0
+      const model::QHyst::Params<double> p{spec.k, spec.alpha * spec.k, spec.fy, spec.beta};
+      model::QHystState st = model::QHyst::initial(p);
+      f0 = model::QHyst::step(p, st, 0.0, d0, 0.0);
+      T.spring(sys::K, s)[i] = p.k, T.spring(sys::AK, s)[i] = p.ak, T.spring(sys::QY, s)[i] = p.fy;
+      T.spring(sys::KP, s)[i] = p.beta;
+      T.spring(sys::ZA, s)[i] = st.mode, T.spring(sys::ZB, s)[i] = st.x0, T.spring(sys::ZG, s)[i] = st.dr;
+      T.spring(sys::ZM, s)[i] = st.fr, T.spring(sys::ZE, s)[i] = st.dp, T.spring(sys::ZS, s)[i] = st.dn;
     } else {  // a smooth spring starts at z = 0: its force at rest in u0 is k d0
       const model::SmoothParams<double>& p = spec.smooth;
       T.spring(sys::K, s)[i] = p.k, T.spring(sys::AK, s)[i] = p.q_slow, T.spring(sys::QY, s)[i] = p.q_fast;
@@ -251,6 +279,8 @@ void fill_accelerations(const Pool& T, std::size_t i, const LaneView& v, double 
   }
   for (int j = 0; j < L.ndof; ++j) {
     double x = t[static_cast<std::size_t>(L.below[static_cast<std::size_t>(j)])];
+    for (int k = L.link_start[static_cast<std::size_t>(j)]; k < L.link_start[static_cast<std::size_t>(j) + 1]; ++k)
+      x += t[static_cast<std::size_t>(L.link[static_cast<std::size_t>(k)])];
     for (int k = L.above_start[static_cast<std::size_t>(j)]; k < L.above_start[static_cast<std::size_t>(j) + 1]; ++k)
       x -= t[static_cast<std::size_t>(L.above[static_cast<std::size_t>(k)])];
     const int r = L.ref[static_cast<std::size_t>(j)];
@@ -307,6 +337,14 @@ void collect_lane(const Pool& T, std::size_t i, const LaneView& v, const Plan& P
       const model::BilinearKinematic::Params<double> p{T.spring(sys::K, s)[i], T.spring(sys::AK, s)[i],
                                                        T.spring(sys::QY, s)[i], T.spring(sys::KP, s)[i]};
       x = model::BilinearKinematic::strain_energy(p, d, T.spring(sys::FS, s)[i]);
+    } else if (model::is_gap_law(L.law[static_cast<std::size_t>(s)])) {
+      x = model::GapSpring::strain_energy(T.spring(sys::K, s)[i], T.spring(sys::FS, s)[i]);
+    } else if (L.law[static_cast<std::size_t>(s)] == model::law_qhyst) {
+      const model::QHyst::Params<double> p{T.spring(sys::K, s)[i], T.spring(sys::AK, s)[i], T.spring(sys::QY, s)[i],
+                                           T.spring(sys::KP, s)[i]};
+      const model::QHystState st{T.spring(sys::ZA, s)[i], T.spring(sys::ZB, s)[i], T.spring(sys::ZG, s)[i],
+                                 T.spring(sys::ZM, s)[i], T.spring(sys::ZE, s)[i], T.spring(sys::ZS, s)[i]};
+      x = model::QHyst::strain_energy(p, st, T.spring(sys::FS, s)[i]);
     } else {
       model::SmoothParams<double> p{};
       p.k = T.spring(sys::K, s)[i], p.uy_2a = T.spring(sys::ZS, s)[i];
@@ -388,18 +426,13 @@ std::vector<Problem> system_stepper_problems(const SystemBatch& B, std::span<con
   if (ks.stepper != Stepper::central_difference)
     out.push_back({fmt::format("the {} stepper runs the SDOF pair only", stepper_name(ks.stepper)), "stepper",
                    "use central-difference for multi-storey buildings and other systems"});
-  for (std::size_t s = 0; s < S.springs().size(); ++s)
-    if (S.springs()[s].role == model::SpringRole::link)
-      out.push_back({fmt::format("spring {} is a link between two DOFs; the system stepper integrates storey and "
-                                 "isolator springs only (links come with issue 26)", s),
-                     "system springs", "model the connection as a contact element or leave it out"});
   if (S.channels() > 1)
     out.push_back({fmt::format("the system has {} ground-motion channels; the system stepper runs one", S.channels()),
                    "system channels", "give every support the same ground motion (one channel)"});
   for (std::size_t s = 0; s < S.springs().size(); ++s)
     if (S.springs()[s].law < 0 || S.springs()[s].law >= static_cast<int>(model::Hystereses::size))
-      out.push_back({fmt::format("spring {} has hysteresis law {}; the system stepper runs laws 0 (bilinear), 1 "
-                                 "(Bouc-Wen) and 2 (friction pendulum)", s, S.springs()[s].law),
+      out.push_back({fmt::format("spring {} has hysteresis law {}; the system stepper runs laws 0 to 6 "
+                                 "(model/hysteresis/registry.hpp)", s, S.springs()[s].law),
                      "system springs", "use a registered hysteresis law (model/hysteresis/registry.hpp)"});
   for (std::size_t g = 0; g < groups.size(); ++g) {
     if (!contact::traits(groups[g].law).impulsive) continue;

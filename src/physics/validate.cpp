@@ -11,6 +11,7 @@
 
 #include "pounding/contact/registry.hpp"
 #include "pounding/core/error.hpp"
+#include "pounding/model/hysteresis/registry.hpp"
 
 namespace pounding::physics {
 
@@ -77,6 +78,26 @@ template <class W> void smooth_values(std::vector<Problem>& out, const model::Sm
                                "{}, gamma/u_y {}, eta {}) are not valid", p.k, p.q_slow, p.q_fast, p.rate, p.a_uy,
                                p.b_uy, p.g_uy, p.eta),
                    text(where), "build them with BoucWen::params or FrictionPendulum::params from a valid spec"});
+}
+// A bridge link's description (laws 3-6, model/hysteresis/bridge_links.hpp): the gap laws' gap >= 0 and side +-1,
+// the hyperbolic abutment's K_max > 0, K_ur >= K_max, R_f in (0, 1], F_ult finite; Q-Hyst's F_y finite, beta in [0, 1].
+template <class W> void link_values(std::vector<Problem>& out, const SpringSpec& s, int law, const W& where) {
+  std::string bad;
+  if (model::is_gap_law(law)) {
+    if (!std::isfinite(s.gap) || s.gap < 0) bad = fmt::format("gap = {} must be >= 0 (m)", s.gap);
+    else if (s.side != 1.0 && s.side != -1.0) bad = fmt::format("side = {} must be +1 or -1", s.side);
+  }
+  if (law == model::law_hyperbolic_abutment && bad.empty()) {
+    if (!(std::isfinite(s.k_max) && s.k_max > 0)) bad = fmt::format("K_max = {} must be > 0 (N/m)", s.k_max);
+    else if (!(s.k >= s.k_max)) bad = fmt::format("K_ur = {} is below K_max = {} (first loading would leave the envelope)", s.k, s.k_max);
+    else if (!(s.rf > 0 && s.rf <= 1)) bad = fmt::format("R_f = {} is outside (0, 1]", s.rf);
+    else if (!std::isfinite(s.fy)) bad = fmt::format("F_ult = {} must be finite", s.fy);
+  }
+  if (law == model::law_qhyst) {
+    if (!std::isfinite(s.fy)) bad = fmt::format("F_y = {} must be finite for Q-Hyst", s.fy);
+    else if (!(s.beta >= 0 && s.beta <= 1)) bad = fmt::format("beta = {} is outside [0, 1]", s.beta);
+  }
+  if (!bad.empty()) out.push_back({bad, text(where), "give a valid link description (model/hysteresis/bridge_links.hpp)"});
 }
 template <class W> void gap_value(std::vector<Problem>& out, double gap, const W& where) {
   if (!std::isfinite(gap) || gap < 0)
@@ -174,7 +195,9 @@ std::vector<Problem> validate_system_lane(const SystemBatch& b, std::span<const 
     stiffness(out, b.spring[i].k, "k", where("k", place), false);
     yield(out, b.spring[i].fy, "fy", where("fy", place));
     hardening(out, b.spring[i].alpha, "alpha", where("alpha", place));
-    if (sys.springs()[s].law != 0) smooth_values(out, b.spring[i].smooth, where("smooth", place));
+    const int law = sys.springs()[s].law;
+    if (model::is_smooth_law(law)) smooth_values(out, b.spring[i].smooth, where("smooth", place));
+    if (law >= model::law_restrainer) link_values(out, b.spring[i], law, where("link", place));
     if (!b.c_storey.empty()) dashpot(out, b.c_storey[i], "c_storey", where("c_storey", place));
   }
   for (std::size_t el = 0; el < sys.contacts().size(); ++el) {

@@ -298,6 +298,12 @@ std::string format_system_summary(const SystemRunReport& run) {
                      at(r.peak_penetration, e, r, run.lane), at(r.peak_closing, e, r, run.lane),
                      at(r.t_first_impact, e, r, run.lane), at(r.contact_energy, e, r, run.lane),
                      run.contact_stiffness[static_cast<std::size_t>(e)], element_gap(run, e)));
+  for (std::size_t k = 0; k < run.spring_labels.size(); ++k) {
+    if (run.spring_labels[k].empty() || sys.springs()[k].role != model::SpringRole::link) continue;
+    const int sk = static_cast<int>(k);
+    line(run.spring_labels[k], fmt::format("peak_force_N {:.6g}, peak_deformation_m {:.6g}",
+                                           at(r.peak_spring_force, sk, r, run.lane), at(r.peak_drift, sk, r, run.lane)));
+  }
   line("impact_count", t.impacts);
   num("peak_contact_force_N", t.peak_force);
   num("t_first_impact_s", t.t_first_impact);
@@ -308,6 +314,21 @@ std::string format_system_summary(const SystemRunReport& run) {
     num("energy_balance_error_rel", balance_error(run, t));
   }
   return s;
+}
+
+// The link springs (restrainers, bearings, abutments: issue 26) with their peak force and deformation.
+void link_json(report::JsonWriter& w, const SystemRunReport& run) {
+  if (run.spring_labels.empty()) return;
+  const physics::SystemResult& r = *run.result;
+  w.key("links").begin_array();
+  for (std::size_t k = 0; k < run.spring_labels.size(); ++k) {
+    if (run.spring_labels[k].empty() || run.system->springs()[k].role != model::SpringRole::link) continue;
+    const int sk = static_cast<int>(k);
+    w.begin_object().member("label", run.spring_labels[k]);
+    w.member("peak_force", at(r.peak_spring_force, sk, r, run.lane)).member("peak_deformation", at(r.peak_drift, sk, r, run.lane));
+    w.end_object();
+  }
+  w.end_array();
 }
 
 std::string format_system_json(const SystemRunReport& run) {
@@ -379,6 +400,7 @@ std::string format_system_json(const SystemRunReport& run) {
     w.end_object();
   }
   w.end_array();
+  link_json(w, run);
   w.member("impact_count", t.impacts).member("peak_force", t.peak_force);
   w.member("peak_penetration", t.peak_penetration).member("peak_closing", t.peak_closing);
   w.member("t_first_impact", t.t_first_impact).member("tensile_force_clamps", t.clamps);

@@ -18,7 +18,7 @@ namespace {
 
 using model::BilinearKinematic;
 
-static_assert(model::Hystereses::size == 3);  // bilinear, Bouc-Wen, friction pendulum (step 7)
+static_assert(model::Hystereses::size == 7);  // bilinear, Bouc-Wen, friction pendulum (step 7), 4 bridge links (issue 26)
 static_assert(model::Hysteresis<BilinearKinematic>);
 static_assert(model::Hysteresis<model::BoucWen> && model::Hysteresis<model::FrictionPendulum>);
 

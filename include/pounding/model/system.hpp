@@ -48,6 +48,7 @@ struct Spring {
   SpringRole role = SpringRole::storey;
   int body = 0;
   int storey = 1;
+  int channel = 0;  // a link to the ground (i = ground): the ground-motion channel of its wall (issue 26)
   bool operator==(const Spring&) const = default;
 };
 

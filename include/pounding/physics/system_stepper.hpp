@@ -12,7 +12,7 @@
 namespace pounding::physics {
 
 // What the dynamic layout cannot run beyond physics::validate's refusals: a stepper other than central difference,
-// a hysteresis law other than 0 (bilinear), link springs (issue 26: their force on j is not assembled), more than
+// a hysteresis law outside the registry, more than
 // one ground-motion channel, the stereomechanical law at a side that is not a point, a series recorder.
 std::vector<Problem> system_stepper_problems(const SystemBatch& batch, std::span<const ContactModel> groups,
                                              const KernelSettings& settings);

@@ -49,6 +49,9 @@ struct SystemRunReport {
   std::vector<double> contact_stiffness;  // per element
   std::vector<double> contact_gap;        // per element (m): empty -> `gap` for every element
   std::vector<BuildingReport> buildings;  // one per body
+  // per spring: a name for each link spring (restrainers, bearings, abutments: issue 26), printed with its peak force
+  // and deformation; empty (or an empty name) for none
+  std::vector<std::string> spring_labels;
 };
 
 // `name: value` lines (lists space-separated), per building, per level, then the totals and the energy terms.

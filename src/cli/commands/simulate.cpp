@@ -14,12 +14,14 @@
 #include <fmt/format.h>
 
 #include "cli/commands.hpp"
+#include "cli/commands/bridge_file.hpp"
 #include "pounding/contact/registry.hpp"
 #include "pounding/core/error.hpp"
 #include "pounding/core/files.hpp"
 #include "pounding/io/hdf5.hpp"
 #include "pounding/model/shear_building.hpp"
 #include "pounding/physics/batch.hpp"
+#include "pounding/physics/bridge.hpp"
 #include "pounding/physics/shear_building.hpp"
 #include "pounding/physics/system_batch.hpp"
 #include "pounding/physics/validate.hpp"
@@ -99,6 +101,8 @@ struct SimulateOptions {
     Storeys st;
   };
   RowBuilding more[max_buildings - 2];
+  // a bridge (issue 26 §1): the chain of frames, joints and abutments in a TOML file (bridge_file.hpp)
+  std::string bridge;
   bool storey_mode() const {
     return b[0].any() || b[1].any() || levels_given || iso[0].any() || iso[1].any() || buildings > 2;
   }
@@ -670,12 +674,72 @@ std::string pair_json(const SimulateOptions& o, const PairBatch& b, const BatchR
   return format_system_json(run);
 }
 
+// What a bridge run reports about its frames (one "building" per frame) and links.
+void bridge_report(const physics::BridgeSpec& spec, const physics::SystemBatch& batch, SystemRunReport& run) {
+  const physics::BridgeIndex x = physics::bridge_index(spec);
+  for (std::size_t k = 0; k < spec.frames.size(); ++k) {
+    const physics::BridgeFrame& f = spec.frames[k];
+    const double kf = physics::frame_stiffness(f), c = batch.c_floor[k];
+    run.buildings.push_back({x.spring_label[k], {f.height}, {f.mass}, {kf}, {f.fy},
+                             {2 * std::numbers::pi * std::sqrt(f.mass / kf)}, {c / (2.0 * std::sqrt(kf * f.mass))}, {}});
+  }
+  run.spring_labels = x.spring_label;
+  for (std::size_t e = 0; e < spec.joints.size(); ++e)
+    run.contact_stiffness.push_back(batch.kc[e]), run.contact_gap.push_back(batch.gap[e]);
+  run.gap = spec.joints.empty() ? 0.0 : spec.joints[0].gap;
+}
+
+// simulate --bridge FILE: the chain through the record, the text or JSON summary (per frame, per joint, per link).
+int run_bridge(SimulateOptions& o, const ContactModel& cm, KernelSettings& ks) {
+  if (o.storey_mode())
+    throw InputError("--bridge describes the whole structure; the building options do not apply", "--bridge",
+                     "drop --storeys*/--isolation*/--contact-levels, or drop --bridge");
+  for (const auto& [opt, given] : {std::pair{"--m1", o.m1_given}, {"--m2", o.m2_given}, {"--k1", o.k1_given},
+                                    {"--k2", o.k2_given}, {"--fy1", o.fy1_given}, {"--fy2", o.fy2_given},
+                                    {"--h1", o.h1_given}, {"--h2", o.h2_given}})
+    if (given)
+      throw InputError(fmt::format("{} describes a building of the pair, not a bridge frame", opt), opt,
+                       "give the frames' numbers in the --bridge file");
+  if (!o.series.empty()) throw InputError("--series records the SDOF pair only", "--series", "drop --series with --bridge");
+  const physics::BridgeSpec spec =
+      read_bridge_file(o.bridge, o.kh_given ? o.kh : std::numeric_limits<double>::quiet_NaN(), o.e);
+  if (spec.channels() > 1)
+    throw InputError(fmt::format("the bridge uses {} supports; this build runs one ground motion for all", spec.channels()),
+                     o.bridge + " support", "give every frame and abutment support = 1");
+  const model::System sys = physics::bridge_system(spec);
+  physics::SystemBatch batch;
+  batch.resize(sys, 1);
+  physics::set_bridge(batch, 0, spec);
+  Record rec = ground_motion(o);
+  const double record_length = rec.duration();
+  const double analysis_length = cut_to_duration(o, rec);
+  if (o.dt_given) ks.substeps = substeps_for(o, rec.dt);
+  check_step(o, batch, ks, rec.dt);
+  const std::vector<ContactModel> groups(sys.groups().size(), cm);
+  GroundMotion gm{rec.dt, rec.acc, analysis_length > record_length ? analysis_length : 0.0};
+  physics::SystemResult r, free;
+  physics::run_system(batch, groups, gm, ks, r);
+  std::vector<ContactModel> free_groups = groups;  // the same chain with open joints: the amplification
+  for (ContactModel& g : free_groups) g.law = ContactLaw::none;
+  physics::run_system(batch, free_groups, gm, ks, free);
+  SystemRunReport run;
+  bridge_report(spec, batch, run);
+  run.system = &sys, run.result = &r, run.uncoupled = &free, run.record = &rec, run.settings = &ks, run.contact = &cm;
+  run.e_target = o.e, run.analysis_duration = analysis_length;
+  if (o.json)
+    fmt::print("{}", format_system_json(run));
+  else
+    fmt::print("{}{}", describe_duration(record_length, analysis_length), format_system_summary(run));
+  return r.status[0] != 0 ? 3 : 0;
+}
+
 // Runs the pair, prints the summary and writes --series; returns the exit code (3: diverged, the numbers
 // printed are not results).
 int run_simulate(SimulateOptions& o) {
   validate_scalars(o);  // everything is validated before any work or output
   const ContactModel cm = contact_model(o);
   KernelSettings ks = kernel_settings(o);
+  if (!o.bridge.empty()) return run_bridge(o, cm, ks);
   if (o.storey_mode()) return run_storeys(o, cm, ks);
   resolve_masses(o);
   Structure s1 = make_structure(o.m1, o.T1, o.k1, o.h1, o.fy1, o.alpha, o.zeta, o.elastic, "1", o.k1_given, o.fy1_given);
@@ -859,6 +923,9 @@ void add_simulate(CLI::App& app) {
   c->add_flag("--locate-contact", o->locate, "rk4: locate each contact onset inside its step (high-accuracy mode)");
   c->add_option("--series", o->series, "write the time series to FILE.csv or FILE.h5");
   add_storey_options(c, *o);
+  c->add_option("--bridge", o->bridge,
+                 "a bridge: frames, joints (gap, contact, restrainers, bearings) and abutments in a TOML file "
+                 "(README 'Bridges'); the contact options apply at the joints");
   c->add_flag("--json", o->json, "print every observer as one JSON object (per floor: peak_u1, peak_u2, ...; per "
                                  "contact level: levels)");
   c->callback([o, c] {

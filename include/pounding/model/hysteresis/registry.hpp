@@ -15,6 +15,7 @@
 #include "pounding/core/type_list.hpp"
 #include "pounding/model/hysteresis/bilinear_kinematic.hpp"
 #include "pounding/model/hysteresis/bouc_wen.hpp"
+#include "pounding/model/hysteresis/bridge_links.hpp"
 #include "pounding/model/hysteresis/friction_pendulum.hpp"
 
 namespace pounding::model {
@@ -27,10 +28,15 @@ concept Hysteresis = requires(const typename H::Spec& s, double x) {
   { H::unscaled_equivalent(s, x) } -> std::same_as<std::optional<typename H::Spec>>;
 };
 
-// A spring's `law` (model::Spring) is its model's index here: 0 bilinear, 1 Bouc-Wen, 2 friction pendulum (the last
-// two run in the system stepper only, through model/hysteresis/smooth.hpp).
-using Hystereses = TypeList<BilinearKinematic, BoucWen, FrictionPendulum>;
-inline constexpr int law_bilinear = 0, law_bouc_wen = 1, law_friction_pendulum = 2;
+// A spring's `law` (model::Spring) is its model's index here: 0 bilinear, 1 Bouc-Wen, 2 friction pendulum (these two
+// through model/hysteresis/smooth.hpp), 3 restrainer (tension gap), 4 abutment (compression gap, elastic-perfectly
+// plastic), 5 hyperbolic abutment, 6 Q-Hyst (model/hysteresis/bridge_links.hpp). Laws 1-6 run in the system stepper
+// only. A hinge bearing is law 0 (bilinear kinematic hardening: k0, F_y, alpha) as a link spring.
+using Hystereses = TypeList<BilinearKinematic, BoucWen, FrictionPendulum, TensionGap, CompressionGap, HyperbolicGap, QHyst>;
+inline constexpr int law_bilinear = 0, law_bouc_wen = 1, law_friction_pendulum = 2, law_restrainer = 3,
+                     law_abutment = 4, law_hyperbolic_abutment = 5, law_qhyst = 6;
+inline bool is_smooth_law(int law) { return law == law_bouc_wen || law == law_friction_pendulum; }
+inline bool is_gap_law(int law) { return law >= law_restrainer && law <= law_hyperbolic_abutment; }
 
 template <class... Hs> constexpr bool all_hystereses(TypeList<Hs...>) { return (Hysteresis<Hs> && ...); }
 static_assert(all_hystereses(Hystereses{}),

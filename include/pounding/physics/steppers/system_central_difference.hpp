@@ -42,6 +42,7 @@
 #include "pounding/kernel/guard.hpp"
 #include "pounding/kernel/observers.hpp"
 #include "pounding/model/hysteresis/bilinear_kinematic.hpp"
+#include "pounding/model/hysteresis/bridge_links.hpp"
 #include "pounding/model/hysteresis/smooth.hpp"
 
 namespace pounding::kernel::sys {
@@ -58,7 +59,9 @@ struct Side {
 enum DofRow : int { U, Vel, A, M, IM, CF, VO, VH, DU, VP, PU, PA, dof_rows };
 // Spring: bilinear parameters (k, alpha k, qy, kp), storey dashpot, force, step scratch T (force + dashpot),
 // observers (peak |d|, peak |f|); a smooth spring (laws 1, 2: model/hysteresis/smooth.hpp) holds k, Q_slow, Q_fast,
-// rate in K, AK, QY, KP and its other constants and z in the rows after PF.
+// rate in K, AK, QY, KP and its other constants and z in the rows after PF. A gap link (laws 3-5,
+// model/hysteresis/bridge_links.hpp) holds k, c1, c2, side in K, AK, QY, KP, gap0 in ZA and its current gap in Z; a
+// Q-Hyst spring (law 6) k, alpha k, F_y, beta in K, AK, QY, KP and its state (mode, x0, dr, fr, dp, dn) in ZA..ZS.
 enum SpringRow : int { K, AK, QY, KP, CS, FS, T, PD, PF, ZA, ZB, ZG, ZM, ZE, ZS, Z, spring_rows };
 // Element: constants (N1/N2 of interpolated sides), state, observers.
 enum ElemRow : int {
@@ -72,8 +75,10 @@ struct Layout {
   int ndof = 0, nspring = 0, nelem = 0;
   std::vector<int> si, sj;            // spring ends (si = -1: ground)
   std::vector<char> dashpot;          // storey dashpot on the spring
-  std::vector<int> law;               // hysteresis law per spring (model/hysteresis/registry.hpp): 0 bilinear, else smooth
-  bool any_smooth = false;
+  std::vector<int> law;               // hysteresis law per spring (model/hysteresis/registry.hpp)
+  bool any_smooth = false;            // some spring of a law other than 0 (bilinear)
+  std::vector<int> link_start, link;  // link springs with j == dof (CSR): their force acts on j as a storey's below
+  bool any_link = false;
   std::vector<int> below;             // spring below each DOF
   std::vector<int> above_start, above;  // springs with i == dof (CSR)
   std::vector<int> ref;               // floor dashpot reference per DOF (-1: ground)
@@ -93,10 +98,10 @@ enum Contribution : int { left_point, right_point, left_n1, left_n2, right_n1, r
 // reloaded after every store).
 struct Topo {
   int ndof, nspring, nelem, nbody;
-  const int *si, *sj, *below, *above_start, *above, *ref, *refd_start, *refd, *body_start, *body_dofs;
+  const int *si, *sj, *below, *above_start, *above, *ref, *refd_start, *refd, *body_start, *body_dofs, *link_start, *link;
   const char* dashpot;
   const int* law;
-  bool any_smooth;
+  bool any_smooth, any_link;
   const Side *left, *right;
   const int *contrib_start, *contrib_elem, *contrib_how;
   bool any_dashpot;
@@ -104,8 +109,8 @@ struct Topo {
       : ndof(L.ndof), nspring(L.nspring), nelem(L.nelem), nbody(static_cast<int>(L.body_start.size()) - 1),
         si(L.si.data()), sj(L.sj.data()), below(L.below.data()), above_start(L.above_start.data()),
         above(L.above.data()), ref(L.ref.data()), refd_start(L.refd_start.data()), refd(L.refd.data()),
-        body_start(L.body_start.data()), body_dofs(L.body_dofs.data()),
-        dashpot(L.dashpot.data()), law(L.law.data()), any_smooth(L.any_smooth), left(L.left.data()), right(L.right.data()),
+        body_start(L.body_start.data()), body_dofs(L.body_dofs.data()), link_start(L.link_start.data()), link(L.link.data()),
+        dashpot(L.dashpot.data()), law(L.law.data()), any_smooth(L.any_smooth), any_link(L.any_link), left(L.left.data()), right(L.right.data()),
         contrib_start(L.contrib_start.data()), contrib_elem(L.contrib_elem.data()), contrib_how(L.contrib_how.data()),
         any_dashpot(L.any_dashpot) {}
 };
@@ -233,6 +238,43 @@ template <bool WithEnergy> POUNDING_INLINE void predict(Chunk c, Topo L, const S
   }
 }
 
+// A bridge link's force (laws 3-6, model/hysteresis/bridge_links.hpp) from its committed force fo over the increment
+// dd to the deformation d, its state in the spring's rows; the dissipation added to dhys in spring order.
+template <bool WithEnergy>
+POUNDING_INLINE V link_force(Chunk c, int s, int law, const V& fo, const V& d, const V& dd, V& dhys) {
+  V f;
+  if (law != 6) {
+    using G = model::GapSpring;
+    const model::GapParams<V> p{c.spr(K, s), c.spr(AK, s), c.spr(QY, s), c.spr(KP, s), c.spr(ZA, s)};
+    V gap = c.spr(Z, s);
+    f = law == 5 ? G::force<true, V>(p, d, gap) : G::force<false, V>(p, d, gap);
+    c.spr(Z, s, gap);
+    if constexpr (WithEnergy) {
+      const V x = G::dissipated<V>(p.k, fo, f, dd);
+      dhys = s == 0 ? x : dhys + x;
+    }
+    return f;
+  }
+  using Q = model::QHyst;
+  alignas(64) double out[simd::W], diss[simd::W];
+  for (int l = 0; l < simd::W; ++l) {
+    const Q::Params<double> p{c.spr(K, s)[l], c.spr(AK, s)[l], c.spr(QY, s)[l], c.spr(KP, s)[l]};
+    model::QHystState st{c.spr(ZA, s)[l], c.spr(ZB, s)[l], c.spr(ZG, s)[l], c.spr(ZM, s)[l], c.spr(ZE, s)[l], c.spr(ZS, s)[l]};
+    const double f0 = fo[l], e0 = Q::strain_energy(p, st, f0);
+    out[l] = Q::step(p, st, d[l] - dd[l], d[l], f0);
+    diss[l] = std::fma(0.5 * (f0 + out[l]), dd[l], -(Q::strain_energy(p, st, out[l]) - e0));
+    for (const auto& [row, v] : {std::pair{ZA, st.mode}, std::pair{ZB, st.x0}, std::pair{ZG, st.dr},
+                                 std::pair{ZM, st.fr}, std::pair{ZE, st.dp}, std::pair{ZS, st.dn}})
+      c.ps[Chunk::at(s, spring_rows, row) + l] = v;
+  }
+  f = V(out, simd::stdx::vector_aligned);
+  if constexpr (WithEnergy) {
+    const V x(diss, simd::stdx::vector_aligned);
+    dhys = s == 0 ? x : dhys + x;
+  }
+  return f;
+}
+
 // Step 3: every spring's return map from the increment h vh; the hysteretic increments summed in spring order.
 template <bool WithEnergy> POUNDING_INLINE void springs(Chunk c, Topo L) {
   using H = model::BilinearKinematic;
@@ -243,7 +285,10 @@ template <bool WithEnergy> POUNDING_INLINE void springs(Chunk c, Topo L) {
     const V d = i < 0 ? c.dof(U, j) : c.dof(U, j) - c.dof(U, i);
     const V fo = c.spr(FS, s);
     V f;
-    if (L.any_smooth && L.law[s] != 0) {  // Bouc-Wen, friction pendulum: z over the increment, Q at the predicted rate
+    const int law = L.law[s];
+    if (L.any_smooth && law >= 3) {  // bridge links: gap laws and Q-Hyst
+      f = link_force<WithEnergy>(c, s, law, fo, d, dd, dhys);
+    } else if (L.any_smooth && law != 0) {  // Bouc-Wen, friction pendulum: z over the increment, Q at the predicted rate
       using S = model::Smooth;
       const model::SmoothParams<V> p{c.spr(K, s),  c.spr(AK, s), c.spr(QY, s), c.spr(KP, s), c.spr(ZA, s),
                                      c.spr(ZB, s), c.spr(ZG, s), c.spr(ZM, s), c.spr(ZE, s), c.spr(ZS, s)};
@@ -367,6 +412,8 @@ POUNDING_INLINE void forces(Chunk c, Topo L, StepCtx& s) {
   V sv(0.0), sa(0.0);
   for (int j = 0; j < L.ndof; ++j) {
     V q = c.spr(T, L.below[j]);
+    if (L.any_link)
+      for (int k = L.link_start[j]; k < L.link_start[j + 1]; ++k) q += c.spr(T, L.link[k]);  // links with j here
     for (int k = L.above_start[j]; k < L.above_start[j + 1]; ++k) q -= c.spr(T, L.above[k]);
     const int r = L.ref[j];
     q = lane::fma(c.dof(CF, j), r < 0 ? c.dof(VP, j) : c.dof(VP, j) - c.dof(VP, r), q);

@@ -1,0 +1,67 @@
+#!/usr/bin/env bash
+# `pounding simulate --bridge FILE.toml` (issue 26 §1): the Muthukumar-DesRoches four-frame bridge
+# (tests/data/bridge/four-frame.toml: Q-Hyst frames, Hertzdamp hinges, restrainers, bearings, Caltrans abutments)
+#  - runs with status ok at --dt 0.0005, one line per joint (impacts, peak force) and per link (restrainers, hinge
+#    and abutment bearings, backfill: peak force and deformation), per-frame peaks; the energy balance closes;
+#  - --json and the text agree on the per-joint impacts and the links;
+#  - an abutment's Caltrans numbers (width, height) give K_abut and P_bw (T5.3): the backfill never exceeds P_bw;
+#  - bad input: one ERROR line naming FILE:line and the key (or the option), exit 2, nothing on stdout.
+# Args: <pounding binary> <source dir>
+set -euo pipefail
+bin=$1; src=$2
+. "$src/tests/lib/simulate_cli.sh"  # $py, $tmp, fail, two_tone_record, sim, bad
+two_tone_record 0.9
+file="$src/tests/data/bridge/four-frame.toml"
+sim() { "$bin" simulate --record "$tmp/rec.txt" "$@"; }
+
+sim --bridge "$file" --dt 0.0005 > "$tmp/b.txt"
+sim --bridge "$file" --dt 0.0005 --json > "$tmp/b.json"
+"$py" - "$tmp/b.txt" "$tmp/b.json" <<'PY'
+import json, sys
+text = dict(l.split(": ", 1) for l in open(sys.argv[1]).read().splitlines() if ": " in l)
+out = json.load(open(sys.argv[2]))
+assert text["status"] == "ok", text["status"]
+assert out["status"] == "ok"
+assert abs(float(text["energy_balance_error_rel"])) < 1e-4, text["energy_balance_error_rel"]
+for k in (1, 2, 3):
+    line = text[f"joint {k}"]
+    imp = int(line.split("impacts ")[1].split(",")[0])
+    lev = out["levels"][k - 1]
+    assert lev["label"] == f"joint {k}" and lev["impacts"] == imp, (lev, line)
+    assert imp > 0, f"joint {k} is never hit: raise the record"
+links = {l["label"]: l for l in out["links"]}
+want = ["restrainer 1", "hinge bearing 1", "restrainer 2", "hinge bearing 2", "restrainer 3", "hinge bearing 3",
+        "abutment left backfill", "abutment left bearing", "abutment right backfill", "abutment right bearing"]
+assert list(links) == want, list(links)
+for name, l in links.items():
+    f = float(text[name].split("peak_force_N ")[1].split(",")[0])
+    assert abs(f - l["peak_force"]) <= 1e-5 * max(1.0, f), (name, f, l)
+# Caltrans SDC, 15.85 m x 1.6764 m back wall: P_bw = w h 239.401 kPa (h / 1.6764 m)
+p_bw = 15.85 * 1.6764 * 5 * 4448.2216152605 / 0.3048**2
+for side in ("left", "right"):
+    assert links[f"abutment {side} backfill"]["peak_force"] <= p_bw * (1 + 1e-9), links[f"abutment {side} backfill"]
+for k in (1, 2, 3, 4):
+    assert 0 < out[f"peak_u{k}"][0] < 1, out[f"peak_u{k}"]
+print("bridge: joints", [out["levels"][k]["impacts"] for k in range(3)], "restrainer peaks",
+      [round(links[f"restrainer {k}"]["peak_force"]) for k in (1, 2, 3)], "frames", [out[f"peak_u{k}"][0] for k in (1, 2, 3, 4)])
+PY
+
+# bad input
+cp "$file" "$tmp/ok.toml"
+sed 's/^mass = 1.30635e6$/mass = -1/' "$file" > "$tmp/neg.toml"
+bad "mass = -1 is out of range, .*neg.toml:10 \[frame 1\] mass" --bridge "$tmp/neg.toml"
+sed 's/^zeta = 0.05$/zeta = 0.05\nspan = 40/' "$file" > "$tmp/unknown.toml"
+bad "unknown.*span" --bridge "$tmp/unknown.toml"
+sed 's/^backfill = "epp"$/backfill = "gravel"/' "$file" > "$tmp/fill.toml"
+bad "unknown backfill 'gravel'.*abutment.left\] backfill" --bridge "$tmp/fill.toml"
+"$py" -c 'import sys; t = open(sys.argv[1]).read(); i = t.rindex("[[joint]]"); j = t.index("[abutment.left]")
+open(sys.argv[2], "w").write(t[:i] + t[j:])' "$file" "$tmp/joints.toml"
+bad "4 frames need 3 joints" --bridge "$tmp/joints.toml"
+sed 's/^contact_stiffness = 2.808e10$//' "$file" > "$tmp/kc.toml"
+bad "contact_stiffness" --bridge "$tmp/kc.toml"
+sed 's/^hysteresis = "q-hyst"$/hysteresis = "takeda"/' "$file" > "$tmp/hys.toml"
+bad "unknown hysteresis 'takeda'" --bridge "$tmp/hys.toml"
+bad "building options do not apply" --bridge "$file" --storeys1 3
+bad "describes a building of the pair" --bridge "$file" --m1 1e6
+bad "bridge file" --bridge "$tmp/missing.toml"
+echo "simulate_bridge: ok"
