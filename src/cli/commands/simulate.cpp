@@ -878,6 +878,13 @@ void count_row_options(CLI::App* c, SimulateOptions& o) {
   }
 }
 
+// The bridge options (issue 26 §1).
+void add_bridge_options(CLI::App* c, SimulateOptions& o) {
+  c->add_option("--bridge", o.bridge,
+                "a bridge: frames, joints (gap, contact, restrainers, bearings) and abutments in a TOML file "
+                "(README 'Bridges'); the contact options apply at the joints");
+}
+
 }  // namespace
 
 void add_simulate(CLI::App& app) {
@@ -923,9 +930,7 @@ void add_simulate(CLI::App& app) {
   c->add_flag("--locate-contact", o->locate, "rk4: locate each contact onset inside its step (high-accuracy mode)");
   c->add_option("--series", o->series, "write the time series to FILE.csv or FILE.h5");
   add_storey_options(c, *o);
-  c->add_option("--bridge", o->bridge,
-                 "a bridge: frames, joints (gap, contact, restrainers, bearings) and abutments in a TOML file "
-                 "(README 'Bridges'); the contact options apply at the joints");
+  add_bridge_options(c, *o);
   c->add_flag("--json", o->json, "print every observer as one JSON object (per floor: peak_u1, peak_u2, ...; per "
                                  "contact level: levels)");
   c->callback([o, c] {
