@@ -7,7 +7,8 @@ Inputs, all measured (README "Speed" says where each comes from):
     receiving, storing, checkpointing and handing out one unit);
   - the compute time of one unit, t, the serial part (every rank's start: MPI start + inputs + structures, which
     do not shrink with more ranks) and the part after the units (analysis + report + results write, rank 0 only):
-    from the /timing group of a one-rank results file (--results R1.h5), or given.
+    from the /timing group of a one-rank results file (--results R1.h5), or given; the results write and mpirun's
+    MPI start are not in such a file (--write-s, --mpi-start-s from the printed timing lines).
 
 Model (units phase): U units of compute time t each; rank 0 also spends s per unit serving them, and computes
 units itself when it is not serving. With p ranks the phase takes
@@ -54,14 +55,21 @@ def main():
     ap.add_argument("--units", type=int, help="work units of the study")
     ap.add_argument("--unit-ms", type=float, help="compute time of one unit on one core (ms)")
     ap.add_argument("--serial-s", type=float, help="every rank's start (MPI start + inputs + structures), s")
-    ap.add_argument("--post-s", type=float, default=0.0, help="analysis + report + results write, s")
+    ap.add_argument("--post-s", type=float, help="analysis + report + results write, s (default: from --results)")
+    ap.add_argument("--write-s", type=float, default=0.0,
+                    help="the results write, s: a file cannot hold the time of its own write, so with --results give "
+                         "the 'results write' of the run's printed timing line")
+    ap.add_argument("--mpi-start-s", type=float, default=0.0,
+                    help="MPI start-up under mpirun, s (a one-rank run without mpirun has none)")
     ap.add_argument("--ranks", default="1,2,16,64,1000", help="comma-separated rank counts")
     ap.add_argument("--label", default="", help="a name for the workload in the table's title")
     a = ap.parse_args()
 
-    units, t, serial, post = (None, None, None, a.post_s)
+    units, t, serial, post = (None, None, None, 0.0)
     if a.results:
         units, t, serial, post = from_results(a.results)
+    post = (a.post_s if a.post_s is not None else post) + a.write_s
+    serial = serial + a.mpi_start_s if serial is not None else None
     units = a.units if a.units is not None else units
     t = a.unit_ms / 1e3 if a.unit_ms is not None else t
     serial = a.serial_s if a.serial_s is not None else serial
@@ -72,8 +80,8 @@ def main():
     for name, v in (("--service-us", s), ("--unit-ms", t), ("--units", units)):
         if not (v > 0 and math.isfinite(v)):
             sys.exit(f" ERROR: {name} must be a positive number, got {v}")
-    if serial < 0 or post < 0:
-        sys.exit(" ERROR: --serial-s and --post-s must be >= 0")
+    if serial < 0 or post < 0 or a.write_s < 0 or a.mpi_start_s < 0:
+        sys.exit(" ERROR: --serial-s, --post-s, --write-s and --mpi-start-s must be >= 0")
     try:
         ranks = [int(x) for x in a.ranks.split(",")]
         if any(p < 1 for p in ranks):
