@@ -332,6 +332,14 @@ constexpr StudyKey keys[] = {
      "How Hertzdamp's damping follows from e (calibrated: one free impact returns exactly e; ye and three-spring: the "
      "link-element paper's laws, three-spring acting on 1.5 x the contact stiffness)."},
     {"contact", "e", "number", "0.65", "", "(0, 1]", "Coefficient of restitution.", 1e-6, 1.0},
+    {"contact", "levels", "string", "\"common\"", "", "\"common\" | \"top\"",
+     "Shear buildings and rows: which facing floors pound -- common = every pair of floors at the same level, top = "
+     "only the lower roof of each pair of neighbours (with the other building's floor at that level)."},
+    {"contact", "gap_offsets", "array of numbers", "none (0 at every level)", "m", "[0, 10]",
+     "Shear buildings and rows: per contact level from level 1, added to the study gap at that level (a level beyond "
+     "the list: 0). An analysis touches at gap g when some level's uncoupled closing minus its offset exceeds g "
+     "(/uncoupled/peak_closing is the largest of those), so the probability scene stays exact.",
+     0.0, 10.0},
     {"contact", "n", "number", "1.5", "", "[1, 3]", "Exponent of the Hertz-family force k delta^n.", 1.0, 3.0},
     {"contact", "v0_min", "number", "1e-3", "m/s", "(0, 1]",
      "Smallest approach velocity used to set the contact damping.", 1e-12, 1.0},

@@ -81,7 +81,8 @@ class UnitComputer {
     ks_base_.displacement_limit = s.displacement_limit;
     uncoupled_ = s.contact;
     uncoupled_.law = ContactLaw::none;
-    if (sampler.model().any_shear() || sampler.model().row()) block_.emplace(sampler.model(), s.contact, s.e);
+    if (sampler.model().any_shear() || sampler.model().row())
+      block_.emplace(sampler.model(), s.contact, s.e, s.contact_levels, s.gap_offsets);
     if (block_ && !plan.system.empty()) table_fields(plan);
     if (plan.stripes) stripe_scaled_ = results::field_index(plan.fields, "uncoupled", "scaled");
     if (plan.ida) {
@@ -420,7 +421,7 @@ class UnitComputer {
   // topology (table_topology, the plan's /system).
   void table_fields(const WorkPlan& plan) {
     const std::optional<LaneTopology> t = table_topology(sampler_.model(), sampler_.seed());
-    block_->set_table(block_->system(*t));
+    block_->set_table(block_->table_system(*t));
     const std::size_t nb = t->buildings();
     f_floor_u_.resize(nb), f_floor_drift_.resize(nb), f_floor_acc_.resize(nb);
     f_row_unc_.assign(nb, 0), f_row_imp_.assign(nb, 0);
@@ -588,8 +589,9 @@ WorkPlan plan_work(const Inputs& in) {
   // shear building, and for one storey each: system_table gives the SDOF pair nothing)
   if (s.structures.any_shear() || s.structures.row())
     if (const std::optional<LaneTopology> t = table_topology(s.structures, s.seed)) {
-      SystemBlock block(s.structures, s.contact, s.e);
-      L.system = system_table(block.system(*t), block.groups(*t, s.contact));
+      SystemBlock block(s);
+      const model::System& sys = block.table_system(*t);
+      L.system = system_table(sys, block.groups(*t, s.contact), block.element_offsets(sys));
     }
   L.fields = results::unit_schema(L.impacts, L.ida, L.stripes > 0, L.system.extents());
   return L;

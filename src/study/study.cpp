@@ -117,7 +117,13 @@ void parse_contact(Study& s, const toml::table* t, const std::string& path) {
   if (contact::traits(s.contact.law).explicit_stiffness && !(s.contact_stiffness > 0))
     throw InputError(fmt::format("contact law '{}' needs a linear stiffness", to_string(s.contact.law)), c.where("stiffness"),
                      "add stiffness = <N/m> to [contact] (the sampled Hertz kh is in N/m^1.5)");
-  c.finish("law, damping_law, e, n, v0_min, stiffness");
+  s.contact_levels = c.choice("levels", "common", [](const std::string& name) {
+    if (auto v = parse_enum(model::contact_levels_names, name)) return *v;
+    throw InputError(fmt::format("unknown levels '{}'", name), "levels",
+                     "write levels = " + enum_name_list(model::contact_levels_names, " or ", "\""));
+  });
+  s.gap_offsets = c.numbers("gap_offsets", {});
+  c.finish("law, damping_law, e, n, v0_min, stiffness, levels, gap_offsets");
 }
 
 }  // namespace
@@ -233,6 +239,18 @@ static void check_row_study(const Study& s, config::TableReader& top, const toml
 
 static void check_shear_study(const Study& s, config::TableReader& top, const toml::table* structures, const std::string& path) {
   check_row_study(s, top, structures, path);
+  // [contact] levels / gap_offsets act on the floors of shear buildings and the joints of a row
+  if (!s.structures.any_shear() && !s.structures.row())
+    for (const char* key : {"gap_offsets", "levels"}) {
+      const toml::table* c = top.table("contact");
+      const toml::node* n = c ? c->get(key) : nullptr;
+      if (!n) continue;
+      throw InputError(fmt::format("[contact] {} is given, and the study is a pair of SDOF buildings (one contact at "
+                                   "one level)",
+                                   key),
+                       fmt::format("{}:{} [contact].{}", path, n->source().begin.line, key),
+                       "give the buildings storeys (model = \"shear\") or a row (buildings = 3 or more), or remove the key");
+    }
   if (!s.structures.any_shear()) return;
   if (s.stepper != Stepper::central_difference) {
     const toml::table* a = top.table("analysis");

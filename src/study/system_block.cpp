@@ -107,7 +107,21 @@ const model::System& SystemBlock::system(const LaneTopology& t) {
       sticks[i].storeys = t.storeys[i], sticks[i].storey_heights = {t.storey_height[i]};
       sticks[i].isolated = t.isolated[i], sticks[i].moat = t.moat[i];
     }
-    slot = std::make_unique<model::System>(model::shear_buildings(sticks));
+    slot = std::make_unique<model::System>(model::shear_buildings(sticks, 0.05, levels_));
+  }
+  return *slot;
+}
+
+const model::System& SystemBlock::table_system(const LaneTopology& t) {
+  if (levels_ == model::ContactLevels::common) return system(t);
+  auto& slot = table_systems_[t];
+  if (!slot) {
+    std::vector<model::StickTopology> sticks(t.buildings());
+    for (std::size_t i = 0; i < t.buildings(); ++i) {
+      sticks[i].storeys = t.storeys[i], sticks[i].storey_heights = {t.storey_height[i]};
+      sticks[i].isolated = t.isolated[i], sticks[i].moat = t.moat[i];
+    }
+    slot = std::make_unique<model::System>(model::shear_buildings(sticks, 0.05, model::ContactLevels::common));
   }
   return *slot;
 }
@@ -126,8 +140,16 @@ void SystemBlock::set_lane(physics::SystemBatch& b, std::size_t lane, const Samp
     if (!(iso.base_mass > 0)) iso.base_mass = spec.floor_mass[0];  // one floor's mass
     physics::set_isolated_building(b, lane, i, spec, iso);
   }
-  physics::set_contacts(b, lane, gap, p.kh, cn.e);
   const model::System& sys = *b.system;
+  if (offsets_.empty()) {
+    physics::set_contacts(b, lane, gap, p.kh, cn.e);
+  } else {  // per level, 0 beyond the list
+    int top = 0;
+    for (const model::ContactElement& ce : sys.contacts()) top = std::max(top, ce.level);
+    std::vector<double> per_level(static_cast<std::size_t>(std::max(top, 1)), 0.0);
+    std::copy_n(offsets_.begin(), std::min(offsets_.size(), per_level.size()), per_level.begin());
+    physics::set_contacts(b, lane, gap, p.kh, cn.e, per_level);
+  }
   const std::size_t w = b.width;
   for (int i = 0; i < static_cast<int>(nb); ++i) {
     if (!t.moat[i]) continue;
@@ -149,6 +171,18 @@ void SystemBlock::set_lane(physics::SystemBatch& b, std::size_t lane, const Samp
                                    model_.contact_youngs_modulus, model_.contact_poisson);  // the two floors' masses
     b.kc[physics::SystemBatch::at(static_cast<int>(e), lane, w)] = kc;
   }
+}
+
+std::vector<double> SystemBlock::element_offsets(const model::System& sys) const {
+  if (offsets_.empty()) return {};
+  std::vector<double> out(sys.contacts().size(), 0.0);
+  for (std::size_t e = 0; e < out.size(); ++e) {
+    const model::ContactElement& ce = sys.contacts()[e];
+    if (sys.groups()[static_cast<std::size_t>(ce.group)].study_gap && ce.level >= 1 &&
+        static_cast<std::size_t>(ce.level) <= offsets_.size())
+      out[e] = offsets_[static_cast<std::size_t>(ce.level - 1)];
+  }
+  return out;
 }
 
 std::vector<ContactModel> SystemBlock::groups(const LaneTopology& t, const ContactModel& pounding) const {
@@ -178,6 +212,7 @@ void SystemBlock::run(std::span<const SampledPair> pairs, std::span<const std::s
     const LaneTopology& t = keys_[order_[at]];
     const model::System& sys = system(t);
     const std::vector<ContactModel> groups = this->groups(t, cm);
+    const std::vector<double> offsets = element_offsets(sys);  // empty: none
     batch_.resize(sys, end - at);
     for (std::size_t j = at; j < end; ++j) {
       const SampledPair& p = pairs[lanes[order_[j]]];
@@ -206,7 +241,7 @@ void SystemBlock::run(std::span<const SampledPair> pairs, std::span<const std::s
         if (!sys.groups()[static_cast<std::size_t>(sys.contacts()[e].group)].study_gap) continue;
         const std::size_t x = physics::SystemBatch::at(static_cast<int>(e), l, w);
         const double f = res_.peak_force[x], tf = res_.t_first_impact[x], h = res_.h_omega_contact[x];
-        D = std::max(D, res_.peak_closing[x]);
+        D = std::max(D, offsets.empty() ? res_.peak_closing[x] : res_.peak_closing[x] - offsets[e]);
         count = count < 0 || res_.impact_count[x] < 0 ? -1 : count + res_.impact_count[x];
         force = !any ? f : std::isnan(force) || std::isnan(f) ? nan : std::max(force, f);
         if (!std::isnan(tf) && !(tf >= first)) first = tf;
@@ -262,7 +297,7 @@ void check_shear_steps(const Study& study, std::span<const StudyRecord> records,
     if (x > h) h = x, dt = r.record.dt;
   }
   const StructureSampler sampler(model, study.seed);
-  SystemBlock block(model, study.contact, study.e);
+  SystemBlock block(study);
   const auto pairs = model.period_pair_count();
   const auto per_pair = std::min<std::int64_t>(model.samples_per_pair,
                                                std::max<std::int64_t>(1, static_cast<std::int64_t>(max_models) / pairs));

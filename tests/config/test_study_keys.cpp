@@ -263,6 +263,7 @@ TEST(StudyKeys, DocumentedChoicesAreTheEnumTables) {
       {{"structures.buildingN", "stiffness_profile"}, choices(model::stiffness_profile_names)},
       {{"contact", "law"}, choices(contact_law_table, "none")},
       {{"contact", "damping_law"}, choices(damping_law_table)},
+      {{"contact", "levels"}, choices(model::contact_levels_names)},
       {{"analysis", "stepper"}, choices(kernel::stepper_names)},
       {{"analysis", "coarse"}, choices(coarse_policy_names)},
       {{"intensity", "measure"}, choices(im_measure_names)},

@@ -16,6 +16,7 @@
 #include <string>
 #include <vector>
 
+#include "pounding/core/enum_names.hpp"
 #include "pounding/model/system.hpp"
 
 namespace pounding::model {
@@ -45,6 +46,9 @@ enum class ContactLevels {
   common,  // every pair of facing floors whose levels agree within the tolerance
   top,     // only the lower roof of each neighbouring pair (with the other building's floor at that level)
 };
+inline constexpr EnumName<ContactLevels> contact_levels_names[] = {{ContactLevels::common, "common"},
+                                                                   {ContactLevels::top, "top"}};
+constexpr const auto& enum_names(ContactLevels) { return contact_levels_names; }
 
 // Floor levels above the ground (m), bottom first, of a stick: the running sums of its storey heights.
 std::vector<double> floor_levels(const StickTopology& stick);

@@ -166,6 +166,9 @@ void visit_settings(const Study& s, V&& v) {
   v("contact", "n", s.contact.n);
   v("contact", "v0_min", s.contact.v0_min);
   v("contact", "stiffness", s.contact_stiffness);
+  // shear buildings and rows (absent where not given: the other studies' bits)
+  if (s.contact_levels != model::ContactLevels::common) v("contact", "levels", S(to_string(s.contact_levels)));
+  if (!s.gap_offsets.empty()) v("contact", "gap_offsets", s.gap_offsets);
 
   v("analysis", "stepper", S(to_string(s.stepper)));
   v("analysis", "substeps", static_cast<std::int64_t>(s.substeps));

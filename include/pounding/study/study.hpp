@@ -72,6 +72,7 @@
 
 #include "pounding/core/enum_names.hpp"
 #include "pounding/contact/model.hpp"
+#include "pounding/model/shear_building.hpp"
 #include "pounding/physics/batch.hpp"
 #include "pounding/motion/records.hpp"
 #include "pounding/sampling/sampler.hpp"
@@ -136,6 +137,10 @@ struct Study {
   ContactModel contact;
   double e = 0.65;
   double contact_stiffness = 0.0;  // > 0 overrides the sampled Hertz kh; required (N/m) for linear/Kelvin
+  // [contact] levels and gap_offsets (shear buildings and rows, docs/architecture.md §2.7.1): which facing floors
+  // pound, and per level from level 1 the offset (m, >= 0) added to the study gap (levels beyond the list: 0)
+  model::ContactLevels contact_levels = model::ContactLevels::common;
+  std::vector<double> gap_offsets;
   Stepper stepper = Stepper::central_difference;
   int substeps = 1;
   double max_dt = 0.0;  // step cap (s): substeps = max(substeps, ceil(dt / max_dt)); default 2.5 ms (impacts), 0 (probability)

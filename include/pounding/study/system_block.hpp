@@ -90,9 +90,15 @@ struct ContactNumbers {
 
 class SystemBlock {
  public:
-  // contact, e: the study's [contact] model and restitution, the moat walls' defaults
-  explicit SystemBlock(const StructureModel& model, const ContactModel& contact = {}, double e = 0.65)
-      : model_(model), contact_(contact), e_(e) {}
+  // contact, e: the study's [contact] model and restitution, the moat walls' defaults; levels, gap_offsets: [contact]
+  // levels and gap_offsets (per level from 1, m; a level beyond the list 0): which floors pound and what each adds to
+  // the study gap. With offsets, D = max over the study-gap elements of (peak closing - offset).
+  explicit SystemBlock(const StructureModel& model, const ContactModel& contact = {}, double e = 0.65,
+                       model::ContactLevels levels = model::ContactLevels::common, std::vector<double> gap_offsets = {})
+      : model_(model), contact_(contact), e_(e), levels_(levels), offsets_(std::move(gap_offsets)) {}
+  // For a study: its structures, [contact] model, e, levels and gap_offsets.
+  explicit SystemBlock(const Study& s)
+      : SystemBlock(s.structures, s.contact, s.e, s.contact_levels, s.gap_offsets) {}
 
   // Every lane of `pairs`, uncoupled: `none` is the study's contact model with law none (the study-gap group's law);
   // status, u1, u2, closing = D.
@@ -106,6 +112,9 @@ class SystemBlock {
 
   // The System of a topology (built once, kept for the block's lifetime).
   const model::System& system(const LaneTopology& t);
+  // The results' table System of a topology (table_topology()): system(t), except with levels = "top", where it has
+  // every common level (each lane's lower roof is one of them, at a level that varies with its storeys).
+  const model::System& table_system(const LaneTopology& t);
   // Fill BlockPeaks' per-floor / per-element rows laid out as `table` (the System of table_topology()).
   void set_table(const model::System& table);
   const TableLayout& layout() const { return layout_; }
@@ -118,6 +127,9 @@ class SystemBlock {
 
   // The contact models of a run: group 0 the pounding (`pounding`), then one per moat, building order.
   std::vector<ContactModel> groups(const LaneTopology& t, const ContactModel& pounding) const;
+  // Each element's gap offset in `sys` (a study-gap element: gap_offsets[level - 1], 0 beyond the list; others 0):
+  // the results' /system/element_gap_offset. Empty without gap_offsets.
+  std::vector<double> element_offsets(const model::System& sys) const;
 
  private:
   // lanes[j] of `pairs` bucketed by topology, one run_system per bucket, out[j] lane lanes[j]'s
@@ -127,7 +139,9 @@ class SystemBlock {
   const StructureModel& model_;
   ContactModel contact_;
   double e_;
-  std::map<LaneTopology, std::unique_ptr<model::System>> systems_;
+  model::ContactLevels levels_;
+  std::vector<double> offsets_;
+  std::map<LaneTopology, std::unique_ptr<model::System>> systems_, table_systems_;
   std::vector<LaneTopology> keys_;
   std::vector<std::size_t> order_, bucket_, all_;
   physics::SystemBatch batch_;
