@@ -64,6 +64,7 @@ int main(int argc, char** argv) {
   pounding::cli::add_stiffness(app);
   pounding::cli::add_similitude(app);
   pounding::cli::add_replay(app);
+  pounding::cli::add_motions(app);
   pounding::cli::add_accuracy(app);
   pounding::cli::add_study_reference(app);
   try {

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <array>
 #include <charconv>
+#include <cctype>
 #include <cmath>
 #include <string_view>
 #include <utility>
@@ -124,6 +125,61 @@ void validate(const Iran2800Spectrum& s) {
   if (static_cast<std::size_t>(s.soil) >= soil_names.size())
     throw InputError("unknown Standard 2800 soil type", "soil type", "use I, II, III or IV");
   require_range(s.importance, 0.8, 1.4, "importance factor I", "[0.8, 1.4]");
+}
+
+// ---- NZS 1170.5:2004 ----
+namespace {
+constexpr std::array<std::string_view, 5> nzs_site_names{"A", "B", "C", "D", "E"};
+}  // namespace
+
+double nzs1170_ch(Nzs1170Site site, double t) {
+  require_period(t);
+  switch (site) {
+    case Nzs1170Site::A:
+    case Nzs1170Site::B:
+      if (t < 0.1) return 1.0 + 1.35 * t / 0.1;
+      if (t <= 0.3) return 2.35;
+      if (t <= 1.5) return 1.6 * std::pow(0.5 / t, 0.75);
+      if (t <= 3.0) return 1.05 / t;
+      return 3.15 / (t * t);
+    case Nzs1170Site::C:
+      if (t < 0.1) return 1.33 + 1.60 * t / 0.1;
+      if (t <= 0.3) return 2.93;
+      if (t <= 1.5) return 2.0 * std::pow(0.5 / t, 0.75);
+      if (t <= 3.0) return 1.32 / t;
+      return 3.96 / (t * t);
+    case Nzs1170Site::D:
+      if (t < 0.1) return 1.12 + 1.88 * t / 0.1;
+      if (t <= 0.56) return 3.0;
+      if (t <= 1.5) return 2.4 * std::pow(0.75 / t, 0.75);
+      if (t <= 3.0) return 2.14 / t;
+      return 6.42 / (t * t);
+    case Nzs1170Site::E:
+      if (t < 0.1) return 1.12 + 1.88 * t / 0.1;
+      if (t <= 1.0) return 3.0;
+      if (t <= 1.5) return 3.0 / std::pow(t, 0.75);
+      if (t <= 3.0) return 3.32 / t;
+      return 9.96 / (t * t);
+  }
+  throw InputError("unknown NZS 1170.5 site class", "site class", "use A, B, C, D or E");
+}
+
+double sa(const Nzs1170Spectrum& s, double period) { return nzs1170_ch(s.site, period) * s.z * s.r; }
+
+std::optional<Nzs1170Site> parse_nzs1170_site(std::string_view text) {
+  for (std::size_t i = 0; i < nzs_site_names.size(); ++i)
+    if (text.size() == 1 && std::toupper(static_cast<unsigned char>(text[0])) == nzs_site_names[i][0])
+      return static_cast<Nzs1170Site>(i);
+  return std::nullopt;
+}
+
+std::string_view to_string(Nzs1170Site site) { return nzs_site_names.at(static_cast<std::size_t>(site)); }
+
+void validate(const Nzs1170Spectrum& s) {
+  if (static_cast<std::size_t>(s.site) >= nzs_site_names.size())
+    throw InputError("unknown NZS 1170.5 site class", "site class", "use A, B, C, D or E");
+  require_range(s.z, 0.1, 0.6, "hazard factor Z", "[0.1, 0.6] (NZS 1170.5 table 3.3)");
+  require_range(s.r, 0.2, 1.8, "return period factor R", "[0.2, 1.8] (NZS 1170.5 table 3.5)");
 }
 
 // ---- Tabulated ----
@@ -249,6 +305,10 @@ std::string DesignSpectrum::describe() const {
           [](const Iran2800Spectrum& p) {
             return fmt::format("Standard 2800 (4th ed.): A = {:g}, soil {}, I = {:g}", p.a,
                                soil_names.at(static_cast<std::size_t>(p.soil)), p.importance);
+          },
+          [](const Nzs1170Spectrum& p) {
+            return fmt::format("NZS 1170.5:2004 3.1.1 (numerical integration), site class {}: Z = {:g}, R = {:g}, N = 1",
+                               to_string(p.site), p.z, p.r);
           },
           [](const TabulatedSpectrum& p) {
             return fmt::format("tabulated: {} points, {:g}-{:g} s, from {}", p.periods.size(), p.periods.front(),

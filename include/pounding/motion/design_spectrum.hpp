@@ -15,8 +15,22 @@
 //     the standard's own text: ebrahimraeyat/civilTools (building/soil.py, spectral.py), and, checked on
 //     2026-11-25, a second, independent implementation (a Persian-language building calculator's soilCoef and
 //     N factor, found through the code index) that agrees in every value, the A >= 0.30 / A <= 0.25 split too.
+//   NZS 1170.5:2004 (Structural design actions, Part 5: Earthquake actions -- New Zealand) clause 3.1.1:
+//     C(T) = Ch(T) Z R N(T, D); Ch(T) of table 3.1 / eqs C3.1 of the commentary, the column for the modal
+//     response spectrum and numerical integration time-history methods (Ch(0) = 1.0, 1.33, 1.12 for classes
+//     A/B, C, D/E). Site class A and B (rock) share one shape:
+//       A/B: T < 0.1: 1.0 + 1.35 T/0.1; 0.1-0.3: 2.35; 0.3-1.5: 1.6 (0.5/T)^0.75; 1.5-3: 1.05/T; > 3: 3.15/T^2
+//       C:   T < 0.1: 1.33 + 1.60 T/0.1; 0.1-0.3: 2.93; 0.3-1.5: 2.0 (0.5/T)^0.75; 1.5-3: 1.32/T; > 3: 3.96/T^2
+//       D:   T < 0.1: 1.12 + 1.88 T/0.1; 0.1-0.56: 3.0; 0.56-1.5: 2.4 (0.75/T)^0.75; 1.5-3: 2.14/T; > 3: 6.42/T^2
+//       E:   T < 0.1: 1.12 + 1.88 T/0.1; 0.1-1.0: 3.0; 1.0-1.5: 3.0/T^0.75; 1.5-3: 3.32/T; > 3: 9.96/T^2
+//     (the branches meet within 0.4 % at every corner). Z: hazard factor (table 3.3, 0.13 Auckland ... 0.6),
+//     R: return period factor (table 3.5, 0.2 ... 1.8), N(T, D) = 1: sites more than 20 km from the faults of
+//     table 3.6 (the near-fault factor is not modelled). Cross-checked on 2026-11-26 against an independent
+//     public implementation (Agent6-6-6/NZS1170.5-Seismic-Coefficient-functions, Loading_C_h_T, RSM case).
 //   Tabulated: the user's (T, Sa) points, linear in T between them; outside the table is an error.
+#include <optional>
 #include <string>
+#include <string_view>
 #include <variant>
 #include <vector>
 
@@ -66,6 +80,19 @@ struct Iran2800Spectrum {
 double iran2800_b(const Iran2800Spectrum& s, double period);  // B = B1 N
 double sa(const Iran2800Spectrum& s, double period);          // A B I
 
+// ---- NZS 1170.5:2004 ----
+enum class Nzs1170Site { A, B, C, D, E };
+struct Nzs1170Spectrum {
+  Nzs1170Site site = Nzs1170Site::C;
+  double z = 0.4;  // hazard factor Z, [0.1, 0.6]
+  double r = 1.0;  // return period factor R (Ru, Rs), [0.2, 1.8]
+};
+double nzs1170_ch(Nzs1170Site site, double period);  // spectral shape factor Ch(T)
+double sa(const Nzs1170Spectrum& s, double period);   // Ch(T) Z R, N = 1
+// "A".."E" (upper or lower case) -> the class; nullopt otherwise.
+std::optional<Nzs1170Site> parse_nzs1170_site(std::string_view text);
+std::string_view to_string(Nzs1170Site site);
+
 // ---- Tabulated ----
 struct TabulatedSpectrum {
   std::vector<double> periods;  // s, >= 0, strictly increasing, at least 2
@@ -83,12 +110,13 @@ TabulatedSpectrum read_tabulated_spectrum(const std::string& path);
 void validate(const Asce7Spectrum& s);
 void validate(const Ec8Spectrum& s);
 void validate(const Iran2800Spectrum& s);
+void validate(const Nzs1170Spectrum& s);
 void validate(const TabulatedSpectrum& s);
 
 // ---- Any of the above ----
 class DesignSpectrum {
  public:
-  using Params = std::variant<Asce7Spectrum, Ec8Spectrum, Iran2800Spectrum, TabulatedSpectrum>;
+  using Params = std::variant<Asce7Spectrum, Ec8Spectrum, Iran2800Spectrum, TabulatedSpectrum, Nzs1170Spectrum>;
   // Validates the parameters (InputError otherwise).
   explicit DesignSpectrum(Params params);
   // Sa in g at T in s; throws InputError for a negative or non-finite T (or, tabulated, outside the table).

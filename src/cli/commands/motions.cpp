@@ -1,0 +1,323 @@
+// `pounding motions`: spatially varying, spectrum-compatible support motions for multi-support structures
+// (bridges), written as one PEER AT2 file (g) per support per realisation (issue 26 section 2; the method:
+// motion/spatial.hpp).
+//
+//   motions --supports 4 --spacing 100 --velocity 500 --coherency sobczyk --loss high --spectrum nzs1170.5
+//           --soil D [--z 0.4 --r 1] --realisations 20 --seed 1 --out DIR
+//
+// DIR must be new or an empty folder. It receives, all at once at the end (built in DIR.tmp<pid> and renamed),
+//   r001_s01.AT2 ...   realisation 1 .. R, support 1 .. n (acceleration in g, DT = --dt)
+//   MANIFEST.tsv       file, event, station, component, realisation, support, position_m, pga_g, misfit, updates
+//                      (event "<label> realisation RRR", station "support JJ at X m": the engine's directory reader
+//                      sees the supports of one realisation as one event -- motion/library.hpp)
+//   README.md          every setting, the coherency model and the target spectra, with their sources
+// A stop (SIGINT/SIGTERM) between or within realisations ends the command with exit 130 and writes nothing.
+#include <atomic>
+#include <cerrno>
+#include <csignal>
+#include <cstring>
+#include <filesystem>
+#include <memory>
+#include <sstream>
+#include <unistd.h>
+
+#include <fmt/format.h>
+
+#include "cli/commands.hpp"
+#include "pounding/core/files.hpp"
+#include "pounding/core/progress.hpp"
+#include "pounding/motion/design_spectrum.hpp"
+#include "pounding/motion/spatial.hpp"
+
+namespace pounding::cli {
+
+namespace {
+
+namespace fs = std::filesystem;
+using spatial::CoherencyLoss;
+using spatial::CoherencyModel;
+
+std::atomic<bool> motions_stop{false};
+extern "C" void on_motions_stop(int) { motions_stop.store(true); }
+
+struct MotionsOpts {
+  int supports = 2, realisations = 20, first = 1, iterations = 10, match_points = 30;
+  double spacing = 100, velocity = 500, z = 0.4, r = 1.0, damping = 0.05, dt = 0.01, duration = 20;
+  double rise = 2, strong = 8, decay = 0.5, f_min = 0.1, f_max = 25, tolerance = 0.1, beta = 0, lw_a = 2.5e-4;
+  std::vector<double> positions, match_range{0.05, 4.0};
+  std::string coherency = "sobczyk", loss, spectrum = "nzs1170.5", soil, spectrum_file, out, label = "svgm";
+  std::uint64_t seed = 1;
+  bool no_wave_passage = false, quiet = false;
+  CLI::Option *o_positions = nullptr, *o_supports = nullptr, *o_spacing = nullptr, *o_beta = nullptr,
+              *o_lw = nullptr, *o_loss = nullptr, *o_soil = nullptr, *o_z = nullptr, *o_r = nullptr,
+              *o_file = nullptr;
+};
+
+std::vector<std::string> split_commas(const std::string& text) {
+  std::vector<std::string> out;
+  std::stringstream ss(text);
+  for (std::string x; std::getline(ss, x, ',');) out.push_back(x);
+  return out;
+}
+
+spatial::Coherency coherency_of(const MotionsOpts& o) {
+  spatial::Coherency c;
+  const auto model = parse_enum(spatial::coherency_model_names, o.coherency);
+  if (!model)
+    throw InputError(fmt::format("unknown coherency model '{}'", escaped_excerpt(o.coherency)), "--coherency",
+                     "use " + enum_name_list(spatial::coherency_model_names, " or "));
+  c.model = *model;
+  const bool loss = o.o_loss->count() > 0, beta = o.o_beta->count() > 0;
+  if (c.model == CoherencyModel::sobczyk) {
+    if (loss && beta) throw InputError("both --loss and --beta", "--beta", "give one: a loss level or beta itself");
+    if (!loss && !beta)
+      throw InputError("sobczyk needs a coherency loss level", "--loss",
+                       "give --loss low|medium|high (beta 0.0005/0.001/0.002 1/m) or --beta");
+    if (loss) {
+      const auto l = parse_enum(spatial::coherency_loss_names, o.loss);
+      if (!l)
+        throw InputError(fmt::format("unknown loss level '{}'", escaped_excerpt(o.loss)), "--loss",
+                         "use low, medium or high");
+      c.beta = spatial::sobczyk_beta(*l);
+    } else {
+      c.beta = o.beta;
+    }
+  } else if (loss || beta) {
+    throw InputError(fmt::format("--{} applies to --coherency sobczyk only", loss ? "loss" : "beta"),
+                     loss ? "--loss" : "--beta",
+                     c.model == CoherencyModel::harichandran_vanmarcke
+                         ? "Harichandran-Vanmarcke has one published set (SMART-1 Event 20): drop the option"
+                         : "drop the option");
+  }
+  if (o.o_lw->count() > 0 && c.model != CoherencyModel::luco_wong)
+    throw InputError("--luco-wong-a applies to --coherency luco-wong only", "--luco-wong-a", "drop the option");
+  c.lw_a = o.lw_a;
+  return c;
+}
+
+std::vector<DesignSpectrum> targets_of(const MotionsOpts& o, std::size_t n) {
+  std::vector<DesignSpectrum> out;
+  if (o.spectrum == "nzs1170.5") {
+    if (o.o_file->count() > 0)
+      throw InputError("--spectrum-file belongs to --spectrum csv", "--spectrum-file", "give --spectrum csv or drop it");
+    if (o.o_soil->count() == 0)
+      throw InputError("--spectrum nzs1170.5 needs the site class", "--soil", "give --soil A|B|C|D|E (or one per support, A,A,D,D)");
+    const auto classes = split_commas(o.soil);
+    if (classes.size() != 1 && classes.size() != n)
+      throw InputError(fmt::format("{} site classes for {} supports", classes.size(), n), "--soil",
+                       "give one class for all supports or one per support");
+    for (const auto& text : classes) {
+      const auto site = parse_nzs1170_site(text);
+      if (!site)
+        throw InputError(fmt::format("unknown NZS 1170.5 site class '{}'", escaped_excerpt(text)), "--soil",
+                         "use A, B, C, D or E");
+      Nzs1170Spectrum s{*site, o.z, o.r};
+      try {
+        out.emplace_back(s);
+      } catch (const InputError& e) {
+        const std::string opt = e.what_part().find("Z") != std::string::npos ? "--z" : "--r";
+        throw InputError(e.what_part(), opt, e.fix());
+      }
+    }
+  } else if (o.spectrum == "csv") {
+    if (o.o_soil->count() > 0 || o.o_z->count() > 0 || o.o_r->count() > 0)
+      throw InputError("--soil, --z and --r belong to --spectrum nzs1170.5", "--spectrum", "drop them with csv");
+    if (o.o_file->count() == 0)
+      throw InputError("--spectrum csv needs --spectrum-file", "--spectrum-file", "give a file of period_s,sa_g lines");
+    out.emplace_back(read_tabulated_spectrum(o.spectrum_file));
+  } else {
+    throw InputError(fmt::format("unknown spectrum '{}'", escaped_excerpt(o.spectrum)), "--spectrum",
+                     "use nzs1170.5 or csv");
+  }
+  return out;
+}
+
+spatial::Settings settings_of(const MotionsOpts& o) {
+  spatial::Settings s;
+  if (o.o_positions->count() > 0) {
+    if (o.o_supports->count() > 0 || o.o_spacing->count() > 0)
+      throw InputError("--positions with --supports/--spacing", "--positions", "give either --positions or --supports and --spacing");
+    s.positions = o.positions;
+  } else {
+    if (o.supports < 2 || o.supports > 16)
+      throw InputError(fmt::format("{} supports given", o.supports), "--supports", "give 2 to 16 supports");
+    require_range(o.spacing, 1.0, 10000.0, "--spacing", "[1, 10000] m");
+    for (int j = 0; j < o.supports; ++j) s.positions.push_back(o.spacing * j);
+  }
+  s.velocity = o.velocity;
+  s.wave_passage = !o.no_wave_passage;
+  s.coherency = coherency_of(o);
+  s.targets = targets_of(o, s.positions.size());
+  s.damping = o.damping;
+  s.dt = o.dt;
+  s.duration = o.duration;
+  s.envelope = {o.rise, o.strong, o.decay};
+  s.f_min = o.f_min;
+  s.f_max = o.f_max;
+  if (o.match_range.size() != 2 || !(o.match_range[0] > 0) || !(o.match_range[1] > o.match_range[0]))
+    throw InputError("--match-range is not LO,HI with 0 < LO < HI", "--match-range", "give e.g. --match-range 0.05,4");
+  if (o.match_points < 2 || o.match_points > 200)
+    throw InputError(fmt::format("{} matching points", o.match_points), "--match-points", "give 2 to 200");
+  for (int i = 0; i < o.match_points; ++i)
+    s.match_periods.push_back(o.match_range[0] *
+                              std::pow(o.match_range[1] / o.match_range[0], static_cast<double>(i) / (o.match_points - 1)));
+  s.iterations = o.iterations;
+  s.tolerance = o.tolerance;
+  s.seed = o.seed;
+  spatial::validate(s);
+  if (o.realisations < 1 || o.realisations > 10000)
+    throw InputError(fmt::format("{} realisations", o.realisations), "--realisations", "give 1 to 10000");
+  if (o.first < 1 || o.first > 1000000)
+    throw InputError(fmt::format("first realisation {}", o.first), "--first", "give 1 to 1000000");
+  if (o.label.empty() || o.label.size() > 40 || o.label.find_first_of("\t\n\r") != std::string::npos)
+    throw InputError("--label is empty, longer than 40 characters or holds a tab/newline", "--label", "give a short name");
+  return s;
+}
+
+// DIR must be new or an empty folder, in an existing parent folder.
+void check_out_dir(const std::string& dir) {
+  if (dir.empty()) throw InputError("no output folder", "--out", "give --out DIR");
+  std::error_code ec;
+  const fs::path p(dir);
+  if (fs::exists(p, ec)) {
+    if (!fs::is_directory(p, ec))
+      throw InputError(fmt::format("'{}' exists and is not a folder", dir), "--out", "give a new or empty folder");
+    if (!fs::is_empty(p, ec))
+      throw InputError(fmt::format("the folder '{}' is not empty", dir), "--out",
+                       "give a new or empty folder (nothing is overwritten)");
+  }
+  const fs::path parent = p.has_parent_path() ? p.parent_path() : fs::path(".");
+  if (!fs::is_directory(parent, ec))
+    throw InputError(fmt::format("the parent folder of '{}' does not exist", dir), "--out", "create it first");
+  files::check_output_path((p.lexically_normal().string() + ".probe"), "--out");
+}
+
+std::string readme(const MotionsOpts& o, const spatial::Settings& s, const std::string& command_line) {
+  std::string t = fmt::format("# Spatially varying support motions ({})\n\nWritten by `{}`.\n\n", o.label, command_line);
+  t += "Method: Deodatis (1996), Probab. Eng. Mech. 11(3):149-167, spectral representation of a uniformly modulated "
+       "vector process with double-indexed frequencies, spectrum-compatible by Deodatis' iteration on the auto-spectra "
+       "(pounding motion/spatial.hpp).\n\n";
+  t += fmt::format("- supports at x = {} m\n", fmt::join(s.positions, ", "));
+  t += s.wave_passage ? fmt::format("- wave passage: apparent velocity {:g} m/s\n", s.velocity) : "- no wave passage\n";
+  t += fmt::format("- coherency: {}\n", s.coherency.describe());
+  for (std::size_t j = 0; j < s.targets.size(); ++j)
+    t += fmt::format("- target{}: {}\n", s.targets.size() == 1 ? "" : fmt::format(" support {}", j + 1), s.targets[j].describe());
+  t += fmt::format("- damping {:g}; dt {:g} s, duration {:g} s; envelope rise {:g} s, strong {:g} s, decay {:g} 1/s; "
+                   "PSD band {:g}-{:g} Hz\n",
+                   s.damping, s.dt, s.duration, s.envelope.rise, s.envelope.strong, s.envelope.decay, s.f_min, s.f_max);
+  t += fmt::format("- matching: {} periods {:g}-{:g} s, at most {} updates, tolerance {:g} (largest |PSA/Sa - 1|)\n",
+                   s.match_periods.size(), s.match_periods.front(), s.match_periods.back(), s.iterations, s.tolerance);
+  t += fmt::format("- seed {}, realisations {} to {}\n", s.seed, o.first, o.first + o.realisations - 1);
+  t += "\nUnits: acceleration in g (AT2). MANIFEST.tsv: misfit = largest |PSA/Sa - 1| over the matching band, updates "
+       "= spectrum-matching updates made.\n";
+  return t;
+}
+
+void write_folder(const std::string& dir, const MotionsOpts& o, const spatial::Settings& s,
+                  const std::vector<spatial::Realisation>& rs, const std::string& command_line) {
+  const fs::path final_dir = fs::path(dir).lexically_normal();
+  const fs::path tmp = fs::path(final_dir.string() + fmt::format(".tmp{}", ::getpid()));
+  std::error_code ec;
+  fs::remove_all(tmp, ec);
+  if (!fs::create_directory(tmp, ec))
+    throw InputError(fmt::format("cannot create '{}': {}", tmp.string(), ec.message()), "--out", "check the folder's permissions");
+  try {
+    std::string manifest = "file\tevent\tstation\tcomponent\trealisation\tsupport\tposition_m\tpga_g\tmisfit\tupdates\n";
+    for (const auto& r : rs)
+      for (std::size_t j = 0; j < r.supports.size(); ++j) {
+        Record rec = r.supports[j];
+        const std::string file = fmt::format("r{:03}_s{:02}.AT2", r.index + 1, j + 1);
+        rec.meta["description"] = fmt::format("{} realisation {}, support {} at {:g} m, seed {}", o.label, r.index + 1,
+                                              j + 1, s.positions[j], s.seed);
+        write_at2(rec, (tmp / file).string());
+        manifest += fmt::format("{}\t{} realisation {:03}\tsupport {:02} at {:g} m\tx\t{}\t{}\t{:g}\t{:.6g}\t{:.4f}\t{}\n",
+                                file, o.label, r.index + 1, j + 1, s.positions[j], r.index + 1, j + 1, s.positions[j],
+                                rec.pga() / g_accel, r.misfit[j], r.updates[j]);
+      }
+    files::write_text_atomically((tmp / "MANIFEST.tsv").string(), manifest);
+    files::write_text_atomically((tmp / "README.md").string(), readme(o, s, command_line));
+    if (fs::exists(final_dir, ec)) fs::remove(final_dir, ec);  // empty (checked before the work)
+    fs::rename(tmp, final_dir, ec);
+    if (ec) throw InputError(fmt::format("cannot rename '{}' to '{}': {}", tmp.string(), dir, ec.message()), "--out",
+                             "check the folder");
+  } catch (...) {
+    fs::remove_all(tmp, ec);
+    throw;
+  }
+}
+
+}  // namespace
+
+void add_motions(CLI::App& app) {
+  auto o = std::make_shared<MotionsOpts>();
+  auto* c = app.add_subcommand("motions", "spatially varying, spectrum-compatible support motions (bridges): one AT2 "
+                                          "file per support per realisation (Deodatis 1996)");
+  o->o_supports = c->add_option("--supports", o->supports, "number of supports, evenly spaced (2-16; default 2)");
+  o->o_spacing = c->add_option("--spacing", o->spacing, "support spacing, m (default 100)");
+  o->o_positions = c->add_option("--positions", o->positions, "support positions along the propagation direction, m "
+                                                              "(increasing; instead of --supports/--spacing)")->delimiter(',');
+  c->add_option("--velocity", o->velocity, "apparent wave velocity, m/s (default 500)");
+  c->add_flag("--no-wave-passage", o->no_wave_passage, "no time delay between supports");
+  c->add_option("--coherency", o->coherency, "coherency model: sobczyk (default), harichandran-vanmarcke, luco-wong, none");
+  o->o_loss = c->add_option("--loss", o->loss, "coherency loss (sobczyk): low, medium, high (beta 0.0005/0.001/0.002 1/m)");
+  o->o_beta = c->add_option("--beta", o->beta, "sobczyk beta, 1/m (instead of --loss)");
+  o->o_lw = c->add_option("--luco-wong-a", o->lw_a, "luco-wong alpha/v_s, s/m (default 2.5e-4)");
+  c->add_option("--spectrum", o->spectrum, "target: nzs1170.5 (default) or csv");
+  o->o_soil = c->add_option("--soil", o->soil, "NZS 1170.5 site class A-E, or one per support (A,A,D,D)");
+  o->o_z = c->add_option("--z", o->z, "NZS 1170.5 hazard factor Z (default 0.4)");
+  o->o_r = c->add_option("--r", o->r, "NZS 1170.5 return period factor R (default 1)");
+  o->o_file = c->add_option("--spectrum-file", o->spectrum_file, "csv target: period_s,sa_g lines");
+  c->add_option("--damping", o->damping, "damping ratio of the spectra (default 0.05)");
+  c->add_option("--dt", o->dt, "time step, s (default 0.01)");
+  c->add_option("--duration", o->duration, "duration, s (default 20)");
+  c->add_option("--rise", o->rise, "envelope rise time t1, s (default 2)");
+  c->add_option("--strong", o->strong, "envelope strong phase t2 - t1, s (default 8)");
+  c->add_option("--decay", o->decay, "envelope decay rate after t2, 1/s (default 0.5)");
+  c->add_option("--f-min", o->f_min, "lowest frequency of the PSD, Hz (default 0.1)");
+  c->add_option("--f-max", o->f_max, "highest frequency of the PSD, Hz (default 25)");
+  c->add_option("--match-range", o->match_range, "matching periods LO,HI, s (default 0.05,4)")->delimiter(',');
+  c->add_option("--match-points", o->match_points, "matching periods, log-spaced (default 30)");
+  c->add_option("--iterations", o->iterations, "spectrum-matching updates at most (default 10; 0: none)");
+  c->add_option("--tolerance", o->tolerance, "largest |PSA/Sa - 1| that ends the matching (default 0.1)");
+  c->add_option("--realisations", o->realisations, "number of realisations (default 20)");
+  c->add_option("--first", o->first, "number of the first realisation (default 1)");
+  c->add_option("--seed", o->seed, "master seed (default 1)");
+  c->add_option("--label", o->label, "name of the set in MANIFEST.tsv (default svgm)");
+  c->add_option("--out", o->out, "output folder (new or empty)")->required();
+  c->add_flag("--quiet", o->quiet, "no progress lines");
+  c->callback([o, c] {
+    while (o->out.size() > 1 && o->out.back() == '/') o->out.pop_back();
+    const spatial::Settings s = settings_of(*o);
+    check_out_dir(o->out);
+    std::string command_line = "pounding motions";
+    for (const auto* opt : c->get_options())
+      if (opt->count() > 0 && opt->get_name() != "--help") {
+        command_line += " " + opt->get_name();
+        for (const auto& r : opt->results()) command_line += " " + r;
+      }
+    motions_stop.store(false);
+    std::signal(SIGINT, on_motions_stop);
+    std::signal(SIGTERM, on_motions_stop);
+    WorkHook hook;
+    hook.cancel = &motions_stop;
+    if (!o->quiet)
+      hook.progress = [](const PhaseProgress& p) {
+        fmt::print(stderr, "{}: {}/{} {} ({:.1f} s)\n", p.phase, p.done, p.total, p.unit, p.elapsed_s);
+      };
+    std::vector<spatial::Realisation> rs;
+    try {
+      rs = spatial::simulate_all(s, static_cast<std::uint64_t>(o->first - 1), static_cast<std::size_t>(o->realisations), &hook);
+    } catch (const Cancelled& e) {
+      fmt::print(stderr, " stopped: {}; nothing written\n", e.what());
+      throw ExitRequest{130};
+    }
+    write_folder(o->out, *o, s, rs, command_line);
+    double worst = 0;
+    for (const auto& r : rs)
+      for (double m : r.misfit) worst = std::max(worst, m);
+    fmt::print("{} realisations x {} supports written to {} (largest spectrum misfit {:.3f})\n", rs.size(),
+               s.positions.size(), o->out, worst);
+  });
+}
+
+}  // namespace pounding::cli
