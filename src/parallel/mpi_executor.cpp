@@ -114,6 +114,10 @@ bool worker_loop(const ComputeFn& compute) {
 
 // Rank 0 of a multi-rank run: hands out units (two in flight per worker), computes units itself between
 // messages, stores results in completion order, and stops every worker at the end.
+// Results are received without blocking: a probed result gets an MPI_Irecv and its worker its next unit at once, and
+// the master goes on computing while the data arrives. With a transport whose large messages advance only inside MPI
+// calls on both sides (shared memory without single-copy, measured: README "Speed"), a blocking receive made the
+// master wait for each busy worker instead of computing (rank 0 computed no unit; 2 ranks were slower than 1).
 class Master {
  public:
   Master(const Session& s, const std::vector<std::size_t>& todo, const ComputeFn& compute, const ResultFn& on_result,
@@ -140,6 +144,11 @@ class Master {
   }
 
  private:
+  struct Pending {  // a result whose receive is posted and not yet complete
+    MPI_Request request = MPI_REQUEST_NULL;
+    std::vector<std::byte> bytes;
+  };
+
   bool halted() const { return failed_.set || stop_.load(); }
 
   bool send_unit(int rank) {
@@ -174,34 +183,67 @@ class Master {
     dead_[src] = 1;
   }
 
-  void receive_result(const MPI_Status& st) {
+  // A probed result: post its receive, hand its worker the next unit (the worker's slot is free once its result
+  // is on its way), and complete the receive later (complete_results).
+  void post_result(const MPI_Status& st) {
     int count = 0;
     MPI_Get_count(&st, MPI_BYTE, &count);
-    buf_.resize(static_cast<std::size_t>(count));
-    MPI_Recv(buf_.data(), count, MPI_BYTE, st.MPI_SOURCE, tag_result, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
+    Pending p;
+    if (!spare_.empty()) p.bytes = std::move(spare_.back()), spare_.pop_back();
+    p.bytes.resize(static_cast<std::size_t>(count));
+    MPI_Irecv(p.bytes.data(), count, MPI_BYTE, st.MPI_SOURCE, tag_result, MPI_COMM_WORLD, &p.request);
+    pending_.push_back(std::move(p));
     --in_flight_[static_cast<std::size_t>(st.MPI_SOURCE)];
-    --outstanding_;
     if (send_unit(st.MPI_SOURCE)) ++outstanding_;
-    if (failed_.set) return;  // nothing more is stored after a failure
-    std::int64_t unit = 0;
-    std::memcpy(&unit, buf_.data(), sizeof unit);
-    deliver([&] { on_result_(static_cast<std::size_t>(unit), Payload(buf_.begin() + sizeof unit, buf_.end())); });
   }
 
+  // Stores every result whose data has arrived; returns how many.
+  std::size_t complete_results() {
+    std::size_t done = 0;
+    for (std::size_t i = 0; i < pending_.size();) {
+      int flag = 0;
+      MPI_Test(&pending_[i].request, &flag, MPI_STATUS_IGNORE);  // a completed (null) request tests true
+      if (!flag) {
+        ++i;
+        continue;
+      }
+      Pending p = std::move(pending_[i]);
+      pending_.erase(pending_.begin() + static_cast<std::ptrdiff_t>(i));
+      --outstanding_;
+      ++done;
+      if (!failed_.set) {  // nothing more is stored after a failure
+        std::int64_t unit = 0;
+        std::memcpy(&unit, p.bytes.data(), sizeof unit);
+        deliver([&] { on_result_(static_cast<std::size_t>(unit), Payload(p.bytes.begin() + sizeof unit, p.bytes.end())); });
+      }
+      spare_.push_back(std::move(p.bytes));
+    }
+    return done;
+  }
+
+  // Posts the receives of every waiting message and stores the results that have arrived. With `block`, returns
+  // only after at least one message was taken or one result stored.
   void service(bool block) {
     for (;;) {
-      int flag = 0;
-      MPI_Status st;
-      if (block) {
-        MPI_Probe(MPI_ANY_SOURCE, MPI_ANY_TAG, MPI_COMM_WORLD, &st);
-        flag = 1;
-        block = false;
-      } else {
+      bool progressed = complete_results() > 0;
+      for (;;) {
+        int flag = 0;
+        MPI_Status st;
         MPI_Iprobe(MPI_ANY_SOURCE, MPI_ANY_TAG, MPI_COMM_WORLD, &flag, &st);
+        if (!flag) break;
+        progressed = true;
+        if (st.MPI_TAG == tag_error) receive_error(st);
+        else post_result(st);
       }
-      if (!flag) return;
-      if (st.MPI_TAG == tag_error) receive_error(st);
-      else receive_result(st);
+      if (complete_results() > 0) progressed = true;
+      if (!block || progressed) return;
+      // nothing yet: wait for the oldest posted result if there is one, else for the next message
+      if (!pending_.empty()) {
+        MPI_Wait(&pending_.front().request, MPI_STATUS_IGNORE);  // now null: stored by the next pass
+      } else {
+        MPI_Status st;
+        MPI_Probe(MPI_ANY_SOURCE, MPI_ANY_TAG, MPI_COMM_WORLD, &st);
+      }
     }
   }
 
@@ -215,7 +257,8 @@ class Master {
   std::vector<int> in_flight_;
   std::vector<char> dead_;
   int outstanding_ = 0;
-  std::vector<std::byte> buf_;
+  std::vector<Pending> pending_;
+  std::vector<std::vector<std::byte>> spare_;  // result buffers to reuse
   std::string text_;
 };
 }  // namespace
