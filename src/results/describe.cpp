@@ -151,9 +151,31 @@ std::optional<Description> find_floor_field(std::string_view group, std::string_
 
 }  // namespace
 
+// /models/T3, h3, ... of a row's buildings 3..n (the number in the name is the building's).
+constexpr Row row_models_table[] = {
+    {"T", {"s", "period of this building of the row (the number in the name: its position from the left, 3..n)"}},
+    {"h", {"m", "height of this building of the row (the number in the name: its position from the left)"}},
+    {"m", {"kg", "mass of this building of the row (the number in the name: its position from the left)"}},
+    {"k", {"N/m", "initial stiffness of this building of the row (the number in the name: its position)"}},
+    {"fy", {"N", "yield force of this building of the row (infinite: elastic; the number in the name: its position)"}},
+    {"zeta", {"1", "damping ratio of this building of the row (the number in the name: its position)"}},
+};
+std::optional<Description> find_row_model(std::string_view name) {
+  for (const auto& [prefix, d] : row_models_table) {
+    if (!name.starts_with(prefix) || name.size() == prefix.size()) continue;
+    const std::string_view digits = name.substr(prefix.size());
+    if (digits.size() > 2 || digits.find_first_not_of("0123456789") != std::string_view::npos) continue;
+    if (std::stoul(std::string(digits)) >= 3) return d;
+  }
+  return std::nullopt;
+}
+
 std::optional<Description> describe(std::string_view group, std::string_view name) {
   if (group == "records") return find(records_table, name);
-  if (group == "models") return find(models_table, name);
+  if (group == "models") {
+    if (auto d = find(models_table, name)) return d;
+    return find_row_model(name);
+  }
   if (group == "gaps") return find(gaps_table, name);
   if (group == "system") return find(system_table, name);
   if (auto d = find(field_group_table, name)) return d;

@@ -107,6 +107,12 @@ ModelTable read_models(h5::hid root) {
   if (t.periods1.empty()) t.periods1 = t.periods;  // written before each building had its grid
   if (t.periods2.empty()) t.periods2 = t.periods;
   read_opt(g.get(), "zeta", t.zeta);
+  for (std::size_t K = 3; h5::exists(g.get(), "T" + std::to_string(K)); ++K) {  // a row's buildings 3..n
+    ModelTable::RowBuilding b;
+    for (const auto& [prefix, member] : row_model_doubles)
+      read_opt(g.get(), (std::string(prefix) + std::to_string(K)).c_str(), b.*member);
+    t.row.push_back(std::move(b));
+  }
   return t;
 }
 

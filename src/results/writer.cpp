@@ -140,6 +140,9 @@ void write_models(h5::hid root, const ModelTable& t) {
   h5::write_dataset(g.get(), "periods1", t.periods1);
   h5::write_dataset(g.get(), "periods2", t.periods2);
   h5::write_attribute(g.get(), "zeta", t.zeta);
+  for (std::size_t b = 0; b < t.row.size(); ++b)  // a row's buildings 3..n
+    for (const auto& [prefix, member] : row_model_doubles)
+      h5::write_dataset(g.get(), std::string(prefix) + std::to_string(b + 3), t.row[b].*member);
 }
 
 // /gaps/ratios [gaps] and /gaps/metres [models, gaps].

@@ -81,6 +81,21 @@ results::ModelTable model_table(const Study& study, const WorkPlan& plan) {
       t.zeta1[m] = q.s1.zeta, t.zeta2[m] = q.s2.zeta, t.alpha1[m] = q.s1.alpha, t.alpha2[m] = q.s2.alpha;
     }
   }
+  // a row's buildings 3..n
+  t.row.resize(study.structures.more.size());
+  for (auto& b : t.row)
+    for (const auto& [prefix, member] : results::row_model_doubles) (b.*member).resize(M);
+  for (std::size_t p = 0; p < plan.pairs && !t.row.empty(); ++p) {
+    const SampleId pair = study.structures.pair_id(static_cast<std::int64_t>(p));
+    sampler.sample_block(pair.i1, pair.i2, 0, sp);
+    for (std::size_t s = 0; s < plan.samples; ++s)
+      for (std::size_t b = 0; b < t.row.size(); ++b) {
+        const std::size_t m = p * plan.samples + s;
+        const SampledStructure& x = sp[s].more[b];
+        t.row[b].T[m] = x.T, t.row[b].h[m] = x.h, t.row[b].m[m] = x.m, t.row[b].k[m] = x.k, t.row[b].fy[m] = x.fy;
+        t.row[b].zeta[m] = x.zeta;
+      }
+  }
   t.periods1 = sampler.building(0).periods, t.periods2 = sampler.building(1).periods;
   t.periods = t.periods1;  // building 1's grid, for readers of the one-grid files
   t.zeta = study.structures.zeta;

@@ -67,9 +67,14 @@ for b in (1, 2, 3):
 pu3 = f["impacts/peak_u3"][()].reshape(R, M, G)
 assert np.array_equal(pu3[~touch], np.broadcast_to(u["peak_u3"][()][:, :, None], touch.shape)[~touch])
 assert (pu3[touch] != np.broadcast_to(u["peak_u3"][()][:, :, None], touch.shape)[touch]).any()
-# the row's d: 0.005 x the largest joint's height sum; building 3's period drawn per sample (one slot)
-h1, h2 = f["models/h1"][()], f["models/h2"][()]
-assert (d >= 0.005 * (h1 + h2) - 1e-15).all() and (d > 0.005 * (h1 + h2) * (1 + 1e-12)).any()
+# the row's d: 0.005 x the largest joint's height sum; building 3's period drawn per sample (one slot), in /models
+h1, h2, h3 = f["models/h1"][()], f["models/h2"][()], f["models/h3"][()]
+assert np.array_equal(d, np.maximum(0.005 * (h1 + h2), 0.005 * (h2 + h3)))
+assert (d > 0.005 * (h1 + h2) * (1 + 1e-12)).any()
+T3 = f["models/T3"][()]
+assert len(set(T3)) == M and f["models/T3"].attrs["units"] in ("s", b"s")
+assert np.allclose(f["models/k3"][()], 4 * np.pi ** 2 * f["models/m3"][()] / T3 ** 2, rtol=1e-12)
+assert "T4" not in f["models"]
 # the amplification statistics, recomputed from the datasets
 amp = json.load(open(sys.argv[2]))
 assert [p["position"] for p in amp["positions"]] == ["end-left", "interior", "end-right"]

@@ -83,6 +83,11 @@ struct ModelTable {
       mbar2, c1, c2, zeta1, zeta2, alpha1, alpha2;
   std::vector<std::int32_t> i1, i2;
   std::vector<std::int64_t> sample;
+  // A row's buildings 3..n ([structures] buildings = n), each [models]: /models/T3, h3, m3, k3, fy3, zeta3, ...
+  struct RowBuilding {
+    std::vector<double> T, h, m, k, fy, zeta;
+  };
+  std::vector<RowBuilding> row;
   std::vector<double> periods;            // building 1's grid (files before periods1/periods2: the one grid)
   std::vector<double> periods1, periods2;  // the buildings' grids (a period distribution: one slot, its median)
   double zeta = 0.05;
@@ -90,6 +95,10 @@ struct ModelTable {
 };
 
 // The double datasets of /models, in the file's order: the writer and the reader share this list.
+// The datasets of a row's building K >= 3: name prefix + K ("T3").
+inline constexpr std::pair<std::string_view, std::vector<double> ModelTable::RowBuilding::*> row_model_doubles[] = {
+    {"T", &ModelTable::RowBuilding::T},   {"h", &ModelTable::RowBuilding::h},   {"m", &ModelTable::RowBuilding::m},
+    {"k", &ModelTable::RowBuilding::k},   {"fy", &ModelTable::RowBuilding::fy}, {"zeta", &ModelTable::RowBuilding::zeta}};
 inline constexpr std::pair<std::string_view, std::vector<double> ModelTable::*> model_doubles[] = {
     {"T1", &ModelTable::T1},           {"T2", &ModelTable::T2},           {"h1", &ModelTable::h1},
     {"h2", &ModelTable::h2},           {"m1", &ModelTable::m1},           {"m2", &ModelTable::m2},
