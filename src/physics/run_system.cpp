@@ -9,6 +9,7 @@
 #include <fmt/format.h>
 
 #include "pounding/contact/registry.hpp"
+#include "pounding/core/error.hpp"
 #include "pounding/contact/resolution.hpp"
 #include "pounding/model/hysteresis/registry.hpp"
 #include "pounding/physics/run_batch.hpp"
@@ -73,6 +74,20 @@ Layout layout_of(const model::System& S) {
     L.body_start.push_back(static_cast<int>(L.body_dofs.size()));
   }
   for (const model::ContactElement& e : S.contacts()) L.left.push_back(side_of(e.left)), L.right.push_back(side_of(e.right));
+  if (S.channels() > 1) {  // multi-support: every side's channel, and which springs and elements cross channels
+    auto chan = [&](int dof) { return S.bodies()[static_cast<std::size_t>(S.body_of(dof))].channel; };
+    for (int j = 0; j < L.ndof; ++j) L.dof_chan.push_back(chan(j));
+    for (const model::Spring& sp : S.springs()) {
+      const int cj = chan(sp.j);
+      const int ci = sp.i == model::ground ? (sp.role == model::SpringRole::link ? sp.channel : cj) : chan(sp.i);
+      L.spring_ci.push_back(ci), L.spring_cj.push_back(cj), L.spring_cross.push_back(ci != cj ? 1 : 0);
+    }
+    for (const model::ContactElement& e : S.contacts()) {
+      auto side = [&](const model::Side& x) { return x.kind == model::SideKind::wall ? x.channel : chan(x.p); };
+      const int cl = side(e.left), cr = side(e.right);
+      L.elem_cl.push_back(cl), L.elem_cr.push_back(cr), L.elem_cross.push_back(cl != cr ? 1 : 0);
+    }
+  }
   L.contrib_start.push_back(0);
   for (int j = 0; j < L.ndof; ++j) {
     for (int e : S.elements_at(j)) {  // element order
@@ -268,7 +283,7 @@ void fill_elements(const Pool& T, std::size_t i, const LaneView& v, const Plan& 
 }
 
 // Lane i's initial accelerations from the forces at rest (the pair's -ag0 - (c v + fs + F) im).
-void fill_accelerations(const Pool& T, std::size_t i, const LaneView& v, double ag0) {
+void fill_accelerations(const Pool& T, std::size_t i, const LaneView& v, const std::vector<double>& ag0) {
   const Layout& L = v.L;
   std::vector<double> t(static_cast<std::size_t>(L.nspring)), q(static_cast<std::size_t>(L.ndof));
   for (int s = 0; s < L.nspring; ++s) {
@@ -304,8 +319,9 @@ void fill_accelerations(const Pool& T, std::size_t i, const LaneView& v, double 
     }
   }
   for (int j = 0; j < L.ndof; ++j) {
-    const double a = -ag0 - q[static_cast<std::size_t>(j)] * T.dof(sys::IM, j)[i];
-    T.dof(sys::A, j)[i] = a, T.dof(sys::PA, j)[i] = std::abs(a + ag0);
+    const double g = ag0[static_cast<std::size_t>(j)];
+    const double a = -g - q[static_cast<std::size_t>(j)] * T.dof(sys::IM, j)[i];
+    T.dof(sys::A, j)[i] = a, T.dof(sys::PA, j)[i] = std::abs(a + g);
   }
 }
 
@@ -380,15 +396,48 @@ void collect_lane(const Pool& T, std::size_t i, const LaneView& v, const Plan& P
   out.e_contact_stored[l] = val(L.nelem > 0 ? stored : 0.0);
 }
 
-void run_dynamic(const SystemBatch& B, std::span<const ContactModel> models, const GroundMotion& motion,
+// A channel's ground velocity and displacement at every step of its schedule: the piecewise-linear acceleration
+// integrated exactly (v by the trapezoid, u with h^2 (2 a_n + a_{n+1}) / 6), then baseline-corrected by the
+// acceleration a0 + a1 t that brings v and u to zero at the end (the usual correction before a record's displacement
+// is used; the bodies themselves are driven by the acceleration as given).
+struct GroundHistory { std::vector<double> v, u; };
+GroundHistory ground_history(const Schedule& s) {
+  const std::size_t n = s.ag.size();
+  GroundHistory g{std::vector<double>(n, 0.0), std::vector<double>(n, 0.0)};
+  const double h = s.h;
+  for (std::size_t k = 0; k + 1 < n; ++k) {
+    g.v[k + 1] = g.v[k] + 0.5 * h * (s.ag[k] + s.ag[k + 1]);
+    g.u[k + 1] = g.u[k] + h * g.v[k] + h * h * (2.0 * s.ag[k] + s.ag[k + 1]) / 6.0;
+  }
+  const double T = h * static_cast<double>(n - 1), vT = g.v[n - 1], uT = g.u[n - 1];
+  if (!(T > 0)) return g;
+  const double a0 = -2.0 * vT / T + 6.0 * uT / (T * T), a1 = 6.0 * vT / (T * T) - 12.0 * uT / (T * T * T);
+  for (std::size_t k = 0; k < n; ++k) {
+    const double t = h * static_cast<double>(k);
+    g.v[k] -= a0 * t + a1 * t * t / 2.0;
+    g.u[k] -= a0 * t * t / 2.0 + a1 * t * t * t / 6.0;
+  }
+  return g;
+}
+
+void run_dynamic(const SystemBatch& B, std::span<const ContactModel> models, std::span<const GroundMotion> motions,
                  const KernelSettings& ks, SystemResult& out, std::size_t tile) {
   out.resize(*B.system, B.width);
   if (B.width == 0) return;
-  const Schedule s = make_schedule(motion, ks.substeps);
+  const Schedule s = make_schedule(motions[0], ks.substeps);
   const Plan P = make_plan(B, models, s.h);
   const std::size_t tw = tile == 0 ? default_system_tile(B.width) : tile;
   const Pool T(P.L, tw);
-  const sys::Run R{&P.L, sys::Topo(P.L), &P.groups, s.ag.data(), s.nsteps, s.h, ks.displacement_limit};
+  sys::Run R{&P.L, sys::Topo(P.L), &P.groups, s.ag.data(), s.nsteps, s.h, ks.displacement_limit, {}, {}, {}};
+  std::vector<Schedule> ch;
+  std::vector<GroundHistory> gh;
+  std::vector<double> ag0(static_cast<std::size_t>(P.L.ndof), s.ag[0]);
+  if (B.system->channels() > 1) {
+    for (const GroundMotion& m : motions) ch.push_back(make_schedule(m, ks.substeps)), gh.push_back(ground_history(ch.back()));
+    for (std::size_t k = 0; k < ch.size(); ++k)
+      R.ch_ag.push_back(ch[k].ag.data()), R.ch_vg.push_back(gh[k].v.data()), R.ch_ug.push_back(gh[k].u.data());
+    for (int j = 0; j < P.L.ndof; ++j) ag0[static_cast<std::size_t>(j)] = ch[static_cast<std::size_t>(P.L.dof_chan[static_cast<std::size_t>(j)])].ag[0];
+  }
   for (std::size_t base = 0; base < B.width; base += tw) {
     const std::size_t n = std::min(tw, B.width - base);
     // lanes past n up to the SIMD chunk boundary are copies of the tile's first lane
@@ -397,7 +446,7 @@ void run_dynamic(const SystemBatch& B, std::span<const ContactModel> models, con
       const LaneView v{B, P.L, base + (i < n ? i : 0)};
       fill_structure(T, i, v);
       fill_elements(T, i, v, P);
-      fill_accelerations(T, i, v, s.ag[0]);
+      fill_accelerations(T, i, v, ag0);
     }
     if (ks.energy)
       sys::run_tile<true>(T, static_cast<int>(np), R);
@@ -427,8 +476,11 @@ std::vector<Problem> system_stepper_problems(const SystemBatch& B, std::span<con
     out.push_back({fmt::format("the {} stepper runs the SDOF pair only", stepper_name(ks.stepper)), "stepper",
                    "use central-difference for multi-storey buildings and other systems"});
   if (S.channels() > 1)
-    out.push_back({fmt::format("the system has {} ground-motion channels; the system stepper runs one", S.channels()),
-                   "system channels", "give every support the same ground motion (one channel)"});
+    for (std::size_t g = 0; g < groups.size(); ++g)
+      if (contact::traits(groups[g].law).impulsive)
+        out.push_back({"the stereomechanical exchange is not defined across ground-motion channels",
+                       fmt::format("contact law of group '{}'", S.groups()[g].name),
+                       "use a law with a force element (hertzdamp, kelvin, ...)"});
   for (std::size_t s = 0; s < S.springs().size(); ++s)
     if (S.springs()[s].law < 0 || S.springs()[s].law >= static_cast<int>(model::Hystereses::size))
       out.push_back({fmt::format("spring {} has hysteresis law {}; the system stepper runs laws 0 to 6 "
@@ -450,6 +502,9 @@ std::vector<Problem> system_stepper_problems(const SystemBatch& B, std::span<con
 
 void run_system(const SystemBatch& batch, std::span<const ContactModel> groups, const GroundMotion& motion,
                 const KernelSettings& settings, SystemResult& out) {
+  if (batch.system->channels() > 1)
+    throw InputError(fmt::format("the system has {} ground-motion channels and one record was given", batch.system->channels()),
+                     "ground motion", "give one record per support (run_system with one GroundMotion per channel)");
   throw_first(validate(batch, groups, motion, settings));
   if (batch.system->is_sdof_pair()) {
     BatchResult r;
@@ -458,7 +513,30 @@ void run_system(const SystemBatch& batch, std::span<const ContactModel> groups, 
     return;
   }
   throw_first(system_stepper_problems(batch, groups, settings));
-  run_dynamic(batch, groups, motion, settings, out, 0);
+  run_dynamic(batch, groups, std::span<const GroundMotion>(&motion, 1), settings, out, 0);
+}
+
+std::vector<Problem> channel_problems(const model::System& S, std::span<const GroundMotion> channels) {
+  std::vector<Problem> out;
+  if (channels.size() != static_cast<std::size_t>(S.channels()))
+    out.push_back({fmt::format("{} ground motions for a system of {} channels", channels.size(), S.channels()),
+                   "ground motion", "give one record per support channel"});
+  for (std::size_t k = 1; k < channels.size(); ++k)
+    if (channels[k].dt != channels[0].dt || channels[k].total_duration() != channels[0].total_duration())
+      out.push_back({fmt::format("support {}'s record has step {} s and length {} s, support 1's {} s and {} s", k + 1,
+                                 channels[k].dt, channels[k].total_duration(), channels[0].dt, channels[0].total_duration()),
+                     fmt::format("ground motion of support {}", k + 1),
+                     "give every support a record of the same step and length (resample or pad with zeros)"});
+  return out;
+}
+
+void run_system(const SystemBatch& batch, std::span<const ContactModel> groups, std::span<const GroundMotion> channels,
+                const KernelSettings& settings, SystemResult& out) {
+  if (batch.system->channels() == 1 && channels.size() == 1) return run_system(batch, groups, channels[0], settings, out);
+  throw_first(channel_problems(*batch.system, channels));
+  for (const GroundMotion& m : channels) throw_first(validate(batch, groups, m, settings));
+  throw_first(system_stepper_problems(batch, groups, settings));
+  run_dynamic(batch, groups, channels, settings, out, 0);
 }
 
 namespace testing {
@@ -466,7 +544,7 @@ void run_system_dynamic(const SystemBatch& batch, std::span<const ContactModel> 
                         const KernelSettings& settings, SystemResult& out, std::size_t tile) {
   throw_first(validate(batch, groups, motion, settings));
   throw_first(system_stepper_problems(batch, groups, settings));
-  run_dynamic(batch, groups, motion, settings, out, tile);
+  run_dynamic(batch, groups, std::span<const GroundMotion>(&motion, 1), settings, out, tile);
 }
 }  // namespace testing
 

@@ -5,6 +5,9 @@
 #    and abutment bearings, backfill: peak force and deformation), per-frame peaks; the energy balance closes;
 #  - --json and the text agree on the per-joint impacts and the links;
 #  - an abutment's Caltrans numbers (width, height) give K_abut and P_bw (T5.3): the backfill never exceeds P_bw;
+#  - multi-support (issue 26 §2): the same bridge with each frame on its own support (4 channels) and --wave-delay 0
+#    prints the uniform run's observers exactly; --support-record with the same file 4 times too; --wave-delay 0.05
+#    changes them and the energy balance (with the supports' work) still closes;
 #  - bad input: one ERROR line naming FILE:line and the key (or the option), exit 2, nothing on stdout.
 # Args: <pounding binary> <source dir>
 set -euo pipefail
@@ -46,7 +49,35 @@ print("bridge: joints", [out["levels"][k]["impacts"] for k in range(3)], "restra
       [round(links[f"restrainer {k}"]["peak_force"]) for k in (1, 2, 3)], "frames", [out[f"peak_u{k}"][0] for k in (1, 2, 3, 4)])
 PY
 
+# multi-support: frame K on support K, the abutments on supports 1 and 4
+"$py" - "$file" "$tmp/ff4.toml" <<'PY'
+import sys
+t = open(sys.argv[1]).read().split("[[frame]]")
+out = t[0] + "".join(f"[[frame]]\nsupport = {k + 1}" + p for k, p in enumerate(t[1:]))
+out = out.replace("[abutment.left]\n", "[abutment.left]\nsupport = 1\n").replace("[abutment.right]\n", "[abutment.right]\nsupport = 4\n")
+open(sys.argv[2], "w").write(out)
+PY
+sim --bridge "$file" --dt 0.0005 | sed -n '/^status:/,$p' > "$tmp/u1.txt"
+sim --bridge "$tmp/ff4.toml" --dt 0.0005 --wave-delay 0 | sed -n '/^status:/,$p' > "$tmp/u4.txt"
+cmp "$tmp/u1.txt" "$tmp/u4.txt" || fail "4 supports with identical records differ from uniform input: $(diff "$tmp/u1.txt" "$tmp/u4.txt" | head -5)"
+"$bin" simulate --bridge "$tmp/ff4.toml" --dt 0.0005 --support-record "$tmp/rec.txt" --support-record "$tmp/rec.txt" \
+    --support-record "$tmp/rec.txt" --support-record "$tmp/rec.txt" | sed -n '/^status:/,$p' > "$tmp/s4.txt"
+cmp "$tmp/u1.txt" "$tmp/s4.txt" || fail "--support-record x4 differs from uniform input"
+sim --bridge "$tmp/ff4.toml" --dt 0.0005 --wave-delay 0.05 > "$tmp/wd.txt"
+grep -q '^support4_record: .*(delayed 0.15 s)' "$tmp/wd.txt" || fail "support 4 is not delayed 0.15 s: $(grep support4 "$tmp/wd.txt")"
+! cmp -s <(sed -n '/^status:/,$p' "$tmp/wd.txt") "$tmp/u1.txt" || fail "a wave delay changed nothing"
+"$py" -c 'import sys; t = dict(l.split(": ", 1) for l in open(sys.argv[1]) if ": " in l)
+assert t["status"].strip() == "ok" and abs(float(t["energy_balance_error_rel"])) < 1e-4, t["energy_balance_error_rel"]' "$tmp/wd.txt"
+
 # bad input
+bad "4 supports and one record" --bridge "$tmp/ff4.toml"
+set +e; "$bin" simulate --bridge "$tmp/ff4.toml" --support-record "$tmp/rec.txt" --support-record "$tmp/rec.txt" > "$tmp/o" 2> "$tmp/e"
+rc=$?; set -e
+[ $rc -eq 2 ] && [ ! -s "$tmp/o" ] && grep -q "ERROR: 2 --support-record files for a bridge of 4 supports" "$tmp/e" ||
+  fail "two records for four supports: exit $rc, $(cat "$tmp/e")"
+bad "gives every support its record" --bridge "$tmp/ff4.toml" --support-record "$tmp/rec.txt"
+bad "not a whole number of record steps" --bridge "$tmp/ff4.toml" --wave-delay 0.015
+bad "add --bridge" --wave-delay 0.02
 cp "$file" "$tmp/ok.toml"
 sed 's/^mass = 1.30635e6$/mass = -1/' "$file" > "$tmp/neg.toml"
 bad "mass = -1 is out of range, .*neg.toml:10 \[frame 1\] mass" --bridge "$tmp/neg.toml"

@@ -6,11 +6,13 @@
 
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <vector>
 
 #include "pounding/model/hysteresis/registry.hpp"
 #include "pounding/testing/workloads.hpp"
 #include "pounding/physics/bridge.hpp"
+#include "pounding/core/error.hpp"
 #include "pounding/physics/system_batch.hpp"
 
 using namespace pounding;
@@ -203,4 +205,115 @@ TEST(Bridge, CheckRefusesBadNumbers) {
     joints = joints || x.where == "joints";
   }
   EXPECT_TRUE(mass && gap && joints);
+}
+
+namespace {
+// Every SystemResult array, element by element, as bytes.
+int differing(const SystemResult& a, const SystemResult& b) {
+  int n = 0;
+  auto cmp = [&](const auto& x, const auto& y) {
+    if (x.size() != y.size()) return void(n += 1000);
+    for (std::size_t i = 0; i < x.size(); ++i) n += std::memcmp(&x[i], &y[i], sizeof(x[i])) != 0;
+  };
+  cmp(a.peak_u, b.peak_u), cmp(a.peak_acc, b.peak_acc), cmp(a.final_u, b.final_u), cmp(a.final_v, b.final_v);
+  cmp(a.peak_drift, b.peak_drift), cmp(a.peak_spring_force, b.peak_spring_force), cmp(a.peak_closing, b.peak_closing);
+  cmp(a.t_peak_closing, b.t_peak_closing), cmp(a.t_first_impact, b.t_first_impact), cmp(a.impact_count, b.impact_count);
+  cmp(a.clamp_count, b.clamp_count), cmp(a.peak_force, b.peak_force), cmp(a.peak_penetration, b.peak_penetration);
+  cmp(a.contact_energy, b.contact_energy), cmp(a.contact_time, b.contact_time), cmp(a.status, b.status);
+  cmp(a.e_input, b.e_input), cmp(a.e_kinetic, b.e_kinetic), cmp(a.e_strain, b.e_strain), cmp(a.e_viscous, b.e_viscous);
+  cmp(a.e_hysteretic, b.e_hysteretic), cmp(a.e_contact_stored, b.e_contact_stored);
+  return n;
+}
+SystemResult run_channels(const BridgeSpec& spec, const std::vector<std::vector<double>>& records, int substeps) {
+  const model::System S = bridge_system(spec);
+  SystemBatch B;
+  B.resize(S, 3);  // three lanes: the second and third with other frame masses (lanes stay independent)
+  for (std::size_t l = 0; l < 3; ++l) {
+    BridgeSpec x = spec;
+    for (BridgeFrame& f : x.frames) f.mass *= 1.0 + 0.1 * static_cast<double>(l);
+    set_bridge(B, l, x);
+  }
+  ContactModel hd;
+  hd.law = ContactLaw::hertzdamp;
+  const ContactModel groups[] = {hd};
+  std::vector<GroundMotion> gm;
+  for (const auto& r : records) gm.push_back(GroundMotion{0.01, r, 0.0});
+  KernelSettings ks;
+  ks.substeps = substeps, ks.energy = true;
+  SystemResult out;
+  run_system(B, groups, std::span<const GroundMotion>(gm), ks, out);
+  return out;
+}
+}  // namespace
+
+// Multi-support input (issue 26 §2): the four-frame bridge with each frame on its own pier (channels 0-3) and the
+// abutments on the outer piers' channels, every channel given the same record, gives the uniform-excitation result
+// (one channel) to the last bit in every observer and energy term of three lanes -- the cross-channel kinematics add
+// exactly zero. Fails before issue 26 §2 (more than one channel was refused).
+TEST(Bridge, IdenticalSupportMotionsReproduceUniformInputBitForBit) {
+  const BridgeSpec uniform = four_frames(Backfill::hyperbolic, true);
+  BridgeSpec multi = uniform;
+  for (int k = 0; k < 4; ++k) multi.frames[static_cast<std::size_t>(k)].support = k;
+  multi.left.support = 0, multi.right.support = 3;
+  ASSERT_EQ(multi.channels(), 4);
+  std::vector<double> ag = pounding::builtin_motion(0.01, 10.0);
+  for (double& a : ag) a *= 1.5;
+  const SystemResult one = run_channels(uniform, {ag}, 20);
+  const SystemResult four = run_channels(multi, {ag, ag, ag, ag}, 20);
+  ASSERT_EQ(one.status[0], 0);
+  EXPECT_GT(one.impact_count[0], 0);
+  EXPECT_EQ(differing(one, four), 0);
+}
+
+// Total-displacement kinematics: two stiff frames (T = 0.05 s) on two supports, the second record delayed by 0.25 s
+// (wave passage), joined by a soft linear link: the frames barely move relative to their piers, so the link's
+// deformation follows the supports' differential displacement ug2 - ug1 (integrated here independently, trapezoid and
+// Simpson-free cumulative sums of the same baseline-corrected form) -- its peak within 2 %. The energy balance with the
+// supports' work through the link closes.
+TEST(Bridge, CrossSupportLinkFollowsTheDifferentialGroundDisplacement) {
+  BridgeSpec b;
+  for (int k = 0; k < 2; ++k) {
+    BridgeFrame f;
+    f.mass = 1e6, f.period = 0.05, f.zeta = 0.05, f.support = k;
+    b.frames.push_back(f);
+  }
+  BridgeJoint j;
+  j.gap = 10.0, j.kc = 1e9, j.e = 1.0;  // never closes
+  j.bearing = BridgeBilinear{1e5, INFINITY, 0.0};
+  b.joints.push_back(j);
+  const double dt = 0.01;
+  const std::vector<double> a1 = pounding::builtin_motion(dt, 8.0);
+  std::vector<double> a2(a1.size(), 0.0);
+  for (std::size_t k = 25; k < a1.size(); ++k) a2[k] = a1[k - 25];
+  const SystemResult r = run_channels(b, {a1, a2}, 10);
+  ASSERT_EQ(r.status[0], 0);
+  // ground displacements on the record grid (the schedule's linear interpolation integrates exactly the same way)
+  auto disp = [&](const std::vector<double>& a) {
+    std::vector<double> v(a.size(), 0.0), u(a.size(), 0.0);
+    for (std::size_t k = 0; k + 1 < a.size(); ++k)
+      v[k + 1] = v[k] + 0.5 * dt * (a[k] + a[k + 1]), u[k + 1] = u[k] + dt * v[k] + dt * dt * (2 * a[k] + a[k + 1]) / 6;
+    const double T = dt * static_cast<double>(a.size() - 1), vT = v.back(), uT = u.back();
+    const double c0 = -2 * vT / T + 6 * uT / (T * T), c1 = 6 * vT / (T * T) - 12 * uT / (T * T * T);
+    for (std::size_t k = 0; k < a.size(); ++k) {
+      const double t = dt * static_cast<double>(k);
+      u[k] -= c0 * t * t / 2 + c1 * t * t * t / 6;
+    }
+    return u;
+  };
+  const std::vector<double> u1 = disp(a1), u2 = disp(a2);
+  double peak = 0;
+  for (std::size_t k = 0; k < u1.size(); ++k) peak = std::max(peak, std::abs(u2[k] - u1[k]));
+  ASSERT_GT(peak, 0.01);
+  const std::size_t w = 3;  // run_channels' lanes
+  EXPECT_NEAR(r.peak_drift[SystemBatch::at(2, 0, w)], peak, 0.02 * peak) << "link deformation vs ug2 - ug1";
+  EXPECT_LT(r.peak_u[SystemBatch::at(0, 0, w)], 0.05 * peak);
+  const double out = r.e_kinetic[0] + r.e_strain[0] + r.e_viscous[0] + r.e_hysteretic[0] + r.e_contact_stored[0];
+  EXPECT_NEAR(r.e_input[0], out, 1e-3 * std::abs(r.e_input[0]) + 1e-6) << "input " << r.e_input[0];
+  // one record for a two-channel system is refused
+  const model::System S = bridge_system(b);
+  SystemBatch B;
+  B.resize(S, 1);
+  set_bridge(B, 0, b);
+  SystemResult x;
+  EXPECT_THROW(run_system(B, {}, GroundMotion{dt, a1, 0.0}, KernelSettings{}, x), InputError);
 }

@@ -120,5 +120,13 @@ BatchResult to_pair_result(const SystemResult& r);
 
 void run_system(const SystemBatch& batch, std::span<const ContactModel> groups, const GroundMotion& motion,
                 const KernelSettings& settings, SystemResult& out);
+// Multi-support input (issue 26 §2; docs/architecture.md §2.2.6): channels[c] is the ground motion of channel c (every
+// one with the same dt and length). Each body is integrated relative to its own support with its channel's
+// acceleration; a link spring or contact element whose two sides lie on different channels forms its deformation,
+// increment and rate from total displacements (+ ug of each side, baseline-corrected: ground_history in
+// run_system.cpp), and the supports' work through it is added to e_input. Same-channel parts add nothing, so
+// identical records on every channel give the one-channel result bit for bit. One channel: run_system above.
+void run_system(const SystemBatch& batch, std::span<const ContactModel> groups, std::span<const GroundMotion> channels,
+                const KernelSettings& settings, SystemResult& out);
 
 }  // namespace pounding::physics

@@ -10,6 +10,8 @@
 
 #include <fmt/format.h>
 
+#include "pounding/physics/bridge.hpp"
+
 #include "cli/commands.hpp"
 #include "pounding/core/error.hpp"
 #include "pounding/contact/registry.hpp"
@@ -26,14 +28,57 @@ struct SystemBenchOptions {
   std::size_t width;
   bool dynamic;
   std::string isolation;  // "": the shear pair; else building 1 on this bearing (isolated_pair_system)
+  int bridge = 0;         // > 0: a chain of this many frames (bridge_spec)
 };
+
+// The bridge workload (issue 26 §5): n frames alternating the four-frame bridge's outer and inner frames (1306 t at
+// 0.47 s, 3211 t at 1.12 s, Q-Hyst), 1/2 in hinges with Hertzdamp, a restrainer and a bearing at every joint,
+// Caltrans EPP abutments with bearings at both ends.
+physics::BridgeSpec bridge_spec(int n) {
+  physics::BridgeSpec b;
+  for (int k = 0; k < n; ++k) {
+    physics::BridgeFrame f;
+    const bool outer = k % 2 == 0;
+    f.mass = outer ? 1.30635e6 : 3.21145e6, f.period = outer ? 0.47 : 1.12, f.qhyst = true;
+    f.fy = outer ? 3.44291e6 : 8.11355e6;
+    b.frames.push_back(f);
+  }
+  for (int k = 0; k + 1 < n; ++k) {
+    physics::BridgeJoint j;
+    j.gap = 0.0127, j.kc = 2.808e10, j.e = 0.6;
+    j.restrainer = model::TensionGap::Spec{3.50254e7, 3.73651e6, 0.05, 0.0127, 1};
+    j.bearing = physics::BridgeBilinear{1.050761e6, 10675.73, 0.33};
+    b.joints.push_back(j);
+  }
+  for (physics::BridgeAbutment* a : {&b.left, &b.right}) {
+    a->backfill = physics::Backfill::epp;
+    a->epp = {4.553e8, 6.36e6, 0.0, 0.0254, 1};
+    a->bearing = physics::BridgeBilinear{1.050761e6, 10675.73, 0.33};
+  }
+  return b;
+}
 
 // ns per DOF-step (wall / (lanes x DOFs x steps)) of the shear-pair workload through run_system.
 void bench_system(const SystemBenchOptions& o, const ContactModel& cm, const KernelSettings& ks,
                   const GroundMotion& gm) {
   const bool iso = !o.isolation.empty();
-  const model::System S = iso ? isolated_pair_system(o.storeys, o.isolation) : shear_pair_system(o.storeys);
-  const physics::SystemBatch b = iso ? isolated_pair_batch(S, o.width, o.isolation) : shear_pair_batch(S, o.width);
+  if (o.bridge > 0 && (o.storeys > 0 || iso))
+    throw InputError("--bridge is its own workload", "--bridge", "drop --storeys/--isolation");
+  const physics::BridgeSpec spec = bridge_spec(std::max(o.bridge, 1));
+  const model::System S = o.bridge > 0 ? physics::bridge_system(spec)
+                          : iso        ? isolated_pair_system(o.storeys, o.isolation)
+                                       : shear_pair_system(o.storeys);
+  physics::SystemBatch b;
+  if (o.bridge > 0) {
+    b.resize(S, o.width);
+    for (std::size_t l = 0; l < o.width; ++l) {  // lanes differ a little (masses), as a study's samples do
+      physics::BridgeSpec x = spec;
+      for (physics::BridgeFrame& f : x.frames) f.mass *= 1.0 + 1e-3 * static_cast<double>(l % 97);
+      physics::set_bridge(b, l, x);
+    }
+  } else {
+    b = iso ? isolated_pair_batch(S, o.width, o.isolation) : shear_pair_batch(S, o.width);
+  }
   const ContactModel groups[] = {cm};
   physics::SystemResult r;
   auto run = [&] {
@@ -62,9 +107,14 @@ void bench_system(const SystemBenchOptions& o, const ContactModel& cm, const Ker
   std::size_t bad = 0;
   for (auto s : r.status) bad += s != 0;
   std::sort(ns.begin(), ns.end());
-  fmt::print("workload: {} ({} storeys each, {} DOFs, {} contact elements; {} s record at {} s, {} substeps)\n",
-             iso ? "isolated-pair (building 1 on " + o.isolation + ")" : std::string("shear-pair"), o.storeys, S.ndof(),
-             S.contacts().size(), gm.total_duration(), gm.dt, ks.substeps);
+  if (o.bridge > 0)
+    fmt::print("workload: bridge ({} frames, {} DOFs, {} joints, {} link springs; {} s record at {} s, {} substeps)\n",
+               o.bridge, S.ndof(), S.contacts().size(), S.springs().size() - static_cast<std::size_t>(o.bridge),
+               gm.total_duration(), gm.dt, ks.substeps);
+  else
+    fmt::print("workload: {} ({} storeys each, {} DOFs, {} contact elements; {} s record at {} s, {} substeps)\n",
+               iso ? "isolated-pair (building 1 on " + o.isolation + ")" : std::string("shear-pair"), o.storeys, S.ndof(),
+               S.contacts().size(), gm.total_duration(), gm.dt, ks.substeps);
   fmt::print("layout: {}\n", S.is_sdof_pair() && !o.dynamic ? "pair kernel" : "system stepper (dynamic)");
   fmt::print("stepper: {}\ncontact: {}\nwidth: {}\n", to_string(ks.stepper), to_string(cm.law), o.width);
   fmt::print("hardware_threads: {}\n", std::thread::hardware_concurrency());
@@ -87,6 +137,7 @@ void add_bench(CLI::App& app) {
     bool energy = false, dynamic = false;
     int storeys = 0;
     std::string isolation;
+    int bridge = 0;
   };
   auto o = std::make_shared<Opts>();
   auto* c = app.add_subcommand("bench", "kernel benchmark: ns per pair-step on a 40 s record at 0.005 s, "
@@ -109,6 +160,8 @@ void add_bench(CLI::App& app) {
                 "with --storeys N: workload 'isolated-pair', building 1 base-isolated on lead-rubber, friction-pendulum "
                 "or bouc-wen, building 2 fixed")
       ->check(CLI::IsMember({"lead-rubber", "friction-pendulum", "bouc-wen"}));
+  c->add_option("--bridge", o->bridge, "workload 'bridge': a chain of N frames (Q-Hyst, Hertzdamp hinges, restrainers, "
+                                       "bearings, abutments), ns per DOF-step; give --substeps 10")->check(CLI::Range(0, 64));
   c->callback([o] {
     if (o->width < 1) throw InputError("--width must be >= 1", "--width", "give a batch width of 1 or more");
     if (o->repeats < 1) throw InputError("--repeats must be >= 1", "--repeats", "give 1 or more");
@@ -124,7 +177,8 @@ void add_bench(CLI::App& app) {
     GroundMotion gm{o->dt, ag, 0.0};
     if (!o->isolation.empty() && o->storeys < 1)
       throw InputError("--isolation needs --storeys", "--isolation", "give --storeys N (1 or more)");
-    if (o->storeys > 0) return bench_system({o->storeys, o->repeats, o->width, o->dynamic, o->isolation}, cm, ks, gm);
+    if (o->storeys > 0 || o->bridge > 0)
+      return bench_system({o->storeys, o->repeats, o->width, o->dynamic, o->isolation, o->bridge}, cm, ks, gm);
     // enough pairs that one repeat takes a measurable time, in batches of `width`
     const double steps = static_cast<double>(ag.size() - 1) * o->substeps;
     const std::size_t batches = std::max<std::size_t>(1, static_cast<std::size_t>(2e7 / (steps * o->width)));

@@ -101,8 +101,12 @@ struct SimulateOptions {
     Storeys st;
   };
   RowBuilding more[max_buildings - 2];
-  // a bridge (issue 26 §1): the chain of frames, joints and abutments in a TOML file (bridge_file.hpp)
+  // a bridge (issue 26 §1): the chain of frames, joints and abutments in a TOML file (bridge_file.hpp); multi-support
+  // input (§2): one record per support, or --record delayed by k * wave_delay at support k + 1
   std::string bridge;
+  std::vector<std::string> support_records;
+  double wave_delay = 0.0;
+  bool wave_delay_given = false;
   bool storey_mode() const {
     return b[0].any() || b[1].any() || levels_given || iso[0].any() || iso[1].any() || buildings > 2;
   }
@@ -689,6 +693,53 @@ void bridge_report(const physics::BridgeSpec& spec, const physics::SystemBatch& 
   run.gap = spec.joints.empty() ? 0.0 : spec.joints[0].gap;
 }
 
+// The ground motion of every support of a bridge: --support-record files (one per support, the same step; a shorter
+// one padded with zeros), or --record (or the built-in sweep) delayed by k * --wave-delay at support k + 1 (a whole
+// number of record steps), or the one record for every support of a one-channel bridge.
+std::vector<Record> support_motions(const SimulateOptions& o, int channels) {
+  std::vector<Record> recs;
+  if (!o.support_records.empty()) {
+    if (o.wave_delay_given || !o.record.empty())
+      throw InputError("--support-record gives every support its record", "--support-record",
+                       "drop --record and --wave-delay, or drop --support-record");
+    if (static_cast<int>(o.support_records.size()) != channels)
+      throw InputError(fmt::format("{} --support-record files for a bridge of {} supports", o.support_records.size(), channels),
+                       "--support-record", "give one --support-record per support, in support order");
+    for (const std::string& f : o.support_records) {
+      SimulateOptions one = o;
+      one.record = f;
+      recs.push_back(ground_motion(one));
+      if (recs.back().dt != recs.front().dt)
+        throw InputError(fmt::format("{} has step {} s, {} has {} s", f, recs.back().dt, o.support_records[0], recs.front().dt),
+                         "--support-record", "resample the records to one time step");
+    }
+  } else {
+    const Record base = ground_motion(o);
+    if (o.wave_delay_given) {
+      if (!(std::isfinite(o.wave_delay) && o.wave_delay >= 0))
+        throw InputError(fmt::format("--wave-delay = {} must be >= 0", o.wave_delay), "--wave-delay", "give the delay between neighbouring supports (s)");
+      const double q = o.wave_delay / base.dt;
+      if (std::abs(q - std::round(q)) > 1e-9 * std::max(1.0, q))
+        throw InputError(fmt::format("--wave-delay = {} s is not a whole number of record steps ({} s)", o.wave_delay, base.dt),
+                         "--wave-delay", fmt::format("give a multiple of {} s", base.dt));
+    } else if (channels > 1) {
+      throw InputError(fmt::format("the bridge has {} supports and one record", channels), "--bridge",
+                       "give --support-record per support, or --wave-delay S to delay --record from support to support");
+    }
+    const auto shift = static_cast<std::size_t>(std::llround(o.wave_delay_given ? o.wave_delay / base.dt : 0.0));
+    for (int k = 0; k < channels; ++k) {
+      Record r = base;
+      r.acc.insert(r.acc.begin(), shift * static_cast<std::size_t>(k), 0.0);
+      if (channels > 1) r.name = fmt::format("{} (delayed {:.6g} s)", base.name, base.dt * static_cast<double>(shift) * k);
+      recs.push_back(std::move(r));
+    }
+  }
+  std::size_t n = 0;
+  for (const Record& r : recs) n = std::max(n, r.acc.size());
+  for (Record& r : recs) r.acc.resize(n, 0.0);
+  return recs;
+}
+
 // simulate --bridge FILE: the chain through the record, the text or JSON summary (per frame, per joint, per link).
 int run_bridge(SimulateOptions& o, const ContactModel& cm, KernelSettings& ks) {
   if (o.storey_mode())
@@ -703,33 +754,36 @@ int run_bridge(SimulateOptions& o, const ContactModel& cm, KernelSettings& ks) {
   if (!o.series.empty()) throw InputError("--series records the SDOF pair only", "--series", "drop --series with --bridge");
   const physics::BridgeSpec spec =
       read_bridge_file(o.bridge, o.kh_given ? o.kh : std::numeric_limits<double>::quiet_NaN(), o.e);
-  if (spec.channels() > 1)
-    throw InputError(fmt::format("the bridge uses {} supports; this build runs one ground motion for all", spec.channels()),
-                     o.bridge + " support", "give every frame and abutment support = 1");
   const model::System sys = physics::bridge_system(spec);
   physics::SystemBatch batch;
   batch.resize(sys, 1);
   physics::set_bridge(batch, 0, spec);
-  Record rec = ground_motion(o);
+  std::vector<Record> recs = support_motions(o, spec.channels());
+  Record& rec = recs[0];
   const double record_length = rec.duration();
-  const double analysis_length = cut_to_duration(o, rec);
+  double analysis_length = 0.0;
+  for (Record& x : recs) analysis_length = cut_to_duration(o, x);
   if (o.dt_given) ks.substeps = substeps_for(o, rec.dt);
   check_step(o, batch, ks, rec.dt);
   const std::vector<ContactModel> groups(sys.groups().size(), cm);
-  GroundMotion gm{rec.dt, rec.acc, analysis_length > record_length ? analysis_length : 0.0};
+  std::vector<GroundMotion> gm;
+  for (const Record& x : recs) gm.push_back({x.dt, x.acc, analysis_length > record_length ? analysis_length : 0.0});
   physics::SystemResult r, free;
-  physics::run_system(batch, groups, gm, ks, r);
+  physics::run_system(batch, groups, std::span<const GroundMotion>(gm), ks, r);
   std::vector<ContactModel> free_groups = groups;  // the same chain with open joints: the amplification
   for (ContactModel& g : free_groups) g.law = ContactLaw::none;
-  physics::run_system(batch, free_groups, gm, ks, free);
+  physics::run_system(batch, free_groups, std::span<const GroundMotion>(gm), ks, free);
   SystemRunReport run;
   bridge_report(spec, batch, run);
   run.system = &sys, run.result = &r, run.uncoupled = &free, run.record = &rec, run.settings = &ks, run.contact = &cm;
   run.e_target = o.e, run.analysis_duration = analysis_length;
+  std::string supports = fmt::format("supports: {}\n", recs.size());
+  for (std::size_t k = 0; k < recs.size() && recs.size() > 1; ++k)
+    supports += fmt::format("support{}_record: {}\nsupport{}_pga_g: {:.6g}\n", k + 1, recs[k].name, k + 1, recs[k].pga() / g_accel);
   if (o.json)
     fmt::print("{}", format_system_json(run));
   else
-    fmt::print("{}{}", describe_duration(record_length, analysis_length), format_system_summary(run));
+    fmt::print("{}{}{}", describe_duration(record_length, analysis_length), supports, format_system_summary(run));
   return r.status[0] != 0 ? 3 : 0;
 }
 
@@ -740,6 +794,9 @@ int run_simulate(SimulateOptions& o) {
   const ContactModel cm = contact_model(o);
   KernelSettings ks = kernel_settings(o);
   if (!o.bridge.empty()) return run_bridge(o, cm, ks);
+  if (!o.support_records.empty() || o.wave_delay_given)
+    throw InputError("--support-record and --wave-delay give a bridge's supports their records", "--support-record",
+                     "add --bridge FILE.toml, or drop them");
   if (o.storey_mode()) return run_storeys(o, cm, ks);
   resolve_masses(o);
   Structure s1 = make_structure(o.m1, o.T1, o.k1, o.h1, o.fy1, o.alpha, o.zeta, o.elastic, "1", o.k1_given, o.fy1_given);
@@ -883,6 +940,10 @@ void add_bridge_options(CLI::App* c, SimulateOptions& o) {
   c->add_option("--bridge", o.bridge,
                 "a bridge: frames, joints (gap, contact, restrainers, bearings) and abutments in a TOML file "
                 "(README 'Bridges'); the contact options apply at the joints");
+  c->add_option("--support-record", o.support_records,
+                "bridge: the record of support K (repeat the option, in support order; the file's support = K picks it)");
+  c->add_option("--wave-delay", o.wave_delay,
+                "bridge: --record reaches support K + 1 this much later than support K (s; wave passage)");
 }
 
 }  // namespace
@@ -963,6 +1024,7 @@ void add_simulate(CLI::App& app) {
     }
     o->levels_given = c->count("--contact-levels") + c->count("--level-tolerance") + c->count("--gap-offsets") > 0;
     count_row_options(c, *o);
+    o->wave_delay_given = c->count("--wave-delay") > 0;
     if (const int code = run_simulate(*o)) throw ExitRequest{code};
   });
 }

@@ -79,6 +79,11 @@ struct Layout {
   bool any_smooth = false;            // some spring of a law other than 0 (bilinear)
   std::vector<int> link_start, link;  // link springs with j == dof (CSR): their force acts on j as a storey's below
   bool any_link = false;
+  // multi-support input (issue 26 §2; more than one channel, else all empty): the channel of each DOF's support, of
+  // each spring's and element's two sides (a DOF's body channel, or the wall's), and whether they differ ("cross":
+  // the side's kinematics then add the ground motions' difference, total displacements)
+  std::vector<int> dof_chan, spring_ci, spring_cj, elem_cl, elem_cr;
+  std::vector<char> spring_cross, elem_cross;
   std::vector<int> below;             // spring below each DOF
   std::vector<int> above_start, above;  // springs with i == dof (CSR)
   std::vector<int> ref;               // floor dashpot reference per DOF (-1: ground)
@@ -105,6 +110,8 @@ struct Topo {
   const Side *left, *right;
   const int *contrib_start, *contrib_elem, *contrib_how;
   bool any_dashpot;
+  const int *dof_chan, *spring_ci, *spring_cj, *elem_cl, *elem_cr;  // null with one channel
+  const char *spring_cross, *elem_cross;
   explicit Topo(const Layout& L)
       : ndof(L.ndof), nspring(L.nspring), nelem(L.nelem), nbody(static_cast<int>(L.body_start.size()) - 1),
         si(L.si.data()), sj(L.sj.data()), below(L.below.data()), above_start(L.above_start.data()),
@@ -112,7 +119,9 @@ struct Topo {
         body_start(L.body_start.data()), body_dofs(L.body_dofs.data()), link_start(L.link_start.data()), link(L.link.data()),
         dashpot(L.dashpot.data()), law(L.law.data()), any_smooth(L.any_smooth), any_link(L.any_link), left(L.left.data()), right(L.right.data()),
         contrib_start(L.contrib_start.data()), contrib_elem(L.contrib_elem.data()), contrib_how(L.contrib_how.data()),
-        any_dashpot(L.any_dashpot) {}
+        any_dashpot(L.any_dashpot), dof_chan(ptr(L.dof_chan)), spring_ci(ptr(L.spring_ci)), spring_cj(ptr(L.spring_cj)),
+        elem_cl(ptr(L.elem_cl)), elem_cr(ptr(L.elem_cr)), spring_cross(ptr(L.spring_cross)), elem_cross(ptr(L.elem_cross)) {}
+  template <class X> static const X* ptr(const std::vector<X>& v) { return v.empty() ? nullptr : v.data(); }
 };
 
 // Where each row lives: rows [field][index] in the order DOF fields, spring fields, element fields, lane fields.
@@ -204,7 +213,17 @@ struct StepCtx {
   double lim;
   bool any_bad;
   bool* force_prev;  // per element: some lane of the chunk touched in the previous step (bool: no char aliasing)
+  // multi-support: per channel c at this step, gch[6 c + k] = ag0, ag1, vg0, vg1, ug0, ug1 (null with one channel)
+  double* gch = nullptr;
 };
+// The ground motions' difference between the two sides of a cross-channel spring or element this step: the
+// displacement at n+1 (gu1), its increment (gdu), the velocity at n+1 (gv1) and at n (gv0); side `b` minus side `a`.
+struct GroundOffset { double u1, du, v1, v0; };
+POUNDING_INLINE GroundOffset ground_offset(const double* g, int a, int b) {
+  const double* x = g + 6 * a;
+  const double* y = g + 6 * b;
+  return {y[5] - x[5], (y[5] - y[4]) - (x[5] - x[4]), y[3] - x[3], y[2] - x[2]};
+}
 
 // The displacement-like value of a side from DOF rows `f` (x = N1 u_p + N2 u_q as one pinned contraction).
 POUNDING_INLINE V side_value(Chunk c, const Side& s, int f, int e, bool left) {
@@ -276,13 +295,23 @@ POUNDING_INLINE V link_force(Chunk c, int s, int law, const V& fo, const V& d, c
 }
 
 // Step 3: every spring's return map from the increment h vh; the hysteretic increments summed in spring order.
-template <bool WithEnergy> POUNDING_INLINE void springs(Chunk c, Topo L) {
+// A spring whose two sides lie on different ground-motion channels (a link between frames on two piers, or to a wall
+// on another support) adds the ground motions' difference to its deformation, increment and rate (total
+// displacements, issue 26 §2); the supports' work through it joins the input energy.
+template <bool WithEnergy> POUNDING_INLINE void springs(Chunk c, Topo L, const double* gch) {
   using H = model::BilinearKinematic;
   V dhys(0.0);
   for (int s = 0; s < L.nspring; ++s) {
     const int i = L.si[s], j = L.sj[s];
-    const V dd = i < 0 ? c.dof(DU, j) : c.dof(DU, j) - c.dof(DU, i);
-    const V d = i < 0 ? c.dof(U, j) : c.dof(U, j) - c.dof(U, i);
+    V dd = i < 0 ? c.dof(DU, j) : c.dof(DU, j) - c.dof(DU, i);
+    V d = i < 0 ? c.dof(U, j) : c.dof(U, j) - c.dof(U, i);
+    V rate = i < 0 ? c.dof(VP, j) : c.dof(VP, j) - c.dof(VP, i);
+    const bool cross = L.spring_cross != nullptr && L.spring_cross[s];
+    GroundOffset go{0, 0, 0, 0};
+    if (cross) {
+      go = ground_offset(gch, L.spring_ci[s], L.spring_cj[s]);
+      dd = dd + V(go.du), d = d + V(go.u1), rate = rate + V(go.v1);
+    }
     const V fo = c.spr(FS, s);
     V f;
     const int law = L.law[s];
@@ -294,7 +323,7 @@ template <bool WithEnergy> POUNDING_INLINE void springs(Chunk c, Topo L) {
                                      c.spr(ZB, s), c.spr(ZG, s), c.spr(ZM, s), c.spr(ZE, s), c.spr(ZS, s)};
       const V z0 = c.spr(Z, s), z1 = S::z_next<V>(p, z0, dd);
       V h1;
-      f = S::restoring<V>(p, z1, d, i < 0 ? c.dof(VP, j) : c.dof(VP, j) - c.dof(VP, i), h1);
+      f = S::restoring<V>(p, z1, d, rate, h1);
       if constexpr (WithEnergy) {
         const V x = S::dissipated<V>(p, lane::fma(-p.k, d - dd, fo), z0, h1, z1, dd);
         dhys = s == 0 ? x : dhys + x;
@@ -308,10 +337,10 @@ template <bool WithEnergy> POUNDING_INLINE void springs(Chunk c, Topo L) {
         dhys = s == 0 ? x : dhys + x;
       }
     }
+    if (cross) c.lan(EIN, c.lan(EIN) + contact_work(fo, f, V(go.du)));
     c.spr(FS, s, f);
     V t = f;
-    if (L.dashpot[static_cast<std::size_t>(s)])
-      t = lane::fma(c.spr(CS, s), i < 0 ? c.dof(VP, j) : c.dof(VP, j) - c.dof(VP, i), f);
+    if (L.dashpot[static_cast<std::size_t>(s)]) t = lane::fma(c.spr(CS, s), rate, f);
     c.spr(T, s, t);
     c.spr(PD, s, lane::max(c.spr(PD, s), lane::abs(d)));
     c.spr(PF, s, lane::max(c.spr(PF, s), lane::abs(f)));
@@ -324,7 +353,10 @@ template <bool WithEnergy> POUNDING_INLINE void springs(Chunk c, Topo L) {
 template <class Law, class Exp>
 POUNDING_INLINE void element(Chunk c, Topo L, int e, StepCtx& s, double v0_min, Exp n) {
   const V zero(0.0), one(1.0);
-  const V cl = relative(c, L, U, e), d = cl - c.elm(GAP, e);
+  // a cross-channel element forms its kinematics from total displacements: + (ug_L - ug_R)
+  const bool cross = L.elem_cross != nullptr && L.elem_cross[e];
+  const GroundOffset go = cross ? ground_offset(s.gch, L.elem_cr[e], L.elem_cl[e]) : GroundOffset{0, 0, 0, 0};
+  const V cl = cross ? relative(c, L, U, e) + V(go.u1) : relative(c, L, U, e), d = cl - c.elm(GAP, e);
   {  // step 10's closing observer (x_L - x_R and when), on this step's unfrozen state: only bad lanes differ, and
      // they report NaN
     const V pc = c.elm(PCLOSE, e);
@@ -338,7 +370,7 @@ POUNDING_INLINE void element(Chunk c, Topo L, int e, StepCtx& s, double v0_min, 
   V nF = zero, onset = zero, clamp = zero;
   if constexpr (Law::traits.has_force) {
     if (any_touch) {
-      const V dd = relative(c, L, VP, e);
+      const V dd = cross ? relative(c, L, VP, e) + V(go.v1) : relative(c, L, VP, e);
       const simd::M on = (d > zero) && !(dprev > zero);
       onset = lane::select(on, one, zero);
       contact::State<V> st{c.elm(IV0, e)};
@@ -346,7 +378,7 @@ POUNDING_INLINE void element(Chunk c, Topo L, int e, StepCtx& s, double v0_min, 
         if (lane::any(on)) {  // approach velocity at the interpolated closing instant inside the step
           const V den = d - dprev;
           const V sc = lane::min(lane::max(-dprev / lane::select(den > zero, den, one), zero), one);
-          const V ddo = relative(c, L, Vel, e);  // v at the start of the step (step 7 has not run)
+          const V ddo = cross ? relative(c, L, Vel, e) + V(go.v0) : relative(c, L, Vel, e);  // v at the step's start
           Law::template on_onset<V>(st, on, ddo + sc * (dd - ddo), v0_min);
           c.elm(IV0, e, st.iv0);
         }
@@ -364,7 +396,10 @@ POUNDING_INLINE void element(Chunk c, Topo L, int e, StepCtx& s, double v0_min, 
   }
   if constexpr (Law::traits.has_force || Law::traits.impulsive) {
     if (any_touch || s.force_prev[e]) {
-      c.elm(WC, e, c.elm(WC, e) + contact_work(c.elm(F, e), nF, relative(c, L, DU, e)));
+      c.elm(WC, e, c.elm(WC, e) + contact_work(c.elm(F, e), nF, cross ? relative(c, L, DU, e) + V(go.du) : relative(c, L, DU, e)));
+      // the supports' work through a cross element (energy input besides -m ag v): its force over the ground
+      // motions' difference, by the same rule
+      if (cross) c.lan(EIN, c.lan(EIN) + contact_work(c.elm(F, e), nF, V(go.du)));
       c.elm(TCON, e, c.elm(TCON, e) + lane::select(touching, s.vh, zero));
       if constexpr (!Law::traits.impulsive) {
         c.elm(TFIRST, e, lane::min(c.elm(TFIRST, e), lane::select(onset > zero, s.t, V(inf))));
@@ -433,9 +468,11 @@ POUNDING_INLINE void forces(Chunk c, Topo L, StepCtx& s) {
         default: q = lane::fma(-c.elm(N2R, e), f, q); break;
       }
     }
-    const V na = -ag1 - q * c.dof(IM, j), nv = c.dof(VH, j) + hh * na;
+    // multi-support: each DOF with its own support's acceleration (the same value, so the same bits, when equal)
+    const double agj = L.dof_chan != nullptr ? s.gch[6 * L.dof_chan[j] + 1] : ag1;
+    const V na = -agj - q * c.dof(IM, j), nv = c.dof(VH, j) + hh * na;
     c.dof(A, j, na), c.dof(Vel, j, nv);
-    c.dof(PA, j, lane::max(c.dof(PA, j), lane::abs(na + g1)));
+    c.dof(PA, j, lane::max(c.dof(PA, j), lane::abs(na + (L.dof_chan != nullptr ? V(agj) : g1))));
     sv = j == 0 ? lane::abs(nv) : sv + lane::abs(nv);
     sa = j == 0 ? lane::abs(na) : sa + lane::abs(na);
   }
@@ -449,7 +486,8 @@ POUNDING_INLINE void energy(Chunk c, Topo L, const StepCtx& s) {
   V ein(0.0), evis(0.0);
   for (int j = 0; j < L.ndof; ++j) {
     const V vo = c.dof(VO, j), vn = c.dof(Vel, j);
-    const V in = lane::fma(g1, vn, g0 * vo);
+    const V in = L.dof_chan != nullptr ? lane::fma(V(s.gch[6 * L.dof_chan[j] + 1]), vn, V(s.gch[6 * L.dof_chan[j]]) * vo)
+                                       : lane::fma(g1, vn, g0 * vo);
     ein = j == 0 ? c.dof(M, j) * in : lane::fma(c.dof(M, j), in, ein);
     const int r = L.ref[static_cast<std::size_t>(j)];
     const V ro = r < 0 ? vo : vo - c.dof(VO, r), rn = r < 0 ? vn : vn - c.dof(Vel, r);
@@ -522,16 +560,24 @@ struct Run {
   const double* ag;  // ground acceleration at every step (nsteps + 1)
   long nsteps;
   double h, lim;
+  // multi-support: per channel, acceleration, velocity and baseline-corrected displacement at every step (empty: one
+  // channel, `ag`)
+  std::vector<const double*> ch_ag, ch_vg, ch_ug;
 };
 
 template <bool WithEnergy> POUNDING_INLINE void step(Chunk c, const Run& R, long stepi, StepCtx& s) {
   const Topo L = R.topo;
   s.ag0 = R.ag[stepi], s.ag1 = R.ag[stepi + 1];
   s.t = V(static_cast<double>(stepi + 1) * R.h);
+  for (std::size_t k = 0; k < R.ch_ag.size(); ++k) {
+    double* x = s.gch + 6 * k;
+    x[0] = R.ch_ag[k][stepi], x[1] = R.ch_ag[k][stepi + 1], x[2] = R.ch_vg[k][stepi], x[3] = R.ch_vg[k][stepi + 1];
+    x[4] = R.ch_ug[k][stepi], x[5] = R.ch_ug[k][stepi + 1];
+  }
   predict<WithEnergy>(c, L, s);
   for (const Group& g : *R.groups)
     if (g.impulsive) impulsive(c, L, g.elems.front(), s);
-  springs<WithEnergy>(c, L);
+  springs<WithEnergy>(c, L, s.gch);
   for (const Group& g : *R.groups) g.run(c, L, g, s);
   forces(c, L, s);
   if constexpr (WithEnergy) energy(c, L, s);
@@ -541,10 +587,12 @@ template <bool WithEnergy> POUNDING_INLINE void step(Chunk c, const Run& R, long
 // Every chunk of the tile through the whole record (lanes [0, np) of the pool, np a multiple of W).
 template <bool WithEnergy> void run_tile(const Pool& pool, int np, const Run& R) {
   const auto force_prev = std::make_unique<bool[]>(static_cast<std::size_t>(R.layout->nelem) + 1);
+  std::vector<double> gch(6 * R.ch_ag.size() + 1);
   for (int base = 0; base < np; base += simd::W) {
     pool.gather(base);
     const Chunk c(pool.chunk(), pool.rows());
-    StepCtx s{R.h, 0.5 * R.h, 0.0, 0.0, V(0.0), V(R.h), V(0.0), R.lim, lane::any(c.lan(BAD) > V(0.0)), force_prev.get()};
+    StepCtx s{R.h, 0.5 * R.h, 0.0, 0.0, V(0.0), V(R.h), V(0.0), R.lim, lane::any(c.lan(BAD) > V(0.0)), force_prev.get(),
+              R.ch_ag.empty() ? nullptr : gch.data()};
     for (int e = 0; e < R.layout->nelem; ++e) force_prev[static_cast<std::size_t>(e)] = lane::any(c.elm(F, e) > V(0.0));
     for (long k = 0; k < R.nsteps; ++k) step<WithEnergy>(c, R, k, s);
     pool.scatter(base);
