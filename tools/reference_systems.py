@@ -710,6 +710,58 @@ def smooth_main(path_in, path_out):
         out.write(f"e_hysteretic {E - q_end * z * z * P.uy / (2 * P.A):.17g}\n")
         out.write(f"final_z {z:.17g}\n")
 
+def bridge_main(path_in, path_out):
+    """A chain of elastic SDOF frames (m, k, c) under one ground acceleration, linear contact at the joints
+    (F = kc max(u_k - u_k+1 - gap, 0)), elastic tension-only restrainers with slack (f = kr max(u_k+1 - u_k - slack, 0))
+    and elastic compression-only abutments (k_a past the gap), integrated by solve_ivp (RK45, rtol 1e-10, max_step
+    dt/20; the forces are continuous, their kinks resolved by the step limit). Writes peak |u| per frame, impacts
+    (closings on the dt/100 grid) and peak force per joint, peak restrainer and abutment forces."""
+    from scipy.integrate import solve_ivp
+    d = json.load(open(path_in))
+    fr, jo = d["frames"], d["joints"]
+    n = len(fr)
+    m = np.array([f["m"] for f in fr]); k = np.array([f["k"] for f in fr]); c = np.array([f["c"] for f in fr])
+    dt, ag = d["dt"], np.array(d["ag"])
+    T = dt * (len(ag) - 1)
+    tg = dt * np.arange(len(ag))
+    ab = d.get("abutments", {})
+
+    def forces(u):
+        q = k * u
+        F = np.zeros(n - 1); R = np.zeros(n - 1)
+        for j, J in enumerate(jo):
+            F[j] = J["kc"] * max(u[j] - u[j + 1] - J["gap"], 0.0)
+            q[j] += F[j]; q[j + 1] -= F[j]
+            if J.get("restrainer"):
+                R[j] = J["restrainer"]["k"] * max(u[j + 1] - u[j] - J["restrainer"]["slack"], 0.0)
+                q[j + 1] += R[j]; q[j] -= R[j]
+        A = [0.0, 0.0]
+        if "left" in ab:
+            A[0] = ab["left"]["k"] * max(-u[0] - ab["left"]["gap"], 0.0); q[0] -= A[0]
+        if "right" in ab:
+            A[1] = ab["right"]["k"] * max(u[-1] - ab["right"]["gap"], 0.0); q[-1] += A[1]
+        return q, F, R, A
+
+    def rhs(t, y):
+        u, v = y[:n], y[n:]
+        q, _, _, _ = forces(u)
+        return np.concatenate([v, -np.interp(t, tg, ag) - (q + c * v) / m])
+
+    te = np.linspace(0.0, T, 100 * (len(ag) - 1) + 1)
+    sol = solve_ivp(rhs, (0.0, T), np.zeros(2 * n), method="RK45", rtol=1e-10, atol=1e-13, max_step=dt / 20, t_eval=te)
+    U = sol.y[:n].T
+    Fs = np.array([forces(u)[1] for u in U]); Rs = np.array([forces(u)[2] for u in U]); As = np.array([forces(u)[3] for u in U])
+    with open(path_out, "w") as out:
+        for i in range(n):
+            out.write(f"peak_u {i} {np.max(np.abs(U[:, i])):.17g}\n")
+        for j in range(n - 1):
+            on = Fs[:, j] > 0
+            out.write(f"impacts {j} {int(np.sum(on[1:] & ~on[:-1]))}\n")
+            out.write(f"peak_force {j} {np.max(Fs[:, j]):.17g}\n")
+            out.write(f"peak_restrainer {j} {np.max(Rs[:, j]):.17g}\n")
+        out.write(f"peak_abutment 0 {np.max(As[:, 0]):.17g}\npeak_abutment 1 {np.max(As[:, 1]):.17g}\n")
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     sub = ap.add_subparsers(dest="cmd", required=True)
@@ -728,7 +780,8 @@ def main():
     for name, what in (("system", "systems of shear buildings, linear or pounding"),
                        ("isolation", "a linear base-isolated building"),
                        ("smooth", "a building on a friction-pendulum or Bouc-Wen isolator"),
-                       ("row", "a row of n buildings pounding their neighbours (or: row selftest)")):
+                       ("row", "a row of n buildings pounding their neighbours (or: row selftest)"),
+                       ("bridge", "a chain of elastic frames with linear joints, restrainers and abutments")):
         p = sub.add_parser(name, help=what)
         p.add_argument("input")
         p.add_argument("output", nargs="?" if name == "row" else None)
@@ -745,6 +798,9 @@ def main():
         return 0
     if a.cmd == "isolation":
         isolation_main(a.input, a.output)
+        return 0
+    if a.cmd == "bridge":
+        bridge_main(a.input, a.output)
         return 0
     if a.cmd == "smooth":
         smooth_main(a.input, a.output)
