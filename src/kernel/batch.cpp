@@ -59,6 +59,7 @@ void BatchResult::resize(std::size_t n) {
     v->assign(n, 0.0);
   impact_count.assign(n, 0);
   clamp_count.assign(n, 0);
+  restitution_outside.assign(n, 0);
   status.assign(n, 0);
 }
 

@@ -27,7 +27,7 @@ Schedule make_schedule(const GroundMotion& motion, int substeps) {
 void fill_lane_common(kernel::Tile& T, int i, const PairParams& p, double v0_min) {
   T.m1[i] = p.s1.m, T.m2[i] = p.s2.m, T.im1[i] = 1.0 / p.s1.m, T.im2[i] = 1.0 / p.s2.m;
   T.k1[i] = p.s1.k, T.k2[i] = p.s2.k, T.c1[i] = p.s1.c, T.c2[i] = p.s2.c;
-  T.gap[i] = p.gap, T.kc[i] = p.kc, T.e[i] = p.e;
+  T.gap[i] = p.gap, T.kc[i] = p.kc, T.e[i] = p.e, T.nout[i] = 0.0;
   T.meff[i] = p.s1.m * p.s2.m / (p.s1.m + p.s2.m);
   T.u1[i] = p.u1, T.v1[i] = p.v1, T.u2[i] = p.u2, T.v2[i] = p.v2;
   const double d0 = p.u1 - p.u2 - p.gap, dd0 = p.v1 - p.v2;
@@ -59,6 +59,7 @@ void collect_lane(const kernel::Tile& T, int i, std::size_t L, double stored, do
                   BatchResult& out) {
   const double nan = std::numeric_limits<double>::quiet_NaN();
   const bool bad = T.bad[i] > 0.0;
+  out.restitution_outside[L] = static_cast<std::int32_t>(T.nout[i]);
   out.status[L] = static_cast<std::uint8_t>(T.bad[i] >= 2.0 ? LaneStatus::non_finite
                                             : bad          ? LaneStatus::diverged
                                                            : LaneStatus::ok);

@@ -97,7 +97,7 @@ void check_impact_inputs(const ContactModel& cm, double e, bool e_given, double 
 }
 
 ImpactResult single_impact(const ContactModel& cm, Stepper stepper, double e, double v0, double m1, double m2,
-                           double kc, int steps_per_contact) {
+                           double kc, int steps_per_contact, const VelocityRestitution* restitution) {
   const double tc = estimated_contact_duration(cm, v0, m1, m2, kc);
   PairParams p;
   p.s1 = {m1, 0.0, 0.0};
@@ -119,6 +119,7 @@ ImpactResult single_impact(const ContactModel& cm, Stepper stepper, double e, do
   ks.stepper = stepper;
   ks.substeps = 3 * steps_per_contact;
   ks.displacement_limit = 1e30;
+  ks.restitution = restitution;
   BatchResult r;
   run_batch(b, cm, gm, ks, r);
   ImpactResult out;
@@ -133,6 +134,7 @@ ImpactResult single_impact(const ContactModel& cm, Stepper stepper, double e, do
   out.energy_lost_fraction = out.energy_lost / ke0;
   out.clamps = r.clamp_count[0];
   out.h_omega_contact = r.h_omega_contact[0];
+  out.restitution_outside = r.restitution_outside[0];
   return out;
 }
 

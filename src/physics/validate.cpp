@@ -312,6 +312,9 @@ std::vector<Problem> validate(const SystemBatch& batch, std::span<const ContactM
   // The pair keeps today's checks and messages (its run goes to the pair kernel, whose guards catch the rest).
   if (sys.is_sdof_pair()) return validate(to_pair_batch(batch), models[0], motion, settings);
   run_settings(out, models, motion, settings);
+  if (settings.restitution != nullptr)
+    out.push_back({"a velocity-dependent restitution e(v0) runs SDOF pairs only (not yet the system stepper)",
+                   "restitution", "give a constant e for multi-storey buildings and other systems"});
   if (settings.stepper != Stepper::central_difference)
     out.push_back({fmt::format("the {} stepper runs SDOF pairs only", to_string(settings.stepper)), "stepper",
                    "use central-difference for multi-storey buildings and other systems"});
@@ -344,6 +347,12 @@ std::vector<Problem> validate(const PairBatch& batch, const ContactModel& cm, co
                               const KernelSettings& settings) {
   std::vector<Problem> out;
   run_settings(out, std::span<const ContactModel>(&cm, 1), motion, settings);
+  if (settings.restitution != nullptr &&
+      (settings.stepper != Stepper::central_difference || cm.law != ContactLaw::hertzdamp))
+    out.push_back({fmt::format("a velocity-dependent restitution e(v0) runs with hertzdamp and central-difference "
+                               "only (here {} and {})",
+                               to_string(cm.law), to_string(settings.stepper)),
+                   "restitution", "use --contact hertzdamp --stepper central-difference, or a constant e"});
   if (!out.empty()) return out;
   for (std::size_t i = 0; i < batch.width(); ++i) {
     out = validate_lane(batch.get(i), cm, settings.stepper, i);

@@ -93,6 +93,16 @@ struct SeriesRecorder {
   void clear();
 };
 
+// A velocity-dependent restitution e(v0) (issue 26 §3; physics builds it from contact::RestitutionCurve): at each
+// contact onset the central-difference stepper multiplies the lane's latched 1/v0 by damping(v0) (the lane's damping
+// constant is then 1) and counts the onsets whose v0 lies outside the curve's valid range. Null: the kernel as
+// before, bit for bit (a branch taken only at an onset).
+struct VelocityRestitution {
+  const void* self = nullptr;
+  double (*damping)(const void* self, double v0) = nullptr;  // the law's damping constant for e(v0)
+  bool (*outside)(const void* self, double v0) = nullptr;    // v0 outside the valid range
+};
+
 struct KernelSettings {
   Stepper stepper = Stepper::central_difference;
   int substeps = 1;                  // integration steps per record step
@@ -104,6 +114,7 @@ struct KernelSettings {
   // without contact, latch v0 there and finish the step in contact (the high-accuracy mode)
   bool locate_contact = false;
   SeriesRecorder* series = nullptr;
+  const VelocityRestitution* restitution = nullptr;  // e(v0) per impact (central difference, hertzdamp only)
 };
 
 // Per-lane observer reductions.
@@ -117,6 +128,7 @@ struct BatchResult {
   std::vector<double> contact_time;               // total time in contact (s)
   std::vector<double> peak_acc1, peak_acc2;       // max |absolute acceleration| (m/s^2)
   std::vector<std::int32_t> clamp_count;          // steps where a tensile contact force was clamped to 0
+  std::vector<std::int32_t> restitution_outside;  // impacts whose v0 lay outside the e(v0) curve's valid range
   std::vector<std::uint8_t> status;               // LaneStatus
   // The resolution of the contact: h omega_c with omega_c = sqrt(k_t / meff), k_t the law's tangent stiffness at
   // the lane's peak penetration (physics/resolution.hpp). 0 when the lane never touched, NaN for a law without a

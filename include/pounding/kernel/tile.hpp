@@ -30,6 +30,7 @@ struct alignas(64) Tile {
   double pu1[tile_width], pu2[tile_width], pclose[tile_width], tpclose[tile_width], tfirst[tile_width];
   double nimp[tile_width], nclamp[tile_width], pF[tile_width], ppen[tile_width], Wc[tile_width];
   double tcon[tile_width], pa1[tile_width], pa2[tile_width], bad[tile_width];
+  double nout[tile_width];  // onsets outside the e(v0) curve's valid range (KernelSettings::restitution)
   // energy
   double Ein[tile_width], Evis[tile_width], Ehys[tile_width], Dimp[tile_width];
   // scratch (Newton iterates, NJ coefficients)

@@ -75,10 +75,11 @@ template <class Law> class DampingTable {
 
 template <class Law, class Model>
 void fill_lane(kernel::Tile& T, int i, const PairParams& p, const ContactModel& cm, Stepper stepper, const Schedule& s,
-               DampingTable<Law>& damping) {
+               DampingTable<Law>& damping, bool velocity_restitution = false) {
   fill_lane_common(T, i, p, cm.v0_min);
   fill_lane_model<Model>(T, i, p, stepper, s.h);
-  T.cd[i] = damping(p.kc, p.e, T.meff[i]);
+  // with e(v0) (KernelSettings::restitution) the damping is set at each onset, in the latched 1/v0: cd = 1
+  T.cd[i] = velocity_restitution ? 1.0 : damping(p.kc, p.e, T.meff[i]);
   // the initial contact force from the initial penetration (std::pow for the Hertz family)
   const double d0 = p.u1 - p.u2 - p.gap, dd0 = p.v1 - p.v2;
   double clamp = 0.0;
@@ -138,7 +139,7 @@ void run_batch_t(const PairBatch& batch, const ContactModel& cm, const GroundMot
     for (int i = 0; i < T.np; ++i) {
       PairParams p = batch.get(base + static_cast<std::size_t>(i < T.n ? i : 0));
       if (kc_factor != 1.0) p.kc *= kc_factor;
-      fill_lane<Law, Model>(T, i, p, cm, ks.stepper, s, damping);
+      fill_lane<Law, Model>(T, i, p, cm, ks.stepper, s, damping, ks.restitution != nullptr);
     }
     const kernel::Context Ct = tile_context(C, ks, T, base, s.ag[0]);
     kernel::visit_stepper(ks.stepper, [&]<class S>() { run_tile<S, Law, Model>(T, Ct, cm); });

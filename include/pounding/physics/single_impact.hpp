@@ -18,6 +18,7 @@ struct ImpactResult {
   double energy_lost = 0, energy_lost_fraction = 0;
   int clamps = 0;
   double h_omega_contact = 0;  // the resolution guard's h omega_c (physics/resolution.hpp)
+  int restitution_outside = 0;  // with an e(v0) hook: the onset's v0 outside the curve's valid range
   LaneStatus status = LaneStatus::ok;
 };
 
@@ -49,8 +50,10 @@ void check_impact_inputs(const ContactModel& cm, double e, bool e_given, double 
 double estimated_contact_duration(const ContactModel& cm, double v0, double m1, double m2, double kc);
 
 // Masses m1 (moving at v0) and m2 (at rest) touching at t = 0 with gap 0. The run lasts three estimated
-// contact durations with `steps_per_contact` integration steps per estimated duration.
+// contact durations with `steps_per_contact` integration steps per estimated duration. `restitution`: the kernel's
+// e(v0) hook (KernelSettings::restitution; central difference and hertzdamp), e then only the nominal value.
 ImpactResult single_impact(const ContactModel& cm, Stepper stepper, double e, double v0, double m1, double m2,
-                           double kc, int steps_per_contact = 20000);
+                           double kc, int steps_per_contact = 20000,
+                           const VelocityRestitution* restitution = nullptr);
 
 }  // namespace pounding

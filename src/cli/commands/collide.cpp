@@ -18,6 +18,7 @@
 #include "pounding/contact/registry.hpp"
 #include "pounding/physics/resolution.hpp"
 #include "pounding/physics/single_impact.hpp"
+#include "pounding/physics/velocity_restitution.hpp"
 #include "pounding/core/error.hpp"
 #include "pounding/report/json.hpp"
 
@@ -81,7 +82,8 @@ struct Opts {
 // One list of outputs, printed as `name: value` lines (the text format) or as one JSON object (--json); `code` the
 // exit code (3 when the kernel's status is not ok).
 Outputs collide_outputs(const Opts& o, const ContactModel& cm, Stepper stepper, const ImpactResult& r, double e_target,
-                        const RestitutionPromise& promise, const contact::RestitutionCurve* curve, int& code) {
+                        const RestitutionPromise& promise, const contact::RestitutionCurve* curve, bool kernel_latch,
+                        int& code) {
   Outputs out;
   out.text("law", to_string(cm.law));
   if (contact::traits(cm.law).restitution_from_damping) {
@@ -96,7 +98,9 @@ Outputs collide_outputs(const Opts& o, const ContactModel& cm, Stepper stepper, 
     out.number("restitution_v0", o.v0, "{:.9g}");
     out.number("restitution_e_raw", curve->raw(o.v0), "{:.9g}");
     out.integer("restitution_clamped", curve->clamped(o.v0) ? 1 : 0);
-    out.integer("restitution_outside_valid", curve->in_range(o.v0) ? 0 : 1);
+    out.integer("restitution_outside_valid", kernel_latch ? r.restitution_outside : curve->in_range(o.v0) ? 0 : 1);
+    out.text("restitution_applied", kernel_latch ? "kernel (e(v0) at the onset latch of central difference)"
+                                                 : "before the run (e = e(v0), the single impact's approach speed)");
   }
   out.number("e_target", e_target, "{:.9g}");
   out.number("e_effective", r.e_effective, "{:.9g}");
@@ -229,9 +233,14 @@ void add_collide(CLI::App& app) {
     const RestitutionPromise promise = restitution_promise(cm);
     // an elastic law is asked for nothing: its target is the e = 1 it delivers
     const double e_target = promise.kind == RestitutionKind::elastic ? 1.0 : e;
-    ImpactResult r = single_impact(cm, stepper, e, o->v0, o->m1, o->m2, o->kh, o->steps);
+    // central difference + hertzdamp: e(v0) through the kernel's onset latch; otherwise e(v0) set before the run
+    const bool kernel_latch = curve && stepper == Stepper::central_difference && cm.law == ContactLaw::hertzdamp;
+    std::optional<physics::HertzdampRestitution> hook;
+    if (kernel_latch) hook.emplace(*curve, cm);
+    ImpactResult r = single_impact(cm, stepper, e, o->v0, o->m1, o->m2, o->kh, o->steps, hook ? &hook->hook : nullptr);
     int code = 0;
-    const Outputs out = collide_outputs(*o, cm, stepper, r, e_target, promise, curve ? &*curve : nullptr, code);
+    const Outputs out =
+        collide_outputs(*o, cm, stepper, r, e_target, promise, curve ? &*curve : nullptr, kernel_latch, code);
     fmt::print("{}", o->json ? out.json() : out.lines());
     if (code != 0) throw ExitRequest{code};
   });

@@ -33,6 +33,19 @@ struct RestitutionOpts {
                                                 "counted and reported; default: the table's range, or [0, inf))");
   }
 
+  // The option that gave the curve (for errors about where it may be used).
+  std::string option() const {
+    return !preset.empty() ? "--restitution-preset" : !polynomial.empty() ? "--restitution-polynomial" : "--restitution-table";
+  }
+
+  // get(), refusing --e beside a curve.
+  std::optional<contact::RestitutionCurve> get_instead_of_e(const CLI::App* c) const {
+    std::optional<contact::RestitutionCurve> r = get(c);
+    if (r && c->count("--e") > 0)
+      throw InputError("--e and a restitution curve both given", "--e", "drop --e: the curve gives e(v0)");
+    return r;
+  }
+
   // The curve, or nothing when no restitution option is given; InputError naming the option otherwise.
   std::optional<contact::RestitutionCurve> get(const CLI::App* c) const {
     const int forms = int(!preset.empty()) + int(!polynomial.empty()) + int(!table.empty());

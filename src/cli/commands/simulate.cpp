@@ -1,4 +1,5 @@
 // `pounding simulate`: one pair through one record -> observers (and optionally the time series).
+#include <optional>
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -16,7 +17,10 @@
 #include "cli/commands.hpp"
 #include "cli/commands/bridge_file.hpp"
 #include "pounding/contact/registry.hpp"
+#include "cli/commands/restitution_options.hpp"
 #include "pounding/core/error.hpp"
+#include "pounding/physics/velocity_restitution.hpp"
+#include "pounding/report/json.hpp"
 #include "pounding/core/files.hpp"
 #include "pounding/io/hdf5.hpp"
 #include "pounding/model/shear_building.hpp"
@@ -57,6 +61,8 @@ struct SimulateOptions {
   bool k1_given = false, k2_given = false, fy1_given = false, fy2_given = false, dt_given = false, kh_given = false;
   bool duration_given = false, m1_given = false, m2_given = false, h1_given = false, h2_given = false;
   bool json = false;
+  RestitutionOpts rest;                              // e(v0) (issue 26 §3): --restitution-*
+  std::optional<contact::RestitutionCurve> curve;    // parsed in the callback
   // multi-storey buildings (issue 25 §4): any of these options makes both buildings shear buildings
   struct Storeys {
     int storeys = 1;
@@ -664,6 +670,7 @@ std::string pair_json(const SimulateOptions& o, const PairBatch& b, const BatchR
   // the same pair without pounding, for the amplifications (no series: that is the coupled run's)
   KernelSettings free_settings = ks;
   free_settings.series = nullptr;
+  free_settings.restitution = nullptr;
   ContactModel none;
   none.law = ContactLaw::none;
   BatchResult free;
@@ -787,12 +794,31 @@ int run_bridge(SimulateOptions& o, const ContactModel& cm, KernelSettings& ks) {
   return r.status[0] != 0 ? 3 : 0;
 }
 
+// The pair's JSON with the e(v0) curve and its count of impacts outside the valid range (when a curve is given).
+std::string with_restitution(std::string json, const SimulateOptions& o, const BatchResult& r) {
+  if (!o.curve) return json;
+  report::JsonWriter w;
+  w.begin_object();
+  w.member("restitution", o.curve->describe());
+  w.member("restitution_outside_valid", static_cast<std::int64_t>(r.restitution_outside[0]));
+  w.member("restitution_note", "each impact took e(v0) at its latched approach velocity; e_target and xibar are "
+                               "--e's, not used");
+  std::string add = w.end_object().str();  // {"restitution":...}\n
+  const std::size_t close = json.rfind('}');
+  return json.substr(0, close) + "," + add.substr(1, add.rfind('}') - 1) + json.substr(close);
+}
+
 // Runs the pair, prints the summary and writes --series; returns the exit code (3: diverged, the numbers
 // printed are not results).
 int run_simulate(SimulateOptions& o) {
   validate_scalars(o);  // everything is validated before any work or output
   const ContactModel cm = contact_model(o);
   KernelSettings ks = kernel_settings(o);
+  if (o.curve && (o.storey_mode() || !o.bridge.empty() || cm.law != ContactLaw::hertzdamp ||
+                  ks.stepper != Stepper::central_difference))
+    throw InputError("a velocity-dependent restitution runs an SDOF pair with --contact hertzdamp and --stepper "
+                     "central-difference only (not yet multi-storey, isolated, bridges or other laws/steppers)",
+                     o.rest.option(), "drop the --restitution-* options, or simulate that pair");
   if (!o.bridge.empty()) return run_bridge(o, cm, ks);
   if (!o.support_records.empty() || o.wave_delay_given)
     throw InputError("--support-record and --wave-delay give a bridge's supports their records", "--support-record",
@@ -819,10 +845,16 @@ int run_simulate(SimulateOptions& o) {
   b.set(0, p);
   GroundMotion gm{rec.dt, rec.acc, analysis_length > record_length ? analysis_length : 0.0};
   BatchResult r;
+  std::optional<physics::HertzdampRestitution> rest;
+  if (o.curve) ks.restitution = &rest.emplace(*o.curve, cm).hook;
   run_batch(b, cm, gm, ks, r);
 
   std::string text = describe_run(o, record_length, analysis_length) + format_summary(r, 0, cm, p, rec, ks);
-  fmt::print("{}", o.json ? pair_json(o, b, r, cm, p, rec, ks, gm, analysis_length) : text);
+  if (o.curve)
+    text += fmt::format("restitution: {}\nrestitution_outside_valid: {} of {} impacts\nrestitution_note: each impact "
+                        "took e(v0) at its latched approach velocity; e_target and xibar above are --e's, not used\n",
+                        o.curve->describe(), r.restitution_outside[0], r.impact_count[0]);
+  fmt::print("{}", o.json ? with_restitution(pair_json(o, b, r, cm, p, rec, ks, gm, analysis_length), o, r) : text);
   if (!o.series.empty()) {
     if (std::filesystem::path(o.series).extension() == ".csv")
       write_series_csv(o.series, series);
@@ -944,6 +976,7 @@ void add_bridge_options(CLI::App* c, SimulateOptions& o) {
                 "bridge: the record of support K (repeat the option, in support order; the file's support = K picks it)");
   c->add_option("--wave-delay", o.wave_delay,
                 "bridge: --record reaches support K + 1 this much later than support K (s; wave passage)");
+  o.rest.add(c);  // e(v0) (issue 26 §3): --restitution-* (an SDOF pair only)
 }
 
 }  // namespace
@@ -995,6 +1028,7 @@ void add_simulate(CLI::App& app) {
   c->add_flag("--json", o->json, "print every observer as one JSON object (per floor: peak_u1, peak_u2, ...; per "
                                  "contact level: levels)");
   c->callback([o, c] {
+    o->curve = o->rest.get_instead_of_e(c);
     o->k1_given = c->count("--k1") > 0, o->k2_given = c->count("--k2") > 0;
     o->fy1_given = c->count("--fy1") > 0, o->fy2_given = c->count("--fy2") > 0;
     o->dt_given = c->count("--dt") > 0, o->kh_given = c->count("--kh") > 0;

@@ -28,6 +28,8 @@ template <class M> struct Chunk {
   Peaks<V> peaks;
   Impacts<V> imp;
   Energy<V> en;
+  double* nout;  // T.nout + b: onsets outside the e(v0) curve's valid range
+  int lanes;     // lanes of this chunk in use (the rest pad the SIMD width)
 };
 template <class M> [[gnu::always_inline]] inline Chunk<M> load(const Tile& T, int b, double h) {
   using lane::load;
@@ -42,6 +44,7 @@ template <class M> [[gnu::always_inline]] inline Chunk<M> load(const Tile& T, in
   c.F = load<V>(T.F + b), c.iv0 = load<V>(T.iv0 + b), c.dprev = load<V>(T.dprev + b);
   c.Wc = load<V>(T.Wc + b), c.tcon = load<V>(T.tcon + b), c.bad = load<V>(T.bad + b), c.Dimp = load<V>(T.Dimp + b);
   c.peaks = Peaks<V>::load(T, b), c.imp = Impacts<V>::load(T, b), c.en = Energy<V>::load(T, b);
+  c.nout = const_cast<double*>(T.nout) + b, c.lanes = T.n - b;
   return c;
 }
 template <class M> [[gnu::always_inline]] inline void store(const Chunk<M>& c, Tile& T, int b) {
@@ -74,10 +77,22 @@ template <class C> [[gnu::always_inline]] inline void impulsive(C& c, Pred& p, V
   c.imp.on_onset(t, lane::select(x.hit, V(1.0), zero));
 }
 
+// e(v0) at the onsets `on` (KernelSettings::restitution): the latched 1/v0 times the damping constant of e(v0), and
+// the onsets outside the curve's valid range counted per lane (padding lanes not).
+template <class C>
+[[gnu::noinline]] void restitution_onset(C& c, V& iv0, simd::M on, const VelocityRestitution& r) {
+  for (int j = 0; j < simd::W; ++j) {
+    if (!on[j]) continue;
+    const double v0 = 1.0 / iv0[j];
+    iv0[j] = iv0[j] * r.damping(r.self, v0);
+    if (j < c.lanes && r.outside(r.self, v0)) c.nout[j] += 1.0;
+  }
+}
+
 // The contact force at n+1 (laws with a force element), the Hertzdamp latch and the stability guard.
 template <class Law, class Exp, class C>
 [[gnu::always_inline]] inline V contact_force(C& c, const Pred& p, V d, V& onset, V& clamp, bool& any_bad,
-                                              double v0_min, Exp n) {
+                                              double v0_min, Exp n, const VelocityRestitution* restitution) {
   const V zero(0.0), one(1.0);
   const V dd = p.vp1 - p.vp2;
   const simd::M on = (d > zero) && !(c.dprev > zero);
@@ -89,6 +104,7 @@ template <class Law, class Exp, class C>
       const V sc = lane::min(lane::max(-c.dprev / lane::select(den > zero, den, one), zero), one);
       const V ddo = p.v1o - p.v2o;
       Law::template on_onset<V>(s, on, ddo + sc * (dd - ddo), v0_min);
+      if (restitution) [[unlikely]] restitution_onset(c, s.iv0, on, *restitution);
       c.iv0 = s.iv0;
     }
   }
@@ -134,7 +150,7 @@ template <class Law, class Exp, bool WithEnergy, class M>
   const bool any_touch = lane::any(touching);
   V onset = zero, clamp = zero, nF = zero;
   if constexpr (Law::traits.has_force)
-    if (any_touch) nF = contact_force<Law>(c, p, d, onset, clamp, any_bad, C.v0_min, n);
+    if (any_touch) nF = contact_force<Law>(c, p, d, onset, clamp, any_bad, C.v0_min, n, C.settings->restitution);
   V na1 = -ag1 - (c.c1 * p.vp1 + nfs1 + nF) * c.im1;
   V na2 = -ag1 - (c.c2 * p.vp2 + nfs2 - nF) * c.im2;
   V nv1 = p.vh1 + hh * na1, nv2 = p.vh2 + hh * na2;
