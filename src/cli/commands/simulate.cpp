@@ -976,7 +976,13 @@ void add_bridge_options(CLI::App* c, SimulateOptions& o) {
                 "bridge: the record of support K (repeat the option, in support order; the file's support = K picks it)");
   c->add_option("--wave-delay", o.wave_delay,
                 "bridge: --record reaches support K + 1 this much later than support K (s; wave passage)");
-  o.rest.add(c);  // e(v0) (issue 26 §3): --restitution-* (an SDOF pair only)
+}
+
+// --json and e(v0) (issue 26 §3: --restitution-*, an SDOF pair only).
+void add_output_and_restitution_options(CLI::App* c, SimulateOptions& o) {
+  c->add_flag("--json", o.json, "print every observer as one JSON object (per floor: peak_u1, peak_u2, ...; per "
+                                "contact level: levels)");
+  o.rest.add(c);
 }
 
 }  // namespace
@@ -1025,8 +1031,7 @@ void add_simulate(CLI::App& app) {
   c->add_option("--series", o->series, "write the time series to FILE.csv or FILE.h5");
   add_storey_options(c, *o);
   add_bridge_options(c, *o);
-  c->add_flag("--json", o->json, "print every observer as one JSON object (per floor: peak_u1, peak_u2, ...; per "
-                                 "contact level: levels)");
+  add_output_and_restitution_options(c, *o);
   c->callback([o, c] {
     o->curve = o->rest.get_instead_of_e(c);
     o->k1_given = c->count("--k1") > 0, o->k2_given = c->count("--k2") > 0;
