@@ -21,6 +21,7 @@ Usage: row_amplification.py RESULTS.h5 [--json]
 Exit 2 with one ERROR line for a file that is not an impacts-scene study.
 """
 import json
+import signal
 import sys
 
 import h5py
@@ -102,4 +103,5 @@ def main():
 
 
 if __name__ == "__main__":
+    signal.signal(signal.SIGPIPE, signal.SIG_DFL)  # `| head` ends the output quietly, not with a BrokenPipe traceback
     sys.exit(main())

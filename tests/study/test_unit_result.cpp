@@ -224,8 +224,15 @@ TEST(UnitResult, PerFloorAndPerElementValuesReachTheirPlaceInTheFile) {
 
 // The study's conversion of a model::System into /system (make_results.hpp system_table): the 3- vs 5-storey pair of
 // model::shear_buildings is the table written out by hand; the SDOF pair gives none (format 2).
+// A stick of n storeys with every other field at its default (designated initializers would warn about the rest).
+static model::StickTopology stick(int n) {
+  model::StickTopology t;
+  t.storeys = n;
+  return t;
+}
+
 TEST(SystemTable, OfAShearPairIsItsTopology) {
-  const model::StickTopology sticks[] = {{.storeys = 3}, {.storeys = 5}};
+  const model::StickTopology sticks[] = {stick(3), stick(5)};
   const model::System s = model::shear_buildings(sticks);
   const ContactModel pounding{};  // hertzdamp, lankarani-nikravesh
   const results::SystemTable t = system_table(s, std::span(&pounding, 1));
@@ -242,9 +249,9 @@ TEST(SystemTable, OfAShearPairIsItsTopology) {
 // An isolated building with its moat beside a fixed one: the base is floor 0 at 0 m, the isolator spring storey 0,
 // the moat's wall sides have no DOF, its group its own law.
 TEST(SystemTable, IsolatedBaseAndMoatWalls) {
-  model::StickTopology iso{.storeys = 2};
+  model::StickTopology iso = stick(2);
   iso.isolated = true, iso.moat = true;
-  const model::StickTopology sticks[] = {iso, {.storeys = 2}};
+  const model::StickTopology sticks[] = {iso, stick(2)};
   const model::System s = model::shear_buildings(sticks);
   ASSERT_EQ(s.groups().size(), 2u);
   const ContactModel groups[] = {{}, {.law = ContactLaw::linear}};
