@@ -9,23 +9,11 @@
 # Synthetic records only (no ../shared needed). Args: <pounding binary> <source dir>
 set -euo pipefail
 bin=$1; src=$2
-export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMPI_MCA_rmaps_base_oversubscribe=1
-tmp=$(mktemp -d); trap 'rm -rf "$tmp"' EXIT
-cmp() { /usr/bin/python3 "$src/tests/cli/compare_results.py" "$@"; }
 study=$src/studies/quick-storeys.toml
+. "$src/tests/lib/study_invariance.sh"  # $tmp, cmp, study_invariance
 
 # 1. ranks, batch width, skip_untouched
-"$bin" run "$study" --out "$tmp/r0.h5" --quiet > /dev/null 2>&1
-timeout 120 mpirun -np 1 "$bin" run "$study" --out "$tmp/r1.h5" --quiet > /dev/null 2>&1
-timeout 120 mpirun -np 2 "$bin" run "$study" --out "$tmp/r2.h5" --quiet > /dev/null 2>&1
-cmp "$tmp/r0.h5" "$tmp/r1.h5"
-cmp "$tmp/r0.h5" "$tmp/r2.h5"
-sed 's/^\[contact\]/[analysis]\nbatch = 1\n\n[contact]/' "$study" > "$tmp/narrow.toml"
-"$bin" run "$tmp/narrow.toml" --out "$tmp/narrow.h5" --quiet > /dev/null 2>&1
-cmp "$tmp/r0.h5" "$tmp/narrow.h5" --ignore=study_text,batch,output
-sed 's/^\[contact\]/[analysis]\nskip_untouched = false\n\n[contact]/' "$study" > "$tmp/full.toml"
-"$bin" run "$tmp/full.toml" --out "$tmp/full.h5" --quiet > /dev/null 2>&1
-cmp "$tmp/r0.h5" "$tmp/full.h5" --ignore=study_text,skip_untouched,output,scene_reason
+study_invariance
 
 # 2. touch <=> D > gap, in the run where every model is run with contact; both outcomes occur
 /usr/bin/python3 - "$tmp/full.h5" <<'PY'

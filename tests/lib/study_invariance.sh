@@ -1,0 +1,21 @@
+# Sourced by tests/cli/study_*.sh (shear buildings, rows): the common set-up ($tmp, cmp) and the invariance checks
+# every study of a system must pass, given $bin, $src and $study:
+#   r0.h5 (one process), r1.h5 (mpirun -np 1), r2.h5 (mpirun -np 2) bit-identical; narrow.h5 (batch = 1) and
+#   full.h5 (skip_untouched = false) equal to r0.h5 but for the settings they change. Leaves them in $tmp.
+export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMPI_MCA_rmaps_base_oversubscribe=1
+tmp=$(mktemp -d); trap 'rm -rf "$tmp"' EXIT
+cmp() { /usr/bin/python3 "$src/tests/cli/compare_results.py" "$@"; }
+
+study_invariance() {
+  "$bin" run "$study" --out "$tmp/r0.h5" --quiet > /dev/null 2>&1
+  timeout 120 mpirun -np 1 "$bin" run "$study" --out "$tmp/r1.h5" --quiet > /dev/null 2>&1
+  timeout 120 mpirun -np 2 "$bin" run "$study" --out "$tmp/r2.h5" --quiet > /dev/null 2>&1
+  cmp "$tmp/r0.h5" "$tmp/r1.h5"
+  cmp "$tmp/r0.h5" "$tmp/r2.h5"
+  sed 's/^\[contact\]/[analysis]\nbatch = 1\n\n[contact]/' "$study" > "$tmp/narrow.toml"
+  "$bin" run "$tmp/narrow.toml" --out "$tmp/narrow.h5" --quiet > /dev/null 2>&1
+  cmp "$tmp/r0.h5" "$tmp/narrow.h5" --ignore=study_text,batch,output
+  sed 's/^\[contact\]/[analysis]\nskip_untouched = false\n\n[contact]/' "$study" > "$tmp/full.toml"
+  "$bin" run "$tmp/full.toml" --out "$tmp/full.h5" --quiet > /dev/null 2>&1
+  cmp "$tmp/r0.h5" "$tmp/full.h5" --ignore=study_text,skip_untouched,output,scene_reason
+}
