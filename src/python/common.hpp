@@ -1,0 +1,32 @@
+#pragma once
+// Shared helpers of the Python module's binding files (src/python/*.cpp): numpy conversions and the bind_*
+// functions PYBIND11_MODULE (module.cpp) calls. Exceptions: module.cpp maps InputError to ValueError with the
+// CLI's message; pybind11 maps std::invalid_argument to ValueError.
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include <cstring>
+#include <string>
+#include <vector>
+
+namespace pounding::python {
+
+namespace py = pybind11;
+using Array = py::array_t<double, py::array::c_style | py::array::forcecast>;
+
+template <class T>
+py::array_t<T> to_numpy(const std::vector<T>& v) {
+  py::array_t<T> a(static_cast<py::ssize_t>(v.size()));
+  if (!v.empty()) std::memcpy(a.mutable_data(), v.data(), v.size() * sizeof(T));
+  return a;
+}
+
+// A 1-D float64 array as a vector; `what` names it in the ValueError.
+std::vector<double> to_vector(const py::handle& values, const std::string& what);
+
+void bind_kernel(py::module_& m);    // kernel.cpp: run_batch, analyze, simulate, status names
+void bind_records(py::module_& m);   // records.cpp: Record, read_record, spectrum, design_spectrum
+void bind_analysis(py::module_& m);  // analysis.cpp: fragility fits, hazard rates, risk-targeted gap, ddc_rho
+
+}  // namespace pounding::python

@@ -1,0 +1,173 @@
+"""pounding: Monte Carlo seismic pounding of adjacent structures, from Python (issue 28).
+
+Everything is the C++ engine (pounding._core, pybind11), reached with numpy arrays in and out:
+
+    import pounding
+    rec = pounding.read_record("RSN6_IMPVALL.I_I-ELC180.AT2")          # dt, acc (m/s^2), acc_g, meta
+    sp = pounding.spectrum(rec, [0.5, 1.0, 2.0])                         # sd, psv, psa, sa_g
+    r = pounding.analyze(pairs, rec, contact="hertzdamp", kh=..., e=0.65)   # dict of numpy arrays
+    fit = pounding.fragility.fit(im, n, z)                               # Baker's MSA MLE
+    lam = pounding.hazard.rate(fit.theta, fit.beta, (k0, k))
+
+Units: SI inside (m, s, kg, N; ground acceleration in m/s^2 in the kernel), accelerations in g at the edges
+(Record.acc_g, spectra's sa_g, design spectra). Bad input raises ValueError with the CLI's message; Ctrl-C
+stops a long analyze() between batches (KeyboardInterrupt). docs/python.md walks through a study.
+"""
+import enum
+
+import numpy as np
+
+from . import _core
+from ._core import Record, __version__, analysis, read_record, run_batch, testing  # noqa: F401
+
+__all__ = ["Record", "Status", "analyze", "design_spectrum", "fragility", "hazard", "read_record", "run_batch",
+           "simulate", "spectrum", "PAIR_FIELDS"]
+
+# The kernel's lane status (kernel/batch.hpp LaneStatus): 0 ok, 1 diverged, 2 non-finite, 3 coarse (ran to the end
+# but the contact was under-resolved: h omega_c above the stepper's limit; peaks are returned, refine substeps).
+Status = enum.IntEnum("Status", {name.replace("-", "_"): value for name, value in _core.status_names()})
+
+# The fields of a pair (SI): masses kg, stiffnesses N/m, dashpots N s/m, yield forces N (inf: linear), post-yield
+# ratios, at-rest gap m; kc contact stiffness (kh is accepted for it), e restitution, initial conditions.
+PAIR_FIELDS = ("m1", "k1", "c1", "fy1", "alpha1", "m2", "k2", "c2", "fy2", "alpha2", "gap", "kc", "e",
+               "u1_0", "v1_0", "u2_0", "v2_0")
+
+# Filled where a run does not compute a value (the results files' fill values, results/schema.hpp).
+_CONTACT_FIELDS = ("t_first_impact", "peak_force", "peak_penetration", "contact_energy", "contact_time",
+                   "h_omega_contact")
+
+
+def _pairs_dict(pairs, kh, e):
+    """dict of arrays or numpy structured array -> dict of contiguous float64 arrays with the kernel's names."""
+    if isinstance(pairs, np.ndarray) and pairs.dtype.names:
+        names = pairs.dtype.names
+        d = {name: pairs[name] for name in names}
+    elif hasattr(pairs, "to_dict") and hasattr(pairs, "columns"):  # a pandas DataFrame
+        d = {name: pairs[name].to_numpy() for name in pairs.columns}
+    else:
+        d = dict(pairs)
+    if "kh" in d:
+        if "kc" in d:
+            raise ValueError("pairs: give the contact stiffness as 'kh' or 'kc', not both")
+        d["kc"] = d.pop("kh")
+    width = None
+    out = {}
+    for key, value in d.items():
+        a = np.ascontiguousarray(np.asarray(value, dtype=np.float64))
+        if a.ndim == 0:
+            raise ValueError(f"pairs['{key}']: a 1-D array (one value per pair) is needed, got a scalar")
+        out[key] = a
+        width = len(a) if width is None else width
+    for key, value in (("kc", kh), ("e", e)):
+        if value is None:
+            continue
+        if key in out:
+            raise ValueError(f"{'kh' if key == 'kc' else key}: given both in pairs and as an option")
+        out[key] = np.broadcast_to(np.asarray(value, dtype=np.float64), (width or 0,)).copy()
+    return out
+
+
+def _motion(record):
+    """A Record, or (acc_g, dt): -> (ag in m/s^2, dt)."""
+    if isinstance(record, Record):
+        return record.acc, record.dt
+    try:
+        acc_g, dt = record
+    except (TypeError, ValueError):
+        raise ValueError("record: a pounding.Record (read_record) or a tuple (acc_g, dt) is needed") from None
+    rec = Record(np.asarray(acc_g, dtype=np.float64), float(dt))
+    return rec.acc, rec.dt
+
+
+def analyze(pairs, record, contact="none", stepper="central-difference", substeps=1, *, kh=None, e=None, n=1.5,
+            damping="lankarani-nikravesh", energy=False, duration=0.0, displacement_limit=10.0, batch=256,
+            threads=0):
+    """Runs every pair through the record and returns a dict of per-pair numpy arrays.
+
+    pairs: dict of equal-length arrays, numpy structured array or pandas DataFrame with the fields m1 k1 c1 fy1
+      alpha1 m2 k2 c2 fy2 alpha2 gap (SI; fy = inf or absent: linear), kc or kh where the law needs a stiffness,
+      e where it needs a restitution (or give kh=, e= here for every pair), optional u1_0 v1_0 u2_0 v2_0.
+    record: a pounding.Record or (acc_g, dt).
+    contact: none, linear, kelvin, hertz, hertzdamp, jankowski, stereomechanical; damping (hertzdamp's xibar law)
+      and n (Hertz exponent) as the CLI's --damping-law and --n.
+    stepper: central-difference, newmark, rk4, nigam-jennings; substeps per record step.
+    Returns peak_u1, peak_u2, peak_closing, t_peak_closing (m, s), t_first_impact, impact_count, peak_force (N),
+    peak_penetration, contact_energy, contact_time, peak_acc1/2 (m/s^2, absolute), final_*, the energy terms
+    e_* (J; e_input, e_viscous, e_hysteretic are tracked only with energy=True, NaN otherwise), h_omega_contact,
+    status (uint8, see pounding.Status). Contact fields are NaN
+    (impact_count -1) with contact="none". Runs `threads` threads (0: every core) over batches of `batch` pairs
+    with the GIL released; results do not depend on either. Every pair is checked before any work (ValueError
+    naming the pair's lane).
+    """
+    ag, dt = _motion(record)
+    d = _pairs_dict(pairs, kh, e)
+    out = _core.analyze(d, ag, dt, stepper, contact, damping, n, substeps, energy, duration, displacement_limit,
+                        batch, threads)
+    if contact == "none":
+        for key in _CONTACT_FIELDS:
+            out[key][:] = np.nan
+        out["impact_count"][:] = -1
+        out["clamp_count"][:] = -1
+    return out
+
+
+class Simulation:
+    """One pair's run: `summary` (the analyze() values of the pair, as scalars) and `series` (time series: t s,
+    u1 u2 m, v1 v2 m/s, a1_abs a2_abs m/s^2, fs1 fs2 force N, ag m/s^2, one row per integration step)."""
+
+    def __init__(self, summary, series):
+        self.summary = summary
+        self.series = series
+
+    def to_frame(self):
+        import pandas as pd
+        return pd.DataFrame(self.series)
+
+    def __repr__(self):
+        s = self.summary
+        return (f"<pounding.Simulation: {len(self.series['t'])} steps, peak closing {s['peak_closing']:.4g} m, "
+                f"{s['impact_count']} impacts, status {Status(s['status']).name}>")
+
+
+def simulate(pair, record, contact="none", stepper="central-difference", substeps=1, *, kh=None, e=None, n=1.5,
+             damping="lankarani-nikravesh", energy=False, duration=0.0, displacement_limit=10.0):
+    """One pair (a dict of scalars with analyze()'s fields) with its full time series: a Simulation."""
+    d = _pairs_dict({key: np.atleast_1d(value) for key, value in dict(pair).items()}, kh, e)
+    ag, dt = _motion(record)
+    summary, series = _core.simulate(d, ag, dt, stepper, contact, damping, n, substeps, energy, duration,
+                                     displacement_limit)
+    scalars = {key: value[0].item() for key, value in summary.items()}
+    if contact == "none":
+        for key in _CONTACT_FIELDS:
+            scalars[key] = float("nan")
+    return Simulation(scalars, series)
+
+
+def spectrum(record, periods, zeta=0.05):
+    """Elastic response spectrum of a record (exact for acceleration linear between samples): a dict of arrays
+    period (s), sd (m), psv (m/s), psa (m/s^2), sa_g (g)."""
+    return _core.spectrum(record, np.asarray(periods, dtype=np.float64), zeta)
+
+
+def design_spectrum(code, periods, mcer=False, **params):
+    """Sa (g) of a code design spectrum at the periods (s), the engine's formulas (motion/design_spectrum.hpp):
+
+      "asce7-16": sds, sd1 (g), tl=8 (s) -- or ss, s1 (mapped MCER, g), site_class ("A".."F", "D-default"), tl;
+                  mcer=True gives the MCER spectrum, 1.5 x design (ASCE 7-16 16.2)
+      "ec8":      type=1|2, ground "A".."E", agr (g), importance=1, damping_percent=5
+      "2800":     a (0.2..0.35), soil "I".."IV", importance=1 (Iranian Standard 2800, 4th ed.)
+      "nzs1170":  site "A".."E", z, r=1 (NZS 1170.5, N = 1)
+      "table":    table_periods, table_sa (g), or file= a "period,sa" csv
+    The parameters are range-checked (ValueError naming the parameter). The description of the spectrum is the
+    attribute `describe` of the returned array's owner: use design_spectrum_text() for it.
+    """
+    sa, _ = _core.design_spectrum(code, np.asarray(periods, dtype=np.float64), params, mcer)
+    return sa
+
+
+def design_spectrum_text(code, mcer=False, **params):
+    """One line naming the code and every parameter (the engine's DesignSpectrum::describe())."""
+    return _core.design_spectrum(code, np.array([1.0]), params, mcer)[1]
+
+
+from . import fragility, hazard  # noqa: E402  (they use the names above)
