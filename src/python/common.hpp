@@ -28,5 +28,6 @@ std::vector<double> to_vector(const py::handle& values, const std::string& what)
 void bind_kernel(py::module_& m);    // kernel.cpp: run_batch, analyze, simulate, status names
 void bind_records(py::module_& m);   // records.cpp: Record, read_record, spectrum, design_spectrum
 void bind_analysis(py::module_& m);  // analysis.cpp: fragility fits, hazard rates, risk-targeted gap, ddc_rho
+void bind_study(py::module_& m);     // study.cpp: run_study in-process, report of a results file
 
 }  // namespace pounding::python

@@ -43,4 +43,5 @@ PYBIND11_MODULE(_core, m) {
   python::bind_kernel(m);
   python::bind_records(m);
   python::bind_analysis(m);
+  python::bind_study(m);
 }

@@ -21,7 +21,7 @@ from . import _core
 from ._core import Record, __version__, analysis, read_record, run_batch, testing  # noqa: F401
 
 __all__ = ["Record", "Status", "analyze", "design_spectrum", "fragility", "hazard", "read_record", "run_batch",
-           "simulate", "spectrum", "PAIR_FIELDS"]
+           "simulate", "spectrum", "PAIR_FIELDS", "Results", "Study"]
 
 # The kernel's lane status (kernel/batch.hpp LaneStatus): 0 ok, 1 diverged, 2 non-finite, 3 coarse (ran to the end
 # but the contact was under-resolved: h omega_c above the stepper's limit; peaks are returned, refine substeps).
@@ -171,3 +171,4 @@ def design_spectrum_text(code, mcer=False, **params):
 
 
 from . import fragility, hazard  # noqa: E402  (they use the names above)
+from .study import Results, Study  # noqa: E402

@@ -1,0 +1,47 @@
+"""Study(...).run() in-process and Results (issue 28, item 5): the same results and tables as `pounding run`."""
+import os
+import subprocess
+
+import numpy as np
+import pytest
+
+import pounding
+from conftest import cli, need
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+QUICK = os.path.join(HERE, "..", "..", "..", "studies", "quick.toml")
+
+
+def test_study_from_python_gives_the_clis_tables(tmp_path):
+    need("pandas")
+    h5py = need("h5py")
+    py_out, cli_out = tmp_path / "py.h5", tmp_path / "cli.h5"
+    res = pounding.Study(QUICK).run(out=str(py_out), progress=False)
+    assert res.exit_code == 0 and py_out.exists()
+    run = subprocess.run([cli(), "run", QUICK, "--out", str(cli_out), "--quiet"], capture_output=True, text=True)
+    assert run.returncode == 0, run.stderr
+    csv = subprocess.run([cli(), "report", str(cli_out), "--csv"], capture_output=True, text=True).stdout
+    assert pounding._core.report(str(py_out), True) == csv  # every CSV table, to the digit
+    md = subprocess.run([cli(), "report", str(cli_out)], capture_output=True, text=True).stdout
+    cli_tables = pounding.study.markdown_tables(md)
+    assert list(res.sections) == list(cli_tables)
+    for heading, table in cli_tables.items():
+        assert res.sections[heading].equals(table), heading
+    with h5py.File(py_out) as a, h5py.File(cli_out) as b:
+        for key in a["uncoupled"]:
+            assert np.array_equal(a["uncoupled"][key][()], b["uncoupled"][key][()], equal_nan=True), key
+    t3 = res.table3
+    assert list(t3.columns) == ["gap_ratio", "hits", "n", "probability"] and t3["n"].dtype == np.int64
+    assert (t3["probability"] == (t3["hits"] / t3["n"]).round(6)).all()
+    assert res.table2.shape == (25, len(t3))
+    assert res.code_rules["rule"].iloc[0] == "Standard 2800"
+    assert "uncoupled" in res.groups() and res.arrays("uncoupled")["peak_closing"].size > 0
+
+
+def test_bad_study_text_is_a_value_error(tmp_path):
+    text = open(QUICK).read().replace("[gaps]", "[gaps]\nbogus_key = 1", 1)
+    with pytest.raises(ValueError, match="bogus_key"):
+        pounding.Study(text, base_dir=str(tmp_path)).run(out=str(tmp_path / "x.h5"), progress=False)
+    assert not (tmp_path / "x.h5").exists() and os.listdir(tmp_path) == []
+    with pytest.raises(ValueError, match="not found"):
+        pounding.Results(str(tmp_path / "missing.h5"))
