@@ -17,6 +17,7 @@
 #include "pounding/contact/registry.hpp"
 #include "pounding/core/error.hpp"
 #include "pounding/physics/batch.hpp"
+#include "pounding/physics/single_impact.hpp"
 #include "pounding/physics/validate.hpp"
 #include "pounding/testing/workloads.hpp"
 
@@ -261,6 +262,30 @@ py::tuple simulate_py(const py::dict& pair, const Array& ag, double dt, const st
   return py::make_tuple(result_dict(r, energy), ts);
 }
 
+// `pounding collide`: one free impact of m1 at v0 on m2 at rest (physics/single_impact.hpp), its inputs checked as
+// the CLI checks them (the same messages, naming --e, --v0, ...).
+py::dict collide_py(const std::string& law, double e, double v0, double m1, double m2, double kh, double n,
+                    const std::string& damping, const std::string& stepper, int steps) {
+  ContactModel cm;
+  cm.law = parse_contact_law(law);
+  cm.damping = parse_damping_law(damping);
+  cm.n = n;
+  const Stepper st = parse_stepper(stepper);
+  check_impact_inputs(cm, e, true, v0, m1, m2, kh);
+  if (steps < 100) throw py::value_error("steps: at least 100 integration steps per contact duration are needed");
+  ImpactResult r;
+  {
+    py::gil_scoped_release unlocked;
+    r = single_impact(cm, st, e, v0, m1, m2, kh, steps);
+  }
+  py::dict d;
+  d["e_effective"] = r.e_effective, d["peak_force"] = r.peak_force, d["peak_penetration"] = r.peak_penetration;
+  d["duration"] = r.duration, d["energy_lost"] = r.energy_lost, d["energy_lost_fraction"] = r.energy_lost_fraction;
+  d["clamps"] = r.clamps, d["h_omega_contact"] = r.h_omega_contact, d["status"] = static_cast<int>(r.status);
+  d["restitution_promise"] = restitution_promise(cm).note;
+  return d;
+}
+
 py::list status_names() {
   py::list names;
   for (const auto& e : lane_status_table) names.append(py::make_tuple(std::string(e.name), static_cast<int>(e.value)));
@@ -283,6 +308,9 @@ void bind_kernel(py::module_& m) {
   m.def("simulate", &simulate_py, py::arg("pair"), py::arg("ag"), py::arg("dt"), py::arg("stepper"),
         py::arg("contact"), py::arg("damping"), py::arg("n"), py::arg("substeps"), py::arg("energy"),
         py::arg("duration"), py::arg("displacement_limit"), "one pair with its time series (use pounding.simulate)");
+  m.def("collide", &collide_py, py::arg("law"), py::arg("e"), py::arg("v0"), py::arg("m1"), py::arg("m2"),
+        py::arg("kh"), py::arg("n"), py::arg("damping"), py::arg("stepper"), py::arg("steps"),
+        "one free impact (use pounding.collide)");
   m.def("status_names", &status_names, "(name, value) of every lane status (kernel/batch.hpp LaneStatus)");
   m.def("contact_law_names", [] { return std::string(contact_law_names); });
   py::module_ t = m.def_submodule("testing", "deterministic workloads (the kernel digests' inputs)");

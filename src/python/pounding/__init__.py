@@ -21,7 +21,7 @@ from . import _core
 from ._core import Record, __version__, analysis, read_record, run_batch, testing  # noqa: F401
 
 __all__ = ["Record", "Status", "analyze", "design_spectrum", "fragility", "hazard", "read_record", "run_batch",
-           "simulate", "spectrum", "PAIR_FIELDS", "Results", "Study"]
+           "collide", "simulate", "spectrum", "PAIR_FIELDS", "Results", "Study"]
 
 # The kernel's lane status (kernel/batch.hpp LaneStatus): 0 ok, 1 diverged, 2 non-finite, 3 coarse (ran to the end
 # but the contact was under-resolved: h omega_c above the stepper's limit; peaks are returned, refine substeps).
@@ -141,6 +141,15 @@ def simulate(pair, record, contact="none", stepper="central-difference", substep
         for key in _CONTACT_FIELDS:
             scalars[key] = float("nan")
     return Simulation(scalars, series)
+
+
+def collide(law="hertzdamp", e=0.65, v0=1.0, m1=1.0e6, m2=1.0e6, kh=2.808e10, n=1.5, damping="lankarani-nikravesh",
+            stepper="rk4", steps=20000):
+    """`pounding collide`: mass m1 (kg) at v0 (m/s) hits m2 at rest through the contact law (kh in N/m^n, N/m for
+    linear/Kelvin); a dict e_effective (the restitution the law delivered), peak_force (N), peak_penetration (m),
+    duration (s), energy_lost (J), energy_lost_fraction (of 1/2 m1 v0^2), clamps, h_omega_contact, status,
+    restitution_promise (what the law promises about e). Defaults and input checks are the CLI's."""
+    return _core.collide(law, e, v0, m1, m2, kh, n, damping, stepper, steps)
 
 
 def spectrum(record, periods, zeta=0.05):

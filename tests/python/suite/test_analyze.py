@@ -176,3 +176,19 @@ def test_simulate_series(tmp_path):
     assert np.abs(s.series["u1"]).max() == r["peak_u1"][0]
     assert np.max(s.series["u1"] - s.series["u2"]) == r["peak_closing"][0]
     assert len(s.series["t"]) >= 2 * (rec.npts - 1)
+
+
+def test_collide_same_as_the_cli():
+    for args in ({}, {"law": "hertzdamp", "damping": "calibrated", "e": 0.5, "v0": 0.8, "m2": 3e6},
+                 {"law": "kelvin", "kh": 5e8, "stepper": "central-difference"}):
+        r = pounding.collide(**args)
+        opt = {"damping": "--damping-law"}
+        cmd = [cli(), "collide", "--json"] + [x for k, v in args.items() for x in (opt.get(k, "--" + k), str(v))]
+        out = subprocess.run(cmd, capture_output=True, text=True)
+        j = json.loads(out.stdout)
+        assert r["e_effective"] == j["e_effective"] and r["peak_force"] == j["peak_force_N"]
+        assert r["peak_penetration"] == j["peak_penetration_m"] and r["duration"] == j["contact_duration_s"]
+        assert r["energy_lost"] == j["energy_lost_J"] and r["h_omega_contact"] == j["h_omega_contact"]
+    assert pounding.collide(damping="calibrated")["e_effective"] == pytest.approx(0.65, abs=1e-3)
+    with pytest.raises(ValueError, match="--v0"):
+        pounding.collide(v0=-1.0)
