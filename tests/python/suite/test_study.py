@@ -45,3 +45,29 @@ def test_bad_study_text_is_a_value_error(tmp_path):
     assert not (tmp_path / "x.h5").exists() and os.listdir(tmp_path) == []
     with pytest.raises(ValueError, match="not found"):
         pounding.Results(str(tmp_path / "missing.h5"))
+
+
+def test_fragility_study_numbers_are_the_bindings(tmp_path):
+    """A fragility study's /fragility and /hazard (written by the study's own analysis) against fragility.fit and
+    hazard.rate on the file's observed stripes: the same C++ code, so the same bits."""
+    need("h5py")
+    studies = os.path.join(HERE, "..", "..", "..", "studies")
+    text = open(os.path.join(studies, "fragility-pair.toml")).read()
+    text = text.replace("samples_per_pair = 200", "samples_per_pair = 20").replace("bootstrap = 2000", "bootstrap = 50")
+    (tmp_path / "frag.toml").write_text(text)
+    (tmp_path / "example-hazard.csv").write_text(open(os.path.join(studies, "example-hazard.csv")).read())
+    res = pounding.Study(str(tmp_path / "frag.toml")).run(out=str(tmp_path / "frag.h5"), progress=False)
+    f, h = res.arrays("fragility"), res.arrays("hazard")
+    ok = 0
+    for g in range(len(f["gaps"])):
+        fit = pounding.fragility.fit(f["levels"], f["observed_n"][g], f["observed_z"][g])
+        stored = f["status"][g].decode() if isinstance(f["status"][g], bytes) else str(f["status"][g])
+        if not fit.ok:
+            assert np.isnan(f["theta"][g]), (g, fit.status, stored)
+            continue
+        ok += 1
+        assert fit.theta == f["theta"][g] and fit.beta == f["beta"][g], g
+        lam = pounding.hazard.rate(fit.theta, fit.beta, (h["im"], h["rate"]))
+        assert lam["rate"] == h["annual_rate"][g], g
+    assert ok >= 3
+    assert any(k.startswith("Fragility per gap") for k in res.sections)
