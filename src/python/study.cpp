@@ -3,7 +3,9 @@
 // flag; and the report of a results file, as `pounding report` renders it.
 #include <atomic>
 #include <optional>
+#include <stdexcept>
 #include <string>
+#include <utility>
 
 #include "common.hpp"
 #include "pounding/core/error.hpp"
@@ -18,11 +20,13 @@ namespace pounding::python {
 namespace {
 
 // Called from the engine with the GIL released: take it, report, and turn a pending Ctrl-C into the stop flag
-// (the run then ends with 130 and keeps its checkpoint, as the CLI's).
+// (the run then ends with 130 and keeps its checkpoint, as the CLI's). A KeyboardInterrupt raised inside the user's
+// callback is the same stop; any other exception in it stops the run and is raised again after it.
 struct Progress {
   py::object callback;
   std::atomic<bool>* stop;
   bool* interrupted;
+  std::string* failure;
   void poll() const {
     py::gil_scoped_acquire held;
     if (PyErr_CheckSignals() != 0) {
@@ -31,17 +35,24 @@ struct Progress {
       stop->store(true);
     }
   }
+  template <class... A>
+  void call(const py::object& f, A&&... args) const {
+    py::gil_scoped_acquire held;
+    try {
+      f(std::forward<A>(args)...);
+    } catch (py::error_already_set& e) {
+      if (e.matches(PyExc_KeyboardInterrupt)) *interrupted = true;
+      else if (failure->empty()) *failure = e.what();
+      stop->store(true);
+    }
+  }
   void units(const ProgressReport& p) const {
     poll();
-    if (callback.is_none()) return;
-    py::gil_scoped_acquire held;
-    callback("units", p.units_done, p.units_total, p.elapsed_s, p.final);
+    if (!callback.is_none()) call(callback, "units", p.units_done, p.units_total, p.elapsed_s, p.final);
   }
   void phase(const PhaseProgress& p) const {
     poll();
-    if (callback.is_none()) return;
-    py::gil_scoped_acquire held;
-    callback(p.phase, p.done, p.total, p.elapsed_s, p.final);
+    if (!callback.is_none()) call(callback, p.phase, p.done, p.total, p.elapsed_s, p.final);
   }
 };
 
@@ -49,21 +60,20 @@ py::dict run_study_py(const std::string& path, const std::optional<std::string>&
                       const py::object& progress, const py::object& info) {
   std::atomic<bool> stop{false};
   bool interrupted = false;
+  std::string failure;
   RunOptions ro;
   ro.out = out.value_or(""), ro.out_given = out.has_value(), ro.resume = resume, ro.force = force;
   ro.analyse = [](results::Results& r, const WorkHook& hook) { analyse_fragility(r, &hook); };
   ro.report = [](const results::Results& r, const WorkHook& hook, double& bootstrap_s) {
     return report_markdown(r, &hook, &bootstrap_s);
   };
-  const Progress p{progress, &stop, &interrupted};
+  const Progress p{progress, &stop, &interrupted, &failure};
   RunContext ctx;
   ctx.cancel = &stop;
   ctx.progress = [&p](const ProgressReport& r) { p.units(r); };
   ctx.phase_progress = [&p](const PhaseProgress& r) { p.phase(r); };
-  ctx.info = [&info](const std::string& line) {
-    if (info.is_none()) return;
-    py::gil_scoped_acquire held;
-    info(line);
+  ctx.info = [&p, &info](const std::string& line) {
+    if (!info.is_none()) p.call(info, line);
   };
   RunOutcome r;
   {
@@ -73,6 +83,7 @@ py::dict run_study_py(const std::string& path, const std::optional<std::string>&
     parallel::Session session(argc, argv);
     r = run_study(session, path, ro, ctx);
   }
+  if (!failure.empty()) throw std::runtime_error("the progress or info callback failed, the run stopped: " + failure);
   if (interrupted || r.code == 130) {
     PyErr_SetString(PyExc_KeyboardInterrupt,
                      "study interrupted: the checkpoint keeps every finished unit, run again with resume=True");

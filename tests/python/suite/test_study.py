@@ -71,3 +71,24 @@ def test_fragility_study_numbers_are_the_bindings(tmp_path):
         assert lam["rate"] == h["annual_rate"][g], g
     assert ok >= 3
     assert any(k.startswith("Fragility per gap") for k in res.sections)
+
+
+def test_ctrl_c_stops_a_study_and_resume_finishes_it(tmp_path):
+    import signal
+    out = tmp_path / "q.h5"
+    calls = []
+
+    def progress(phase, done, total, elapsed, final):
+        calls.append(done)
+        if len(calls) == 1:
+            os.kill(os.getpid(), signal.SIGINT)  # Ctrl-C while the study runs
+
+    with pytest.raises(KeyboardInterrupt, match="resume=True"):
+        pounding.Study(QUICK).run(out=str(out), progress=progress)
+    assert not out.exists() and (tmp_path / "q.h5.ckpt").exists()  # no results, the checkpoint kept
+    res = pounding.Study(QUICK).run(out=str(out), progress=False, resume=True)
+    assert res.exit_code == 0 and res.table3["n"].iloc[0] == 96800
+    whole = pounding.Study(QUICK).run(out=str(tmp_path / "whole.h5"), progress=False)
+    assert pounding._core.report(str(out), True) == pounding._core.report(str(whole.path), True)
+    with pytest.raises(RuntimeError, match="callback failed"):
+        pounding.Study(QUICK).run(out=str(tmp_path / "r.h5"), progress=lambda *a: 1 / 0)
