@@ -102,6 +102,8 @@ void check_keys(const toml::table& t, const std::function<bool(std::string_view 
 
 TableReader::TableReader(const toml::table* t, std::string file, std::string name)
     : t_(t), file_(std::move(file)), name_(std::move(name)), section_(study_section_of(name_)) {}
+TableReader::TableReader(const toml::table* t, std::string file, std::string name, std::string section)
+    : t_(t), file_(std::move(file)), name_(std::move(name)), section_(std::move(section)) {}
 
 std::string TableReader::where(std::string_view key) const {
   const toml::node* n = t_ ? t_->get(key) : nullptr;

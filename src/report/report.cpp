@@ -66,8 +66,9 @@ Interval wilson(const Data& r, std::int64_t hits, std::int64_t n) {
 std::string wilson_basis(const Data& r) {
   return r.fixed_pair
              ? fmt::format("Wilson at the observed fraction with n = {} independent records, not the {} analyses: every "
-                           "model is the same pair, so a record's analyses{} are not independent draws",
-                           r.independent(), r.records() * r.models(), r.per_record == 2 ? " (and its two signs)" : "")
+                           "model is the same {}, so a record's analyses{} are not independent draws",
+                           r.independent(), r.records() * r.models(), r.set.bridge ? "bridge" : "pair",
+                           r.per_record == 2 ? " (and its two signs)" : "")
              : std::string("Wilson on n = the analyses");
 }
 
@@ -249,16 +250,27 @@ void Markdown::overview() {
   const std::size_t N = r.independent();
   out("- {} records ({} synthetic stand-ins, {} real), {} models per record, seed {}\n", N, synth / r.per_record,
       (R - synth) / r.per_record, M, r.h.seed);
+  const std::string mover = r.set.bridge ? "a joint closes (its left frame moves towards its right one)"
+                                         : "building 1 moves towards building 2";
+  const std::string closing = r.set.bridge ? "u_left - u_right at a joint" : "u1 - u2";
   out("- record polarity: **{}** — {}\n", r.res.polarity(),
       r.per_record == 2
           ? fmt::format("every record applied with both signs, as two analyses of the same record ({} analyses per "
-                        "model); pounding counts when building 1 moves towards building 2 (peak of u1 - u2), and a "
-                        "ground motion's sign is arbitrary. The statistics over records keep a record's two signs "
-                        "together",
-                        R)
-          : std::string("every record applied with its sign as recorded ([records] polarity = \"both\" adds the "
-                        "reversed sign: a ground motion's sign is arbitrary, and pounding counts only when building 1 "
-                        "moves towards building 2)"));
+                        "model); pounding counts when {} (peak of {}), and a ground motion's sign is arbitrary. The "
+                        "statistics over records keep a record's two signs together",
+                        R, mover, closing)
+          : fmt::format("every record applied with its sign as recorded ([records] polarity = \"both\" adds the "
+                        "reversed sign: a ground motion's sign is arbitrary, and pounding counts only when {})",
+                        mover));
+  if (r.set.bridge) {
+    out("- a bridge study: gaps are ratios x of d = {:g} m, the smallest joint gap; joint j's gap is x d + (gap_j - d)\n",
+        r.set.bridge_d);
+    excluded_uncoupled();
+    out("\nAt least one impact at ratio x is counted from the uncoupled peak closings: before the first contact the "
+        "motion is the uncoupled one, so D = max over the joints of (peak closing - (gap_j - d)) > x d is exactly "
+        "\"some joint touches at least once\" (restrainers, bearings and abutments act in both runs).\n");
+    return;
+  }
   out("- {}\n", r.set.pair ? "a pair study: both buildings' heights are given, so separations are in metres"
                            : "a grid study: heights come from the period-height rule, so gaps are ratios x of the "
                              "code gap d and no separation is given in metres");
@@ -287,7 +299,7 @@ void Markdown::excluded_uncoupled() {
 
 // The gap ratio x as a column title; "x d = g m" when the code gap is the same for every model.
 std::string gap_title(const Data& r, double x) {
-  if (!r.set.pair || r.mod.code_gap.empty()) return fmt::format("{}d", x);
+  if ((!r.set.pair && !r.set.bridge) || r.mod.code_gap.empty()) return fmt::format("{}d", x);
   const auto [lo, hi] = std::minmax_element(r.mod.code_gap.begin(), r.mod.code_gap.end());
   return *lo == *hi ? fmt::format("{}d = {:.3f} m", x, x * *lo) : fmt::format("{}d", x);
 }
@@ -464,8 +476,24 @@ std::string grid_advice_section(const Data& r) {
   std::vector<double> targets;
   for (double t : set.targets) targets.push_back(t / 100.0);
   const separation::BootstrapResult b = r.bootstrap(false, targets, {});
-  const std::optional<CubicFit> f = ratio_fit(r);
-  std::string s = fmt::format(
+  if (set.bridge) {  // d is one number (the smallest joint gap): the advice in metres too
+    std::string s = fmt::format(
+        "\n## Joint gap advice (any joint)\n\n"
+        "x is the smallest gap ratio that at most floor(t n) of the n analyses exceed (the exact empirical curve of D); "
+        "the gap of the joint(s) at d is x d, every other joint's x d + (gap_j - d). The interval is a two-stage "
+        "bootstrap over records and over models within records ({} replicates, {:.0f} %), so it includes "
+        "record-to-record variability; the advice is its upper end.\n\n"
+        "| target | x | gap x d (m) | {:.0f} % interval (m) | advice (m, upper end) |\n|---|---|---|---|---|\n",
+        b.replicates, 100 * set.confidence, 100 * set.confidence);
+    for (std::size_t i = 0; i < targets.size(); ++i) {
+      const separation::Estimate& e = b.separation[i];
+      const double d = set.bridge_d;
+      s += fmt::format("| {}% | {:.3f} | {:.4f} | [{:.4f}, {:.4f}] | **{:.4f}** |\n", set.targets[i], e.value,
+                       e.value * d, e.lo * d, e.hi * d, e.hi * d);
+    }
+    return s;
+  }
+  const std::optional<CubicFit> f = ratio_fit(r);  std::string s = fmt::format(
       "\n## Separation advice in gap ratios x of the code gap d\n\n"
       "x is the smallest gap ratio that at most floor(t n) of the n analyses exceed (the exact empirical curve). "
       "The interval is a two-stage bootstrap over records and over models within records ({} replicates, "
@@ -500,6 +528,11 @@ ReportSettings report_settings(const results::Results& r) {
   if (s.find("report", "confidence")) set.confidence = s.number("report", "confidence");
   if (s.find("report", "bootstrap")) set.bootstrap = static_cast<int>(s.number("report", "bootstrap"));
   set.pair = s.find("structures", "heights_specified") && s.number("structures", "heights_specified") != 0;
+  if (s.find("bridge", "reference_gap")) {
+    set.bridge = true, set.pair = false;
+    set.bridge_d = s.number("bridge", "reference_gap");
+    set.bridge_text = s.text("bridge", "description");
+  }
   return set;
 }
 
@@ -533,6 +566,11 @@ std::string study_markdown(const results::Results& results, const WorkHook* hook
   md.per_record();
   md.total();
   md.coupled_counts();
+  if (r.set.bridge) {  // the buildings' code rules, period matrix and u1/u2 amplification do not apply
+    md.raw(grid_advice_section(r));
+    md.raw(bridge_section(r));
+    return std::move(md).text();
+  }
   md.period_matrix();
   if (!r.set.pair) {
     md.fit();

@@ -1,6 +1,8 @@
 // The stochastic structure model (stochastic-pounding-monte-carlo.txt, sections 2.1-3.1). See sampler.hpp.
 #include "pounding/sampling/sampler.hpp"
 
+#include "pounding/sampling/bridge.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <functional>
@@ -424,6 +426,12 @@ SampledPair StructureSampler::sample(const SampleId& id) const {
   if (id.i1 < 0 || id.i1 >= n1 || id.i2 < 0 || id.i2 >= n2 || id.sample < 0)
     throw std::out_of_range(fmt::format("sample identity ({}, {}, {}) outside {} x {} period slots", id.i1, id.i2,
                                         id.sample, n1, n2));
+  if (model_.bridge) {  // the bridge's frames: two uniforms per frame from its own stream (sampling/bridge.hpp)
+    Engine gb = make_engine(stream_seed(seed_, bridge_stream ^ (stream_ << 48), id));
+    std::vector<double> u(2 * model_.bridge->frames());
+    for (double& x : u) x = uniform01(gb);
+    return bridge_pair(*model_.bridge, id, u);
+  }
   Engine g = make_engine(stream_seed(seed_, stream_, id));
   // The paper's 8 uniforms first (building 1 then 2: h, aspect, rho, mbar), then per building T, zeta, Cy:
   // always all 14, so a stream never depends on which keys a study sets.

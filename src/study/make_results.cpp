@@ -1,5 +1,7 @@
 #include "pounding/study/make_results.hpp"
 
+#include "pounding/sampling/bridge.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <ctime>
@@ -81,8 +83,8 @@ results::ModelTable model_table(const Study& study, const WorkPlan& plan) {
       t.zeta1[m] = q.s1.zeta, t.zeta2[m] = q.s2.zeta, t.alpha1[m] = q.s1.alpha, t.alpha2[m] = q.s2.alpha;
     }
   }
-  // a row's buildings 3..n
-  t.row.resize(study.structures.more.size());
+  // a row's buildings 3..n (a bridge's frames 3..n)
+  t.row.resize(study.structures.bridge ? study.structures.bridge->frames() - 2 : study.structures.more.size());
   for (auto& b : t.row)
     for (const auto& [prefix, member] : results::row_model_doubles) (b.*member).resize(M);
   for (std::size_t p = 0; p < plan.pairs && !t.row.empty(); ++p) {

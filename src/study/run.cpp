@@ -81,7 +81,7 @@ class UnitComputer {
     ks_base_.displacement_limit = s.displacement_limit;
     uncoupled_ = s.contact;
     uncoupled_.law = ContactLaw::none;
-    if (sampler.model().any_shear() || sampler.model().row())
+    if (runs_systems(sampler.model()))
       block_.emplace(sampler.model(), s.contact, s.e, s.contact_levels, s.gap_offsets);
     if (block_ && !plan.system.empty()) table_fields(plan);
     if (plan.stripes) stripe_scaled_ = results::field_index(plan.fields, "uncoupled", "scaled");
@@ -587,7 +587,7 @@ WorkPlan plan_work(const Inputs& in) {
   L.ida = s.intensity.bisection;
   // shear buildings: results format 3 with the study's largest topology as /system (format 2 for an SDOF facing a
   // shear building, and for one storey each: system_table gives the SDOF pair nothing)
-  if (s.structures.any_shear() || s.structures.row())
+  if (runs_systems(s.structures))
     if (const std::optional<LaneTopology> t = table_topology(s.structures, s.seed)) {
       SystemBlock block(s);
       const model::System& sys = block.table_system(*t);
@@ -664,6 +664,10 @@ void announce(const parallel::Session& session, const Inputs& in, const WorkPlan
                       session.size() > 1 ? "s" : ""));
   ctx.say(in.study.scene_reason);
   const StructureModel& sm = in.study.structures;
+  if (sm.bridge)
+    ctx.say(fmt::format("a bridge: {}. The study gap ratio x sets every joint's gap to x d + (its gap - d), d = {:g} m "
+                        "(the smallest joint gap); an analysis pounds when ANY joint closes",
+                        sm.bridge->describe(), sm.bridge->reference_gap));
   if (sm.row())
     ctx.say(fmt::format("a row of {} buildings, left to right: every joint with the study gap ratio x d (d = the row's "
                         "largest joint code separation); an analysis pounds when ANY joint touches",

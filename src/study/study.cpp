@@ -1,5 +1,7 @@
 #include "pounding/study/study.hpp"
 
+#include "pounding/sampling/bridge.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
@@ -314,6 +316,46 @@ static void check_row_study(const Study& s, config::TableReader& top, const toml
                      at_count, "remove [intensity] to run the row in the probability or impacts scene, or set buildings = 2");
 }
 
+// A bridge study ([bridge], sampling/bridge.hpp): the frames come from [bridge], not [structures]; the structure
+// model only numbers the samples (one period slot each, [bridge] samples per record). The system stepper runs it:
+// central difference and a force law at the joints, no [intensity], no [contact] levels / gap_offsets (the joints
+// are the contact elements; their own gaps give the offsets).
+static void parse_bridge(Study& s, TableReader& top, const toml::table* bridge, const toml::table* structures,
+                         const std::string& path) {
+  if (structures)
+    throw InputError("a bridge study takes its frames from [bridge], and the study also has [structures]",
+                     top.where("structures"), "remove [structures] (frames, periods and masses are [[bridge.frame]] keys)");
+  std::int64_t samples = 1;
+  auto model = std::make_shared<BridgeModel>(
+      parse_bridge_model(bridge, path, s.contact_stiffness > 0 ? s.contact_stiffness : NAN, s.e, &samples));
+  toml::table t;
+  t.insert("periods", toml::array{1.0});
+  t.insert("samples_per_pair", samples);
+  s.structures = parse_structure_model(t, path);
+  s.structures.bridge = std::move(model);
+  auto at = [&](const char* table, const char* key) {
+    const toml::table* x = top.table(table);
+    const toml::node* k = x ? x->get(key) : nullptr;
+    return k ? fmt::format("{}:{} [{}].{}", path, k->source().begin.line, table, key) : fmt::format("{} [{}].{}", path, table, key);
+  };
+  if (s.stepper != Stepper::central_difference)
+    throw InputError(fmt::format("the {} stepper runs SDOF pairs only, and the study is a bridge", to_string(s.stepper)),
+                     at("analysis", "stepper"), "write stepper = \"central-difference\" (the system stepper)");
+  if (s.contact.law == ContactLaw::stereomechanical)
+    throw InputError("the stereomechanical law runs one contact element (the SDOF pair), and a bridge has a contact at "
+                     "every joint",
+                     at("contact", "law"), "choose a force law (hertzdamp, kelvin, ...)");
+  if (s.intensity.enabled)
+    throw InputError("a fragility study ([intensity]: stripes, IDA) runs a pair of buildings, and the study is a bridge",
+                     top.where("intensity"), "remove [intensity] to run the bridge in the probability or impacts scene");
+  for (const char* key : {"gap_offsets", "levels"}) {
+    const toml::table* c = top.table("contact");
+    if (c && c->get(key))
+      throw InputError(fmt::format("[contact] {} is given, and the study is a bridge (its joints are the contacts)", key),
+                       at("contact", key), "give each [[bridge.joint]] its own gap instead, or remove the key");
+  }
+}
+
 Study parse_study(const std::string& text, const std::string& path) {
   Study s;
   s.path = path;
@@ -342,8 +384,9 @@ Study parse_study(const std::string& text, const std::string& path) {
   s.intensity = parse_intensity(top.table("intensity"), path, s.structures);
   s.hazard = parse_hazard(top.table("hazard"), path, s.intensity);
   s.target = parse_target_spectrum(top.table("target_spectrum"), path, s.structures);
+  if (const toml::table* bridge = top.table("bridge")) parse_bridge(s, top, bridge, structures, path);
   top.finish("title, seed, scene, output, records, structures, gaps, contact, analysis, report, outputs, intensity, "
-             "hazard, target_spectrum");
+             "hazard, target_spectrum, bridge");
   check_selection(s, top);
   // a ground motion's sign is arbitrary: a pair study (one pair, answers in metres) takes both by default
   if (!s.polarity_given) s.polarity = s.structures.heights_specified() ? Polarity::both : Polarity::recorded;
@@ -351,7 +394,7 @@ Study parse_study(const std::string& text, const std::string& path) {
   s.intensity.bisection =
       s.intensity.method == FragilityMethod::ida &&
       !(s.structures.building(0).hysteresis == Hysteresis::elastic && s.structures.building(1).hysteresis == Hysteresis::elastic);
-  check_shear_study(s, top, structures, path);
+  if (!s.structures.bridge) check_shear_study(s, top, structures, path);
   if (s.intensity.enabled && s.scene_requested != Scene::probability)
     throw InputError("a fragility study ([intensity]) runs in the probability scene", top.where("scene"),
                      "write scene = \"probability\": whether a pair touches at a gap is decided by the uncoupled motion");

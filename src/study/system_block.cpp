@@ -11,6 +11,7 @@
 #include "pounding/contact/registry.hpp"
 #include "pounding/core/error.hpp"
 #include "pounding/model/shear_building.hpp"
+#include "pounding/physics/bridge.hpp"
 #include "pounding/physics/validate.hpp"
 
 namespace pounding {
@@ -22,6 +23,12 @@ constexpr double nan = std::numeric_limits<double>::quiet_NaN();
 LaneTopology lane_topology(const StructureModel& model, const SampledPair& p) {
   const std::size_t n = p.buildings();
   LaneTopology t;
+  if (model.bridge) {  // every lane the same chain
+    t.storeys.assign(n, 1), t.isolated.assign(n, 0), t.moat.assign(n, 0), t.bridge = 1;
+    t.storey_height.resize(n);
+    for (std::size_t i = 0; i < n; ++i) t.storey_height[i] = model.bridge->spec.frames[i].height;
+    return t;
+  }
   t.storeys.resize(n), t.storey_height.resize(n), t.isolated.resize(n), t.moat.resize(n);
   for (std::size_t i = 0; i < n; ++i) {
     const BuildingModel b = model.row_building(i);
@@ -78,6 +85,7 @@ void BlockPeaks::resize(std::size_t n, std::size_t nb, const TableLayout& t) {
 }
 
 std::optional<LaneTopology> table_topology(const StructureModel& model, std::uint64_t seed) {
+  if (model.bridge) return lane_topology(model, StructureSampler(model, seed).sample(model.pair_id(0, 0)));
   if (!model.row() && (!model.building(0).shear() || !model.building(1).shear())) return std::nullopt;
   const StructureSampler sampler(model, seed);
   LaneTopology most;
@@ -101,6 +109,7 @@ void SystemBlock::set_table(const model::System& table) {
 
 const model::System& SystemBlock::system(const LaneTopology& t) {
   auto& slot = systems_[t];
+  if (!slot && t.bridge) slot = std::make_unique<model::System>(physics::bridge_system(model_.bridge->spec));
   if (!slot) {
     std::vector<model::StickTopology> sticks(t.buildings());
     for (std::size_t i = 0; i < t.buildings(); ++i) {
@@ -113,7 +122,7 @@ const model::System& SystemBlock::system(const LaneTopology& t) {
 }
 
 const model::System& SystemBlock::table_system(const LaneTopology& t) {
-  if (levels_ == model::ContactLevels::common) return system(t);
+  if (levels_ == model::ContactLevels::common || t.bridge) return system(t);
   auto& slot = table_systems_[t];
   if (!slot) {
     std::vector<model::StickTopology> sticks(t.buildings());
@@ -128,6 +137,10 @@ const model::System& SystemBlock::table_system(const LaneTopology& t) {
 
 void SystemBlock::set_lane(physics::SystemBatch& b, std::size_t lane, const SampledPair& p, const LaneTopology& t,
                            double gap, const ContactNumbers& cn) const {
+  if (t.bridge) {  // the frames of sample p, every joint at gap + its offset, its own kc and e (sampling/bridge.hpp)
+    physics::set_bridge(b, lane, lane_bridge(*model_.bridge, p, gap));
+    return;
+  }
   const std::size_t nb = t.buildings();
   for (int i = 0; i < static_cast<int>(nb); ++i) {
     const BuildingModel bm = model_.row_building(static_cast<std::size_t>(i));
@@ -174,6 +187,10 @@ void SystemBlock::set_lane(physics::SystemBatch& b, std::size_t lane, const Samp
 }
 
 std::vector<double> SystemBlock::element_offsets(const model::System& sys) const {
+  if (model_.bridge) {  // joint j at the study gap + (gap_j - d)
+    const std::vector<double>& o = model_.bridge->offsets;
+    return std::all_of(o.begin(), o.end(), [](double x) { return x == 0.0; }) ? std::vector<double>{} : o;
+  }
   if (offsets_.empty()) return {};
   std::vector<double> out(sys.contacts().size(), 0.0);
   for (std::size_t e = 0; e < out.size(); ++e) {
@@ -199,7 +216,7 @@ std::vector<ContactModel> SystemBlock::groups(const LaneTopology& t, const Conta
 void SystemBlock::run(std::span<const SampledPair> pairs, std::span<const std::size_t> lanes, double ratio,
                       const ContactModel& cm, const ContactNumbers& cn, const GroundMotion& gm,
                       const KernelSettings& ks, BlockPeaks& out) {
-  const std::size_t n = lanes.size(), nb = model_.building_count();
+  const std::size_t n = lanes.size(), nb = body_count(model_);
   out.resize(n, nb, layout_);
   keys_.resize(n);
   for (std::size_t j = 0; j < n; ++j) keys_[j] = lane_topology(model_, pairs[lanes[j]]);
@@ -289,7 +306,7 @@ void SystemBlock::coupled(std::span<const SampledPair> pairs, std::span<const st
 
 void check_shear_steps(const Study& study, std::span<const StudyRecord> records, std::size_t max_models) {
   const StructureModel& model = study.structures;
-  if ((!model.any_shear() && !model.row()) || records.empty() || study.stepper != Stepper::central_difference) return;
+  if (!runs_systems(model) || records.empty() || study.stepper != Stepper::central_difference) return;
   // the longest integration step over the records
   double h = 0.0, dt = 0.0;
   for (const StudyRecord& r : records) {
@@ -321,10 +338,11 @@ void check_shear_steps(const Study& study, std::span<const StudyRecord> records,
   if (h < h_min) return;
   const double need = worst.substeps(dt);
   throw InputError(
-      fmt::format("the integration step {:.4g} s (record step {:g} s / {}) is too long for the shear buildings: sample "
+      fmt::format("the integration step {:.4g} s (record step {:g} s / {}) is too long for the {}: sample "
                   "({}, {}, {}) needs h <= {:.4g} s for central difference (omega_max <= {:.6g} rad/s, 2 zeta omega <= "
                   "{:.4g} 1/s by Gershgorin's bounds; h^2 omega^2 + 4 h (2 zeta omega) < 4)",
-                  h, dt, study_substeps(study, dt), at.i1, at.i2, at.sample, h_min, w_at, c_at),
+                  h, dt, study_substeps(study, dt), model.bridge ? "bridge's frames and links" : "shear buildings", at.i1,
+                  at.i2, at.sample, h_min, w_at, c_at),
       study.path + " [analysis] substeps / max_dt",
       fmt::format("give [analysis] substeps >= {:g} or max_dt <= {:.4g} s (more storeys of the same period raise "
                   "omega_max and the storey dashpots' damping)",

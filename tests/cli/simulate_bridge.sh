@@ -80,11 +80,11 @@ bad "not a whole number of record steps" --bridge "$tmp/ff4.toml" --wave-delay 0
 bad "add --bridge" --wave-delay 0.02
 cp "$file" "$tmp/ok.toml"
 sed 's/^mass = 1.30635e6$/mass = -1/' "$file" > "$tmp/neg.toml"
-bad "mass = -1 is out of range, .*neg.toml:10 \[frame 1\] mass" --bridge "$tmp/neg.toml"
+bad "mass = -1 is out of range, .*neg.toml:10 \[frame1\].mass" --bridge "$tmp/neg.toml"
 sed 's/^zeta = 0.05$/zeta = 0.05\nspan = 40/' "$file" > "$tmp/unknown.toml"
 bad "unknown.*span" --bridge "$tmp/unknown.toml"
 sed 's/^backfill = "epp"$/backfill = "gravel"/' "$file" > "$tmp/fill.toml"
-bad "unknown backfill 'gravel'.*abutment.left\] backfill" --bridge "$tmp/fill.toml"
+bad "unknown backfill 'gravel'.*\[abutment.left\].backfill" --bridge "$tmp/fill.toml"
 "$py" -c 'import sys; t = open(sys.argv[1]).read(); i = t.rindex("[[joint]]"); j = t.index("[abutment.left]")
 open(sys.argv[2], "w").write(t[:i] + t[j:])' "$file" "$tmp/joints.toml"
 bad "4 frames need 3 joints" --bridge "$tmp/joints.toml"

@@ -75,9 +75,46 @@ StudyText with_target(bool ec8 = false) {
   return s;
 }
 
+// A valid two-frame bridge study in which `key` of the bridge section `section` is read, with `value`.
+std::string bridge_study_with(const std::string& section, const std::string& key, const std::string& value) {
+  auto line = [&](const std::string& sec, const std::string& k, const std::string& v) {
+    return section == sec && key == k ? std::string() : fmt::format("{} = {}\n", k, v);
+  };
+  auto inline_table = [&](const std::string& sec, Section t) {
+    if (section == sec) t[key] = value;
+    std::string out;
+    for (const auto& [tk, tv] : t) out += fmt::format("{}{} = {}", out.empty() ? "" : ", ", tk, tv);
+    return "{" + out + "}";
+  };
+  std::string out = "seed = 1\n[records]\nsuite = \"builtin\"\n[bridge]\n";
+  if (section == "bridge") out += fmt::format("{} = {}\n", key, value);
+  out += "[[bridge.frame]]\n" + line("bridge.frame", "mass", "1e6");
+  out += section == "bridge.frame" && key == "stiffness" ? "" : line("bridge.frame", "period", "0.5");
+  if (section == "bridge.frame") out += fmt::format("{} = {}\n", key, value);
+  if (section == "bridge.frame" && (key == "hysteresis" || key == "beta")) out += "yield_force = 1e6\n";
+  out += "[[bridge.frame]]\nmass = 2e6\nperiod = 1.0\n";
+  out += "[[bridge.joint]]\n" + line("bridge.joint", "gap", "0.05") + line("bridge.joint", "contact_stiffness", "1e9");
+  if (section == "bridge.joint") out += fmt::format("{} = {}\n", key, value);
+  if (section == "bridge.restrainer")
+    out += "restrainer = " + inline_table(section, {{"stiffness", "1e7"}, {"slack", "0.05"}}) + "\n";
+  if (section == "bridge.bearing") out += "bearing = " + inline_table(section, {{"stiffness", "1e6"}}) + "\n";
+  if (section == "bridge.abutment") {
+    const bool hyper = key == "k_max" || key == "k_ur" || key == "rf" || key == "f_ult";
+    const bool wall = key == "width" || key == "height";
+    Section a = hyper ? Section{{"backfill", "\"hyperbolic\""}, {"k_max", "1e8"}, {"f_ult", "1e6"}}
+                : wall ? Section{{"backfill", "\"epp\""}, {"width", "10.0"}, {"height", "1.5"}}
+                       : Section{{"backfill", "\"epp\""}, {"stiffness", "1e8"}, {"capacity", "1e6"}};
+    a[key] = value;
+    out += "[bridge.abutment.left]\n";
+    for (const auto& [ak, av] : a) out += fmt::format("{} = {}\n", ak, av);
+  }
+  return out;
+}
+
 // A valid study in which `key` of `section` is read, with `value` (a TOML literal) for it.
 std::string study_with(const config::StudyKey& k, const std::string& value) {
   const std::string key(k.key), section(k.section);
+  if (section.substr(0, 6) == "bridge") return bridge_study_with(section, key, value);
   StudyText s;
   if (section == "records.files") {
     s.sections["records"] = {{"files", fmt::format("[{{path = \"a.AT2\", {} = {}}}]", key, value)}};

@@ -56,6 +56,9 @@ class TableReader {
   // study file ("records", "structures.building1"; "" the top level); its keys must be described in
   // study_keys.cpp (study_section_of(name) maps it to the registry's section).
   TableReader(const toml::table* t, std::string file, std::string name);
+  // The same with the registry's section given (a table whose name does not map to it: the tables of a bridge
+  // file, "frame2", read with the keys of "bridge.frame").
+  TableReader(const toml::table* t, std::string file, std::string name, std::string section);
 
   std::string where(std::string_view key) const;
   // The node of `key` (null when absent), marking the key as known. std::logic_error when study_keys.cpp does

@@ -24,6 +24,10 @@ struct ReportSettings {
   std::string compare_with;   // "stochastic-pounding": the published Table 3 and eq. 10 beside ours
   std::uint64_t seed = 0;     // the study's seed (the bootstrap's stream derives from it)
   bool pair = false;          // [structures] heights_specified
+  // a bridge study (settings section "bridge"): its description and reference joint gap d (m)
+  bool bridge = false;
+  std::string bridge_text;
+  double bridge_d = 0.0;
 };
 ReportSettings report_settings(const results::Results& r);
 

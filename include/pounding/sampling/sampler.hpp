@@ -57,6 +57,7 @@
 #include <cstdint>
 #include <span>
 #include <string>
+#include <memory>
 #include <vector>
 
 #include <toml++/toml.h>
@@ -67,6 +68,8 @@
 #include "pounding/sampling/building.hpp"
 
 namespace pounding {
+
+struct BridgeModel;  // sampling/bridge.hpp
 
 // Global identity of a sample: slot indices of building 1 (left) and 2 (right) into their period grids, sample
 // index in the pair.
@@ -119,6 +122,10 @@ struct StructureModel {
   // period slot (a fixed period or a distribution: the period grid spans buildings 1 x 2) and is drawn per sample
   // from its own stream (row_stream). Empty: the pair (buildings = 2), bit for bit as before.
   std::vector<BuildingModel> more;
+  // A bridge study ([bridge], sampling/bridge.hpp): every sample is the bridge (its frames in SampledPair::s1, s2,
+  // more; d its reference joint gap), drawn by bridge_pair from the bridge's own stream; the fields above only shape
+  // the sample identities (one period slot each, samples_per_pair = [bridge] samples). Null: buildings.
+  std::shared_ptr<const BridgeModel> bridge;
   std::size_t building_count() const { return 2 + more.size(); }
   bool row() const { return !more.empty(); }
   // Building b (0 = building 1) of the row.

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "pounding/contact/registry.hpp"
+#include "pounding/sampling/bridge.hpp"
 #include "pounding/study/study.hpp"
 
 namespace pounding {
@@ -154,6 +155,15 @@ void visit_settings(const Study& s, V&& v) {
       if (b.isolated) v(sec, "isolation", b.isolation_text());
       if (b.moat) v(sec, "moat", b.moat_text());
     }
+  }
+
+  if (m.bridge) {  // a bridge study (sampling/bridge.hpp); absent otherwise
+    v("bridge", "samples", m.samples_per_pair);
+    v("bridge", "period_cov", m.bridge->period_cov);
+    v("bridge", "mass_cov", m.bridge->mass_cov);
+    v("bridge", "reference_gap", m.bridge->reference_gap);
+    v("bridge", "joint_gap_offsets", m.bridge->offsets);
+    v("bridge", "description", m.bridge->describe());
   }
 
   v("gaps", "ratios", s.gap_ratios);

@@ -28,6 +28,7 @@
 #include "pounding/model/system.hpp"
 #include "pounding/physics/shear_building.hpp"
 #include "pounding/physics/system_batch.hpp"
+#include "pounding/sampling/bridge.hpp"
 #include "pounding/sampling/sampler.hpp"
 #include "pounding/study/study.hpp"
 
@@ -39,9 +40,19 @@ struct LaneTopology {
   std::vector<int> storeys{1, 1};
   std::vector<double> storey_height{3.2, 3.2};
   std::vector<std::uint8_t> isolated{0, 0}, moat{0, 0};  // base isolation, moat walls (the building's keys)
+  // a bridge ([bridge], sampling/bridge.hpp): "buildings" are its frames (one floor each, storey_height their pier
+  // heights), the System physics::bridge_system's (joints as the study-gap elements, restrainers, bearings, abutments)
+  std::uint8_t bridge = 0;
   std::size_t buildings() const { return storeys.size(); }
   friend auto operator<=>(const LaneTopology&, const LaneTopology&) = default;
 };
+
+// The study runs Systems (SystemBlock) rather than the pair kernel: a shear building, a row, or a bridge.
+inline bool runs_systems(const StructureModel& m) { return m.any_shear() || m.row() || m.bridge != nullptr; }
+// The number of bodies of a lane: a bridge's frames, else the buildings.
+inline std::size_t body_count(const StructureModel& m) {
+  return m.bridge ? m.bridge->frames() : m.building_count();
+}
 
 // The topology of pair p under the model (both buildings resolved).
 LaneTopology lane_topology(const StructureModel& model, const SampledPair& p);

@@ -12,7 +12,9 @@
 //       epp: stiffness (N/m) and capacity (N), or width and height (m) of the back wall for Caltrans SDC's K_abut and
 //       P_bw (model::caltrans_abutment); alpha (0); hyperbolic: k_max (N/m), k_ur (N/m; k_max), rf (0.7), f_ult (N)
 //   [abutment.left.bearing] ... as a joint's bearing
-// Bad input: one InputError naming FILE:line and the key.
+// The reader is sampling/bridge.hpp's read_bridge, shared with a study's [bridge] section; every key is registered in
+// src/config/study_keys.cpp (docs/study-reference.md, sections "bridge.*"). Bad input: one InputError naming
+// FILE:line [frame2].key.
 #include <string>
 
 #include "pounding/physics/bridge.hpp"

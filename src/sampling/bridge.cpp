@@ -1,0 +1,289 @@
+// The bridge reader shared by `pounding simulate --bridge` and a study's [bridge] (sampling/bridge.hpp).
+#include "pounding/sampling/bridge.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+#include <fmt/format.h>
+
+#include "pounding/config/config.hpp"
+#include "pounding/core/error.hpp"
+#include "pounding/model/hysteresis/bridge_links.hpp"
+#include "pounding/sampling/building.hpp"
+
+namespace pounding {
+
+namespace {
+
+constexpr double inf = std::numeric_limits<double>::infinity();
+
+std::string table_name(std::string_view prefix, std::string_view rest) { return std::string(prefix) + std::string(rest); }
+
+// A required number: absent is an error naming the key.
+double required(config::TableReader& r, std::string_view key, std::string_view what) {
+  if (r.get(key) == nullptr)
+    throw InputError(fmt::format("{} has no {}", what, key), r.where(key), fmt::format("give {} (SI units)", key));
+  return r.number(key, 0.0);
+}
+
+physics::BridgeBilinear bilinear(const toml::table* t, const std::string& file, const std::string& name) {
+  config::TableReader r(t, file, name, "bridge.bearing");
+  physics::BridgeBilinear b;
+  b.k = required(r, "stiffness", "the bearing");
+  b.fy = r.number("yield_force", inf);
+  b.alpha = r.number("alpha", 0.0);
+  r.finish("stiffness, yield_force, alpha");
+  return b;
+}
+
+int support(config::TableReader& r) { return static_cast<int>(r.integer("support", 1)) - 1; }
+
+physics::BridgeFrame frame(const toml::table* t, const std::string& file, const std::string& name) {
+  config::TableReader r(t, file, name, "bridge.frame");
+  physics::BridgeFrame f;
+  f.label = r.string("label", "");
+  f.mass = required(r, "mass", "the frame");
+  if ((r.get("period") != nullptr) == (r.get("stiffness") != nullptr))
+    throw InputError("a frame needs exactly one of period and stiffness", r.where("period"),
+                     "give period (s) or stiffness (N/m)");
+  f.period = r.number("period", 0.0);
+  f.stiffness = r.number("stiffness", 0.0);
+  f.zeta = r.number("zeta", 0.05);
+  f.fy = r.number("yield_force", inf);
+  f.alpha = r.number("alpha", 0.0);
+  const std::string h = r.string("hysteresis", "bilinear");
+  if (h != "bilinear" && h != "q-hyst")
+    throw InputError(fmt::format("unknown hysteresis '{}'", h), r.where("hysteresis"), "give \"bilinear\" or \"q-hyst\"");
+  f.qhyst = h == "q-hyst";
+  if (f.qhyst && !std::isfinite(f.fy))
+    throw InputError("a Q-Hyst frame needs a yield force", r.where("yield_force"), "give yield_force (N)");
+  f.beta = r.number("beta", 0.5);
+  f.height = r.number("height", 10.0);
+  f.support = support(r);
+  r.finish("label, mass, period, stiffness, zeta, yield_force, alpha, hysteresis, beta, height, support");
+  return f;
+}
+
+physics::BridgeJoint joint(const toml::table* t, const std::string& file, const std::string& name,
+                           const BridgeReadDefaults& d) {
+  config::TableReader r(t, file, name, "bridge.joint");
+  physics::BridgeJoint j;
+  if (r.get("gap") == nullptr) throw InputError("a joint has no gap", r.where("gap"), "give gap (m)");
+  j.gap = r.number("gap", 0.0);
+  if (d.study && !(j.gap > 0))
+    throw InputError("a joint's gap is 0 in a study", r.where("gap"),
+                     "give gap > 0 (m): the smallest joint gap is the reference d of the [gaps] ratios");
+  if (r.get("contact_stiffness") == nullptr && !std::isfinite(d.kc))
+    throw InputError(fmt::format("the joint has no contact_stiffness and {} is not given", d.kc_source),
+                     r.where("contact_stiffness"),
+                     fmt::format("give contact_stiffness (law units: N/m^n for the Hertz family, N/m linear) or {}",
+                                 d.kc_source));
+  j.kc = r.number("contact_stiffness", d.kc);
+  j.e = r.number("restitution", d.e);
+  if (const toml::table* rt = r.table("restrainer")) {
+    config::TableReader rr(rt, file, name + ".restrainer", "bridge.restrainer");
+    model::TensionGap::Spec s;
+    s.k = required(rr, "stiffness", "the restrainer");
+    s.fy = rr.number("yield_force", inf);
+    s.alpha = rr.number("alpha", 0.05);
+    if (d.study && rr.get("slack") == nullptr)
+      throw InputError("a restrainer in a study has no slack", rr.where("slack"),
+                       "give slack (m): the joint gap varies over the [gaps] ratios, the slack does not follow it");
+    s.slack = rr.number("slack", j.gap);
+    rr.finish("stiffness, yield_force, alpha, slack");
+    j.restrainer = s;
+  }
+  if (const toml::table* bt = r.table("bearing")) j.bearing = bilinear(bt, file, name + ".bearing");
+  r.finish("gap, contact_stiffness, restitution, restrainer, bearing");
+  return j;
+}
+
+physics::BridgeAbutment abutment(const toml::table* t, const std::string& file, const std::string& name) {
+  config::TableReader r(t, file, name, "bridge.abutment");
+  physics::BridgeAbutment a;
+  const std::string b = r.string("backfill", "none");
+  if (b != "none" && b != "epp" && b != "hyperbolic")
+    throw InputError(fmt::format("unknown backfill '{}'", b), r.where("backfill"), "give \"none\", \"epp\" or \"hyperbolic\"");
+  a.backfill = b == "epp" ? physics::Backfill::epp : b == "hyperbolic" ? physics::Backfill::hyperbolic : physics::Backfill::none;
+  const double gap = r.number("gap", 0.0);
+  const bool wall = r.get("width") != nullptr || r.get("height") != nullptr;
+  if (a.backfill == physics::Backfill::epp) {
+    if (wall) {
+      const model::CaltransAbutment c = model::caltrans_abutment(required(r, "width", "the abutment"),
+                                                                 required(r, "height", "the abutment"));
+      a.epp.k = c.k, a.epp.fy = c.p_bw;
+    } else {
+      a.epp.k = required(r, "stiffness", "the abutment"), a.epp.fy = required(r, "capacity", "the abutment");
+    }
+    a.epp.alpha = r.number("alpha", 0.0);
+    a.epp.gap = gap;
+  }
+  if (a.backfill == physics::Backfill::hyperbolic) {
+    a.hyperbolic.k_max = required(r, "k_max", "the abutment");
+    a.hyperbolic.k_ur = r.number("k_ur", a.hyperbolic.k_max);
+    if (a.hyperbolic.k_ur < a.hyperbolic.k_max)
+      throw InputError("k_ur is below k_max", r.where("k_ur"), "give k_ur >= k_max (first loading follows the envelope)");
+    a.hyperbolic.rf = r.number("rf", 0.7);
+    a.hyperbolic.f_ult = required(r, "f_ult", "the abutment");
+    a.hyperbolic.gap = gap;
+  }
+  if (const toml::table* bt = r.table("bearing")) a.bearing = bilinear(bt, file, name + ".bearing");
+  a.support = support(r);
+  r.finish(a.backfill == physics::Backfill::hyperbolic ? "backfill, gap, k_max, k_ur, rf, f_ult, bearing, support"
+                                                       : "backfill, gap, stiffness, capacity, width, height, alpha, bearing, support");
+  return a;
+}
+
+// The tables of an array key ([[frame]], [[joint]]).
+std::vector<const toml::table*> tables(config::TableReader& r, std::string_view key, std::string_view prefix) {
+  std::vector<const toml::table*> out;
+  const toml::node* n = r.get(key);
+  if (n == nullptr) return out;
+  const toml::array* a = n->as_array();
+  if (a == nullptr || !a->is_array_of_tables())
+    throw InputError(fmt::format("{} must be an array of tables", key), r.where(key),
+                     fmt::format("write each as [[{}{}]]", prefix, key));
+  for (const toml::node& x : *a) out.push_back(x.as_table());
+  return out;
+}
+
+}  // namespace
+
+physics::BridgeSpec read_bridge(config::TableReader& r, const std::string& file, std::string_view prefix,
+                                const BridgeReadDefaults& defaults) {
+  physics::BridgeSpec spec;
+  int k = 0;
+  for (const toml::table* t : tables(r, "frame", prefix))
+    spec.frames.push_back(frame(t, file, table_name(prefix, fmt::format("frame{}", ++k))));
+  if (spec.frames.empty())
+    throw InputError("the bridge has no frame", r.where("frame"),
+                     fmt::format("give one [[{}frame]] table per frame, left to right", prefix));
+  k = 0;
+  for (const toml::table* t : tables(r, "joint", prefix))
+    spec.joints.push_back(joint(t, file, table_name(prefix, fmt::format("joint{}", ++k)), defaults));
+  if (spec.joints.size() + 1 != spec.frames.size())
+    throw InputError(fmt::format("{} frames need {} joints, the file has {}", spec.frames.size(), spec.frames.size() - 1,
+                                 spec.joints.size()),
+                     r.where("joint"), fmt::format("give one [[{}joint]] between each pair of neighbouring frames", prefix));
+  if (const toml::table* at = r.table("abutment")) {
+    config::TableReader ar(at, file, table_name(prefix, "abutment"), "bridge.abutments");
+    if (const toml::table* t = ar.table("left")) spec.left = abutment(t, file, table_name(prefix, "abutment.left"));
+    if (const toml::table* t = ar.table("right")) spec.right = abutment(t, file, table_name(prefix, "abutment.right"));
+    ar.finish("left, right");
+  }
+  const std::vector<Problem> p = physics::check_bridge(spec);
+  if (!p.empty()) throw InputError(p.front().what, file + " " + std::string(prefix) + p.front().where, p.front().fix);
+  return spec;
+}
+
+std::string BridgeModel::frame_label(std::size_t k) const {
+  const std::string& l = spec.frames[k].label;
+  return l.empty() ? fmt::format("frame {}", k + 1) : l;
+}
+
+std::string BridgeModel::joint_label(std::size_t j) const {
+  return fmt::format("joint {} ({}|{})", j + 1, frame_label(j), frame_label(j + 1));
+}
+
+std::string BridgeModel::describe() const {
+  std::string out = fmt::format("{} frames:", frames());
+  for (std::size_t k = 0; k < frames(); ++k) {
+    const physics::BridgeFrame& f = spec.frames[k];
+    const double kf = physics::frame_stiffness(f);
+    out += fmt::format("{} {} {:.4g} t, T {:.3g} s, {}{}", k ? ";" : "", frame_label(k), f.mass / 1e3,
+                       2.0 * std::numbers::pi * std::sqrt(f.mass / kf),
+                       f.qhyst ? "Q-Hyst" : std::isfinite(f.fy) ? "bilinear" : "elastic",
+                       std::isfinite(f.fy) ? fmt::format(" F_y {:.4g} kN", f.fy / 1e3) : "");
+  }
+  out += fmt::format(". {} joints:", spec.joints.size());
+  for (std::size_t j = 0; j < spec.joints.size(); ++j) {
+    const physics::BridgeJoint& x = spec.joints[j];
+    out += fmt::format("{} {} gap {:.4g} m{}{}", j ? ";" : "", joint_label(j), x.gap,
+                       x.restrainer ? fmt::format(", restrainer {:.4g} kN/m slack {:.4g} m", x.restrainer->k / 1e3,
+                                                  x.restrainer->slack)
+                                    : "",
+                       x.bearing ? ", bearing" : "");
+  }
+  for (const auto& [a, name] : {std::pair{&spec.left, "left"}, std::pair{&spec.right, "right"}}) {
+    if (!a->present()) continue;
+    out += fmt::format(". Abutment {}: {}{}", name,
+                       a->backfill == physics::Backfill::epp          ? fmt::format("EPP backfill, gap {:.4g} m", a->epp.gap)
+                       : a->backfill == physics::Backfill::hyperbolic ? fmt::format("hyperbolic backfill, gap {:.4g} m", a->hyperbolic.gap)
+                                                                      : std::string("no backfill"),
+                       a->bearing ? ", bearing" : "");
+  }
+  if (sampled()) out += fmt::format(". Sampled per model: period CoV {:g}, mass CoV {:g} (lognormal)", period_cov, mass_cov);
+  return out;
+}
+
+BridgeModel parse_bridge_model(const toml::table* bridge, const std::string& file, double kc_default, double e_default,
+                               std::int64_t* samples) {
+  config::TableReader r(bridge, file, "bridge");
+  BridgeReadDefaults d;
+  d.kc = kc_default, d.e = e_default, d.kc_source = "[contact] stiffness", d.study = true;
+  BridgeModel m;
+  m.spec = read_bridge(r, file, "bridge.", d);
+  if (m.spec.joints.empty())
+    throw InputError("a bridge study needs at least one joint", r.where("frame"),
+                     "give two or more [[bridge.frame]] tables and the [[bridge.joint]] between them");
+  *samples = r.integer("samples", 1);
+  m.period_cov = r.number("period_cov", 0.0);
+  m.mass_cov = r.number("mass_cov", 0.0);
+  if (*samples > 1 && !m.sampled())
+    throw InputError(fmt::format("samples = {} and nothing is sampled: every model would be the same bridge", *samples),
+                     r.where("samples"), "give period_cov or mass_cov, or samples = 1");
+  r.finish("frame, joint, abutment, samples, period_cov, mass_cov");
+  m.reference_gap = inf;
+  for (const physics::BridgeJoint& j : m.spec.joints) m.reference_gap = std::min(m.reference_gap, j.gap);
+  for (const physics::BridgeJoint& j : m.spec.joints) m.offsets.push_back(j.gap - m.reference_gap);
+  for (std::size_t k = 0; k < m.frames(); ++k) {
+    const physics::BridgeFrame& f = m.spec.frames[k];
+    const double T = 2.0 * std::numbers::pi * std::sqrt(f.mass / physics::frame_stiffness(f));
+    if (!(T >= 0.02 && T <= 20.0))
+      throw InputError(fmt::format("frame {}'s period {:.4g} s (from its stiffness) is outside [0.02, 20] s", k + 1, T),
+                       fmt::format("{} [bridge.frame{}].stiffness", file, k + 1), "give a stiffness of a real frame");
+  }
+  return m;
+}
+
+SampledPair bridge_pair(const BridgeModel& b, const SampleId& id, std::span<const double> u) {
+  constexpr double nan = std::numeric_limits<double>::quiet_NaN();
+  SampledPair p;
+  p.id = id;
+  const std::size_t n = b.frames();
+  std::vector<SampledStructure> s(n);
+  for (std::size_t k = 0; k < n; ++k) {
+    const physics::BridgeFrame& f = b.spec.frames[k];
+    const double T0 = 2.0 * std::numbers::pi * std::sqrt(f.mass / physics::frame_stiffness(f));
+    SampledStructure& x = s[k];
+    x.T = b.period_cov > 0 ? Truncated(Distribution::lognormal(T0, b.period_cov), 0.02, 20.0).sample(u[2 * k]) : T0;
+    x.m = b.mass_cov > 0 ? Truncated(Distribution::lognormal(f.mass, b.mass_cov), 1.0, 1e10).sample(u[2 * k + 1]) : f.mass;
+    if (b.sampled()) {
+      const double w = 2.0 * std::numbers::pi / x.T;
+      x.k = x.m * w * w;
+    } else {
+      x.k = physics::frame_stiffness(f);  // as pounding simulate --bridge: the given stiffness, or m (2 pi / T)^2
+    }
+    x.zeta = f.zeta, x.c = 2.0 * f.zeta * std::sqrt(x.k * x.m), x.fy = f.fy, x.alpha = f.alpha, x.h = f.height;
+    x.aspect = x.r = x.rho = x.mbar = nan;
+  }
+  p.s1 = s[0];
+  p.s2 = n > 1 ? s[1] : s[0];
+  p.more.assign(s.begin() + static_cast<std::ptrdiff_t>(std::min<std::size_t>(n, 2)), s.end());
+  p.d = b.reference_gap;
+  p.kh = b.spec.joints.empty() ? 0.0 : b.spec.joints[0].kc;
+  return p;
+}
+
+physics::BridgeSpec lane_bridge(const BridgeModel& b, const SampledPair& p, double gap) {
+  physics::BridgeSpec spec = b.spec;
+  for (std::size_t k = 0; k < spec.frames.size(); ++k) {
+    const SampledStructure& s = p.structure(k);
+    spec.frames[k].mass = s.m, spec.frames[k].stiffness = s.k, spec.frames[k].period = s.T;
+  }
+  for (std::size_t j = 0; j < spec.joints.size(); ++j) spec.joints[j].gap = gap + b.offsets[j];
+  return spec;
+}
+
+}  // namespace pounding

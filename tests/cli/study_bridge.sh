@@ -1,0 +1,153 @@
+#!/usr/bin/env bash
+# Bridges through the study runner ([bridge], issue 26 §1; docs/bridges.md):
+#  1. tests/data/bridge/study-four-frame.toml gives bit-identical results at 1 and 2 MPI ranks, at batch width 1 and
+#     its default, and with skip_untouched = false (every model rerun with contact);
+#  2. the probability scene's criterion is exact for the chain: an analysis pounds at ratio x exactly when ANY joint's
+#     uncoupled closing exceeds its gap x d + offset (D = max_j (closing_j - offset_j), d = the smallest joint gap);
+#     results format 3 names frames and joints (/system), carries units on every dataset, /models the frames' T, m, k;
+#  3. the study's lanes are `pounding simulate --bridge` runs: the per-joint closing (law none) and the coupled
+#     per-joint impact counts and peak forces of one record equal simulate's for the same bridge file and record;
+#  4. sampled frames (period_cov): periods drawn per model, reproducible, k = m (2 pi / T)^2;
+#  5. the report names the frames and joints;
+#  6. bad input: one ERROR naming file:line and the key, exit 2, nothing written.
+# Synthetic records only (no ../shared needed). Args: <pounding binary> <source dir>
+set -euo pipefail
+bin=$1; src=$2
+study=$src/tests/data/bridge/study-four-frame.toml
+. "$src/tests/lib/study_invariance.sh"  # $tmp, cmp, study_invariance
+py=/usr/bin/python3
+fail() { echo "FAIL: $*"; exit 1; }
+
+# 1. ranks, batch width, skip_untouched
+study_invariance
+
+# 2. touch <=> any joint's closing > its gap; format 3; units; /models
+"$py" - "$tmp/full.h5" <<'PY'
+import sys, h5py, numpy as np
+f = h5py.File(sys.argv[1], "r")
+assert f.attrs["format_version"] == 3
+R, M = f["uncoupled/peak_closing"].shape
+x = f["impacts/gap_ratios"][()]
+G = len(x)
+assert M == 1, M
+dec = lambda a: [s.decode() if isinstance(s, bytes) else s for s in a]
+assert dec(f["system/element_label"][()]) == ["joint 1", "joint 2", "joint 3"], dec(f["system/element_label"][()])
+d = f["models/code_gap"][()]
+assert np.all(d == 0.0127), d
+offsets = np.array([0.0, 0.0127, 0.0])
+el = f["uncoupled/peak_closing_elements"][()]
+D = f["uncoupled/peak_closing"][()]
+assert np.array_equal(D, (el - offsets).max(axis=2))
+ok = (f["uncoupled/status"][()].reshape(R, M) == 0)[:, :, None] & (f["impacts/status"][()].reshape(R, M, G) == 0)
+assert ok.all(), "failed analyses"
+cnt = f["impacts/impact_count"][()].reshape(R, M, G)
+touch = D[:, :, None] > x[None, None, :] * d[None, :, None]
+assert np.array_equal(touch, cnt > 0), (touch.sum(), (cnt > 0).sum())
+assert 0 < touch.sum() < touch.size, touch.sum()
+# per joint: joint j alone decides some analyses (its own offset counts)
+only = [(el[:, :, j, None] - offsets[j] > x[None, None, :] * d[None, :, None]) for j in range(3)]
+assert any((only[j] & ~np.logical_or.reduce([only[k] for k in range(3) if k != j])).any() for j in range(3))
+ec = f["impacts/element_impact_count"][()].reshape(R, M, G, 3)
+assert np.array_equal(np.where(ec < 0, 0, ec).sum(axis=3), cnt)
+# every frame's peaks, and /models: frames 1..4 (T, m, k)
+u = f["uncoupled"]
+for b in (1, 2, 3, 4):
+    fl = u[f"peak_u_floors{b}"][()]
+    assert fl.shape == (R, M, 1) and np.array_equal(fl[:, :, 0], u[f"peak_u{b}"][()]), b
+T = [f["models/T1"][0], f["models/T2"][0], f["models/T3"][0], f["models/T4"][0]]
+assert np.allclose(T, [0.47, 1.12, 1.12, 0.47], rtol=1e-12), T
+assert f["models/m3"][0] == 3.21145e6 and np.isclose(f["models/k4"][0], 1.30635e6 * (2 * np.pi / 0.47) ** 2, rtol=1e-14)
+# units on every dataset of the result groups
+missing = []
+def visit(name, obj):
+    if isinstance(obj, h5py.Dataset) and name.split("/")[0] in ("uncoupled", "impacts", "models", "records") and "units" not in obj.attrs:
+        missing.append(name)
+f.visititems(visit)
+assert not missing, missing
+print(f"{touch.sum()} of {touch.size} analyses touch at some joint")
+PY
+
+# 3. a lane is pounding simulate --bridge: the same bridge as a bridge file, one record as a study's only record
+two_tone() {
+  awk 'BEGIN { dt = 0.01; for (i = 0; i <= 1200; i++) { t = i * dt;
+         a = 0.35 * sin(2 * 3.14159265 * 1.1 * t) + 0.2 * sin(2 * 3.14159265 * 2.3 * t + 0.4);
+         printf "%.2f %.8f\n", t, a } }' > "$tmp/rec.txt"
+}
+two_tone
+sed -n '/^\[bridge\]/,/^\[contact\]/p' "$study" | sed -e '/^\[bridge\]/d' -e '/^\[contact\]/d' -e 's/^\[\(\[*\)bridge\./[\1/' > "$tmp/bridge.toml"
+sed -e 's/^suite = "builtin"/files = ["rec.txt"]/' -e '/^limit = /d' -e 's/^polarity = "both"/polarity = "recorded"/' \
+    -e 's/^ratios = .*/ratios = [1.0]/' "$study" > "$tmp/one.toml"
+(cd "$tmp" && "$bin" run one.toml --out one.h5 --quiet > /dev/null 2> one.err) || fail "the one-record study does not run: $(cat "$tmp/one.err")"
+# the study's step: the record's 0.01 s in 4 substeps (the impacts scene's max_dt 0.0025 s)
+"$bin" simulate --record "$tmp/rec.txt" --bridge "$tmp/bridge.toml" --contact none --kh 2e9 --e 0.6 --dt 0.0025 --json > "$tmp/none.json"
+"$bin" simulate --record "$tmp/rec.txt" --bridge "$tmp/bridge.toml" --contact hertzdamp --kh 2e9 --e 0.6 --dt 0.0025 --json > "$tmp/hd.json"
+"$py" - "$tmp/one.h5" "$tmp/none.json" "$tmp/hd.json" <<'PY'
+import json, sys, h5py, numpy as np
+f = h5py.File(sys.argv[1], "r")
+none, hd = json.load(open(sys.argv[2])), json.load(open(sys.argv[3]))
+# JSON floats round-trip: the same bits
+assert list(f["uncoupled/peak_closing_elements"][0, 0]) == [l["peak_closing"] for l in none["levels"]], (
+    f["uncoupled/peak_closing_elements"][0, 0], [l["peak_closing"] for l in none["levels"]])
+assert list(f["impacts/element_impact_count"][()].ravel()) == [l["impacts"] for l in hd["levels"]]
+assert list(f["impacts/element_peak_force"][()].ravel()) == [l["peak_force"] for l in hd["levels"]]
+for b in (1, 2, 3, 4):
+    assert f[f"uncoupled/peak_u{b}"][0, 0] == none[f"peak_u{b}"], b
+    assert f[f"impacts/peak_u{b}"][()].ravel()[0] == hd[f"peak_u{b}"], b
+assert min(l["impacts"] for l in hd["levels"]) > 0, "every joint must be hit by this record"
+print("study lane = simulate --bridge: closings", [round(l["peak_closing"], 4) for l in none["levels"]],
+      "impacts", [l["impacts"] for l in hd["levels"]])
+PY
+
+# 4. sampled frames: periods and masses per model, reproducible, k = m (2 pi / T)^2
+sed -e 's/^\[bridge\]$/[bridge]\nsamples = 5\nperiod_cov = 0.2\nmass_cov = 0.1/' -e 's/^ratios = .*/ratios = [1.0]/' \
+    -e 's/^limit = 3/limit = 1/' "$study" > "$tmp/sampled.toml"
+"$bin" run "$tmp/sampled.toml" --out "$tmp/s1.h5" --quiet > /dev/null 2>&1
+"$bin" run "$tmp/sampled.toml" --out "$tmp/s2.h5" --quiet > /dev/null 2>&1
+cmp "$tmp/s1.h5" "$tmp/s2.h5" --ignore=output
+"$py" - "$tmp/s1.h5" <<'PY'
+import sys, h5py, numpy as np
+f = h5py.File(sys.argv[1], "r")
+m = f["models"]
+T = np.array([m[f"T{b}"][()] for b in (1, 2, 3, 4)])
+assert T.shape == (4, 5) and len(set(T.ravel())) == 20, T
+assert np.allclose(np.array([m[f"k{b}"][()] for b in (1, 2, 3, 4)]),
+                   np.array([m[f"m{b}"][()] for b in (1, 2, 3, 4)]) * (2 * np.pi / T) ** 2, rtol=1e-13)
+assert abs(np.log(T[1] / 1.12)).max() < 1.0 and len(set(m["m2"][()])) == 5
+PY
+
+# 5. the report names the frames and joints
+"$bin" run "$study" --out "$tmp/rep.h5" > "$tmp/rep.md" 2> /dev/null
+for want in "joint 1 (F1|F2)" "joint 3 (F3|F4)" "d = 0.0127 m"; do
+  grep -qF "$want" "$tmp/rep.md" || fail "the report does not say '$want'"
+done
+! grep -q "h1 + h2\|building 1 moves" "$tmp/rep.md" || fail "the report speaks of buildings: $(grep -m2 'h1 + h2\|building 1 moves' "$tmp/rep.md")"
+
+# 6. bad input: one ERROR naming file:line and the key, exit 2, nothing written
+bad() {
+  local want=$1 file=$2
+  set +e; (cd "$tmp" && "$bin" run "$file" --out bad.h5 > bad.out 2> bad.err); local rc=$?; set -e
+  [ $rc -eq 2 ] || fail "$file: exit $rc, want 2: $(cat "$tmp/bad.err")"
+  [ ! -e "$tmp/bad.h5" ] || fail "$file: wrote results"
+  grep -q "ERROR: .*$want" "$tmp/bad.err" || fail "$file: the error does not name $want: $(cat "$tmp/bad.err")"
+  [ "$(grep -c ERROR "$tmp/bad.err")" -eq 1 ] || fail "$file: more than one ERROR line: $(cat "$tmp/bad.err")"
+}
+printf '[structures]\nzeta = 0.05\n' | cat "$study" - > "$tmp/b1.toml"
+bad "takes its frames from \[bridge\].*b1.toml:[0-9]* structures" b1.toml
+sed 's/, slack = 0.0127 }/ }/' "$study" > "$tmp/b2.toml"
+bad "restrainer in a study has no slack.*b2.toml:[0-9]* \[bridge.joint1.restrainer\].slack" b2.toml
+sed '0,/^gap = 0.0127/s//gap = 0.0/' "$study" > "$tmp/b3.toml"
+bad "gap is 0 in a study.*\[bridge.joint1\].gap" b3.toml
+sed 's/^period = 1.12/period = 1.12\nspan = 40.0/' "$study" > "$tmp/b4.toml"
+bad "unknown.*span.*\[bridge.frame2\]" b4.toml
+sed 's/^mass = 3.21145e6/mass = -3.2e6/' "$study" > "$tmp/b5.toml"
+bad "mass = -3200000 is out of range.*b5.toml:[0-9]* \[bridge.frame2\].mass" b5.toml
+sed 's/^\[bridge\]$/[bridge]\nsamples = 4/' "$study" > "$tmp/b6.toml"
+bad "nothing is sampled.*\[bridge\].samples" b6.toml
+sed 's/^law = "hertzdamp"/law = "hertzdamp"\ngap_offsets = [0.01]/' "$study" > "$tmp/b7.toml"
+bad "gap_offsets is given, and the study is a bridge.*\[contact\].gap_offsets" b7.toml
+sed 's/^stiffness = 2.0e9/n = 1.5/' "$study" > "$tmp/b8.toml"
+bad "no contact_stiffness and \[contact\] stiffness is not given.*\[bridge.joint1\].contact_stiffness" b8.toml
+sed '0,/^\[\[bridge.joint\]\]/s//[[bridge.joint]]\ngap = 0.0127\n[[bridge.joint]]/' "$study" > "$tmp/b9.toml"
+bad "4 frames need 3 joints" b9.toml
+
+echo "bridge studies: invariance, first passage per joint, simulate agreement, sampled frames, report, bad input"
