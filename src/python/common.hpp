@@ -7,6 +7,7 @@
 #include <pybind11/stl.h>
 
 #include <cstring>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -25,9 +26,16 @@ py::array_t<T> to_numpy(const std::vector<T>& v) {
 // A 1-D float64 array as a vector; `what` names it in the ValueError.
 std::vector<double> to_vector(const py::handle& values, const std::string& what);
 
+// Runs work(b) for every b in [0, batches) on `threads` threads (0: every core) with the GIL released; the calling
+// thread takes the GIL every 50 ms to check for Ctrl-C (PyErr_CheckSignals) and then stops the workers after their
+// current batch and throws error_already_set (KeyboardInterrupt). The first exception of a worker is rethrown.
+// Results must not depend on the order: each b writes only its own lanes.
+void run_parallel(std::size_t batches, int threads, const std::function<void(std::size_t)>& work);
+
 void bind_kernel(py::module_& m);    // kernel.cpp: run_batch, analyze, simulate, status names
 void bind_records(py::module_& m);   // records.cpp: Record, read_record, spectrum, design_spectrum
 void bind_analysis(py::module_& m);  // analysis.cpp: fragility fits, hazard rates, risk-targeted gap, ddc_rho
 void bind_study(py::module_& m);     // study.cpp: run_study in-process, report of a results file
+void bind_systems(py::module_& m);   // systems.cpp: analyze_storeys (shear buildings through run_system)
 
 }  // namespace pounding::python

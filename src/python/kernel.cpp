@@ -1,16 +1,10 @@
 // The pair kernel on numpy arrays: run_batch (one call, the kernel's own fields), analyze (many pairs, threads over
 // batches with the GIL released, Ctrl-C between batches) and simulate (one pair, full time series).
 #include <algorithm>
-#include <atomic>
-#include <chrono>
-#include <condition_variable>
 #include <cmath>
 #include <cstdint>
-#include <exception>
 #include <limits>
-#include <mutex>
 #include <string>
-#include <thread>
 #include <vector>
 
 #include "common.hpp"
@@ -163,64 +157,6 @@ void place(const BatchResult& part, std::size_t first, BatchResult& out) {
   });
 }
 
-// Batches of `width` pairs on `threads` threads; results are the lanes' own (bit-identical for any width and thread
-// count: lane independence, tests LaneEquivalence). The calling thread holds no GIL while the workers run and takes
-// it every 50 ms to check for Ctrl-C (PyErr_CheckSignals); a signal stops the workers after their current batch.
-struct Pool {
-  Pool(const PairBatch& a, const Setup& setup, std::size_t w) : all(a), s(setup), width(w) {}
-  const PairBatch& all;
-  const Setup& s;
-  std::size_t width;
-  std::size_t batches() const { return (all.width() + width - 1) / width; }
-  std::atomic<std::size_t> next{0}, done{0};
-  std::atomic<bool> stop{false};
-  std::mutex mu;
-  std::condition_variable cv;
-  std::exception_ptr error;
-
-  void work(BatchResult& out) {
-    for (std::size_t b; !stop && (b = next++) < batches();) {
-      try {
-        const std::size_t first = b * width, n = std::min(width, all.width() - first);
-        BatchResult r;
-        run_batch(slice(all, first, n), s.cm, s.motion(), s.ks, r);
-        place(r, first, out);  // disjoint lanes: no lock needed
-      } catch (...) {
-        std::lock_guard<std::mutex> lock(mu);
-        if (!error) error = std::current_exception();
-        stop = true;
-      }
-      ++done;
-      cv.notify_all();
-    }
-  }
-};
-
-bool run_pool(Pool& pool, BatchResult& out, int threads) {
-  bool interrupted = false;
-  py::gil_scoped_release unlocked;
-  std::vector<std::thread> workers;
-  const auto count = std::max<std::size_t>(1, std::min<std::size_t>(static_cast<std::size_t>(threads), pool.batches()));
-  for (std::size_t t = 0; t < count; ++t) workers.emplace_back([&] { pool.work(out); });
-  std::unique_lock<std::mutex> lock(pool.mu);
-  while (pool.done < pool.batches() && !(pool.stop && pool.error)) {
-    pool.cv.wait_for(lock, std::chrono::milliseconds(50));
-    lock.unlock();
-    {
-      py::gil_scoped_acquire held;
-      if (PyErr_CheckSignals() != 0) interrupted = true;  // the Python error (KeyboardInterrupt) stays set
-    }
-    lock.lock();
-    if (interrupted) {
-      pool.stop = true;
-      break;
-    }
-  }
-  lock.unlock();
-  for (auto& w : workers) w.join();
-  return interrupted;
-}
-
 py::dict analyze_py(const py::dict& pairs, const Array& ag, double dt, const std::string& stepper,
                     const std::string& contact, const std::string& damping, double n, int substeps, bool energy,
                     double duration, double displacement_limit, std::size_t width, int threads) {
@@ -229,12 +165,15 @@ py::dict analyze_py(const py::dict& pairs, const Array& ag, double dt, const std
   // Every pair checked before any work, numbered as the caller numbers them (a batch would count from 0).
   physics::throw_first(physics::validate(all, s.cm, s.motion(), s.ks));
   if (width < 1) throw py::value_error("batch: at least 1 pair per batch is needed");
-  if (threads <= 0) threads = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
   BatchResult out;
   out.resize(all.width());
-  Pool pool(all, s, width);
-  if (all.width() > 0 && run_pool(pool, out, threads)) throw py::error_already_set();
-  if (pool.error) std::rethrow_exception(pool.error);
+  const std::size_t batches = (all.width() + width - 1) / width;
+  run_parallel(batches, threads, [&](std::size_t b) {
+    const std::size_t first = b * width, n = std::min(width, all.width() - first);
+    BatchResult r;
+    run_batch(slice(all, first, n), s.cm, s.motion(), s.ks, r);
+    place(r, first, out);  // disjoint lanes: no lock needed
+  });
   return result_dict(out, energy);
 }
 

@@ -3,7 +3,14 @@
 // Arrays are SI (m, s, kg, N); ground acceleration in m/s^2 like the kernel, records carry both m/s^2 and g.
 #include "common.hpp"
 
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <condition_variable>
+#include <exception>
+#include <mutex>
 #include <stdexcept>
+#include <thread>
 
 #include "pounding/core/error.hpp"
 #include "pounding/core/progress.hpp"
@@ -20,6 +27,62 @@ std::vector<double> to_vector(const py::handle& values, const std::string& what)
   }
   if (!a || a.ndim() != 1) throw py::value_error(what + ": a 1-D array of numbers is needed");
   return {a.data(), a.data() + a.size()};
+}
+
+namespace {
+
+struct Workers {
+  std::size_t batches;
+  std::atomic<std::size_t> next{0}, done{0};
+  std::atomic<bool> stop{false};
+  std::mutex mu;
+  std::condition_variable cv;
+  std::exception_ptr error;
+  explicit Workers(std::size_t n) : batches(n) {}
+  void loop(const std::function<void(std::size_t)>& work) {
+    for (std::size_t b; !stop && (b = next++) < batches;) {
+      try {
+        work(b);
+      } catch (...) {
+        std::lock_guard<std::mutex> lock(mu);
+        if (!error) error = std::current_exception();
+        stop = true;
+      }
+      ++done;
+      cv.notify_all();
+    }
+  }
+};
+
+}  // namespace
+
+void run_parallel(std::size_t batches, int threads, const std::function<void(std::size_t)>& work) {
+  if (batches == 0) return;
+  if (threads <= 0) threads = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  Workers w(batches);
+  bool interrupted = false;
+  {
+    py::gil_scoped_release unlocked;
+    std::vector<std::thread> pool;
+    const auto count = std::min<std::size_t>(static_cast<std::size_t>(threads), batches);
+    for (std::size_t t = 0; t < count; ++t) pool.emplace_back([&] { w.loop(work); });
+    std::unique_lock<std::mutex> lock(w.mu);
+    while (w.done < batches && !(w.stop && w.error)) {
+      w.cv.wait_for(lock, std::chrono::milliseconds(50));
+      lock.unlock();
+      {
+        py::gil_scoped_acquire held;
+        interrupted = PyErr_CheckSignals() != 0;  // the KeyboardInterrupt stays set
+      }
+      lock.lock();
+      if (interrupted) break;
+    }
+    w.stop = true;
+    lock.unlock();
+    for (auto& t : pool) t.join();
+  }
+  if (interrupted) throw py::error_already_set();
+  if (w.error) std::rethrow_exception(w.error);
 }
 
 }  // namespace pounding::python
@@ -44,4 +107,5 @@ PYBIND11_MODULE(_core, m) {
   python::bind_records(m);
   python::bind_analysis(m);
   python::bind_study(m);
+  python::bind_systems(m);
 }

@@ -21,7 +21,7 @@ from . import _core
 from ._core import Record, __version__, analysis, read_record, run_batch, testing  # noqa: F401
 
 __all__ = ["Record", "Status", "analyze", "design_spectrum", "fragility", "hazard", "read_record", "run_batch",
-           "collide", "simulate", "spectrum", "PAIR_FIELDS", "Results", "Study"]
+           "collide", "simulate", "analyze_storeys", "spectrum", "PAIR_FIELDS", "Results", "Study"]
 
 # The kernel's lane status (kernel/batch.hpp LaneStatus): 0 ok, 1 diverged, 2 non-finite, 3 coarse (ran to the end
 # but the contact was under-resolved: h omega_c above the stepper's limit; peaks are returned, refine substeps).
@@ -109,6 +109,33 @@ def analyze(pairs, record, contact="none", stepper="central-difference", substep
         out["impact_count"][:] = -1
         out["clamp_count"][:] = -1
     return out
+
+
+def analyze_storeys(buildings, record, storeys=(1, 1), storey_height=(3.2, 3.2), contact="none",
+                    stepper="central-difference", substeps=1, *, kh=None, e=None, n=1.5,
+                    damping="lankarani-nikravesh", contact_levels="common", level_tolerance=0.05,
+                    stiffness_profile="uniform", energy=False, duration=0.0, displacement_limit=10.0, batch=64,
+                    threads=0):
+    """Two multi-storey shear buildings side by side, pounding floor to floor (the engine's system stepper, as
+    `pounding simulate --storeys1 N --storeys2 M` and the studies with model = "shear"); one topology per call.
+
+    buildings: dict of per-pair arrays (SI) for b = 1, 2: floor_mass{b} (kg, every floor), storey_stiffness{b}
+      (N/m, every storey) or period{b} (T1 in s; stiffness_profile "uniform" or "shear" scaled to it), the storey
+      strength as storey_yield{b} (N) or yield_drift{b} (theta_y) or yield_coefficient{b} (Cy) -- none: elastic --,
+      alpha{b} (0), zeta{b} (0.05, Rayleigh on modes 1 and 2; the SDOF's ratio for one storey); gap (m), kc (or kh=)
+      and e where the law needs them.
+    storeys, storey_height: (building 1, building 2). One storey each is the SDOF pair of analyze(), bit for bit.
+    Returns per building peak_u{b}, peak_acc{b}, final_u{b} [pair, floor] (bottom first), peak_drift{b},
+    peak_shear{b} [pair, storey]; per contact element (element_labels: "level 1", ...) peak_closing,
+    t_peak_closing, t_first_impact, impact_count, peak_force, peak_penetration, contact_energy, contact_time,
+    h_omega_contact [pair, element] (NaN / -1 with contact="none"); status and e_* per pair (e_* NaN unless
+    energy=True). Validation first: a ValueError names the pair's lane."""
+    ag, dt = _motion(record)
+    d = _pairs_dict(buildings, kh, e)
+    topology = _core._Topology(int(storeys[0]), int(storeys[1]), float(storey_height[0]), float(storey_height[1]),
+                               float(level_tolerance), contact_levels, stiffness_profile)
+    return _core.analyze_storeys(d, ag, dt, topology, stepper, contact, damping, n, substeps, energy, duration,
+                                 displacement_limit, batch, threads)
 
 
 class Simulation:
