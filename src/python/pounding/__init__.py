@@ -194,8 +194,8 @@ def design_spectrum(code, periods, mcer=False, **params):
       "2800":     a (0.2..0.35), soil "I".."IV", importance=1 (Iranian Standard 2800, 4th ed.)
       "nzs1170":  site "A".."E", z, r=1 (NZS 1170.5, N = 1)
       "table":    table_periods, table_sa (g), or file= a "period,sa" csv
-    The parameters are range-checked (ValueError naming the parameter). The description of the spectrum is the
-    attribute `describe` of the returned array's owner: use design_spectrum_text() for it.
+    The parameters are range-checked (ValueError naming the parameter); design_spectrum_text() describes the
+    spectrum in one line.
     """
     sa, _ = _core.design_spectrum(code, np.asarray(periods, dtype=np.float64), params, mcer)
     return sa

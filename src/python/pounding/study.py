@@ -9,6 +9,8 @@ fragility and hazard tables of a fragility study, ...), and `arrays(group)` the 
 """
 import io
 import os
+
+import numpy as np
 import sys
 import tempfile
 import time
@@ -131,6 +133,49 @@ class Results:
     @property
     def separation_advice(self):
         return self.section("Separation advice")
+
+    def period_pair(self, gap_ratio=None):
+        """The period-pair map: probability with T1 as rows and T2 as columns at one gap (default: the first the
+        CSV report lists)."""
+        t = self.csv_tables["period_pair"]
+        gcol = t.columns[0]
+        g = t[gcol].iloc[0] if gap_ratio is None else gap_ratio
+        part = t[np.isclose(t[gcol], g)]
+        if part.empty:
+            raise KeyError(f"no period-pair map at {gcol} {g}; maps at {sorted(t[gcol].unique())}")
+        return part.pivot(index="T1", columns="T2", values="probability")
+
+    @property
+    def fragility(self):
+        """A fragility study's fit per gap (/fragility): gap, gap_m, status, theta, beta and their bootstrap
+        intervals, replicates_failed, note."""
+        import pandas as pd
+        a = self.arrays("fragility")
+        cols = {k: a[k] for k in ("gaps", "gaps_m", "status", "theta", "theta_lo", "theta_hi", "beta", "beta_lo",
+                                  "beta_hi", "replicates_failed", "note") if k in a}
+        frame = pd.DataFrame(cols).rename(columns={"gaps": "gap"})
+        for col in ("status", "note"):
+            if col in frame:
+                frame[col] = [v.decode() if isinstance(v, bytes) else v for v in frame[col]]
+        return frame
+
+    @property
+    def hazard(self):
+        """A fragility study's annual rate and probability per gap (/hazard) with their intervals."""
+        import pandas as pd
+        a = self.arrays("hazard")
+        n = len(a["annual_rate"])
+        frame = pd.DataFrame({k: v for k, v in a.items() if getattr(v, "ndim", 0) == 1 and len(v) == n
+                              and not k.startswith("curve_")})
+        frame.insert(0, "gap", self.arrays("fragility")["gaps"])
+        return frame
+
+    @property
+    def hazard_curve(self):
+        """The rate-versus-separation curve (/hazard curve_*)."""
+        import pandas as pd
+        a = self.arrays("hazard")
+        return pd.DataFrame({k[len("curve_"):]: v for k, v in a.items() if k.startswith("curve_")})
 
     def groups(self):
         """The HDF5 groups and their datasets."""

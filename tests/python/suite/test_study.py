@@ -35,6 +35,10 @@ def test_study_from_python_gives_the_clis_tables(tmp_path):
     assert (t3["probability"] == (t3["hits"] / t3["n"]).round(6)).all()
     assert res.table2.shape == (25, len(t3))
     assert res.code_rules["rule"].iloc[0] == "Standard 2800"
+    m = res.period_pair(0.3)
+    cp = res.csv_tables["period_pair"]
+    assert m.shape == (11, 11) and m.loc[1.0, 1.05] == cp[(cp["gap_ratio"] == 0.3) & (cp["T1"] == 1.0)
+                                                          & (cp["T2"] == 1.05)]["probability"].item()
     assert "uncoupled" in res.groups() and res.arrays("uncoupled")["peak_closing"].size > 0
 
 
@@ -71,6 +75,10 @@ def test_fragility_study_numbers_are_the_bindings(tmp_path):
         assert lam["rate"] == h["annual_rate"][g], g
     assert ok >= 3
     assert any(k.startswith("Fragility per gap") for k in res.sections)
+    fr, hz = res.fragility, res.hazard
+    assert fr["theta"].tolist() == f["theta"].tolist() and (fr["status"] == "ok").sum() == ok
+    assert hz["annual_rate"].tolist() == h["annual_rate"].tolist() and hz["gap"].tolist() == f["gaps"].tolist()
+    assert len(res.hazard_curve) == len(h["curve_gap"]) and "rate" in res.hazard_curve
 
 
 def test_ctrl_c_stops_a_study_and_resume_finishes_it(tmp_path):
