@@ -252,6 +252,10 @@ void bind_kernel(py::module_& m) {
         "one free impact (use pounding.collide)");
   m.def("status_names", &status_names, "(name, value) of every lane status (kernel/batch.hpp LaneStatus)");
   m.def("contact_law_names", [] { return std::string(contact_law_names); });
+  m.def("contact_needs", [](const std::string& law) {
+    const auto& t = contact::traits(parse_contact_law(law));
+    return py::make_tuple(t.needs_stiffness, t.needs_restitution, std::string(t.stiffness_unit));
+  }, py::arg("law"), "(needs a stiffness, needs a restitution, stiffness unit) of a contact law (contact/law.hpp)");
   py::module_ t = m.def_submodule("testing", "deterministic workloads (the kernel digests' inputs)");
   t.def("benchmark_batch", [](std::size_t width) { return batch_to_dict(benchmark_batch(width)); }, py::arg("width"));
   t.def("builtin_motion", [](double dt, double duration) { return to_numpy(builtin_motion(dt, duration)); },

@@ -67,6 +67,16 @@ def _pairs_dict(pairs, kh, e):
     return out
 
 
+def _require_law_numbers(contact, d):
+    """A law that needs a stiffness or a restitution gets it from the caller, never from a silent default."""
+    stiffness, restitution, unit = _core.contact_needs(contact)
+    if stiffness and "kc" not in d:
+        raise ValueError(f"contact '{contact}' needs the contact stiffness, kh, give kh= ({unit}) or a 'kc' array")
+    if restitution and "e" not in d:
+        raise ValueError(f"contact '{contact}' needs the coefficient of restitution, e, give e= (0 < e <= 1) or an "
+                         "'e' array")
+
+
 def _motion(record):
     """A Record, or (acc_g, dt): -> (ag in m/s^2, dt)."""
     if isinstance(record, Record):
@@ -101,6 +111,7 @@ def analyze(pairs, record, contact="none", stepper="central-difference", substep
     """
     ag, dt = _motion(record)
     d = _pairs_dict(pairs, kh, e)
+    _require_law_numbers(contact, d)
     out = _core.analyze(d, ag, dt, stepper, contact, damping, n, substeps, energy, duration, displacement_limit,
                         batch, threads)
     if contact == "none":
@@ -132,6 +143,7 @@ def analyze_storeys(buildings, record, storeys=(1, 1), storey_height=(3.2, 3.2),
     energy=True). Validation first: a ValueError names the pair's lane."""
     ag, dt = _motion(record)
     d = _pairs_dict(buildings, kh, e)
+    _require_law_numbers(contact, d)
     topology = _core._Topology(int(storeys[0]), int(storeys[1]), float(storey_height[0]), float(storey_height[1]),
                                float(level_tolerance), contact_levels, stiffness_profile)
     return _core.analyze_storeys(d, ag, dt, topology, stepper, contact, damping, n, substeps, energy, duration,
@@ -160,6 +172,7 @@ def simulate(pair, record, contact="none", stepper="central-difference", substep
              damping="lankarani-nikravesh", energy=False, duration=0.0, displacement_limit=10.0):
     """One pair (a dict of scalars with analyze()'s fields) with its full time series: a Simulation."""
     d = _pairs_dict({key: np.atleast_1d(value) for key, value in dict(pair).items()}, kh, e)
+    _require_law_numbers(contact, d)
     ag, dt = _motion(record)
     summary, series = _core.simulate(d, ag, dt, stepper, contact, damping, n, substeps, energy, duration,
                                      displacement_limit)

@@ -147,6 +147,12 @@ def test_bad_input_is_a_value_error_naming_the_pair(tmp_path):
         pounding.analyze(pairs, rec, contact="hertzdamp", batch=256)
     with pytest.raises(ValueError, match="stereomechanical"):
         pounding.analyze(pairs, rec, contact="glue")
+    bare = {k: v for k, v in pounding.testing.benchmark_batch(300).items() if k not in ("kc", "e")}
+    with pytest.raises(ValueError, match="needs the contact stiffness, kh"):  # never a silent default
+        pounding.analyze(bare, rec, contact="hertzdamp", e=0.65)
+    with pytest.raises(ValueError, match="needs the coefficient of restitution"):
+        pounding.analyze(bare, rec, contact="hertzdamp", kh=1e9)
+    assert pounding.analyze(bare, rec, contact="hertz", kh=1e9)["impact_count"].shape == (300,)  # e not needed
     structured = np.zeros(3, dtype=[(k, float) for k in ("m1", "k1", "c1", "m2", "k2", "c2", "gap")])
     for k in ("m1", "m2"):
         structured[k] = 1e6
