@@ -205,7 +205,7 @@ constexpr StudyKey keys[] = {
      "joint with the study gap ratio x d, d = code_gap_coefficient x the largest (h_j + h_j+1) of the row's joints; "
      "the probability scene counts an analysis as pounding when ANY joint touches. Buildings 3..n take one period "
      "each (a fixed period or a distribution in [structures.buildingK]: the period grid spans buildings 1 and 2); "
-     "one model throughout (all sdof or all shear, one storey_height); not with equal_heights or [intensity].",
+     "one model throughout (all sdof or all shear; storey heights may differ); not with equal_heights or [intensity].",
      2.0, 16.0},
     {"structures", "buildingK", "table", "the [structures] defaults", "", "",
      "Building K of a row (K = 3..buildings, left to right after building 2); the same keys as building1."},
@@ -285,7 +285,9 @@ constexpr StudyKey keys[] = {
     {"structures.buildingN", "storey_height", "number", "[structures] storey_height (3.2)", "m",
      "(0, 10] ([2, 10] for model = \"sdof\")",
      "The default of storeys (max(1, round(height / storey_height))) and, for model = \"shear\", every storey's "
-     "height: floor k at k storey_height (a scale model's frames may be 0.1 m).", 1e-300, 10.0},
+     "height: floor k at k storey_height (a scale model's frames may be 0.1 m). Shear buildings of different storey "
+     "heights pound floor to floor where levels agree within [contact] level_tolerance and floor to column elsewhere "
+     "(docs/floor-contact.md).", 1e-300, 10.0},
     {"structures.buildingN", "model", "string", "[structures] model", "", "\"sdof\" | \"shear\"",
      "As in [structures]: an SDOF building may pair with a shear building (it meets the floor nearest its height, "
      "its roof if the other is lower)."},
@@ -424,13 +426,21 @@ constexpr StudyKey keys[] = {
      "link-element paper's laws, three-spring acting on 1.5 x the contact stiffness)."},
     {"contact", "e", "number", "0.65", "", "(0, 1]", "Coefficient of restitution.", 1e-6, 1.0},
     {"contact", "levels", "string", "\"common\"", "", "\"common\" | \"top\"",
-     "Shear buildings and rows: which facing floors pound -- common = every pair of floors at the same level, top = "
-     "only the lower roof of each pair of neighbours (with the other building's floor at that level)."},
+     "Shear buildings and rows: which facing floors pound -- common = every pair of floors at the same level (and "
+     "every other floor against the neighbour's column, docs/floor-contact.md), top = only the lower roof of each pair "
+     "of neighbours (against the other building's floor or column there)."},
     {"contact", "gap_offsets", "array of numbers", "none (0 at every level)", "m", "[0, 10]",
-     "Shear buildings and rows: per contact level from level 1, added to the study gap at that level (a level beyond "
-     "the list: 0). An analysis touches at gap g when some level's uncoupled closing minus its offset exceeds g "
+     "Shear buildings and rows: per contact level from level 1 (an element's level: the number of the floor that "
+     "strikes, the left one floor to floor), added to the study gap at that level (a level beyond the list: 0). An analysis touches at gap g when some level's uncoupled closing minus its offset exceeds g "
      "(/uncoupled/peak_closing is the largest of those), so the probability scene stays exact.",
      0.0, 10.0},
+    {"contact", "level_tolerance", "number", "0.05", "m", "[0, 1]",
+     "Shear buildings and rows, below half the smallest storey height (a floor meets at most one floor): floors of "
+     "neighbouring buildings whose levels differ by at most this meet floor to "
+     "floor; every other floor below the neighbour's roof meets the neighbour's column between two floors (linear "
+     "shape functions, docs/floor-contact.md). 0.05 m: slabs whose levels differ by less overlap over most of their "
+     "depth (a 0.15-0.25 m slab), i.e. the construction tolerance of one level, not a different level.",
+     0.0, 1.0},
     {"contact", "n", "number", "1.5", "", "[1, 3]", "Exponent of the Hertz-family force k delta^n.", 1.0, 3.0},
     {"contact", "v0_min", "number", "1e-3", "m/s", "(0, 1]",
      "Smallest approach velocity used to set the contact damping.", 1e-12, 1.0},

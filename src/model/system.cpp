@@ -153,6 +153,13 @@ void check_side(const System::Parts& p, const Placement& at, const Side& side, c
         dofs.push_back(side.p);
       return;
     case SideKind::interpolated:
+      if (side.p == ground && at.valid(side.q)) {  // the column between the ground and a first floor
+        if (at.pos[side.q] != 0 || p.bodies[static_cast<std::size_t>(at.body[side.q])].isolated)
+          out.push_back({"DOF q = " + num(side.q) + " is not the first floor of a fixed body", where,
+                         "give p = ground only with q = the lowest DOF of a body that is not isolated"});
+        dofs.push_back(side.q);
+        return;
+      }
       if (!at.valid(side.p) || !at.valid(side.q)) {
         out.push_back({"DOFs p = " + num(side.p) + ", q = " + num(side.q) + " are not DOFs of a body", where,
                        "give two DOFs of the system"});
@@ -190,6 +197,9 @@ void check_contacts(const System::Parts& p, const Placement& at, std::vector<Pro
     if (el.group < 0 || static_cast<std::size_t>(el.group) >= p.groups.size())
       out.push_back({"group " + num(el.group) + " is out of range", where + " group",
                      "give a group in 0.." + std::to_string(static_cast<int>(p.groups.size()) - 1)});
+    if (!(el.xi >= 0.0 && el.xi <= 1.0))
+      out.push_back({"xi = " + std::to_string(el.xi) + " is outside [0, 1]", where + " xi",
+                     "give the interpolated side's position along its column, 0 at p, 1 at q"});
     if (el.level < 0)
       out.push_back({"level " + num(el.level) + " is negative", where + " level", "give the floor number (1 = first)"});
     if (el.label.empty())

@@ -83,7 +83,9 @@ Layout layout_of(const model::System& S) {
       L.spring_ci.push_back(ci), L.spring_cj.push_back(cj), L.spring_cross.push_back(ci != cj ? 1 : 0);
     }
     for (const model::ContactElement& e : S.contacts()) {
-      auto side = [&](const model::Side& x) { return x.kind == model::SideKind::wall ? x.channel : chan(x.p); };
+      auto side = [&](const model::Side& x) {
+        return x.kind == model::SideKind::wall ? x.channel : chan(x.p < 0 ? x.q : x.p);
+      };
       const int cl = side(e.left), cr = side(e.right);
       L.elem_cl.push_back(cl), L.elem_cr.push_back(cr), L.elem_cross.push_back(cl != cr ? 1 : 0);
     }
@@ -114,7 +116,8 @@ struct LaneView {
   double side(const sys::Side& s, int e, const std::vector<double>& x) const {
     switch (s.kind) {
       case sys::SideKind::point: return at(x, s.p);
-      case sys::SideKind::interpolated: return std::fma(n2(e), at(x, s.q), (1.0 - n2(e)) * at(x, s.p));
+      case sys::SideKind::interpolated:  // the ground end of a column moves with the support: x = N2 u_q
+        return s.p < 0 ? n2(e) * at(x, s.q) : std::fma(n2(e), at(x, s.q), (1.0 - n2(e)) * at(x, s.p));
       case sys::SideKind::wall: break;
     }
     return 0.0;
@@ -125,21 +128,31 @@ struct LaneView {
     if (a.kind == sys::SideKind::wall) return -side(b, e, x);
     return side(a, e, x) - side(b, e, x);
   }
+  // A side as the point it is, or reduces to: an interpolated side at an end of its column (N2 = 0: DOF p, N2 = 1:
+  // DOF q), so that xi -> 0 / 1 has the floor-to-floor element's meff bit for bit; -1 for a wall (rigid), -2 for a
+  // side genuinely between two floors, and for the ground end of a column at N2 = 0 (rigid too: -1).
+  int as_point(const sys::Side& s, int e) const {
+    if (s.kind == sys::SideKind::point) return s.p;
+    if (s.kind == sys::SideKind::wall) return -1;
+    if (n2(e) == 0.0) return s.p < 0 ? -1 : s.p;
+    return n2(e) == 1.0 ? s.q : -2;
+  }
   // 1 / (g' M^-1 g): point-point m_a m_b / (m_a + m_b) verbatim (the pair's), point-wall m_a, interpolated
-  // 1 / (N1^2/m_p + N2^2/m_q + 1/m_b) (§2.2.4)
+  // 1 / (N1^2/m_p + N2^2/m_q + 1/m_b) (§2.2.4; the ground end of a column adds nothing)
   double meff(int e) const {
     const sys::Side &a = L.left[static_cast<std::size_t>(e)], &b = L.right[static_cast<std::size_t>(e)];
-    if (a.kind == sys::SideKind::point && b.kind == sys::SideKind::point) {
-      const double ma = at(B.m, a.p), mb = at(B.m, b.p);
+    const int pa = as_point(a, e), pb = as_point(b, e);
+    if (pa >= 0 && pb >= 0) {
+      const double ma = at(B.m, pa), mb = at(B.m, pb);
       return ma * mb / (ma + mb);
     }
-    if (a.kind == sys::SideKind::point && b.kind == sys::SideKind::wall) return at(B.m, a.p);
-    if (b.kind == sys::SideKind::point && a.kind == sys::SideKind::wall) return at(B.m, b.p);
+    if (pa >= 0 && pb == -1) return at(B.m, pa);
+    if (pb >= 0 && pa == -1) return at(B.m, pb);
     auto flex = [&](const sys::Side& s) {
       if (s.kind == sys::SideKind::point) return 1.0 / at(B.m, s.p);
       if (s.kind == sys::SideKind::wall) return 0.0;
       const double w = n2(e);
-      return (1.0 - w) * (1.0 - w) / at(B.m, s.p) + w * w / at(B.m, s.q);
+      return s.p < 0 ? w * w / at(B.m, s.q) : (1.0 - w) * (1.0 - w) / at(B.m, s.p) + w * w / at(B.m, s.q);
     };
     return 1.0 / (flex(a) + flex(b));
   }
@@ -312,7 +325,8 @@ void fill_accelerations(const Pool& T, std::size_t i, const LaneView& v, const s
       const sys::Side& s = sgn > 0 ? L.left[static_cast<std::size_t>(e)] : L.right[static_cast<std::size_t>(e)];
       if (s.kind == sys::SideKind::wall) continue;
       const double f1 = s.kind == sys::SideKind::point ? F : T.elem(sgn > 0 ? sys::N1L : sys::N1R, e)[i] * F;
-      q[static_cast<std::size_t>(s.p)] = sgn > 0 ? q[static_cast<std::size_t>(s.p)] + f1 : q[static_cast<std::size_t>(s.p)] - f1;
+      if (s.p >= 0)  // the ground end of a column: its share goes to the support
+        q[static_cast<std::size_t>(s.p)] = sgn > 0 ? q[static_cast<std::size_t>(s.p)] + f1 : q[static_cast<std::size_t>(s.p)] - f1;
       if (s.kind != sys::SideKind::interpolated) continue;
       const double f2 = T.elem(sgn > 0 ? sys::N2L : sys::N2R, e)[i] * F;
       q[static_cast<std::size_t>(s.q)] = sgn > 0 ? q[static_cast<std::size_t>(s.q)] + f2 : q[static_cast<std::size_t>(s.q)] - f2;

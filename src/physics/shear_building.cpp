@@ -222,7 +222,25 @@ void set_contacts(SystemBatch& batch, std::size_t lane, double gap, double kc, d
     }
     batch.kc[i] = kc;
     batch.e[i] = e;
+    batch.weight[i] = ce.left.kind == model::SideKind::interpolated || ce.right.kind == model::SideKind::interpolated
+                          ? ce.xi
+                          : 0.0;
   }
+}
+
+std::array<double, 2> contact_masses(const SystemBatch& batch, std::size_t lane, int element) {
+  require(batch.system != nullptr && lane < batch.width, "the batch is not sized (SystemBatch::resize)");
+  const model::ContactElement& ce = batch.system->contacts().at(static_cast<std::size_t>(element));
+  const auto mass = [&](const model::Side& s) {
+    if (s.kind == model::SideKind::wall) return -1.0;
+    const bool upper = s.kind == model::SideKind::interpolated && (ce.xi >= 0.5 || s.p < 0);
+    const int d = upper ? s.q : s.p;
+    return batch.m[SystemBatch::at(d, lane, batch.width)];
+  };
+  double l = mass(ce.left), r = mass(ce.right);
+  if (l < 0) l = r;
+  if (r < 0) r = l;
+  return {l, r};
 }
 
 }  // namespace pounding::physics

@@ -86,14 +86,14 @@ constexpr Row system_table[] = {
     {"spring_law", {"1", "hysteresis model of each spring (model/hysteresis/registry.hpp), e.g. bilinear-kinematic"}},
     {"element_left_kind", {"1", "left side L of each contact element: point (a DOF), interpolated (between dof and "
                                 "dof2, floor to column) or wall (the support)"}},
-    {"element_left_dof", {"1", "DOF of the left side; -1 for a wall"}},
+    {"element_left_dof", {"1", "DOF of the left side; -1 for a wall or the ground end of a column"}},
     {"element_left_dof2", {"1", "second DOF of an interpolated left side (the DOF above dof); -1 otherwise"}},
     {"element_left_xi", {"1", "weight of dof2 on the left side: x = (1 - xi) u_dof + xi u_dof2; 0 for a point or wall"}},
     {"element_right_kind", {"1", "right side R of each contact element: point, interpolated or wall"}},
-    {"element_right_dof", {"1", "DOF of the right side; -1 for a wall"}},
+    {"element_right_dof", {"1", "DOF of the right side; -1 for a wall or the ground end of a column"}},
     {"element_right_dof2", {"1", "second DOF of an interpolated right side; -1 otherwise"}},
     {"element_right_xi", {"1", "weight of dof2 on the right side; 0 for a point or wall"}},
-    {"element_level", {"1", "floor number where each contact element acts (1 = the first floor; 0 an isolated base)"}},
+    {"element_level", {"1", "number of the floor that strikes at each contact element (1 = the first floor; 0 an isolated base; floor to floor the left one)"}},
     {"element_level_height", {"m", "height above the support where each contact element acts"}},
     {"element_group", {"1", "contact group of each element (index into group_name): the group's law acts there"}},
     {"element_gap_offset", {"m", "gap of each element: for a study-gap group, added to the study's gap x code_gap; "

@@ -180,17 +180,8 @@ void resolve_buildings(StructureModel& m, const std::array<const toml::table*, 2
   for (int i = 0; i < 2; ++i)
     m.buildings[i] = parse_building(tables[i], file, fmt::format("structures.building{}", i + 1), defaults, where);
   check_equal_heights(m, where("equal_heights"));
-  const BuildingModel &b1 = m.buildings[0], &b2 = m.buildings[1];
-  if (b1.shear() && b2.shear() && b1.storey_height() != b2.storey_height())
-    // floors meet floors at equal levels; floors against columns between two floors are not built yet
-    throw InputError(fmt::format("the shear buildings' storey heights differ ({:g} m and {:g} m): their floors would "
-                                 "meet the other's columns, which the shear model does not hold",
-                                 b1.storey_height(), b2.storey_height()),
-                     tables[1] && tables[1]->get("storey_height")
-                         ? config::location(file, tables[1]->get("storey_height")->source()) +
-                               " [structures.building2].storey_height"
-                         : where("storey_height"),
-                     "give both buildings the same storey_height");
+  // shear buildings of different storey heights: floors meet floors within [contact] level_tolerance and the
+  // neighbour's columns elsewhere (model::shear_buildings, docs/floor-contact.md)
 }
 
 // A row (docs/architecture.md §2.7.1): buildings = n and the tables [structures.buildingK] for K = 3..n (null when
@@ -215,7 +206,7 @@ std::vector<const toml::table*> read_row_tables(config::TableReader& r, const to
 }
 
 // A row's buildings 3..n (tables may be null: the defaults) and what a row needs: one period slot each beyond
-// building 2, one structural model throughout, one storey height for shear buildings, no common height.
+// building 2, one structural model throughout, no common height (storey heights may differ: floors then meet columns).
 void resolve_row(StructureModel& m, const std::vector<const toml::table*>& tables, const std::string& file,
                  const WhereFn& where, bool rule_explicit) {
   if (tables.empty()) return;
@@ -253,11 +244,6 @@ void resolve_row(StructureModel& m, const std::vector<const toml::table*>& table
                                    "model throughout (an SDOF between two shear buildings has no floor to meet)",
                                    b + 1, to_string(x.kind), to_string(first.kind), n),
                        at(b, "model"), "give every building of the row the same model (in [structures] model)");
-    if (x.shear() && x.storey_height() != first.storey_height())
-      throw InputError(fmt::format("the shear buildings' storey heights differ ({:g} m and {:g} m): their floors would "
-                                   "meet the other's columns, which the shear model does not hold",
-                                   first.storey_height(), x.storey_height()),
-                       at(b, "storey_height"), "give every building of the row the same storey_height");
   }
 }
 

@@ -264,14 +264,14 @@ results::SystemTable system_table(const model::System& system, std::span<const C
                             : c.right.kind == model::SideKind::point  ? c.right
                             : c.left.kind != model::SideKind::wall    ? c.left
                                                                       : c.right;
-    const double level = at.kind == model::SideKind::wall ? 0.0 : height(at.p);
+    const double level = at.kind == model::SideKind::wall ? 0.0 : at.p < 0 ? c.xi * height(at.q) : height(at.p);
     const auto side = [&](const model::Side& s, std::vector<std::string>& kind, std::vector<std::int32_t>& dof,
                           std::vector<std::int32_t>& dof2, std::vector<double>& xi) {
       kind.emplace_back(side_name(s.kind));
       const bool wall = s.kind == model::SideKind::wall, interp = s.kind == model::SideKind::interpolated;
       dof.push_back(wall ? -1 : s.p);
       dof2.push_back(interp ? s.q : -1);
-      xi.push_back(interp ? (level - height(s.p)) / (height(s.q) - height(s.p)) : 0.0);
+      xi.push_back(interp ? c.xi : 0.0);
     };
     side(c.left, t.element_left_kind, t.element_left_dof, t.element_left_dof2, t.element_left_xi);
     side(c.right, t.element_right_kind, t.element_right_dof, t.element_right_dof2, t.element_right_xi);

@@ -125,7 +125,8 @@ void parse_contact(Study& s, const toml::table* t, const std::string& path) {
                      "write levels = " + enum_name_list(model::contact_levels_names, " or ", "\""));
   });
   s.gap_offsets = c.numbers("gap_offsets", {});
-  c.finish("law, damping_law, e, n, v0_min, stiffness, levels, gap_offsets");
+  s.level_tolerance = c.number("level_tolerance", 0.05);
+  c.finish("law, damping_law, e, n, v0_min, stiffness, levels, gap_offsets, level_tolerance");
 }
 
 }  // namespace
@@ -239,11 +240,31 @@ void check_selection(const Study& s, const TableReader& top) {
 // scaling are the SDOF pair's).
 static void check_row_study(const Study& s, config::TableReader& top, const toml::table* structures, const std::string& path);
 
+// [contact] level_tolerance below half the smallest storey height of the shear buildings (an SDOF of a row of SDOFs:
+// its 3.2 m floor), so that a floor meets at most one floor of its neighbour (the floors within the tolerance of it).
+static void check_level_tolerance(const Study& s, config::TableReader& top, const std::string& path) {
+  if (!s.structures.any_shear() && !s.structures.row()) return;
+  double h = INFINITY;
+  for (std::size_t b = 0; b < s.structures.building_count(); ++b) {
+    const BuildingModel x = s.structures.row_building(b);
+    if (x.shear() || s.structures.row()) h = std::min(h, x.shear() ? x.storey_height() : 3.2);
+  }
+  if (s.level_tolerance < 0.5 * h) return;
+  const toml::table* c = top.table("contact");
+  const toml::node* n = c ? c->get("level_tolerance") : nullptr;
+  throw InputError(fmt::format("[contact] level_tolerance = {:g} m is not below half the smallest storey height ({:g} m): a "
+                               "floor could meet two floors of its neighbour",
+                               s.level_tolerance, h),
+                   n ? fmt::format("{}:{} [contact].level_tolerance", path, n->source().begin.line)
+                     : path + " [contact].level_tolerance",
+                   fmt::format("give level_tolerance < {:g} m (default 0.05 m)", 0.5 * h));
+}
+
 static void check_shear_study(const Study& s, config::TableReader& top, const toml::table* structures, const std::string& path) {
   check_row_study(s, top, structures, path);
   // [contact] levels / gap_offsets act on the floors of shear buildings and the joints of a row
   if (!s.structures.any_shear() && !s.structures.row())
-    for (const char* key : {"gap_offsets", "levels"}) {
+    for (const char* key : {"gap_offsets", "levels", "level_tolerance"}) {
       const toml::table* c = top.table("contact");
       const toml::node* n = c ? c->get(key) : nullptr;
       if (!n) continue;
@@ -253,6 +274,7 @@ static void check_shear_study(const Study& s, config::TableReader& top, const to
                        fmt::format("{}:{} [contact].{}", path, n->source().begin.line, key),
                        "give the buildings storeys (model = \"shear\") or a row (buildings = 3 or more), or remove the key");
     }
+  check_level_tolerance(s, top, path);
   if (!s.structures.any_shear()) return;
   if (s.stepper != Stepper::central_difference) {
     const toml::table* a = top.table("analysis");

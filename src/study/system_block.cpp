@@ -115,8 +115,9 @@ const model::System& SystemBlock::system(const LaneTopology& t) {
     for (std::size_t i = 0; i < t.buildings(); ++i) {
       sticks[i].storeys = t.storeys[i], sticks[i].storey_heights = {t.storey_height[i]};
       sticks[i].isolated = t.isolated[i], sticks[i].moat = t.moat[i];
+      sticks[i].columns = model_.row_building(i).shear();  // an SDOF stands for a whole building: no column
     }
-    slot = std::make_unique<model::System>(model::shear_buildings(sticks, 0.05, levels_));
+    slot = std::make_unique<model::System>(model::shear_buildings(sticks, tolerance_, levels_));
   }
   return *slot;
 }
@@ -129,8 +130,9 @@ const model::System& SystemBlock::table_system(const LaneTopology& t) {
     for (std::size_t i = 0; i < t.buildings(); ++i) {
       sticks[i].storeys = t.storeys[i], sticks[i].storey_heights = {t.storey_height[i]};
       sticks[i].isolated = t.isolated[i], sticks[i].moat = t.moat[i];
+      sticks[i].columns = model_.row_building(i).shear();  // an SDOF stands for a whole building: no column
     }
-    slot = std::make_unique<model::System>(model::shear_buildings(sticks, 0.05, model::ContactLevels::common));
+    slot = std::make_unique<model::System>(model::shear_buildings(sticks, tolerance_, model::ContactLevels::common));
   }
   return *slot;
 }
@@ -179,8 +181,8 @@ void SystemBlock::set_lane(physics::SystemBatch& b, std::size_t lane, const Samp
     double kc = cn.stiffness > 0 ? cn.stiffness : p.kh;
     // (a row of SDOFs: the spheres of the two floors are the two buildings', so joint 1|2 gets the pair's kh)
     if (!(cn.stiffness > 0) && !(model_.kh > 0) && !(nb == 2 && t.storeys[0] == 1 && t.storeys[1] == 1))
-      kc = hertz_stiffness_spheres(b.m[physics::SystemBatch::at(ce.left.p, lane, w)],
-                                   b.m[physics::SystemBatch::at(ce.right.p, lane, w)], model_.contact_density,
+      kc = hertz_stiffness_spheres(physics::contact_masses(b, lane, static_cast<int>(e))[0],
+                                   physics::contact_masses(b, lane, static_cast<int>(e))[1], model_.contact_density,
                                    model_.contact_youngs_modulus, model_.contact_poisson);  // the two floors' masses
     b.kc[physics::SystemBatch::at(static_cast<int>(e), lane, w)] = kc;
   }

@@ -113,12 +113,30 @@ assert off["levels"][2]["impacts"] == 0 and off["levels"][2]["t_first_impact"] i
 assert off["levels"][2]["peak_closing"] < 1.01 and off["levels"][0]["impacts"] > 0
 print(f"ok:   --contact-levels top: {top['impact_count']} impacts at the lower roof; --gap-offsets 0,0,1: level 3 free")
 PY
-# storeys of 3.0 and 3.1 m: floors meet within --level-tolerance 0.35 (3.0/3.1, 6.0/6.2, 9.0/9.3 m), none within 0.05
+# storeys of 3.0 and 3.1 m: floors meet within --level-tolerance 0.35 (3.0/3.1, 6.0/6.2, 9.0/9.3 m); within 0.05 none
+# do, and each floor below the other's roof strikes the other's column (floor to column, linear shape functions):
+# 3.0 on 0-3.1 m (the ground end), 3.1 on 3-6 m, 6.0 on 3.1-6.2, 6.2 on 6-9, 9.0 on 6.2-9.3 (9.3 m is above 9 m)
 sim --storeys1 3 --storey-height1 3.0 --storeys2 5 --storey-height2 3.1 --elastic --gap 5 --dt 0.001 --json \
     --level-tolerance 0.35 > "$tmp/tol.json"
-sim --storeys1 3 --storey-height1 3.0 --storeys2 5 --storey-height2 3.1 --elastic --gap 5 --dt 0.001 --json > "$tmp/tol0.json"
-"$py" -c 'import json, sys; a, b = (json.load(open(p)) for p in sys.argv[1:3]); assert [l["label"] for l in a["levels"]] == ["level 1", "level 2", "level 3"] and b["levels"] == [], (a["levels"], b["levels"])' \
-  "$tmp/tol.json" "$tmp/tol0.json" || fail "--level-tolerance"
+sim --storeys1 3 --storey-height1 3.0 --storeys2 5 --storey-height2 3.1 --elastic --gap 0.005 --dt 0.001 --json > "$tmp/tol0.json"
+"$py" - "$tmp/tol.json" "$tmp/tol0.json" <<'PY' || fail "--level-tolerance / floors against columns"
+import json, sys
+a, b = (json.load(open(p)) for p in sys.argv[1:3])
+assert [l["label"] for l in a["levels"]] == ["level 1", "level 2", "level 3"], a["levels"]
+assert a["column_shears"] == [], a["column_shears"]
+want = ["level 1/column 0-1", "column 1-2/level 1", "level 2/column 1-2", "column 2-3/level 2", "level 3/column 2-3"]
+assert [l["label"] for l in b["levels"]] == want, [l["label"] for l in b["levels"]]
+xi = [3.0 / 3.1, 0.1 / 3.0, 2.9 / 3.1, 0.2 / 3.0, 2.8 / 3.1]
+cs = b["column_shears"]
+assert [c["label"] for c in cs] == want, cs
+for c, x, l in zip(cs, xi, b["levels"]):
+    assert abs(c["xi"] - x) < 1e-12, (c, x)
+    F = l["peak_force"]
+    assert abs(c["below"] - F * (1 - x) ** 2 * (1 + 2 * x)) <= 1e-9 * max(F, 1), (c, F)
+    assert abs(c["below"] + c["above"] - F) <= 1e-9 * max(F, 1), (c, F)
+assert sum(l["impacts"] for l in b["levels"]) > 0, b["levels"]
+print("ok:   floors against columns:", ", ".join(f'{l["label"]} {l["impacts"]}' for l in b["levels"]))
+PY
 
 # a diverged run (Hertz contact of 3.2e10 N/m^1.5 at the record step 0.01 s): exit 3, status diverged, the totals
 # -1 like every per-level count (the kernel's mark of a lane without results), not a sum of marks
@@ -185,6 +203,7 @@ bad "--h2" --storeys2 4 --h2 20
 bad "--series" --storeys1 3 --series "$tmp/s.csv"
 bad "--contact-levels" --storeys1 3 --contact-levels roof
 bad "--level-tolerance" --storeys1 3 --level-tolerance 2
+bad "--level-tolerance, give --level-tolerance < 0.5 m" --storeys1 3 --storey-height1 1.0 --level-tolerance 0.6
 bad "--gap-offsets" --storeys1 3 --storeys2 3 --gap-offsets 0,0
 bad "--gap-offsets" --storeys1 3 --gap 0.1 --gap-offsets -0.2
 [ ! -e "$tmp/s.csv" ] || fail "a refused run wrote its series"

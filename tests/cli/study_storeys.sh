@@ -86,8 +86,27 @@ expect_error profile '\[structures\].stiffness_profile, write stiffness_profile 
   "$(echo "$body" | sed 's/^model = "shear"/model = "shear"\nstiffness_profile = "parabolic"/')"
 expect_error storeys_zero '\[structures.building2\].storeys' \
   "$(echo "$body" | sed 's/^\[gaps\]/[structures.building2]\nstoreys = 0\n\n[gaps]/')"
-expect_error storey_heights_differ 'storey heights differ.*\[structures.building2\].storey_height, give both' \
-  "$(echo "$body" | sed 's/^\[gaps\]/[structures.building2]\nstorey_height = 3.0\n\n[gaps]/')"
+# different storey heights run (refused before floors against columns, docs/floor-contact.md): building2's 3.0 m
+# floors meet building1's 3.2 m columns and the other way round; the probability scene stays exact (D > g <=> pounds)
+echo "$body" | sed 's/^\[gaps\]/[structures.building2]\nstorey_height = 3.0\n\n[gaps]/' > "$tmp/storey_heights.toml"
+if "$bin" run "$tmp/storey_heights.toml" --out "$tmp/storey_heights.h5" --quiet > "$tmp/storey_heights.out" 2>&1 &&
+   /usr/bin/python3 - "$tmp/storey_heights.h5" <<'PY'
+import sys, h5py, numpy as np
+f = h5py.File(sys.argv[1], "r")
+labels = [x.decode() if isinstance(x, bytes) else x for x in f["system/element_label"][()]]
+assert "column 0-1/level 1" in labels and "level 1/column 1-2" in labels, labels
+xl, xr = f["system/element_left_xi"][()], f["system/element_right_xi"][()]
+assert abs(xl[labels.index("column 0-1/level 1")] - 3.0 / 3.2) < 1e-12, xl
+assert abs(xr[labels.index("level 1/column 1-2")] - 0.2 / 3.0) < 1e-12, xr
+cnt = f["impacts/element_impact_count"][()]
+assert cnt.max() > 0, "no impacts"
+print("ok   storey_heights: 3.2 / 3.0 m storeys run,", len(labels), "elements, e.g.", ", ".join(labels[:4]))
+PY
+then :; else echo "FAIL storey_heights:"; cat "$tmp/storey_heights.out"; fails=$((fails+1)); fi
+expect_error level_tolerance_negative '\[contact\].level_tolerance' \
+  "$(echo "$body" | sed 's/^law = "hertzdamp"/law = "hertzdamp"\nlevel_tolerance = -0.1/')"
+expect_error level_tolerance_half 'not below half the smallest storey height (1 m).*:32 \[contact\].level_tolerance, give level_tolerance < 0.5 m' \
+  "$(echo "$body" | sed -e 's/^law = "hertzdamp"/law = "hertzdamp"\nlevel_tolerance = 0.6/' -e 's/^storey_height = 3.2/storey_height = 1.0/')"
 expect_error fragility 'runs SDOF buildings only.*:22 \[structures\].model' \
   "$(echo "$body" | sed -e 's/^scene = "impacts"/scene = "probability"/' -e 's/^\[gaps\]/[intensity]\nmeasure = "Sa"\nperiod = 1.0\nlevels = [0.1, 0.2]\n\n[gaps]/')"
 b1() { echo "$body" | sed "s/^\[gaps\]/[structures.building1]\n$1\n\n[gaps]/"; }

@@ -24,12 +24,12 @@ struct Link {
   int left, right, level;
   std::string label;
 };
+// The floor-to-floor elements (floors against columns: tests/physics/test_floor_column.cpp).
 std::vector<Link> links(const System& s) {
   std::vector<Link> out;
   for (const ContactElement& e : s.contacts()) {
-    EXPECT_EQ(e.left.kind, SideKind::point);
-    EXPECT_EQ(e.right.kind, SideKind::point);
     EXPECT_EQ(e.group, 0);
+    if (e.left.kind != SideKind::point || e.right.kind != SideKind::point) continue;
     out.push_back({e.left.p, e.right.p, e.level, e.label});
   }
   return out;
@@ -55,10 +55,15 @@ TEST(ShearTopology, TwoOneStoreyBuildingsAreTheSdofPair) {
   EXPECT_TRUE(s.is_sdof_pair());
   EXPECT_FALSE(s.any_storey_dashpots());
   EXPECT_EQ(s.bodies()[0].heights, std::vector<double>{3.0});
-  // beyond the tolerance a one-storey pair has no contact and is no longer the pair
+  // beyond the tolerance the lower floor strikes the other's column (ground to roof, xi = 3.0/3.2) and the system
+  // is no longer the pair
   const std::vector<StickTopology> apart{stick(1, {3.0}), stick(1, {3.2})};
-  EXPECT_TRUE(shear_buildings(apart).contacts().empty());
+  ASSERT_EQ(shear_buildings(apart).contacts().size(), 1u);
+  EXPECT_EQ(shear_buildings(apart).contacts()[0].label, "level 1/column 0-1");
+  EXPECT_EQ(shear_buildings(apart).contacts()[0].right.p, ground);
+  EXPECT_DOUBLE_EQ(shear_buildings(apart).contacts()[0].xi, 3.0 / 3.2);
   EXPECT_FALSE(shear_buildings(apart).is_sdof_pair());
+  EXPECT_EQ(links(shear_buildings(apart, 0.25)).size(), 1u);
   EXPECT_EQ(shear_buildings(apart, 0.25).contacts().size(), 1u);
 }
 
@@ -112,8 +117,11 @@ TEST(ShearTopology, LowerRoofOnly) {
   // the lower roof facing no floor: no element
   const std::vector<StickTopology> c{stick(3, {4.0}), stick(5, {3.0})};  // 12 m faces building2 floor 4
   expect_links(shear_buildings(c, 0.05, ContactLevels::top), {{4, 6, 3, "level 3/4"}});
-  const std::vector<StickTopology> d{stick(2, {4.0}), stick(5, {3.0})};  // 8 m faces nothing
-  EXPECT_TRUE(shear_buildings(d, 0.05, ContactLevels::top).contacts().empty());
+  const std::vector<StickTopology> d{stick(2, {4.0}), stick(5, {3.0})};  // 8 m faces building2's column 6-9 m
+  const System top = shear_buildings(d, 0.05, ContactLevels::top);
+  ASSERT_EQ(top.contacts().size(), 1u);
+  EXPECT_EQ(top.contacts()[0].label, "level 2/column 2-3");
+  EXPECT_DOUBLE_EQ(top.contacts()[0].xi, 2.0 / 3.0);
 }
 
 TEST(ShearTopology, RowPoundsNeighboursOnly) {

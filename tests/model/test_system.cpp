@@ -169,6 +169,14 @@ TEST(System, CheckReportsEveryProblemOfTheContacts) {
   p = good, p.contacts[0].right = {SideKind::wall, -1, -1, 0};
   p.contacts[1].right = {SideKind::interpolated, 5, 6, 0};  // building2 floors 3 and 4 (DOFs 5, 6)
   EXPECT_TRUE(System::check(p).empty());
+  // the column between the ground and a fixed building's first floor (p = ground, q its lowest DOF), xi in [0, 1]
+  p.contacts[1].right = {SideKind::interpolated, ground, 1, 0}, p.contacts[1].xi = 0.4;
+  EXPECT_TRUE(System::check(p).empty());
+  EXPECT_EQ(System::build(p).elements_at(1), (std::vector<int>{1}));  // element 0 faces a wall here
+  p.contacts[1].right = {SideKind::interpolated, ground, 3, 0};  // building2's floor 2 is not a first floor
+  EXPECT_TRUE(has_problem(p, "is not the first floor of a fixed body", "contact element 1 (level 2) right"));
+  p.contacts[1].right = {SideKind::interpolated, ground, 1, 0}, p.contacts[1].xi = 1.5;
+  EXPECT_TRUE(has_problem(p, "xi = 1.5", "contact element 1 (level 2) xi"));
 }
 
 TEST(System, BuildRefusesBadPartsAsAProgrammingError) {

@@ -5,7 +5,9 @@
 // depend on the other lanes of its batch (topology buckets, batch width).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <string>
 #include <cstring>
 #include <vector>
 
@@ -131,6 +133,49 @@ TEST(SystemBlock, FirstPassageThreeAgainstFiveStoreys) {
   }
   EXPECT_GE(touched, 10);
   EXPECT_GE(free_lanes, 10);
+}
+
+// Unequal storey heights (3.2 m and 3.5 m, 3 storeys each): the floors meet the neighbour's columns (model::
+// shear_buildings, docs/floor-contact.md) -- five floor-to-column elements, one with the ground end of a column --
+// and the probability scene stays exact: at every gap a lane pounds (coupled, Hertzdamp) exactly when D = max over
+// the elements of the uncoupled peak closing exceeds it. Refused before (the storey heights had to be equal).
+TEST(SystemBlock, FloorsAgainstColumnsFirstPassage) {
+  StructureModel model = shear_model(3, 3);
+  model.buildings[1].code.storey_height = 3.5;
+  SystemBlock block(model);
+  constexpr std::size_t L = 6;
+  std::vector<SampledPair> pairs;
+  for (std::size_t i = 0; i < L; ++i) pairs.push_back(pair(static_cast<int>(i)));
+  const LaneTopology t = lane_topology(model, pairs[0]);
+  const model::System& sys = block.system(t);
+  std::vector<std::string> labels;
+  for (const auto& c : sys.contacts()) labels.push_back(c.label);
+  EXPECT_EQ(labels, (std::vector<std::string>{"level 1/column 0-1", "column 1-2/level 1", "level 2/column 1-2",
+                                              "column 2-3/level 2", "level 3/column 2-3"}));
+  const std::vector<double> ag = test::two_tone(0.005, 6.0, 2.0, 1.4, 1.5, 2.9);
+  const GroundMotion gm{0.005, ag, 0.0};
+  KernelSettings ks;
+  ks.substeps = 4;
+  const ContactModel none = test::contact(ContactLaw::none), hertz = test::contact(ContactLaw::hertzdamp);
+  BlockPeaks free;
+  block.uncoupled(pairs, none, gm, ks, free);
+  std::vector<double> D(free.closing);
+  std::sort(D.begin(), D.end());
+  int touched = 0, apart = 0;
+  std::vector<std::size_t> lanes(L);
+  for (std::size_t l = 0; l < L; ++l) lanes[l] = l;
+  for (double g : {0.5 * D[0], 0.5 * (D[1] + D[2]), 0.5 * (D[3] + D[4]), 1.5 * D[5]}) {
+    BlockPeaks r;
+    block.coupled(pairs, lanes, g, hertz, ContactNumbers{0.65, 0.0}, gm, ks, r);
+    for (std::size_t l = 0; l < L; ++l) {
+      ASSERT_EQ(r.status[l], 0) << l;
+      EXPECT_EQ(r.impact_count[l] > 0, free.closing[l] > g) << "gap " << g << " lane " << l;
+      (r.impact_count[l] > 0 ? touched : apart) += 1;
+      if (r.impact_count[l] == 0) EXPECT_TRUE(same_bits(r.u1[l], free.u1[l]) && same_bits(r.u2[l], free.u2[l])) << l;
+    }
+  }
+  EXPECT_GE(touched, 6);
+  EXPECT_GE(apart, 6);
 }
 
 // Mixed topologies (storeys from the sampled height): the block's buckets give each lane the numbers it gets

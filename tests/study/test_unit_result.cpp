@@ -289,7 +289,8 @@ TEST(SystemTable, FloorToColumnWeight) {
   p.contacts = {{.left = {.kind = model::SideKind::point, .p = 0},
                  .right = {.kind = model::SideKind::interpolated, .p = 1, .q = 2},
                  .level = 1,
-                 .label = "floor 1 to column"}};
+                 .label = "floor 1 to column",
+                 .xi = 0.5}};  // the element's own xi (the kernel's weight), not one derived from the heights
   p.groups = {{}};
   const auto problems = model::System::check(p);
   ASSERT_TRUE(problems.empty()) << problems[0].what << " at " << problems[0].where;

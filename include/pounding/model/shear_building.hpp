@@ -2,16 +2,22 @@
 // Shear buildings side by side as one System (docs/architecture.md §2.2.3, §2.2.4 "Floor to floor", §2.1;
 // ../shared/research/systems-and-bridges.md §1, §4): n >= 1 sticks left to right, each a chain of floors on storey
 // springs (bilinear, law 0) to the ground, floor dashpots to ground and -- for Rayleigh damping -- a dashpot on
-// every storey spring; floor-to-floor point contacts between NEIGHBOURING buildings where floor levels agree
-// within a tolerance (only floors that exist on both sides, SB §1 pitfall 4; floors meeting columns come with
-// step 9), all in one study-gap group "pounding". The per-lane numbers are physics::set_shear_building's.
+// every storey spring; contacts between NEIGHBOURING buildings, all in one study-gap group "pounding": floor to
+// floor (a point on each side) where floor levels agree within a tolerance (only floors that exist on both sides, SB
+// §1 pitfall 4), and floor to column (§2.2.4, SB §3) where a floor below the neighbour's roof faces no floor within
+// the tolerance: the floor (a point) against the neighbour's column between the floors below and above it (an
+// interpolated side, linear shape functions N1 = 1 - xi, N2 = xi, xi = (z - z_below) / (z_above - z_below); the
+// column below a fixed building's first floor has the ground as its lower end). A floor above the neighbour's roof
+// meets nothing. The per-lane numbers are physics::set_shear_building's.
 //
 // Numbering (level-major, §2.1): the bases of isolated buildings (floor 0) left to right, then floor 1 of every building left to right, then floor 2 of every building that has
 // one, and so on; spring d is the storey spring under DOF d (springs in DOF order). Two one-storey buildings give
 // DOF 0 = building 1, DOF 1 = building 2: exactly System::sdof_pair() when both storeys are 3.2 m high.
-// Elements in level order (the left floor's number), interfaces left to right within a level; element `level` is
-// the left floor's number, labelled "level k" ("level k/k'" when the right floor is k'; in a row of three or
-// more buildings prefixed with the interface, "1|2 level k").
+// Elements in level order, interfaces left to right within a level, then by height; element `level` is the
+// striking floor's number: floor to floor the left floor's, labelled "level k" ("level k/k'" when the right floor
+// is k'); a left floor k on the right building's column between its floors j and j+1 "level k/column j-(j+1)"
+// (floor 0: the ground or an isolated base), a right floor k on the left building's column "column j-(j+1)/level k";
+// in a row of three or more buildings prefixed with the interface, "1|2 level k". ContactElement::xi holds xi.
 #include <span>
 #include <string>
 #include <vector>
@@ -40,11 +46,15 @@ struct StickTopology {
   // The isolator spring's hysteresis law (isolated only; model/hysteresis/registry.hpp: 0 bilinear -- linear and
   // lead-rubber bearings --, 1 Bouc-Wen, 2 friction pendulum; physics::isolator_law(Bearing) gives it).
   int isolator_law = 0;
+  // Whether a neighbour's floor may strike this building's columns between its floors (floor to column). false for
+  // an SDOF idealisation standing for a whole building beside a shear one (study/system_block.hpp): its one storey is
+  // not a column, so it meets the neighbour's floors only (floor to floor, as before floors met columns).
+  bool columns = true;
 };
 
 enum class ContactLevels {
   common,  // every pair of facing floors whose levels agree within the tolerance
-  top,     // only the lower roof of each neighbouring pair (with the other building's floor at that level)
+  top,     // only the lower roof of each neighbouring pair (against the other building's floor or column there)
 };
 inline constexpr EnumName<ContactLevels> contact_levels_names[] = {{ContactLevels::common, "common"},
                                                                    {ContactLevels::top, "top"}};
@@ -54,7 +64,9 @@ constexpr const auto& enum_names(ContactLevels) { return contact_levels_names; }
 std::vector<double> floor_levels(const StickTopology& stick);
 
 // The system of `sticks`, left to right. A floor of building b meets the floor of building b+1 nearest to its level
-// when they are within `level_tolerance` (m) of each other and each is the other's nearest. Throws
+// when they are within `level_tolerance` (m) of each other and each is the other's nearest, else (below the
+// neighbour's roof, farther than the tolerance from both ends of the column it faces) the neighbour's column. With
+// ContactLevels::top only the elements where the lower building's roof strikes (a floor or a column). Throws
 // std::invalid_argument (a programming error: the command line and study validate first) for no sticks, storeys
 // < 1, heights not finite and > 0, a height list of neither 1 nor `storeys` values, or a tolerance not finite and
 // >= 0.

@@ -53,7 +53,9 @@ struct Spring {
 };
 
 // One side of a contact element: a point (DOF p), an interpolated point (x = N1 u_p + N2 u_q, N2 per lane in
-// SystemBatch::weight, N1 = 1 - N2) or a wall (the support of `channel`, x = 0 relative to it).
+// SystemBatch::weight, N1 = 1 - N2: a floor striking the column between floor p and floor q = the floor above; p =
+// ground for the column between the ground and a fixed building's first floor, x = N2 u_q) or a wall (the support
+// of `channel`, x = 0 relative to it).
 struct Side {
   SideKind kind = SideKind::point;
   int p = -1, q = -1;
@@ -66,6 +68,9 @@ struct ContactElement {
   int group = 0;      // index in System::groups()
   int level = 0;      // the floor number where it acts (1 = first floor), for results and labels
   std::string label;  // "level 3", "moat left"
+  // an interpolated side's position along its column, xi = (z_c - z_p) / (z_q - z_p) (linear shape functions: N2 =
+  // xi), from the floor levels (topology); physics::set_contacts copies it into SystemBatch::weight. 0 otherwise.
+  double xi = 0.0;
   bool operator==(const ContactElement&) const = default;
 };
 
@@ -97,7 +102,8 @@ class System {
   // i is the DOF directly below j in its body (ground for the lowest), role isolator exactly at the base of an
   // isolated body and storey numbers counting floors from 1 (spring.body = the body of j); link springs join two
   // distinct DOFs; laws >= 0; sides' DOFs valid (a point: p; an interpolated point: p and q = the DOF directly
-  // above p in one body; a wall: a valid channel), at most one interpolated side and at most one wall per
+  // above p in one body, or p = ground and q the lowest DOF of a body that is not isolated; xi in [0, 1]; a wall: a
+  // valid channel), at most one interpolated side and at most one wall per
   // element, no DOF on both sides; groups in range with unique non-empty names; non-empty, unique body labels
   // and non-empty element labels; channels >= 1 and bodies' channels in range. Each problem names the part
   // ("body 1 (building2) dofs[2]") in `where`.

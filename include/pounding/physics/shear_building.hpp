@@ -9,6 +9,7 @@
 // The topology comes from model::shear_buildings (model/shear_building.hpp); these functions fill one lane.
 // Bad numbers are the caller's to refuse (the command line and the study validate); these throw
 // std::invalid_argument (a programming error) for what they cannot compute.
+#include <array>
 #include <cstddef>
 #include <span>
 #include <vector>
@@ -100,8 +101,25 @@ IsolationNumbers set_isolated_building(SystemBatch& batch, std::size_t lane, int
 void set_moat(SystemBatch& batch, std::size_t lane, int body, double gap_left, double gap_right, double kc, double e);
 
 // Contact numbers of lane `lane` for every element: gap = study gap (+ level_offsets[level - 1] when given, for
-// elements of study-gap groups; elements of other groups keep their own gap), kc, e.
+// elements of study-gap groups; elements of other groups keep their own gap), kc, e, and the weight of an
+// interpolated side (a floor against a column) = the element's xi (linear shape functions).
 void set_contacts(SystemBatch& batch, std::size_t lane, double gap, double kc, double e,
                   std::span<const double> level_offsets = {});
+
+// The two floor masses (kg) an element of lane `lane` joins, left and right, for the equivalent-sphere Hertz stiffness:
+// a point side's floor; a column side's nearer floor (xi < 0.5: the floor below unless it is the ground, else the
+// floor above), so xi -> 0 / 1 gives the floor-to-floor element's masses; a wall: the other side's.
+std::array<double, 2> contact_masses(const SystemBatch& batch, std::size_t lane, int element);
+
+// The struck column's fixed-end shears per unit contact force at xi (a fixed-fixed column, no floor rotation, point
+// load at a = xi h: V_below = (1 - xi)^2 (1 + 2 xi), V_above = xi^2 (3 - 2 xi), summing to 1; Karayannis & Favvata
+// 2005, ../shared/research/systems-and-bridges.md §3) -- the extra shear the impact puts into the column below and
+// above the contact point, beside the storey shear of the drift.
+struct ColumnShear {
+  double below, above;
+};
+inline ColumnShear column_shear_per_force(double xi) {
+  return {(1.0 - xi) * (1.0 - xi) * (1.0 + 2.0 * xi), xi * xi * (3.0 - 2.0 * xi)};
+}
 
 }  // namespace pounding::physics

@@ -141,6 +141,9 @@ struct Study {
   // pound, and per level from level 1 the offset (m, >= 0) added to the study gap (levels beyond the list: 0)
   model::ContactLevels contact_levels = model::ContactLevels::common;
   std::vector<double> gap_offsets;
+  // [contact] level_tolerance (m): floors of neighbouring shear buildings whose levels differ by at most this meet
+  // floor to floor; any other floor below the neighbour's roof meets its column (model::shear_buildings)
+  double level_tolerance = 0.05;
   Stepper stepper = Stepper::central_difference;
   int substeps = 1;
   double max_dt = 0.0;  // step cap (s): substeps = max(substeps, ceil(dt / max_dt)); default 2.5 ms (impacts), 0 (probability)

@@ -4,7 +4,8 @@
 //
 // Per lane: building b gets storeys_at(h_b) storeys of storey_height each (an SDOF building facing a shear one is
 // one storey that reaches the other building's floor nearest its height, its roof when that is lower), the numbers
-// of shear_spec() and contact at the floors both have at one level (model::shear_buildings, tolerance 0.05 m).
+// of shear_spec() and contact where floors face floors within [contact] level_tolerance, or columns between two
+// floors (model::shear_buildings).
 // Lanes are bucketed by topology (a stable sort by LaneTopology, then by position in the block, i.e. by global
 // sample index) and each bucket runs as one SystemBatch; a lane's numbers depend only on its own inputs, so its
 // bits do not depend on the bucketing or the batch width.
@@ -104,12 +105,16 @@ class SystemBlock {
   // contact, e: the study's [contact] model and restitution, the moat walls' defaults; levels, gap_offsets: [contact]
   // levels and gap_offsets (per level from 1, m; a level beyond the list 0): which floors pound and what each adds to
   // the study gap. With offsets, D = max over the study-gap elements of (peak closing - offset).
+  // level_tolerance: [contact] level_tolerance (m, model::shear_buildings: floors within it meet floor to floor, the
+  // others a column).
   explicit SystemBlock(const StructureModel& model, const ContactModel& contact = {}, double e = 0.65,
-                       model::ContactLevels levels = model::ContactLevels::common, std::vector<double> gap_offsets = {})
-      : model_(model), contact_(contact), e_(e), levels_(levels), offsets_(std::move(gap_offsets)) {}
-  // For a study: its structures, [contact] model, e, levels and gap_offsets.
+                       model::ContactLevels levels = model::ContactLevels::common, std::vector<double> gap_offsets = {},
+                       double level_tolerance = 0.05)
+      : model_(model), contact_(contact), e_(e), levels_(levels), offsets_(std::move(gap_offsets)),
+        tolerance_(level_tolerance) {}
+  // For a study: its structures, [contact] model, e, levels, gap_offsets and level_tolerance.
   explicit SystemBlock(const Study& s)
-      : SystemBlock(s.structures, s.contact, s.e, s.contact_levels, s.gap_offsets) {}
+      : SystemBlock(s.structures, s.contact, s.e, s.contact_levels, s.gap_offsets, s.level_tolerance) {}
 
   // Every lane of `pairs`, uncoupled: `none` is the study's contact model with law none (the study-gap group's law);
   // status, u1, u2, closing = D.
@@ -152,6 +157,7 @@ class SystemBlock {
   double e_;
   model::ContactLevels levels_;
   std::vector<double> offsets_;
+  double tolerance_ = 0.05;
   std::map<LaneTopology, std::unique_ptr<model::System>> systems_, table_systems_;
   std::vector<LaneTopology> keys_;
   std::vector<std::size_t> order_, bucket_, all_;

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <array>
 #include <limits>
 #include <memory>
 #include <numbers>
@@ -479,10 +480,8 @@ void set_storey_contacts(const SimulateOptions& o, const ContactModel& cm, physi
       run.contact_stiffness.push_back(0.0), run.contact_gap.push_back(0.0);
       continue;
     }
-    const double kc = o.kh_given ? o.kh
-                                 : hertz_stiffness_spheres(batch.m[static_cast<std::size_t>(ce.left.p)],
-                                                           batch.m[static_cast<std::size_t>(ce.right.p)], o.density,
-                                                           o.youngs, o.poisson);  // width 1: index = DOF
+    const std::array<double, 2> mm = physics::contact_masses(batch, 0, static_cast<int>(e));  // a column: its nearer floor
+    const double kc = o.kh_given ? o.kh : hertz_stiffness_spheres(mm[0], mm[1], o.density, o.youngs, o.poisson);
     batch.kc[e] = kc;
     run.contact_stiffness.push_back(kc);
     run.contact_gap.push_back(batch.gap[e]);
@@ -600,6 +599,46 @@ std::vector<Side> sides_of(const SimulateOptions& o) {
   return out;
 }
 
+// Floor-to-column elements: the struck column's fixed-end shears at the element's peak force (physics::
+// column_shear_per_force; F is >= 0 and xi fixed, so the peak shears are the peak force's), the Karayannis-Favvata
+// criterion -- the extra shear the impact puts into the column below and above the contact point, not added to the
+// storey shear of the drift (their peaks need not coincide; the storey springs report theirs).
+struct ColumnShearRow {
+  std::string label;
+  double xi, below, above;
+};
+std::vector<ColumnShearRow> column_shears(const model::System& sys, const physics::SystemResult& r) {
+  std::vector<ColumnShearRow> out;
+  for (std::size_t e = 0; e < sys.contacts().size(); ++e) {
+    const model::ContactElement& ce = sys.contacts()[e];
+    if (ce.left.kind != model::SideKind::interpolated && ce.right.kind != model::SideKind::interpolated) continue;
+    const physics::ColumnShear v = physics::column_shear_per_force(ce.xi);
+    const double F = r.peak_force[physics::SystemBatch::at(static_cast<int>(e), 0, r.width)];
+    out.push_back({ce.label, ce.xi, v.below * F, v.above * F});
+  }
+  return out;
+}
+std::string column_shears_text(const model::System& sys, const physics::SystemResult& r) {
+  std::string s;
+  for (const ColumnShearRow& c : column_shears(sys, r))
+    s += fmt::format("{} column_shear: xi {:.6g}, below_N {:.6g}, above_N {:.6g}\n", c.label, c.xi, c.below, c.above);
+  return s;
+}
+// The JSON object with "column_shears": [{label, xi, below, above}] (N; null when not finite) before its closing brace.
+std::string with_column_shears_json(std::string json, const model::System& sys, const physics::SystemResult& r) {
+  const std::vector<ColumnShearRow> rows = column_shears(sys, r);
+  const std::size_t end = json.rfind('}');
+  if (end == std::string::npos) return json;
+  auto num = [](double x) { return std::isfinite(x) ? fmt::format("{:.17g}", x) : std::string("null"); };
+  std::string a = ",\"column_shears\":[";
+  for (std::size_t k = 0; k < rows.size(); ++k)
+    a += fmt::format("{}{{\"label\":\"{}\",\"xi\":{},\"below\":{},\"above\":{}}}", k ? "," : "", rows[k].label,
+                     num(rows[k].xi), num(rows[k].below), num(rows[k].above));
+  a += "]";
+  json.insert(end, a);
+  return json;
+}
+
 int run_storeys(SimulateOptions& o, const ContactModel& cm, KernelSettings& ks) {
   validate_storeys(o);
   resolve_row(o);
@@ -624,6 +663,14 @@ int run_storeys(SimulateOptions& o, const ContactModel& cm, KernelSettings& ks) 
     sticks[i].isolated = !o.iso[i].bearing.empty(), sticks[i].moat = o.iso[i].moat_given;
     if (sticks[i].isolated) sticks[i].isolator_law = physics::isolator_law(bearing_of(o.iso[i].bearing));
   }
+  // a floor meets at most one floor of its neighbour: the tolerance below half the smallest storey height
+  double h_min = std::numeric_limits<double>::infinity();
+  for (const model::StickTopology& st : sticks) h_min = std::min(h_min, st.storey_heights[0]);
+  if (!(o.level_tolerance < 0.5 * h_min))
+    throw InputError(fmt::format("--level-tolerance {:g} m is not below half the smallest storey height ({:g} m): a "
+                                 "floor could meet two floors of its neighbour",
+                                 o.level_tolerance, h_min),
+                     "--level-tolerance", fmt::format("give --level-tolerance < {:g} m (default 0.05)", 0.5 * h_min));
   const model::ContactLevels levels =
       o.contact_levels == "top" ? model::ContactLevels::top : model::ContactLevels::common;
   const model::System sys = model::shear_buildings(sticks, o.level_tolerance, levels);
@@ -654,9 +701,10 @@ int run_storeys(SimulateOptions& o, const ContactModel& cm, KernelSettings& ks) 
   run.system = &sys, run.result = &r, run.record = &rec, run.settings = &ks, run.contact = &cm;
   run.e_target = o.e, run.gap = o.gap, run.analysis_duration = analysis_length;
   if (o.json) {
-    fmt::print("{}", format_system_json(run));
+    fmt::print("{}", with_column_shears_json(format_system_json(run), sys, r));
   } else {
-    fmt::print("{}{}", describe_duration(record_length, analysis_length), format_system_summary(run));
+    fmt::print("{}{}{}", describe_duration(record_length, analysis_length), format_system_summary(run),
+               column_shears_text(sys, r));
   }
   return r.status[0] != 0 ? 3 : 0;
 }

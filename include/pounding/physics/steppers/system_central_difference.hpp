@@ -63,7 +63,7 @@ enum DofRow : int { U, Vel, A, M, IM, CF, VO, VH, DU, VP, PU, PA, dof_rows };
 // model/hysteresis/bridge_links.hpp) holds k, c1, c2, side in K, AK, QY, KP, gap0 in ZA and its current gap in Z; a
 // Q-Hyst spring (law 6) k, alpha k, F_y, beta in K, AK, QY, KP and its state (mode, x0, dr, fr, dp, dn) in ZA..ZS.
 enum SpringRow : int { K, AK, QY, KP, CS, FS, T, PD, PF, ZA, ZB, ZG, ZM, ZE, ZS, Z, spring_rows };
-// Element: constants (N1/N2 of interpolated sides), state, observers.
+// Element: constants (N1/N2 of interpolated sides; p = -1: a column's ground end, x = N2 u_q), state, observers.
 enum ElemRow : int {
   GAP, KC, CD, E, MEFF, H2M, N1L, N2L, N1R, N2R, F, IV0, DPREV,
   PCLOSE, TPCLOSE, TFIRST, NIMP, NCLAMP, PFORCE, PPEN, WC, TCON, DIMP, elem_rows
@@ -229,7 +229,8 @@ POUNDING_INLINE GroundOffset ground_offset(const double* g, int a, int b) {
 POUNDING_INLINE V side_value(Chunk c, const Side& s, int f, int e, bool left) {
   switch (s.kind) {
     case SideKind::point: return c.dof(f, s.p);
-    case SideKind::interpolated:
+    case SideKind::interpolated:  // p < 0: the ground end of a column (x = N2 u_q, relative to the support)
+      if (s.p < 0) return c.elm(left ? N2L : N2R, e) * c.dof(f, s.q);
       return lane::fma(c.elm(left ? N2L : N2R, e), c.dof(f, s.q), c.elm(left ? N1L : N1R, e) * c.dof(f, s.p));
     case SideKind::wall: break;
   }
