@@ -70,6 +70,9 @@ INPUT: {"mode": "linear"|"nonlinear", "dt": s, "ag": [m/s^2], "duration": s, "su
         "bodies": [{"m": [kg], "k": [N/m], "a0": 1/s, "a1": s}],
         "contacts": [{"left": [body, floor], "right": [body, floor], "gap": m, "kc": N/m^n, "n": 1.5, "e": e,
                       "v0_min": m/s}]}   (floors 1-based, xibar = 3 (1 - e^2) / 4, Lankarani-Nikravesh)
+       A side may instead be a column, {"column": [body, lo, hi], "xi": x} (a floor striking the column between
+       floors lo and hi = lo + 1 of body, lo = 0 the ground): x_side = (1 - x) u_lo + x u_hi (u_0 = 0), and the
+       contact force acts on floors lo and hi with the same weights (work-consistent, SB §3).
 OUTPUT lines: "peak_u S body floor value", "final_u S body floor value" for every grid S (substeps per record
 step); nonlinear also "impacts element count" (continuous onsets) and "peak_force S element value" (sampled on
 grid S).
@@ -427,15 +430,32 @@ class Pounding:
         self.Mi = 1.0 / np.diag(self.M)
         index = {d: i for i, d in enumerate(self.dofs)}
         self.el = []
+
+        def side(s):
+            # a floor [body, floor]: [(dof, 1)]; a column {"column": [body, lo, hi], "xi": x}: the point at x of the
+            # way from floor lo (0: the ground, which does not move) to floor hi, linear shape functions
+            if isinstance(s, dict):
+                b, lo, hi = s["column"]
+                x = float(s["xi"])
+                out = [(index[(b, hi)], x)]
+                if lo > 0:
+                    out.insert(0, (index[(b, lo)], 1.0 - x))
+                return out
+            return [(index[tuple(s)], 1.0)]
+
         for c in cfg["contacts"]:
-            self.el.append(dict(L=index[tuple(c["left"])], R=index[tuple(c["right"])], gap=c["gap"], kc=c["kc"],
+            self.el.append(dict(L=side(c["left"]), R=side(c["right"]), gap=c["gap"], kc=c["kc"],
                                 n=c["n"], xi=0.75 * (1.0 - c["e"] ** 2), v0_min=c["v0_min"]))
         self.active = [False] * len(self.el)
         self.v0 = [1.0] * len(self.el)
 
+    def x(self, ws, y, off=0):
+        return sum(w * y[off + i] for i, w in ws)
+
     def delta(self, e, y):
         el = self.el[e]
-        return y[el["L"]] - y[el["R"]] - el["gap"], y[self.n + el["L"]] - y[self.n + el["R"]]
+        return (self.x(el["L"], y) - self.x(el["R"], y) - el["gap"],
+                self.x(el["L"], y, self.n) - self.x(el["R"], y, self.n))
 
     def force(self, e, y):
         if not self.active[e]:
@@ -450,8 +470,10 @@ class Pounding:
         f = -self.C @ v - self.K @ u
         for e, el in enumerate(self.el):
             F = self.force(e, y)
-            f[el["L"]] -= F
-            f[el["R"]] += F
+            for i, w in el["L"]:  # the force on each DOF of a side with the weights of its kinematics
+                f[i] -= w * F
+            for i, w in el["R"]:
+                f[i] += w * F
         return np.concatenate([v, f * self.Mi - ag])
 
     def events(self):
