@@ -204,6 +204,7 @@ bad "--series" --storeys1 3 --series "$tmp/s.csv"
 bad "--contact-levels" --storeys1 3 --contact-levels roof
 bad "--level-tolerance" --storeys1 3 --level-tolerance 2
 bad "--level-tolerance, give --level-tolerance < 0.5 m" --storeys1 3 --storey-height1 1.0 --level-tolerance 0.6
+bad "--level-tolerance" --storeys1 3 --storey-height2 3.5 --level-tolerance -0.01
 bad "--gap-offsets" --storeys1 3 --storeys2 3 --gap-offsets 0,0
 bad "--gap-offsets" --storeys1 3 --gap 0.1 --gap-offsets -0.2
 [ ! -e "$tmp/s.csv" ] || fail "a refused run wrote its series"
