@@ -132,6 +132,10 @@ constexpr StudyKey keys[] = {
      "jackknife and per-record tables keep a record's two signs together as one record. \"recorded\": the sign as "
      "recorded (the paper studies state it)."},
 
+    {"records", "supports", "integer", "none (one record per analysis)", "", "[2, 100]",
+     "A bridge on several supports (frames' support = K): the directory's files PREFIX_s01 .. PREFIX_sNN (pounding "
+     "motions --out DIR writes rRRR_sJJ.AT2) are one realisation's N support motions, support K's record drives "
+     "channel K. Only with directory; not with select.", 2, 100},
     {"records.files", "path", "string", "required", "", "a record file", "The record file (relative to the study)."},
     {"records.files", "scale", "number", "1.0", "", "(0, 1000]", "Factor applied to this record.", 1e-6, 1e3},
 

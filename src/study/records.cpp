@@ -1,6 +1,7 @@
 // Resolving a study's [records] into scaled ground motions (real files or synthetic stand-ins).
 #include <algorithm>
 #include <filesystem>
+#include <map>
 
 #include <fmt/format.h>
 
@@ -30,6 +31,49 @@ StudyRecord from_file(const std::string& path, double scale, const Study& s, con
   r.note = fmt::format("file {} x {}", path, scale);
   return r;
 }
+// [records] supports = N: the directory's files grouped per realisation -- stem PREFIX_sJJ is support JJ of
+// realisation PREFIX (pounding motions' rRRR_sJJ.AT2) -- each group exactly supports 1..N with one dt and length.
+std::vector<StudyRecord> support_sets(const Study& s, RecordManifests& manifests) {
+  std::map<std::string, std::map<int, std::string>> sets;
+  const std::string where = s.supports_where;
+  for (const auto& p : record_files_in(s.directory, "[records] directory in " + s.path)) {
+    const std::string stem = fs::path(p).stem().string();
+    const std::size_t at = stem.rfind("_s");
+    const std::string digits = at == std::string::npos ? std::string() : stem.substr(at + 2);
+    if (digits.empty() || digits.size() > 3 || !std::all_of(digits.begin(), digits.end(), ::isdigit))
+      throw InputError(fmt::format("the record file {} is not named PREFIX_sJJ (support JJ of realisation PREFIX)", p),
+                       where, "keep only pounding motions' rRRR_sJJ files in the directory, or delete supports");
+    const int j = std::stoi(digits);
+    if (j < 1 || j > s.supports)
+      throw InputError(fmt::format("{} is support {}, outside 1..{}", p, j, s.supports), where,
+                       fmt::format("give supports = {} or remove the file", std::max(j, s.supports)));
+    sets[stem.substr(0, at)][j] = p;
+  }
+  std::vector<StudyRecord> out;
+  for (const auto& [prefix, files] : sets) {
+    if (files.size() != static_cast<std::size_t>(s.supports))
+      throw InputError(fmt::format("realisation {} in {} has {} of the {} support files", prefix, s.directory,
+                                   files.size(), s.supports),
+                       where, fmt::format("give every realisation the files {}_s01 .. {}_s{:02d}", prefix, prefix, s.supports));
+    StudyRecord r;
+    for (const auto& [j, p] : files) {
+      StudyRecord one = from_file(p, s.scale, s, "[records] scale in " + s.path, manifests);
+      if (j == 1) {
+        r = std::move(one);
+        r.id = prefix;
+        r.note = fmt::format("{} supports of {} ({}_s01 .. _s{:02d}) x {}", s.supports, s.directory, prefix, s.supports, s.scale);
+        continue;
+      }
+      if (one.record.dt != r.record.dt || one.record.acc.size() != r.record.acc.size())
+        throw InputError(fmt::format("{}: support {} has dt {} s and {} points, support 1 dt {} s and {} points", prefix,
+                                     j, one.record.dt, one.record.acc.size(), r.record.dt, r.record.acc.size()),
+                         where, "give every support of a realisation the same time step and length (pounding motions does)");
+      r.more_supports.push_back(std::move(one.record));
+    }
+    out.push_back(std::move(r));
+  }
+  return out;
+}
 }  // namespace
 
 std::vector<StudyRecord> load_study_records(const Study& s, StudySelection* selection) {
@@ -42,6 +86,8 @@ std::vector<StudyRecord> load_study_records(const Study& s, StudySelection* sele
                                                            "in {}", f.scale, s.scale, s.path)
                                              : "[records] scale in " + s.path,
                               manifests));
+  } else if (!s.directory.empty() && s.supports > 0) {
+    out = support_sets(s, manifests);
   } else if (!s.directory.empty()) {
     // the one directory reader (motion/library.hpp), the files `records select --directory` reads
     for (const auto& p : record_files_in(s.directory, "[records] directory in " + s.path))
@@ -63,6 +109,8 @@ std::vector<StudyRecord> load_study_records(const Study& s, StudySelection* sele
     for (auto& rr : out) {
       StudyRecord rev = rr;
       for (double& a : rev.record.acc) a = -a;
+      for (Record& m : rev.more_supports)
+        for (double& a : m.acc) a = -a;
       rev.polarity = -1;
       rev.note += rev.note.empty() ? "sign reversed ([records] polarity = \"both\")"
                                    : "; sign reversed ([records] polarity = \"both\")";

@@ -104,8 +104,8 @@ class UnitComputer {
     KernelSettings ks = ks_base_;
     ks.substeps = substeps_for(rec.dt);
     UnitResult out(plan_, n);
-    if (block_) {  // shear buildings: Systems (study/system_block.hpp)
-      systems(rec, ks, out);
+    if (block_) {  // shear buildings, rows, bridges: Systems (study/system_block.hpp)
+      systems(records_[u.record], ks, out);
       return out;
     }
     batch_.resize(n);
@@ -371,9 +371,18 @@ class UnitComputer {
   // probability scene answers every gap exactly as for the pair; the impacts scene runs coupled only the lanes that
   // touch (D > gap) or failed (all with skip_untouched = false), as coupled() does for pairs. [intensity] is refused
   // for shear buildings when the study is read (study.cpp).
-  void systems(const Record& rec, const KernelSettings& ks, UnitResult& out) {
+  // A bridge on several supports ([records] supports): channel k is the realisation's support k + 1.
+  void systems(const StudyRecord& sr, const KernelSettings& ks, UnitResult& out) {
+    const Record& rec = sr.record;
     const std::size_t n = pairs_.size(), G = plan_.gaps;
     const GroundMotion gm{rec.dt, rec.acc, rec.duration() + s_.free_vibration};
+    const int channels = s_.structures.bridge ? s_.structures.bridge->spec.channels() : 1;
+    channels_.clear();
+    for (int c = 0; c < channels && channels > 1; ++c)
+      channels_.push_back(c == 0 ? gm
+                                 : GroundMotion{rec.dt, sr.more_supports[static_cast<std::size_t>(c - 1)].acc,
+                                                rec.duration() + s_.free_vibration});
+    block_->set_channels(channels_);
     block_->uncoupled(pairs_, uncoupled_, gm, ks, peaks_);
     const bool table = !block_->layout().empty();
     const std::size_t nb = peaks_.buildings;
@@ -493,6 +502,7 @@ class UnitComputer {
   BatchResult res_, cres_, bres_, anchor_;
   std::optional<SystemBlock> block_;
   BlockPeaks peaks_, coupled_;
+  std::vector<GroundMotion> channels_;  // a multi-support bridge's motions of the unit's record
   std::vector<std::size_t> f_floor_u_, f_floor_drift_, f_floor_acc_;
   std::vector<std::size_t> f_row_unc_, f_row_imp_;  // a row's buildings 3..n: uncoupled / impacts peak_u{b}
   std::size_t f_e_closing_ = 0, f_e_count_ = 0, f_e_force_ = 0, f_e_pen_ = 0, f_e_first_ = 0, f_e_hw_ = 0;
@@ -606,6 +616,8 @@ CheckpointKey checkpoint_key(const Inputs& in, const WorkPlan& L) {
   for (const auto& rr : in.records) {
     hash = files::fnv1a(rr.record.acc.data(), rr.record.acc.size() * sizeof(double), hash);
     hash = files::fnv1a(&rr.record.dt, sizeof(double), hash);
+    for (const Record& m : rr.more_supports)  // a multi-support realisation's other supports (none elsewhere)
+      hash = files::fnv1a(m.acc.data(), m.acc.size() * sizeof(double), hash);
   }
   key.study_hash = hash;
   key.units = L.units();

@@ -87,8 +87,19 @@ void parse_records(Study& s, const toml::table* t, const std::string& path) {
     s.polarity_given = true;
   }
   parse_record_files(s, r, path);
+  if (r.get("supports")) {
+    s.supports = static_cast<int>(r.integer("supports", 0));
+    s.supports_where = r.where("supports");
+    if (s.directory.empty())
+      throw InputError("supports groups a directory's files per realisation, and [records] names no directory",
+                       r.where("supports"),
+                       "give directory = \"...\" (pounding motions --out DIR writes rRRR_sJJ.AT2 per support), or delete supports");
+    if (s.select > 0)
+      throw InputError("select chooses single records, and supports groups them per realisation", r.where("select"),
+                       "delete select (or supports)");
+  }
   r.finish("suite, real_dir, directory, files, scale, units, dt, limit, synthetic_only, select, max_per_event, components, "
-           "polarity");
+           "polarity, supports");
   int sources = !s.suite.empty() + !s.directory.empty() + !s.files.empty();
   if (sources != 1)
     throw InputError(sources == 0 ? "the study names no records" : "the study names records in more than one way",
@@ -376,6 +387,14 @@ static void parse_bridge(Study& s, TableReader& top, const toml::table* bridge, 
       throw InputError(fmt::format("[contact] {} is given, and the study is a bridge (its joints are the contacts)", key),
                        at("contact", key), "give each [[bridge.joint]] its own gap instead, or remove the key");
   }
+  const int channels = s.structures.bridge->spec.channels();
+  if (channels > std::max(1, s.supports))
+    throw InputError(fmt::format("the bridge stands on {} supports (its largest support = {}), and the records give {}",
+                                 channels, channels, std::max(1, s.supports)),
+                     s.supports > 0 ? s.supports_where : fmt::format("{} [records].supports", path),
+                     fmt::format("give [records] supports = {} and a directory of support motions (pounding motions "
+                                 "--supports {} --out DIR), or put every frame on support 1",
+                                 channels, channels));
 }
 
 Study parse_study(const std::string& text, const std::string& path) {
@@ -417,6 +436,9 @@ Study parse_study(const std::string& text, const std::string& path) {
       s.intensity.method == FragilityMethod::ida &&
       !(s.structures.building(0).hysteresis == Hysteresis::elastic && s.structures.building(1).hysteresis == Hysteresis::elastic);
   if (!s.structures.bridge) check_shear_study(s, top, structures, path);
+  if (s.supports > 0 && !s.structures.bridge)
+    throw InputError("[records] supports feeds a bridge's supports, and the study has no [bridge]", s.supports_where,
+                     "add a [bridge] whose frames name their support, or delete supports");
   if (s.intensity.enabled && s.scene_requested != Scene::probability)
     throw InputError("a fragility study ([intensity]) runs in the probability scene", top.where("scene"),
                      "write scene = \"probability\": whether a pair touches at a gap is decided by the uncoupled motion");

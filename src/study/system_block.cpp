@@ -237,7 +237,8 @@ void SystemBlock::run(std::span<const SampledPair> pairs, std::span<const std::s
       const SampledPair& p = pairs[lanes[order_[j]]];
       set_lane(batch_, j - at, p, t, ratio * p.d, cn);
     }
-    physics::run_system(batch_, groups, gm, ks, res_);
+    if (channels_.empty()) physics::run_system(batch_, groups, gm, ks, res_);
+    else physics::run_system(batch_, groups, channels_, ks, res_);
     const std::size_t w = end - at;
     // this topology's elements in the table's order (by label: level k is level k, a moat wall its wall)
     std::vector<std::size_t> to_table(sys.contacts().size(), layout_.elements);

@@ -40,6 +40,7 @@ void visit_settings(const Study& s, V&& v) {
   v("records", "synthetic_only", s.synthetic_only);
   v("records", "select", static_cast<std::int64_t>(s.select));
   v("records", "polarity", S(to_string(s.polarity)));  // absent in older files: "recorded"
+  if (s.supports > 0) v("records", "supports", static_cast<std::int64_t>(s.supports));  // a multi-support bridge
   if (s.target.enabled) {  // [target_spectrum] (study/target_spectrum.hpp); absent otherwise
     const TargetSpectrumSection& x = s.target;
     v("target_spectrum", "code", S(to_string(x.spec.code)));

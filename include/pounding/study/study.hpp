@@ -128,6 +128,10 @@ struct Study {
   ComponentRule components = ComponentRule::one;      // [records] components (with select)
   Polarity polarity = Polarity::recorded;  // [records] polarity, after its default (pair study: both)
   bool polarity_given = false;
+  // [records] supports = N (a bridge on several supports): the directory's files *_s01 .. *_sNN with one prefix are
+  // one realisation's N support motions (pounding motions' rRRR_sJJ.AT2); 0: one record per analysis
+  int supports = 0;
+  std::string supports_where;  // "file:line [records].supports" for errors found when the records load
   // structures
   StructureModel structures;
   // gaps
@@ -210,6 +214,8 @@ struct StudyRecord {
   std::string id;    // suite id (EQ1...) or file stem
   std::string note;  // how it was resolved
   int polarity = 1;  // +1: as recorded; -1: the record with its sign reversed ([records] polarity = "both")
+  // [records] supports = N: supports 2..N of the realisation (record is support 1), same dt and length
+  std::vector<Record> more_supports;
 };
 // With [records] polarity = "both" every record (after select and limit) is followed by its reversed copy
 // (-acc, polarity -1, the same id): record r's two analyses are rows 2r and 2r + 1.

@@ -126,6 +126,10 @@ class SystemBlock {
                const ContactModel& cm, const ContactNumbers& cn, const GroundMotion& gm, const KernelSettings& ks,
                BlockPeaks& out);
 
+  // A bridge on several supports: one motion per channel (the record's support 1 first; the same dt and length as
+  // the motion the runs get), used instead of that motion while set; empty: uniform input.
+  void set_channels(std::span<const GroundMotion> channels) { channels_ = channels; }
+
   // The System of a topology (built once, kept for the block's lifetime).
   const model::System& system(const LaneTopology& t);
   // The results' table System of a topology (table_topology()): system(t), except with levels = "top", where it has
@@ -158,6 +162,7 @@ class SystemBlock {
   model::ContactLevels levels_;
   std::vector<double> offsets_;
   double tolerance_ = 0.05;
+  std::span<const GroundMotion> channels_;
   std::map<LaneTopology, std::unique_ptr<model::System>> systems_, table_systems_;
   std::vector<LaneTopology> keys_;
   std::vector<std::size_t> order_, bucket_, all_;
