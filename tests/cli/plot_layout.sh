@@ -37,7 +37,8 @@ for study in "$src"/studies/*.toml; do
   if grep -q '^supports = ' "$study"; then  # a multi-support bridge (studies/bridge-joint.toml): its generated motions
     dir=$(sed -n 's/^directory = "\(.*\)"/\1/p' "$study")
     n_sup=$(sed -n 's/^supports = \([0-9]*\)/\1/p' "$study")
-    "$bin" motions --supports "$n_sup" --spacing 100 --velocity 500 --soil D --spectrum nzs1170.5 --z 0.5 --r 1.4 \
+    mkdir -p "$(dirname "$tmp/studies/$dir")"
+    "$bin" motions --supports "$n_sup" --spacing 100 --velocity 500 --loss high --soil D --spectrum nzs1170.5 --z 0.5 --r 1.4 \
       --realisations 3 --seed 1 --quiet --out "$tmp/studies/$dir" > /dev/null
   fi
   "$bin" run "$tmp/studies/$name.toml" --out "$tmp/$name.h5" --quiet > "$tmp/$name.md" 2> "$tmp/$name.log" || { cat "$tmp/$name.log"; exit 1; }
