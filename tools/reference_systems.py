@@ -732,12 +732,57 @@ def smooth_main(path_in, path_out):
         out.write(f"e_hysteretic {E - q_end * z * z * P.uy / (2 * P.A):.17g}\n")
         out.write(f"final_z {z:.17g}\n")
 
+class GapLink:
+    """A gap link written from its definition (../shared/research/systems-and-bridges.md §5; not the engine's code):
+    x = side * d (d = u_j - u_i; side +1 engages as d grows past the gap, -1 as it falls below minus the gap);
+    elastic branch F = max(0, k (x - s)) with the current slack s (initially the gap); yield on the straight envelope
+    H(x) = F_y + alpha k (x - gap - F_y / k), i.e. F_y at first yield, then hardening alpha k; unloading from the
+    envelope at k, leaving the slack s = x - F / k (the plastic elongation stays: a cable, OpenSees ElasticPPGap
+    `damage`). Elastic when F_y is infinite. The two branches are smooth; switching between them is an event."""
+
+    def __init__(self, k, fy, alpha, gap, side, dofs):
+        self.k, self.fy, self.alpha, self.gap, self.side, self.dofs = k, fy, alpha, gap, side, dofs
+        self.s, self.plastic = gap, False
+
+    def deformation(self, u):
+        i, j = self.dofs  # i = -1: the ground
+        return u[j] - (u[i] if i >= 0 else 0.0)
+
+    def envelope(self, x):
+        return self.fy + self.alpha * self.k * (x - self.gap - self.fy / self.k)
+
+    def force(self, u):  # F >= 0 (the link's own force; f = side F acts on j, -f on i)
+        x = self.side * self.deformation(u)
+        if self.plastic:
+            return max(self.envelope(x), 0.0)
+        return max(self.k * (x - self.s), 0.0)
+
+    def event(self, t, y, n):
+        u, v = y[:n], y[n:]
+        x = self.side * self.deformation(u)
+        if self.plastic:  # unloading: the rate of x turns negative
+            i, j = self.dofs
+            return self.side * (v[j] - (v[i] if i >= 0 else 0.0))
+        if not math.isfinite(self.fy):
+            return -1.0
+        return self.k * (x - self.s) - self.envelope(x)  # reaches the envelope
+
+    def switch(self, y, n):
+        x = self.side * self.deformation(y[:n])
+        if self.plastic:
+            self.s, self.plastic = x - max(self.envelope(x), 0.0) / self.k, False
+        else:
+            self.plastic = True
+
+
 def bridge_main(path_in, path_out):
     """A chain of elastic SDOF frames (m, k, c) under one ground acceleration, linear contact at the joints
-    (F = kc max(u_k - u_k+1 - gap, 0)), elastic tension-only restrainers with slack (f = kr max(u_k+1 - u_k - slack, 0))
-    and elastic compression-only abutments (k_a past the gap), integrated by solve_ivp (RK45, rtol 1e-10, max_step
-    dt/20; the forces are continuous, their kinks resolved by the step limit). Writes peak |u| per frame, impacts
-    (closings on the dt/100 grid) and peak force per joint, peak restrainer and abutment forces."""
+    (F = kc max(u_k - u_k+1 - gap, 0)), tension-only restrainers with slack and compression-only abutments past their
+    gap, both elastic or yielding (GapLink: F_y, alpha; the slack grows by the plastic elongation), integrated by
+    solve_ivp (RK45, rtol 1e-10, max_step dt/20; the contact kinks resolved by the step limit, each link's switch
+    between its elastic and envelope branches located as an event and the integration restarted there). Writes peak
+    |u| per frame, impacts (closings on the dt/100 grid) and peak force per joint, peak restrainer and abutment forces,
+    each link's peak deformation and final slack."""
     from scipy.integrate import solve_ivp
     d = json.load(open(path_in))
     fr, jo = d["frames"], d["joints"]
@@ -747,6 +792,13 @@ def bridge_main(path_in, path_out):
     T = dt * (len(ag) - 1)
     tg = dt * np.arange(len(ag))
     ab = d.get("abutments", {})
+    inf = float("inf")
+    rlinks = [GapLink(J["restrainer"]["k"], J["restrainer"].get("fy", inf), J["restrainer"].get("alpha", 0.0),
+                      J["restrainer"]["slack"], 1, (j, j + 1)) if J.get("restrainer") else None for j, J in enumerate(jo)]
+    alinks = [GapLink(ab[side]["k"], ab[side].get("fy", inf), ab[side].get("alpha", 0.0), ab[side]["gap"], sgn,
+                      (-1, dof)) if side in ab else None
+              for side, sgn, dof in (("left", -1, 0), ("right", 1, n - 1))]
+    links = [L for L in rlinks + alinks if L is not None]
 
     def forces(u):
         q = k * u
@@ -754,14 +806,13 @@ def bridge_main(path_in, path_out):
         for j, J in enumerate(jo):
             F[j] = J["kc"] * max(u[j] - u[j + 1] - J["gap"], 0.0)
             q[j] += F[j]; q[j + 1] -= F[j]
-            if J.get("restrainer"):
-                R[j] = J["restrainer"]["k"] * max(u[j + 1] - u[j] - J["restrainer"]["slack"], 0.0)
-                q[j + 1] += R[j]; q[j] -= R[j]
+        for j, L in enumerate(rlinks):
+            if L:
+                R[j] = L.force(u); q[j + 1] += R[j]; q[j] -= R[j]
         A = [0.0, 0.0]
-        if "left" in ab:
-            A[0] = ab["left"]["k"] * max(-u[0] - ab["left"]["gap"], 0.0); q[0] -= A[0]
-        if "right" in ab:
-            A[1] = ab["right"]["k"] * max(u[-1] - ab["right"]["gap"], 0.0); q[-1] += A[1]
+        for s_, L in enumerate(alinks):
+            if L:
+                A[s_] = L.force(u); q[L.dofs[1]] += L.side * A[s_]
         return q, F, R, A
 
     def rhs(t, y):
@@ -770,9 +821,28 @@ def bridge_main(path_in, path_out):
         return np.concatenate([v, -np.interp(t, tg, ag) - (q + c * v) / m])
 
     te = np.linspace(0.0, T, 100 * (len(ag) - 1) + 1)
-    sol = solve_ivp(rhs, (0.0, T), np.zeros(2 * n), method="RK45", rtol=1e-10, atol=1e-13, max_step=dt / 20, t_eval=te)
-    U = sol.y[:n].T
-    Fs = np.array([forces(u)[1] for u in U]); Rs = np.array([forces(u)[2] for u in U]); As = np.array([forces(u)[3] for u in U])
+    rows, t0, y0 = [], 0.0, np.zeros(2 * n)
+    Fs, Rs, As, Ds = [], [], [], []
+    while True:
+        events = []
+        for L in links:
+            ev = (lambda L_: (lambda t, y: L_.event(t, y, n)))(L)
+            ev.terminal, ev.direction = True, (-1 if L.plastic else 1)
+            events.append(ev)
+        grid = te[(te > t0) & (te <= T)] if rows else te[(te >= t0) & (te <= T)]
+        sol = solve_ivp(rhs, (t0, T), y0, method="RK45", rtol=1e-10, atol=1e-13, max_step=dt / 20, t_eval=grid,
+                        events=events or None, dense_output=False)
+        for y in sol.y.T:  # forces with the branches of this segment
+            q, F, R, A = forces(y[:n])
+            rows.append(y[:n]); Fs.append(F); Rs.append(R); As.append(A)
+            Ds.append([L.side * L.deformation(y[:n]) for L in links])
+        hit = [i for i, te_ in enumerate(sol.t_events or []) if len(te_)]
+        if sol.status != 1 or not hit:
+            break
+        i = hit[0]
+        t0, y0 = sol.t_events[i][0], sol.y_events[i][0].copy()
+        links[i].switch(y0, n)
+    U = np.array(rows); Fs = np.array(Fs); Rs = np.array(Rs); As = np.array(As); Ds = np.array(Ds)
     with open(path_out, "w") as out:
         for i in range(n):
             out.write(f"peak_u {i} {np.max(np.abs(U[:, i])):.17g}\n")
@@ -782,6 +852,10 @@ def bridge_main(path_in, path_out):
             out.write(f"peak_force {j} {np.max(Fs[:, j]):.17g}\n")
             out.write(f"peak_restrainer {j} {np.max(Rs[:, j]):.17g}\n")
         out.write(f"peak_abutment 0 {np.max(As[:, 0]):.17g}\npeak_abutment 1 {np.max(As[:, 1]):.17g}\n")
+        for i, L in enumerate(links):  # restrainer j / abutment 0 (left), 1 (right): peak x = side d, final slack
+            kind, idx = ("restrainer", L.dofs[0]) if L.dofs[0] >= 0 else ("abutment", 0 if L.side < 0 else 1)
+            out.write(f"peak_{kind}_x {idx} {np.max(Ds[:, i]):.17g}\n")
+            out.write(f"final_{kind}_slack {idx} {L.s:.17g}\n")
 
 
 def main():
@@ -803,7 +877,7 @@ def main():
                        ("isolation", "a linear base-isolated building"),
                        ("smooth", "a building on a friction-pendulum or Bouc-Wen isolator"),
                        ("row", "a row of n buildings pounding their neighbours (or: row selftest)"),
-                       ("bridge", "a chain of elastic frames with linear joints, restrainers and abutments")):
+                       ("bridge", "a chain of elastic frames with linear joints, restrainers and abutments (elastic or yielding)")):
         p = sub.add_parser(name, help=what)
         p.add_argument("input")
         p.add_argument("output", nargs="?" if name == "row" else None)
