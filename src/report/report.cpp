@@ -521,7 +521,8 @@ ReportSettings report_settings(const results::Results& r) {
   set.curve_step = s.number("gaps", "curve_step");
   set.targets = s.numbers("report", "targets");
   set.fit_min = s.number("report", "fit_min"), set.fit_max = s.number("report", "fit_max");
-  set.code_gap_coefficient = s.number("structures", "code_gap_coefficient");
+  // absent from a bridge study (its d is the smallest joint gap, [bridge] reference_gap)
+  if (s.find("structures", "code_gap_coefficient")) set.code_gap_coefficient = s.number("structures", "code_gap_coefficient");
   set.seed = static_cast<std::uint64_t>(r.header.seed);
   // added with issue 13; files written before have the defaults (and all studied the paper's model)
   set.compare_with = s.find("report", "compare_with") ? s.text("report", "compare_with") : "stochastic-pounding";

@@ -30,6 +30,8 @@ R, M = f["uncoupled/peak_closing"].shape
 x = f["impacts/gap_ratios"][()]
 G = len(x)
 assert M == 1, M
+# /settings: the bridge (d, offsets, description), not the buildings' model the sampler only numbers samples with
+assert "structures" not in f["settings"] and f["settings/bridge"].attrs["reference_gap"] == 0.0127
 dec = lambda a: [s.decode() if isinstance(s, bytes) else s for s in a]
 assert dec(f["system/element_label"][()]) == ["joint 1", "joint 2", "joint 3"], dec(f["system/element_label"][()])
 d = f["models/code_gap"][()]

@@ -16,76 +16,11 @@
 
 namespace pounding {
 
+// The [structures] settings: the buildings' model (absent from a bridge study, whose StructureModel only numbers
+// its samples).
 template <class V>
-void visit_settings(const Study& s, V&& v) {
+void visit_structure_settings(const StructureModel& m, V& v) {
   using S = std::string;
-  v("", "title", s.title);
-  v("", "seed", static_cast<std::int64_t>(s.seed));
-  v("", "scene", S(to_string(s.scene_requested)));
-  v("", "scene_resolved", S(to_string(s.scene)));
-  v("", "output", s.output);
-
-  std::vector<std::string> files;
-  std::vector<double> file_scales;
-  for (const auto& f : s.files) files.push_back(f.path), file_scales.push_back(f.scale);
-  v("records", "suite", s.suite);
-  v("records", "real_dir", s.real_dir);
-  v("records", "directory", s.directory);
-  v("records", "files", files);
-  v("records", "file_scales", file_scales);
-  v("records", "scale", s.scale);
-  v("records", "units", S(to_string(s.units)));
-  v("records", "dt", s.dt_one_column);
-  v("records", "limit", static_cast<std::int64_t>(s.record_limit));
-  v("records", "synthetic_only", s.synthetic_only);
-  v("records", "select", static_cast<std::int64_t>(s.select));
-  v("records", "polarity", S(to_string(s.polarity)));  // absent in older files: "recorded"
-  if (s.supports > 0) v("records", "supports", static_cast<std::int64_t>(s.supports));  // a multi-support bridge
-  if (s.target.enabled) {  // [target_spectrum] (study/target_spectrum.hpp); absent otherwise
-    const TargetSpectrumSection& x = s.target;
-    v("target_spectrum", "code", S(to_string(x.spec.code)));
-    v("target_spectrum", "description", x.target_text);
-    v("target_spectrum", "rule", S(to_string(x.options.rule)));
-    v("target_spectrum", "t_min", x.options.t_lo);
-    v("target_spectrum", "t_max", x.options.t_hi);
-    v("target_spectrum", "range_given", x.range_given);
-    v("target_spectrum", "points", static_cast<std::int64_t>(x.options.points));
-    v("target_spectrum", "damping", x.options.damping);
-    v("target_spectrum", "min_scale", x.options.min_scale);
-    v("target_spectrum", "max_scale", x.options.max_scale);
-    v("records", "max_per_event", static_cast<std::int64_t>(s.max_per_event));  // selection rules (with select)
-    v("records", "components", S(to_string(s.components)));
-    // the code's parameters, so the report can rebuild the design spectrum (code design displacements)
-    switch (x.spec.code) {
-      case TargetCode::asce7_16:
-        v("target_spectrum", "sds", x.spec.asce7.sds);  // the design values, without mcer's 1.5
-        v("target_spectrum", "sd1", x.spec.asce7.sd1);
-        v("target_spectrum", "tl", x.spec.asce7.tl);
-        v("target_spectrum", "mcer", x.spec.mcer);
-        if (x.spec.from_maps) {
-          v("target_spectrum", "ss", x.spec.maps.ss);
-          v("target_spectrum", "s1", x.spec.maps.s1);
-          v("target_spectrum", "site_class", S(to_string(x.spec.maps.site)));
-        }
-        break;
-      case TargetCode::ec8:
-        v("target_spectrum", "type", static_cast<std::int64_t>(x.spec.ec8.type == Ec8Type::type1 ? 1 : 2));
-        v("target_spectrum", "ground", S(1, "ABCDE"[static_cast<int>(x.spec.ec8.ground)]));
-        v("target_spectrum", "agr", x.spec.ec8.agr);
-        v("target_spectrum", "importance", x.spec.ec8.importance);
-        break;
-      case TargetCode::iran2800: {
-        const char* const soils[] = {"I", "II", "III", "IV"};
-        v("target_spectrum", "a", x.spec.iran2800.a);
-        v("target_spectrum", "soil", S(soils[static_cast<int>(x.spec.iran2800.soil)]));
-        v("target_spectrum", "importance", x.spec.iran2800.importance);
-        break;
-      }
-      case TargetCode::csv: break;
-    }
-  }
-
-  const StructureModel& m = s.structures;
   v("structures", "periods", m.periods);
   v("structures", "samples_per_pair", m.samples_per_pair);
   v("structures", "aspect_ratios", m.aspect_ratios);
@@ -157,6 +92,79 @@ void visit_settings(const Study& s, V&& v) {
       if (b.moat) v(sec, "moat", b.moat_text());
     }
   }
+}
+
+template <class V>
+void visit_settings(const Study& s, V&& v) {
+  using S = std::string;
+  v("", "title", s.title);
+  v("", "seed", static_cast<std::int64_t>(s.seed));
+  v("", "scene", S(to_string(s.scene_requested)));
+  v("", "scene_resolved", S(to_string(s.scene)));
+  v("", "output", s.output);
+
+  std::vector<std::string> files;
+  std::vector<double> file_scales;
+  for (const auto& f : s.files) files.push_back(f.path), file_scales.push_back(f.scale);
+  v("records", "suite", s.suite);
+  v("records", "real_dir", s.real_dir);
+  v("records", "directory", s.directory);
+  v("records", "files", files);
+  v("records", "file_scales", file_scales);
+  v("records", "scale", s.scale);
+  v("records", "units", S(to_string(s.units)));
+  v("records", "dt", s.dt_one_column);
+  v("records", "limit", static_cast<std::int64_t>(s.record_limit));
+  v("records", "synthetic_only", s.synthetic_only);
+  v("records", "select", static_cast<std::int64_t>(s.select));
+  v("records", "polarity", S(to_string(s.polarity)));  // absent in older files: "recorded"
+  if (s.supports > 0) v("records", "supports", static_cast<std::int64_t>(s.supports));  // a multi-support bridge
+  if (s.target.enabled) {  // [target_spectrum] (study/target_spectrum.hpp); absent otherwise
+    const TargetSpectrumSection& x = s.target;
+    v("target_spectrum", "code", S(to_string(x.spec.code)));
+    v("target_spectrum", "description", x.target_text);
+    v("target_spectrum", "rule", S(to_string(x.options.rule)));
+    v("target_spectrum", "t_min", x.options.t_lo);
+    v("target_spectrum", "t_max", x.options.t_hi);
+    v("target_spectrum", "range_given", x.range_given);
+    v("target_spectrum", "points", static_cast<std::int64_t>(x.options.points));
+    v("target_spectrum", "damping", x.options.damping);
+    v("target_spectrum", "min_scale", x.options.min_scale);
+    v("target_spectrum", "max_scale", x.options.max_scale);
+    v("records", "max_per_event", static_cast<std::int64_t>(s.max_per_event));  // selection rules (with select)
+    v("records", "components", S(to_string(s.components)));
+    // the code's parameters, so the report can rebuild the design spectrum (code design displacements)
+    switch (x.spec.code) {
+      case TargetCode::asce7_16:
+        v("target_spectrum", "sds", x.spec.asce7.sds);  // the design values, without mcer's 1.5
+        v("target_spectrum", "sd1", x.spec.asce7.sd1);
+        v("target_spectrum", "tl", x.spec.asce7.tl);
+        v("target_spectrum", "mcer", x.spec.mcer);
+        if (x.spec.from_maps) {
+          v("target_spectrum", "ss", x.spec.maps.ss);
+          v("target_spectrum", "s1", x.spec.maps.s1);
+          v("target_spectrum", "site_class", S(to_string(x.spec.maps.site)));
+        }
+        break;
+      case TargetCode::ec8:
+        v("target_spectrum", "type", static_cast<std::int64_t>(x.spec.ec8.type == Ec8Type::type1 ? 1 : 2));
+        v("target_spectrum", "ground", S(1, "ABCDE"[static_cast<int>(x.spec.ec8.ground)]));
+        v("target_spectrum", "agr", x.spec.ec8.agr);
+        v("target_spectrum", "importance", x.spec.ec8.importance);
+        break;
+      case TargetCode::iran2800: {
+        const char* const soils[] = {"I", "II", "III", "IV"};
+        v("target_spectrum", "a", x.spec.iran2800.a);
+        v("target_spectrum", "soil", S(soils[static_cast<int>(x.spec.iran2800.soil)]));
+        v("target_spectrum", "importance", x.spec.iran2800.importance);
+        break;
+      }
+      case TargetCode::csv: break;
+    }
+  }
+
+  const StructureModel& m = s.structures;
+  if (!m.bridge) visit_structure_settings(m, v);  // a bridge study: its frames are [bridge]'s, not these
 
   if (m.bridge) {  // a bridge study (sampling/bridge.hpp); absent otherwise
     v("bridge", "samples", m.samples_per_pair);
