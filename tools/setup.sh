@@ -9,7 +9,8 @@ packages=(g++ make cmake pkg-config git
           libeigen3-dev libopenmpi-dev openmpi-bin libhdf5-dev libboost-random-dev libgtest-dev
           libcli11-dev libtomlplusplus-dev libfmt-dev libbenchmark-dev
           python3 python3-numpy python3-scipy python3-matplotlib python3-h5py python3-pandas python3-pytest
-          python3-dev pybind11-dev)
+          python3-dev pybind11-dev
+          chromium)  # chromium: the HTML report's browser test (cli.report_html_browser)
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

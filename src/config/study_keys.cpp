@@ -485,6 +485,9 @@ constexpr StudyKey keys[] = {
      "Replicates of the two-stage bootstrap (records, then models within records); 0: no interval.", 0, 100000},
     {"report", "compare_with", "string", "\"\"", "", "\"\" | \"stochastic-pounding\"",
      "Print the published study's Table 3 and eq. 10 beside ours (the paper studies set it)."},
+    {"report", "html", "boolean", "false", "", "true | false",
+     "Also write the HTML report (answer, figures, every table, provenance; one self-contained file) next to the "
+     "results at the end of the run: the output path with .html for its extension."},
     {"report", "h1", "refused", "", "", "", "No longer a setting: heights come from [structures.building1] height."},
     {"report", "h2", "refused", "", "", "", "No longer a setting: heights come from [structures.building2] height."},
 

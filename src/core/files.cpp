@@ -291,4 +291,12 @@ int remove_stale_temporaries(const std::string& path) {
   return removed;
 }
 
+std::string with_extension(const std::string& path, std::string_view ext) {
+  const std::size_t slash = path.find_last_of('/');
+  const std::size_t name = slash == std::string::npos ? 0 : slash + 1;
+  const std::size_t dot = path.find_last_of('.');
+  const bool has = dot != std::string::npos && dot > name;  // ".hidden" has no extension
+  return (has ? path.substr(0, dot) : path) + std::string(ext);
+}
+
 }  // namespace pounding::files

@@ -561,6 +561,8 @@ Inputs load_inputs(const parallel::Session& session, const std::string& study_pa
   session.agree([&] {
     if (!session.root()) return;
     files::check_output_path(in->out, in->out_where);
+    if (in->study.html)  // [report] html = true: the HTML report's path is checked before any work too
+      files::check_output_path(files::with_extension(in->out, ".html"), in->out_where + " ([report] html = true: its .html)");
     if (!opt.force) check_replaceable_results(in->out, in->out_where, in->study);
     ckpt.emplace(in->out + ".ckpt");
     files::remove_stale_temporaries(in->out);
@@ -953,7 +955,7 @@ RunOutcome run_study(const parallel::Session& session, const std::string& study_
                   ? fmt::format("\ninterrupted: {} of {} units done and checkpointed in {}; continue with --resume",
                                 tally.units_done(), L.units(), ckpt->path())
                   : fmt::format("\ninterrupted before any unit finished: nothing to keep, no checkpoint left"));
-    return {130, in.out, {}, T};
+    return {130, in.out, {}, T, {}};
   }
   if (master_service_mode()) {
     if (session.root()) {
@@ -969,11 +971,12 @@ RunOutcome run_study(const parallel::Session& session, const std::string& study_
                           1e6 * T[timing::Phase::reduce] / units));
       ckpt->remove();
     }
-    return {0, in.out, {}, T};
+    return {0, in.out, {}, T, {}};
   }
-  RunOutcome r{0, in.out, {}, {}};
+  RunOutcome r{0, in.out, {}, {}, {}};
   r.code = finish(session, in, L, ckpt ? &*ckpt : nullptr, tally, key, wall, ctx, opt, T, units_resumed, r.report);
   r.times = T;
+  if (in.study.html) r.html = files::with_extension(in.out, ".html");
   return r;
 }
 

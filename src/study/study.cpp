@@ -193,10 +193,11 @@ void parse_report(Study& s, const toml::table* t, const std::string& path) {
   if (!s.compare_with.empty() && s.compare_with != "stochastic-pounding")
     throw InputError(fmt::format("compare_with = \"{}\" is not a published study the report knows", s.compare_with),
                      r.where("compare_with"), "write compare_with = \"stochastic-pounding\" or leave it out");
+  s.html = r.boolean("html", false);
   s.fit_min = r.number("fit_min", 0.1);
   s.fit_max = r.number("fit_max", 1.0);
   if (!(s.fit_max > s.fit_min)) throw InputError("fit_max must exceed fit_min", r.where("fit_max"), "give fit_min < fit_max");
-  r.finish("targets, fit_min, fit_max, confidence, bootstrap, compare_with");
+  r.finish("targets, fit_min, fit_max, confidence, bootstrap, compare_with, html");
 }
 
 void parse_outputs(Study& s, const toml::table* t, const std::string& path) {

@@ -11,6 +11,7 @@ checked, not written (which halves the time; cli.plot_study and cli.plot_fragili
     separations, the code rules, where the band's upper edge falls below 0.5 %), and each advice label
     "<t> %: <s> m" sits right beside its advised separation's point (s, t);
   - --names a,b,...: each record name appears in some text of the figure.
+tools/pounding_plots.py figures (the HTML report's SVGs, drawn into buffers) is checked the same way.
 Usage: plot_layout.py [--stripes LO,HI] [--pair-report CSV] [--names N1,N2] -- TOOL.py ARGS...
 Exits 1 listing every violation; prints one line per checked figure."""
 import csv
@@ -164,7 +165,7 @@ def savefig(self, fname, *args, **kwargs):
     """Checks the figure instead of writing it (cli.plot_study and cli.plot_fragility check the files)."""
     if id(self) not in seen:
         seen.add(id(self))
-        check(self, os.path.basename(str(fname)))
+        check(self, os.path.basename(str(getattr(fname, "name", fname))))  # a buffer: the name it carries
 
 
 matplotlib.figure.Figure.savefig = savefig

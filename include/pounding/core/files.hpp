@@ -45,6 +45,10 @@ void write_text_atomically(const std::string& path, std::string_view text);
 // Throws InputError with the fix.
 void check_output_path(const std::string& path, const std::string& where);
 
+// `path` with its extension (the part after the last '.' of its file name) replaced by `ext` (".html"), or `ext`
+// appended when the file name has none: the HTML report written next to a results file ([report] html = true).
+std::string with_extension(const std::string& path, std::string_view ext);
+
 // Removes stale temporaries `<path>.tmp<digits>` left by a process killed with SIGKILL while it wrote
 // `path`. Call only while holding the output's lock. Returns how many were removed.
 int remove_stale_temporaries(const std::string& path);

@@ -38,6 +38,7 @@ struct RunOutcome {
   std::string out;  // the results file (written when code is 0 or 3)
   std::string report;    // RunOptions::report's text (rank 0, code 0 or 3)
   timing::Times times;   // rank 0: this rank's phases and the maximum over the ranks, wall time to the write's end
+  std::string html;      // [report] html = true: the HTML report to write from `out` (checked before any work)
 };
 
 // Returns the process exit code on every rank: 0 done, 3 done but too many analyses excluded (the results

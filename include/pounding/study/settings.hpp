@@ -206,6 +206,7 @@ void visit_settings(const Study& s, V&& v) {
   v("report", "confidence", s.confidence);
   v("report", "bootstrap", static_cast<std::int64_t>(s.bootstrap));
   v("report", "compare_with", s.compare_with);
+  v("report", "html", s.html);
 
   v("outputs", "forces", s.want_forces);
   v("outputs", "amplification", s.want_amplification);

@@ -48,7 +48,8 @@
 //                confidence = 0.95 and bootstrap = 2000 (the two-stage bootstrap over records and models within
 //                records behind the intervals of a pair study's separation in metres, analysis/separation.hpp;
 //                0 replicates: no interval); compare_with = "" | "stochastic-pounding" (print the published
-//                study's Table 3 and eq. 10 beside ours; the paper studies set it). The old h1/h2 keys are refused:
+//                study's Table 3 and eq. 10 beside ours; the paper studies set it); html = false (also write the HTML
+//                report, report/html.hpp, next to the results: the output path with .html). The old h1/h2 keys are refused:
 //                metres come from the buildings' own heights ([structures.building1/2] height).
 //   [outputs]    forces = true; amplification = true   (what the impacts scene must deliver; `auto` reads it)
 //   [intensity]  [hazard]   a fragility study: records scaled to IM levels (stripes), fragility per gap, the site's
@@ -164,6 +165,7 @@ struct Study {
   double confidence = 0.95;
   int bootstrap = 2000;
   std::string compare_with;  // "" or "stochastic-pounding"
+  bool html = false;         // [report] html: the HTML report next to the results (report/html.hpp)
   // outputs wanted from the impacts scene
   bool want_forces = true, want_amplification = true;
   // [intensity] and [hazard] (study/intensity.hpp): a fragility study

@@ -15,7 +15,9 @@
 #include "cli/commands.hpp"
 #include "pounding/core/error.hpp"
 #include "pounding/parallel/executor.hpp"
+#include "pounding/core/files.hpp"
 #include "pounding/report/fragility.hpp"
+#include "pounding/report/html.hpp"
 #include "pounding/report/report.hpp"
 #include "pounding/results/reader.hpp"
 #include "pounding/study/run.hpp"
@@ -126,6 +128,16 @@ void print_timings(const timing::Times& T, int ranks, bool table) {
   fmt::print(stderr, "| wall | {:.3f} | | program start to results written and report printed |\n", T.wall);
 }
 
+// The HTML report of a results file (report/html.hpp), written atomically; one line on stderr says where and what
+// was left out.
+void write_html_report(const std::string& results_path, const std::string& html_path) {
+  const results::Results r = results::load(results_path);
+  const FigureOptions fo = default_figure_options();
+  const std::string html = report_html(r, fo);
+  files::write_text_atomically(html_path, html);
+  fmt::print(stderr, "HTML report: {}\n", html_path);
+}
+
 // One `pounding run` on this rank; returns the exit code (the MPI session has ended when it returns).
 int run_job(const RunOpts& o) {
   int argc = 0;
@@ -170,6 +182,7 @@ int run_job(const RunOpts& o) {
     if (session.root() && (r.code == 0 || r.code == 3)) {
       fmt::print("{}", r.report);
       std::fflush(stdout);
+      if (!r.html.empty()) write_html_report(r.out, r.html);
       r.times.wall = timing::seconds_since(timing::program_start());
       print_timings(r.times, session.size(), o.timings);
     }
@@ -209,16 +222,38 @@ void add_run(CLI::App& app) {
 
 void add_report(CLI::App& app) {
   struct Opts {
-    std::string path;
-    bool md = false, csv = false;
+    std::vector<std::string> paths;
+    std::string html;
+    bool md = false, csv = false, no_figures = false;
   };
   auto o = std::make_shared<Opts>();
-  auto* c = app.add_subcommand("report", "tables, cubic fit, separation advice and code rules from a results file");
-  c->add_option("results", o->path, "results file written by `pounding run`")->required();
+  auto* c = app.add_subcommand("report", "tables, cubic fit, separation advice and code rules from a results file; "
+                                         "--html: one self-contained HTML report (two files: side by side)");
+  c->add_option("results", o->paths, "results file written by `pounding run` (with --html: one, or two or more to "
+                                     "compare side by side)")->required();
   auto* md = c->add_flag("--md", o->md, "Markdown (default)");
-  c->add_flag("--csv", o->csv, "CSV: per-record, total, per-period-pair tables and the continuous curve")->excludes(md);
+  auto* csv = c->add_flag("--csv", o->csv, "CSV: per-record, total, per-period-pair tables and the continuous curve")->excludes(md);
+  auto* html = c->add_option("--html", o->html, "write the HTML report to this file (answer, figures, every table, "
+                                                "provenance; inline CSS and SVG, nothing loaded from elsewhere)");
+  html->excludes(md)->excludes(csv);
+  c->add_flag("--no-figures", o->no_figures, "with --html: leave the figures out (no Python run)")->needs(html);
   c->callback([o] {
-    const results::Results r = results::load(o->path);
+    if (o->html.empty() && o->paths.size() > 1)
+      throw InputError(fmt::format("{} results files given", o->paths.size()), "pounding report",
+                       "give one results file, or add --html OUT.html to compare two side by side");
+    if (!o->html.empty()) {
+      files::check_output_path(o->html, "--html");  // before any work
+      std::vector<results::Results> all;
+      for (const auto& p : o->paths) all.push_back(results::load(p));
+      FigureOptions fo = default_figure_options();
+      fo.enabled = !o->no_figures;
+      std::vector<const results::Results*> ptrs;
+      for (const auto& r : all) ptrs.push_back(&r);
+      const std::string text = ptrs.size() == 1 ? report_html(*ptrs[0], fo) : compare_html(ptrs, fo);
+      files::write_text_atomically(o->html, text);
+      return;
+    }
+    const results::Results r = results::load(o->paths.front());
     fmt::print("{}", o->csv ? report_csv(r) : report_markdown(r));
   });
 }

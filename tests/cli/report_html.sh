@@ -1,0 +1,88 @@
+#!/usr/bin/env bash
+# The HTML report (issue 29): `pounding report R.h5 --html R.html` for the shipped studies that run in seconds (made
+# small), each checked by tests/cli/report_html_check.py against the Markdown report and the HDF5 file (the numbers
+# equal, the answer first, every table, the figures inline, nothing loaded from elsewhere); the comparison report of
+# two files; [report] html = true in a run; the figures left out, with the reason, when Python is missing, when the
+# plotting module fails and when it runs past its time; bad input: one ERROR line, exit 2, no file left.
+# Needs Debian's python3 with h5py and numpy (the checker) and matplotlib (the figures): skipped without, a failure
+# under CI=true. Args: <pounding binary> <source dir>
+set -euo pipefail
+bin=$1; src=$(cd "$2" && pwd)
+. "$src/tests/lib/needs_real_records.sh"
+. "$src/tests/lib/html_studies.sh"
+py=${POUNDING_PYTHON:-/usr/bin/python3}
+"$py" -c 'import matplotlib, h5py, numpy' 2>/dev/null ||
+  skip_or_fail "needs $py with matplotlib, h5py and numpy (Debian: python3-matplotlib python3-h5py python3-numpy; tools/setup.sh installs them)"
+tmp=$(mktemp -d); trap 'rm -rf "$tmp"' EXIT
+fail() { echo "FAIL: $*"; exit 1; }
+check="$py $src/tests/cli/report_html_check.py"
+export MPLBACKEND=Agg
+
+html_studies
+declare -A figures=([example-pair]=1 [fragility-pair]=3 [quick]=2 [quick-impacts]=2 [fragility-grid]=3 [fragility-pair-ida]=3)
+for name in $html_names; do
+  "$bin" report "$tmp/$name.h5" > "$tmp/$name.report.md"
+  "$bin" report "$tmp/$name.h5" --html "$tmp/$name.html" 2> "$tmp/$name.err" || { cat "$tmp/$name.err"; fail "$name: report --html"; }
+  $check "$tmp/$name.h5" "$tmp/$name.report.md" "$tmp/$name.html" --figures "${figures[$name]}"
+done
+# the report printed by the run and `pounding report` agree (the HTML quotes the latter)
+cmp -s <(grep -v '^- results:' "$tmp/quick.md") <(grep -v '^- results:' "$tmp/quick.report.md") ||
+  fail "the run's report and \`pounding report\` differ for quick"
+
+# two files side by side: polarity "both" against as recorded
+sed -e 's/^polarity = .*//' -e 's/^\[records\]/[records]\npolarity = "recorded"/' "$tmp/studies/example-pair.toml" \
+  > "$tmp/studies/recorded.toml"
+"$bin" run "$tmp/studies/recorded.toml" --out "$tmp/recorded.h5" --quiet > /dev/null
+"$bin" report "$tmp/recorded.h5" > "$tmp/recorded.report.md"
+"$bin" report "$tmp/example-pair.h5" "$tmp/recorded.h5" --html "$tmp/compare.html" --no-figures
+$check "$tmp/example-pair.h5" "$tmp/example-pair.report.md" "$tmp/compare.html" --compare "$tmp/recorded.h5" \
+  "$tmp/recorded.report.md"
+grep -q 'id="s2-answer"' "$tmp/compare.html" || fail "the comparison has no second answer block"
+
+# figures left out, with the reason; every table still there
+POUNDING_PYTHON=/nonexistent/python3 "$bin" report "$tmp/quick.h5" --html "$tmp/nopy.html"
+$check "$tmp/quick.h5" "$tmp/quick.report.md" "$tmp/nopy.html" --left-out "no Python interpreter at '/nonexistent/python3'"
+printf 'import sys\nsys.exit("plots: matplotlib is broken here")\n' > "$tmp/broken.py"
+POUNDING_PLOTS=$tmp/broken.py "$bin" report "$tmp/quick.h5" --html "$tmp/broken.html"
+$check "$tmp/quick.h5" "$tmp/quick.report.md" "$tmp/broken.html" --left-out "matplotlib is broken here"
+printf 'import time\ntime.sleep(60)\n' > "$tmp/slow.py"
+start=$(date +%s)
+POUNDING_PLOTS=$tmp/slow.py POUNDING_FIGURE_TIMEOUT=1 "$bin" report "$tmp/quick.h5" --html "$tmp/slow.html"
+[ $(($(date +%s) - start)) -lt 20 ] || fail "the figure time limit did not stop the plotting module"
+$check "$tmp/quick.h5" "$tmp/quick.report.md" "$tmp/slow.html" --left-out "did not finish within 1 s"
+"$bin" report "$tmp/quick.h5" --html "$tmp/asked.html" --no-figures
+$check "$tmp/quick.h5" "$tmp/quick.report.md" "$tmp/asked.html" --left-out "on request"
+
+# [report] html = true: written next to the results at the end of the run; its path is checked before any work
+sed 's/^\[report\]/[report]\nhtml = true/' "$tmp/studies/quick.toml" > "$tmp/studies/quick-html.toml"
+grep -q '^html = true' "$tmp/studies/quick-html.toml" || fail "studies/quick.toml has no [report] section any more"
+mkdir -p "$tmp/run" "$tmp/run/quick-html.html"
+if "$bin" run "$tmp/studies/quick-html.toml" --out "$tmp/run/quick-html.h5" --quiet > /dev/null 2> "$tmp/dir.err"; then
+  fail "[report] html = true into a path that is a directory was accepted"
+fi
+grep -q 'ERROR: .*quick-html.html.*\[report\] html = true' "$tmp/dir.err" || fail "no clear error: $(cat "$tmp/dir.err")"
+[ ! -e "$tmp/run/quick-html.h5" ] || fail "the run wrote results although its HTML path was refused"
+rmdir "$tmp/run/quick-html.html"
+"$bin" run "$tmp/studies/quick-html.toml" --out "$tmp/run/quick-html.h5" --quiet > "$tmp/run/quick-html.md" 2> "$tmp/run.err"
+[ -s "$tmp/run/quick-html.html" ] || fail "[report] html = true wrote no $tmp/run/quick-html.html: $(cat "$tmp/run.err")"
+"$bin" report "$tmp/run/quick-html.h5" > "$tmp/run/quick-html.report.md"
+$check "$tmp/run/quick-html.h5" "$tmp/run/quick-html.report.md" "$tmp/run/quick-html.html" --figures 2
+ls "$tmp/run" | grep -q '\.tmp' && fail "a temporary file was left in $tmp/run: $(ls "$tmp/run")"
+
+# bad input: one ERROR line, exit 2, nothing written
+expect_error() {  # <what it must say> <command...>
+  local want=$1; shift
+  set +e; "$@" > "$tmp/bad.out" 2> "$tmp/bad.err"; local rc=$?; set -e
+  [ "$rc" = 2 ] || fail "exit $rc (not 2) from: $* ($(cat "$tmp/bad.err"))"
+  [ "$(grep -c 'ERROR' "$tmp/bad.err")" = 1 ] && grep -q "$want" "$tmp/bad.err" ||
+    fail "not one clear error saying '$want' from: $*: $(cat "$tmp/bad.err")"
+}
+expect_error "cannot open HDF5 file" "$bin" report "$src/README.md" --html "$tmp/bad1.html"
+[ ! -e "$tmp/bad1.html" ] || fail "a report of a bad input left $tmp/bad1.html"
+expect_error "does not exist" "$bin" report "$tmp/quick.h5" --html "$tmp/no/such/folder.html"
+mkdir "$tmp/adir"
+expect_error "adir" "$bin" report "$tmp/quick.h5" --html "$tmp/adir"
+expect_error "2 results files" "$bin" report "$tmp/quick.h5" "$tmp/example-pair.h5"
+set +e; "$bin" report "$tmp/quick.h5" --html "$tmp/x.html" --csv > /dev/null 2> "$tmp/bad.err"; rc=$?; set -e
+[ "$rc" = 2 ] && grep -q "excludes" "$tmp/bad.err" || fail "--html with --csv: exit $rc, $(cat "$tmp/bad.err")"
+echo "report_html: ok ($(echo $html_names | wc -w) studies, the comparison, figures left out 4 ways, [report] html, bad input)"
