@@ -58,6 +58,7 @@ figure{margin:1em 0;break-inside:avoid;page-break-inside:avoid}
 figure svg{display:block;width:100%;max-width:1000px;height:auto}
 figcaption{color:var(--muted);font-size:.9em}
 .left-out{color:var(--warn)}
+h2.study-title{font-size:1em;margin:.2em 0;border:0}
 .columns{display:grid;grid-template-columns:repeat(auto-fit,minmax(340px,1fr));gap:14px}
 dl.meta{display:grid;grid-template-columns:max-content 1fr;gap:2px 12px;font-size:.9em}
 dl.meta dt{font-weight:bold}dl.meta dd{margin:0}
@@ -336,7 +337,7 @@ std::string compare_html(const std::vector<const results::Results*>& files, cons
   for (std::size_t i = 0; i < studies.size(); ++i) {
     const Study& s = studies[i];
     const std::string letter(1, static_cast<char>('A' + i)), p = fmt::format("s{}", i + 1);
-    answers += "<div class=\"study\"><h2>" + letter + ": " + html_escape(title_of(s)) + "</h2>\n" + subtitle(*s.r) +
+    answers += "<div class=\"study\"><h2 class=\"study-title\">" + letter + ": " + html_escape(title_of(s)) + "</h2>\n" +
                answer_html(s.blocks, p + "-answer") + "</div>\n";
     toc.entries.emplace_back(p, letter + ": " + title_of(s));
     Toc inner;
@@ -345,11 +346,14 @@ std::string compare_html(const std::vector<const results::Results*>& files, cons
              provenance_html(*s.r, p + "-provenance", inner) + "</section>\n";
   }
   answers += "</div></section>\n";
-  std::string title = "Comparison:";
-  for (std::size_t i = 0; i < studies.size(); ++i) title += fmt::format(" {} {}", i ? "vs" : "", title_of(studies[i]));
-  return page_head(title) + "<header><h1>" + html_escape(title) + "</h1>\n<p class=\"sub\">" +
-         std::to_string(studies.size()) + " results files side by side</p></header>\n" + answers + toc.html() + parts +
-         "</body>\n</html>\n";
+  std::string title = "Comparison:", files_line;
+  for (std::size_t i = 0; i < studies.size(); ++i) {
+    title += fmt::format(" {} {}", i ? "vs" : "", title_of(studies[i]));
+    files_line += fmt::format("{}{}: <code>{}</code>", i ? " · " : "", static_cast<char>('A' + i), html_escape(studies[i].r->path));
+  }
+  return page_head(title) + fmt::format("<header><h1>Comparison of {} studies</h1>\n<p class=\"sub\">{}</p></header>\n",
+                                        studies.size(), files_line) +
+         answers + toc.html() + parts + "</body>\n</html>\n";
 }
 
 }  // namespace pounding

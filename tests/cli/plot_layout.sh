@@ -73,7 +73,7 @@ PY
     fi
     # the same figures as the HTML report draws them (tools/pounding_plots.py figures: SVG into a buffer), for one
     # study of each kind of figure (the functions are the ones checked above; this checks the HTML report's call)
-    case $r in example-pair | long-title | quick | fragility-pair | fragility-select)
+    case $r in example-pair | quick | fragility-pair | fragility-select)
       "$bin" report "$h5" --csv > "$tmp/$r.csv"
       mkdir -p "$tmp/out/$r-html"
       flags=()
