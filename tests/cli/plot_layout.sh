@@ -71,17 +71,6 @@ PY
         $check -- "$src/tools/plot_study.py" "$h5" --prefix "$tmp/out/$r" || fail=1
       fi
     fi
-    # the same figures as the HTML report draws them (tools/pounding_plots.py figures: SVG into a buffer), for one
-    # study of each kind of figure (the functions are the ones checked above; this checks the HTML report's call)
-    case $r in example-pair | quick | fragility-pair | fragility-select)
-      "$bin" report "$h5" --csv > "$tmp/$r.csv"
-      mkdir -p "$tmp/out/$r-html"
-      flags=()
-      [ "$stripes" != - ] && flags=(--stripes "$stripes")
-      grep -q '^curve_band,' "$tmp/$r.csv" && flags=(--pair-report "$tmp/$r.csv")
-      $check "${flags[@]}" -- "$src/tools/pounding_plots.py" figures "$h5" --dir "$tmp/out/$r-html" --report-csv "$tmp/$r.csv" || fail=1
-      ;;
-    esac
     if [ "$names" != - ]; then
       $check --names "$names" -- "$src/tools/plot_spectra.py" "$h5" -o "$tmp/out/$r-selection.png" --loglog || fail=1
     fi

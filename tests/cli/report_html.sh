@@ -25,6 +25,16 @@ for name in $html_names; do
   "$bin" report "$tmp/$name.h5" --html "$tmp/$name.html" 2> "$tmp/$name.err" || { cat "$tmp/$name.err"; fail "$name: report --html"; }
   $check "$tmp/$name.h5" "$tmp/$name.report.md" "$tmp/$name.html" --figures "${figures[$name]}"
 done
+# the figures as the HTML report draws them pass the figure-layout checks (tests/cli/plot_layout.py, as cli.plot_layout
+# checks the tools' PNGs): a pair study (x-axis near the data, advice labels beside their points) and a risk study
+"$bin" report "$tmp/example-pair.h5" --csv > "$tmp/example-pair.csv"
+stripes=$("$py" -c 'import sys, h5py; l = h5py.File(sys.argv[1])["fragility/levels"][()]; print(f"{l.min()!r},{l.max()!r}")' "$tmp/fragility-pair.h5")
+mkdir -p "$tmp/layout-pair" "$tmp/layout-risk"
+"$py" "$src/tests/cli/plot_layout.py" --pair-report "$tmp/example-pair.csv" -- "$src/tools/pounding_plots.py" figures \
+  "$tmp/example-pair.h5" --dir "$tmp/layout-pair" --report-csv "$tmp/example-pair.csv"
+"$py" "$src/tests/cli/plot_layout.py" --stripes "$stripes" -- "$src/tools/pounding_plots.py" figures \
+  "$tmp/fragility-pair.h5" --dir "$tmp/layout-risk"
+
 # the report printed by the run and `pounding report` agree (the HTML quotes the latter)
 cmp -s <(grep -v '^- results:' "$tmp/quick.md") <(grep -v '^- results:' "$tmp/quick.report.md") ||
   fail "the run's report and \`pounding report\` differ for quick"
