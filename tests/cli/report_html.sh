@@ -95,4 +95,9 @@ expect_error "adir" "$bin" report "$tmp/quick.h5" --html "$tmp/adir"
 expect_error "2 results files" "$bin" report "$tmp/quick.h5" "$tmp/example-pair.h5"
 set +e; "$bin" report "$tmp/quick.h5" --html "$tmp/x.html" --csv > /dev/null 2> "$tmp/bad.err"; rc=$?; set -e
 [ "$rc" = 2 ] && grep -q "excludes" "$tmp/bad.err" || fail "--html with --csv: exit $rc, $(cat "$tmp/bad.err")"
+# README shows the first screen of studies/example-pair.toml's report (a small PNG in docs/img)
+img=$src/docs/img/report-example-pair.png
+grep -q '](docs/img/report-example-pair.png)' "$src/README.md" || fail "README does not show docs/img/report-example-pair.png"
+[ "$(head -c 4 "$img" | od -An -tx1 | tr -d ' \n')" = "89504e47" ] && [ "$(wc -c < "$img")" -lt 200000 ] ||
+  fail "$img is not a PNG under 200 kB"
 echo "report_html: ok ($(echo $html_names | wc -w) studies, the comparison, figures left out 4 ways, [report] html, bad input)"
