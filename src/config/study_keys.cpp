@@ -445,6 +445,11 @@ constexpr StudyKey keys[] = {
      "shape functions, docs/floor-contact.md). 0.05 m: slabs whose levels differ by less overlap over most of their "
      "depth (a 0.15-0.25 m slab), i.e. the construction tolerance of one level, not a different level.",
      0.0, 1.0},
+    {"contact", "shape_functions", "string", "\"linear\"", "", "\"linear\" | \"cubic\"",
+     "Shear buildings: how a floor striking the neighbour's column between two floors shares the column's two floors "
+     "(x = (1 - N2) u_below + N2 u_above, the force with the same weights): linear N2 = xi, or cubic N2 = 3 xi^2 - "
+     "2 xi^3, the fixed-fixed column's deflected shape (its nodal forces are the column's fixed-end reactions). "
+     "docs/floor-contact.md."},
     {"contact", "n", "number", "1.5", "", "[1, 3]", "Exponent of the Hertz-family force k delta^n.", 1.0, 3.0},
     {"contact", "v0_min", "number", "1e-3", "m/s", "(0, 1]",
      "Smallest approach velocity used to set the contact damping.", 1e-12, 1.0},

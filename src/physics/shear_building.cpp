@@ -204,7 +204,7 @@ void set_moat(SystemBatch& batch, std::size_t lane, int body, double gap_left, d
 }
 
 void set_contacts(SystemBatch& batch, std::size_t lane, double gap, double kc, double e,
-                  std::span<const double> level_offsets) {
+                  std::span<const double> level_offsets, model::ShapeFunctions shape) {
   require(batch.system != nullptr && lane < batch.width, "the batch is not sized (SystemBatch::resize)");
   const model::System& sys = *batch.system;
   const std::size_t w = batch.width;
@@ -223,7 +223,7 @@ void set_contacts(SystemBatch& batch, std::size_t lane, double gap, double kc, d
     batch.kc[i] = kc;
     batch.e[i] = e;
     batch.weight[i] = ce.left.kind == model::SideKind::interpolated || ce.right.kind == model::SideKind::interpolated
-                          ? ce.xi
+                          ? model::column_weight(ce.xi, shape)
                           : 0.0;
   }
 }

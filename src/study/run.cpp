@@ -82,7 +82,8 @@ class UnitComputer {
     uncoupled_ = s.contact;
     uncoupled_.law = ContactLaw::none;
     if (runs_systems(sampler.model()))
-      block_.emplace(sampler.model(), s.contact, s.e, s.contact_levels, s.gap_offsets, s.level_tolerance);
+      block_.emplace(sampler.model(), s.contact, s.e, s.contact_levels, s.gap_offsets, s.level_tolerance,
+                     s.shape_functions);
     if (block_ && !plan.system.empty()) table_fields(plan);
     if (plan.stripes) stripe_scaled_ = results::field_index(plan.fields, "uncoupled", "scaled");
     if (plan.ida) {

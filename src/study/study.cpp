@@ -137,7 +137,12 @@ void parse_contact(Study& s, const toml::table* t, const std::string& path) {
   });
   s.gap_offsets = c.numbers("gap_offsets", {});
   s.level_tolerance = c.number("level_tolerance", 0.05);
-  c.finish("law, damping_law, e, n, v0_min, stiffness, levels, gap_offsets, level_tolerance");
+  s.shape_functions = c.choice("shape_functions", "linear", [](const std::string& name) {
+    if (auto v = parse_enum(model::shape_functions_names, name)) return *v;
+    throw InputError(fmt::format("unknown shape_functions '{}'", name), "shape_functions",
+                     "write shape_functions = " + enum_name_list(model::shape_functions_names, " or ", "\""));
+  });
+  c.finish("law, damping_law, e, n, v0_min, stiffness, levels, gap_offsets, level_tolerance, shape_functions");
 }
 
 }  // namespace
@@ -276,7 +281,7 @@ static void check_shear_study(const Study& s, config::TableReader& top, const to
   check_row_study(s, top, structures, path);
   // [contact] levels / gap_offsets act on the floors of shear buildings and the joints of a row
   if (!s.structures.any_shear() && !s.structures.row())
-    for (const char* key : {"gap_offsets", "levels", "level_tolerance"}) {
+    for (const char* key : {"gap_offsets", "levels", "level_tolerance", "shape_functions"}) {
       const toml::table* c = top.table("contact");
       const toml::node* n = c ? c->get(key) : nullptr;
       if (!n) continue;

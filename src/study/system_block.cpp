@@ -157,13 +157,13 @@ void SystemBlock::set_lane(physics::SystemBatch& b, std::size_t lane, const Samp
   }
   const model::System& sys = *b.system;
   if (offsets_.empty()) {
-    physics::set_contacts(b, lane, gap, p.kh, cn.e);
+    physics::set_contacts(b, lane, gap, p.kh, cn.e, {}, shape_);
   } else {  // per level, 0 beyond the list
     int top = 0;
     for (const model::ContactElement& ce : sys.contacts()) top = std::max(top, ce.level);
     std::vector<double> per_level(static_cast<std::size_t>(std::max(top, 1)), 0.0);
     std::copy_n(offsets_.begin(), std::min(offsets_.size(), per_level.size()), per_level.begin());
-    physics::set_contacts(b, lane, gap, p.kh, cn.e, per_level);
+    physics::set_contacts(b, lane, gap, p.kh, cn.e, per_level, shape_);
   }
   const std::size_t w = b.width;
   for (int i = 0; i < static_cast<int>(nb); ++i) {

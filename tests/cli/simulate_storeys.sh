@@ -119,7 +119,9 @@ PY
 sim --storeys1 3 --storey-height1 3.0 --storeys2 5 --storey-height2 3.1 --elastic --gap 5 --dt 0.001 --json \
     --level-tolerance 0.35 > "$tmp/tol.json"
 sim --storeys1 3 --storey-height1 3.0 --storeys2 5 --storey-height2 3.1 --elastic --gap 0.005 --dt 0.001 --json > "$tmp/tol0.json"
-"$py" - "$tmp/tol.json" "$tmp/tol0.json" <<'PY' || fail "--level-tolerance / floors against columns"
+sim --storeys1 3 --storey-height1 3.0 --storeys2 5 --storey-height2 3.1 --elastic --gap 0.005 --dt 0.001 --json \
+    --shape-functions cubic > "$tmp/cubic.json"
+"$py" - "$tmp/tol.json" "$tmp/tol0.json" "$tmp/cubic.json" <<'PY' || fail "--level-tolerance / floors against columns"
 import json, sys
 a, b = (json.load(open(p)) for p in sys.argv[1:3])
 assert [l["label"] for l in a["levels"]] == ["level 1", "level 2", "level 3"], a["levels"]
@@ -135,6 +137,9 @@ for c, x, l in zip(cs, xi, b["levels"]):
     assert abs(c["below"] - F * (1 - x) ** 2 * (1 + 2 * x)) <= 1e-9 * max(F, 1), (c, F)
     assert abs(c["below"] + c["above"] - F) <= 1e-9 * max(F, 1), (c, F)
 assert sum(l["impacts"] for l in b["levels"]) > 0, b["levels"]
+c = json.load(open(sys.argv[3]))
+assert [l["label"] for l in c["levels"]] == want and c["levels"] != b["levels"], "cubic shape functions change nothing"
+assert [x["xi"] for x in c["column_shears"]] == [x["xi"] for x in cs]
 print("ok:   floors against columns:", ", ".join(f'{l["label"]} {l["impacts"]}' for l in b["levels"]))
 PY
 
@@ -205,6 +210,7 @@ bad "--contact-levels" --storeys1 3 --contact-levels roof
 bad "--level-tolerance" --storeys1 3 --level-tolerance 2
 bad "--level-tolerance, give --level-tolerance < 0.5 m" --storeys1 3 --storey-height1 1.0 --level-tolerance 0.6
 bad "--level-tolerance" --storeys1 3 --storey-height2 3.5 --level-tolerance -0.01
+bad "--shape-functions" --storeys1 3 --storey-height2 3.5 --shape-functions quadratic
 bad "--gap-offsets" --storeys1 3 --storeys2 3 --gap-offsets 0,0
 bad "--gap-offsets" --storeys1 3 --gap 0.1 --gap-offsets -0.2
 [ ! -e "$tmp/s.csv" ] || fail "a refused run wrote its series"

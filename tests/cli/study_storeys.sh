@@ -105,6 +105,8 @@ PY
 then :; else echo "FAIL storey_heights:"; cat "$tmp/storey_heights.out"; fails=$((fails+1)); fi
 expect_error level_tolerance_negative '\[contact\].level_tolerance' \
   "$(echo "$body" | sed 's/^law = "hertzdamp"/law = "hertzdamp"\nlevel_tolerance = -0.1/')"
+expect_error shape_functions_name ':32 \[contact\].shape_functions, write shape_functions = "linear" or "cubic"' \
+  "$(echo "$body" | sed 's/^law = "hertzdamp"/law = "hertzdamp"\nshape_functions = "quadratic"/')"
 expect_error level_tolerance_half 'not below half the smallest storey height (1 m).*:32 \[contact\].level_tolerance, give level_tolerance < 0.5 m' \
   "$(echo "$body" | sed -e 's/^law = "hertzdamp"/law = "hertzdamp"\nlevel_tolerance = 0.6/' -e 's/^storey_height = 3.2/storey_height = 1.0/')"
 expect_error fragility 'runs SDOF buildings only.*:22 \[structures\].model' \

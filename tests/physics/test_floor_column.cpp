@@ -158,37 +158,48 @@ TEST(FloorColumn, T31Topology) {
 }
 
 // T3.1's numbers (SB §3): B's floor 2 (7.0 m) against A's column between floors 2 and 3 (xi = 1/3), u_A2 = 0.030,
-// u_A3 = 0.045, u_B2 = 0.030 m, gap 0, Hertz k_h = 1e10 N/m^1.5: u_c = 0.035, delta = 5e-3 m, F = 3535533.906 N ->
-// A2 -2357022.604 N, A3 -1178511.302 N, B2 +3535533.906 N. Unit floor masses and storey springs of 1e-6 N/m (their
+// u_A3 = 0.045, u_B2 = 0.030 m, gap 0, Hertz k_h = 1e10 N/m^1.5: linear u_c = 0.035, delta = 5e-3 m, F = 3535533.906 N
+// -> A2 -2357022.604 N, A3 -1178511.302 N, B2 +3535533.906 N; cubic ([contact] shape_functions = "cubic") F =
+// 2425148.306 N -> A2 -1796406.153 N, A3 -628742.153 N. Unit floor masses and storey springs of 1e-6 N/m (their
 // forces ~1e-8 N): the first step's accelerations are the nodal forces; the run's peak |a| is the first (the floors
 // separate). The struck column's fixed-end shears at xi = 1/3 (SB §3's cubic N): 20/27 and 7/27 of F.
 TEST(FloorColumn, T31NodalForcesAreTheShapeFunctionsOfTheContactForce) {
   const std::vector<model::StickTopology> ab{stick(4, 3.0), stick(3, 3.5)};
   const model::System S = model::shear_buildings(ab);
-  SystemBatch B;
-  B.resize(S, 1);
-  test::fill_stick(B, 0, 0, numbers({1, 1, 1, 1}, {1e-6, 1e-6, 1e-6, 1e-6}));
-  test::fill_stick(B, 1, 0, numbers({1, 1, 1}, {1e-6, 1e-6, 1e-6}));
-  set_contacts(B, 0, 10.0, 1e10, 1.0);
   const int e = element(S, "column 2-3/level 2");
-  B.gap[static_cast<std::size_t>(e)] = 0.0;
-  EXPECT_DOUBLE_EQ(B.weight[static_cast<std::size_t>(e)], 1.0 / 3.0);
   const int a2 = 2, a3 = 4, b2 = 3;
-  B.u0[a2] = 0.030, B.u0[a3] = 0.045, B.u0[b2] = 0.030;
-  KernelSettings ks;
-  ks.substeps = 1;
-  const ContactModel groups[] = {law(ContactLaw::hertz)};
-  SystemResult r;
-  run_system(B, groups, GroundMotion{1e-8, std::vector<double>(3, 0.0), 0.0}, ks, r);
-  ASSERT_EQ(r.status[0], static_cast<std::uint8_t>(LaneStatus::ok));
-  EXPECT_NEAR(r.peak_force[static_cast<std::size_t>(e)], 3535533.906, 1e-3);
-  EXPECT_NEAR(r.peak_acc[a2], 2357022.604, 1e-3);
-  EXPECT_NEAR(r.peak_acc[a3], 1178511.302, 1e-3);
-  EXPECT_NEAR(r.peak_acc[b2], 3535533.906, 1e-3);
-  EXPECT_LT(r.final_v[a2], 0.0);  // A's floors pushed left, B's right
-  EXPECT_LT(r.final_v[a3], 0.0);
-  EXPECT_GT(r.final_v[b2], 0.0);
-  for (int d : {0, 1, 5, 6}) EXPECT_LT(r.peak_acc[static_cast<std::size_t>(d)], 1e-6) << "DOF " << d;
+  struct Want {
+    model::ShapeFunctions shape;
+    double n2, F, fa2, fa3;
+  };
+  // linear N = (2/3, 1/3); cubic N = (0.740740741, 0.259259259): u_c = 0.0338888889, delta = 3.888888889e-3
+  for (const Want& w : {Want{model::ShapeFunctions::linear, 1.0 / 3.0, 3535533.906, 2357022.604, 1178511.302},
+                        Want{model::ShapeFunctions::cubic, 7.0 / 27.0, 2425148.306, 1796406.153, 628742.153}}) {
+    SCOPED_TRACE(w.shape == model::ShapeFunctions::linear ? "linear" : "cubic");
+    SystemBatch B;
+    B.resize(S, 1);
+    test::fill_stick(B, 0, 0, numbers({1, 1, 1, 1}, {1e-6, 1e-6, 1e-6, 1e-6}));
+    test::fill_stick(B, 1, 0, numbers({1, 1, 1}, {1e-6, 1e-6, 1e-6}));
+    set_contacts(B, 0, 10.0, 1e10, 1.0, {}, w.shape);
+    B.gap[static_cast<std::size_t>(e)] = 0.0;
+    EXPECT_NEAR(B.weight[static_cast<std::size_t>(e)], w.n2, 1e-15);
+    B.u0[a2] = 0.030, B.u0[a3] = 0.045, B.u0[b2] = 0.030;
+    KernelSettings ks;
+    ks.substeps = 1;
+    const ContactModel groups[] = {law(ContactLaw::hertz)};
+    SystemResult r;
+    run_system(B, groups, GroundMotion{1e-8, std::vector<double>(3, 0.0), 0.0}, ks, r);
+    ASSERT_EQ(r.status[0], static_cast<std::uint8_t>(LaneStatus::ok));
+    EXPECT_NEAR(r.peak_force[static_cast<std::size_t>(e)], w.F, 1e-3);
+    EXPECT_NEAR(r.peak_acc[a2], w.fa2, 1e-3);
+    EXPECT_NEAR(r.peak_acc[a3], w.fa3, 1e-3);
+    EXPECT_NEAR(r.peak_acc[b2], w.F, 1e-3);
+    EXPECT_LT(r.final_v[a2], 0.0);  // A's floors pushed left, B's right
+    EXPECT_LT(r.final_v[a3], 0.0);
+    EXPECT_GT(r.final_v[b2], 0.0);
+    for (int d : {0, 1, 5, 6}) EXPECT_LT(r.peak_acc[static_cast<std::size_t>(d)], 1e-6) << "DOF " << d;
+  }
+  for (double xi : {0.0, 1.0}) EXPECT_EQ(model::column_weight(xi, model::ShapeFunctions::cubic), xi);  // ends exact
   const ColumnShear v = column_shear_per_force(1.0 / 3.0);
   EXPECT_NEAR(v.below, 0.740740741, 1e-9);
   EXPECT_NEAR(v.above, 0.259259259, 1e-9);

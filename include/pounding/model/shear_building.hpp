@@ -60,6 +60,21 @@ inline constexpr EnumName<ContactLevels> contact_levels_names[] = {{ContactLevel
                                                                    {ContactLevels::top, "top"}};
 constexpr const auto& enum_names(ContactLevels) { return contact_levels_names; }
 
+// The shape functions of a column side (a floor striking the column between two floors, §2.2.4, SB §3): the weight
+// N2 of the floor above at xi along the column (N1 = 1 - N2). linear: N2 = xi; cubic: the deflected shape of a
+// fixed-fixed column under relative floor translation (no floor rotation, the shear-building assumption),
+// N2 = 3 xi^2 - 2 xi^3, whose nodal forces are the column's fixed-end reactions. Both give 0 and 1 at the ends exactly.
+enum class ShapeFunctions {
+  linear,
+  cubic,
+};
+inline constexpr EnumName<ShapeFunctions> shape_functions_names[] = {{ShapeFunctions::linear, "linear"},
+                                                                     {ShapeFunctions::cubic, "cubic"}};
+constexpr const auto& enum_names(ShapeFunctions) { return shape_functions_names; }
+inline double column_weight(double xi, ShapeFunctions s) {
+  return s == ShapeFunctions::linear ? xi : xi * xi * (3.0 - 2.0 * xi);
+}
+
 // Floor levels above the ground (m), bottom first, of a stick: the running sums of its storey heights.
 std::vector<double> floor_levels(const StickTopology& stick);
 

@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "pounding/model/modes.hpp"
+#include "pounding/model/shear_building.hpp"
 #include "pounding/physics/system_batch.hpp"
 
 namespace pounding::physics {
@@ -102,9 +103,10 @@ void set_moat(SystemBatch& batch, std::size_t lane, int body, double gap_left, d
 
 // Contact numbers of lane `lane` for every element: gap = study gap (+ level_offsets[level - 1] when given, for
 // elements of study-gap groups; elements of other groups keep their own gap), kc, e, and the weight of an
-// interpolated side (a floor against a column) = the element's xi (linear shape functions).
+// interpolated side (a floor against a column) = model::column_weight(xi, shape): xi for linear shape functions.
 void set_contacts(SystemBatch& batch, std::size_t lane, double gap, double kc, double e,
-                  std::span<const double> level_offsets = {});
+                  std::span<const double> level_offsets = {},
+                  model::ShapeFunctions shape = model::ShapeFunctions::linear);
 
 // The two floor masses (kg) an element of lane `lane` joins, left and right, for the equivalent-sphere Hertz stiffness:
 // a point side's floor; a column side's nearer floor (xi < 0.5: the floor below unless it is the ground, else the

@@ -149,6 +149,8 @@ struct Study {
   // [contact] level_tolerance (m): floors of neighbouring shear buildings whose levels differ by at most this meet
   // floor to floor; any other floor below the neighbour's roof meets its column (model::shear_buildings)
   double level_tolerance = 0.05;
+  // [contact] shape_functions: the column side's weights (model::column_weight), linear or the fixed-fixed cubic
+  model::ShapeFunctions shape_functions = model::ShapeFunctions::linear;
   Stepper stepper = Stepper::central_difference;
   int substeps = 1;
   double max_dt = 0.0;  // step cap (s): substeps = max(substeps, ceil(dt / max_dt)); default 2.5 ms (impacts), 0 (probability)

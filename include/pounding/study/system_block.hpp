@@ -109,12 +109,13 @@ class SystemBlock {
   // others a column).
   explicit SystemBlock(const StructureModel& model, const ContactModel& contact = {}, double e = 0.65,
                        model::ContactLevels levels = model::ContactLevels::common, std::vector<double> gap_offsets = {},
-                       double level_tolerance = 0.05)
+                       double level_tolerance = 0.05, model::ShapeFunctions shape = model::ShapeFunctions::linear)
       : model_(model), contact_(contact), e_(e), levels_(levels), offsets_(std::move(gap_offsets)),
-        tolerance_(level_tolerance) {}
-  // For a study: its structures, [contact] model, e, levels, gap_offsets and level_tolerance.
+        tolerance_(level_tolerance), shape_(shape) {}
+  // For a study: its structures, [contact] model, e, levels, gap_offsets, level_tolerance and shape_functions.
   explicit SystemBlock(const Study& s)
-      : SystemBlock(s.structures, s.contact, s.e, s.contact_levels, s.gap_offsets, s.level_tolerance) {}
+      : SystemBlock(s.structures, s.contact, s.e, s.contact_levels, s.gap_offsets, s.level_tolerance,
+                    s.shape_functions) {}
 
   // Every lane of `pairs`, uncoupled: `none` is the study's contact model with law none (the study-gap group's law);
   // status, u1, u2, closing = D.
@@ -163,6 +164,7 @@ class SystemBlock {
   std::vector<double> offsets_;
   double tolerance_ = 0.05;
   std::span<const GroundMotion> channels_;
+  model::ShapeFunctions shape_ = model::ShapeFunctions::linear;
   std::map<LaneTopology, std::unique_ptr<model::System>> systems_, table_systems_;
   std::vector<LaneTopology> keys_;
   std::vector<std::size_t> order_, bucket_, all_;

@@ -94,6 +94,7 @@ struct SimulateOptions {
   // which floors pound (issue 25 §3): common levels or the lower roof only, the level tolerance, gap offsets per level
   std::string contact_levels = "common";
   double level_tolerance = 0.05;
+  std::string shape_functions = "linear";  // a floor against a column: linear or cubic (model::ShapeFunctions)
   std::vector<double> gap_offsets;
   bool levels_given = false;
   // a row of buildings (issue 25 step 8, docs/rows.md): --buildings N, buildings 3..N by --TK, --mK, --kK, --hK,
@@ -414,6 +415,8 @@ void validate_storeys(const SimulateOptions& o) {
   if (o.contact_levels != "common" && o.contact_levels != "top")
     throw unknown_key_error(o.contact_levels, "--contact-levels", "--contact-levels", "common, top", "argument");
   require_range(o.level_tolerance, 0.0, 1.0, "--level-tolerance", "[0, 1] m");
+  if (!parse_enum(model::shape_functions_names, o.shape_functions))
+    throw unknown_key_error(o.shape_functions, "--shape-functions", "--shape-functions", "linear, cubic", "argument");
   for (double off : o.gap_offsets)
     if (!std::isfinite(off) || o.gap + off < 0)
       throw InputError(fmt::format("--gap-offsets value {} makes a gap of {} m", off, o.gap + off), "--gap-offsets",
@@ -473,7 +476,8 @@ void set_storey_contacts(const SimulateOptions& o, const ContactModel& cm, physi
     throw InputError(fmt::format("--gap-offsets has {} values and the buildings pound up to level {}",
                                  o.gap_offsets.size(), top),
                      "--gap-offsets", fmt::format("give one offset (m) per level from level 1 to {}", top));
-  physics::set_contacts(batch, 0, o.gap, 0.0, o.e, o.gap_offsets);
+  physics::set_contacts(batch, 0, o.gap, 0.0, o.e, o.gap_offsets,
+                        *parse_enum(model::shape_functions_names, o.shape_functions));
   for (std::size_t e = 0; e < sys.contacts().size(); ++e) {
     const model::ContactElement& ce = sys.contacts()[e];
     if (!sys.groups()[static_cast<std::size_t>(ce.group)].study_gap) {  // a moat: set_moat's numbers
@@ -912,6 +916,30 @@ int run_simulate(SimulateOptions& o) {
   return r.status[0] != 0 ? 3 : 0;
 }
 
+// Whether any of `names` was given.
+bool any_given(CLI::App* c, std::initializer_list<const char*> names) {
+  for (const char* k : names)
+    if (c->count(k) > 0) return true;
+  return false;
+}
+
+// Which floors pound and how (issue 25 §3; docs/floor-contact.md): --contact-levels, --level-tolerance, --gap-offsets,
+// --shape-functions.
+void add_contact_level_options(CLI::App* c, SimulateOptions* o) {
+  c->add_option("--contact-levels", o->contact_levels,
+                "which floors pound (multi-storey): common (every pair of floors at the same level) or top (the lower "
+                "roof only)")
+      ->capture_default_str();
+  c->add_option("--level-tolerance", o->level_tolerance, "floors whose levels differ by at most this (m) pound")
+      ->capture_default_str();
+  c->add_option("--gap-offsets", o->gap_offsets, "per contact level from level 1, added to --gap (m), comma-separated")
+      ->delimiter(',');
+  c->add_option("--shape-functions", o->shape_functions,
+                "a floor striking a column between two floors: linear (N2 = xi) or cubic (the fixed-fixed column, "
+                "N2 = 3 xi^2 - 2 xi^3) weights of the two floors")
+      ->capture_default_str();
+}
+
 // The multi-storey options (issue 25 §4): storeys, floors, levels.
 void add_storey_options(CLI::App* c, SimulateOptions& opts) {
   SimulateOptions* o = &opts;
@@ -963,14 +991,7 @@ void add_storey_options(CLI::App* c, SimulateOptions& opts) {
                   "moat contact stiffness (N/m^n; default: equivalent-sphere Hertz of two base masses)");
     c->add_option("--moat-e" + k, s.moat_e, "moat coefficient of restitution (default: --e)");
   }
-  c->add_option("--contact-levels", o->contact_levels,
-                "which floors pound (multi-storey): common (every pair of floors at the same level) or top (the lower "
-                "roof only)")
-      ->capture_default_str();
-  c->add_option("--level-tolerance", o->level_tolerance, "floors whose levels differ by at most this (m) pound")
-      ->capture_default_str();
-  c->add_option("--gap-offsets", o->gap_offsets, "per contact level from level 1, added to --gap (m), comma-separated")
-      ->delimiter(',');
+  add_contact_level_options(c, o);
   c->add_option("--buildings", o->buildings,
                 "a row of N buildings side by side, each pounding its neighbours (2..8; buildings 3..N by --T3, --m3, "
                 "--k3, --h3, --fy3, --storeys3, --storey-mass3, --storey-stiffness3, --storey-height3 ...; an option "
@@ -1109,7 +1130,7 @@ void add_simulate(CLI::App& app) {
       s.moat_stiffness_given = c->count("--moat-stiffness" + k) > 0, s.moat_e_given = c->count("--moat-e" + k) > 0;
       s.moat_options_given = c->count("--moat-law" + k) > 0 || s.moat_stiffness_given || s.moat_e_given;
     }
-    o->levels_given = c->count("--contact-levels") + c->count("--level-tolerance") + c->count("--gap-offsets") > 0;
+    o->levels_given = any_given(c, {"--contact-levels", "--level-tolerance", "--gap-offsets", "--shape-functions"});
     count_row_options(c, *o);
     o->wave_delay_given = c->count("--wave-delay") > 0;
     if (const int code = run_simulate(*o)) throw ExitRequest{code};
