@@ -311,21 +311,44 @@ constexpr StudyKey keys[] = {
      "Shear model with isolation: moat walls (keys under \"[structures.buildingK] moat\")."},
 
     // ---------------------------------------------------------------- isolation, moat
-    {"isolation", "bearing", "string", "\"linear\"", "", "\"linear\" | \"lead-rubber\"",
+    {"isolation", "bearing", "string", "\"linear\"", "",
+     "\"linear\" | \"lead-rubber\" | \"friction-pendulum\" | \"bouc-wen\"",
      "linear: a spring k_eff and a dashpot 2 zeta_eff sqrt(k_eff M_total) on the bearing's deformation; lead-rubber: "
      "bilinear kinematic hardening k1, k2 with characteristic strength qd (Fy = qd / (1 - k2 / k1)), no viscous "
-     "damping of its own."},
+     "damping of its own; friction-pendulum: a pendulum spring W / R (W = g M_total, the base and the storeys) plus "
+     "friction mu(v) W through a smoothed stick-slip of yield displacement u_y (Constantinou et al. 1990); "
+     "bouc-wen: F = k2 u + qd z with Bouc-Wen's z (|z| <= 1 for A = beta + gamma, u_y = qd / (k1 - k2)). The "
+     "same laws and numbers as pounding simulate --isolationK."},
     {"isolation", "base_mass", "number", "one floor's mass", "kg", "[1e-3, 1e10]",
      "The base slab's mass above the bearings.", 1e-3, 1e10},
     {"isolation", "k_eff", "number", "required (linear)", "N/m", "[1, 1e12]", "Linear bearing: effective stiffness.",
      1.0, 1e12},
     {"isolation", "zeta_eff", "number", "0", "", "[0, 0.5]", "Linear bearing: effective damping ratio.", 0.0, 0.5},
-    {"isolation", "k1", "number", "required (lead-rubber)", "N/m", "[1, 1e12]",
-     "Lead-rubber bearing: elastic (pre-yield) stiffness.", 1.0, 1e12},
-    {"isolation", "k2", "number", "required (lead-rubber)", "N/m", "[0, 1e12], below k1",
-     "Lead-rubber bearing: post-yield stiffness.", 0.0, 1e12},
-    {"isolation", "qd", "number", "required (lead-rubber)", "N", "[1e-3, 1e10]",
-     "Lead-rubber bearing: characteristic strength (force at zero displacement on the hysteresis loop).", 1e-3, 1e10},
+    {"isolation", "k1", "number", "required (lead-rubber, bouc-wen)", "N/m", "[1, 1e12]",
+     "Lead-rubber and Bouc-Wen bearings: elastic (pre-yield) stiffness.", 1.0, 1e12},
+    {"isolation", "k2", "number", "required (lead-rubber, bouc-wen)", "N/m", "[0, 1e12], below k1",
+     "Lead-rubber and Bouc-Wen bearings: post-yield stiffness.", 0.0, 1e12},
+    {"isolation", "qd", "number", "required (lead-rubber, bouc-wen)", "N", "[1e-3, 1e10]",
+     "Lead-rubber and Bouc-Wen bearings: characteristic strength (force at zero displacement on the hysteresis "
+     "loop).", 1e-3, 1e10},
+    {"isolation", "radius", "number", "required (friction-pendulum)", "m", "[0.1, 50]",
+     "Friction pendulum: effective radius R of the sliding surface (T = 2 pi sqrt(R / g) for a rigid "
+     "superstructure).", 0.1, 50.0},
+    {"isolation", "mu_slow", "number", "required (friction-pendulum)", "", "[0.001, 0.5]",
+     "Friction pendulum: friction coefficient at rest.", 1e-3, 0.5},
+    {"isolation", "mu_fast", "number", "mu_slow", "", "[0.001, 0.5]",
+     "Friction pendulum: friction coefficient at high speed, mu(v) = mu_fast - (mu_fast - mu_slow) exp(-rate |v|) "
+     "(a value other than mu_slow needs rate > 0).", 1e-3, 0.5},
+    {"isolation", "rate", "number", "0", "s/m", "[0, 1000]",
+     "Friction pendulum: the rate a of mu(v) (0: constant friction mu_slow).", 0.0, 1e3},
+    {"isolation", "u_y", "number", "0.00025", "m", "[1e-6, 0.02]",
+     "Friction pendulum: yield displacement of the smoothed stick-slip (the sliding starts within it).", 1e-6, 0.02},
+    {"isolation", "a", "number", "1", "", "[0.1, 10]", "Bouc-Wen bearing: A of dz/du = (A - |z|^eta (gamma + beta "
+     "sgn(z du))) / u_y.", 0.1, 10.0},
+    {"isolation", "beta", "number", "0.5", "", "[0.001, 10]", "Bouc-Wen bearing: beta, the |du| term.", 1e-3, 10.0},
+    {"isolation", "gamma", "number", "0.5", "", "[-10, 10], |gamma| <= beta",
+     "Bouc-Wen bearing: gamma, the du term (|gamma| <= beta: the stable, passive class).", -10.0, 10.0},
+    {"isolation", "eta", "integer", "1", "", "[1, 8]", "Bouc-Wen bearing: the exponent eta (an integer).", 1.0, 8.0},
     {"moat", "gap", "number", "required", "m", "[1e-4, 10]", "Clearance from the base to each wall.", 1e-4, 10.0},
     {"moat", "law", "string", "[contact] law", "", "a contact law except \"none\"", "The walls' contact law."},
     {"moat", "stiffness", "number", "equivalent spheres of the base mass with itself", "law units", "[0, 1e13]",

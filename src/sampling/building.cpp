@@ -378,7 +378,70 @@ std::string_view bearing_name(physics::Bearing b) {
   return "?";
 }
 
-// isolation = {bearing, base_mass, k_eff, zeta_eff | k1, k2, qd} of a building table
+// Which keys of an isolation table each bearing takes (bit 1 << Bearing) and requires: one row per key, so the
+// "not a key of this bearing" and "missing" errors and the fix texts come from one place.
+struct BearingKey {
+  std::string_view key;
+  unsigned takes, requires_;
+};
+constexpr unsigned bit(physics::Bearing b) { return 1u << static_cast<unsigned>(b); }
+constexpr unsigned lin = bit(physics::Bearing::linear), lrb = bit(physics::Bearing::lead_rubber),
+                   fps = bit(physics::Bearing::friction_pendulum), bw = bit(physics::Bearing::bouc_wen);
+constexpr BearingKey bearing_keys[] = {
+    {"k_eff", lin, lin},       {"zeta_eff", lin, 0},     {"k1", lrb | bw, lrb | bw}, {"k2", lrb | bw, lrb | bw},
+    {"qd", lrb | bw, lrb | bw}, {"radius", fps, fps},    {"mu_slow", fps, fps},      {"mu_fast", fps, 0},
+    {"rate", fps, 0},          {"u_y", fps, 0},          {"a", bw, 0},               {"beta", bw, 0},
+    {"gamma", bw, 0},          {"eta", bw, 0}};
+
+// "a friction-pendulum bearing takes radius, mu_slow (required), mu_fast, rate, u_y"
+std::string bearing_fix(physics::Bearing b) {
+  std::string out = fmt::format("a {} bearing takes", bearing_name(b));
+  bool first = true;
+  for (const BearingKey& k : bearing_keys)
+    if (k.takes & bit(b)) {
+      out += fmt::format("{} {}{}", first ? "" : ",", k.key, k.requires_ & bit(b) ? " (required)" : "");
+      first = false;
+    }
+  return out;
+}
+
+// The keys a bearing does not take are refused, the ones it needs must be there (checked before any is read).
+void check_bearing_keys(config::TableReader& q, physics::Bearing b) {
+  for (const BearingKey& k : bearing_keys)  // another bearing's key first: it names the likely slip
+    if (q.get(k.key) && !(k.takes & bit(b)))
+      throw InputError(fmt::format("{} is not a key of a {} bearing", k.key, bearing_name(b)), q.where(k.key),
+                       bearing_fix(b));
+  for (const BearingKey& k : bearing_keys)
+    if (!q.get(k.key) && (k.requires_ & bit(b)))
+      throw InputError(fmt::format("the {} bearing has no {}", bearing_name(b), k.key), q.where(k.key),
+                       bearing_fix(b));
+}
+
+// The smooth bearings' constants (model/hysteresis/smooth.hpp), ranges as pounding simulate's --bearing-* options.
+void read_smooth_bearing(config::TableReader& q, physics::IsolationSpec& iso) {
+  if (iso.bearing == physics::Bearing::friction_pendulum) {
+    iso.radius = q.number("radius", 0.0), iso.mu_slow = q.number("mu_slow", 0.0);
+    iso.mu_fast = q.number("mu_fast", iso.mu_slow), iso.rate = q.number("rate", 0.0);
+    iso.uy = q.number("u_y", iso.uy);
+    if (iso.mu_fast != iso.mu_slow && !(iso.rate > 0))
+      throw InputError(fmt::format("mu_fast = {:g} differs from mu_slow = {:g} but rate is 0, so mu(v) would stay "
+                                   "mu_slow", iso.mu_fast, iso.mu_slow),
+                       q.where("rate"), "give the rate a of mu(v) = mu_fast - (mu_fast - mu_slow) exp(-a |v|) "
+                                        "(s/m, e.g. 20), or drop mu_fast");
+  }
+  if (iso.bearing == physics::Bearing::bouc_wen) {
+    iso.bw_a = q.number("a", iso.bw_a), iso.bw_beta = q.number("beta", iso.bw_beta);
+    iso.bw_gamma = q.number("gamma", iso.bw_gamma);
+    iso.bw_eta = static_cast<int>(q.integer("eta", iso.bw_eta));
+    if (!(std::abs(iso.bw_gamma) <= iso.bw_beta))
+      throw InputError(fmt::format("gamma = {:g} is outside [-beta, beta] = [{:g}, {:g}]", iso.bw_gamma,
+                                   -iso.bw_beta, iso.bw_beta),
+                       q.where("gamma"),
+                       "give |gamma| <= beta (the stable, passive Bouc-Wen class; beta is the |du| term's coefficient)");
+  }
+}
+
+// isolation = {bearing, base_mass, and the bearing's keys (bearing_keys)} of a building table
 void read_isolation(config::TableReader& r, const std::string& file, const std::string& name, BuildingModel& b) {
   const toml::table* t = r.table("isolation");
   if (!t) return;
@@ -390,24 +453,16 @@ void read_isolation(config::TableReader& r, const std::string& file, const std::
                      "write bearing = " + bearing_list());
   });
   iso.base_mass = q.number("base_mass", 0.0);
-  const bool linear = iso.bearing == physics::Bearing::linear;
-  // a linear bearing takes k_eff (required) and zeta_eff; a lead-rubber one k1, k2 and qd (all required)
-  for (const char* key : {"k_eff", "zeta_eff", "k1", "k2", "qd"}) {
-    const std::string_view k(key);
-    const bool mine = (k == "k_eff" || k == "zeta_eff") == linear;
-    if (q.get(key) && !mine)
-      throw InputError(fmt::format("{} is not a key of a {} bearing", key, bearing_name(iso.bearing)), q.where(key),
-                       linear ? "a linear bearing takes k_eff and zeta_eff" : "a lead-rubber bearing takes k1, k2 and qd");
-    if (mine && k != "zeta_eff" && !q.get(key))
-      throw InputError(fmt::format("the {} bearing has no {}", bearing_name(iso.bearing), key), q.where(key),
-                       linear ? "give k_eff (N/m) and zeta_eff" : "give k1, k2 (N/m, 0 <= k2 < k1) and qd (N)");
-  }
+  check_bearing_keys(q, iso.bearing);
   iso.k_eff = q.number("k_eff", 0.0), iso.zeta_eff = q.number("zeta_eff", 0.0);
   iso.k1 = q.number("k1", 0.0), iso.k2 = q.number("k2", 0.0), iso.qd = q.number("qd", 0.0);
-  if (!linear && !(iso.k2 < iso.k1))
+  if ((bit(iso.bearing) & (lrb | bw)) && !(iso.k2 < iso.k1))
     throw InputError(fmt::format("k2 = {:g} N/m is not below k1 = {:g} N/m", iso.k2, iso.k1), q.where("k2"),
                      "give the post-yield stiffness k2 below the elastic k1 (0 <= k2 < k1)");
-  q.finish("bearing, base_mass, k_eff, zeta_eff, k1, k2, qd");
+  read_smooth_bearing(q, iso);
+  std::string keys = "bearing, base_mass";
+  for (const BearingKey& k : bearing_keys) keys += fmt::format(", {}", k.key);
+  q.finish(keys);
   b.isolated = true;
 }
 
@@ -465,9 +520,20 @@ std::string BuildingModel::isolation_text() const {
   if (!isolated) return "";
   const physics::IsolationSpec& i = isolation;
   const std::string base = i.base_mass > 0 ? fmt::format("base {:g} kg", i.base_mass) : "base one floor's mass";
-  return i.bearing == physics::Bearing::linear
-             ? fmt::format("{} bearing k_eff {:g} N/m, zeta_eff {:g}; {}", bearing_name(i.bearing), i.k_eff, i.zeta_eff, base)
-             : fmt::format("{} bearing k1 {:g} N/m, k2 {:g} N/m, qd {:g} N; {}", bearing_name(i.bearing), i.k1, i.k2, i.qd, base);
+  switch (i.bearing) {
+    case physics::Bearing::linear:
+      return fmt::format("{} bearing k_eff {:g} N/m, zeta_eff {:g}; {}", bearing_name(i.bearing), i.k_eff, i.zeta_eff,
+                         base);
+    case physics::Bearing::friction_pendulum:
+      return fmt::format("{} bearing radius {:g} m, mu_slow {:g}, mu_fast {:g}, rate {:g} s/m, u_y {:g} m; {}",
+                         bearing_name(i.bearing), i.radius, i.mu_slow, i.mu_fast, i.rate, i.uy, base);
+    case physics::Bearing::bouc_wen:
+      return fmt::format("{} bearing k1 {:g} N/m, k2 {:g} N/m, qd {:g} N, a {:g}, beta {:g}, gamma {:g}, eta {}; {}",
+                         bearing_name(i.bearing), i.k1, i.k2, i.qd, i.bw_a, i.bw_beta, i.bw_gamma, i.bw_eta, base);
+    default:
+      return fmt::format("{} bearing k1 {:g} N/m, k2 {:g} N/m, qd {:g} N; {}", bearing_name(i.bearing), i.k1, i.k2,
+                         i.qd, base);
+  }
 }
 
 std::string BuildingModel::moat_text() const {

@@ -116,6 +116,7 @@ const model::System& SystemBlock::system(const LaneTopology& t) {
       sticks[i].storeys = t.storeys[i], sticks[i].storey_heights = {t.storey_height[i]};
       sticks[i].isolated = t.isolated[i], sticks[i].moat = t.moat[i];
       sticks[i].columns = model_.row_building(i).shear();  // an SDOF stands for a whole building: no column
+      if (t.isolated[i]) sticks[i].isolator_law = physics::isolator_law(model_.row_building(i).isolation.bearing);
     }
     slot = std::make_unique<model::System>(model::shear_buildings(sticks, tolerance_, levels_));
   }
@@ -131,6 +132,7 @@ const model::System& SystemBlock::table_system(const LaneTopology& t) {
       sticks[i].storeys = t.storeys[i], sticks[i].storey_heights = {t.storey_height[i]};
       sticks[i].isolated = t.isolated[i], sticks[i].moat = t.moat[i];
       sticks[i].columns = model_.row_building(i).shear();  // an SDOF stands for a whole building: no column
+      if (t.isolated[i]) sticks[i].isolator_law = physics::isolator_law(model_.row_building(i).isolation.bearing);
     }
     slot = std::make_unique<model::System>(model::shear_buildings(sticks, tolerance_, model::ContactLevels::common));
   }

@@ -127,9 +127,14 @@ std::string study_with(const config::StudyKey& k, const std::string& value) {
       return "{" + out + "}";
     };
     s.sections["structures"]["model"] = "\"shear\"";
-    const bool lrb = section == "isolation" && (key == "k1" || key == "k2" || key == "qd");
-    Section iso = lrb ? Section{{"bearing", "\"lead-rubber\""}, {"k1", "1e8"}, {"k2", "1e7"}, {"qd", "1e5"}}
-                      : Section{{"bearing", "\"linear\""}, {"k_eff", "1e6"}};
+    const bool iso_key = section == "isolation";
+    const bool lrb = iso_key && (key == "k1" || key == "k2" || key == "qd");
+    const bool fps = iso_key && (key == "radius" || key == "mu_slow" || key == "mu_fast" || key == "rate" || key == "u_y");
+    const bool bw = iso_key && (key == "a" || key == "beta" || key == "gamma" || key == "eta");
+    Section iso = lrb  ? Section{{"bearing", "\"lead-rubber\""}, {"k1", "1e8"}, {"k2", "1e7"}, {"qd", "1e5"}}
+                  : fps ? Section{{"bearing", "\"friction-pendulum\""}, {"radius", "2.0"}, {"mu_slow", "0.05"}}
+                  : bw  ? Section{{"bearing", "\"bouc-wen\""}, {"k1", "1e8"}, {"k2", "1e7"}, {"qd", "1e5"}}
+                        : Section{{"bearing", "\"linear\""}, {"k_eff", "1e6"}};
     if (section == "isolation") iso[key] = value;
     s.sections["structures.building1"]["isolation"] = inline_table(iso);
     if (section == "moat") {
@@ -308,6 +313,7 @@ TEST(StudyKeys, DocumentedChoicesAreTheEnumTables) {
       {{"target_spectrum", "code"}, choices(target_code_names)},
       {{"target_spectrum", "rule"}, choices(scaling_rule_names)},
       {{"records", "components"}, choices(component_rule_names)},
+      {{"isolation", "bearing"}, choices(bearing_names)},
   };
   for (const auto& [sk, names] : tables) {
     const config::StudyKey* k = config::find_study_key(sk.first, sk.second);

@@ -6,16 +6,22 @@ export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMPI_MCA_rmaps_
 tmp=$(mktemp -d); trap 'rm -rf "$tmp"' EXIT
 cmp() { /usr/bin/python3 "$src/tests/cli/compare_results.py" "$@"; }
 
+# with_analysis <key = value> <study> <out>: the study with the key in its [analysis] (a new one before [contact])
+with_analysis() {
+  if grep -q '^\[analysis\]' "$2"; then sed "s/^\[analysis\]/[analysis]\n$1/" "$2" > "$3"
+  else sed "s/^\[contact\]/[analysis]\n$1\n\n[contact]/" "$2" > "$3"; fi
+}
+
 study_invariance() {
   "$bin" run "$study" --out "$tmp/r0.h5" --quiet > /dev/null 2>&1
   timeout 120 mpirun -np 1 "$bin" run "$study" --out "$tmp/r1.h5" --quiet > /dev/null 2>&1
   timeout 120 mpirun -np 2 "$bin" run "$study" --out "$tmp/r2.h5" --quiet > /dev/null 2>&1
   cmp "$tmp/r0.h5" "$tmp/r1.h5"
   cmp "$tmp/r0.h5" "$tmp/r2.h5"
-  sed 's/^\[contact\]/[analysis]\nbatch = 1\n\n[contact]/' "$study" > "$tmp/narrow.toml"
+  with_analysis 'batch = 1' "$study" "$tmp/narrow.toml"
   "$bin" run "$tmp/narrow.toml" --out "$tmp/narrow.h5" --quiet > /dev/null 2>&1
   cmp "$tmp/r0.h5" "$tmp/narrow.h5" --ignore=study_text,batch,output
-  sed 's/^\[contact\]/[analysis]\nskip_untouched = false\n\n[contact]/' "$study" > "$tmp/full.toml"
+  with_analysis 'skip_untouched = false' "$study" "$tmp/full.toml"
   "$bin" run "$tmp/full.toml" --out "$tmp/full.h5" --quiet > /dev/null 2>&1
   cmp "$tmp/r0.h5" "$tmp/full.h5" --ignore=study_text,skip_untouched,output,scene_reason
 }

@@ -33,7 +33,9 @@
 //                   base shear Cy M g, upper storeys by the shear profile); hysteresis "elastic": no yield
 //     damping       the building's zeta, Rayleigh on modes 1 and 2 (each mode's ratio in the settings' docs)
 //     isolation     {bearing = "linear", base_mass, k_eff, zeta_eff} | {bearing = "lead-rubber", base_mass, k1, k2,
-//                   qd}: a base mass (default one floor's) on the bearing under the storeys (physics::IsolationSpec)
+//                   qd} | {bearing = "friction-pendulum", base_mass, radius, mu_slow, mu_fast, rate, u_y} |
+//                   {bearing = "bouc-wen", base_mass, k1, k2, qd, a, beta, gamma, eta}: a base mass (default one
+//                   floor's) on the bearing under the storeys (physics::IsolationSpec)
 //     moat          {gap, law, stiffness, e}: rigid walls gap m either side of the isolated base (needs isolation)
 //   One storey (storeys = 1, or a sampled height below 1.5 storey_height) with neither floor_mass nor
 //   storey_stiffness is the SDOF of the same sample bit for bit.
@@ -80,8 +82,11 @@ inline constexpr EnumName<Hysteresis> hysteresis_names[] = {{Hysteresis::bilinea
 constexpr const auto& enum_names(Hysteresis) { return hysteresis_names; }  // to_string(Hysteresis), enum_names.hpp
 
 // The bearings a study's isolation table names (physics::IsolationSpec; one entry per bearing law).
-inline constexpr EnumName<physics::Bearing> bearing_names[] = {{physics::Bearing::linear, "linear"},
-                                                               {physics::Bearing::lead_rubber, "lead-rubber"}};
+inline constexpr EnumName<physics::Bearing> bearing_names[] = {
+    {physics::Bearing::linear, "linear"},
+    {physics::Bearing::lead_rubber, "lead-rubber"},
+    {physics::Bearing::friction_pendulum, "friction-pendulum"},
+    {physics::Bearing::bouc_wen, "bouc-wen"}};
 
 // The structural model of a building (docs/architecture.md §2.7.1).
 enum class StructureKind : std::uint8_t { sdof, shear };
