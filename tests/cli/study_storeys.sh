@@ -114,7 +114,7 @@ expect_error fragility 'runs SDOF buildings only.*:22 \[structures\].model' \
 b1() { echo "$body" | sed "s/^\[gaps\]/[structures.building1]\n$1\n\n[gaps]/"; }
 expect_error isolation_sdof 'isolation is given for an SDOF building.*\[structures.building1\].isolation' \
   "$(b1 'model = "sdof"\nisolation = {bearing = "linear", k_eff = 1e6}')"
-expect_error bearing_name ':28 \[structures.building1.isolation\].bearing, write bearing = "linear" or "lead-rubber"' \
+expect_error bearing_name ':28 \[structures.building1.isolation\].bearing, write bearing = "linear", "lead-rubber", "friction-pendulum" or "bouc-wen"' \
   "$(b1 'isolation = {bearing = "rubber-duck", k_eff = 1e6}')"
 expect_error keff_missing 'the linear bearing has no k_eff.*\[structures.building1.isolation\].k_eff' \
   "$(b1 'isolation = {bearing = "linear", base_mass = 1e5}')"
