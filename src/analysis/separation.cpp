@@ -12,6 +12,7 @@
 #include <boost/math/special_functions/erf.hpp>
 #include <boost/random/binomial_distribution.hpp>
 
+#include "pounding/core/parallel_for.hpp"
 #include "pounding/core/progress.hpp"
 #include "pounding/core/random.hpp"
 
@@ -96,14 +97,6 @@ double quantile7(const std::vector<double>& v, double p) {
   return v[lo] + (h - static_cast<double>(lo)) * (v[lo + 1] - v[lo]);
 }
 
-template <class F>
-void parallel_blocks(std::size_t n, int threads, F&& f) {
-  const std::size_t T = std::max<std::size_t>(1, std::min<std::size_t>(static_cast<std::size_t>(std::max(threads, 1)), n));
-  if (T == 1) return f(std::size_t{0}, n);
-  std::vector<std::thread> pool;
-  for (std::size_t t = 0; t < T; ++t) pool.emplace_back([&, t] { f(n * t / T, n * (t + 1) / T); });
-  for (auto& th : pool) th.join();
-}
 
 }  // namespace
 

@@ -14,6 +14,7 @@
 #include <boost/math/distributions/students_t.hpp>
 #include <fmt/format.h>
 
+#include "pounding/core/parallel_for.hpp"
 #include "pounding/core/progress.hpp"
 #include "pounding/core/random.hpp"
 
@@ -47,24 +48,6 @@ std::vector<int> draw_records(std::uint64_t seed, int b, std::size_t records) {
   return w;
 }
 
-int thread_count(int requested, std::size_t work) {
-  int t = requested > 0 ? requested : static_cast<int>(std::thread::hardware_concurrency());
-  t = std::max(1, t);
-  return static_cast<int>(std::min<std::size_t>(static_cast<std::size_t>(t), std::max<std::size_t>(1, work)));
-}
-
-// f(first, last) on contiguous blocks of [0, n), one per thread. f must not throw.
-template <class F>
-void parallel_blocks(std::size_t n, int threads, F&& f) {
-  if (threads <= 1 || n <= 1) {
-    f(std::size_t{0}, n);
-    return;
-  }
-  std::vector<std::thread> pool;
-  const auto T = static_cast<std::size_t>(threads);
-  for (std::size_t t = 0; t < T; ++t) pool.emplace_back([&f, n, t, T] { f(n * t / T, n * (t + 1) / T); });
-  for (auto& th : pool) th.join();
-}
 
 void check_settings(const Settings& s) {
   if (s.bootstrap < 0 || !(s.confidence > 0 && s.confidence < 1) || !(s.years >= 0) || !std::isfinite(s.years))

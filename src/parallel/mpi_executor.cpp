@@ -4,6 +4,7 @@
 
 #include <mpi.h>
 
+#include <algorithm>
 #include <cstdint>
 #include <cstdlib>
 #include <cstring>
@@ -286,6 +287,25 @@ void Session::broadcast(std::string& s) const {
   MPI_Bcast(&n, 1, MPI_LONG_LONG, 0, MPI_COMM_WORLD);
   s.resize(static_cast<std::size_t>(n));
   if (n > 0) MPI_Bcast(s.data(), static_cast<int>(n), MPI_CHAR, 0, MPI_COMM_WORLD);
+}
+
+std::vector<std::string> Session::allgather(const std::string& mine) const {
+  if (!mpi_ || size_ == 1) return {mine};
+  const long long n = static_cast<long long>(mine.size());
+  std::vector<long long> sizes(static_cast<std::size_t>(size_));
+  MPI_Allgather(&n, 1, MPI_LONG_LONG, sizes.data(), 1, MPI_LONG_LONG, MPI_COMM_WORLD);
+  std::vector<std::string> all(static_cast<std::size_t>(size_));
+  // one rank's bytes at a time (a count is an int): each rank broadcasts its own
+  for (int r = 0; r < size_; ++r) {
+    std::string& s = all[static_cast<std::size_t>(r)];
+    s = r == rank_ ? mine : std::string(static_cast<std::size_t>(sizes[static_cast<std::size_t>(r)]), '\0');
+    for (std::size_t at = 0; at < s.size();) {
+      const int chunk = static_cast<int>(std::min<std::size_t>(s.size() - at, std::size_t{1} << 30));
+      MPI_Bcast(s.data() + at, chunk, MPI_CHAR, r, MPI_COMM_WORLD);
+      at += static_cast<std::size_t>(chunk);
+    }
+  }
+  return all;
 }
 
 void Session::broadcast(int& v) const {

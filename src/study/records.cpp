@@ -1,11 +1,19 @@
 // Resolving a study's [records] into scaled ground motions (real files or synthetic stand-ins).
 #include <algorithm>
+#include <cstdint>
+#include <cstring>
+#include <exception>
 #include <filesystem>
 #include <map>
+#include <memory>
+#include <mutex>
+#include <optional>
+#include <stdexcept>
 
 #include <fmt/format.h>
 
 #include "pounding/core/error.hpp"
+#include "pounding/core/parallel_for.hpp"
 #include "pounding/motion/library.hpp"
 #include "pounding/study/study.hpp"
 
@@ -14,26 +22,11 @@ namespace pounding {
 namespace fs = std::filesystem;
 
 namespace {
-// scale_setting: where the user set `scale` ("[records] scale", or a files entry's scale).
-// manifests: the MANIFEST.tsv rows read so far (event, station, component for the selection's rules).
-StudyRecord from_file(const std::string& path, double scale, const Study& s, const std::string& scale_setting,
-                      RecordManifests& manifests) {
-  ReadOptions ro;
-  ro.units = s.units;
-  ro.dt = s.dt_one_column;
-  StudyRecord r;
-  r.record = read_record(path, ro);
-  manifests.annotate(r.record);
-  for (double& a : r.record.acc) a *= scale;
-  // a PGA of 499 g (a file in cm/s^2 read as g, or scale = 1000) would make every analysis diverge
-  require_analysable(r.record, {scale, scale_setting, "set [records] units = \"cm/s2\" in " + s.path});
-  r.id = fs::path(path).stem().string();
-  r.note = fmt::format("file {} x {}", path, scale);
-  return r;
-}
+
 // [records] supports = N: the directory's files grouped per realisation -- stem PREFIX_sJJ is support JJ of
-// realisation PREFIX (pounding motions' rRRR_sJJ.AT2) -- each group exactly supports 1..N with one dt and length.
-std::vector<StudyRecord> support_sets(const Study& s, RecordManifests& manifests) {
+// realisation PREFIX (pounding motions' rRRR_sJJ.AT2) -- each group exactly supports 1..N (checked here, before
+// any file is read; their dt and length when the group is read).
+std::map<std::string, std::vector<std::string>> support_sets(const Study& s) {
   std::map<std::string, std::map<int, std::string>> sets;
   const std::string where = s.supports_where;
   for (const auto& p : record_files_in(s.directory, "[records] directory in " + s.path)) {
@@ -49,52 +42,265 @@ std::vector<StudyRecord> support_sets(const Study& s, RecordManifests& manifests
                        fmt::format("give supports = {} or remove the file", std::max(j, s.supports)));
     sets[stem.substr(0, at)][j] = p;
   }
-  std::vector<StudyRecord> out;
+  std::map<std::string, std::vector<std::string>> out;
   for (const auto& [prefix, files] : sets) {
     if (files.size() != static_cast<std::size_t>(s.supports))
       throw InputError(fmt::format("realisation {} in {} has {} of the {} support files", prefix, s.directory,
                                    files.size(), s.supports),
                        where, fmt::format("give every realisation the files {}_s01 .. {}_s{:02d}", prefix, prefix, s.supports));
-    StudyRecord r;
-    for (const auto& [j, p] : files) {
-      StudyRecord one = from_file(p, s.scale, s, "[records] scale in " + s.path, manifests);
-      if (j == 1) {
-        r = std::move(one);
-        r.id = prefix;
-        r.note = fmt::format("{} supports of {} ({}_s01 .. _s{:02d}) x {}", s.supports, s.directory, prefix, s.supports, s.scale);
-        continue;
-      }
-      if (one.record.dt != r.record.dt || one.record.acc.size() != r.record.acc.size())
-        throw InputError(fmt::format("{}: support {} has dt {} s and {} points, support 1 dt {} s and {} points", prefix,
-                                     j, one.record.dt, one.record.acc.size(), r.record.dt, r.record.acc.size()),
-                         where, "give every support of a realisation the same time step and length (pounding motions does)");
-      r.more_supports.push_back(std::move(one.record));
-    }
-    out.push_back(std::move(r));
+    for (const auto& [j, p] : files) out[prefix].push_back(p);  // support order
   }
   return out;
 }
+
 }  // namespace
 
-std::vector<StudyRecord> load_study_records(const Study& s, StudySelection* selection) {
-  std::vector<StudyRecord> out;
-  RecordManifests manifests;
+RecordPlan plan_study_records(const Study& s) {
+  if (s.files.empty() && s.directory.empty()) return plan_suite_records(s);
+  // one analysis input: a file, or the files of a realisation's supports (support 1 first)
+  struct Source {
+    std::vector<std::string> paths;
+    std::string scale_setting, id, note;
+    double scale = 1.0;
+  };
+  std::vector<Source> sources;
   if (!s.files.empty()) {
     for (const auto& f : s.files)
-      out.push_back(from_file(f.path, f.scale * s.scale, s,
-                              f.scale != 1.0 ? fmt::format("the [records] files entry's scale ({}) x [records] scale ({}) "
-                                                           "in {}", f.scale, s.scale, s.path)
-                                             : "[records] scale in " + s.path,
-                              manifests));
-  } else if (!s.directory.empty() && s.supports > 0) {
-    out = support_sets(s, manifests);
-  } else if (!s.directory.empty()) {
+      sources.push_back({{f.path},
+                         f.scale != 1.0 ? fmt::format("the [records] files entry's scale ({}) x [records] scale ({}) "
+                                                      "in {}", f.scale, s.scale, s.path)
+                                        : "[records] scale in " + s.path,
+                         "", "", f.scale * s.scale});
+  } else if (s.supports > 0) {
+    for (auto& [prefix, paths] : support_sets(s))
+      sources.push_back({std::move(paths), "[records] scale in " + s.path, prefix,
+                         fmt::format("{} supports of {} ({}_s01 .. _s{:02d}) x {}", s.supports, s.directory, prefix,
+                                     s.supports, s.scale),
+                         s.scale});
+  } else {
     // the one directory reader (motion/library.hpp), the files `records select --directory` reads
     for (const auto& p : record_files_in(s.directory, "[records] directory in " + s.path))
-      out.push_back(from_file(p, s.scale, s, "[records] scale in " + s.path, manifests));
-  } else {
-    out = load_suite_records(s);
+      sources.push_back({{p}, "[records] scale in " + s.path, "", "", s.scale});
   }
+  // the MANIFEST.tsv rows read so far, shared by the makers (the rows do not depend on who read them first)
+  struct Manifests {
+    std::mutex lock;
+    RecordManifests rows;
+  };
+  auto manifests = std::make_shared<Manifests>();
+  auto shared = std::make_shared<const std::vector<Source>>(std::move(sources));
+  ReadOptions ro;
+  ro.units = s.units;
+  ro.dt = s.dt_one_column;
+  auto make = [shared, manifests, ro, study_path = s.path, where = s.supports_where](std::size_t i) {
+    const Source& src = (*shared)[i];
+    auto read = [&](const std::string& path) {
+      StudyRecord r;
+      r.record = read_record(path, ro);
+      {
+        const std::lock_guard<std::mutex> hold(manifests->lock);
+        manifests->rows.annotate(r.record);
+      }
+      for (double& a : r.record.acc) a *= src.scale;
+      // a PGA of 499 g (a file in cm/s^2 read as g, or scale = 1000) would make every analysis diverge
+      require_analysable(r.record, {src.scale, src.scale_setting, "set [records] units = \"cm/s2\" in " + study_path});
+      r.id = fs::path(path).stem().string();
+      r.note = fmt::format("file {} x {}", path, src.scale);
+      return r;
+    };
+    StudyRecord r = read(src.paths[0]);
+    if (src.paths.size() == 1) return r;
+    r.id = src.id, r.note = src.note;
+    for (std::size_t j = 1; j < src.paths.size(); ++j) {
+      StudyRecord one = read(src.paths[j]);
+      if (one.record.dt != r.record.dt || one.record.acc.size() != r.record.acc.size())
+        throw InputError(fmt::format("{}: support {} has dt {} s and {} points, support 1 dt {} s and {} points", src.id,
+                                     j + 1, one.record.dt, one.record.acc.size(), r.record.dt, r.record.acc.size()),
+                         where, "give every support of a realisation the same time step and length (pounding motions does)");
+      r.more_supports.push_back(std::move(one.record));
+    }
+    return r;
+  };
+  return {shared->size(), std::move(make)};
+}
+
+namespace {
+
+// What making record i gave: the record, or its error (local: the exception itself; from another rank: its parts).
+struct Made {
+  std::optional<StudyRecord> record;
+  std::exception_ptr error;
+};
+
+std::vector<std::size_t> share_of(std::size_t count, int rank, int ranks) {
+  std::vector<std::size_t> mine;
+  for (std::size_t i = static_cast<std::size_t>(rank); i < count; i += static_cast<std::size_t>(ranks)) mine.push_back(i);
+  return mine;
+}
+
+// make(i) for every i of `which` on this process's threads; an error stays with its index.
+std::vector<Made> make_each(const RecordPlan& plan, const std::vector<std::size_t>& which, int threads) {
+  std::vector<Made> made(which.size());
+  parallel_blocks(which.size(), thread_count(threads, which.size()), [&](std::size_t first, std::size_t last) {
+    for (std::size_t k = first; k < last; ++k) try {
+        made[k].record.emplace(plan.make(which[k]));
+      } catch (...) {
+        made[k].error = std::current_exception();
+      }
+  });
+  return made;
+}
+
+// ---- bytes of a share (native byte order: the ranks of one job share one build)
+void put_raw(std::string& b, const void* p, std::size_t n) { b.append(static_cast<const char*>(p), n); }
+void put_u64(std::string& b, std::uint64_t v) { put_raw(b, &v, sizeof v); }
+void put_str(std::string& b, const std::string& s) { put_u64(b, s.size()), b.append(s); }
+
+struct Reader {
+  const std::string& b;
+  std::size_t at = 0;
+  void raw(void* p, std::size_t n) {
+    if (n > b.size() - at) throw std::runtime_error("record share: truncated bytes");
+    std::memcpy(p, b.data() + at, n), at += n;
+  }
+  std::uint64_t u64() {
+    std::uint64_t v = 0;
+    raw(&v, sizeof v);
+    return v;
+  }
+  std::string str() {
+    const std::uint64_t n = u64();
+    if (n > b.size() - at) throw std::runtime_error("record share: truncated bytes");
+    std::string s = b.substr(at, n);
+    at += n;
+    return s;
+  }
+};
+
+void put_motion(std::string& b, const Record& m) {
+  put_str(b, m.name), put_str(b, m.source);
+  put_raw(b, &m.dt, sizeof m.dt);
+  put_u64(b, m.acc.size()), put_raw(b, m.acc.data(), m.acc.size() * sizeof(double));
+  put_u64(b, m.meta.size());
+  for (const auto& [k, v] : m.meta) put_str(b, k), put_str(b, v);
+  put_u64(b, static_cast<std::uint64_t>(static_cast<std::int64_t>(m.peak_line)));
+}
+
+void put_record(std::string& b, const StudyRecord& r) {
+  put_motion(b, r.record);
+  put_u64(b, r.more_supports.size());
+  for (const Record& m : r.more_supports) put_motion(b, m);
+  put_u64(b, r.synthetic ? 1 : 0), put_str(b, r.id), put_str(b, r.note);
+  put_u64(b, static_cast<std::uint64_t>(static_cast<std::int64_t>(r.polarity)));
+}
+
+Record get_motion(Reader& in) {
+  Record m;
+  m.name = in.str(), m.source = in.str();
+  in.raw(&m.dt, sizeof m.dt);
+  const std::uint64_t n = in.u64();
+  if (n > (in.b.size() - in.at) / sizeof(double)) throw std::runtime_error("record share: truncated bytes");
+  m.acc.resize(n);
+  in.raw(m.acc.data(), m.acc.size() * sizeof(double));
+  for (std::uint64_t k = in.u64(); k > 0; --k) {
+    std::string key = in.str();
+    m.meta[key] = in.str();
+  }
+  m.peak_line = static_cast<int>(static_cast<std::int64_t>(in.u64()));
+  return m;
+}
+
+StudyRecord get_record(Reader& in) {
+  StudyRecord r;
+  r.record = get_motion(in);
+  for (std::uint64_t n = in.u64(); n > 0; --n) r.more_supports.push_back(get_motion(in));
+  r.synthetic = in.u64() != 0;
+  r.id = in.str(), r.note = in.str();
+  r.polarity = static_cast<int>(static_cast<std::int64_t>(in.u64()));
+  return r;
+}
+
+// an error as bytes: kind 1 InputError (what, where, fix), kind 2 anything else (its message)
+void put_error(std::string& b, const std::exception_ptr& e) {
+  try {
+    std::rethrow_exception(e);
+  } catch (const InputError& x) {
+    put_u64(b, 1), put_str(b, x.what_part()), put_str(b, x.where()), put_str(b, x.fix());
+  } catch (const std::exception& x) {
+    put_u64(b, 2), put_str(b, x.what());
+  } catch (...) {
+    put_u64(b, 2), put_str(b, "unknown error while reading or synthesising a record");
+  }
+}
+
+std::exception_ptr get_error(Reader& in, std::uint64_t kind) {
+  if (kind == 1) {
+    std::string what = in.str(), where = in.str(), fix = in.str();
+    return std::make_exception_ptr(InputError(std::move(what), std::move(where), std::move(fix)));
+  }
+  return std::make_exception_ptr(std::runtime_error(in.str()));
+}
+
+// The records in order, or the error of the first record that failed (the same on every rank).
+std::vector<StudyRecord> in_order(std::vector<Made> made) {
+  std::vector<StudyRecord> out;
+  out.reserve(made.size());
+  for (Made& m : made) {
+    if (m.error) std::rethrow_exception(m.error);
+    out.push_back(std::move(*m.record));
+  }
+  return out;
+}
+
+}  // namespace
+
+std::vector<StudyRecord> make_records(const RecordPlan& plan, int threads) {
+  return in_order(make_each(plan, share_of(plan.count, 0, 1), threads));
+}
+
+std::string make_record_share(const RecordPlan& plan, int rank, int ranks, int threads) {
+  const std::vector<std::size_t> mine = share_of(plan.count, rank, ranks);
+  const std::vector<Made> made = make_each(plan, mine, threads);
+  std::string b;
+  put_u64(b, made.size());
+  for (std::size_t k = 0; k < made.size(); ++k) {
+    put_u64(b, mine[k]);
+    if (made[k].error) {
+      put_error(b, made[k].error);
+    } else {
+      put_u64(b, 0), put_record(b, *made[k].record);
+    }
+  }
+  return b;
+}
+
+std::vector<StudyRecord> join_record_shares(const std::vector<std::string>& shares, std::size_t count) {
+  std::vector<Made> made(count);
+  std::vector<bool> seen(count, false);
+  for (const std::string& s : shares) {
+    Reader in{s};
+    for (std::uint64_t n = in.u64(); n > 0; --n) {
+      const std::uint64_t i = in.u64();
+      if (i >= count || seen[i]) throw std::runtime_error("record share: a record index out of place");
+      seen[i] = true;
+      const std::uint64_t kind = in.u64();
+      if (kind == 0) {
+        made[i].record.emplace(get_record(in));
+      } else {
+        made[i].error = get_error(in, kind);
+      }
+    }
+  }
+  if (std::find(seen.begin(), seen.end(), false) != seen.end())
+    throw std::runtime_error("record share: a record no rank made");
+  return in_order(std::move(made));
+}
+
+std::vector<StudyRecord> load_study_records(const Study& s, StudySelection* selection) {
+  return finish_study_records(s, make_records(plan_study_records(s)), selection);
+}
+
+std::vector<StudyRecord> finish_study_records(const Study& s, std::vector<StudyRecord> out, StudySelection* selection) {
   if (s.select > 0) {
     StudySelection local;
     out = select_study_records(s, std::move(out), selection ? *selection : local);

@@ -546,8 +546,9 @@ void check_replaceable_results(const std::string& out, const std::string& where,
                    where, "give another output path, or rerun with --force to replace them");
 }
 
-// Every rank parses the same text (rank 0 reads the file) and loads the same records. The output is checked
-// and the checkpoint locked (rank 0) before any work: a bad path or a second run on one output stops here.
+// Every rank parses the same text (rank 0 reads the file) and holds the same records (each rank makes a share,
+// the shares are exchanged). The output is checked and the checkpoint locked (rank 0) before any work: a bad path
+// or a second run on one output stops here.
 Inputs load_inputs(const parallel::Session& session, const std::string& study_path, const RunOptions& opt,
                    std::optional<Checkpoint>& ckpt) {
   std::string text;
@@ -568,10 +569,22 @@ Inputs load_inputs(const parallel::Session& session, const std::string& study_pa
     ckpt.emplace(in->out + ".ckpt");
     files::remove_stale_temporaries(in->out);
   });
+  // the records: each rank reads or synthesises its share (records rank, rank + ranks, ...) on its threads, the
+  // shares are exchanged, and every rank joins them into the same records bit for bit (a record that failed is
+  // the first error in record order on every rank)
+  RecordPlan plan;
+  std::string share;
   session.agree([&] {
     inject_fault("load", session.rank());
+    plan = plan_study_records(in->study);
+    share = make_record_share(plan, session.rank(), session.size());
+  });
+  const std::vector<std::string> shares = session.allgather(share);
+  share.clear();
+  session.agree([&] {
     if (in->study.select > 0) in->selection.emplace();
-    in->records = load_study_records(in->study, in->selection ? &*in->selection : nullptr);
+    in->records = finish_study_records(in->study, join_record_shares(shares, plan.count),
+                                       in->selection ? &*in->selection : nullptr);
     if (in->records.empty()) throw InputError("the study resolves to no records", study_path, "check [records]");
     // shear buildings: every sample's highest frequency against the integration step, before any work
     if (session.root()) check_shear_steps(in->study, in->records);

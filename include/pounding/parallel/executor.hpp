@@ -24,6 +24,8 @@ class Session {
   // rank 0's value is sent to every rank
   void broadcast(std::string& s) const;
   void broadcast(int& v) const;
+  // every rank's `mine`, in rank order, on every rank (collective: every rank calls it)
+  std::vector<std::string> allgather(const std::string& mine) const;
   // element-wise maximum over the ranks, on rank 0 (the other ranks' v is left as it was)
   void max_to_root(std::vector<double>& v) const;
   [[noreturn]] void abort(int code) const;

@@ -67,6 +67,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -227,11 +228,29 @@ struct StudyRecord {
 // selection goes to *selection when given (the run log prints it, /selection stores it). Deterministic: every
 // rank computes the same records bit for bit.
 std::vector<StudyRecord> load_study_records(const Study& study, StudySelection* selection = nullptr);
+
+// load_study_records in parts, so that ranks and threads share the reading and synthesis (issue 27 item 3):
+// the records the [records] section names, before selection, are `count` independent makers (make(i) reads or
+// synthesises record i alone), then finish_study_records selects, limits, checks memory and adds polarities.
+struct RecordPlan {
+  std::size_t count = 0;
+  std::function<StudyRecord(std::size_t)> make;
+};
+RecordPlan plan_study_records(const Study& study);
+// make(i) for every i on `threads` threads (0: the CPUs this process may use); the records in order, or the error
+// of the first record (in order) that failed, whichever thread met it.
+std::vector<StudyRecord> make_records(const RecordPlan& plan, int threads = 0);
+// The records i = rank, rank + ranks, ... (each, or the error making it) as bytes for an exchange between ranks;
+// join_record_shares of every rank's share gives make_records' result (records or first error) bit for bit.
+std::string make_record_share(const RecordPlan& plan, int rank, int ranks, int threads = 0);
+std::vector<StudyRecord> join_record_shares(const std::vector<std::string>& shares, std::size_t count);
+std::vector<StudyRecord> finish_study_records(const Study& study, std::vector<StudyRecord> library,
+                                              StudySelection* selection = nullptr);
 // The selection step of load_study_records (src/study/target_spectrum.cpp): `library` is every record the
 // [records] section names.
 std::vector<StudyRecord> select_study_records(const Study& study, std::vector<StudyRecord> library,
                                               StudySelection& selection);
-// The suite part of load_study_records (src/study/suite.cpp).
-std::vector<StudyRecord> load_suite_records(const Study& study);
+// The suite part of plan_study_records (src/study/suite.cpp).
+RecordPlan plan_suite_records(const Study& study);
 
 }  // namespace pounding
