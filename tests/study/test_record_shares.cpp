@@ -66,6 +66,19 @@ TEST(RecordShares, ThreadsAndRanksGiveTheSerialRecordsBitForBit) {
   }
 }
 
+TEST(RecordShares, MultiSupportRecordsTravelWhole) {
+  // a bridge's realisation ([records] supports): every support's motion crosses between ranks with the first
+  const RecordPlan base = builtin_plan(3);
+  const RecordPlan plan{3, [&base](std::size_t i) {
+                          StudyRecord r = base.make(i);
+                          for (std::size_t j = 0; j < i; ++j) r.more_supports.push_back(base.make((i + j + 1) % 3).record);
+                          return r;
+                        }};
+  const std::vector<StudyRecord> serial = make_records(plan, 1);
+  EXPECT_EQ(serial[2].more_supports.size(), 2u);
+  expect_same(join_record_shares({make_record_share(plan, 0, 2), make_record_share(plan, 1, 2)}, plan.count), serial);
+}
+
 TEST(RecordShares, FileRecordsKeepWhatTheReaderFound) {
   // [records] files through the plan: a PEER AT2 file's header (event, station, units) and peak line, and a file
   // scale, survive the exchange between ranks
