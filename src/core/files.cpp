@@ -249,16 +249,29 @@ void write_text_atomically(const std::string& path, std::string_view text) {
   write_atomically(path, std::as_bytes(std::span<const char>(text.data(), text.size())));
 }
 
+namespace {
+// The fix's example for an output given by `where`: that option when it is one (--html, -o), else --out, with a
+// file name of that output's kind.
+std::string output_example(const std::string& where, const std::string& folder) {
+  const bool option = !where.empty() && where[0] == '-' && where.find(' ') == std::string::npos;
+  const std::string name = where == "--html"     ? "report.html"
+                           : where == "--output" ? "study-reference.md"
+                           : where == "-o"       ? "selection.csv"
+                                                 : "results.h5";
+  return (option ? where : std::string("--out")) + " " + folder + name;
+}
+}  // namespace
+
 void check_output_path(const std::string& path, const std::string& where) {
   if (path.empty())
-    throw InputError("the output path is empty", where, "give a file name, e.g. --out results.h5");
+    throw InputError("the output path is empty", where, "give a file name, e.g. " + output_example(where, ""));
   if (path.back() == '/')
     throw InputError(fmt::format("the output path '{}' names a folder, not a file", path), where,
-                     "give a file name, e.g. --out " + path + "results.h5");
+                     "give a file name, e.g. " + output_example(where, path));
   struct stat st {};
   if (::stat(path.c_str(), &st) == 0 && S_ISDIR(st.st_mode))
     throw InputError(fmt::format("the output path '{}' is an existing folder", path), where,
-                     "give a file name inside it, e.g. --out " + path + "/results.h5");
+                     "give a file name inside it, e.g. " + output_example(where, path + "/"));
   check_replaceable(path, where);
   const std::string dir = parent_of(path);
   struct stat ds {};

@@ -90,6 +90,8 @@ expect_error() {  # <what it must say> <command...>
 expect_error "cannot open HDF5 file" "$bin" report "$src/README.md" --html "$tmp/bad1.html"
 [ ! -e "$tmp/bad1.html" ] || fail "a report of a bad input left $tmp/bad1.html"
 expect_error "does not exist" "$bin" report "$tmp/quick.h5" --html "$tmp/no/such/folder.html"
+# a folder given as the page: the fix names --html and an .html file, not --out results.h5
+expect_error "e.g. --html $tmp/report.html" "$bin" report "$tmp/quick.h5" --html "$tmp/"
 mkdir "$tmp/adir"
 expect_error "adir" "$bin" report "$tmp/quick.h5" --html "$tmp/adir"
 expect_error "2 results files" "$bin" report "$tmp/quick.h5" "$tmp/example-pair.h5"
