@@ -21,9 +21,6 @@
 #ifndef POUNDING_FIGURE_PYTHON
 #define POUNDING_FIGURE_PYTHON "/usr/bin/python3"
 #endif
-#ifndef POUNDING_PLOTS_SCRIPT
-#define POUNDING_PLOTS_SCRIPT "tools/pounding_plots.py"
-#endif
 
 namespace pounding {
 
@@ -131,10 +128,21 @@ void read_manifest(const std::string& dir, FigureSet& out) {
 
 }  // namespace
 
+// The plotting module beside this binary: <bindir>/../share/pounding/pounding_plots.py when installed, the copy in
+// <build>/tools/ in the build tree (CMakeLists.txt); no source path is compiled in (installed files name no tree).
+static std::string plots_beside_binary() {
+  std::error_code ec;
+  const std::filesystem::path exe = std::filesystem::read_symlink("/proc/self/exe", ec);
+  const std::filesystem::path dir = ec ? std::filesystem::path(".") : exe.parent_path();
+  const std::filesystem::path installed = (dir / ".." / "share" / "pounding" / "pounding_plots.py").lexically_normal();
+  const std::filesystem::path built = dir / "tools" / "pounding_plots.py";
+  return std::filesystem::exists(built, ec) && !std::filesystem::exists(installed, ec) ? built.string() : installed.string();
+}
+
 FigureOptions default_figure_options() {
   FigureOptions o;
   o.python = POUNDING_FIGURE_PYTHON;
-  o.script = POUNDING_PLOTS_SCRIPT;
+  o.script = plots_beside_binary();
   if (const char* p = std::getenv("POUNDING_PYTHON"); p && *p) o.python = p;
   if (const char* p = std::getenv("POUNDING_PLOTS"); p && *p) o.script = p;
   if (const char* p = std::getenv("POUNDING_FIGURE_TIMEOUT"); p && *p) {

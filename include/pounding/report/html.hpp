@@ -23,8 +23,8 @@ struct FigureOptions {
   double timeout_s = 300;  // for all of one file's figures
   bool enabled = true;     // false: `--no-figures` (the report says they were left out on request)
 };
-// The configure-time interpreter and script; $POUNDING_PYTHON, $POUNDING_PLOTS and $POUNDING_FIGURE_TIMEOUT (s)
-// override them.
+// The configure-time interpreter and the module beside the binary (<bindir>/../share/pounding, or build/tools);
+// $POUNDING_PYTHON, $POUNDING_PLOTS and $POUNDING_FIGURE_TIMEOUT (s) override them.
 FigureOptions default_figure_options();
 
 struct HtmlFigure {
