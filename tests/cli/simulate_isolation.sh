@@ -128,4 +128,51 @@ bad "--isolation1" --moat-gap1 0.1
 bad "--moat-gap1" --isolation1 linear --bearing-keff1 1e7 --moat-e1 0.5
 bad "--moat-law1" --isolation1 linear --bearing-keff1 1e7 --moat-gap1 0.1 --moat-law1 stereomechanical
 bad "--moat-e1" --isolation1 linear --bearing-keff1 1e7 --moat-gap1 0.1 --moat-e1 0
+
+# 5. simulate takes the ranges of the study keys that mean the same (one list, src/config/study_keys.cpp): a value
+#    just outside a key's range in `pounding study-reference` is refused naming the key's range, and a shake-table
+#    model (6.53 kg floors, the impact-stiffness paper's scale; base 10 kg, k_eff 500 N/m) runs as a study would run
+#    it (simulate refused base masses below 1e3 kg and bearings below 1e3 N/m while a study took them).
+"$bin" study-reference > "$tmp/ref.md"
+"$py" - "$tmp/ref.md" > "$tmp/limits.txt" <<'PY'
+import re, sys
+section, rows = None, {}
+for line in open(sys.argv[1]):
+    if line.startswith("## "):
+        section = "isolation" if "isolation = {" in line else "moat" if "moat = {" in line else None
+    elif section and line.startswith("| `"):
+        cells = [c.strip() for c in line.split("|")[1:-1]]
+        m = re.match(r"[\[(]\s*(-?[0-9.e+-]+),\s*(-?[0-9.e+-]+)\s*\]", cells[4])
+        if m: rows[(section, cells[0].strip("`"))] = (float(m.group(1)), float(m.group(2)))
+options = {("isolation", "base_mass"): "--base-mass1", ("isolation", "k_eff"): "--bearing-keff1",
+           ("isolation", "zeta_eff"): "--bearing-zeta1", ("moat", "gap"): "--moat-gap1",
+           ("moat", "stiffness"): "--moat-stiffness1", ("isolation", "k1"): "--bearing-k1-1",
+           ("isolation", "qd"): "--bearing-qd1", ("isolation", "radius"): "--bearing-radius1",
+           ("isolation", "mu_slow"): "--bearing-mu-slow1", ("isolation", "u_y"): "--bearing-uy1"}
+for key, option in options.items():
+    lo, hi = rows[key]
+    print(option, key[1], lo / 2 if lo > 0 else lo - 1, hi * 2)
+PY
+[ "$(wc -l < "$tmp/limits.txt")" -eq 10 ] || fail "study-reference: not every isolation/moat range was found"
+while read -r option key below above; do
+  case $option in
+    --bearing-keff1|--bearing-zeta1|--base-mass1) base=(--isolation1 linear --bearing-keff1 1e7) ;;
+    --moat-gap1|--moat-stiffness1) base=(--isolation1 linear --bearing-keff1 1e7 --moat-gap1 0.1 --moat-law1 linear --moat-stiffness1 1e8) ;;
+    --bearing-k1-1|--bearing-qd1) base=(--isolation1 lead-rubber --bearing-k1-1 1e7 --bearing-k2-1 0 --bearing-qd1 1e5) ;;
+    *) base=(--isolation1 friction-pendulum --bearing-radius1 2 --bearing-mu-slow1 0.05) ;;
+  esac
+  args=(); skip=0  # the base options less the one under test
+  for x in "${base[@]}"; do
+    if [ $skip -eq 1 ]; then skip=0; elif [ "$x" = "$option" ]; then skip=1; else args+=("$x"); fi
+  done
+  for v in $below $above; do
+    bad "$option" "${args[@]}" "$option" "$v"
+    grep -q "as $key in a study" "$tmp/bad.err" || fail "$option $v: the error does not quote $key's range"
+  done
+done < "$tmp/limits.txt"
+sim --storeys1 3 --storeys2 3 --storey-mass1 6.53 --storey-stiffness1 1.375e5 --storey-mass2 6.53 \
+    --storey-stiffness2 1.375e5 --isolation1 linear --base-mass1 10 --bearing-keff1 500 --bearing-zeta1 0.1 \
+    --gap 5 --elastic --json > "$tmp/small.json" || fail "a shake-table isolated building (base 10 kg, 500 N/m) is refused"
+"$py" -c 'import json,sys; o=json.load(open(sys.argv[1])); assert o["status"] == "ok", o["status"]' "$tmp/small.json" \
+  || fail "the shake-table isolated building did not run"
 echo "simulate_isolation: ok"

@@ -17,6 +17,7 @@
 
 #include "cli/commands.hpp"
 #include "cli/commands/bridge_file.hpp"
+#include "pounding/config/study_keys.hpp"
 #include "pounding/contact/registry.hpp"
 #include "cli/commands/restitution_options.hpp"
 #include "pounding/core/error.hpp"
@@ -302,6 +303,18 @@ physics::Bearing bearing_of(const std::string& name) {
   return physics::Bearing::lead_rubber;
 }
 
+// An isolation or moat option checked against the range of the study key that means the same
+// (src/config/study_keys.cpp, sections "isolation" and "moat"): simulate and a study accept the same bearings.
+void require_key_range(double value, std::string_view section, std::string_view key, const std::string& option,
+                       std::string_view note = "") {
+  const config::StudyKey* d = config::find_study_key(section, key);
+  if (d == nullptr || std::isnan(d->lo) || std::isnan(d->hi))
+    throw std::logic_error(fmt::format("study key {}.{} has no numeric range", section, key));
+  require_range(value, d->lo, d->hi, option,
+                fmt::format("{}{}{} ({}as {} in a study's {} = {{...}})", d->range, d->units.empty() ? "" : " ",
+                            d->units, note, key, section));
+}
+
 // Building i's isolation options (issue 25 §2), checked before any work: a bearing named for any of them, its
 // numbers present and physical (SB §2: a massless base is singular; k2 < k1), the moat's gap, law, stiffness and e.
 void validate_isolation(const SimulateOptions& o, int i) {
@@ -322,21 +335,21 @@ void validate_isolation(const SimulateOptions& o, int i) {
   if (s.bw_given && s.bearing != "bouc-wen")
     throw InputError("--bearing-a/beta/gamma/eta describe a Bouc-Wen bearing and --isolation" + k + " is " + s.bearing,
                      "--bearing-beta" + k, "give --isolation" + k + " bouc-wen, or drop those options");
-  if (s.base_mass_given) require_range(s.base_mass, 1e3, 1e10, "--base-mass" + k, "[1e3, 1e10] kg");
+  if (s.base_mass_given) require_key_range(s.base_mass, "isolation", "base_mass", "--base-mass" + k);
   if (s.bearing == "friction-pendulum") {
     if (s.k_eff_given || s.zeta_given || s.lrb_given)
       throw InputError("--bearing-keff/zeta/k1/k2/qd describe other bearings and --isolation" + k + " is friction-pendulum",
                        s.lrb_given ? "--bearing-k1-" + k : "--bearing-keff" + k,
                        "give --bearing-radius" + k + " and --bearing-mu-slow" + k + " (W is the building's weight)");
-    require_range(s.radius, 0.1, 50.0, "--bearing-radius" + k, "[0.1, 50] m (give it; T = 2 pi sqrt(R/g))");
-    require_range(s.mu_slow, 1e-3, 0.5, "--bearing-mu-slow" + k, "[0.001, 0.5] (give it)");
-    if (s.mu_fast_given) require_range(s.mu_fast, 1e-3, 0.5, "--bearing-mu-fast" + k, "[0.001, 0.5]");
-    require_range(s.rate, 0.0, 1e3, "--bearing-rate" + k, "[0, 1000] s/m");
+    require_key_range(s.radius, "isolation", "radius", "--bearing-radius" + k, "required, T = 2 pi sqrt(R/g); ");
+    require_key_range(s.mu_slow, "isolation", "mu_slow", "--bearing-mu-slow" + k, "required; ");
+    if (s.mu_fast_given) require_key_range(s.mu_fast, "isolation", "mu_fast", "--bearing-mu-fast" + k);
+    require_key_range(s.rate, "isolation", "rate", "--bearing-rate" + k);
     if (s.mu_fast_given && s.mu_fast != s.mu_slow && !(s.rate > 0))
       throw InputError("--bearing-mu-fast" + k + " differs from --bearing-mu-slow" + k + " but --bearing-rate" + k +
                            " is 0, so mu(v) would stay mu_slow", "--bearing-rate" + k,
                        "give the rate a of mu(v) = mu_fast - (mu_fast - mu_slow) exp(-a |v|) (s/m, e.g. 20)");
-    require_range(s.uy, 1e-6, 0.02, "--bearing-uy" + k, "[1e-6, 0.02] m (the smoothing's yield displacement)");
+    require_key_range(s.uy, "isolation", "u_y", "--bearing-uy" + k, "the smoothing's yield displacement; ");
   } else if (s.bearing == "linear") {
     if (s.lrb_given)
       throw InputError("--bearing-k1/k2/qd describe a lead-rubber bearing and --isolation" + k + " is linear",
@@ -344,22 +357,22 @@ void validate_isolation(const SimulateOptions& o, int i) {
     if (!s.k_eff_given)
       throw InputError("a linear bearing needs its effective stiffness", "--bearing-keff" + k,
                        "give --bearing-keff" + k + " in N/m (e.g. 4 pi^2 M_total / T_iso^2)");
-    require_range(s.k_eff, 1e3, 1e12, "--bearing-keff" + k, "[1e3, 1e12] N/m");
-    require_range(s.zeta_eff, 0.0, 0.5, "--bearing-zeta" + k, "[0, 0.5]");
+    require_key_range(s.k_eff, "isolation", "k_eff", "--bearing-keff" + k);
+    require_key_range(s.zeta_eff, "isolation", "zeta_eff", "--bearing-zeta" + k);
   } else {
     if (s.k_eff_given || s.zeta_given)
       throw InputError("--bearing-keff/--bearing-zeta describe a linear bearing and --isolation" + k + " is " + s.bearing,
                        s.k_eff_given ? "--bearing-keff" + k : "--bearing-zeta" + k,
                        "give --bearing-k1-" + k + ", --bearing-k2-" + k + " and --bearing-qd" + k);
-    require_range(s.k1, 1e3, 1e12, "--bearing-k1-" + k, "[1e3, 1e12] N/m (give it)");
-    require_range(s.k2, 0.0, 1e12, "--bearing-k2-" + k, "[0, 1e12] N/m");
+    require_key_range(s.k1, "isolation", "k1", "--bearing-k1-" + k, "required; ");
+    require_key_range(s.k2, "isolation", "k2", "--bearing-k2-" + k);
     if (!(s.k2 < s.k1))
       throw InputError(fmt::format("--bearing-k2-{} = {} is not below --bearing-k1-{} = {}", k, s.k2, k, s.k1),
                        "--bearing-k2-" + k, "give the post-yield stiffness k2 < k1 (typically k1 / 10)");
-    require_range(s.qd, 1.0, 1e10, "--bearing-qd" + k, "[1, 1e10] N (give it)");
+    require_key_range(s.qd, "isolation", "qd", "--bearing-qd" + k, "required; ");
     if (s.bearing == "bouc-wen") {
-      require_range(s.bw_a, 0.1, 10.0, "--bearing-a" + k, "[0.1, 10]");
-      require_range(s.bw_beta, 1e-3, 10.0, "--bearing-beta" + k, "[0.001, 10]");
+      require_key_range(s.bw_a, "isolation", "a", "--bearing-a" + k);
+      require_key_range(s.bw_beta, "isolation", "beta", "--bearing-beta" + k);
       if (!(std::abs(s.bw_gamma) <= s.bw_beta))
         throw InputError(fmt::format("--bearing-gamma{} = {} is outside [-beta, beta] = [{}, {}]", k, s.bw_gamma,
                                      -s.bw_beta, s.bw_beta),
@@ -373,15 +386,15 @@ void validate_isolation(const SimulateOptions& o, int i) {
   if (s.moat_options_given && !s.moat_given)
     throw InputError("moat options without a moat", "--moat-gap" + k, "give --moat-gap" + k + " (m)");
   if (!s.moat_given) return;
-  require_range(s.moat_gap, 0.0, 5.0, "--moat-gap" + k, "[0, 5] m");
+  require_key_range(s.moat_gap, "moat", "gap", "--moat-gap" + k);
   const ContactLaw law = parse_contact_law(s.moat_law);
   if (law == ContactLaw::stereomechanical || law == ContactLaw::none)
     throw InputError("--moat-law" + k + " = " + s.moat_law + " cannot act at a moat wall", "--moat-law" + k,
                      "give a force law (linear, kelvin, hertz, hertzdamp, jankowski)");
-  if (s.moat_stiffness_given) require_range(s.moat_stiffness, 1e3, 1e15, "--moat-stiffness" + k, "[1e3, 1e15]");
-  else if (law == ContactLaw::linear || law == ContactLaw::kelvin)
+  if (s.moat_stiffness_given) require_key_range(s.moat_stiffness, "moat", "stiffness", "--moat-stiffness" + k);
+  if (!(s.moat_stiffness > 0) && (law == ContactLaw::linear || law == ContactLaw::kelvin))
     require_positive(0.0, "--moat-stiffness" + k + " (linear/Kelvin stiffness, N/m)");
-  if (s.moat_e_given) require_range(s.moat_e, 0.01, 1.0, "--moat-e" + k, "[0.01, 1]");
+  if (s.moat_e_given) require_key_range(s.moat_e, "moat", "e", "--moat-e" + k);
 }
 
 // The storey options, checked before any work: counts, heights, masses and stiffnesses, and the SDOF options that
@@ -550,7 +563,7 @@ std::vector<ContactModel> set_moats(const SimulateOptions& o, const ContactModel
     moat.law = parse_contact_law(s.moat_law);
     groups.push_back(moat);
     const double m_base = batch.m[static_cast<std::size_t>(sys.bodies()[static_cast<std::size_t>(i)].dofs[0])];
-    const double kc = s.moat_stiffness_given ? s.moat_stiffness
+    const double kc = s.moat_stiffness > 0 ? s.moat_stiffness  // 0 or not given: the default, as in a study
                                              : hertz_stiffness_spheres(m_base, m_base, o.density, o.youngs, o.poisson);
     physics::set_moat(batch, 0, i, s.moat_gap, s.moat_gap, kc, s.moat_e_given ? s.moat_e : o.e);
   }
@@ -988,7 +1001,7 @@ void add_storey_options(CLI::App* c, SimulateOptions& opts) {
     c->add_option("--moat-gap" + k, s.moat_gap, "moat walls left and right of building " + k + "'s base, this far (m)");
     c->add_option("--moat-law" + k, s.moat_law, "contact law at the moat walls (default hertzdamp)");
     c->add_option("--moat-stiffness" + k, s.moat_stiffness,
-                  "moat contact stiffness (N/m^n; default: equivalent-sphere Hertz of two base masses)");
+                  "moat contact stiffness (N/m^n; 0 or not given: equivalent-sphere Hertz of two base masses)");
     c->add_option("--moat-e" + k, s.moat_e, "moat coefficient of restitution (default: --e)");
   }
   add_contact_level_options(c, o);
