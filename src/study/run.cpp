@@ -681,7 +681,9 @@ std::string describe_structure(const StructureModel& m, int i) {
                      b.floor_mass > 0 ? fmt::format("floors of {:g} kg", b.floor_mass) : "the mass split equally over the floors",
                      b.storey_stiffness > 0 ? fmt::format("storeys of {:g} N/m", b.storey_stiffness)
                                             : fmt::format("{} storey stiffnesses scaled to T1", to_string(b.profile)),
-                     yield);
+                     yield) +
+         (b.isolated ? "; isolated: " + b.isolation_text() : std::string()) +
+         (b.moat ? "; moat: " + b.moat_text() : std::string());
 }
 
 void announce(const parallel::Session& session, const Inputs& in, const WorkPlan& L, const RunContext& ctx) {

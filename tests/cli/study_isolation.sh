@@ -3,7 +3,7 @@
 # numbers equal `pounding simulate`'s for the same pair (the link-element paper's BIF20: isolated 3-storey against
 # fixed 5-storey, Hertzdamp three-spring, e = 0.5, 20 cm) -- two independent paths into the system stepper
 # (study/system_block.cpp and cli/commands/simulate.cpp) -- per record and sign, uncoupled and coupled; and with a
-# moat the walls stay active in the uncoupled run (its base peak stays below the moat's gap plus the wall's
+# moat the walls stay active in the uncoupled run (and the run's description names the bearing and the moat) (its base peak stays below the moat's gap plus the wall's
 # penetration), while the pounding's D still decides every gap. Needs ../shared/records/real.
 # Args: <pounding binary> <source dir>
 set -euo pipefail
@@ -56,7 +56,11 @@ PY
 sed 's/^isolation = {bearing = "linear", base_mass = 3.0e5, k_eff = 1.0e6, zeta_eff = 0.0}/&\nmoat = {gap = 0.05, law = "hertzdamp", e = 0.5}/' \
   "$tmp/le.toml" > "$tmp/moat.toml"
 grep -q '^moat = ' "$tmp/moat.toml"
-"$bin" run "$tmp/moat.toml" --out "$tmp/moat.h5" --quiet > /dev/null 2>&1
+"$bin" run "$tmp/moat.toml" --out "$tmp/moat.h5" > "$tmp/moat.log" 2>&1
+# the run says what it models: the bearing and the moat in building1's line, nothing of either in building2's
+grep -q '^building1: shear building, .*; isolated: linear bearing k_eff 1e+06 N/m, zeta_eff 0; base 300000 kg; moat: walls 0.05 m either side of the base; law hertzdamp' "$tmp/moat.log" \
+  || { echo "FAIL: the run does not describe building1's isolation and moat:"; grep '^building' "$tmp/moat.log"; exit 1; }
+! grep '^building2: ' "$tmp/moat.log" | grep -q 'isolated\|moat' || { echo "FAIL: building2 described as isolated"; exit 1; }
 /usr/bin/python3 - "$tmp" <<'PY'
 import sys, h5py, numpy as np
 tmp = sys.argv[1]
