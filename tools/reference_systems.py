@@ -367,6 +367,21 @@ def selftest():
     r = response(noise, "both", 4)
     check("3 storeys under noise: lsim against modal (peaks)", r["lsim"]["peak_u"] + r["lsim"]["peak_abs_acc"],
           r["modal"]["peak_u"] + r["modal"]["peak_abs_acc"], 1e-8)
+    # Q-Hyst: T5.5 of ../shared/research/systems-and-bridges.md (computed there) and the small-loop rules by hand
+    t55 = qhyst_path(QHyst(1e8, 2e5, 0.05), [0.002, 0.006, 0.003, -0.002, -0.004, -0.001, 0, 0.003, 0.006, 0.008])
+    check("Q-Hyst T5.5 defining cycle", t55, [2.0e5, 2.2e5, 46794.92, -2.0e5, -2.1e5, -36794.92, 12540.68, 116270.3,
+                                               2.2e5, 2.3e5], 1e-6)
+    ku = 1e8 * math.sqrt(0.002 / 0.007)  # d_m = 0.007
+    f7 = 2e5 + 5e6 * 0.005
+    u0 = 0.007 - f7 / ku
+    kr = 2e5 / (u0 + 0.002)  # reloading towards (-d_y, -F_y): that side has not yielded
+    want = [2e5 + 5e6 * 0.004, 2.2e5 - 1e8 * math.sqrt(1 / 3) * 0.002, 2.2e5 - 1e8 * math.sqrt(1 / 3) * 0.001, f7,
+            f7 - ku * 0.0035, -kr * (u0 + 0.001), -kr * (u0 + 0.001) + ku * 0.001, -kr * (u0 + 0.0015)]
+    check("Q-Hyst small loops (unloading and reloading lines)",
+          qhyst_path(QHyst(1e8, 2e5, 0.05), [0.006, 0.004, 0.005, 0.007, 0.0035, -0.001, 0.0, -0.0015]), want, 1e-9)
+    hg = HypGap(2.03e7, 2.03e7, 0.7, 3.26e5, 0.0254, 1, (-1, 0))  # T5.4: per metre of wall, gap 2.54 cm
+    check("hyperbolic backfill envelope T5.4", [hg.envelope(x - 0.0254) for x in (0.03, 0.0354, 0.05, 0.1018)],
+          [77783.6603, 141375.774, 240979.978, 358163.900], 1e-8)
     print("selftest:", "FAILED " + ", ".join(bad) if bad else "ok")
     return 1 if bad else 0
 
@@ -732,6 +747,164 @@ def smooth_main(path_in, path_out):
         out.write(f"e_hysteretic {E - q_end * z * z * P.uy / (2 * P.A):.17g}\n")
         out.write(f"final_z {z:.17g}\n")
 
+def _sgn(x):
+    return 1.0 if x >= 0 else -1.0
+
+
+class QHyst:
+    """Q-Hyst (Saiidi & Sozen 1979) written from its rules in ../shared/research/systems-and-bridges.md §5 (not the
+    engine's code): a bilinear primary curve (k0, F_y, alpha k0 after d_y = F_y / k0); unloading from a loading branch
+    at k_u = k0 (d_y / d_m)^beta (d_m = the largest |u| reached in either direction; k0 before yield); once the force
+    crosses zero, reloading on a straight line towards the peak previously reached on the primary curve in the new
+    direction ((±d_y, ±F_y) on a side not yet yielded), then the primary curve; a reversal on the unloading line before
+    the force reaches zero retraces that line back to its reversal point and resumes the branch it left. Every branch is
+    linear in u, so each switch is an event of (u, v): `events()` lists (g(u, v), direction, action) for the current
+    branch and `switch(action, u)` takes it. Used by the ODE (frames) and by `qhyst_path` (a displacement path)."""
+
+    def __init__(self, k0, fy, alpha=0.0, beta=0.5):
+        self.k0, self.fy, self.alpha, self.beta = k0, fy, alpha, beta
+        self.dy = fy / k0
+        self.mode, self.dm, self.s = "virgin", 0.0, 1.0
+        self.peak = {1.0: (self.dy, fy), -1.0: (-self.dy, -fy)}
+        self.line, self.left = None, None
+        self.counts = {}  # switches taken, by kind (reverse_primary, back_reload, ...): what a run exercised
+
+    def backbone(self, u):
+        a = abs(u)
+        return _sgn(u) * (self.k0 * a if a <= self.dy else self.fy + self.alpha * self.k0 * (a - self.dy))
+
+    def ku(self):
+        return self.k0 * (self.dy / max(self.dm, self.dy)) ** self.beta
+
+    def force(self, u):
+        if self.mode in ("virgin", "primary"):
+            return self.backbone(u)
+        if self.mode == "unload":
+            ur, fr, k = self.line
+            return fr + k * (u - ur)
+        u0, ut, ft = self.line  # reload
+        return ft * (u - u0) / (ut - u0)
+
+    def events(self):
+        dy = self.dy
+        if self.mode == "virgin":
+            return [(lambda u, v: u - dy, 1, ("yield", 1.0)), (lambda u, v: -u - dy, 1, ("yield", -1.0))]
+        if self.mode == "primary":
+            s = self.s
+            return [(lambda u, v: s * v, -1, ("reverse",))]
+        if self.mode == "unload":
+            ur, fr, k = self.line
+            s, u0 = -_sgn(fr), ur - fr / k  # s: the direction the force falls in
+            return [(lambda u, v: s * (u - u0), 1, ("zero", s)), (lambda u, v: -s * (u - ur), 1, ("back",))]
+        u0, ut, ft = self.line
+        s = _sgn(ft)
+        return [(lambda u, v: s * (u - ut), 1, ("reach", s)), (lambda u, v: s * v, -1, ("reverse",))]
+
+    def switch(self, action, u):
+        kind = action[0]
+        key = kind + {"reverse": "_" + self.mode, "back": "_" + (self.left or ("",))[0]}.get(kind, "")
+        self.counts[key] = self.counts.get(key, 0) + 1
+        if kind == "yield":
+            self.mode, self.s = "primary", action[1]
+        elif kind == "reverse":
+            f = self.force(u)
+            if self.mode == "primary":
+                self.peak[self.s] = (u, f)
+                self.dm = max(self.dm, abs(u))
+                self.left = ("primary", self.s)
+            else:
+                self.left = ("reload", self.line)
+            self.mode, self.line = "unload", (u, f, self.ku())
+        elif kind == "zero":
+            ur, fr, k = self.line
+            ut, ft = self.peak[action[1]]
+            self.mode, self.line = "reload", (ur - fr / k, ut, ft)
+        elif kind == "back":
+            if self.left[0] == "primary":
+                self.mode, self.s = "primary", self.left[1]
+            else:
+                self.mode, self.line = "reload", self.left[1]
+        elif kind == "reach":
+            self.mode, self.s = "primary", action[1]
+        self.dm = max(self.dm, abs(u))
+
+
+def qhyst_path(q, path, steps=4000):
+    """The force of Q-Hyst q at the end of each leg of a displacement path from 0 (quasi-static): each leg moves
+    monotonically at unit speed; a leg against the previous direction is a velocity reversal; every event of the
+    current branch is located by linear interpolation (the branches are linear in u) and taken there."""
+    u, v, out = 0.0, 0.0, []
+    for target in path:
+        d = _sgn(target - u)
+        if v != 0.0 and d != v:  # the velocity passes through zero: the reversal events fire
+            for g, direction, action in q.events():
+                if direction == -1 and g(u, v) > 0 and g(u, d) <= 0:
+                    q.switch(action, u)
+                    break
+        v = d
+        h = (target - u) / steps
+        while abs(target - u) > 1e-15:
+            nxt = u + h if abs(target - u) > abs(h) else target
+            hit = None
+            for g, direction, action in q.events():
+                a, b = g(u, v), g(nxt, v)
+                if (direction > 0 and a < 0 <= b) or (direction < 0 and a > 0 >= b):
+                    x = u + (nxt - u) * a / (a - b)
+                    if hit is None or d * (x - hit[0]) < 0:
+                        hit = (x, action)
+            if hit is None:
+                u = nxt
+            else:
+                u = hit[0]
+                q.switch(hit[1], u)
+        out.append(q.force(u))
+    return out
+
+class HypGap:
+    """A hyperbolic abutment backfill (OpenSees HyperbolicGapMaterial as ../shared/research/systems-and-bridges.md §5
+    states it; not the engine's code): compression only past the gap, delta = x - gap; envelope
+    F = delta / (1/K_max + R_f delta / F_ult); unloading and reloading on a line of slope K_ur from the largest delta
+    reached (F_max = envelope there), F = max(0, F_max - K_ur (delta_max - delta)): the gap opens by the permanent set,
+    and the envelope is rejoined at delta_max. x = side * d as for GapLink. Switches are events: onto the envelope at
+    delta = delta_max, off it when the closing rate turns negative."""
+
+    def __init__(self, kmax, kur, rf, fult, gap, side, dofs):
+        self.kmax, self.kur, self.rf, self.fult, self.gap, self.side, self.dofs = kmax, kur, rf, fult, gap, side, dofs
+        self.on, self.dmax, self.fmax = False, 0.0, 0.0
+        self.s = gap  # the slack written out: where the unloading line meets F = 0
+
+    def deformation(self, u):
+        i, j = self.dofs
+        return u[j] - (u[i] if i >= 0 else 0.0)
+
+    def envelope(self, delta):
+        return delta / (1.0 / self.kmax + self.rf * delta / self.fult) if delta > 0 else 0.0
+
+    def force(self, u):
+        delta = self.side * self.deformation(u) - self.gap
+        if self.on:
+            return self.envelope(delta)
+        return max(0.0, self.fmax - self.kur * (self.dmax - delta))
+
+    def event(self, t, y, n):
+        u, v = y[:n], y[n:]
+        if self.on:
+            i, j = self.dofs
+            return self.side * (v[j] - (v[i] if i >= 0 else 0.0))
+        return self.side * self.deformation(u) - self.gap - self.dmax
+
+    def direction(self):
+        return -1 if self.on else 1
+
+    def switch(self, y, n):
+        delta = self.side * self.deformation(y[:n]) - self.gap
+        if self.on:
+            self.dmax, self.fmax, self.on = delta, self.envelope(delta), False
+            self.s = self.gap + self.dmax - self.fmax / self.kur
+        else:
+            self.on = True
+
+
 class GapLink:
     """A gap link written from its definition (../shared/research/systems-and-bridges.md §5; not the engine's code):
     x = side * d (d = u_j - u_i; side +1 engages as d grows past the gap, -1 as it falls below minus the gap);
@@ -767,6 +940,9 @@ class GapLink:
             return -1.0
         return self.k * (x - self.s) - self.envelope(x)  # reaches the envelope
 
+    def direction(self):
+        return -1 if self.plastic else 1
+
     def switch(self, y, n):
         x = self.side * self.deformation(y[:n])
         if self.plastic:
@@ -776,13 +952,14 @@ class GapLink:
 
 
 def bridge_main(path_in, path_out):
-    """A chain of elastic SDOF frames (m, k, c) under one ground acceleration, linear contact at the joints
-    (F = kc max(u_k - u_k+1 - gap, 0)), tension-only restrainers with slack and compression-only abutments past their
-    gap, both elastic or yielding (GapLink: F_y, alpha; the slack grows by the plastic elongation), integrated by
-    solve_ivp (RK45, rtol 1e-10, max_step dt/20; the contact kinks resolved by the step limit, each link's switch
-    between its elastic and envelope branches located as an event and the integration restarted there). Writes peak
-    |u| per frame, impacts (closings on the dt/100 grid) and peak force per joint, peak restrainer and abutment forces,
-    each link's peak deformation and final slack."""
+    """A chain of SDOF frames (m, k, c; elastic, or Q-Hyst with "qhyst": {fy, alpha, beta} and k as k0) under one
+    ground acceleration, linear contact at the joints (F = kc max(u_k - u_k+1 - gap, 0)), tension-only restrainers
+    with slack and compression-only abutments past their gap, both elastic or yielding (GapLink: F_y, alpha; the slack
+    grows by the plastic elongation), or hyperbolic abutments ("hyperbolic": {kmax, kur, rf, fult}: HypGap),
+    integrated by solve_ivp (RK45, rtol 1e-10, max_step dt/20; the contact kinks resolved by the step limit, each
+    switch of a link or a Q-Hyst frame between its branches located as an event and the integration restarted there).
+    Writes peak |u| and final u per frame, peak |frame force|, impacts (closings on the dt/100 grid) and peak force per
+    joint, peak restrainer and abutment forces, each link's peak deformation and final slack."""
     from scipy.integrate import solve_ivp
     d = json.load(open(path_in))
     fr, jo = d["frames"], d["joints"]
@@ -795,13 +972,22 @@ def bridge_main(path_in, path_out):
     inf = float("inf")
     rlinks = [GapLink(J["restrainer"]["k"], J["restrainer"].get("fy", inf), J["restrainer"].get("alpha", 0.0),
                       J["restrainer"]["slack"], 1, (j, j + 1)) if J.get("restrainer") else None for j, J in enumerate(jo)]
-    alinks = [GapLink(ab[side]["k"], ab[side].get("fy", inf), ab[side].get("alpha", 0.0), ab[side]["gap"], sgn,
-                      (-1, dof)) if side in ab else None
+    def abutment(a, sgn, dof):
+        if "hyperbolic" in a:
+            h = a["hyperbolic"]
+            return HypGap(h["kmax"], h.get("kur", h["kmax"]), h.get("rf", 0.7), h["fult"], a["gap"], sgn, (-1, dof))
+        return GapLink(a["k"], a.get("fy", inf), a.get("alpha", 0.0), a["gap"], sgn, (-1, dof))
+    alinks = [abutment(ab[side], sgn, dof) if side in ab else None
               for side, sgn, dof in (("left", -1, 0), ("right", 1, n - 1))]
     links = [L for L in rlinks + alinks if L is not None]
+    hyst = [QHyst(f["k"], f["qhyst"]["fy"], f["qhyst"].get("alpha", 0.0), f["qhyst"].get("beta", 0.5))
+            if "qhyst" in f else None for f in fr]
+
+    def frame_forces(u):
+        return np.array([h.force(u[i]) if h else k[i] * u[i] for i, h in enumerate(hyst)])
 
     def forces(u):
-        q = k * u
+        q = frame_forces(u)
         F = np.zeros(n - 1); R = np.zeros(n - 1)
         for j, J in enumerate(jo):
             F[j] = J["kc"] * max(u[j] - u[j + 1] - J["gap"], 0.0)
@@ -822,30 +1008,53 @@ def bridge_main(path_in, path_out):
 
     te = np.linspace(0.0, T, 100 * (len(ag) - 1) + 1)
     rows, t0, y0 = [], 0.0, np.zeros(2 * n)
-    Fs, Rs, As, Ds = [], [], [], []
+    Fs, Rs, As, Ds, Qs = [], [], [], [], []
     while True:
-        events = []
+        events, owners = [], []
         for L in links:
             ev = (lambda L_: (lambda t, y: L_.event(t, y, n)))(L)
-            ev.terminal, ev.direction = True, (-1 if L.plastic else 1)
-            events.append(ev)
+            ev.terminal, ev.direction = True, L.direction()
+            events.append(ev); owners.append((L, None))
+        for i, h in enumerate(hyst):
+            for g, direction, action in (h.events() if h else []):
+                ev = (lambda g_, i_: (lambda t, y: g_(y[i_], y[n + i_])))(g, i)
+                ev.terminal, ev.direction = True, direction
+                events.append(ev); owners.append((h, (i, action)))
         grid = te[(te > t0) & (te <= T)] if rows else te[(te >= t0) & (te <= T)]
         sol = solve_ivp(rhs, (t0, T), y0, method="RK45", rtol=1e-10, atol=1e-13, max_step=dt / 20, t_eval=grid,
                         events=events or None, dense_output=False)
-        for y in sol.y.T:  # forces with the branches of this segment
+        for y in (sol.y.T if len(sol.t) else []):  # forces with the branches of this segment (none: no grid point)
             q, F, R, A = forces(y[:n])
             rows.append(y[:n]); Fs.append(F); Rs.append(R); As.append(A)
             Ds.append([L.side * L.deformation(y[:n]) for L in links])
+            Qs.append(frame_forces(y[:n]))
         hit = [i for i, te_ in enumerate(sol.t_events or []) if len(te_)]
         if sol.status != 1 or not hit:
             break
         i = hit[0]
         t0, y0 = sol.t_events[i][0], sol.y_events[i][0].copy()
-        links[i].switch(y0, n)
-    U = np.array(rows); Fs = np.array(Fs); Rs = np.array(Rs); As = np.array(As); Ds = np.array(Ds)
+        # solve_ivp stops at the first terminal event: another owner's event at the same instant (a frame's velocity
+        # reversal is its abutment's turn off the envelope) has its g at zero to rounding and would never fire after
+        # the restart; take every such event with the first (one per owner)
+        switched = set()
+        for k_, ev in enumerate(events):
+            owner, tag = owners[k_]
+            g = ev(t0, y0)
+            if id(owner) in switched or not (k_ == i or (g >= -1e-9 if ev.direction > 0 else g <= 1e-9)):
+                continue
+            switched.add(id(owner))
+            if tag is None:
+                owner.switch(y0, n)
+            else:
+                owner.switch(tag[1], y0[tag[0]])
+    U = np.array(rows); Fs = np.array(Fs); Rs = np.array(Rs); As = np.array(As); Ds = np.array(Ds); Qs = np.array(Qs)
     with open(path_out, "w") as out:
         for i in range(n):
             out.write(f"peak_u {i} {np.max(np.abs(U[:, i])):.17g}\n")
+            out.write(f"final_u {i} {U[-1, i]:.17g}\n")
+            out.write(f"peak_frame_force {i} {np.max(np.abs(Qs[:, i])):.17g}\n")
+            for key, count in sorted(hyst[i].counts.items() if hyst[i] else []):
+                out.write(f"qhyst_{key} {i} {count}\n")
         for j in range(n - 1):
             on = Fs[:, j] > 0
             out.write(f"impacts {j} {int(np.sum(on[1:] & ~on[:-1]))}\n")
