@@ -14,7 +14,7 @@
 set -euo pipefail
 bin=$1; src=$2
 study=$src/tests/data/bridge/study-four-frame.toml
-. "$src/tests/lib/study_invariance.sh"  # $tmp, cmp, study_invariance
+. "$src/tests/lib/study_invariance.sh"  # $tmp, cmp, study_invariance, bad_run
 py=/usr/bin/python3
 fail() { echo "FAIL: $*"; exit 1; }
 
@@ -125,31 +125,23 @@ done
 ! grep -q "h1 + h2\|building 1 moves" "$tmp/rep.md" || fail "the report speaks of buildings: $(grep -m2 'h1 + h2\|building 1 moves' "$tmp/rep.md")"
 
 # 6. bad input: one ERROR naming file:line and the key, exit 2, nothing written
-bad() {
-  local want=$1 file=$2
-  set +e; (cd "$tmp" && "$bin" run "$file" --out bad.h5 > bad.out 2> bad.err); local rc=$?; set -e
-  [ $rc -eq 2 ] || fail "$file: exit $rc, want 2: $(cat "$tmp/bad.err")"
-  [ ! -e "$tmp/bad.h5" ] || fail "$file: wrote results"
-  grep -q "ERROR: .*$want" "$tmp/bad.err" || fail "$file: the error does not name $want: $(cat "$tmp/bad.err")"
-  [ "$(grep -c ERROR "$tmp/bad.err")" -eq 1 ] || fail "$file: more than one ERROR line: $(cat "$tmp/bad.err")"
-}
 printf '[structures]\nzeta = 0.05\n' | cat "$study" - > "$tmp/b1.toml"
-bad "takes its frames from \[bridge\].*b1.toml:[0-9]* structures" b1.toml
+bad_run "takes its frames from \[bridge\].*b1.toml:[0-9]* structures" b1.toml
 sed 's/, slack = 0.0127 }/ }/' "$study" > "$tmp/b2.toml"
-bad "restrainer in a study has no slack.*b2.toml:[0-9]* \[bridge.joint1.restrainer\].slack" b2.toml
+bad_run "restrainer in a study has no slack.*b2.toml:[0-9]* \[bridge.joint1.restrainer\].slack" b2.toml
 sed '0,/^gap = 0.0127/s//gap = 0.0/' "$study" > "$tmp/b3.toml"
-bad "gap is 0 in a study.*\[bridge.joint1\].gap" b3.toml
+bad_run "gap is 0 in a study.*\[bridge.joint1\].gap" b3.toml
 sed 's/^period = 1.12/period = 1.12\nspan = 40.0/' "$study" > "$tmp/b4.toml"
-bad "unknown.*span.*\[bridge.frame2\]" b4.toml
+bad_run "unknown.*span.*\[bridge.frame2\]" b4.toml
 sed 's/^mass = 3.21145e6/mass = -3.2e6/' "$study" > "$tmp/b5.toml"
-bad "mass = -3200000 is out of range.*b5.toml:[0-9]* \[bridge.frame2\].mass" b5.toml
+bad_run "mass = -3200000 is out of range.*b5.toml:[0-9]* \[bridge.frame2\].mass" b5.toml
 sed 's/^\[bridge\]$/[bridge]\nsamples = 4/' "$study" > "$tmp/b6.toml"
-bad "nothing is sampled.*\[bridge\].samples" b6.toml
+bad_run "nothing is sampled.*\[bridge\].samples" b6.toml
 sed 's/^law = "hertzdamp"/law = "hertzdamp"\ngap_offsets = [0.01]/' "$study" > "$tmp/b7.toml"
-bad "gap_offsets is given, and the study is a bridge.*\[contact\].gap_offsets" b7.toml
+bad_run "gap_offsets is given, and the study is a bridge.*\[contact\].gap_offsets" b7.toml
 sed 's/^stiffness = 2.0e9/n = 1.5/' "$study" > "$tmp/b8.toml"
-bad "no contact_stiffness and \[contact\] stiffness is not given.*\[bridge.joint1\].contact_stiffness" b8.toml
+bad_run "no contact_stiffness and \[contact\] stiffness is not given.*\[bridge.joint1\].contact_stiffness" b8.toml
 sed '0,/^\[\[bridge.joint\]\]/s//[[bridge.joint]]\ngap = 0.0127\n[[bridge.joint]]/' "$study" > "$tmp/b9.toml"
-bad "4 frames need 3 joints" b9.toml
+bad_run "4 frames need 3 joints" b9.toml
 
 echo "bridge studies: invariance, first passage per joint, simulate agreement, sampled frames, report, bad input"

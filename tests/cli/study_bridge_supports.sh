@@ -11,7 +11,7 @@
 # Generates its motions (no ../shared needed). Args: <pounding binary> <source dir>
 set -euo pipefail
 bin=$1; src=$2
-. "$src/tests/lib/study_invariance.sh"  # $tmp, cmp, study_invariance
+. "$src/tests/lib/study_invariance.sh"  # $tmp, cmp, study_invariance, bad_run
 py=/usr/bin/python3
 "$py" -c 'import numpy, scipy, h5py' 2>/dev/null || { echo "skip: needs $py with numpy, scipy, h5py"; exit 77; }
 fail() { echo "FAIL: $*"; exit 1; }
@@ -109,23 +109,15 @@ assert (s["uncoupled/peak_closing"][()] > 0.05).all(), s["uncoupled/peak_closing
 PY
 
 # 5. bad input
-bad() {
-  local want=$1 file=$2
-  set +e; (cd "$tmp" && "$bin" run "$file" --out bad.h5 > bad.out 2> bad.err); local rc=$?; set -e
-  [ $rc -eq 2 ] || fail "$file: exit $rc, want 2: $(cat "$tmp/bad.err")"
-  [ ! -e "$tmp/bad.h5" ] || fail "$file: wrote results"
-  grep -q "ERROR: .*$want" "$tmp/bad.err" || fail "$file: the error does not name $want: $(cat "$tmp/bad.err")"
-  [ "$(grep -c ERROR "$tmp/bad.err")" -eq 1 ] || fail "$file: more than one ERROR line: $(cat "$tmp/bad.err")"
-}
 sed '/^supports = 2$/d' "$study" > "$tmp/b1.toml"
-bad "stands on 2 supports.*\[records\].supports" b1.toml
+bad_run "stands on 2 supports.*\[records\].supports" b1.toml
 sed 's/^directory = "m"/suite = "builtin"/' "$study" > "$tmp/b2.toml"
-bad "names no directory.*b2.toml:[0-9]* \[records\].supports" b2.toml
+bad_run "names no directory.*b2.toml:[0-9]* \[records\].supports" b2.toml
 printf 'seed = 1\n[records]\ndirectory = "m"\nsupports = 2\n' > "$tmp/b3.toml"
-bad "has no \[bridge\].*\[records\].supports" b3.toml
+bad_run "has no \[bridge\].*\[records\].supports" b3.toml
 mkdir -p "$tmp/gap" && cp "$tmp"/m/r00[12]_s0[12].AT2 "$tmp/gap/" && rm "$tmp/gap/r002_s02.AT2"
 sed 's/^directory = "m"/directory = "gap"/' "$study" > "$tmp/b4.toml"
-bad "realisation r002 .* has 1 of the 2 support files.*\[records\].supports" b4.toml
+bad_run "realisation r002 .* has 1 of the 2 support files.*\[records\].supports" b4.toml
 sed 's/^supports = 2/supports = 1/' "$study" > "$tmp/b5.toml"
-bad "supports = 1 is out of range.*\[records\].supports" b5.toml
+bad_run "supports = 1 is out of range.*\[records\].supports" b5.toml
 echo "multi-support bridge studies: invariance, simulate agreement, SciPy reference, uniform input, bad input"

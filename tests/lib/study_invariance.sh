@@ -2,6 +2,8 @@
 # every study of a system must pass, given $bin, $src and $study:
 #   r0.h5 (one process), r1.h5 (mpirun -np 1), r2.h5 (mpirun -np 2) bit-identical; narrow.h5 (batch = 1) and
 #   full.h5 (skip_untouched = false) equal to r0.h5 but for the settings they change. Leaves them in $tmp.
+# bad_run <want> <file>: `pounding run FILE` in $tmp (FILE relative to it) must exit 2 with exactly one ERROR line
+# matching "ERROR: .*<want>" and write no results (needs the script's fail "<what>").
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMPI_MCA_rmaps_base_oversubscribe=1
 tmp=$(mktemp -d); trap 'rm -rf "$tmp"' EXIT
 cmp() { /usr/bin/python3 "$src/tests/cli/compare_results.py" "$@"; }
@@ -24,4 +26,13 @@ study_invariance() {
   with_analysis 'skip_untouched = false' "$study" "$tmp/full.toml"
   "$bin" run "$tmp/full.toml" --out "$tmp/full.h5" --quiet > /dev/null 2>&1
   cmp "$tmp/r0.h5" "$tmp/full.h5" --ignore=study_text,skip_untouched,output,scene_reason
+}
+
+bad_run() {
+  local want=$1 file=$2
+  set +e; (cd "$tmp" && "$bin" run "$file" --out bad.h5 > bad.out 2> bad.err); local rc=$?; set -e
+  [ $rc -eq 2 ] || fail "$file: exit $rc, want 2: $(cat "$tmp/bad.err")"
+  [ ! -e "$tmp/bad.h5" ] || fail "$file: wrote results"
+  grep -q "ERROR: .*$want" "$tmp/bad.err" || fail "$file: the error does not name $want: $(cat "$tmp/bad.err")"
+  [ "$(grep -c ERROR "$tmp/bad.err")" -eq 1 ] || fail "$file: more than one ERROR line: $(cat "$tmp/bad.err")"
 }
