@@ -6,7 +6,7 @@ here=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 cd "$here"
 
 packages=(g++ make cmake pkg-config git
-          libeigen3-dev libopenmpi-dev openmpi-bin libhdf5-dev libboost-random-dev libgtest-dev
+          libeigen3-dev libopenmpi-dev openmpi-bin libhdf5-dev zlib1g-dev libboost-random-dev libgtest-dev
           libcli11-dev libtomlplusplus-dev libfmt-dev libbenchmark-dev
           python3 python3-numpy python3-scipy python3-matplotlib python3-h5py python3-pandas python3-pytest
           python3-dev pybind11-dev

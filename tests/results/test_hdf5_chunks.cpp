@@ -1,0 +1,131 @@
+// The results file's compressed datasets (src/io/hdf5.cpp write_chunks_deflated): the chunks are deflated on
+// every CPU and handed to HDF5 with H5Dwrite_chunk. Checked against HDF5 itself, which the engine did not write:
+//  - every stored chunk is byte for byte the chunk HDF5's own deflate filter stores when H5Dwrite gets the same
+//    values through the same dataset creation properties (so any reader, h5py included, decompresses it);
+//  - the values read back through HDF5 equal the values written, for 1-D and 2-D datasets of every numeric type,
+//    at the sizes around the compression threshold (4096 values) and the chunk length (65536 rows), with a
+//    partial last chunk;
+//  - the dataset declares the deflate filter, so the chunks are not raw bytes by accident.
+#include <hdf5.h>
+
+#include <gtest/gtest.h>
+
+#include <cstdint>
+#include <numeric>
+#include <string>
+#include <vector>
+
+#include "pounding/io/hdf5.hpp"
+#include "temp_dir.hpp"
+
+namespace {
+
+using namespace pounding;
+
+template <class T>
+std::vector<T> ramp(std::size_t n) {  // compressible but not constant: a slow ramp with a wobble
+  std::vector<T> v(n);
+  for (std::size_t i = 0; i < n; ++i) v[i] = static_cast<T>((i / 7) % 251 + (i % 3));
+  return v;
+}
+
+template <class T>
+hid_t native_type();
+template <>
+hid_t native_type<double>() { return H5T_NATIVE_DOUBLE; }
+template <>
+hid_t native_type<std::int64_t>() { return H5T_NATIVE_INT64; }
+template <>
+hid_t native_type<std::int32_t>() { return H5T_NATIVE_INT32; }
+template <>
+hid_t native_type<std::uint8_t>() { return H5T_NATIVE_UINT8; }
+
+// The stored (filtered) bytes of every chunk of dataset name, in chunk order.
+std::vector<std::vector<unsigned char>> stored_chunks(hid_t file, const std::string& name) {
+  h5::Handle ds(H5Dopen2(file, name.c_str(), H5P_DEFAULT));
+  h5::Handle space(H5Dget_space(ds.get()));
+  hsize_t count = 0;
+  EXPECT_GE(H5Dget_num_chunks(ds.get(), space.get(), &count), 0);
+  std::vector<std::vector<unsigned char>> out;
+  for (hsize_t c = 0; c < count; ++c) {
+    std::vector<hsize_t> offset(static_cast<std::size_t>(H5Sget_simple_extent_ndims(space.get())));
+    unsigned mask = 0;
+    haddr_t addr = 0;
+    hsize_t size = 0;
+    EXPECT_GE(H5Dget_chunk_info(ds.get(), space.get(), c, offset.data(), &mask, &addr, &size), 0);
+    std::vector<unsigned char> bytes(size);
+    std::uint32_t filters = 0;
+    EXPECT_GE(H5Dread_chunk(ds.get(), H5P_DEFAULT, offset.data(), &filters, bytes.data()), 0);
+    EXPECT_EQ(filters, 0u) << name << " chunk " << c << ": a filter was skipped";
+    out.push_back(std::move(bytes));
+  }
+  return out;
+}
+
+template <class T>
+void check_shape(std::vector<std::size_t> dims) {
+  std::size_t total = 1;
+  for (std::size_t d : dims) total *= d;
+  const std::vector<T> values = ramp<T>(total);
+  testdata::TempDir tmp("hdf5-chunks");
+  const std::string path = tmp.file("chunks.h5");
+  const std::string label = std::to_string(total) + " values of " + std::to_string(sizeof(T)) + " bytes";
+  {
+    h5::AtomicFile f(path);
+    h5::write_dataset(f.root(), "engine", std::span<const T>(values), std::span<const std::size_t>(dims));
+    // the reference: the same creation properties, the values through HDF5's own filter pipeline
+    h5::Handle engine(H5Dopen2(f.root(), "engine", H5P_DEFAULT));
+    h5::Handle dcpl(H5Dget_create_plist(engine.get()));
+    h5::Handle space(H5Dget_space(engine.get()));
+    h5::Handle ref(H5Dcreate2(f.root(), "reference", native_type<T>(), space.get(), H5P_DEFAULT, dcpl.get(), H5P_DEFAULT));
+    ASSERT_GE(ref.get(), 0);
+    if (total > 0) {
+      ASSERT_GE(H5Dwrite(ref.get(), native_type<T>(), H5S_ALL, H5S_ALL, H5P_DEFAULT, values.data()), 0);
+    }
+    f.commit();
+  }
+  h5::Handle file = h5::open_read(path);
+  std::vector<T> back(total);
+  {
+    h5::Handle ds(H5Dopen2(file.get(), "engine", H5P_DEFAULT));
+    if (total > 0) {
+      ASSERT_GE(H5Dread(ds.get(), native_type<T>(), H5S_ALL, H5S_ALL, H5P_DEFAULT, back.data()), 0);
+    }
+    EXPECT_EQ(back, values) << label << ": the values read back differ";
+    h5::Handle dcpl(H5Dget_create_plist(ds.get()));
+    const bool chunked = H5Pget_layout(dcpl.get()) == H5D_CHUNKED;
+    EXPECT_EQ(chunked, total >= 4096) << label << ": compressed from 4096 values on";
+    if (!chunked) return;
+    bool deflate = false;
+    for (int k = 0; k < H5Pget_nfilters(dcpl.get()); ++k) {
+      unsigned flags = 0, config = 0;
+      std::size_t n = 0;
+      deflate |= H5Pget_filter2(dcpl.get(), static_cast<unsigned>(k), &flags, &n, nullptr, 0, nullptr, &config) ==
+                 H5Z_FILTER_DEFLATE;
+    }
+    EXPECT_TRUE(deflate) << label << ": no deflate filter declared";
+  }
+  const auto ours = stored_chunks(file.get(), "engine"), theirs = stored_chunks(file.get(), "reference");
+  ASSERT_EQ(ours.size(), theirs.size()) << label;
+  EXPECT_GE(ours.size(), total > 65536 && dims.size() == 1 ? 2u : 1u) << label << ": one chunk only";
+  for (std::size_t c = 0; c < ours.size(); ++c)
+    EXPECT_EQ(ours[c], theirs[c]) << label << ": chunk " << c << " differs from HDF5's own deflate filter's";
+}
+
+TEST(Hdf5Chunks, OneDimensionalAroundTheThresholdAndTheChunkLength) {
+  for (std::size_t n : {0u, 1u, 4095u, 4096u, 65536u, 65537u, 200003u}) {
+    check_shape<double>({n});
+    check_shape<std::int64_t>({n});
+    check_shape<std::int32_t>({n});
+    check_shape<std::uint8_t>({n});
+  }
+}
+
+TEST(Hdf5Chunks, TwoDimensionalWithAPartialLastChunk) {
+  check_shape<double>({70001, 3});
+  check_shape<std::uint8_t>({131075, 7});
+  check_shape<std::int32_t>({5, 1000});
+  check_shape<std::uint8_t>({1100, 4000});  // > 4 Mi values: chunks of 1048 rows, the last one partial
+}
+
+}  // namespace
