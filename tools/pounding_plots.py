@@ -594,6 +594,89 @@ def plot_periods(f, ratio=0.3):
     return fig
 
 
+def is_bridge(f):
+    return "settings/bridge" in f and "uncoupled/peak_closing_elements" in f and "system/element_label" in f
+
+
+def joint_names(f):
+    """ "joint 1 (F1|F2)": each joint's label with the frames either side (from /system)."""
+    sysg = f["system"]
+    labels = [text(x) for x in sysg["element_label"][()]]
+    blab = [text(x) for x in sysg["building_label"][()]]
+    dof_b = sysg["dof_building"][()]
+    names = []
+    for e, lab in enumerate(labels):
+        sides = []
+        for k in ("element_left_dof", "element_right_dof"):
+            dof = int(sysg[k][e])
+            sides.append(blab[dof_b[dof]] if 0 <= dof < len(dof_b) else "wall")
+        names.append(f"{lab} ({sides[0]}|{sides[1]})")
+    return names
+
+
+def plot_bridge_joints(f, source=""):
+    """A bridge study: the probability that each joint pounds versus its gap in metres -- the share of analyses
+    whose uncoupled closing at that joint exceeds the gap (first passage: exact for a joint alone, as the study's
+    own criterion is for the bridge) -- with the coupled runs' observed share at the study's gaps (the impacts
+    scene, Wilson 95 % intervals), any joint at the study's joint gaps (reference gap + each joint's offset), and the
+    report's targets."""
+    el = f["uncoupled/peak_closing_elements"][()]  # [records, models, joints]
+    R, M, J = el.shape
+    ok = f["uncoupled/status"][()].reshape(R, M) == 0
+    names = joint_names(f)
+    offsets = np.asarray(f["settings/bridge"].attrs.get("joint_gap_offsets", np.zeros(J)), float).reshape(-1)
+    if offsets.size != J:
+        offsets = np.zeros(J)
+    closing = el[ok]  # [analyses, joints]
+    n = closing.shape[0]
+    if n == 0:
+        raise SystemExit(f"{source}: no valid analysis (all {R * M} excluded); nothing to plot")
+    top = float(np.nanmax(closing)) if np.isfinite(closing).any() else 0.0
+    ratios = f["impacts/gap_ratios"][()] if "impacts/gap_ratios" in f else np.array([])
+    d = f["models/code_gap"][()]
+    dref = float(d[0]) if d.size else float(f["settings/bridge"].attrs.get("reference_gap", 0.0))
+    top = max(top, float(np.max(ratios) * dref + offsets.max()) if ratios.size else 0.0)
+    x = np.linspace(0.0, 1.05 * max(top, 1e-6), 400)
+    fig, ax = plt.subplots(figsize=(8, 4.6))
+    for j in range(J):
+        c = np.sort(closing[:, j][np.isfinite(closing[:, j])])
+        p = 100.0 * (n - np.searchsorted(c, x, side="right")) / n
+        ax.plot(x, p, color=f"C{j}", lw=2, label=f"{names[j]}: uncoupled closing > gap", gid=f"joint-{j + 1}")
+    D = np.max(closing - offsets[None, :], axis=1)
+    Ds = np.sort(D)
+    ax.plot(x, 100.0 * (n - np.searchsorted(Ds, x, side="right")) / n, color="k", lw=1.2, ls="--",
+            label="any joint, joints at reference gap + offset", gid="any-joint")
+    if "impacts/element_impact_count" in f and ratios.size:
+        cnt = f["impacts/element_impact_count"][()]  # [records, models, gaps, joints]
+        st = f["impacts/status"][()].reshape(R, M, len(ratios)) == 0
+        for j in range(J):
+            for g, r in enumerate(ratios):
+                okg = st[:, :, g]
+                m = int(okg.sum())
+                if m == 0:
+                    continue
+                k = int((cnt[:, :, g, j][okg] > 0).sum())
+                lo, hi = wilson(k, m)
+                gap = r * dref + offsets[j]
+                ax.errorbar([gap], [100.0 * k / m], yerr=[[100 * (k / m - lo)], [100 * (hi - k / m)]],
+                            fmt="osD^v<>p"[j % 8], mfc="none", color=f"C{j}", ms=5, capsize=2, gid=f"coupled-{j + 1}",
+                            label=f"{names[j]}: coupled runs, at least one impact" if g == 0 else None)
+    rep = f["settings/report"].attrs if "settings/report" in f else {}
+    for t in np.atleast_1d(rep.get("targets", [])):
+        ax.axhline(float(t), color="0.5", lw=0.8, ls=":", label=f"target {float(t):g} %")
+    ax.set_xlim(0.0, x[-1])
+    ax.set_ylim(-2, 102)
+    ax.set_xlabel("joint gap (m)")
+    ax.set_ylabel("probability of pounding at the joint (%)")
+    sup = f["settings/records"].attrs.get("supports", 0) if "settings/records" in f else 0
+    inp = f"{int(sup)} supports, spatially varying input" if int(sup) > 1 else "uniform input"
+    ax.set_title(wrap_title(f"{text(f.attrs.get('title', ''))} ({inp}; n = {n} analyses)", fig, 0.62), fontsize=10)
+    ax.grid(alpha=0.3)
+    ax.legend(fontsize=7, loc="upper left", bbox_to_anchor=(1.01, 1.0), borderaxespad=0.0)
+    fig.tight_layout()
+    return fig
+
+
 def is_pair(f):
     st = f["settings/structures"].attrs if "settings/structures" in f else {}
     return int(st.get("heights_specified", 0)) == 1
@@ -616,6 +699,9 @@ def main_study(argv=None, doc=""):
     if is_pair(f):
         rows = report_rows(find_pounding(a.pounding), a.results)
         print(*save(plot_pair(f, rows, a.results), prefix + "-separation", a.format))
+        return
+    if is_bridge(f):
+        print(*save(plot_bridge_joints(f, a.results), prefix + "-joints", a.format))
         return
     written = save(plot_probability(f, a.fit_min, a.fit_max, a.results), prefix + "-probability", a.format)
     written += save(plot_periods(f, a.ratio), prefix + "-periods", a.format)
@@ -829,6 +915,11 @@ def figure_plan(f, path, report_csv):
         plan.append(("separation", "Probability of at least one impact versus separation in metres, with the "
                      "bootstrap band over records and models, the code rules (legend) and the advised separation "
                      "at each target.", pair))
+    elif is_bridge(f):
+        plan.append(("joints", "Probability of pounding at each joint versus its gap in metres: the share of "
+                     "analyses whose uncoupled closing at the joint exceeds the gap, the coupled runs' share with at "
+                     "least one impact at the study's gaps (Wilson 95 % intervals), any joint at the study's joint "
+                     "gaps, and the report's targets.", lambda: plot_bridge_joints(f, path)))
     elif "uncoupled" in f:
         plan.append(("probability", "Probability of at least one impact versus the gap ratio x = g / d, with Wilson "
                      "intervals and the cubic fit.", lambda: plot_probability(f, source=path)))

@@ -8,7 +8,7 @@
 #  3. the study's lanes are `pounding simulate --bridge` runs: the per-joint closing (law none) and the coupled
 #     per-joint impact counts and peak forces of one record equal simulate's for the same bridge file and record;
 #  4. sampled frames (period_cov): periods drawn per model, reproducible, k = m (2 pi / T)^2;
-#  5. the report names the frames and joints;
+#  5. the report names the frames and joints; the figure is the per-joint probability of pounding versus the gap;
 #  6. bad input: one ERROR naming file:line and the key, exit 2, nothing written.
 # Synthetic records only (no ../shared needed). Args: <pounding binary> <source dir>
 set -euo pipefail
@@ -123,6 +123,47 @@ for want in "joint 1 (F1|F2)" "joint 3 (F3|F4)" "d = 0.0127 m"; do
   grep -qF "$want" "$tmp/rep.md" || fail "the report does not say '$want'"
 done
 ! grep -q "h1 + h2\|building 1 moves" "$tmp/rep.md" || fail "the report speaks of buildings: $(grep -m2 'h1 + h2\|building 1 moves' "$tmp/rep.md")"
+
+# 5b. the figure (tools/pounding_plots.py, the HTML report's figure_plan and plot_study.py): a bridge gets the
+# per-joint probability of pounding versus the joint gap in metres, not the pair's gap-ratio curve and T1 x T2 map;
+# each joint's curve is the share of analyses whose uncoupled closing there exceeds the gap, each coupled marker the
+# share with at least one impact at that joint (both recomputed here from the file)
+if "$py" -c 'import matplotlib' 2> /dev/null; then
+  "$py" - "$src/tools" "$tmp/r0.h5" <<'PY' || fail "the bridge figure"
+import sys
+sys.path.insert(0, sys.argv[1])
+import h5py, numpy as np
+import pounding_plots as pp
+f = h5py.File(sys.argv[2], "r")
+plan = [name for name, caption, draw in pp.figure_plan(f, sys.argv[2], None)]
+assert plan == ["joints"], plan
+fig = pp.plot_bridge_joints(f)
+el = f["uncoupled/peak_closing_elements"][()]
+R, M, J = el.shape
+ok = f["uncoupled/status"][()].reshape(R, M) == 0
+lines = {}
+for line in fig.axes[0].get_lines():
+    lines.setdefault(line.get_gid(), []).append(line)
+for j in range(J):
+    (curve,) = lines[f"joint-{j + 1}"]
+    x, p = curve.get_xdata(), curve.get_ydata()
+    for i in range(0, len(x), 7):
+        want = 100.0 * np.mean(el[:, :, j][ok] > x[i])
+        assert abs(p[i] - want) < 1e-9, (j, x[i], p[i], want)
+    assert p[0] > 0 and p[-1] == 0, (j, p[0], p[-1])  # from the closings' start to past the largest
+ratios, d = f["impacts/gap_ratios"][()], f["models/code_gap"][0]
+offsets = f["settings/bridge"].attrs["joint_gap_offsets"]
+cnt, st = f["impacts/element_impact_count"][()], f["impacts/status"][()] == 0
+for j in range(J):
+    pts = sorted((float(l.get_xdata()[0]), float(l.get_ydata()[0])) for l in lines[f"coupled-{j + 1}"]
+                 if l.get_marker() not in ("None", "", None, "_"))
+    want = sorted((r * d + offsets[j], 100.0 * np.mean(cnt[:, :, g, j][st[:, :, g]] > 0)) for g, r in enumerate(ratios))
+    assert np.allclose(pts, want, rtol=1e-12, atol=1e-12), (j, pts, want)
+print("bridge figure: joints", J, "gaps", len(ratios))
+PY
+else
+  case "${CI:-}" in "" | 0 | false | no) echo "skipped the figure check: no matplotlib" ;; *) fail "no matplotlib (CI)" ;; esac
+fi
 
 # 6. bad input: one ERROR naming file:line and the key, exit 2, nothing written
 printf '[structures]\nzeta = 0.05\n' | cat "$study" - > "$tmp/b1.toml"
