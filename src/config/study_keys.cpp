@@ -43,6 +43,13 @@ constexpr StudySection sections[] = {
     {"distribution.uniform", "uniform = {min, max}", "X uniform on [min, max], min <= max."},
     {"gaps", "[gaps]", "The gaps analysed, as ratios of the code separation d = code_gap_coefficient (h1 + h2)."},
     {"contact", "[contact]", "The contact element between the buildings."},
+    {"contact.restitution", "[contact] restitution = {...}",
+     "A velocity-dependent coefficient of restitution e(v0) (issue 26 §3; contact/restitution.hpp): each impact of "
+     "the coupled runs takes e at its latched approach velocity v0, clamped to [0.01, 1], through the Hertzdamp "
+     "damping law's xibar (the same curve as collide/simulate --restitution-*). SDOF pairs with law = \"hertzdamp\", "
+     "the central-difference stepper and the impacts scene; exclusive with [contact] e. Impacts whose v0 lies outside "
+     "the valid range are counted per analysis (impacts/restitution_outside) and reported. Give one of preset, "
+     "polynomial, table; [contact] restitution = \"lindsay2011\" is short for {preset = \"lindsay2011\"}."},
     {"analysis", "[analysis]", "Time integration and the treatment of analyses that fail."},
     {"report", "[report]", "What the report derives from the results."},
     {"outputs", "[outputs]", "What the impacts scene must deliver (scene = \"auto\" reads it)."},
@@ -478,6 +485,19 @@ constexpr StudyKey keys[] = {
      "Smallest approach velocity used to set the contact damping.", 1e-12, 1.0},
     {"contact", "stiffness", "number", "0 (Hertz family: equivalent spheres)", "N/m^n (N/m for linear, kelvin)",
      "(0, 1e20]", "Contact stiffness; required for linear and kelvin.", 0.0, 1e20},
+    {"contact", "restitution", "string or table", "none (e for every impact)", "", "\"lindsay2011\" | {...}",
+     "e(v0) instead of e: a preset's name, or the table under \"[contact] restitution\"."},
+    {"contact.restitution", "preset", "string", "none", "", "\"lindsay2011\"",
+     "The bridge paper's eq. 15 (lindsay-2011-bridge-expansion-joints.txt), model-scale m/s, valid 0.99-3.13 m/s; "
+     "PROVISIONAL (a coefficient's digit and sign were lost in the text: seeds-models.md §1.7)."},
+    {"contact.restitution", "polynomial", "array of numbers", "none", "", "1 to 8 coefficients in [-1e300, 1e300]",
+     "e(v) = c0 + c1 v + c2 v^2 + ..., constant term first, v in `units`.", -1e300, 1e300},
+    {"contact.restitution", "table", "array of [v, e] pairs", "none", "", "v ascending >= 0, e in (0, 1]",
+     "e(v) linear between the points, the end values beyond; the valid range defaults to the table's."},
+    {"contact.restitution", "units", "string", "\"m/s\"", "", "\"m/s\" | \"cm/s\" | \"mm/s\"",
+     "Velocity units of the polynomial, the table and valid."},
+    {"contact.restitution", "valid", "array of numbers", "the table's range; [0, inf) for a polynomial", "", "[vmin, vmax], 0 <= vmin < vmax",
+     "The calibrated velocity range: impacts outside it are counted and reported.", 0.0, 1e300},
 
     // ---------------------------------------------------------------- [analysis]
     {"analysis", "stepper", "string", "\"central-difference\"", "",

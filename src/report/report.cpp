@@ -464,6 +464,16 @@ void Markdown::impacts_table() {
   }
   s += excluded_note;
   if (!r.h_omega.empty()) out("\n{}\n", physics::describe(coarse_summary(r)));
+  if (const results::Field* f = r.res.find("impacts", "restitution_outside")) {  // [contact] restitution: e(v0)
+    const auto& outside = std::get<std::vector<std::int32_t>>(f->data);
+    std::int64_t n_out = 0, n_all = 0;
+    for (std::size_t i = 0; i < outside.size() && i < r.impact_count.size(); ++i)
+      if (r.ok(r.imp_status[i]) && outside[i] >= 0) n_out += outside[i], n_all += std::max(0, r.impact_count[i]);
+    out("\nEach impact took e(v0), the restitution at its approach velocity ({}). {} of {} impacts (analyses not "
+        "excluded) had an approach velocity outside the curve's valid range, where e is extrapolated{}.\n",
+        r.res.settings.find("contact", "restitution") ? r.res.settings.text("contact", "restitution") : "[contact] restitution",
+        n_out, n_all, n_out > 0 ? ": their share is the part of the answer the curve's calibration does not cover" : "");
+  }
 }
 
 }  // namespace

@@ -205,6 +205,7 @@ Results load(const std::string& path, std::span<const FieldSpec> extra) {
   r.models = read_models(root);
   std::vector<FieldSpec> specs(std::begin(unit_fields), std::end(unit_fields));
   specs.insert(specs.end(), std::begin(derived_fields), std::end(derived_fields));
+  specs.push_back(restitution_field);  // [contact] restitution only (absent otherwise: skipped)
   specs.insert(specs.end(), extra.begin(), extra.end());
   r.system = read_system(root);  // format 3: its extents name the per-floor and per-element fields
   if (!r.system.empty()) {

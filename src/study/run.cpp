@@ -4,6 +4,7 @@
 
 #include <atomic>
 #include <algorithm>
+#include <memory>
 #include <chrono>
 #include <cmath>
 #include <cstdlib>
@@ -20,6 +21,7 @@
 #include "pounding/model/sdof.hpp"
 #include "pounding/motion/library.hpp"
 #include "pounding/physics/batch.hpp"
+#include "pounding/physics/velocity_restitution.hpp"
 #include "pounding/results/reader.hpp"
 #include "pounding/results/writer.hpp"
 #include "pounding/sampling/sampler.hpp"
@@ -85,6 +87,10 @@ class UnitComputer {
       block_.emplace(sampler.model(), s.contact, s.e, s.contact_levels, s.gap_offsets, s.level_tolerance,
                      s.shape_functions);
     if (block_ && !plan.system.empty()) table_fields(plan);
+    if (s.restitution && plan.impacts) {  // e(v0) in the coupled runs (study.cpp: SDOF pairs, hertzdamp, CD)
+      restitution_ = std::make_unique<physics::HertzdampRestitution>(*s.restitution, s.contact);
+      f_rest_out_ = results::field_index(plan.fields, "impacts", "restitution_outside");
+    }
     if (plan.stripes) stripe_scaled_ = results::field_index(plan.fields, "uncoupled", "scaled");
     if (plan.ida) {
       ida_analyses_ = results::field_index(plan.fields, "ida", "analyses");
@@ -345,7 +351,11 @@ class UnitComputer {
       if (s_.contact_stiffness > 0) pp.kc = s_.contact_stiffness;
       sub_.set(j, pp);
     }
-    if (!lanes_.empty()) run_batch(sub_, s_.contact, gm, ks, cres_);
+    KernelSettings kc = ks;
+    if (restitution_) kc.restitution = &restitution_->hook;
+    if (!lanes_.empty()) run_batch(sub_, s_.contact, gm, kc, cres_);
+    std::span<std::int32_t> outside;
+    if (restitution_) outside = out.values<std::int32_t>(f_rest_out_);
     auto status = out.values<std::uint8_t>(field::imp_status);
     auto count = out.values<std::int32_t>(field::imp_count);
     auto force = out.values<double>(field::imp_peak_force), first = out.values<double>(field::imp_t_first);
@@ -358,11 +368,13 @@ class UnitComputer {
         status[k] = cres_.status[j], count[k] = cres_.impact_count[j], force[k] = cres_.peak_force[j];
         u1[k] = cres_.peak_u1[j], u2[k] = cres_.peak_u2[j], first[k] = cres_.t_first_impact[j];
         hw[k] = cres_.h_omega_contact[j];
+        if (restitution_) outside[k] = cres_.restitution_outside[j];
         ++j;
       } else {
         status[k] = res_.status[i], count[k] = 0, force[k] = 0.0;
         u1[k] = res_.peak_u1[i], u2[k] = res_.peak_u2[i], first[k] = NAN;
         hw[k] = res_.status[i] == 0 && contact::traits(s_.contact.law).has_force ? 0.0 : NAN;  // never touched
+        if (restitution_) outside[k] = 0;
       }
     }
   }
@@ -502,6 +514,8 @@ class UnitComputer {
   PairBatch batch_;
   BatchResult res_, cres_, bres_, anchor_;
   std::optional<SystemBlock> block_;
+  std::unique_ptr<physics::HertzdampRestitution> restitution_;  // [contact] restitution: the kernel's e(v0) hook
+  std::size_t f_rest_out_ = 0;
   BlockPeaks peaks_, coupled_;
   std::vector<GroundMotion> channels_;  // a multi-support bridge's motions of the unit's record
   std::vector<std::size_t> f_floor_u_, f_floor_drift_, f_floor_acc_;
@@ -620,6 +634,7 @@ WorkPlan plan_work(const Inputs& in) {
       L.system = system_table(sys, block.groups(*t, s.contact), block.element_offsets(sys));
     }
   L.fields = results::unit_schema(L.impacts, L.ida, L.stripes > 0, L.system.extents());
+  if (s.restitution && L.impacts) L.fields.push_back(results::restitution_field);  // e(v0): impacts outside its range
   return L;
 }
 

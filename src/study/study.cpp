@@ -117,6 +117,76 @@ void parse_gaps(Study& s, const toml::table* t, const std::string& path) {
   g.finish("ratios, curve_max, curve_step");
 }
 
+// [contact] restitution: a preset's name, or a table {preset | polynomial | table, units, valid} (the options of
+// collide/simulate --restitution-*, contact/restitution.hpp)
+std::optional<contact::RestitutionCurve> read_restitution(TableReader& c, const std::string& path) {
+  const toml::node* n = c.get("restitution");
+  if (!n) return std::nullopt;
+  const std::string forms = "give restitution = \"lindsay2011\" (a preset) or a table with one of preset = \"...\", "
+                            "polynomial = [c0, c1, ...] (constant term first) or table = [[v1, e1], [v2, e2], ...]";
+  contact::RestitutionCurve r;
+  if (n->is_string()) {
+    if (!contact::restitution_preset(n->value<std::string>().value(), r))
+      throw InputError(fmt::format("unknown restitution preset '{}'", n->value<std::string>().value()),
+                       c.where("restitution"), fmt::format("give one of: {}", contact::restitution_preset_names));
+    return r;
+  }
+  const toml::table* t = c.table("restitution");
+  TableReader q(t, path, "contact.restitution");
+  const std::string preset = q.string("preset", "");
+  const std::vector<double> poly = q.numbers("polynomial", {});
+  const toml::node* tab = q.get("table");
+  const toml::node* units = q.get("units");
+  const toml::node* valid = q.get("valid");
+  const std::vector<double> vv = q.numbers("valid", {});
+  q.finish("preset, polynomial, table, units, valid");
+  const int given = int(!preset.empty()) + int(!poly.empty()) + int(tab != nullptr);
+  if (given != 1)
+    throw InputError(given == 0 ? "[contact] restitution gives no curve" : "[contact] restitution gives more than one curve",
+                     c.where("restitution"), forms);
+  if (!preset.empty()) {
+    if (!contact::restitution_preset(preset, r))
+      throw InputError(fmt::format("unknown restitution preset '{}'", preset), q.where("preset"),
+                       fmt::format("give one of: {}", contact::restitution_preset_names));
+    if (units || valid)
+      throw InputError("a preset carries its own units and valid range", q.where(units ? "units" : "valid"),
+                       "remove the key, or give the preset's numbers as polynomial = [...]");
+    return r;
+  }
+  r.units = q.string("units", "m/s");
+  r.per_mps = contact::restitution_units_per_mps(r.units);
+  if (!(r.per_mps > 0.0))
+    throw InputError(fmt::format("unknown velocity units '{}'", r.units), q.where("units"), "write units = \"m/s\", \"cm/s\" or \"mm/s\"");
+  if (!poly.empty()) {
+    r.form = contact::RestitutionCurve::Form::polynomial, r.name = "polynomial", r.coefficients = poly;
+  } else {
+    r.form = contact::RestitutionCurve::Form::table, r.name = "table";
+    const toml::array* a = tab->as_array();
+    if (a)
+      for (const toml::node& p : *a) {
+        const toml::array* pe = p.as_array();
+        if (!pe || pe->size() != 2 || !pe->get(0)->is_number() || !pe->get(1)->is_number()) {
+          a = nullptr;
+          break;
+        }
+        r.table_v.push_back(pe->get(0)->value<double>().value()), r.table_e.push_back(pe->get(1)->value<double>().value());
+      }
+    if (!a) throw InputError("the restitution table is not a list of points [v, e]", q.where("table"),
+                             "write table = [[0.5, 0.9], [3.0, 0.7]] (v ascending, in the units; e in (0, 1])");
+    if (!r.table_v.empty()) r.vmin = r.table_v.front(), r.vmax = r.table_v.back();
+  }
+  if (valid) {
+    const std::vector<double>& v = vv;
+    if (v.size() != 2 || !(v[0] >= 0.0 && v[0] < v[1]))
+      throw InputError("valid is not [vmin, vmax] with 0 <= vmin < vmax", q.where("valid"), "give two velocities, e.g. valid = [0.99, 3.13]");
+    r.vmin = v[0], r.vmax = v[1];
+  }
+  if (const std::string p = contact::restitution_problem(r); !p.empty())
+    throw InputError(fmt::format("the restitution curve is not usable: {}", p), q.where(poly.empty() ? "table" : "polynomial"),
+                     "correct it");
+  return r;
+}
+
 void parse_contact(Study& s, const toml::table* t, const std::string& path) {
   TableReader c(t, path, "contact");
   s.contact.law = c.choice("law", "hertzdamp", parse_contact_law);
@@ -124,6 +194,9 @@ void parse_contact(Study& s, const toml::table* t, const std::string& path) {
   if (!contact::traits(s.contact.law).has_force && !contact::traits(s.contact.law).impulsive)
     throw InputError("contact law 'none' cannot count impacts", c.where("law"), "choose a contact law (hertzdamp, kelvin, ...)");
   s.e = c.number("e", 0.65);
+  if (c.get("e") && c.get("restitution"))
+    throw InputError("[contact] e and restitution both given", c.where("e"), "remove e: the curve gives e(v0) at each impact");
+  s.restitution = read_restitution(c, path);
   s.contact.n = c.number("n", 1.5);
   s.contact.v0_min = c.number("v0_min", 1e-3);
   s.contact_stiffness = c.number("stiffness", 0.0);
@@ -142,7 +215,7 @@ void parse_contact(Study& s, const toml::table* t, const std::string& path) {
     throw InputError(fmt::format("unknown shape_functions '{}'", name), "shape_functions",
                      "write shape_functions = " + enum_name_list(model::shape_functions_names, " or ", "\""));
   });
-  c.finish("law, damping_law, e, n, v0_min, stiffness, levels, gap_offsets, level_tolerance, shape_functions");
+  c.finish("law, damping_law, e, n, v0_min, stiffness, levels, gap_offsets, level_tolerance, shape_functions, restitution");
 }
 
 }  // namespace
@@ -355,6 +428,30 @@ static void check_row_study(const Study& s, config::TableReader& top, const toml
                      at_count, "remove [intensity] to run the row in the probability or impacts scene, or set buildings = 2");
 }
 
+// [contact] restitution (e(v0)) runs where the pair kernel's central difference reads it (physics::
+// HertzdampRestitution): the coupled runs of an SDOF pair study with Hertzdamp; elsewhere it would do nothing.
+static void check_restitution(const Study& s, TableReader& top, const std::string& path) {
+  if (!s.restitution) return;
+  const toml::table* c = top.table("contact");
+  const toml::node* n = c ? c->get("restitution") : nullptr;
+  const std::string where = n ? fmt::format("{}:{} [contact].restitution", path, n->source().begin.line) : path + " [contact].restitution";
+  const char* fix = "remove restitution (and give e), or run an SDOF pair with law = \"hertzdamp\", stepper = "
+                    "\"central-difference\" in the impacts scene";
+  if (s.contact.law != ContactLaw::hertzdamp)
+    throw InputError(fmt::format("a velocity-dependent restitution runs with law = \"hertzdamp\", and the law is \"{}\"",
+                                 to_string(s.contact.law)), where, fix);
+  if (s.stepper != Stepper::central_difference)
+    throw InputError(fmt::format("a velocity-dependent restitution runs with the central-difference stepper, and the "
+                                 "stepper is \"{}\"", to_string(s.stepper)), where, fix);
+  if (s.structures.bridge || s.structures.any_shear() || s.structures.row())
+    throw InputError("a velocity-dependent restitution runs SDOF pairs (the pair kernel), and the study runs a system "
+                     "(shear buildings, a row or a bridge)", where, fix);
+  if (s.scene != Scene::impacts)
+    throw InputError(fmt::format("a velocity-dependent restitution acts in the coupled runs of the impacts scene, and "
+                                 "the scene is \"{}\" (no coupled run: whether a pair touches is decided by the "
+                                 "uncoupled motion)", to_string(s.scene)), where, fix);
+}
+
 // A bridge study ([bridge], sampling/bridge.hpp): the frames come from [bridge], not [structures]; the structure
 // model only numbers the samples (one period slot each, [bridge] samples per record). The system stepper runs it:
 // central difference and a force law at the joints, no [intensity], no [contact] levels / gap_offsets (the joints
@@ -450,6 +547,7 @@ Study parse_study(const std::string& text, const std::string& path) {
                      "write scene = \"probability\": whether a pair touches at a gap is decided by the uncoupled motion");
 
   choose_scene(s);
+  check_restitution(s, top, path);
   // the results must fit in memory; the suite's record count is not known yet, so count at least one record
   check_result_memory(s, s.select > 0 ? static_cast<std::size_t>(s.select)
                                       : std::max<std::size_t>({std::size_t{1}, s.files.size(),

@@ -101,6 +101,12 @@ inline constexpr FieldSpec unit_fields[] = {
      "or diverged); status 3 above the stepper's limit"},
 };
 
+// What a unit of an impacts-scene study with [contact] restitution (e(v0)) returns besides the unit_fields.
+inline constexpr FieldSpec restitution_field = {
+    "impacts", "restitution_outside", Dtype::i32, Extent::lane_gap, -1, "1",
+    "impacts of this analysis whose approach velocity lay outside the valid range of the e(v0) curve ([contact] "
+    "restitution: e extrapolated there); 0 for a pair that never touched, -1 not computed"};
+
 // What a unit of a multiple-stripe study returns besides the uncoupled rows ([analysis] scale_elastic).
 inline constexpr FieldSpec stripe_fields[] = {
     {"uncoupled", "scaled", Dtype::u8, Extent::lane, 0, "1",

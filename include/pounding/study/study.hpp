@@ -28,7 +28,10 @@
 //                see building.hpp); heights given to both make a "pair study" (answers in metres)
 //   [gaps]       ratios = [0.1, 0.2, 0.3, 0.5, 0.7, 1.0]; curve_max = 1.5; curve_step = 0.005
 //   [contact]    law = "hertzdamp"; damping_law = "lankarani-nikravesh"; e = 0.65; n = 1.5; v0_min = 1e-3;
-//                stiffness = <N/m^n for the Hertz family (default: equivalent spheres), N/m for linear/Kelvin (required)>
+//                stiffness = <N/m^n for the Hertz family (default: equivalent spheres), N/m for linear/Kelvin (required)>;
+//                restitution = "lindsay2011" | {preset | polynomial = [c0, c1, ...] | table = [[v, e], ...], units =
+//                "m/s", valid = [vmin, vmax]} (e(v0) at each impact instead of e: SDOF pairs, hertzdamp, central
+//                difference, the impacts scene; impacts outside the valid range counted: impacts/restitution_outside)
 //   [analysis]   stepper = "central-difference"; substeps = 1; max_dt = <s; 0: no cap; default 0.0025 in the impacts
 //                scene (cheapest step with 1 % peak force, docs/accuracy.md), 0 in the probability scene>; batch = 256; free_vibration = 0.0 (s);
 //                displacement_limit = 10.0 (m); skip_untouched = true (impacts scene: pairs whose uncoupled
@@ -68,12 +71,14 @@
 #include <cmath>
 #include <cstdint>
 #include <functional>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
 
 #include "pounding/core/enum_names.hpp"
 #include "pounding/contact/model.hpp"
+#include "pounding/contact/restitution.hpp"
 #include "pounding/model/shear_building.hpp"
 #include "pounding/physics/batch.hpp"
 #include "pounding/motion/records.hpp"
@@ -142,6 +147,9 @@ struct Study {
   // contact and analysis
   ContactModel contact;
   double e = 0.65;
+  // [contact] restitution: e(v0) at the latched approach velocity of each impact (contact/restitution.hpp), used
+  // instead of e by the coupled runs (physics::HertzdampRestitution); absent: e
+  std::optional<contact::RestitutionCurve> restitution;
   double contact_stiffness = 0.0;  // > 0 overrides the sampled Hertz kh; required (N/m) for linear/Kelvin
   // [contact] levels and gap_offsets (shear buildings and rows, docs/architecture.md §2.7.1): which facing floors
   // pound, and per level from level 1 the offset (m, >= 0) added to the study gap (levels beyond the list: 0)

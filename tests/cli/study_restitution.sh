@@ -1,0 +1,125 @@
+#!/usr/bin/env bash
+# [contact] restitution in studies (issue 26 §3): e(v0), the restitution at each impact's latched approach velocity,
+# in the coupled runs of an SDOF pair study (impacts scene, Hertzdamp, central difference):
+#  1. a lane of the study is `pounding simulate` with the same pair, gap, step and --restitution-* options, bit for
+#     bit (impact counts, peak forces, peak displacements, impacts outside the valid range) at every gap;
+#  2. the key acts: the same study with e = 0.65 instead gives other impacts; the preset form
+#     restitution = "lindsay2011" reads; impacts/restitution_outside carries units and the report says the count;
+#  and bit-identical results at 1 and 2 MPI ranks, batch width 1 and with skip_untouched = false;
+#  3. bad input: one ERROR naming the key (file:line), exit 2, no results written -- e beside the curve, a law,
+#     stepper, scene or system that does not take it, an unknown preset, two curves, bad units, valid or table.
+# Needs /usr/bin/python3 with h5py. Args: <pounding binary> <source dir>
+set -euo pipefail
+bin=$1; src=$2
+. "$src/tests/lib/study_invariance.sh"  # $tmp, cmp, study_invariance, bad_run
+py=/usr/bin/python3
+fail() { echo "FAIL: $*"; exit 1; }
+awk 'BEGIN { dt = 0.01; for (i = 0; i <= 1200; i++) { t = i * dt;
+       a = 0.15 * sin(2 * 3.14159265 * 0.9 * t) + 0.10 * sin(2 * 3.14159265 * 3.1 * t + 0.4);
+       printf "%.2f %.8f\n", t, a } }' > "$tmp/rec.txt"
+curve='{polynomial = [0.9979, -0.0838, 0.0011, -0.0012], units = "m/s", valid = [0.2, 3.13]}'
+study() {  # <contact lines> > study
+  cat <<EOT
+title = "e(v0) in a pair study"
+seed = 7
+scene = "impacts"
+[records]
+files = ["rec.txt"]
+units = "g"
+polarity = "recorded"
+[structures]
+samples_per_pair = 1
+zeta = 0.05
+alpha = 0.05
+[structures.building1]
+period = 0.5
+height = 20.0
+mass = 2e6
+yield_coefficient = 0.3
+[structures.building2]
+period = 1.2
+height = 30.0
+mass = 3e6
+yield_coefficient = 0.2
+[gaps]
+ratios = [0.05, 0.2, 0.5]
+[contact]
+law = "hertzdamp"
+$1
+EOT
+}
+study "restitution = $curve" > "$tmp/s.toml"
+(cd "$tmp" && "$bin" run s.toml --out s.h5 > s.md 2> s.err) || { cat "$tmp/s.err"; fail "the study with restitution does not run"; }
+study 'e = 0.65' > "$tmp/e.toml"
+(cd "$tmp" && "$bin" run e.toml --out e.h5 --quiet > /dev/null 2>&1) || fail "the study with e does not run"
+study 'restitution = "lindsay2011"' > "$tmp/p.toml"
+(cd "$tmp" && "$bin" run p.toml --out p.h5 --quiet > /dev/null 2>&1) || fail "the study with the preset does not run"
+
+# bits for any rank count, batch width, skip_untouched (the hook is each UnitComputer's own)
+study=$tmp/s.toml
+study_invariance
+
+# 1, 2
+"$py" - "$tmp" "$bin" <<'PY'
+import json, subprocess, sys
+import h5py, numpy as np
+tmp, binary = sys.argv[1:3]
+f, e, p = (h5py.File(f"{tmp}/{n}.h5", "r") for n in ("s", "e", "p"))
+M = {k: f["models/" + k][0] for k in ("k1", "k2", "fy1", "fy2", "m1", "m2", "kh")}
+out = f["impacts/restitution_outside"]
+assert out.attrs["units"] in ("1", b"1"), dict(out.attrs)
+assert "restitution" in f["settings/contact"].attrs and "restitution" not in e["settings/contact"].attrs
+assert "restitution_outside" not in e["impacts"]  # a study with e: the file as before
+dt = f["records/dt"][0] / int(np.ceil(f["records/dt"][0] / f.attrs["max_dt"] - 1e-9))
+touched = 0
+for g, gap in enumerate(f["gaps/metres"][0]):
+    cmd = [binary, "simulate", "--record", f"{tmp}/rec.txt", "--gap", repr(gap), "--alpha", "0.05", "--zeta", "0.05",
+           "--kh", repr(M["kh"]), "--contact", "hertzdamp", "--dt", repr(dt), "--json",
+           "--restitution-polynomial", "0.9979,-0.0838,0.0011,-0.0012", "--restitution-valid", "0.2,3.13"]
+    for b in ("1", "2"):
+        cmd += [f"--m{b}", repr(M["m" + b]), f"--k{b}", repr(M["k" + b]), f"--fy{b}", repr(M["fy" + b])]
+    o = json.loads(subprocess.run(cmd, capture_output=True, text=True, check=True).stdout)
+    pairs = [("impact_count", o["impact_count"], f["impacts/impact_count"][0, 0, g]),
+             ("peak_force", o["peak_force"], f["impacts/peak_force"][0, 0, g]),
+             ("peak_u1", o["peak_u1"][0], f["impacts/peak_u1"][0, 0, g]),
+             ("peak_u2", o["peak_u2"][0], f["impacts/peak_u2"][0, 0, g]),
+             ("restitution_outside", o.get("restitution_outside_valid", 0), out[0, 0, g])]
+    for name, a, b in pairs:
+        assert a == b, (g, name, a, b)  # bit for bit
+    touched += o["impact_count"] > 0
+    if o["impact_count"] > 0:
+        assert f["impacts/peak_force"][0, 0, g] != e["impacts/peak_force"][0, 0, g], (g, "e(v0) changed nothing")
+        assert p["impacts/peak_force"][0, 0, g] != e["impacts/peak_force"][0, 0, g], (g, "the preset changed nothing")
+assert touched >= 2 and out[0, 0, 0] > 0, (touched, out[()])  # impacts at two gaps, some outside [0.2, 3.13] m/s
+print("study lanes = simulate --restitution-*, bit for bit at", len(f["gaps/metres"][0]), "gaps; outside:", out[()].ravel())
+PY
+grep -q "^Each impact took e(v0).*: [0-9]* of [0-9]* impacts" "$tmp/s.md" || grep -q "[0-9]* of [0-9]* impacts (analyses not excluded) had an approach velocity outside" "$tmp/s.md" ||
+  fail "the report does not count the impacts outside the valid range: $(grep -n 'e(v0)' "$tmp/s.md")"
+
+# 3. bad input
+study "e = 0.6
+restitution = $curve" > "$tmp/b1.toml"
+bad_run "e and restitution both given.*b1.toml:[0-9]* \[contact\].e" b1.toml
+study "restitution = $curve" | sed 's/^law = "hertzdamp"/law = "kelvin"\nstiffness = 1e9/' > "$tmp/b2.toml"
+bad_run "hertzdamp.*b2.toml:[0-9]* \[contact\].restitution" b2.toml
+study "restitution = $curve" | sed 's/^scene = "impacts"/scene = "probability"/' > "$tmp/b3.toml"
+bad_run "impacts scene.*b3.toml:[0-9]* \[contact\].restitution" b3.toml
+printf '[analysis]\nstepper = "rk4"\n' | cat <(study "restitution = $curve") - > "$tmp/b4.toml"
+bad_run "central-difference.*b4.toml:[0-9]* \[contact\].restitution" b4.toml
+study 'restitution = "lindsay2012"' > "$tmp/b5.toml"
+bad_run "unknown restitution preset 'lindsay2012'.*b5.toml:[0-9]* \[contact\].restitution" b5.toml
+study 'restitution = {polynomial = [0.9, -0.1], table = [[0.5, 0.9], [3.0, 0.7]]}' > "$tmp/b6.toml"
+bad_run "more than one curve.*\[contact\].restitution" b6.toml
+study 'restitution = {polynomial = [0.9, -0.1], units = "km/h"}' > "$tmp/b7.toml"
+bad_run "unknown velocity units 'km/h'.*\[contact.restitution\].units" b7.toml
+study 'restitution = {polynomial = [0.9, -0.1], valid = [3.0, 1.0]}' > "$tmp/b8.toml"
+bad_run "valid is not.*\[contact.restitution\].valid" b8.toml
+study 'restitution = {table = [[0.5, 0.9], [3.0]]}' > "$tmp/b9.toml"
+bad_run "not a list of points.*\[contact.restitution\].table" b9.toml
+study 'restitution = {table = [[3.0, 0.9], [0.5, 0.7]]}' > "$tmp/b10.toml"
+bad_run "not usable.*\[contact.restitution\].table" b10.toml
+study 'restitution = {preset = "lindsay2011", valid = [0.1, 2.0]}' > "$tmp/b11.toml"
+bad_run "preset carries its own.*\[contact.restitution\].valid" b11.toml
+study "restitution = $curve" | sed 's/^height = 20.0/height = 20.0\nmodel = "shear"\nstorey_height = 4.0/; s/^height = 30.0/height = 30.0\nmodel = "shear"\nstorey_height = 3.0/' > "$tmp/b12.toml"
+bad_run "runs SDOF pairs.*b12.toml:[0-9]* \[contact\].restitution" b12.toml
+echo "study e(v0): simulate agreement, the key acts, report, bad input"
