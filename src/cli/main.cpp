@@ -76,6 +76,12 @@ int main(int argc, char** argv) {
       fmt::print(stderr, " ERROR: {}\n", unknown.what());
       return 2;
     }
+    // a value of the wrong type or outside an option's range: one house-style line naming the option
+    if (dynamic_cast<const CLI::ConversionError*>(&e) || dynamic_cast<const CLI::ValidationError*>(&e)) {
+      fmt::print(stderr, " ERROR: {}, command line, give a value of the option's type and range (--help lists them)\n",
+                 e.what());
+      return 2;
+    }
     int rc = app.exit(e);
     return rc == 0 ? 0 : 2;
   } catch (const pounding::cli::ExitRequest& e) {

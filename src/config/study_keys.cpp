@@ -507,6 +507,11 @@ constexpr StudyKey keys[] = {
      "Largest integration step (docs/accuracy.md: 2.5 ms gives 1 % peak forces).", 0.0, 1.0},
     {"analysis", "batch", "integer", "256", "", "[1, 65536]",
      "Models integrated together (results do not depend on it).", 1, 65536},
+    {"analysis", "threads", "integer", "0", "", "[0, 1024] (0: automatic)",
+     "Worker threads per rank, each computing its own units. 0: the CPUs this process may run on (its affinity "
+     "mask) when the job is one rank, 1 per rank under mpirun with several ranks (nothing oversubscribes); a "
+     "value given applies to every rank. pounding run --threads and Study.run(threads=) override it. Results do "
+     "not depend on it.", 0, 1024},
     {"analysis", "free_vibration", "number", "0", "s", "[0, 1000]", "Time analysed after the record ends.", 0.0, 1000.0},
     {"analysis", "displacement_limit", "number", "10", "m", "(0, 1e6]",
      "A model whose displacement exceeds this is marked diverged.", 1e-6, 1e6},

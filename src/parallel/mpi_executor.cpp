@@ -8,10 +8,13 @@
 #include <cstdint>
 #include <cstdlib>
 #include <cstring>
+#include <chrono>
 #include <deque>
+#include <list>
 #include <string>
 
 #include "pounding/core/error.hpp"
+#include "unit_pool.hpp"
 
 namespace pounding::parallel {
 
@@ -113,6 +116,65 @@ bool worker_loop(const ComputeFn& compute) {
   return finish(outcome, false);
 }
 
+// A worker rank with `threads` threads (threads > 1): the master keeps 2 threads units in flight here; units are
+// received without blocking while the pool computes, and each result goes out with MPI_Isend as it finishes. Every
+// MPI call stays on this thread (MPI_THREAD_FUNNELED). After a failure the error is sent once, the queued units are
+// dropped, the running ones' results discarded, and unit messages are only drained until the master's stop.
+bool worker_loop_threaded(const ThreadComputeFn& compute, int threads) {
+  struct Send {
+    MPI_Request request = MPI_REQUEST_NULL;
+    std::vector<std::byte> bytes;
+  };
+  std::list<Send> sends;
+  Failure failed;
+  int rank = 0;
+  MPI_Comm_rank(MPI_COMM_WORLD, &rank);
+  UnitPool pool(compute, threads);
+  bool stopping = false;
+  const auto receive = [&] {  // one work message (probed or about to arrive)
+    std::int64_t unit = stop_unit;
+    MPI_Recv(&unit, 1, MPI_INT64_T, 0, tag_work, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
+    if (unit == stop_unit) stopping = true;
+    else if (!failed.set) pool.submit(static_cast<std::size_t>(unit));
+  };
+  for (;;) {
+    for (int flag = 1; flag && !stopping;) {
+      MPI_Iprobe(0, tag_work, MPI_COMM_WORLD, &flag, MPI_STATUS_IGNORE);
+      if (flag) receive();
+    }
+    if (pool.in_flight() == 0) {
+      if (stopping) break;
+      receive();  // nothing to compute: wait for the master (our sends progress inside MPI meanwhile)
+      continue;
+    }
+    if (std::optional<UnitPool::Done> d = pool.take(std::chrono::milliseconds(1)); d && !failed.set) {
+      if (d->error) {
+        try {
+          std::rethrow_exception(d->error);
+        } catch (...) {
+          failed.capture(rank);
+        }
+        pool.drop_queued();
+        std::string text = failed.pack();
+        MPI_Send(text.data(), static_cast<int>(text.size()), MPI_CHAR, 0, tag_error, MPI_COMM_WORLD);
+      } else {
+        Send& out = sends.emplace_back();
+        pack_result(out.bytes, static_cast<std::int64_t>(d->unit), d->payload);
+        MPI_Isend(out.bytes.data(), static_cast<int>(out.bytes.size()), MPI_BYTE, 0, tag_result, MPI_COMM_WORLD,
+                  &out.request);
+      }
+    }
+    for (auto it = sends.begin(); it != sends.end();) {
+      int done = 0;
+      MPI_Test(&it->request, &done, MPI_STATUS_IGNORE);
+      it = done ? sends.erase(it) : std::next(it);
+    }
+  }
+  for (Send& x : sends) MPI_Wait(&x.request, MPI_STATUS_IGNORE);
+  Failure outcome;
+  return finish(outcome, false);
+}
+
 // Rank 0 of a multi-rank run: hands out units (two in flight per worker), computes units itself between
 // messages, stores results in completion order, and stops every worker at the end.
 // Results are received without blocking: a probed result gets an MPI_Irecv and its worker its next unit at once, and
@@ -121,15 +183,19 @@ bool worker_loop(const ComputeFn& compute) {
 // master wait for each busy worker instead of computing (rank 0 computed no unit; 2 ranks were slower than 1).
 class Master {
  public:
+  // threads > 1: `threaded` computes rank 0's units on a pool of that many threads, and every worker has 2 threads
+  // units in flight (each worker rank runs as many threads).
   Master(const Session& s, const std::vector<std::size_t>& todo, const ComputeFn& compute, const ResultFn& on_result,
-         const TickFn& tick, const std::atomic<bool>& stop)
+         const TickFn& tick, const std::atomic<bool>& stop, const ThreadComputeFn* threaded = nullptr, int threads = 1)
       : size_(s.size()), queue_(todo.begin(), todo.end()), compute_(compute), on_result_(on_result), tick_(tick),
-        stop_(stop), in_flight_(static_cast<std::size_t>(size_), 0), dead_(static_cast<std::size_t>(size_), 0) {}
+        stop_(stop), in_flight_(static_cast<std::size_t>(size_), 0), dead_(static_cast<std::size_t>(size_), 0),
+        threaded_(threaded), threads_(threaded ? threads : 1) {}
 
   bool run() {
     for (int r = 1; r < size_; ++r)
-      for (int k = 0; k < 2; ++k) outstanding_ += send_unit(r);
-    while (!queue_.empty() && !halted()) {
+      for (int k = 0; k < 2 * threads_; ++k) outstanding_ += send_unit(r);
+    if (threaded_) compute_on_pool();
+    while (!queue_.empty() && !halted() && !threaded_) {
       service(false);
       if (queue_.empty() || halted()) break;
       const std::size_t u = queue_.front();
@@ -151,6 +217,35 @@ class Master {
   };
 
   bool halted() const { return failed_.set || stop_.load(); }
+
+  // Rank 0's own units on its threads, between servicing the workers' messages (every 1 ms at least).
+  void compute_on_pool() {
+    UnitPool pool(*threaded_, threads_);
+    const std::size_t window = 2 * static_cast<std::size_t>(threads_);
+    for (;;) {
+      if (halted()) {
+        const std::vector<std::size_t> back = pool.drop_queued();  // not started: still to do
+        queue_.insert(queue_.begin(), back.begin(), back.end());
+      } else
+        while (!queue_.empty() && pool.in_flight() < window) {
+          pool.submit(queue_.front());
+          queue_.pop_front();
+        }
+      if (pool.in_flight() == 0) return;
+      service(false);
+      std::optional<UnitPool::Done> d = pool.take(std::chrono::milliseconds(1));
+      if (!d || failed_.set) continue;
+      if (d->error) {
+        try {
+          std::rethrow_exception(d->error);
+        } catch (...) {
+          failed_.capture(0);
+        }
+        continue;
+      }
+      deliver([&] { on_result_(d->unit, std::move(d->payload)); });
+    }
+  }
 
   bool send_unit(int rank) {
     if (queue_.empty() || halted() || dead_[static_cast<std::size_t>(rank)]) return false;
@@ -261,6 +356,8 @@ class Master {
   std::vector<Pending> pending_;
   std::vector<std::vector<std::byte>> spare_;  // result buffers to reuse
   std::string text_;
+  const ThreadComputeFn* threaded_;
+  int threads_;
 };
 }  // namespace
 
@@ -356,6 +453,15 @@ bool run_units(const Session& s, const std::vector<std::size_t>& todo, const Com
   }
   if (!s.root()) return worker_loop(compute);
   return Master(s, todo, compute, on_result, tick, stop).run();
+}
+
+bool run_units(const Session& s, const std::vector<std::size_t>& todo, const ThreadComputeFn& compute, int threads,
+               const ResultFn& on_result, const TickFn& tick, const std::atomic<bool>& stop) {
+  const ComputeFn one = [&](std::size_t u) { return compute(u, 0); };
+  if (threads <= 1) return run_units(s, todo, one, on_result, tick, stop);
+  if (s.size() == 1) return run_units_threaded(todo, compute, threads, on_result, tick, stop);
+  if (!s.root()) return worker_loop_threaded(compute, threads);
+  return Master(s, todo, one, on_result, tick, stop, &compute, threads).run();
 }
 
 }  // namespace pounding::parallel

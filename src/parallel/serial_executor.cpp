@@ -7,6 +7,7 @@
 
 #include "pounding/core/error.hpp"
 #include "pounding/parallel/executor.hpp"
+#include "unit_pool.hpp"
 
 namespace pounding::parallel {
 
@@ -70,6 +71,12 @@ bool run_units(const Session&, const std::vector<std::size_t>& todo, const Compu
     tick();
   }
   return true;
+}
+
+bool run_units(const Session& s, const std::vector<std::size_t>& todo, const ThreadComputeFn& compute, int threads,
+               const ResultFn& on_result, const TickFn& tick, const std::atomic<bool>& stop) {
+  if (threads > 1) return run_units_threaded(todo, compute, threads, on_result, tick, stop);
+  return run_units(s, todo, [&](std::size_t u) { return compute(u, 0); }, on_result, tick, stop);
 }
 
 }  // namespace pounding::parallel

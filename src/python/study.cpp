@@ -7,6 +7,8 @@
 #include <string>
 #include <utility>
 
+#include <fmt/format.h>
+
 #include "common.hpp"
 #include "pounding/core/error.hpp"
 #include "pounding/core/run_context.hpp"
@@ -57,12 +59,17 @@ struct Progress {
 };
 
 py::dict run_study_py(const std::string& path, const std::optional<std::string>& out, bool resume, bool force,
-                      const py::object& progress, const py::object& info) {
+                      const py::object& progress, const py::object& info, int threads) {
+  if (threads < -1 || threads > 1024)
+    throw InputError(fmt::format("threads = {} is outside [0, 1024]", threads), "Study.run(threads=)",
+                     "give the worker threads, 1 to 1024, 0 for the CPUs this process may use, or None for the "
+                     "study's [analysis] threads");
   std::atomic<bool> stop{false};
   bool interrupted = false;
   std::string failure;
   RunOptions ro;
   ro.out = out.value_or(""), ro.out_given = out.has_value(), ro.resume = resume, ro.force = force;
+  ro.threads = threads;  // -1: the study's [analysis] threads
   ro.analyse = [](results::Results& r, const WorkHook& hook) { analyse_fragility(r, &hook); };
   ro.report = [](const results::Results& r, const WorkHook& hook, double& bootstrap_s) {
     return report_markdown(r, &hook, &bootstrap_s);
@@ -104,7 +111,8 @@ std::string report_py(const std::string& path, bool csv) {
 
 void bind_study(py::module_& m) {
   m.def("run_study", &run_study_py, py::arg("path"), py::arg("out"), py::arg("resume"), py::arg("force"),
-        py::arg("progress"), py::arg("info"), "run a study file on this process (use pounding.Study)");
+        py::arg("progress"), py::arg("info"), py::arg("threads") = -1,
+        "run a study file on this process (use pounding.Study); threads -1: the study's [analysis] threads");
   m.def("report", &report_py, py::arg("path"), py::arg("csv") = false,
         "the report of a results file, Markdown or CSV, as `pounding report` prints it");
 }

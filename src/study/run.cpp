@@ -10,11 +10,14 @@
 #include <cstdlib>
 #include <cstring>
 #include <map>
+#include <memory>
+#include <mutex>
 #include <optional>
 
 #include <fmt/format.h>
 
 #include "pounding/core/error.hpp"
+#include "pounding/core/parallel_for.hpp"
 #include "pounding/core/files.hpp"
 #include "pounding/contact/registry.hpp"
 #include "pounding/model/hysteresis/registry.hpp"
@@ -73,12 +76,14 @@ constexpr std::size_t imp_h_omega = results::unit_field("impacts", "h_omega_cont
 }  // namespace field
 
 // One work unit: sample the block, run the uncoupled pairs (and, in the impacts scene, the coupled ones per
-// gap), fill a UnitResult.
+// gap), fill a UnitResult. A rank's threads have one UnitComputer each: it holds every buffer it writes (batches,
+// results, scratch, its SystemBlock); what it shares with the others is read only (study, records, stripes,
+// sampler, plan) except `computed`, the rank's count of units started (the compute fault fires on the rank's third).
 class UnitComputer {
  public:
   UnitComputer(const Study& s, const std::vector<StudyRecord>& records, const StripePlan& stripes,
-               const StructureSampler& sampler, const WorkPlan& plan, int rank)
-      : s_(s), records_(records), stripes_(stripes), sampler_(sampler), plan_(plan), rank_(rank) {
+               const StructureSampler& sampler, const WorkPlan& plan, int rank, std::atomic<int>& computed)
+      : s_(s), records_(records), stripes_(stripes), sampler_(sampler), plan_(plan), rank_(rank), computed_(computed) {
     ks_base_.stepper = s.stepper;
     ks_base_.displacement_limit = s.displacement_limit;
     uncoupled_ = s.contact;
@@ -101,7 +106,7 @@ class UnitComputer {
   }
 
   UnitResult operator()(std::size_t unit) {
-    if (++computed_ == 3) inject_fault("compute", rank_);
+    if (++computed_ == 3) inject_fault("compute", rank_);  // the rank's third unit, on whichever thread
     const UnitIndex u = plan_.decode(unit);
     const std::size_t n = plan_.lanes(u.block);
     pairs_.resize(n);
@@ -505,7 +510,8 @@ class UnitComputer {
   const StripePlan& stripes_;
   const StructureSampler& sampler_;
   const WorkPlan& plan_;
-  int rank_, computed_ = 0;
+  int rank_;
+  std::atomic<int>& computed_;
   KernelSettings ks_base_;
   ContactModel uncoupled_;
   std::vector<SampledPair> pairs_;
@@ -795,11 +801,19 @@ bool master_service_mode() {
 double final_sync_s = 0;  // the units phase's closing fsync of the checkpoint (rank 0), for the line above
 
 // ---- phase 4: the work (every rank computes; rank 0 gathers, checkpoints and reports progress) -----
+// `threads` worker threads per rank, each with its own UnitComputer (parallel::run_units with a ThreadComputeFn):
+// the results reach the tally and the checkpoint on this thread, stored by unit id, so the bits do not depend on
+// the thread count. T[compute] is the sum of the threads' compute seconds (CPU-like: with 2 busy threads it is about
+// twice the units' wall time).
 bool execute(const parallel::Session& session, const Inputs& in, const WorkPlan& L, const std::vector<std::size_t>& todo,
-             Checkpoint* ckpt, Tally& tally, const RunContext& ctx, double& wall, timing::Times& T) {
+             Checkpoint* ckpt, Tally& tally, const RunContext& ctx, double& wall, timing::Times& T, int threads) {
   const auto t_setup = std::chrono::steady_clock::now();
   const StructureSampler sampler(in.study.structures, in.study.seed);
-  UnitComputer compute(in.study, in.records, in.stripes, sampler, L, session.rank());
+  std::atomic<int> computed{0};
+  std::vector<std::unique_ptr<UnitComputer>> computers;
+  for (int t = 0; t < threads; ++t)
+    computers.push_back(std::make_unique<UnitComputer>(in.study, in.records, in.stripes, sampler, L, session.rank(), computed));
+  std::vector<double> compute_s(static_cast<std::size_t>(threads), 0.0);  // each thread's compute seconds
   T[timing::Phase::structures] = timing::seconds_since(t_setup);
   using timing::Phase, timing::Stopwatch;
   const auto t0 = std::chrono::steady_clock::now();
@@ -824,16 +838,23 @@ bool execute(const parallel::Session& session, const Inputs& in, const WorkPlan&
   // copy of it for every later unit, so the workers answer at once and the run measures the master alone.
   const bool stored = master_service_mode();
   std::map<std::size_t, parallel::Payload> kept;
+  std::mutex kept_mutex;  // the threads share `kept`
   const bool complete = parallel::run_units(
       session, todo,
-      [&](std::size_t u) {
-        Stopwatch w(T[Phase::compute]);
+      [&](std::size_t u, int t) {
+        Stopwatch w(compute_s[static_cast<std::size_t>(t)]);
+        UnitComputer& compute = *computers[static_cast<std::size_t>(t)];
         if (!stored) return compute(u).serialise();
         const std::size_t n = L.lanes(L.decode(u).block);
-        auto at = kept.find(n);
-        if (at == kept.end()) at = kept.emplace(n, compute(u).serialise()).first;
-        return at->second;
+        {
+          std::lock_guard lock(kept_mutex);
+          if (auto at = kept.find(n); at != kept.end()) return at->second;
+        }
+        parallel::Payload p = compute(u).serialise();
+        std::lock_guard lock(kept_mutex);
+        return kept.emplace(n, std::move(p)).first->second;  // a unit of this size kept meanwhile: that one
       },
+      threads,
       [&](std::size_t u, parallel::Payload&& d) {
         {
           Stopwatch w(T[Phase::reduce]);
@@ -843,6 +864,7 @@ bool execute(const parallel::Session& session, const Inputs& in, const WorkPlan&
         ckpt->append(u, d);
       },
       tick, ctx.cancel ? *ctx.cancel : never);
+  for (double s : compute_s) T[Phase::compute] += s;
   if (session.root()) {
     double final_sync = 0;
     {
@@ -862,7 +884,7 @@ bool execute(const parallel::Session& session, const Inputs& in, const WorkPlan&
 // start-up, reading, the units, the fit and the report of this invocation; `wall` is the units' share. A stop during the analysis (Cancelled, from the
 // hook's flag) ends with 130 and keeps the checkpoint, which holds every unit: --resume redoes only the analysis.
 // /timing: each phase's seconds on rank 0 and the largest over the ranks (core/timing.hpp; docs/results-format.md).
-results::Group timing_group(const timing::Times& T, std::size_t units, std::size_t units_resumed) {
+results::Group timing_group(const timing::Times& T, std::size_t units, std::size_t units_resumed, int threads) {
   results::Group g{"timing", {}, {}};
   std::vector<std::string> names, meanings;
   for (std::size_t i = 0; i < timing::phase_count; ++i)
@@ -876,15 +898,18 @@ results::Group timing_group(const timing::Times& T, std::size_t units, std::size
   g.set("wall_s", T.wall);
   g.set("units", static_cast<std::int64_t>(units));
   g.set("units_resumed", static_cast<std::int64_t>(units_resumed));
+  g.set("threads", static_cast<std::int64_t>(threads));
   g.set("description", std::string("wall_s: from this process's start (before MPI start-up) to the start of the "
                                    "results write, so it holds every phase but results_write; after --resume only "
-                                   "this invocation (units_resumed units came from the checkpoint)"));
+                                   "this invocation (units_resumed units came from the checkpoint); threads: the "
+                                   "worker threads per rank (results do not depend on it); the compute phase sums a "
+                                   "rank's threads"));
   return g;
 }
 
 int finish(const parallel::Session& session, const Inputs& in, const WorkPlan& L, Checkpoint* ckpt, Tally& tally,
            const CheckpointKey& key, double wall, const RunContext& ctx, const RunOptions& opt, timing::Times& T,
-           std::size_t units_resumed, std::string& report) {
+           std::size_t units_resumed, int threads, std::string& report) {
   using timing::Phase;
   int rc = 0;
   std::string summary_line, stopped_in;
@@ -923,7 +948,7 @@ int finish(const parallel::Session& session, const Inputs& in, const WorkPlan& L
       if (const auto at = report.find("wall time nan s"); at != std::string::npos)
         report.replace(at, 15, fmt::format("wall time {:.2f} s", total));
       for (std::size_t i = static_cast<std::size_t>(Phase::analysis); i < timing::phase_count; ++i) T.max[i] = T.rank0[i];
-      res.groups.push_back(timing_group(T, L.units(), units_resumed));
+      res.groups.push_back(timing_group(T, L.units(), units_resumed, threads));
       const auto t_write = std::chrono::steady_clock::now();
       results::write(in.out, res);
       T.max[static_cast<std::size_t>(Phase::results_write)] = T[Phase::results_write] = timing::seconds_since(t_write);
@@ -949,14 +974,19 @@ int finish(const parallel::Session& session, const Inputs& in, const WorkPlan& L
   }
   if (session.root()) {
     if (!summary_line.empty()) ctx.say(summary_line);
-    ctx.say(fmt::format("results: {} (wall time {:.2f} s: units {:.2f} s, analysis {:.2f} s; {} ranks)", in.out, total,
-                        wall, analysis, session.size()));
+    ctx.say(fmt::format("results: {} (wall time {:.2f} s: units {:.2f} s, analysis {:.2f} s; {} ranks x {} threads)",
+                        in.out, total, wall, analysis, session.size(), threads));
     if (rc == 3) ctx.say(" WARNING: too many excluded analyses; the results file says so (exit code 3)");
   }
   return rc;
 }
 
 }  // namespace
+
+int study_threads(int requested, int ranks, std::size_t units) {
+  if (requested <= 0 && ranks > 1) return 1;
+  return thread_count(requested, units);
+}
 
 RunOutcome run_study(const parallel::Session& session, const std::string& study_path, const RunOptions& opt,
                      const RunContext& ctx) {
@@ -976,7 +1006,8 @@ RunOutcome run_study(const parallel::Session& session, const std::string& study_
   T[timing::Phase::inputs] = timing::seconds_since(t_inputs);
   announce(session, in, L, ctx);
   double wall = 0.0;
-  const bool complete = execute(session, in, L, todo, ckpt ? &*ckpt : nullptr, tally, ctx, wall, T);
+  const int threads = study_threads(opt.threads >= 0 ? opt.threads : in.study.threads, session.size(), todo.size());
+  const bool complete = execute(session, in, L, todo, ckpt ? &*ckpt : nullptr, tally, ctx, wall, T, threads);
   std::vector<double> phases(T.rank0.begin(), T.rank0.end());  // every rank: the maxima of the phases so far
   session.max_to_root(phases);
   std::copy(phases.begin(), phases.end(), T.max.begin());
@@ -1005,7 +1036,8 @@ RunOutcome run_study(const parallel::Session& session, const std::string& study_
     return {0, in.out, {}, T, {}};
   }
   RunOutcome r{0, in.out, {}, {}, {}};
-  r.code = finish(session, in, L, ckpt ? &*ckpt : nullptr, tally, key, wall, ctx, opt, T, units_resumed, r.report);
+  r.code = finish(session, in, L, ckpt ? &*ckpt : nullptr, tally, key, wall, ctx, opt, T, units_resumed, threads,
+                  r.report);
   r.times = T;
   if (in.study.html) r.html = files::with_extension(in.out, ".html");
   return r;

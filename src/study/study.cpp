@@ -244,13 +244,14 @@ void parse_analysis(Study& s, const toml::table* t, const std::string& path) {
   s.substeps = static_cast<int>(a.integer("substeps", 1));
   s.max_dt = a.number("max_dt", -1.0);
   s.batch = static_cast<int>(a.integer("batch", 256));
+  s.threads = static_cast<int>(a.integer("threads", 0));
   s.free_vibration = a.number("free_vibration", 0.0);
   s.displacement_limit = a.number("displacement_limit", 10.0);
   s.skip_untouched = a.boolean("skip_untouched", true);
   s.scale_elastic = a.boolean("scale_elastic", true);
   s.max_excluded_fraction = a.number("max_excluded_fraction", 0.001);
   s.coarse = a.choice("coarse", "exclude", parse_coarse_policy);
-  a.finish("stepper, substeps, max_dt, batch, free_vibration, displacement_limit, skip_untouched, scale_elastic, "
+  a.finish("stepper, substeps, max_dt, batch, threads, free_vibration, displacement_limit, skip_untouched, scale_elastic, "
            "max_excluded_fraction, coarse");
 }
 

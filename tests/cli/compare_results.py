@@ -19,7 +19,7 @@ import numpy as np
 
 PROVENANCE = {"date", "wall_time_s", "ranks", "git_commit", "program_version", "build", "study_path"}
 TIMING = "/timing"  # seconds that differ run to run: like wall_time_s
-TIMING_PROVENANCE = {"wall_s", "units_resumed", "units"}  # units: the work units, a function of the batch width
+TIMING_PROVENANCE = {"wall_s", "units_resumed", "units", "threads"}  # units: the work units, a function of the batch width; threads: per rank
 TIMING_SECONDS = {"rank0_s", "max_s"}
 args = [x for x in sys.argv[1:] if not x.startswith("--")]
 allow_added = "--allow-added" in sys.argv

@@ -27,7 +27,8 @@ inline constexpr std::array<std::string_view, phase_count> phase_meanings{
     "reading the study, the records read or synthesised (and selected or scaled), the checkpoint opened",
     "the structure sampler and the unit computer set up (the samples themselves are drawn inside compute)",
     "the work phase: every unit computed, gathered and checkpointed (wall time)",
-    "computing units on this rank (inside units)",
+    "computing units on this rank (inside units), summed over the rank's worker threads: with T busy threads about "
+    "T times units",
     "storing the units' results in the tally (rank 0, inside units)",
     "appending and flushing the checkpoint (rank 0, inside units)",
     "the analyses after the units (a fragility study's fit, hazard; rank 0)",

@@ -59,4 +59,17 @@ using TickFn = std::function<void()>;
 bool run_units(const Session& s, const std::vector<std::size_t>& todo, const ComputeFn& compute,
                const ResultFn& on_result, const TickFn& tick, const std::atomic<bool>& stop);
 
+// Computes a unit on worker thread `thread` of this rank (0 <= thread < threads): each thread must use its own
+// computing state (the study gives each its own UnitComputer); it runs concurrently with the other threads.
+using ThreadComputeFn = std::function<Payload(std::size_t unit, int thread)>;
+
+// run_units with `threads` worker threads on every rank (the same count on every rank; threads <= 1: the
+// calling thread computes, exactly as above). Each rank keeps 2 threads units in flight: rank 0 hands a worker
+// rank 2 threads units and computes on its own pool between messages; on_result, tick and every MPI call stay on
+// the calling thread. Results reach on_result in completion order, which varies with the thread count: the
+// caller stores them by unit id. A stop or an error drops the units queued on the threads and waits for the
+// running ones (within a unit's time); after an error nothing more is stored.
+bool run_units(const Session& s, const std::vector<std::size_t>& todo, const ThreadComputeFn& compute, int threads,
+               const ResultFn& on_result, const TickFn& tick, const std::atomic<bool>& stop);
+
 }  // namespace pounding::parallel

@@ -30,6 +30,9 @@ struct RunOptions {
   // replaced by the written value), so its time is in the results' /timing. Adds the seconds of its separation
   // bootstrap to `bootstrap_s`. A stop (Cancelled) ends the run like a stop in the analysis.
   std::function<std::string(const results::Results&, const WorkHook& hook, double& bootstrap_s)> report;
+  // Worker threads per rank (each with its own unit computer; the results do not depend on it): -1 takes the study's
+  // [analysis] threads; 0 the automatic count (study_threads); > 0 that many on every rank.
+  int threads = -1;
   double mpi_start_s = 0;  // the caller's MPI start-up (timing::Phase::mpi_start), measured before run_study
 };
 
@@ -40,6 +43,11 @@ struct RunOutcome {
   timing::Times times;   // rank 0: this rank's phases and the maximum over the ranks, wall time to the write's end
   std::string html;      // [report] html = true: the HTML report to write from `out` (checked before any work)
 };
+
+// The worker threads per rank of a run: `requested` (RunOptions::threads, else the study's [analysis] threads) when
+// > 0; 0: the CPUs of this process's affinity mask when the job is one rank, 1 when it has several (mpirun starts a
+// rank per core: threads would oversubscribe). At most `units` (the units to compute; at least 1).
+int study_threads(int requested, int ranks, std::size_t units);
 
 // Returns the process exit code on every rank: 0 done, 3 done but too many analyses excluded (the results
 // file and the report say so), 130 interrupted (checkpoint kept). Any error on any rank (bad input, resume

@@ -164,6 +164,10 @@ struct Study {
   int substeps = 1;
   double max_dt = 0.0;  // step cap (s): substeps = max(substeps, ceil(dt / max_dt)); default 2.5 ms (impacts), 0 (probability)
   int batch = 256;
+  // [analysis] threads: worker threads per rank (0: the CPUs of the affinity mask on one rank, 1 per rank under
+  // mpirun with several ranks); how the work runs, not what it computes: not in /settings, the results' bits do
+  // not depend on it (pounding run --threads overrides it)
+  int threads = 0;
   double free_vibration = 0.0;
   double displacement_limit = 10.0;
   bool skip_untouched = true;  // impacts scene: pairs that never touch take their uncoupled results

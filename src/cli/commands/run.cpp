@@ -107,6 +107,7 @@ class TerminalProgress {
 struct RunOpts {
   std::string study, out;
   bool resume = false, force = false, quiet = false, out_given = false, timings = false;
+  int threads = -1;  // --threads (-1: the study's [analysis] threads)
 };
 
 // The run's phases (core/timing.hpp) in one line, and with --timings as a table (rank 0 and the largest over ranks).
@@ -157,6 +158,7 @@ int run_job(const RunOpts& o) {
     ro.out_given = o.out_given;
     ro.resume = o.resume;
     ro.force = o.force;
+    ro.threads = o.threads;
     // a fragility study's /fragility and /hazard (nothing for other studies)
     ro.analyse = [](results::Results& r, const WorkHook& hook) { analyse_fragility(r, &hook); };
     // the report, rendered before the results are written so that its time is in them (a stop there: exit 130)
@@ -212,7 +214,14 @@ void add_run(CLI::App& app) {
   c->add_flag("--force", o->force, "discard the progress in <out>.ckpt and start afresh");
   c->add_flag("--quiet", o->quiet, "no progress display");
   c->add_flag("--timings", o->timings, "print the table of phases (rank 0 and the largest over the ranks) after the run");
-  c->callback([o, out] {
+  auto* threads = c->add_option("--threads", o->threads,
+                                 "worker threads per rank (default: the study's [analysis] threads; 0: the CPUs of the "
+                                 "affinity mask on one rank, 1 per rank under mpirun with several ranks); results do "
+                                 "not depend on it");
+  c->callback([o, out, threads] {
+    if (threads->count() > 0 && (o->threads < 0 || o->threads > 1024))
+      throw InputError(fmt::format("--threads {} is outside [0, 1024]", o->threads), "--threads",
+                       "give the worker threads per rank, 1 to 1024, or 0 for the CPUs this process may use");
     // A write beyond the file-size limit (ulimit -f) must be an EFBIG error we report, not SIGXFSZ.
     std::signal(SIGXFSZ, SIG_IGN);
     o->out_given = out->count() > 0;

@@ -34,21 +34,29 @@ class Study:
         else:
             raise ValueError(f"study file not found, {text}, give the path of a study .toml or its text")
 
-    def run(self, out=None, progress=True, resume=False, force=False):
-        """Runs the study (Ctrl-C stops it after the running unit, keeping the checkpoint: KeyboardInterrupt, then
+    def run(self, out=None, progress=True, resume=False, force=False, threads=None):
+        """Runs the study (Ctrl-C stops it after the running units, keeping the checkpoint: KeyboardInterrupt, then
         resume=True). out: the results file (default: the study's `output`). progress: True prints a line to stderr
-        every 2 s, a callable gets (phase, done, total, elapsed_s, final), False nothing. Returns Results."""
+        every 2 s, a callable gets (phase, done, total, elapsed_s, final), False nothing. threads: worker threads
+        (None: the study's [analysis] threads, whose default 0 means every CPU this process may use); the results
+        do not depend on it. Returns Results."""
+        if threads is None:
+            threads = -1
+        elif isinstance(threads, bool) or not isinstance(threads, (int, np.integer)) or not 0 <= threads <= 1024:
+            raise ValueError(f"threads = {threads!r} is not a whole number in [0, 1024], Study.run(threads=), give "
+                             "the worker threads, 0 for every CPU this process may use, or None for the study's "
+                             "[analysis] threads")
         callback = _printer() if progress is True else (progress or None)
         info = (lambda line: print(line, file=sys.stderr)) if progress else None
         start = time.monotonic()
         if self.path:
-            outcome = _core.run_study(self.path, out, resume, force, callback, info)
+            outcome = _core.run_study(self.path, out, resume, force, callback, info, int(threads))
         else:
             fd, path = tempfile.mkstemp(suffix=".toml", prefix=".pounding-study-", dir=self.base_dir)
             try:
                 with os.fdopen(fd, "w") as f:
                     f.write(self.text)
-                outcome = _core.run_study(path, out, resume, force, callback, info)
+                outcome = _core.run_study(path, out, resume, force, callback, info, int(threads))
             finally:
                 os.unlink(path)
         results = Results(outcome["out"])

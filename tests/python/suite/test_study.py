@@ -100,3 +100,28 @@ def test_ctrl_c_stops_a_study_and_resume_finishes_it(tmp_path):
     assert pounding._core.report(str(out), True) == pounding._core.report(str(whole.path), True)
     with pytest.raises(RuntimeError, match="callback failed"):
         pounding.Study(QUICK).run(out=str(tmp_path / "r.h5"), progress=lambda *a: 1 / 0)
+
+
+def test_study_threads_give_the_same_bits(tmp_path):
+    """Study.run(threads=2) writes the same results as threads=1 (each thread its own unit computer, results
+    stored by unit id); the thread count is provenance in /timing, not a setting."""
+    h5py = need("h5py")
+    one, two = tmp_path / "t1.h5", tmp_path / "t2.h5"
+    pounding.Study(QUICK).run(out=str(one), progress=False, threads=1)
+    pounding.Study(QUICK).run(out=str(two), progress=False, threads=2)
+    with h5py.File(one) as a, h5py.File(two) as b:
+        assert a["timing"].attrs["threads"] == 1 and b["timing"].attrs["threads"] == 2
+        for group in ("uncoupled", "models"):
+            for key in a[group]:
+                x, y = a[group][key][()], b[group][key][()]
+                assert np.array_equal(x, y, equal_nan=x.dtype.kind == "f"), (group, key)
+    compare = os.path.join(HERE, "..", "..", "cli", "compare_results.py")
+    run = subprocess.run(["/usr/bin/python3", compare, str(one), str(two)], capture_output=True, text=True)
+    assert run.returncode == 0, run.stdout + run.stderr
+
+
+@pytest.mark.parametrize("bad", [-1, 1025, 1.5, "2", True])
+def test_bad_threads_is_a_value_error(tmp_path, bad):
+    with pytest.raises(ValueError, match=r"threads"):
+        pounding.Study(QUICK).run(out=str(tmp_path / "x.h5"), progress=False, threads=bad)
+    assert os.listdir(tmp_path) == []
