@@ -974,8 +974,9 @@ int finish(const parallel::Session& session, const Inputs& in, const WorkPlan& L
   }
   if (session.root()) {
     if (!summary_line.empty()) ctx.say(summary_line);
-    ctx.say(fmt::format("results: {} (wall time {:.2f} s: units {:.2f} s, analysis {:.2f} s; {} ranks x {} threads)",
-                        in.out, total, wall, analysis, session.size(), threads));
+    ctx.say(fmt::format("results: {} (wall time {:.2f} s: units {:.2f} s, analysis {:.2f} s; {} rank{} x {} thread{})",
+                        in.out, total, wall, analysis, session.size(), session.size() == 1 ? "" : "s", threads,
+                        threads == 1 ? "" : "s"));
     if (rc == 3) ctx.say(" WARNING: too many excluded analyses; the results file says so (exit code 3)");
   }
   return rc;
