@@ -68,6 +68,8 @@ by level), and results are keyed by (body, floor).
 Usage: tools/reference_systems.py system INPUT.json OUTPUT.txt
 INPUT: {"mode": "linear"|"nonlinear", "dt": s, "ag": [m/s^2], "duration": s, "substeps": [ints],
         "bodies": [{"m": [kg], "k": [N/m], "a0": 1/s, "a1": s}],
+        (a body may give "modal_zeta": [z1, z2, ...] instead of a0/a1: classical modal damping
+         C = M Phi diag(2 z_j w_j / M_j) Phi' M from scipy.linalg.eigh, the last ratio repeating)
         "contacts": [{"left": [body, floor], "right": [body, floor], "gap": m, "kc": N/m^n, "n": 1.5, "e": e,
                       "v0_min": m/s}]}   (floors 1-based, xibar = 3 (1 - e^2) / 4, Lankarani-Nikravesh)
        A side may instead be a column, {"column": [body, lo, hi], "xi": x} (a floor striking the column between
@@ -408,7 +410,10 @@ def system_assemble(bodies):
         sl = slice(base, base + nb)
         M[sl, sl] = np.diag(m)
         K[sl, sl] = Kb
-        C[sl, sl] = body["a0"] * np.diag(m) + body["a1"] * Kb
+        if "modal_zeta" in body:  # classical modal damping from scipy's eigenvectors (damping_matrix)
+            C[sl, sl] = damping_matrix(m, k, {"modal": {"zeta": body["modal_zeta"]}})[0]
+        else:
+            C[sl, sl] = body.get("a0", 0.0) * np.diag(m) + body.get("a1", 0.0) * Kb
         base += nb
     return dofs, M, K, C
 

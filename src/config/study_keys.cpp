@@ -209,6 +209,13 @@ constexpr StudyKey keys[] = {
     {"structures", "stiffness_profile", "string", "\"uniform\"", "", "\"uniform\" | \"shear\"",
      "Shear model, storey stiffnesses from T1: uniform = equal storeys; shear = proportional to the storey shear of "
      "an inverted-triangle load (model::stiffness_shape), both scaled so the fundamental period is T1."},
+    {"structures", "damping", "string", "\"rayleigh\"", "", "\"rayleigh\" | \"modal\"",
+     "Shear model: rayleigh = C = a0 M + a1 K0 with the building's zeta at modes 1 and 2 (the other modes get "
+     "a0 / (2 omega) + a1 omega / 2); modal = classical modal damping C = M Phi diag(2 zeta_j omega_j / M_j) Phi' M, "
+     "every mode exactly its ratio (modal_zeta, else zeta). The default of both buildings."},
+    {"structures", "modal_zeta", "array of numbers", "every mode the building's zeta", "", "[0, 0.5] each",
+     "With damping = \"modal\": the damping ratio per mode from mode 1, the last value repeating for the higher "
+     "modes (a one-storey building takes the first). The default of both buildings.", 0.0, 0.5},
     {"structures", "building1", "table", "the [structures] defaults", "", "", "Building 1 (the left one)."},
     {"structures", "building2", "table", "the [structures] defaults", "", "", "Building 2 (the right one of a pair)."},
     {"structures", "buildings", "integer", "2", "", "[2, 16]",
@@ -312,6 +319,10 @@ constexpr StudyKey keys[] = {
      "selects the height.", 1.0, 1e12},
     {"structures.buildingN", "stiffness_profile", "string", "[structures] stiffness_profile", "",
      "\"uniform\" | \"shear\"", "As in [structures]."},
+    {"structures.buildingN", "damping", "string", "[structures] damping", "", "\"rayleigh\" | \"modal\"",
+     "As in [structures]; \"modal\" needs model = \"shear\" and no isolation."},
+    {"structures.buildingN", "modal_zeta", "array of numbers", "[structures] modal_zeta", "", "[0, 0.5] each",
+     "As in [structures].", 0.0, 0.5},
     {"structures.buildingN", "isolation", "table", "none (fixed base)", "", "{bearing, base_mass, ...}",
      "Shear model: base isolation (keys under \"[structures.buildingK] isolation\")."},
     {"structures.buildingN", "moat", "table", "none", "", "{gap, law, stiffness, e}",

@@ -197,7 +197,9 @@ System shear_buildings(std::span<const StickTopology> sticks, double level_toler
   for (std::size_t b = 0; b < nb; ++b) {
     Body& body = p.bodies[b];
     body.heights = z[b];
-    body.storey_dashpots = sticks[b].storey_dashpots && sticks[b].storeys > 1;
+    const bool dense = sticks[b].damping == DampingForm::dense && sticks[b].storeys > 1;
+    body.storey_dashpots = sticks[b].storey_dashpots && sticks[b].storeys > 1 && !dense;
+    body.damping = dense ? DampingForm::dense : DampingForm::dashpots;
     body.label = sticks[b].label.empty() ? "building" + std::to_string(b + 1) : sticks[b].label;
     if (sticks[b].isolated) {
       body.isolated = true;

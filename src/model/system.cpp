@@ -291,6 +291,11 @@ bool System::any_storey_dashpots() const {
   return std::any_of(parts_.bodies.begin(), parts_.bodies.end(), [](const Body& b) { return b.storey_dashpots; });
 }
 
+bool System::any_dense_damping() const {
+  return std::any_of(parts_.bodies.begin(), parts_.bodies.end(),
+                     [](const Body& b) { return b.damping == DampingForm::dense; });
+}
+
 System System::sdof_pair() {
   Parts p;
   for (int b = 0; b < 2; ++b) {

@@ -73,6 +73,19 @@ Layout layout_of(const model::System& S) {
     for (int d : b.dofs) L.body_dofs.push_back(d);
     L.body_start.push_back(static_cast<int>(L.body_dofs.size()));
   }
+  if (S.any_dense_damping()) {  // rows in SystemBatch::c_dense's entry order: body by body, C_jk row-major
+    L.dense_row.assign(static_cast<std::size_t>(L.ndof), -1), L.dense_body.assign(static_cast<std::size_t>(L.ndof), -1);
+    for (std::size_t b = 0; b < S.bodies().size(); ++b) {
+      const model::Body& body = S.bodies()[b];
+      if (body.damping != model::DampingForm::dense) continue;
+      const int n = static_cast<int>(body.dofs.size());
+      for (int jl = 0; jl < n; ++jl) {
+        L.dense_row[static_cast<std::size_t>(body.dofs[static_cast<std::size_t>(jl)])] = L.ndense + jl * n;
+        L.dense_body[static_cast<std::size_t>(body.dofs[static_cast<std::size_t>(jl)])] = static_cast<int>(b);
+      }
+      L.ndense += n * n;
+    }
+  }
   for (const model::ContactElement& e : S.contacts()) L.left.push_back(side_of(e.left)), L.right.push_back(side_of(e.right));
   if (S.channels() > 1) {  // multi-support: every side's channel, and which springs and elements cross channels
     auto chan = [&](int dof) { return S.bodies()[static_cast<std::size_t>(S.body_of(dof))].channel; };
@@ -260,6 +273,7 @@ void fill_structure(const Pool& T, std::size_t i, const LaneView& v) {
     T.spring(sys::FS, s)[i] = f0, T.spring(sys::PD, s)[i] = std::abs(d0), T.spring(sys::PF, s)[i] = std::abs(f0);
   }
   for (int f : {sys::BAD, sys::EIN, sys::EVIS, sys::EHYS}) T.lane(f)[i] = 0.0;
+  for (int r = 0; r < L.ndense; ++r) T.dense(r)[i] = v.at(B.c_dense, r);
 }
 
 // Lane i's elements: constants, the latch and the observers at rest; the initial force from the initial
@@ -314,6 +328,14 @@ void fill_accelerations(const Pool& T, std::size_t i, const LaneView& v, const s
     const int r = L.ref[static_cast<std::size_t>(j)];
     const double vrel = r < 0 ? v.at(v.B.v0, j) : v.at(v.B.v0, j) - v.at(v.B.v0, r);
     q[static_cast<std::size_t>(j)] = T.dof(sys::CF, j)[i] * vrel + x;
+    if (!L.dense_row.empty() && L.dense_row[static_cast<std::size_t>(j)] >= 0) {  // dense damping: C v0 in row order
+      const int b = L.dense_body[static_cast<std::size_t>(j)];
+      int r0 = L.dense_row[static_cast<std::size_t>(j)];
+      double cv = x;
+      for (int k = L.body_start[static_cast<std::size_t>(b)]; k < L.body_start[static_cast<std::size_t>(b) + 1]; ++k, ++r0)
+        cv = std::fma(T.dense(r0)[i], v.at(v.B.v0, L.body_dofs[static_cast<std::size_t>(k)]), cv);
+      q[static_cast<std::size_t>(j)] = cv;
+    }
     for (int k = L.refd_start[static_cast<std::size_t>(j)]; k < L.refd_start[static_cast<std::size_t>(j) + 1]; ++k) {
       const int d = L.refd[static_cast<std::size_t>(k)];
       q[static_cast<std::size_t>(j)] -= T.dof(sys::CF, d)[i] * (v.at(v.B.v0, d) - v.at(v.B.v0, j));

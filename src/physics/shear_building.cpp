@@ -61,12 +61,21 @@ ShearNumbers shear_numbers(std::span<const double> h, const ShearSpec& spec) {
   out.fy = strengths(spec, h, out.m, out.k);
   out.modes = model::shear_stick_modes(out.m, out.k);
   out.c_storey.assign(n, 0.0);
+  for (double z : spec.modal_zeta) require(std::isfinite(z) && z >= 0.0 && z < 1.0, "modal zeta must be in [0, 1)");
   if (n == 1) {
-    // today's SDOF: Structure::from_period's damping expression, as a floor dashpot
+    // today's SDOF: Structure::from_period's damping expression, as a floor dashpot (modal: mode 1's ratio)
+    const double zeta = spec.modal && !spec.modal_zeta.empty() ? spec.modal_zeta[0] : spec.zeta;
     out.c_floor = {spec.storey_stiffness.empty()
-                       ? Structure::from_period(out.m[0], spec.period, spec.zeta).c
-                       : 2.0 * spec.zeta * std::sqrt(out.k[0] * out.m[0])};
+                       ? Structure::from_period(out.m[0], spec.period, zeta).c
+                       : 2.0 * zeta * std::sqrt(out.k[0] * out.m[0])};
     out.zeta_modes = {out.c_floor[0] / (2.0 * std::sqrt(out.k[0] * out.m[0]))};
+    return out;
+  }
+  if (spec.modal) {  // classical modal damping: the dense C, no dashpots
+    const std::vector<double> zl = spec.modal_zeta.empty() ? std::vector<double>{spec.zeta} : spec.modal_zeta;
+    out.c_dense = model::modal_damping_matrix(out.m, out.modes, zl);
+    out.c_floor.assign(n, 0.0);
+    for (std::size_t j = 0; j < n; ++j) out.zeta_modes.push_back(model::modal_ratio(zl, j));
     return out;
   }
   require(spec.mode_i >= 1 && spec.mode_i < spec.mode_j && spec.mode_j <= static_cast<int>(n),
@@ -95,7 +104,14 @@ ShearNumbers set_shear_building(SystemBatch& batch, std::size_t lane, int body, 
   const bool dashpots = b.storey_dashpots && !batch.c_storey.empty();
   for (double c : num.c_storey)
     require(dashpots || c == 0.0, "Rayleigh's stiffness part needs storey dashpots (StickTopology::storey_dashpots)");
+  const bool dense = b.damping == model::DampingForm::dense;
+  require(dense == !num.c_dense.empty(), dense ? "a body with dense damping needs modal damping (ShearSpec::modal)"
+                                               : "modal damping needs a body with DampingForm::dense (StickTopology::damping)");
   const std::size_t w = batch.width;
+  const std::size_t n = b.dofs.size();
+  for (std::size_t j = 0; j < num.c_dense.size(); ++j)
+    batch.c_dense[SystemBatch::at(batch.dense_entry(body, static_cast<int>(j / n), static_cast<int>(j % n)), lane, w)] =
+        num.c_dense[j];
   for (std::size_t i = 0; i < b.dofs.size(); ++i) {
     const int d = b.dofs[i], s = sys.spring_below(d);
     batch.m[SystemBatch::at(d, lane, w)] = num.m[i];
@@ -108,6 +124,7 @@ ShearNumbers set_shear_building(SystemBatch& batch, std::size_t lane, int body, 
 
 IsolationNumbers isolation_numbers(std::span<const double> h, const ShearSpec& spec, const IsolationSpec& iso) {
   require(std::isfinite(iso.base_mass) && iso.base_mass > 0.0, "the base mass must be finite and > 0");
+  require(!spec.modal, "classical modal damping of an isolated superstructure is not supported (use Rayleigh)");
   IsolationNumbers out;
   out.super = shear_numbers(h, spec);
   out.m_base = iso.base_mass;

@@ -38,6 +38,14 @@ void SystemBatch::resize(const model::System& s, std::size_t w) {
   m.assign(count(dofs, w), 0.0);
   c_floor.assign(count(dofs, w), 0.0);
   c_storey.assign(s.any_storey_dashpots() ? count(springs, w) : 0, 0.0);
+  dense_base.assign(s.bodies().size(), -1);
+  std::size_t entries = 0;
+  for (std::size_t b = 0; b < s.bodies().size(); ++b)
+    if (s.bodies()[b].damping == model::DampingForm::dense) {
+      dense_base[b] = static_cast<int>(entries);
+      entries += s.bodies()[b].dofs.size() * s.bodies()[b].dofs.size();
+    }
+  c_dense.assign(count(entries, w), 0.0);
   spring.assign(count(springs, w), SpringSpec{0.0, inf, 0.0});
   gap.assign(count(elements, w), 0.0);
   weight.assign(count(elements, w), 0.0);
@@ -45,6 +53,13 @@ void SystemBatch::resize(const model::System& s, std::size_t w) {
   e.assign(count(elements, w), 1.0);
   u0.assign(count(dofs, w), 0.0);
   v0.assign(count(dofs, w), 0.0);
+}
+
+int SystemBatch::dense_entry(int body, int j, int k) const {
+  const int base = dense_base.at(static_cast<std::size_t>(body));
+  if (base < 0) return -1;
+  const int n = static_cast<int>(system->bodies()[static_cast<std::size_t>(body)].dofs.size());
+  return base + j * n + k;
 }
 
 void SystemResult::resize(const model::System& s, std::size_t w) {

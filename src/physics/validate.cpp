@@ -189,6 +189,23 @@ std::vector<Problem> validate_system_lane(const SystemBatch& b, std::span<const 
       if (!std::isfinite(v))
         out.push_back({fmt::format("{} = {} must be finite", name, v), where(name, place)(), "give a finite value"});
   }
+  for (std::size_t bi = 0; bi < sys.bodies().size(); ++bi) {  // classical modal damping: finite, symmetric
+    const model::Body& body = sys.bodies()[bi];
+    if (body.damping != model::DampingForm::dense) continue;
+    const int n = static_cast<int>(body.dofs.size());
+    for (int j = 0; j < n; ++j)
+      for (int k = 0; k < n; ++k) {
+        const double c = b.c_dense[SystemBatch::at(b.dense_entry(static_cast<int>(bi), j, k), lane, w)];
+        const double ct = b.c_dense[SystemBatch::at(b.dense_entry(static_cast<int>(bi), k, j), lane, w)];
+        const std::string place = fmt::format("c_dense ({} row {} column {}, lane {})", body.label, j + 1, k + 1, lane);
+        if (!std::isfinite(c) || (j == k && c < 0.0))
+          out.push_back({fmt::format("C = {} must be finite (and >= 0 on the diagonal)", c), place,
+                         "give the classical damping matrix of the building (model::modal_damping_matrix)"});
+        else if (std::abs(c - ct) > 1e-9 * (std::abs(c) + std::abs(ct)))
+          out.push_back({fmt::format("C is not symmetric ({} against {})", c, ct), place,
+                         "give the classical damping matrix of the building (model::modal_damping_matrix)"});
+      }
+  }
   for (std::size_t s = 0; s < sys.springs().size(); ++s) {
     const auto place = [&sys, s] { return spring_place(sys, s); };
     const std::size_t i = SystemBatch::at(static_cast<int>(s), lane, w);
@@ -265,6 +282,15 @@ double structure_damping_bound(const SystemBatch& b, std::size_t lane) {
       row[static_cast<std::size_t>(sp.j)] += sp.i == model::ground ? c : 2.0 * c;
       if (sp.i != model::ground) row[static_cast<std::size_t>(sp.i)] += 2.0 * c;
     }
+  for (std::size_t bi = 0; bi < sys.bodies().size(); ++bi) {  // dense damping: sum_k |C_jk| in row j
+    const model::Body& body = sys.bodies()[bi];
+    if (body.damping != model::DampingForm::dense) continue;
+    const int n = static_cast<int>(body.dofs.size());
+    for (int j = 0; j < n; ++j)
+      for (int k = 0; k < n; ++k)
+        row[static_cast<std::size_t>(body.dofs[static_cast<std::size_t>(j)])] +=
+            std::abs(b.c_dense[SystemBatch::at(b.dense_entry(static_cast<int>(bi), j, k), lane, w)]);
+  }
   double bound = 0.0;
   for (int d = 0; d < sys.ndof(); ++d)
     bound = std::max(bound, row[static_cast<std::size_t>(d)] / b.m[SystemBatch::at(d, lane, w)]);
@@ -325,15 +351,16 @@ std::vector<Problem> validate(const SystemBatch& batch, std::span<const ContactM
                      fmt::format("contact law of group '{}'", sys.groups()[g].name),
                      "use a force-based law (simultaneous impulses depend on their order)"});
   for (const model::Body& body : sys.bodies())
-    if (body.damping != model::DampingForm::dashpots)
-      out.push_back({"classical modal damping is not supported by the system stepper yet",
-                     fmt::format("damping of {}", body.label), "use Rayleigh damping (dashpots)"});
+    if (body.damping == model::DampingForm::dense && (body.isolated || body.floor_dashpot_ref != model::ground))
+      out.push_back({"classical modal damping of an isolated building's superstructure is not supported yet",
+                     fmt::format("damping of {}", body.label), "use Rayleigh damping for an isolated building"});
   const std::size_t w = batch.width;
   const auto d = static_cast<std::size_t>(sys.ndof()), s = sys.springs().size(), e = sys.contacts().size();
   const bool sized = batch.m.size() == d * w && batch.c_floor.size() == d * w && batch.u0.size() == d * w &&
                      batch.v0.size() == d * w && batch.spring.size() == s * w && batch.gap.size() == e * w &&
                      batch.weight.size() == e * w && batch.kc.size() == e * w && batch.e.size() == e * w &&
-                     batch.c_storey.size() == (sys.any_storey_dashpots() ? s * w : 0);
+                     batch.c_storey.size() == (sys.any_storey_dashpots() ? s * w : 0) &&
+                     batch.dense_base.size() == sys.bodies().size();
   if (!sized) throw std::logic_error("validate: a SystemBatch not sized for its System (SystemBatch::resize)");
   if (!out.empty()) return out;
   for (std::size_t lane = 0; lane < w; ++lane) {

@@ -117,6 +117,7 @@ physics::SystemBatch slice(const physics::SystemBatch& all, std::size_t first, s
   const std::size_t W = all.width;
   copy_rows(all.m, W, b.m, n, first, false), copy_rows(all.c_floor, W, b.c_floor, n, first, false);
   copy_rows(all.c_storey, W, b.c_storey, n, first, false), copy_rows(all.spring, W, b.spring, n, first, false);
+  copy_rows(all.c_dense, W, b.c_dense, n, first, false);
   copy_rows(all.gap, W, b.gap, n, first, false), copy_rows(all.weight, W, b.weight, n, first, false);
   copy_rows(all.kc, W, b.kc, n, first, false), copy_rows(all.e, W, b.e, n, first, false);
   copy_rows(all.u0, W, b.u0, n, first, false), copy_rows(all.v0, W, b.v0, n, first, false);

@@ -230,6 +230,13 @@ std::string BuildingModel::height_text() const {
 }
 std::string BuildingModel::mass_text() const { return mass.given() ? mass.describe("kg") : "mass-index model"; }
 std::string BuildingModel::zeta_text() const { return zeta.describe(""); }
+std::string BuildingModel::damping_text() const {
+  if (!modal_damping) return "Rayleigh damping on modes 1 and 2";
+  if (modal_zeta.empty()) return "classical modal damping, every mode the building's zeta";
+  std::string z;
+  for (double x : modal_zeta) z += (z.empty() ? "" : ", ") + fmt::format("{:g}", x);
+  return fmt::format("classical modal damping, zeta {} per mode from mode 1 (the last for the higher modes)", z);
+}
 std::string BuildingModel::yield_text() const {
   if (hysteresis == Hysteresis::elastic) return "elastic";
   if (yield_coefficient.given()) return "Cy " + yield_coefficient.describe("");
@@ -358,7 +365,7 @@ void check_shear_keys(const BuildingModel& b, const WhereFn& where) {
       if (v > 0)
         throw InputError(fmt::format("{} is given for an SDOF building", key), where(key),
                          fmt::format("add model = \"shear\" to this table (or [structures]), or remove {}", key));
-    for (auto [key, given] : {std::pair{"isolation", b.isolated}, {"moat", b.moat}})
+    for (auto [key, given] : {std::pair{"isolation", b.isolated}, {"moat", b.moat}, {"damping", b.modal_damping}})
       if (given)
         throw InputError(fmt::format("{} is given for an SDOF building", key), where(key),
                          fmt::format("add model = \"shear\" to this table (or [structures]), or remove {}", key));
@@ -513,6 +520,17 @@ void read_shear_defaults(config::TableReader& r, BuildingModel& b) {
     throw InputError(fmt::format("stiffness_profile = \"{}\" is not a profile", name), "stiffness_profile",
                      "write stiffness_profile = " + enum_name_list(model::stiffness_profile_names, " or ", "\""));
   });
+  b.modal_damping = r.choice("damping", std::string(b.modal_damping ? "modal" : "rayleigh"), [](const std::string& name) {
+    if (name == "rayleigh" || name == "modal") return name == "modal";
+    throw InputError(fmt::format("damping = \"{}\" is not a damping model", name), "damping",
+                     "write damping = \"rayleigh\" (modes 1 and 2) or \"modal\" (classical modal damping)");
+  });
+  if (r.get("modal_zeta")) {
+    b.modal_zeta = r.numbers("modal_zeta", {});
+    if (!b.modal_damping)
+      throw InputError("modal_zeta is given without damping = \"modal\"", r.where("modal_zeta"),
+                       "add damping = \"modal\" to this table, or remove modal_zeta (Rayleigh takes zeta)");
+  }
 }
 
 
@@ -656,8 +674,12 @@ BuildingModel parse_building(const toml::table* t, const std::string& file, cons
   r.finish(std::string("periods, period_min, period_max, period_step, period, height, mass, zeta, yield_coefficient, "
                        "alpha, hysteresis, aspect_ratios, rho_mean, rho_cov, mbar_mean, mbar_cov, mbar_min, mbar_max, "
                        "drift, ductility, height_min, height_max, ct_lower, ct_upper, height_exponent, model, "
-                       "floor_mass, storey_stiffness, stiffness_profile, isolation, moat, ") +
+                       "floor_mass, storey_stiffness, stiffness_profile, damping, modal_zeta, isolation, moat, ") +
            code_factor_keys);
+  if (b.shear() && b.modal_damping && b.isolated)
+    throw InputError("classical modal damping is given for an isolated building", where("damping"),
+                     "use damping = \"rayleigh\" for an isolated building (its superstructure's modal damping is not "
+                     "supported yet)");
   check_shear_keys(b, [&](std::string_view key) {
     return key == "storey_height" && !own_storey_height ? fallback(key) : where(key);
   });

@@ -695,14 +695,14 @@ std::string describe_structure(const StructureModel& m, int i) {
                             : b.yield_coefficient.given()       ? "storey yield from the base shear Cy M g"
                                                                  : fmt::format("storeys yielding at drift ratio {:.4g}",
                                                                                b.drift / b.ductility);
-  return fmt::format("building{}: shear building, {}, {}, {}, {}, Rayleigh damping on modes 1 and 2", i + 1,
+  return fmt::format("building{}: shear building, {}, {}, {}, {}, {}", i + 1,
                      b.code.storeys > 0 ? fmt::format("{} storeys of {:g} m", b.code.storeys, b.storey_height())
                                         : fmt::format("storeys of {0:g} m, max(1, round(h / {0:g} m)) per sample",
                                                       b.storey_height()),
                      b.floor_mass > 0 ? fmt::format("floors of {:g} kg", b.floor_mass) : "the mass split equally over the floors",
                      b.storey_stiffness > 0 ? fmt::format("storeys of {:g} N/m", b.storey_stiffness)
                                             : fmt::format("{} storey stiffnesses scaled to T1", to_string(b.profile)),
-                     yield) +
+                     yield, b.damping_text()) +
          (b.isolated ? "; isolated: " + b.isolation_text() : std::string()) +
          (b.moat ? "; moat: " + b.moat_text() : std::string());
 }

@@ -52,6 +52,7 @@ physics::ShearSpec shear_spec(const BuildingModel& b, const SampledStructure& s,
   spec.zeta = s.zeta;
   spec.alpha = s.alpha;
   spec.profile = b.profile;
+  spec.modal = b.modal_damping, spec.modal_zeta = b.modal_zeta;
   if (storeys == 1 && !(b.floor_mass > 0) && !(b.storey_stiffness > 0)) {
     // the SDOF of the sample, bit for bit: k and c by Structure::from_period(m, T, zeta), its fy
     spec.floor_mass = {s.m};
@@ -116,6 +117,7 @@ const model::System& SystemBlock::system(const LaneTopology& t) {
       sticks[i].storeys = t.storeys[i], sticks[i].storey_heights = {t.storey_height[i]};
       sticks[i].isolated = t.isolated[i], sticks[i].moat = t.moat[i];
       sticks[i].columns = model_.row_building(i).shear();  // an SDOF stands for a whole building: no column
+      if (model_.row_building(i).modal_damping) sticks[i].damping = model::DampingForm::dense;
       if (t.isolated[i]) sticks[i].isolator_law = physics::isolator_law(model_.row_building(i).isolation.bearing);
     }
     slot = std::make_unique<model::System>(model::shear_buildings(sticks, tolerance_, levels_));
@@ -132,6 +134,7 @@ const model::System& SystemBlock::table_system(const LaneTopology& t) {
       sticks[i].storeys = t.storeys[i], sticks[i].storey_heights = {t.storey_height[i]};
       sticks[i].isolated = t.isolated[i], sticks[i].moat = t.moat[i];
       sticks[i].columns = model_.row_building(i).shear();  // an SDOF stands for a whole building: no column
+      if (model_.row_building(i).modal_damping) sticks[i].damping = model::DampingForm::dense;
       if (t.isolated[i]) sticks[i].isolator_law = physics::isolator_law(model_.row_building(i).isolation.bearing);
     }
     slot = std::make_unique<model::System>(model::shear_buildings(sticks, tolerance_, model::ContactLevels::common));

@@ -5,14 +5,16 @@
 #include <string>
 #include <vector>
 
+#include "pounding/model/modes.hpp"
 #include "pounding/model/system.hpp"
 #include "pounding/physics/system_batch.hpp"
 
 namespace pounding::test {
 
 // Shear buildings side by side (bodies left to right, storey counts n[b]), DOFs level-major, storey dashpots
-// when `rayleigh`, one point-point element per common level between neighbours b and b+1 in group 0.
-inline model::System shear_row(const std::vector<int>& n, bool rayleigh) {
+// when `rayleigh`, one point-point element per common level between neighbours b and b+1 in group 0. `dense`:
+// classical modal damping (DampingForm::dense) on every body of more than one storey, no storey dashpots.
+inline model::System shear_row(const std::vector<int>& n, bool rayleigh, bool dense = false) {
   model::System::Parts P;
   int top = 0;
   for (int x : n) top = std::max(top, x);
@@ -25,7 +27,8 @@ inline model::System shear_row(const std::vector<int>& n, bool rayleigh) {
     model::Body body;
     body.dofs = dof[b];
     for (int k = 1; k <= n[b]; ++k) body.heights.push_back(3.2 * k);
-    body.storey_dashpots = rayleigh;
+    body.storey_dashpots = rayleigh && !(dense && n[b] > 1);
+    if (dense && n[b] > 1) body.damping = model::DampingForm::dense;
     body.label = "building" + std::to_string(b + 1);
     P.bodies.push_back(body);
     for (int k = 0; k < n[b]; ++k)
@@ -46,10 +49,12 @@ inline model::System shear_row(const std::vector<int>& n, bool rayleigh) {
 }
 
 // One building's numbers in every lane: storey masses m, storey stiffnesses k (bottom first), Rayleigh a0 (floor
-// dashpots a0 m) and a1 (storey dashpots a1 k), yield forces fy (inf: elastic) with hardening alpha.
+// dashpots a0 m) and a1 (storey dashpots a1 k), yield forces fy (inf: elastic) with hardening alpha; `modal_zeta`
+// for a body with dense damping (C = model::modal_damping_matrix, per mode from 1, the last repeating).
 struct Stick {
   std::vector<double> m, k, fy;
   double a0 = 0.0, a1 = 0.0, alpha = 0.0;
+  std::vector<double> modal_zeta;
 };
 
 // Fills body b's DOFs and springs in lane l from `s` (springs in body order, as shear_row lists them).
@@ -66,6 +71,16 @@ inline void fill_stick(physics::SystemBatch& B, int b, std::size_t l, const Stic
     const std::size_t k = static_cast<std::size_t>(x.storey - 1), at = physics::SystemBatch::at(static_cast<int>(sp), l, B.width);
     B.spring[at] = {s.k[k], s.fy.empty() ? INFINITY : s.fy[k], s.alpha};
     if (!B.c_storey.empty()) B.c_storey[at] = s.a1 * s.k[k];
+  }
+  if (S.bodies()[static_cast<std::size_t>(b)].damping == model::DampingForm::dense) {
+    const std::vector<double> C = model::modal_damping_matrix(s.m, model::shear_stick_modes(s.m, s.k), s.modal_zeta);
+    const std::size_t n = dofs.size();
+    for (std::size_t j = 0; j < n; ++j) {
+      B.c_floor[physics::SystemBatch::at(dofs[j], l, B.width)] = 0.0;
+      for (std::size_t k = 0; k < n; ++k)
+        B.c_dense[physics::SystemBatch::at(B.dense_entry(b, static_cast<int>(j), static_cast<int>(k)), l, B.width)] =
+            C[j * n + k];
+    }
   }
 }
 

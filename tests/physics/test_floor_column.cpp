@@ -26,12 +26,18 @@
 #include "pounding/model/shear_building.hpp"
 #include "pounding/physics/shear_building.hpp"
 #include "pounding/physics/system_batch.hpp"
+#include "system_reference.hpp"
 #include "system_test_support.hpp"
 #include "temp_dir.hpp"
 #include "test_data.hpp"
 
 using namespace pounding;
 using namespace pounding::physics;
+using test::body_json;
+using test::have_scipy;
+using test::python;
+using test::Reference;
+using test::run_reference;
 
 namespace {
 
@@ -330,53 +336,6 @@ TEST(FloorColumn, MomentumAndEnergyBalanceConvergeWithTheStep) {
 }
 
 namespace {
-
-std::string python() {
-  const char* p = std::getenv("POUNDING_PYTHON");
-  return p && *p ? p : "/usr/bin/python3";
-}
-bool have_scipy() { return std::system((python() + " -c 'import numpy, scipy' 2>/dev/null").c_str()) == 0; }
-
-// tools/reference_systems.py system's output: (grid, body, floor) -> peak |u|; element -> impacts; (grid, element) ->
-// peak force.
-struct Reference {
-  std::map<std::tuple<int, int, int>, double> peak_u;
-  std::map<int, int> impacts;
-  std::map<std::pair<int, int>, double> peak_force;
-};
-Reference run_reference(const std::string& json) {
-  testdata::TempDir tmp("floor-column-scipy");
-  const std::string in = tmp.file("in.json"), out = tmp.file("out.txt");
-  std::ofstream(in) << json;
-  const std::string cmd = python() + " " + testdata::source_dir() + "/tools/reference_systems.py system " + in + " " + out;
-  EXPECT_EQ(std::system(cmd.c_str()), 0) << cmd;
-  Reference R;
-  std::ifstream f(out);
-  std::string line;
-  while (std::getline(f, line)) {
-    std::istringstream s(line);
-    std::string key;
-    s >> key;
-    int a = 0, b = 0, c = 0;
-    double v = 0;
-    if (key == "peak_u") {
-      s >> a >> b >> c >> v;
-      R.peak_u[{a, b, c}] = v;
-    } else if (key == "impacts") {
-      s >> a >> b;
-      R.impacts[a] = b;
-    } else if (key == "peak_force") {
-      s >> a >> b >> v;
-      R.peak_force[{a, b}] = v;
-    }
-  }
-  return R;
-}
-
-std::string body_json(const test::Stick& s) {
-  return fmt::format(R"({{"m": [{:.17g}], "k": [{:.17g}], "a0": {:.17g}, "a1": {:.17g}}})", fmt::join(s.m, ", "),
-                     fmt::join(s.k, ", "), s.a0, s.a1);
-}
 
 // A side of element `c` in the reference's terms: a floor [body, floor] or a column {"column": [body, lo, hi], "xi"}.
 std::string side_json(const model::System& S, const model::Side& s, double xi) {

@@ -23,20 +23,18 @@
 #include "pounding/contact/registry.hpp"
 #include "pounding/model/shear_building.hpp"
 #include "pounding/physics/system_batch.hpp"
+#include "system_reference.hpp"
 #include "system_test_support.hpp"
 #include "temp_dir.hpp"
 #include "test_data.hpp"
 
 using namespace pounding;
 using namespace pounding::physics;
+using test::have_scipy;
+using test::python;
 
 namespace {
 
-std::string python() {
-  const char* p = std::getenv("POUNDING_PYTHON");
-  return p && *p ? p : "/usr/bin/python3";
-}
-bool have_scipy() { return std::system((python() + " -c 'import numpy, scipy' 2>/dev/null").c_str()) == 0; }
 
 model::System row(const std::vector<int>& storeys) {
   std::vector<model::StickTopology> sticks(storeys.size());

@@ -34,6 +34,9 @@ struct StickTopology {
   // Rayleigh's stiffness-proportional part as a dashpot on each storey spring. Ignored for one storey: an SDOF's
   // damping is its floor dashpot (Structure::from_period), so a one-storey building is today's SDOF.
   bool storey_dashpots = true;
+  // Classical modal damping (DampingForm::dense: a per-lane n x n C, physics::ShearSpec::modal_zeta) instead of
+  // Rayleigh's dashpots; then no storey dashpots. Ignored for one storey (the SDOF's floor dashpot is exact).
+  DampingForm damping = DampingForm::dashpots;
   std::string label;  // empty: "building<b>" (b from 1, left to right)
   // Base isolation (docs/architecture.md §2.2.3 "Isolated stick", §2.2.4 "Walls"): a base mass (floor 0, level 0 m)
   // on an isolator spring (role isolator, storey 0) under the `storeys` floors; the superstructure's floor dashpots

@@ -136,6 +136,8 @@ class System {
   // every element with a side on dof (p or q), in element order, each once
   const std::vector<int>& elements_at(int dof) const { return elements_at_[static_cast<std::size_t>(dof)]; }
   bool any_storey_dashpots() const;
+  // Some body with DampingForm::dense (classical modal damping: SystemBatch::c_dense).
+  bool any_dense_damping() const;
   // The pair's structure (what run_system sends to the pair kernel): sdof_pair() up to heights and labels --
   // two one-DOF bodies (DOF 0 left, DOF 1 right) on ground springs of law 0 with floor dashpots to ground, no
   // storey dashpots, not isolated, one channel, and one point-point element L = 0, R = 1 in one study-gap group.

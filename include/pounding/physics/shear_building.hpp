@@ -36,15 +36,21 @@ struct ShearSpec {
   double alpha = 0.0;  // post-yield stiffness ratio of every storey
   double zeta = 0.05;  // the damping ratio at modes mode_i and mode_j (Rayleigh), or of the SDOF
   int mode_i = 1, mode_j = 2;  // Rayleigh's modes, from 1 (ignored for one storey)
+  // Classical modal damping instead of Rayleigh (docs/architecture.md §2.2.3): C = M Phi diag(2 zeta_j omega_j / M_j)
+  // Phi' M with zeta_j = modal_zeta[j] from mode 1, the last value repeating (empty: every mode `zeta`); the body
+  // must have DampingForm::dense (model::StickTopology::damping). One storey: the SDOF with ratio zeta_1.
+  bool modal = false;
+  std::vector<double> modal_zeta;
 };
 
 // What the numbers came to (per floor / per storey, bottom first) and the damping ratio each mode gets.
 struct ShearNumbers {
   std::vector<double> m, k, fy;
-  std::vector<double> c_floor, c_storey;  // c_storey all 0 for one storey
+  std::vector<double> c_floor, c_storey;  // c_storey all 0 for one storey (and for modal damping, c_floor too)
+  std::vector<double> c_dense;            // modal damping (n > 1): C row-major n x n; empty otherwise
   model::Rayleigh rayleigh{0.0, 0.0};     // a0, a1 (0, 0 for one storey)
   model::Modes modes;
-  std::vector<double> zeta_modes;  // a0/(2 omega_n) + a1 omega_n / 2; for one storey c / (2 sqrt(k m))
+  std::vector<double> zeta_modes;  // a0/(2 omega_n) + a1 omega_n / 2 (modal: zeta_n); one storey c / (2 sqrt(k m))
 };
 
 // The numbers of a stick with these storey heights (m, bottom first; their count is the storey count).
@@ -52,7 +58,8 @@ ShearNumbers shear_numbers(std::span<const double> storey_heights, const ShearSp
 
 // Fills lane `lane` of body `body` of batch.system (a body of model::shear_buildings): masses, floor dashpots,
 // springs {k, fy, alpha} and storey dashpots (when the batch has them; a body without storey dashpots takes only
-// a0 M, and refuses a1 != 0). Storey heights from the body's floor levels. Returns the numbers.
+// a0 M, and refuses a1 != 0), or the dense C of modal damping (a body with DampingForm::dense: spec.modal and more
+// than one storey, else std::invalid_argument). Storey heights from the body's floor levels. Returns the numbers.
 ShearNumbers set_shear_building(SystemBatch& batch, std::size_t lane, int body, const ShearSpec& spec);
 
 // Base isolation (docs/architecture.md §2.2.3 "Isolated stick", "Isolated building"; ../shared/research/

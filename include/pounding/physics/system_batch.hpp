@@ -69,6 +69,10 @@ struct SystemBatch {
   std::vector<double> c_floor;     // [dof][lane] floor dashpot to ground or to the body's base (N s/m)
   std::vector<double> c_storey;    // [spring][lane] storey dashpot on the spring's deformation rate (N s/m);
                                    // empty unless System::any_storey_dashpots()
+  // [entry][lane] classical modal damping (bodies with DampingForm::dense, body order): entry dense_entry(body, j, k)
+  // = C_jk of that body (j, k its DOFs 0..n-1 bottom first, N s/m); the damping force on DOF j is sum_k C_jk v_k
+  // (velocities relative to the support). Empty unless System::any_dense_damping().
+  std::vector<double> c_dense;
   std::vector<SpringSpec> spring;  // [spring][lane]
   std::vector<double> gap;         // [element][lane] the element's gap (m), study gap plus offset for study-gap groups
   std::vector<double> weight;      // [element][lane] N2 of an interpolated side (0 for point and wall sides)
@@ -78,6 +82,10 @@ struct SystemBatch {
   // Sizes every array for `system` (held by pointer: it must outlive the batch) and `width` lanes, zero-filled
   // (e = 1, fy = inf, weight = 0).
   void resize(const model::System& system, std::size_t width);
+  // The c_dense entry of C_jk of body `body` (a body with DampingForm::dense; j, k local DOF numbers); -1 for a body
+  // without dense damping.
+  int dense_entry(int body, int j, int k) const;
+  std::vector<int> dense_base;  // per body: its first c_dense entry, -1 without dense damping (set by resize)
   static std::size_t at(int index, std::size_t lane, std::size_t width) {
     return static_cast<std::size_t>(index) * width + lane;
   }

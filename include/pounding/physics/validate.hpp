@@ -37,7 +37,7 @@ StructureFrequency structure_omega_max(const SystemBatch& batch, std::size_t lan
 // exact steppers).
 double structure_step_limit(Stepper stepper);
 // Gershgorin's bound on M^-1 C of one lane (floor dashpots, a floor dashpot to an isolated base in both rows, storey
-// dashpots): max over DOFs of sum_j |C_ij| / m_i. Every mode n of classical damping has 2 zeta_n omega_n <= it.
+// dashpots, the dense rows of classical modal damping): max over DOFs of sum_j |C_ij| / m_i. Every mode n of classical damping has 2 zeta_n omega_n <= it.
 double structure_damping_bound(const SystemBatch& batch, std::size_t lane);
 // The longest stable integration step of one lane's structure (contact excluded: it is guarded during the run), THE
 // bound that physics::validate, pounding simulate and the studies check. Central difference as the system stepper

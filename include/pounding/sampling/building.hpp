@@ -31,7 +31,10 @@
 //                   theta_y = drift / ductility (Vy_i = k_i theta_y storey_height, the SDOF's u_y = drift h /
 //                   ductility spread evenly over the height); yield_coefficient Cy -> Vy_i = Cy M g V_i / V_1 (the
 //                   base shear Cy M g, upper storeys by the shear profile); hysteresis "elastic": no yield
-//     damping       the building's zeta, Rayleigh on modes 1 and 2 (each mode's ratio in the settings' docs)
+//     damping       "rayleigh" (default): the building's zeta, Rayleigh on modes 1 and 2; "modal": classical modal
+//                   damping C = M Phi diag(2 zeta_j omega_j / M_j) Phi' M, every mode the building's zeta or
+//     modal_zeta    [zeta_1, zeta_2, ...] per mode from mode 1, the last repeating (with damping = "modal" only;
+//                   each in [0, 0.5]; not with isolation). Both also [structures] defaults.
 //     isolation     {bearing = "linear", base_mass, k_eff, zeta_eff} | {bearing = "lead-rubber", base_mass, k1, k2,
 //                   qd} | {bearing = "friction-pendulum", base_mass, radius, mu_slow, mu_fast, rate, u_y} |
 //                   {bearing = "bouc-wen", base_mass, k1, k2, qd, a, beta, gamma, eta}: a base mass (default one
@@ -183,6 +186,12 @@ struct BuildingModel {
   StructureKind kind = StructureKind::sdof;
   double floor_mass = 0, storey_stiffness = 0;
   model::StiffnessProfile profile = model::StiffnessProfile::uniform;
+  // Damping of a shear building: Rayleigh on modes 1, 2 (false) or classical modal damping (modal_zeta per mode
+  // from 1, the last repeating; empty: every mode the sampled zeta).
+  bool modal_damping = false;
+  std::vector<double> modal_zeta;
+  // "Rayleigh damping on modes 1 and 2", "classical modal damping, zeta 0.02, 0.03 (then 0.03)", ...
+  std::string damping_text() const;
 
   bool shear() const { return kind == StructureKind::shear; }
   // The storey height (m): storey_height given here or in [structures], else 3.2.

@@ -55,6 +55,7 @@ struct SimulateOptions {
   double m1 = 0, T1 = 1.0, k1 = 0, h1 = 30.0, fy1 = 0;  // m = 0: from the height (mass_from_height)
   double m2 = 0, T2 = 1.5, k2 = 0, h2 = 45.0, fy2 = 0;
   double alpha = 0.05, zeta = 0.05, gap = 0.1;
+  std::vector<double> modal_zeta;  // multi-storey buildings: classical modal damping, per mode from 1 (empty: Rayleigh)
   bool elastic = false;
   std::string contact = "hertzdamp", damping_law = "lankarani-nikravesh", stepper = "central-difference";
   double e = 0.65, kh = 0, n = 1.5, density = 2400.0, youngs = 24.86e9, poisson = 0.15;
@@ -223,6 +224,7 @@ void write_series_h5(const std::string& path, const SeriesRecorder& r, const std
 // The scalar options, checked before any work or output.
 void validate_scalars(const SimulateOptions& o) {
   require_range(o.zeta, 0.0, 0.999, "--zeta", "[0, 1)");
+  for (double z : o.modal_zeta) require_range(z, 0.0, 0.5, "--modal-zeta", "[0, 0.5] each");
   require_range(o.alpha, 0.0, std::nextafter(1.0, 0.0), "--alpha", "[0, 1)");
   if (!std::isfinite(o.gap) || o.gap < 0)
     throw InputError(fmt::format("--gap = {} must be >= 0", o.gap), "--gap", "give the at-rest separation in m");
@@ -445,6 +447,7 @@ physics::ShearSpec shear_spec(const SimulateOptions& o, const Side& side, const 
   physics::ShearSpec spec;
   spec.alpha = o.alpha;
   spec.zeta = o.zeta;
+  if (b.storeys > 1 && !o.modal_zeta.empty()) spec.modal = true, spec.modal_zeta = o.modal_zeta;
   if (b.storeys == 1) {
     spec.floor_mass = {sdof.m}, spec.storey_stiffness = {sdof.k}, spec.storey_yield = {sdof.fy};
     return spec;
@@ -676,7 +679,12 @@ int run_storeys(SimulateOptions& o, const ContactModel& cm, KernelSettings& ks) 
   std::vector<model::StickTopology> sticks(sides.size());
   for (std::size_t i = 0; i < sides.size(); ++i) {
     sticks[i].storeys = sides[i].st.storeys, sticks[i].storey_heights = {sides[i].st.height};
+    if (!o.modal_zeta.empty() && sticks[i].storeys > 1) sticks[i].damping = model::DampingForm::dense;
     if (i >= 2) continue;  // isolation: buildings 1 and 2
+    if (!o.modal_zeta.empty() && !o.iso[i].bearing.empty())
+      throw InputError(fmt::format("--modal-zeta with --isolation{}", i + 1), "--modal-zeta",
+                       fmt::format("use Rayleigh damping (--zeta) for the isolated building {} (its superstructure's "
+                                   "modal damping is not supported yet), or remove --isolation{}", i + 1, i + 1));
     sticks[i].isolated = !o.iso[i].bearing.empty(), sticks[i].moat = o.iso[i].moat_given;
     if (sticks[i].isolated) sticks[i].isolator_law = physics::isolator_law(bearing_of(o.iso[i].bearing));
   }
@@ -884,6 +892,9 @@ int run_simulate(SimulateOptions& o) {
     throw InputError("a velocity-dependent restitution runs an SDOF pair with --contact hertzdamp and --stepper "
                      "central-difference only (not yet multi-storey, isolated, bridges or other laws/steppers)",
                      o.rest.option(), "drop the --restitution-* options, or simulate that pair");
+  if (!o.modal_zeta.empty() && (!o.bridge.empty() || !o.storey_mode()))
+    throw InputError("--modal-zeta damps multi-storey buildings; this run has none", "--modal-zeta",
+                     "give --storeys1/--storeys2 > 1 (an SDOF's damping is --zeta), or drop --modal-zeta");
   if (!o.bridge.empty()) return run_bridge(o, cm, ks);
   if (!o.support_records.empty() || o.wave_delay_given)
     throw InputError("--support-record and --wave-delay give a bridge's supports their records", "--support-record",
@@ -1091,6 +1102,10 @@ void add_simulate(CLI::App& app) {
   c->add_flag("--elastic", o->elastic, "linear elastic structures (no yielding)");
   c->add_option("--alpha", o->alpha, "post-yield stiffness ratio, [0, 1)")->capture_default_str();
   c->add_option("--zeta", o->zeta, "viscous damping ratio of both structures (multi-storey: Rayleigh damping with this ratio at modes 1 and 2)")->capture_default_str();
+  c->add_option("--modal-zeta", o->modal_zeta,
+                "multi-storey buildings: classical modal damping instead of Rayleigh, the ratio of each mode from mode 1 "
+                "(z1,z2,...; the last repeats for the higher modes; one-storey buildings keep --zeta)")
+      ->delimiter(',');
   c->add_option("--gap", o->gap, "at-rest separation (m)")->capture_default_str();
   c->add_option("--contact", o->contact, std::string("contact law: ") + std::string(contact_law_names))
       ->capture_default_str();

@@ -21,7 +21,8 @@
 //  5. per group (its law chosen once per run): per element delta = x_L - x_R - gap; the law only where some
 //     lane of the chunk touches (else F = 0 exactly): Hertzdamp latch at the interpolated closing instant,
 //     force, stability guard k_lin h^2 / meff > 4; contact bookkeeping; the closing observer
-//  4, 6, 7. per DOF: q = t_below (assigned), q -= t_above..., q = fma(c, vp - vp_ref, q), then the element forces
+//  4, 6, 7. per DOF: q = t_below (assigned), q -= t_above..., q = fma(c, vp - vp_ref, q) (a body with classical
+//     modal damping instead q = fma(C_jk, vp_k, q) over its DOFs k in order: the dense row), then the element forces
 //     in element order (q_L += F, q_R -= F, interpolated sides N1 F, N2 F); na = -ag1 - q im, nv = vh + hh na;
 //     the |a + ag| observer
 //  8. energy (compile time): input, viscous (floor then storey dashpots), hysteretic
@@ -93,6 +94,10 @@ struct Layout {
   // per DOF, in element order, the element contributions to its force: element e and `how` (Contribution)
   std::vector<int> contrib_start, contrib_elem, contrib_how;
   bool any_dashpot = false;
+  // classical modal damping (bodies with DampingForm::dense; empty without): per DOF the pool's dense row of C_j0 of
+  // its body's matrix (-1: a DOF with a floor dashpot) and its body; ndense = the rows (sum of n_b^2)
+  std::vector<int> dense_row, dense_body;
+  int ndense = 0;
 };
 // How an element's force enters a DOF's resisting force q (step 6): +F (left point), -F (right point),
 // +N F / -N F with N the element's N1L, N2L, N1R or N2R row (interpolated sides, as pinned fmas).
@@ -112,6 +117,7 @@ struct Topo {
   bool any_dashpot;
   const int *dof_chan, *spring_ci, *spring_cj, *elem_cl, *elem_cr;  // null with one channel
   const char *spring_cross, *elem_cross;
+  const int *dense_row, *dense_body;  // null without dense damping
   explicit Topo(const Layout& L)
       : ndof(L.ndof), nspring(L.nspring), nelem(L.nelem), nbody(static_cast<int>(L.body_start.size()) - 1),
         si(L.si.data()), sj(L.sj.data()), below(L.below.data()), above_start(L.above_start.data()),
@@ -120,17 +126,20 @@ struct Topo {
         dashpot(L.dashpot.data()), law(L.law.data()), any_smooth(L.any_smooth), any_link(L.any_link), left(L.left.data()), right(L.right.data()),
         contrib_start(L.contrib_start.data()), contrib_elem(L.contrib_elem.data()), contrib_how(L.contrib_how.data()),
         any_dashpot(L.any_dashpot), dof_chan(ptr(L.dof_chan)), spring_ci(ptr(L.spring_ci)), spring_cj(ptr(L.spring_cj)),
-        elem_cl(ptr(L.elem_cl)), elem_cr(ptr(L.elem_cr)), spring_cross(ptr(L.spring_cross)), elem_cross(ptr(L.elem_cross)) {}
+        elem_cl(ptr(L.elem_cl)), elem_cr(ptr(L.elem_cr)), spring_cross(ptr(L.spring_cross)), elem_cross(ptr(L.elem_cross)),
+        dense_row(ptr(L.dense_row)), dense_body(ptr(L.dense_body)) {}
   template <class X> static const X* ptr(const std::vector<X>& v) { return v.empty() ? nullptr : v.data(); }
 };
 
-// Where each row lives: rows [field][index] in the order DOF fields, spring fields, element fields, lane fields.
+// Where each row lives: rows [field][index] in the order DOF fields, spring fields, element fields, lane fields,
+// dense damping coefficients.
 struct Rows {
   int ndof = 0, nspring = 0, nelem = 0;
-  int spring0 = 0, elem0 = 0, lane0 = 0, total = 0;
+  int spring0 = 0, elem0 = 0, lane0 = 0, dense0 = 0, total = 0;
   explicit Rows(const Layout& L)
       : ndof(L.ndof), nspring(L.nspring), nelem(L.nelem), spring0(dof_rows * L.ndof),
-        elem0(spring0 + spring_rows * L.nspring), lane0(elem0 + elem_rows * L.nelem), total(lane0 + lane_rows) {}
+        elem0(spring0 + spring_rows * L.nspring), lane0(elem0 + elem_rows * L.nelem), dense0(lane0 + lane_rows),
+        total(dense0 + L.ndense) {}
   POUNDING_INLINE int dof(int f, int j) const { return f * ndof + j; }
   POUNDING_INLINE int spring(int f, int s) const { return spring0 + f * nspring + s; }
   POUNDING_INLINE int elem(int f, int e) const { return elem0 + f * nelem + e; }
@@ -155,6 +164,7 @@ class Pool {
   double* spring(int f, int s) const { return row(rows_.spring(f, s)); }
   double* elem(int f, int e) const { return row(rows_.elem(f, e)); }
   double* lane(int f) const { return row(rows_.lane(f)); }
+  double* dense(int r) const { return row(rows_.dense0 + r); }
   double* chunk() const { return mem_.get() + static_cast<std::size_t>(rows_.total) * tile_; }
   // the W lanes from `base` into the chunk, and back
   void gather(int base) const { copy(base, true); }
@@ -178,6 +188,7 @@ class Pool {
     for (int f = 0; f < elem_rows; ++f)
       for (int e = 0; e < R.nelem; ++e) move(R.elem(f, e), R.elem0 + e * elem_rows + f);
     for (int f = 0; f < lane_rows; ++f) move(R.lane(f), R.lane0 + f);
+    for (int r = R.dense0; r < R.total; ++r) move(r, r);
   }
   Rows rows_;
   std::size_t tile_;
@@ -186,10 +197,11 @@ class Pool {
 
 // The chunk: W lanes per value, [index][field] (see Pool), base pointers per kind held by value.
 struct Chunk {
-  double *pd, *ps, *pe, *pl;
+  double *pd, *ps, *pe, *pl, *pn;
   Chunk(double* p, const Rows& R)
       : pd(p), ps(p + static_cast<std::ptrdiff_t>(R.spring0) * simd::W),
-        pe(p + static_cast<std::ptrdiff_t>(R.elem0) * simd::W), pl(p + static_cast<std::ptrdiff_t>(R.lane0) * simd::W) {}
+        pe(p + static_cast<std::ptrdiff_t>(R.elem0) * simd::W), pl(p + static_cast<std::ptrdiff_t>(R.lane0) * simd::W),
+        pn(p + static_cast<std::ptrdiff_t>(R.dense0) * simd::W) {}
   POUNDING_INLINE static V ld(const double* q) { return V(q, simd::stdx::vector_aligned); }
   POUNDING_INLINE static void st(const V& v, double* q) { v.copy_to(q, simd::stdx::vector_aligned); }
   POUNDING_INLINE static std::ptrdiff_t at(int i, int rows, int f) {
@@ -203,6 +215,7 @@ struct Chunk {
   POUNDING_INLINE void elm(int f, int e, const V& v) const { st(v, pe + at(e, elem_rows, f)); }
   POUNDING_INLINE V lan(int f) const { return ld(pl + static_cast<std::ptrdiff_t>(f) * simd::W); }
   POUNDING_INLINE void lan(int f, const V& v) const { st(v, pl + static_cast<std::ptrdiff_t>(f) * simd::W); }
+  POUNDING_INLINE V den(int r) const { return ld(pn + static_cast<std::ptrdiff_t>(r) * simd::W); }
 };
 
 // What one step needs besides the pool.
@@ -452,7 +465,14 @@ POUNDING_INLINE void forces(Chunk c, Topo L, StepCtx& s) {
       for (int k = L.link_start[j]; k < L.link_start[j + 1]; ++k) q += c.spr(T, L.link[k]);  // links with j here
     for (int k = L.above_start[j]; k < L.above_start[j + 1]; ++k) q -= c.spr(T, L.above[k]);
     const int r = L.ref[j];
-    q = lane::fma(c.dof(CF, j), r < 0 ? c.dof(VP, j) : c.dof(VP, j) - c.dof(VP, r), q);
+    if (L.dense_row != nullptr && L.dense_row[j] >= 0) {
+      // classical modal damping: q += sum_k C_jk vp_k over the body's DOFs, left-folded in DOF order (row order)
+      const int b = L.dense_body[j];
+      int x = L.dense_row[j];
+      for (int k = L.body_start[b]; k < L.body_start[b + 1]; ++k, ++x) q = lane::fma(c.den(x), c.dof(VP, L.body_dofs[k]), q);
+    } else {
+      q = lane::fma(c.dof(CF, j), r < 0 ? c.dof(VP, j) : c.dof(VP, j) - c.dof(VP, r), q);
+    }
     // the reaction of the floor dashpots that reference j (an isolated base): -c_d (vp_d - vp_j), so the
     // superstructure's C acts internally (symmetric C, momentum kept; none for fixed bodies: bits unchanged)
     for (int k = L.refd_start[j]; k < L.refd_start[j + 1]; ++k)
@@ -495,6 +515,16 @@ POUNDING_INLINE void energy(Chunk c, Topo L, const StepCtx& s) {
     const V sq = lane::fma(rn, rn, ro * ro);
     evis = j == 0 ? c.dof(CF, j) * sq : lane::fma(c.dof(CF, j), sq, evis);
   }
+  if (L.dense_row != nullptr)  // dense damping: vo' C vo + vn' C vn in row order (CF = 0 on those DOFs)
+    for (int j = 0; j < L.ndof; ++j) {
+      if (L.dense_row[j] < 0) continue;
+      const int b = L.dense_body[j];
+      int x = L.dense_row[j];
+      for (int k = L.body_start[b]; k < L.body_start[b + 1]; ++k, ++x) {
+        const int d = L.body_dofs[k];
+        evis = lane::fma(c.den(x), lane::fma(c.dof(Vel, j), c.dof(Vel, d), c.dof(VO, j) * c.dof(VO, d)), evis);
+      }
+    }
   if (L.any_dashpot)
     for (int k = 0; k < L.nspring; ++k) {
       if (!L.dashpot[static_cast<std::size_t>(k)]) continue;

@@ -1,0 +1,144 @@
+#!/usr/bin/env bash
+# Classical modal damping in studies and simulate ([structures] / [structures.buildingK] damping = "modal",
+# modal_zeta = [...]; simulate --modal-zeta; issue 25 §2, docs/architecture.md §2.2.3):
+#  1. studies/quick-storeys.toml with damping = "modal" is bit-identical at 1 and 2 ranks, batch width 1 and
+#     skip_untouched = false (tests/lib/study_invariance.sh), and differs from its Rayleigh run (the key is read);
+#  2. a one-record, one-model study of a 3- against a 5-storey building with modal_zeta = [0.02, 0.05, 0.03] gives, bit
+#     for bit, pounding simulate --modal-zeta 0.02,0.05,0.03 (coupled: impact count, peak force, first impact, peak
+#     u; uncoupled: every floor's peak u, drift and absolute acceleration, the peak closing) -- the study and simulate
+#     fill the System separately and share physics::set_shear_building and the stepper; simulate's JSON reports each
+#     mode's ratio (0.02, 0.05, 0.03, then 0.03);
+#  3. bad input: modal_zeta without damping = "modal", an unknown damping name, modal with isolation, modal on an
+#     SDOF building, a ratio outside [0, 0.5], --modal-zeta for an SDOF pair: one ERROR naming the key, exit 2, no
+#     results file.
+# Synthetic records only (no ../shared needed). Args: <pounding binary> <source dir>
+set -euo pipefail
+bin=$1; src=$2
+study=$PWD/unused.toml  # set below, once $tmp exists
+. "$src/tests/lib/study_invariance.sh"  # $tmp, cmp, study_invariance
+fail() { echo "FAIL: $*"; exit 1; }
+
+# 1. invariance of the quick storeys study with modal damping
+sed 's/^storey_height = 3.2/storey_height = 3.2\ndamping = "modal"\nmodal_zeta = [0.05, 0.03]/' \
+  "$src/studies/quick-storeys.toml" > "$tmp/quick-modal.toml"
+study=$tmp/quick-modal.toml
+study_invariance
+"$bin" run "$src/studies/quick-storeys.toml" --out "$tmp/rayleigh.h5" --quiet > /dev/null 2>&1
+if cmp "$tmp/r0.h5" "$tmp/rayleigh.h5" --ignore=study_text,output > /dev/null 2>&1; then
+  fail "the modal study gave the Rayleigh study's results"
+fi
+echo "ok   invariance (ranks, batch width, skip_untouched), and modal != Rayleigh"
+
+# 2. study == simulate, bit for bit
+awk 'BEGIN { dt = 0.01; for (i = 0; i <= 1200; i++) { t = i * dt;
+       a = 0.25 * sin(2 * 3.14159265 * 0.9 * t) + 0.10 * sin(2 * 3.14159265 * 3.1 * t + 0.4);
+       printf "%.2f %.8f\n", t, a } }' > "$tmp/rec.txt"
+cat > "$tmp/one.toml" <<EOF
+title = "modal damping"
+seed = 7
+scene = "impacts"
+output = "out.h5"
+
+[records]
+files = ["rec.txt"]
+polarity = "recorded"
+
+[structures]
+model = "shear"
+storey_height = 3.2
+zeta = 0.05
+hysteresis = "elastic"
+samples_per_pair = 1
+damping = "modal"
+modal_zeta = [0.02, 0.05, 0.03]
+
+[structures.building1]
+period = 0.78
+height = 9.6
+storeys = 3
+mass = 9.0e5
+storey_stiffness = 9.80665e7
+
+[structures.building2]
+period = 1.22
+height = 16.0
+storeys = 5
+mass = 1.5e6
+storey_stiffness = 9.80665e7
+
+[gaps]
+ratios = [0.1, 0.2, 0.5, 1.0]
+
+[analysis]
+max_dt = 0.001
+
+[contact]
+law = "hertzdamp"
+e = 0.5
+EOF
+"$bin" run "$tmp/one.toml" --out "$tmp/one.h5" --quiet > /dev/null 2>&1 || fail "the modal study did not run"
+sim() {
+  "$bin" simulate --record "$tmp/rec.txt" --storeys1 3 --storey-mass1 3e5 --storey-stiffness1 9.80665e7 \
+    --storeys2 5 --storey-mass2 3e5 --storey-stiffness2 9.80665e7 --gap 0.064 --elastic --zeta 0.05 --dt 0.001 \
+    --modal-zeta 0.02,0.05,0.03 --json "$@"
+}
+sim --contact hertzdamp --e 0.5 > "$tmp/sim.json"
+sim --contact none > "$tmp/free.json"
+/usr/bin/python3 - "$tmp" <<'PY'
+import json, sys, h5py
+tmp = sys.argv[1]
+f = h5py.File(f"{tmp}/one.h5", "r")
+s, u = json.load(open(f"{tmp}/sim.json")), json.load(open(f"{tmp}/free.json"))
+g = list(f["impacts/gap_ratios"][()]).index(0.5)
+assert abs(0.5 * f["models/code_gap"][()][0] - 0.064) < 1e-15
+at = lambda name: f[name][()].ravel()[g]
+checks = [("impact_count", at("impacts/impact_count"), s["impact_count"]),
+          ("peak_force", at("impacts/peak_force"), s["peak_force"]),
+          ("t_first_impact", at("impacts/t_first_impact"), s["t_first_impact"]),
+          ("peak_u1", at("impacts/peak_u1"), max(s["peak_u1"])),
+          ("peak_u2", at("impacts/peak_u2"), max(s["peak_u2"])),
+          ("uncoupled peak_closing", f["uncoupled/peak_closing"][()].ravel()[0], u["peak_closing"])]
+for b in (1, 2):
+    for name, key in (("peak_u_floors", "peak_u"), ("peak_drift", "peak_drift"), ("peak_acc_floors", "peak_abs_acc")):
+        mine = list(f[f"uncoupled/{name}{b}"][()].ravel())
+        theirs = u[f"{key}{b}_g" if key == "peak_abs_acc" else f"{key}{b}"]
+        checks += [(f"uncoupled {name}{b}[{i}]", a, c) for i, (a, c) in enumerate(zip(mine, theirs, strict=True))]
+assert s["status"] == "ok" and u["status"] == "ok" and at("impacts/status") == 0
+assert s["impact_count"] > 0, "no impacts at the gap"
+bad = [(n, a, c) for n, a, c in checks if not (a == c)]
+assert not bad, bad
+zetas = [b["modal_damping"] for b in s["buildings"]]
+assert zetas == [[0.02, 0.05, 0.03], [0.02, 0.05, 0.03, 0.03, 0.03]], zetas
+print(f"ok   study == simulate bit for bit ({len(checks)} numbers; {s['impact_count']} impacts), modal ratios {zetas}")
+PY
+
+# 3. bad input
+fails=0
+expect_error() {  # name, pattern expected in the message, study text
+  local name=$1 pattern=$2
+  printf '%s\n' "$3" > "$tmp/$name.toml"
+  local rc=0
+  "$bin" run "$tmp/$name.toml" --out "$tmp/$name.h5" --quiet > "$tmp/$name.out" 2>&1 || rc=$?
+  if [ $rc -ne 2 ] || [ "$(grep -c "ERROR:" "$tmp/$name.out")" -ne 1 ] || ! grep -q -- "$pattern" "$tmp/$name.out" \
+     || [ -e "$tmp/$name.h5" ] || [ -e "$tmp/$name.h5.ckpt" ]; then
+    echo "FAIL $name (rc $rc):"; cat "$tmp/$name.out"; fails=$((fails+1))
+  else
+    echo "ok   $name: $(grep ERROR "$tmp/$name.out")"
+  fi
+}
+body=$(cat "$src/studies/quick-storeys.toml")
+b1() { echo "$body" | sed "s/^\[gaps\]/[structures.building1]\n$1\n\n[gaps]/"; }
+expect_error zeta_without_modal 'modal_zeta is given without damping = "modal".*\[structures.building1\].modal_zeta' \
+  "$(b1 'modal_zeta = [0.02]')"
+expect_error damping_name '\[structures.building1\].damping, write damping = "rayleigh"' "$(b1 'damping = "viscous"')"
+expect_error modal_isolated 'modal damping is given for an isolated building.*\[structures.building1\].damping' \
+  "$(b1 'damping = "modal"\nisolation = {bearing = "linear", k_eff = 1e6}')"
+expect_error modal_sdof 'damping is given for an SDOF building.*\[structures.building1\].damping' \
+  "$(b1 'model = "sdof"\ndamping = "modal"')"
+expect_error modal_zeta_range '\[structures.building1\].modal_zeta' "$(b1 'damping = "modal"\nmodal_zeta = [0.02, 0.7]')"
+rc=0
+"$bin" simulate --record "$tmp/rec.txt" --modal-zeta 0.02 > "$tmp/sdof.out" 2>&1 || rc=$?
+if [ $rc -ne 2 ] || ! grep -q 'ERROR: --modal-zeta damps multi-storey buildings.*--modal-zeta' "$tmp/sdof.out"; then
+  echo "FAIL simulate_sdof (rc $rc):"; cat "$tmp/sdof.out"; fails=$((fails+1))
+else echo "ok   simulate_sdof: $(grep ERROR "$tmp/sdof.out")"; fi
+[ $fails -eq 0 ] || exit 1
