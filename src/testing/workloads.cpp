@@ -49,12 +49,13 @@ PairBatch benchmark_batch(std::size_t width) {
   return b;
 }
 
-model::System shear_pair_system(int storeys) {
+model::System shear_pair_system(int storeys, bool modal) {
   model::System::Parts P;
   for (int b = 0; b < 2; ++b) {
     model::Body body;
     for (int k = 0; k < storeys; ++k) body.dofs.push_back(2 * k + b), body.heights.push_back(3.2 * (k + 1));
-    body.storey_dashpots = storeys > 1;
+    body.storey_dashpots = storeys > 1 && !modal;
+    if (modal && storeys > 1) body.damping = model::DampingForm::dense;
     body.label = b == 0 ? "building1" : "building2";
     P.bodies.push_back(body);
     for (int k = 0; k < storeys; ++k)
@@ -91,6 +92,16 @@ physics::SystemBatch shear_pair_batch(const model::System& S, std::size_t width)
         B.c_floor[physics::SystemBatch::at(dof, l, width)] = n > 1 ? a0 * m : 2.0 * 0.05 * std::sqrt(k * m);
         B.spring[physics::SystemBatch::at(spring, l, width)] = {k, k * 0.032, 0.05};
         if (!B.c_storey.empty()) B.c_storey[physics::SystemBatch::at(spring, l, width)] = a1 * k;
+      }
+      if (S.bodies()[static_cast<std::size_t>(b)].damping == model::DampingForm::dense) {  // 5 % in every mode
+        const std::vector<double> ms(static_cast<std::size_t>(n), m), ks(static_cast<std::size_t>(n), k);
+        const std::vector<double> C = model::modal_damping_matrix(ms, model::shear_stick_modes(ms, ks), {{0.05}});
+        for (int f = 0; f < n; ++f) {
+          B.c_floor[physics::SystemBatch::at(S.bodies()[static_cast<std::size_t>(b)].dofs[static_cast<std::size_t>(f)], l, width)] = 0.0;
+          for (int g = 0; g < n; ++g)
+            B.c_dense[physics::SystemBatch::at(B.dense_entry(b, f, g), l, width)] =
+                C[static_cast<std::size_t>(f * n + g)];
+        }
       }
     }
     for (int e = 0; e < n; ++e) {

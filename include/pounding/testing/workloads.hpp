@@ -22,7 +22,8 @@ PairBatch benchmark_batch(std::size_t width);
 // The system benchmark (`pounding bench --storeys N`): two N-storey shear buildings side by side, DOFs level-major,
 // Rayleigh floor and storey dashpots, one point-point element at every floor in one group (N = 1: the SDOF pair's
 // structure).
-model::System shear_pair_system(int storeys);
+// modal: classical modal damping (DampingForm::dense, 5 % in every mode) instead of Rayleigh (for N > 1).
+model::System shear_pair_system(int storeys, bool modal = false);
 // `width` lanes of it: storey masses 2.5e5 kg x [0.8, 1.2], uniform storey stiffness giving T1 = 0.1 N s x [1, 1.5]
 // (left) and 0.13 N s x [1, 1.5] (right), 5 % Rayleigh damping on modes 1 and 2, bilinear storeys yielding at
 // 1 % drift of 3.2 m with alpha 0.05, gap 0.3 x 0.005 x (H1 + H2) x [1, 2], kc 2e9 N/m^1.5 x [0.8, 1.2], e = 0.65

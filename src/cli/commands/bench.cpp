@@ -29,6 +29,7 @@ struct SystemBenchOptions {
   bool dynamic;
   std::string isolation;  // "": the shear pair; else building 1 on this bearing (isolated_pair_system)
   int bridge = 0;         // > 0: a chain of this many frames (bridge_spec)
+  bool modal = false;     // the shear pair with classical modal damping (dense C) instead of Rayleigh
 };
 
 // The bridge workload (issue 26 §5): n frames alternating the four-frame bridge's outer and inner frames (1306 t at
@@ -64,10 +65,13 @@ void bench_system(const SystemBenchOptions& o, const ContactModel& cm, const Ker
   const bool iso = !o.isolation.empty();
   if (o.bridge > 0 && (o.storeys > 0 || iso))
     throw InputError("--bridge is its own workload", "--bridge", "drop --storeys/--isolation");
+  if (o.modal && (o.bridge > 0 || iso || o.storeys < 2))
+    throw InputError("--modal damps the shear pair of 2 or more storeys", "--modal",
+                     "give --storeys N >= 2 without --isolation/--bridge, or drop --modal");
   const physics::BridgeSpec spec = bridge_spec(std::max(o.bridge, 1));
   const model::System S = o.bridge > 0 ? physics::bridge_system(spec)
                           : iso        ? isolated_pair_system(o.storeys, o.isolation)
-                                       : shear_pair_system(o.storeys);
+                                       : shear_pair_system(o.storeys, o.modal);
   physics::SystemBatch b;
   if (o.bridge > 0) {
     b.resize(S, o.width);
@@ -113,7 +117,7 @@ void bench_system(const SystemBenchOptions& o, const ContactModel& cm, const Ker
                gm.total_duration(), gm.dt, ks.substeps);
   else
     fmt::print("workload: {} ({} storeys each, {} DOFs, {} contact elements; {} s record at {} s, {} substeps)\n",
-               iso ? "isolated-pair (building 1 on " + o.isolation + ")" : std::string("shear-pair"), o.storeys, S.ndof(),
+               iso ? "isolated-pair (building 1 on " + o.isolation + ")" : std::string(o.modal ? "shear-pair, modal damping" : "shear-pair"), o.storeys, S.ndof(),
                S.contacts().size(), gm.total_duration(), gm.dt, ks.substeps);
   fmt::print("layout: {}\n", S.is_sdof_pair() && !o.dynamic ? "pair kernel" : "system stepper (dynamic)");
   fmt::print("stepper: {}\ncontact: {}\nwidth: {}\n", to_string(ks.stepper), to_string(cm.law), o.width);
@@ -134,7 +138,7 @@ void add_bench(CLI::App& app) {
     std::size_t width = 256;
     int repeats = 5, substeps = 1;
     double duration = 40.0, dt = 0.005;
-    bool energy = false, dynamic = false;
+    bool energy = false, dynamic = false, modal = false;
     int storeys = 0;
     std::string isolation;
     int bridge = 0;
@@ -156,6 +160,9 @@ void add_bench(CLI::App& app) {
       ->check(CLI::Range(0, 100));
   c->add_flag("--dynamic", o->dynamic,
               "with --storeys 1: run the SDOF pair through the system stepper's dynamic layout, not the pair kernel");
+  c->add_flag("--modal", o->modal,
+              "with --storeys N > 1: classical modal damping (a dense C per building, 5 % in every mode) instead of "
+              "Rayleigh's dashpots");
   c->add_option("--isolation", o->isolation,
                 "with --storeys N: workload 'isolated-pair', building 1 base-isolated on lead-rubber, friction-pendulum "
                 "or bouc-wen, building 2 fixed")
@@ -178,7 +185,7 @@ void add_bench(CLI::App& app) {
     if (!o->isolation.empty() && o->storeys < 1)
       throw InputError("--isolation needs --storeys", "--isolation", "give --storeys N (1 or more)");
     if (o->storeys > 0 || o->bridge > 0)
-      return bench_system({o->storeys, o->repeats, o->width, o->dynamic, o->isolation, o->bridge}, cm, ks, gm);
+      return bench_system({o->storeys, o->repeats, o->width, o->dynamic, o->isolation, o->bridge, o->modal}, cm, ks, gm);
     // enough pairs that one repeat takes a measurable time, in batches of `width`
     const double steps = static_cast<double>(ag.size() - 1) * o->substeps;
     const std::size_t batches = std::max<std::size_t>(1, static_cast<std::size_t>(2e7 / (steps * o->width)));
