@@ -201,6 +201,7 @@ struct TopologyArgs {
   int storeys1, storeys2;
   double height1, height2, level_tolerance;
   std::string levels, profile;
+  std::vector<double> modal_zeta;  // classical modal damping of the multi-storey buildings (empty: Rayleigh)
 };
 
 py::dict analyze_storeys_py(const py::dict& buildings, const Array& ag, double dt, const TopologyArgs& t,
@@ -213,9 +214,13 @@ py::dict analyze_storeys_py(const py::dict& buildings, const Array& ag, double d
     throw py::value_error("storeys: 1 to 100 storeys per building");
   if (t.levels != "common" && t.levels != "top") throw py::value_error("contact_levels: 'common' or 'top'");
   if (t.profile != "uniform" && t.profile != "shear") throw py::value_error("stiffness_profile: 'uniform' or 'shear'");
+  for (double z : t.modal_zeta)
+    if (!(z >= 0.0 && z <= 0.5)) throw py::value_error("modal_zeta: every ratio in [0, 0.5]");
   std::vector<model::StickTopology> sticks(2);
   sticks[0].storeys = t.storeys1, sticks[0].storey_heights = {t.height1};
   sticks[1].storeys = t.storeys2, sticks[1].storey_heights = {t.height2};
+  for (auto& st : sticks)
+    if (!t.modal_zeta.empty() && st.storeys > 1) st.damping = model::DampingForm::dense;
   const model::System sys = model::shear_buildings(
       sticks, t.level_tolerance, t.levels == "top" ? model::ContactLevels::top : model::ContactLevels::common);
   const auto profile = t.profile == "shear" ? model::StiffnessProfile::shear : model::StiffnessProfile::uniform;
@@ -232,8 +237,12 @@ py::dict analyze_storeys_py(const py::dict& buildings, const Array& ag, double d
   const std::size_t batches = (L.n + width - 1) / width;
   run_parallel(batches, threads, [&](std::size_t b) {  // the lanes' numbers (modes, Rayleigh) on every core
     for (std::size_t l = b * width; l < std::min(L.n, (b + 1) * width); ++l) {
-      physics::set_shear_building(all, l, 0, spec_of(L, 0, l, profile));
-      physics::set_shear_building(all, l, 1, spec_of(L, 1, l, profile));
+      for (int bi = 0; bi < 2; ++bi) {
+        physics::ShearSpec s = spec_of(L, bi, l, profile);
+        if (sticks[static_cast<std::size_t>(bi)].damping == model::DampingForm::dense)
+          s.modal = true, s.modal_zeta = t.modal_zeta;
+        physics::set_shear_building(all, l, bi, s);
+      }
       physics::set_contacts(all, l, L.gap[l], L.kc[l], L.e[l]);
     }
   });
@@ -253,7 +262,7 @@ py::dict analyze_storeys_py(const py::dict& buildings, const Array& ag, double d
 
 void bind_systems(py::module_& m) {
   py::class_<TopologyArgs>(m, "_Topology")
-      .def(py::init<int, int, double, double, double, std::string, std::string>());
+      .def(py::init<int, int, double, double, double, std::string, std::string, std::vector<double>>());
   m.def("analyze_storeys", &analyze_storeys_py, py::arg("buildings"), py::arg("ag"), py::arg("dt"),
         py::arg("topology"), py::arg("stepper"), py::arg("contact"), py::arg("damping"), py::arg("n"),
         py::arg("substeps"), py::arg("energy"), py::arg("duration"), py::arg("displacement_limit"), py::arg("batch"),

@@ -126,7 +126,7 @@ def analyze_storeys(buildings, record, storeys=(1, 1), storey_height=(3.2, 3.2),
                     stepper="central-difference", substeps=1, *, kh=None, e=None, n=1.5,
                     damping="lankarani-nikravesh", contact_levels="common", level_tolerance=0.05,
                     stiffness_profile="uniform", energy=False, duration=0.0, displacement_limit=10.0, batch=64,
-                    threads=0):
+                    threads=0, modal_zeta=None):
     """Two multi-storey shear buildings side by side, pounding floor to floor (the engine's system stepper, as
     `pounding simulate --storeys1 N --storeys2 M` and the studies with model = "shear"); one topology per call.
 
@@ -135,6 +135,8 @@ def analyze_storeys(buildings, record, storeys=(1, 1), storey_height=(3.2, 3.2),
       strength as storey_yield{b} (N) or yield_drift{b} (theta_y) or yield_coefficient{b} (Cy) -- none: elastic --,
       alpha{b} (0), zeta{b} (0.05, Rayleigh on modes 1 and 2; the SDOF's ratio for one storey); gap (m), kc (or kh=)
       and e where the law needs them.
+    modal_zeta: [z1, z2, ...] gives every multi-storey building classical modal damping instead of Rayleigh, the
+      ratio of each mode from mode 1, the last repeating (as `pounding simulate --modal-zeta`); one storey keeps zeta.
     storeys, storey_height: (building 1, building 2). One storey each is the SDOF pair of analyze(), bit for bit.
     Returns per building peak_u{b}, peak_acc{b}, final_u{b} [pair, floor] (bottom first), peak_drift{b},
     peak_shear{b} [pair, storey]; per contact element (element_labels: "level 1", ...) peak_closing,
@@ -145,7 +147,8 @@ def analyze_storeys(buildings, record, storeys=(1, 1), storey_height=(3.2, 3.2),
     d = _pairs_dict(buildings, kh, e)
     _require_law_numbers(contact, d)
     topology = _core._Topology(int(storeys[0]), int(storeys[1]), float(storey_height[0]), float(storey_height[1]),
-                               float(level_tolerance), contact_levels, stiffness_profile)
+                               float(level_tolerance), contact_levels, stiffness_profile,
+                               [float(z) for z in (modal_zeta or [])])
     return _core.analyze_storeys(d, ag, dt, topology, stepper, contact, damping, n, substeps, energy, duration,
                                  displacement_limit, batch, threads)
 

@@ -39,6 +39,32 @@ def test_same_bits_as_simulate_storeys(tmp_path):
     assert sum(lv["impacts"] for lv in j["levels"]) > 0
 
 
+@pytest.mark.skipif(bool(NOT_CLAIMED), reason=f"not applicable: {NOT_CLAIMED}")
+def test_modal_damping_same_bits_as_simulate(tmp_path):
+    """modal_zeta= (classical modal damping) gives pounding simulate --modal-zeta's numbers bit for bit, and not
+    the Rayleigh run's."""
+    path = write_at2(tmp_path / "sweep.AT2", REC.acc_g, REC.dt)
+    rec = pounding.read_record(str(path))
+    args = [cli(), "simulate", "--record", str(path), "--storeys1", "3", "--storeys2", "5", "--storey-mass1", "4e5",
+            "--storey-stiffness1", "3e8", "--storey-mass2", "3e5", "--storey-stiffness2", "2.5e8", "--gap", "0.02",
+            "--contact", "hertzdamp", "--kh", "2e9", "--e", "0.65", "--dt", "0.0025", "--modal-zeta", "0.02,0.05",
+            "--json"]
+    j = json.loads(subprocess.run(args, capture_output=True, text=True, check=True).stdout)
+    assert [b["modal_damping"] for b in j["buildings"]] == [[0.02, 0.05, 0.05], [0.02, 0.05, 0.05, 0.05, 0.05]]
+    b = dict(floor_mass1=[4e5], storey_stiffness1=[3e8], yield_drift1=[0.02 / 6], alpha1=[0.05],
+             floor_mass2=[3e5], storey_stiffness2=[2.5e8], yield_drift2=[0.02 / 6], alpha2=[0.05], gap=[0.02])
+    kw = dict(storeys=(3, 5), contact="hertzdamp", kh=2e9, e=0.65, substeps=2)
+    r = pounding.analyze_storeys(b, rec, modal_zeta=[0.02, 0.05], **kw)
+    for key in ("peak_u1", "peak_drift1", "final_u1", "peak_u2", "peak_drift2", "final_u2"):
+        assert r[key][0].tolist() == j[key], key
+    for e, lv in enumerate(j["levels"]):
+        assert r["impact_count"][0, e] == lv["impacts"] and r["peak_force"][0, e] == lv["peak_force"]
+    rayleigh = pounding.analyze_storeys(b, rec, **kw)
+    assert rayleigh["peak_u2"][0].tolist() != r["peak_u2"][0].tolist()
+    with pytest.raises(ValueError, match="modal_zeta"):
+        pounding.analyze_storeys(b, rec, modal_zeta=[0.7], **kw)
+
+
 def test_one_storey_each_is_the_pair():
     pairs = pounding.testing.benchmark_batch(13)
     b = dict(floor_mass1=pairs["m1"], storey_stiffness1=pairs["k1"], storey_yield1=pairs["fy1"],
