@@ -39,6 +39,7 @@ struct Data {
   explicit Data(const results::Results& r, const WorkHook* hook = nullptr, double* bootstrap_s = nullptr);
   const WorkHook* hook = nullptr;  // progress and stop of the bootstrap (core/progress.hpp)
   double* bootstrap_s = nullptr;   // seconds in prepared() and bootstrap() are added here (may be null)
+  int* bootstrap_runs = nullptr;   // bootstraps actually run are counted here (may be null)
   // ok, or coarse kept in the statistics by [analysis] coarse = "keep"
   bool ok(std::uint8_t s) const { return s == 0 || (keep_coarse && s == static_cast<std::uint8_t>(LaneStatus::coarse)); }
   std::size_t records() const { return rec.size(); }  // rows: (record, sign) analyses with polarity "both"
@@ -63,13 +64,22 @@ struct Data {
   separation::Demands demands(bool metres) const;
   separation::BootstrapSettings bootstrap_settings() const;
   // The two-stage bootstrap of demands(metres) with the report's settings (and the hook): the demands are ranked
-  // once per report and shared by every section's targets and gaps, which all see the same replicates.
+  // once per report and shared by every section's targets and gaps, which all see the same replicates. A request
+  // whose targets and gaps (and lognormal) an earlier call on this Data covered is answered from that call's
+  // result: one Data serving the CSV (its call covers every target and gap) and then the Markdown runs one bootstrap
+  // (report_texts). The estimates of a target or gap do not depend on the others asked with it, so the digits agree.
   separation::BootstrapResult bootstrap(bool metres, std::span<const double> targets, std::span<const double> gaps,
                                         bool lognormal = false) const;
   const separation::Prepared& prepared(bool metres) const;  // demands(metres) ranked (once per report)
 
  private:
   mutable std::shared_ptr<const separation::Prepared> prepared_[2];  // demands(false), demands(true)
+  struct Computed {
+    bool metres, lognormal;
+    std::vector<double> targets, gaps;
+    separation::BootstrapResult result;
+  };
+  mutable std::vector<Computed> computed_;  // every bootstrap this Data ran
 };
 
 struct Count {

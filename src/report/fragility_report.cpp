@@ -6,6 +6,7 @@
 #include <fmt/format.h>
 
 #include "pounding/report/fragility.hpp"
+#include "pounding/report/report.hpp"
 
 namespace pounding {
 
@@ -50,6 +51,7 @@ std::string overview(const View& v) {
     s += fmt::format("> **WARNING — results not trustworthy as they stand:** {}.\n\n", r.header.exclusion_warning);
   s += fmt::format("- results: `{}` (written {}, commit {}, {} rank(s), wall time {:.2f} s)\n", r.path, r.header.date,
                    r.header.git_commit.substr(0, 12), r.header.ranks, r.header.wall_time_s);
+  s += fmt::format("- machine: {}\n", run_machine(r.header));
   s += fmt::format("- intensity measure: **{}**{}\n", v.in.text("description"),
                    v.r.settings.find("intensity", "period_pair") && v.r.settings.number("intensity", "period_pair") != 0
                        ? " — period \"pair\": the geometric mean of the two buildings' median periods"

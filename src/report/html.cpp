@@ -216,7 +216,28 @@ std::string setting_text(const results::SettingValue& v) {
   return s.size() > 400 ? s.substr(0, 400) + " ... (" + std::to_string(s.size()) + " characters)" : s;
 }
 
+// A hint written for the command line ("use --damping-law calibrated ...", physics/single_impact.cpp) names the
+// study key first when the results come from a study: that is where the reader changes it.
+std::string study_hint(const std::string& note, bool from_study) {
+  static const std::pair<std::string_view, std::string_view> keys[] = {{"--damping-law ", "[contact] damping_law = "}};
+  if (!from_study) return note;
+  std::string out;
+  std::size_t from = 0;
+  for (std::size_t at = 0; at < note.size(); ++at)
+    for (const auto& [option, key] : keys)
+      if (std::string_view(note).substr(at, option.size()) == option) {
+        const std::size_t v0 = at + option.size(), v1 = std::min(note.find_first_of(" ,;).", v0), note.size());
+        out += note.substr(from, at - from);
+        out += fmt::format("{}\"{}\" in the study ({} on the command line)", key, note.substr(v0, v1 - v0),
+                           note.substr(at, v1 - at));
+        from = v1, at = v1 - 1;
+        break;
+      }
+  return out + note.substr(from);
+}
+
 std::string accuracy_statement(const results::Header& h) {
+  const bool from_study = !h.study_path.empty() || !h.study_text.empty();
   std::string s = fmt::format("Stepper <strong>{}</strong>, {} substep(s) per record step{}. ", html_escape(h.stepper),
                               h.substeps, h.max_dt > 0 ? fmt::format(", steps no longer than {:g} s", h.max_dt) : "");
   try {
@@ -227,14 +248,19 @@ std::string accuracy_statement(const results::Header& h) {
              ? fmt::format("Contact law <strong>{}</strong> ({}): the peak contact force of an impact is within {:g} % of "
                            "the converged impact while h·ω<sub>c</sub> ≤ {:g} (measured per stepper and law, "
                            "docs/accuracy.md \"Resolution guard\"); coupled analyses beyond it are marked coarse and "
-                           "counted in the report. ",
-                           html_escape(h.contact_law), html_escape(h.damping_law), 100 * physics::resolution_tolerance, limit)
+                           "counted in the report. {}",
+                           html_escape(h.contact_law), html_escape(h.damping_law), 100 * physics::resolution_tolerance, limit,
+                           from_study ? "A finer step brings h·ω<sub>c</sub> down: <code>[analysis] substeps = N</code> "
+                                        "or <code>max_dt</code> in the study (<code>--substeps N</code>, "
+                                        "<code>--max-dt</code> on the command line). "
+                                      : "A finer step brings h·ω<sub>c</sub> down: <code>--substeps N</code> or "
+                                        "<code>--max-dt</code>. ")
              : fmt::format("Contact law <strong>{}</strong>: no contact force element, so no resolution limit. ",
                            html_escape(h.contact_law));
     ContactModel cm;
     cm.law = law;
     if (!h.damping_law.empty()) cm.damping = parse_damping_law(h.damping_law);
-    s += fmt::format("Restitution asked e = {:g}: {}. ", h.restitution, html_escape(restitution_promise(cm).note));
+    s += fmt::format("Restitution asked e = {:g}: {}. ", h.restitution, html_escape(study_hint(restitution_promise(cm).note, from_study)));
   } catch (const std::exception&) {
     s += fmt::format("Contact law {} ({}), e = {:g}. ", html_escape(h.contact_law), html_escape(h.damping_law), h.restitution);
   }
@@ -269,12 +295,12 @@ std::string provenance_html(const results::Results& r, const std::string& id, To
            {"study file", "<code>" + html_escape(h.study_path) + "</code>"},
            {"written", html_escape(h.date)},
            {"program", html_escape(h.program_version) + ", commit <code>" + html_escape(h.git_commit) + "</code>"},
-           {"build and machine", html_escape(h.build) + fmt::format("; {} MPI rank(s)", h.ranks)},
+           {"build", html_escape(h.build) + fmt::format("; {} MPI rank(s)", h.ranks)},
+           {"machine", html_escape(run_machine(h))},
            {"wall time", std::isfinite(h.wall_time_s) ? fmt::format("{:.2f} s", h.wall_time_s) : "n/a"},
            {"seed", std::to_string(h.seed)},
            {"analyses", fmt::format("{} ({} excluded)", h.total_analyses, h.excluded_analyses)},
-           {"report rendered", fmt::format("on {} (the results file does not name the machine that ran the study)",
-                                           html_escape(host))}});
+           {"report rendered", fmt::format("on host '{}'", html_escape(host))}});
   s += "<h3>Accuracy of the engine for this study</h3>\n" + accuracy_statement(h);
   std::vector<std::vector<std::string>> rows{{"section", "key", "value"}};
   for (const auto& e : r.settings.entries) {
@@ -303,11 +329,12 @@ struct Study {
 };
 
 Study study_of(const results::Results& r, const FigureOptions& options, const WorkHook* hook) {
-  Study s{&r, report_detail::parse_markdown(report_markdown(r, hook)), {}};
+  const ReportTexts t = report_texts(r, options.enabled, hook);  // one bootstrap for the tables and the pair figure
+  Study s{&r, report_detail::parse_markdown(t.markdown), {}};
   if (!options.enabled)
     s.figures.left_out.push_back("figures: left out on request (--no-figures)");
   else
-    s.figures = report_figures(r, report_csv(r, hook), options);
+    s.figures = report_figures(r, t.csv, options);
   return s;
 }
 

@@ -8,6 +8,7 @@
 #include <fmt/format.h>
 
 #include "data.hpp"
+#include "pounding/core/machine.hpp"
 #include "pounding/core/timing.hpp"
 #include "legacy_v1.hpp"
 #include "pounding/analysis/stats.hpp"
@@ -105,14 +106,47 @@ separation::BootstrapSettings Data::bootstrap_settings() const {
   return b;
 }
 
+namespace {
+// The positions of `wanted` in `have` (each value found exactly), or nullopt when one is missing.
+std::optional<std::vector<std::size_t>> positions(std::span<const double> wanted, const std::vector<double>& have) {
+  std::vector<std::size_t> at;
+  for (double v : wanted) {
+    const auto it = std::find(have.begin(), have.end(), v);
+    if (it == have.end()) return std::nullopt;
+    at.push_back(static_cast<std::size_t>(it - have.begin()));
+  }
+  return at;
+}
+}  // namespace
+
 separation::BootstrapResult Data::bootstrap(bool metres, std::span<const double> targets, std::span<const double> gaps,
                                             bool lognormal) const {
+  for (const Computed& c : computed_) {
+    if (c.metres != metres || (lognormal && !c.lognormal)) continue;
+    const auto t = positions(targets, c.targets), g = positions(gaps, c.gaps);
+    if (!t || !g) continue;
+    separation::BootstrapResult out;
+    out.replicates = c.result.replicates;
+    for (std::size_t i : *t) out.separation.push_back(c.result.separation[i]);
+    for (std::size_t i : *g) out.probability.push_back(c.result.probability[i]);
+    if (lognormal) {
+      out.fit = c.result.fit;
+      for (std::size_t i : *t) out.lognormal.push_back(c.result.lognormal[i]);
+    }
+    return out;
+  }
   separation::BootstrapSettings b = bootstrap_settings();
   b.lognormal = lognormal;
   const separation::Prepared& p = prepared(metres);
   double unused = 0;
-  timing::Stopwatch w(bootstrap_s ? *bootstrap_s : unused);
-  return separation::bootstrap(p, targets, gaps, b);
+  separation::BootstrapResult result;
+  {
+    timing::Stopwatch w(bootstrap_s ? *bootstrap_s : unused);
+    result = separation::bootstrap(p, targets, gaps, b);
+  }
+  if (bootstrap_runs) ++*bootstrap_runs;
+  computed_.push_back({metres, lognormal, {targets.begin(), targets.end()}, {gaps.begin(), gaps.end()}, result});
+  return result;
 }
 
 const separation::Prepared& Data::prepared(bool metres) const {
@@ -243,6 +277,7 @@ void Markdown::overview() {
     out("> **WARNING — results not trustworthy as they stand:** {}.\n\n", r.h.exclusion_warning);
   out("- results: `{}` (written {}, commit {}, {} rank(s), wall time {:.2f} s)\n", r.res.path, r.h.date,
       r.h.git_commit, r.h.ranks, r.h.wall_time_s);
+  out("- machine: {}\n", run_machine(r.h));
   out("- scene: **{}** — {}\n", r.h.scene, r.h.scene_reason);
   out("- contact: {} ({}), e = {}; stepper {}\n", r.h.contact_law, r.h.damping_law, r.h.restitution, r.h.stepper);
   std::size_t synth = 0;
@@ -486,15 +521,19 @@ std::string grid_advice_section(const Data& r) {
   std::vector<double> targets;
   for (double t : set.targets) targets.push_back(t / 100.0);
   const separation::BootstrapResult b = r.bootstrap(false, targets, {});
+  // the method, in the words of both forms of the table (a bridge's joints, a grid's ratios)
+  const std::string exceed =
+      "x is the smallest gap ratio that at most floor(t n) of the n analyses exceed (the exact empirical curve";
+  const std::string interval = fmt::format(
+      "The interval is a two-stage bootstrap over records and over models within records ({} replicates, {:.0f} %), "
+      "so it includes record-to-record variability; the advice is its upper end.",
+      b.replicates, 100 * set.confidence);
   if (set.bridge) {  // d is one number (the smallest joint gap): the advice in metres too
     std::string s = fmt::format(
-        "\n## Joint gap advice (any joint)\n\n"
-        "x is the smallest gap ratio that at most floor(t n) of the n analyses exceed (the exact empirical curve of D); "
-        "the gap of the joint(s) at d is x d, every other joint's x d + (gap_j - d). The interval is a two-stage "
-        "bootstrap over records and over models within records ({} replicates, {:.0f} %), so it includes "
-        "record-to-record variability; the advice is its upper end.\n\n"
+        "\n## Joint gap advice (any joint)\n\n{} of D); the gap of the joint(s) at d is x d, every other joint's "
+        "x d + (gap_j - d). {}\n\n"
         "| target | x | gap x d (m) | {:.0f} % interval (m) | advice (m, upper end) |\n|---|---|---|---|---|\n",
-        b.replicates, 100 * set.confidence, 100 * set.confidence);
+        exceed, interval, 100 * set.confidence);
     for (std::size_t i = 0; i < targets.size(); ++i) {
       const separation::Estimate& e = b.separation[i];
       const double d = set.bridge_d;
@@ -503,14 +542,12 @@ std::string grid_advice_section(const Data& r) {
     }
     return s;
   }
-  const std::optional<CubicFit> f = ratio_fit(r);  std::string s = fmt::format(
-      "\n## Separation advice in gap ratios x of the code gap d\n\n"
-      "x is the smallest gap ratio that at most floor(t n) of the n analyses exceed (the exact empirical curve). "
-      "The interval is a two-stage bootstrap over records and over models within records ({} replicates, "
-      "{:.0f} %), so it includes record-to-record variability; the advice is its upper end. Heights here come "
-      "from the period-height rule, so no separation is given in metres.\n\n"
+  const std::optional<CubicFit> f = ratio_fit(r);
+  std::string s = fmt::format(
+      "\n## Separation advice in gap ratios x of the code gap d\n\n{}). {} Heights here come from the period-height "
+      "rule, so no separation is given in metres.\n\n"
       "| target | x | {:.0f} % interval | advice x (upper end) | cubic x |\n|---|---|---|---|---|\n",
-      b.replicates, 100 * set.confidence, 100 * set.confidence);
+      exceed, interval, 100 * set.confidence);
   for (std::size_t i = 0; i < targets.size(); ++i) {
     const separation::Estimate& e = b.separation[i];
     const auto xc = f ? solve_fit(*f, set.targets[i], set.fit_min, set.fit_max) : std::nullopt;
@@ -547,27 +584,18 @@ ReportSettings report_settings(const results::Results& r) {
   return set;
 }
 
+std::string run_machine(const results::Header& h) {
+  const std::string m = machine_text(Machine{h.host, h.cpu_model, h.cpu_cores});
+  return m.empty() ? "not recorded (the file was written before results stored the machine)" : m;
+}
+
 Curve probability_curve(const results::Results& r, double step, double xmax, int record) {
   return curve_of(Data(r), step, xmax, record);
 }
 
 namespace {
-std::string study_markdown(const results::Results& results, const WorkHook* hook, double* bootstrap_s);
-}  // namespace
 
-std::string report_markdown(const results::Results& results, const WorkHook* hook, double* bootstrap_s) {
-  return study_markdown(results, hook, bootstrap_s) + report_detail::selection_section(results);
-}
-
-namespace {
-std::string study_markdown(const results::Results& results, const WorkHook* hook, double* bootstrap_s) {
-  if (is_fragility_study(results)) {
-    if (results.group("fragility")) return fragility_markdown(results);
-    results::Results r = results;  // a file written without the analysis hook: analyse it now
-    analyse_fragility(r, hook);
-    return fragility_markdown(r);
-  }
-  const Data r(results, hook, bootstrap_s);
+std::string pair_markdown(const Data& r) {
   Markdown md(r);
   md.overview();
   if (r.set.pair) {
@@ -591,16 +619,8 @@ std::string study_markdown(const results::Results& results, const WorkHook* hook
   md.impacts_table();
   return std::move(md).text();
 }
-}  // namespace
 
-std::string report_csv(const results::Results& results, const WorkHook* hook, double* bootstrap_s) {
-  if (is_fragility_study(results)) {
-    if (results.group("fragility")) return fragility_csv(results);
-    results::Results r = results;
-    analyse_fragility(r, hook);
-    return fragility_csv(r);
-  }
-  const Data r(results, hook, bootstrap_s);
+std::string pair_csv(const Data& r) {
   std::string s = "table,record,gap_ratio,T1,T2,hits,n,probability,gap_m,lo,hi,name\n";
   const auto& ratios = r.set.gap_ratios;
   const auto &p1 = r.periods(1), &p2 = r.periods(2);
@@ -625,6 +645,43 @@ std::string report_csv(const results::Results& results, const WorkHook* hook, do
   for (std::size_t i = 0; i < c.x.size(); ++i)
     s += fmt::format("curve,,{:.4f},,,,{},{:.6f},,,,\n", c.x[i], c.n, c.p[i]);
   return s + separation_csv(r);
+}
+
+}  // namespace
+
+namespace {
+ReportTexts texts(const results::Results& results, bool with_markdown, bool with_csv, const WorkHook* hook) {
+  ReportTexts t;
+  if (is_fragility_study(results)) {
+    std::optional<results::Results> analysed;  // a file written without the analysis hook: analyse it now, once
+    if (!results.group("fragility")) analyse_fragility(analysed.emplace(results), hook);
+    const results::Results& r = analysed ? *analysed : results;
+    if (with_markdown) t.markdown = fragility_markdown(r) + report_detail::selection_section(results);
+    if (with_csv) t.csv = fragility_csv(r);
+    return t;
+  }
+  Data r(results, hook, &t.bootstrap_s);
+  r.bootstrap_runs = &t.bootstraps;
+  if (with_csv) t.csv = pair_csv(r);  // first: its bootstrap covers every target and gap the Markdown asks for
+  if (with_markdown) t.markdown = pair_markdown(r) + report_detail::selection_section(results);
+  return t;
+}
+}  // namespace
+
+ReportTexts report_texts(const results::Results& results, bool with_csv, const WorkHook* hook) {
+  return texts(results, true, with_csv, hook);
+}
+
+std::string report_markdown(const results::Results& results, const WorkHook* hook, double* bootstrap_s) {
+  ReportTexts t = texts(results, true, false, hook);
+  if (bootstrap_s) *bootstrap_s += t.bootstrap_s;
+  return std::move(t.markdown);
+}
+
+std::string report_csv(const results::Results& results, const WorkHook* hook, double* bootstrap_s) {
+  ReportTexts t = texts(results, false, true, hook);
+  if (bootstrap_s) *bootstrap_s += t.bootstrap_s;
+  return std::move(t.csv);
 }
 
 }  // namespace pounding

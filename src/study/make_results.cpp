@@ -12,6 +12,7 @@
 #include <fmt/ranges.h>
 
 #include "pounding/contact/registry.hpp"
+#include "pounding/core/machine.hpp"
 #include "pounding/core/type_list.hpp"
 #include "pounding/core/version.hpp"
 #include "pounding/model/hysteresis/registry.hpp"
@@ -42,6 +43,8 @@ results::Header make_header(const Study& study, const Exclusions& ex, const RunF
   h.stepper = to_string(study.stepper);
   h.substeps = study.substeps, h.max_dt = study.max_dt;
   h.ranks = facts.ranks, h.build = facts.build;
+  const Machine m = this_machine();  // rank 0's: the one that writes the results
+  h.host = m.host, h.cpu_model = m.cpu_model, h.cpu_cores = m.cpu_cores;
   h.excluded_analyses = ex.excluded, h.total_analyses = ex.total;
   h.max_excluded_fraction = study.max_excluded_fraction, h.exclusion_warning = ex.verdict;
   h.wall_time_s = facts.wall_time_s;

@@ -2,7 +2,7 @@
 """Exit 0 when two pounding results files hold bit-identical results (NaN == NaN), else list the
 differences and exit 1. Compares, in both directions, every dataset and every attribute of the file, its
 groups and datasets, except provenance that legitimately differs between runs (date, wall time, ranks,
-commit, program version, build, study path); string datasets of record sources and notes are compared too.
+commit, program version, build, study path, the machine: host, cpu_model, cpu_cores); string datasets of record sources and notes are compared too.
 The /timing group (issue 27: each phase's seconds) is provenance like wall_time_s: its seconds (rank0_s, max_s,
 wall_s) and units_resumed are compared in shape only, its phase names exactly, and a file without it (written
 before issue 27) matches one with it.
@@ -17,7 +17,8 @@ import sys
 import h5py
 import numpy as np
 
-PROVENANCE = {"date", "wall_time_s", "ranks", "git_commit", "program_version", "build", "study_path"}
+PROVENANCE = {"date", "wall_time_s", "ranks", "git_commit", "program_version", "build", "study_path", "host", "cpu_model",
+              "cpu_cores"}
 TIMING = "/timing"  # seconds that differ run to run: like wall_time_s
 TIMING_PROVENANCE = {"wall_s", "units_resumed", "units", "threads"}  # units: the work units, a function of the batch width; threads: per rank
 TIMING_SECONDS = {"rank0_s", "max_s"}

@@ -48,6 +48,32 @@ TEST(Report, SettingsComeFromTheResultsNotTheStudyText) {
   EXPECT_EQ(report_markdown(r), report_markdown(testdata::sample_results()));
 }
 
+// Issue 29: the HTML report's Markdown and CSV come from one pass that runs the separation bootstrap ONCE (before, the
+// HTML path ran report_markdown and report_csv: 2 bootstraps for a grid study, 3 for a pair), and they are the very
+// bytes of report_markdown() and report_csv().
+TEST(Report, TextsRunOneBootstrapForMarkdownAndCsv) {
+  for (const bool pair : {false, true}) {
+    results::Results r = testdata::sample_results();
+    if (pair) r.settings.add("structures", "heights_specified", std::int64_t{1});
+    const ReportTexts t = report_texts(r, true);
+    EXPECT_EQ(t.bootstraps, 1) << (pair ? "pair" : "grid");
+    EXPECT_EQ(t.markdown, report_markdown(r)) << (pair ? "pair" : "grid");
+    EXPECT_EQ(t.csv, report_csv(r)) << (pair ? "pair" : "grid");
+    if (pair) EXPECT_NE(t.markdown.find("## Separation for this pair"), std::string::npos);
+    EXPECT_EQ(report_texts(r, false).csv, "");
+  }
+}
+
+// Issue 29: the Markdown names the machine that ran the study (the golden file: host, CPU, CPUs), and says so when a
+// file written before the machine was stored does not.
+TEST(Report, MarkdownNamesTheMachine) {
+  results::Results r = testdata::sample_results();
+  EXPECT_NE(report_markdown(r).find("- machine: host 'sample-host', Test CPU @ 1.00GHz, 4 CPUs\n"), std::string::npos);
+  r.header.host.clear(), r.header.cpu_model.clear(), r.header.cpu_cores = 0;
+  EXPECT_NE(report_markdown(r).find("- machine: not recorded (the file was written before results stored the machine)"),
+            std::string::npos);
+}
+
 TEST(Report, CsvCountsTheSampleModels) {
   const std::string csv = report_csv(testdata::sample_results());
   // gap ratio 0.2: z > 0.2 for 0.35, 0.62, 1.25, 0.45, 0.95 of the 7 ok models

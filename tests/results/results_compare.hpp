@@ -23,6 +23,7 @@ inline void expect_same_header(const results::Header& a, const results::Header& 
             std::tie(b.program_version, b.git_commit, b.date, b.study_text, b.study_path, b.title, b.scene));
   EXPECT_EQ(std::tie(a.scene_reason, a.contact_law, a.damping_law, a.stepper, a.build, a.exclusion_warning),
             std::tie(b.scene_reason, b.contact_law, b.damping_law, b.stepper, b.build, b.exclusion_warning));
+  EXPECT_EQ(std::tie(a.host, a.cpu_model, a.cpu_cores), std::tie(b.host, b.cpu_model, b.cpu_cores));
   EXPECT_EQ(std::tie(a.seed, a.substeps, a.ranks, a.excluded_analyses, a.total_analyses),
             std::tie(b.seed, b.substeps, b.ranks, b.excluded_analyses, b.total_analyses));
   EXPECT_EQ(std::tie(a.restitution, a.max_dt, a.max_excluded_fraction, a.wall_time_s),

@@ -23,6 +23,7 @@ inline results::Results sample_results() {
   h.stepper = "central-difference", h.substeps = 2, h.max_dt = 0.0025, h.ranks = 2, h.build = "test build";
   h.excluded_analyses = 2, h.total_analyses = 24, h.max_excluded_fraction = 0.5, h.exclusion_warning = "";
   h.wall_time_s = 1.25;
+  h.host = "sample-host", h.cpu_model = "Test CPU @ 1.00GHz", h.cpu_cores = 4;
 
   r.settings.add("", "title", std::string("sample results"));
   r.settings.add("", "seed", std::int64_t{42});

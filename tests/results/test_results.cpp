@@ -70,9 +70,9 @@ TEST(Results, FileHoldsTheFormatTwoLayout) {
   EXPECT_EQ(as_set(h5::member_names(root)),
             (std::set<std::string>{"gaps", "impacts", "models", "records", "settings", "uncoupled"}));
   EXPECT_EQ(as_set(h5::attribute_names(root)),
-            (std::set<std::string>{"build", "contact_law", "damping_law", "date", "exclusion_warning",
-                                   "excluded_analyses", "format_version", "git_commit", "max_dt",
-                                   "max_excluded_fraction", "program_version", "ranks", "restitution", "scene",
+            (std::set<std::string>{"build", "contact_law", "cpu_cores", "cpu_model", "damping_law", "date",
+                                   "exclusion_warning", "excluded_analyses", "format_version", "git_commit", "host",
+                                   "max_dt", "max_excluded_fraction", "program_version", "ranks", "restitution", "scene",
                                    "scene_reason", "seed", "stepper", "study_path", "study_text", "substeps", "title",
                                    "total_analyses", "wall_time_s"}));
   auto unc = h5::open_group(root, "uncoupled");
@@ -176,6 +176,7 @@ TEST(Results, FormatOneFileReadsIntoTheSameResults) {
   const std::string f1 = testdata::data_dir() + "/results-format1.h5";
   const results::Results a = results::load(f1);
   EXPECT_EQ(a.header.format_version, 1);
+  EXPECT_EQ(std::tie(a.header.host, a.header.cpu_model, a.header.cpu_cores), std::tuple("", "", 0));  // not stored then
   const std::size_t R = 2, M = 8, G = 3;
   ASSERT_EQ(a.record_count(), R);
   ASSERT_EQ(a.model_count(), M);

@@ -31,6 +31,10 @@ struct ReportSettings {
 };
 ReportSettings report_settings(const results::Results& r);
 
+// The machine that ran the study, from the results' host, cpu_model and cpu_cores ("host 'h', CPU, n CPUs"), or
+// "not recorded ..." for a file written before they were stored. The reports' "- machine:" line and provenance.
+std::string run_machine(const results::Header& h);
+
 // Probability (fraction) that the uncoupled peak closing exceeds ratio x d, over all ok (record, model)s.
 struct Curve {
   std::vector<double> x, p;  // p in [0, 1]
@@ -43,5 +47,15 @@ Curve probability_curve(const results::Results& r, double step, double xmax, int
 // `bootstrap_s` (may be null): the seconds spent ranking the demands and in the separation bootstrap are added to it.
 std::string report_markdown(const results::Results& r, const WorkHook* hook = nullptr, double* bootstrap_s = nullptr);
 std::string report_csv(const results::Results& r, const WorkHook* hook = nullptr, double* bootstrap_s = nullptr);
+
+// Both texts of one file as report_markdown() and report_csv() give them (the same bytes), from ONE pass: the
+// separation bootstrap runs once for both (the CSV's call covers every target and gap the Markdown asks for), a
+// fragility file without its fit is analysed once. The HTML report takes this. `bootstraps`: the bootstraps that ran.
+struct ReportTexts {
+  std::string markdown, csv;  // csv: "" unless asked for
+  int bootstraps = 0;
+  double bootstrap_s = 0;  // seconds ranking the demands and in the bootstrap
+};
+ReportTexts report_texts(const results::Results& r, bool with_csv, const WorkHook* hook = nullptr);
 
 }  // namespace pounding

@@ -30,6 +30,10 @@ struct Header {
   double max_dt = 0;
   std::int64_t ranks = 1;
   std::string build;
+  // The machine that ran the study (rank 0's, core/machine.hpp): host name, CPU model, CPUs the run could use.
+  // Files written before issue 29's provenance item lack them ("" and 0).
+  std::string host, cpu_model;
+  std::int64_t cpu_cores = 0;
   // analyses excluded from the probabilities (diverged or non-finite)
   std::int64_t excluded_analyses = 0, total_analyses = 0;
   double max_excluded_fraction = 0;
@@ -58,6 +62,9 @@ template <class H, class F> void visit_header_start(H& h, F&& f) {
   f("max_dt", h.max_dt);
   f("ranks", h.ranks);
   f("build", h.build);
+  f("host", h.host);
+  f("cpu_model", h.cpu_model);
+  f("cpu_cores", h.cpu_cores);
 }
 template <class H, class F> void visit_header_end(H& h, F&& f) {
   f("excluded_analyses", h.excluded_analyses);
