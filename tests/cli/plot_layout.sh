@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
-# Figures a client can receive (issue 23 item 9): every plot of every shipped study (studies/*.toml, run small:
-# 2 models per period pair, 100 bootstrap replicates) rendered by its tool -- tools/plot_study.py (pair and grid
+# Figures a client can receive (issue 23 item 9): every plot of every shipped study (studies/*.toml, run small once by the ctest fixture html_studies,
+# tests/cli/html_studies.sh) rendered by its tool -- tools/plot_study.py (pair and grid
 # studies), tools/plot_fragility.py (studies with [intensity]), tools/plot_spectra.py (studies that select
 # records, and the builtin suite's spectra) -- and each figure checked by tests/cli/plot_layout.py: texts inside
 # the figure, no two texts overlapping, no line across a label, tick numbers on every panel, the fragility's
@@ -12,40 +12,17 @@
 # Args: <pounding binary> <source dir>
 set -euo pipefail
 bin=$1; src=$(cd "$2" && pwd)
-. "$src/tests/lib/needs_real_records.sh"
-py=${POUNDING_PYTHON:-/usr/bin/python3}
-"$py" -c 'import matplotlib, h5py, numpy' 2>/dev/null ||
-  skip_or_fail "needs $py with matplotlib, h5py and numpy (Debian: python3-matplotlib python3-h5py python3-numpy; tools/setup.sh installs them)"
-tmp=$(mktemp -d); trap 'rm -rf "$tmp"' EXIT
+. "$src/tests/lib/html_studies.sh"  # every shipped study, run small once by the ctest fixture html_studies
 mkdir -p "$tmp/studies" "$tmp/out"
 ln -s "$src/records" "$tmp/records"
-cp "$src/studies/"*.csv "$tmp/studies/"
 check="$py $src/tests/cli/plot_layout.py"
-export MPLBACKEND=Agg
-real=$(cd "$src/.." && pwd)/shared/records/real
-fail=0; n=0; skipped=0
-for study in "$src"/studies/*.toml; do
-  name=$(basename "$study" .toml)
-  grep -q '^\[records\]' "$study" || { echo "skip $name: no [records] (a [structures] fragment)"; continue; }
-  if grep -q '^[^#]*shared/records/real' "$study"; then  # a study that reads them (not one that names them in a comment)
-    [ -d "$real" ] || { echo "skip $name: needs $real"; skipped=$((skipped + 1)); continue; }
-  fi
-  sed -e 's/^samples_per_pair = [0-9_]*/samples_per_pair = 2/' -e 's/^bootstrap = [0-9_]*/bootstrap = 100/' \
-      -e '/^output = /d' -e "s|^directory = \"../../shared/records/real\"|directory = \"$real\"|" \
-      -e "s|\"../../shared/records/real/|\"$real/|g" "$study" \
-      > "$tmp/studies/$name.toml"
-  if grep -q '^supports = ' "$study"; then  # a multi-support bridge (studies/bridge-joint.toml): its generated motions
-    dir=$(sed -n 's/^directory = "\(.*\)"/\1/p' "$study")
-    n_sup=$(sed -n 's/^supports = \([0-9]*\)/\1/p' "$study")
-    mkdir -p "$(dirname "$tmp/studies/$dir")"
-    "$bin" motions --supports "$n_sup" --spacing 100 --velocity 500 --loss high --soil D --spectrum nzs1170.5 --z 0.5 --r 1.4 \
-      --realisations 3 --seed 1 --quiet --out "$tmp/studies/$dir" > /dev/null
-  fi
-  "$bin" run "$tmp/studies/$name.toml" --out "$tmp/$name.h5" --quiet > "$tmp/$name.md" 2> "$tmp/$name.log" || { cat "$tmp/$name.log"; exit 1; }
+fail=0; n=0; skipped=$(grep -c '^skip' "$studies/studies.tsv" || true)
+for name in $html_names; do
+  cp "$studies/$name.h5" "$tmp/$name.h5"
   runs=("$name")
   if [ "$name" = example-pair ]; then  # a title longer than the figure is wide
     sed -e 's/^title = .*/title = "Example pair with a long client title: an 8-storey reinforced-concrete frame (T 0.9 s) next to a 12-storey steel frame (T 1.3 s), separate lots"/' \
-        "$tmp/studies/$name.toml" > "$tmp/studies/long-title.toml"
+        "$studies/studies/$name.toml" > "$tmp/studies/long-title.toml"
     "$bin" run "$tmp/studies/long-title.toml" --out "$tmp/long-title.h5" --quiet > "$tmp/long-title.md" 2> "$tmp/long-title.log"
     runs+=(long-title)
   fi
@@ -81,8 +58,8 @@ done
 if [ -f "$tmp/stochastic-pounding.h5" ] && [ -f "$tmp/stochastic-pounding-storeys.h5" ]; then
   $check -- "$src/tools/compare_sdof_mdof.py" "$tmp/stochastic-pounding.h5" "$tmp/stochastic-pounding-storeys.h5" \
     --figure "$tmp/out/sdof-mdof" || fail=1
-elif [ ! -d "$real" ] && ! [ -f "$tmp/stochastic-pounding.h5" -a -f "$tmp/stochastic-pounding-storeys.h5" ]; then
-  echo "skip compare_sdof_mdof: a study it compares was skipped without $real"; skipped=$((skipped + 1))
+elif grep -q -E '^skip.(stochastic-pounding|stochastic-pounding-storeys)\b' "$studies/studies.tsv"; then
+  echo "skip compare_sdof_mdof: a study it compares was skipped (../shared/records/real)"; skipped=$((skipped + 1))
 else
   echo "FAIL: studies/stochastic-pounding.toml or stochastic-pounding-storeys.toml was not run"; fail=1
 fi

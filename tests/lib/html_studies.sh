@@ -1,18 +1,24 @@
-# Sourced by tests/cli/report_html.sh and report_html_browser.sh (after $bin, $src, $tmp are set): runs the shipped
-# studies that finish in seconds, made small as tests/cli/plot_layout.sh makes them (2 models per period pair, 100
-# bootstrap replicates), in $tmp/studies -> $tmp/<name>.h5 and the Markdown report $tmp/<name>.md.
-#   html_studies [NAME...]  the names run (default: all of them), in $html_names
-html_studies() {
-  mkdir -p "$tmp/studies"
-  ln -sfn "$src/records" "$tmp/records"
-  cp "$src/studies/"*.csv "$tmp/studies/"
-  html_names=""
-  local name
-  for name in ${@:-example-pair fragility-pair quick quick-impacts fragility-grid fragility-pair-ida}; do
-    sed -e 's/^samples_per_pair = [0-9_]*/samples_per_pair = 2/' -e 's/^bootstrap = [0-9_]*/bootstrap = 100/' \
-        -e '/^output = /d' "$src/studies/$name.toml" > "$tmp/studies/$name.toml"
-    "$bin" run "$tmp/studies/$name.toml" --out "$tmp/$name.h5" --quiet > "$tmp/$name.md" 2> "$tmp/$name.log" ||
-      { cat "$tmp/$name.log"; echo "FAIL: studies/$name.toml (small) did not run"; exit 1; }
-    html_names="$html_names $name"
-  done
-}
+# Sourced by the tests that require the ctest fixture "html_studies" (cli.report_html, cli.report_html_browser,
+# cli.plot_layout) after they set $bin and $src: their shared preamble. The fixture (tests/cli/html_studies.sh, ctest
+# cli.html_studies) ran every shipped study once, made small, into <build>/html-studies (see it for how each is
+# reduced). Sets
+#   $py        the Python with matplotlib, h5py, numpy (skip_or_fail without)
+#   $studies   the fixture's folder: <name>.h5, .md, .report.md, .csv, .html, studies/<name>.toml
+#   $html_names  the studies it ran; a study it skipped (../shared/records/real missing) is named with its reason,
+#              and fails the test under CI=true (skip_or_fail when it ran none)
+#   $tmp       a temporary folder, removed at exit
+. "$src/tests/lib/needs_real_records.sh"
+py=${POUNDING_PYTHON:-/usr/bin/python3}
+export MPLBACKEND=Agg
+studies=$(cd "$(dirname "$bin")" && pwd)/html-studies
+[ -f "$studies/ready" ] ||
+  { echo "FAIL: $studies/ready is missing: run the fixture (ctest -R 'cli.html_studies|$(basename "$0" .sh)')"; exit 1; }
+if grep -q '^none' "$studies/studies.tsv"; then skip_or_fail "$(cut -f3 "$studies/studies.tsv")"; fi
+html_names=$(awk -F '\t' '$1 == "ok" { printf "%s ", $2 }' "$studies/studies.tsv")
+while IFS=$'\t' read -r state name why; do
+  [ "$state" = skip ] || continue
+  if in_ci; then echo "FAIL (CI=$CI, so not skipped): studies/$name.toml: $why"; exit 1; fi
+  echo "skip studies/$name.toml: $why"
+done < "$studies/studies.tsv"
+[ -n "$html_names" ] || skip_or_fail "the fixture ran no study ($(cut -f2,3 "$studies/studies.tsv" | tr '\n' ' '))"
+tmp=$(mktemp -d); trap 'rm -rf "$tmp"' EXIT
