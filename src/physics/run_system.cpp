@@ -36,6 +36,22 @@ sys::Side side_of(const model::Side& s) {
   return {sys::SideKind::wall, -1, -1};
 }
 
+// Classical modal damping: each DOF's first pool row of its body's C (SystemBatch::c_dense's entry order: body by
+// body, C_jk row-major) and its body; -1 for DOFs with a floor dashpot.
+void dense_rows(const model::System& S, Layout& L) {
+  L.dense_row.assign(static_cast<std::size_t>(L.ndof), -1), L.dense_body.assign(static_cast<std::size_t>(L.ndof), -1);
+  for (std::size_t b = 0; b < S.bodies().size(); ++b) {
+    const model::Body& body = S.bodies()[b];
+    if (body.damping != model::DampingForm::dense) continue;
+    const int n = static_cast<int>(body.dofs.size());
+    for (int jl = 0; jl < n; ++jl) {
+      L.dense_row[static_cast<std::size_t>(body.dofs[static_cast<std::size_t>(jl)])] = L.ndense + jl * n;
+      L.dense_body[static_cast<std::size_t>(body.dofs[static_cast<std::size_t>(jl)])] = static_cast<int>(b);
+    }
+    L.ndense += n * n;
+  }
+}
+
 Layout layout_of(const model::System& S) {
   Layout L;
   L.ndof = S.ndof();
@@ -73,19 +89,7 @@ Layout layout_of(const model::System& S) {
     for (int d : b.dofs) L.body_dofs.push_back(d);
     L.body_start.push_back(static_cast<int>(L.body_dofs.size()));
   }
-  if (S.any_dense_damping()) {  // rows in SystemBatch::c_dense's entry order: body by body, C_jk row-major
-    L.dense_row.assign(static_cast<std::size_t>(L.ndof), -1), L.dense_body.assign(static_cast<std::size_t>(L.ndof), -1);
-    for (std::size_t b = 0; b < S.bodies().size(); ++b) {
-      const model::Body& body = S.bodies()[b];
-      if (body.damping != model::DampingForm::dense) continue;
-      const int n = static_cast<int>(body.dofs.size());
-      for (int jl = 0; jl < n; ++jl) {
-        L.dense_row[static_cast<std::size_t>(body.dofs[static_cast<std::size_t>(jl)])] = L.ndense + jl * n;
-        L.dense_body[static_cast<std::size_t>(body.dofs[static_cast<std::size_t>(jl)])] = static_cast<int>(b);
-      }
-      L.ndense += n * n;
-    }
-  }
+  if (S.any_dense_damping()) dense_rows(S, L);
   for (const model::ContactElement& e : S.contacts()) L.left.push_back(side_of(e.left)), L.right.push_back(side_of(e.right));
   if (S.channels() > 1) {  // multi-support: every side's channel, and which springs and elements cross channels
     auto chan = [&](int dof) { return S.bodies()[static_cast<std::size_t>(S.body_of(dof))].channel; };

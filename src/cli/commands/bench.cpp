@@ -160,9 +160,7 @@ void add_bench(CLI::App& app) {
       ->check(CLI::Range(0, 100));
   c->add_flag("--dynamic", o->dynamic,
               "with --storeys 1: run the SDOF pair through the system stepper's dynamic layout, not the pair kernel");
-  c->add_flag("--modal", o->modal,
-              "with --storeys N > 1: classical modal damping (a dense C per building, 5 % in every mode) instead of "
-              "Rayleigh's dashpots");
+  c->add_flag("--modal", o->modal, "with --storeys N > 1: classical modal damping (a dense C per building, 5 % each mode)");
   c->add_option("--isolation", o->isolation,
                 "with --storeys N: workload 'isolated-pair', building 1 base-isolated on lead-rubber, friction-pendulum "
                 "or bouc-wen, building 2 fixed")

@@ -1080,6 +1080,15 @@ void add_output_and_restitution_options(CLI::App* c, SimulateOptions& o) {
 
 }  // namespace
 
+// --zeta and --modal-zeta (multi-storey buildings: Rayleigh on modes 1, 2, or classical modal damping).
+void add_damping_options(CLI::App* c, SimulateOptions* o) {
+  c->add_option("--zeta", o->zeta, "viscous damping ratio of both structures (multi-storey: Rayleigh damping with this ratio at modes 1 and 2)")->capture_default_str();
+  c->add_option("--modal-zeta", o->modal_zeta,
+                "multi-storey buildings: classical modal damping instead of Rayleigh, the ratio of each mode from mode 1 "
+                "(z1,z2,...; the last repeats for the higher modes; one-storey buildings keep --zeta)")
+      ->delimiter(',');
+}
+
 void add_simulate(CLI::App& app) {
   auto o = std::make_shared<SimulateOptions>();
   auto* c = app.add_subcommand("simulate", "one pair of SDOF structures (or multi-storey shear buildings, --storeys1/2) through one record; prints every observer");
@@ -1101,11 +1110,7 @@ void add_simulate(CLI::App& app) {
   c->add_option("--fy2", o->fy2, "yield force of structure 2 (N), instead of --h2");
   c->add_flag("--elastic", o->elastic, "linear elastic structures (no yielding)");
   c->add_option("--alpha", o->alpha, "post-yield stiffness ratio, [0, 1)")->capture_default_str();
-  c->add_option("--zeta", o->zeta, "viscous damping ratio of both structures (multi-storey: Rayleigh damping with this ratio at modes 1 and 2)")->capture_default_str();
-  c->add_option("--modal-zeta", o->modal_zeta,
-                "multi-storey buildings: classical modal damping instead of Rayleigh, the ratio of each mode from mode 1 "
-                "(z1,z2,...; the last repeats for the higher modes; one-storey buildings keep --zeta)")
-      ->delimiter(',');
+  add_damping_options(c, o.get());
   c->add_option("--gap", o->gap, "at-rest separation (m)")->capture_default_str();
   c->add_option("--contact", o->contact, std::string("contact law: ") + std::string(contact_law_names))
       ->capture_default_str();
