@@ -13,6 +13,7 @@ checked, not written (which halves the time; cli.plot_study and cli.plot_fragili
   - --names a,b,...: each record name appears in some text of the figure.
 tools/pounding_plots.py figures (the HTML report's SVGs, drawn into buffers) is checked the same way.
 Usage: plot_layout.py [--stripes LO,HI] [--pair-report CSV] [--names N1,N2] -- TOOL.py ARGS...
+       plot_layout.py --jobs FILE   (many such checks in one process: one a line, arguments separated by \x1f)
 Exits 1 listing every violation; prints one line per checked figure."""
 import csv
 import itertools
@@ -26,13 +27,18 @@ matplotlib.use("Agg")
 import matplotlib.figure  # noqa: E402
 import numpy as np  # noqa: E402
 
-opts, argv = {}, sys.argv[1:]
-while argv and argv[0] != "--":
-    opts[argv[0]] = argv[1]
-    argv = argv[2:]
-tool, tool_args = argv[1], argv[2:]
+opts = {}
 failures, checked = [], []
 seen = set()
+
+
+def parse(argv):
+    """[--opt VALUE]... -- TOOL.py ARGS... -> (options, tool, its args)"""
+    o = {}
+    while argv and argv[0] != "--":
+        o[argv[0]] = argv[1]
+        argv = argv[2:]
+    return o, argv[1], argv[2:]
 
 
 def texts_of(fig):
@@ -168,18 +174,35 @@ def savefig(self, fname, *args, **kwargs):
         check(self, os.path.basename(str(getattr(fname, "name", fname))))  # a buffer: the name it carries
 
 
+def run_tool(tool, tool_args):
+    """Runs the tool as __main__ with its arguments; False when it exits with an error."""
+    sys.argv = [tool] + tool_args
+    try:
+        runpy.run_path(tool, run_name="__main__")
+    except SystemExit as e:
+        if e.code not in (None, 0):
+            failures.append(f"{os.path.basename(tool)} {' '.join(tool_args)[:120]} exited with {e.code}")
+            return False
+    return True
+
+
 matplotlib.figure.Figure.savefig = savefig
-sys.argv = [tool] + tool_args
-try:
-    runpy.run_path(tool, run_name="__main__")
-except SystemExit as e:
-    if e.code not in (None, 0):
-        print(f"FAIL: {os.path.basename(tool)} exited with {e.code}")
-        sys.exit(1)
+if sys.argv[1:2] == ["--jobs"]:
+    # many checks in this one process (matplotlib imported once): FILE holds one job a line, its arguments
+    # ([--opt VALUE]... -- TOOL.py ARGS...) separated by the unit separator \x1f
+    jobs = [line.rstrip("\n").split("\x1f") for line in open(sys.argv[2]) if line.strip()]
+else:
+    jobs = [sys.argv[1:]]
+for job in jobs:
+    opts, tool, tool_args = parse(job)
+    before = len(checked)
+    seen.clear()  # ids of closed figures are reused
+    import matplotlib.pyplot as plt  # noqa: E402 -- a tool's figures left open must not reach the next job
+    if run_tool(tool, tool_args) and len(checked) == before:
+        failures.append(f"{os.path.basename(tool)} {' '.join(tool_args)[:120]} saved no figure")
+    plt.close("all")
 for c in checked:
     print(f"  checked {c}")
-if not checked:
-    failures.append(f"{os.path.basename(tool)} saved no figure")
 for f in failures:
     print(f"FAIL: {f}")
 sys.exit(1 if failures else 0)

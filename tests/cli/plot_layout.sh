@@ -15,7 +15,10 @@ bin=$1; src=$(cd "$2" && pwd)
 . "$src/tests/lib/html_studies.sh"  # every shipped study, run small once by the ctest fixture html_studies
 mkdir -p "$tmp/studies" "$tmp/out"
 ln -s "$src/records" "$tmp/records"
-check="$py $src/tests/cli/plot_layout.py"
+# every check is queued (one line of $tmp/jobs) and all run in ONE python process at the end (tests/cli/plot_layout.py
+# --jobs: matplotlib, numpy and h5py are imported once instead of once per figure tool)
+check() { local IFS=$'\x1f'; printf '%s\n' "$*" >> "$tmp/jobs"; }
+: > "$tmp/jobs"
 fail=0; n=0; skipped=$(grep -c '^skip' "$studies/studies.tsv" || true)
 for name in $html_names; do
   cp "$studies/$name.h5" "$tmp/$name.h5"
@@ -39,24 +42,24 @@ PY
 )
     stripes=$(sed -n 1p <<<"$info"); names=$(sed -n 2p <<<"$info")
     if [ "$stripes" != - ]; then
-      $check --stripes "$stripes" -- "$src/tools/plot_fragility.py" "$h5" -o "$tmp/out/$r" || fail=1
+      check --stripes "$stripes" -- "$src/tools/plot_fragility.py" "$h5" -o "$tmp/out/$r" || fail=1
     else
       "$bin" report "$h5" --csv > "$tmp/$r.csv"
       if grep -q '^curve_band,' "$tmp/$r.csv" || grep -q ',curve_band,' "$tmp/$r.csv"; then
-        $check --pair-report "$tmp/$r.csv" -- "$src/tools/plot_study.py" "$h5" --prefix "$tmp/out/$r" --pounding "$bin" || fail=1
+        check --pair-report "$tmp/$r.csv" -- "$src/tools/plot_study.py" "$h5" --prefix "$tmp/out/$r" --pounding "$bin" || fail=1
       else
-        $check -- "$src/tools/plot_study.py" "$h5" --prefix "$tmp/out/$r" || fail=1
+        check -- "$src/tools/plot_study.py" "$h5" --prefix "$tmp/out/$r" || fail=1
       fi
     fi
     if [ "$names" != - ]; then
-      $check --names "$names" -- "$src/tools/plot_spectra.py" "$h5" -o "$tmp/out/$r-selection.png" --loglog || fail=1
+      check --names "$names" -- "$src/tools/plot_spectra.py" "$h5" -o "$tmp/out/$r-selection.png" --loglog || fail=1
     fi
     n=$((n + 1))
   done
 done
 # issue 25 §6: the SDOF study against its shear-building copy (tools/compare_sdof_mdof.py: the T1 x T2 map and the curves)
 if [ -f "$tmp/stochastic-pounding.h5" ] && [ -f "$tmp/stochastic-pounding-storeys.h5" ]; then
-  $check -- "$src/tools/compare_sdof_mdof.py" "$tmp/stochastic-pounding.h5" "$tmp/stochastic-pounding-storeys.h5" \
+  check -- "$src/tools/compare_sdof_mdof.py" "$tmp/stochastic-pounding.h5" "$tmp/stochastic-pounding-storeys.h5" \
     --figure "$tmp/out/sdof-mdof" || fail=1
 elif grep -q -E '^skip.(stochastic-pounding|stochastic-pounding-storeys)\b' "$studies/studies.tsv"; then
   echo "skip compare_sdof_mdof: a study it compares was skipped (../shared/records/real)"; skipped=$((skipped + 1))
@@ -66,8 +69,9 @@ fi
 # the builtin suite's spectra (tools/plot_spectra.py on a `records spectrum` CSV), linear and log period axis
 "$bin" records spectrum --suite default -o "$tmp/suite.csv" > /dev/null
 names=$(grep '^period_s,' "$tmp/suite.csv" | cut -d, -f2- )
-$check --names "$names" -- "$src/tools/plot_spectra.py" "$tmp/suite.csv" -o "$tmp/out/suite.png" || fail=1
-$check --names "$names" -- "$src/tools/plot_spectra.py" "$tmp/suite.csv" -o "$tmp/out/suite-log.png" --logx || fail=1
+check --names "$names" -- "$src/tools/plot_spectra.py" "$tmp/suite.csv" -o "$tmp/out/suite.png" || fail=1
+check --names "$names" -- "$src/tools/plot_spectra.py" "$tmp/suite.csv" -o "$tmp/out/suite-log.png" --logx || fail=1
+"$py" "$src/tests/cli/plot_layout.py" --jobs "$tmp/jobs" || fail=1
 [ "$fail" = 0 ] || { echo "FAIL: figures with layout defects (above)"; exit 1; }
 # every study is plotted: 9 runs with the real records, each study that needs them fewer without (a failure on CI)
 case "${CI:-}" in "" | 0 | false | no) ;; *) [ "$skipped" = 0 ] || { echo "FAIL: $skipped studies skipped (CI=$CI)"; exit 1; } ;; esac
