@@ -528,31 +528,27 @@ std::string grid_advice_section(const Data& r) {
       "The interval is a two-stage bootstrap over records and over models within records ({} replicates, {:.0f} %), "
       "so it includes record-to-record variability; the advice is its upper end.",
       b.replicates, 100 * set.confidence);
-  if (set.bridge) {  // d is one number (the smallest joint gap): the advice in metres too
-    std::string s = fmt::format(
-        "\n## Joint gap advice (any joint)\n\n{} of D); the gap of the joint(s) at d is x d, every other joint's "
-        "x d + (gap_j - d). {}\n\n"
-        "| target | x | gap x d (m) | {:.0f} % interval (m) | advice (m, upper end) |\n|---|---|---|---|---|\n",
-        exceed, interval, 100 * set.confidence);
-    for (std::size_t i = 0; i < targets.size(); ++i) {
-      const separation::Estimate& e = b.separation[i];
-      const double d = set.bridge_d;
-      s += fmt::format("| {}% | {:.3f} | {:.4f} | [{:.4f}, {:.4f}] | **{:.4f}** |\n", set.targets[i], e.value,
-                       e.value * d, e.lo * d, e.hi * d, e.hi * d);
-    }
-    return s;
-  }
-  const std::optional<CubicFit> f = ratio_fit(r);
-  std::string s = fmt::format(
-      "\n## Separation advice in gap ratios x of the code gap d\n\n{}). {} Heights here come from the period-height "
-      "rule, so no separation is given in metres.\n\n"
-      "| target | x | {:.0f} % interval | advice x (upper end) | cubic x |\n|---|---|---|---|---|\n",
-      exceed, interval, 100 * set.confidence);
+  // a bridge's d is one number (the smallest joint gap): its advice in metres too; a grid's heights come from the
+  // period-height rule: ratios, and the cubic's root beside them
+  const std::optional<CubicFit> f = set.bridge ? std::nullopt : ratio_fit(r);
+  std::string s =
+      set.bridge
+          ? fmt::format("\n## Joint gap advice (any joint)\n\n{} of D); the gap of the joint(s) at d is x d, every other "
+                        "joint's x d + (gap_j - d). {}\n\n| target | x | gap x d (m) | {:.0f} % interval (m) | advice "
+                        "(m, upper end) |\n|---|---|---|---|---|\n",
+                        exceed, interval, 100 * set.confidence)
+          : fmt::format("\n## Separation advice in gap ratios x of the code gap d\n\n{}). {} Heights here come from the "
+                        "period-height rule, so no separation is given in metres.\n\n| target | x | {:.0f} % interval | "
+                        "advice x (upper end) | cubic x |\n|---|---|---|---|---|\n",
+                        exceed, interval, 100 * set.confidence);
   for (std::size_t i = 0; i < targets.size(); ++i) {
     const separation::Estimate& e = b.separation[i];
+    const double d = set.bridge_d;
     const auto xc = f ? solve_fit(*f, set.targets[i], set.fit_min, set.fit_max) : std::nullopt;
-    s += fmt::format("| {}% | {:.3f} | [{:.3f}, {:.3f}] | **{:.3f}** | {} |\n", set.targets[i], e.value, e.lo, e.hi,
-                     e.hi, xc ? fmt::format("{:.3f}", *xc) : "outside fit range");
+    s += set.bridge ? fmt::format("| {}% | {:.3f} | {:.4f} | [{:.4f}, {:.4f}] | **{:.4f}** |\n", set.targets[i], e.value,
+                                  e.value * d, e.lo * d, e.hi * d, e.hi * d)
+                    : fmt::format("| {}% | {:.3f} | [{:.3f}, {:.3f}] | **{:.3f}** | {} |\n", set.targets[i], e.value,
+                                  e.lo, e.hi, e.hi, xc ? fmt::format("{:.3f}", *xc) : "outside fit range");
   }
   return s;
 }
