@@ -9,7 +9,7 @@
 #     fill the System separately and share physics::set_shear_building and the stepper; simulate's JSON reports each
 #     mode's ratio (0.02, 0.05, 0.03, then 0.03);
 #  3. bad input: modal_zeta without damping = "modal", an unknown damping name, modal with isolation, modal on an
-#     SDOF building, a ratio outside [0, 0.5], --modal-zeta for an SDOF pair: one ERROR naming the key, exit 2, no
+#     SDOF building, a ratio outside [0, 0.5], --modal-zeta for an SDOF pair or for one-storey buildings: one ERROR naming the key, exit 2, no
 #     results file.
 # Synthetic records only (no ../shared needed). Args: <pounding binary> <source dir>
 set -euo pipefail
@@ -141,4 +141,12 @@ rc=0
 if [ $rc -ne 2 ] || ! grep -q 'ERROR: --modal-zeta damps multi-storey buildings.*--modal-zeta' "$tmp/sdof.out"; then
   echo "FAIL simulate_sdof (rc $rc):"; cat "$tmp/sdof.out"; fails=$((fails+1))
 else echo "ok   simulate_sdof: $(grep ERROR "$tmp/sdof.out")"; fi
+# storey options but one storey each: nothing to damp modally (it used to run on --zeta and say nothing)
+rc=0
+"$bin" simulate --record "$tmp/rec.txt" --storeys1 1 --storeys2 1 --storey-mass1 1e5 --storey-stiffness1 1e8 \
+  --modal-zeta 0.02 > "$tmp/one.out" 2>&1 || rc=$?
+if [ $rc -ne 2 ] || ! grep -q 'ERROR: --modal-zeta damps multi-storey buildings and every building of this run has one storey' "$tmp/one.out" \
+   || [ "$(wc -l < "$tmp/one.out")" -ne 1 ]; then
+  echo "FAIL simulate_one_storey (rc $rc):"; cat "$tmp/one.out"; fails=$((fails+1))
+else echo "ok   simulate_one_storey: $(grep ERROR "$tmp/one.out")"; fi
 [ $fails -eq 0 ] || exit 1

@@ -688,6 +688,11 @@ int run_storeys(SimulateOptions& o, const ContactModel& cm, KernelSettings& ks) 
     sticks[i].isolated = !o.iso[i].bearing.empty(), sticks[i].moat = o.iso[i].moat_given;
     if (sticks[i].isolated) sticks[i].isolator_law = physics::isolator_law(bearing_of(o.iso[i].bearing));
   }
+  if (!o.modal_zeta.empty() &&
+      std::none_of(sticks.begin(), sticks.end(), [](const model::StickTopology& t) { return t.storeys > 1; }))
+    throw InputError("--modal-zeta damps multi-storey buildings and every building of this run has one storey",
+                     "--modal-zeta", "give --storeys1/--storeys2 > 1 (a one-storey building's damping is --zeta), or "
+                                     "drop --modal-zeta");
   // a floor meets at most one floor of its neighbour: the tolerance below half the smallest storey height
   double h_min = std::numeric_limits<double>::infinity();
   for (const model::StickTopology& st : sticks) h_min = std::min(h_min, st.storey_heights[0]);
