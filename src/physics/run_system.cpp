@@ -199,7 +199,8 @@ struct Plan {
   double h = 0.0;
 };
 
-Plan make_plan(const SystemBatch& B, std::span<const ContactModel> models, double h) {
+Plan make_plan(const SystemBatch& B, std::span<const ContactModel> models, double h,
+               const VelocityRestitution* restitution) {
   Plan P;
   P.L = layout_of(*B.system);
   P.h = h;
@@ -209,6 +210,7 @@ Plan make_plan(const SystemBatch& B, std::span<const ContactModel> models, doubl
     sys::Group& G = P.groups[g];
     G.v0_min = models[g].v0_min, G.n = models[g].n;
     G.impulsive = contact::traits(models[g].law).impulsive;
+    G.restitution = restitution;  // validate: every group hertzdamp when given
     G.run = sys::group_runner(models[g].law, models[g].n);
   }
   const auto& els = B.system->contacts();
@@ -223,7 +225,8 @@ Plan make_plan(const SystemBatch& B, std::span<const ContactModel> models, doubl
       for (int e : P.groups[g].elems)
         for (std::size_t l = 0; l < B.width; ++l) {
           const LaneView v{B, P.L, l};
-          P.cd[SystemBatch::at(e, l, B.width)] = damping(v.at(B.kc, e), v.at(B.e, e), v.meff(e));
+          // with e(v0) the damping is set at each onset in the latched 1/v0 (restitution_onset): cd = 1
+          P.cd[SystemBatch::at(e, l, B.width)] = restitution ? 1.0 : damping(v.at(B.kc, e), v.at(B.e, e), v.meff(e));
         }
     });
   return P;
@@ -301,6 +304,7 @@ void fill_elements(const Pool& T, std::size_t i, const LaneView& v, const Plan& 
     row(sys::IV0) = 1.0 / std::max(dd0, cm.v0_min), row(sys::DPREV) = d0;
     row(sys::PCLOSE) = x0, row(sys::TPCLOSE) = 0.0, row(sys::TFIRST) = d0 > 0.0 ? 0.0 : kernel::inf;
     row(sys::NIMP) = d0 > 0.0 ? 1.0 : 0.0, row(sys::NCLAMP) = 0.0, row(sys::PPEN) = d0;
+    row(sys::NOUT) = 0.0;
     row(sys::WC) = 0.0, row(sys::TCON) = 0.0, row(sys::DIMP) = 0.0;
     double F = 0.0, clamp = 0.0;
     contact::visit_law(cm.law, [&]<class Law>() {
@@ -416,6 +420,7 @@ void collect_lane(const Pool& T, std::size_t i, const LaneView& v, const Plan& P
     out.t_first_impact[at(e)] = std::isinf(row(sys::TFIRST)) ? nan : val(row(sys::TFIRST));
     out.impact_count[at(e)] = bad ? -1 : static_cast<std::int32_t>(row(sys::NIMP));
     out.clamp_count[at(e)] = bad ? -1 : static_cast<std::int32_t>(row(sys::NCLAMP));
+    out.restitution_outside[at(e)] = bad ? -1 : static_cast<std::int32_t>(row(sys::NOUT));
     out.peak_penetration[at(e)] = val(std::max(row(sys::PPEN), 0.0)), out.contact_time[at(e)] = val(row(sys::TCON));
     contact::visit_law(cm.law, [&]<class Law>() {
       const double dp = std::max(T.elem(sys::DPREV, e)[i], 0.0);
@@ -465,7 +470,7 @@ void run_dynamic(const SystemBatch& B, std::span<const ContactModel> models, std
   out.resize(*B.system, B.width);
   if (B.width == 0) return;
   const Schedule s = make_schedule(motions[0], ks.substeps);
-  const Plan P = make_plan(B, models, s.h);
+  const Plan P = make_plan(B, models, s.h, ks.restitution);
   const std::size_t tw = tile == 0 ? default_system_tile(B.width) : tile;
   const Pool T(P.L, tw);
   sys::Run R{&P.L, sys::Topo(P.L), &P.groups, s.ag.data(), s.nsteps, s.h, ks.displacement_limit, {}, {}, {}};

@@ -74,6 +74,7 @@ void SystemResult::resize(const model::System& s, std::size_t w) {
   t_first_impact.assign(elements, nan);  // until the element's first impact
   impact_count.assign(elements, 0);
   clamp_count.assign(elements, 0);
+  restitution_outside.assign(elements, 0);
   status.assign(w, 0);
   for (auto* v : {&e_input, &e_kinetic, &e_strain, &e_viscous, &e_hysteretic, &e_contact_stored})
     v->assign(w, nan);  // not computed unless KernelSettings::energy
@@ -130,6 +131,7 @@ SystemResult from_pair_result(const BatchResult& r) {
   s.peak_spring_force.assign(s.peak_spring_force.size(), nan);
   s.peak_closing = r.peak_closing, s.t_peak_closing = r.t_peak_closing, s.t_first_impact = r.t_first_impact;
   s.impact_count = r.impact_count, s.clamp_count = r.clamp_count;
+  s.restitution_outside = r.restitution_outside;
   s.peak_force = r.peak_force, s.peak_penetration = r.peak_penetration;
   s.contact_energy = r.contact_energy, s.contact_time = r.contact_time, s.h_omega_contact = r.h_omega_contact;
   s.status = r.status;
@@ -150,6 +152,7 @@ BatchResult to_pair_result(const SystemResult& s) {
   take(r.final_v1, 0, w, s.final_v), take(r.final_v2, 1, w, s.final_v);
   r.peak_closing = s.peak_closing, r.t_peak_closing = s.t_peak_closing, r.t_first_impact = s.t_first_impact;
   r.impact_count = s.impact_count, r.clamp_count = s.clamp_count;
+  r.restitution_outside = s.restitution_outside;
   r.peak_force = s.peak_force, r.peak_penetration = s.peak_penetration;
   r.contact_energy = s.contact_energy, r.contact_time = s.contact_time, r.h_omega_contact = s.h_omega_contact;
   r.status = s.status;

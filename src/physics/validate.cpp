@@ -338,9 +338,15 @@ std::vector<Problem> validate(const SystemBatch& batch, std::span<const ContactM
   // The pair keeps today's checks and messages (its run goes to the pair kernel, whose guards catch the rest).
   if (sys.is_sdof_pair()) return validate(to_pair_batch(batch), models[0], motion, settings);
   run_settings(out, models, motion, settings);
-  if (settings.restitution != nullptr)
-    out.push_back({"a velocity-dependent restitution e(v0) runs SDOF pairs only (not yet the system stepper)",
-                   "restitution", "give a constant e for multi-storey buildings and other systems"});
+  if (settings.restitution != nullptr)  // the system stepper's onset (system_central_difference.hpp restitution_onset)
+    for (std::size_t g = 0; g < models.size(); ++g)
+      if (models[g].law != ContactLaw::hertzdamp || models[g].damping != models[0].damping) {
+        out.push_back({fmt::format("a velocity-dependent restitution e(v0) runs with hertzdamp (one damping law) in "
+                                   "every contact group, and group {} ('{}') has {} with {}",
+                                   g + 1, sys.groups()[g].name, to_string(models[g].law), to_string(models[g].damping)),
+                       "restitution", "use hertzdamp in every contact group, or a constant e"});
+        break;
+      }
   if (settings.stepper != Stepper::central_difference)
     out.push_back({fmt::format("the {} stepper runs SDOF pairs only", to_string(settings.stepper)), "stepper",
                    "use central-difference for multi-storey buildings and other systems"});

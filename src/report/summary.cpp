@@ -331,6 +331,33 @@ void link_json(report::JsonWriter& w, const SystemRunReport& run) {
   w.end_array();
 }
 
+// The contact elements' "levels" array of format_system_json.
+static void levels_json(report::JsonWriter& w, const SystemRunReport& run) {
+  const physics::SystemResult& r = *run.result;
+  const model::System& sys = *run.system;
+  w.key("levels").begin_array();
+  for (int e = 0; e < static_cast<int>(sys.contacts().size()); ++e) {
+    const model::ContactElement& ce = sys.contacts()[static_cast<std::size_t>(e)];
+    w.begin_object().member("level", ce.level).member("label", ce.label);
+    w.member("impacts", static_cast<std::int64_t>(at(r.impact_count, e, r, run.lane)));
+    w.member("peak_force", at(r.peak_force, e, r, run.lane));
+    w.member("peak_penetration", at(r.peak_penetration, e, r, run.lane));
+    w.member("peak_closing", at(r.peak_closing, e, r, run.lane));
+    w.member("t_peak_closing", at(r.t_peak_closing, e, r, run.lane));
+    w.member("t_first_impact", at(r.t_first_impact, e, r, run.lane));
+    w.member("contact_energy", at(r.contact_energy, e, r, run.lane));
+    w.member("contact_time", at(r.contact_time, e, r, run.lane));
+    w.member("clamps", static_cast<std::int64_t>(at(r.clamp_count, e, r, run.lane)));
+    if (run.settings && run.settings->restitution)  // e(v0): this element's impacts outside the curve's valid range
+      w.member("restitution_outside", static_cast<std::int64_t>(at(r.restitution_outside, e, r, run.lane)));
+    w.member("h_omega_contact", at(r.h_omega_contact, e, r, run.lane));
+    w.member("contact_stiffness", run.contact_stiffness[static_cast<std::size_t>(e)]);
+    w.member("gap", element_gap(run, e));
+    w.end_object();
+  }
+  w.end_array();
+}
+
 std::string format_system_json(const SystemRunReport& run) {
   const Record& rec = *run.record;
   const KernelSettings& ks = *run.settings;
@@ -381,25 +408,7 @@ std::string format_system_json(const SystemRunReport& run) {
     w.member("peak_bearing_force" + k, bv.peak_force).member("moat_impacts" + k, bv.moat_impacts);
     w.member("moat_peak_force" + k, bv.moat_peak_force);
   }
-  w.key("levels").begin_array();
-  for (int e = 0; e < static_cast<int>(sys.contacts().size()); ++e) {
-    const model::ContactElement& ce = sys.contacts()[static_cast<std::size_t>(e)];
-    w.begin_object().member("level", ce.level).member("label", ce.label);
-    w.member("impacts", static_cast<std::int64_t>(at(r.impact_count, e, r, run.lane)));
-    w.member("peak_force", at(r.peak_force, e, r, run.lane));
-    w.member("peak_penetration", at(r.peak_penetration, e, r, run.lane));
-    w.member("peak_closing", at(r.peak_closing, e, r, run.lane));
-    w.member("t_peak_closing", at(r.t_peak_closing, e, r, run.lane));
-    w.member("t_first_impact", at(r.t_first_impact, e, r, run.lane));
-    w.member("contact_energy", at(r.contact_energy, e, r, run.lane));
-    w.member("contact_time", at(r.contact_time, e, r, run.lane));
-    w.member("clamps", static_cast<std::int64_t>(at(r.clamp_count, e, r, run.lane)));
-    w.member("h_omega_contact", at(r.h_omega_contact, e, r, run.lane));
-    w.member("contact_stiffness", run.contact_stiffness[static_cast<std::size_t>(e)]);
-    w.member("gap", element_gap(run, e));
-    w.end_object();
-  }
-  w.end_array();
+  levels_json(w, run);
   link_json(w, run);
   w.member("impact_count", t.impacts).member("peak_force", t.peak_force);
   w.member("peak_penetration", t.peak_penetration).member("peak_closing", t.peak_closing);

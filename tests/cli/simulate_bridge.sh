@@ -8,6 +8,8 @@
 #  - multi-support (issue 26 §2): the same bridge with each frame on its own support (4 channels) and --wave-delay 0
 #    prints the uniform run's observers exactly; --support-record with the same file 4 times too; --wave-delay 0.05
 #    changes them and the energy balance (with the supports' work) still closes;
+#  - e(v0) at the joints (--restitution-*): a constant curve is e; lindsay2011 counts per joint the impacts outside
+#    its valid range;
 #  - bad input: one ERROR line naming FILE:line and the key (or the option), exit 2, nothing on stdout.
 # Args: <pounding binary> <source dir>
 set -euo pipefail
@@ -95,4 +97,31 @@ bad "unknown hysteresis 'takeda'" --bridge "$tmp/hys.toml"
 bad "building options do not apply" --bridge "$file" --storeys1 3
 bad "describes a building of the pair" --bridge "$file" --m1 1e6
 bad "bridge file" --bridge "$tmp/missing.toml"
+
+# e(v0) at the joints (issue 26 §3; the system stepper's onset): a constant curve e(v) = 0.6 runs as e = 0.6 (same
+# impacts per joint, peaks within 1e-6); the preset lindsay2011 gives every joint its restitution_outside and their
+# sum; text and JSON agree; a curve with another contact law is refused
+sed '/^restitution = 0.6$/d' "$file" > "$tmp/noe.toml"
+sim --bridge "$tmp/noe.toml" --dt 0.0005 --json --e 0.6 > "$tmp/e06.json"
+sim --bridge "$tmp/noe.toml" --dt 0.0005 --json --restitution-polynomial 0.6 > "$tmp/c06.json"
+sim --bridge "$tmp/noe.toml" --dt 0.0005 --json --restitution-preset lindsay2011 > "$tmp/lin.json"
+sim --bridge "$tmp/noe.toml" --dt 0.0005 --restitution-preset lindsay2011 > "$tmp/lin.txt"
+"$py" - "$tmp/e06.json" "$tmp/c06.json" "$tmp/lin.json" "$tmp/lin.txt" <<'PY'
+import json, sys
+e, c, lin = (json.load(open(p)) for p in sys.argv[1:4])
+text = dict(l.split(": ", 1) for l in open(sys.argv[4]).read().splitlines() if ": " in l)
+for k in range(1, 5):
+    a, b = e[f"peak_u{k}"][0], c[f"peak_u{k}"][0]
+    assert abs(a - b) <= 1e-6 * a, (k, a, b)
+assert [l["impacts"] for l in e["levels"]] == [l["impacts"] for l in c["levels"]], (e["levels"], c["levels"])
+assert sum(l["impacts"] for l in c["levels"]) > 0
+assert all(l["restitution_outside"] == 0 for l in c["levels"]), c["levels"]  # a polynomial: valid [0, inf)
+outside = [l["restitution_outside"] for l in lin["levels"]]
+assert sum(outside) == lin["restitution_outside_valid"] and all(0 <= o <= l["impacts"] for o, l in zip(outside, lin["levels"]))
+assert sum(outside) > 0, outside  # model-scale m/s: hinge impacts below 0.99 m/s are outside
+assert text["restitution_outside_valid"] == f"{sum(outside)} of {sum(l['impacts'] for l in lin['levels'])} impacts", text["restitution_outside_valid"]
+assert any(a != b for a, b in zip([lin[f"peak_u{k}"][0] for k in range(1, 5)], [e[f"peak_u{k}"][0] for k in range(1, 5)]))
+print("bridge e(v0): constant = e, outside per joint", outside)
+PY
+bad "hertzdamp" --bridge "$tmp/noe.toml" --restitution-preset lindsay2011 --contact kelvin --kh 1e9
 echo "simulate_bridge: ok"

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <optional>
 #include <vector>
 
 #include "pounding/model/hysteresis/registry.hpp"
@@ -14,6 +15,8 @@
 #include "pounding/physics/bridge.hpp"
 #include "pounding/core/error.hpp"
 #include "pounding/physics/system_batch.hpp"
+#include "pounding/physics/velocity_restitution.hpp"
+#include "pounding/contact/restitution.hpp"
 
 using namespace pounding;
 using namespace pounding::physics;
@@ -316,4 +319,64 @@ TEST(Bridge, CrossSupportLinkFollowsTheDifferentialGroundDisplacement) {
   set_bridge(B, 0, b);
   SystemResult x;
   EXPECT_THROW(run_system(B, {}, GroundMotion{dt, a1, 0.0}, KernelSettings{}, x), InputError);
+}
+
+// e(v0) in the system stepper (issue 26 §3, KernelSettings::restitution at a joint's onset): two frames on soft
+// piers meet once at a joint at approach velocities 0.5, 1.5 and 3 m/s (one lane each); with the calibrated damping
+// law each impact delivers the curve's e(v0) (the bridge paper's eq. 15, lindsay2011: 0.956, 0.878, 0.716 --
+// different enough that a constant e would fail), and the impact at 0.5 m/s lies outside the preset's valid range
+// (0.99-3.13 m/s) and is counted. A constant curve e(v) = 0.65 runs as e = 0.65 (same impacts, velocities to 1e-9).
+TEST(Bridge, JointImpactDeliversTheRestitutionOfItsApproachVelocity) {
+  BridgeSpec b;
+  for (int k = 0; k < 2; ++k) {
+    BridgeFrame f;
+    f.mass = 1e6, f.stiffness = 1e3, f.zeta = 0.0;  // piers too soft to matter over 0.2 s
+    b.frames.push_back(f);
+  }
+  BridgeJoint j;
+  j.gap = 0.0, j.kc = 1e9, j.e = 0.65;
+  b.joints.push_back(j);
+  const model::System S = bridge_system(b);
+  const double vs[] = {0.5, 1.5, 3.0};
+  const auto run = [&](const contact::RestitutionCurve* curve, SystemResult& r) {
+    SystemBatch B;
+    B.resize(S, 3);
+    for (std::size_t l = 0; l < 3; ++l) {
+      set_bridge(B, l, b);
+      B.v0[SystemBatch::at(0, l, 3)] = 0.5 * vs[l], B.v0[SystemBatch::at(1, l, 3)] = -0.5 * vs[l];
+    }
+    ContactModel cm;
+    cm.law = ContactLaw::hertzdamp, cm.damping = DampingLaw::calibrated;
+    const ContactModel groups[] = {cm};
+    const std::vector<double> ag(41, 0.0);
+    KernelSettings ks;
+    ks.substeps = 100;
+    std::optional<HertzdampRestitution> hook;
+    if (curve) ks.restitution = &hook.emplace(*curve, cm).hook;
+    run_system(B, groups, GroundMotion{0.005, ag, 0.0}, ks, r);
+  };
+  contact::RestitutionCurve lindsay;
+  ASSERT_TRUE(contact::restitution_preset("lindsay2011", lindsay));
+  SystemResult r;
+  run(&lindsay, r);
+  for (std::size_t l = 0; l < 3; ++l) {
+    ASSERT_EQ(r.status[l], 0);
+    ASSERT_EQ(r.impact_count[l], 1) << l;
+    const double v1 = r.final_v[SystemBatch::at(0, l, 3)], v2 = r.final_v[SystemBatch::at(1, l, 3)];
+    const double delivered = (v2 - v1) / vs[l];
+    EXPECT_NEAR(delivered, lindsay(vs[l]), 1e-5) << "v0 = " << vs[l];
+    EXPECT_EQ(r.restitution_outside[l], l == 0 ? 1 : 0) << l;
+  }
+  EXPECT_GT(lindsay(0.5) - lindsay(3.0), 0.2);  // the test tells e(v0) from a constant e
+  contact::RestitutionCurve constant;
+  constant.coefficients = {0.65};
+  SystemResult rc, re;
+  run(&constant, rc);
+  run(nullptr, re);
+  for (std::size_t l = 0; l < 3; ++l) {
+    EXPECT_EQ(rc.impact_count[l], re.impact_count[l]);
+    for (int d = 0; d < 2; ++d)
+      EXPECT_NEAR(rc.final_v[SystemBatch::at(d, l, 3)], re.final_v[SystemBatch::at(d, l, 3)], 1e-9) << l << " " << d;
+    EXPECT_EQ(re.restitution_outside[l], 0);
+  }
 }

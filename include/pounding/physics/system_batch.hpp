@@ -104,6 +104,7 @@ struct SystemResult {
   std::vector<double> peak_closing, t_peak_closing;  // max (x_L - x_R) and when (s)
   std::vector<double> t_first_impact;                // NaN when no impact
   std::vector<std::int32_t> impact_count, clamp_count;
+  std::vector<std::int32_t> restitution_outside;  // impacts whose v0 lay outside the e(v0) curve's valid range
   std::vector<double> peak_force, peak_penetration;
   std::vector<double> contact_energy, contact_time;  // dissipated (J), time in contact (s)
   std::vector<double> h_omega_contact;               // the resolution guard's h omega_c (physics/resolution.hpp)

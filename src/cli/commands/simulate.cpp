@@ -854,10 +854,13 @@ int run_bridge(SimulateOptions& o, const ContactModel& cm, KernelSettings& ks) {
   std::vector<GroundMotion> gm;
   for (const Record& x : recs) gm.push_back({x.dt, x.acc, analysis_length > record_length ? analysis_length : 0.0});
   physics::SystemResult r, free;
+  std::optional<physics::HertzdampRestitution> rest;  // e(v0) at every joint impact (--restitution-*)
+  KernelSettings free_ks = ks;  // open joints: no impact, no curve
+  if (o.curve) ks.restitution = &rest.emplace(*o.curve, cm).hook;
   physics::run_system(batch, groups, std::span<const GroundMotion>(gm), ks, r);
   std::vector<ContactModel> free_groups = groups;  // the same chain with open joints: the amplification
   for (ContactModel& g : free_groups) g.law = ContactLaw::none;
-  physics::run_system(batch, free_groups, std::span<const GroundMotion>(gm), ks, free);
+  physics::run_system(batch, free_groups, std::span<const GroundMotion>(gm), free_ks, free);
   SystemRunReport run;
   bridge_report(spec, batch, run);
   run.system = &sys, run.result = &r, run.uncoupled = &free, run.record = &rec, run.settings = &ks, run.contact = &cm;
@@ -865,10 +868,24 @@ int run_bridge(SimulateOptions& o, const ContactModel& cm, KernelSettings& ks) {
   std::string supports = fmt::format("supports: {}\n", recs.size());
   for (std::size_t k = 0; k < recs.size() && recs.size() > 1; ++k)
     supports += fmt::format("support{}_record: {}\nsupport{}_pga_g: {:.6g}\n", k + 1, recs[k].name, k + 1, recs[k].pga() / g_accel);
-  if (o.json)
-    fmt::print("{}", format_system_json(run));
-  else
+  std::int64_t outside = 0, impacts = 0;
+  for (std::size_t e = 0; e < r.restitution_outside.size(); ++e)
+    outside += std::max(0, r.restitution_outside[e]), impacts += std::max(0, r.impact_count[e]);
+  if (o.json) {
+    std::string json = format_system_json(run);
+    if (o.curve) {  // the curve and the joints' impacts outside its valid range (per joint: levels' restitution_outside)
+      report::JsonWriter w;
+      w.begin_object().member("restitution", o.curve->describe()).member("restitution_outside_valid", outside);
+      const std::string add = w.end_object().str();
+      const std::size_t close = json.rfind('}');
+      json = json.substr(0, close) + "," + add.substr(1, add.rfind('}') - 1) + json.substr(close);
+    }
+    fmt::print("{}", json);
+  } else {
     fmt::print("{}{}{}", describe_duration(record_length, analysis_length), supports, format_system_summary(run));
+    if (o.curve)
+      fmt::print("restitution: {}\nrestitution_outside_valid: {} of {} impacts\n", o.curve->describe(), outside, impacts);
+  }
   return r.status[0] != 0 ? 3 : 0;
 }
 
@@ -892,11 +909,10 @@ int run_simulate(SimulateOptions& o) {
   validate_scalars(o);  // everything is validated before any work or output
   const ContactModel cm = contact_model(o);
   KernelSettings ks = kernel_settings(o);
-  if (o.curve && (o.storey_mode() || !o.bridge.empty() || cm.law != ContactLaw::hertzdamp ||
-                  ks.stepper != Stepper::central_difference))
-    throw InputError("a velocity-dependent restitution runs an SDOF pair with --contact hertzdamp and --stepper "
-                     "central-difference only (not yet multi-storey, isolated, bridges or other laws/steppers)",
-                     o.rest.option(), "drop the --restitution-* options, or simulate that pair");
+  if (o.curve && (o.storey_mode() || cm.law != ContactLaw::hertzdamp || ks.stepper != Stepper::central_difference))
+    throw InputError("a velocity-dependent restitution runs an SDOF pair or a --bridge with --contact hertzdamp and "
+                     "--stepper central-difference only (not yet multi-storey, isolated or other laws/steppers)",
+                     o.rest.option(), "drop the --restitution-* options, or simulate that pair or bridge");
   if (!o.modal_zeta.empty() && (!o.bridge.empty() || !o.storey_mode()))
     throw InputError("--modal-zeta damps multi-storey buildings; this run has none", "--modal-zeta",
                      "give --storeys1/--storeys2 > 1 (an SDOF's damping is --zeta), or drop --modal-zeta");

@@ -40,6 +40,7 @@
 #include "pounding/contact/laws/stereomechanical.hpp"
 #include "pounding/contact/model.hpp"
 #include "pounding/contact/stability.hpp"
+#include "pounding/kernel/batch.hpp"
 #include "pounding/kernel/guard.hpp"
 #include "pounding/kernel/observers.hpp"
 #include "pounding/model/hysteresis/bilinear_kinematic.hpp"
@@ -67,7 +68,7 @@ enum SpringRow : int { K, AK, QY, KP, CS, FS, T, PD, PF, ZA, ZB, ZG, ZM, ZE, ZS,
 // Element: constants (N1/N2 of interpolated sides; p = -1: a column's ground end, x = N2 u_q), state, observers.
 enum ElemRow : int {
   GAP, KC, CD, E, MEFF, H2M, N1L, N2L, N1R, N2R, F, IV0, DPREV,
-  PCLOSE, TPCLOSE, TFIRST, NIMP, NCLAMP, PFORCE, PPEN, WC, TCON, DIMP, elem_rows
+  PCLOSE, TPCLOSE, TFIRST, NIMP, NCLAMP, PFORCE, PPEN, WC, TCON, DIMP, NOUT, elem_rows
 };
 enum LaneRow : int { BAD, EIN, EVIS, EHYS, lane_rows };
 
@@ -362,10 +363,25 @@ template <bool WithEnergy> POUNDING_INLINE void springs(Chunk c, Topo L, const d
   if constexpr (WithEnergy) c.lan(EHYS, c.lan(EHYS) + dhys);
 }
 
+// e(v0) at the onsets `on` (KernelSettings::restitution, as the pair kernel's restitution_onset): the latched 1/v0
+// times the damping constant of e(v0) (the element's CD is 1), and the onsets outside the curve's valid range
+// counted in NOUT.
+[[gnu::noinline]] inline void restitution_onset(Chunk c, int e, V& iv0, simd::M on, const VelocityRestitution& r) {
+  V out = V(0.0);
+  for (int j = 0; j < simd::W; ++j) {
+    if (!on[j]) continue;
+    const double v0 = 1.0 / iv0[j];
+    iv0[j] = iv0[j] * r.damping(r.self, v0);
+    if (r.outside(r.self, v0)) out[j] = 1.0;
+  }
+  c.elm(NOUT, e, c.elm(NOUT, e) + out);
+}
+
 // Step 5 for one element of law `Law`: the force at n+1 (muthukumar eq. 10's latch for Hertzdamp), the
 // stability guard, and the element's contact bookkeeping.
 template <class Law, class Exp>
-POUNDING_INLINE void element(Chunk c, Topo L, int e, StepCtx& s, double v0_min, Exp n) {
+POUNDING_INLINE void element(Chunk c, Topo L, int e, StepCtx& s, double v0_min, Exp n,
+                             const VelocityRestitution* restitution) {
   const V zero(0.0), one(1.0);
   // a cross-channel element forms its kinematics from total displacements: + (ug_L - ug_R)
   const bool cross = L.elem_cross != nullptr && L.elem_cross[e];
@@ -394,6 +410,7 @@ POUNDING_INLINE void element(Chunk c, Topo L, int e, StepCtx& s, double v0_min, 
           const V sc = lane::min(lane::max(-dprev / lane::select(den > zero, den, one), zero), one);
           const V ddo = cross ? relative(c, L, Vel, e) + V(go.v0) : relative(c, L, Vel, e);  // v at the step's start
           Law::template on_onset<V>(st, on, ddo + sc * (dd - ddo), v0_min);
+          if (restitution) [[unlikely]] restitution_onset(c, e, st.iv0, on, *restitution);
           c.elm(IV0, e, st.iv0);
         }
       }
@@ -573,6 +590,7 @@ struct Group {
   double v0_min = 1e-3;
   double n = 1.5;
   bool impulsive = false;
+  const VelocityRestitution* restitution = nullptr;  // e(v0) at each onset (Hertzdamp; null: the element's e)
   void (*run)(const Chunk&, const Topo&, const Group&, StepCtx&) = nullptr;
 };
 template <class Law, class Exp>
@@ -581,7 +599,7 @@ void group_elements(const Chunk& chunk, const Topo& topo, const Group& g, StepCt
   const Topo L = topo;
   Exp n{};
   if constexpr (!std::is_same_v<Exp, contact::Exp15>) n = Exp{g.n};
-  for (int e : g.elems) element<Law, Exp>(c, L, e, s, g.v0_min, n);
+  for (int e : g.elems) element<Law, Exp>(c, L, e, s, g.v0_min, n, g.restitution);
 }
 
 struct Run {
