@@ -80,6 +80,12 @@ physics::BridgeJoint joint(const toml::table* t, const std::string& file, const 
                      fmt::format("give contact_stiffness (law units: N/m^n for the Hertz family, N/m linear) or {}",
                                  d.kc_source));
   j.kc = r.number("contact_stiffness", d.kc);
+  if (!d.restitution_given_by.empty() && r.get("restitution") != nullptr)
+    throw InputError(fmt::format("the joint gives its own restitution and {} gives every joint e(v0)",
+                                 d.restitution_given_by),
+                     r.where("restitution"),
+                     fmt::format("drop the joint's restitution (the curve replaces it at every impact), or drop {}",
+                                 d.restitution_given_by));
   j.e = r.number("restitution", d.e);
   if (const toml::table* rt = r.table("restrainer")) {
     config::TableReader rr(rt, file, name + ".restrainer", "bridge.restrainer");

@@ -8,7 +8,7 @@
 #  - multi-support (issue 26 §2): the same bridge with each frame on its own support (4 channels) and --wave-delay 0
 #    prints the uniform run's observers exactly; --support-record with the same file 4 times too; --wave-delay 0.05
 #    changes them and the energy balance (with the supports' work) still closes;
-#  - e(v0) at the joints (--restitution-*): a constant curve is e; lindsay2011 counts per joint the impacts outside
+#  - e(v0) at the joints (--restitution-*; a joint's own restitution beside it refused): a constant curve is e; lindsay2011 counts per joint the impacts outside
 #    its valid range;
 #  - bad input: one ERROR line naming FILE:line and the key (or the option), exit 2, nothing on stdout.
 # Args: <pounding binary> <source dir>
@@ -124,4 +124,7 @@ assert any(a != b for a, b in zip([lin[f"peak_u{k}"][0] for k in range(1, 5)], [
 print("bridge e(v0): constant = e, outside per joint", outside)
 PY
 bad "hertzdamp" --bridge "$tmp/noe.toml" --restitution-preset lindsay2011 --contact kelvin --kh 1e9
+# a joint's own restitution beside a curve for every joint: refused at the joint's line (it was silently replaced)
+bad "the joint gives its own restitution and --restitution-preset gives every joint e(v0), .*four-frame.toml:43 \[joint1\].restitution" \
+  --bridge "$file" --restitution-preset lindsay2011
 echo "simulate_bridge: ok"

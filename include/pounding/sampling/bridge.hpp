@@ -35,6 +35,7 @@ struct BridgeReadDefaults {
   double e = 1.0;                                        // a joint's restitution when absent
   std::string kc_source = "--kh";                        // what gives kc (named in the error when it is missing)
   bool study = false;                                    // a study: restrainer slack required, joint gaps > 0
+  std::string restitution_given_by;  // non-empty: what gives every joint its restitution (a joint's own is refused)
 };
 
 // Reads frame, joint and abutment of `r` (the bridge file's top level, or a study's [bridge]); the tables are named

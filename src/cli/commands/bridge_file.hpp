@@ -22,6 +22,8 @@
 namespace pounding::cli {
 
 // kc_default: --kh when given, else NaN (a joint must then give contact_stiffness); e_default: --e.
-physics::BridgeSpec read_bridge_file(const std::string& path, double kc_default, double e_default);
+// restitution_given_by: non-empty when an option gives every joint its restitution (a joint's own is then refused).
+physics::BridgeSpec read_bridge_file(const std::string& path, double kc_default, double e_default,
+                                     const std::string& restitution_given_by = "");
 
 }  // namespace pounding::cli

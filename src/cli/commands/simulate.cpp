@@ -838,7 +838,8 @@ int run_bridge(SimulateOptions& o, const ContactModel& cm, KernelSettings& ks) {
                        "give the frames' numbers in the --bridge file");
   if (!o.series.empty()) throw InputError("--series records the SDOF pair only", "--series", "drop --series with --bridge");
   const physics::BridgeSpec spec =
-      read_bridge_file(o.bridge, o.kh_given ? o.kh : std::numeric_limits<double>::quiet_NaN(), o.e);
+      read_bridge_file(o.bridge, o.kh_given ? o.kh : std::numeric_limits<double>::quiet_NaN(), o.e,
+                       o.curve ? o.rest.option() : std::string());
   const model::System sys = physics::bridge_system(spec);
   physics::SystemBatch batch;
   batch.resize(sys, 1);
