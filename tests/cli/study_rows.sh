@@ -113,18 +113,6 @@ PY
 
 # 5. bad input
 fails=0
-expect_error() {  # name, pattern expected in the message, study text
-  local name=$1 pattern=$2
-  printf '%s\n' "$3" > "$tmp/$name.toml"
-  local rc=0
-  "$bin" run "$tmp/$name.toml" --out "$tmp/$name.h5" --quiet > "$tmp/$name.out" 2>&1 || rc=$?
-  if [ $rc -ne 2 ] || [ "$(grep -c "ERROR:" "$tmp/$name.out")" -ne 1 ] || ! grep -q -- "$pattern" "$tmp/$name.out" \
-     || [ -e "$tmp/$name.h5" ] || [ -e "$tmp/$name.h5.ckpt" ]; then
-    echo "FAIL $name (rc $rc):"; cat "$tmp/$name.out"; fails=$((fails+1))
-  else
-    echo "ok   $name: $(grep ERROR "$tmp/$name.out")"
-  fi
-}
 body=$(cat "$study")
 expect_error buildings_one ':22 \[structures\].buildings' "$(echo "$body" | sed 's/^buildings = 3/buildings = 1/')"
 expect_error buildings_many ':22 \[structures\].buildings' "$(echo "$body" | sed 's/^buildings = 3/buildings = 17/')"

@@ -10,9 +10,7 @@
 # Synthetic records only. Args: <pounding binary> <source dir>
 set -euo pipefail
 bin=$1; src=$2
-export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMPI_MCA_rmaps_base_oversubscribe=1
-tmp=$(mktemp -d); trap 'rm -rf "$tmp"' EXIT
-cmp() { /usr/bin/python3 "$src/tests/cli/compare_results.py" "$@"; }
+. "$src/tests/lib/study_invariance.sh"  # $tmp, cmp, expect_error
 # quick-storeys (9-16 storeys, impacts scene) with every model rerun with contact
 sed 's/^\[contact\]/[analysis]\nskip_untouched = false\n\n[contact]/' "$src/studies/quick-storeys.toml" > "$tmp/base.toml"
 grep -q '^e = 0.65' "$tmp/base.toml"
@@ -101,18 +99,6 @@ PY
 
 # 3. bad input
 fails=0
-expect_error() {
-  local name=$1 pattern=$2
-  printf '%s\n' "$3" > "$tmp/$name.toml"
-  local rc=0
-  "$bin" run "$tmp/$name.toml" --out "$tmp/$name.h5" --quiet > "$tmp/$name.out" 2>&1 || rc=$?
-  if [ $rc -ne 2 ] || [ "$(grep -c "ERROR:" "$tmp/$name.out")" -ne 1 ] || ! grep -q -- "$pattern" "$tmp/$name.out" \
-     || [ -e "$tmp/$name.h5" ] || [ -e "$tmp/$name.h5.ckpt" ]; then
-    echo "FAIL $name (rc $rc):"; cat "$tmp/$name.out"; fails=$((fails+1))
-  else
-    echo "ok   $name: $(grep ERROR "$tmp/$name.out")"
-  fi
-}
 body=$(cat "$tmp/base.toml")
 expect_error offset_negative '\[contact\].gap_offsets' "$(echo "$body" | sed 's/^e = 0.65/e = 0.65\ngap_offsets = [0.01, -0.02]/')"
 expect_error offset_absurd '\[contact\].gap_offsets' "$(echo "$body" | sed 's/^e = 0.65/e = 0.65\ngap_offsets = [50.0]/')"

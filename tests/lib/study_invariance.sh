@@ -4,6 +4,8 @@
 #   full.h5 (skip_untouched = false) equal to r0.h5 but for the settings they change. Leaves them in $tmp.
 # bad_run <want> <file>: `pounding run FILE` in $tmp (FILE relative to it) must exit 2 with exactly one ERROR line
 # matching "ERROR: .*<want>" and write no results (needs the script's fail "<what>").
+# expect_error <name> <pattern> <study text>: the same for a study given as text, counting failures in $fails (the
+# script sets fails=0 and exits non-zero at the end when it is not 0), printing "ok" or "FAIL" per case.
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMPI_MCA_rmaps_base_oversubscribe=1
 tmp=$(mktemp -d); trap 'rm -rf "$tmp"' EXIT
 cmp() { /usr/bin/python3 "$src/tests/cli/compare_results.py" "$@"; }
@@ -35,4 +37,17 @@ bad_run() {
   [ ! -e "$tmp/bad.h5" ] || fail "$file: wrote results"
   grep -q "ERROR: .*$want" "$tmp/bad.err" || fail "$file: the error does not name $want: $(cat "$tmp/bad.err")"
   [ "$(grep -c ERROR "$tmp/bad.err")" -eq 1 ] || fail "$file: more than one ERROR line: $(cat "$tmp/bad.err")"
+}
+
+expect_error() {
+  local name=$1 pattern=$2
+  printf '%s\n' "$3" > "$tmp/$name.toml"
+  local rc=0
+  "$bin" run "$tmp/$name.toml" --out "$tmp/$name.h5" --quiet > "$tmp/$name.out" 2>&1 || rc=$?
+  if [ $rc -ne 2 ] || [ "$(grep -c "ERROR:" "$tmp/$name.out")" -ne 1 ] || ! grep -q -- "$pattern" "$tmp/$name.out" \
+     || [ -e "$tmp/$name.h5" ] || [ -e "$tmp/$name.h5.ckpt" ]; then
+    echo "FAIL $name (rc $rc):"; cat "$tmp/$name.out"; fails=$((fails+1))
+  else
+    echo "ok   $name: $(grep ERROR "$tmp/$name.out")"
+  fi
 }
