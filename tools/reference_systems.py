@@ -957,49 +957,78 @@ class GapLink:
 
 
 def bridge_main(path_in, path_out):
-    """A chain of SDOF frames (m, k, c; elastic, or Q-Hyst with "qhyst": {fy, alpha, beta} and k as k0) under one
-    ground acceleration, linear contact at the joints (F = kc max(u_k - u_k+1 - gap, 0)), tension-only restrainers
-    with slack and compression-only abutments past their gap, both elastic or yielding (GapLink: F_y, alpha; the slack
-    grows by the plastic elongation), or hyperbolic abutments ("hyperbolic": {kmax, kur, rf, fult}: HypGap),
-    integrated by solve_ivp (RK45, rtol 1e-10, max_step dt/20; the contact kinks resolved by the step limit, each
-    switch of a link or a Q-Hyst frame between its branches located as an event and the integration restarted there).
-    Writes peak |u| and final u per frame, peak |frame force|, impacts (closings on the dt/100 grid) and peak force per
-    joint, peak restrainer and abutment forces, each link's peak deformation and final slack."""
+    """A chain of frames under one ground acceleration: SDOF frames (m, k, c; elastic, or Q-Hyst with "qhyst": {fy,
+    alpha, beta} and k as k0) or elastic short shear sticks (m and k lists, bottom first, the deck last: M = diag(m),
+    K of the stick on the ground, C Rayleigh's a0 M + a1 K at modes 1 and 2 with ratio "zeta" (default 0.05), or
+    {"modal": {"zeta": [...]}} in "damping"; ../shared/research/systems-and-bridges.md §1), linear contact at the joints
+    between neighbouring DECKS (F = kc max(u_deck k - u_deck k+1 - gap, 0)), tension-only restrainers with slack between
+    the decks and compression-only abutments past their gap at the end decks, both elastic or yielding (GapLink: F_y,
+    alpha; the slack grows by the plastic elongation), or hyperbolic abutments ("hyperbolic": {kmax, kur, rf, fult}:
+    HypGap), integrated by solve_ivp (RK45, rtol 1e-10, max_step dt/20; the contact kinks resolved by the step limit,
+    each switch of a link or a Q-Hyst frame between its branches located as an event and the integration restarted
+    there). Writes peak |u| and final u per frame (its deck), peak |u| per DOF (frame-major, bottom first: peak_dof),
+    peak |frame force| (its first storey's), impacts (closings on the dt/100 grid) and peak force per joint, peak
+    restrainer and abutment forces, each link's peak deformation and final slack."""
     from scipy.integrate import solve_ivp
     d = json.load(open(path_in))
     fr, jo = d["frames"], d["joints"]
-    n = len(fr)
-    m = np.array([f["m"] for f in fr]); k = np.array([f["k"] for f in fr]); c = np.array([f["c"] for f in fr])
+    nf = len(fr)
+    levels = [len(f["m"]) if isinstance(f["m"], list) else 1 for f in fr]
+    first = np.concatenate([[0], np.cumsum(levels)[:-1]]).astype(int)
+    deck = [int(first[i] + levels[i] - 1) for i in range(nf)]
+    n = int(sum(levels))
+    m = np.zeros(n); Kg = np.zeros((n, n)); Cg = np.zeros((n, n))
+    for i, f in enumerate(fr):
+        a, b = first[i], first[i] + levels[i]
+        if levels[i] == 1:
+            mi = f["m"][0] if isinstance(f["m"], list) else f["m"]
+            ki = f["k"][0] if isinstance(f["k"], list) else f["k"]
+            m[a] = mi; Kg[a, a] = ki
+            Cg[a, a] = f["c"] if "c" in f else 2 * f.get("zeta", 0.05) * math.sqrt(ki * mi)
+        else:
+            m[a:b] = f["m"]; Kg[a:b, a:b] = stick_stiffness(f["k"])
+            spec = f.get("damping") or {"rayleigh": {"modes": [1, 2], "zeta": f.get("zeta", 0.05)}}
+            Cg[a:b, a:b] = damping_matrix(f["m"], f["k"], spec)[0]
+    k = np.array([Kg[first[i], first[i]] if levels[i] == 1 else 0.0 for i in range(nf)])
     dt, ag = d["dt"], np.array(d["ag"])
     T = dt * (len(ag) - 1)
     tg = dt * np.arange(len(ag))
     ab = d.get("abutments", {})
     inf = float("inf")
     rlinks = [GapLink(J["restrainer"]["k"], J["restrainer"].get("fy", inf), J["restrainer"].get("alpha", 0.0),
-                      J["restrainer"]["slack"], 1, (j, j + 1)) if J.get("restrainer") else None for j, J in enumerate(jo)]
+                      J["restrainer"]["slack"], 1, (deck[j], deck[j + 1])) if J.get("restrainer") else None
+              for j, J in enumerate(jo)]
     def abutment(a, sgn, dof):
         if "hyperbolic" in a:
             h = a["hyperbolic"]
             return HypGap(h["kmax"], h.get("kur", h["kmax"]), h.get("rf", 0.7), h["fult"], a["gap"], sgn, (-1, dof))
         return GapLink(a["k"], a.get("fy", inf), a.get("alpha", 0.0), a["gap"], sgn, (-1, dof))
     alinks = [abutment(ab[side], sgn, dof) if side in ab else None
-              for side, sgn, dof in (("left", -1, 0), ("right", 1, n - 1))]
+              for side, sgn, dof in (("left", -1, deck[0]), ("right", 1, deck[-1]))]
     links = [L for L in rlinks + alinks if L is not None]
     hyst = [QHyst(f["k"], f["qhyst"]["fy"], f["qhyst"].get("alpha", 0.0), f["qhyst"].get("beta", 0.5))
             if "qhyst" in f else None for f in fr]
+    hyst_dof = {first[i]: h for i, h in enumerate(hyst) if h}  # Q-Hyst: SDOF frames only
+    Kel = Kg.copy()
+    for a_ in hyst_dof:
+        Kel[a_, a_] = 0.0
 
-    def frame_forces(u):
-        return np.array([h.force(u[i]) if h else k[i] * u[i] for i, h in enumerate(hyst)])
+    def frame_forces(u):  # the first storey's force of each frame
+        return np.array([hyst[i].force(u[first[i]]) if hyst[i] else
+                         (Kg[first[i], first[i]] if levels[i] == 1 else fr[i]["k"][0]) * u[first[i]]
+                         for i in range(nf)])
 
     def forces(u):
-        q = frame_forces(u)
-        F = np.zeros(n - 1); R = np.zeros(n - 1)
+        q = Kel @ u
+        for a_, h in hyst_dof.items():
+            q[a_] += h.force(u[a_])
+        F = np.zeros(nf - 1); R = np.zeros(nf - 1)
         for j, J in enumerate(jo):
-            F[j] = J["kc"] * max(u[j] - u[j + 1] - J["gap"], 0.0)
-            q[j] += F[j]; q[j + 1] -= F[j]
+            F[j] = J["kc"] * max(u[deck[j]] - u[deck[j + 1]] - J["gap"], 0.0)
+            q[deck[j]] += F[j]; q[deck[j + 1]] -= F[j]
         for j, L in enumerate(rlinks):
             if L:
-                R[j] = L.force(u); q[j + 1] += R[j]; q[j] -= R[j]
+                R[j] = L.force(u); q[deck[j + 1]] += R[j]; q[deck[j]] -= R[j]
         A = [0.0, 0.0]
         for s_, L in enumerate(alinks):
             if L:
@@ -1009,7 +1038,7 @@ def bridge_main(path_in, path_out):
     def rhs(t, y):
         u, v = y[:n], y[n:]
         q, _, _, _ = forces(u)
-        return np.concatenate([v, -np.interp(t, tg, ag) - (q + c * v) / m])
+        return np.concatenate([v, -np.interp(t, tg, ag) - (q + Cg @ v) / m])
 
     te = np.linspace(0.0, T, 100 * (len(ag) - 1) + 1)
     rows, t0, y0 = [], 0.0, np.zeros(2 * n)
@@ -1020,8 +1049,8 @@ def bridge_main(path_in, path_out):
             ev = (lambda L_: (lambda t, y: L_.event(t, y, n)))(L)
             ev.terminal, ev.direction = True, L.direction()
             events.append(ev); owners.append((L, None))
-        for i, h in enumerate(hyst):
-            for g, direction, action in (h.events() if h else []):
+        for i, h in ((int(a_), h_) for a_, h_ in hyst_dof.items()):
+            for g, direction, action in h.events():
                 ev = (lambda g_, i_: (lambda t, y: g_(y[i_], y[n + i_])))(g, i)
                 ev.terminal, ev.direction = True, direction
                 events.append(ev); owners.append((h, (i, action)))
@@ -1054,20 +1083,22 @@ def bridge_main(path_in, path_out):
                 owner.switch(tag[1], y0[tag[0]])
     U = np.array(rows); Fs = np.array(Fs); Rs = np.array(Rs); As = np.array(As); Ds = np.array(Ds); Qs = np.array(Qs)
     with open(path_out, "w") as out:
-        for i in range(n):
-            out.write(f"peak_u {i} {np.max(np.abs(U[:, i])):.17g}\n")
-            out.write(f"final_u {i} {U[-1, i]:.17g}\n")
+        for g in range(n):
+            out.write(f"peak_dof {g} {np.max(np.abs(U[:, g])):.17g}\n")
+        for i in range(nf):
+            out.write(f"peak_u {i} {np.max(np.abs(U[:, deck[i]])):.17g}\n")
+            out.write(f"final_u {i} {U[-1, deck[i]]:.17g}\n")
             out.write(f"peak_frame_force {i} {np.max(np.abs(Qs[:, i])):.17g}\n")
             for key, count in sorted(hyst[i].counts.items() if hyst[i] else []):
                 out.write(f"qhyst_{key} {i} {count}\n")
-        for j in range(n - 1):
+        for j in range(nf - 1):
             on = Fs[:, j] > 0
             out.write(f"impacts {j} {int(np.sum(on[1:] & ~on[:-1]))}\n")
             out.write(f"peak_force {j} {np.max(Fs[:, j]):.17g}\n")
             out.write(f"peak_restrainer {j} {np.max(Rs[:, j]):.17g}\n")
         out.write(f"peak_abutment 0 {np.max(As[:, 0]):.17g}\npeak_abutment 1 {np.max(As[:, 1]):.17g}\n")
         for i, L in enumerate(links):  # restrainer j / abutment 0 (left), 1 (right): peak x = side d, final slack
-            kind, idx = ("restrainer", L.dofs[0]) if L.dofs[0] >= 0 else ("abutment", 0 if L.side < 0 else 1)
+            kind, idx = ("restrainer", deck.index(L.dofs[0])) if L.dofs[0] >= 0 else ("abutment", 0 if L.side < 0 else 1)
             out.write(f"peak_{kind}_x {idx} {np.max(Ds[:, i]):.17g}\n")
             out.write(f"final_{kind}_slack {idx} {L.s:.17g}\n")
 

@@ -58,14 +58,14 @@ constexpr StudySection sections[] = {
      "per gap."},
     {"intensity.periods", "[intensity] periods = {min, max, count}", "count log-spaced periods from min to max."},
     {"bridge", "[bridge]",
-     "A bridge study (issue 26; docs/bridges.md): a chain of SDOF frames left to right, the expansion joints between "
+     "A bridge study (issue 26; docs/bridges.md): a chain of frames (SDOFs or short shear sticks) left to right, the expansion joints between "
      "them (contact elements of the [contact] law, the study's gap axis), cable restrainers and hinge bearings across "
      "the joints, abutments at the ends. The same keys as the bridge file of `pounding simulate --bridge`, whose top "
      "level is this table. The joints' gaps become the gap axis: d = the smallest joint gap is the reference the [gaps] "
      "ratios multiply, and joint j's gap at ratio x is x d + (gap_j - d). Not with [structures], [intensity] or "
-     "[contact] levels / gap_offsets. Results: format 3, frames as the bodies (one floor each) and joints as the "
+     "[contact] levels / gap_offsets. Results: format 3, frames as the bodies (their levels as floors) and joints as the "
      "elements of /system."},
-    {"bridge.frame", "[[bridge.frame]]", "One frame (pier and deck segment, an SDOF), left to right."},
+    {"bridge.frame", "[[bridge.frame]]", "One frame (pier and deck segment: an SDOF, or a short shear stick with storeys = n), left to right."},
     {"bridge.joint", "[[bridge.joint]]", "The expansion joint between frame j and frame j + 1 (one fewer than frames)."},
     {"bridge.restrainer", "[bridge.joint] restrainer = {...}",
      "Cable restrainers across the joint: tension-only bilinear with slack; the slack grows by the plastic elongation."},
@@ -411,6 +411,24 @@ constexpr StudyKey keys[] = {
     {"bridge.frame", "height", "number", "10", "m", "[0.1, 1000]", "The pier height (labels and drift ratios).", 0.1, 1000.0},
     {"bridge.frame", "support", "integer", "1", "", "[1, 1000]",
      "The ground-motion channel of its pier (multi-support input; 1 for uniform input).", 1, 1000},
+    {"bridge.frame", "storeys", "integer", "1", "", "[1, 50]",
+     "Levels of the frame: 1 an SDOF (pier and deck); n > 1 a short shear stick of n levels (pier levels under the "
+     "deck, the deck the top level; joints, restrainers, bearings and abutments act on the deck). A stick's mass, "
+     "stiffness and yield_force are each level's / storey's, its period T1 (uniform stiffness), its zeta Rayleigh's at "
+     "modes 1 and 2 (or damping = \"modal\"), its hysteresis every storey's.", 1, 50},
+    {"bridge.frame", "storey_mass", "array of numbers", "mass on every level", "kg", "[1, 1e10]",
+     "A stick's level masses, bottom first (one value or one per level; the deck's last). Instead of mass.", 1.0, 1e10},
+    {"bridge.frame", "storey_stiffness", "array of numbers", "stiffness or period", "N/m", "[1, 1e13]",
+     "A stick's storey stiffnesses, bottom first (one value or one per storey). Instead of stiffness/period.", 1.0, 1e13},
+    {"bridge.frame", "storey_yield", "array of numbers", "yield_force in every storey", "N", "[1, 1e16]",
+     "A stick's storey yield forces, bottom first (one value or one per storey). Instead of yield_force.", 1.0, 1e16},
+    {"bridge.frame", "storey_height", "array of numbers", "height / storeys", "m", "[0.01, 1000]",
+     "A stick's storey heights, bottom first (one value or one per storey; labels and drifts).", 0.01, 1000.0},
+    {"bridge.frame", "damping", "string", "\"rayleigh\"", "", "\"rayleigh\" | \"modal\"",
+     "A stick's damping: Rayleigh (zeta at modes 1 and 2; floor and storey dashpots) or classical modal damping "
+     "(zeta, or modal_zeta per mode)."},
+    {"bridge.frame", "modal_zeta", "array of numbers", "zeta for every mode", "", "[0, 0.5]",
+     "Modal damping ratios from mode 1 (the last repeating); with damping = \"modal\".", 0.0, 0.5},
     {"bridge.joint", "gap", "number", "required", "m", "[0, 10] (a study: > 0)",
      "The joint's gap. In a study the smallest is the reference d of the [gaps] ratios.", 0.0, 10.0},
     {"bridge.joint", "contact_stiffness", "number", "[contact] stiffness (a study), --kh (a bridge file)", "law units",

@@ -39,14 +39,45 @@ physics::BridgeBilinear bilinear(const toml::table* t, const std::string& file, 
 
 int support(config::TableReader& r) { return static_cast<int>(r.integer("support", 1)) - 1; }
 
+// A stick frame's own keys (storeys > 1; physics/bridge.hpp BridgeFrame): per-level lists, modal damping.
+void stick_keys(config::TableReader& r, physics::BridgeFrame& f) {
+  f.storeys = static_cast<int>(r.integer("storeys", 1));
+  const bool stick = f.storeys > 1;
+  for (const char* key : {"storey_mass", "storey_stiffness", "storey_yield", "storey_height", "modal_zeta"})
+    if (!stick && r.get(key) != nullptr)
+      throw InputError(fmt::format("{} describes the levels of a stick frame, and the frame has one level", key), r.where(key),
+                       "give storeys = n (2 or more) or the frame's own mass, stiffness/period and yield_force");
+  f.storey_mass = r.numbers("storey_mass", {});
+  f.storey_stiffness = r.numbers("storey_stiffness", {});
+  f.storey_yield = r.numbers("storey_yield", {});
+  f.storey_height = r.numbers("storey_height", {});
+  const std::string d = r.string("damping", "rayleigh");
+  if (d != "rayleigh" && d != "modal")
+    throw InputError(fmt::format("unknown damping '{}'", d), r.where("damping"), "give \"rayleigh\" or \"modal\"");
+  if (d == "modal" && !stick)
+    throw InputError("modal damping needs a stick frame (one level: its dashpot is exact)", r.where("damping"),
+                     "give storeys = n (2 or more), or drop damping");
+  f.modal = d == "modal";
+  f.modal_zeta = r.numbers("modal_zeta", {});
+  if (!f.modal_zeta.empty() && !f.modal)
+    throw InputError("modal_zeta is given and the frame's damping is Rayleigh", r.where("modal_zeta"), "add damping = \"modal\", or drop modal_zeta");
+  if (!f.storey_yield.empty() && r.get("yield_force") != nullptr)
+    throw InputError("a frame gives both yield_force and storey_yield", r.where("storey_yield"), "give one of them");
+}
+
 physics::BridgeFrame frame(const toml::table* t, const std::string& file, const std::string& name) {
   config::TableReader r(t, file, name, "bridge.frame");
   physics::BridgeFrame f;
   f.label = r.string("label", "");
-  f.mass = required(r, "mass", "the frame");
-  if ((r.get("period") != nullptr) == (r.get("stiffness") != nullptr))
-    throw InputError("a frame needs exactly one of period and stiffness", r.where("period"),
-                     "give period (s) or stiffness (N/m)");
+  stick_keys(r, f);
+  const bool given_k = !f.storey_stiffness.empty();
+  if (f.storey_mass.empty()) f.mass = required(r, "mass", "the frame");
+  else if (r.get("mass") != nullptr)
+    throw InputError("a frame gives both mass and storey_mass", r.where("storey_mass"), "give one of them");
+  if ((r.get("period") != nullptr) + (r.get("stiffness") != nullptr) + given_k != 1)
+    throw InputError(f.storeys > 1 ? "a stick frame needs exactly one of period, stiffness and storey_stiffness"
+                                   : "a frame needs exactly one of period and stiffness",
+                     r.where("period"), "give period (s) or stiffness (N/m)");
   f.period = r.number("period", 0.0);
   f.stiffness = r.number("stiffness", 0.0);
   f.zeta = r.number("zeta", 0.05);
@@ -56,12 +87,13 @@ physics::BridgeFrame frame(const toml::table* t, const std::string& file, const 
   if (h != "bilinear" && h != "q-hyst")
     throw InputError(fmt::format("unknown hysteresis '{}'", h), r.where("hysteresis"), "give \"bilinear\" or \"q-hyst\"");
   f.qhyst = h == "q-hyst";
-  if (f.qhyst && !std::isfinite(f.fy))
+  if (f.qhyst && !std::isfinite(f.fy) && f.storey_yield.empty())
     throw InputError("a Q-Hyst frame needs a yield force", r.where("yield_force"), "give yield_force (N)");
   f.beta = r.number("beta", 0.5);
   f.height = r.number("height", 10.0);
   f.support = support(r);
-  r.finish("label, mass, period, stiffness, zeta, yield_force, alpha, hysteresis, beta, height, support");
+  r.finish("label, mass, period, stiffness, zeta, yield_force, alpha, hysteresis, beta, height, support, storeys, "
+           "storey_mass, storey_stiffness, storey_yield, storey_height, damping, modal_zeta");
   return f;
 }
 
@@ -196,9 +228,8 @@ std::string BridgeModel::describe() const {
   std::string out = fmt::format("{} frames:", frames());
   for (std::size_t k = 0; k < frames(); ++k) {
     const physics::BridgeFrame& f = spec.frames[k];
-    const double kf = physics::frame_stiffness(f);
-    out += fmt::format("{} {} {:.4g} t, T {:.3g} s, {}{}", k ? ";" : "", frame_label(k), f.mass / 1e3,
-                       2.0 * std::numbers::pi * std::sqrt(f.mass / kf),
+    out += fmt::format("{} {} {:.4g} t{}, T {:.3g} s, {}{}", k ? ";" : "", frame_label(k), physics::frame_mass(f) / 1e3,
+                       f.storeys > 1 ? fmt::format(" on {} levels", f.storeys) : std::string(), physics::frame_period(f),
                        f.qhyst ? "Q-Hyst" : std::isfinite(f.fy) ? "bilinear" : "elastic",
                        std::isfinite(f.fy) ? fmt::format(" F_y {:.4g} kN", f.fy / 1e3) : "");
   }
@@ -245,7 +276,7 @@ BridgeModel parse_bridge_model(const toml::table* bridge, const std::string& fil
   for (const physics::BridgeJoint& j : m.spec.joints) m.offsets.push_back(j.gap - m.reference_gap);
   for (std::size_t k = 0; k < m.frames(); ++k) {
     const physics::BridgeFrame& f = m.spec.frames[k];
-    const double T = 2.0 * std::numbers::pi * std::sqrt(f.mass / physics::frame_stiffness(f));
+    const double T = physics::frame_period(f);
     if (!(T >= 0.02 && T <= 20.0))
       throw InputError(fmt::format("frame {}'s period {:.4g} s (from its stiffness) is outside [0.02, 20] s", k + 1, T),
                        fmt::format("{} [bridge.frame{}].stiffness", file, k + 1), "give a stiffness of a real frame");
@@ -261,11 +292,11 @@ SampledPair bridge_pair(const BridgeModel& b, const SampleId& id, std::span<cons
   std::vector<SampledStructure> s(n);
   for (std::size_t k = 0; k < n; ++k) {
     const physics::BridgeFrame& f = b.spec.frames[k];
-    const double T0 = 2.0 * std::numbers::pi * std::sqrt(f.mass / physics::frame_stiffness(f));
+    const double T0 = physics::frame_period(f), m0 = physics::frame_mass(f);  // a stick: T1 and its total mass
     SampledStructure& x = s[k];
     x.T = b.period_cov > 0 ? Truncated(Distribution::lognormal(T0, b.period_cov), 0.02, 20.0).sample(u[2 * k]) : T0;
-    x.m = b.mass_cov > 0 ? Truncated(Distribution::lognormal(f.mass, b.mass_cov), 1.0, 1e10).sample(u[2 * k + 1]) : f.mass;
-    if (b.sampled()) {
+    x.m = b.mass_cov > 0 ? Truncated(Distribution::lognormal(m0, b.mass_cov), 1.0, 1e10).sample(u[2 * k + 1]) : m0;
+    if (b.sampled() || f.storeys > 1) {  // a stick: the SDOF of its total mass and T1 (reports)
       const double w = 2.0 * std::numbers::pi / x.T;
       x.k = x.m * w * w;
     } else {
@@ -286,7 +317,13 @@ physics::BridgeSpec lane_bridge(const BridgeModel& b, const SampledPair& p, doub
   physics::BridgeSpec spec = b.spec;
   for (std::size_t k = 0; k < spec.frames.size(); ++k) {
     const SampledStructure& s = p.structure(k);
-    spec.frames[k].mass = s.m, spec.frames[k].stiffness = s.k, spec.frames[k].period = s.T;
+    physics::BridgeFrame& f = spec.frames[k];
+    if (f.storeys <= 1) {
+      f.mass = s.m, f.stiffness = s.k, f.period = s.T;
+    } else if (b.sampled()) {  // every level's mass by m / m0, every storey's stiffness so that T1 becomes T
+      const double fm = s.m / physics::frame_mass(f), ft = s.T / physics::frame_period(f);
+      physics::scale_frame(f, fm, fm / (ft * ft));
+    }
   }
   for (std::size_t j = 0; j < spec.joints.size(); ++j) spec.joints[j].gap = gap + b.offsets[j];
   return spec;

@@ -24,9 +24,10 @@ LaneTopology lane_topology(const StructureModel& model, const SampledPair& p) {
   const std::size_t n = p.buildings();
   LaneTopology t;
   if (model.bridge) {  // every lane the same chain
-    t.storeys.assign(n, 1), t.isolated.assign(n, 0), t.moat.assign(n, 0), t.bridge = 1;
+    t.storeys.resize(n), t.isolated.assign(n, 0), t.moat.assign(n, 0), t.bridge = 1;
     t.storey_height.resize(n);
-    for (std::size_t i = 0; i < n; ++i) t.storey_height[i] = model.bridge->spec.frames[i].height;
+    for (std::size_t i = 0; i < n; ++i)  // (the System is bridge_system's: stick frames' levels are its bodies' DOFs)
+      t.storeys[i] = model.bridge->spec.frames[i].storeys, t.storey_height[i] = model.bridge->spec.frames[i].height;
     return t;
   }
   t.storeys.resize(n), t.storey_height.resize(n), t.isolated.resize(n), t.moat.resize(n);

@@ -207,4 +207,89 @@ assert order >= 1.5, ("displacement error against h: no second-order convergence
 print("Q-Hyst frames, hyperbolic backfill: worst rel", f"{e[worst]:.1e}", f"({worst}); displacement error at h = 1e-3",
       "... 1.25e-4 s:", " / ".join(f"{x:.1e}" for x in w), f"order {order:.2f}")
 PY
+# Frames as short shear sticks (issue 26 §1): a two-frame chain of 2-level frames (frame 1: level masses 0.3 / 1.0 Gg,
+# storeys 9e8 / 3e8 N/m, Rayleigh 5 % at modes 1-2; frame 2: 1.6 Gg on each level, uniform storeys from period = 1.0 s
+# -- the reference gets k = m (omega_1 / (2 sin(pi / 10)))^2 from the closed form of a uniform 2-level stick -- and
+# classical modal damping 5 % / 3 %), linear contact at the joint between the decks, an elastic restrainer across it
+# and elastic abutments at both decks, 8 s. At h = 1e-4 s every level's peak displacement within 1e-5 (relative to the
+# frame's deck peak), the joint's impact count equal; the displacement error at h = 1e-3 .. 1.25e-4 s converges at a
+# fitted order >= 1.7. And `storeys = 1` is the SDOF frame: the yielding two-span file with it gives the same JSON.
+cat > "$tmp/stick.toml" <<'EOF'
+[[frame]]
+storeys = 2
+storey_mass = [3e5, 1e6]
+storey_stiffness = [9e8, 3e8]
+zeta = 0.05
+height = 9.0
+[[frame]]
+storeys = 2
+mass = 1.6e6
+period = 1.0
+damping = "modal"
+modal_zeta = [0.05, 0.03]
+[[joint]]
+gap = 0.0127
+contact_stiffness = 2e9
+restrainer = { stiffness = 3.5e7, slack = 0.0254 }
+[abutment.left]
+backfill = "epp"
+gap = 0.0381
+stiffness = 4.5e8
+capacity = 1e15
+[abutment.right]
+backfill = "epp"
+gap = 0.0381
+stiffness = 4.5e8
+capacity = 1e15
+EOF
+"$py" - "$tmp/stick.json" "$tmp/rec8.txt" <<'PY'
+import json, math, sys
+import numpy as np
+rec = np.loadtxt(sys.argv[2])
+k2 = 1.6e6 * (2 * math.pi / 1.0 / (2 * math.sin(math.pi / 10))) ** 2
+frames = [{"m": [3e5, 1e6], "k": [9e8, 3e8], "zeta": 0.05},
+          {"m": [1.6e6, 1.6e6], "k": [k2, k2], "damping": {"modal": {"zeta": [0.05, 0.03]}}}]
+json.dump({"frames": frames, "joints": [{"gap": 0.0127, "kc": 2e9, "restrainer": {"k": 3.5e7, "slack": 0.0254}}],
+           "abutments": {"left": {"k": 4.5e8, "gap": 0.0381}, "right": {"k": 4.5e8, "gap": 0.0381}},
+           "dt": 0.01, "ag": list(rec[:, 1] * 9.80665)}, open(sys.argv[1], "w"))
+PY
+"$py" "$src/tools/reference_systems.py" bridge "$tmp/stick.json" "$tmp/stick.ref"
+for h in 0.001 0.0005 0.00025 0.000125 0.0001; do
+  "$bin" simulate --record "$tmp/rec8.txt" --bridge "$tmp/stick.toml" --contact linear --dt $h --json > "$tmp/stick_$h.json"
+done
+"$py" - "$tmp/stick.ref" "$tmp" <<'PY'
+import json, sys
+import numpy as np
+ref = {}
+for line in open(sys.argv[1]):
+    name, i, v = line.split(); ref[(name, int(i))] = float(v)
+assert ref[("impacts", 0)] > 0 and ref[("peak_restrainer", 0)] > 0, "the case never closes the joint or pulls the restrainer"
+def errors(h):
+    out = json.load(open(f"{sys.argv[2]}/stick_{h}.json"))
+    assert out["status"] == "ok", out["status"]
+    assert out["levels"][0]["impacts"] == ref[("impacts", 0)], (h, out["levels"][0]["impacts"], ref[("impacts", 0)])
+    e = {}
+    for f in range(2):
+        got = out[f"peak_u{f + 1}"]
+        assert len(got) == 2, (h, "levels of frame", f + 1, got)
+        deck = ref[("peak_u", f)]
+        for l in range(2):
+            e[f"frame{f + 1} level{l + 1}"] = abs(got[l] - ref[("peak_dof", 2 * f + l)]) / deck
+    return e
+e = errors("0.0001")
+worst = max(e, key=e.get)
+print("stick frames at h = 1e-4 s:", e)
+assert e[worst] <= 1e-5, ("stick frames at h = 1e-4 s", worst, e)
+hs = ("0.001", "0.0005", "0.00025", "0.000125")
+w = [max(errors(h).values()) for h in hs]
+order = np.polyfit(np.log([float(h) for h in hs]), np.log(w), 1)[0]
+assert order >= 1.7, ("stick frames: no second-order convergence", w, order)
+print("stick frames: worst rel", f"{e[worst]:.1e}", f"({worst}) at h = 1e-4 s; error at h = 1e-3 ... 1.25e-4 s:",
+      " / ".join(f"{x:.1e}" for x in w), f"order {order:.2f}; impacts", int(ref[("impacts", 0)]))
+PY
+"$bin" simulate --record "$tmp/rec8.txt" --bridge "$tmp/yield.toml" --contact linear --dt 0.0002 --json > "$tmp/sdof1.json"
+awk '/^\[\[frame\]\]/ { print; print "storeys = 1"; next } { print }' "$tmp/yield.toml" > "$tmp/yield1.toml"
+grep -q "storeys = 1" "$tmp/yield1.toml" || fail "no storeys key written"
+"$bin" simulate --record "$tmp/rec8.txt" --bridge "$tmp/yield1.toml" --contact linear --dt 0.0002 --json > "$tmp/sdof2.json"
+cmp -s "$tmp/sdof1.json" "$tmp/sdof2.json" || fail "storeys = 1 is not the SDOF frame: $(diff "$tmp/sdof1.json" "$tmp/sdof2.json" | head -5)"
 echo "bridge_scipy: ok"

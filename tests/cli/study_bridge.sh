@@ -7,6 +7,7 @@
 #     results format 3 names frames and joints (/system), carries units on every dataset, /models the frames' T, m, k;
 #  3. the study's lanes are `pounding simulate --bridge` runs: the per-joint closing (law none) and the coupled
 #     per-joint impact counts and peak forces of one record equal simulate's for the same bridge file and record;
+#     3b: the same with stick frames (a 3-level Q-Hyst frame, a 2-level modal one), every level's peak;
 #  4. sampled frames (period_cov): periods drawn per model, reproducible, k = m (2 pi / T)^2;
 #  5. the report names the frames and joints; the figure is the per-joint probability of pounding versus the gap;
 #  6. bad input: one ERROR naming file:line and the key, exit 2, nothing written.
@@ -97,6 +98,32 @@ for b in (1, 2, 3, 4):
     assert f[f"impacts/peak_u{b}"][()].ravel()[0] == hd[f"peak_u{b}"], b
 assert min(l["impacts"] for l in hd["levels"]) > 0, "every joint must be hit by this record"
 print("study lane = simulate --bridge: closings", [round(l["peak_closing"], 4) for l in none["levels"]],
+      "impacts", [l["impacts"] for l in hd["levels"]])
+PY
+
+# 3b. stick frames (issue 26 §1): F2 a 3-level Q-Hyst stick (Rayleigh), F3 a 2-level modal stick; a lane is still
+# simulate --bridge of the same file: every level's uncoupled peak (peak_u_floors2/3), per-joint closings, coupled impact
+# counts and peak forces, bit for bit; the frames' levels are the bodies' floors of /system.
+stick() { sed -e 's/^label = "F2"$/label = "F2"\nstoreys = 3/' -e 's/^label = "F3"$/label = "F3"\nstoreys = 2\ndamping = "modal"/' "$1"; }
+stick "$tmp/bridge.toml" > "$tmp/stick_bridge.toml"
+stick "$tmp/one.toml" > "$tmp/stick.toml"
+grep -q "storeys = 3" "$tmp/stick.toml" && grep -q "storeys = 3" "$tmp/stick_bridge.toml" || fail "no stick frame written"
+(cd "$tmp" && "$bin" run stick.toml --out stick.h5 --quiet > /dev/null 2> stick.err) || fail "the stick study does not run: $(cat "$tmp/stick.err")"
+"$bin" simulate --record "$tmp/rec.txt" --bridge "$tmp/stick_bridge.toml" --contact none --kh 2e9 --e 0.6 --dt 0.0025 --json > "$tmp/snone.json"
+"$bin" simulate --record "$tmp/rec.txt" --bridge "$tmp/stick_bridge.toml" --contact hertzdamp --kh 2e9 --e 0.6 --dt 0.0025 --json > "$tmp/shd.json"
+"$py" - "$tmp/stick.h5" "$tmp/snone.json" "$tmp/shd.json" <<'PY'
+import json, sys, h5py, numpy as np
+f = h5py.File(sys.argv[1], "r")
+none, hd = json.load(open(sys.argv[2])), json.load(open(sys.argv[3]))
+assert list(f["uncoupled/peak_closing_elements"][0, 0]) == [l["peak_closing"] for l in none["levels"]]
+assert list(f["impacts/element_impact_count"][()].ravel()) == [l["impacts"] for l in hd["levels"]]
+assert list(f["impacts/element_peak_force"][()].ravel()) == [l["peak_force"] for l in hd["levels"]]
+for b, n in ((1, 1), (2, 3), (3, 2), (4, 1)):
+    fl = f[f"uncoupled/peak_u_floors{b}"][0, 0]
+    assert len(fl) == n and list(fl) == none[f"peak_u{b}"], (b, fl, none[f"peak_u{b}"])
+    assert f[f"impacts/peak_u{b}"][()].ravel()[0] == max(hd[f"peak_u{b}"]), b
+assert min(l["impacts"] for l in hd["levels"]) > 0, "every joint must be hit by this record"
+print("stick frames: study lane = simulate --bridge; F2 levels", [round(x, 4) for x in none["peak_u2"]],
       "impacts", [l["impacts"] for l in hd["levels"]])
 PY
 

@@ -380,3 +380,75 @@ TEST(Bridge, JointImpactDeliversTheRestitutionOfItsApproachVelocity) {
     EXPECT_EQ(re.restitution_outside[l], 0);
   }
 }
+
+// Frames as short shear sticks (issue 26 §1): a uniform stick frame of n levels (m per level, k per storey) has the
+// closed-form modes of a uniform shear cantilever, omega_j = 2 sqrt(k/m) sin((2j - 1) pi / (2 (2n + 1))); a frame
+// given by its period gets T1 = period; the System puts the frame's levels frame-major (deck last), the joint, the
+// restrainer and the abutments on the decks, and Rayleigh's storey dashpots on the stick's storeys.
+TEST(Bridge, StickFrameModesAreTheUniformStickClosedForm) {
+  BridgeFrame f;
+  f.storeys = 4, f.mass = 1.2e6, f.stiffness = 3.5e8, f.height = 8.0;
+  const ShearNumbers num = frame_numbers(f);
+  ASSERT_EQ(num.modes.omega.size(), 4u);
+  for (int j = 1; j <= 4; ++j) {
+    const double want = 2.0 * std::sqrt(3.5e8 / 1.2e6) * std::sin((2 * j - 1) * M_PI / (2.0 * (2 * 4 + 1)));
+    EXPECT_NEAR(num.modes.omega[static_cast<std::size_t>(j - 1)], want, 1e-12 * want) << "mode " << j;
+  }
+  EXPECT_DOUBLE_EQ(frame_mass(f), 4 * 1.2e6);
+  BridgeFrame g = f;
+  g.stiffness = 0.0, g.period = 0.8;
+  EXPECT_NEAR(frame_period(g), 0.8, 1e-12);
+  for (double k : frame_numbers(g).k) EXPECT_DOUBLE_EQ(k, frame_numbers(g).k[0]);  // uniform profile
+
+  BridgeSpec b = four_frames(Backfill::epp, false);
+  b.frames[1].storeys = 3, b.frames[1].mass /= 3.0;  // frame 2: three levels of a third of its mass each
+  b.frames[2].storeys = 2, b.frames[2].storey_mass = {0.2 * b.frames[2].mass, 0.8 * b.frames[2].mass};
+  ASSERT_TRUE(check_bridge(b).empty());
+  const BridgeIndex x = bridge_index(b);
+  EXPECT_EQ(x.deck, (std::vector<int>{0, 3, 5, 6}));
+  const model::System S = bridge_system(b);
+  ASSERT_EQ(S.ndof(), 7u);
+  EXPECT_EQ(S.bodies()[1].dofs, (std::vector<int>{1, 2, 3}));
+  EXPECT_NEAR(S.bodies()[1].heights.back(), b.frames[1].height, 1e-12);
+  for (std::size_t e = 0; e < 3; ++e) {
+    EXPECT_EQ(S.contacts()[e].left.p, x.deck[e]);
+    EXPECT_EQ(S.contacts()[e].right.p, x.deck[e + 1]);
+  }
+  for (std::size_t j = 0; j < 3; ++j) {
+    const model::Spring& r = S.springs()[static_cast<std::size_t>(x.restrainer[j])];
+    EXPECT_EQ(r.i, x.deck[j]);
+    EXPECT_EQ(r.j, x.deck[j + 1]);
+  }
+  EXPECT_EQ(S.springs()[static_cast<std::size_t>(x.right_backfill)].j, 6);
+  SystemBatch B;
+  B.resize(S, 1);
+  set_bridge(B, 0, b);
+  EXPECT_DOUBLE_EQ(B.m[4] + B.m[5], frame_mass(b.frames[2]));
+  EXPECT_GT(B.c_storey[2], 0.0);  // Rayleigh's stiffness part on the stick's storeys
+  EXPECT_EQ(B.c_storey[0], 0.0);  // none on an SDOF frame
+  EXPECT_NEAR(frame_period(b.frames[1]), 1.12, 1e-12);
+}
+
+// A one-level frame is today's SDOF frame bit for bit: k = m (2 pi / T)^2, c = 2 zeta sqrt(k m) as a floor dashpot
+// (not the shear building's Structure::from_period), DOF k = frame k, spring k its storey -- and a chain of them runs
+// to the same bits whether or not a stick frame shares the batch's layout.
+TEST(Bridge, OneLevelStickIsTheSdofFrameBitForBit) {
+  const BridgeSpec b = four_frames(Backfill::hyperbolic, true);
+  const model::System S = bridge_system(b);
+  SystemBatch B;
+  B.resize(S, 1);
+  set_bridge(B, 0, b);
+  for (int k = 0; k < 4; ++k) {
+    const BridgeFrame& f = b.frames[static_cast<std::size_t>(k)];
+    const double w = 2.0 * M_PI / f.period, kf = f.mass * w * w;
+    EXPECT_EQ(S.bodies()[static_cast<std::size_t>(k)].dofs, std::vector<int>{k});
+    EXPECT_EQ(B.m[static_cast<std::size_t>(k)], f.mass);
+    EXPECT_EQ(B.c_floor[static_cast<std::size_t>(k)], 2.0 * f.zeta * std::sqrt(kf * f.mass));
+    EXPECT_EQ(B.spring[static_cast<std::size_t>(k)].k, kf);
+    EXPECT_EQ(S.spring_below(k), k);
+  }
+  BridgeSpec mixed = b;
+  mixed.frames[3].storeys = 1;  // explicitly one level: the same chain
+  const std::vector<double> ag = pounding::builtin_motion(0.01, 10.0);
+  EXPECT_EQ(differing(run_channels(b, {ag}, 20), run_channels(mixed, {ag}, 20)), 0);
+}

@@ -7,11 +7,18 @@
 // (model/hysteresis/registry.hpp): restrainer law 3 (tension gap, slack), bearings law 0 (bilinear kinematic
 // hardening: k0, F_y, alpha; M&D's 6 kip/in, 2.4 kip, 33 %), backfill law 4 (elastic-perfectly-plastic after the
 // gap, Caltrans SDC) or 5 (hyperbolic, Shamsabadi et al. 2007). Frames are SDOF (a pier and its deck) with
-// bilinear or Q-Hyst (law 6) hysteresis; short shear sticks per frame are not built here.
+// bilinear or Q-Hyst (law 6) hysteresis: an SDOF (a pier and its deck, `storeys` = 1), or a short shear stick of
+// `storeys` = n levels (pier levels under the deck; issue 26 §1), whose numbers are a shear building's
+// (physics/shear_building.hpp shear_numbers: level masses, storey stiffnesses given or scaled to the frame's period
+// T1 with a uniform profile, storey strengths, Rayleigh damping on modes 1 and 2 or classical modal damping) and
+// whose every storey spring has the frame's hysteresis. Joints, restrainers, bearings and abutments attach to the
+// DECK, the frame's top level; the frame's pier stands on its support's channel.
 //
-// Numbering: DOF k = frame k (from the left); springs: the frames' (k), then per joint its restrainer and bearing
-// (when present), then the left abutment's backfill and bearing, then the right one's; element k = joint k (between
-// frames k and k+1, L = frame k: penetration u_k - u_{k+1} - gap). Sign conventions as model/system.hpp: a link's
+// Numbering (frame-major): frame k's levels are DOFs base_k .. base_k + n_k - 1 bottom first (base_k = the levels of
+// the frames left of it), its deck the last; springs: the frames' storey springs in DOF order (spring d under DOF d),
+// then per joint its restrainer and bearing (when present), then the left abutment's backfill and bearing, then the
+// right one's; element k = joint k (between the decks of frames k and k+1, L = frame k's deck: penetration
+// u_deck(k) - u_deck(k+1) - gap). With one level per frame DOF k = frame k, spring k = frame k's. Sign conventions as model/system.hpp: a link's
 // deformation is u_j - u_i, the restrainer's j the right frame (its opening), a wall link's i the ground.
 // Multi-support: frame k sits on channel `support` (0 for uniform input), the left abutment's wall on channel
 // left.support, the right one's on right.support (model::Spring::channel of the wall links).
@@ -22,6 +29,7 @@
 #include <vector>
 
 #include "pounding/model/system.hpp"
+#include "pounding/physics/shear_building.hpp"
 #include "pounding/physics/system_batch.hpp"
 
 namespace pounding::physics {
@@ -39,8 +47,16 @@ struct BridgeFrame {
   double alpha = 0.0;          // post-yield ratio
   bool qhyst = false;          // Q-Hyst (law 6) instead of bilinear kinematic hardening
   double beta = 0.5;           // Q-Hyst's unloading exponent
-  double height = 10.0;        // m: the pier height (labels, drift ratio)
+  double height = 10.0;        // m: the pier height (labels, drift ratio); a stick's levels at height / n steps
   int support = 0;             // ground-motion channel of the frame's pier
+  // A short shear stick (storeys > 1): `mass` and `stiffness` (or `period`: T1 of the stick, uniform stiffness
+  // profile) and `fy` are each level's / storey's unless these lists (one value, or one per level, bottom first)
+  // give them; zeta is Rayleigh's ratio at modes 1 and 2, or (modal) every mode's (modal_zeta per mode, the last
+  // repeating). One level: the SDOF above, bit for bit.
+  int storeys = 1;
+  std::vector<double> storey_mass, storey_stiffness, storey_yield, storey_height;
+  bool modal = false;
+  std::vector<double> modal_zeta;
 };
 struct BridgeJoint {
   double gap = 0.0;                             // m: the expansion joint's gap (contact element, group 0)
@@ -66,7 +82,9 @@ struct BridgeSpec {
 
 // Where the builder put things (indices into the System's springs and contacts; -1: absent).
 struct BridgeIndex {
-  std::vector<int> frame_spring, restrainer, bearing;  // per frame; per joint; per joint
+  std::vector<int> frame_spring, restrainer, bearing;  // per frame (its first storey's); per joint; per joint
+  std::vector<int> frame_dof, deck;                     // per frame: its first level's DOF, its deck's DOF
+  std::vector<std::string> frame_label;                 // per frame: its label, or "frame<k>"
   int left_backfill = -1, left_bearing = -1, right_backfill = -1, right_bearing = -1;
   std::vector<std::string> spring_label;                // every spring: "frame 1", "restrainer 1", "abutment left backfill"
 };
@@ -81,7 +99,18 @@ std::vector<Problem> check_bridge(const BridgeSpec& spec);
 model::System bridge_system(const BridgeSpec& spec);
 // Lane `lane` of batch (whose system is bridge_system(spec)): masses, dashpots, springs, joint gaps, kc and e.
 void set_bridge(SystemBatch& batch, std::size_t lane, const BridgeSpec& spec);
-// A frame's stiffness (given, or from its period).
+// A frame's stiffness (given, or from its period; a stick: its storeys' first).
 double frame_stiffness(const BridgeFrame& f);
+// A stick frame's numbers (storeys >= 1; shear_numbers of its levels). For one level the SDOF's own numbers are
+// set_bridge's (k = m (2 pi / T)^2, c = 2 zeta sqrt(k m)), not these.
+ShearNumbers frame_numbers(const BridgeFrame& f);
+// The frame's total mass (kg) and fundamental period (s): m and 2 pi sqrt(m / k) for one level.
+double frame_mass(const BridgeFrame& f);
+double frame_period(const BridgeFrame& f);
+// The frame's storey heights (m, bottom first): height / storeys each unless storey_height gives them.
+std::vector<double> frame_storey_heights(const BridgeFrame& f);
+// Scale a frame's masses by fm and its stiffnesses by fk (a sampled frame): one level its mass and stiffness; a
+// stick its resolved level masses and storey stiffnesses (lists afterwards).
+void scale_frame(BridgeFrame& f, double fm, double fk);
 
 }  // namespace pounding::physics

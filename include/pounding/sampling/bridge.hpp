@@ -12,6 +12,8 @@
 // on the ratio). Frames may be sampled per model: lognormal scatter of each frame's period and mass
 // ([bridge] period_cov, mass_cov; median the frame's value), drawn from the bridge's own stream at the model's
 // SampleId, so a model's bridge depends only on (seed, sample).
+// A stick frame (storeys > 1) is sampled as a whole: its total mass and its T1 scatter, every level's mass scales by
+// m / m0 and every storey's stiffness by (m / m0) (T0 / T)^2, so its mode shapes stay and T1 becomes T.
 #include <cstdint>
 #include <limits>
 #include <span>

@@ -4,7 +4,11 @@
 // said):
 //   [[frame]]   mass (kg, required), period (s) | stiffness (N/m) (one required), zeta (0.05), yield_force (N; absent:
 //               linear), alpha (0), hysteresis = "bilinear" | "q-hyst", beta (Q-Hyst's 0.5), height (m, 10),
-//               support (the ground-motion record of its pier, 1-based: --support-record order; 1), label
+//               support (the ground-motion record of its pier, 1-based: --support-record order; 1), label;
+//               a short shear stick: storeys = n (1: the SDOF), then mass / stiffness / yield_force are each level's /
+//               storey's (or storey_mass, storey_stiffness, storey_yield lists, bottom first, deck last), period is T1
+//               (uniform storeys), storey_height (height / n), damping = "rayleigh" (zeta at modes 1, 2) | "modal"
+//               (modal_zeta per mode); the joints, restrainers, bearings and abutments act on the deck (top level)
 //   [[joint]]   gap (m, required), contact_stiffness (law units; default --kh), restitution (default --e)
 //   [joint.restrainer] stiffness (N/m), yield_force (N; absent: elastic), alpha (0.05), slack (m; default the gap)
 //   [joint.bearing]    stiffness (N/m), yield_force (N; absent: linear), alpha (0)

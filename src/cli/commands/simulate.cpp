@@ -768,8 +768,14 @@ void bridge_report(const physics::BridgeSpec& spec, const physics::SystemBatch& 
   const physics::BridgeIndex x = physics::bridge_index(spec);
   for (std::size_t k = 0; k < spec.frames.size(); ++k) {
     const physics::BridgeFrame& f = spec.frames[k];
-    const double kf = physics::frame_stiffness(f), c = batch.c_floor[k];
-    run.buildings.push_back({x.spring_label[k], {f.height}, {f.mass}, {kf}, {f.fy},
+    if (f.storeys > 1) {  // a stick frame: per level, its modes and their damping ratios (as a shear building's)
+      const physics::ShearNumbers num = physics::frame_numbers(f);
+      const model::Body& b = batch.system->bodies()[k];
+      run.buildings.push_back({x.frame_label[k], b.heights, num.m, num.k, num.fy, num.modes.period, num.zeta_modes, {}});
+      continue;
+    }
+    const double kf = physics::frame_stiffness(f), c = batch.c_floor[static_cast<std::size_t>(x.frame_dof[k])];
+    run.buildings.push_back({x.frame_label[k], {f.height}, {f.mass}, {kf}, {f.fy},
                              {2 * std::numbers::pi * std::sqrt(f.mass / kf)}, {c / (2.0 * std::sqrt(kf * f.mass))}, {}});
   }
   run.spring_labels = x.spring_label;
