@@ -46,9 +46,11 @@ constexpr StudySection sections[] = {
     {"contact.restitution", "[contact] restitution = {...}",
      "A velocity-dependent coefficient of restitution e(v0) (issue 26 §3; contact/restitution.hpp): each impact of "
      "the coupled runs takes e at its latched approach velocity v0, clamped to [0.01, 1], through the Hertzdamp "
-     "damping law's xibar (the same curve as collide/simulate --restitution-*). SDOF pairs with law = \"hertzdamp\", "
-     "the central-difference stepper and the impacts scene; exclusive with [contact] e. Impacts whose v0 lies outside "
-     "the valid range are counted per analysis (impacts/restitution_outside) and reported. Give one of preset, "
+     "damping law's xibar (the same curve as collide/simulate --restitution-*). SDOF pairs, shear buildings, rows and "
+     "bridges (every joint; a joint's own restitution is then refused) with law = \"hertzdamp\", the central-difference "
+     "stepper and the impacts scene; not with a moat; exclusive with [contact] e. Impacts whose v0 lies outside the "
+     "valid range are counted per analysis, summed over a system's contact elements (impacts/restitution_outside), and "
+     "reported. Give one of preset, "
      "polynomial, table; [contact] restitution = \"lindsay2011\" is short for {preset = \"lindsay2011\"}."},
     {"analysis", "[analysis]", "Time integration and the treatment of analyses that fail."},
     {"report", "[report]", "What the report derives from the results."},

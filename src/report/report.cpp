@@ -262,6 +262,7 @@ class Markdown {
   void period_matrix();
   void fit();
   void impacts_table();
+  void restitution_note();
 
  private:
   void excluded_uncoupled();
@@ -499,7 +500,13 @@ void Markdown::impacts_table() {
   }
   s += excluded_note;
   if (!r.h_omega.empty()) out("\n{}\n", physics::describe(coarse_summary(r)));
-  if (const results::Field* f = r.res.find("impacts", "restitution_outside")) {  // [contact] restitution: e(v0)
+  restitution_note();
+}
+
+// [contact] restitution: e(v0) at every impact, and how many impacts lay outside the curve's valid range (summed over
+// a system's elements: a bridge's joints, a shear pair's floors).
+void Markdown::restitution_note() {
+  if (const results::Field* f = r.res.find("impacts", "restitution_outside")) {
     const auto& outside = std::get<std::vector<std::int32_t>>(f->data);
     std::int64_t n_out = 0, n_all = 0;
     for (std::size_t i = 0; i < outside.size() && i < r.impact_count.size(); ++i)
@@ -604,6 +611,7 @@ std::string pair_markdown(const Data& r) {
   if (r.set.bridge) {  // the buildings' code rules, period matrix and u1/u2 amplification do not apply
     md.raw(grid_advice_section(r));
     md.raw(bridge_section(r));
+    if (r.impacts) md.restitution_note();
     return std::move(md).text();
   }
   md.period_matrix();

@@ -255,10 +255,11 @@ std::string BridgeModel::describe() const {
 }
 
 BridgeModel parse_bridge_model(const toml::table* bridge, const std::string& file, double kc_default, double e_default,
-                               std::int64_t* samples) {
+                               std::int64_t* samples, const std::string& restitution_given_by) {
   config::TableReader r(bridge, file, "bridge");
   BridgeReadDefaults d;
   d.kc = kc_default, d.e = e_default, d.kc_source = "[contact] stiffness", d.study = true;
+  d.restitution_given_by = restitution_given_by;
   BridgeModel m;
   m.spec = read_bridge(r, file, "bridge.", d);
   if (m.spec.joints.empty())

@@ -92,7 +92,7 @@ class UnitComputer {
       block_.emplace(sampler.model(), s.contact, s.e, s.contact_levels, s.gap_offsets, s.level_tolerance,
                      s.shape_functions);
     if (block_ && !plan.system.empty()) table_fields(plan);
-    if (s.restitution && plan.impacts) {  // e(v0) in the coupled runs (study.cpp: SDOF pairs, hertzdamp, CD)
+    if (s.restitution && plan.impacts) {  // e(v0) in the coupled runs (study.cpp: hertzdamp, CD, impacts scene)
       restitution_ = std::make_unique<physics::HertzdampRestitution>(*s.restitution, s.contact);
       f_rest_out_ = results::field_index(plan.fields, "impacts", "restitution_outside");
     }
@@ -415,6 +415,9 @@ class UnitComputer {
     auto force = out.values<double>(field::imp_peak_force), first = out.values<double>(field::imp_t_first);
     auto u1 = out.values<double>(field::imp_peak_u1), u2 = out.values<double>(field::imp_peak_u2);
     auto hw = out.values<double>(field::imp_h_omega);
+    KernelSettings kc = ks;  // e(v0) at every study-gap element's impact ([contact] restitution)
+    std::span<std::int32_t> outside;
+    if (restitution_) kc.restitution = &restitution_->hook, outside = out.values<std::int32_t>(f_rest_out_);
     for (std::size_t g = 0; g < G; ++g) {
       lanes_.clear();
       for (std::size_t i = 0; i < n; ++i) {
@@ -423,13 +426,14 @@ class UnitComputer {
       }
       if (!lanes_.empty())
         block_->coupled(pairs_, lanes_, s_.gap_ratios[g], s_.contact, ContactNumbers{s_.e, s_.contact_stiffness}, gm,
-                        ks, coupled_);
+                        kc, coupled_);
       for (std::size_t i = 0, j = 0; i < n; ++i) {
         const std::size_t k = i * G + g;  // [lane][gap]
         if (j < lanes_.size() && lanes_[j] == i) {
           status[k] = coupled_.status[j], count[k] = coupled_.impact_count[j], force[k] = coupled_.peak_force[j];
           u1[k] = coupled_.u1[j], u2[k] = coupled_.u2[j], first[k] = coupled_.t_first_impact[j];
           hw[k] = coupled_.h_omega_contact[j];
+          if (restitution_) outside[k] = coupled_.restitution_outside[j];
           for (std::size_t b = 2; b < nb; ++b) out.values<double>(f_row_imp_[b])[k] = coupled_.u[j * nb + b];
           if (table) put_table_coupled(out, i, g, j);
           ++j;
@@ -438,6 +442,7 @@ class UnitComputer {
           u1[k] = peaks_.u1[i], u2[k] = peaks_.u2[i], first[k] = NAN;
           for (std::size_t b = 2; b < nb; ++b) out.values<double>(f_row_imp_[b])[k] = peaks_.u[i * nb + b];
           hw[k] = peaks_.status[i] == 0 && contact::traits(s_.contact.law).has_force ? 0.0 : NAN;  // never touched
+          if (restitution_) outside[k] = 0;
           if (table) put_table_coupled(out, i, g, std::string::npos);
         }
       }

@@ -429,14 +429,16 @@ static void check_row_study(const Study& s, config::TableReader& top, const toml
                      at_count, "remove [intensity] to run the row in the probability or impacts scene, or set buildings = 2");
 }
 
-// [contact] restitution (e(v0)) runs where the pair kernel's central difference reads it (physics::
-// HertzdampRestitution): the coupled runs of an SDOF pair study with Hertzdamp; elsewhere it would do nothing.
+// [contact] restitution (e(v0)) runs where central difference reads it at each impact's onset (physics::
+// HertzdampRestitution; the pair kernel and the system stepper): the coupled runs of the impacts scene with Hertzdamp,
+// for SDOF pairs, shear buildings, rows and bridges (every study-gap element); elsewhere it would do nothing. A moat's
+// walls (their own e) would take the curve too: refused.
 static void check_restitution(const Study& s, TableReader& top, const std::string& path) {
   if (!s.restitution) return;
   const toml::table* c = top.table("contact");
   const toml::node* n = c ? c->get("restitution") : nullptr;
   const std::string where = n ? fmt::format("{}:{} [contact].restitution", path, n->source().begin.line) : path + " [contact].restitution";
-  const char* fix = "remove restitution (and give e), or run an SDOF pair with law = \"hertzdamp\", stepper = "
+  const char* fix = "remove restitution (and give e), or run with law = \"hertzdamp\", stepper = "
                     "\"central-difference\" in the impacts scene";
   if (s.contact.law != ContactLaw::hertzdamp)
     throw InputError(fmt::format("a velocity-dependent restitution runs with law = \"hertzdamp\", and the law is \"{}\"",
@@ -444,9 +446,11 @@ static void check_restitution(const Study& s, TableReader& top, const std::strin
   if (s.stepper != Stepper::central_difference)
     throw InputError(fmt::format("a velocity-dependent restitution runs with the central-difference stepper, and the "
                                  "stepper is \"{}\"", to_string(s.stepper)), where, fix);
-  if (s.structures.bridge || s.structures.any_shear() || s.structures.row())
-    throw InputError("a velocity-dependent restitution runs SDOF pairs (the pair kernel), and the study runs a system "
-                     "(shear buildings, a row or a bridge)", where, fix);
+  for (std::size_t b = 0; !s.structures.bridge && b < s.structures.building_count(); ++b)
+    if (const BuildingModel m = s.structures.row_building(b); m.isolated && m.moat)
+      throw InputError(fmt::format("a velocity-dependent restitution acts at every contact of the system, and building "
+                                   "{} has a moat (its walls have their own restitution)", b + 1),
+                       where, "remove restitution (and give e), or remove the moat");
   if (s.scene != Scene::impacts)
     throw InputError(fmt::format("a velocity-dependent restitution acts in the coupled runs of the impacts scene, and "
                                  "the scene is \"{}\" (no coupled run: whether a pair touches is decided by the "
@@ -464,7 +468,8 @@ static void parse_bridge(Study& s, TableReader& top, const toml::table* bridge, 
                      top.where("structures"), "remove [structures] (frames, periods and masses are [[bridge.frame]] keys)");
   std::int64_t samples = 1;
   auto model = std::make_shared<BridgeModel>(
-      parse_bridge_model(bridge, path, s.contact_stiffness > 0 ? s.contact_stiffness : NAN, s.e, &samples));
+      parse_bridge_model(bridge, path, s.contact_stiffness > 0 ? s.contact_stiffness : NAN, s.e, &samples,
+                         s.restitution ? "[contact] restitution" : ""));
   toml::table t;
   t.insert("periods", toml::array{1.0});
   t.insert("samples_per_pair", samples);

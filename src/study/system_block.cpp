@@ -76,7 +76,7 @@ void BlockPeaks::resize(std::size_t n, std::size_t nb, const TableLayout& t) {
   u1.assign(n, 0.0), u2.assign(n, 0.0), closing.assign(n, 0.0);
   buildings = nb;
   u.assign(n * nb, 0.0);
-  impact_count.assign(n, 0);
+  impact_count.assign(n, 0), restitution_outside.assign(n, 0);
   peak_force.assign(n, 0.0), t_first_impact.assign(n, nan), h_omega_contact.assign(n, nan);
   for (auto* f : {&floor_u, &floor_drift, &floor_acc}) {
     f->resize(t.floors.size());
@@ -261,7 +261,7 @@ void SystemBlock::run(std::span<const SampledPair> pairs, std::span<const std::s
       // over the study-gap elements: D and force the largest, the counts summed (-1: a failed lane), the first impact
       // the earliest, h omega_c the largest known; with one element its own values
       double D = -std::numeric_limits<double>::infinity(), force = nan, first = nan, hw = nan;
-      std::int32_t count = 0;
+      std::int32_t count = 0, outside = 0;
       bool any = false;
       for (std::size_t e = 0; e < sys.contacts().size(); ++e) {
         if (!sys.groups()[static_cast<std::size_t>(sys.contacts()[e].group)].study_gap) continue;
@@ -269,6 +269,7 @@ void SystemBlock::run(std::span<const SampledPair> pairs, std::span<const std::s
         const double f = res_.peak_force[x], tf = res_.t_first_impact[x], h = res_.h_omega_contact[x];
         D = std::max(D, offsets.empty() ? res_.peak_closing[x] : res_.peak_closing[x] - offsets[e]);
         count = count < 0 || res_.impact_count[x] < 0 ? -1 : count + res_.impact_count[x];
+        outside = outside < 0 || res_.restitution_outside[x] < 0 ? -1 : outside + res_.restitution_outside[x];
         force = !any ? f : std::isnan(force) || std::isnan(f) ? nan : std::max(force, f);
         if (!std::isnan(tf) && !(tf >= first)) first = tf;
         if (!std::isnan(h) && !(h <= hw)) hw = h;
@@ -293,7 +294,7 @@ void SystemBlock::run(std::span<const SampledPair> pairs, std::span<const std::s
           out.e_first[o] = res_.t_first_impact[x], out.e_hw[o] = res_.h_omega_contact[x];
         }
       }
-      out.closing[k] = D, out.impact_count[k] = count, out.peak_force[k] = force;
+      out.closing[k] = D, out.impact_count[k] = count, out.peak_force[k] = force, out.restitution_outside[k] = outside;
       out.t_first_impact[k] = first, out.h_omega_contact[k] = hw;
     }
     at = end;

@@ -1,13 +1,16 @@
 #!/usr/bin/env bash
 # [contact] restitution in studies (issue 26 §3): e(v0), the restitution at each impact's latched approach velocity,
-# in the coupled runs of an SDOF pair study (impacts scene, Hertzdamp, central difference):
+# in the coupled runs of a study (impacts scene, Hertzdamp, central difference): an SDOF pair, and (4.) systems:
 #  1. a lane of the study is `pounding simulate` with the same pair, gap, step and --restitution-* options, bit for
 #     bit (impact counts, peak forces, peak displacements, impacts outside the valid range) at every gap;
 #  2. the key acts: the same study with e = 0.65 instead gives other impacts; the preset form
 #     restitution = "lindsay2011" reads; impacts/restitution_outside carries units and the report says the count;
 #  and bit-identical results at 1 and 2 MPI ranks, batch width 1 and with skip_untouched = false;
 #  3. bad input: one ERROR naming the key (file:line), exit 2, no results written -- e beside the curve, a law,
-#     stepper, scene or system that does not take it, an unknown preset, two curves, bad units, valid or table.
+#     stepper or scene that does not take it, a moat (its own e), a bridge joint's own restitution, an unknown preset,
+#     two curves, bad units, valid or table;
+#  4. a bridge study's lane equals simulate --bridge --restitution-* bit for bit, invariant over ranks/threads/batch;
+#     a shear-building study takes the curve.
 # Needs /usr/bin/python3 with h5py. Args: <pounding binary> <source dir>
 set -euo pipefail
 bin=$1; src=$2
@@ -96,6 +99,64 @@ PY
 grep -q "^Each impact took e(v0).*: [0-9]* of [0-9]* impacts" "$tmp/s.md" || grep -q "[0-9]* of [0-9]* impacts (analyses not excluded) had an approach velocity outside" "$tmp/s.md" ||
   fail "the report does not count the impacts outside the valid range: $(grep -n 'e(v0)' "$tmp/s.md")"
 
+# 4. systems (bridge26): [contact] restitution in a bridge study -- the four-frame test bridge of cli.study_bridge
+# (without joint 2's own restitution) under a stronger two-tone record, gap ratio 1 (the file's joint gaps): a lane equals `simulate --bridge` with the
+# same --restitution-* options bit for bit (per-joint impact counts and peak forces, every frame's peak, the impacts
+# outside the valid range summed over the joints); the key acts (e = 0.6 gives other forces); results invariant over
+# ranks, threads, batch width and skip_untouched. A shear-building study takes the curve too (its forces differ from
+# the constant e's; restitution_outside written).
+bstudy=$src/tests/data/bridge/study-four-frame.toml
+awk 'BEGIN { dt = 0.01; for (i = 0; i <= 1200; i++) { t = i * dt;
+       a = 0.35 * sin(2 * 3.14159265 * 1.1 * t) + 0.2 * sin(2 * 3.14159265 * 2.3 * t + 0.4);
+       printf "%.2f %.8f\n", t, a } }' > "$tmp/brec.txt"
+sed -n '/^\[bridge\]/,/^\[contact\]/p' "$bstudy" | sed -e '/^\[bridge\]/d' -e '/^\[contact\]/d' -e '/^restitution = [0-9.]*$/d' -e 's/^\[\(\[*\)bridge\./[\1/' > "$tmp/bridge.toml"
+bridge_study() {  # <contact line> > study
+  sed -e 's/^suite = "builtin"/files = ["brec.txt"]\nunits = "g"/' -e '/^limit = /d' -e 's/^polarity = "both"/polarity = "recorded"/' \
+      -e 's/^ratios = .*/ratios = [1.0]/' -e '/^restitution = [0-9.]*$/d' -e "s|^e = 0.6\$|$1|" "$bstudy"
+}
+bridge_study "restitution = $curve" > "$tmp/bs.toml"
+bridge_study "e = 0.6" > "$tmp/be.toml"
+grep -q "^restitution = " "$tmp/bs.toml" || fail "no restitution in the bridge study"
+(cd "$tmp" && "$bin" run bs.toml --out bs.h5 > bs.md 2> bs.err) || fail "the bridge study with restitution does not run: $(cat "$tmp/bs.err")"
+grep -q "^Each impact took e(v0).* 1 of [0-9]* impacts (analyses not excluded) had an approach velocity outside" "$tmp/bs.md" ||
+  fail "the bridge report does not count the impacts outside the valid range: $(grep -n 'e(v0)' "$tmp/bs.md")"
+(cd "$tmp" && "$bin" run be.toml --out be.h5 --quiet > /dev/null 2>&1) || fail "the bridge study with e does not run"
+"$bin" simulate --record "$tmp/brec.txt" --bridge "$tmp/bridge.toml" --contact hertzdamp --kh 2e9 --dt 0.0025 --json \
+  --restitution-polynomial 0.9979,-0.0838,0.0011,-0.0012 --restitution-valid 0.2,3.13 > "$tmp/bsim.json"
+"$py" - "$tmp/bs.h5" "$tmp/be.h5" "$tmp/bsim.json" <<'PY'
+import json, sys, h5py, numpy as np
+f, e, o = h5py.File(sys.argv[1], "r"), h5py.File(sys.argv[2], "r"), json.load(open(sys.argv[3]))
+cnt = list(f["impacts/element_impact_count"][()].ravel())
+assert cnt == [l["impacts"] for l in o["levels"]], (cnt, [l["impacts"] for l in o["levels"]])
+assert list(f["impacts/element_peak_force"][()].ravel()) == [l["peak_force"] for l in o["levels"]]
+for b in (1, 2, 3, 4):
+    assert f[f"impacts/peak_u{b}"][()].ravel()[0] == max(o[f"peak_u{b}"]), b
+out = f["impacts/restitution_outside"][()].ravel()[0]
+assert out == o["restitution_outside_valid"], (out, o["restitution_outside_valid"])
+assert min(cnt) > 0 and out > 0, (cnt, out)  # every joint hit, some impacts outside [0.2, 3.13] m/s
+assert "restitution_outside" not in e["impacts"]
+assert list(e["impacts/element_peak_force"][()].ravel()) != list(f["impacts/element_peak_force"][()].ravel()), "e(v0) changed nothing"
+print("bridge study lane = simulate --bridge --restitution-*: impacts", cnt, "outside", out)
+PY
+study=$tmp/bs.toml
+rm -f "$tmp"/r0.h5 "$tmp"/r1.h5 "$tmp"/r2.h5 "$tmp"/narrow.h5 "$tmp"/full.h5  # the pair study's (another study's files)
+study_invariance
+study "restitution = $curve" | sed 's/^height = 20.0/height = 20.0\nmodel = "shear"\nstorey_height = 4.0/; s/^height = 30.0/height = 30.0\nmodel = "shear"\nstorey_height = 3.0/' > "$tmp/sh.toml"
+study 'e = 0.65' | sed 's/^height = 20.0/height = 20.0\nmodel = "shear"\nstorey_height = 4.0/; s/^height = 30.0/height = 30.0\nmodel = "shear"\nstorey_height = 3.0/' > "$tmp/she.toml"
+for x in sh she; do with_analysis 'substeps = 8' "$tmp/$x.toml" "$tmp/$x.8" && mv "$tmp/$x.8" "$tmp/$x.toml"; done  # h omega_c
+(cd "$tmp" && "$bin" run sh.toml --out sh.h5 --quiet > /dev/null 2> sh.err) || fail "the shear study with restitution does not run: $(cat "$tmp/sh.err")"
+(cd "$tmp" && "$bin" run she.toml --out she.h5 --quiet > /dev/null 2>&1) || fail "the shear study with e does not run"
+"$py" - "$tmp/sh.h5" "$tmp/she.h5" <<'PY'
+import sys, h5py, numpy as np
+f, e = h5py.File(sys.argv[1], "r"), h5py.File(sys.argv[2], "r")
+c = f["impacts/impact_count"][()]
+assert (c > 0).any(), "the shear study never pounds"
+assert f["impacts/restitution_outside"].attrs["units"] in ("1", b"1")
+touched = c > 0
+assert not np.array_equal(f["impacts/peak_force"][()][touched], e["impacts/peak_force"][()][touched]), "e(v0) changed nothing"
+print("shear study with e(v0): impacts", c.ravel(), "outside", f["impacts/restitution_outside"][()].ravel())
+PY
+
 # 3. bad input
 study "e = 0.6
 restitution = $curve" > "$tmp/b1.toml"
@@ -120,6 +181,8 @@ study 'restitution = {table = [[3.0, 0.9], [0.5, 0.7]]}' > "$tmp/b10.toml"
 bad_run "not usable.*\[contact.restitution\].table" b10.toml
 study 'restitution = {preset = "lindsay2011", valid = [0.1, 2.0]}' > "$tmp/b11.toml"
 bad_run "preset carries its own.*\[contact.restitution\].valid" b11.toml
-study "restitution = $curve" | sed 's/^height = 20.0/height = 20.0\nmodel = "shear"\nstorey_height = 4.0/; s/^height = 30.0/height = 30.0\nmodel = "shear"\nstorey_height = 3.0/' > "$tmp/b12.toml"
-bad_run "runs SDOF pairs.*b12.toml:[0-9]* \[contact\].restitution" b12.toml
+study "restitution = $curve" | sed 's/^height = 20.0/height = 20.0\nmodel = "shear"\nstorey_height = 4.0\nisolation = {bearing = "linear", base_mass = 3.0e5, k_eff = 1.0e6, zeta_eff = 0.0}\nmoat = {gap = 0.05}/; s/^height = 30.0/height = 30.0\nmodel = "shear"\nstorey_height = 3.0/' > "$tmp/b12.toml"
+bad_run "building 1 has a moat.*b12.toml:[0-9]* \[contact\].restitution" b12.toml
+bridge_study "restitution = $curve" | sed 's/^gap = 0.0127$/gap = 0.0127\nrestitution = 0.5/' > "$tmp/b13.toml"
+bad_run "gives its own restitution.*\[bridge.joint1\].restitution" b13.toml
 echo "study e(v0): simulate agreement, the key acts, report, bad input"

@@ -64,8 +64,10 @@ struct BridgeModel {
 
 // Reads a study's [bridge] table: frames, joints, abutments (read_bridge) and samples (models per record, written
 // to *samples), period_cov, mass_cov.
+// restitution_given_by: non-empty ("[contact] restitution") when a curve gives every joint e(v0): a joint's own
+// restitution is then refused.
 BridgeModel parse_bridge_model(const toml::table* bridge, const std::string& file, double kc_default,
-                               double e_default, std::int64_t* samples);
+                               double e_default, std::int64_t* samples, const std::string& restitution_given_by = "");
 
 // Stream of the frames' scatter (sampler.hpp's stream ids).
 inline constexpr std::uint64_t bridge_stream = 0x4272696467ull;

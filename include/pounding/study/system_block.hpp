@@ -84,6 +84,9 @@ struct BlockPeaks {
   std::size_t buildings = 2;
   std::vector<double> u;  // [lane][building]: each building's largest floor |u| (u1, u2 its first two)
   std::vector<std::int32_t> impact_count;
+  // impacts (over the study-gap elements) whose approach velocity lay outside the e(v0) curve's valid range
+  // (KernelSettings::restitution; 0 without a curve, -1 for a failed lane)
+  std::vector<std::int32_t> restitution_outside;
   std::vector<double> peak_force, t_first_impact, h_omega_contact;
   // With a TableLayout: [lane][floor] per building (peak |u|, storey drift, peak |a + ag| in g) and [lane][element]
   // (peak closing; impact count, peak force, peak penetration, first impact, h omega_c), NaN / -1 where the lane's
