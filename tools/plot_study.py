@@ -12,7 +12,8 @@ Grid studies:
 Bridge studies ([bridge]; /settings/bridge):
   <prefix>-joints.png       probability of pounding at each joint versus its gap in metres (the share of analyses
                             whose uncoupled closing there exceeds the gap), the coupled runs' share with an impact
-                            at the study's joint gaps (Wilson 95 %), any joint at the study's gaps, the targets
+                            at the study's joint gaps (Wilson 95 %, clustered by record), any joint at the
+                            study's gaps, the targets
 Every figure: PNG at 200 dpi, plus each --format given (svg, pdf).
 Usage: tools/plot_study.py RESULTS.h5 [--prefix out/study] [--ratio 0.3] [--format svg pdf] [--pounding BIN]"""
 import os

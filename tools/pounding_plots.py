@@ -64,6 +64,33 @@ def wilson(k, n, z=Z95):
     return np.minimum(np.maximum(centre - half, 0.0), p), np.maximum(np.minimum(centre + half, 1.0), p)
 
 
+def wilson_clustered(y, cluster, z=Z95):
+    """95 % Wilson interval of a share whose 0/1 outcomes `y` come in clusters (`cluster`: one label per outcome, e.g.
+    the record id: a record's two polarities and its models are not independent draws). The effective sample size is
+    n / DEFF with Kish's design effect (Kish 1965, Survey Sampling §5.4; the effective-n Wilson interval of Korn &
+    Graubard 1998) estimated from the cluster totals: DEFF = v_clu / v_srs, v_clu = C/(C-1) sum_c (y_c - p m_c)^2 /
+    n^2 (the ratio estimator's variance with C clusters of m_c outcomes and y_c successes), v_srs = p (1 - p) / n;
+    n_eff is clipped to [C, n] (DEFF between 1 and the mean cluster size), and is C when p is 0 or 1 (no variance to
+    estimate a DEFF from: the conservative end). Returns lo, hi (Wilson at k = p n_eff of n_eff) and n_eff."""
+    y = np.asarray(y, float)
+    lab = np.asarray(cluster)
+    n = y.size
+    if n == 0:
+        return 0.0, 1.0, 0.0
+    keys, inv = np.unique(lab, return_inverse=True)
+    C = keys.size
+    p = y.mean()
+    if 0.0 < p < 1.0 and C > 1:
+        yc = np.bincount(inv, weights=y, minlength=C)
+        mc = np.bincount(inv, minlength=C).astype(float)
+        v_clu = C / (C - 1) * np.sum((yc - p * mc) ** 2) / (n * n)
+        n_eff = float(np.clip(p * (1 - p) / v_clu if v_clu > 0 else n, C, n))
+    else:
+        n_eff = float(C)
+    lo, hi = wilson(p * n_eff, n_eff, z)
+    return float(lo), float(hi), n_eff
+
+
 def phi(u):
     return 0.5 * (1.0 + np.vectorize(math.erf)(np.asarray(u, float) / math.sqrt(2.0)))
 
@@ -618,7 +645,8 @@ def plot_bridge_joints(f, source=""):
     """A bridge study: the probability that each joint pounds versus its gap in metres -- the share of analyses
     whose uncoupled closing at that joint exceeds the gap (first passage: exact for a joint alone, as the study's
     own criterion is for the bridge) -- with the coupled runs' observed share at the study's gaps (the impacts
-    scene, Wilson 95 % intervals), any joint at the study's joint gaps (reference gap + each joint's offset), and the
+    scene, 95 % Wilson intervals clustered by record: wilson_clustered, a record's polarities and models one
+    cluster), any joint at the study's joint gaps (reference gap + each joint's offset), and the
     report's targets."""
     el = f["uncoupled/peak_closing_elements"][()]  # [records, models, joints]
     R, M, J = el.shape
@@ -649,14 +677,18 @@ def plot_bridge_joints(f, source=""):
     if "impacts/element_impact_count" in f and ratios.size:
         cnt = f["impacts/element_impact_count"][()]  # [records, models, gaps, joints]
         st = f["impacts/status"][()].reshape(R, M, len(ratios)) == 0
+        # a record's analyses (both polarities, every model) are one cluster: record-clustered Wilson intervals
+        rid = np.asarray(f["records/id"][()]) if "records/id" in f else np.arange(R)
+        cl = np.repeat(rid.reshape(R, 1), M, axis=1)
         for j in range(J):
             for g, r in enumerate(ratios):
                 okg = st[:, :, g]
                 m = int(okg.sum())
                 if m == 0:
                     continue
-                k = int((cnt[:, :, g, j][okg] > 0).sum())
-                lo, hi = wilson(k, m)
+                hit = cnt[:, :, g, j][okg] > 0
+                k = int(hit.sum())
+                lo, hi, _ = wilson_clustered(hit, cl[okg])
                 gap = r * dref + offsets[j]
                 ax.errorbar([gap], [100.0 * k / m], yerr=[[100 * (k / m - lo)], [100 * (hi - k / m)]],
                             fmt="osD^v<>p"[j % 8], mfc="none", color=f"C{j}", ms=5, capsize=2, gid=f"coupled-{j + 1}",
@@ -918,8 +950,8 @@ def figure_plan(f, path, report_csv):
     elif is_bridge(f):
         plan.append(("joints", "Probability of pounding at each joint versus its gap in metres: the share of "
                      "analyses whose uncoupled closing at the joint exceeds the gap, the coupled runs' share with at "
-                     "least one impact at the study's gaps (Wilson 95 % intervals), any joint at the study's joint "
-                     "gaps, and the report's targets.", lambda: plot_bridge_joints(f, path)))
+                     "least one impact at the study's gaps (Wilson 95 % intervals clustered by record), any joint at "
+                     "the study's joint gaps, and the report's targets.", lambda: plot_bridge_joints(f, path)))
     elif "uncoupled" in f:
         plan.append(("probability", "Probability of at least one impact versus the gap ratio x = g / d, with Wilson "
                      "intervals and the cubic fit.", lambda: plot_probability(f, source=path)))

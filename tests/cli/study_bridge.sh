@@ -9,7 +9,8 @@
 #     per-joint impact counts and peak forces of one record equal simulate's for the same bridge file and record;
 #     3b: the same with stick frames (a 3-level Q-Hyst frame, a 2-level modal one), every level's peak;
 #  4. sampled frames (period_cov): periods drawn per model, reproducible, k = m (2 pi / T)^2;
-#  5. the report names the frames and joints; the figure is the per-joint probability of pounding versus the gap;
+#  5. the report names the frames and joints; the figure is the per-joint probability of pounding versus the gap,
+#     its coupled markers with record-clustered Wilson intervals (a record's polarities one cluster);
 #  6. bad input: one ERROR naming file:line and the key, exit 2, nothing written.
 # Synthetic records only (no ../shared needed). Args: <pounding binary> <source dir>
 set -euo pipefail
@@ -186,7 +187,46 @@ for j in range(J):
                  if l.get_marker() not in ("None", "", None, "_"))
     want = sorted((r * d + offsets[j], 100.0 * np.mean(cnt[:, :, g, j][st[:, :, g]] > 0)) for g, r in enumerate(ratios))
     assert np.allclose(pts, want, rtol=1e-12, atol=1e-12), (j, pts, want)
-print("bridge figure: joints", J, "gaps", len(ratios))
+# the coupled markers' 95 % intervals are clustered by record (a record's two polarities are one cluster): Wilson at
+# the observed share with n_eff = n / DEFF, Kish's design effect from the cluster totals, n_eff in [C, n] (C at 0 or
+# 100 %) -- written again here; a homogeneous case (every record's two signs agree) against scipy's Wilson on the C
+# records, and never narrower than the plain Wilson on the n analyses
+from scipy import stats
+def clustered(y, lab):
+    y = np.asarray(y, float); n = y.size; p = y.mean()
+    ids = sorted(set(lab)); C = len(ids)
+    yc = np.array([sum(v for v, l in zip(y, lab) if l == c) for c in ids]); mc = np.array([list(lab).count(c) for c in ids])
+    if 0 < p < 1:
+        v = C / (C - 1) * ((yc - p * mc) ** 2).sum() / n ** 2
+        ne = min(max(p * (1 - p) / v, C), n)
+    else:
+        ne = C
+    zz = 1.959963984540054 ** 2
+    c = (p + zz / (2 * ne)) / (1 + zz / ne); h = np.sqrt(zz) * np.sqrt(p * (1 - p) / ne + zz / (4 * ne * ne)) / (1 + zz / ne)
+    return max(min(c - h, p), 0.0), min(max(c + h, p), 1.0)
+lo, hi, ne = pp.wilson_clustered([1, 1, 0, 0, 1, 1, 0, 0, 0, 0], ["a", "a", "b", "b", "c", "c", "d", "d", "e", "e"])
+ci = stats.binomtest(2, 5).proportion_ci(0.95, method="wilson")
+assert ne == 5 and abs(lo - ci.low) < 1e-12 and abs(hi - ci.high) < 1e-12, (lo, hi, ne, ci)
+rid = f["records/id"][()]
+bars = 0
+for cont in fig.axes[0].containers:
+    gid = cont.lines[0].get_gid() if cont.lines and cont.lines[0] is not None else None
+    if not gid or not gid.startswith("coupled-"):
+        continue
+    j = int(gid.split("-")[1]) - 1
+    x0 = float(cont.lines[0].get_xdata()[0])
+    g = int(np.argmin([abs(r * d + offsets[j] - x0) for r in ratios]))
+    okg = st[:, :, g]
+    hit = (cnt[:, :, g, j] > 0)[okg]
+    lab = np.repeat(rid.reshape(R, 1), M, axis=1)[okg]
+    lo, hi = clustered(hit, list(lab))
+    (seg,) = cont.lines[2][0].get_segments()
+    assert abs(seg[0][1] - 100 * lo) < 1e-9 and abs(seg[1][1] - 100 * hi) < 1e-9, (j, g, seg, lo, hi)
+    plain = stats.binomtest(int(hit.sum()), hit.size).proportion_ci(0.95, method="wilson")
+    assert lo <= plain.low + 1e-12 and hi >= plain.high - 1e-12, (j, g, lo, hi, plain)
+    bars += 1
+assert bars == J * len(ratios), bars
+print("bridge figure: joints", J, "gaps", len(ratios), "record-clustered intervals", bars)
 PY
 else
   case "${CI:-}" in "" | 0 | false | no) echo "skipped the figure check: no matplotlib" ;; *) fail "no matplotlib (CI)" ;; esac
