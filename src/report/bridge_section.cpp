@@ -37,7 +37,10 @@ std::string frames_table(const Data& r) {
   const std::size_t R = r.records(), M = r.models(), B = sys.building_label.size();
   std::string s, rule;
   s += "\nFrames: median peak displacement relative to the ground (m) without pounding (uncoupled)";
-  s += r.impacts ? " and with pounding at each gap ratio.\n\n| frame | uncoupled |" : ".\n\n| frame | uncoupled |";
+  s += r.impacts ? " and with pounding at each gap ratio." : ".";
+  if (std::any_of(sys.building_floors.begin(), sys.building_floors.end(), [](std::int32_t n) { return n > 1; }))
+    s += " A stick frame's is its largest level's (each level's: peak_u_floorsK in the results).";
+  s += "\n\n| frame | uncoupled |";
   rule = "|---|---|";
   if (r.impacts)
     for (std::size_t g = 0; g < r.gaps(); ++g) s += fmt::format(" x = {:g} |", r.res.gap_ratios[g]), rule += "---|";

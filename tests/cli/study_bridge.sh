@@ -109,7 +109,8 @@ stick() { sed -e 's/^label = "F2"$/label = "F2"\nstoreys = 3/' -e 's/^label = "F
 stick "$tmp/bridge.toml" > "$tmp/stick_bridge.toml"
 stick "$tmp/one.toml" > "$tmp/stick.toml"
 grep -q "storeys = 3" "$tmp/stick.toml" && grep -q "storeys = 3" "$tmp/stick_bridge.toml" || fail "no stick frame written"
-(cd "$tmp" && "$bin" run stick.toml --out stick.h5 --quiet > /dev/null 2> stick.err) || fail "the stick study does not run: $(cat "$tmp/stick.err")"
+(cd "$tmp" && "$bin" run stick.toml --out stick.h5 > stick.md 2> stick.err) || fail "the stick study does not run: $(cat "$tmp/stick.err")"
+grep -q "A stick frame's is its largest level's" "$tmp/stick.md" || fail "the report does not say what a stick frame's peak is"
 "$bin" simulate --record "$tmp/rec.txt" --bridge "$tmp/stick_bridge.toml" --contact none --kh 2e9 --e 0.6 --dt 0.0025 --json > "$tmp/snone.json"
 "$bin" simulate --record "$tmp/rec.txt" --bridge "$tmp/stick_bridge.toml" --contact hertzdamp --kh 2e9 --e 0.6 --dt 0.0025 --json > "$tmp/shd.json"
 "$py" - "$tmp/stick.h5" "$tmp/snone.json" "$tmp/shd.json" <<'PY'

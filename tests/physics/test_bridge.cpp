@@ -16,6 +16,7 @@
 #include "pounding/core/error.hpp"
 #include "pounding/physics/system_batch.hpp"
 #include "pounding/physics/velocity_restitution.hpp"
+#include "pounding/sampling/bridge.hpp"
 #include "pounding/contact/restitution.hpp"
 
 using namespace pounding;
@@ -451,4 +452,28 @@ TEST(Bridge, OneLevelStickIsTheSdofFrameBitForBit) {
   mixed.frames[3].storeys = 1;  // explicitly one level: the same chain
   const std::vector<double> ag = pounding::builtin_motion(0.01, 10.0);
   EXPECT_EQ(differing(run_channels(b, {ag}, 20), run_channels(mixed, {ag}, 20)), 0);
+}
+
+// A sampled stick frame in a study (sampling/bridge.hpp): the model draws the frame's total mass and T1; the lane's
+// frame scales every level mass by m / m0 and every storey stiffness by (m / m0) (T0 / T)^2, so its T1 and total mass
+// are the drawn ones and its mass distribution (mode shapes) stays; a one-level frame takes the drawn m and T as before.
+TEST(Bridge, SampledStickFrameHasTheDrawnPeriodAndMass) {
+  BridgeModel m;
+  m.spec = four_frames(Backfill::epp, false);
+  BridgeFrame& f = m.spec.frames[1];
+  f.storeys = 3, f.storey_mass = {1.0e6, 1.0e6, 2.0e6}, f.period = 1.0;
+  ASSERT_TRUE(check_bridge(m.spec).empty());
+  m.period_cov = 0.2, m.mass_cov = 0.1, m.reference_gap = 0.5 * inch, m.offsets.assign(3, 0.0);
+  const std::vector<double> u = {0.3, 0.7, 0.9, 0.15, 0.4, 0.6, 0.2, 0.8};
+  const SampledPair p = bridge_pair(m, SampleId{}, u);
+  const BridgeSpec lane = lane_bridge(m, p, m.reference_gap);
+  const SampledStructure& s = p.structure(1);
+  EXPECT_NE(s.T, 1.0);
+  EXPECT_NE(s.m, 4.0e6);
+  EXPECT_NEAR(frame_period(lane.frames[1]), s.T, 1e-12 * s.T);
+  EXPECT_NEAR(frame_mass(lane.frames[1]), s.m, 1e-9 * s.m);
+  ASSERT_EQ(lane.frames[1].storey_mass.size(), 3u);
+  EXPECT_NEAR(lane.frames[1].storey_mass[2] / lane.frames[1].storey_mass[0], 2.0, 1e-14);
+  EXPECT_EQ(lane.frames[0].mass, p.structure(0).m);  // one level: the drawn numbers themselves
+  EXPECT_EQ(lane.frames[0].stiffness, p.structure(0).k);
 }
