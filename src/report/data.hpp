@@ -102,6 +102,25 @@ std::string pair_separation_section(const Data& r);  // the pair's separation in
 std::string code_rules_section(const Data& r);
 std::string bridge_section(const Data& r);  // a bridge study's joints and frames by name (bridge_section.cpp)       // the code rules: in metres for a pair, probabilities for a grid
 std::string grid_advice_section(const Data& r);      // a grid study's separation advice in gap ratios
+// One target of a grid (or bridge) study's advice: the target in %, the order statistic with its bootstrap interval
+// (gap ratios; a bridge's in units of d) and the cubic's root (a grid's only). Built once (report.cpp), formatted by
+// grid_advice_section and separation_csv (replicates: the bootstrap's, may be null).
+struct AdviceRow {
+  double target = 0;
+  separation::Estimate estimate;
+  std::optional<double> cubic;
+};
+std::vector<AdviceRow> grid_advice_rows(const Data& r, int* replicates = nullptr);
+// One code rule of a grid study: the rule (model 0's name, clause, formula; each model has its own gap), the
+// analyses (ok) above their model's gap out of n, and the Wilson 95 % interval. Built once
+// (separation_sections.cpp), formatted by code_rules_section and separation_csv.
+struct GridRuleRow {
+  separation::Rule rule;
+  std::int64_t hits = 0, n = 0;
+  double probability = NAN;
+  Interval wilson;
+};
+std::vector<GridRuleRow> grid_rule_rows(const Data& r);
 // "Records selected to the design spectrum" from /selection ([records] select); "" without it (selection_section.cpp)
 std::string selection_section(const results::Results& r);
 std::string separation_csv(const Data& r);           // rows pair_curve, separation, code_rule, code_design

@@ -522,22 +522,37 @@ void Markdown::restitution_note() {
 
 namespace report_detail {
 
-// A grid study's advice in gap ratios: the exact order statistic, its bootstrap interval, the cubic's root.
-std::string grid_advice_section(const Data& r) {
+// A grid study's (or a bridge's) advice rows: per target the exact order statistic with its bootstrap interval and,
+// for a grid, the cubic's root (eq. 10) -- built once, formatted by grid_advice_section (Markdown) and
+// separation_csv (rows separation_cubic).
+std::vector<AdviceRow> grid_advice_rows(const Data& r, int* replicates) {
   const ReportSettings& set = r.set;
   std::vector<double> targets;
   for (double t : set.targets) targets.push_back(t / 100.0);
   const separation::BootstrapResult b = r.bootstrap(false, targets, {});
+  if (replicates) *replicates = b.replicates;
+  // a bridge's d is one number (the smallest joint gap); a grid's heights come from the period-height rule: ratios,
+  // and the cubic's root beside them
+  const std::optional<CubicFit> f = set.bridge ? std::nullopt : ratio_fit(r);
+  std::vector<AdviceRow> rows;
+  for (std::size_t i = 0; i < targets.size(); ++i)
+    rows.push_back({set.targets[i], b.separation[i],
+                    f ? solve_fit(*f, set.targets[i], set.fit_min, set.fit_max) : std::nullopt});
+  return rows;
+}
+
+// A grid study's advice in gap ratios: the exact order statistic, its bootstrap interval, the cubic's root.
+std::string grid_advice_section(const Data& r) {
+  const ReportSettings& set = r.set;
+  int replicates = 0;
+  const std::vector<AdviceRow> rows = grid_advice_rows(r, &replicates);
   // the method, in the words of both forms of the table (a bridge's joints, a grid's ratios)
   const std::string exceed =
       "x is the smallest gap ratio that at most floor(t n) of the n analyses exceed (the exact empirical curve";
   const std::string interval = fmt::format(
       "The interval is a two-stage bootstrap over records and over models within records ({} replicates, {:.0f} %), "
       "so it includes record-to-record variability; the advice is its upper end.",
-      b.replicates, 100 * set.confidence);
-  // a bridge's d is one number (the smallest joint gap): its advice in metres too; a grid's heights come from the
-  // period-height rule: ratios, and the cubic's root beside them
-  const std::optional<CubicFit> f = set.bridge ? std::nullopt : ratio_fit(r);
+      replicates, 100 * set.confidence);
   std::string s =
       set.bridge
           ? fmt::format("\n## Joint gap advice (any joint)\n\n{} of D); the gap of the joint(s) at d is x d, every other "
@@ -548,14 +563,13 @@ std::string grid_advice_section(const Data& r) {
                         "period-height rule, so no separation is given in metres.\n\n| target | x | {:.0f} % interval | "
                         "advice x (upper end) | cubic x |\n|---|---|---|---|---|\n",
                         exceed, interval, 100 * set.confidence);
-  for (std::size_t i = 0; i < targets.size(); ++i) {
-    const separation::Estimate& e = b.separation[i];
+  for (const AdviceRow& row : rows) {
+    const separation::Estimate& e = row.estimate;
     const double d = set.bridge_d;
-    const auto xc = f ? solve_fit(*f, set.targets[i], set.fit_min, set.fit_max) : std::nullopt;
-    s += set.bridge ? fmt::format("| {}% | {:.3f} | {:.4f} | [{:.4f}, {:.4f}] | **{:.4f}** |\n", set.targets[i], e.value,
+    s += set.bridge ? fmt::format("| {}% | {:.3f} | {:.4f} | [{:.4f}, {:.4f}] | **{:.4f}** |\n", row.target, e.value,
                                   e.value * d, e.lo * d, e.hi * d, e.hi * d)
-                    : fmt::format("| {}% | {:.3f} | [{:.3f}, {:.3f}] | **{:.3f}** | {} |\n", set.targets[i], e.value,
-                                  e.lo, e.hi, e.hi, xc ? fmt::format("{:.3f}", *xc) : "outside fit range");
+                    : fmt::format("| {}% | {:.3f} | [{:.3f}, {:.3f}] | **{:.3f}** | {} |\n", row.target, e.value,
+                                  e.lo, e.hi, e.hi, row.cubic ? fmt::format("{:.3f}", *row.cubic) : "outside fit range");
   }
   return s;
 }

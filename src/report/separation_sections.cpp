@@ -153,46 +153,74 @@ std::string pair_rules(const Data& r) {
 }
 
 std::string grid_rules(const Data& r) {
-  std::vector<std::int64_t> hits, n;
-  std::vector<separation::Rule> names;
-  for (std::size_t m = 0; m < r.models(); ++m) {
-    const std::vector<separation::Rule> rules = model_rules(r, m);
-    if (names.empty()) names = rules, hits.assign(rules.size(), 0), n.assign(rules.size(), 0);
-    for (std::size_t k = 0; k < r.records(); ++k) {
-      const std::size_t i = k * r.models() + m;
-      if (!r.ok(r.status[i])) continue;
-      for (std::size_t j = 0; j < rules.size(); ++j) ++n[j], hits[j] += r.peak_closing[i] > rules[j].gap;
-    }
-  }
   std::string s =
       "\n## Code separation rules (probability of pounding at each rule's gap)\n\n"
       "Per model, each rule combines design values of the two buildings: the mean over the records of each "
       "building's own uncoupled peak (not the peaks of the same record, which would make ABS never pound); DDC "
       "uses the model's periods and damping. Wilson 95 % intervals (sampling error under these records).\n\n"
       "| rule | clause | formula | probability of pounding | Wilson 95 % |\n|---|---|---|---|---|\n";
-  for (std::size_t j = 0; j < names.size(); ++j) {
-    const Interval w = wilson_interval(hits[j], n[j]);
-    s += fmt::format("| {} | {} | {} | {} | [{:.2f}%, {:.2f}%] |\n", names[j].name, names[j].clause, names[j].formula,
-                     pct(n[j] ? 100.0 * static_cast<double>(hits[j]) / static_cast<double>(n[j]) : NAN), 100 * w.lo,
-                     100 * w.hi);
-  }
+  for (const GridRuleRow& row : grid_rule_rows(r))
+    s += fmt::format("| {} | {} | {} | {} | [{:.2f}%, {:.2f}%] |\n", row.rule.name, row.rule.clause, row.rule.formula,
+                     pct(row.n ? 100.0 * static_cast<double>(row.hits) / static_cast<double>(row.n) : NAN), 100 * row.wilson.lo, 100 * row.wilson.hi);
   return s;
 }
 
 }  // namespace
 
-std::string pair_separation_section(const Data& r) {
-  const std::vector<double> targets = fractions(r.set.targets);
+std::vector<GridRuleRow> grid_rule_rows(const Data& r) {
+  std::vector<GridRuleRow> rows;
+  for (std::size_t m = 0; m < r.models(); ++m) {
+    const std::vector<separation::Rule> rules = model_rules(r, m);
+    if (rows.empty())
+      for (const separation::Rule& rule : rules) rows.push_back({rule, 0, 0, NAN, {}});
+    for (std::size_t k = 0; k < r.records(); ++k) {
+      const std::size_t i = k * r.models() + m;
+      if (!r.ok(r.status[i])) continue;
+      for (std::size_t j = 0; j < rules.size(); ++j) ++rows[j].n, rows[j].hits += r.peak_closing[i] > rules[j].gap;
+    }
+  }
+  for (GridRuleRow& row : rows) {
+    row.probability = row.n ? static_cast<double>(row.hits) / static_cast<double>(row.n) : NAN;
+    row.wilson = wilson_interval(row.hits, row.n);
+  }
+  return rows;
+}
+
+// A pair study's advice rows (the Markdown's table and the CSV's rows separation_cubic, built once): per target the
+// records above the separation (of the independent records) and the cubic fit's root in metres.
+struct PairAdviceRows {
+  std::size_t records = 0;  // N independent records with an ok analysis
+  std::vector<std::size_t> above;
+  std::vector<std::optional<double>> cubic;
+};
+
+PairAdviceRows pair_advice_rows(const Data& r, const separation::BootstrapResult& b) {
   const separation::Demands d = r.demands(true);
-  const separation::BootstrapResult b = r.bootstrap(true, targets, {}, true);
   std::vector<double> record_peak;  // each independent record's largest ok demand (both signs, every model)
   for (std::size_t k = 0; k < d.records; ++k) {
     const std::vector<double> z = d.record(k);
     if (!z.empty()) record_peak.push_back(*std::max_element(z.begin(), z.end()));
   }
-  const std::size_t N = record_peak.size();
   const double dcode = median(r.mod.code_gap);
   const std::optional<CubicFit> f = metres_fit(r, d.pooled(), dcode);
+  PairAdviceRows rows;
+  rows.records = record_peak.size();
+  for (std::size_t i = 0; i < r.set.targets.size(); ++i) {
+    const double v = b.separation[i].value;
+    rows.above.push_back(std::count_if(record_peak.begin(), record_peak.end(), [&](double p) { return p > v; }));
+    rows.cubic.push_back(f ? solve_fit(*f, r.set.targets[i], r.set.fit_min * dcode, r.set.fit_max * dcode)
+                           : std::nullopt);
+  }
+  return rows;
+}
+
+std::string pair_separation_section(const Data& r) {
+  const std::vector<double> targets = fractions(r.set.targets);
+  const separation::Demands d = r.demands(true);
+  const separation::BootstrapResult b = r.bootstrap(true, targets, {}, true);
+  const PairAdviceRows rows = pair_advice_rows(r, b);
+  const std::size_t N = rows.records;
+  const double dcode = median(r.mod.code_gap);
   std::string s = fmt::format(
       "\n## Separation for this pair, in metres\n\n{}\n"
       "The separation at a target is the smallest gap that at most floor(t n) of the n = {} analyses "
@@ -219,9 +247,9 @@ std::string pair_separation_section(const Data& r) {
   for (std::size_t i = 0; i < targets.size(); ++i) {
     const separation::Estimate& e = b.separation[i];
     const separation::Estimate& ln = b.lognormal[i];
-    const auto xc = f ? solve_fit(*f, r.set.targets[i], r.set.fit_min * dcode, r.set.fit_max * dcode) : std::nullopt;
+    const std::optional<double>& xc = rows.cubic[i];
     const bool resolved = resolved_by(targets[i], N);
-    const std::size_t above = std::count_if(record_peak.begin(), record_peak.end(), [&](double v) { return v > e.value; });
+    const std::size_t above = rows.above[i];
     const std::string advice =
         resolved ? fmt::format("**{:.3f}**", e.hi)
                  : fmt::format("not resolved by {} records; lognormal: **{}**", N,
@@ -275,13 +303,38 @@ std::string separation_csv(const Data& r) {
                      "p0 {:.9g}\"\n",
                      e.value / unit, N, targets[i], e.value, e.lo, e.hi, b.fit.mu, b.fit.sigma, b.fit.p0);
   }
+  const std::vector<double> z = d.pooled();
   for (std::size_t i = 0; i < gaps.size(); ++i) {
     const separation::Estimate& e = b.probability[i];
     const bool rule = i < rules.size();
-    s += fmt::format("{},,{:.6f},,,,{},{:.6f},{},{:.6f},{:.6f},{}\n",
-                     rule ? (i < formula_rules ? "code_rule" : "code_design") : "curve_band",
-                     gaps[i] / unit, N, e.value, r.set.pair ? fmt::format("{:.6f}", gaps[i]) : "", e.lo, e.hi,
-                     rule ? "\"" + rules[i].name + "\"" : "");
+    // a rule's hits: the analyses above its gap, as the Markdown table counts them (its Wilson row below)
+    const std::int64_t hits = rule ? std::count_if(z.begin(), z.end(), [&](double v) { return v > gaps[i]; }) : -1;
+    s += fmt::format("{},,{:.6f},,,{},{},{:.6f},{},{:.6f},{:.6f},{}\n",
+                     rule ? (i < formula_rules ? "code_rule" : "code_design") : "curve_band", gaps[i] / unit,
+                     rule ? std::to_string(hits) : "", N, e.value, r.set.pair ? fmt::format("{:.6f}", gaps[i]) : "",
+                     e.lo, e.hi, rule ? "\"" + rules[i].name + "\"" : "");
+    if (rule) {
+      const Interval w = wilson(r, hits, static_cast<std::int64_t>(N));
+      s += fmt::format("rule_wilson,,{:.6f},,,{},{},{:.6f},{:.6f},{:.6f},{:.6f},\"{}\"\n", gaps[i] / unit, hits, N,
+                       N ? static_cast<double>(hits) / static_cast<double>(N) : NAN, gaps[i], w.lo, w.hi, rules[i].name);
+    }
+  }
+  if (r.set.pair) {  // the advice table's other columns: the cubic's root, the records above the separation
+    const PairAdviceRows rows = pair_advice_rows(r, b);
+    for (std::size_t i = 0; i < targets.size(); ++i) {
+      const std::optional<double>& c = rows.cubic[i];
+      s += fmt::format("separation_cubic,,{},,,{},{},{},{},,,{}\n", c ? fmt::format("{:.6f}", *c / unit) : "",
+                       rows.above[i], rows.records, targets[i], c ? fmt::format("{:.6f}", *c) : "",
+                       c ? "" : "\"outside fit range\"");
+    }
+  }
+  if (!r.set.pair && !r.set.bridge) {  // a grid study's code rules (each model has its own gaps) and advice's cubic
+    for (const GridRuleRow& row : grid_rule_rows(r))
+      s += fmt::format("code_rule,,,,,{},{},{:.6f},,{:.6f},{:.6f},\"{}\"\n", row.hits, row.n, row.probability,
+                       row.wilson.lo, row.wilson.hi, row.rule.name);
+    for (const AdviceRow& row : grid_advice_rows(r))
+      s += fmt::format("separation_cubic,,{},,,,,{},,,,{}\n", row.cubic ? fmt::format("{:.6f}", *row.cubic) : "",
+                       row.target / 100, row.cubic ? "" : "\"outside fit range\"");
   }
   return s;
 }

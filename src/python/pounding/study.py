@@ -136,11 +136,58 @@ class Results:
 
     @property
     def code_rules(self):
-        return self.section("Code separation rules")
+        """The code separation rules with the probability of pounding at each, from the CSV report's numbers (the
+        same rows the Markdown table formats). Columns: rule (name), kind ("formula": the codes' formulas fed the
+        mean record peaks, "design": the codes' own design displacements), hits, n, probability, wilson_lo,
+        wilson_hi (Wilson 95 %), and for a pair study gap_m (the rule's separation), gap_ratio (in code gaps d),
+        lo, hi (the two-stage bootstrap interval of the probability). A grid study's rules have a gap per model,
+        so no gap column. Empty for a bridge study (no building code rules)."""
+        import pandas as pd
+        t = self.csv_tables
+        if "code_rule" not in t:
+            return pd.DataFrame(columns=["rule", "kind", "hits", "n", "probability", "wilson_lo", "wilson_hi"])
+        parts = [t[k].assign(kind=kind) for k, kind in (("code_rule", "formula"), ("code_design", "design")) if k in t]
+        rules = pd.concat(parts, ignore_index=True).rename(columns={"name": "rule"})
+        if "rule_wilson" not in t:  # a grid study: lo, hi of its code_rule rows are the Wilson interval
+            rules = rules.rename(columns={"lo": "wilson_lo", "hi": "wilson_hi"})
+            return rules[["rule", "kind", "hits", "n", "probability", "wilson_lo", "wilson_hi"]]
+        w = t["rule_wilson"]
+        rules["wilson_lo"], rules["wilson_hi"] = w["lo"].to_numpy(), w["hi"].to_numpy()
+        rules["hits"] = rules["hits"].astype("int64")
+        return rules[["rule", "kind", "gap_m", "gap_ratio", "hits", "n", "probability", "lo", "hi", "wilson_lo",
+                      "wilson_hi"]]
 
     @property
     def separation_advice(self):
-        return self.section("Separation advice")
+        """The separation advice per target probability, from the CSV report's numbers (the rows the Markdown
+        table formats), one row per target: target (a fraction), x (the separation in code gaps d; a bridge's in
+        units of its reference gap) and cubic_x (the root of the report's cubic fit, NaN outside its range). A grid
+        or bridge study adds lo, hi (the two-stage bootstrap interval of x) and advice_x (its upper end); a pair
+        study adds separation_m, lo_m, hi_m (the interval in metres), cubic_m, records_above (of `records`, the
+        independent records), resolved (floor(t records) >= 1), lognormal_m, lognormal_lo_m, lognormal_hi_m (the
+        parametric estimate) and advice_m: hi_m where resolved, else lognormal_hi_m, as the report advises."""
+        import pandas as pd
+        t = self.csv_tables
+        sep = t["separation"]
+        out = pd.DataFrame({"target": sep["probability"], "x": sep["gap_ratio"]})
+        if "gap_m" not in sep:  # a grid (or bridge) study: the interval is in gap ratios
+            out["lo"], out["hi"] = sep["lo"].to_numpy(), sep["hi"].to_numpy()
+            out["advice_x"] = out["hi"]
+            cubic = t.get("separation_cubic")
+            out["cubic_x"] = cubic["gap_ratio"].to_numpy(dtype=float) if cubic is not None and "gap_ratio" in cubic \
+                else np.nan
+            return out
+        out["separation_m"], out["lo_m"], out["hi_m"] = sep["gap_m"], sep["lo"], sep["hi"]
+        cubic = t["separation_cubic"]
+        out["cubic_x"] = cubic["gap_ratio"].to_numpy(dtype=float) if "gap_ratio" in cubic else np.nan
+        out["cubic_m"] = cubic["gap_m"].to_numpy(dtype=float) if "gap_m" in cubic else np.nan
+        out["records_above"], out["records"] = cubic["hits"].to_numpy(), cubic["n"].to_numpy()
+        out["resolved"] = sep["name"].isna().to_numpy() if "name" in sep else True  # "not resolved by N records"
+        ln = t["separation_lognormal"]
+        out["lognormal_m"], out["lognormal_lo_m"], out["lognormal_hi_m"] = (ln[c].to_numpy(dtype=float)
+                                                                           for c in ("gap_m", "lo", "hi"))
+        out["advice_m"] = np.where(out["resolved"], out["hi_m"], out["lognormal_hi_m"])
+        return out
 
     def period_pair(self, gap_ratio=None):
         """The period-pair map: probability with T1 as rows and T2 as columns at one gap (default: the first the

@@ -1,5 +1,6 @@
 """Study(...).run() in-process and Results (issue 28, item 5): the same results and tables as `pounding run`."""
 import os
+import re
 import subprocess
 
 import numpy as np
@@ -125,3 +126,106 @@ def test_bad_threads_is_a_value_error(tmp_path, bad):
     with pytest.raises(ValueError, match=r"threads"):
         pounding.Study(QUICK).run(out=str(tmp_path / "x.h5"), progress=False, threads=bad)
     assert os.listdir(tmp_path) == []
+
+
+def _small(tmp_path, name, samples, bootstrap=100):
+    """A shipped study made small (tests/lib/html_studies.sh's reduction), its relative paths made absolute."""
+    studies = os.path.join(HERE, "..", "..", "..", "studies")
+    text = open(os.path.join(studies, name + ".toml")).read()
+    text = re.sub(r"(?m)^samples_per_pair = [0-9_]*", f"samples_per_pair = {samples}", text)
+    text = re.sub(r"(?m)^bootstrap = [0-9_]*", f"bootstrap = {bootstrap}", text)
+    text = text.replace('"../records/', f'"{os.path.abspath(os.path.join(studies, "..", "records"))}/')
+    (tmp_path / f"{name}.toml").write_text(text)
+    return pounding.Study(str(tmp_path / f"{name}.toml")).run(out=str(tmp_path / f"{name}.h5"), progress=False,
+                                                             threads=1)
+
+
+def _cell(cell, *values, scale=1.0):
+    """The numbers of a Markdown cell ("0.17%", "[0.09%, 0.30%]", "**0.416**", "6 of 25") equal the values as the
+    report printed them: within half a unit of the cell's last digit (the CSV keeps 6 decimals, so a value may round
+    either way at the cell's last digit)."""
+    nums = re.findall(r"-?\d+(?:\.\d+)?", cell)
+    assert len(nums) == len(values), (cell, values)
+    for text, v in zip(nums, values):
+        half = 0.5 * 10.0 ** -(len(text.split(".")[1]) if "." in text else 0)
+        assert abs(float(text) - scale * v) <= half + 1e-9, (cell, values)
+    return True
+
+
+def test_grid_code_rules_and_advice_are_numbers(tmp_path):
+    """Issue 28: Results.code_rules / separation_advice of a grid study (quick.toml, 2 samples per pair) are numeric
+    DataFrames from the CSV report; they equal the Markdown tables' cells, and the code rules' probabilities equal
+    numpy's count on the HDF5 arrays (each model's rule gap from /models and /uncoupled, the closing above it)."""
+    need("pandas")
+    h5py = need("h5py")
+    res = _small(tmp_path, "quick", 2)
+    rules, advice = res.code_rules, res.separation_advice
+    assert rules["probability"].dtype == np.float64 and rules["hits"].dtype == np.int64
+    assert list(rules["rule"][:4]) == ["Standard 2800", "ABS", "SRSS", "DDC"]
+    md = res.section("Code separation rules")
+    assert len(md) == len(rules)
+    for (_, row), (_, cells) in zip(rules.iterrows(), md.iterrows()):
+        assert cells["rule"] == row["rule"]
+        assert _cell(cells["probability of pounding"], row["probability"], scale=100)
+        assert _cell(cells["Wilson 95 %"], row["wilson_lo"], row["wilson_hi"], scale=100)
+    md = res.section("Separation advice")
+    assert len(md) == len(advice) == 3 and advice["x"].dtype == np.float64
+    for (_, row), (_, cells) in zip(advice.iterrows(), md.iterrows()):
+        assert cells["target"] == f"{100 * row['target']:g}%"
+        assert _cell(cells["x"], row["x"]) and _cell(cells["cubic x"], row["cubic_x"])
+        assert _cell(cells["95 % interval"], row["lo"], row["hi"])
+        assert _cell(cells["advice x (upper end)"], row["advice_x"])
+    # numpy on the file: per model, Standard 2800's gap is 0.005 (h1 + h2); ABS and SRSS take each building's mean
+    # uncoupled peak over the model's records
+    with h5py.File(res.path) as f:
+        m, u = f["models"], f["uncoupled"]
+        closing, ok = u["peak_closing"][()], u["status"][()] == 0
+        assert ok.all()
+        u1, u2 = u["peak_u1"][()].mean(axis=0), u["peak_u2"][()].mean(axis=0)
+        gaps = {"Standard 2800": 0.005 * (m["h1"][()] + m["h2"][()]), "ABS": u1 + u2, "SRSS": np.hypot(u1, u2)}
+    for name, gap in gaps.items():
+        hits = int((closing > gap[None, :]).sum())
+        row = rules[rules["rule"] == name].iloc[0]
+        assert (row["hits"], row["n"]) == (hits, closing.size), name
+        assert abs(row["probability"] - hits / closing.size) < 5e-7, name
+
+
+def test_pair_code_rules_and_advice_are_numbers(tmp_path):
+    """The same for a pair study (example-pair.toml, 4 models per record): rules in metres with the bootstrap and
+    Wilson intervals, advice in metres with the records above, the cubic and the lognormal; numpy recomputes the
+    rules' gaps (mean uncoupled peaks over every analysis, the median code gap) and their probabilities."""
+    need("pandas")
+    h5py = need("h5py")
+    res = _small(tmp_path, "example-pair", 4)
+    rules, advice = res.code_rules, res.separation_advice
+    assert rules["gap_m"].dtype == np.float64 and rules["hits"].dtype == np.int64
+    md = res.section("Code separation rules in metres")
+    assert len(md) == len(rules) and rules["rule"].iloc[0].startswith("Standard 2800")
+    for (_, row), (_, cells) in zip(rules.iterrows(), md.iterrows()):
+        assert cells["rule"] == row["rule"] and _cell(cells["separation m"], row["gap_m"])
+        assert _cell(cells["P(pounding)"], row["probability"], scale=100)
+        assert _cell(cells["95 % interval"], row["lo"], row["hi"], scale=100)
+        assert _cell(cells["Wilson 95 %"], row["wilson_lo"], row["wilson_hi"], scale=100)
+    md = res.section("Separation for this pair")
+    assert len(md) == len(advice) == 3
+    for (_, row), (_, cells) in zip(advice.iterrows(), md.iterrows()):
+        assert _cell(cells["separation m"], row["separation_m"])
+        assert _cell(cells["95 % interval m"], row["lo_m"], row["hi_m"])
+        assert _cell(cells["records above"], row["records_above"], row["records"])
+        assert _cell(cells["in code gaps d"], row["x"])
+        assert cells["cubic m"] == "outside fit range" if np.isnan(row["cubic_m"]) else _cell(cells["cubic m"],
+                                                                                               row["cubic_m"])
+        assert _cell(cells["lognormal m (parametric)"], row["lognormal_m"])
+        assert _cell(cells["advice: at least m"].split("**")[1], row["advice_m"])
+        assert ("not resolved" in cells["advice: at least m"]) == (not row["resolved"])
+    assert not advice["resolved"].iloc[-1] and advice["advice_m"].iloc[-1] == advice["lognormal_hi_m"].iloc[-1]
+    with h5py.File(res.path) as f:
+        z, ok = f["uncoupled"]["peak_closing"][()], f["uncoupled"]["status"][()] == 0
+        assert ok.all()
+        u1, u2 = f["uncoupled"]["peak_u1"][()].mean(), f["uncoupled"]["peak_u2"][()].mean()
+        d = np.median(f["models"]["code_gap"][()])
+    for name, gap in {"ABS": u1 + u2, "SRSS": np.hypot(u1, u2), rules["rule"].iloc[0]: d}.items():
+        row = rules[rules["rule"] == name].iloc[0]
+        assert abs(row["gap_m"] - gap) < 5e-7, (name, row["gap_m"], gap)
+        assert row["hits"] == int((z > gap).sum()) and row["n"] == z.size, name
+        assert abs(row["probability"] - (z > gap).mean()) < 5e-7, name
