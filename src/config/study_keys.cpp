@@ -203,8 +203,9 @@ constexpr StudyKey keys[] = {
      "stiffness_profile scaled to the building's period T1, every storey yielding at the drift ratio drift / "
      "ductility (Vy_i = k_i storey_height drift / ductility; with yield_coefficient Cy: base shear Cy M g, upper "
      "storeys by the shear profile), Rayleigh damping zeta on modes 1 and 2; contact at the floors both buildings "
-     "have at the same level (within 0.05 m). A shear building of one storey is the SDOF bit for bit. Not with "
-     "[intensity] (fragility, IDA)."},
+     "have at the same level (within 0.05 m). A shear building of one storey is the SDOF bit for bit. With "
+     "[intensity] (fragility: stripes, IDA) every stripe runs the shear buildings on the scaled record, except that "
+     "a lane whose every storey and bearing stays elastic is scaled from the lowest stripe (scale_elastic)."},
     {"structures", "storey_height", "number", "3.2", "m", "(0, 10] ([2, 10] for model = \"sdof\")",
      "The storey height of both buildings (each may override it): the code rules' storey count and the shear "
      "model's storeys (max(1, round(height / storey_height)) per sample) and floor levels.", 1e-300, 10.0},

@@ -92,6 +92,7 @@ class UnitComputer {
       block_.emplace(sampler.model(), s.contact, s.e, s.contact_levels, s.gap_offsets, s.level_tolerance,
                      s.shape_functions);
     if (block_ && !plan.system.empty()) table_fields(plan);
+    if (block_ && (plan.stripes || plan.ida)) block_->keep_springs(true);  // scales_linearly reads them
     if (s.restitution && plan.impacts) {  // e(v0) in the coupled runs (study.cpp: hertzdamp, CD, impacts scene)
       restitution_ = std::make_unique<physics::HertzdampRestitution>(*s.restitution, s.contact);
       f_rest_out_ = results::field_index(plan.fields, "impacts", "restitution_outside");
@@ -117,7 +118,12 @@ class UnitComputer {
     ks.substeps = substeps_for(rec.dt);
     UnitResult out(plan_, n);
     if (block_) {  // shear buildings, rows, bridges: Systems (study/system_block.hpp)
+      if (plan_.stripes) {
+        stripes(rec, u.record, ks, out);
+        return out;
+      }
       systems(records_[u.record], ks, out);
+      if (plan_.ida) ida(rec, u.record, ks, out);
       return out;
     }
     batch_.resize(n);
@@ -173,6 +179,7 @@ class UnitComputer {
       const bool anchor = fa == 0;
       peaks_at(rec, stripes_.scale[k], fa, ks);
       for (std::size_t i = 0; i < n; ++i) put_uncoupled(out, at + i, st_[i], pu1_[i], pu2_[i], pc_[i]);
+      if (block_) put_system_stripe(out, s);
       if (anchor) continue;
       auto scaled_flag = out.values<std::uint8_t>(stripe_scaled_);
       for (std::size_t i = 0; i < n; ++i) scaled_flag[at + i] = 1;
@@ -187,6 +194,10 @@ class UnitComputer {
     const std::size_t n = pairs_.size();
     st_.resize(n), pu1_.resize(n), pu2_.resize(n), pc_.resize(n);
     const GroundMotion gm{rec.dt, scaled(rec, f), rec.duration() + s_.free_vibration};
+    if (block_) {
+      system_peaks_at(gm, f, fa, ks);
+      return;
+    }
     if (fa == 0) {
       fa = f;
       run_batch(batch_, uncoupled_, gm, ks, anchor_);
@@ -217,6 +228,7 @@ class UnitComputer {
   // Lane i of the anchor run stays elastic when the record is scaled by `ratio` more (see stripes()): each spring's
   // hysteresis model answers (stays_elastic, model/hysteresis/registry.hpp), not a value test here.
   bool elastic_at(std::size_t i, double ratio, double limit) const {
+    if (block_) return block_->scales_linearly(anchor_peaks_, i, ratio, limit);
     constexpr double margin = 1.0 - 1e-9;
     const double u1 = ratio * anchor_.peak_u1[i], u2 = ratio * anchor_.peak_u2[i];
     if (anchor_.status[i] != 0) return false;
@@ -282,10 +294,12 @@ class UnitComputer {
       for (std::size_t k = 0; k < n * G; ++k) {
         const std::size_t i = k / G;
         if (state[k] != found || !elastic_at(i, hi[k] / fa, ks.displacement_limit)) continue;
-        const double f = fa * s_.gap_ratios[k % G] * pairs_[i].d / anchor_.peak_closing[i];
+        const double D = block_ ? anchor_peaks_.closing[i] : anchor_.peak_closing[i];
+        const double f = fa * s_.gap_ratios[k % G] * pairs_[i].d / D;
         lo[k] = hi[k] = std::clamp(f, lo[k], hi[k]);
       }
-    bisect(rec, ks, state, lo, hi, analyses);
+    if (block_) system_bisect(rec, ks, state, lo, hi, analyses);
+    else bisect(rec, ks, state, lo, hi, analyses);
     auto slo = out.values<double>(ida_lo_), shi = out.values<double>(ida_hi_);
     for (std::size_t k = 0; k < n * G; ++k) {
       const bool ok = state[k] != excluded;
@@ -387,8 +401,8 @@ class UnitComputer {
   // A block with a shear building (model = "shear"): the uncoupled Systems give status, the buildings' largest
   // floor displacements and D = the largest peak closing over the floor contacts (system_block.hpp), so the
   // probability scene answers every gap exactly as for the pair; the impacts scene runs coupled only the lanes that
-  // touch (D > gap) or failed (all with skip_untouched = false), as coupled() does for pairs. [intensity] is refused
-  // for shear buildings when the study is read (study.cpp).
+  // touch (D > gap) or failed (all with skip_untouched = false), as coupled() does for pairs. [intensity]: stripes()
+  // and ida() run the Systems through system_peaks_at / system_bisect.
   // A bridge on several supports ([records] supports): channel k is the realisation's support k + 1.
   void systems(const StudyRecord& sr, const KernelSettings& ks, UnitResult& out) {
     const Record& rec = sr.record;
@@ -406,7 +420,7 @@ class UnitComputer {
     const std::size_t nb = peaks_.buildings;
     for (std::size_t i = 0; i < n; ++i) {
       put_uncoupled(out, i, peaks_.status[i], peaks_.u1[i], peaks_.u2[i], peaks_.closing[i]);
-      if (table) put_table_uncoupled(out, i);
+      if (table) put_table_uncoupled(out, i, peaks_);
       for (std::size_t b = 2; b < nb; ++b) out.values<double>(f_row_unc_[b])[i] = peaks_.u[i * nb + b];
     }
     if (!plan_.impacts) return;
@@ -476,17 +490,83 @@ class UnitComputer {
     f_e_hw_ = results::field_index(plan.fields, "impacts", "element_h_omega_contact");
   }
 
-  // lane i's per-floor rows and per-element closings from the uncoupled run
-  void put_table_uncoupled(UnitResult& out, std::size_t i) {
+  // lane i's per-floor rows and per-element closings from the uncoupled run p (at stripe `stripe`)
+  void put_table_uncoupled(UnitResult& out, std::size_t i, const BlockPeaks& p, std::size_t stripe = 0) {
     const TableLayout& t = block_->layout();
     for (std::size_t b = 0; b < t.floors.size(); ++b)
-      for (auto [field, from] : {std::pair{f_floor_u_[b], &peaks_.floor_u[b]}, {f_floor_drift_[b], &peaks_.floor_drift[b]},
-                                 {f_floor_acc_[b], &peaks_.floor_acc[b]}}) {
-        auto v = out.lane_values<double>(field, i);
+      for (auto [field, from] : {std::pair{f_floor_u_[b], &p.floor_u[b]}, {f_floor_drift_[b], &p.floor_drift[b]},
+                                 {f_floor_acc_[b], &p.floor_acc[b]}}) {
+        auto v = out.lane_values<double>(field, i, stripe);
         std::copy_n(from->begin() + static_cast<std::ptrdiff_t>(i * t.floors[b]), t.floors[b], v.begin());
       }
-    auto c = out.lane_values<double>(f_e_closing_, i);
-    std::copy_n(peaks_.e_closing.begin() + static_cast<std::ptrdiff_t>(i * t.elements), t.elements, c.begin());
+    auto c = out.lane_values<double>(f_e_closing_, i, stripe);
+    std::copy_n(p.e_closing.begin() + static_cast<std::ptrdiff_t>(i * t.elements), t.elements, c.begin());
+  }
+
+  // peaks_at() for Systems (shear buildings, rows): with fa == 0 the anchor run of every lane (anchor_peaks_, each
+  // lane's springs kept); at a higher factor f the lanes that scale linearly over f / fa (SystemBlock::scales_linearly,
+  // the model trait; [analysis] scale_elastic) take the anchor's peaks times f / fa, the others run on the scaled
+  // record (SystemBlock::coupled at ratio 0 with the law none is the uncoupled run of those lanes: a lane's bits do
+  // not depend on the lanes run beside it). cur_ holds every lane's peaks at f; st_, pu1_, pu2_, pc_ its pair columns.
+  void system_peaks_at(const GroundMotion& gm, double f, double& fa, const KernelSettings& ks) {
+    const std::size_t n = pairs_.size();
+    const bool anchor = fa == 0;
+    if (anchor) fa = f;
+    const double ratio = anchor ? 1.0 : f / fa;
+    lanes_.clear();
+    if (anchor) {
+      block_->uncoupled(pairs_, uncoupled_, gm, ks, anchor_peaks_);
+    } else {
+      for (std::size_t i = 0; i < n; ++i)
+        if (!(s_.scale_elastic && elastic_at(i, ratio, ks.displacement_limit))) lanes_.push_back(i);
+      if (!lanes_.empty()) block_->coupled(pairs_, lanes_, 0.0, uncoupled_, ContactNumbers{}, gm, ks, sub_peaks_);
+    }
+    cur_.resize(n, anchor_peaks_.buildings, block_->layout());
+    for (std::size_t i = 0, j = 0; i < n; ++i) {
+      if (j < lanes_.size() && lanes_[j] == i) cur_.set_scaled(i, sub_peaks_, j++, 1.0);
+      else cur_.set_scaled(i, anchor_peaks_, i, ratio);
+      st_[i] = cur_.status[i], pu1_[i] = cur_.u1[i], pu2_[i] = cur_.u2[i], pc_[i] = cur_.closing[i];
+    }
+  }
+
+  // stripe s's per-floor / per-element rows and a row's buildings 3..n from cur_
+  void put_system_stripe(UnitResult& out, std::size_t s) {
+    const std::size_t nb = cur_.buildings;
+    const bool table = !block_->layout().empty();
+    for (std::size_t i = 0; i < pairs_.size(); ++i) {
+      if (table) put_table_uncoupled(out, i, cur_, s);
+      for (std::size_t b = 2; b < nb; ++b) out.lane_values<double>(f_row_unc_[b], i, s)[0] = cur_.u[i * nb + b];
+    }
+  }
+
+  // The IDA's bisection for Systems (see ida()): every found (lane, gap) bracket narrowed to the tolerance as for
+  // pairs, each lane run on the record scaled by its factor -- a System has no unscaled equivalent in general (a
+  // smooth bearing, a moat wall, the guard's sum over floors), so the record is scaled, one run per (lane, factor);
+  // the gaps of a lane that meet at the same factor share its run.
+  void system_bisect(const Record& rec, const KernelSettings& ks, std::vector<std::uint8_t>& state,
+                     std::vector<double>& lo, std::vector<double>& hi, std::span<std::int32_t> analyses) {
+    const std::size_t G = plan_.gaps;
+    for (int step = 0; step < 200; ++step) {
+      todo_.clear();
+      for (std::size_t k = 0; k < state.size(); ++k)
+        if (state[k] == found && !(hi[k] <= lo[k] * (1.0 + s_.intensity.tolerance))) todo_.push_back(k);
+      if (todo_.empty()) break;
+      std::size_t ran = std::string::npos;
+      double ran_f = 0.0;
+      for (std::size_t k : todo_) {
+        const std::size_t i = k / G, g = k % G;
+        const double f = lo[k] > 0 ? std::sqrt(lo[k] * hi[k]) : 0.5 * hi[k];
+        if (i != ran || f != ran_f) {
+          const std::size_t one[] = {i};
+          const GroundMotion gm{rec.dt, scaled(rec, f), rec.duration() + s_.free_vibration};
+          block_->coupled(pairs_, one, 0.0, uncoupled_, ContactNumbers{}, gm, ks, sub_peaks_);
+          ++analyses[i], ran = i, ran_f = f;
+        }
+        if (sub_peaks_.status[0] != 0) state[k] = excluded;
+        else if (sub_peaks_.closing[0] > s_.gap_ratios[g] * pairs_[i].d) hi[k] = f;
+        else lo[k] = f;
+      }
+    }
   }
 
   // lane i's per-element impacts at gap g: from coupled_ lane j, or (j = npos) untouched: no impacts at the elements
@@ -528,6 +608,7 @@ class UnitComputer {
   std::unique_ptr<physics::HertzdampRestitution> restitution_;  // [contact] restitution: the kernel's e(v0) hook
   std::size_t f_rest_out_ = 0;
   BlockPeaks peaks_, coupled_;
+  BlockPeaks anchor_peaks_, cur_, sub_peaks_;  // fragility studies of Systems: the anchor run, the peaks at a factor, a run
   std::vector<GroundMotion> channels_;  // a multi-support bridge's motions of the unit's record
   std::vector<std::size_t> f_floor_u_, f_floor_drift_, f_floor_acc_;
   std::vector<std::size_t> f_row_unc_, f_row_imp_;  // a row's buildings 3..n: uncoupled / impacts peak_u{b}

@@ -327,8 +327,8 @@ void check_selection(const Study& s, const TableReader& top) {
 }  // namespace
 
 // A study with a shear building (model = "shear") runs the system stepper: central difference only, force laws
-// only (a contact at every common floor), and no [intensity] (the stripes' elastic scaling and the IDA's yield
-// scaling are the SDOF pair's).
+// only (a contact at every common floor). [intensity] runs (stripes, IDA: study/run.cpp, the Systems' scaling by the
+// model trait SystemBlock::scales_linearly).
 static void check_row_study(const Study& s, config::TableReader& top, const toml::table* structures, const std::string& path);
 
 // [contact] level_tolerance below half the smallest storey height of the shear buildings (an SDOF of a row of SDOFs:
@@ -382,19 +382,6 @@ static void check_shear_study(const Study& s, config::TableReader& top, const to
                      "building (a contact at every common floor)",
                      n ? fmt::format("{}:{} [contact].law", path, n->source().begin.line) : path + " [contact].law",
                      "choose a force law (hertzdamp, kelvin, ...), or use model = \"sdof\"");
-  }
-  if (s.intensity.enabled) {
-    // the stripes' elastic scaling and the IDA's unscaled equivalents are written for the SDOF pair's springs
-    std::string where = top.where("intensity");
-    for (const char* b : {"building2", "building1", ""}) {
-      const toml::table* t = !structures ? nullptr : *b ? structures->get_as<toml::table>(b) : structures;
-      if (const toml::node* n = t ? t->get("model") : nullptr; n && n->value_or(std::string()) == "shear")
-        where = fmt::format("{}:{} [structures{}{}].model", path, n->source().begin.line, *b ? "." : "", b);
-    }
-    throw InputError("a fragility study ([intensity]: stripes, IDA) runs SDOF buildings only, not model = \"shear\"",
-                     where,
-                     "remove [intensity] to run the shear buildings in the probability or impacts scene, or use "
-                     "model = \"sdof\"");
   }
 }
 

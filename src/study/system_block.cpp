@@ -84,6 +84,32 @@ void BlockPeaks::resize(std::size_t n, std::size_t nb, const TableLayout& t) {
   }
   for (auto* v : {&e_closing, &e_force, &e_penetration, &e_first, &e_hw}) v->assign(n * t.elements, nan);
   e_count.assign(n * t.elements, -1);
+  springs.resize(0);
+}
+
+void BlockPeaks::set_scaled(std::size_t to, const BlockPeaks& from, std::size_t k, double scale) {
+  status[to] = from.status[k];
+  u1[to] = scale * from.u1[k], u2[to] = scale * from.u2[k], closing[to] = scale * from.closing[k];
+  for (std::size_t b = 0; b < buildings; ++b) u[to * buildings + b] = scale * from.u[k * buildings + b];
+  for (auto [mine, theirs] : {std::pair{&floor_u, &from.floor_u}, {&floor_drift, &from.floor_drift}, {&floor_acc, &from.floor_acc}})
+    for (std::size_t b = 0; b < mine->size(); ++b) {
+      const std::size_t f = (*mine)[b].size() / status.size();
+      for (std::size_t x = 0; x < f; ++x) (*mine)[b][to * f + x] = scale * (*theirs)[b][k * f + x];
+    }
+  const std::size_t E = e_closing.size() / status.size();
+  for (std::size_t e = 0; e < E; ++e) e_closing[to * E + e] = scale * from.e_closing[k * E + e];
+}
+
+bool SystemBlock::scales_linearly(const BlockPeaks& p, std::size_t k, double ratio, double limit) const {
+  constexpr double margin = 1.0 - 1e-9;  // as the pair's (study/run.cpp elastic_at)
+  if (model_.bridge || !offsets_.empty() || p.status[k] != 0 || k >= p.springs.size()) return false;
+  const BlockPeaks::Springs& s = p.springs[k];
+  if (s.walls) return false;
+  for (std::size_t i = 0; i < s.law.size(); ++i)
+    if (!physics::spring_stays_elastic(s.law[i], s.spec[i], ratio * s.peak[i], margin)) return false;
+  double sum = 0.0;
+  for (std::size_t b = 0; b < p.buildings; ++b) sum += ratio * p.u[k * p.buildings + b];
+  return sum <= limit;
 }
 
 std::optional<LaneTopology> table_topology(const StructureModel& model, std::uint64_t seed) {
@@ -226,6 +252,7 @@ void SystemBlock::run(std::span<const SampledPair> pairs, std::span<const std::s
                       const KernelSettings& ks, BlockPeaks& out) {
   const std::size_t n = lanes.size(), nb = body_count(model_);
   out.resize(n, nb, layout_);
+  if (keep_springs_) out.springs.resize(n);
   keys_.resize(n);
   for (std::size_t j = 0; j < n; ++j) keys_[j] = lane_topology(model_, pairs[lanes[j]]);
   order_.resize(n);
@@ -294,10 +321,26 @@ void SystemBlock::run(std::span<const SampledPair> pairs, std::span<const std::s
           out.e_first[o] = res_.t_first_impact[x], out.e_hw[o] = res_.h_omega_contact[x];
         }
       }
+      if (keep_springs_) keep_lane_springs(out.springs[k], sys, groups, l, w);
       out.closing[k] = D, out.impact_count[k] = count, out.peak_force[k] = force, out.restitution_outside[k] = outside;
       out.t_first_impact[k] = first, out.h_omega_contact[k] = hw;
     }
     at = end;
+  }
+}
+
+void SystemBlock::keep_lane_springs(BlockPeaks::Springs& s, const model::System& sys,
+                                    std::span<const ContactModel> groups, std::size_t l, std::size_t w) const {
+  const std::size_t S = sys.springs().size();
+  s.law.resize(S), s.spec.resize(S), s.peak.resize(S);
+  for (std::size_t i = 0; i < S; ++i) {
+    const std::size_t x = physics::SystemBatch::at(static_cast<int>(i), l, w);
+    s.law[i] = sys.springs()[i].law, s.spec[i] = batch_.spring[x], s.peak[i] = res_.peak_drift[x];
+  }
+  s.walls = false;
+  for (const model::ContactElement& ce : sys.contacts()) {
+    const auto g = static_cast<std::size_t>(ce.group);
+    if (!sys.groups()[g].study_gap && groups[g].law != ContactLaw::none) s.walls = true;
   }
 }
 

@@ -97,8 +97,6 @@ expect_error shape_functions_name ':32 \[contact\].shape_functions, write shape_
   "$(echo "$body" | sed 's/^law = "hertzdamp"/law = "hertzdamp"\nshape_functions = "quadratic"/')"
 expect_error level_tolerance_half 'not below half the smallest storey height (1 m).*:32 \[contact\].level_tolerance, give level_tolerance < 0.5 m' \
   "$(echo "$body" | sed -e 's/^law = "hertzdamp"/law = "hertzdamp"\nlevel_tolerance = 0.6/' -e 's/^storey_height = 3.2/storey_height = 1.0/')"
-expect_error fragility 'runs SDOF buildings only.*:22 \[structures\].model' \
-  "$(echo "$body" | sed -e 's/^scene = "impacts"/scene = "probability"/' -e 's/^\[gaps\]/[intensity]\nmeasure = "Sa"\nperiod = 1.0\nlevels = [0.1, 0.2]\n\n[gaps]/')"
 b1() { echo "$body" | sed "s/^\[gaps\]/[structures.building1]\n$1\n\n[gaps]/"; }
 expect_error isolation_sdof 'isolation is given for an SDOF building.*\[structures.building1\].isolation' \
   "$(b1 'model = "sdof"\nisolation = {bearing = "linear", k_eff = 1e6}')"

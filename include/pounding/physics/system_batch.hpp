@@ -16,6 +16,7 @@
 #include "pounding/contact/model.hpp"
 #include "pounding/kernel/batch.hpp"
 #include "pounding/model/hysteresis/bridge_links.hpp"
+#include "pounding/model/hysteresis/registry.hpp"
 #include "pounding/model/hysteresis/smooth.hpp"
 #include "pounding/model/system.hpp"
 
@@ -60,6 +61,26 @@ inline SpringSpec link_spring(const model::QHyst::Spec& s) {
 // The SpringSpec of a smooth spring (laws 1, 2) from its parameters.
 inline SpringSpec smooth_spring(const model::SmoothParams<double>& p) {
   return {p.k + (p.q_fast > p.q_slow ? p.q_fast : p.q_slow) * p.a_uy, std::numeric_limits<double>::infinity(), 0.0, p};
+}
+
+// The registry's trait stays_elastic (model/hysteresis/registry.hpp) asked of a spring of the batch by its law: the
+// spring stays on its initial elastic branch (bilinear, Q-Hyst: |d| <= margin fy / k) or inside its gap (laws 3-5:
+// no force, so linear) at peak |deformation| `peak`; the smooth laws (Bouc-Wen, friction pendulum) have no elastic
+// range and answer false. A response scaled from a linear run is exact only when every spring of the lane answers
+// true (the fragility stripes' and IDA's shortcut, study/run.cpp).
+inline bool spring_stays_elastic(int law, const SpringSpec& s, double peak, double margin) {
+  static_assert(model::Hystereses::size == 7, "a new hysteresis law: add its case here (and its SpringSpec fields)");
+  switch (law) {
+    case model::law_bilinear: return model::BilinearKinematic::stays_elastic(Structure{0.0, s.k, 0.0, s.fy, s.alpha}, peak, margin);
+    case model::law_bouc_wen: return model::BoucWen::stays_elastic({}, peak, margin);
+    case model::law_friction_pendulum: return model::FrictionPendulum::stays_elastic({}, peak, margin);
+    case model::law_restrainer: return model::TensionGap::stays_elastic({s.k, s.fy, s.alpha, s.gap, 1}, peak, margin);
+    case model::law_abutment: return model::CompressionGap::stays_elastic({s.k, s.fy, s.alpha, s.gap, 1}, peak, margin);
+    case model::law_hyperbolic_abutment:
+      return model::HyperbolicGap::stays_elastic({s.k_max, s.k, s.rf, s.fy, s.gap, 1}, peak, margin);
+    case model::law_qhyst: return model::QHyst::stays_elastic({s.k, s.fy, s.alpha, s.beta}, peak, margin);
+    default: return false;
+  }
 }
 
 struct SystemBatch {

@@ -94,7 +94,19 @@ struct BlockPeaks {
   std::vector<std::vector<double>> floor_u, floor_drift, floor_acc;  // [building]
   std::vector<double> e_closing, e_force, e_penetration, e_first, e_hw;
   std::vector<std::int32_t> e_count;
+  // With SystemBlock::keep_springs: per lane, each spring's law, numbers and peak |deformation|, and whether a contact
+  // element outside the study gap (a moat wall) ran with a law -- what SystemBlock::scales_linearly reads.
+  struct Springs {
+    std::vector<int> law;
+    std::vector<physics::SpringSpec> spec;
+    std::vector<double> peak;
+    bool walls = false;
+  };
+  std::vector<Springs> springs;  // [lane], empty without keep_springs
   void resize(std::size_t n, std::size_t buildings = 2, const TableLayout& t = {});
+  // Lane `to` = lane k of `from` (sized alike) with every displacement, closing and acceleration peak times `scale`
+  // (1: a copy); the uncoupled values only (status, u1, u2, closing, u, the per-floor rows, e_closing).
+  void set_scaled(std::size_t to, const BlockPeaks& from, std::size_t k, double scale);
 };
 
 // How the contacts of a coupled run are set.
@@ -142,6 +154,15 @@ class SystemBlock {
   // Fill BlockPeaks' per-floor / per-element rows laid out as `table` (the System of table_topology()).
   void set_table(const model::System& table);
   const TableLayout& layout() const { return layout_; }
+  // Runs keep each lane's springs in BlockPeaks::springs (for scales_linearly).
+  void keep_springs(bool on) { keep_springs_ = on; }
+  // The model trait behind a fragility study's shortcut (multiple stripes, IDA; issue 25 §1): lane k of `p` (a run
+  // with keep_springs, status ok) answers the record scaled by `ratio` more with exactly its peaks times `ratio` when
+  // it is linear over that range -- every spring stays elastic at ratio x its peak deformation (each law's
+  // stays_elastic, physics::spring_stays_elastic; a smooth bearing never does), no moat wall ran with a law, and
+  // ratio x the sum over buildings of their largest |u| stays within `limit` (the divergence guard's sum, bounded).
+  // False with gap_offsets (D = max(closing - offset) is not linear in the record) and for a bridge.
+  bool scales_linearly(const BlockPeaks& p, std::size_t k, double ratio, double limit) const;
   // Lane `lane` of b (sized for system(t)) from pair p: both buildings' numbers (shear_spec; an isolated one through
   // physics::set_isolated_building, its base mass one floor's unless given), every pounding element's gap, e and kc
   // (cn.stiffness, else the model's kh, else equivalent spheres of the two floors' masses; two one-storey buildings:
@@ -157,6 +178,9 @@ class SystemBlock {
 
  private:
   // lanes[j] of `pairs` bucketed by topology, one run_system per bucket, out[j] lane lanes[j]'s
+  // lane l of the last bucket's batch_/res_ (width w) into s
+  void keep_lane_springs(BlockPeaks::Springs& s, const model::System& sys, std::span<const ContactModel> groups,
+                         std::size_t l, std::size_t w) const;
   void run(std::span<const SampledPair> pairs, std::span<const std::size_t> lanes, double ratio, const ContactModel& cm,
            const ContactNumbers& cn, const GroundMotion& gm, const KernelSettings& ks, BlockPeaks& out);
 
@@ -174,6 +198,7 @@ class SystemBlock {
   physics::SystemBatch batch_;
   physics::SystemResult res_;
   TableLayout layout_;
+  bool keep_springs_ = false;
   std::map<std::string, std::size_t> table_elements_;  // element label -> index in the table topology
 };
 
