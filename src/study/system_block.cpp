@@ -102,7 +102,8 @@ void BlockPeaks::set_scaled(std::size_t to, const BlockPeaks& from, std::size_t 
 
 bool SystemBlock::scales_linearly(const BlockPeaks& p, std::size_t k, double ratio, double limit) const {
   constexpr double margin = 1.0 - 1e-9;  // as the pair's (study/run.cpp elastic_at)
-  if (model_.bridge || !offsets_.empty() || p.status[k] != 0 || k >= p.springs.size()) return false;
+  // ratio >= 1: then every scaled peak within the elastic range puts the anchor's there too (the anchor is linear)
+  if (!(ratio >= 1.0) || model_.bridge || !offsets_.empty() || p.status[k] != 0 || k >= p.springs.size()) return false;
   const BlockPeaks::Springs& s = p.springs[k];
   if (s.walls) return false;
   for (std::size_t i = 0; i < s.law.size(); ++i)

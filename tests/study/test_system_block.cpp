@@ -238,5 +238,68 @@ TEST(SystemBlock, OneStoreyIsTheSdof) {
   EXPECT_TRUE(same_bits(got.gap, want.gap) && same_bits(got.kc, want.kc) && same_bits(got.e, want.e));
 }
 
+// The fragility studies' shortcut is the model trait SystemBlock::scales_linearly (each spring's registered
+// stays_elastic at its scaled peak deformation): where it answers true the run on the scaled record gives the
+// anchor's peaks times the ratio (to rounding); a yielding storey far beyond yield, a friction-pendulum bearing (no
+// elastic range), a moat wall, gap offsets and a block run without keep_springs answer false.
+TEST(SystemBlock, ScalesLinearlyIsTheModelTrait) {
+  const std::vector<double> ag = test::two_tone(0.005, 6.0, 2.5, 1.3, 1.5, 2.9);
+  KernelSettings ks;
+  ks.substeps = 4;
+  const ContactModel none = test::contact(ContactLaw::none);
+  std::vector<SampledPair> pairs;
+  for (int i = 0; i < 5; ++i) pairs.push_back(pair(i));
+  const auto check = [&](const StructureModel& model, double ratio, bool want_any_true, const char* what,
+                         double amplitude = 1.0) {
+    SystemBlock block(model);
+    block.keep_springs(true);
+    BlockPeaks a, b;
+    std::vector<double> base(ag), scaled(ag);
+    for (double& x : base) x *= amplitude;
+    for (double& x : scaled) x = ratio * (amplitude * x);
+    block.uncoupled(pairs, none, GroundMotion{0.005, base, 0.0}, ks, a);
+    block.uncoupled(pairs, none, GroundMotion{0.005, scaled, 0.0}, ks, b);
+    int yes = 0;
+    for (std::size_t i = 0; i < pairs.size(); ++i) {
+      if (!block.scales_linearly(a, i, ratio, 10.0)) continue;
+      ++yes;
+      EXPECT_NEAR(b.closing[i], ratio * a.closing[i], 1e-12 * std::abs(b.closing[i])) << what << " lane " << i;
+      EXPECT_NEAR(b.u1[i], ratio * a.u1[i], 1e-12 * b.u1[i]) << what << " lane " << i;
+      EXPECT_NEAR(b.u2[i], ratio * a.u2[i], 1e-12 * b.u2[i]) << what << " lane " << i;
+    }
+    EXPECT_EQ(yes > 0, want_any_true) << what << ": " << yes << " lanes scale";
+    SystemBlock plain(model);  // without keep_springs: nothing is known, nothing scales
+    plain.uncoupled(pairs, none, GroundMotion{0.005, ag, 0.0}, ks, a);
+    EXPECT_FALSE(plain.scales_linearly(a, 0, ratio, 10.0)) << what;
+    block.uncoupled(pairs, none, GroundMotion{0.005, base, 0.0}, ks, a);
+    EXPECT_FALSE(block.scales_linearly(a, 0, 0.99, 10.0)) << what << ": a ratio below 1 (the anchor is the lowest run)";
+  };
+  StructureModel elastic = shear_model(3, 5);
+  for (BuildingModel& b : elastic.buildings) b.hysteresis = Hysteresis::elastic;
+  check(elastic, 2.7, true, "linear storeys");
+  check(shear_model(3, 5), 1.2, true, "bilinear storeys below yield", 0.02);
+  check(shear_model(3, 5), 1.2, false, "bilinear storeys beyond yield", 0.5);
+  check(shear_model(3, 5), 60.0, false, "bilinear storeys, far beyond yield");
+  StructureModel fp = elastic;
+  fp.buildings[0].isolated = true;
+  fp.buildings[0].isolation.bearing = physics::Bearing::friction_pendulum;
+  fp.buildings[0].isolation.radius = 2.0, fp.buildings[0].isolation.mu_slow = 0.05;
+  fp.buildings[0].isolation.mu_fast = 0.05;
+  check(fp, 1.5, false, "friction-pendulum bearing");
+  StructureModel lin = elastic;
+  lin.buildings[0].isolated = true;
+  lin.buildings[0].isolation.bearing = physics::Bearing::linear;
+  lin.buildings[0].isolation.k_eff = 2e6, lin.buildings[0].isolation.zeta_eff = 0.1;
+  check(lin, 1.5, true, "linear bearing");
+  StructureModel moat = lin;
+  moat.buildings[0].moat = true, moat.buildings[0].moat_gap = 5.0;
+  check(moat, 1.5, false, "a moat wall");
+  SystemBlock offsets(elastic, test::contact(ContactLaw::hertzdamp), 0.65, model::ContactLevels::common, {0.01});
+  offsets.keep_springs(true);
+  BlockPeaks a;
+  offsets.uncoupled(pairs, none, GroundMotion{0.005, ag, 0.0}, ks, a);
+  EXPECT_FALSE(offsets.scales_linearly(a, 0, 1.5, 10.0)) << "gap offsets";
+}
+
 }  // namespace
 }  // namespace pounding

@@ -157,7 +157,7 @@ class SystemBlock {
   // Runs keep each lane's springs in BlockPeaks::springs (for scales_linearly).
   void keep_springs(bool on) { keep_springs_ = on; }
   // The model trait behind a fragility study's shortcut (multiple stripes, IDA; issue 25 §1): lane k of `p` (a run
-  // with keep_springs, status ok) answers the record scaled by `ratio` more with exactly its peaks times `ratio` when
+  // with keep_springs, status ok) answers the record scaled by `ratio` >= 1 more with its peaks times `ratio` when
   // it is linear over that range -- every spring stays elastic at ratio x its peak deformation (each law's
   // stays_elastic, physics::spring_stays_elastic; a smooth bearing never does), no moat wall ran with a law, and
   // ratio x the sum over buildings of their largest |u| stays within `limit` (the divergence guard's sum, bounded).
