@@ -252,8 +252,7 @@ void SystemBlock::run(std::span<const SampledPair> pairs, std::span<const std::s
                       const ContactModel& cm, const ContactNumbers& cn, const GroundMotion& gm,
                       const KernelSettings& ks, BlockPeaks& out) {
   const std::size_t n = lanes.size(), nb = body_count(model_);
-  out.resize(n, nb, layout_);
-  if (keep_springs_) out.springs.resize(n);
+  out.resize(n, nb, layout_), out.springs.resize(keep_springs_ ? n : 0);
   keys_.resize(n);
   for (std::size_t j = 0; j < n; ++j) keys_[j] = lane_topology(model_, pairs[lanes[j]]);
   order_.resize(n);
