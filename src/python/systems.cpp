@@ -1,7 +1,10 @@
-// Multi-storey shear buildings side by side on numpy arrays (issue 28: "the same call takes multi-storey
-// buildings"): model::shear_buildings for the topology, physics::set_shear_building / set_contacts per lane (the
-// numbers `pounding simulate --storeys` and the studies use), physics::run_system over threads in batches.
-// One topology per call (storeys and storey heights of each building); the per-lane numbers vary.
+// Multi-storey shear buildings side by side on numpy arrays (issue 28: "the same call takes multi-storey and
+// isolated buildings"): model::shear_buildings for the topology (a row of n >= 2 buildings; buildings 1 and 2 may
+// stand on isolators inside moat walls), physics::set_shear_building / set_isolated_building / set_contacts /
+// set_moat per lane (the numbers `pounding simulate --storeys/--isolation/--buildings` and the studies use),
+// physics::run_system over threads in batches. The isolation and moat inputs are checked by
+// sampling::validate_isolation, the check simulate uses, worded with Python's names. One topology per call
+// (storeys, storey heights, bearings and moats of each building); the per-lane numbers vary.
 #include <algorithm>
 #include <cmath>
 #include <functional>
@@ -15,17 +18,21 @@
 #include "pounding/physics/shear_building.hpp"
 #include "pounding/physics/system_batch.hpp"
 #include "pounding/physics/validate.hpp"
+#include "pounding/sampling/isolation_check.hpp"
+#include "pounding/contact/model.hpp"
+#include "pounding/core/error.hpp"
 
 namespace pounding::python {
 namespace {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
-// The per-lane inputs, by name; absent optional ones are empty.
+// The per-lane inputs, by name; absent optional ones are empty. Per building b (0-based) of the row.
 struct Lanes {
   std::size_t n = 0;
-  std::vector<double> mass[2], stiffness[2], period[2], fy[2], drift[2], cy[2], alpha[2], zeta[2];
+  std::vector<std::vector<double>> mass, stiffness, period, fy, drift, cy, alpha, zeta;
   std::vector<double> gap, kc, e;
+  bool e_given = false;
 };
 
 std::vector<double> lane_array(const py::dict& d, const std::string& key, std::size_t n, bool required,
@@ -48,20 +55,29 @@ void check(const std::vector<double>& v, const std::string& key, double lo, doub
                             std::to_string(hi) + ")");
 }
 
-Lanes lanes_from(const py::dict& d) {
-  static const char* const keys[] = {"floor_mass", "storey_stiffness", "period", "storey_yield", "yield_drift",
+const char* const kBuildingKeys[] = {"floor_mass", "storey_stiffness", "period", "storey_yield", "yield_drift",
                                      "yield_coefficient", "alpha", "zeta"};
+
+void check_names(const py::dict& d, std::size_t nb) {
   for (const auto& kv : d) {
     const auto name = py::str(kv.first).cast<std::string>();
     bool known = name == "gap" || name == "kc" || name == "e";
-    for (const char* k : keys) known = known || name == std::string(k) + "1" || name == std::string(k) + "2";
-    if (!known) throw py::value_error("buildings: unknown key '" + name + "'");
+    for (const char* k : kBuildingKeys)
+      for (std::size_t b = 1; b <= nb; ++b) known = known || name == std::string(k) + std::to_string(b);
+    if (!known)
+      throw py::value_error("buildings: unknown key '" + name + "' (" + std::to_string(nb) +
+                            " buildings: keys end in 1.." + std::to_string(nb) + ")");
   }
+}
+
+Lanes lanes_from(const py::dict& d, std::size_t nb) {
+  check_names(d, nb);
   Lanes L;
   if (!d.contains("gap")) throw py::value_error("buildings: the key 'gap' is missing");
   L.gap = to_vector(d["gap"], "buildings['gap']");
   L.n = L.gap.size();
-  for (int b = 0; b < 2; ++b) {
+  for (auto* v : {&L.mass, &L.stiffness, &L.period, &L.fy, &L.drift, &L.cy, &L.alpha, &L.zeta}) v->resize(nb);
+  for (std::size_t b = 0; b < nb; ++b) {
     const std::string s = std::to_string(b + 1);
     L.mass[b] = lane_array(d, "floor_mass" + s, L.n, true);
     L.stiffness[b] = lane_array(d, "storey_stiffness" + s, L.n, false);
@@ -83,11 +99,124 @@ Lanes lanes_from(const py::dict& d) {
     check(L.zeta[b], "zeta" + s, 0.0, 1.0, false);
   }
   L.kc = lane_array(d, "kc", L.n, false, 0.0);
+  L.e_given = d.contains("e");
   L.e = lane_array(d, "e", L.n, false, 1.0);
   return L;
 }
 
-physics::ShearSpec spec_of(const Lanes& L, int b, std::size_t l, model::StiffnessProfile profile) {
+// ---- isolation and moats (buildings 1 and 2, as simulate) ----
+
+// One building's isolation= and moat= dicts: every number a scalar (every lane) or one value per lane.
+struct BaseInputs {
+  bool isolated = false, moat = false;
+  std::string bearing, moat_law = "hertzdamp";
+  std::vector<std::pair<std::string, std::vector<double>>> numbers;  // "k_eff", ..., "moat.gap", ...
+  const std::vector<double>* find(std::string_view key) const {
+    for (const auto& [k, v] : numbers)
+      if (k == key) return &v;
+    return nullptr;
+  }
+};
+
+const char* const kIsolationKeys[] = {"base_mass", "k_eff", "zeta_eff", "k1", "k2", "qd", "radius", "mu_slow",
+                                      "mu_fast", "rate", "u_y", "a", "beta", "gamma", "eta"};
+const char* const kMoatKeys[] = {"gap", "stiffness", "e"};
+
+std::vector<double> per_lane(const py::handle& v, const std::string& what, std::size_t n) {
+  if (py::isinstance<py::float_>(v) || py::isinstance<py::int_>(v)) return std::vector<double>(n, v.cast<double>());
+  auto a = to_vector(v, what);
+  if (a.size() == 1) return std::vector<double>(n, a[0]);
+  if (a.size() != n) throw py::value_error(what + ": a number or " + std::to_string(n) + " values (one per pair)");
+  return a;
+}
+
+void read_dict(const py::handle& h, const std::string& where, const char* const* keys, std::size_t nkeys,
+               const std::string& prefix, std::size_t n, BaseInputs& out, std::string* text_key_value,
+               const char* text_key) {
+  if (!py::isinstance<py::dict>(h)) throw py::value_error(where + ": a dict or None is needed");
+  std::string allowed = text_key;
+  for (std::size_t i = 0; i < nkeys; ++i) allowed += std::string(", ") + keys[i];
+  for (const auto& kv : py::reinterpret_borrow<py::dict>(h)) {
+    const auto name = py::str(kv.first).cast<std::string>();
+    if (name == text_key) {
+      *text_key_value = py::str(kv.second).cast<std::string>();
+      continue;
+    }
+    if (std::find_if(keys, keys + nkeys, [&](const char* k) { return name == k; }) == keys + nkeys)
+      throw unknown_key_error(name, where, where, allowed, "key");
+    out.numbers.emplace_back(prefix + name, per_lane(kv.second, where + "['" + name + "']", n));
+  }
+}
+
+std::vector<BaseInputs> base_inputs(const py::list& isolation, const py::list& moat, std::size_t nb, std::size_t n) {
+  if (isolation.size() != nb || moat.size() != nb)
+    throw py::value_error("isolation, moat: one entry (None or a dict) per building");
+  std::vector<BaseInputs> out(nb);
+  for (std::size_t b = 0; b < nb; ++b) {
+    const std::string k = "[" + std::to_string(b) + "]";
+    if ((!isolation[b].is_none() || !moat[b].is_none()) && b >= 2)
+      throw InputError("isolation or a moat for building " + std::to_string(b + 1), "isolation" + k,
+                       "isolate buildings 1 and 2 only (as pounding simulate), or give None for building " +
+                           std::to_string(b + 1));
+    if (!isolation[b].is_none()) {
+      std::string bearing;
+      read_dict(isolation[b], "isolation" + k, kIsolationKeys, std::size(kIsolationKeys), "", n, out[b], &bearing,
+                "bearing");
+      out[b].bearing = bearing, out[b].isolated = !bearing.empty();
+      if (bearing.empty() && out[b].numbers.empty()) out[b].isolated = false;
+    }
+    if (!moat[b].is_none()) {
+      read_dict(moat[b], "moat" + k, kMoatKeys, std::size(kMoatKeys), "moat.", n, out[b], &out[b].moat_law, "law");
+      out[b].moat = true;
+    }
+  }
+  return out;
+}
+
+// Lane l's inputs of building b as sampling::IsolationInput (the flags say which were given).
+sampling::IsolationInput lane_input(const BaseInputs& in, std::size_t l, bool moat_dict) {
+  sampling::IsolationInput s;
+  s.bearing = in.bearing, s.moat_law = in.moat_law;
+  auto take = [&](const char* key, double& x) {
+    const std::vector<double>* v = in.find(key);
+    if (v != nullptr) x = (*v)[l];
+    return v != nullptr;
+  };
+  double eta = s.bw_eta;
+  s.base_mass_given = take("base_mass", s.base_mass);
+  s.k_eff_given = take("k_eff", s.k_eff), s.zeta_given = take("zeta_eff", s.zeta_eff);
+  s.lrb_given = take("k1", s.k1) | take("k2", s.k2) | take("qd", s.qd);
+  s.mu_fast_given = take("mu_fast", s.mu_fast);
+  s.fps_given = take("radius", s.radius) | take("mu_slow", s.mu_slow) | s.mu_fast_given | take("rate", s.rate) |
+                take("u_y", s.uy);
+  s.bw_given = take("a", s.bw_a) | take("beta", s.bw_beta) | take("gamma", s.bw_gamma) | take("eta", eta);
+  if (!(eta == std::floor(eta) && std::abs(eta) < 1e6)) eta = -1;  // not an integer: out of range
+  s.bw_eta = static_cast<int>(eta);
+  s.moat_given = take("moat.gap", s.moat_gap);
+  s.moat_stiffness_given = take("moat.stiffness", s.moat_stiffness), s.moat_e_given = take("moat.e", s.moat_e);
+  s.moat_options_given = moat_dict;  // a moat dict without its gap: "moat options without a moat"
+  return s;
+}
+
+// Python's names for sampling::validate_isolation: isolation[b]['key'] (with [lane] for a per-lane array).
+std::string python_name(const BaseInputs& in, std::size_t b, std::size_t l, std::string_view key) {
+  const std::string k = "[" + std::to_string(b) + "]";
+  static const std::pair<std::string_view, std::string_view> groups[] = {
+      {"friction-pendulum keys", "radius/mu_slow/mu_fast/rate/u_y"}, {"bouc-wen keys", "a/beta/gamma/eta"},
+      {"non-pendulum keys", "k_eff/zeta_eff/k1/k2/qd"}, {"lead-rubber keys", "k1/k2/qd"},
+      {"linear keys", "k_eff/zeta_eff"}};
+  for (const auto& [name, text] : groups)
+    if (name == key) return "isolation" + k + " keys " + std::string(text);
+  if (key == "building") return "building " + std::to_string(b + 1);
+  const bool moat = key.substr(0, 5) == "moat.";
+  const std::string base = moat ? "moat" + k + "['" + std::string(key.substr(5)) + "']"
+                                : "isolation" + k + "['" + std::string(key) + "']";
+  const std::vector<double>* v = in.find(key);
+  const bool varies = v != nullptr && std::any_of(v->begin(), v->end(), [&](double x) { return !(x == (*v)[0]); });
+  return varies ? base + "[" + std::to_string(l) + "]" : base;
+}
+
+physics::ShearSpec spec_of(const Lanes& L, std::size_t b, std::size_t l, model::StiffnessProfile profile) {
   physics::ShearSpec s;
   s.floor_mass = {L.mass[b][l]};
   if (!L.stiffness[b].empty()) s.storey_stiffness = {L.stiffness[b][l]};
@@ -156,40 +285,89 @@ py::array_t<T> columns(const std::vector<T>& v, std::size_t width, const std::ve
   return a;
 }
 
+// An isolated building's base: the bearing's peak and final displacement, the isolator's peak force, the impacts
+// and peak force at its moat walls (as simulate's peak_bearing_u{b}, ..., moat_peak_force{b}); NaN / -1 where the
+// building has no isolator / no moat.
+void base_columns(const model::System& sys, const physics::SystemResult& r, const model::Body& body,
+                  const std::string& s, py::dict& d) {
+  const std::size_t W = r.width;
+  py::array_t<double> pu(W), fu(W), pf(W), mf(W);
+  py::array_t<std::int64_t> mi(W);
+  std::vector<int> walls;
+  if (body.isolated)
+    for (int e : sys.elements_at(body.dofs[0])) {
+      const model::ContactElement& ce = sys.contacts()[static_cast<std::size_t>(e)];
+      if (ce.left.kind == model::SideKind::wall || ce.right.kind == model::SideKind::wall) walls.push_back(e);
+    }
+  for (std::size_t l = 0; l < W; ++l) {
+    using physics::SystemBatch;
+    const int base = body.dofs[0];
+    pu.mutable_at(l) = body.isolated ? r.peak_u[SystemBatch::at(base, l, W)] : kNaN;
+    fu.mutable_at(l) = body.isolated ? r.final_u[SystemBatch::at(base, l, W)] : kNaN;
+    pf.mutable_at(l) = body.isolated ? r.peak_spring_force[SystemBatch::at(sys.spring_below(base), l, W)] : kNaN;
+    std::int64_t n = walls.empty() ? -1 : 0;
+    double f = walls.empty() ? kNaN : 0.0;
+    for (int e : walls) {
+      const std::int32_t c = r.impact_count[SystemBatch::at(e, l, W)];
+      n = n < 0 || c < 0 ? -1 : n + c;
+      f = std::max(f, r.peak_force[SystemBatch::at(e, l, W)]);
+    }
+    mi.mutable_at(l) = n, mf.mutable_at(l) = f;
+  }
+  d[("peak_bearing_u" + s).c_str()] = pu, d[("final_bearing_u" + s).c_str()] = fu;
+  d[("peak_bearing_force" + s).c_str()] = pf, d[("moat_impacts" + s).c_str()] = mi;
+  d[("moat_peak_force" + s).c_str()] = mf;
+}
+
+void building_columns(const model::System& sys, const physics::SystemResult& r, std::size_t b, py::dict& d) {
+  const std::size_t W = r.width;
+  const auto& body = sys.bodies()[b];
+  const std::string s = std::to_string(b + 1);
+  std::vector<int> storeys;  // the body's storey springs, bottom first (an isolator is not a storey)
+  for (std::size_t i = 0; i < sys.springs().size(); ++i)
+    if (sys.springs()[i].body == static_cast<int>(b) && sys.springs()[i].role == model::SpringRole::storey)
+      storeys.push_back(static_cast<int>(i));
+  std::sort(storeys.begin(), storeys.end(),
+            [&](int x, int y) { return sys.springs()[x].storey < sys.springs()[y].storey; });
+  const std::vector<int> floors(body.dofs.begin() + (body.isolated ? 1 : 0), body.dofs.end());  // not the base
+  d[("peak_u" + s).c_str()] = columns(r.peak_u, W, floors);
+  d[("peak_acc" + s).c_str()] = columns(r.peak_acc, W, floors);
+  d[("final_u" + s).c_str()] = columns(r.final_u, W, floors);
+  d[("peak_drift" + s).c_str()] = columns(r.peak_drift, W, storeys);
+  d[("peak_shear" + s).c_str()] = columns(r.peak_spring_force, W, storeys);
+  if (b < 2) base_columns(sys, r, body, s, d);
+}
+
 py::dict result_dict(const model::System& sys, const physics::SystemResult& r, bool contact) {
   py::dict d;
   const std::size_t W = r.width;
-  for (std::size_t b = 0; b < 2; ++b) {
-    const auto& body = sys.bodies()[b];
-    const std::string s = std::to_string(b + 1);
-    std::vector<int> storeys;  // the body's storey springs, bottom first
-    for (std::size_t i = 0; i < sys.springs().size(); ++i)
-      if (sys.springs()[i].body == static_cast<int>(b) && sys.springs()[i].role == model::SpringRole::storey)
-        storeys.push_back(static_cast<int>(i));
-    std::sort(storeys.begin(), storeys.end(),
-              [&](int x, int y) { return sys.springs()[x].storey < sys.springs()[y].storey; });
-    d[("peak_u" + s).c_str()] = columns(r.peak_u, W, body.dofs);
-    d[("peak_acc" + s).c_str()] = columns(r.peak_acc, W, body.dofs);
-    d[("final_u" + s).c_str()] = columns(r.final_u, W, body.dofs);
-    d[("peak_drift" + s).c_str()] = columns(r.peak_drift, W, storeys);
-    d[("peak_shear" + s).c_str()] = columns(r.peak_spring_force, W, storeys);
-  }
+  for (std::size_t b = 0; b < sys.bodies().size(); ++b) building_columns(sys, r, b, d);
   std::vector<int> elems(sys.contacts().size());
   py::list labels;
   for (std::size_t e = 0; e < elems.size(); ++e) elems[e] = static_cast<int>(e), labels.append(sys.contacts()[e].label);
   d["element_labels"] = labels;
   d["peak_closing"] = columns(r.peak_closing, W, elems), d["t_peak_closing"] = columns(r.t_peak_closing, W, elems);
+  // with contact="none" the pounding elements' contact values were not computed (a moat's were: its own law)
+  std::vector<bool> blank(elems.size());
+  for (std::size_t e = 0; e < elems.size(); ++e)
+    blank[e] = !contact && sys.groups()[static_cast<std::size_t>(sys.contacts()[e].group)].study_gap;
   const char* contact_keys[] = {"t_first_impact", "peak_force", "peak_penetration", "contact_energy", "contact_time",
                                 "h_omega_contact"};
   const std::vector<double>* contact_rows[] = {&r.t_first_impact, &r.peak_force, &r.peak_penetration,
                                                &r.contact_energy, &r.contact_time, &r.h_omega_contact};
   for (int i = 0; i < 6; ++i) {
     auto a = columns(*contact_rows[i], W, elems);
-    if (!contact) std::fill(a.mutable_data(), a.mutable_data() + a.size(), kNaN);  // not computed
+    auto m = a.mutable_unchecked<2>();
+    for (py::ssize_t l = 0; l < m.shape(0); ++l)
+      for (std::size_t e = 0; e < elems.size(); ++e)
+        if (blank[e]) m(l, static_cast<py::ssize_t>(e)) = kNaN;
     d[contact_keys[i]] = a;
   }
   auto counts = columns(r.impact_count, W, elems);
-  if (!contact) std::fill(counts.mutable_data(), counts.mutable_data() + counts.size(), -1);
+  auto c = counts.mutable_unchecked<2>();
+  for (py::ssize_t l = 0; l < c.shape(0); ++l)
+    for (std::size_t e = 0; e < elems.size(); ++e)
+      if (blank[e]) c(l, static_cast<py::ssize_t>(e)) = -1;
   d["impact_count"] = counts;
   d["status"] = to_numpy(r.status);
   d["e_input"] = to_numpy(r.e_input), d["e_kinetic"] = to_numpy(r.e_kinetic), d["e_strain"] = to_numpy(r.e_strain);
@@ -198,29 +376,96 @@ py::dict result_dict(const model::System& sys, const physics::SystemResult& r, b
 }
 
 struct TopologyArgs {
-  int storeys1, storeys2;
-  double height1, height2, level_tolerance;
+  std::vector<int> storeys;
+  std::vector<double> heights;
+  double level_tolerance;
   std::string levels, profile;
   std::vector<double> modal_zeta;  // classical modal damping of the multi-storey buildings (empty: Rayleigh)
 };
 
-py::dict analyze_storeys_py(const py::dict& buildings, const Array& ag, double dt, const TopologyArgs& t,
-                            const std::string& stepper, const std::string& contact, const std::string& damping,
-                            double n, int substeps, bool energy, double duration, double u_limit, std::size_t width,
-                            int threads) {
-  const Lanes L = lanes_from(buildings);
-  if (ag.ndim() != 1 || ag.size() < 2) throw py::value_error("ag: a 1-D array of at least 2 samples (m/s^2) is needed");
-  if (t.storeys1 < 1 || t.storeys2 < 1 || t.storeys1 > 100 || t.storeys2 > 100)
-    throw py::value_error("storeys: 1 to 100 storeys per building");
+// The moat walls' equivalent-sphere material (simulate's --density, --E, --nu) for a moat without a stiffness.
+struct MoatMaterial {
+  double density, youngs, poisson;
+};
+
+std::vector<model::StickTopology> sticks_of(const TopologyArgs& t, const std::vector<BaseInputs>& base) {
+  const std::size_t nb = t.storeys.size();
+  if (nb < 2 || nb > 16) throw py::value_error("storeys: one count per building, 2 to 16 buildings");
+  if (t.heights.size() != nb) throw py::value_error("storey_height: one height per building (or one for all)");
   if (t.levels != "common" && t.levels != "top") throw py::value_error("contact_levels: 'common' or 'top'");
   if (t.profile != "uniform" && t.profile != "shear") throw py::value_error("stiffness_profile: 'uniform' or 'shear'");
   for (double z : t.modal_zeta)
     if (!(z >= 0.0 && z <= 0.5)) throw py::value_error("modal_zeta: every ratio in [0, 0.5]");
-  std::vector<model::StickTopology> sticks(2);
-  sticks[0].storeys = t.storeys1, sticks[0].storey_heights = {t.height1};
-  sticks[1].storeys = t.storeys2, sticks[1].storey_heights = {t.height2};
-  for (auto& st : sticks)
-    if (!t.modal_zeta.empty() && st.storeys > 1) st.damping = model::DampingForm::dense;
+  std::vector<model::StickTopology> sticks(nb);
+  for (std::size_t b = 0; b < nb; ++b) {
+    if (t.storeys[b] < 1 || t.storeys[b] > 100) throw py::value_error("storeys: 1 to 100 storeys per building");
+    if (!(t.heights[b] >= 0.01 && t.heights[b] <= 100.0))
+      throw py::value_error("storey_height: every storey height in [0.01, 100] m");
+    sticks[b].storeys = t.storeys[b], sticks[b].storey_heights = {t.heights[b]};
+    if (!t.modal_zeta.empty() && sticks[b].storeys > 1) sticks[b].damping = model::DampingForm::dense;
+    if (!base[b].isolated) continue;
+    if (!t.modal_zeta.empty())
+      throw InputError("modal_zeta with isolation[" + std::to_string(b) + "]", "modal_zeta",
+                       "use Rayleigh damping (zeta" + std::to_string(b + 1) + ") for the isolated building " +
+                           std::to_string(b + 1) + " (its superstructure's modal damping is not supported yet), or "
+                           "drop isolation[" + std::to_string(b) + "]");
+    sticks[b].isolated = true, sticks[b].moat = base[b].moat;
+    sticks[b].isolator_law = physics::isolator_law(sampling::bearing_of(base[b].bearing));
+  }
+  return sticks;
+}
+
+// Every lane's isolation and moat inputs through the one check (sampling::validate_isolation), before any work.
+void validate_bases(const std::vector<BaseInputs>& base, std::size_t n, bool e_given) {
+  for (std::size_t b = 0; b < base.size(); ++b) {
+    for (std::size_t l = 0; l < n; ++l) {
+      sampling::validate_isolation(lane_input(base[b], l, base[b].moat),
+                                   [&](std::string_view key) { return python_name(base[b], b, l, key); });
+    }
+    if (!base[b].moat || e_given || base[b].find("moat.e") != nullptr) continue;
+    const ContactLaw law = parse_contact_law(base[b].moat_law);
+    if (law == ContactLaw::hertzdamp || law == ContactLaw::kelvin || law == ContactLaw::jankowski)
+      throw InputError("the moat's " + base[b].moat_law + " law needs a coefficient of restitution",
+                       "moat[" + std::to_string(b) + "]['e']",
+                       "give moat[" + std::to_string(b) + "]['e'] (or e= / buildings['e'] for every contact)");
+  }
+}
+
+// Lane l's buildings, pounding contacts and moat walls.
+void set_lane(physics::SystemBatch& all, std::size_t l, const Lanes& L, const std::vector<BaseInputs>& base,
+              const std::vector<model::StickTopology>& sticks, model::StiffnessProfile profile,
+              const std::vector<double>& modal_zeta, const MoatMaterial& mat) {
+  for (std::size_t bi = 0; bi < sticks.size(); ++bi) {
+    physics::ShearSpec s = spec_of(L, bi, l, profile);
+    if (sticks[bi].damping == model::DampingForm::dense) s.modal = true, s.modal_zeta = modal_zeta;
+    if (sticks[bi].isolated)
+      physics::set_isolated_building(all, l, static_cast<int>(bi), s,
+                                     sampling::isolation_spec(lane_input(base[bi], l, true), s.floor_mass[0]));
+    else
+      physics::set_shear_building(all, l, static_cast<int>(bi), s);
+  }
+  physics::set_contacts(all, l, L.gap[l], L.kc[l], L.e[l]);
+  for (std::size_t bi = 0; bi < sticks.size(); ++bi) {
+    if (!sticks[bi].moat) continue;
+    const sampling::IsolationInput in = lane_input(base[bi], l, true);
+    const int b_dof = all.system->bodies()[bi].dofs[0];
+    const double m_base = all.m[physics::SystemBatch::at(b_dof, l, all.width)];
+    const double kc = in.moat_stiffness > 0 ? in.moat_stiffness  // 0 or not given: the default, as simulate's
+                                            : hertz_stiffness_spheres(m_base, m_base, mat.density, mat.youngs, mat.poisson);
+    physics::set_moat(all, l, static_cast<int>(bi), in.moat_gap, in.moat_gap, kc, in.moat_e_given ? in.moat_e : L.e[l]);
+  }
+}
+
+py::dict analyze_storeys_py(const py::dict& buildings, const Array& ag, double dt, const TopologyArgs& t,
+                            const std::string& stepper, const std::string& contact, const std::string& damping,
+                            double n, int substeps, bool energy, double duration, double u_limit, std::size_t width,
+                            int threads, const py::list& isolation, const py::list& moat, const MoatMaterial& mat) {
+  const std::size_t nb = t.storeys.size();
+  const Lanes L = lanes_from(buildings, nb);
+  if (ag.ndim() != 1 || ag.size() < 2) throw py::value_error("ag: a 1-D array of at least 2 samples (m/s^2) is needed");
+  const std::vector<BaseInputs> base = base_inputs(isolation, moat, nb, L.n);
+  validate_bases(base, L.n, L.e_given);
+  const std::vector<model::StickTopology> sticks = sticks_of(t, base);
   const model::System sys = model::shear_buildings(
       sticks, t.level_tolerance, t.levels == "top" ? model::ContactLevels::top : model::ContactLevels::common);
   const auto profile = t.profile == "shear" ? model::StiffnessProfile::shear : model::StiffnessProfile::uniform;
@@ -230,21 +475,17 @@ py::dict analyze_storeys_py(const py::dict& buildings, const Array& ag, double d
   ks.stepper = parse_stepper(stepper), ks.substeps = substeps, ks.energy = energy, ks.displacement_limit = u_limit;
   const std::vector<double> acc(ag.data(), ag.data() + ag.size());
   const GroundMotion gm{dt, acc, duration};
-  const std::vector<ContactModel> groups(sys.groups().size(), cm);
+  std::vector<ContactModel> groups{cm};  // group 0 the pounding, then one per moat (left to right), as simulate
+  for (std::size_t b = 0; b < nb; ++b)
+    if (sticks[b].moat) groups.push_back(cm), groups.back().law = parse_contact_law(base[b].moat_law);
+  if (groups.size() != sys.groups().size()) throw std::logic_error("analyze_storeys: contact groups out of step");
   if (width < 1) throw py::value_error("batch: at least 1 pair per batch is needed");
   physics::SystemBatch all;
   all.resize(sys, L.n);
   const std::size_t batches = (L.n + width - 1) / width;
   run_parallel(batches, threads, [&](std::size_t b) {  // the lanes' numbers (modes, Rayleigh) on every core
-    for (std::size_t l = b * width; l < std::min(L.n, (b + 1) * width); ++l) {
-      for (int bi = 0; bi < 2; ++bi) {
-        physics::ShearSpec s = spec_of(L, bi, l, profile);
-        if (sticks[static_cast<std::size_t>(bi)].damping == model::DampingForm::dense)
-          s.modal = true, s.modal_zeta = t.modal_zeta;
-        physics::set_shear_building(all, l, bi, s);
-      }
-      physics::set_contacts(all, l, L.gap[l], L.kc[l], L.e[l]);
-    }
+    for (std::size_t l = b * width; l < std::min(L.n, (b + 1) * width); ++l)
+      set_lane(all, l, L, base, sticks, profile, t.modal_zeta, mat);
   });
   physics::throw_first(physics::validate(all, groups, gm, ks));  // every pair before any run, numbered as given
   physics::SystemResult out;
@@ -262,11 +503,13 @@ py::dict analyze_storeys_py(const py::dict& buildings, const Array& ag, double d
 
 void bind_systems(py::module_& m) {
   py::class_<TopologyArgs>(m, "_Topology")
-      .def(py::init<int, int, double, double, double, std::string, std::string, std::vector<double>>());
+      .def(py::init<std::vector<int>, std::vector<double>, double, std::string, std::string, std::vector<double>>());
+  py::class_<MoatMaterial>(m, "_MoatMaterial").def(py::init<double, double, double>());
   m.def("analyze_storeys", &analyze_storeys_py, py::arg("buildings"), py::arg("ag"), py::arg("dt"),
         py::arg("topology"), py::arg("stepper"), py::arg("contact"), py::arg("damping"), py::arg("n"),
         py::arg("substeps"), py::arg("energy"), py::arg("duration"), py::arg("displacement_limit"), py::arg("batch"),
-        py::arg("threads"), "shear buildings through run_system (use pounding.analyze_storeys)");
+        py::arg("threads"), py::arg("isolation"), py::arg("moat"), py::arg("moat_material"),
+        "shear buildings through run_system (use pounding.analyze_storeys)");
 }
 
 }  // namespace pounding::python

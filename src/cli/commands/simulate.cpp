@@ -33,6 +33,7 @@
 #include "pounding/physics/validate.hpp"
 #include "pounding/motion/records.hpp"
 #include "pounding/report/summary.hpp"
+#include "pounding/sampling/isolation_check.hpp"
 #include "pounding/testing/workloads.hpp"
 
 namespace pounding::cli {
@@ -76,22 +77,7 @@ struct SimulateOptions {
   Storeys b[2];
   // base isolation (issue 25 §2): bearing, base mass, bearing numbers, moat walls; any of these makes building i
   // an isolated shear building
-  struct Isolation {
-    std::string bearing;  // "", "linear", "lead-rubber", "friction-pendulum", "bouc-wen"
-    double base_mass = 0, k_eff = 0, zeta_eff = 0.1, k1 = 0, k2 = 0, qd = 0;
-    double radius = 0, mu_slow = 0, mu_fast = 0, rate = 0, uy = 2.5e-4;  // friction pendulum
-    double bw_a = 1.0, bw_beta = 0.5, bw_gamma = 0.5;                    // Bouc-Wen (with k1, k2, qd)
-    int bw_eta = 1;
-    bool fps_given = false, mu_fast_given = false, bw_given = false;
-    double moat_gap = 0, moat_stiffness = 0, moat_e = 0;
-    std::string moat_law = "hertzdamp";
-    bool base_mass_given = false, k_eff_given = false, zeta_given = false, lrb_given = false, moat_given = false;
-    bool moat_options_given = false, moat_stiffness_given = false, moat_e_given = false;
-    bool any() const {
-      return !bearing.empty() || base_mass_given || k_eff_given || zeta_given || lrb_given || moat_given ||
-             moat_options_given || fps_given || bw_given;
-    }
-  };
+  using Isolation = sampling::IsolationInput;  // sampling/isolation_check.hpp: one check for simulate and Python
   Isolation iso[2];
   // which floors pound (issue 25 §3): common levels or the lower roof only, the level tolerance, gap offsets per level
   std::string contact_levels = "common";
@@ -298,105 +284,34 @@ PairParams pair_params(const SimulateOptions& o, const ContactModel& cm, const S
 // ---- multi-storey buildings (issue 25 §4; docs/architecture.md §2.7.3) ----
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-physics::Bearing bearing_of(const std::string& name) {
-  if (name == "linear") return physics::Bearing::linear;
-  if (name == "friction-pendulum") return physics::Bearing::friction_pendulum;
-  if (name == "bouc-wen") return physics::Bearing::bouc_wen;
-  return physics::Bearing::lead_rubber;
-}
+using sampling::bearing_of;
 
-// An isolation or moat option checked against the range of the study key that means the same
-// (src/config/study_keys.cpp, sections "isolation" and "moat"): simulate and a study accept the same bearings.
-void require_key_range(double value, std::string_view section, std::string_view key, const std::string& option,
-                       std::string_view note = "") {
-  const config::StudyKey* d = config::find_study_key(section, key);
-  if (d == nullptr || std::isnan(d->lo) || std::isnan(d->hi))
-    throw std::logic_error(fmt::format("study key {}.{} has no numeric range", section, key));
-  require_range(value, d->lo, d->hi, option,
-                fmt::format("{}{}{} ({}as {} in a study's {} = {{...}})", d->range, d->units.empty() ? "" : " ",
-                            d->units, note, key, section));
-}
-
-// Building i's isolation options (issue 25 §2), checked before any work: a bearing named for any of them, its
-// numbers present and physical (SB §2: a massless base is singular; k2 < k1), the moat's gap, law, stiffness and e.
+// Building i's isolation options (issue 25 §2), checked before any work by sampling::validate_isolation, named as
+// the options are.
 void validate_isolation(const SimulateOptions& o, int i) {
-  const SimulateOptions::Isolation& s = o.iso[i];
   const std::string k = std::to_string(i + 1);
-  if (!s.any()) return;
-  if (s.bearing.empty())
-    throw InputError("isolation options without a bearing", "--isolation" + k,
-                     "give --isolation" + k + " linear|lead-rubber|friction-pendulum|bouc-wen, or drop the bearing/moat "
-                     "options of building " + k);
-  if (s.bearing != "linear" && s.bearing != "lead-rubber" && s.bearing != "friction-pendulum" && s.bearing != "bouc-wen")
-    throw unknown_key_error(s.bearing, "--isolation" + k, "--isolation" + k,
-                            "linear, lead-rubber, friction-pendulum, bouc-wen", "argument");
-  if (s.fps_given && s.bearing != "friction-pendulum")
-    throw InputError("--bearing-radius/mu-slow/mu-fast/rate/uy describe a friction pendulum and --isolation" + k +
-                         " is " + s.bearing, "--bearing-radius" + k,
-                     "give --isolation" + k + " friction-pendulum, or drop those options");
-  if (s.bw_given && s.bearing != "bouc-wen")
-    throw InputError("--bearing-a/beta/gamma/eta describe a Bouc-Wen bearing and --isolation" + k + " is " + s.bearing,
-                     "--bearing-beta" + k, "give --isolation" + k + " bouc-wen, or drop those options");
-  if (s.base_mass_given) require_key_range(s.base_mass, "isolation", "base_mass", "--base-mass" + k);
-  if (s.bearing == "friction-pendulum") {
-    if (s.k_eff_given || s.zeta_given || s.lrb_given)
-      throw InputError("--bearing-keff/zeta/k1/k2/qd describe other bearings and --isolation" + k + " is friction-pendulum",
-                       s.lrb_given ? "--bearing-k1-" + k : "--bearing-keff" + k,
-                       "give --bearing-radius" + k + " and --bearing-mu-slow" + k + " (W is the building's weight)");
-    require_key_range(s.radius, "isolation", "radius", "--bearing-radius" + k, "required, T = 2 pi sqrt(R/g); ");
-    require_key_range(s.mu_slow, "isolation", "mu_slow", "--bearing-mu-slow" + k, "required; ");
-    if (s.mu_fast_given) require_key_range(s.mu_fast, "isolation", "mu_fast", "--bearing-mu-fast" + k);
-    require_key_range(s.rate, "isolation", "rate", "--bearing-rate" + k);
-    if (s.mu_fast_given && s.mu_fast != s.mu_slow && !(s.rate > 0))
-      throw InputError("--bearing-mu-fast" + k + " differs from --bearing-mu-slow" + k + " but --bearing-rate" + k +
-                           " is 0, so mu(v) would stay mu_slow", "--bearing-rate" + k,
-                       "give the rate a of mu(v) = mu_fast - (mu_fast - mu_slow) exp(-a |v|) (s/m, e.g. 20)");
-    require_key_range(s.uy, "isolation", "u_y", "--bearing-uy" + k, "the smoothing's yield displacement; ");
-  } else if (s.bearing == "linear") {
-    if (s.lrb_given)
-      throw InputError("--bearing-k1/k2/qd describe a lead-rubber bearing and --isolation" + k + " is linear",
-                       "--bearing-k1-" + k, "give --bearing-keff" + k + " (and --bearing-zeta" + k + ") for linear");
-    if (!s.k_eff_given)
-      throw InputError("a linear bearing needs its effective stiffness", "--bearing-keff" + k,
-                       "give --bearing-keff" + k + " in N/m (e.g. 4 pi^2 M_total / T_iso^2)");
-    require_key_range(s.k_eff, "isolation", "k_eff", "--bearing-keff" + k);
-    require_key_range(s.zeta_eff, "isolation", "zeta_eff", "--bearing-zeta" + k);
-  } else {
-    if (s.k_eff_given || s.zeta_given)
-      throw InputError("--bearing-keff/--bearing-zeta describe a linear bearing and --isolation" + k + " is " + s.bearing,
-                       s.k_eff_given ? "--bearing-keff" + k : "--bearing-zeta" + k,
-                       "give --bearing-k1-" + k + ", --bearing-k2-" + k + " and --bearing-qd" + k);
-    require_key_range(s.k1, "isolation", "k1", "--bearing-k1-" + k, "required; ");
-    require_key_range(s.k2, "isolation", "k2", "--bearing-k2-" + k);
-    if (!(s.k2 < s.k1))
-      throw InputError(fmt::format("--bearing-k2-{} = {} is not below --bearing-k1-{} = {}", k, s.k2, k, s.k1),
-                       "--bearing-k2-" + k, "give the post-yield stiffness k2 < k1 (typically k1 / 10)");
-    require_key_range(s.qd, "isolation", "qd", "--bearing-qd" + k, "required; ");
-    if (s.bearing == "bouc-wen") {
-      require_key_range(s.bw_a, "isolation", "a", "--bearing-a" + k);
-      require_key_range(s.bw_beta, "isolation", "beta", "--bearing-beta" + k);
-      if (!(std::abs(s.bw_gamma) <= s.bw_beta))
-        throw InputError(fmt::format("--bearing-gamma{} = {} is outside [-beta, beta] = [{}, {}]", k, s.bw_gamma,
-                                     -s.bw_beta, s.bw_beta),
-                         "--bearing-gamma" + k,
-                         "give |gamma| <= beta (the stable, passive Bouc-Wen class; beta is the |du| term's coefficient)");
-      if (s.bw_eta < 1 || s.bw_eta > model::smooth_max_eta)
-        throw InputError(fmt::format("--bearing-eta{} = {} is out of range", k, s.bw_eta), "--bearing-eta" + k,
-                         "give an integer exponent in [1, 8]");
-    }
-  }
-  if (s.moat_options_given && !s.moat_given)
-    throw InputError("moat options without a moat", "--moat-gap" + k, "give --moat-gap" + k + " (m)");
-  if (!s.moat_given) return;
-  require_key_range(s.moat_gap, "moat", "gap", "--moat-gap" + k);
-  const ContactLaw law = parse_contact_law(s.moat_law);
-  if (law == ContactLaw::stereomechanical || law == ContactLaw::none)
-    throw InputError("--moat-law" + k + " = " + s.moat_law + " cannot act at a moat wall", "--moat-law" + k,
-                     "give a force law (linear, kelvin, hertz, hertzdamp, jankowski)");
-  if (s.moat_stiffness_given) require_key_range(s.moat_stiffness, "moat", "stiffness", "--moat-stiffness" + k);
-  if (!(s.moat_stiffness > 0) && (law == ContactLaw::linear || law == ContactLaw::kelvin))
-    require_positive(0.0, "--moat-stiffness" + k + " (linear/Kelvin stiffness, N/m)");
-  if (s.moat_e_given) require_key_range(s.moat_e, "moat", "e", "--moat-e" + k);
+  sampling::validate_isolation(o.iso[i], [&k](std::string_view key) -> std::string {
+    static const std::pair<std::string_view, std::string_view> options[] = {
+        {"bearing", "--isolation"},    {"base_mass", "--base-mass"},     {"k_eff", "--bearing-keff"},
+        {"zeta_eff", "--bearing-zeta"}, {"k1", "--bearing-k1-"},          {"k2", "--bearing-k2-"},
+        {"qd", "--bearing-qd"},         {"radius", "--bearing-radius"},   {"mu_slow", "--bearing-mu-slow"},
+        {"mu_fast", "--bearing-mu-fast"}, {"rate", "--bearing-rate"},     {"u_y", "--bearing-uy"},
+        {"a", "--bearing-a"},           {"beta", "--bearing-beta"},       {"gamma", "--bearing-gamma"},
+        {"eta", "--bearing-eta"},       {"moat.gap", "--moat-gap"},       {"moat.law", "--moat-law"},
+        {"moat.stiffness", "--moat-stiffness"}, {"moat.e", "--moat-e"}};
+    static const std::pair<std::string_view, std::string_view> groups[] = {
+        {"friction-pendulum keys", "--bearing-radius/mu-slow/mu-fast/rate/uy"},
+        {"bouc-wen keys", "--bearing-a/beta/gamma/eta"},
+        {"non-pendulum keys", "--bearing-keff/zeta/k1/k2/qd"},
+        {"lead-rubber keys", "--bearing-k1/k2/qd"},
+        {"linear keys", "--bearing-keff/--bearing-zeta"}};
+    for (const auto& [name, option] : options)
+      if (name == key) return std::string(option) + k;
+    for (const auto& [name, text] : groups)
+      if (name == key) return std::string(text);
+    if (key == "building") return "building " + k;
+    throw std::logic_error("simulate: no option for isolation input " + std::string(key));
+  });
 }
 
 // The storey options, checked before any work: counts, heights, masses and stiffnesses, and the SDOF options that
@@ -522,13 +437,7 @@ void set_buildings(const SimulateOptions& o, const std::vector<Side>& sides, con
     }
     const physics::ShearSpec spec = shear_spec(o, sides[i], sdof[i]);
     const SimulateOptions::Isolation& s = o.iso[i];
-    physics::IsolationSpec iso;
-    iso.bearing = bearing_of(s.bearing);
-    iso.base_mass = s.base_mass_given ? s.base_mass : spec.floor_mass[0];  // default: one floor's mass
-    iso.k_eff = s.k_eff, iso.zeta_eff = s.zeta_eff, iso.k1 = s.k1, iso.k2 = s.k2, iso.qd = s.qd;
-    iso.radius = s.radius, iso.mu_slow = s.mu_slow, iso.mu_fast = s.mu_fast_given ? s.mu_fast : s.mu_slow;
-    iso.rate = s.rate, iso.uy = s.uy;
-    iso.bw_a = s.bw_a, iso.bw_beta = s.bw_beta, iso.bw_gamma = s.bw_gamma, iso.bw_eta = s.bw_eta;
+    const physics::IsolationSpec iso = sampling::isolation_spec(s, spec.floor_mass[0]);
     const physics::IsolationNumbers num = physics::set_isolated_building(batch, 0, i, spec, iso);
     const bool smooth = iso.bearing == physics::Bearing::friction_pendulum || iso.bearing == physics::Bearing::bouc_wen;
     // the periods on the isolator's initial stiffness (linear, lead-rubber, Bouc-Wen) or, for the friction

@@ -122,35 +122,60 @@ def analyze(pairs, record, contact="none", stepper="central-difference", substep
     return out
 
 
-def analyze_storeys(buildings, record, storeys=(1, 1), storey_height=(3.2, 3.2), contact="none",
+def analyze_storeys(buildings, record, storeys=(1, 1), storey_height=3.2, contact="none",
                     stepper="central-difference", substeps=1, *, kh=None, e=None, n=1.5,
                     damping="lankarani-nikravesh", contact_levels="common", level_tolerance=0.05,
                     stiffness_profile="uniform", energy=False, duration=0.0, displacement_limit=10.0, batch=64,
-                    threads=0, modal_zeta=None):
-    """Two multi-storey shear buildings side by side, pounding floor to floor (the engine's system stepper, as
-    `pounding simulate --storeys1 N --storeys2 M` and the studies with model = "shear"); one topology per call.
+                    threads=0, modal_zeta=None, isolation=None, moat=None, density=2400.0, youngs=24.86e9,
+                    poisson=0.15):
+    """A row of multi-storey shear buildings side by side (two or more), pounding floor to floor (the engine's
+    system stepper, as `pounding simulate --storeys1 N --storeys2 M [--buildings K] [--isolation1 ...]` and the
+    studies with model = "shear"); buildings 1 and 2 may stand on isolators inside moat walls. One topology per
+    call (storeys, heights, bearings, moats); the numbers vary per pair.
 
-    buildings: dict of per-pair arrays (SI) for b = 1, 2: floor_mass{b} (kg, every floor), storey_stiffness{b}
-      (N/m, every storey) or period{b} (T1 in s; stiffness_profile "uniform" or "shear" scaled to it), the storey
-      strength as storey_yield{b} (N) or yield_drift{b} (theta_y) or yield_coefficient{b} (Cy) -- none: elastic --,
-      alpha{b} (0), zeta{b} (0.05, Rayleigh on modes 1 and 2; the SDOF's ratio for one storey); gap (m), kc (or kh=)
-      and e where the law needs them.
+    buildings: dict of per-pair arrays (SI) for b = 1 .. len(storeys): floor_mass{b} (kg, every floor),
+      storey_stiffness{b} (N/m, every storey) or period{b} (T1 in s -- of the fixed-base superstructure for an
+      isolated building; stiffness_profile "uniform" or "shear" scaled to it), the storey strength as storey_yield{b}
+      (N) or yield_drift{b} (theta_y) or yield_coefficient{b} (Cy) -- none: elastic --, alpha{b} (0), zeta{b} (0.05,
+      Rayleigh on modes 1 and 2; the SDOF's ratio for one storey); gap (m, between every two neighbours), kc (or
+      kh=) and e where the law needs them.
+    storeys: one count per building, left to right (3 or more: a row, as simulate --buildings); storey_height: one
+      height (m) for every building or one per building. One storey each is the SDOF pair of analyze(), bit for bit.
     modal_zeta: [z1, z2, ...] gives every multi-storey building classical modal damping instead of Rayleigh, the
       ratio of each mode from mode 1, the last repeating (as `pounding simulate --modal-zeta`); one storey keeps zeta.
-    storeys, storey_height: (building 1, building 2). One storey each is the SDOF pair of analyze(), bit for bit.
-    Returns per building peak_u{b}, peak_acc{b}, final_u{b} [pair, floor] (bottom first), peak_drift{b},
-    peak_shear{b} [pair, storey]; per contact element (element_labels: "level 1", ...) peak_closing,
-    t_peak_closing, t_first_impact, impact_count, peak_force, peak_penetration, contact_energy, contact_time,
-    h_omega_contact [pair, element] (NaN / -1 with contact="none"); status and e_* per pair (e_* NaN unless
-    energy=True). Validation first: a ValueError names the pair's lane."""
+      Not with isolation (as simulate).
+    isolation: None or one entry per building, None (fixed base) or a dict {"bearing": "linear" | "lead-rubber" |
+      "friction-pendulum" | "bouc-wen", ...} with the study keys' names and ranges (study reference, section
+      "isolation") and simulate's defaults: base_mass (kg; one floor's mass), linear: k_eff (N/m), zeta_eff (0.1);
+      lead-rubber and bouc-wen: k1, k2 (N/m, k2 < k1), qd (N), bouc-wen also a (1), beta (0.5), gamma (0.5), eta (1);
+      friction-pendulum: radius (m), mu_slow, mu_fast (mu_slow), rate (s/m, 0), u_y (2.5e-4 m). Buildings 1 and 2
+      only, as simulate.
+    moat: None or one entry per building, None or a dict {"gap": m (each side), "stiffness": N/m^n (default the
+      equivalent-sphere Hertz stiffness of two base masses with density, youngs, poisson, as simulate), "law":
+      "hertzdamp" (any force law), "e": restitution (default the pounding e)} -- an isolated building only.
+    Every number of isolation/moat is a scalar (every pair) or an array of one value per pair. The inputs are
+    checked by the check `pounding simulate` uses: a ValueError carries its wording with these names (e.g.
+    "isolation[0]['base_mass'] = -1 is out of range").
+    Returns per building peak_u{b}, peak_acc{b}, final_u{b} [pair, floor] (floors 1.., bottom first; an isolated
+    base is not a floor), peak_drift{b}, peak_shear{b} [pair, storey]; for buildings 1 and 2 peak_bearing_u{b},
+    final_bearing_u{b} (m, base relative to the ground), peak_bearing_force{b} (N), moat_impacts{b},
+    moat_peak_force{b} (N) [pair] -- NaN (-1) for a fixed base / no moat; per contact element (element_labels:
+    "level 1", ...; "1|2 level 1", "2|3 level 1", ... in a row; "building1 moat left", ...) peak_closing, t_peak_closing,
+    t_first_impact, impact_count, peak_force, peak_penetration, contact_energy, contact_time, h_omega_contact [pair,
+    element] (NaN / -1 for the pounding elements with contact="none"; a moat's are computed with its own law);
+    status and e_* per pair (e_* NaN unless energy=True). Validation first: a ValueError names the pair's lane."""
     ag, dt = _motion(record)
     d = _pairs_dict(buildings, kh, e)
     _require_law_numbers(contact, d)
-    topology = _core._Topology(int(storeys[0]), int(storeys[1]), float(storey_height[0]), float(storey_height[1]),
-                               float(level_tolerance), contact_levels, stiffness_profile,
+    counts = [int(s) for s in storeys]
+    heights = ([float(h) for h in storey_height] if np.ndim(storey_height) else [float(storey_height)] * len(counts))
+    topology = _core._Topology(counts, heights, float(level_tolerance), contact_levels, stiffness_profile,
                                [float(z) for z in (modal_zeta or [])])
+    iso = list(isolation) if isolation is not None else [None] * len(counts)
+    moats = list(moat) if moat is not None else [None] * len(counts)
     return _core.analyze_storeys(d, ag, dt, topology, stepper, contact, damping, n, substeps, energy, duration,
-                                 displacement_limit, batch, threads)
+                                 displacement_limit, batch, threads, iso, moats,
+                                 _core._MoatMaterial(float(density), float(youngs), float(poisson)))
 
 
 class Simulation:
