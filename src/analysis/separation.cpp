@@ -376,6 +376,111 @@ BootstrapResult bootstrap(const Prepared& p, std::span<const double> targets, st
   return out;
 }
 
+// ---------------------------------------------------------------- from histograms
+
+namespace {
+
+// The upper edge of bin b (the histogram's value of a separation in it).
+double bin_value(const HistogramDemands& h, std::size_t b) {
+  return b < h.edges.size() ? h.edges[b] : std::numeric_limits<double>::infinity();
+}
+
+// The bin holding the (want + 1)-th largest of one replicate's draws: c[k] draws of record k in [0, bins), split
+// down a binary tree by binomials of the record's counts (prefix sums `cum`, [k][bins + 1]).
+std::size_t histogram_walk(const HistogramDemands& h, const std::vector<std::int64_t>& cum, std::vector<std::uint64_t> c,
+                           std::uint64_t want, std::uint64_t key) {
+  const std::size_t NB = h.bins(), W = NB + 1;
+  std::size_t a = 0, e = NB;
+  while (e - a > 1) {
+    const std::size_t m = a + (e - a) / 2;
+    std::uint64_t above = 0;
+    std::vector<std::uint64_t> up(c.size(), 0);
+    for (std::size_t k = 0; k < c.size(); ++k) {
+      if (!c[k]) continue;
+      const auto all = cum[k * W + e] - cum[k * W + a], hi = cum[k * W + e] - cum[k * W + m];
+      if (hi == all) up[k] = c[k];
+      else if (hi > 0) {
+        Stream g{splitmix64(key ^ splitmix64((static_cast<std::uint64_t>(a) << 32 | e) ^ splitmix64(k + 1)))};
+        boost::random::binomial_distribution<std::int64_t, double> bin(static_cast<std::int64_t>(c[k]),
+                                                                       static_cast<double>(hi) / static_cast<double>(all));
+        up[k] = static_cast<std::uint64_t>(bin(g));
+      }
+      above += up[k];
+    }
+    if (above > want) {
+      c = up, a = m;
+    } else {
+      want -= above;
+      for (std::size_t k = 0; k < c.size(); ++k) c[k] -= up[k];
+      e = m;
+    }
+  }
+  return a;
+}
+
+}  // namespace
+
+BootstrapResult bootstrap(const HistogramDemands& h, std::span<const double> targets, const BootstrapSettings& s) {
+  if (s.replicates < 0 || !(s.confidence > 0 && s.confidence < 1))
+    throw std::invalid_argument("bootstrap: replicates >= 0, confidence in (0, 1)");
+  const std::size_t R = h.records, NB = h.bins(), W = NB + 1, T = targets.size(), B = static_cast<std::size_t>(s.replicates);
+  if (h.counts.size() != R * NB) throw std::invalid_argument("bootstrap: histogram counts are not records x bins");
+  std::vector<std::int64_t> cum(R * W, 0), n_k(R, 0);
+  for (std::size_t k = 0; k < R; ++k) {
+    for (std::size_t b = 0; b < NB; ++b) cum[k * W + b + 1] = cum[k * W + b] + h.counts[k * NB + b];
+    n_k[k] = cum[k * W + NB];
+  }
+  // the full data: the bin of the (floor(t N) + 1)-th largest, counted from the top
+  std::uint64_t N = 0;
+  for (auto v : n_k) N += static_cast<std::uint64_t>(v);
+  std::vector<double> full(T, NAN);
+  for (std::size_t i = 0; i < T && N; ++i) {
+    const auto want = std::min<std::uint64_t>(static_cast<std::uint64_t>(std::floor(targets[i] * static_cast<double>(N))), N - 1);
+    std::uint64_t above = 0;
+    std::size_t b = NB;
+    while (b > 0) {
+      std::uint64_t in = 0;
+      for (std::size_t k = 0; k < R; ++k) in += static_cast<std::uint64_t>(h.counts[k * NB + b - 1]);
+      if (above + in > want) break;
+      above += in, --b;
+    }
+    full[i] = bin_value(h, b - 1);
+  }
+  std::vector<double> stats(B * T, NAN);
+  Meter meter(s.hook, "report: separation bootstrap (histograms)", B);
+  parallel_blocks(B, s.replicates ? s.threads : 1, [&](std::size_t first, std::size_t last) {
+    std::vector<std::uint32_t> drawn(R);
+    std::vector<std::uint64_t> c(R);
+    for (std::size_t b = first; b < last; ++b) {
+      if (!meter.step()) return;
+      const std::uint64_t key = splitmix64(splitmix64(s.seed) ^ static_cast<std::uint64_t>(b));
+      Stream g{key};  // the record draws of bootstrap(Prepared) for replicate b
+      std::fill(drawn.begin(), drawn.end(), 0u);
+      for (std::size_t i = 0; i < R; ++i) ++drawn[g.below(R)];
+      std::uint64_t n = 0;
+      for (std::size_t k = 0; k < R; ++k) c[k] = std::uint64_t{drawn[k]} * static_cast<std::uint64_t>(n_k[k]), n += c[k];
+      if (n == 0) continue;
+      for (std::size_t i = 0; i < T; ++i) {
+        const auto want = std::min<std::uint64_t>(static_cast<std::uint64_t>(std::floor(targets[i] * static_cast<double>(n))), n - 1);
+        stats[b * T + i] = bin_value(h, histogram_walk(h, cum, c, want, splitmix64(key ^ 0x68697374ULL)));
+      }
+    }
+  });
+  meter.finish();
+  BootstrapResult out;
+  out.replicates = s.replicates;
+  const double a = 0.5 * (1.0 - s.confidence);
+  std::vector<double> v;
+  for (std::size_t i = 0; i < T; ++i) {
+    v.clear();
+    for (std::size_t b = 0; b < B; ++b)
+      if (!std::isnan(stats[b * T + i])) v.push_back(stats[b * T + i]);
+    std::sort(v.begin(), v.end());
+    out.separation.push_back({full[i], B ? quantile7(v, a) : full[i], B ? quantile7(v, 1.0 - a) : full[i]});
+  }
+  return out;
+}
+
 // ---------------------------------------------------------------- code rules
 
 double ddc_rho(double T1, double T2, double z1, double z2) {

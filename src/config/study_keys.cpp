@@ -580,6 +580,12 @@ constexpr StudyKey keys[] = {
     {"outputs", "forces", "boolean", "true", "", "true | false", "Peak impact forces (impacts scene)."},
     {"outputs", "amplification", "boolean", "true", "", "true | false",
      "Amplification of the peak displacement by pounding (impacts scene)."},
+    {"outputs", "per_model", "boolean", "true", "", "true | false",
+     "false: keep only the reductions (per record and gap ratio the hit counts, per period pair the maps, the gap "
+     "curve, per record a histogram of peak closing / code gap on a log grid of 200 bins per decade) instead of every "
+     "model's peaks, so memory does not grow with the models (docs/results-format.md /reductions). Probability scene "
+     "of an SDOF pair or grid study only; the report's tables are exact, its separation advice is read from the "
+     "histograms."},
 
     // ---------------------------------------------------------------- [intensity]
     {"intensity", "measure", "string", "\"Sa\"", "", "\"PGA\" | \"PGV\" | \"Sa\" | \"Sa_avg\"",

@@ -35,6 +35,10 @@ struct Data {
   std::span<const std::int32_t> impact_count;
   std::span<const double> h_omega;
   bool impacts, keep_coarse;
+  // [outputs] per_model = false: the file's /reductions (study/reductions.hpp) and no per-model arrays; the counts
+  // below answer from it exactly, the separations from its histograms (null for a per-model file)
+  const results::Group* red = nullptr;
+  std::size_t red_models = 0;
 
   explicit Data(const results::Results& r, const WorkHook* hook = nullptr, double* bootstrap_s = nullptr);
   const WorkHook* hook = nullptr;  // progress and stop of the bootstrap (core/progress.hpp)
@@ -51,7 +55,9 @@ struct Data {
   bool fixed_pair = false;
   std::size_t independent() const { return rec.size() / per_record; }
   std::string record_label(std::size_t row) const;  // the id, "(sign reversed)" on a reversed row
-  std::size_t models() const { return mod.size(); }
+  std::size_t models() const { return red ? red_models : mod.size(); }
+  // The reductions' per-record histograms of z (independent records: a record's two signs summed)
+  separation::HistogramDemands histograms() const;
   std::size_t gaps() const { return res.gap_ratios.size(); }
   bool paper() const { return set.compare_with == "stochastic-pounding"; }
   // Damping ratio of building b (1 or 2) of model m (per building when the file has it).

@@ -57,7 +57,49 @@ Data::Data(const results::Results& r, const WorkHook* hook_, double* bootstrap_s
     const std::vector<double>& v = mod.*column;
     if (!v.empty() && std::any_of(v.begin(), v.end(), [&](double x) { return !(x == v.front()); })) fixed_pair = false;
   }
+  if ((red = r.group("reductions"))) {
+    red_models = static_cast<std::size_t>(red->number("models"));
+    fixed_pair = red->number("fixed_pair") != 0;
+  }
 }
+
+separation::HistogramDemands Data::histograms() const {
+  separation::HistogramDemands h;
+  h.edges = red->get<double>("histogram_edges");
+  const auto& c = red->get<std::int64_t>("histogram");
+  const std::size_t NB = h.bins();
+  h.records = independent();
+  h.counts.assign(h.records * NB, 0);
+  for (std::size_t row = 0; row < records(); ++row)
+    for (std::size_t b = 0; b < NB; ++b) h.counts[(row / per_record) * NB + b] += c[row * NB + b];
+  return h;
+}
+
+namespace {
+// The reductions' count of hits at gap ratio x (one of /reductions/gap_ratios: anything else is a logic error,
+// never a number read off a neighbour)
+Count reduced_count(const Data& r, double ratio, int rec, int pair_i1, int pair_i2) {
+  const auto& ratios = r.red->get<double>("gap_ratios");
+  const auto at = std::find(ratios.begin(), ratios.end(), ratio);
+  if (at == ratios.end()) throw std::logic_error(fmt::format("report: gap ratio {} is not in /reductions", ratio));
+  const std::size_t g = static_cast<std::size_t>(at - ratios.begin()), G = ratios.size();
+  const auto &i1 = r.red->get<std::int64_t>("pair_i1"), &i2 = r.red->get<std::int64_t>("pair_i2");
+  const std::size_t P = i1.size();
+  Count c;
+  for (std::size_t k = 0; k < r.records(); ++k) {
+    if (rec >= 0 && static_cast<int>(k / r.per_record) != rec) continue;
+    if (pair_i1 < 0) {
+      c.n += r.red->get<std::int64_t>("n")[k], c.hits += r.red->get<std::int64_t>("gap_hits")[k * G + g];
+      continue;
+    }
+    for (std::size_t p = 0; p < P; ++p)
+      if (i1[p] == pair_i1 && i2[p] == pair_i2)
+        c.n += r.red->get<std::int64_t>("pair_n")[k * P + p],
+            c.hits += r.red->get<std::int64_t>("pair_hits")[(k * P + p) * G + g];
+  }
+  return c;
+}
+}  // namespace
 
 Interval wilson(const Data& r, std::int64_t hits, std::int64_t n) {
   if (!r.fixed_pair || n <= 0) return wilson_interval(hits, n);
@@ -162,6 +204,7 @@ std::string pct(double p) { return std::isnan(p) ? "n/a" : fmt::format("{:.2f}%"
 
 // uncoupled: hit when peak closing > ratio * code gap (contact is delta = u1 - u2 - gap > 0)
 Count count_uncoupled(const Data& r, double ratio, int rec, int pair_i1, int pair_i2) {
+  if (r.red) return reduced_count(r, ratio, rec, pair_i1, pair_i2);
   Count c;
   const std::size_t M = r.models();
   for (std::size_t k = 0; k < r.records(); ++k) {
@@ -196,9 +239,33 @@ Count count_coupled(const Data& r, std::size_t g, int rec) {
   return c;
 }
 
+// The curve from /reductions/curve_hits (exact: the same z > x counts), at its own ratios only.
+Curve reduced_curve(const Data& r, double step, int n, int record) {
+  const auto& xs = r.red->get<double>("curve_x");
+  const auto& hits = r.red->get<std::int64_t>("curve_hits");
+  const auto& ok = r.red->get<std::int64_t>("n");
+  const std::size_t C = xs.size();
+  Curve c;
+  std::vector<std::int64_t> h(C, 0);
+  for (std::size_t k = 0; k < r.records(); ++k) {
+    if (record >= 0 && static_cast<int>(k / r.per_record) != record) continue;
+    c.n += ok[k];
+    for (std::size_t i = 0; i < C; ++i) h[i] += hits[k * C + i];
+  }
+  for (int i = 1; i <= n; ++i) {
+    const double x = step * i;
+    const auto at = std::find(xs.begin(), xs.end(), x);
+    if (at == xs.end()) throw std::logic_error(fmt::format("report: curve ratio {} is not in /reductions", x));
+    c.x.push_back(x);
+    c.p.push_back(c.n ? static_cast<double>(h[static_cast<std::size_t>(at - xs.begin())]) / static_cast<double>(c.n) : NAN);
+  }
+  return c;
+}
+
 Curve curve_of(const Data& r, double step, double xmax, int record) {
   Curve c;
   const int n = static_cast<int>(std::floor(xmax / step + 1e-9));
+  if (r.red) return reduced_curve(r, step, n, record);
   if (record < 0) {  // every ok analysis: the ranked demands in gap ratios the bootstrap shares (no sort here)
     const separation::Prepared& p = r.prepared(false);
     c.n = static_cast<std::int64_t>(p.N);
@@ -321,6 +388,14 @@ void Markdown::excluded_uncoupled() {
   const std::size_t R = r.records(), M = r.models();
   std::size_t bad = 0;
   for (auto v : r.status) bad += !r.ok(v);
+  if (r.red) {  // per record only: the models are not kept
+    const auto& ex = r.red->get<std::int64_t>("excluded");
+    for (auto v : ex) bad += static_cast<std::size_t>(v);
+    out("- excluded (diverged or non-finite) analyses: **{}** of {}\n", bad, R * M);
+    for (std::size_t k = 0; k < R; ++k)
+      if (ex[k]) out("  - record {}: {} excluded\n", r.record_label(k), ex[k]);
+    return;
+  }
   out("- excluded (diverged or non-finite) analyses: **{}** of {}\n", bad, R * M);
   if (!bad) return;
   int shown = 0;
@@ -335,6 +410,8 @@ void Markdown::excluded_uncoupled() {
 
 // The gap ratio x as a column title; "x d = g m" when the code gap is the same for every model.
 std::string gap_title(const Data& r, double x) {
+  if (r.red && r.set.pair && r.red->number("code_gap_min") == r.red->number("code_gap_max"))
+    return fmt::format("{}d = {:.3f} m", x, x * r.red->number("code_gap_min"));
   if ((!r.set.pair && !r.set.bridge) || r.mod.code_gap.empty()) return fmt::format("{}d", x);
   const auto [lo, hi] = std::minmax_element(r.mod.code_gap.begin(), r.mod.code_gap.end());
   return *lo == *hi ? fmt::format("{}d = {:.3f} m", x, x * *lo) : fmt::format("{}d", x);
@@ -522,14 +599,33 @@ void Markdown::restitution_note() {
 
 namespace report_detail {
 
+// What the reductions-only report reads from histograms, and at which resolution.
+std::string histogram_note(const Data& r) {
+  const double per_decade = r.red->number("histogram_per_decade");
+  return fmt::format("**From histograms** ([outputs] per_model = false): every x in this table is the upper edge of "
+                     "its bin on the log grid of {:g} bins per decade (bin width a factor {:.4f}, i.e. {:.2f} %), so "
+                     "it is at most one bin width above the exact order statistic a per-model run gives; the "
+                     "bootstrap draws the models within a record by counts of its histogram.\n\n",
+                     per_decade, std::pow(10.0, 1.0 / per_decade), 100 * (std::pow(10.0, 1.0 / per_decade) - 1));
+}
+
+// The advice's bootstrap from /reductions' histograms, timed as the report's bootstrap.
+separation::BootstrapResult histogram_bootstrap(const Data& r, std::span<const double> targets) {
+  double unused = 0;
+  timing::Stopwatch w(r.bootstrap_s ? *r.bootstrap_s : unused);
+  if (r.bootstrap_runs) ++*r.bootstrap_runs;
+  return separation::bootstrap(r.histograms(), targets, r.bootstrap_settings());
+}
+
 // A grid study's (or a bridge's) advice rows: per target the exact order statistic with its bootstrap interval and,
 // for a grid, the cubic's root (eq. 10) -- built once, formatted by grid_advice_section (Markdown) and
-// separation_csv (rows separation_cubic).
+// separation_csv (rows separation_cubic). [outputs] per_model = false: the same bootstrap on the per-record
+// histograms (each x is its bin's upper edge).
 std::vector<AdviceRow> grid_advice_rows(const Data& r, int* replicates) {
   const ReportSettings& set = r.set;
   std::vector<double> targets;
   for (double t : set.targets) targets.push_back(t / 100.0);
-  const separation::BootstrapResult b = r.bootstrap(false, targets, {});
+  const separation::BootstrapResult b = r.red ? histogram_bootstrap(r, targets) : r.bootstrap(false, targets, {});
   if (replicates) *replicates = b.replicates;
   // a bridge's d is one number (the smallest joint gap); a grid's heights come from the period-height rule: ratios,
   // and the cubic's root beside them
@@ -563,6 +659,7 @@ std::string grid_advice_section(const Data& r) {
                         "period-height rule, so no separation is given in metres.\n\n| target | x | {:.0f} % interval | "
                         "advice x (upper end) | cubic x |\n|---|---|---|---|---|\n",
                         exceed, interval, 100 * set.confidence);
+  if (r.red) s.insert(s.find("\n\n| target") + 2, histogram_note(r));
   for (const AdviceRow& row : rows) {
     const separation::Estimate& e = row.estimate;
     const double d = set.bridge_d;
@@ -615,10 +712,14 @@ namespace {
 std::string pair_markdown(const Data& r) {
   Markdown md(r);
   md.overview();
-  if (r.set.pair) {
+  if (r.set.pair && !r.red) {
     md.raw(pair_separation_section(r));
     md.raw(code_rules_section(r));
   }
+  if (r.set.pair && r.red)
+    md.raw("\n## Separation for this pair\n\nNot given: the study kept only its reductions ([outputs] per_model = "
+           "false), which count closings in ratios x of each model's code gap; a separation in metres and the code "
+           "rules need each model's peaks and code gap. The advice in gap ratios is below.\n");
   md.per_record();
   md.total();
   md.coupled_counts();
@@ -629,10 +730,13 @@ std::string pair_markdown(const Data& r) {
     return std::move(md).text();
   }
   md.period_matrix();
-  if (!r.set.pair) {
+  if (!r.set.pair || r.red) {
     md.fit();
     md.raw(grid_advice_section(r));
-    md.raw(code_rules_section(r));
+    if (!r.red) md.raw(code_rules_section(r));
+    else
+      md.raw("\n## Code separation rules\n\nNot given: the study kept only its reductions ([outputs] per_model = "
+             "false), and the rules' probabilities need each model's own peaks and code-rule gap.\n");
   }
   md.impacts_table();
   return std::move(md).text();
@@ -662,7 +766,15 @@ std::string pair_csv(const Data& r) {
   Curve c = curve_of(r, r.set.curve_step, r.set.curve_max, -1);
   for (std::size_t i = 0; i < c.x.size(); ++i)
     s += fmt::format("curve,,{:.4f},,,,{},{:.6f},,,,\n", c.x[i], c.n, c.p[i]);
-  return s + separation_csv(r);
+  if (!r.red) return s + separation_csv(r);
+  // [outputs] per_model = false: the separations in gap ratios from the histograms (bin upper edges)
+  std::vector<double> targets;
+  for (double t : r.set.targets) targets.push_back(t / 100.0);
+  const separation::BootstrapResult b = separation::bootstrap(r.histograms(), targets, r.bootstrap_settings());
+  for (std::size_t i = 0; i < targets.size(); ++i)
+    s += fmt::format("separation,,{:.6f},,,,{},{},,{:.6f},{:.6f},\"from histograms\"\n", b.separation[i].value, c.n,
+                     targets[i], b.separation[i].lo, b.separation[i].hi);
+  return s;
 }
 
 }  // namespace

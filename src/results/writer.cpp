@@ -132,10 +132,14 @@ void write_records(h5::hid root, const RecordTable& t) {
 
 void write_models(h5::hid root, const ModelTable& t) {
   auto g = h5::create_group(root, "models");
-  for (const auto& [name, member] : model_doubles) h5::write_dataset(g.get(), std::string(name), t.*member);
-  h5::write_dataset(g.get(), "i1", t.i1);
-  h5::write_dataset(g.get(), "i2", t.i2);
-  h5::write_dataset(g.get(), "sample", t.sample);
+  // [outputs] per_model = false: no per-model values, only the period grids below
+  for (const auto& [name, member] : model_doubles)
+    if (!(t.*member).empty()) h5::write_dataset(g.get(), std::string(name), t.*member);
+  if (!t.i1.empty()) {
+    h5::write_dataset(g.get(), "i1", t.i1);
+    h5::write_dataset(g.get(), "i2", t.i2);
+    h5::write_dataset(g.get(), "sample", t.sample);
+  }
   h5::write_dataset(g.get(), "periods", t.periods);
   h5::write_dataset(g.get(), "periods1", t.periods1);
   h5::write_dataset(g.get(), "periods2", t.periods2);
@@ -150,6 +154,7 @@ void write_gaps(h5::hid root, const GapTable& t, std::size_t models) {
   if (t.ratios.empty()) return;
   auto g = h5::create_group(root, "gaps");
   h5::write_dataset(g.get(), "ratios", t.ratios);
+  if (models == 0) return;  // [outputs] per_model = false: no models, no metres
   const std::size_t dims[] = {models, t.ratios.size()};
   h5::write_dataset(g.get(), "metres", std::span<const double>(t.metres), dims);
 }

@@ -132,8 +132,35 @@ physics::CoarseSummary coarse_summary(const Study& study, const WorkPlan& L, con
   return c;
 }
 
+namespace {
+// [outputs] per_model = false: the reductions' per-record counts (probability scene of an SDOF pair only).
+Exclusions reduced_exclusions(const Study& study, const WorkPlan& L, const Reductions& red,
+                              const std::vector<StudyRecord>& records) {
+  Exclusions ex;
+  std::vector<std::string> lost;
+  for (std::size_t r = 0; r < L.records; ++r) {
+    ex.excluded += red.excluded(r), ex.total += red.analysed(r);
+    const std::string& id = records[r % records.size()].id;
+    if (L.models() > 0 && red.excluded(r) == red.analysed(r) && std::find(lost.begin(), lost.end(), id) == lost.end())
+      lost.push_back(id);
+  }
+  const double frac = ex.total ? static_cast<double>(ex.excluded) / static_cast<double>(ex.total) : 0.0;
+  if (!lost.empty()) ex.verdict = fmt::format("every analysis of record(s) {} diverged or was non-finite", fmt::join(lost, ", "));
+  if (frac > study.max_excluded_fraction)
+    ex.verdict += fmt::format("{}{} of {} analyses ({:.3g} %) were excluded, more than [analysis] "
+                              "max_excluded_fraction = {:.3g} %",
+                              ex.verdict.empty() ? "" : "; ", ex.excluded, ex.total, 100.0 * frac,
+                              100.0 * study.max_excluded_fraction);
+  if (!ex.verdict.empty())
+    ex.verdict += "; the probabilities may be biased: check the record units and scale, the contact stiffness "
+                  "and the step (substeps, max_dt)";
+  return ex;
+}
+}  // namespace
+
 Exclusions count_exclusions(const Study& study, const WorkPlan& L, const Tally& t,
                             const std::vector<StudyRecord>& records) {
+  if (const Reductions* red = t.reductions()) return reduced_exclusions(study, L, *red, records);
   constexpr std::size_t unc_status = results::unit_field("uncoupled", "status");
   constexpr std::size_t imp_status = results::unit_field("impacts", "status");
   Exclusions ex;
@@ -385,6 +412,15 @@ results::Results make_results(const Study& study, const std::vector<StudyRecord>
   r.header = make_header(study, ex, facts);
   r.settings = settings_of(study);
   r.records = record_table(records);
+  if (const Reductions* red = tally.reductions()) {  // [outputs] per_model = false: the period grids, no models
+    const StructureSampler sampler(study.structures, study.seed);
+    r.models.periods1 = sampler.building(0).periods, r.models.periods2 = sampler.building(1).periods;
+    r.models.periods = r.models.periods1;
+    r.models.zeta = study.structures.zeta;
+    r.gaps.ratios = study.gap_ratios;
+    r.groups.push_back(red->group());
+    return r;
+  }
   r.models = model_table(study, plan);
   r.gaps = results::gap_table(study.gap_ratios, r.models.code_gap);  // every scene
   if (plan.impacts) r.gap_ratios = study.gap_ratios;

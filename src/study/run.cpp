@@ -717,6 +717,7 @@ WorkPlan plan_work(const Inputs& in) {
   L.gaps = s.gap_ratios.size();
   L.impacts = s.scene == Scene::impacts;
   L.ida = s.intensity.bisection;
+  L.per_model = s.per_model;
   // shear buildings: results format 3 with the study's largest topology as /system (format 2 for an SDOF facing a
   // shear building, and for one storey each: system_table gives the SDOF pair nothing)
   if (runs_systems(s.structures))
@@ -1086,7 +1087,7 @@ RunOutcome run_study(const parallel::Session& session, const std::string& study_
   const Inputs in = load_inputs(session, study_path, opt, ckpt);
   const WorkPlan L = plan_work(in);
   Tally tally;
-  if (session.root()) tally = Tally(L);
+  if (session.root()) tally = Tally(L, in.study);
   const CheckpointKey key = session.root() ? checkpoint_key(in, L) : CheckpointKey{};
   const std::vector<std::size_t> todo = open_checkpoint(session, opt, in, L, ckpt ? &*ckpt : nullptr, key, tally, ctx);
   const std::size_t units_resumed = tally.units_done();

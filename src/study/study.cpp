@@ -1,4 +1,6 @@
 #include "pounding/study/study.hpp"
+#include "pounding/study/system_block.hpp"
+#include "pounding/study/reductions.hpp"
 
 #include "pounding/sampling/bridge.hpp"
 
@@ -283,7 +285,27 @@ void parse_outputs(Study& s, const toml::table* t, const std::string& path) {
   TableReader o(t, path, "outputs");
   s.want_forces = o.boolean("forces", true);
   s.want_amplification = o.boolean("amplification", true);
-  o.finish("forces, amplification");
+  s.per_model = o.boolean("per_model", true);
+  s.per_model_where = o.where("per_model");
+  o.finish("forces, amplification, per_model");
+}
+
+// [outputs] per_model = false keeps only the reductions of the probability scene of an SDOF pair (study/reductions.hpp);
+// what else would need per-model values it does not keep is refused before any work.
+void check_per_model(const Study& s) {
+  if (s.per_model) return;
+  const char* why = s.scene == Scene::impacts ? "the impacts scene's forces and amplification are per model and gap"
+                    : s.intensity.enabled     ? "a fragility study fits each model's stripes and IDA curves"
+                    : runs_systems(s.structures)
+                        ? "shear buildings, rows and bridges keep per-floor and per-element peaks (their reductions are "
+                          "not written yet)"
+                        : nullptr;
+  if (why)
+    throw InputError(fmt::format("[outputs] per_model = false keeps only the reductions of the probability scene of "
+                                 "an SDOF pair, and {}", why),
+                     s.per_model_where,
+                     "write scene = \"probability\" for an SDOF pair or grid study without [intensity], or delete "
+                     "per_model (per-model outputs)");
 }
 
 // The scene actually run (auto resolved from [outputs]), why, and the scene's default step cap
@@ -540,6 +562,7 @@ Study parse_study(const std::string& text, const std::string& path) {
                      "write scene = \"probability\": whether a pair touches at a gap is decided by the uncoupled motion");
 
   choose_scene(s);
+  check_per_model(s);
   check_restitution(s, top, path);
   // the results must fit in memory; the suite's record count is not known yet, so count at least one record
   check_result_memory(s, s.select > 0 ? static_cast<std::size_t>(s.select)
@@ -560,6 +583,10 @@ Study parse_study(const std::string& text, const std::string& path) {
 }
 
 double result_bytes(const Study& s, std::size_t records) {
+  if (!s.per_model)
+    return reduction_bytes(records * static_cast<std::size_t>(polarity_count(s.polarity)),
+                           static_cast<std::size_t>(s.structures.period_pair_count()), s.gap_ratios.size(),
+                           static_cast<std::size_t>(std::floor(s.curve_max / s.curve_step + 1e-9)));
   const double per_model = 25.0 + (s.scene == Scene::impacts ? 45.0 * static_cast<double>(s.gap_ratios.size()) : 0.0);
   return static_cast<double>(records) * polarity_count(s.polarity) *
          static_cast<double>(std::max<std::size_t>(1, s.intensity.stripes())) * static_cast<double>(s.structures.period_pair_count()) *
@@ -620,7 +647,10 @@ void check_result_memory(const Study& s, std::size_t records) {
   const double avail = available_memory_bytes();
   const int local = ranks_on_this_node();
   // rank 0's peak: the gathered arrays, the results built from them, the HDF5 image and its copy written out
-  const double models = static_cast<double>(s.structures.period_pair_count()) * static_cast<double>(s.structures.samples_per_pair);
+  // per_model = false builds no models' table (its reductions hold the period grids only)
+  const double models = s.per_model ? static_cast<double>(s.structures.period_pair_count()) *
+                                          static_cast<double>(s.structures.samples_per_pair)
+                                    : 0.0;
   const double peak = need * result_peak_factor + models * model_peak_bytes + rank_base_bytes;
   const double share = avail - static_cast<double>(local - 1) * rank_base_bytes;  // the other ranks' part
   const bool over_machine = std::isfinite(avail) && peak > share;
@@ -649,7 +679,8 @@ void check_result_memory(const Study& s, std::size_t records) {
     throw InputError(fmt::format("samples_per_pair = {} needs {} of result arrays ({}), more than the {} limit",
                                  s.structures.samples_per_pair, human_bytes(need), sizes, human_bytes(max_result_bytes)),
                      where,
-                     fits >= 1 ? fmt::format("give samples_per_pair <= {:.0f} (the paper uses 256), or split the study", fits)
+                     fits >= 1 ? fmt::format("give samples_per_pair <= {:.0f} (the paper uses 256), or split the study, or "
+                                             "keep only the reductions ([outputs] per_model = false)", fits)
                                : std::string("split the study into fewer records, period pairs or gaps"));
   }
   const double per_sample_peak = per_sample * result_peak_factor +
@@ -664,7 +695,8 @@ void check_result_memory(const Study& s, std::size_t records) {
                             : std::string(" (MemAvailable)")),
       where,
       fits >= 1 ? fmt::format("give samples_per_pair <= {:.0f}, or split the study (fewer records, period pairs, "
-                              "stripes or gaps), or run on a machine with more memory",
+                              "stripes or gaps), or run on a machine with more memory, or keep only the reductions "
+                              "([outputs] per_model = false)",
                               fits)
                 : std::string("split the study (fewer records, period pairs, stripes or gaps), or run on a machine with "
                               "more memory"));

@@ -15,6 +15,17 @@ Tally::Tally(const WorkPlan& plan) : plan_(plan) {
   done_.assign(plan.units(), 0);
 }
 
+Tally::Tally(const WorkPlan& plan, const Study& study) : plan_(plan) {
+  if (plan.per_model) {
+    *this = Tally(plan);
+    return;
+  }
+  if (plan.impacts || plan.stripes || plan.ida || !plan.system.empty())
+    throw std::logic_error("Tally: reductions are for the probability scene of an SDOF pair");
+  reductions_ = std::make_unique<Reductions>(study, plan);
+  done_.assign(plan.units(), 0);
+}
+
 // A unit's lanes are consecutive models of one record, so each field's block is one contiguous range of its
 // column per stripe: [lane] at (r' M + m0 + lane), [lane][gap] at (r' M + m0 + lane) G + gap, where r' = s R + r
 // is the (stripe, record) analysis record (r' = r without stripes).
@@ -25,6 +36,24 @@ void Tally::store(std::size_t unit, std::span<const std::byte> payload) {
     throw std::runtime_error(fmt::format("unit {}: payload of {} bytes, expected {}", unit, payload.size(),
                                          serialised_size(plan_, lanes)));
   std::size_t at = 0;
+  if (reductions_) {  // fold the unit's uncoupled status and peak closing; the payload is dropped
+    const std::uint8_t* status = nullptr;
+    const double* closing = nullptr;
+    for (const results::FieldSpec& f : plan_.fields) {
+      const std::size_t n = lanes * plan_.per_lane(f);
+      if (f.group == "uncoupled" && f.name == "status") status = reinterpret_cast<const std::uint8_t*>(payload.data() + at);
+      std::visit([&](const auto& v) { at += n * sizeof(v[0]); }, results::make_column(f, 0));
+      if (f.group == "uncoupled" && f.name == "peak_closing") {
+        closing = reinterpret_cast<const double*>(payload.data() + at - n * sizeof(double));
+      }
+    }
+    if (!status || !closing) throw std::logic_error("Tally: the unit schema has no uncoupled status or peak closing");
+    std::vector<double> c(closing, closing + lanes);  // aligned copy
+    if (!done_[unit]) reductions_->fold(i, {status, lanes}, c);
+    if (!done_[unit]) ++n_done_;
+    done_[unit] = 1;
+    return;
+  }
   for (std::size_t k = 0; k < columns_.size(); ++k) {
     const std::size_t per = plan_.per_lane(plan_.fields[k]);
     for (std::size_t s = 0; s < plan_.unit_stripes(); ++s) {

@@ -125,6 +125,23 @@ BootstrapResult bootstrap(const Prepared& p, std::span<const double> targets, st
 BootstrapResult bootstrap(const Demands& d, std::span<const double> targets, std::span<const double> gaps,
                           const BootstrapSettings& s);
 
+// ---------------------------------------------------------------- from histograms (issue 27, item 5)
+// [outputs] per_model = false keeps per record a histogram of z instead of the z themselves (study/reductions.hpp):
+// counts[k * bins + b], bin 0 is z <= edges[0], bin b in 1..E-1 is (edges[b-1], edges[b]], bin E is z > edges[E-1]
+// (E = edges.size(), bins = E + 1). A separation is then known to its bin: the value given is the bin's UPPER edge
+// (the smallest edge with at most floor(t n) values above it: never below the exact order statistic, at most one
+// bin width above it; +inf in the last bin). The interval is the same two-stage bootstrap as bootstrap() -- the
+// same record draws for replicate b (the stream from (seed, b)) -- and, inside each drawn record, its d n_k draws
+// revealed by counts on a binary tree over the bins (Binomial splits from a stream of (seed, b, node, record)), so
+// the cost per replicate is targets x log2(bins) x records, whatever the models.
+struct HistogramDemands {
+  std::size_t records = 0;
+  std::vector<double> edges;           // ascending
+  std::vector<std::int64_t> counts;    // [records][edges.size() + 1]
+  std::size_t bins() const { return edges.size() + 1; }
+};
+BootstrapResult bootstrap(const HistogramDemands& h, std::span<const double> targets, const BootstrapSettings& s);
+
 // ---------------------------------------------------------------- code rules
 
 // The CQC correlation of two oscillators with unequal damping (Der Kiureghian 1981, EESD 9(5)), r = omega2 / omega1

@@ -55,6 +55,9 @@
 //                report, report/html.hpp, next to the results: the output path with .html). The old h1/h2 keys are refused:
 //                metres come from the buildings' own heights ([structures.building1/2] height).
 //   [outputs]    forces = true; amplification = true   (what the impacts scene must deliver; `auto` reads it)
+//                per_model = true: false keeps only the reductions (study/reductions.hpp: counts per record, gap
+//                ratio and period pair, the gap curve, per-record histograms of the peak-closing ratio) so a study
+//                larger than memory runs in bounded memory; probability scene of an SDOF pair only
 //   [intensity]  [hazard]   a fragility study: records scaled to IM levels (stripes), fragility per gap, the site's
 //                annual rate of pounding and the risk-targeted separation (study/intensity.hpp)
 //   [target_spectrum] code = "ASCE 7-16" | "EC8" | "Standard 2800" | "csv" and its parameters; rule, t_min, t_max,
@@ -183,6 +186,8 @@ struct Study {
   bool html = false;         // [report] html: the HTML report next to the results (report/html.hpp)
   // outputs wanted from the impacts scene
   bool want_forces = true, want_amplification = true;
+  bool per_model = true;  // [outputs] per_model: false = reductions only (study/reductions.hpp)
+  std::string per_model_where;  // "file:line [outputs].per_model"
   // [intensity] and [hazard] (study/intensity.hpp): a fragility study
   IntensitySpec intensity;
   HazardSpec hazard;
@@ -194,6 +199,7 @@ struct Study {
 // and model, the uncoupled status (1 byte) and three peaks (8 bytes each) = 25 bytes; in the impacts scene,
 // per gap, a status (1), an impact count (4) and five doubles (40) = 45 bytes more. A double, so that absurd
 // sizes do not overflow.
+// With [outputs] per_model = false: the reductions' bytes instead (study/reductions.hpp reduction_bytes).
 double result_bytes(const Study& study, std::size_t records);
 inline constexpr double max_result_bytes = 64.0 * 1024 * 1024 * 1024;  // 64 GiB
 // Rank 0's peak memory is about result_peak_factor x result_bytes + model_peak_bytes per sampled model (the models'

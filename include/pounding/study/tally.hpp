@@ -2,11 +2,13 @@
 // Per-model results gathered on rank 0 in fixed arrays, one column per schema field ([records x models] or
 // [records x models x gaps]): any completion order, rank count or resume gives the same arrays.
 #include <cstddef>
+#include <memory>
 #include <span>
 #include <vector>
 
 #include "pounding/results/results.hpp"
 #include "pounding/study/plan.hpp"
+#include "pounding/study/reductions.hpp"
 
 namespace pounding {
 
@@ -14,6 +16,8 @@ class Tally {
  public:
   Tally() = default;
   explicit Tally(const WorkPlan& plan);
+  // With plan.per_model = false the units are folded into Reductions (reductions.hpp) and no column is kept.
+  Tally(const WorkPlan& plan, const Study& study);
 
   // Scatters one unit's serialised result (UnitResult::serialise) into the columns; throws std::runtime_error
   // on a payload of the wrong size. Storing a unit twice overwrites it.
@@ -26,6 +30,7 @@ class Tally {
   const std::vector<T>& values(std::size_t field) const {
     return std::get<std::vector<T>>(columns_[field]);
   }
+  const Reductions* reductions() const { return reductions_.get(); }
   // The columns as results fields (the tally is left empty).
   std::vector<results::Field> take_fields();
 
@@ -33,6 +38,7 @@ class Tally {
   WorkPlan plan_;
   std::vector<results::Column> columns_;
   std::vector<char> done_;
+  std::unique_ptr<Reductions> reductions_;
   std::size_t n_done_ = 0;
 };
 

@@ -1,0 +1,120 @@
+#include "pounding/study/reductions.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+#include <fmt/format.h>
+
+#include "pounding/kernel/batch.hpp"
+#include "pounding/sampling/sampler.hpp"
+#include "pounding/study/study.hpp"
+
+namespace pounding {
+
+std::vector<double> histogram_edges() {
+  const int decades = static_cast<int>(std::lround(std::log10(histogram_hi / histogram_lo)));
+  std::vector<double> e;
+  for (int b = 0; b <= decades * histogram_per_decade; ++b)
+    e.push_back(histogram_lo * std::pow(10.0, static_cast<double>(b) / histogram_per_decade));
+  e.back() = histogram_hi;
+  return e;
+}
+
+double reduction_bytes(std::size_t rows, std::size_t pairs, std::size_t gaps, std::size_t curve_points) {
+  const double bins = static_cast<double>(histogram_edges().size() + 1);
+  return 8.0 * static_cast<double>(rows) *
+         (3.0 + static_cast<double>(gaps) + static_cast<double>(pairs) * (1.0 + static_cast<double>(gaps)) +
+          static_cast<double>(curve_points) + bins);
+}
+
+Reductions::~Reductions() = default;
+Reductions::Reductions(Reductions&&) noexcept = default;
+Reductions& Reductions::operator=(Reductions&&) noexcept = default;
+
+Reductions::Reductions(const Study& study, const WorkPlan& plan)
+    : study_(&study), plan_(plan), sampler_(std::make_unique<StructureSampler>(study.structures, study.seed)),
+      edges_(histogram_edges()) {
+  const int points = static_cast<int>(std::floor(study.curve_max / study.curve_step + 1e-9));  // as the report's curve
+  for (int i = 1; i <= points; ++i) curve_x_.push_back(study.curve_step * i);
+  const std::size_t R = plan.records, P = plan.pairs, G = study.gap_ratios.size();
+  n_.assign(R, 0), excluded_.assign(R, 0), gap_hits_.assign(R * G, 0);
+  pair_n_.assign(R * P, 0), pair_hits_.assign(R * P * G, 0);
+  curve_hits_.assign(R * curve_x_.size(), 0), histogram_.assign(R * (edges_.size() + 1), 0);
+  for (std::size_t p = 0; p < P; ++p) {
+    const SampleId id = study.structures.pair_id(static_cast<std::int64_t>(p));
+    pair_i1_.push_back(id.i1), pair_i2_.push_back(id.i2);
+  }
+}
+
+bool Reductions::ok(std::uint8_t s) const {
+  return s == 0 || (study_->coarse == CoarsePolicy::keep && s == static_cast<std::uint8_t>(LaneStatus::coarse));
+}
+
+void Reductions::fold(const UnitIndex& u, std::span<const std::uint8_t> status, std::span<const double> closing) {
+  const std::size_t lanes = status.size(), G = study_->gap_ratios.size(), C = curve_x_.size();
+  const std::size_t row = u.record, B = edges_.size() + 1;
+  std::vector<SampledPair> sp(lanes);
+  const SampleId pair = study_->structures.pair_id(static_cast<std::int64_t>(u.pair));
+  sampler_->sample_block(pair.i1, pair.i2, static_cast<std::int64_t>(u.block * plan_.batch), sp);
+  for (std::size_t j = 0; j < lanes; ++j) {
+    const SampledPair& q = sp[j];
+    const std::array<double, 15> key{q.s1.T, q.s2.T, q.s1.h, q.s2.h, q.s1.m, q.s2.m, q.s1.k, q.s2.k,
+                                     q.s1.fy, q.s2.fy, q.s1.c, q.s2.c, q.d, q.s1.alpha, q.s2.alpha};
+    if (!seen_) first_ = key, seen_ = true, gap_min_ = gap_max_ = q.d;
+    else if (key != first_) varied_ = true;
+    gap_min_ = std::min(gap_min_, q.d), gap_max_ = std::max(gap_max_, q.d);
+    if (!ok(status[j])) {
+      ++excluded_[row];
+      continue;
+    }
+    ++n_[row], ++pair_n_[row * plan_.pairs + u.pair];
+    const double c = closing[j], d = q.d;
+    for (std::size_t g = 0; g < G; ++g)
+      if (c > study_->gap_ratios[g] * d) ++gap_hits_[row * G + g], ++pair_hits_[(row * plan_.pairs + u.pair) * G + g];
+    const double z = c / d;  // the report's curve: z > x (strict, like delta > 0)
+    for (std::size_t i = 0; i < C && z > curve_x_[i]; ++i) ++curve_hits_[row * C + i];
+    // bin b: e_{b-1} < z <= e_b; 0 below e_0 (and NaN-free: ok analyses are finite), B - 1 above the last edge
+    const std::size_t b = static_cast<std::size_t>(std::lower_bound(edges_.begin(), edges_.end(), z) - edges_.begin());
+    ++histogram_[row * B + b];
+  }
+}
+
+results::Group Reductions::group() const {
+  const std::size_t R = plan_.records, P = plan_.pairs, G = study_->gap_ratios.size();
+  results::Group g{"reductions", {}, {}};
+  g.set("models", static_cast<std::int64_t>(plan_.models()));
+  g.set("fixed_pair", static_cast<std::int64_t>(seen_ && !varied_));
+  g.set("code_gap_min", gap_min_);
+  g.set("code_gap_max", gap_max_);
+  g.set("histogram_per_decade", static_cast<std::int64_t>(histogram_per_decade));
+  g.set("description",
+        std::string("[outputs] per_model = false: counts over the ok analyses (status 0, or coarse with [analysis] "
+                    "coarse = \"keep\") per record row, instead of per-model arrays; z = uncoupled peak closing / code "
+                    "gap d. Every value is an integer count: independent of ranks, threads, batch width and order"));
+  g.add("gap_ratios", study_->gap_ratios, "1", "the gap ratios x of gap_hits and pair_hits (gap = x d)");
+  g.add("n", n_, "1", "ok analyses per record row [records]");
+  g.add("excluded", excluded_, "1", "analyses with status != ok per record row (diverged, non-finite) [records]");
+  g.add("gap_hits", gap_hits_, "1", "ok analyses with peak closing > x d per record row and gap ratio [records, gaps]",
+        {R, G});
+  std::vector<std::int64_t> i1(pair_i1_.begin(), pair_i1_.end()), i2(pair_i2_.begin(), pair_i2_.end());
+  g.add("pair_i1", i1, "1", "period pair p's index in building 1's period grid (/models/periods1) [pairs]");
+  g.add("pair_i2", i2, "1", "period pair p's index in building 2's period grid (/models/periods2) [pairs]");
+  g.add("pair_n", pair_n_, "1", "ok analyses per record row and period pair [records, pairs]", {R, P});
+  g.add("pair_hits", pair_hits_, "1",
+        "ok analyses with peak closing > x d per record row, period pair and gap ratio [records, pairs, gaps]",
+        {R, P, G});
+  g.add("curve_x", curve_x_, "1", "the gap curve's ratios x = curve_step c, c = 1..floor(curve_max / curve_step)");
+  g.add("curve_hits", curve_hits_, "1", "ok analyses with z > x per record row and curve ratio [records, curve]",
+        {R, curve_x_.size()});
+  g.add("histogram_edges", edges_, "1",
+        fmt::format("edges e_0..e_B of z's log grid, {} bins per decade from {:g} to {:g}", histogram_per_decade,
+                    histogram_lo, histogram_hi));
+  g.add("histogram", histogram_, "1",
+        "ok analyses per record row and bin of z: bin 0 is z <= e_0 (never closing included), bin b is "
+        "(e_{b-1}, e_b], the last bin z > e_B [records, B + 2]",
+        {R, edges_.size() + 1});
+  return g;
+}
+
+}  // namespace pounding

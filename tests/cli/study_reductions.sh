@@ -1,0 +1,117 @@
+#!/usr/bin/env bash
+# Issue 27 item 5: [outputs] per_model = false keeps only the reductions (study/reductions.hpp).
+#  1. studies/quick.toml (8 samples per pair here) both ways: the report's exact tables (Table 2, Table 3, the period
+#     map, the cubic fit of the curve) are identical digit for digit; the separation advice read from the histograms
+#     is within one bin (a factor 10^(1/200)) above the per-model run's exact order statistic; no /uncoupled, no
+#     per-model /models in the reductions file; the report says what comes from histograms.
+#  2. bit-identical reductions for 1 process, mpirun -np 2, --threads 1/2, batch = 1, and SIGINT + --resume.
+#  3. the memory check admits with per_model = false the study it refuses with per_model = true.
+#  4. the impacts scene with per_model = false: one clear error, exit 2, nothing written.
+# Synthetic records only (no ../shared). Args: <pounding binary> <source dir>
+set -euo pipefail
+bin=$1; src=$(cd "$2" && pwd)
+export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMPI_MCA_rmaps_base_oversubscribe=1
+tmp=$(mktemp -d); trap 'rm -rf "$tmp"' EXIT
+fails=0
+fail() { echo "FAIL: $*"; fails=$((fails + 1)); }
+cmp() { /usr/bin/python3 "$src/tests/cli/compare_results.py" "$@"; }
+suite="$src/records/stochastic-pounding-suite.toml"
+# quick.toml, smaller: 121 period pairs x 8 samples x 25 synthetic records = 24,200 analyses
+sed -e 's/^samples_per_pair = 32/samples_per_pair = 8/' -e "s#^suite = .*#suite = \"$suite\"#" \
+    "$src/studies/quick.toml" > "$tmp/full.toml"
+sed 's/^\[structures\]/[outputs]\nper_model = false\n\n[structures]/' "$tmp/full.toml" > "$tmp/red.toml"
+grep -q '^per_model = false' "$tmp/red.toml" || { echo "FAIL: could not write the study"; exit 1; }
+
+"$bin" run "$tmp/full.toml" --out "$tmp/full.h5" --quiet --threads 2 > /dev/null 2>&1
+"$bin" run "$tmp/red.toml" --out "$tmp/red.h5" --quiet --threads 2 > /dev/null 2>&1
+"$bin" report "$tmp/full.h5" > "$tmp/full.md"
+"$bin" report "$tmp/red.h5" > "$tmp/red.md"
+
+# 1. the exact sections, line for line (the advice and code-rule sections are checked below)
+section() {  # section <file> <heading start>: the lines of that "## " section
+  awk -v h="## $2" 'index($0, h) == 1 { on = 1; print; next } /^## / { on = 0 } on' "$1"
+}
+for h in "Probability of at least one impact per record (Table 2)" "Total probability of pounding (Table 3)" \
+         "Probability by period pair" "Cubic fit"; do
+  section "$tmp/full.md" "$h" > "$tmp/a.txt"; section "$tmp/red.md" "$h" > "$tmp/b.txt"
+  [ -s "$tmp/a.txt" ] || fail "no section '$h' in the per-model report"
+  if diff -q "$tmp/a.txt" "$tmp/b.txt" > /dev/null; then
+    echo "ok   '$h' identical ($(grep -c '^|' "$tmp/a.txt") table lines)"
+  else
+    fail "'$h' differs:"; diff "$tmp/a.txt" "$tmp/b.txt" | head -20
+  fi
+done
+grep -q "From histograms" "$tmp/red.md" || fail "the reductions report does not say what comes from histograms"
+grep -q "## Code separation rules" "$tmp/red.md" && grep -q "Not given: the study kept only its reductions" "$tmp/red.md" \
+  || fail "the reductions report does not say why the code rules are left out"
+/usr/bin/python3 - "$tmp/full.md" "$tmp/red.md" <<'PY' || fails=$((fails + 1))
+import re, sys
+def advice(path):
+    text = open(path).read()
+    sec = text[text.index("## Separation advice in gap ratios"):]
+    rows = [l for l in sec.splitlines() if re.match(r"\| [0-9.]+% \|", l)]
+    return [float(l.split("|")[2]) for l in rows]
+a, b = advice(sys.argv[1]), advice(sys.argv[2])
+step = 10 ** (1 / 200)
+bad = [(x, y) for x, y in zip(a, b) if not (x - 5e-4 <= y <= x * step + 5e-4)]
+print(("FAIL" if bad or len(a) != len(b) or not a else "ok  ") + f"   advice x per model {a}, from histograms {b} (one bin: x {step:.4f})")
+sys.exit(1 if bad or len(a) != len(b) or not a else 0)
+PY
+/usr/bin/python3 - "$tmp/red.h5" <<'PY' || fails=$((fails + 1))
+import sys, h5py
+f = h5py.File(sys.argv[1], "r")
+bad = [n for n in ("uncoupled", "models/T1", "models/code_gap", "gaps/metres") if n in f]
+need = [n for n in ("reductions/gap_hits", "reductions/histogram", "reductions/pair_hits", "models/periods1") if n not in f]
+units = [d for d in f["reductions"] if "units" not in f["reductions"][d].attrs or "description" not in f["reductions"][d].attrs]
+ok = not bad and not need and not units
+print(("ok  " if ok else "FAIL") + f"   reductions file: per-model datasets present {bad}, missing {need}, unlabelled {units}")
+sys.exit(0 if ok else 1)
+PY
+
+# 2. invariance: ranks, threads, batch width, stop + resume
+"$bin" run "$tmp/red.toml" --out "$tmp/t1.h5" --quiet --threads 1 > /dev/null 2>&1
+timeout 300 mpirun -np 2 "$bin" run "$tmp/red.toml" --out "$tmp/r2.h5" --quiet > /dev/null 2>&1
+sed 's/^\[contact\]/[analysis]\nbatch = 3\n\n[contact]/' "$tmp/red.toml" > "$tmp/narrow.toml"
+"$bin" run "$tmp/narrow.toml" --out "$tmp/narrow.h5" --quiet > /dev/null 2>&1
+cmp "$tmp/red.h5" "$tmp/t1.h5" || fail "threads 1 vs 2 differ"
+cmp "$tmp/red.h5" "$tmp/r2.h5" || fail "1 process vs mpirun -np 2 differ"
+cmp "$tmp/red.h5" "$tmp/narrow.h5" --ignore=study_text,batch,output || fail "batch 3 vs the default differ"
+"$bin" run "$tmp/red.toml" --out "$tmp/int.h5" --threads 1 > /dev/null 2> "$tmp/int.err" &
+pid=$!
+for _ in $(seq 1 400); do
+  [ -f "$tmp/int.h5.ckpt" ] && [ "$(stat -c %s "$tmp/int.h5.ckpt")" -gt 20000 ] && break
+  sleep 0.05
+done
+kill -INT "$pid"
+rc=0; wait "$pid" || rc=$?
+[ "$rc" -eq 130 ] || fail "SIGINT exit code $rc (want 130): $(cat "$tmp/int.err")"
+[ -f "$tmp/int.h5" ] && fail "results file after SIGINT"
+"$bin" run "$tmp/red.toml" --out "$tmp/int.h5" --resume --quiet --threads 2 > /dev/null 2>&1
+cmp "$tmp/red.h5" "$tmp/int.h5" || fail "SIGINT + --resume differs"
+
+# 3. the memory check (POUNDING_TEST_MEMORY_AVAILABLE stands in for MemAvailable: 2 GiB)
+mem() {  # mem <per_model>: one record, one period pair, 2e7 samples
+  printf 'seed = 3\nscene = "probability"\n[records]\nsuite = "builtin"\nsynthetic_only = true\nlimit = 1\n[outputs]\nper_model = %s\n[structures]\nperiods = [1.0]\nsamples_per_pair = 20000000\n' "$1" > "$tmp/mem.toml"
+}
+export POUNDING_TEST_MEMORY_AVAILABLE=2147483648
+mem true
+rc=0; "$bin" run "$tmp/mem.toml" --out "$tmp/mem.h5" --quiet > /dev/null 2> "$tmp/mem.err" || rc=$?
+{ [ "$rc" -eq 2 ] && grep -q "per_model = false" "$tmp/mem.err"; } \
+  && echo "ok   per_model = true refused on 2 GiB: $(cat "$tmp/mem.err")" || fail "per_model = true: exit $rc: $(cat "$tmp/mem.err")"
+mem false
+"$bin" run "$tmp/mem.toml" --out "$tmp/mem.h5" --threads 1 > /dev/null 2> "$tmp/mem.err" &
+pid=$!
+for _ in $(seq 1 400); do [ -f "$tmp/mem.h5.ckpt" ] && break; grep -q ERROR "$tmp/mem.err" && break; sleep 0.05; done
+kill -INT "$pid" 2>/dev/null || true
+rc=0; wait "$pid" || rc=$?
+{ [ "$rc" -eq 130 ] && ! grep -q ERROR "$tmp/mem.err"; } && echo "ok   per_model = false admitted on 2 GiB (stopped with SIGINT)" \
+  || fail "per_model = false: exit $rc: $(cat "$tmp/mem.err")"
+unset POUNDING_TEST_MEMORY_AVAILABLE
+
+# 4. what the reductions cannot hold is refused before any work
+sed 's/^scene = "probability"/scene = "impacts"/' "$tmp/red.toml" > "$tmp/imp.toml"
+rc=0; "$bin" run "$tmp/imp.toml" --out "$tmp/imp.h5" --quiet > /dev/null 2> "$tmp/imp.err" || rc=$?
+{ [ "$rc" -eq 2 ] && [ "$(grep -c ERROR "$tmp/imp.err")" -eq 1 ] && grep -q "imp.toml:.*per_model" "$tmp/imp.err" && [ ! -e "$tmp/imp.h5" ]; } \
+  && echo "ok   impacts scene refused: $(cat "$tmp/imp.err")" || fail "impacts scene: exit $rc: $(cat "$tmp/imp.err")"
+
+[ "$fails" -eq 0 ] && echo "1 passed, 0 failed" || { echo "$fails failed"; exit 1; }
