@@ -68,6 +68,20 @@ print(("ok  " if ok else "FAIL") + f"   reductions file: per-model datasets pres
 sys.exit(0 if ok else 1)
 PY
 
+# Python: pounding.Results gives the same table2/table3 from the reductions file (skipped without the module)
+pydir="$(dirname "$bin")/python"
+if PYTHONPATH="$pydir" /usr/bin/python3 -c "import pounding, pandas" 2>/dev/null; then
+  PYTHONPATH="$pydir" /usr/bin/python3 - "$tmp/full.h5" "$tmp/red.h5" <<'PY' || fails=$((fails + 1))
+import sys, pounding
+a, b = pounding.Results(sys.argv[1]), pounding.Results(sys.argv[2])
+ok = a.table3.equals(b.table3) and a.table2.equals(b.table2)
+print(("ok  " if ok else "FAIL") + f"   Python table2/table3 from the reductions file equal the per-model file's ({len(b.table2)} records)")
+sys.exit(0 if ok else 1)
+PY
+else
+  echo "skip Python check: the pounding module is not built next to $bin"
+fi
+
 # 2. invariance: ranks, threads, batch width, stop + resume
 "$bin" run "$tmp/red.toml" --out "$tmp/t1.h5" --quiet --threads 1 > /dev/null 2>&1
 timeout 300 mpirun -np 2 "$bin" run "$tmp/red.toml" --out "$tmp/r2.h5" --quiet > /dev/null 2>&1
