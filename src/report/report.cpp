@@ -770,7 +770,7 @@ std::string pair_csv(const Data& r) {
   // [outputs] per_model = false: the separations in gap ratios from the histograms (bin upper edges)
   std::vector<double> targets;
   for (double t : r.set.targets) targets.push_back(t / 100.0);
-  const separation::BootstrapResult b = separation::bootstrap(r.histograms(), targets, r.bootstrap_settings());
+  const separation::BootstrapResult b = histogram_bootstrap(r, targets);
   for (std::size_t i = 0; i < targets.size(); ++i)
     s += fmt::format("separation,,{:.6f},,,,{},{},,{:.6f},{:.6f},\"from histograms\"\n", b.separation[i].value, c.n,
                      targets[i], b.separation[i].lo, b.separation[i].hi);

@@ -299,13 +299,14 @@ void check_per_model(const Study& s) {
                     : runs_systems(s.structures)
                         ? "shear buildings, rows and bridges keep per-floor and per-element peaks (their reductions are "
                           "not written yet)"
+                    : s.html ? "the HTML report's figures (tools/pounding_plots.py) read per-model peaks"
                         : nullptr;
   if (why)
     throw InputError(fmt::format("[outputs] per_model = false keeps only the reductions of the probability scene of "
                                  "an SDOF pair, and {}", why),
                      s.per_model_where,
-                     "write scene = \"probability\" for an SDOF pair or grid study without [intensity], or delete "
-                     "per_model (per-model outputs)");
+                     "write scene = \"probability\" for an SDOF pair or grid study without [intensity] or [report] "
+                     "html, or delete per_model (per-model outputs)");
 }
 
 // The scene actually run (auto resolved from [outputs]), why, and the scene's default step cap

@@ -6,7 +6,7 @@
 #     per-model /models in the reductions file; the report says what comes from histograms.
 #  2. bit-identical reductions for 1 process, mpirun -np 2, --threads 1/2, batch = 1, and SIGINT + --resume.
 #  3. the memory check admits with per_model = false the study it refuses with per_model = true.
-#  4. the impacts scene with per_model = false: one clear error, exit 2, nothing written.
+#  4. the impacts scene and [report] html with per_model = false: one clear error each, exit 2, nothing written.
 # Synthetic records only (no ../shared). Args: <pounding binary> <source dir>
 set -euo pipefail
 bin=$1; src=$(cd "$2" && pwd)
@@ -127,5 +127,10 @@ sed 's/^scene = "probability"/scene = "impacts"/' "$tmp/red.toml" > "$tmp/imp.to
 rc=0; "$bin" run "$tmp/imp.toml" --out "$tmp/imp.h5" --quiet > /dev/null 2> "$tmp/imp.err" || rc=$?
 { [ "$rc" -eq 2 ] && [ "$(grep -c ERROR "$tmp/imp.err")" -eq 1 ] && grep -q "imp.toml:.*per_model" "$tmp/imp.err" && [ ! -e "$tmp/imp.h5" ]; } \
   && echo "ok   impacts scene refused: $(cat "$tmp/imp.err")" || fail "impacts scene: exit $rc: $(cat "$tmp/imp.err")"
+
+sed 's/^\[report\]/[report]\nhtml = true/' "$tmp/red.toml" > "$tmp/html.toml"
+rc=0; "$bin" run "$tmp/html.toml" --out "$tmp/html.h5" --quiet > /dev/null 2> "$tmp/html.err" || rc=$?
+{ [ "$rc" -eq 2 ] && [ "$(grep -c ERROR "$tmp/html.err")" -eq 1 ] && grep -q "HTML report" "$tmp/html.err" && [ ! -e "$tmp/html.h5" ]; } \
+  && echo "ok   [report] html refused: $(cat "$tmp/html.err")" || fail "[report] html: exit $rc: $(cat "$tmp/html.err")"
 
 [ "$fails" -eq 0 ] && echo "1 passed, 0 failed" || { echo "$fails failed"; exit 1; }
