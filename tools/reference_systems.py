@@ -91,6 +91,8 @@ M = diag(m_b, Ms) with T = [-1 | I]. Then
 Usage: tools/reference_systems.py isolation INPUT.json OUTPUT.txt
 INPUT: {"m_base": kg, "k_b": N/m, "c_b": N s/m, "m": [kg], "k": [N/m], "a0": 1/s, "a1": s,
         "dt": s, "ag": [m/s^2], "substeps": int}   (ag empty: modes only)
+       ("modal_zeta": [z1, ...] instead of a0/a1: the fixed-base superstructure's classical modal C_s, as in
+        "system"; the assembly is then C = T' C_s T + c_b e0 e0' all the same)
 
 ---- smooth ----
 A base-isolated shear building (Kelly's assembly of "isolation", the bearing's viscous c_b = 0) on a smooth
@@ -658,7 +660,10 @@ def isolation_assemble(d):
     n = len(m)
     Ks = stick_stiffness(k)  # storey i joins floor i-1 (the base for i = 0) and floor i
     Ms = np.diag(m)
-    Cs = d["a0"] * Ms + d["a1"] * Ks
+    if "modal_zeta" in d:  # classical modal damping of the fixed-base superstructure (damping_matrix, scipy eigh)
+        Cs = damping_matrix(m, k, {"modal": {"zeta": d["modal_zeta"]}})[0]
+    else:
+        Cs = d["a0"] * Ms + d["a1"] * Ks
     T = np.hstack([-np.ones((n, 1)), np.eye(n)])
     e0 = np.zeros((n + 1, n + 1))
     e0[0, 0] = 1.0

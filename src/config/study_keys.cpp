@@ -323,7 +323,7 @@ constexpr StudyKey keys[] = {
     {"structures.buildingN", "stiffness_profile", "string", "[structures] stiffness_profile", "",
      "\"uniform\" | \"shear\"", "As in [structures]."},
     {"structures.buildingN", "damping", "string", "[structures] damping", "", "\"rayleigh\" | \"modal\"",
-     "As in [structures]; \"modal\" needs model = \"shear\" and no isolation."},
+     "As in [structures]; \"modal\" needs model = \"shear\" (an isolated building: its superstructure's fixed-base modes)."},
     {"structures.buildingN", "modal_zeta", "array of numbers", "[structures] modal_zeta", "", "[0, 0.5] each",
      "As in [structures].", 0.0, 0.5},
     {"structures.buildingN", "isolation", "table", "none (fixed base)", "", "{bearing, base_mass, ...}",

@@ -124,7 +124,6 @@ ShearNumbers set_shear_building(SystemBatch& batch, std::size_t lane, int body, 
 
 IsolationNumbers isolation_numbers(std::span<const double> h, const ShearSpec& spec, const IsolationSpec& iso) {
   require(std::isfinite(iso.base_mass) && iso.base_mass > 0.0, "the base mass must be finite and > 0");
-  require(!spec.modal, "classical modal damping of an isolated superstructure is not supported (use Rayleigh)");
   IsolationNumbers out;
   out.super = shear_numbers(h, spec);
   out.m_base = iso.base_mass;
@@ -171,6 +170,26 @@ int isolator_law(Bearing bearing) {
   }
 }
 
+std::vector<double> isolated_damping_matrix(std::span<const double> c_super, double c_base) {
+  const auto n = static_cast<std::size_t>(std::lround(std::sqrt(static_cast<double>(c_super.size()))));
+  require(n >= 1 && n * n == c_super.size(), "the superstructure's C must be square");
+  // C = T' C_s T + c_b e0 e0', T = [-1 | I] (relative velocities of the floors to the base): row 0 and column 0 are
+  // minus the column and row sums of C_s, (0, 0) their total plus the bearing's dashpot
+  const std::size_t N = n + 1;
+  std::vector<double> c(N * N, 0.0);
+  double total = 0.0;
+  for (std::size_t j = 0; j < n; ++j)
+    for (std::size_t k = 0; k < n; ++k) {
+      const double x = c_super[j * n + k];
+      c[(j + 1) * N + (k + 1)] = x;
+      c[(j + 1) * N] -= x;  // row j + 1, column 0: -sum_k C_jk
+      c[k + 1] -= x;        // row 0, column k + 1: -sum_j C_jk
+      total += x;
+    }
+  c[0] = total + c_base;
+  return c;
+}
+
 IsolationNumbers set_isolated_building(SystemBatch& batch, std::size_t lane, int body, const ShearSpec& spec,
                                        const IsolationSpec& iso) {
   require(batch.system != nullptr && lane < batch.width, "the batch is not sized (SystemBatch::resize)");
@@ -185,10 +204,22 @@ IsolationNumbers set_isolated_building(SystemBatch& batch, std::size_t lane, int
   const bool dashpots = b.storey_dashpots && !batch.c_storey.empty();
   for (double c : num.super.c_storey)
     require(dashpots || c == 0.0, "Rayleigh's stiffness part needs storey dashpots (StickTopology::storey_dashpots)");
+  const bool dense = b.damping == model::DampingForm::dense;
+  require(dense == !num.super.c_dense.empty(),
+          dense ? "a body with dense damping needs modal damping (ShearSpec::modal)"
+                : "modal damping needs a body with DampingForm::dense (StickTopology::damping)");
   const std::size_t w = batch.width;
   const int base = b.dofs[0], sb = sys.spring_below(base);
   batch.m[SystemBatch::at(base, lane, w)] = num.m_base;
-  batch.c_floor[SystemBatch::at(base, lane, w)] = num.c_base;  // to ground: the isolator's deformation rate
+  // to ground: the isolator's deformation rate (with dense damping the bearing's dashpot is C's (0, 0) term)
+  batch.c_floor[SystemBatch::at(base, lane, w)] = dense ? 0.0 : num.c_base;
+  if (dense) {
+    const std::vector<double> c = isolated_damping_matrix(num.super.c_dense, num.c_base);
+    const std::size_t n = b.dofs.size();
+    for (std::size_t j = 0; j < c.size(); ++j)
+      batch.c_dense[SystemBatch::at(batch.dense_entry(body, static_cast<int>(j / n), static_cast<int>(j % n)), lane, w)] =
+          c[j];
+  }
   batch.spring[SystemBatch::at(sb, lane, w)] = num.isolator;
   if (!batch.c_storey.empty()) batch.c_storey[SystemBatch::at(sb, lane, w)] = 0.0;
   for (std::size_t i = 1; i < b.dofs.size(); ++i) {

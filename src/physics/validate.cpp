@@ -356,10 +356,6 @@ std::vector<Problem> validate(const SystemBatch& batch, std::span<const ContactM
                                  "system has {}", sys.contacts().size()),
                      fmt::format("contact law of group '{}'", sys.groups()[g].name),
                      "use a force-based law (simultaneous impulses depend on their order)"});
-  for (const model::Body& body : sys.bodies())
-    if (body.damping == model::DampingForm::dense && (body.isolated || body.floor_dashpot_ref != model::ground))
-      out.push_back({"classical modal damping of an isolated building's superstructure is not supported yet",
-                     fmt::format("damping of {}", body.label), "use Rayleigh damping for an isolated building"});
   const std::size_t w = batch.width;
   const auto d = static_cast<std::size_t>(sys.ndof()), s = sys.springs().size(), e = sys.contacts().size();
   const bool sized = batch.m.size() == d * w && batch.c_floor.size() == d * w && batch.u0.size() == d * w &&

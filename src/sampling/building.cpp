@@ -676,10 +676,6 @@ BuildingModel parse_building(const toml::table* t, const std::string& file, cons
                        "drift, ductility, height_min, height_max, ct_lower, ct_upper, height_exponent, model, "
                        "floor_mass, storey_stiffness, stiffness_profile, damping, modal_zeta, isolation, moat, ") +
            code_factor_keys);
-  if (b.shear() && b.modal_damping && b.isolated)
-    throw InputError("classical modal damping is given for an isolated building", where("damping"),
-                     "use damping = \"rayleigh\" for an isolated building (its superstructure's modal damping is not "
-                     "supported yet)");
   check_shear_keys(b, [&](std::string_view key) {
     return key == "storey_height" && !own_storey_height ? fallback(key) : where(key);
   });

@@ -8,7 +8,9 @@
 #     u; uncoupled: every floor's peak u, drift and absolute acceleration, the peak closing) -- the study and simulate
 #     fill the System separately and share physics::set_shear_building and the stepper; simulate's JSON reports each
 #     mode's ratio (0.02, 0.05, 0.03, then 0.03);
-#  3. bad input: modal_zeta without damping = "modal", an unknown damping name, modal with isolation, modal on an
+#     2b. the same with building 1 base-isolated (linear bearing): the superstructure's fixed-base modal C acting on
+#     the floors' velocities relative to the base (physics::isolated_damping_matrix; refused before);
+#  3. bad input: modal_zeta without damping = "modal", an unknown damping name, modal on an
 #     SDOF building, a ratio outside [0, 0.5], --modal-zeta for an SDOF pair or for one-storey buildings: one ERROR naming the key, exit 2, no
 #     results file.
 # Synthetic records only (no ../shared needed). Args: <pounding binary> <source dir>
@@ -82,35 +84,51 @@ sim() {
     --storeys2 5 --storey-mass2 3e5 --storey-stiffness2 9.80665e7 --gap 0.064 --elastic --zeta 0.05 --dt 0.001 \
     --modal-zeta 0.02,0.05,0.03 --json "$@"
 }
-sim --contact hertzdamp --e 0.5 > "$tmp/sim.json"
-sim --contact none > "$tmp/free.json"
-/usr/bin/python3 - "$tmp" <<'PY'
+# same_as_simulate NAME [simulate options]: the study $tmp/NAME.h5 against simulate with those options
+same_as_simulate() {
+  local name=$1; shift
+  sim "$@" --contact hertzdamp --e 0.5 > "$tmp/$name-sim.json"
+  sim "$@" --contact none > "$tmp/$name-free.json"
+  /usr/bin/python3 - "$tmp" "$name" <<'PY'
 import json, sys, h5py
-tmp = sys.argv[1]
-f = h5py.File(f"{tmp}/one.h5", "r")
-s, u = json.load(open(f"{tmp}/sim.json")), json.load(open(f"{tmp}/free.json"))
+tmp, name = sys.argv[1], sys.argv[2]
+f = h5py.File(f"{tmp}/{name}.h5", "r")
+s, u = json.load(open(f"{tmp}/{name}-sim.json")), json.load(open(f"{tmp}/{name}-free.json"))
+iso = "peak_bearing_u1" in u  # building 1 isolated: the study's floors of building 1 start with the base
 g = list(f["impacts/gap_ratios"][()]).index(0.5)
 assert abs(0.5 * f["models/code_gap"][()][0] - 0.064) < 1e-15
 at = lambda name: f[name][()].ravel()[g]
 checks = [("impact_count", at("impacts/impact_count"), s["impact_count"]),
           ("peak_force", at("impacts/peak_force"), s["peak_force"]),
           ("t_first_impact", at("impacts/t_first_impact"), s["t_first_impact"]),
-          ("peak_u1", at("impacts/peak_u1"), max(s["peak_u1"])),
+          ("peak_u1", at("impacts/peak_u1"), max(s["peak_u1"] + ([s["peak_bearing_u1"]] if iso else []))),
           ("peak_u2", at("impacts/peak_u2"), max(s["peak_u2"])),
           ("uncoupled peak_closing", f["uncoupled/peak_closing"][()].ravel()[0], u["peak_closing"])]
 for b in (1, 2):
-    for name, key in (("peak_u_floors", "peak_u"), ("peak_drift", "peak_drift"), ("peak_acc_floors", "peak_abs_acc")):
-        mine = list(f[f"uncoupled/{name}{b}"][()].ravel())
+    base = iso and b == 1
+    for field, key in (("peak_u_floors", "peak_u"), ("peak_drift", "peak_drift"), ("peak_acc_floors", "peak_abs_acc")):
+        mine = list(f[f"uncoupled/{field}{b}"][()].ravel())
         theirs = u[f"{key}{b}_g" if key == "peak_abs_acc" else f"{key}{b}"]
-        checks += [(f"uncoupled {name}{b}[{i}]", a, c) for i, (a, c) in enumerate(zip(mine, theirs, strict=True))]
+        if base:
+            mine, theirs = (mine, [u["peak_bearing_u1"]] + theirs) if key == "peak_u" else (mine[1:], theirs)
+        checks += [(f"uncoupled {field}{b}[{i}]", a, c) for i, (a, c) in enumerate(zip(mine, theirs, strict=True))]
 assert s["status"] == "ok" and u["status"] == "ok" and at("impacts/status") == 0
 assert s["impact_count"] > 0, "no impacts at the gap"
 bad = [(n, a, c) for n, a, c in checks if not (a == c)]
 assert not bad, bad
 zetas = [b["modal_damping"] for b in s["buildings"]]
 assert zetas == [[0.02, 0.05, 0.03], [0.02, 0.05, 0.03, 0.03, 0.03]], zetas
-print(f"ok   study == simulate bit for bit ({len(checks)} numbers; {s['impact_count']} impacts), modal ratios {zetas}")
+print(f"ok   {name}: study == simulate bit for bit ({len(checks)} numbers; {s['impact_count']} impacts), modal ratios "
+      f"{zetas}")
 PY
+}
+same_as_simulate one
+# 2b. building 1 base-isolated on a linear bearing, its superstructure modally damped
+awk '{ print } /^storey_stiffness = / && !done { print "isolation = {bearing = \"linear\", base_mass = 3.0e5, k_eff = 1.2e7, zeta_eff = 0.1}"; done = 1 }' \
+  "$tmp/one.toml" > "$tmp/iso.toml"
+grep -c '^isolation = ' "$tmp/iso.toml" | grep -qx 1 || fail "iso.toml: expected one isolation line"
+"$bin" run "$tmp/iso.toml" --out "$tmp/iso.h5" --quiet > /dev/null 2>&1 || fail "the isolated modal study did not run"
+same_as_simulate iso --isolation1 linear --base-mass1 3e5 --bearing-keff1 1.2e7 --bearing-zeta1 0.1
 
 # 3. bad input
 fails=0
@@ -119,8 +137,6 @@ b1() { echo "$body" | sed "s/^\[gaps\]/[structures.building1]\n$1\n\n[gaps]/"; }
 expect_error zeta_without_modal 'modal_zeta is given without damping = "modal".*\[structures.building1\].modal_zeta' \
   "$(b1 'modal_zeta = [0.02]')"
 expect_error damping_name '\[structures.building1\].damping, write damping = "rayleigh"' "$(b1 'damping = "viscous"')"
-expect_error modal_isolated 'modal damping is given for an isolated building.*\[structures.building1\].damping' \
-  "$(b1 'damping = "modal"\nisolation = {bearing = "linear", k_eff = 1e6}')"
 expect_error modal_sdof 'damping is given for an SDOF building.*\[structures.building1\].damping' \
   "$(b1 'model = "sdof"\ndamping = "modal"')"
 expect_error modal_zeta_range '\[structures.building1\].modal_zeta' "$(b1 'damping = "modal"\nmodal_zeta = [0.02, 0.7]')"

@@ -102,7 +102,13 @@ IsolationNumbers isolation_numbers(std::span<const double> storey_heights, const
                                    const IsolationSpec& iso);
 // Fills lane `lane` of isolated body `body` (model::StickTopology::isolated): the base mass and dashpot, the
 // isolator spring, and the superstructure as set_shear_building does, its floor dashpots referencing the base
-// (Body::floor_dashpot_ref, so the rigid-body mode on the isolators gets no superstructure damping).
+// (Body::floor_dashpot_ref, so the rigid-body mode on the isolators gets no superstructure damping); with modal
+// damping (ShearSpec::modal, a dense body) the whole C of isolated_damping_matrix instead of dashpots.
+// Classical modal damping of an isolated building (StickTopology::damping = dense): its superstructure's fixed-base
+// modal C_s (n x n, row-major, ShearNumbers::c_dense) acting on the floors' velocities relative to the base, and the
+// bearing's dashpot c_b to the ground, as one (n + 1) x (n + 1) matrix over (base, floor 1, ..., floor n):
+// C = T' C_s T + c_b e0 e0', T = [-1 | I]. Symmetric; a rigid-body translation on the bearings gets only c_b.
+std::vector<double> isolated_damping_matrix(std::span<const double> c_super, double c_base);
 IsolationNumbers set_isolated_building(SystemBatch& batch, std::size_t lane, int body, const ShearSpec& spec,
                                        const IsolationSpec& iso);
 // Moat walls of isolated body `body` (StickTopology::moat): gaps (m) left and right of the base, kc and e.

@@ -590,10 +590,6 @@ int run_storeys(SimulateOptions& o, const ContactModel& cm, KernelSettings& ks) 
     sticks[i].storeys = sides[i].st.storeys, sticks[i].storey_heights = {sides[i].st.height};
     if (!o.modal_zeta.empty() && sticks[i].storeys > 1) sticks[i].damping = model::DampingForm::dense;
     if (i >= 2) continue;  // isolation: buildings 1 and 2
-    if (!o.modal_zeta.empty() && !o.iso[i].bearing.empty())
-      throw InputError(fmt::format("--modal-zeta with --isolation{}", i + 1), "--modal-zeta",
-                       fmt::format("use Rayleigh damping (--zeta) for the isolated building {} (its superstructure's "
-                                   "modal damping is not supported yet), or remove --isolation{}", i + 1, i + 1));
     sticks[i].isolated = !o.iso[i].bearing.empty(), sticks[i].moat = o.iso[i].moat_given;
     if (sticks[i].isolated) sticks[i].isolator_law = physics::isolator_law(bearing_of(o.iso[i].bearing));
   }
