@@ -404,11 +404,6 @@ std::vector<model::StickTopology> sticks_of(const TopologyArgs& t, const std::ve
     sticks[b].storeys = t.storeys[b], sticks[b].storey_heights = {t.heights[b]};
     if (!t.modal_zeta.empty() && sticks[b].storeys > 1) sticks[b].damping = model::DampingForm::dense;
     if (!base[b].isolated) continue;
-    if (!t.modal_zeta.empty())
-      throw InputError("modal_zeta with isolation[" + std::to_string(b) + "]", "modal_zeta",
-                       "use Rayleigh damping (zeta" + std::to_string(b + 1) + ") for the isolated building " +
-                           std::to_string(b + 1) + " (its superstructure's modal damping is not supported yet), or "
-                           "drop isolation[" + std::to_string(b) + "]");
     sticks[b].isolated = true, sticks[b].moat = base[b].moat;
     sticks[b].isolator_law = physics::isolator_law(sampling::bearing_of(base[b].bearing));
   }

@@ -130,10 +130,18 @@ def test_bad_isolation_has_the_cli_wording(tmp_path, cli_args, iso, moat, names)
     assert str(err.value) == want  # what, where, how to fix: the CLI's words, Python's names
 
 
-def test_isolation_beyond_building_two_and_modal_zeta_refused():
+def test_isolation_beyond_building_two_refused():
     b = dict(BUILDINGS, floor_mass3=[2e5], storey_stiffness3=[1.5e8], gap=[0.05])
     with pytest.raises(ValueError, match="buildings 1 and 2 only"):
         pounding.analyze_storeys(b, REC, storeys=(3, 5, 4), isolation=[None, None, dict(bearing="linear", k_eff=1e7)])
-    with pytest.raises(ValueError, match=r"modal_zeta with isolation\[0\]"):
-        pounding.analyze_storeys(dict(BUILDINGS, gap=[0.05]), REC, storeys=(3, 5), modal_zeta=[0.02],
-                                 isolation=[dict(bearing="linear", k_eff=1e7), None])
+
+
+@bits
+def test_modal_damping_of_an_isolated_building_same_bits_as_simulate(tmp_path):
+    # the superstructure's fixed-base modal C acting relative to the base (physics::isolated_damping_matrix)
+    j, rec = simulate(tmp_path, *PAIR, "--isolation1", "linear", "--base-mass1", "3e5", "--bearing-keff1", "1.2e7",
+                      "--modal-zeta", "0.02,0.05,0.03", "--gap", "0.05")
+    r = pounding.analyze_storeys(dict(BUILDINGS, gap=[0.05]), rec, storeys=(3, 5), modal_zeta=[0.02, 0.05, 0.03],
+                                 isolation=[dict(bearing="linear", base_mass=3e5, k_eff=1.2e7), None], **KW)
+    same_bits(r, j, 2)
+    same_base(r, j, moat=False)
