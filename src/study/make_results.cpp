@@ -133,6 +133,19 @@ physics::CoarseSummary coarse_summary(const Study& study, const WorkPlan& L, con
 }
 
 namespace {
+// The verdict's share and advice, the same for per-model results and reductions: more than max_excluded_fraction
+// excluded, and what to check when anything was said.
+void close_verdict(const Study& study, double frac, Exclusions& ex) {
+  if (frac > study.max_excluded_fraction)
+    ex.verdict += fmt::format("{}{} of {} analyses ({:.3g} %) were excluded, more than [analysis] "
+                              "max_excluded_fraction = {:.3g} %",
+                              ex.verdict.empty() ? "" : "; ", ex.excluded, ex.total, 100.0 * frac,
+                              100.0 * study.max_excluded_fraction);
+  if (!ex.verdict.empty())
+    ex.verdict += "; the probabilities may be biased: check the record units and scale, the contact stiffness "
+                  "and the step (substeps, max_dt)";
+}
+
 // [outputs] per_model = false: the reductions' per-record counts (probability scene of an SDOF pair only).
 Exclusions reduced_exclusions(const Study& study, const WorkPlan& L, const Reductions& red,
                               const std::vector<StudyRecord>& records) {
@@ -146,14 +159,7 @@ Exclusions reduced_exclusions(const Study& study, const WorkPlan& L, const Reduc
   }
   const double frac = ex.total ? static_cast<double>(ex.excluded) / static_cast<double>(ex.total) : 0.0;
   if (!lost.empty()) ex.verdict = fmt::format("every analysis of record(s) {} diverged or was non-finite", fmt::join(lost, ", "));
-  if (frac > study.max_excluded_fraction)
-    ex.verdict += fmt::format("{}{} of {} analyses ({:.3g} %) were excluded, more than [analysis] "
-                              "max_excluded_fraction = {:.3g} %",
-                              ex.verdict.empty() ? "" : "; ", ex.excluded, ex.total, 100.0 * frac,
-                              100.0 * study.max_excluded_fraction);
-  if (!ex.verdict.empty())
-    ex.verdict += "; the probabilities may be biased: check the record units and scale, the contact stiffness "
-                  "and the step (substeps, max_dt)";
+  close_verdict(study, frac, ex);
   return ex;
 }
 }  // namespace
@@ -196,14 +202,7 @@ Exclusions count_exclusions(const Study& study, const WorkPlan& L, const Tally& 
   if (!lost.empty())
     ex.verdict = fmt::format("every {}analysis of record(s) {} diverged or was non-finite",
                              L.impacts ? "uncoupled or every coupled " : "", fmt::join(lost, ", "));
-  if (frac > study.max_excluded_fraction)
-    ex.verdict += fmt::format("{}{} of {} analyses ({:.3g} %) were excluded, more than [analysis] "
-                              "max_excluded_fraction = {:.3g} %",
-                              ex.verdict.empty() ? "" : "; ", ex.excluded, ex.total, 100.0 * frac,
-                              100.0 * study.max_excluded_fraction);
-  if (!ex.verdict.empty())
-    ex.verdict += "; the probabilities may be biased: check the record units and scale, the contact stiffness "
-                  "and the step (substeps, max_dt)";
+  close_verdict(study, frac, ex);
   return ex;
 }
 
