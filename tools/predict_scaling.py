@@ -3,8 +3,12 @@
 
 Inputs, all measured (README "Speed" says where each comes from):
   - the master's service time per unit, s: `POUNDING_MASTER_SERVICE=1 mpirun -np 2 pounding run STUDY` prints
-    "... = X us per unit" (workers answer at once with stored results, so the run measures the master alone:
-    receiving, storing, checkpointing and handing out one unit);
+    "the master's time per worker unit X us" (since issue 27.4 a worker stores and checkpoints its own units in its
+    slice and sends the master the unit's id: the master receives 8 bytes and hands out the next unit). Before
+    slices it printed "... = X us per unit": receiving, storing, checkpointing and handing out one unit's bytes;
+  - the assembly after the units, a per unit: rank 0 reading the workers' slices into the result arrays (the same
+    line's "assembly from the slices ... us per unit"); serial, after the units phase, for the units the workers
+    computed ((p - 1) / p of them);
   - the compute time of one unit, t, the serial part (every rank's start: MPI start + inputs + structures, which
     do not shrink with more ranks) and the part after the units (analysis + report + results write, rank 0 only):
     from the /timing group of a one-rank results file (--results R1.h5), or given; the results write and mpirun's
@@ -15,7 +19,7 @@ units itself when it is not serving. With p ranks the phase takes
     T_units(p) = max( (U t + U s) / p,          the work and the service spread over every rank,
                       U s,                      the master alone serving every unit (saturation),
                       ceil(U / p) t )           the last wave: no rank can finish fewer whole units;
-end to end T(p) = serial + T_units(p) + post. The master saturates at p* = (t + s) / s ranks. Efficiencies are
+end to end T(p) = serial + T_units(p) + U a (p - 1) / p + post. The master saturates at p* = (t + s) / s ranks. Efficiencies are
 T(1) / (p T(p)) (end to end) and U t / (p T_units(p)) (units phase only).
 Not modelled: MPI start-up growth with p, network latency beyond what s holds (measured on one node), stragglers.
 """
@@ -61,6 +65,8 @@ def main():
                          "the 'results write' of the run's printed timing line")
     ap.add_argument("--mpi-start-s", type=float, default=0.0,
                     help="MPI start-up under mpirun, s (a one-rank run without mpirun has none)")
+    ap.add_argument("--assemble-us", type=float, default=0.0,
+                    help="rank 0's reading of the workers' checkpoint slices after the units, us per unit (0: none)")
     ap.add_argument("--ranks", default="1,2,16,64,1000", help="comma-separated rank counts")
     ap.add_argument("--label", default="", help="a name for the workload in the table's title")
     a = ap.parse_args()
@@ -80,8 +86,9 @@ def main():
     for name, v in (("--service-us", s), ("--unit-ms", t), ("--units", units)):
         if not (v > 0 and math.isfinite(v)):
             sys.exit(f" ERROR: {name} must be a positive number, got {v}")
-    if serial < 0 or post < 0 or a.write_s < 0 or a.mpi_start_s < 0:
-        sys.exit(" ERROR: --serial-s, --post-s, --write-s and --mpi-start-s must be >= 0")
+    if serial < 0 or post < 0 or a.write_s < 0 or a.mpi_start_s < 0 or not a.assemble_us >= 0:
+        sys.exit(" ERROR: --serial-s, --post-s, --write-s, --mpi-start-s and --assemble-us must be >= 0")
+    asm = a.assemble_us / 1e6
     try:
         ranks = [int(x) for x in a.ranks.split(",")]
         if any(p < 1 for p in ranks):
@@ -92,18 +99,21 @@ def main():
     def t_units(p):
         return max((units * t + units * s) / p, units * s, math.ceil(units / p) * t)
 
-    t1 = serial + t_units(1) + post
+    def t_after(p):  # the assembly of the workers' units, then the analysis, report and write
+        return units * asm * (p - 1) / p + post
+
+    t1 = serial + t_units(1) + t_after(1)
     print(f"## Predicted scaling{': ' + a.label if a.label else ''}")
     print(f"units {units}, unit {t * 1e3:.3f} ms, master service {s * 1e6:.2f} us per unit, serial {serial:.3f} s, "
-          f"after the units {post:.3f} s; the master saturates at p* = (t + s) / s = {(t + s) / s:.0f} ranks\n")
+          f"after the units {post:.3f} s + assembly {a.assemble_us:.2f} us per worker unit; the master saturates at p* = (t + s) / s = {(t + s) / s:.0f} ranks\n")
     print("| ranks | units phase s | end to end s | speed-up | efficiency (end to end) | efficiency (units phase) | limited by |")
     print("|---|---|---|---|---|---|---|")
     for p in ranks:
         tu = t_units(p)
-        total = serial + tu + post
+        total = serial + tu + t_after(p)
         terms = {"work": (units * t + units * s) / p, "master": units * s, "last wave": math.ceil(units / p) * t}
         limit = max(terms, key=terms.get)
-        if serial + post > tu:
+        if serial + t_after(p) > tu:
             limit += ", serial part"
         print(f"| {p} | {tu:.4f} | {total:.4f} | {t1 / total:.2f} | {100 * t1 / (p * total):.1f} % | "
               f"{100 * units * t / (p * tu):.1f} % | {limit} |")

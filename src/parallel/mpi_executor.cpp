@@ -76,19 +76,12 @@ bool finish(Failure& f, bool stopped) {
   return code == 0;
 }
 
-// A result message: the unit id (8 bytes, native order) followed by the payload bytes.
-void pack_result(std::vector<std::byte>& msg, std::int64_t unit, const Payload& payload) {
-  msg.resize(sizeof unit + payload.size());
-  std::memcpy(msg.data(), &unit, sizeof unit);
-  if (!payload.empty()) std::memcpy(msg.data() + sizeof unit, payload.data(), payload.size());
-}
-
-bool worker_loop(const ComputeFn& compute) {
-  // Results go out with MPI_Isend from two alternating buffers: a result larger than the eager limit
-  // waits for the master to post its receive (it may be busy computing a unit), and the worker goes on
-  // computing its next unit meanwhile instead of blocking in MPI_Send. After a failure the worker sends
-  // the error once and only drains unit messages until the master's stop.
-  std::vector<std::byte> msg[2];
+// A worker's report of a stored unit: its id alone (8 bytes, native order; issue 27.4). The payload stays on the
+// worker, which stored it through on_result (the study appends it to the rank's own checkpoint slice).
+bool worker_loop(const ComputeFn& compute, const ResultFn& on_result, const TickFn& tick) {
+  // Reports go out with MPI_Isend from two alternating slots, so the worker never waits for a busy master.
+  // After a failure the worker sends the error once and only drains unit messages until the master's stop.
+  std::int64_t done[2] = {0, 0};
   MPI_Request req[2] = {MPI_REQUEST_NULL, MPI_REQUEST_NULL};
   Failure failed;
   int rank = 0;
@@ -98,9 +91,9 @@ bool worker_loop(const ComputeFn& compute) {
     MPI_Recv(&unit, 1, MPI_INT64_T, 0, tag_work, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
     if (unit == stop_unit) break;
     if (failed.set) continue;
-    Payload payload;
     try {
-      payload = compute(static_cast<std::size_t>(unit));
+      on_result(static_cast<std::size_t>(unit), compute(static_cast<std::size_t>(unit)));
+      tick();
     } catch (...) {
       failed.capture(rank);
       std::string text = failed.pack();
@@ -108,8 +101,8 @@ bool worker_loop(const ComputeFn& compute) {
       continue;
     }
     MPI_Wait(&req[k], MPI_STATUS_IGNORE);
-    pack_result(msg[k], unit, payload);
-    MPI_Isend(msg[k].data(), static_cast<int>(msg[k].size()), MPI_BYTE, 0, tag_result, MPI_COMM_WORLD, &req[k]);
+    done[k] = unit;
+    MPI_Isend(&done[k], 1, MPI_INT64_T, 0, tag_result, MPI_COMM_WORLD, &req[k]);
   }
   MPI_Waitall(2, req, MPI_STATUSES_IGNORE);
   Failure outcome;
@@ -117,13 +110,14 @@ bool worker_loop(const ComputeFn& compute) {
 }
 
 // A worker rank with `threads` threads (threads > 1): the master keeps 2 threads units in flight here; units are
-// received without blocking while the pool computes, and each result goes out with MPI_Isend as it finishes. Every
-// MPI call stays on this thread (MPI_THREAD_FUNNELED). After a failure the error is sent once, the queued units are
-// dropped, the running ones' results discarded, and unit messages are only drained until the master's stop.
-bool worker_loop_threaded(const ThreadComputeFn& compute, int threads) {
+// received without blocking while the pool computes, and each finished unit is stored here (on_result) and reported
+// with MPI_Isend. Every MPI call stays on this thread (MPI_THREAD_FUNNELED). After a failure the error is sent once,
+// the queued units are dropped, the running ones' results discarded, and unit messages are only drained until the
+// master's stop.
+bool worker_loop_threaded(const ThreadComputeFn& compute, int threads, const ResultFn& on_result, const TickFn& tick) {
   struct Send {
     MPI_Request request = MPI_REQUEST_NULL;
-    std::vector<std::byte> bytes;
+    std::int64_t unit = 0;
   };
   std::list<Send> sends;
   Failure failed;
@@ -137,6 +131,12 @@ bool worker_loop_threaded(const ThreadComputeFn& compute, int threads) {
     if (unit == stop_unit) stopping = true;
     else if (!failed.set) pool.submit(static_cast<std::size_t>(unit));
   };
+  const auto fail = [&] {  // inside a catch
+    failed.capture(rank);
+    pool.drop_queued();
+    std::string text = failed.pack();
+    MPI_Send(text.data(), static_cast<int>(text.size()), MPI_CHAR, 0, tag_error, MPI_COMM_WORLD);
+  };
   for (;;) {
     for (int flag = 1; flag && !stopping;) {
       MPI_Iprobe(0, tag_work, MPI_COMM_WORLD, &flag, MPI_STATUS_IGNORE);
@@ -148,20 +148,15 @@ bool worker_loop_threaded(const ThreadComputeFn& compute, int threads) {
       continue;
     }
     if (std::optional<UnitPool::Done> d = pool.take(std::chrono::milliseconds(1)); d && !failed.set) {
-      if (d->error) {
-        try {
-          std::rethrow_exception(d->error);
-        } catch (...) {
-          failed.capture(rank);
-        }
-        pool.drop_queued();
-        std::string text = failed.pack();
-        MPI_Send(text.data(), static_cast<int>(text.size()), MPI_CHAR, 0, tag_error, MPI_COMM_WORLD);
-      } else {
+      try {
+        if (d->error) std::rethrow_exception(d->error);
+        on_result(d->unit, std::move(d->payload));
+        tick();
         Send& out = sends.emplace_back();
-        pack_result(out.bytes, static_cast<std::int64_t>(d->unit), d->payload);
-        MPI_Isend(out.bytes.data(), static_cast<int>(out.bytes.size()), MPI_BYTE, 0, tag_result, MPI_COMM_WORLD,
-                  &out.request);
+        out.unit = static_cast<std::int64_t>(d->unit);
+        MPI_Isend(&out.unit, 1, MPI_INT64_T, 0, tag_result, MPI_COMM_WORLD, &out.request);
+      } catch (...) {
+        fail();
       }
     }
     for (auto it = sends.begin(); it != sends.end();) {
@@ -176,20 +171,20 @@ bool worker_loop_threaded(const ThreadComputeFn& compute, int threads) {
 }
 
 // Rank 0 of a multi-rank run: hands out units (two in flight per worker), computes units itself between
-// messages, stores results in completion order, and stops every worker at the end.
-// Results are received without blocking: a probed result gets an MPI_Irecv and its worker its next unit at once, and
-// the master goes on computing while the data arrives. With a transport whose large messages advance only inside MPI
-// calls on both sides (shared memory without single-copy, measured: README "Speed"), a blocking receive made the
-// master wait for each busy worker instead of computing (rank 0 computed no unit; 2 ranks were slower than 1).
+// messages, stores its own results, counts the workers' (on_done), and stops every worker at the end.
+// A worker's message is 8 bytes (the unit id): it arrives eagerly, so the master receives it at once and hands that
+// worker its next unit; the master's time per worker unit is a probe, an 8-byte receive and an 8-byte send
+// (issue 27.4; before, it received, copied and checkpointed each unit's payload, 6.4-75 KB).
 class Master {
  public:
   // threads > 1: `threaded` computes rank 0's units on a pool of that many threads, and every worker has 2 threads
   // units in flight (each worker rank runs as many threads).
   Master(const Session& s, const std::vector<std::size_t>& todo, const ComputeFn& compute, const ResultFn& on_result,
-         const TickFn& tick, const std::atomic<bool>& stop, const ThreadComputeFn* threaded = nullptr, int threads = 1)
-      : size_(s.size()), queue_(todo.begin(), todo.end()), compute_(compute), on_result_(on_result), tick_(tick),
-        stop_(stop), in_flight_(static_cast<std::size_t>(size_), 0), dead_(static_cast<std::size_t>(size_), 0),
-        threaded_(threaded), threads_(threaded ? threads : 1) {}
+         const DoneFn& on_done, const TickFn& tick, const std::atomic<bool>& stop,
+         const ThreadComputeFn* threaded = nullptr, int threads = 1, MasterStats* stats = nullptr)
+      : stats_(stats), size_(s.size()), queue_(todo.begin(), todo.end()), compute_(compute), on_result_(on_result),
+        on_done_(on_done), tick_(tick), stop_(stop), in_flight_(static_cast<std::size_t>(size_), 0),
+        dead_(static_cast<std::size_t>(size_), 0), threaded_(threaded), threads_(threaded ? threads : 1) {}
 
   bool run() {
     for (int r = 1; r < size_; ++r)
@@ -211,11 +206,6 @@ class Master {
   }
 
  private:
-  struct Pending {  // a result whose receive is posted and not yet complete
-    MPI_Request request = MPI_REQUEST_NULL;
-    std::vector<std::byte> bytes;
-  };
-
   bool halted() const { return failed_.set || stop_.load(); }
 
   // Rank 0's own units on its threads, between servicing the workers' messages (every 1 ms at least).
@@ -256,7 +246,7 @@ class Master {
     return true;
   }
 
-  // on_result and tick: a throw stops the run (the error goes to every rank at the end)
+  // on_result, on_done and tick: a throw stops the run (the error goes to every rank at the end)
   template <class F>
   void deliver(F&& store) {
     try {
@@ -279,49 +269,24 @@ class Master {
     dead_[src] = 1;
   }
 
-  // A probed result: post its receive, hand its worker the next unit (the worker's slot is free once its result
-  // is on its way), and complete the receive later (complete_results).
-  void post_result(const MPI_Status& st) {
-    int count = 0;
-    MPI_Get_count(&st, MPI_BYTE, &count);
-    Pending p;
-    if (!spare_.empty()) p.bytes = std::move(spare_.back()), spare_.pop_back();
-    p.bytes.resize(static_cast<std::size_t>(count));
-    MPI_Irecv(p.bytes.data(), count, MPI_BYTE, st.MPI_SOURCE, tag_result, MPI_COMM_WORLD, &p.request);
-    pending_.push_back(std::move(p));
+  // A worker stored a unit: hand it its next one at once, then count the stored one.
+  void receive_done(const MPI_Status& st) {
+    const auto t0 = std::chrono::steady_clock::now();
+    std::int64_t unit = 0;
+    MPI_Recv(&unit, 1, MPI_INT64_T, st.MPI_SOURCE, tag_result, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
     --in_flight_[static_cast<std::size_t>(st.MPI_SOURCE)];
+    --outstanding_;
     if (send_unit(st.MPI_SOURCE)) ++outstanding_;
-  }
-
-  // Stores every result whose data has arrived; returns how many.
-  std::size_t complete_results() {
-    std::size_t done = 0;
-    for (std::size_t i = 0; i < pending_.size();) {
-      int flag = 0;
-      MPI_Test(&pending_[i].request, &flag, MPI_STATUS_IGNORE);  // a completed (null) request tests true
-      if (!flag) {
-        ++i;
-        continue;
-      }
-      Pending p = std::move(pending_[i]);
-      pending_.erase(pending_.begin() + static_cast<std::ptrdiff_t>(i));
-      --outstanding_;
-      ++done;
-      if (!failed_.set) {  // nothing more is stored after a failure
-        std::int64_t unit = 0;
-        std::memcpy(&unit, p.bytes.data(), sizeof unit);
-        deliver([&] { on_result_(static_cast<std::size_t>(unit), Payload(p.bytes.begin() + sizeof unit, p.bytes.end())); });
-      }
-      spare_.push_back(std::move(p.bytes));
+    if (!failed_.set) deliver([&] { on_done_(static_cast<std::size_t>(unit), st.MPI_SOURCE); });
+    if (stats_) {
+      ++stats_->worker_units;
+      stats_->service_s += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     }
-    return done;
   }
 
-  // Posts the receives of every waiting message and stores the results that have arrived. With `block`, returns
-  // only after at least one message was taken or one result stored.
+  // Takes every waiting message. With `block`, returns only after at least one message was taken.
   void service(bool block) {
-    for (;;) {
-      bool progressed = complete_results() > 0;
+    for (bool progressed = false;;) {
       for (;;) {
         int flag = 0;
         MPI_Status st;
@@ -329,32 +294,26 @@ class Master {
         if (!flag) break;
         progressed = true;
         if (st.MPI_TAG == tag_error) receive_error(st);
-        else post_result(st);
+        else receive_done(st);
       }
-      if (complete_results() > 0) progressed = true;
       if (!block || progressed) return;
-      // nothing yet: wait for the oldest posted result if there is one, else for the next message
-      if (!pending_.empty()) {
-        MPI_Wait(&pending_.front().request, MPI_STATUS_IGNORE);  // now null: stored by the next pass
-      } else {
-        MPI_Status st;
-        MPI_Probe(MPI_ANY_SOURCE, MPI_ANY_TAG, MPI_COMM_WORLD, &st);
-      }
+      MPI_Status st;
+      MPI_Probe(MPI_ANY_SOURCE, MPI_ANY_TAG, MPI_COMM_WORLD, &st);  // nothing yet: wait for the next message
     }
   }
 
+  MasterStats* stats_;
   int size_;
   std::deque<std::size_t> queue_;
   const ComputeFn& compute_;
   const ResultFn& on_result_;
+  const DoneFn& on_done_;
   const TickFn& tick_;
   const std::atomic<bool>& stop_;
   Failure failed_;
   std::vector<int> in_flight_;
   std::vector<char> dead_;
   int outstanding_ = 0;
-  std::vector<Pending> pending_;
-  std::vector<std::vector<std::byte>> spare_;  // result buffers to reuse
   std::string text_;
   const ThreadComputeFn* threaded_;
   int threads_;
@@ -442,7 +401,7 @@ void Session::agree(const std::function<void()>& phase) const {
 }
 
 bool run_units(const Session& s, const std::vector<std::size_t>& todo, const ComputeFn& compute,
-               const ResultFn& on_result, const TickFn& tick, const std::atomic<bool>& stop) {
+               const ResultFn& on_result, const DoneFn& on_done, const TickFn& tick, const std::atomic<bool>& stop) {
   if (s.size() == 1) {
     for (std::size_t u : todo) {
       if (stop.load()) return false;
@@ -451,17 +410,21 @@ bool run_units(const Session& s, const std::vector<std::size_t>& todo, const Com
     }
     return true;
   }
-  if (!s.root()) return worker_loop(compute);
-  return Master(s, todo, compute, on_result, tick, stop).run();
+  if (!s.root()) return worker_loop(compute, on_result, tick);
+  return Master(s, todo, compute, on_result, on_done, tick, stop).run();
 }
 
 bool run_units(const Session& s, const std::vector<std::size_t>& todo, const ThreadComputeFn& compute, int threads,
-               const ResultFn& on_result, const TickFn& tick, const std::atomic<bool>& stop) {
+               const ResultFn& on_result, const DoneFn& on_done, const TickFn& tick, const std::atomic<bool>& stop,
+               MasterStats* stats) {
   const ComputeFn one = [&](std::size_t u) { return compute(u, 0); };
-  if (threads <= 1) return run_units(s, todo, one, on_result, tick, stop);
+  if (threads <= 1) {
+    if (s.size() > 1 && s.root()) return Master(s, todo, one, on_result, on_done, tick, stop, nullptr, 1, stats).run();
+    return run_units(s, todo, one, on_result, on_done, tick, stop);
+  }
   if (s.size() == 1) return run_units_threaded(todo, compute, threads, on_result, tick, stop);
-  if (!s.root()) return worker_loop_threaded(compute, threads);
-  return Master(s, todo, one, on_result, tick, stop, &compute, threads).run();
+  if (!s.root()) return worker_loop_threaded(compute, threads, on_result, tick);
+  return Master(s, todo, one, on_result, on_done, tick, stop, &compute, threads, stats).run();
 }
 
 }  // namespace pounding::parallel

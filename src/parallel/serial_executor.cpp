@@ -64,7 +64,7 @@ void Session::abort(int code) const { std::exit(code); }
 void Session::agree(const std::function<void()>& phase) const { phase(); }
 
 bool run_units(const Session&, const std::vector<std::size_t>& todo, const ComputeFn& compute,
-               const ResultFn& on_result, const TickFn& tick, const std::atomic<bool>& stop) {
+               const ResultFn& on_result, const DoneFn&, const TickFn& tick, const std::atomic<bool>& stop) {
   for (std::size_t u : todo) {
     if (stop.load()) return false;
     on_result(u, compute(u));
@@ -74,9 +74,10 @@ bool run_units(const Session&, const std::vector<std::size_t>& todo, const Compu
 }
 
 bool run_units(const Session& s, const std::vector<std::size_t>& todo, const ThreadComputeFn& compute, int threads,
-               const ResultFn& on_result, const TickFn& tick, const std::atomic<bool>& stop) {
+               const ResultFn& on_result, const DoneFn& on_done, const TickFn& tick, const std::atomic<bool>& stop,
+               MasterStats*) {
   if (threads > 1) return run_units_threaded(todo, compute, threads, on_result, tick, stop);
-  return run_units(s, todo, [&](std::size_t u) { return compute(u, 0); }, on_result, tick, stop);
+  return run_units(s, todo, [&](std::size_t u) { return compute(u, 0); }, on_result, on_done, tick, stop);
 }
 
 }  // namespace pounding::parallel

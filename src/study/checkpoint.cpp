@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <cerrno>
 #include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 
@@ -127,6 +128,32 @@ Checkpoint::~Checkpoint() {
 }
 
 CheckpointScan Checkpoint::scan(const CheckpointKey& key, const UnitFn& on_unit) {
+  return scan_checkpoint(path_, key, on_unit);
+}
+
+std::string slice_path(const std::string& main, int rank) { return main + ".rank" + std::to_string(rank); }
+
+std::vector<std::string> slice_paths(const std::string& main) {
+  namespace fs = std::filesystem;
+  const fs::path p(main);
+  const fs::path dir = p.parent_path().empty() ? fs::path(".") : p.parent_path();
+  const std::string stem = p.filename().string() + ".rank";
+  std::vector<std::pair<long, std::string>> found;
+  std::error_code ec;
+  for (const auto& entry : fs::directory_iterator(dir, ec)) {
+    const std::string name = entry.path().filename().string();
+    if (name.size() <= stem.size() || name.compare(0, stem.size(), stem) != 0) continue;
+    if (name.find_first_not_of("0123456789", stem.size()) != std::string::npos || name.size() > stem.size() + 9) continue;
+    const long r = std::stol(name.substr(stem.size()));
+    if (r >= 1) found.emplace_back(r, slice_path(main, static_cast<int>(r)));
+  }
+  std::sort(found.begin(), found.end());
+  std::vector<std::string> out;
+  for (auto& f : found) out.push_back(std::move(f.second));
+  return out;
+}
+
+CheckpointScan scan_checkpoint(const std::string& path_, const CheckpointKey& key, const Checkpoint::UnitFn& on_unit) {
   CheckpointScan s;
   std::ifstream in(path_, std::ios::binary);
   {

@@ -1,6 +1,7 @@
 #include "pounding/study/run.hpp"
 
 #include <sys/stat.h>
+#include <unistd.h>
 
 #include <atomic>
 #include <algorithm>
@@ -749,8 +750,61 @@ CheckpointKey checkpoint_key(const Inputs& in, const WorkPlan& L) {
 }
 
 // ---- phase 3: checkpoint and resume (rank 0); every rank learns which units remain ---------------
+// Rank 0: the slices beside the main file (workers' units, any earlier rank count; study/checkpoint.hpp). A fresh run
+// refuses one holding progress (unless --force) as it refuses the main file, then removes it; --resume loads each
+// one's units by id and cuts off a torn tail (said, as for the main file).
+void open_slices(const RunOptions& opt, const Checkpoint& main, const CheckpointKey& key, Tally& tally,
+                 const RunContext& ctx) {
+  for (const std::string& path : slice_paths(main.path())) {
+    Checkpoint c(path);
+    struct stat st {};
+    if (::stat(path.c_str(), &st) == 0 && st.st_size == 0) {  // a rank killed before its header: nothing in it
+      c.remove();
+      continue;
+    }
+    if (!opt.resume) {
+      open_for_run(c, key, false, opt.force, {});
+      c.remove();
+      continue;
+    }
+    std::string dropped;
+    open_for_run(
+        c, key, true, false,
+        [&](std::size_t u, std::vector<std::byte>&& d) {
+          if (!tally.done(u)) tally.store(u, d);
+        },
+        &dropped);
+    if (!dropped.empty()) ctx.say(fmt::format("checkpoint {}: {}", path, dropped));
+  }
+}
+
+// Every worker opens its own slice (continued on --resume, else started); rank 0 then checks that it sees every
+// worker's slice: the results are assembled from them, so the output folder must be shared by every node.
+void open_worker_slice(const parallel::Session& session, const RunOptions& opt, const Inputs& in,
+                       std::optional<Checkpoint>& ckpt, const CheckpointKey& key) {
+  session.agree([&] {
+    if (session.root()) return;
+    ckpt.emplace(slice_path(in.out + ".ckpt", session.rank()));
+    struct stat st {};
+    if (opt.resume && ::stat(ckpt->path().c_str(), &st) == 0 && st.st_size > 0) ckpt->resume(ckpt->scan(key));
+    else ckpt->start(key);
+  });
+  session.agree([&] {
+    if (!session.root()) return;
+    for (int r = 1; r < session.size(); ++r) {
+      const std::string path = slice_path(in.out + ".ckpt", r);
+      if (::access(path.c_str(), F_OK) != 0)
+        throw InputError(fmt::format("rank {}'s checkpoint slice {} is not visible from rank 0 (the results are "
+                                     "assembled from the slices)", r, path),
+                         in.out_where,
+                         "give an output folder on a filesystem shared by every node (docs/cluster.md), e.g. the "
+                         "job's working directory on the cluster's shared filesystem");
+    }
+  });
+}
+
 std::vector<std::size_t> open_checkpoint(const parallel::Session& session, const RunOptions& opt, const Inputs& in,
-                                         const WorkPlan& L, Checkpoint* ckpt, const CheckpointKey& key,
+                                         const WorkPlan& L, std::optional<Checkpoint>& ckpt, const CheckpointKey& key,
                                          Tally& tally, const RunContext& ctx) {
   std::string todo_bytes;  // the remaining unit ids as u64, native order
   session.agree([&] {
@@ -758,10 +812,11 @@ std::vector<std::size_t> open_checkpoint(const parallel::Session& session, const
     std::string dropped;
     open_for_run(*ckpt, key, opt.resume, opt.force,
                  [&](std::size_t u, std::vector<std::byte>&& d) { tally.store(u, d); }, &dropped);
+    if (!dropped.empty()) ctx.say(fmt::format("checkpoint {}: {}", ckpt->path(), dropped));
+    open_slices(opt, *ckpt, key, tally, ctx);
     for (std::uint64_t u = 0; u < L.units(); ++u)
       if (!tally.done(u)) todo_bytes.append(reinterpret_cast<const char*>(&u), sizeof u);
     if (opt.resume) ctx.say(fmt::format("resuming: {} of {} units already done", tally.units_done(), L.units()));
-    if (!dropped.empty()) ctx.say(fmt::format("checkpoint {}: {}", ckpt->path(), dropped));
   });
   session.broadcast(todo_bytes);
   std::vector<std::size_t> todo(todo_bytes.size() / sizeof(std::uint64_t));
@@ -770,7 +825,7 @@ std::vector<std::size_t> open_checkpoint(const parallel::Session& session, const
     std::memcpy(&u, todo_bytes.data() + k * sizeof u, sizeof u);
     todo[k] = static_cast<std::size_t>(u);
   }
-  (void)in;
+  if (session.size() > 1) open_worker_slice(session, opt, in, ckpt, key);
   return todo;
 }
 
@@ -886,14 +941,18 @@ bool master_service_mode() {
 }
 
 double final_sync_s = 0;  // the units phase's closing fsync of the checkpoint (rank 0), for the line above
+parallel::MasterStats master_stats;  // rank 0's serving of the workers' units, for the line above
+double assemble_s = 0;    // rank 0's reading of the workers' slices after the units, for the line above
 
-// ---- phase 4: the work (every rank computes; rank 0 gathers, checkpoints and reports progress) -----
-// `threads` worker threads per rank, each with its own UnitComputer (parallel::run_units with a ThreadComputeFn):
-// the results reach the tally and the checkpoint on this thread, stored by unit id, so the bits do not depend on
-// the thread count. T[compute] is the sum of the threads' compute seconds (CPU-like: with 2 busy threads it is about
-// twice the units' wall time).
+// ---- phase 4: the work (every rank computes and checkpoints its own units; rank 0 schedules) -----
+// `threads` worker threads per rank, each with its own UnitComputer (parallel::run_units with a ThreadComputeFn).
+// Each rank appends the units it computed to its own checkpoint file (rank 0: <out>.ckpt, rank r: its slice) on the
+// calling thread; a worker tells rank 0 only the unit's id (issue 27.4), and rank 0 stores its own units in the tally
+// by unit id. `remote` counts the units the workers stored. T[compute] is the sum of the threads' compute seconds
+// (CPU-like: with 2 busy threads it is about twice the units' wall time).
 bool execute(const parallel::Session& session, const Inputs& in, const WorkPlan& L, const std::vector<std::size_t>& todo,
-             Checkpoint* ckpt, Tally& tally, const RunContext& ctx, double& wall, timing::Times& T, int threads) {
+             Checkpoint* ckpt, Tally& tally, std::size_t& remote, const RunContext& ctx, double& wall,
+             timing::Times& T, int threads) {
   const auto t_setup = std::chrono::steady_clock::now();
   const StructureSampler sampler(in.study.structures, in.study.seed);
   std::atomic<int> computed{0};
@@ -912,12 +971,12 @@ bool execute(const parallel::Session& session, const Inputs& in, const WorkPlan&
       Stopwatch w(T[Phase::checkpoint]);
       ckpt->sync(), last_sync = now;
     }
-    if (!ctx.progress) return;
+    if (!ctx.progress || !session.root()) return;
     ProgressReport p;
-    p.units_done = tally.units_done(), p.units_total = L.units(), p.units_at_start = at_start;
+    p.units_done = tally.units_done() + remote, p.units_total = L.units(), p.units_at_start = at_start;
     p.models_per_unit = static_cast<double>(L.samples * L.unit_stripes()) / static_cast<double>(L.blocks);
     p.elapsed_s = std::chrono::duration<double>(now - t0).count();
-    p.final = tally.units_done() == L.units();
+    p.final = p.units_done == L.units();
     ctx.progress(p);
   };
   static const std::atomic<bool> never{false};
@@ -943,27 +1002,52 @@ bool execute(const parallel::Session& session, const Inputs& in, const WorkPlan&
       },
       threads,
       [&](std::size_t u, parallel::Payload&& d) {
-        {
+        if (session.root()) {
           Stopwatch w(T[Phase::reduce]);
           tally.store(u, d);
         }
         Stopwatch w(T[Phase::checkpoint]);
         ckpt->append(u, d);
       },
-      tick, ctx.cancel ? *ctx.cancel : never);
+      [&](std::size_t, int) {
+        if (remote++ == 0) ckpt->keep();  // the main file stays with the slices even if rank 0 stored no unit
+      },
+      tick, ctx.cancel ? *ctx.cancel : never, &master_stats);
   for (double s : compute_s) T[Phase::compute] += s;
-  if (session.root()) {
-    double final_sync = 0;
-    {
-      Stopwatch w(final_sync);
-      ckpt->sync();
-    }
-    T[Phase::checkpoint] += final_sync;
-    final_sync_s = final_sync;
+  double final_sync = 0;
+  {
+    Stopwatch w(final_sync);
+    ckpt->sync();  // every rank: its units are on disk before rank 0 reads the slices (or the run stops)
   }
+  T[Phase::checkpoint] += final_sync;
+  final_sync_s = final_sync;
   wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   T[Phase::units] = wall;
-  return complete && (!session.root() || tally.units_done() == L.units());
+  return complete && (!session.root() || tally.units_done() + remote == L.units());
+}
+
+// ---- phase 4b: rank 0 reads the workers' slices into the tally, by unit id ------------------------
+// After every rank has flushed its slice (the barrier). Only the main file and the slices hold the units, so one
+// missing here (a slice on a folder rank 0 does not see, damaged since) is an error before any result is written.
+void assemble(const parallel::Session& session, const Inputs& in, const WorkPlan& L, Tally& tally,
+              const CheckpointKey& key, timing::Times& T) {
+  if (session.size() == 1) return;
+  session.barrier();
+  session.agree([&] {
+    if (!session.root()) return;
+    timing::Stopwatch w(assemble_s);
+    const std::string main = in.out + ".ckpt";
+    for (const std::string& path : slice_paths(main))
+      scan_checkpoint(path, key, [&](std::size_t u, std::vector<std::byte>&& d) {
+        if (!tally.done(u)) tally.store(u, d);
+      });
+    if (tally.units_done() != L.units())
+      throw InputError(fmt::format("{} of {} units are missing from the checkpoint slices after the run",
+                                   L.units() - tally.units_done(), L.units()),
+                       main, "check that every rank writes to the same shared output folder, then rerun with --resume "
+                             "(the missing units are computed again)");
+  });
+  T[timing::Phase::reduce] += assemble_s;
 }
 
 // ---- phase 5: the results file (rank 0; the others wait for its outcome), then the checkpoint goes --
@@ -992,6 +1076,12 @@ results::Group timing_group(const timing::Times& T, std::size_t units, std::size
                                    "worker threads per rank (results do not depend on it); the compute phase sums a "
                                    "rank's threads"));
   return g;
+}
+
+// The run is complete: the workers' slices and the main file go (rank 0; the workers still hold their slices open).
+void remove_checkpoint(Checkpoint& main) {
+  for (const std::string& path : slice_paths(main.path())) ::unlink(path.c_str());
+  main.remove();
 }
 
 int finish(const parallel::Session& session, const Inputs& in, const WorkPlan& L, Checkpoint* ckpt, Tally& tally,
@@ -1049,7 +1139,7 @@ int finish(const parallel::Session& session, const Inputs& in, const WorkPlan& L
       throw InputError(e.what_part(), e.where(),
                        e.fix() + "; the checkpoint keeps every unit: --resume writes the results without recomputing");
     }
-    ckpt->remove();
+    remove_checkpoint(*ckpt);
     rc = ex.verdict.empty() ? 0 : 3;
   });
   session.broadcast(rc);
@@ -1083,27 +1173,30 @@ RunOutcome run_study(const parallel::Session& session, const std::string& study_
   timing::Times T;
   T[timing::Phase::mpi_start] = opt.mpi_start_s;
   const auto t_inputs = std::chrono::steady_clock::now();
-  std::optional<Checkpoint> ckpt;  // rank 0 only
+  std::optional<Checkpoint> ckpt;  // rank 0: the main file; a worker: its slice (opened in open_checkpoint)
   const Inputs in = load_inputs(session, study_path, opt, ckpt);
   const WorkPlan L = plan_work(in);
   Tally tally;
   if (session.root()) tally = Tally(L, in.study);
-  const CheckpointKey key = session.root() ? checkpoint_key(in, L) : CheckpointKey{};
-  const std::vector<std::size_t> todo = open_checkpoint(session, opt, in, L, ckpt ? &*ckpt : nullptr, key, tally, ctx);
+  const CheckpointKey key = checkpoint_key(in, L);  // every rank: the workers' slices carry it too
+  const std::vector<std::size_t> todo = open_checkpoint(session, opt, in, L, ckpt, key, tally, ctx);
   const std::size_t units_resumed = tally.units_done();
   T[timing::Phase::inputs] = timing::seconds_since(t_inputs);
   announce(session, in, L, ctx);
   double wall = 0.0;
   const int threads = study_threads(opt.threads >= 0 ? opt.threads : in.study.threads, session.size(), todo.size());
-  const bool complete = execute(session, in, L, todo, ckpt ? &*ckpt : nullptr, tally, ctx, wall, T, threads);
+  std::size_t remote = 0;  // rank 0: units the workers stored in their slices
+  const bool complete = execute(session, in, L, todo, ckpt ? &*ckpt : nullptr, tally, remote, ctx, wall, T, threads);
+  if (complete) assemble(session, in, L, tally, key, T);
   std::vector<double> phases(T.rank0.begin(), T.rank0.end());  // every rank: the maxima of the phases so far
   session.max_to_root(phases);
   std::copy(phases.begin(), phases.end(), T.max.begin());
   if (!complete) {
     if (session.root())
-      ctx.say(tally.units_done() > 0
-                  ? fmt::format("\ninterrupted: {} of {} units done and checkpointed in {}; continue with --resume",
-                                tally.units_done(), L.units(), ckpt->path())
+      ctx.say(tally.units_done() + remote > 0
+                  ? fmt::format("\ninterrupted: {} of {} units done and checkpointed in {}{}; continue with --resume",
+                                tally.units_done() + remote, L.units(), ckpt->path(),
+                                session.size() > 1 ? " and its rank slices" : "")
                   : fmt::format("\ninterrupted before any unit finished: nothing to keep, no checkpoint left"));
     return {130, in.out, {}, T, {}};
   }
@@ -1115,11 +1208,16 @@ RunOutcome run_study(const parallel::Session& session, const std::string& study_
       ctx.say(fmt::format("master service (test-only POUNDING_MASTER_SERVICE, stored unit results, no results "
                           "written): {} units in {:.4f} s on {} ranks (+ {:.4f} s closing fsync) = {:.2f} us per unit "
                           "({:.0f} units/s), {} bytes per full unit; of it checkpoint appends {:.2f} us, reduce {:.2f} "
-                          "us per unit",
+                          "us per unit; {} bytes per unit to the master ({} of {} units stored on rank 0); the master's "
+                          "time per worker unit {:.2f} us ({} units: receive the id, send the next unit); assembly "
+                          "from the slices after the units {:.4f} s = {:.2f} us per worker unit",
                           todo.size(), served, session.size(), final_sync_s, 1e6 * served / units, units / served,
                           bytes, 1e6 * (T[timing::Phase::checkpoint] - final_sync_s) / units,
-                          1e6 * T[timing::Phase::reduce] / units));
-      ckpt->remove();
+                          1e6 * (T[timing::Phase::reduce] - assemble_s) / units, session.size() > 1 ? 8 : 0,
+                          todo.size() - remote, todo.size(),
+                          master_stats.worker_units ? 1e6 * master_stats.service_s / master_stats.worker_units : 0.0,
+                          master_stats.worker_units, assemble_s, remote ? 1e6 * assemble_s / static_cast<double>(remote) : 0.0));
+      remove_checkpoint(*ckpt);
     }
     return {0, in.out, {}, T, {}};
   }

@@ -40,6 +40,12 @@ echo "$out" | grep -q "saturates at p\* = (t + s) / s = 11 ranks" && echo "$out"
   && echo "$out" | grep -q "^| 10 | 0.0110 | 0.0110 | 10.00 | 100.0 % | 90.9 % | work |$" \
   && echo "$out" | grep -q "^| 1000 | 0.0100 | 0.0100 | 11.00 | 1.1 % | 1.0 % | master |$" && ok "predict_scaling: hand-computed rows" \
   || { fail "predict_scaling rows"; echo "$out"; }
+# the assembly after the units (issue 27.4: rank 0 reads the workers' slices), 100 us per unit for (p - 1) / p of the
+# units: 10 ranks 0.011 + 100 x 100 us x 0.9 = 0.0200 s end to end, speed-up 0.11 / 0.02 = 5.50
+out=$(/usr/bin/python3 "$src/tools/predict_scaling.py" --service-us 100 --units 100 --unit-ms 1 --serial-s 0 --ranks 1,10 --assemble-us 100)
+echo "$out" | grep -q "^| 1 | 0.1100 | 0.1100 | 1.00 | 100.0 % | 90.9 % | work |$" \
+  && echo "$out" | grep -q "^| 10 | 0.0110 | 0.0200 | 5.50 | 55.0 % | 90.9 % | work |$" && ok "predict_scaling --assemble-us: hand-computed rows" \
+  || { fail "predict_scaling --assemble-us rows"; echo "$out"; }
 # with a one-rank results file (its /timing); a two-rank file is refused
 /usr/bin/python3 "$src/tools/predict_scaling.py" --service-us 10 --results "$tmp/r.h5" > "$tmp/p" && grep -q "^units 3025, unit " "$tmp/p" \
   && ok "predict_scaling --results: $(sed -n 2p "$tmp/p" | cut -c1-90)" || { fail "predict_scaling --results"; cat "$tmp/p"; }

@@ -22,6 +22,8 @@ parallel::Payload bytes_of(std::size_t unit) {
   return p;
 }
 
+const parallel::DoneFn no_done;  // one rank: no worker reports a unit
+
 parallel::Session& session() {
   static int argc = 0;
   static char** argv = nullptr;
@@ -56,7 +58,7 @@ TEST(SerialExecutor, RunsUnitsInOrderAndDeliversTheirPayloads) {
         EXPECT_EQ(p, bytes_of(u)) << "unit " << u;
         delivered.push_back(u);
       },
-      [&] { ++ticks; }, stop);
+      no_done, [&] { ++ticks; }, stop);
   EXPECT_TRUE(done);
   EXPECT_EQ(computed, todo);
   EXPECT_EQ(delivered, todo);
@@ -72,18 +74,18 @@ TEST(SerialExecutor, StopFlagEndsTheRunBetweenUnits) {
         delivered.push_back(u);
         if (u == 2) stop = true;  // SIGINT while unit 2 is stored
       },
-      [] {}, stop);
+      no_done, [] {}, stop);
   EXPECT_FALSE(done);
   EXPECT_EQ(delivered, (std::vector<std::size_t>{1, 2}));
   // raised before the start: nothing is computed
   int computed = 0;
   EXPECT_FALSE(parallel::run_units(
       session(), {1}, [&](std::size_t u) { return ++computed, bytes_of(u); }, [](std::size_t, parallel::Payload&&) {},
-      [] {}, stop));
+      no_done, [] {}, stop));
   EXPECT_EQ(computed, 0);
   // an empty list is complete
   const std::atomic<bool> never{false};
-  EXPECT_TRUE(parallel::run_units(session(), {}, bytes_of, [](std::size_t, parallel::Payload&&) {}, [] {}, never));
+  EXPECT_TRUE(parallel::run_units(session(), {}, bytes_of, [](std::size_t, parallel::Payload&&) {}, no_done, [] {}, never));
 }
 
 TEST(SerialExecutor, ErrorsReachTheCaller) {
@@ -96,12 +98,12 @@ TEST(SerialExecutor, ErrorsReachTheCaller) {
                      if (u == 2) throw std::runtime_error("unit 2 failed");
                      return bytes_of(u);
                    },
-                   store, [] {}, stop),
+                   store, no_done, [] {}, stop),
                std::exception);
   EXPECT_EQ(delivered, (std::vector<std::size_t>{1}));
   EXPECT_THROW(parallel::run_units(
                    session(), {1}, bytes_of, [](std::size_t, parallel::Payload&&) { throw std::runtime_error("disk"); },
-                   [] {}, stop),
+                   no_done, [] {}, stop),
                std::exception);
   int calls = 0;
   session().agree([&] { ++calls; });
@@ -137,7 +139,7 @@ TEST(ThreadedExecutor, EveryUnitOnceEachThreadItsOwnState) {
         EXPECT_EQ(p, bytes_of(u)) << "unit " << u;
         delivered.push_back(u);
       },
-      [&] { ++ticks; }, never);
+      no_done, [&] { ++ticks; }, never);
   EXPECT_TRUE(done);
   EXPECT_EQ(overlaps.load(), 0);
   EXPECT_EQ(computed.load(), 200);
@@ -153,7 +155,7 @@ TEST(ThreadedExecutor, EveryUnitOnceEachThreadItsOwnState) {
         EXPECT_EQ(t, 0);
         return bytes_of(u);
       }, 1,
-      [&](std::size_t u, parallel::Payload&&) { order.push_back(u); }, [] {}, never));
+      [&](std::size_t u, parallel::Payload&&) { order.push_back(u); }, no_done, [] {}, never));
   EXPECT_EQ(order, (std::vector<std::size_t>{5, 1, 3}));
 }
 
@@ -173,7 +175,7 @@ TEST(ThreadedExecutor, StopAndErrorsEndTheRunWithinAUnit) {
       [&](std::size_t, parallel::Payload&&) {
         if (++delivered == 10) stop = true;
       },
-      [] {}, stop));
+      no_done, [] {}, stop));
   // the units queued when the stop came are not computed: at most 2 threads x 2 in flight after the 10th
   EXPECT_LE(computed.load(), 10 + 4);
   EXPECT_EQ(delivered, static_cast<std::size_t>(computed.load()));
@@ -185,12 +187,12 @@ TEST(ThreadedExecutor, StopAndErrorsEndTheRunWithinAUnit) {
                      if (u == 50) throw std::runtime_error("unit 50 failed");
                      return slow(u, t);
                    },
-                   3, [](std::size_t, parallel::Payload&&) {}, [] {}, never),
+                   3, [](std::size_t, parallel::Payload&&) {}, no_done, [] {}, never),
                std::runtime_error);
   EXPECT_LT(computed.load(), 14 + 50 + 8);  // the units after the failure's window were never started
   // an error in on_result too
   EXPECT_THROW(parallel::run_units(
                    session(), {1, 2, 3}, slow, 2,
-                   [](std::size_t, parallel::Payload&&) { throw std::runtime_error("disk"); }, [] {}, never),
+                   [](std::size_t, parallel::Payload&&) { throw std::runtime_error("disk"); }, no_done, [] {}, never),
                std::runtime_error);
 }

@@ -44,20 +44,35 @@ class Session {
 using Payload = std::vector<std::byte>;
 // Computes a unit and returns its payload.
 using ComputeFn = std::function<Payload(std::size_t unit)>;
-// Receives a finished unit's payload on rank 0, in completion order.
+// Receives a finished unit's payload ON THE RANK THAT COMPUTED IT (every rank), in completion order, on the calling
+// thread: the payload never crosses ranks (issue 27.4: the master only schedules; the study appends it to that
+// rank's own checkpoint slice, study/checkpoint.hpp).
 using ResultFn = std::function<void(std::size_t unit, Payload&& payload)>;
-// Called on rank 0 between units (progress, checkpoint flushes).
+// Rank 0 only: unit `unit` was computed and stored (its on_result returned) on worker rank `rank`. The worker's
+// message to the master is the unit id alone (8 bytes).
+using DoneFn = std::function<void(std::size_t unit, int rank)>;
+// Called on every rank after each unit it stores, and on rank 0 after each unit a worker reports (progress,
+// checkpoint flushes).
 using TickFn = std::function<void()>;
+
+// Rank 0's work for the workers' units (issue 27.4, README "Speed"): per unit a worker reports, the 8-byte receive,
+// the worker's next unit sent, and on_done; `service_s` sums their wall time (steady clock). Filled by the overload
+// with threads (any thread count) when given.
+struct MasterStats {
+  std::size_t worker_units = 0;
+  double service_s = 0;
+};
 
 // Dynamic master/worker scheduling of `todo` (unit ids, handed out in this order). Rank 0 hands units to
 // workers (two in flight per worker so none waits for the master) and computes units itself between
-// messages, so with 2 ranks both cores compute. Returns false on every rank if `stop` was raised on rank 0
-// (it stops handing out work, collects what is in flight and returns; workers are released).
-// If compute throws on any rank, or on_result/tick throw on rank 0, rank 0 stops handing out work, waits
+// messages, so with 2 ranks both cores compute. A worker stores its own results (on_result on the worker) and sends
+// rank 0 only the unit's id, after on_result returned (on_done on rank 0). Returns false on every rank if `stop` was
+// raised on rank 0 (it stops handing out work, collects what is in flight and returns; workers are released).
+// If compute or on_result throws on any rank, or on_done/tick throw on rank 0, rank 0 stops handing out work, waits
 // only for the units in flight on healthy workers, releases every worker, and the error is thrown on every
 // rank (InputError with the failing rank's what/where/fix).
 bool run_units(const Session& s, const std::vector<std::size_t>& todo, const ComputeFn& compute,
-               const ResultFn& on_result, const TickFn& tick, const std::atomic<bool>& stop);
+               const ResultFn& on_result, const DoneFn& on_done, const TickFn& tick, const std::atomic<bool>& stop);
 
 // Computes a unit on worker thread `thread` of this rank (0 <= thread < threads): each thread must use its own
 // computing state (the study gives each its own UnitComputer); it runs concurrently with the other threads.
@@ -70,6 +85,7 @@ using ThreadComputeFn = std::function<Payload(std::size_t unit, int thread)>;
 // caller stores them by unit id. A stop or an error drops the units queued on the threads and waits for the
 // running ones (within a unit's time); after an error nothing more is stored.
 bool run_units(const Session& s, const std::vector<std::size_t>& todo, const ThreadComputeFn& compute, int threads,
-               const ResultFn& on_result, const TickFn& tick, const std::atomic<bool>& stop);
+               const ResultFn& on_result, const DoneFn& on_done, const TickFn& tick, const std::atomic<bool>& stop,
+               MasterStats* stats = nullptr);
 
 }  // namespace pounding::parallel

@@ -9,6 +9,12 @@
 // byte-wise multiply chain cost the master ~10 us per unit) are recognised and refused as older. A torn last record
 // (kill -9 during a write) fails its checksum and is dropped on resume. The file is locked (flock) by the run that
 // owns it.
+//
+// Slices (issue 27.4): under MPI each rank appends the units IT computed to its own file, rank 0 to <out>.ckpt and
+// rank r >= 1 to <out>.ckpt.rank<r> (slice_path), each with this header and these records; the master receives only
+// unit ids. A checkpoint is the main file plus every slice beside it, whatever rank count wrote them: units are
+// identified by id, so a run resumes at any rank count. A checkpoint written before slices (one file) is the same
+// thing with no slice. The slices must be visible to rank 0 (a filesystem shared by every node, docs/cluster.md).
 #include <cstddef>
 #include <cstdint>
 #include <functional>
@@ -64,6 +70,9 @@ class Checkpoint {
   void remove();
   // Units appended or resumed so far.
   std::uint64_t units() const { return units_; }
+  // Keep the file when this object closes although it was created by this run and holds no unit of it (rank 0's
+  // main file when the workers' slices hold the run's units).
+  void keep() { created_ = false; }
 
  private:
   std::string path_;
@@ -75,6 +84,15 @@ public:
   bool created_ = false;  // the file did not exist: removed again on close if it never held a unit
   std::uint64_t good_ = 0, units_ = 0;
 };
+
+// Reads the checkpoint file at `path` without locking it (rank 0 assembling the slices the workers still hold):
+// what Checkpoint::scan does.
+CheckpointScan scan_checkpoint(const std::string& path, const CheckpointKey& key, const Checkpoint::UnitFn& on_unit = {});
+
+// Rank r's slice of the checkpoint `main` (r >= 1): "<main>.rank<r>".
+std::string slice_path(const std::string& main, int rank);
+// The slices that exist beside `main` (any rank, any earlier rank count), in rank order.
+std::vector<std::string> slice_paths(const std::string& main);
 
 // The run's policy for the checkpoint of `key`, with the messages a user acts on:
 // - resume: load this study's units through on_unit; refuse (InputError) a missing or empty checkpoint,
