@@ -398,7 +398,8 @@ std::vector<model::StickTopology> sticks_of(const TopologyArgs& t, const std::ve
     if (!(z >= 0.0 && z <= 0.5)) throw py::value_error("modal_zeta: every ratio in [0, 0.5]");
   std::vector<model::StickTopology> sticks(nb);
   for (std::size_t b = 0; b < nb; ++b) {
-    if (t.storeys[b] < 1 || t.storeys[b] > 100) throw py::value_error("storeys: 1 to 100 storeys per building");
+    if (t.storeys[b] < 1 || t.storeys[b] > model::max_storeys)
+      throw py::value_error("storeys: 1 to " + std::to_string(model::max_storeys) + " storeys per building");
     if (!(t.heights[b] >= 0.01 && t.heights[b] <= 100.0))
       throw py::value_error("storey_height: every storey height in [0.01, 100] m");
     sticks[b].storeys = t.storeys[b], sticks[b].storey_heights = {t.heights[b]};

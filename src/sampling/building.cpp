@@ -461,7 +461,7 @@ void read_isolation(config::TableReader& r, const std::string& file, const std::
   });
   iso.base_mass = q.number("base_mass", 0.0);
   check_bearing_keys(q, iso.bearing);
-  iso.k_eff = q.number("k_eff", 0.0), iso.zeta_eff = q.number("zeta_eff", 0.0);
+  iso.k_eff = q.number("k_eff", 0.0), iso.zeta_eff = q.number("zeta_eff", physics::default_bearing_zeta);
   iso.k1 = q.number("k1", 0.0), iso.k2 = q.number("k2", 0.0), iso.qd = q.number("qd", 0.0);
   if ((bit(iso.bearing) & (lrb | bw)) && !(iso.k2 < iso.k1))
     throw InputError(fmt::format("k2 = {:g} N/m is not below k1 = {:g} N/m", iso.k2, iso.k1), q.where("k2"),

@@ -133,7 +133,9 @@ TEST(Isolation, LeadRubberLoopIsTheBilinearCycle) {
       const double un = D * std::sin(2 * pi * s / steps);
       const double fn = model::BilinearKinematic::restoring(p, f, un - u, un);
       area += 0.5 * (f + fn) * (un - u);
-      if (cycle == 2 && s == steps / 2 + steps / 4 + 1) EXPECT_NEAR(fn, -(1e5 + 1e6 * D), 1.0);  // at -D
+      if (cycle == 2 && s == steps / 2 + steps / 4 + 1) {
+        EXPECT_NEAR(fn, -(1e5 + 1e6 * D), 1.0);  // at -D
+      }
       if (cycle == 2 && s == steps) f_zero = fn;  // back at u = 0 on the loading (rising) branch
       u = un, f = fn;
     }

@@ -170,8 +170,9 @@ TEST(Row, IdenticalBuildingsNeverTouchAndASymmetricRowMirrors) {
     EXPECT_EQ(S.contacts()[2 * k].label, fmt::format("1|2 level {}", k + 1));
     EXPECT_EQ(p.impact_count[2 * k], q.impact_count[2 * k + 1]) << "level " << k + 1;
     EXPECT_EQ(p.impact_count[2 * k + 1], q.impact_count[2 * k]) << "level " << k + 1;
-    if (p.impact_count[2 * k] > 0)
+    if (p.impact_count[2 * k] > 0) {
       EXPECT_NEAR(p.peak_force[2 * k], q.peak_force[2 * k + 1], 1e-9 * p.peak_force[2 * k]) << "level " << k + 1;
+    }
   }
   std::printf("mirror: %d impacts, worst relative difference of mirrored end-building peaks %.2e\n", impacts, worst);
 }

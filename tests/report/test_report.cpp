@@ -59,7 +59,9 @@ TEST(Report, TextsRunOneBootstrapForMarkdownAndCsv) {
     EXPECT_EQ(t.bootstraps, 1) << (pair ? "pair" : "grid");
     EXPECT_EQ(t.markdown, report_markdown(r)) << (pair ? "pair" : "grid");
     EXPECT_EQ(t.csv, report_csv(r)) << (pair ? "pair" : "grid");
-    if (pair) EXPECT_NE(t.markdown.find("## Separation for this pair"), std::string::npos);
+    if (pair) {
+      EXPECT_NE(t.markdown.find("## Separation for this pair"), std::string::npos);
+    }
     EXPECT_EQ(report_texts(r, false).csv, "");
   }
 }

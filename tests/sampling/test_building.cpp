@@ -11,9 +11,13 @@
 #include <string>
 #include <vector>
 
+#include <fmt/format.h>
 #include <toml++/toml.h>
 
 #include "pounding/core/error.hpp"
+#include "pounding/config/study_keys.hpp"
+#include "pounding/model/shear_building.hpp"
+#include "pounding/sampling/isolation_check.hpp"
 #include "pounding/sampling/sampler.hpp"
 #include "pounding/study/settings.hpp"
 
@@ -403,4 +407,31 @@ TEST(BuildingErrors, CodeFactors) {  // issue 23 item 5: the code design factors
   EXPECT_EQ(b.s2800_importance, 1.2);
   EXPECT_EQ(b.storey_height, 3.5);
   EXPECT_EQ(b.asce7_r, 0);
+}
+
+// One default for a linear bearing's damping ratio: the study's isolation table without zeta_eff, simulate's
+// --bearing-zeta and Python's isolation dicts (sampling::IsolationInput) all take physics::default_bearing_zeta, and
+// the study reference says so. (The study reader took 0 while the other two took 0.1.)
+TEST(Building, LinearBearingDampingHasOneDefault) {
+  const StructureModel m = parse(
+      "[structures]\nmodel = \"shear\"\n[structures.building1]\n"
+      "isolation = {bearing = \"linear\", base_mass = 3.0e5, k_eff = 1.0e6}\n");
+  ASSERT_TRUE(m.building(0).isolated);
+  EXPECT_EQ(m.building(0).isolation.zeta_eff, physics::default_bearing_zeta);
+  EXPECT_EQ(sampling::IsolationInput{}.zeta_eff, physics::default_bearing_zeta);
+  const config::StudyKey* key = config::find_study_key("isolation", "zeta_eff");
+  ASSERT_NE(key, nullptr);
+  EXPECT_EQ(std::stod(std::string(key->def)), physics::default_bearing_zeta);
+  const StructureModel given = parse(
+      "[structures]\nmodel = \"shear\"\n[structures.building1]\n"
+      "isolation = {bearing = \"linear\", base_mass = 3.0e5, k_eff = 1.0e6, zeta_eff = 0.0}\n");
+  EXPECT_EQ(given.building(0).isolation.zeta_eff, 0.0);
+}
+
+// One limit on storeys: the study key's bounds are model::max_storeys (simulate and Python check that constant).
+TEST(Building, StoreysHaveOneLimit) {
+  const config::StudyKey* key = config::find_study_key("structures.buildingN", "storeys");
+  ASSERT_NE(key, nullptr);
+  EXPECT_EQ(key->hi, model::max_storeys);
+  EXPECT_EQ(key->range, fmt::format("[1, {}]", model::max_storeys));
 }

@@ -171,7 +171,9 @@ TEST(SystemBlock, FloorsAgainstColumnsFirstPassage) {
       ASSERT_EQ(r.status[l], 0) << l;
       EXPECT_EQ(r.impact_count[l] > 0, free.closing[l] > g) << "gap " << g << " lane " << l;
       (r.impact_count[l] > 0 ? touched : apart) += 1;
-      if (r.impact_count[l] == 0) EXPECT_TRUE(same_bits(r.u1[l], free.u1[l]) && same_bits(r.u2[l], free.u2[l])) << l;
+      if (r.impact_count[l] == 0) {
+        EXPECT_TRUE(same_bits(r.u1[l], free.u1[l]) && same_bits(r.u2[l], free.u2[l])) << l;
+      }
     }
   }
   EXPECT_GE(touched, 6);

@@ -27,6 +27,9 @@
 
 namespace pounding::model {
 
+// The most storeys a building may have: simulate's --storeysK, the study key storeys and Python's analyze_storeys.
+inline constexpr int max_storeys = 200;
+
 struct StickTopology {
   int storeys = 1;
   // m: one value for every storey, or one per storey (bottom first); floor levels are their running sums

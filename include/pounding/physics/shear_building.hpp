@@ -76,6 +76,9 @@ ShearNumbers set_shear_building(SystemBatch& batch, std::size_t lane, int body, 
 // k1, k2, Qd plus A, beta, gamma, eta: the standard form's k = k1, alpha = k2/k1, u_y = Qd / (k1 - k2) (so Q = Qd and,
 // for A = 1, the initial tangent is k1). Neither has a viscous dashpot: the hysteresis is the damping.
 enum class Bearing { linear, lead_rubber, friction_pendulum, bouc_wen };
+// A linear bearing's damping ratio when none is given: ONE default for the study's isolation table, simulate's
+// --bearing-zeta and Python's isolation dicts (10 %, the order of a high-damping rubber bearing's zeta_eff).
+inline constexpr double default_bearing_zeta = 0.1;
 struct IsolationSpec {
   Bearing bearing = Bearing::linear;
   double base_mass = 0.0;               // kg, > 0 (a massless base makes the system singular, SB §2 pitfalls)

@@ -14,7 +14,7 @@ namespace pounding::sampling {
 
 struct IsolationInput {
   std::string bearing;  // "", "linear", "lead-rubber", "friction-pendulum", "bouc-wen"
-  double base_mass = 0, k_eff = 0, zeta_eff = 0.1, k1 = 0, k2 = 0, qd = 0;
+  double base_mass = 0, k_eff = 0, zeta_eff = physics::default_bearing_zeta, k1 = 0, k2 = 0, qd = 0;
   double radius = 0, mu_slow = 0, mu_fast = 0, rate = 0, uy = 2.5e-4;  // friction pendulum
   double bw_a = 1.0, bw_beta = 0.5, bw_gamma = 0.5;                    // Bouc-Wen (with k1, k2, qd)
   int bw_eta = 1;

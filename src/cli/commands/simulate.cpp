@@ -320,9 +320,9 @@ void validate_storeys(const SimulateOptions& o) {
   for (int i = 0; i < 2; ++i) {
     const SimulateOptions::Storeys& b = o.b[i];
     const std::string k = std::to_string(i + 1);
-    if (b.storeys < 1 || b.storeys > 200)
+    if (b.storeys < 1 || b.storeys > model::max_storeys)
       throw InputError(fmt::format("--storeys{} = {} is out of range", k, b.storeys), "--storeys" + k,
-                       "give a number of storeys in [1, 200]");
+                       fmt::format("give a number of storeys in [1, {}]", model::max_storeys));
     require_range(b.height, 0.01, 100.0, "--storey-height" + k, "[0.01, 100] m");
     if (b.mass_given) require_positive(b.mass, "--storey-mass" + k);
     if (b.stiffness_given) require_positive(b.stiffness, "--storey-stiffness" + k);
@@ -499,9 +499,9 @@ void resolve_row(SimulateOptions& o) {
     if (!x.st.mass_given) x.st.mass = t.mass, x.st.mass_given = t.mass_given;
     if (!x.st.stiffness_given) x.st.stiffness = t.stiffness, x.st.stiffness_given = t.stiffness_given;
     if (!x.st.height_given) x.st.height = t.height, x.st.height_given = t.height_given;
-    if (x.st.storeys < 1 || x.st.storeys > 200)
+    if (x.st.storeys < 1 || x.st.storeys > model::max_storeys)
       throw InputError(fmt::format("--storeys{} = {} is out of range", k, x.st.storeys), "--storeys" + k,
-                       "give a number of storeys in [1, 200]");
+                       fmt::format("give a number of storeys in [1, {}]", model::max_storeys));
     if (x.st.storeys > 1)
       for (auto [user, name] : {std::pair{x.m_user, "--m"}, {x.k_user, "--k"}, {x.fy_user, "--fy"}})
         if (user)
@@ -926,7 +926,8 @@ void add_storey_options(CLI::App* c, SimulateOptions& opts) {
     c->add_option("--base-mass" + k, s.base_mass, "mass of building " + k + "'s base (kg); default: one floor's mass");
     c->add_option("--bearing-keff" + k, s.k_eff, "linear bearing: effective stiffness of all isolators (N/m)");
     c->add_option("--bearing-zeta" + k, s.zeta_eff,
-                  "linear bearing: damping ratio, c_b = 2 zeta sqrt(k_eff M_total) (default 0.1)");
+                  fmt::format("linear bearing: damping ratio, c_b = 2 zeta sqrt(k_eff M_total) (default {:g})",
+                              physics::default_bearing_zeta));
     c->add_option("--bearing-k1-" + k, s.k1, "lead-rubber: elastic stiffness k1 (N/m)");
     c->add_option("--bearing-k2-" + k, s.k2, "lead-rubber: post-yield stiffness k2 < k1 (N/m)");
     c->add_option("--bearing-qd" + k, s.qd, "lead-rubber: characteristic strength Qd (N; Fy = Qd k1/(k1 - k2))");
