@@ -14,6 +14,7 @@
 #include "pounding/model/hysteresis/registry.hpp"
 #include "pounding/physics/run_batch.hpp"
 #include "pounding/physics/steppers/system_central_difference.hpp"
+#include "pounding/physics/system_lane_stepper.hpp"
 #include "pounding/physics/system_stepper.hpp"
 
 namespace pounding::physics {
@@ -501,6 +502,9 @@ void run_dynamic(const SystemBatch& B, std::span<const ContactModel> models, std
   }
 }
 
+// Newmark and RK4 run systems one lane at a time (physics/system_lane_stepper.hpp).
+bool lane_stepper(const KernelSettings& ks) { return ks.stepper == Stepper::newmark || ks.stepper == Stepper::rk4; }
+
 std::string stepper_name(Stepper s) {
   std::string name;
   kernel::visit_stepper(s, [&]<class S>() { name = std::string(S::name); });
@@ -515,6 +519,7 @@ std::vector<Problem> system_stepper_problems(const SystemBatch& B, std::span<con
                                              const KernelSettings& ks) {
   // physics::validate refuses other steppers, the stereomechanical law with more than one element and a wrong
   // group count; these are what the dynamic layout adds
+  if (ks.stepper == Stepper::newmark || ks.stepper == Stepper::rk4) return lane_stepper_problems(B, groups, ks);
   std::vector<Problem> out;
   const model::System& S = *B.system;
   if (ks.stepper != Stepper::central_difference)
@@ -558,6 +563,7 @@ void run_system(const SystemBatch& batch, std::span<const ContactModel> groups, 
     return;
   }
   throw_first(system_stepper_problems(batch, groups, settings));
+  if (lane_stepper(settings)) return run_lane_stepper(batch, groups, motion, settings, out);
   run_dynamic(batch, groups, std::span<const GroundMotion>(&motion, 1), settings, out, 0);
 }
 
@@ -589,6 +595,7 @@ void run_system_dynamic(const SystemBatch& batch, std::span<const ContactModel> 
                         const KernelSettings& settings, SystemResult& out, std::size_t tile) {
   throw_first(validate(batch, groups, motion, settings));
   throw_first(system_stepper_problems(batch, groups, settings));
+  if (lane_stepper(settings)) return run_lane_stepper(batch, groups, motion, settings, out);
   run_dynamic(batch, groups, std::span<const GroundMotion>(&motion, 1), settings, out, tile);
 }
 }  // namespace testing

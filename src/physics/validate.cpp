@@ -230,6 +230,19 @@ std::vector<Problem> validate_system_lane(const SystemBatch& b, std::span<const 
   return out;
 }
 
+// D7: Nigam-Jennings is exact for a linear SDOF only; the system layer does not run it (central difference,
+// Newmark and RK4 run every system).
+void nigam_jennings_bodies(std::vector<Problem>& out, const model::System& sys) {
+  for (const model::Body& b : sys.bodies())
+    if (b.dofs.size() > 1) {
+      out.push_back({fmt::format("nigam-jennings integrates SDOF bodies only ({} has {} floors)", b.label, b.dofs.size()),
+                     "stepper", "use central-difference, newmark or rk4"});
+      return;
+    }
+  out.push_back({"nigam-jennings runs the SDOF pair only (rows, isolated bases and bridges are systems)", "stepper",
+                 "use central-difference, newmark or rk4"});
+}
+
 }  // namespace
 
 double structure_step_limit(Stepper stepper) {
@@ -347,9 +360,7 @@ std::vector<Problem> validate(const SystemBatch& batch, std::span<const ContactM
                        "restitution", "use hertzdamp in every contact group, or a constant e"});
         break;
       }
-  if (settings.stepper != Stepper::central_difference)
-    out.push_back({fmt::format("the {} stepper runs SDOF pairs only", to_string(settings.stepper)), "stepper",
-                   "use central-difference for multi-storey buildings and other systems"});
+  if (settings.stepper == Stepper::nigam_jennings) nigam_jennings_bodies(out, sys);
   for (std::size_t g = 0; g < models.size(); ++g)
     if (contact::traits(models[g].law).impulsive && sys.contacts().size() != 1)
       out.push_back({fmt::format("the impulsive (stereomechanical) law is defined for one contact element, and the "
