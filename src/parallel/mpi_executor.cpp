@@ -375,6 +375,25 @@ void Session::max_to_root(std::vector<double>& v) const {
   if (rank_ == 0) v = std::move(out);
 }
 
+void Session::sum_to_root(std::vector<std::int64_t>& v) const {
+  if (!mpi_ || size_ == 1 || v.empty()) return;
+  std::vector<std::int64_t> out(rank_ == 0 ? v.size() : 0);
+  for (std::size_t at = 0; at < v.size();) {  // a count is an int
+    const int n = static_cast<int>(std::min<std::size_t>(v.size() - at, std::size_t{1} << 28));
+    MPI_Reduce(v.data() + at, rank_ == 0 ? out.data() + at : nullptr, n, MPI_INT64_T, MPI_SUM, 0, MPI_COMM_WORLD);
+    at += static_cast<std::size_t>(n);
+  }
+  if (rank_ == 0) v = std::move(out);
+}
+
+std::vector<double> Session::gather_to_root(const std::vector<double>& mine) const {
+  if (!mpi_ || size_ == 1) return mine;
+  std::vector<double> all(rank_ == 0 ? mine.size() * static_cast<std::size_t>(size_) : 0);
+  MPI_Gather(mine.data(), static_cast<int>(mine.size()), MPI_DOUBLE, rank_ == 0 ? all.data() : nullptr,
+             static_cast<int>(mine.size()), MPI_DOUBLE, 0, MPI_COMM_WORLD);
+  return all;
+}
+
 void Session::abort(int code) const {
   if (mpi_) MPI_Abort(MPI_COMM_WORLD, code);
   std::exit(code);

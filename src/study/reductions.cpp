@@ -80,6 +80,44 @@ void Reductions::fold(const UnitIndex& u, std::span<const std::uint8_t> status, 
   }
 }
 
+std::vector<std::int64_t> Reductions::counts() const {
+  std::vector<std::int64_t> v;
+  for (const auto* a : {&n_, &excluded_, &gap_hits_, &pair_n_, &pair_hits_, &curve_hits_, &histogram_})
+    v.insert(v.end(), a->begin(), a->end());
+  return v;
+}
+
+void Reductions::set_counts(std::span<const std::int64_t> summed) {
+  std::size_t at = 0;
+  for (auto* a : {&n_, &excluded_, &gap_hits_, &pair_n_, &pair_hits_, &curve_hits_, &histogram_}) {
+    if (at + a->size() > summed.size()) throw std::logic_error("Reductions::set_counts: too few counts");
+    std::copy(summed.begin() + static_cast<std::ptrdiff_t>(at),
+              summed.begin() + static_cast<std::ptrdiff_t>(at + a->size()), a->begin());
+    at += a->size();
+  }
+  if (at != summed.size()) throw std::logic_error("Reductions::set_counts: too many counts");
+}
+
+// [seen, varied, gap_min, gap_max, first_ (15)]
+std::vector<double> Reductions::summary() const {
+  std::vector<double> v = {seen_ ? 1.0 : 0.0, varied_ ? 1.0 : 0.0, gap_min_, gap_max_};
+  v.insert(v.end(), first_.begin(), first_.end());
+  return v;
+}
+
+void Reductions::merge_summary(std::span<const double> o) {
+  if (o.size() != 4 + first_.size()) throw std::logic_error("Reductions::merge_summary: wrong length");
+  if (o[0] == 0.0) return;  // that rank folded no model
+  std::array<double, 15> first{};
+  std::copy(o.begin() + 4, o.end(), first.begin());
+  if (!seen_) {
+    seen_ = true, varied_ = o[1] != 0.0, gap_min_ = o[2], gap_max_ = o[3], first_ = first;
+    return;
+  }
+  if (o[1] != 0.0 || first != first_) varied_ = true;
+  gap_min_ = std::min(gap_min_, o[2]), gap_max_ = std::max(gap_max_, o[3]);
+}
+
 results::Group Reductions::group() const {
   const std::size_t R = plan_.records, P = plan_.pairs, G = study_->gap_ratios.size();
   results::Group g{"reductions", {}, {}};

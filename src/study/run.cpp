@@ -1002,15 +1002,17 @@ bool execute(const parallel::Session& session, const Inputs& in, const WorkPlan&
       },
       threads,
       [&](std::size_t u, parallel::Payload&& d) {
-        if (session.root()) {
+        if (session.root() || tally.reductions()) {  // a worker folds its own units into its Reductions
           Stopwatch w(T[Phase::reduce]);
           tally.store(u, d);
         }
         Stopwatch w(T[Phase::checkpoint]);
         ckpt->append(u, d);
       },
-      [&](std::size_t, int) {
-        if (remote++ == 0) ckpt->keep();  // the main file stays with the slices even if rank 0 stored no unit
+      [&](std::size_t u, int) {
+        ckpt->keep();  // the main file stays with the slices even if rank 0 stored no unit
+        if (tally.reductions()) tally.folded_elsewhere(u);  // merged from the worker's Reductions at the end
+        else ++remote;
       },
       tick, ctx.cancel ? *ctx.cancel : never, &master_stats);
   for (double s : compute_s) T[Phase::compute] += s;
@@ -1023,24 +1025,42 @@ bool execute(const parallel::Session& session, const Inputs& in, const WorkPlan&
   final_sync_s = final_sync;
   wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   T[Phase::units] = wall;
-  return complete && (!session.root() || tally.units_done() + remote == L.units());
+  return complete;  // the same on every rank; assemble() checks that every unit is there
 }
 
 // ---- phase 4b: rank 0 reads the workers' slices into the tally, by unit id ------------------------
 // After every rank has flushed its slice (the barrier). Only the main file and the slices hold the units, so one
 // missing here (a slice on a folder rank 0 does not see, damaged since) is an error before any result is written.
+// With [outputs] per_model = false every rank folded its own units: their integer counts are summed on rank 0 and
+// the models' summaries merged (order-free), and the slices are not read.
+void merge_reductions(const parallel::Session& session, Tally& tally) {
+  Reductions& red = *tally.reductions();
+  std::vector<std::int64_t> counts = red.counts();
+  session.sum_to_root(counts);
+  const std::vector<double> mine = red.summary(), all = session.gather_to_root(mine);
+  if (!session.root()) return;
+  red.set_counts(counts);  // every rank's, rank 0's included
+  for (int r = 1; r < session.size(); ++r)
+    red.merge_summary(std::span<const double>(all).subspan(static_cast<std::size_t>(r) * mine.size(), mine.size()));
+}
+
 void assemble(const parallel::Session& session, const Inputs& in, const WorkPlan& L, Tally& tally,
               const CheckpointKey& key, timing::Times& T) {
   if (session.size() == 1) return;
   session.barrier();
+  if (!L.per_model) {
+    timing::Stopwatch w(assemble_s);
+    merge_reductions(session, tally);
+  }
   session.agree([&] {
     if (!session.root()) return;
     timing::Stopwatch w(assemble_s);
     const std::string main = in.out + ".ckpt";
-    for (const std::string& path : slice_paths(main))
-      scan_checkpoint(path, key, [&](std::size_t u, std::vector<std::byte>&& d) {
-        if (!tally.done(u)) tally.store(u, d);
-      });
+    if (L.per_model)
+      for (const std::string& path : slice_paths(main))
+        scan_checkpoint(path, key, [&](std::size_t u, std::vector<std::byte>&& d) {
+          if (!tally.done(u)) tally.store(u, d);
+        });
     if (tally.units_done() != L.units())
       throw InputError(fmt::format("{} of {} units are missing from the checkpoint slices after the run",
                                    L.units() - tally.units_done(), L.units()),
@@ -1177,7 +1197,8 @@ RunOutcome run_study(const parallel::Session& session, const std::string& study_
   const Inputs in = load_inputs(session, study_path, opt, ckpt);
   const WorkPlan L = plan_work(in);
   Tally tally;
-  if (session.root()) tally = Tally(L, in.study);
+  // rank 0; with [outputs] per_model = false every rank (each folds its own units into its Reductions)
+  if (session.root() || !L.per_model) tally = Tally(L, in.study);
   const CheckpointKey key = checkpoint_key(in, L);  // every rank: the workers' slices carry it too
   const std::vector<std::size_t> todo = open_checkpoint(session, opt, in, L, ckpt, key, tally, ctx);
   const std::size_t units_resumed = tally.units_done();

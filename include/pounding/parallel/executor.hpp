@@ -28,6 +28,10 @@ class Session {
   std::vector<std::string> allgather(const std::string& mine) const;
   // element-wise maximum over the ranks, on rank 0 (the other ranks' v is left as it was)
   void max_to_root(std::vector<double>& v) const;
+  // element-wise sum over the ranks, on rank 0 (collective; the other ranks' v is left as it was)
+  void sum_to_root(std::vector<std::int64_t>& v) const;
+  // every rank's `mine` (the same length on every rank), concatenated in rank order, on rank 0 (empty elsewhere)
+  std::vector<double> gather_to_root(const std::vector<double>& mine) const;
   [[noreturn]] void abort(int code) const;
   // Runs `phase` on this rank. If it throws on any rank, every rank throws the error of the lowest failing
   // rank (as an InputError with the same what/where/fix), so the whole job stops together, promptly, and

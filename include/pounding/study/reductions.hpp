@@ -45,6 +45,13 @@ class Reductions {
   // One unit's lanes (consecutive samples of one period pair under one record row): status and peak closing.
   void fold(const UnitIndex& unit, std::span<const std::uint8_t> status, std::span<const double> closing);
   bool ok(std::uint8_t status) const;
+  // Merging the reductions of other ranks (issue 27.4: every rank folds the units it computes): the integer counts
+  // (summed over ranks) and the order-free summary of the models folded (whether all were one pair, the code gaps'
+  // range; merged), each as a flat vector of fixed length for the same study and plan.
+  std::vector<std::int64_t> counts() const;
+  void set_counts(std::span<const std::int64_t> summed);
+  std::vector<double> summary() const;
+  void merge_summary(std::span<const double> other);
   std::int64_t excluded(std::size_t row) const { return excluded_[row]; }
   std::int64_t analysed(std::size_t row) const { return n_[row] + excluded_[row]; }
   // The results group "reductions" (docs/results-format.md).

@@ -31,6 +31,12 @@ class Tally {
     return std::get<std::vector<T>>(columns_[field]);
   }
   const Reductions* reductions() const { return reductions_.get(); }
+  Reductions* reductions() { return reductions_.get(); }
+  // Reductions only: unit `unit` was folded into another rank's Reductions (merged at the end): counted done here.
+  void folded_elsewhere(std::size_t unit) {
+    if (!done_[unit]) ++n_done_;
+    done_[unit] = 1;
+  }
   // The columns as results fields (the tally is left empty).
   std::vector<results::Field> take_fields();
 
