@@ -106,6 +106,7 @@ Count count_uncoupled(const Data& r, double ratio, int rec, int pair_i1 = -1, in
 // Sections on separations (separation_sections.cpp).
 std::string pair_separation_section(const Data& r);  // the pair's separation in metres (report's first section)
 std::string code_rules_section(const Data& r);
+std::string floors_section(const Data& r);  // per-floor (bridges: per-deck) amplification of a System (floors_section.cpp)
 std::string bridge_section(const Data& r);  // a bridge study's joints and frames by name (bridge_section.cpp)       // the code rules: in metres for a pair, probabilities for a grid
 std::string grid_advice_section(const Data& r);      // a grid study's separation advice in gap ratios
 // One target of a grid (or bridge) study's advice: the target in %, the order statistic with its bootstrap interval

@@ -330,6 +330,7 @@ class Markdown {
   void fit();
   void impacts_table();
   void restitution_note();
+  void restitution_per_element();
 
  private:
   void excluded_uncoupled();
@@ -592,7 +593,27 @@ void Markdown::restitution_note() {
         "excluded) had an approach velocity outside the curve's valid range, where e is extrapolated{}.\n",
         r.res.settings.find("contact", "restitution") ? r.res.settings.text("contact", "restitution") : "[contact] restitution",
         n_out, n_all, n_out > 0 ? ": their share is the part of the answer the curve's calibration does not cover" : "");
+    restitution_per_element();
   }
+}
+
+// A System's impacts outside the e(v0) curve's range per contact element (a bridge's joints, a pair's levels), from
+// impacts/element_restitution_outside [R, M, G, E]: the sum above, split.
+void Markdown::restitution_per_element() {
+  const results::Field* f = r.res.find("impacts", "element_restitution_outside");
+  const std::size_t E = r.res.system.element_label.size();
+  if (!f || E == 0) return;
+  const auto& outside = std::get<std::vector<std::int32_t>>(f->data);
+  std::vector<std::int64_t> n(E, 0);
+  for (std::size_t i = 0; i < r.imp_status.size() && (i + 1) * E <= outside.size(); ++i)
+    if (r.ok(r.imp_status[i]))
+      for (std::size_t e = 0; e < E; ++e) n[e] += std::max(0, outside[i * E + e]);
+  std::string list;
+  for (std::size_t e = 0; e < E; ++e)
+    if (r.res.system.group_study_gap.empty() || r.res.system.group_study_gap[static_cast<std::size_t>(
+                                                     r.res.system.element_group[e])])
+      list += fmt::format("{}{} {}", list.empty() ? "" : ", ", r.res.system.element_label[e], n[e]);
+  out("\nImpacts outside the valid range per contact element: {}.\n", list);
 }
 
 }  // namespace
@@ -726,6 +747,7 @@ std::string pair_markdown(const Data& r) {
   if (r.set.bridge) {  // the buildings' code rules, period matrix and u1/u2 amplification do not apply
     md.raw(grid_advice_section(r));
     md.raw(bridge_section(r));
+    md.raw(floors_section(r));
     if (r.impacts) md.restitution_note();
     return std::move(md).text();
   }
@@ -739,6 +761,7 @@ std::string pair_markdown(const Data& r) {
              "false), and the rules' probabilities need each model's own peaks and code-rule gap.\n");
   }
   md.impacts_table();
+  md.raw(floors_section(r));
   return std::move(md).text();
 }
 

@@ -181,6 +181,8 @@ std::optional<Description> describe(std::string_view group, std::string_view nam
   if (auto d = find(field_group_table, name)) return d;
   if (auto d = find(unit_fields, group, name)) return d;
   if (auto d = find(element_fields, group, name)) return d;
+  const FieldSpec restitution[] = {restitution_field, restitution_element_field};
+  if (auto d = find(restitution, group, name)) return d;
   if (auto d = find_floor_field(group, name)) return d;
   return find(derived_fields, group, name);
 }

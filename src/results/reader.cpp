@@ -213,6 +213,9 @@ Results load(const std::string& path, std::span<const FieldSpec> extra) {
       throw std::runtime_error(path + ": /system is inconsistent: " + p);
     const std::vector<FieldSpec> sys = system_fields(r.system.extents(), true);
     specs.insert(specs.end(), sys.begin(), sys.end());
+    FieldSpec outside = restitution_element_field;  // [contact] restitution only
+    outside.count = static_cast<std::uint32_t>(r.system.extents().elements);
+    specs.push_back(outside);
   }
   read_fields(root, specs, r);  // format 1 stored some flat, format 2 with their shape: the values are the same
   r.gaps = read_gaps(root, r);

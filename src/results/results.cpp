@@ -60,7 +60,7 @@ std::string replace_b(std::string_view text, std::size_t building) {
 std::string building_name(std::string_view row_name, std::size_t building) { return replace_b(row_name, building); }
 
 FieldSpec floor_field(const FieldSpec& row, std::size_t building, std::size_t floors) {
-  if (row.extent != Extent::lane_floor || building == 0)
+  if (!per_floor(row.extent) || building == 0)
     throw std::logic_error(fmt::format("floor_field: /{}/{} is not a per-floor row, or building 0", row.group, row.name));
   FieldSpec f = row;
   f.name = intern(replace_b(row.name, building));
@@ -84,7 +84,8 @@ std::vector<FieldSpec> system_fields(const Extents& system, bool with_gaps) {
   std::vector<FieldSpec> s;
   if (system.empty()) return s;
   for (const FieldSpec& row : floor_fields)
-    for (std::size_t b = 0; b < system.floors.size(); ++b) s.push_back(floor_field(row, b + 1, system.floors[b]));
+    if (with_gaps || !per_gap(row.extent))
+      for (std::size_t b = 0; b < system.floors.size(); ++b) s.push_back(floor_field(row, b + 1, system.floors[b]));
   for (const FieldSpec& row : row_fields)  // a row's buildings 3..n
     if (with_gaps || row.extent == Extent::lane)
       for (std::size_t b = 3; b <= system.floors.size(); ++b) s.push_back(row_field(row, b));

@@ -169,6 +169,8 @@ std::string axes(const FieldSpec& s, bool stripes) {
     case Extent::lane_floor: return fmt::format("{}, floors of building {} (bottom first)]", lead, s.building);
     case Extent::lane_element: return fmt::format("{}, elements]", lead);
     case Extent::lane_gap_element: return fmt::format("{}, gaps, elements]", lead);
+    case Extent::lane_gap_floor:
+      return fmt::format("{}, gaps, floors of building {} (bottom first)]", lead, s.building);
   }
   return "";
 }
@@ -200,9 +202,7 @@ void write_fields(h5::hid root, const Results& r) {
     if (r.stripes) shape.push_back(r.stripes);
     shape.insert(shape.end(), {r.record_count(), r.model_count()});
     if (per_gap(f.spec.extent)) shape.push_back(r.gap_ratios.size());
-    if (f.spec.extent == Extent::lane_floor || f.spec.extent == Extent::lane_element ||
-        f.spec.extent == Extent::lane_gap_element)
-      shape.push_back(f.spec.count);
+    if (f.spec.extent != Extent::lane && f.spec.extent != Extent::lane_gap) shape.push_back(f.spec.count);
     std::visit(
         [&](const auto& v) {
           using T = typename std::decay_t<decltype(v)>::value_type;
@@ -241,7 +241,7 @@ void check_system(const Results& r) {
     const std::string where = fmt::format("results: /{}/{}", s.group, s.name);
     if (t.empty())
       throw std::logic_error(where + " is per floor or per element but the Results has no /system (SystemTable)");
-    if (s.extent == Extent::lane_floor) {
+    if (per_floor(s.extent)) {
       if (s.building < 1 || s.building > x.floors.size())
         throw std::logic_error(fmt::format("{} is for building {} but /system has {} buildings", where, s.building,
                                            x.floors.size()));

@@ -97,6 +97,8 @@ class UnitComputer {
     if (s.restitution && plan.impacts) {  // e(v0) in the coupled runs (study.cpp: hertzdamp, CD, impacts scene)
       restitution_ = std::make_unique<physics::HertzdampRestitution>(*s.restitution, s.contact);
       f_rest_out_ = results::field_index(plan.fields, "impacts", "restitution_outside");
+      if (block_ && !plan.system.empty())
+        f_e_outside_ = results::field_index(plan.fields, "impacts", results::restitution_element_field.name);
     }
     if (plan.stripes) stripe_scaled_ = results::field_index(plan.fields, "uncoupled", "scaled");
     if (plan.ida) {
@@ -484,6 +486,13 @@ class UnitComputer {
     }
     f_e_closing_ = results::field_index(plan.fields, "uncoupled", "peak_closing_elements");
     if (!plan.impacts) return;
+    f_imp_floor_u_.resize(nb), f_imp_floor_drift_.resize(nb), f_imp_floor_acc_.resize(nb);
+    for (std::size_t b = 0; b < nb; ++b) {
+      f_imp_floor_u_[b] = results::field_index(plan.fields, "impacts", results::building_name("peak_u_floors{b}", b + 1));
+      f_imp_floor_drift_[b] = results::field_index(plan.fields, "impacts", results::building_name("peak_drift{b}", b + 1));
+      f_imp_floor_acc_[b] =
+          results::field_index(plan.fields, "impacts", results::building_name("peak_acc_floors{b}", b + 1));
+    }
     f_e_count_ = results::field_index(plan.fields, "impacts", "element_impact_count");
     f_e_force_ = results::field_index(plan.fields, "impacts", "element_peak_force");
     f_e_pen_ = results::field_index(plan.fields, "impacts", "element_peak_penetration");
@@ -589,6 +598,29 @@ class UnitComputer {
         hw[o] = peaks_.status[i] == 0 && has_force ? 0.0 : NAN;
       }
     }
+    if (restitution_) {  // per element: impacts outside the e(v0) curve's range (0 where it never touched)
+      auto outside = out.lane_values<std::int32_t>(f_e_outside_, i);
+      for (std::size_t e = 0; e < E; ++e)
+        if (j != std::string::npos) outside[g * E + e] = coupled_.e_outside[j * E + e];
+        else if (!std::isnan(peaks_.e_closing[i * E + e])) outside[g * E + e] = 0;
+    }
+    put_floors_coupled(out, i, g, j);
+  }
+
+  // lane i's per-floor peaks at gap g: from coupled_ lane j, or (j = npos, a lane that never touched) its uncoupled
+  // peaks, as impacts/peak_u1 takes them
+  void put_floors_coupled(UnitResult& out, std::size_t i, std::size_t g, std::size_t j) {
+    const TableLayout& t = block_->layout();
+    const BlockPeaks& p = j != std::string::npos ? coupled_ : peaks_;
+    const std::size_t lane = j != std::string::npos ? j : i;
+    for (std::size_t b = 0; b < t.floors.size(); ++b) {
+      const std::size_t F = t.floors[b];
+      for (auto [field, from] : {std::pair{f_imp_floor_u_[b], &p.floor_u[b]}, {f_imp_floor_drift_[b], &p.floor_drift[b]},
+                                 {f_imp_floor_acc_[b], &p.floor_acc[b]}}) {
+        auto v = out.lane_values<double>(field, i);
+        std::copy_n(from->begin() + static_cast<std::ptrdiff_t>(lane * F), F, v.begin() + static_cast<std::ptrdiff_t>(g * F));
+      }
+    }
   }
 
   const Study& s_;
@@ -614,6 +646,8 @@ class UnitComputer {
   std::vector<std::size_t> f_floor_u_, f_floor_drift_, f_floor_acc_;
   std::vector<std::size_t> f_row_unc_, f_row_imp_;  // a row's buildings 3..n: uncoupled / impacts peak_u{b}
   std::size_t f_e_closing_ = 0, f_e_count_ = 0, f_e_force_ = 0, f_e_pen_ = 0, f_e_first_ = 0, f_e_hw_ = 0;
+  std::size_t f_e_outside_ = 0;  // [contact] restitution: impacts/element_restitution_outside
+  std::vector<std::size_t> f_imp_floor_u_, f_imp_floor_drift_, f_imp_floor_acc_;  // impacts/peak_u_floors{b}, ...
   std::vector<std::uint8_t> st_;
   std::vector<double> scaled_, mid_, pu1_, pu2_, pc_;
   std::vector<std::size_t> todo_;
@@ -729,6 +763,11 @@ WorkPlan plan_work(const Inputs& in) {
     }
   L.fields = results::unit_schema(L.impacts, L.ida, L.stripes > 0, L.system.extents());
   if (s.restitution && L.impacts) L.fields.push_back(results::restitution_field);  // e(v0): impacts outside its range
+  if (s.restitution && L.impacts && !L.system.empty()) {  // ... and per contact element
+    results::FieldSpec f = results::restitution_element_field;
+    f.count = static_cast<std::uint32_t>(L.system.extents().elements);
+    L.fields.push_back(f);
+  }
   return L;
 }
 

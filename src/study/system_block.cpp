@@ -83,7 +83,7 @@ void BlockPeaks::resize(std::size_t n, std::size_t nb, const TableLayout& t) {
     for (std::size_t b = 0; b < t.floors.size(); ++b) (*f)[b].assign(n * t.floors[b], nan);
   }
   for (auto* v : {&e_closing, &e_force, &e_penetration, &e_first, &e_hw}) v->assign(n * t.elements, nan);
-  e_count.assign(n * t.elements, -1);
+  e_count.assign(n * t.elements, -1), e_outside.assign(n * t.elements, -1);
   springs.resize(0);
 }
 
@@ -303,29 +303,34 @@ void SystemBlock::run(std::span<const SampledPair> pairs, std::span<const std::s
         any = true;
       }
       if (!any) force = 0.0;
-      if (!layout_.empty()) {
-        for (std::size_t b = 0; b < nb; ++b) {
-          const auto& dofs = sys.bodies()[b].dofs;
-          for (std::size_t f = 0; f < dofs.size() && f < layout_.floors[b]; ++f) {
-            const std::size_t x = physics::SystemBatch::at(dofs[f], l, w), o = k * layout_.floors[b] + f;
-            out.floor_u[b][o] = res_.peak_u[x];
-            out.floor_drift[b][o] = res_.peak_drift[physics::SystemBatch::at(sys.spring_below(dofs[f]), l, w)];
-            out.floor_acc[b][o] = res_.peak_acc[x] / physics::standard_gravity;
-          }
-        }
-        for (std::size_t e = 0; e < sys.contacts().size(); ++e) {
-          if (to_table[e] >= layout_.elements) continue;
-          const std::size_t x = physics::SystemBatch::at(static_cast<int>(e), l, w), o = k * layout_.elements + to_table[e];
-          out.e_closing[o] = res_.peak_closing[x], out.e_count[o] = res_.impact_count[x];
-          out.e_force[o] = res_.peak_force[x], out.e_penetration[o] = res_.peak_penetration[x];
-          out.e_first[o] = res_.t_first_impact[x], out.e_hw[o] = res_.h_omega_contact[x];
-        }
-      }
+      if (!layout_.empty()) table_lane(out, sys, to_table, l, w, k);
       if (keep_springs_) keep_lane_springs(out.springs[k], sys, groups, l, w);
       out.closing[k] = D, out.impact_count[k] = count, out.peak_force[k] = force, out.restitution_outside[k] = outside;
       out.t_first_impact[k] = first, out.h_omega_contact[k] = hw;
     }
     at = end;
+  }
+}
+
+// Lane l (of w) of the last run into lane k of out's per-floor and per-element rows (the table's order: to_table).
+void SystemBlock::table_lane(BlockPeaks& out, const model::System& sys, std::span<const std::size_t> to_table,
+                             std::size_t l, std::size_t w, std::size_t k) const {
+  for (std::size_t b = 0; b < sys.bodies().size() && b < layout_.floors.size(); ++b) {
+    const auto& dofs = sys.bodies()[b].dofs;
+    for (std::size_t f = 0; f < dofs.size() && f < layout_.floors[b]; ++f) {
+      const std::size_t x = physics::SystemBatch::at(dofs[f], l, w), o = k * layout_.floors[b] + f;
+      out.floor_u[b][o] = res_.peak_u[x];
+      out.floor_drift[b][o] = res_.peak_drift[physics::SystemBatch::at(sys.spring_below(dofs[f]), l, w)];
+      out.floor_acc[b][o] = res_.peak_acc[x] / physics::standard_gravity;
+    }
+  }
+  for (std::size_t e = 0; e < sys.contacts().size(); ++e) {
+    if (to_table[e] >= layout_.elements) continue;
+    const std::size_t x = physics::SystemBatch::at(static_cast<int>(e), l, w), o = k * layout_.elements + to_table[e];
+    out.e_closing[o] = res_.peak_closing[x], out.e_count[o] = res_.impact_count[x];
+    out.e_force[o] = res_.peak_force[x], out.e_penetration[o] = res_.peak_penetration[x];
+    out.e_first[o] = res_.t_first_impact[x], out.e_hw[o] = res_.h_omega_contact[x];
+    out.e_outside[o] = res_.restitution_outside[x];
   }
 }
 

@@ -104,7 +104,8 @@ PY
 
 # 3b. stick frames (issue 26 §1): F2 a 3-level Q-Hyst stick (Rayleigh), F3 a 2-level modal stick; a lane is still
 # simulate --bridge of the same file: every level's uncoupled peak (peak_u_floors2/3), per-joint closings, coupled impact
-# counts and peak forces, bit for bit; the frames' levels are the bodies' floors of /system.
+# counts and peak forces, every level's coupled peak u, drift and absolute acceleration, bit for bit; the report's
+# per-deck amplification table gives simulate's ratios at each frame's deck; the frames' levels are the bodies' floors of /system.
 stick() { sed -e 's/^label = "F2"$/label = "F2"\nstoreys = 3/' -e 's/^label = "F3"$/label = "F3"\nstoreys = 2\ndamping = "modal"/' "$1"; }
 stick "$tmp/bridge.toml" > "$tmp/stick_bridge.toml"
 stick "$tmp/one.toml" > "$tmp/stick.toml"
@@ -124,7 +125,19 @@ for b, n in ((1, 1), (2, 3), (3, 2), (4, 1)):
     fl = f[f"uncoupled/peak_u_floors{b}"][0, 0]
     assert len(fl) == n and list(fl) == none[f"peak_u{b}"], (b, fl, none[f"peak_u{b}"])
     assert f[f"impacts/peak_u{b}"][()].ravel()[0] == max(hd[f"peak_u{b}"]), b
+    # every level's peaks with contact (issue 25 §3 observers): u, drift (a level's storey), absolute acceleration
+    for field, key in (("peak_u_floors", f"peak_u{b}"), ("peak_drift", f"peak_drift{b}"),
+                       ("peak_acc_floors", f"peak_abs_acc{b}_g")):
+        mine = f[f"impacts/{field}{b}"][0, 0, 0]
+        assert len(mine) == n and list(mine) == hd[key], (field, b, mine, hd[key])
 assert min(l["impacts"] for l in hd["levels"]) > 0, "every joint must be hit by this record"
+# the report's per-deck amplification (one analysis: the median is its own ratio) = simulate's, per frame's deck
+md = open(sys.argv[1][:-3] + ".md").read().split("## Per-deck amplification")
+assert len(md) == 2, "no per-deck amplification section in the report"
+rows = {l.split("|")[1].strip(): l.split("|")[2].strip() for l in md[1].splitlines() if l.startswith("| F")}
+for b in (1, 2, 3, 4):
+    want = " / ".join(f"{hd[k][-1] / none[k][-1]:.3g}" for k in (f"peak_u{b}", f"peak_drift{b}", f"peak_abs_acc{b}_g"))
+    assert rows.get(f"F{b}") == want, (b, rows.get(f"F{b}"), want)
 print("stick frames: study lane = simulate --bridge; F2 levels", [round(x, 4) for x in none["peak_u2"]],
       "impacts", [l["impacts"] for l in hd["levels"]])
 PY

@@ -5,8 +5,8 @@
 #     skip_untouched = false (tests/lib/study_invariance.sh), and differs from its Rayleigh run (the key is read);
 #  2. a one-record, one-model study of a 3- against a 5-storey building with modal_zeta = [0.02, 0.05, 0.03] gives, bit
 #     for bit, pounding simulate --modal-zeta 0.02,0.05,0.03 (coupled: impact count, peak force, first impact, peak
-#     u; uncoupled: every floor's peak u, drift and absolute acceleration, the peak closing) -- the study and simulate
-#     fill the System separately and share physics::set_shear_building and the stepper; simulate's JSON reports each
+#     u, every floor's peak u, drift and absolute acceleration; uncoupled: every floor's peak u, drift and absolute
+#     acceleration, the peak closing) -- the study and simulate fill the System separately and share physics::set_shear_building and the stepper; simulate's JSON reports each
 #     mode's ratio (0.02, 0.05, 0.03, then 0.03);
 #     2b. the same with building 1 base-isolated (linear bearing): the superstructure's fixed-base modal C acting on
 #     the floors' velocities relative to the base (physics::isolated_damping_matrix; refused before);
@@ -112,6 +112,12 @@ for b in (1, 2):
         if base:
             mine, theirs = (mine, [u["peak_bearing_u1"]] + theirs) if key == "peak_u" else (mine[1:], theirs)
         checks += [(f"uncoupled {field}{b}[{i}]", a, c) for i, (a, c) in enumerate(zip(mine, theirs, strict=True))]
+        # with contact at the gap (issue 25 §3: per-floor observers of the coupled run)
+        mine = list(f[f"impacts/{field}{b}"][0, 0, g])
+        theirs = s[f"{key}{b}_g" if key == "peak_abs_acc" else f"{key}{b}"]
+        if base:
+            mine, theirs = (mine, [s["peak_bearing_u1"]] + theirs) if key == "peak_u" else (mine[1:], theirs)
+        checks += [(f"impacts {field}{b}[{i}]", a, c) for i, (a, c) in enumerate(zip(mine, theirs, strict=True))]
 assert s["status"] == "ok" and u["status"] == "ok" and at("impacts/status") == 0
 assert s["impact_count"] > 0, "no impacts at the gap"
 bad = [(n, a, c) for n, a, c in checks if not (a == c)]

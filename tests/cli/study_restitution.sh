@@ -102,7 +102,8 @@ grep -q "^Each impact took e(v0).*: [0-9]* of [0-9]* impacts" "$tmp/s.md" || gre
 # 4. systems (bridge26): [contact] restitution in a bridge study -- the four-frame test bridge of cli.study_bridge
 # (without joint 2's own restitution) under a stronger two-tone record, gap ratio 1 (the file's joint gaps): a lane equals `simulate --bridge` with the
 # same --restitution-* options bit for bit (per-joint impact counts and peak forces, every frame's peak, the impacts
-# outside the valid range summed over the joints); the key acts (e = 0.6 gives other forces); results invariant over
+# outside the valid range summed over the joints and per joint: impacts/element_restitution_outside, and the report's
+# per-joint list); the key acts (e = 0.6 gives other forces); results invariant over
 # ranks, threads, batch width and skip_untouched. A shear-building study takes the curve too (its forces differ from
 # the constant e's; restitution_outside written).
 bstudy=$src/tests/data/bridge/study-four-frame.toml
@@ -123,7 +124,7 @@ grep -q "^Each impact took e(v0).* 1 of [0-9]* impacts (analyses not excluded) h
 (cd "$tmp" && "$bin" run be.toml --out be.h5 --quiet > /dev/null 2>&1) || fail "the bridge study with e does not run"
 "$bin" simulate --record "$tmp/brec.txt" --bridge "$tmp/bridge.toml" --contact hertzdamp --kh 2e9 --dt 0.0025 --json \
   --restitution-polynomial 0.9979,-0.0838,0.0011,-0.0012 --restitution-valid 0.2,3.13 > "$tmp/bsim.json"
-"$py" - "$tmp/bs.h5" "$tmp/be.h5" "$tmp/bsim.json" <<'PY'
+"$py" - "$tmp/bs.h5" "$tmp/be.h5" "$tmp/bsim.json" "$tmp/bs.md" <<'PY'
 import json, sys, h5py, numpy as np
 f, e, o = h5py.File(sys.argv[1], "r"), h5py.File(sys.argv[2], "r"), json.load(open(sys.argv[3]))
 cnt = list(f["impacts/element_impact_count"][()].ravel())
@@ -134,6 +135,17 @@ for b in (1, 2, 3, 4):
 out = f["impacts/restitution_outside"][()].ravel()[0]
 assert out == o["restitution_outside_valid"], (out, o["restitution_outside_valid"])
 assert min(cnt) > 0 and out > 0, (cnt, out)  # every joint hit, some impacts outside [0.2, 3.13] m/s
+# per joint ([R, M, G, E]): simulate's per-level counts, summing to the total; the report lists them by joint
+per = f["impacts/element_restitution_outside"]
+assert per.attrs["units"] in ("1", b"1") and per.shape[-1] == len(cnt), per.shape
+assert list(per[()].ravel()) == [l["restitution_outside"] for l in o["levels"]], (per[()], o["levels"])
+assert sum(per[()].ravel()) == out
+labels = [x.decode() if isinstance(x, bytes) else x for x in f["system/element_label"][()]]
+study_gap = [f["system/group_study_gap"][g] for g in f["system/element_group"][()]]
+want = ", ".join(f"{l} {n}" for l, n, s in zip(labels, per[()].ravel(), study_gap) if s)
+md = open(sys.argv[4]).read()
+assert f"Impacts outside the valid range per contact element: {want}." in md, (want, [l for l in md.splitlines() if "per contact element" in l])
+assert "element_restitution_outside" not in e["impacts"]
 assert "restitution_outside" not in e["impacts"]
 assert list(e["impacts/element_peak_force"][()].ravel()) != list(f["impacts/element_peak_force"][()].ravel()), "e(v0) changed nothing"
 print("bridge study lane = simulate --bridge --restitution-*: impacts", cnt, "outside", out)

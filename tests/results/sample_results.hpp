@@ -149,8 +149,9 @@ inline results::Results sample_system_results() {
     }
     std::vector<double> v(n);
     for (std::size_t k = 0; k < n; ++k) v[k] = system_value(f, k);
-    if (s.extent == Extent::lane_floor && s.building == 2)
-      for (std::size_t rec = 0; rec < R; ++rec) v[(rec * M + 1) * per + 4] = NAN;  // model 1: 4 storeys
+    if (per_floor(s.extent) && s.building == 2)  // model 1: 4 storeys (at every gap)
+      for (std::size_t rec = 0; rec < R; ++rec)
+        for (std::size_t at = 4; at < per; at += s.count) v[(rec * M + 1) * per + at] = NAN;
     r.fields.push_back({s, std::move(v)});
   }
   return r;

@@ -261,10 +261,13 @@ TEST(Results, FormatThreeRoundTripKeepsEveryValue) {
   ASSERT_EQ(u2.size(), 2u * 4u * 5u);
   EXPECT_TRUE(std::isnan(u2[1 * 5 + 4]) && std::isnan(u2[(4 + 1) * 5 + 4]));  // model 1's 5th floor, both records
   EXPECT_FALSE(std::isnan(u2[1 * 5 + 3]));
-  // the report reads a format-3 file as it reads the pair's: the same tables from the [R, M] fields
+  // the report reads a format-3 file as it reads the pair's: the same tables from the [R, M] fields, then the
+  // per-floor amplification from the per-floor rows with and without contact
   results::Results pair = testdata::sample_results();
   pair.path = b.path;
-  EXPECT_EQ(report_markdown(b), report_markdown(pair));
+  const std::string md = report_markdown(b), pair_md = report_markdown(pair);
+  ASSERT_TRUE(md.starts_with(pair_md));
+  EXPECT_TRUE(md.substr(pair_md.size()).starts_with("\n## Per-floor amplification")) << md.substr(pair_md.size());
   // and again: what was read writes the same file
   results::write(t.file("b.h5"), b);
   const results::Results c = results::load(t.file("b.h5"));
@@ -287,6 +290,8 @@ TEST(Results, FormatThreeRoundTripKeepsEveryValue) {
   EXPECT_EQ(h5::dataset_shape(unc.get(), "peak_closing_elements"), (Shape{2, 4, 3}));
   EXPECT_EQ(h5::dataset_shape(imp.get(), "element_peak_force"), (Shape{2, 4, 2, 3}));
   EXPECT_EQ(h5::dataset_shape(imp.get(), "element_impact_count"), (Shape{2, 4, 2, 3}));
+  EXPECT_EQ(h5::dataset_shape(imp.get(), "peak_u_floors1"), (Shape{2, 4, 2, 3}));  // with contact: [R, M, G, floors]
+  EXPECT_EQ(h5::dataset_shape(imp.get(), "peak_acc_floors2"), (Shape{2, 4, 2, 5}));
   const auto attr = [](h5::hid g, const char* ds, const char* a) {
     return h5::read_string_attribute(h5::open_dataset(g, ds).get(), a);
   };
@@ -295,6 +300,9 @@ TEST(Results, FormatThreeRoundTripKeepsEveryValue) {
   EXPECT_NE(attr(unc.get(), "peak_u_floors2", "description").find("building 2"), std::string::npos);
   EXPECT_EQ(attr(unc.get(), "peak_u_floors2", "axes"), "[records, models, floors of building 2 (bottom first)]");
   EXPECT_EQ(attr(imp.get(), "element_energy", "units"), "J");
+  EXPECT_EQ(attr(imp.get(), "peak_drift2", "units"), "m");
+  EXPECT_EQ(attr(imp.get(), "peak_drift2", "axes"), "[records, models, gaps, floors of building 2 (bottom first)]");
+  EXPECT_NE(attr(imp.get(), "peak_acc_floors1", "description").find("with contact"), std::string::npos);
   EXPECT_EQ(attr(imp.get(), "element_t_first_impact", "axes"), "[records, models, gaps, elements]");
   EXPECT_EQ(attr(sys.get(), "dof_height", "units"), "m");
   std::vector<std::array<std::string, 3>> all;

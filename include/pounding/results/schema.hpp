@@ -11,7 +11,7 @@
 // datasets' from results/describe.hpp. In memory every field stays flat, record-major.
 //
 // Format 3 (architecture.md 2.6.3) adds, for a study whose System is not the SDOF pair, per-floor and
-// per-element fields (the extents lane_floor, lane_element, lane_gap_element: floor_fields and element_fields
+// per-element fields (the extents lane_floor, lane_gap_floor, lane_element, lane_gap_element: floor_fields and element_fields
 // below, sized by Extents) and the /system group (results.hpp SystemTable). An SDOF-pair study writes format 2,
 // byte for byte as before.
 #include <cmath>
@@ -39,9 +39,13 @@ enum class Dtype : std::uint8_t { u8, i32, i64, f64 };
 //   lane_floor       one per floor of building `building`, [lane][floor] bottom first       [R, M, n_b]
 //   lane_element     one per contact element, [lane][element] (System element order)        [R, M, E]
 //   lane_gap_element one per gap and element, [lane][gap][element]                          [R, M, G, E]
+//   lane_gap_floor   one per gap and floor of building `building`, [lane][gap][floor]       [R, M, G, n_b]
 // (a fragility study puts [stripes] in front). `count` of the row holds n_b or E.
-enum class Extent : std::uint8_t { lane, lane_gap, lane_floor, lane_element, lane_gap_element };
-constexpr bool per_gap(Extent e) { return e == Extent::lane_gap || e == Extent::lane_gap_element; }
+enum class Extent : std::uint8_t { lane, lane_gap, lane_floor, lane_element, lane_gap_element, lane_gap_floor };
+constexpr bool per_gap(Extent e) {
+  return e == Extent::lane_gap || e == Extent::lane_gap_element || e == Extent::lane_gap_floor;
+}
+constexpr bool per_floor(Extent e) { return e == Extent::lane_floor || e == Extent::lane_gap_floor; }
 
 // A typed column: the values of one field for a unit, or for the whole study.
 using Column = std::variant<std::vector<std::uint8_t>, std::vector<std::int32_t>, std::vector<std::int64_t>,
@@ -107,6 +111,13 @@ inline constexpr FieldSpec restitution_field = {
     "impacts of this analysis whose approach velocity lay outside the valid range of the e(v0) curve ([contact] "
     "restitution: e extrapolated there); 0 for a pair that never touched, -1 not computed"};
 
+// Format 3: the same per contact element ([R, M, G, E], element order of /system/element_*); written beside
+// restitution_field (which sums it over the study-gap elements) by a study of Systems with [contact] restitution.
+inline constexpr FieldSpec restitution_element_field = {
+    "impacts", "element_restitution_outside", Dtype::i32, Extent::lane_gap_element, -1, "1",
+    "impacts at each contact element whose approach velocity lay outside the valid range of the e(v0) curve "
+    "([contact] restitution); 0 when it never touched, -1 not computed"};
+
 // What a unit of a multiple-stripe study returns besides the uncoupled rows ([analysis] scale_elastic).
 inline constexpr FieldSpec stripe_fields[] = {
     {"uncoupled", "scaled", Dtype::u8, Extent::lane, 0, "1",
@@ -153,6 +164,17 @@ inline constexpr FieldSpec floor_fields[] = {
     {"uncoupled", "peak_acc_floors{b}", Dtype::f64, Extent::lane_floor, NAN, "g",
      "peak absolute acceleration |a + ag| of each floor of building {b}, without contact, in g = 9.80665 m/s^2; "
      "bottom first; NaN above the roof"},
+    // the same with contact at each gap ([records, models, gaps, floors]); an analysis the impacts scene did not run
+    // coupled (it never touched) holds its uncoupled values, as impacts/peak_u1 does
+    {"impacts", "peak_u_floors{b}", Dtype::f64, Extent::lane_gap_floor, NAN, "m",
+     "peak |u| of each floor of building {b} relative to the ground, with contact at each gap; [records, models, gaps, "
+     "floors] bottom first (an isolated building's base first); NaN above the roof of a building with fewer floors"},
+    {"impacts", "peak_drift{b}", Dtype::f64, Extent::lane_gap_floor, NAN, "m",
+     "peak |drift| of the storey below each floor of building {b} (the isolator's deformation at an isolated base), "
+     "with contact at each gap; bottom first; NaN above the roof"},
+    {"impacts", "peak_acc_floors{b}", Dtype::f64, Extent::lane_gap_floor, NAN, "g",
+     "peak absolute acceleration |a + ag| of each floor of building {b}, with contact at each gap, in g = 9.80665 "
+     "m/s^2; bottom first; NaN above the roof"},
 };
 
 // Format 3, a row of n >= 3 buildings ([structures] buildings = n): the [R, M] and [R, M, G] peaks of buildings 3..n,
@@ -229,7 +251,8 @@ constexpr std::size_t per_lane(const FieldSpec& f, std::size_t gaps) {
     case Extent::lane_gap: return gaps;
     case Extent::lane_floor:
     case Extent::lane_element: return f.count;
-    case Extent::lane_gap_element: return gaps * f.count;
+    case Extent::lane_gap_element:
+    case Extent::lane_gap_floor: return gaps * f.count;
   }
   return 0;
 }

@@ -89,11 +89,11 @@ struct BlockPeaks {
   std::vector<std::int32_t> restitution_outside;
   std::vector<double> peak_force, t_first_impact, h_omega_contact;
   // With a TableLayout: [lane][floor] per building (peak |u|, storey drift, peak |a + ag| in g) and [lane][element]
-  // (peak closing; impact count, peak force, peak penetration, first impact, h omega_c), NaN / -1 where the lane's
-  // topology has no such floor or element.
+  // (peak closing; impact count, peak force, peak penetration, first impact, h omega_c, impacts outside the e(v0)
+  // curve's range), NaN / -1 where the lane's topology has no such floor or element.
   std::vector<std::vector<double>> floor_u, floor_drift, floor_acc;  // [building]
   std::vector<double> e_closing, e_force, e_penetration, e_first, e_hw;
-  std::vector<std::int32_t> e_count;
+  std::vector<std::int32_t> e_count, e_outside;
   // With SystemBlock::keep_springs: per lane, each spring's law, numbers and peak |deformation|, and whether a contact
   // element outside the study gap (a moat wall) ran with a law -- what SystemBlock::scales_linearly reads.
   struct Springs {
@@ -178,6 +178,9 @@ class SystemBlock {
 
  private:
   // lanes[j] of `pairs` bucketed by topology, one run_system per bucket, out[j] lane lanes[j]'s
+  // lane l of the last bucket's res_ (width w) into lane k of out's per-floor / per-element rows (to_table: element order)
+  void table_lane(BlockPeaks& out, const model::System& sys, std::span<const std::size_t> to_table, std::size_t l,
+                  std::size_t w, std::size_t k) const;
   // lane l of the last bucket's batch_/res_ (width w) into s
   void keep_lane_springs(BlockPeaks::Springs& s, const model::System& sys, std::span<const ContactModel> groups,
                          std::size_t l, std::size_t w) const;
