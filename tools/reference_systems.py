@@ -961,6 +961,49 @@ class GapLink:
             self.plastic = True
 
 
+class Storey:
+    """A yielding storey of a stick frame: bilinear with kinematic hardening, written from its definition (not the
+    engine's code): d = u_j - u_i (i = -1: the ground); elastic branch f = k (d - d_p); the force stays within the
+    bounds alpha k d +- (1 - alpha) F_y, on which it moves while the storey yields (plastic branch s = +-1:
+    f = alpha k d + s (1 - alpha) F_y) until the storey's drift rate turns against s; then elastic again from there
+    (d_p = d - f / k). Both branches are linear in u; each switch is an event (as GapLink's)."""
+
+    def __init__(self, k, fy, alpha, dofs):
+        self.k, self.fy, self.alpha, self.dofs = k, fy, alpha, dofs
+        self.dp, self.s = 0.0, 0  # s = 0: elastic
+        self.switches = 0
+
+    def deformation(self, u):
+        i, j = self.dofs
+        return u[j] - (u[i] if i >= 0 else 0.0)
+
+    def force(self, u):
+        d = self.deformation(u)
+        if self.s:
+            return self.alpha * self.k * d + self.s * (1.0 - self.alpha) * self.fy
+        return self.k * (d - self.dp)
+
+    def event(self, t, y, n):
+        u, v = y[:n], y[n:]
+        if self.s:  # yielding: the drift rate turns against the yield direction
+            i, j = self.dofs
+            return self.s * (v[j] - (v[i] if i >= 0 else 0.0))
+        d = self.deformation(u)
+        return abs(self.k * (d - self.dp) - self.alpha * self.k * d) - (1.0 - self.alpha) * self.fy
+
+    def direction(self):
+        return -1 if self.s else 1
+
+    def switch(self, y, n):
+        u = y[:n]
+        d = self.deformation(u)
+        self.switches += 1
+        if self.s:
+            self.dp, self.s = d - self.force(u) / self.k, 0
+        else:
+            self.s = 1 if self.k * (d - self.dp) - self.alpha * self.k * d > 0 else -1
+
+
 def bridge_main(path_in, path_out):
     """A chain of frames under one ground acceleration: SDOF frames (m, k, c; elastic, or Q-Hyst with "qhyst": {fy,
     alpha, beta} and k as k0) or elastic short shear sticks (m and k lists, bottom first, the deck last: M = diag(m),
@@ -973,7 +1016,10 @@ def bridge_main(path_in, path_out):
     each switch of a link or a Q-Hyst frame between its branches located as an event and the integration restarted
     there). Writes peak |u| and final u per frame (its deck), peak |u| per DOF (frame-major, bottom first: peak_dof),
     peak |frame force| (its first storey's), impacts (closings on the dt/100 grid) and peak force per joint, peak
-    restrainer and abutment forces, each link's peak deformation and final slack."""
+    restrainer and abutment forces, each link's peak deformation and final slack. A stick frame yields with "fy": [per
+    storey, N] and "alpha" (bilinear storeys with kinematic hardening: Storey, its branch switches events as the
+    links'; damping stays on the initial K); then peak_drift per DOF (|u - u of the DOF below|) and each storey's
+    branch switches (storey_switches) are written too."""
     from scipy.integrate import solve_ivp
     d = json.load(open(path_in))
     fr, jo = d["frames"], d["joints"]
@@ -1017,9 +1063,18 @@ def bridge_main(path_in, path_out):
     Kel = Kg.copy()
     for a_ in hyst_dof:
         Kel[a_, a_] = 0.0
+    storeys = []  # yielding stick frames: their storeys leave K and act as Storey springs
+    for i, f in enumerate(fr):
+        if levels[i] > 1 and "fy" in f:
+            a, b = first[i], first[i] + levels[i]
+            Kel[a:b, a:b] = 0.0
+            storeys += [Storey(f["k"][s_], f["fy"][s_], f.get("alpha", 0.0), (a + s_ - 1 if s_ else -1, a + s_))
+                        for s_ in range(levels[i])]
+    first_storey = {sp.dofs[1]: sp for sp in storeys if sp.dofs[0] < 0}
 
     def frame_forces(u):  # the first storey's force of each frame
         return np.array([hyst[i].force(u[first[i]]) if hyst[i] else
+                         first_storey[first[i]].force(u) if first[i] in first_storey else
                          (Kg[first[i], first[i]] if levels[i] == 1 else fr[i]["k"][0]) * u[first[i]]
                          for i in range(nf)])
 
@@ -1027,6 +1082,11 @@ def bridge_main(path_in, path_out):
         q = Kel @ u
         for a_, h in hyst_dof.items():
             q[a_] += h.force(u[a_])
+        for sp in storeys:
+            fs = sp.force(u)
+            q[sp.dofs[1]] += fs
+            if sp.dofs[0] >= 0:
+                q[sp.dofs[0]] -= fs
         F = np.zeros(nf - 1); R = np.zeros(nf - 1)
         for j, J in enumerate(jo):
             F[j] = J["kc"] * max(u[deck[j]] - u[deck[j + 1]] - J["gap"], 0.0)
@@ -1050,7 +1110,7 @@ def bridge_main(path_in, path_out):
     Fs, Rs, As, Ds, Qs = [], [], [], [], []
     while True:
         events, owners = [], []
-        for L in links:
+        for L in links + storeys:
             ev = (lambda L_: (lambda t, y: L_.event(t, y, n)))(L)
             ev.terminal, ev.direction = True, L.direction()
             events.append(ev); owners.append((L, None))
@@ -1088,8 +1148,13 @@ def bridge_main(path_in, path_out):
                 owner.switch(tag[1], y0[tag[0]])
     U = np.array(rows); Fs = np.array(Fs); Rs = np.array(Rs); As = np.array(As); Ds = np.array(Ds); Qs = np.array(Qs)
     with open(path_out, "w") as out:
+        below = [-1 if g in first else g - 1 for g in range(n)]
         for g in range(n):
             out.write(f"peak_dof {g} {np.max(np.abs(U[:, g])):.17g}\n")
+            drift = U[:, g] - (U[:, below[g]] if below[g] >= 0 else 0.0)
+            out.write(f"peak_drift {g} {np.max(np.abs(drift)):.17g}\n")
+        for sp in storeys:
+            out.write(f"storey_switches {sp.dofs[1]} {sp.switches}\n")
         for i in range(nf):
             out.write(f"peak_u {i} {np.max(np.abs(U[:, deck[i]])):.17g}\n")
             out.write(f"final_u {i} {U[-1, deck[i]]:.17g}\n")
