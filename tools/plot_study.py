@@ -15,7 +15,8 @@ Bridge studies ([bridge]; /settings/bridge):
                             at the study's joint gaps (Wilson 95 %, clustered by record), any joint at the
                             study's gaps, the targets
 Every figure: PNG at 200 dpi, plus each --format given (svg, pdf).
-Usage: tools/plot_study.py RESULTS.h5 [--prefix out/study] [--ratio 0.3] [--format svg pdf] [--pounding BIN]"""
+Usage: tools/plot_study.py RESULTS.h5 [--prefix out/study] [--ratio 0.3] [--format svg pdf] [--pounding BIN]
+       [--with OTHER.h5]  (a bridge study: the same bridge under the other input; adds PREFIX-inputs.png)"""
 import os
 import sys
 

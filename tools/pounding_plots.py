@@ -700,9 +700,93 @@ def plot_bridge_joints(f, source=""):
     ax.set_ylim(-2, 102)
     ax.set_xlabel("joint gap (m)")
     ax.set_ylabel("probability of pounding at the joint (%)")
-    sup = f["settings/records"].attrs.get("supports", 0) if "settings/records" in f else 0
-    inp = f"{int(sup)} supports, spatially varying input" if int(sup) > 1 else "uniform input"
+    inp = bridge_input(f)
     ax.set_title(wrap_title(f"{text(f.attrs.get('title', ''))} ({inp}; n = {n} analyses)", fig, 0.62), fontsize=10)
+    ax.grid(alpha=0.3)
+    ax.legend(fontsize=7, loc="upper left", bbox_to_anchor=(1.01, 1.0), borderaxespad=0.0)
+    fig.tight_layout()
+    return fig
+
+
+def bridge_supports_used(f):
+    """The supports a bridge study's frames and abutments stand on (their `support`, default 1), from the study text
+    the file keeps; [records] supports groups the files but a study may still put every frame on support 1."""
+    try:
+        import tomllib
+        b = tomllib.loads(text(f.attrs.get("study_text", ""))).get("bridge", {})
+    except Exception:  # no text or no tomllib: the records' grouping
+        sup = f["settings/records"].attrs.get("supports", 1) if "settings/records" in f else 1
+        return set(range(1, int(sup) + 1))
+    ab = b.get("abutment", {})
+    return {int(x.get("support", 1)) for x in b.get("frame", []) + [ab.get(k, {}) for k in ab]} or {1}
+
+
+def bridge_input(f):
+    """ "uniform input" or "N supports, spatially varying input": a bridge file's input (bridge_supports_used)."""
+    n = len(bridge_supports_used(f))
+    return f"{n} supports, spatially varying input" if n > 1 else "uniform input"
+
+
+def bridge_input_curves(f, x):
+    """A bridge file's probability of pounding (any joint) versus the reference gap in metres x: the share of ok
+    analyses whose uncoupled D (/uncoupled/peak_closing, the largest over the joints of closing - joint offset) exceeds
+    x (first passage), and at the study's gaps the coupled runs' share with at least one impact with its 95 % Wilson
+    interval clustered by record (wilson_clustered). Returns (p [%] at x, n, [(gap m, share %, lo %, hi %), ...])."""
+    D = f["uncoupled/peak_closing"][()]
+    R, M = D.shape
+    ok = f["uncoupled/status"][()].reshape(R, M) == 0
+    Ds = np.sort(D[ok])
+    n = Ds.size
+    p = 100.0 * (n - np.searchsorted(Ds, x, side="right")) / max(n, 1)
+    bars = []
+    if "impacts/impact_count" in f and "impacts/gap_ratios" in f:
+        ratios = f["impacts/gap_ratios"][()]
+        d = f["models/code_gap"][()]
+        cnt = f["impacts/impact_count"][()].reshape(R, M, len(ratios))
+        st = f["impacts/status"][()].reshape(R, M, len(ratios)) == 0
+        rid = np.asarray(f["records/id"][()]) if "records/id" in f else np.arange(R)
+        cl = np.repeat(rid.reshape(R, 1), M, axis=1)
+        for g, r in enumerate(ratios):
+            okg = st[:, :, g] & ok
+            if not okg.any():
+                continue
+            hit = cnt[:, :, g][okg] > 0
+            lo, hi, _ = wilson_clustered(hit, cl[okg])
+            bars.append((float(r * d[0]), 100.0 * hit.mean(), 100.0 * lo, 100.0 * hi))
+    return p, n, bars
+
+
+def plot_bridge_inputs(files, sources=()):
+    """Uniform versus multi-support input (issue 26 §2: how much does spatial variation matter?): for each bridge
+    results file (the same bridge and records, one per input), the probability that the bridge pounds at any joint
+    versus the reference joint gap -- uncoupled first passage as a line, the coupled runs' share with an impact at the
+    study's gaps with record-clustered Wilson 95 % bars -- in one figure."""
+    top = 1e-6
+    for f in files:
+        D = f["uncoupled/peak_closing"][()]
+        if np.isfinite(D).any():
+            top = max(top, float(np.nanmax(D)))
+        if "impacts/gap_ratios" in f:
+            top = max(top, float(np.max(f["impacts/gap_ratios"][()]) * f["models/code_gap"][()][0]))
+    x = np.linspace(0.0, 1.05 * top, 400)
+    fig, ax = plt.subplots(figsize=(8, 4.6))
+    for i, f in enumerate(files):
+        p, n, bars = bridge_input_curves(f, x)
+        name = bridge_input(f)
+        ax.plot(x, p, color=f"C{i}", lw=2, label=f"{name}: uncoupled D > gap (n = {n})", gid=f"input-{i + 1}")
+        for k, (g, share, lo, hi) in enumerate(bars):
+            ax.errorbar([g], [share], yerr=[[share - lo], [hi - share]], fmt="os"[i % 2], mfc="none", color=f"C{i}",
+                        ms=5, capsize=2, gid=f"input-{i + 1}-coupled",
+                        label=f"{name}: coupled runs, at least one impact" if k == 0 else None)
+    rep = files[0]["settings/report"].attrs if "settings/report" in files[0] else {}
+    for t in np.atleast_1d(rep.get("targets", [])):
+        ax.axhline(float(t), color="0.5", lw=0.8, ls=":", label=f"target {float(t):g} %")
+    ax.set_xlim(0.0, x[-1])
+    ax.set_ylim(-2, 102)
+    ax.set_xlabel("reference joint gap (m; every joint at it plus its offset)")
+    ax.set_ylabel("probability of pounding at any joint (%)")
+    ax.set_title(wrap_title(f"{text(files[0].attrs.get('title', ''))}: uniform versus multi-support input", fig, 0.62),
+                 fontsize=10)
     ax.grid(alpha=0.3)
     ax.legend(fontsize=7, loc="upper left", bbox_to_anchor=(1.01, 1.0), borderaxespad=0.0)
     fig.tight_layout()
@@ -725,6 +809,9 @@ def main_study(argv=None, doc=""):
     ap.add_argument("--format", nargs="+", default=[], choices=["svg", "pdf"],
                     help="extra formats besides the 200 dpi PNG")
     ap.add_argument("--pounding", default=None, help="the pounding binary (pair studies run its report --csv)")
+    ap.add_argument("--with", dest="others", action="append", default=[], metavar="RESULTS",
+                    help="a bridge study: the same bridge under the other input (uniform or multi-support); adds "
+                         "PREFIX-inputs.png, both inputs in one figure (repeatable)")
     a = ap.parse_args(argv)
     prefix = a.prefix or a.results.rsplit(".", 1)[0]
     f = h5py.File(a.results, "r")
@@ -733,7 +820,14 @@ def main_study(argv=None, doc=""):
         print(*save(plot_pair(f, rows, a.results), prefix + "-separation", a.format))
         return
     if is_bridge(f):
-        print(*save(plot_bridge_joints(f, a.results), prefix + "-joints", a.format))
+        written = save(plot_bridge_joints(f, a.results), prefix + "-joints", a.format)
+        others = [h5py.File(o, "r") for o in a.others]
+        if others:
+            bad = [o for o, g in zip(a.others, others) if "settings/bridge" not in g]
+            if bad:
+                sys.exit(f"--with {bad[0]}: not a bridge study's results")
+            written += save(plot_bridge_inputs([f] + others), prefix + "-inputs", a.format)
+        print(*written)
         return
     written = save(plot_probability(f, a.fit_min, a.fit_max, a.results), prefix + "-probability", a.format)
     written += save(plot_periods(f, a.ratio), prefix + "-periods", a.format)
@@ -922,8 +1016,9 @@ def read_report_csv(path):
         return list(csv.DictReader(fh))
 
 
-def figure_plan(f, path, report_csv):
-    """(name, caption, function returning the figure) for every figure the file holds."""
+def figure_plan(f, path, report_csv, others=()):
+    """(name, caption, function returning the figure) for every figure the file holds; `others`: open results files
+    given beside it (figures --with: a bridge study's other input)."""
     title = text(f.attrs.get("title", os.path.basename(path)))
     plan = []
     if "fragility" in f:
@@ -952,6 +1047,11 @@ def figure_plan(f, path, report_csv):
                      "analyses whose uncoupled closing at the joint exceeds the gap, the coupled runs' share with at "
                      "least one impact at the study's gaps (Wilson 95 % intervals clustered by record), any joint at "
                      "the study's joint gaps, and the report's targets.", lambda: plot_bridge_joints(f, path)))
+        if others and all("settings/bridge" in g for g in others):  # (two SDOF frames on one support: format 2)
+            plan.append(("inputs", "Uniform versus multi-support input: the probability that the bridge pounds at "
+                         "any joint versus the reference joint gap, per input -- the uncoupled first passage as a "
+                         "line, the coupled runs' share with an impact at the study's gaps with Wilson 95 % intervals "
+                         "clustered by record.", lambda: plot_bridge_inputs([f] + list(others))))
     elif "uncoupled" in f:
         plan.append(("probability", "Probability of at least one impact versus the gap ratio x = g / d, with Wilson "
                      "intervals and the cubic fit.", lambda: plot_probability(f, source=path)))
@@ -974,10 +1074,13 @@ def main_figures(argv=None):
     ap.add_argument("results")
     ap.add_argument("--dir", required=True, help="folder for the SVGs and figures.tsv (must exist)")
     ap.add_argument("--report-csv", default=None, help="`pounding report RESULTS --csv` (the pair figure's rows)")
+    ap.add_argument("--with", dest="others", action="append", default=[], metavar="RESULTS",
+                    help="a results file given beside it (a bridge study's other input: the 'inputs' figure)")
     a = ap.parse_args(argv)
     lines = []
+    others = [h5py.File(o, "r") for o in a.others]
     with h5py.File(a.results, "r") as f:
-        for name, caption, draw in figure_plan(f, a.results, a.report_csv):
+        for name, caption, draw in figure_plan(f, a.results, a.report_csv, others):
             try:
                 svg = svg_text(draw(), name)
             except (Exception, SystemExit) as e:  # one figure's failure leaves the others

@@ -1,6 +1,7 @@
 #include "pounding/analysis/stats.hpp"
 
 #include <Eigen/Dense>
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
@@ -18,6 +19,24 @@ Interval wilson_interval_effective(double p, double nn, double z) {
   const double centre = (p + z2 / (2.0 * nn)) / den;
   const double half = z * std::sqrt(p * (1.0 - p) / nn + z2 / (4.0 * nn * nn)) / den;
   return {std::max(0.0, centre - half), std::min(1.0, centre + half)};
+}
+
+ClusteredInterval wilson_clustered(std::span<const double> hits, std::span<const double> sizes, double z) {
+  if (hits.size() != sizes.size()) throw std::invalid_argument("wilson_clustered: hits and sizes differ in length");
+  double k = 0, n = 0, C = 0;
+  for (std::size_t c = 0; c < hits.size(); ++c)
+    if (sizes[c] > 0) k += hits[c], n += sizes[c], ++C;
+  if (!(n > 0)) return {{0.0, 1.0}, 0.0};
+  const double p = k / n;
+  double n_eff = C;
+  if (p > 0.0 && p < 1.0 && C > 1) {
+    double v = 0;
+    for (std::size_t c = 0; c < hits.size(); ++c)
+      if (sizes[c] > 0) v += (hits[c] - p * sizes[c]) * (hits[c] - p * sizes[c]);
+    v *= C / (C - 1) / (n * n);
+    n_eff = std::clamp(v > 0 ? p * (1 - p) / v : n, C, n);
+  }
+  return {wilson_interval_effective(p, n_eff, z), n_eff};
 }
 
 CubicFit fit_cubic(std::span<const double> x, std::span<const double> y) {

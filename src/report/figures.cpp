@@ -173,8 +173,9 @@ FigureSet report_figures(const results::Results& r, const std::string& report_cs
     return none(e.what());
   }
   const std::string log = dir.path + "/log.txt";
-  const Child c = run_child({o.python, o.script, "figures", r.path, "--dir", dir.path, "--report-csv", dir.path + "/report.csv"},
-                            log, o.timeout_s);
+  std::vector<std::string> args{o.python, o.script, "figures", r.path, "--dir", dir.path, "--report-csv", dir.path + "/report.csv"};
+  for (const std::string& w : o.with) args.insert(args.end(), {"--with", w});
+  const Child c = run_child(args, log, o.timeout_s);
   if (c.timed_out) return none(fmt::format("{} did not finish within {:g} s ($POUNDING_FIGURE_TIMEOUT)", o.script, o.timeout_s));
   if (c.code != 0) {
     const std::string why = last_line(log);

@@ -356,7 +356,12 @@ std::string report_html(const results::Results& r, const FigureOptions& options,
 
 std::string compare_html(const std::vector<const results::Results*>& files, const FigureOptions& options) {
   std::vector<Study> studies;
-  for (const results::Results* r : files) studies.push_back(study_of(*r, options, nullptr));
+  for (std::size_t i = 0; i < files.size(); ++i) {
+    FigureOptions o = options;  // study A's figures see the others (a bridge's other input: the "inputs" figure)
+    if (i == 0)
+      for (std::size_t j = 1; j < files.size(); ++j) o.with.push_back(files[j]->path);
+    studies.push_back(study_of(*files[i], o, nullptr));
+  }
   Toc toc;
   toc.entries.emplace_back("answers", "The answers side by side");
   std::string answers = "<section id=\"answers\" aria-label=\"The answers side by side\"><div class=\"columns\">\n";

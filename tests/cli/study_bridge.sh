@@ -159,6 +159,38 @@ assert np.allclose(np.array([m[f"k{b}"][()] for b in (1, 2, 3, 4)]),
 assert abs(np.log(T[1] / 1.12)).max() < 1.0 and len(set(m["m2"][()])) == 5
 PY
 
+# 4b. Table 3 of a sampled bridge study: the intervals are clustered by record (a record's sampled bridges and both
+# signs one cluster), as the joints figure's: equal to tools/pounding_plots.py wilson_clustered (numpy, written apart)
+# on the file's closings, and not the plain Wilson interval on the analyses (which the report gave before)
+sed -e 's/^\[bridge\]$/[bridge]\nsamples = 6\nperiod_cov = 0.3\nmass_cov = 0.1/' -e 's/^ratios = .*/ratios = [0.5, 1.0, 2.0, 4.0]/' \
+    -e 's/^scene = "impacts"/scene = "probability"/' "$study" > "$tmp/clustered.toml"
+"$bin" run "$tmp/clustered.toml" --out "$tmp/cl.h5" > "$tmp/cl.md" 2> "$tmp/cl.err" || fail "the clustered study does not run: $(cat "$tmp/cl.err")"
+grep -q "interval is clustered by record" "$tmp/cl.md" || fail "Table 3 does not say its intervals are clustered by record"
+MPLBACKEND=Agg "$py" - "$tmp/cl.h5" "$tmp/cl.md" "$src/tools" <<'PY'
+import re, sys, h5py, numpy as np
+sys.path.insert(0, sys.argv[3])
+from pounding_plots import wilson, wilson_clustered
+f = h5py.File(sys.argv[1], "r")
+D = f["uncoupled/peak_closing"][()]
+R, M = D.shape
+ok = f["uncoupled/status"][()].reshape(R, M) == 0
+d = f["models/code_gap"][()]
+cl = np.repeat(np.asarray(f["records/id"][()]).reshape(R, 1), M, axis=1)
+md = open(sys.argv[2]).read().split("## Total probability of pounding (Table 3)")[1].split("\n## ")[0]
+rows = {float(m.group(1)): (float(m.group(2)), float(m.group(3)))
+        for m in re.finditer(r"^\| ([0-9.]+) \| \d+ / \d+ \| [0-9.]+% \| \[([0-9.]+)%, ([0-9.]+)%\] \|", md, re.M)}
+assert sorted(rows) == [0.5, 1.0, 2.0, 4.0], rows
+differs = 0
+for x, (lo, hi) in rows.items():
+    y = (D > x * d[None, :])[ok]
+    a, b, n_eff = wilson_clustered(y, cl[ok])
+    assert abs(100 * a - lo) <= 0.006 and abs(100 * b - hi) <= 0.006, (x, lo, hi, 100 * a, 100 * b, n_eff)
+    pa, pb = wilson(y.sum(), y.size)
+    differs += abs(100 * pa - lo) > 0.006 or abs(100 * pb - hi) > 0.006
+assert differs > 0, "the clustered intervals equal the plain Wilson intervals at every gap: the check cannot tell"
+print("Table 3 intervals clustered by record = wilson_clustered at", sorted(rows), f"({differs} differ from plain Wilson)")
+PY
+
 # 5. the report names the frames and joints
 "$bin" run "$study" --out "$tmp/rep.h5" > "$tmp/rep.md" 2> /dev/null
 for want in "joint 1 (F1|F2)" "joint 3 (F3|F4)" "d = 0.0127 m"; do

@@ -6,7 +6,8 @@
 #     uncoupled closing and the coupled impact count and peak force to the bit;
 #  3. the uncoupled closing agrees with tools/bridge_joint.py's independent one (exact FOH response + ground
 #     displacement, SciPy) to the central-difference error;
-#  4. uniform input (both spans on support 1) of identical spans never closes the joint; spatial variation does;
+#  4. uniform input (both spans on support 1) of identical spans never closes the joint; spatial variation does; both
+#     inputs in one figure (plot_study --with, figures --with, pounding report A B --html);
 #  5. bad input: one ERROR naming the key, exit 2, nothing written.
 # Generates its motions (no ../shared needed). Args: <pounding binary> <source dir>
 set -euo pipefail
@@ -107,6 +108,50 @@ assert (u["uncoupled/peak_closing"][()] == 0).all(), u["uncoupled/peak_closing"]
 assert (u["impacts/impact_count"][()] == 0).all()
 assert (s["uncoupled/peak_closing"][()] > 0.05).all(), s["uncoupled/peak_closing"][()]
 PY
+# 4b. both inputs in one figure (tools/pounding_plots.py plot_bridge_inputs): plot_study --with, `figures --with` (the
+# HTML report's figure plan) and `pounding report A B --html` (study A's figures get B: the "inputs" figure); the
+# curves: uniform never pounds; the spatial input's share of D > gap and its coupled shares with record-clustered
+# Wilson bars (wilson_clustered) at the study's gaps, counted here from the files
+if ! "$py" -c 'import matplotlib' 2>/dev/null; then
+  [ "${CI:-}" = true ] && fail "needs matplotlib for the inputs figure (CI=true)"
+  echo "skip: the inputs figure (no matplotlib for $py)"
+else
+MPLBACKEND=Agg "$py" "$src/tools/plot_study.py" "$tmp/full.h5" --with "$tmp/uniform.h5" --prefix "$tmp/fig" > "$tmp/fig.out" 2>&1 ||
+  fail "plot_study --with: $(cat "$tmp/fig.out")"
+[ -s "$tmp/fig-inputs.png" ] && [ -s "$tmp/fig-joints.png" ] || fail "plot_study --with wrote no inputs figure: $(cat "$tmp/fig.out")"
+mkdir -p "$tmp/figs"
+MPLBACKEND=Agg "$py" "$src/tools/pounding_plots.py" figures "$tmp/full.h5" --with "$tmp/uniform.h5" --dir "$tmp/figs" > /dev/null 2>&1
+grep -q "^ok	inputs	inputs.svg	Uniform versus multi-support" "$tmp/figs/figures.tsv" || fail "figures --with: no inputs figure: $(cat "$tmp/figs/figures.tsv")"
+grep -q 'input-1' "$tmp/figs/inputs.svg" && grep -q 'input-2' "$tmp/figs/inputs.svg" || fail "the inputs figure lacks an input's curve"
+MPLBACKEND=Agg "$py" - "$tmp/full.h5" "$tmp/uniform.h5" "$src/tools" <<'PY'
+import sys, h5py, numpy as np
+sys.path.insert(0, sys.argv[3])
+from pounding_plots import bridge_input, bridge_input_curves, wilson_clustered
+s, u = h5py.File(sys.argv[1], "r"), h5py.File(sys.argv[2], "r")
+assert bridge_input(s) == "2 supports, spatially varying input" and bridge_input(u) == "uniform input"
+D = s["uncoupled/peak_closing"][()].ravel()
+x = np.array(sorted(set(D)) + [0.0, 1.0])
+p, n, bars = bridge_input_curves(s, x)
+assert n == D.size and np.allclose(p, [100.0 * (D > v).mean() for v in x], atol=1e-12)
+pu, nu, bu = bridge_input_curves(u, x)
+assert (pu == 0).all() and all(b[1] == 0 for b in bu) and len(bu) == 3
+R, M = s["uncoupled/peak_closing"].shape
+G = len(s["impacts/gap_ratios"])
+cnt = s["impacts/impact_count"][()].reshape(R, M, G)
+cl = np.repeat(np.asarray(s["records/id"][()]).reshape(R, 1), M, axis=1)
+for g, (gap, share, lo, hi) in enumerate(bars):
+    assert gap == s["impacts/gap_ratios"][g] * s["models/code_gap"][0]
+    hit = (cnt[:, :, g] > 0).ravel()
+    a, b, _ = wilson_clustered(hit, cl.ravel())
+    assert share == 100 * hit.mean() and (lo, hi) == (100 * a, 100 * b), (g, share, lo, hi)
+print("inputs figure: uniform 0 %, spatial", [round(b[1], 1) for b in bars], "% coupled at the study's gaps")
+PY
+if (cd "$tmp" && "$bin" report full.h5 uniform.h5 --html both.html > /dev/null 2> both.err); then
+  grep -q 'input-2' "$tmp/both.html" || fail "the HTML comparison of the two inputs has no inputs figure: $(grep -o 'figures: [^<]*' "$tmp/both.html" | head -3)"
+else
+  fail "pounding report --html of the two inputs: $(cat "$tmp/both.err")"
+fi
+fi
 
 # 5. bad input
 sed '/^supports = 2$/d' "$study" > "$tmp/b1.toml"

@@ -16,6 +16,17 @@ Interval wilson_interval(std::int64_t k, std::int64_t n, double z = 1.9599639845
 // The same score interval at an observed fraction p with an effective sample size n (not necessarily p n
 // successes of n trials: e.g. n independent records behind a fraction of their analyses).
 Interval wilson_interval_effective(double p, double n, double z = 1.959963984540054);
+// The Wilson interval of a share whose 0/1 outcomes come in clusters (e.g. a record's polarities and models), from the
+// clusters' successes `hits` and sizes `sizes`: Wilson at the observed fraction p with Kish's effective sample size
+// n_eff = n / DEFF (Kish 1965 §5.4; Korn & Graubard 1998), DEFF from the cluster totals (v_clu = C/(C-1) sum_c
+// (y_c - p m_c)^2 / n^2 against v_srs = p (1 - p) / n), n_eff clipped to [C, n]; n_eff = C when p is 0 or 1 or C = 1.
+// The same estimator as tools/pounding_plots.py wilson_clustered.
+struct ClusteredInterval {
+  Interval w;
+  double n_eff = 0;
+};
+ClusteredInterval wilson_clustered(std::span<const double> hits, std::span<const double> sizes,
+                                   double z = 1.959963984540054);
 
 // Least-squares polynomial y = c3 x^3 + c2 x^2 + c1 x + c0 (solved with Eigen's QR) and its R^2.
 struct CubicFit {

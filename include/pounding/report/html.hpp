@@ -22,6 +22,10 @@ struct FigureOptions {
   std::string script;      // tools/pounding_plots.py
   double timeout_s = 300;  // for all of one file's figures
   bool enabled = true;     // false: `--no-figures` (the report says they were left out on request)
+  // results files given beside this one (`pounding_plots.py figures --with`): compare_html gives study A the others'
+  // paths, so a bridge study compared with the same bridge under the other input gets the uniform-versus-multi-support
+  // figure ("inputs")
+  std::vector<std::string> with;
 };
 // The configure-time interpreter and the module beside the binary (<bindir>/../share/pounding, or build/tools);
 // $POUNDING_PYTHON, $POUNDING_PLOTS and $POUNDING_FIGURE_TIMEOUT (s) override them.
