@@ -202,7 +202,8 @@ constexpr StudyKey keys[] = {
      "masses from floor_mass or the building's mass split equally, storey stiffnesses from storey_stiffness or "
      "stiffness_profile scaled to the building's period T1, every storey yielding at the drift ratio drift / "
      "ductility (Vy_i = k_i storey_height drift / ductility; with yield_coefficient Cy: base shear Cy M g, upper "
-     "storeys by the shear profile), Rayleigh damping zeta on modes 1 and 2; contact at the floors both buildings "
+     "storeys by the shear profile), Rayleigh damping zeta on modes 1 and 2 (rayleigh_modes); contact at the floors "
+     "both buildings "
      "have at the same level (within 0.05 m). A shear building of one storey is the SDOF bit for bit. With "
      "[intensity] (fragility: stripes, IDA) every stripe runs the shear buildings on the scaled record, except that "
      "a lane whose every storey and bearing stays elastic is scaled from the lowest stripe (scale_elastic)."},
@@ -219,6 +220,13 @@ constexpr StudyKey keys[] = {
     {"structures", "modal_zeta", "array of numbers", "every mode the building's zeta", "", "[0, 0.5] each",
      "With damping = \"modal\": the damping ratio per mode from mode 1, the last value repeating for the higher "
      "modes (a one-storey building takes the first). The default of both buildings.", 0.0, 0.5},
+    {"structures", "rayleigh_modes", "array of numbers", "[1, 2]", "", "[1, 200], two different whole numbers",
+     "With damping = \"rayleigh\" (shear model): the two modes i < j (either order) that get the building's zeta "
+     "exactly; the others get a0 / (2 omega) + a1 omega / 2. A sampled building with fewer than j storeys takes "
+     "modes min(i, j' - 1) and j' = min(j, n) -- the highest two it has (e.g. [1, 3] damps a two-storey building "
+     "at modes 1 and 2) -- and one storey is the SDOF (c = 2 zeta sqrt(k m)). The run's model line states it; "
+     "pounding modes --rayleigh-modes and simulate --rayleigh-modesK show each mode's ratio. The default of every "
+     "building.", 1.0, 200.0},
     {"structures", "building1", "table", "the [structures] defaults", "", "", "Building 1 (the left one)."},
     {"structures", "building2", "table", "the [structures] defaults", "", "", "Building 2 (the right one of a pair)."},
     {"structures", "buildings", "integer", "2", "", "[2, 16]",
@@ -326,6 +334,9 @@ constexpr StudyKey keys[] = {
      "As in [structures]; \"modal\" needs model = \"shear\" (an isolated building: its superstructure's fixed-base modes)."},
     {"structures.buildingN", "modal_zeta", "array of numbers", "[structures] modal_zeta", "", "[0, 0.5] each",
      "As in [structures].", 0.0, 0.5},
+    {"structures.buildingN", "rayleigh_modes", "array of numbers", "[structures] rayleigh_modes", "",
+     "[1, 200], two different whole numbers", "As in [structures] (model = \"shear\", damping = \"rayleigh\").",
+     1.0, 200.0},
     {"structures.buildingN", "isolation", "table", "none (fixed base)", "", "{bearing, base_mass, ...}",
      "Shear model: base isolation (keys under \"[structures.buildingK] isolation\")."},
     {"structures.buildingN", "moat", "table", "none", "", "{gap, law, stiffness, e}",

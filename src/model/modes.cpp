@@ -177,6 +177,13 @@ Rayleigh rayleigh(double omega_i, double zeta_i, double omega_j, double zeta_j) 
 
 double rayleigh_ratio(const Rayleigh& r, double omega) { return r.a0 / (2.0 * omega) + r.a1 * omega / 2.0; }
 
+ModePair rayleigh_modes_for(int i, int j, int n) {
+  if (!(i >= 1 && i < j && n >= 1)) throw std::invalid_argument("rayleigh_modes_for: needs 1 <= i < j and n >= 1");
+  if (n == 1) return {1, 1};
+  const int jj = std::min(j, n);
+  return {std::min(i, jj - 1), jj};
+}
+
 double modal_ratio(std::span<const double> zeta, std::size_t j) {
   if (zeta.empty()) throw std::invalid_argument("modal_ratio: no ratios");
   return zeta[std::min(j, zeta.size() - 1)];

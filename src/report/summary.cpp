@@ -270,6 +270,7 @@ std::string format_system_summary(const SystemRunReport& run) {
     line(b.label + "_storey_yield_N", list(b.storey_yield));
     line(b.label + "_periods_s", list(b.periods));
     line(b.label + "_modal_damping", list(b.modal_damping));
+    if (!b.rayleigh_modes.empty()) line(b.label + "_rayleigh_modes", fmt::format("{} {}", b.rayleigh_modes[0], b.rayleigh_modes[1]));
     if (b.isolation) s += isolation_lines(b.label, *b.isolation);
   }
   line("status", to_string(static_cast<LaneStatus>(r.status[run.lane])));
@@ -379,6 +380,11 @@ std::string format_system_json(const SystemRunReport& run) {
     w.member("floor_levels", b.floor_levels).member("floor_mass", b.floor_mass);
     w.member("storey_stiffness", b.storey_stiffness).member("storey_yield", b.storey_yield);
     w.member("periods", b.periods).member("modal_damping", b.modal_damping);
+    if (!b.rayleigh_modes.empty()) {
+      w.key("rayleigh_modes").begin_array();
+      for (int m : b.rayleigh_modes) w.value(m);
+      w.end_array();
+    }
     if (b.isolation) {
       const IsolationReport& iso = *b.isolation;
       w.key("isolation").begin_object().member("bearing", iso.bearing).member("base_mass", iso.base_mass);

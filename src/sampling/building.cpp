@@ -231,7 +231,11 @@ std::string BuildingModel::height_text() const {
 std::string BuildingModel::mass_text() const { return mass.given() ? mass.describe("kg") : "mass-index model"; }
 std::string BuildingModel::zeta_text() const { return zeta.describe(""); }
 std::string BuildingModel::damping_text() const {
-  if (!modal_damping) return "Rayleigh damping on modes 1 and 2";
+  if (!modal_damping && rayleigh_default()) return "Rayleigh damping on modes 1 and 2";
+  if (!modal_damping)
+    return fmt::format("Rayleigh damping on modes {} and {} (a sample of n < {} storeys: modes min({}, j' - 1) and "
+                       "j' = min({}, n); one storey: the SDOF's)",
+                       rayleigh_i, rayleigh_j, rayleigh_j, rayleigh_i, rayleigh_j);
   if (modal_zeta.empty()) return "classical modal damping, every mode the building's zeta";
   std::string z;
   for (double x : modal_zeta) z += (z.empty() ? "" : ", ") + fmt::format("{:g}", x);
@@ -365,7 +369,8 @@ void check_shear_keys(const BuildingModel& b, const WhereFn& where) {
       if (v > 0)
         throw InputError(fmt::format("{} is given for an SDOF building", key), where(key),
                          fmt::format("add model = \"shear\" to this table (or [structures]), or remove {}", key));
-    for (auto [key, given] : {std::pair{"isolation", b.isolated}, {"moat", b.moat}, {"damping", b.modal_damping}})
+    for (auto [key, given] : {std::pair{"isolation", b.isolated}, {"moat", b.moat}, {"damping", b.modal_damping},
+                              {"rayleigh_modes", !b.rayleigh_default()}})
       if (given)
         throw InputError(fmt::format("{} is given for an SDOF building", key), where(key),
                          fmt::format("add model = \"shear\" to this table (or [structures]), or remove {}", key));
@@ -531,6 +536,18 @@ void read_shear_defaults(config::TableReader& r, BuildingModel& b) {
       throw InputError("modal_zeta is given without damping = \"modal\"", r.where("modal_zeta"),
                        "add damping = \"modal\" to this table, or remove modal_zeta (Rayleigh takes zeta)");
   }
+  if (r.get("rayleigh_modes")) {
+    const std::vector<double> v = r.numbers("rayleigh_modes", {});  // each in [1, 200] (study_keys.cpp)
+    if (v.size() != 2 || v[0] == v[1] || v[0] != std::floor(v[0]) || v[1] != std::floor(v[1]))
+      throw InputError("rayleigh_modes is not two different mode numbers", r.where("rayleigh_modes"),
+                       "write rayleigh_modes = [i, j], two different whole numbers in [1, 200], e.g. [1, 3]");
+    if (b.modal_damping)
+      throw InputError("rayleigh_modes is given with damping = \"modal\"", r.where("rayleigh_modes"),
+                       "remove rayleigh_modes (modal damping gives every mode its ratio), or write damping = \"rayleigh\"");
+    b.rayleigh_i = static_cast<int>(std::min(v[0], v[1])), b.rayleigh_j = static_cast<int>(std::max(v[0], v[1]));
+  } else if (b.modal_damping) {
+    b.rayleigh_i = 1, b.rayleigh_j = 2;  // inherited modes do not apply to a modally damped building
+  }
 }
 
 
@@ -674,7 +691,7 @@ BuildingModel parse_building(const toml::table* t, const std::string& file, cons
   r.finish(std::string("periods, period_min, period_max, period_step, period, height, mass, zeta, yield_coefficient, "
                        "alpha, hysteresis, aspect_ratios, rho_mean, rho_cov, mbar_mean, mbar_cov, mbar_min, mbar_max, "
                        "drift, ductility, height_min, height_max, ct_lower, ct_upper, height_exponent, model, "
-                       "floor_mass, storey_stiffness, stiffness_profile, damping, modal_zeta, isolation, moat, ") +
+                       "floor_mass, storey_stiffness, stiffness_profile, damping, modal_zeta, rayleigh_modes, isolation, moat, ") +
            code_factor_keys);
   check_shear_keys(b, [&](std::string_view key) {
     return key == "storey_height" && !own_storey_height ? fallback(key) : where(key);

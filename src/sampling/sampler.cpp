@@ -147,6 +147,7 @@ BuildingModel StructureModel::default_building() const {
   b.ct_lower = ct_lower, b.ct_upper = ct_upper, b.height_exponent = height_exponent;
   b.kind = kind, b.profile = profile, b.code.storey_height = storey_height;
   b.modal_damping = modal_damping, b.modal_zeta = modal_zeta;
+  b.rayleigh_i = rayleigh_i, b.rayleigh_j = rayleigh_j;
   return b;
 }
 
@@ -282,6 +283,7 @@ StructureModel parse_structure_model(const toml::table& table, const std::string
     read_shear_defaults(r, shared);
     m.kind = shared.kind, m.profile = shared.profile;
     m.modal_damping = shared.modal_damping, m.modal_zeta = shared.modal_zeta;
+    m.rayleigh_i = shared.rayleigh_i, m.rayleigh_j = shared.rayleigh_j;
     if (r.get("storey_height"))
       m.storey_height = r.number("storey_height", 0.0);
     check_shear_keys(m.default_building(), [&](std::string_view key) { return r.where(key); });
@@ -301,7 +303,7 @@ StructureModel parse_structure_model(const toml::table& table, const std::string
            "mbar_mean, mbar_cov, mbar_min, mbar_max, zeta, hysteresis, drift, ductility, alpha, height_min, "
            "height_max, ct_lower, ct_upper, height_exponent, code_gap_coefficient, contact_density, "
            "contact_youngs_modulus, contact_poisson, kh, equal_heights, model, storey_height, stiffness_profile, "
-           "damping, modal_zeta, buildings, building1, building2, ... (tables "
+           "damping, modal_zeta, rayleigh_modes, buildings, building1, building2, ... (tables "
            "[structures.building1], [structures.building2], ... [structures.building<buildings>])");
 
   if (periods && (pmin || pmax || pstep))

@@ -54,6 +54,10 @@ physics::ShearSpec shear_spec(const BuildingModel& b, const SampledStructure& s,
   spec.alpha = s.alpha;
   spec.profile = b.profile;
   spec.modal = b.modal_damping, spec.modal_zeta = b.modal_zeta;
+  if (storeys > 1) {  // rayleigh_modes, the highest two the sample has when it has fewer (model::rayleigh_modes_for)
+    const model::ModePair r = model::rayleigh_modes_for(b.rayleigh_i, b.rayleigh_j, storeys);
+    spec.mode_i = r.i, spec.mode_j = r.j;
+  }
   if (storeys == 1 && !(b.floor_mass > 0) && !(b.storey_stiffness > 0)) {
     // the SDOF of the sample, bit for bit: k and c by Structure::from_period(m, T, zeta), its fy
     spec.floor_mass = {s.m};

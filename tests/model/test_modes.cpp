@@ -180,6 +180,25 @@ TEST(Modes, RayleighMatchesTableT12AndTheFormula) {
 
 // T1.3: m = (2e5, 2e5, 1.5e5) kg, k = (3e8, 2.5e8, 2e8) N/m, ζ = (0.05, 0.03, 0.02): the note's C (scipy) to 1e-8,
 // and Φᵀ C Φ = diag(2 ζ_j ω_j) (M_j = 1) on a random stick with the last ratio repeating.
+// rayleigh_modes in a study whose sampled building has fewer storeys than the higher mode: the modes asked for when
+// it has them, else the highest two it has, and one storey the SDOF.
+TEST(Modes, RayleighModesForFewerStoreys) {
+  using model::rayleigh_modes_for;
+  const auto eq = [](model::ModePair a, int i, int j) { return a.i == i && a.j == j; };
+  EXPECT_TRUE(eq(rayleigh_modes_for(1, 2, 5), 1, 2));
+  EXPECT_TRUE(eq(rayleigh_modes_for(1, 3, 5), 1, 3));
+  EXPECT_TRUE(eq(rayleigh_modes_for(1, 3, 3), 1, 3));
+  EXPECT_TRUE(eq(rayleigh_modes_for(1, 3, 2), 1, 2));
+  EXPECT_TRUE(eq(rayleigh_modes_for(2, 3, 2), 1, 2));
+  EXPECT_TRUE(eq(rayleigh_modes_for(3, 5, 4), 3, 4));
+  EXPECT_TRUE(eq(rayleigh_modes_for(3, 6, 2), 1, 2));
+  EXPECT_TRUE(eq(rayleigh_modes_for(1, 2, 1), 1, 1));
+  EXPECT_TRUE(eq(rayleigh_modes_for(4, 9, 1), 1, 1));
+  EXPECT_THROW(rayleigh_modes_for(2, 2, 5), std::invalid_argument);
+  EXPECT_THROW(rayleigh_modes_for(0, 2, 5), std::invalid_argument);
+  EXPECT_THROW(rayleigh_modes_for(1, 2, 0), std::invalid_argument);
+}
+
 TEST(Modes, ClassicalDampingMatrixMatchesTableT13) {
   const std::vector<double> m{2.0e5, 2.0e5, 1.5e5}, k{3.0e8, 2.5e8, 2.0e8}, zeta{0.05, 0.03, 0.02};
   const std::vector<double> C = modal_damping_matrix(m, shear_stick_modes(m, k), zeta);

@@ -60,6 +60,16 @@ Rayleigh rayleigh(double omega_i, double zeta_i, double omega_j, double zeta_j);
 // The ratio every mode gets: ζ(ω) = a0/(2ω) + a1 ω/2.
 double rayleigh_ratio(const Rayleigh& r, double omega);
 
+// The two modes Rayleigh damping takes in a stick of n storeys when modes i < j were asked for (a study's
+// rayleigh_modes, where the storey count varies from sample to sample): j' = min(j, n), i' = min(i, j' - 1) -- the
+// modes asked for when the building has them, else the highest two it has (n >= 2; e.g. [1, 3] gives 1 and 2 in a
+// two-storey building, [3, 5] gives 3 and 4 in four storeys). n = 1: {1, 1} -- one mode, damped by c = 2 zeta
+// sqrt(k m), the SDOF's. Throws std::invalid_argument unless 1 <= i < j and n >= 1.
+struct ModePair {
+  int i, j;
+};
+ModePair rayleigh_modes_for(int i, int j, int n);
+
 // Classical (modal) damping C = M Φ diag(2 ζ_j ω_j / M_j) Φᵀ M over all n modes (systems-and-bridges.md §1;
 // DampingForm::dense of model/system.hpp): row-major n x n, N s/m. zeta: per mode from mode 1, the last value
 // repeating for the higher modes (the study's `damping = {modal = {zeta = [...]}}`). Throws

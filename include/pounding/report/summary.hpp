@@ -32,6 +32,7 @@ struct BuildingReport {
   std::string label;
   std::vector<double> floor_levels, floor_mass, storey_stiffness, storey_yield, periods, modal_damping;
   std::optional<IsolationReport> isolation;
+  std::vector<int> rayleigh_modes;  // Rayleigh damping's two modes (i, j: zeta exactly there); empty: none (SDOF, modal)
 };
 
 // A run of one lane of a system (`pounding simulate`): what it was and every observer.

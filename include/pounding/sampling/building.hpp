@@ -35,6 +35,10 @@
 //                   damping C = M Phi diag(2 zeta_j omega_j / M_j) Phi' M, every mode the building's zeta or
 //     modal_zeta    [zeta_1, zeta_2, ...] per mode from mode 1, the last repeating (with damping = "modal" only;
 //                   each in [0, 0.5]; not with isolation). Both also [structures] defaults.
+//     rayleigh_modes [i, j]: the two modes Rayleigh damping gives exactly zeta (default [1, 2]; two different whole
+//                   numbers in [1, 200], either order; not with damping = "modal"). A sample with fewer than j storeys
+//                   takes model::rayleigh_modes_for(i, j, n): j' = min(j, n), i' = min(i, j' - 1); one storey: the
+//                   SDOF's c = 2 zeta sqrt(k m). Also a [structures] default.
 //     isolation     {bearing = "linear", base_mass, k_eff, zeta_eff} | {bearing = "lead-rubber", base_mass, k1, k2,
 //                   qd} | {bearing = "friction-pendulum", base_mass, radius, mu_slow, mu_fast, rate, u_y} |
 //                   {bearing = "bouc-wen", base_mass, k1, k2, qd, a, beta, gamma, eta}: a base mass (default one
@@ -190,6 +194,8 @@ struct BuildingModel {
   // from 1, the last repeating; empty: every mode the sampled zeta).
   bool modal_damping = false;
   std::vector<double> modal_zeta;
+  int rayleigh_i = 1, rayleigh_j = 2;  // rayleigh_modes (i < j); a sample of n storeys: model::rayleigh_modes_for
+  bool rayleigh_default() const { return rayleigh_i == 1 && rayleigh_j == 2; }
   // "Rayleigh damping on modes 1 and 2", "classical modal damping, zeta 0.02, 0.03 (then 0.03)", ...
   std::string damping_text() const;
 

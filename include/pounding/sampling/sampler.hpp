@@ -110,6 +110,7 @@ struct StructureModel {
   model::StiffnessProfile profile = model::StiffnessProfile::uniform;
   bool modal_damping = false;         // damping = "modal" (building.hpp), the buildings' default
   std::vector<double> modal_zeta;     // modal_zeta, the buildings' default
+  int rayleigh_i = 1, rayleigh_j = 2;  // rayleigh_modes, the buildings' default
   // Either building is a shear building (the study runs Systems, study/run.cpp).
   bool any_shear() const {
     bool any = building(0).shear() || building(1).shear();
@@ -165,7 +166,8 @@ void validate(const StructureModel& model, const std::string& where = "[structur
 //   rho_mean, rho_cov; mbar_mean, mbar_cov, mbar_min, mbar_max; zeta; hysteresis = "bilinear"|"elastic";
 //   drift, ductility, alpha; height_min, height_max; ct_lower, ct_upper, height_exponent;
 //   code_gap_coefficient; contact_density, contact_youngs_modulus, contact_poisson; kh; equal_heights (bool);
-//   model = "sdof" | "shear", storey_height, stiffness_profile, damping, modal_zeta (the buildings' defaults, building.hpp);
+//   model = "sdof" | "shear", storey_height, stiffness_profile, damping, modal_zeta, rayleigh_modes (the buildings'
+//   defaults, building.hpp);
 //   and the sub-tables [structures.building1], [structures.building2] (keys in building.hpp), resolved into
 //   StructureModel::buildings over these defaults; buildings = n (2..16) makes a row, whose [structures.buildingK]
 //   K = 3..n resolve into StructureModel::more (each one period slot; one model and one storey height throughout;

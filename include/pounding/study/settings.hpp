@@ -90,6 +90,9 @@ void visit_structure_settings(const StructureModel& m, V& v) {
       if (b.storey_stiffness > 0) v(sec, "storey_stiffness", b.storey_stiffness);
       if (b.isolated) v(sec, "isolation", b.isolation_text());
       if (b.moat) v(sec, "moat", b.moat_text());
+      // Rayleigh's modes where not 1 and 2 (absent otherwise: the bits of every earlier study)
+      if (b.shear() && !b.modal_damping && !b.rayleigh_default())
+        v(sec, "rayleigh_modes", std::vector<double>{double(b.rayleigh_i), double(b.rayleigh_j)});
     }
   }
 }

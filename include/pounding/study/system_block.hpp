@@ -61,7 +61,8 @@ LaneTopology lane_topology(const StructureModel& model, const SampledPair& p);
 // Building b's numbers for `storeys` storeys from its sample s: one storey without floor_mass / storey_stiffness is
 // the SDOF of the sample (m, T1 through Structure::from_period, fy); otherwise floor masses floor_mass or m /
 // storeys, storey stiffnesses storey_stiffness or the profile scaled to T1, storey yield from the yield rule per
-// storey (drift/ductility as a drift ratio; Cy as the base shear), alpha, Rayleigh zeta on modes 1 and 2.
+// storey (drift/ductility as a drift ratio; Cy as the base shear), alpha, Rayleigh zeta on rayleigh_modes (default 1
+// and 2; a sample of fewer storeys: model::rayleigh_modes_for).
 physics::ShearSpec shear_spec(const BuildingModel& b, const SampledStructure& s, int storeys);
 
 // The results' largest topology (results format 3, /system): per building its most storeys over every sample of the

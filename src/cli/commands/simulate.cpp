@@ -14,6 +14,7 @@
 #include <tuple>
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include "cli/commands.hpp"
 #include "cli/commands/bridge_file.hpp"
@@ -72,7 +73,10 @@ struct SimulateOptions {
     int storeys = 1;
     double mass = 0, stiffness = 0, height = 3.2;
     bool storeys_given = false, mass_given = false, stiffness_given = false, height_given = false;
-    bool any() const { return storeys_given || mass_given || stiffness_given || height_given; }
+    std::vector<double> rayleigh_modes;  // --rayleigh-modesK i,j: Rayleigh's two modes (default 1, 2)
+    bool rayleigh_given = false;
+    std::string rayleigh_option;  // the option that gave them (building K >= 3 may inherit building 1's or 2's)
+    bool any() const { return storeys_given || mass_given || stiffness_given || height_given || rayleigh_given; }
   };
   Storeys b[2];
   // base isolation (issue 25 §2): bearing, base mass, bearing numbers, moat walls; any of these makes building i
@@ -356,13 +360,16 @@ void validate_storeys(const SimulateOptions& o) {
 // Building i's numbers. One storey: the SDOF options unchanged (make_structure), so two one-storey buildings of
 // equal storey heights are today's pair bit for bit; several: uniform floors and storeys, the storeys from
 // --storey-stiffness or scaled to --T, yield drift 0.02/6 (the SDOF's yield displacement 0.02 h / 6 per storey),
-// Rayleigh --zeta on modes 1 and 2.
+// Rayleigh --zeta on modes 1 and 2 (--rayleigh-modesK i,j).
 physics::ShearSpec shear_spec(const SimulateOptions& o, const Side& side, const Structure& sdof) {
   const SimulateOptions::Storeys& b = side.st;
   physics::ShearSpec spec;
   spec.alpha = o.alpha;
   spec.zeta = o.zeta;
   if (b.storeys > 1 && !o.modal_zeta.empty()) spec.modal = true, spec.modal_zeta = o.modal_zeta;
+  if (b.rayleigh_given)  // checked by check_rayleigh_modes: two different modes in [1, storeys]
+    spec.mode_i = static_cast<int>(std::min(b.rayleigh_modes[0], b.rayleigh_modes[1])),
+    spec.mode_j = static_cast<int>(std::max(b.rayleigh_modes[0], b.rayleigh_modes[1]));
   if (b.storeys == 1) {
     spec.floor_mass = {sdof.m}, spec.storey_stiffness = {sdof.k}, spec.storey_yield = {sdof.fy};
     return spec;
@@ -373,6 +380,31 @@ physics::ShearSpec shear_spec(const SimulateOptions& o, const Side& side, const 
   if (spec.storey_stiffness.empty()) require_positive(spec.period, "--T" + side.k);
   if (!o.elastic) spec.yield_drift = 0.02 / 6.0;
   return spec;
+}
+
+// --rayleigh-modesK i,j of each building (given, or inherited by a row's building K >= 3 from building 1 or 2): two
+// different whole mode numbers in [1, storeys] of a multi-storey building damped by Rayleigh (not --modal-zeta).
+void check_rayleigh_modes(const SimulateOptions& o, const std::vector<Side>& sides) {
+  for (const Side& x : sides) {
+    const SimulateOptions::Storeys& b = x.st;
+    if (!b.rayleigh_given) continue;
+    const std::string& opt = b.rayleigh_option;
+    const std::string who = opt == "--rayleigh-modes" + x.k ? "" : fmt::format(" (building {} takes it)", x.k);
+    if (!o.modal_zeta.empty())
+      throw InputError(opt + " with --modal-zeta", opt,
+                       "give either --modal-zeta z1,z2,... (classical damping) or --rayleigh-modesK i,j (Rayleigh)");
+    if (b.storeys == 1)
+      throw InputError(fmt::format("{} for a one-storey building{}", opt, who), opt,
+                       "give --storeys" + x.k + " > 1, or drop it: one storey has one mode, damped by c = 2 zeta sqrt(k m)");
+    const std::vector<double>& v = b.rayleigh_modes;
+    bool ok = v.size() == 2 && v[0] != v[1];
+    for (double m : v) ok = ok && m == std::floor(m) && m >= 1 && m <= b.storeys;
+    if (!ok)
+      throw InputError(fmt::format("{} '{}' is not two different modes of building {}'s {} storeys", opt,
+                                   fmt::join(v, ","), x.k, b.storeys),
+                       opt, fmt::format("give two mode numbers in [1, {}], e.g. 1,{}{}", b.storeys, b.storeys,
+                                        who.empty() ? "" : "; or give --rayleigh-modes" + x.k + " for it"));
+  }
 }
 
 // The buildings' longest stable step (physics::structure_step_max: highest frequency and damping, the bound
@@ -429,13 +461,16 @@ void set_buildings(const SimulateOptions& o, const std::vector<Side>& sides, con
   const model::System& sys = *batch.system;
   for (int i = 0; i < static_cast<int>(sticks.size()); ++i) {
     const std::string label = sys.bodies()[static_cast<std::size_t>(i)].label;
+    const physics::ShearSpec spec = shear_spec(o, sides[i], sdof[i]);
+    // Rayleigh's two modes, where a multi-storey building has them
+    const std::vector<int> modes = spec.modal || sides[i].st.storeys == 1 ? std::vector<int>{}
+                                                                            : std::vector<int>{spec.mode_i, spec.mode_j};
     if (!sticks[i].isolated) {
-      const physics::ShearNumbers num = physics::set_shear_building(batch, 0, i, shear_spec(o, sides[i], sdof[i]));
+      const physics::ShearNumbers num = physics::set_shear_building(batch, 0, i, spec);
       run.buildings.push_back({label, model::floor_levels(sticks[i]), num.m, num.k, num.fy, num.modes.period,
-                               num.zeta_modes, {}});
+                               num.zeta_modes, {}, modes});
       continue;
     }
-    const physics::ShearSpec spec = shear_spec(o, sides[i], sdof[i]);
     const SimulateOptions::Isolation& s = o.iso[i];
     const physics::IsolationSpec iso = sampling::isolation_spec(s, spec.floor_mass[0]);
     const physics::IsolationNumbers num = physics::set_isolated_building(batch, 0, i, spec, iso);
@@ -447,7 +482,7 @@ void set_buildings(const SimulateOptions& o, const std::vector<Side>& sides, con
     chain_m.insert(chain_m.end(), num.super.m.begin(), num.super.m.end());
     chain_k.insert(chain_k.end(), num.super.k.begin(), num.super.k.end());
     BuildingReport br{label, model::floor_levels(sticks[i]), num.super.m, num.super.k, num.super.fy,
-                      num.super.modes.period, num.super.zeta_modes, {}};
+                      num.super.modes.period, num.super.zeta_modes, {}, modes};
     br.isolation = IsolationReport{s.bearing, num.m_base, num.isolator.k, smooth ? kNaN : num.isolator.fy,
                                    smooth ? kNaN : num.isolator.alpha, num.c_base,
                                    model::shear_stick_modes(chain_m, chain_k).period, {}};
@@ -499,6 +534,8 @@ void resolve_row(SimulateOptions& o) {
     if (!x.st.mass_given) x.st.mass = t.mass, x.st.mass_given = t.mass_given;
     if (!x.st.stiffness_given) x.st.stiffness = t.stiffness, x.st.stiffness_given = t.stiffness_given;
     if (!x.st.height_given) x.st.height = t.height, x.st.height_given = t.height_given;
+    if (!x.st.rayleigh_given)
+      x.st.rayleigh_modes = t.rayleigh_modes, x.st.rayleigh_given = t.rayleigh_given, x.st.rayleigh_option = t.rayleigh_option;
     if (x.st.storeys < 1 || x.st.storeys > model::max_storeys)
       throw InputError(fmt::format("--storeys{} = {} is out of range", k, x.st.storeys), "--storeys" + k,
                        fmt::format("give a number of storeys in [1, {}]", model::max_storeys));
@@ -585,6 +622,7 @@ int run_storeys(SimulateOptions& o, const ContactModel& cm, KernelSettings& ks) 
     if (!x.m_given) x.m = mass_from_height(x.h);  // buildings 3..N (1 and 2: resolve_masses)
     sdof.push_back(make_structure(x.m, x.T, x.kk, x.h, x.fy, o.alpha, o.zeta, o.elastic, x.k, x.k_given, x.fy_given));
   }
+  check_rayleigh_modes(o, sides);
   std::vector<model::StickTopology> sticks(sides.size());
   for (std::size_t i = 0; i < sides.size(); ++i) {
     sticks[i].storeys = sides[i].st.storeys, sticks[i].storey_heights = {sides[i].st.height};
@@ -664,7 +702,7 @@ std::string pair_json(const SimulateOptions& o, const PairBatch& b, const BatchR
   run.e_target = p.e, run.gap = p.gap, run.analysis_duration = analysis_length, run.contact_stiffness = {p.kc};
   for (const auto& [s, h, label] : {std::tuple{p.s1, o.h1, "building1"}, {p.s2, o.h2, "building2"}})
     run.buildings.push_back({label, {h}, {s.m}, {s.k}, {s.fy}, {2 * std::numbers::pi * std::sqrt(s.m / s.k)},
-                             {s.c / (2.0 * std::sqrt(s.k * s.m))}, {}});
+                             {s.c / (2.0 * std::sqrt(s.k * s.m))}, {}, {}});
   return format_system_json(run);
 }
 
@@ -676,12 +714,13 @@ void bridge_report(const physics::BridgeSpec& spec, const physics::SystemBatch& 
     if (f.storeys > 1) {  // a stick frame: per level, its modes and their damping ratios (as a shear building's)
       const physics::ShearNumbers num = physics::frame_numbers(f);
       const model::Body& b = batch.system->bodies()[k];
-      run.buildings.push_back({x.frame_label[k], b.heights, num.m, num.k, num.fy, num.modes.period, num.zeta_modes, {}});
+      run.buildings.push_back(
+          {x.frame_label[k], b.heights, num.m, num.k, num.fy, num.modes.period, num.zeta_modes, {}, {}});
       continue;
     }
     const double kf = physics::frame_stiffness(f), c = batch.c_floor[static_cast<std::size_t>(x.frame_dof[k])];
     run.buildings.push_back({x.frame_label[k], {f.height}, {f.mass}, {kf}, {f.fy},
-                             {2 * std::numbers::pi * std::sqrt(f.mass / kf)}, {c / (2.0 * std::sqrt(kf * f.mass))}, {}});
+                             {2 * std::numbers::pi * std::sqrt(f.mass / kf)}, {c / (2.0 * std::sqrt(kf * f.mass))}, {}, {}});
   }
   run.spring_labels = x.spring_label;
   for (std::size_t e = 0; e < spec.joints.size(); ++e)
@@ -914,6 +953,9 @@ void add_storey_options(CLI::App* c, SimulateOptions& opts) {
     c->add_option("--storey-height" + k, o->b[i].height,
                   "height of each storey of building " + k + " (m); floors at levels within 0.05 m pound")
         ->capture_default_str();
+    c->add_option("--rayleigh-modes" + k, o->b[i].rayleigh_modes,
+                  "the two modes i,j of building " + k + " that get --zeta exactly (Rayleigh; default 1,2)")
+        ->delimiter(',');
   }
   for (int i = 0; i < 2; ++i) {
     const std::string k = std::to_string(i + 1);
@@ -969,6 +1011,9 @@ void add_storey_options(CLI::App* c, SimulateOptions& opts) {
     c->add_option("--storey-stiffness" + k, x.st.stiffness, "stiffness of each storey of building " + k + " (N/m)")
         ->group(group);
     c->add_option("--storey-height" + k, x.st.height, "height of each storey of building " + k + " (m)")->group(group);
+    c->add_option("--rayleigh-modes" + k, x.st.rayleigh_modes, "Rayleigh's two modes i,j of building " + k)
+        ->delimiter(',')
+        ->group(group);
   }
 }
 
@@ -985,12 +1030,24 @@ void count_row_options(CLI::App* c, SimulateOptions& o) {
     x.m_user = x.m_given, x.k_user = x.k_given, x.fy_user = x.fy_given;
     x.st.storeys_given = c->count("--storeys" + k) > 0, x.st.mass_given = c->count("--storey-mass" + k) > 0;
     x.st.stiffness_given = c->count("--storey-stiffness" + k) > 0, x.st.height_given = c->count("--storey-height" + k) > 0;
+    x.st.rayleigh_given = c->count("--rayleigh-modes" + k) > 0, x.st.rayleigh_option = "--rayleigh-modes" + k;
     if (K <= o.buildings) continue;
     for (const char* name : {"--T", "--m", "--k", "--h", "--fy", "--storeys", "--storey-mass", "--storey-stiffness",
-                             "--storey-height"})
+                             "--storey-height", "--rayleigh-modes"})
       if (c->count(name + k) > 0)
         throw InputError(fmt::format("{}{} is for building {} and the row has --buildings {}", name, k, k, o.buildings),
                          name + k, fmt::format("give --buildings {} (or more), or drop {}{}", K, name, k));
+  }
+}
+
+// Which storey options of buildings 1 and 2 were given.
+void count_storey_options(CLI::App* c, SimulateOptions& o) {
+  for (int i = 0; i < 2; ++i) {
+    const std::string k = std::to_string(i + 1);
+    o.b[i].storeys_given = c->count("--storeys" + k) > 0, o.b[i].mass_given = c->count("--storey-mass" + k) > 0;
+    o.b[i].stiffness_given = c->count("--storey-stiffness" + k) > 0;
+    o.b[i].height_given = c->count("--storey-height" + k) > 0;
+    o.b[i].rayleigh_given = c->count("--rayleigh-modes" + k) > 0, o.b[i].rayleigh_option = "--rayleigh-modes" + k;
   }
 }
 
@@ -1016,7 +1073,9 @@ void add_output_and_restitution_options(CLI::App* c, SimulateOptions& o) {
 
 // --zeta and --modal-zeta (multi-storey buildings: Rayleigh on modes 1, 2, or classical modal damping).
 void add_damping_options(CLI::App* c, SimulateOptions* o) {
-  c->add_option("--zeta", o->zeta, "viscous damping ratio of both structures (multi-storey: Rayleigh damping with this ratio at modes 1 and 2)")->capture_default_str();
+  c->add_option("--zeta", o->zeta, "viscous damping ratio of both structures (multi-storey: Rayleigh damping with this "
+                                   "ratio at modes 1 and 2, or --rayleigh-modesK i,j)")
+      ->capture_default_str();
   c->add_option("--modal-zeta", o->modal_zeta,
                 "multi-storey buildings: classical modal damping instead of Rayleigh, the ratio of each mode from mode 1 "
                 "(z1,z2,...; the last repeats for the higher modes; one-storey buildings keep --zeta)")
@@ -1076,12 +1135,7 @@ void add_simulate(CLI::App& app) {
     o->duration_given = c->count("--duration") > 0;
     o->m1_given = c->count("--m1") > 0, o->m2_given = c->count("--m2") > 0;
     o->h1_given = c->count("--h1") > 0, o->h2_given = c->count("--h2") > 0;
-    for (int i = 0; i < 2; ++i) {
-      const std::string k = std::to_string(i + 1);
-      o->b[i].storeys_given = c->count("--storeys" + k) > 0, o->b[i].mass_given = c->count("--storey-mass" + k) > 0;
-      o->b[i].stiffness_given = c->count("--storey-stiffness" + k) > 0;
-      o->b[i].height_given = c->count("--storey-height" + k) > 0;
-    }
+    count_storey_options(c, *o);
     for (int i = 0; i < 2; ++i) {
       const std::string k = std::to_string(i + 1);
       SimulateOptions::Isolation& s = o->iso[i];
