@@ -83,7 +83,8 @@ bool run_units(const Session& s, const std::vector<std::size_t>& todo, const Com
 using ThreadComputeFn = std::function<Payload(std::size_t unit, int thread)>;
 
 // run_units with `threads` worker threads on every rank (the same count on every rank; threads <= 1: the
-// calling thread computes, exactly as above). Each rank keeps 2 threads units in flight: rank 0 hands a worker
+// calling thread computes, as above, except on rank 0 of several ranks, which computes its units on one pool thread
+// so that the calling thread serves the workers at least every 1 ms). Each rank keeps 2 threads units in flight: rank 0 hands a worker
 // rank 2 threads units and computes on its own pool between messages; on_result, tick and every MPI call stay on
 // the calling thread. Results reach on_result in completion order, which varies with the thread count: the
 // caller stores them by unit id. A stop or an error drops the units queued on the threads and waits for the
