@@ -234,7 +234,9 @@ constexpr StudyKey keys[] = {
      "joint with the study gap ratio x d, d = code_gap_coefficient x the largest (h_j + h_j+1) of the row's joints; "
      "the probability scene counts an analysis as pounding when ANY joint touches. Buildings 3..n take one period "
      "each (a fixed period or a distribution in [structures.buildingK]: the period grid spans buildings 1 and 2); "
-     "one model throughout (all sdof or all shear; storey heights may differ); not with equal_heights or [intensity].",
+     "SDOF and shear buildings mix (a run of neighbouring SDOFs meets its shear neighbours at their floor nearest "
+     "the lowest of its heights, at most the lower neighbour's roof; docs/rows.md); storey heights may differ; not "
+     "with equal_heights or [intensity].",
      2.0, 16.0},
     {"structures", "buildingK", "table", "the [structures] defaults", "", "",
      "Building K of a row (K = 3..buildings, left to right after building 2); the same keys as building1."},

@@ -239,14 +239,8 @@ void resolve_row(StructureModel& m, const std::vector<const toml::table*>& table
   if (m.equal_heights)
     throw InputError(fmt::format("equal_heights = true is for a pair, and the row has {} buildings", n),
                      where("equal_heights"), "set equal_heights = false, or buildings = 2");
-  for (std::size_t b = 1; b < n; ++b) {
-    const BuildingModel x = m.row_building(b), first = m.row_building(0);
-    if (x.kind != first.kind)
-      throw InputError(fmt::format("building{} is a {} model and building1 a {} model; a row of {} buildings has one "
-                                   "model throughout (an SDOF between two shear buildings has no floor to meet)",
-                                   b + 1, to_string(x.kind), to_string(first.kind), n),
-                       at(b, "model"), "give every building of the row the same model (in [structures] model)");
-  }
+  // SDOF and shear buildings mix freely: a run of SDOFs meets its shear neighbours at one of their floors
+  // (study/system_block.cpp mixed_row_levels)
 }
 
 }  // namespace

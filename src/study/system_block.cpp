@@ -20,6 +20,42 @@ namespace {
 constexpr double nan = std::numeric_limits<double>::quiet_NaN();
 }  // namespace
 
+namespace {
+
+// A row mixing SDOF and shear buildings (n >= 3): each run of neighbouring SDOF buildings i..c shares one floor level,
+// the floor of its shear neighbours (left of i, right of c) nearest the lowest of the run's heights, at most the
+// lower of those neighbours' roofs (ties: the lower floor). So every SDOF meets each shear neighbour at a floor or,
+// when the two neighbours' storey heights differ, a column below its roof, and neighbouring SDOFs meet floor to floor
+// -- two buildings pound at the lower roof, and an SDOF's roof is its height (the pair's rule, sdof_level).
+void mixed_row_levels(const StructureModel& model, const SampledPair& p, LaneTopology& t) {
+  const std::size_t n = t.buildings();
+  std::vector<char> shear(n);
+  for (std::size_t i = 0; i < n; ++i) shear[i] = model.row_building(i).shear();
+  for (std::size_t i = 0; i < n;) {
+    if (shear[i]) { ++i; continue; }
+    std::size_t c = i;
+    double h = p.structure(i).h;
+    while (c + 1 < n && !shear[c + 1]) h = std::min(h, p.structure(++c).h);
+    std::vector<std::size_t> nb;  // the run's shear neighbours
+    if (i > 0) nb.push_back(i - 1);
+    if (c + 1 < n) nb.push_back(c + 1);
+    double roof = std::numeric_limits<double>::infinity();
+    for (std::size_t b : nb) roof = std::min(roof, t.storeys[b] * t.storey_height[b]);
+    double best = nan;
+    for (std::size_t b : nb)
+      for (int k = 1; k <= t.storeys[b]; ++k) {
+        const double z = k * t.storey_height[b];
+        if (z > roof + 1e-9) break;
+        if (std::isnan(best) || std::abs(z - h) < std::abs(best - h) || (std::abs(z - h) == std::abs(best - h) && z < best))
+          best = z;
+      }
+    for (std::size_t b = i; b <= c; ++b) t.storey_height[b] = best;
+    i = c + 1;
+  }
+}
+
+}  // namespace
+
 LaneTopology lane_topology(const StructureModel& model, const SampledPair& p) {
   const std::size_t n = p.buildings();
   LaneTopology t;
@@ -38,6 +74,9 @@ LaneTopology lane_topology(const StructureModel& model, const SampledPair& p) {
     t.storey_height[i] = b.shear() || n == 2 ? b.storey_height() : 3.2;
     t.isolated[i] = b.shear() && b.isolated, t.moat[i] = t.isolated[i] && b.moat;
   }
+  bool sdof = false;
+  for (std::size_t i = 0; i < n; ++i) sdof = sdof || !model.row_building(i).shear();
+  if (n > 2 && sdof && model.any_shear()) mixed_row_levels(model, p, t);
   for (std::size_t i = 0; i < 2 && n == 2; ++i) {
     if (model.building(static_cast<int>(i)).shear()) continue;
     // an SDOF facing a shear building: one storey reaching the other's floor nearest its height (its roof at most)
@@ -138,6 +177,33 @@ void SystemBlock::set_table(const model::System& table) {
   for (const model::Body& b : table.bodies()) layout_.floors.push_back(b.dofs.size());
   layout_.elements = table.contacts().size();
   for (std::size_t e = 0; e < table.contacts().size(); ++e) table_elements_[table.contacts()[e].label] = e;
+  // a row's joint of one element (an SDOF of a mixed row meets each neighbour once, at a level that varies with the
+  // sample): that element, whatever its level
+  table_joints_.clear();
+  std::map<std::string, int> count;
+  for (std::size_t e = 0; e < table.contacts().size(); ++e)
+    if (const std::string j = joint_of(table.contacts()[e].label); !j.empty()) ++count[j], table_joints_[j] = e;
+  for (const auto& [j, c] : count)
+    if (c != 1) table_joints_.erase(j);
+}
+
+std::vector<std::size_t> SystemBlock::table_indices(const model::System& sys) const {
+  std::vector<std::size_t> to_table(sys.contacts().size(), layout_.elements);
+  if (layout_.empty()) return to_table;
+  std::map<std::string, int> joint_count;  // a joint of one element maps to the table's one (set_table)
+  for (const model::ContactElement& ce : sys.contacts()) ++joint_count[joint_of(ce.label)];
+  for (std::size_t e = 0; e < sys.contacts().size(); ++e) {
+    const std::string& label = sys.contacts()[e].label;
+    if (auto it = table_elements_.find(label); it != table_elements_.end()) to_table[e] = it->second;
+    else if (auto jt = table_joints_.find(joint_of(label)); jt != table_joints_.end() && joint_count[jt->first] == 1)
+      to_table[e] = jt->second;
+  }
+  return to_table;
+}
+
+std::string SystemBlock::joint_of(const std::string& label) {
+  const std::size_t bar = label.find('|'), space = label.find(' ');
+  return bar != std::string::npos && space != std::string::npos && bar < space ? label.substr(0, space) : "";
 }
 
 const model::System& SystemBlock::system(const LaneTopology& t) {
@@ -277,11 +343,7 @@ void SystemBlock::run(std::span<const SampledPair> pairs, std::span<const std::s
     if (channels_.empty()) physics::run_system(batch_, groups, gm, ks, res_);
     else physics::run_system(batch_, groups, channels_, ks, res_);
     const std::size_t w = end - at;
-    // this topology's elements in the table's order (by label: level k is level k, a moat wall its wall)
-    std::vector<std::size_t> to_table(sys.contacts().size(), layout_.elements);
-    if (!layout_.empty())
-      for (std::size_t e = 0; e < sys.contacts().size(); ++e)
-        if (auto it = table_elements_.find(sys.contacts()[e].label); it != table_elements_.end()) to_table[e] = it->second;
+    const std::vector<std::size_t> to_table = table_indices(sys);
     for (std::size_t j = at; j < end; ++j) {
       const std::size_t l = j - at, k = order_[j];
       out.status[k] = res_.status[l];

@@ -170,7 +170,7 @@ void validate(const StructureModel& model, const std::string& where = "[structur
 //   defaults, building.hpp);
 //   and the sub-tables [structures.building1], [structures.building2] (keys in building.hpp), resolved into
 //   StructureModel::buildings over these defaults; buildings = n (2..16) makes a row, whose [structures.buildingK]
-//   K = 3..n resolve into StructureModel::more (each one period slot; one model and one storey height throughout;
+//   K = 3..n resolve into StructureModel::more (each one period slot; SDOF and shear buildings may mix;
 //   no equal_heights; a table beyond n is refused).
 // Unknown keys, wrong types and out-of-range values throw InputError naming file:line, the key and the
 // allowed range. The seed is NOT in this table (see parse_study_seed).

@@ -204,6 +204,12 @@ class SystemBlock {
   TableLayout layout_;
   bool keep_springs_ = false;
   std::map<std::string, std::size_t> table_elements_;  // element label -> index in the table topology
+  std::map<std::string, std::size_t> table_joints_;    // "K|K+1" -> the table's element of a one-element joint
+  // Each element of `sys` in the table's order (by label: level k is level k, a moat wall its wall; a row's joint of
+  // one element: the table's one element of that joint), layout_.elements where the table has none.
+  std::vector<std::size_t> table_indices(const model::System& sys) const;
+  // "K|K+1" of a row's element label ("2|3 level 1/2"), "" for a pair's or a wall's
+  static std::string joint_of(const std::string& label);
 };
 
 // Before any work: every sample's shear buildings against the integration step of every record, with

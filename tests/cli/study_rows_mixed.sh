@@ -1,0 +1,140 @@
+#!/usr/bin/env bash
+# Rows mixing SDOF and shear buildings (issue 25 §2 "a row of buildings", docs/rows.md; refused before: "one model
+# throughout"):
+#  1. a one-record, one-model row (SDOF, 3-storey shear, SDOF) with [contact] levels = "top" equals, bit for bit,
+#     pounding simulate --buildings 3 --storeys1 1 --storeys2 3 --storeys3 1 with the SDOFs' floors where the study's
+#     rule puts them (building 1, 6.5 m high: the middle building's floor 2 at 6.4 m; building 3, 9.0 m: its roof at
+#     9.6 m) -- coupled: impact count, peak force, first impact, peak u of each building; uncoupled: every floor's
+#     peak u, drift and absolute acceleration, the peak closing; per element: the study's /system labels;
+#  2. quick-row with building 2 a shear building is bit-identical at 1 and 2 ranks, batch width 1 and
+#     skip_untouched = false, and every analysis's per-element rows give its totals (the SDOF joints' one element,
+#     whose level varies with the sample, lands in the joint's row): sum of element impacts = impact_count, largest
+#     element closing = peak_closing;
+#  3. bad input still refused: an SDOF with isolation in a row.
+# Synthetic records only (no ../shared needed). Args: <pounding binary> <source dir>
+set -euo pipefail
+bin=$1; src=$2
+study=$PWD/unused.toml
+. "$src/tests/lib/study_invariance.sh"  # $tmp, cmp, study_invariance, expect_error
+fail() { echo "FAIL: $*"; exit 1; }
+
+# 1. study == simulate
+awk 'BEGIN { dt = 0.01; for (i = 0; i <= 1200; i++) { t = i * dt;
+       a = 0.30 * sin(2 * 3.14159265 * 0.8 * t) + 0.12 * sin(2 * 3.14159265 * 2.7 * t + 0.4);
+       printf "%.2f %.8f\n", t, a } }' > "$tmp/rec.txt"
+cat > "$tmp/one.toml" <<EOF
+title = "mixed row"
+seed = 7
+scene = "impacts"
+output = "out.h5"
+
+[records]
+files = ["rec.txt"]
+polarity = "recorded"
+
+[structures]
+buildings = 3
+storey_height = 3.2
+zeta = 0.05
+hysteresis = "elastic"
+samples_per_pair = 1
+
+[structures.building1]
+period = 0.45
+height = 6.5
+mass = 4.0e5
+
+[structures.building2]
+model = "shear"
+period = 0.9
+height = 9.6
+storeys = 3
+mass = 9.0e5
+storey_stiffness = 9.80665e7
+
+[structures.building3]
+period = 0.7
+height = 9.0
+mass = 6.0e5
+
+[gaps]
+ratios = [0.1, 0.2, 0.5, 1.0]
+
+[analysis]
+max_dt = 0.001
+
+[contact]
+law = "hertzdamp"
+e = 0.5
+levels = "top"
+EOF
+"$bin" run "$tmp/one.toml" --out "$tmp/one.h5" --quiet > "$tmp/one.out" 2>&1 || { cat "$tmp/one.out"; fail "the mixed row did not run"; }
+# d = 0.005 max(6.5 + 9.6, 9.6 + 9.0) = 0.093 m; x = 0.5
+# the study's gap at x = 0.5, to the bit (0.5 d, d = 0.005 max(h_j + h_j+1))
+gap=$(/usr/bin/python3 -c "import sys, h5py; print(repr(0.5 * h5py.File(sys.argv[1], 'r')['models/code_gap'][()].ravel()[0]))" "$tmp/one.h5")
+sim() {
+  "$bin" simulate --record "$tmp/rec.txt" --buildings 3 --contact-levels top --elastic --zeta 0.05 --dt 0.001 \
+    --gap "$gap" --storeys1 1 --storey-height1 6.4 --m1 4.0e5 --T1 0.45 \
+    --storeys2 3 --storey-mass2 3e5 --storey-stiffness2 9.80665e7 \
+    --storeys3 1 --storey-height3 9.6 --m3 6.0e5 --T3 0.7 --json "$@"
+}
+sim --contact hertzdamp --e 0.5 > "$tmp/sim.json"
+sim --contact none > "$tmp/free.json"
+/usr/bin/python3 - "$tmp" <<'PY'
+import json, sys, h5py
+tmp = sys.argv[1]
+f = h5py.File(f"{tmp}/one.h5", "r")
+s, u = json.load(open(f"{tmp}/sim.json")), json.load(open(f"{tmp}/free.json"))
+g = list(f["impacts/gap_ratios"][()]).index(0.5)
+assert abs(0.5 * f["models/code_gap"][()][0] - 0.0465) < 1e-15, f["models/code_gap"][()]  # d = 0.093 m
+at = lambda name: f[name][()].ravel()[g]
+checks = [("impact_count", at("impacts/impact_count"), s["impact_count"]),
+          ("peak_force", at("impacts/peak_force"), s["peak_force"]),
+          ("t_first_impact", at("impacts/t_first_impact"), s["t_first_impact"]),
+          ("uncoupled peak_closing", f["uncoupled/peak_closing"][()].ravel()[0], u["peak_closing"])]
+for b in (1, 2, 3):
+    checks.append((f"peak_u{b}", at(f"impacts/peak_u{b}"), max(s[f"peak_u{b}"])))
+    for field, key in (("peak_u_floors", "peak_u"), ("peak_drift", "peak_drift"), ("peak_acc_floors", "peak_abs_acc")):
+        mine = list(f[f"uncoupled/{field}{b}"][()].ravel())
+        theirs = u[f"{key}{b}_g" if key == "peak_abs_acc" else f"{key}{b}"]
+        checks += [(f"uncoupled {field}{b}[{i}]", a, c) for i, (a, c) in enumerate(zip(mine, theirs, strict=True))]
+assert s["status"] == "ok" and u["status"] == "ok" and at("impacts/status") == 0
+assert s["impact_count"] > 0, "no impacts at the gap"
+bad = [(n, a, c) for n, a, c in checks if not (a == c)]
+assert not bad, bad
+labels = [x.decode() if isinstance(x, bytes) else x for x in f["system/element_label"][()]]
+theirs = [lv["label"] for lv in s["levels"]]
+assert labels == theirs, (labels, theirs)
+print(f"ok   (SDOF, 3-storey, SDOF) study == simulate bit for bit ({len(checks)} numbers; {s['impact_count']} impacts; "
+      f"elements {labels})")
+PY
+
+# 2. invariance of a mixed quick row, and the per-element rows give the totals
+sed 's/^\[structures.building3\]/[structures.building2]\nmodel = "shear"\n\n[structures.building3]/' \
+  "$src/studies/quick-row.toml" | sed 's/^samples_per_pair = 8/samples_per_pair = 3/' > "$tmp/mixed.toml"
+study=$tmp/mixed.toml
+study_invariance
+/usr/bin/python3 - "$tmp/r0.h5" <<'PY'
+import sys, h5py, numpy as np
+f = h5py.File(sys.argv[1], "r")
+count = f["impacts/impact_count"][()]            # [R, M, G]
+elem = f["impacts/element_impact_count"][()]     # [R, M, G, E]
+closing = f["uncoupled/peak_closing"][()]        # [R, M]
+ec = f["uncoupled/peak_closing_elements"][()]    # [R, M, E]
+labels = [x.decode() if isinstance(x, bytes) else x for x in f["system/element_label"][()]]
+ok = f["uncoupled/status"][()] == 0 if "uncoupled/status" in f else np.ones(closing.shape, bool)
+assert (elem >= 0).all(), "an element row was not filled (-1)"
+assert (elem.sum(axis=-1) == count).all(), "per-element impacts do not sum to the totals"
+assert np.array_equal(np.nanmax(ec, axis=-1)[ok], closing[ok]), "the largest element closing is not the peak closing"
+assert not np.isnan(ec[ok]).any(), "an element closing was not filled"
+joints = sorted({l.split(" ")[0] for l in labels})
+assert joints == ["1|2", "2|3"], labels
+print(f"ok   mixed quick row: invariant; per-element rows give the totals ({count.size} analyses x gaps, elements {labels})")
+PY
+
+# 3. bad input
+fails=0
+body=$(cat "$src/studies/quick-row.toml")
+expect_error sdof_isolated 'isolation is given for an SDOF building' \
+  "$(echo "$body" | sed 's/^\[structures.building3\]/[structures.building2]\nmodel = "shear"\n\n[structures.building3]\nisolation = {bearing = "linear", k_eff = 1e7}/')"
+[ $fails -eq 0 ] || exit 1
