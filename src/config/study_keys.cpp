@@ -547,7 +547,11 @@ constexpr StudyKey keys[] = {
 
     // ---------------------------------------------------------------- [analysis]
     {"analysis", "stepper", "string", "\"central-difference\"", "",
-     "\"central-difference\" | \"newmark\" | \"rk4\" | \"nigam-jennings\"", "The time integrator."},
+     "\"central-difference\" | \"newmark\" | \"rk4\" | \"nigam-jennings\"",
+     "The time integrator. SDOF pairs: all four. Shear buildings and rows: central-difference, newmark (average "
+     "acceleration with Newton, unconditionally stable for the structure) or rk4 (h omega_max < 2.8); newmark and rk4 "
+     "run bilinear storeys and linear or lead-rubber bearings (not friction-pendulum or Bouc-Wen). Bridges: "
+     "central-difference."},
     {"analysis", "substeps", "integer", "1", "", "[1, 10000]", "Integration steps per record step.", 1, 10000},
     {"analysis", "max_dt", "number", "0.0025 in the impacts scene, 0 in the probability scene", "s", "[0, 1] (0: no cap)",
      "Largest integration step (docs/accuracy.md: 2.5 ms gives 1 % peak forces).", 0.0, 1.0},

@@ -677,7 +677,7 @@ std::vector<Problem> lane_stepper_problems(const SystemBatch& B, std::span<const
                                S.bodies()[static_cast<size_t>(sp.body)].label,
                                sp.role == model::SpringRole::storey ? fmt::format("storey {}", sp.storey)
                                    : sp.role == model::SpringRole::isolator ? std::string("isolator") : std::string("link"), law),
-                   "stepper", fix});
+                   "--stepper / [analysis] stepper", fix});
     break;
   }
   for (std::size_t g = 0; g < groups.size(); ++g)
@@ -687,7 +687,7 @@ std::vector<Problem> lane_stepper_problems(const SystemBatch& B, std::span<const
                      "contact law", "use a force law (hertzdamp, kelvin, ...) or --stepper central-difference"});
   if (S.channels() > 1)
     out.push_back({fmt::format("the {} stepper runs one ground-motion channel, and the system has {}", st, S.channels()),
-                   "stepper", fix});
+                   "--stepper / [analysis] stepper", fix});
   if (ks.restitution != nullptr)
     out.push_back({fmt::format("a velocity-dependent restitution e(v0) runs with central difference, not {}", st),
                    "restitution", "use a constant e, or " + fix});

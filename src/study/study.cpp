@@ -15,6 +15,8 @@
 
 #include "pounding/config/config.hpp"
 #include "pounding/contact/registry.hpp"
+#include "pounding/model/hysteresis/registry.hpp"
+#include "pounding/physics/shear_building.hpp"
 #include "pounding/core/error.hpp"
 #include "pounding/core/files.hpp"
 
@@ -349,9 +351,37 @@ void check_selection(const Study& s, const TableReader& top) {
 
 }  // namespace
 
-// A study with a shear building (model = "shear") runs the system stepper: central difference only, force laws
-// only (a contact at every common floor). [intensity] runs (stripes, IDA: study/run.cpp, the Systems' scaling by the
-// model trait SystemBlock::scales_linearly).
+static std::string_view bearing_name(physics::Bearing b) {
+  for (const auto& n : bearing_names)
+    if (n.value == b) return n.name;
+  return "smooth";
+}
+
+// Studies of systems (shear buildings, rows) run with central difference, Newmark or RK4 (physics::run_system;
+// Newmark and RK4: physics/system_lane_stepper.hpp, bilinear springs only); Nigam-Jennings integrates SDOF bodies only
+// (docs/architecture.md D7). Refused here, before any work, with the key's line.
+static void check_system_stepper(const Study& s, TableReader& top, const std::string& path, const std::string& what,
+                                 const std::string& other_fix) {
+  if (s.stepper == Stepper::central_difference) return;
+  const toml::table* a = top.table("analysis");
+  const toml::node* n = a ? a->get("stepper") : nullptr;
+  const std::string where =
+      n ? fmt::format("{}:{} [analysis].stepper", path, n->source().begin.line) : path + " [analysis].stepper";
+  if (s.stepper == Stepper::nigam_jennings)
+    throw InputError(fmt::format("nigam-jennings integrates SDOF bodies only (the pair), and the study has {}", what),
+                     where, "write stepper = \"central-difference\", \"newmark\" or \"rk4\", " + other_fix);
+  for (std::size_t b = 0; b < s.structures.building_count(); ++b)
+    if (const BuildingModel m = s.structures.row_building(b);
+        m.isolated && physics::isolator_law(m.isolation.bearing) != model::law_bilinear)
+      throw InputError(fmt::format("the {} stepper runs systems of bilinear springs (storeys, linear and lead-rubber "
+                                   "bearings), and building {} has a {} bearing", to_string(s.stepper), b + 1,
+                                   bearing_name(m.isolation.bearing)),
+                       where, "write stepper = \"central-difference\", or bearing = \"lead-rubber\"");
+}
+
+// A study with a shear building (model = "shear") runs the system steppers: central difference, Newmark or RK4
+// (check_system_stepper), force laws only (a contact at every common floor). [intensity] runs (stripes, IDA:
+// study/run.cpp, the Systems' scaling by the model trait SystemBlock::scales_linearly).
 static void check_row_study(const Study& s, config::TableReader& top, const toml::table* structures, const std::string& path);
 
 // [contact] level_tolerance below half the smallest storey height of the shear buildings (an SDOF of a row of SDOFs:
@@ -390,14 +420,7 @@ static void check_shear_study(const Study& s, config::TableReader& top, const to
     }
   check_level_tolerance(s, top, path);
   if (!s.structures.any_shear()) return;
-  if (s.stepper != Stepper::central_difference) {
-    const toml::table* a = top.table("analysis");
-    const toml::node* n = a ? a->get("stepper") : nullptr;
-    throw InputError(fmt::format("the {} stepper runs SDOF pairs only, and the study has a shear building",
-                                 to_string(s.stepper)),
-                     n ? fmt::format("{}:{} [analysis].stepper", path, n->source().begin.line) : path + " [analysis].stepper",
-                     "write stepper = \"central-difference\" (the system stepper), or use model = \"sdof\"");
-  }
+  check_system_stepper(s, top, path, "a shear building", "or use model = \"sdof\"");
   if (s.contact.law == ContactLaw::stereomechanical) {
     const toml::table* c = top.table("contact");
     const toml::node* n = c ? c->get("law") : nullptr;
@@ -422,11 +445,7 @@ static void check_row_study(const Study& s, config::TableReader& top, const toml
     return k ? fmt::format("{}:{} [{}].{}", path, k->source().begin.line, table, key)
              : fmt::format("{} [{}].{}", path, table, key);
   };
-  if (s.stepper != Stepper::central_difference)
-    throw InputError(fmt::format("the {} stepper runs SDOF pairs only, and the study is a row of {} buildings",
-                                 to_string(s.stepper), n),
-                     at("analysis", "stepper"),
-                     "write stepper = \"central-difference\" (the system stepper), or buildings = 2");
+  check_system_stepper(s, top, path, fmt::format("a row of {} buildings", n), "or buildings = 2");
   if (s.contact.law == ContactLaw::stereomechanical)
     throw InputError(fmt::format("the stereomechanical law runs one contact element (the SDOF pair), and a row of {} "
                                  "buildings has a contact at every joint",
@@ -491,7 +510,9 @@ static void parse_bridge(Study& s, TableReader& top, const toml::table* bridge, 
     return k ? fmt::format("{}:{} [{}].{}", path, k->source().begin.line, table, key) : fmt::format("{} [{}].{}", path, table, key);
   };
   if (s.stepper != Stepper::central_difference)
-    throw InputError(fmt::format("the {} stepper runs SDOF pairs only, and the study is a bridge", to_string(s.stepper)),
+    throw InputError(fmt::format("the {} stepper runs SDOF pairs, shear buildings and rows, and the study is a bridge "
+                                 "(its links' gap laws and support channels run with central difference only)",
+                                 to_string(s.stepper)),
                      at("analysis", "stepper"), "write stepper = \"central-difference\" (the system stepper)");
   if (s.contact.law == ContactLaw::stereomechanical)
     throw InputError("the stereomechanical law runs one contact element (the SDOF pair), and a bridge has a contact at "

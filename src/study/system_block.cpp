@@ -430,7 +430,11 @@ void SystemBlock::coupled(std::span<const SampledPair> pairs, std::span<const st
 
 void check_shear_steps(const Study& study, std::span<const StudyRecord> records, std::size_t max_models) {
   const StructureModel& model = study.structures;
-  if (!runs_systems(model) || records.empty() || study.stepper != Stepper::central_difference) return;
+  // Newmark (average acceleration) is unconditionally stable for the linear part (contact: the resolution guard);
+  // central difference and RK4 have their limits (physics::structure_step_max)
+  if (!runs_systems(model) || records.empty() || study.stepper == Stepper::newmark ||
+      study.stepper == Stepper::nigam_jennings)
+    return;
   // the longest integration step over the records
   double h = 0.0, dt = 0.0;
   for (const StudyRecord& r : records) {
@@ -455,18 +459,22 @@ void check_shear_steps(const Study& study, std::span<const StudyRecord> records,
       physics::SystemBatch& b = batches[t];
       if (!b.system) b.resize(block.system(t), 1);
       block.set_lane(b, 0, pair, t, 0.0, ContactNumbers{});
-      const physics::StructureStep s = physics::structure_step_max(b, 0, Stepper::central_difference);
+      const physics::StructureStep s = physics::structure_step_max(b, 0, study.stepper);
       if (s.h_max < worst.h_max) worst = s, at = pair.id;
     }
   const double h_min = worst.h_max, w_at = worst.omega_max, c_at = worst.damping;
   if (h < h_min) return;
   const double need = worst.substeps(dt);
+  const std::string rule = study.stepper == Stepper::central_difference
+                               ? fmt::format("central difference (omega_max <= {:.6g} rad/s, 2 zeta omega <= {:.4g} 1/s by "
+                                             "Gershgorin's bounds; h^2 omega^2 + 4 h (2 zeta omega) < 4)", w_at, c_at)
+                               : fmt::format("{} (omega_max <= {:.6g} rad/s by Gershgorin's bound; h omega_max < {})",
+                                             to_string(study.stepper), w_at, physics::structure_step_limit(study.stepper));
   throw InputError(
       fmt::format("the integration step {:.4g} s (record step {:g} s / {}) is too long for the {}: sample "
-                  "({}, {}, {}) needs h <= {:.4g} s for central difference (omega_max <= {:.6g} rad/s, 2 zeta omega <= "
-                  "{:.4g} 1/s by Gershgorin's bounds; h^2 omega^2 + 4 h (2 zeta omega) < 4)",
+                  "({}, {}, {}) needs h <= {:.4g} s for {}",
                   h, dt, study_substeps(study, dt), model.bridge ? "bridge's frames and links" : "shear buildings", at.i1,
-                  at.i2, at.sample, h_min, w_at, c_at),
+                  at.i2, at.sample, h_min, rule),
       study.path + " [analysis] substeps / max_dt",
       fmt::format("give [analysis] substeps >= {:g} or max_dt <= {:.4g} s (more storeys of the same period raise "
                   "omega_max and the storey dashpots' damping)",

@@ -184,7 +184,7 @@ body=$(cat "$tmp/msa.toml")
 expect_error stereomechanical ':[0-9]* \[contact\].law, choose a force law' \
   "$(echo "$body" | sed 's/^law = "hertzdamp"/law = "stereomechanical"/')"
 expect_error stepper ':[0-9]* \[analysis\].stepper, write stepper = "central-difference"' \
-  "$(echo "$body" | sed 's/^\[contact\]/[analysis]\nstepper = "newmark"\n\n[contact]/')"
+  "$(echo "$body" | sed 's/^\[contact\]/[analysis]\nstepper = "nigam-jennings"\n\n[contact]/')"
 expect_error scene_impacts 'runs in the probability scene' \
   "$(echo "$body" | sed 's/^scene = "probability"/scene = "impacts"/')"
 expect_error row 'runs a pair, and the study is a row' \

@@ -147,7 +147,7 @@ then :; else echo "FAIL storey_heights:"; cat "$tmp/storey_heights.out"; fails=$
 expect_error equal_heights 'equal_heights = true is for a pair.*\[structures\].equal_heights' \
   "$(echo "$body" | sed 's/^buildings = 3/buildings = 3\nequal_heights = true/')"
 expect_error stepper 'a row of 3 buildings.*\[analysis\].stepper, write stepper = "central-difference"' \
-  "$(echo "$body" | sed 's/^\[contact\]/[analysis]\nstepper = "newmark"\n\n[contact]/')"
+  "$(echo "$body" | sed 's/^\[contact\]/[analysis]\nstepper = "nigam-jennings"\n\n[contact]/')"
 expect_error stereomechanical 'a row of 3 buildings has a contact at every joint.*\[contact\].law' \
   "$(echo "$body" | sed 's/^law = "hertzdamp"/law = "stereomechanical"/')"
 expect_error fragility 'runs a pair, and the study is a row of 3 buildings.*:22 \[structures\].buildings' \
