@@ -514,6 +514,13 @@ constexpr StudyKey keys[] = {
      "strikes, the left one floor to floor), added to the study gap at that level (a level beyond the list: 0). An analysis touches at gap g when some level's uncoupled closing minus its offset exceeds g "
      "(/uncoupled/peak_closing is the largest of those), so the probability scene stays exact.",
      0.0, 10.0},
+    {"contact", "joint_gap_offsets", "array of numbers", "none (0 at every joint)", "m", "[0, 10]",
+     "Rows: per joint left to right (buildings - 1 values), added to the study gap of every element of that joint "
+     "(with gap_offsets: both). An analysis touches at gap g when some element's uncoupled closing minus its "
+     "offset exceeds g (/uncoupled/peak_closing is the largest of those, /system/element_gap_offset each element's "
+     "offset), so the probability scene stays exact. Not for a pair (its one joint's gap is the ratio x d) or a "
+     "bridge (each [[bridge.joint]] has its own gap).",
+     0.0, 10.0},
     {"contact", "level_tolerance", "number", "0.05", "m", "[0, 1]",
      "Shear buildings and rows, below half the smallest storey height (a floor meets at most one floor): floors of "
      "neighbouring buildings whose levels differ by at most this meet floor to "

@@ -92,6 +92,7 @@ class UnitComputer {
     if (runs_systems(sampler.model()))
       block_.emplace(sampler.model(), s.contact, s.e, s.contact_levels, s.gap_offsets, s.level_tolerance,
                      s.shape_functions);
+    if (block_) block_->set_joint_offsets(s.joint_gap_offsets);
     if (block_ && !plan.system.empty()) table_fields(plan);
     if (block_ && (plan.stripes || plan.ida)) block_->keep_springs(true);  // scales_linearly reads them
     if (s.restitution && plan.impacts) {  // e(v0) in the coupled runs (study.cpp: hertzdamp, CD, impacts scene)

@@ -213,13 +213,15 @@ void parse_contact(Study& s, const toml::table* t, const std::string& path) {
                      "write levels = " + enum_name_list(model::contact_levels_names, " or ", "\""));
   });
   s.gap_offsets = c.numbers("gap_offsets", {});
+  s.joint_gap_offsets = c.numbers("joint_gap_offsets", {});
   s.level_tolerance = c.number("level_tolerance", 0.05);
   s.shape_functions = c.choice("shape_functions", "linear", [](const std::string& name) {
     if (auto v = parse_enum(model::shape_functions_names, name)) return *v;
     throw InputError(fmt::format("unknown shape_functions '{}'", name), "shape_functions",
                      "write shape_functions = " + enum_name_list(model::shape_functions_names, " or ", "\""));
   });
-  c.finish("law, damping_law, e, n, v0_min, stiffness, levels, gap_offsets, level_tolerance, shape_functions, restitution");
+  c.finish("law, damping_law, e, n, v0_min, stiffness, levels, gap_offsets, joint_gap_offsets, level_tolerance, "
+           "shape_functions, restitution");
 }
 
 }  // namespace
@@ -404,6 +406,23 @@ static void check_level_tolerance(const Study& s, config::TableReader& top, cons
                    fmt::format("give level_tolerance < {:g} m (default 0.05 m)", 0.5 * h));
 }
 
+// [contact] joint_gap_offsets: a row's, one value per joint (a pair's one joint takes the gap ratios; a bridge's
+// joints their own gaps)
+static void check_joint_offsets(const Study& s, config::TableReader& top, const std::string& path) {
+  const toml::table* c = top.table("contact");
+  const toml::node* n = c ? c->get("joint_gap_offsets") : nullptr;
+  if (!n) return;
+  const std::string where = fmt::format("{}:{} [contact].joint_gap_offsets", path, n->source().begin.line);
+  const std::size_t joints = s.structures.building_count() - 1;
+  if (!s.structures.row())
+    throw InputError("[contact] joint_gap_offsets is given, and the study is a pair (one joint: its gap is the ratio "
+                     "x d)", where, "give buildings = 3 or more for a row, or remove the key (use [gaps] ratios)");
+  if (s.joint_gap_offsets.size() != joints)
+    throw InputError(fmt::format("[contact] joint_gap_offsets has {} values, and the row of {} buildings has {} joints",
+                                 s.joint_gap_offsets.size(), joints + 1, joints),
+                     where, fmt::format("give one offset (m) per joint, left to right: {} values", joints));
+}
+
 static void check_shear_study(const Study& s, config::TableReader& top, const toml::table* structures, const std::string& path) {
   check_row_study(s, top, structures, path);
   // [contact] levels / gap_offsets act on the floors of shear buildings and the joints of a row
@@ -419,6 +438,7 @@ static void check_shear_study(const Study& s, config::TableReader& top, const to
                        "give the buildings storeys (model = \"shear\") or a row (buildings = 3 or more), or remove the key");
     }
   check_level_tolerance(s, top, path);
+  check_joint_offsets(s, top, path);
   if (!s.structures.any_shear()) return;
   check_system_stepper(s, top, path, "a shear building", "or use model = \"sdof\"");
   if (s.contact.law == ContactLaw::stereomechanical) {
@@ -521,7 +541,7 @@ static void parse_bridge(Study& s, TableReader& top, const toml::table* bridge, 
   if (s.intensity.enabled)
     throw InputError("a fragility study ([intensity]: stripes, IDA) runs a pair of buildings, and the study is a bridge",
                      top.where("intensity"), "remove [intensity] to run the bridge in the probability or impacts scene");
-  for (const char* key : {"gap_offsets", "levels"}) {
+  for (const char* key : {"gap_offsets", "levels", "joint_gap_offsets"}) {
     const toml::table* c = top.table("contact");
     if (c && c->get(key))
       throw InputError(fmt::format("[contact] {} is given, and the study is a bridge (its joints are the contacts)", key),

@@ -146,7 +146,7 @@ void BlockPeaks::set_scaled(std::size_t to, const BlockPeaks& from, std::size_t 
 bool SystemBlock::scales_linearly(const BlockPeaks& p, std::size_t k, double ratio, double limit) const {
   constexpr double margin = 1.0 - 1e-9;  // as the pair's (study/run.cpp elastic_at)
   // ratio >= 1: then every scaled peak within the elastic range puts the anchor's there too (the anchor is linear)
-  if (!(ratio >= 1.0) || model_.bridge || !offsets_.empty() || p.status[k] != 0 || k >= p.springs.size()) return false;
+  if (!(ratio >= 1.0) || model_.bridge || !offsets_.empty() || !joint_offsets_.empty() || p.status[k] != 0 || k >= p.springs.size()) return false;
   const BlockPeaks::Springs& s = p.springs[k];
   if (s.walls) return false;
   for (std::size_t i = 0; i < s.law.size(); ++i)
@@ -199,6 +199,15 @@ std::vector<std::size_t> SystemBlock::table_indices(const model::System& sys) co
       to_table[e] = jt->second;
   }
   return to_table;
+}
+
+std::size_t SystemBlock::joint_index(const model::System& sys, std::size_t e) {
+  const model::ContactElement& ce = sys.contacts()[e];
+  const auto body = [&](const model::Side& s) {  // a column side's floor above (its p may be the ground)
+    return s.kind == model::SideKind::wall ? -1 : sys.body_of(s.kind == model::SideKind::interpolated ? s.q : s.p);
+  };
+  const int l = body(ce.left), r = body(ce.right);
+  return static_cast<std::size_t>(l < 0 ? r : r < 0 ? l : std::min(l, r));
 }
 
 std::string SystemBlock::joint_of(const std::string& label) {
@@ -269,6 +278,10 @@ void SystemBlock::set_lane(physics::SystemBatch& b, std::size_t lane, const Samp
     physics::set_contacts(b, lane, gap, p.kh, cn.e, per_level, shape_);
   }
   const std::size_t w = b.width;
+  if (!joint_offsets_.empty())
+    for (std::size_t e = 0; e < sys.contacts().size(); ++e)
+      if (sys.groups()[static_cast<std::size_t>(sys.contacts()[e].group)].study_gap)
+        b.gap[physics::SystemBatch::at(static_cast<int>(e), lane, w)] += joint_offsets_[joint_index(sys, e)];
   for (int i = 0; i < static_cast<int>(nb); ++i) {
     if (!t.moat[i]) continue;
     const BuildingModel bm = model_.row_building(static_cast<std::size_t>(i));
@@ -296,13 +309,14 @@ std::vector<double> SystemBlock::element_offsets(const model::System& sys) const
     const std::vector<double>& o = model_.bridge->offsets;
     return std::all_of(o.begin(), o.end(), [](double x) { return x == 0.0; }) ? std::vector<double>{} : o;
   }
-  if (offsets_.empty()) return {};
+  if (offsets_.empty() && joint_offsets_.empty()) return {};
   std::vector<double> out(sys.contacts().size(), 0.0);
   for (std::size_t e = 0; e < out.size(); ++e) {
     const model::ContactElement& ce = sys.contacts()[e];
-    if (sys.groups()[static_cast<std::size_t>(ce.group)].study_gap && ce.level >= 1 &&
-        static_cast<std::size_t>(ce.level) <= offsets_.size())
+    if (!sys.groups()[static_cast<std::size_t>(ce.group)].study_gap) continue;
+    if (ce.level >= 1 && static_cast<std::size_t>(ce.level) <= offsets_.size())
       out[e] = offsets_[static_cast<std::size_t>(ce.level - 1)];
+    if (!joint_offsets_.empty()) out[e] += joint_offsets_[joint_index(sys, e)];  // set_lane's order: gap + level + joint
   }
   return out;
 }

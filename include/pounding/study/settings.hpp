@@ -191,6 +191,7 @@ void visit_settings(const Study& s, V&& v) {
   // shear buildings and rows (absent where not given: the other studies' bits)
   if (s.contact_levels != model::ContactLevels::common) v("contact", "levels", S(to_string(s.contact_levels)));
   if (!s.gap_offsets.empty()) v("contact", "gap_offsets", s.gap_offsets);
+  if (!s.joint_gap_offsets.empty()) v("contact", "joint_gap_offsets", s.joint_gap_offsets);
   if (s.restitution) v("contact", "restitution", s.restitution->describe());  // e(v0); absent: e for every impact
 
   v("analysis", "stepper", S(to_string(s.stepper)));

@@ -158,6 +158,9 @@ struct Study {
   // pound, and per level from level 1 the offset (m, >= 0) added to the study gap (levels beyond the list: 0)
   model::ContactLevels contact_levels = model::ContactLevels::common;
   std::vector<double> gap_offsets;
+  // [contact] joint_gap_offsets (a row of n buildings): per joint left to right (n - 1 values, m, >= 0) the offset
+  // added to the study gap of every element of that joint, besides gap_offsets' per level (empty: none)
+  std::vector<double> joint_gap_offsets;
   // [contact] level_tolerance (m): floors of neighbouring shear buildings whose levels differ by at most this meet
   // floor to floor; any other floor below the neighbour's roof meets its column (model::shear_buildings)
   double level_tolerance = 0.05;

@@ -131,7 +131,12 @@ class SystemBlock {
   // For a study: its structures, [contact] model, e, levels, gap_offsets, level_tolerance and shape_functions.
   explicit SystemBlock(const Study& s)
       : SystemBlock(s.structures, s.contact, s.e, s.contact_levels, s.gap_offsets, s.level_tolerance,
-                    s.shape_functions) {}
+                    s.shape_functions) {
+    set_joint_offsets(s.joint_gap_offsets);
+  }
+  // [contact] joint_gap_offsets of a row: per joint left to right (m), added to every element of the joint besides
+  // the per-level offsets; D = max over elements of (closing - both offsets). Empty: none.
+  void set_joint_offsets(std::vector<double> offsets) { joint_offsets_ = std::move(offsets); }
 
   // Every lane of `pairs`, uncoupled: `none` is the study's contact model with law none (the study-gap group's law);
   // status, u1, u2, closing = D.
@@ -192,7 +197,7 @@ class SystemBlock {
   ContactModel contact_;
   double e_;
   model::ContactLevels levels_;
-  std::vector<double> offsets_;
+  std::vector<double> offsets_, joint_offsets_;
   double tolerance_ = 0.05;
   std::span<const GroundMotion> channels_;
   model::ShapeFunctions shape_ = model::ShapeFunctions::linear;
@@ -210,6 +215,8 @@ class SystemBlock {
   std::vector<std::size_t> table_indices(const model::System& sys) const;
   // "K|K+1" of a row's element label ("2|3 level 1/2"), "" for a pair's or a wall's
   static std::string joint_of(const std::string& label);
+  // The joint (0 = buildings 1|2) of element e of a row's System: the lower of its two bodies
+  static std::size_t joint_index(const model::System& sys, std::size_t e);
 };
 
 // Before any work: every sample's shear buildings against the integration step of every record, with
