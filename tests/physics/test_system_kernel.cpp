@@ -130,7 +130,9 @@ TEST(SystemKernel, SdofPairThroughTheDynamicLayoutIsThePairKernel) {
       // contact_energy, which is the cancellation residual work - stored of a law that dissipates nothing:
       // rounding, not physics (a wrong term moves an observer by 1e-3 or more), so 1e-7 there.
       EXPECT_LE(c.worst, bits_claimed() ? 1e-12 : 1e-7) << name << ": " << c.where;
-      if (bits_claimed()) EXPECT_EQ(c.bits, c.n) << name << ": not bit-identical, worst " << c.where;
+      if (bits_claimed()) {
+        EXPECT_EQ(c.bits, c.n) << name << ": not bit-identical, worst " << c.where;
+      }
     }
   EXPECT_GT(impacts, 100) << "the workload must pound";
 }
@@ -448,8 +450,12 @@ TEST(SystemKernel, CoarseContactIsMarkedPerLane) {
       EXPECT_GT(hw, 0.0) << "lane " << l << " must pound";
       EXPECT_EQ(r.status[l], static_cast<std::uint8_t>(hw > 0.274 ? LaneStatus::coarse : LaneStatus::ok))
           << "lane " << l << " h omega_c " << hw;
-      if (sub == 1) EXPECT_GT(hw, 0.274) << "lane " << l;
-      if (sub == 20) EXPECT_LT(hw, 0.274) << "lane " << l;
+      if (sub == 1) {
+        EXPECT_GT(hw, 0.274) << "lane " << l;
+      }
+      if (sub == 20) {
+        EXPECT_LT(hw, 0.274) << "lane " << l;
+      }
     }
   }
 }

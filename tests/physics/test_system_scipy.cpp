@@ -99,8 +99,9 @@ TEST(SystemScipy, LinearShearBuildingsAgainstLsim) {
         const double pu = R.peak_u.at({g, 0, f}), fu = R.final_u.at({g, 0, f});
         e_peak = std::max(e_peak, std::abs(r.peak_u[static_cast<std::size_t>(dof)] - pu) / pu);
         e_final = std::max(e_final, std::abs(r.final_u[static_cast<std::size_t>(dof)] - fu));
-        if (g == grids.back())
+        if (g == grids.back()) {
           EXPECT_NEAR(r.peak_u[static_cast<std::size_t>(dof)], pu, 1e-3 * pu) << n << " storeys, floor " << f;
+        }
       }
       err.push_back(e_final);
       std::printf("%d storeys, h = dt/%-3d peak |u| error %.3g (relative), final u error %.3g m\n", n, g, e_peak, e_final);
@@ -150,7 +151,9 @@ TEST(SystemScipy, PoundingPairAgainstSolveIvp) {
         const int dof = S.bodies()[static_cast<std::size_t>(b)].dofs[static_cast<std::size_t>(f - 1)];
         const double pu = R.peak_u.at({g, b, f}), x = r.peak_u[static_cast<std::size_t>(dof)];
         ed = std::max(ed, std::abs(x - pu) / pu);
-        if (g == grids.back()) EXPECT_NEAR(x, pu, 1e-3 * pu) << "building " << b + 1 << " floor " << f;
+        if (g == grids.back()) {
+          EXPECT_NEAR(x, pu, 1e-3 * pu) << "building " << b + 1 << " floor " << f;
+        }
       }
     for (int k = 0; k < 3; ++k) {
       const double pf = R.peak_force.at({g, k});
@@ -168,7 +171,9 @@ TEST(SystemScipy, PoundingPairAgainstSolveIvp) {
   for (std::size_t i = 0; i + 1 < grids.size(); ++i) {
     std::printf("  observed order: peak |u| %.2f, peak force %.2f\n", order(e_disp[i], e_disp[i + 1]),
                 order(e_force[i], e_force[i + 1]));
-    if (i < 2) EXPECT_NEAR(order(e_disp[i], e_disp[i + 1]), 2.0, 0.3) << "halving " << i;
+    if (i < 2) {
+      EXPECT_NEAR(order(e_disp[i], e_disp[i + 1]), 2.0, 0.3) << "halving " << i;
+    }
   }
   EXPECT_GE(total_impacts, 3) << "the pair must pound at some level";
 }
@@ -201,7 +206,9 @@ TEST(SystemScipy, ModalDampedBuildingAgainstLsim) {
       const double pu = R.peak_u.at({g, 0, f}), fu = R.final_u.at({g, 0, f});
       e_peak = std::max(e_peak, std::abs(r.peak_u[static_cast<std::size_t>(dof)] - pu) / pu);
       e_final = std::max(e_final, std::abs(r.final_u[static_cast<std::size_t>(dof)] - fu));
-      if (g == grids.back()) EXPECT_NEAR(r.peak_u[static_cast<std::size_t>(dof)], pu, 1e-3 * pu) << "floor " << f;
+      if (g == grids.back()) {
+        EXPECT_NEAR(r.peak_u[static_cast<std::size_t>(dof)], pu, 1e-3 * pu) << "floor " << f;
+      }
     }
     err.push_back(e_final);
     std::printf("modal 5 storeys, h = dt/%-3d peak |u| error %.3g (relative), final u error %.3g m\n", g, e_peak, e_final);

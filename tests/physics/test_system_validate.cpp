@@ -225,7 +225,9 @@ TEST(SystemValidate, StepBoundIsTheDampedCentralDifferenceLimit) {
       // the substeps it advises are the fewest that reach inside
       const double dt = 0.01, n = s.substeps(dt);
       EXPECT_LT(dt / n, s.h_max);
-      if (n > 1) EXPECT_GE(dt / (n - 1), s.h_max);
+      if (n > 1) {
+        EXPECT_GE(dt / (n - 1), s.h_max);
+      }
     }
 }
 
