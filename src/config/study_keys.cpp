@@ -236,7 +236,7 @@ constexpr StudyKey keys[] = {
      "each (a fixed period or a distribution in [structures.buildingK]: the period grid spans buildings 1 and 2); "
      "SDOF and shear buildings mix (a run of neighbouring SDOFs meets its shear neighbours at their floor nearest "
      "the lowest of its heights, at most the lower neighbour's roof; docs/rows.md); storey heights may differ; not "
-     "with equal_heights or [intensity].",
+     "with equal_heights. [intensity] (stripes, IDA) runs the whole row per stripe (docs/rows.md).",
      2.0, 16.0},
     {"structures", "buildingK", "table", "the [structures] defaults", "", "",
      "Building K of a row (K = 3..buildings, left to right after building 2); the same keys as building1."},

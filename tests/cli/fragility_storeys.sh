@@ -187,8 +187,6 @@ expect_error stepper ':[0-9]* \[analysis\].stepper, write stepper = "central-dif
   "$(echo "$body" | sed 's/^\[contact\]/[analysis]\nstepper = "nigam-jennings"\n\n[contact]/')"
 expect_error scene_impacts 'runs in the probability scene' \
   "$(echo "$body" | sed 's/^scene = "probability"/scene = "impacts"/')"
-expect_error row 'runs a pair, and the study is a row' \
-  "$(echo "$body" | sed -e 's/^model = "shear"/model = "shear"\nbuildings = 3/' \
-                        -e 's/^\[gaps\]/[structures.building3]\nperiod = 1.1\nheight = 35.0\n\n[gaps]/')"
+# (a row, refused here before, runs: cli.fragility_rows)
 [ $fails -eq 0 ]
 echo "fragility with shear buildings: invariance, the scaling trait, simulate agreement, IDA brackets, report, bad input"
