@@ -72,28 +72,4 @@ print(f"ok   stripe 7, record 1, model 1 of the row = simulate --buildings 3 on 
       f"{n + len(labels) + 1} numbers bit for bit, D {u['peak_closing'][6, 0, 0]:.4f} m")
 PY
 # 3. the IDA's brackets: up to 3 bisected (model, gap) of record 1, each checked at both ends
-"$py" - "$tmp/one_ida.h5" > "$tmp/brackets.txt" <<'PY'
-import sys, h5py, numpy as np
-f = h5py.File(sys.argv[1], "r")
-lo, hi = f["ida/scale_lo"][0], f["ida/scale_hi"][0]
-gaps = f["ida/gaps"][()]
-d = f["models/code_gap"][()]
-n = 0
-for m in range(lo.shape[0]):
-    for g in range(lo.shape[1]):
-        if np.isfinite(hi[m, g]) and 0 < lo[m, g] < hi[m, g] and n < 3 and m == 0:
-            print(m, repr(float(lo[m, g])), repr(float(hi[m, g])), repr(float(gaps[g] * d[m])))
-            n += 1
-assert n > 0, "no bisected bracket"
-PY
-while read -r m flo fhi gap; do
-  sim "$flo" "$tmp/lo.json"; sim "$fhi" "$tmp/hi.json"
-  "$py" - "$tmp/lo.json" "$tmp/hi.json" "$gap" <<'PY'
-import sys, json
-lo, hi, gap = json.load(open(sys.argv[1])), json.load(open(sys.argv[2])), float(sys.argv[3])
-D = lambda j: max(l["peak_closing"] for l in j["levels"])
-assert lo["status"] == "ok" and hi["status"] == "ok"
-assert D(lo) <= gap < D(hi), (D(lo), gap, D(hi))
-print(f"ok   IDA bracket: simulate D = {D(lo):.5f} m at scale_lo, {D(hi):.5f} m at scale_hi, gap {gap:.5f} m")
-PY
-done < "$tmp/brackets.txt"
+check_ida_brackets "$tmp/one_ida.h5"
