@@ -31,45 +31,14 @@ using test::have_scipy;
 using test::python;
 using test::Reference;
 using test::run_reference;
+using test::el_centro;
+using test::modal_stick;
+using test::order;
+using test::run_engine;
+using test::stick;
 
 namespace {
 
-// The first `seconds` of El Centro 1940 NS (PEER, dt 0.02 s), m/s^2.
-std::vector<double> el_centro(double seconds, double& dt) {
-  const Record r =
-      read_record(testdata::real_records_dir() + "/ImperialValley_1940_ElCentro_NS_Peknold1559pts.AT2");
-  dt = r.dt;
-  const auto n = static_cast<std::size_t>(std::lround(seconds / dt)) + 1;
-  return {r.acc.begin(), r.acc.begin() + static_cast<long>(std::min(n, r.acc.size()))};
-}
-
-// The engine's results of one lane of `S` at `substeps`.
-SystemResult run_engine(const model::System& S, const std::vector<test::Stick>& sticks, const std::vector<double>& ag,
-                        double dt, int substeps, double gap, double kc, double e, std::span<const ContactModel> groups) {
-  SystemBatch B;
-  B.resize(S, 1);
-  for (std::size_t b = 0; b < sticks.size(); ++b) test::fill_stick(B, static_cast<int>(b), 0, sticks[b]);
-  for (std::size_t k = 0; k < S.contacts().size(); ++k) B.gap[k] = gap, B.kc[k] = kc, B.e[k] = e;
-  KernelSettings ks;
-  ks.substeps = substeps;
-  SystemResult r;
-  run_system(B, groups, GroundMotion{dt, ag, 0.0}, ks, r);
-  return r;
-}
-
-test::Stick stick(std::vector<double> m, std::vector<double> k, double a0, double a1) {
-  test::Stick s;
-  s.m = std::move(m), s.k = std::move(k), s.a0 = a0, s.a1 = a1;
-  return s;
-}
-
-double order(double e_coarse, double e_fine) { return std::log2(e_coarse / e_fine); }
-
-test::Stick modal_stick(std::vector<double> m, std::vector<double> k, std::vector<double> zeta) {
-  test::Stick s;
-  s.m = std::move(m), s.k = std::move(k), s.modal_zeta = std::move(zeta);
-  return s;
-}
 
 }  // namespace
 
@@ -121,22 +90,13 @@ TEST(SystemScipy, LinearShearBuildingsAgainstLsim) {
 TEST(SystemScipy, PoundingPairAgainstSolveIvp) {
   POUNDING_REQUIRE_REAL_RECORDS();
   if (!have_scipy()) POUNDING_SKIP_OR_FAIL("needs " + python() + " with numpy and scipy (tools/setup.sh)");
-  double dt = 0;
-  const std::vector<double> ag = el_centro(8.0, dt);
-  const std::vector<int> grids{10, 20, 40, 80};
-  const double gap = 0.01, kc = 1.0e10, e = 0.65;
-  const std::vector<test::Stick> sticks{stick({3.0e5, 3.0e5, 2.5e5}, {4.0e8, 3.6e8, 3.0e8}, 0.7, 0.0015),
-                                        stick({2.5e5, 2.5e5, 2.5e5, 2.2e5, 2.0e5}, {2.6e8, 2.5e8, 2.3e8, 2.0e8, 1.6e8},
-                                              0.4, 0.003)};
-  const model::System S = test::shear_row({3, 5}, true);
-  std::string contacts;
-  for (int k = 1; k <= 3; ++k)
-    contacts += fmt::format(R"({}{{"left": [0, {}], "right": [1, {}], "gap": {}, "kc": {}, "n": 1.5, "e": {}, "v0_min": 0.001}})",
-                            k > 1 ? ", " : "", k, k, gap, kc, e);
-  const Reference R = run_reference(fmt::format(
-      R"({{"mode": "nonlinear", "dt": {:.17g}, "ag": [{:.17g}], "duration": {:.17g}, "substeps": [{}], "bodies": [{}, {}], "contacts": [{}]}})",
-      dt, fmt::join(ag, ", "), dt * static_cast<double>(ag.size() - 1), fmt::join(grids, ", "), body_json(sticks[0]),
-      body_json(sticks[1]), contacts));
+  const test::PoundingPairCase c = test::pounding_pair_case();
+  const double dt = c.dt, gap = c.gap, kc = c.kc, e = c.e;
+  const std::vector<double>& ag = c.ag;
+  const std::vector<int>& grids = c.grids;
+  const std::vector<test::Stick>& sticks = c.sticks;
+  const model::System& S = c.S;
+  const Reference& R = c.R;
   ContactModel cm;
   cm.law = ContactLaw::hertzdamp;
   const ContactModel groups[] = {cm};

@@ -36,42 +36,14 @@ using test::have_scipy;
 using test::python;
 using test::Reference;
 using test::run_reference;
+using test::el_centro;
+using test::modal_stick;
+using test::order;
+using test::run_engine;
+using test::stick;
 
 namespace {
 
-std::vector<double> el_centro(double seconds, double& dt) {
-  const Record r = read_record(testdata::real_records_dir() + "/ImperialValley_1940_ElCentro_NS_Peknold1559pts.AT2");
-  dt = r.dt;
-  const auto n = static_cast<std::size_t>(std::lround(seconds / dt)) + 1;
-  return {r.acc.begin(), r.acc.begin() + static_cast<long>(std::min(n, r.acc.size()))};
-}
-
-SystemResult run_engine(const model::System& S, const std::vector<test::Stick>& sticks, const std::vector<double>& ag,
-                        double dt, int substeps, Stepper stepper, double gap, double kc, double e,
-                        std::span<const ContactModel> groups) {
-  SystemBatch B;
-  B.resize(S, 1);
-  for (std::size_t b = 0; b < sticks.size(); ++b) test::fill_stick(B, static_cast<int>(b), 0, sticks[b]);
-  for (std::size_t k = 0; k < S.contacts().size(); ++k) B.gap[k] = gap, B.kc[k] = kc, B.e[k] = e;
-  KernelSettings ks;
-  ks.substeps = substeps, ks.stepper = stepper;
-  SystemResult r;
-  run_system(B, groups, GroundMotion{dt, ag, 0.0}, ks, r);
-  return r;
-}
-
-test::Stick stick(std::vector<double> m, std::vector<double> k, double a0, double a1) {
-  test::Stick s;
-  s.m = std::move(m), s.k = std::move(k), s.a0 = a0, s.a1 = a1;
-  return s;
-}
-test::Stick modal_stick(std::vector<double> m, std::vector<double> k, std::vector<double> zeta) {
-  test::Stick s;
-  s.m = std::move(m), s.k = std::move(k), s.modal_zeta = std::move(zeta);
-  return s;
-}
-
-double order(double coarse, double fine) { return std::log2(coarse / fine); }
 
 ContactModel hertzdamp() {
   ContactModel cm;
@@ -85,7 +57,7 @@ std::vector<double> linear_errors(const model::System& S, const test::Stick& st,
   std::vector<double> err;
   const int n = static_cast<int>(st.m.size());
   for (int g : grids) {
-    const SystemResult r = run_engine(S, {st}, ag, dt, g, stepper, 0, 0, 1, {});
+    const SystemResult r = run_engine(S, {st}, ag, dt, g, 0, 0, 1, {}, stepper);
     EXPECT_EQ(r.status[0], static_cast<std::uint8_t>(LaneStatus::ok));
     double e_final = 0, e_peak = 0;
     for (int f = 1; f <= n; ++f) {
@@ -124,10 +96,11 @@ TEST(SystemSteppers, LinearShearBuildingAgainstLsimWithTheOrderMeasured) {
       const double want = stepper == Stepper::newmark ? 2.0 : 4.0;
       for (std::size_t i = 0; i + 1 < err.size(); ++i) {
         std::printf("  order %.3f\n", order(err[i], err[i + 1]));
-        if (stepper == Stepper::rk4 || i >= 1)  // Newmark at dt/2 is pre-asymptotic (measured 1.68, 1.91)
+        if (stepper == Stepper::rk4 || i >= 1) {  // Newmark at dt/2 is pre-asymptotic (measured 1.68, 1.91)
           EXPECT_NEAR(order(err[i], err[i + 1]), want, 0.1 * want) << to_string(stepper) << ", halving " << i;
+        }
       }
-      const SystemResult r = run_engine(S, {st}, ag, dt, grids.back(), stepper, 0, 0, 1, {});
+      const SystemResult r = run_engine(S, {st}, ag, dt, grids.back(), 0, 0, 1, {}, stepper);
       for (int f = 1; f <= 5; ++f) {
         const double pu = R.peak_u.at({grids.back(), 0, f});
         EXPECT_NEAR(r.peak_u[static_cast<std::size_t>(S.bodies()[0].dofs[static_cast<std::size_t>(f - 1)])], pu,
@@ -176,31 +149,24 @@ SystemBatch pair_3_5(const model::System& S, std::size_t width, double fy_scale,
 TEST(SystemSteppers, PoundingPairConvergesAcrossSteppers) {
   POUNDING_REQUIRE_REAL_RECORDS();
   if (!have_scipy()) POUNDING_SKIP_OR_FAIL("needs " + python() + " with numpy and scipy (tools/setup.sh)");
-  double dt = 0;
-  const std::vector<double> ag = el_centro(8.0, dt);
-  const std::vector<int> grids{10, 20, 40, 80};
-  const double gap = 0.01, kc = 1.0e10, e = 0.65;
-  const std::vector<test::Stick> sticks{stick({3.0e5, 3.0e5, 2.5e5}, {4.0e8, 3.6e8, 3.0e8}, 0.7, 0.0015),
-                                        stick({2.5e5, 2.5e5, 2.5e5, 2.2e5, 2.0e5}, {2.6e8, 2.5e8, 2.3e8, 2.0e8, 1.6e8},
-                                              0.4, 0.003)};
-  const model::System S = test::shear_row({3, 5}, true);
-  std::string contacts;
-  for (int k = 1; k <= 3; ++k)
-    contacts += fmt::format(R"({}{{"left": [0, {}], "right": [1, {}], "gap": {}, "kc": {}, "n": 1.5, "e": {}, "v0_min": 0.001}})",
-                            k > 1 ? ", " : "", k, k, gap, kc, e);
-  const Reference R = run_reference(fmt::format(
-      R"({{"mode": "nonlinear", "dt": {:.17g}, "ag": [{:.17g}], "duration": {:.17g}, "substeps": [{}], "bodies": [{}, {}], "contacts": [{}]}})",
-      dt, fmt::join(ag, ", "), dt * static_cast<double>(ag.size() - 1), fmt::join(grids, ", "), body_json(sticks[0]),
-      body_json(sticks[1]), contacts));
+  const test::PoundingPairCase c = test::pounding_pair_case();
+  const double dt = c.dt, gap = c.gap, kc = c.kc, e = c.e;
+  const std::vector<double>& ag = c.ag;
+  const std::vector<int>& grids = c.grids;
+  const std::vector<test::Stick>& sticks = c.sticks;
+  const model::System& S = c.S;
+  const Reference& R = c.R;
   const ContactModel groups[] = {hertzdamp()};
   const Stepper steppers[] = {Stepper::central_difference, Stepper::newmark, Stepper::rk4};
   std::vector<double> spread;
   for (int g : grids) {
     std::vector<std::vector<double>> peaks;
     for (Stepper st : steppers) {
-      const SystemResult r = run_engine(S, sticks, ag, dt, g, st, gap, kc, e, groups);
+      const SystemResult r = run_engine(S, sticks, ag, dt, g, gap, kc, e, groups, st);
       EXPECT_NE(r.status[0], static_cast<std::uint8_t>(LaneStatus::diverged)) << to_string(st) << " h = dt/" << g;
-      if (g >= 20) EXPECT_EQ(r.status[0], static_cast<std::uint8_t>(LaneStatus::ok)) << to_string(st) << " h = dt/" << g;
+      if (g >= 20) {
+        EXPECT_EQ(r.status[0], static_cast<std::uint8_t>(LaneStatus::ok)) << to_string(st) << " h = dt/" << g;
+      }
       double ed = 0;
       peaks.emplace_back();
       for (int b = 0; b < 2; ++b)
@@ -339,7 +305,9 @@ TEST(SystemSteppers, RefusesWhatTheyDoNotRun) {
     b2.resize(P, 1);
     EXPECT_NE(refusal(b2, one, ks).find("stereomechanical"), std::string::npos);
     ks.locate_contact = st == Stepper::rk4;
-    if (ks.locate_contact) EXPECT_NE(refusal(B, groups, ks).find("located contact onsets"), std::string::npos);
+    if (ks.locate_contact) {
+      EXPECT_NE(refusal(B, groups, ks).find("located contact onsets"), std::string::npos);
+    }
     ks.locate_contact = false;
   }
   // an isolated building on a friction pendulum: its smooth law is refused by name
