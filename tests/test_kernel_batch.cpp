@@ -314,7 +314,9 @@ TEST(BatchWidth, Width1And256GiveBitIdenticalLanes) {
                   lanes_differing, lanes37);
       EXPECT_EQ(lanes_differing, 0) << what;
       EXPECT_EQ(lanes37, 0) << what;
-      if (law != ContactLaw::none) EXPECT_GT(impacting, 32) << to_string(st) << " " << to_string(law);
+      if (law != ContactLaw::none) {
+        EXPECT_GT(impacting, 32) << to_string(st) << " " << to_string(law);
+      }
     }
   }
 }
