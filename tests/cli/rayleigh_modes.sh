@@ -16,6 +16,7 @@
 set -euo pipefail
 bin=$1; src=$2
 . "$src/tests/lib/study_invariance.sh"  # $tmp, expect_error
+. "$src/tests/lib/shear_pair_study.sh"  # sine_record, shear_pair_study, shear_pair_simulate
 fail() { echo "FAIL: $*"; exit 1; }
 
 # 1. the ratio each mode gets
@@ -49,52 +50,10 @@ print(f"ok   ratios: building1 modes 1,3 -> {[round(x, 6) for x in z]}, building
 PY
 
 # 2. study == simulate, bit for bit
-awk 'BEGIN { dt = 0.01; for (i = 0; i <= 1200; i++) { t = i * dt;
-       a = 0.25 * sin(2 * 3.14159265 * 0.9 * t) + 0.10 * sin(2 * 3.14159265 * 3.1 * t + 0.4);
-       printf "%.2f %.8f\n", t, a } }' > "$tmp/rec.txt"
-cat > "$tmp/one.toml" <<EOF
-title = "Rayleigh modes"
-seed = 7
-scene = "impacts"
-output = "out.h5"
-
-[records]
-files = ["rec.txt"]
-polarity = "recorded"
-
-[structures]
-model = "shear"
-storey_height = 3.2
-zeta = 0.05
-hysteresis = "elastic"
-samples_per_pair = 1
-
-[structures.building1]
-period = 0.78
-height = 9.6
-storeys = 3
-mass = 9.0e5
-storey_stiffness = 9.80665e7
-rayleigh_modes = [1, 3]
-
-[structures.building2]
-period = 1.22
-height = 12.8
-storeys = 4
-mass = 1.2e6
-storey_stiffness = 9.80665e7
-rayleigh_modes = [6, 3]
-
-[gaps]
-ratios = [0.1, 0.2, 0.5, 1.0]
-
-[analysis]
-max_dt = 0.001
-
-[contact]
-law = "hertzdamp"
-e = 0.5
-EOF
+sine_record "$tmp/rec.txt" 0.25 0.9 0.10 3.1
+shear_pair_study "$tmp/one.toml" 'title="Rayleigh modes"' 'structures.building1.rayleigh_modes=[1, 3]' \
+  structures.building2.height=12.8 structures.building2.storeys=4 structures.building2.mass=1.2e6 \
+  'structures.building2.rayleigh_modes=[6, 3]'
 "$bin" run "$tmp/one.toml" --out "$tmp/one.h5" > "$tmp/one.out" 2>&1 || { cat "$tmp/one.out"; fail "the study did not run"; }
 grep -q 'building1: .*Rayleigh damping on modes 1 and 3 (a sample of n < 3 storeys' "$tmp/one.out" \
   || fail "the run's model line does not state building 1's modes: $(grep building1 "$tmp/one.out")"
@@ -102,11 +61,8 @@ grep -q 'building2: .*Rayleigh damping on modes 3 and 6' "$tmp/one.out" \
   || fail "the run's model line does not state building 2's modes: $(grep building2 "$tmp/one.out")"
 # the study's gap at x = 0.5, to the bit (0.5 d, d = 0.005 max(h_j + h_j+1))
 gap=$(/usr/bin/python3 -c "import sys, h5py; print(repr(0.5 * h5py.File(sys.argv[1], 'r')['models/code_gap'][()].ravel()[0]))" "$tmp/one.h5")
-sim() {
-  "$bin" simulate --record "$tmp/rec.txt" --storeys1 3 --storey-mass1 3e5 --storey-stiffness1 9.80665e7 \
-    --storeys2 4 --storey-mass2 3e5 --storey-stiffness2 9.80665e7 --gap "$gap" --elastic --zeta 0.05 --dt 0.001 \
-    --json "$@"
-}
+pair_storeys2=4 pair_gap=$gap
+sim() { shear_pair_simulate "$@"; }
 sim --rayleigh-modes1 1,3 --rayleigh-modes2 3,4 --contact hertzdamp --e 0.5 > "$tmp/sim.json"
 sim --rayleigh-modes1 1,3 --rayleigh-modes2 3,4 --contact none > "$tmp/free.json"
 sim --contact none > "$tmp/default.json"

@@ -18,6 +18,7 @@ set -euo pipefail
 bin=$1; src=$2
 study=$PWD/unused.toml  # set below, once $tmp exists
 . "$src/tests/lib/study_invariance.sh"  # $tmp, cmp, study_invariance
+. "$src/tests/lib/shear_pair_study.sh"  # sine_record, shear_pair_study, shear_pair_simulate
 fail() { echo "FAIL: $*"; exit 1; }
 
 # 1. invariance of the quick storeys study with modal damping
@@ -32,58 +33,11 @@ fi
 echo "ok   invariance (ranks, batch width, skip_untouched), and modal != Rayleigh"
 
 # 2. study == simulate, bit for bit
-awk 'BEGIN { dt = 0.01; for (i = 0; i <= 1200; i++) { t = i * dt;
-       a = 0.25 * sin(2 * 3.14159265 * 0.9 * t) + 0.10 * sin(2 * 3.14159265 * 3.1 * t + 0.4);
-       printf "%.2f %.8f\n", t, a } }' > "$tmp/rec.txt"
-cat > "$tmp/one.toml" <<EOF
-title = "modal damping"
-seed = 7
-scene = "impacts"
-output = "out.h5"
-
-[records]
-files = ["rec.txt"]
-polarity = "recorded"
-
-[structures]
-model = "shear"
-storey_height = 3.2
-zeta = 0.05
-hysteresis = "elastic"
-samples_per_pair = 1
-damping = "modal"
-modal_zeta = [0.02, 0.05, 0.03]
-
-[structures.building1]
-period = 0.78
-height = 9.6
-storeys = 3
-mass = 9.0e5
-storey_stiffness = 9.80665e7
-
-[structures.building2]
-period = 1.22
-height = 16.0
-storeys = 5
-mass = 1.5e6
-storey_stiffness = 9.80665e7
-
-[gaps]
-ratios = [0.1, 0.2, 0.5, 1.0]
-
-[analysis]
-max_dt = 0.001
-
-[contact]
-law = "hertzdamp"
-e = 0.5
-EOF
+sine_record "$tmp/rec.txt" 0.25 0.9 0.10 3.1
+modal=('title="modal damping"' 'structures.damping="modal"' 'structures.modal_zeta=[0.02, 0.05, 0.03]')
+shear_pair_study "$tmp/one.toml" "${modal[@]}"
 "$bin" run "$tmp/one.toml" --out "$tmp/one.h5" --quiet > /dev/null 2>&1 || fail "the modal study did not run"
-sim() {
-  "$bin" simulate --record "$tmp/rec.txt" --storeys1 3 --storey-mass1 3e5 --storey-stiffness1 9.80665e7 \
-    --storeys2 5 --storey-mass2 3e5 --storey-stiffness2 9.80665e7 --gap 0.064 --elastic --zeta 0.05 --dt 0.001 \
-    --modal-zeta 0.02,0.05,0.03 --json "$@"
-}
+sim() { shear_pair_simulate --modal-zeta 0.02,0.05,0.03 "$@"; }
 # same_as_simulate NAME [simulate options]: the study $tmp/NAME.h5 against simulate with those options
 same_as_simulate() {
   local name=$1; shift
@@ -130,9 +84,8 @@ PY
 }
 same_as_simulate one
 # 2b. building 1 base-isolated on a linear bearing, its superstructure modally damped
-awk '{ print } /^storey_stiffness = / && !done { print "isolation = {bearing = \"linear\", base_mass = 3.0e5, k_eff = 1.2e7, zeta_eff = 0.1}"; done = 1 }' \
-  "$tmp/one.toml" > "$tmp/iso.toml"
-grep -c '^isolation = ' "$tmp/iso.toml" | grep -qx 1 || fail "iso.toml: expected one isolation line"
+shear_pair_study "$tmp/iso.toml" "${modal[@]}" \
+  'structures.building1.isolation={bearing = "linear", base_mass = 3.0e5, k_eff = 1.2e7, zeta_eff = 0.1}'
 "$bin" run "$tmp/iso.toml" --out "$tmp/iso.h5" --quiet > /dev/null 2>&1 || fail "the isolated modal study did not run"
 same_as_simulate iso --isolation1 linear --base-mass1 3e5 --bearing-keff1 1.2e7 --bearing-zeta1 0.1
 

@@ -16,59 +16,16 @@ bin=$1; src=$2
 study=$PWD/unused.toml
 . "$src/tests/lib/study_invariance.sh"  # $tmp, expect_error
 fail() { echo "FAIL: $*"; exit 1; }
+. "$src/tests/lib/shear_pair_study.sh"  # sine_record, shear_pair_study, shear_pair_simulate
 
-awk 'BEGIN { dt = 0.01; for (i = 0; i <= 1000; i++) { t = i * dt;
-       a = 0.30 * sin(2 * 3.14159265 * 0.9 * t) + 0.12 * sin(2 * 3.14159265 * 3.1 * t + 0.4);
-       printf "%.2f %.8f\n", t, a } }' > "$tmp/rec.txt"
-write_study() {  # write_study NAME STEPPER
-  cat > "$tmp/$1.toml" <<EOF
-title = "steppers on shear buildings"
-seed = 7
-scene = "impacts"
-output = "out.h5"
-
-[records]
-files = ["rec.txt"]
-polarity = "recorded"
-
-[structures]
-model = "shear"
-storey_height = 3.2
-zeta = 0.05
-hysteresis = "elastic"
-samples_per_pair = 1
-
-[structures.building1]
-period = 0.78
-height = 9.6
-storeys = 3
-mass = 9.0e5
-storey_stiffness = 9.80665e7
-
-[structures.building2]
-period = 1.22
-height = 16.0
-storeys = 5
-mass = 1.5e6
-storey_stiffness = 9.80665e7
-
-[gaps]
-ratios = [0.1, 0.2, 0.5, 1.0]
-
-[analysis]
-max_dt = 0.001
-stepper = "$2"
-
-[contact]
-law = "hertzdamp"
-e = 0.5
-EOF
+sine_record "$tmp/rec.txt" 0.30 0.9 0.12 3.1 1000
+write_study() {  # write_study NAME STEPPER [KEY=VALUE ...]
+  local name=$1 st=$2; shift 2
+  shear_pair_study "$tmp/$name.toml" 'title="steppers on shear buildings"' "analysis.stepper=\"$st\"" "$@"
 }
 sim() {  # sim STEPPER [options]
   local st=$1; shift
-  "$bin" simulate --record "$tmp/rec.txt" --storeys1 3 --storey-mass1 3e5 --storey-stiffness1 9.80665e7 \
-    --storeys2 5 --storey-mass2 3e5 --storey-stiffness2 9.80665e7 --gap 0.064 --zeta 0.05 --elastic \
-    --dt 0.001 --stepper "$st" --json "$@"
+  shear_pair_simulate --stepper "$st" "$@"
 }
 # same_as_simulate NAME STEPPER [simulate options]: the study $tmp/NAME.h5 against simulate with those options
 same_as_simulate() {
@@ -126,8 +83,8 @@ for k in ("uncoupled/peak_u_floors2", "impacts/peak_u2"):
 PY
 
 # 2. building 1 isolated on a lead-rubber bearing, rk4
-awk '{ print } /^storey_stiffness = / && !done { print "isolation = {bearing = \"lead-rubber\", base_mass = 3.0e5, k1 = 6.0e7, k2 = 6.0e6, qd = 1.5e5}"; done = 1 }' \
-  "$tmp/rk4.toml" > "$tmp/iso.toml"
+write_study iso rk4 \
+  'structures.building1.isolation={bearing = "lead-rubber", base_mass = 3.0e5, k1 = 6.0e7, k2 = 6.0e6, qd = 1.5e5}'
 "$bin" run "$tmp/iso.toml" --out "$tmp/iso.h5" --quiet > "$tmp/iso.out" 2>&1 || { cat "$tmp/iso.out"; fail "the isolated rk4 study did not run"; }
 same_as_simulate iso rk4 --isolation1 lead-rubber --base-mass1 3e5 --bearing-k1-1 6e7 --bearing-k2-1 6e6 --bearing-qd1 1.5e5
 
