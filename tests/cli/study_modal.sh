@@ -10,6 +10,8 @@
 #     mode's ratio (0.02, 0.05, 0.03, then 0.03);
 #     2b. the same with building 1 base-isolated (linear bearing): the superstructure's fixed-base modal C acting on
 #     the floors' velocities relative to the base (physics::isolated_damping_matrix; refused before);
+#     2c. /settings/structures.buildingK holds damping = "modal" and modal_zeta where a building has them ([structures]
+#     or its own table; damping alone without modal_zeta), and neither with Rayleigh damping (the default);
 #  3. bad input: modal_zeta without damping = "modal", an unknown damping name, modal on an
 #     SDOF building, a ratio outside [0, 0.5], --modal-zeta for an SDOF pair or for one-storey buildings: one ERROR naming the key, exit 2, no
 #     results file.
@@ -88,6 +90,29 @@ shear_pair_study "$tmp/iso.toml" "${modal[@]}" \
   'structures.building1.isolation={bearing = "linear", base_mass = 3.0e5, k_eff = 1.2e7, zeta_eff = 0.1}'
 "$bin" run "$tmp/iso.toml" --out "$tmp/iso.h5" --quiet > /dev/null 2>&1 || fail "the isolated modal study did not run"
 same_as_simulate iso --isolation1 linear --base-mass1 3e5 --bearing-keff1 1.2e7 --bearing-zeta1 0.1
+
+# 2c. /settings/structures.buildingK holds damping = "modal" and modal_zeta where the building has them, and nothing
+# with Rayleigh damping (the default: every earlier study's file and bits); per building as in [structures]
+shear_pair_study "$tmp/b2.toml" 'title="modal damping per building"' 'structures.building1.damping="modal"' \
+  'structures.building2.damping="modal"' 'structures.building2.modal_zeta=[0.04]'
+"$bin" run "$tmp/b2.toml" --out "$tmp/b2.h5" --quiet > /dev/null 2>&1 || fail "the per-building modal study did not run"
+/usr/bin/python3 - "$tmp" <<'PY'
+import sys, h5py
+tmp = sys.argv[1]
+def damping(name, b):
+    a = h5py.File(f"{tmp}/{name}.h5", "r")[f"settings/structures.building{b}"].attrs
+    d, z = a.get("damping"), a.get("modal_zeta")
+    return (d.decode() if isinstance(d, bytes) else d, None if z is None else [float(x) for x in z])
+modal = lambda *z: ("modal", list(z))
+want = {("one", 1): modal(0.02, 0.05, 0.03), ("one", 2): modal(0.02, 0.05, 0.03), ("iso", 1): modal(0.02, 0.05, 0.03),
+        ("r0", 1): modal(0.05, 0.03), ("r0", 2): modal(0.05, 0.03),
+        ("b2", 1): ("modal", None), ("b2", 2): modal(0.04),
+        ("rayleigh", 1): (None, None), ("rayleigh", 2): (None, None)}
+got = {k: damping(*k) for k in want}
+bad = {k: (got[k], w) for k, w in want.items() if got[k] != w}
+assert not bad, bad
+print(f"ok   settings: damping/modal_zeta of each building as given ({len(want)} buildings), none with Rayleigh")
+PY
 
 # 3. bad input
 fails=0
