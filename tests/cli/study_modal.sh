@@ -42,42 +42,18 @@ shear_pair_study "$tmp/one.toml" "${modal[@]}"
 sim() { shear_pair_simulate --modal-zeta 0.02,0.05,0.03 "$@"; }
 # same_as_simulate NAME [simulate options]: the study $tmp/NAME.h5 against simulate with those options
 same_as_simulate() {
-  local name=$1; shift
-  sim "$@" --contact hertzdamp --e 0.5 > "$tmp/$name-sim.json"
-  sim "$@" --contact none > "$tmp/$name-free.json"
-  /usr/bin/python3 - "$tmp" "$name" <<'PY'
-import json, sys, h5py
-tmp, name = sys.argv[1], sys.argv[2]
-f = h5py.File(f"{tmp}/{name}.h5", "r")
-s, u = json.load(open(f"{tmp}/{name}-sim.json")), json.load(open(f"{tmp}/{name}-free.json"))
-iso = "peak_bearing_u1" in u  # building 1 isolated: the study's floors of building 1 start with the base
-g = list(f["impacts/gap_ratios"][()]).index(0.5)
+  simulate_both "$@"
+  PYTHONPATH="$src/tests/lib" /usr/bin/python3 - "$tmp" "$1" <<'PY'
+import sys
+from study_simulate import load, pair_checks, assert_equal
+f, s, u, g = load(*sys.argv[1:3])
+name = sys.argv[2]
 assert abs(0.5 * f["models/code_gap"][()][0] - 0.064) < 1e-15
-at = lambda name: f[name][()].ravel()[g]
-checks = [("impact_count", at("impacts/impact_count"), s["impact_count"]),
-          ("peak_force", at("impacts/peak_force"), s["peak_force"]),
-          ("t_first_impact", at("impacts/t_first_impact"), s["t_first_impact"]),
-          ("peak_u1", at("impacts/peak_u1"), max(s["peak_u1"] + ([s["peak_bearing_u1"]] if iso else []))),
-          ("peak_u2", at("impacts/peak_u2"), max(s["peak_u2"])),
-          ("uncoupled peak_closing", f["uncoupled/peak_closing"][()].ravel()[0], u["peak_closing"])]
-for b in (1, 2):
-    base = iso and b == 1
-    for field, key in (("peak_u_floors", "peak_u"), ("peak_drift", "peak_drift"), ("peak_acc_floors", "peak_abs_acc")):
-        mine = list(f[f"uncoupled/{field}{b}"][()].ravel())
-        theirs = u[f"{key}{b}_g" if key == "peak_abs_acc" else f"{key}{b}"]
-        if base:
-            mine, theirs = (mine, [u["peak_bearing_u1"]] + theirs) if key == "peak_u" else (mine[1:], theirs)
-        checks += [(f"uncoupled {field}{b}[{i}]", a, c) for i, (a, c) in enumerate(zip(mine, theirs, strict=True))]
-        # with contact at the gap (issue 25 §3: per-floor observers of the coupled run)
-        mine = list(f[f"impacts/{field}{b}"][0, 0, g])
-        theirs = s[f"{key}{b}_g" if key == "peak_abs_acc" else f"{key}{b}"]
-        if base:
-            mine, theirs = (mine, [s["peak_bearing_u1"]] + theirs) if key == "peak_u" else (mine[1:], theirs)
-        checks += [(f"impacts {field}{b}[{i}]", a, c) for i, (a, c) in enumerate(zip(mine, theirs, strict=True))]
-assert s["status"] == "ok" and u["status"] == "ok" and at("impacts/status") == 0
+# with the coupled run's floors at the gap (issue 25 §3: per-floor observers of the coupled run)
+checks = pair_checks(f, s, u, g, coupled_floors=True)
+assert s["status"] == "ok" and u["status"] == "ok" and f["impacts/status"][()].ravel()[g] == 0
 assert s["impact_count"] > 0, "no impacts at the gap"
-bad = [(n, a, c) for n, a, c in checks if not (a == c)]
-assert not bad, bad
+assert_equal(checks)
 zetas = [b["modal_damping"] for b in s["buildings"]]
 assert zetas == [[0.02, 0.05, 0.03], [0.02, 0.05, 0.03, 0.03, 0.03]], zetas
 print(f"ok   {name}: study == simulate bit for bit ({len(checks)} numbers; {s['impact_count']} impacts), modal ratios "
