@@ -224,7 +224,9 @@ constexpr StudyKey keys[] = {
      "With damping = \"rayleigh\" (shear model): the two modes i < j (either order) that get the building's zeta "
      "exactly; the others get a0 / (2 omega) + a1 omega / 2. A sampled building with fewer than j storeys takes "
      "modes min(i, j' - 1) and j' = min(j, n) -- the highest two it has (e.g. [1, 3] damps a two-storey building "
-     "at modes 1 and 2) -- and one storey is the SDOF (c = 2 zeta sqrt(k m)). The run's model line states it; "
+     "at modes 1 and 2) -- and one storey is the SDOF (c = 2 zeta sqrt(k m)); so in a row mixing SDOF and shear "
+     "buildings it damps the shear buildings and the SDOFs keep their zeta (refused where every building is an "
+     "SDOF). The run's model line states it; "
      "pounding modes --rayleigh-modes and simulate --rayleigh-modesK show each mode's ratio. The default of every "
      "building.", 1.0, 200.0},
     {"structures", "building1", "table", "the [structures] defaults", "", "", "Building 1 (the left one)."},

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "common.hpp"
+#include "pounding/model/modes.hpp"
 #include "pounding/model/shear_building.hpp"
 #include "pounding/physics/batch.hpp"
 #include "pounding/physics/shear_building.hpp"
@@ -381,6 +382,7 @@ struct TopologyArgs {
   double level_tolerance;
   std::string levels, profile;
   std::vector<double> modal_zeta;  // classical modal damping of the multi-storey buildings (empty: Rayleigh)
+  std::vector<int> rayleigh;       // Rayleigh's modes i < j per building, flat (i1, j1, i2, j2, ...)
 };
 
 // The moat walls' equivalent-sphere material (simulate's --density, --E, --nu) for a moat without a stiffness.
@@ -396,6 +398,10 @@ std::vector<model::StickTopology> sticks_of(const TopologyArgs& t, const std::ve
   if (t.profile != "uniform" && t.profile != "shear") throw py::value_error("stiffness_profile: 'uniform' or 'shear'");
   for (double z : t.modal_zeta)
     if (!(z >= 0.0 && z <= 0.5)) throw py::value_error("modal_zeta: every ratio in [0, 0.5]");
+  if (t.rayleigh.size() != 2 * nb) throw py::value_error("rayleigh_modes: one pair (i, j) for every building or one per building");
+  for (std::size_t b = 0; b < nb; ++b)
+    if (!(t.rayleigh[2 * b] >= 1 && t.rayleigh[2 * b] < t.rayleigh[2 * b + 1] && t.rayleigh[2 * b + 1] <= 200))
+      throw py::value_error("rayleigh_modes: two different modes in [1, 200] (i, j)");
   std::vector<model::StickTopology> sticks(nb);
   for (std::size_t b = 0; b < nb; ++b) {
     if (t.storeys[b] < 1 || t.storeys[b] > model::max_storeys)
@@ -430,10 +436,14 @@ void validate_bases(const std::vector<BaseInputs>& base, std::size_t n, bool e_g
 // Lane l's buildings, pounding contacts and moat walls.
 void set_lane(physics::SystemBatch& all, std::size_t l, const Lanes& L, const std::vector<BaseInputs>& base,
               const std::vector<model::StickTopology>& sticks, model::StiffnessProfile profile,
-              const std::vector<double>& modal_zeta, const MoatMaterial& mat) {
+              const TopologyArgs& t, const MoatMaterial& mat) {
   for (std::size_t bi = 0; bi < sticks.size(); ++bi) {
     physics::ShearSpec s = spec_of(L, bi, l, profile);
-    if (sticks[bi].damping == model::DampingForm::dense) s.modal = true, s.modal_zeta = modal_zeta;
+    if (sticks[bi].damping == model::DampingForm::dense) s.modal = true, s.modal_zeta = t.modal_zeta;
+    if (sticks[bi].storeys > 1) {  // the highest two modes the building has where it has fewer than j (as studies)
+      const model::ModePair r = model::rayleigh_modes_for(t.rayleigh[2 * bi], t.rayleigh[2 * bi + 1], sticks[bi].storeys);
+      s.mode_i = r.i, s.mode_j = r.j;
+    }
     if (sticks[bi].isolated)
       physics::set_isolated_building(all, l, static_cast<int>(bi), s,
                                      sampling::isolation_spec(lane_input(base[bi], l, true), s.floor_mass[0]));
@@ -481,7 +491,7 @@ py::dict analyze_storeys_py(const py::dict& buildings, const Array& ag, double d
   const std::size_t batches = (L.n + width - 1) / width;
   run_parallel(batches, threads, [&](std::size_t b) {  // the lanes' numbers (modes, Rayleigh) on every core
     for (std::size_t l = b * width; l < std::min(L.n, (b + 1) * width); ++l)
-      set_lane(all, l, L, base, sticks, profile, t.modal_zeta, mat);
+      set_lane(all, l, L, base, sticks, profile, t, mat);
   });
   physics::throw_first(physics::validate(all, groups, gm, ks));  // every pair before any run, numbered as given
   physics::SystemResult out;
@@ -499,7 +509,8 @@ py::dict analyze_storeys_py(const py::dict& buildings, const Array& ag, double d
 
 void bind_systems(py::module_& m) {
   py::class_<TopologyArgs>(m, "_Topology")
-      .def(py::init<std::vector<int>, std::vector<double>, double, std::string, std::string, std::vector<double>>());
+      .def(py::init<std::vector<int>, std::vector<double>, double, std::string, std::string, std::vector<double>,
+                    std::vector<int>>());
   py::class_<MoatMaterial>(m, "_MoatMaterial").def(py::init<double, double, double>());
   m.def("analyze_storeys", &analyze_storeys_py, py::arg("buildings"), py::arg("ag"), py::arg("dt"),
         py::arg("topology"), py::arg("stepper"), py::arg("contact"), py::arg("damping"), py::arg("n"),

@@ -243,6 +243,15 @@ void resolve_row(StructureModel& m, const std::vector<const toml::table*>& table
   // (study/system_block.cpp mixed_row_levels)
 }
 
+// [structures] rayleigh_modes damps the shear buildings; an SDOF building keeps its zeta (the rule's one storey,
+// model::rayleigh_modes_for; parse_building drops the inherited modes), so the key is refused only where no
+// building has storeys to damp.
+void check_shared_rayleigh(const StructureModel& m, const WhereFn& where) {
+  if ((m.rayleigh_i == 1 && m.rayleigh_j == 2) || m.any_shear()) return;
+  throw InputError("rayleigh_modes is given and every building is an SDOF", where("rayleigh_modes"),
+                   "add model = \"shear\" to [structures] or to a building's table, or remove rayleigh_modes");
+}
+
 }  // namespace
 
 StructureModel parse_structure_model(const toml::table& table, const std::string& file) {
@@ -280,7 +289,9 @@ StructureModel parse_structure_model(const toml::table& table, const std::string
     m.rayleigh_i = shared.rayleigh_i, m.rayleigh_j = shared.rayleigh_j;
     if (r.get("storey_height"))
       m.storey_height = r.number("storey_height", 0.0);
-    check_shear_keys(m.default_building(), [&](std::string_view key) { return r.where(key); });
+    BuildingModel d = m.default_building();
+    if (!d.shear()) d.rayleigh_i = 1, d.rayleigh_j = 2;  // modes for the shear buildings only (check_shared_rayleigh)
+    check_shear_keys(d, [&](std::string_view key) { return r.where(key); });
   }
   const std::array<const toml::table*, 2> buildings{r.table("building1"), r.table("building2")};
   const std::vector<const toml::table*> row_tables = read_row_tables(r, table, file);
@@ -311,6 +322,7 @@ StructureModel parse_structure_model(const toml::table& table, const std::string
   validate_building(m.default_building(), where);
   resolve_buildings(m, buildings, file, where, rule_explicit);
   resolve_row(m, row_tables, file, where, rule_explicit);
+  check_shared_rayleigh(m, where);
   return m;
 }
 

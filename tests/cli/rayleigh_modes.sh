@@ -16,6 +16,7 @@
 set -euo pipefail
 bin=$1; src=$2
 . "$src/tests/lib/study_invariance.sh"  # $tmp, expect_error
+. "$src/tests/lib/shear_pair_study.sh"  # sine_record, shear_pair_study, shear_pair_simulate
 fail() { echo "FAIL: $*"; exit 1; }
 
 # 1. the ratio each mode gets
@@ -49,52 +50,10 @@ print(f"ok   ratios: building1 modes 1,3 -> {[round(x, 6) for x in z]}, building
 PY
 
 # 2. study == simulate, bit for bit
-awk 'BEGIN { dt = 0.01; for (i = 0; i <= 1200; i++) { t = i * dt;
-       a = 0.25 * sin(2 * 3.14159265 * 0.9 * t) + 0.10 * sin(2 * 3.14159265 * 3.1 * t + 0.4);
-       printf "%.2f %.8f\n", t, a } }' > "$tmp/rec.txt"
-cat > "$tmp/one.toml" <<EOF
-title = "Rayleigh modes"
-seed = 7
-scene = "impacts"
-output = "out.h5"
-
-[records]
-files = ["rec.txt"]
-polarity = "recorded"
-
-[structures]
-model = "shear"
-storey_height = 3.2
-zeta = 0.05
-hysteresis = "elastic"
-samples_per_pair = 1
-
-[structures.building1]
-period = 0.78
-height = 9.6
-storeys = 3
-mass = 9.0e5
-storey_stiffness = 9.80665e7
-rayleigh_modes = [1, 3]
-
-[structures.building2]
-period = 1.22
-height = 12.8
-storeys = 4
-mass = 1.2e6
-storey_stiffness = 9.80665e7
-rayleigh_modes = [6, 3]
-
-[gaps]
-ratios = [0.1, 0.2, 0.5, 1.0]
-
-[analysis]
-max_dt = 0.001
-
-[contact]
-law = "hertzdamp"
-e = 0.5
-EOF
+sine_record "$tmp/rec.txt" 0.25 0.9 0.10 3.1
+shear_pair_study "$tmp/one.toml" 'title="Rayleigh modes"' 'structures.building1.rayleigh_modes=[1, 3]' \
+  structures.building2.height=12.8 structures.building2.storeys=4 structures.building2.mass=1.2e6 \
+  'structures.building2.rayleigh_modes=[6, 3]'
 "$bin" run "$tmp/one.toml" --out "$tmp/one.h5" > "$tmp/one.out" 2>&1 || { cat "$tmp/one.out"; fail "the study did not run"; }
 grep -q 'building1: .*Rayleigh damping on modes 1 and 3 (a sample of n < 3 storeys' "$tmp/one.out" \
   || fail "the run's model line does not state building 1's modes: $(grep building1 "$tmp/one.out")"
@@ -102,36 +61,20 @@ grep -q 'building2: .*Rayleigh damping on modes 3 and 6' "$tmp/one.out" \
   || fail "the run's model line does not state building 2's modes: $(grep building2 "$tmp/one.out")"
 # the study's gap at x = 0.5, to the bit (0.5 d, d = 0.005 max(h_j + h_j+1))
 gap=$(/usr/bin/python3 -c "import sys, h5py; print(repr(0.5 * h5py.File(sys.argv[1], 'r')['models/code_gap'][()].ravel()[0]))" "$tmp/one.h5")
-sim() {
-  "$bin" simulate --record "$tmp/rec.txt" --storeys1 3 --storey-mass1 3e5 --storey-stiffness1 9.80665e7 \
-    --storeys2 4 --storey-mass2 3e5 --storey-stiffness2 9.80665e7 --gap "$gap" --elastic --zeta 0.05 --dt 0.001 \
-    --json "$@"
-}
-sim --rayleigh-modes1 1,3 --rayleigh-modes2 3,4 --contact hertzdamp --e 0.5 > "$tmp/sim.json"
-sim --rayleigh-modes1 1,3 --rayleigh-modes2 3,4 --contact none > "$tmp/free.json"
+pair_storeys2=4 pair_gap=$gap
+sim() { shear_pair_simulate "$@"; }
+simulate_both one --rayleigh-modes1 1,3 --rayleigh-modes2 3,4
 sim --contact none > "$tmp/default.json"
-/usr/bin/python3 - "$tmp" <<'PY'
-import json, sys, h5py
+PYTHONPATH="$src/tests/lib" /usr/bin/python3 - "$tmp" <<'PY'
+import json, sys
+from study_simulate import load, pair_checks, assert_equal
 tmp = sys.argv[1]
-f = h5py.File(f"{tmp}/one.h5", "r")
-s, u, d = (json.load(open(f"{tmp}/{n}.json")) for n in ("sim", "free", "default"))
-g = list(f["impacts/gap_ratios"][()]).index(0.5)
-at = lambda name: f[name][()].ravel()[g]
-checks = [("impact_count", at("impacts/impact_count"), s["impact_count"]),
-          ("peak_force", at("impacts/peak_force"), s["peak_force"]),
-          ("t_first_impact", at("impacts/t_first_impact"), s["t_first_impact"]),
-          ("peak_u1", at("impacts/peak_u1"), max(s["peak_u1"])),
-          ("peak_u2", at("impacts/peak_u2"), max(s["peak_u2"])),
-          ("uncoupled peak_closing", f["uncoupled/peak_closing"][()].ravel()[0], u["peak_closing"])]
-for b in (1, 2):
-    for field, key in (("peak_u_floors", "peak_u"), ("peak_drift", "peak_drift"), ("peak_acc_floors", "peak_abs_acc")):
-        mine = list(f[f"uncoupled/{field}{b}"][()].ravel())
-        theirs = u[f"{key}{b}_g" if key == "peak_abs_acc" else f"{key}{b}"]
-        checks += [(f"uncoupled {field}{b}[{i}]", a, c) for i, (a, c) in enumerate(zip(mine, theirs, strict=True))]
-assert s["status"] == "ok" and u["status"] == "ok" and at("impacts/status") == 0
+f, s, u, g = load(tmp, "one")
+d = json.load(open(f"{tmp}/default.json"))
+checks = pair_checks(f, s, u, g)
+assert s["status"] == "ok" and u["status"] == "ok" and f["impacts/status"][()].ravel()[g] == 0
 assert s["impact_count"] > 0, "no impacts at the gap"
-bad = [(n, a, c) for n, a, c in checks if not (a == c)]
-assert not bad, bad
+assert_equal(checks)
 assert [b["rayleigh_modes"] for b in s["buildings"]] == [[1, 3], [3, 4]], s["buildings"]
 # the modes matter: simulate with the default modes gives other numbers
 same = sum(1 for i, v in enumerate(d["peak_u2"]) if v == u["peak_u2"][i])

@@ -19,71 +19,22 @@ bin=$1; src=$2
 study=$PWD/unused.toml  # set below, once $tmp exists
 . "$src/tests/lib/study_invariance.sh"  # $tmp, cmp, study_invariance
 fail() { echo "FAIL: $*"; exit 1; }
-record() {  # record <f1 Hz> <file>: 12 s at dt 0.01 (time s, acceleration g), 0.15 g at f1 plus 0.10 g at 3.1 Hz
-  awk -v f1="$1" 'BEGIN { dt = 0.01; for (i = 0; i <= 1200; i++) { t = i * dt;
-                   a = 0.15 * sin(2 * 3.14159265 * f1 * t) + 0.10 * sin(2 * 3.14159265 * 3.1 * t + 0.4);
-                   printf "%.2f %.8f\n", t, a } }' > "$2"
-}
-record 0.5 "$tmp/rec.txt"
-record 0.8 "$tmp/rec2.txt"
+. "$src/tests/lib/shear_pair_study.sh"  # sine_record, shear_pair_study, shear_pair_simulate
+sine_record "$tmp/rec.txt" 0.15 0.5 0.10 3.1
+sine_record "$tmp/rec2.txt" 0.15 0.8 0.10 3.1
 fps='bearing = "friction-pendulum", base_mass = 3.0e5, radius = 2.0, mu_slow = 0.05, mu_fast = 0.1, rate = 20.0, u_y = 5e-4'
 bw='bearing = "bouc-wen", base_mass = 3.0e5, k1 = 3.0e7, k2 = 1.2e6, qd = 6.0e5, a = 1.0, beta = 0.6, gamma = 0.4, eta = 2'
 fps_opts=(--isolation1 friction-pendulum --base-mass1 3e5 --bearing-radius1 2.0 --bearing-mu-slow1 0.05
           --bearing-mu-fast1 0.1 --bearing-rate1 20 --bearing-uy1 5e-4)
 bw_opts=(--isolation1 bouc-wen --base-mass1 3e5 --bearing-k1-1 3e7 --bearing-k2-1 1.2e6 --bearing-qd1 6e5
          --bearing-a1 1.0 --bearing-beta1 0.6 --bearing-gamma1 0.4 --bearing-eta1 2)
-# write_study <file> <scene> <isolation of building 1> [building 2's extra lines]
+# write_study <file> <scene> <isolation of building 1> [KEY=VALUE ...]
 write_study() {
-  cat > "$1" <<EOF
-title = "isolators"
-seed = 7
-scene = "$2"
-output = "out.h5"
-
-[records]
-files = ["rec.txt"]
-polarity = "recorded"
-
-[structures]
-model = "shear"
-storey_height = 3.2
-zeta = 0.05
-hysteresis = "elastic"
-samples_per_pair = 1
-
-[structures.building1]
-period = 0.78
-height = 9.6
-storeys = 3
-mass = 9.0e5
-storey_stiffness = 9.80665e7
-isolation = {$3}
-
-[structures.building2]
-period = 1.22
-height = 16.0
-storeys = 5
-mass = 1.5e6
-storey_stiffness = 9.80665e7
-${4:-}
-
-[gaps]
-ratios = [0.1, 0.2, 0.5, 1.0]
-
-[analysis]
-max_dt = 0.001
-
-[contact]
-law = "hertzdamp"
-damping_law = "three-spring"
-e = 0.5
-EOF
+  local file=$1 scene=$2 iso=$3; shift 3
+  shear_pair_study "$file" 'title="isolators"' "scene=\"$scene\"" "structures.building1.isolation={$iso}" \
+    'contact.damping_law="three-spring"' "$@"
 }
-sim() {
-  "$bin" simulate --record "$tmp/rec.txt" --storeys1 3 --storey-mass1 3e5 --storey-stiffness1 9.80665e7 \
-    --storeys2 5 --storey-mass2 3e5 --storey-stiffness2 9.80665e7 --gap 0.064 --elastic --zeta 0.05 --dt 0.001 \
-    --json "$@"
-}
+sim() { shear_pair_simulate "$@"; }
 
 # 1. each bearing: study == simulate, bit for bit; 2. the probability scene's uncoupled rows == the impacts scene's
 for b in fps bw; do
@@ -134,10 +85,10 @@ done
 
 # 3. both bearings, a sampled period, two records: ranks, batch width, skip_untouched
 study=$tmp/both.toml
-write_study "$study" impacts "$fps" "isolation = {${bw/base_mass = 3.0e5, /}}"
-sed -i 's/^files = \["rec.txt"\]/files = ["rec.txt", "rec2.txt"]/; s/^samples_per_pair = 1/samples_per_pair = 4/;
-        s/^period = 1.22/period = {lognormal = {median = 1.22, cov = 0.2}}/; s/^ratios = .*/ratios = [0.1, 0.5, 1.0, 3.0, 6.0]/' "$study"
-sed -i '/^\[structures.building2\]/,/^\[gaps\]/{/^storey_stiffness/d}' "$study"
+write_study "$study" impacts "$fps" "structures.building2.isolation={${bw/base_mass = 3.0e5, /}}" \
+  'records.files=["rec.txt", "rec2.txt"]' structures.samples_per_pair=4 \
+  'structures.building2.period={lognormal = {median = 1.22, cov = 0.2}}' structures.building2.storey_stiffness= \
+  'gaps.ratios=[0.1, 0.5, 1.0, 3.0, 6.0]'
 study_invariance
 /usr/bin/python3 - "$tmp/r0.h5" <<'PY'
 import sys, h5py, numpy as np

@@ -10,6 +10,8 @@
 #     mode's ratio (0.02, 0.05, 0.03, then 0.03);
 #     2b. the same with building 1 base-isolated (linear bearing): the superstructure's fixed-base modal C acting on
 #     the floors' velocities relative to the base (physics::isolated_damping_matrix; refused before);
+#     2c. /settings/structures.buildingK holds damping = "modal" and modal_zeta where a building has them ([structures]
+#     or its own table; damping alone without modal_zeta), and neither with Rayleigh damping (the default);
 #  3. bad input: modal_zeta without damping = "modal", an unknown damping name, modal on an
 #     SDOF building, a ratio outside [0, 0.5], --modal-zeta for an SDOF pair or for one-storey buildings: one ERROR naming the key, exit 2, no
 #     results file.
@@ -18,6 +20,7 @@ set -euo pipefail
 bin=$1; src=$2
 study=$PWD/unused.toml  # set below, once $tmp exists
 . "$src/tests/lib/study_invariance.sh"  # $tmp, cmp, study_invariance
+. "$src/tests/lib/shear_pair_study.sh"  # sine_record, shear_pair_study, shear_pair_simulate
 fail() { echo "FAIL: $*"; exit 1; }
 
 # 1. invariance of the quick storeys study with modal damping
@@ -32,96 +35,25 @@ fi
 echo "ok   invariance (ranks, batch width, skip_untouched), and modal != Rayleigh"
 
 # 2. study == simulate, bit for bit
-awk 'BEGIN { dt = 0.01; for (i = 0; i <= 1200; i++) { t = i * dt;
-       a = 0.25 * sin(2 * 3.14159265 * 0.9 * t) + 0.10 * sin(2 * 3.14159265 * 3.1 * t + 0.4);
-       printf "%.2f %.8f\n", t, a } }' > "$tmp/rec.txt"
-cat > "$tmp/one.toml" <<EOF
-title = "modal damping"
-seed = 7
-scene = "impacts"
-output = "out.h5"
-
-[records]
-files = ["rec.txt"]
-polarity = "recorded"
-
-[structures]
-model = "shear"
-storey_height = 3.2
-zeta = 0.05
-hysteresis = "elastic"
-samples_per_pair = 1
-damping = "modal"
-modal_zeta = [0.02, 0.05, 0.03]
-
-[structures.building1]
-period = 0.78
-height = 9.6
-storeys = 3
-mass = 9.0e5
-storey_stiffness = 9.80665e7
-
-[structures.building2]
-period = 1.22
-height = 16.0
-storeys = 5
-mass = 1.5e6
-storey_stiffness = 9.80665e7
-
-[gaps]
-ratios = [0.1, 0.2, 0.5, 1.0]
-
-[analysis]
-max_dt = 0.001
-
-[contact]
-law = "hertzdamp"
-e = 0.5
-EOF
+sine_record "$tmp/rec.txt" 0.25 0.9 0.10 3.1
+modal=('title="modal damping"' 'structures.damping="modal"' 'structures.modal_zeta=[0.02, 0.05, 0.03]')
+shear_pair_study "$tmp/one.toml" "${modal[@]}"
 "$bin" run "$tmp/one.toml" --out "$tmp/one.h5" --quiet > /dev/null 2>&1 || fail "the modal study did not run"
-sim() {
-  "$bin" simulate --record "$tmp/rec.txt" --storeys1 3 --storey-mass1 3e5 --storey-stiffness1 9.80665e7 \
-    --storeys2 5 --storey-mass2 3e5 --storey-stiffness2 9.80665e7 --gap 0.064 --elastic --zeta 0.05 --dt 0.001 \
-    --modal-zeta 0.02,0.05,0.03 --json "$@"
-}
+sim() { shear_pair_simulate --modal-zeta 0.02,0.05,0.03 "$@"; }
 # same_as_simulate NAME [simulate options]: the study $tmp/NAME.h5 against simulate with those options
 same_as_simulate() {
-  local name=$1; shift
-  sim "$@" --contact hertzdamp --e 0.5 > "$tmp/$name-sim.json"
-  sim "$@" --contact none > "$tmp/$name-free.json"
-  /usr/bin/python3 - "$tmp" "$name" <<'PY'
-import json, sys, h5py
-tmp, name = sys.argv[1], sys.argv[2]
-f = h5py.File(f"{tmp}/{name}.h5", "r")
-s, u = json.load(open(f"{tmp}/{name}-sim.json")), json.load(open(f"{tmp}/{name}-free.json"))
-iso = "peak_bearing_u1" in u  # building 1 isolated: the study's floors of building 1 start with the base
-g = list(f["impacts/gap_ratios"][()]).index(0.5)
+  simulate_both "$@"
+  PYTHONPATH="$src/tests/lib" /usr/bin/python3 - "$tmp" "$1" <<'PY'
+import sys
+from study_simulate import load, pair_checks, assert_equal
+f, s, u, g = load(*sys.argv[1:3])
+name = sys.argv[2]
 assert abs(0.5 * f["models/code_gap"][()][0] - 0.064) < 1e-15
-at = lambda name: f[name][()].ravel()[g]
-checks = [("impact_count", at("impacts/impact_count"), s["impact_count"]),
-          ("peak_force", at("impacts/peak_force"), s["peak_force"]),
-          ("t_first_impact", at("impacts/t_first_impact"), s["t_first_impact"]),
-          ("peak_u1", at("impacts/peak_u1"), max(s["peak_u1"] + ([s["peak_bearing_u1"]] if iso else []))),
-          ("peak_u2", at("impacts/peak_u2"), max(s["peak_u2"])),
-          ("uncoupled peak_closing", f["uncoupled/peak_closing"][()].ravel()[0], u["peak_closing"])]
-for b in (1, 2):
-    base = iso and b == 1
-    for field, key in (("peak_u_floors", "peak_u"), ("peak_drift", "peak_drift"), ("peak_acc_floors", "peak_abs_acc")):
-        mine = list(f[f"uncoupled/{field}{b}"][()].ravel())
-        theirs = u[f"{key}{b}_g" if key == "peak_abs_acc" else f"{key}{b}"]
-        if base:
-            mine, theirs = (mine, [u["peak_bearing_u1"]] + theirs) if key == "peak_u" else (mine[1:], theirs)
-        checks += [(f"uncoupled {field}{b}[{i}]", a, c) for i, (a, c) in enumerate(zip(mine, theirs, strict=True))]
-        # with contact at the gap (issue 25 §3: per-floor observers of the coupled run)
-        mine = list(f[f"impacts/{field}{b}"][0, 0, g])
-        theirs = s[f"{key}{b}_g" if key == "peak_abs_acc" else f"{key}{b}"]
-        if base:
-            mine, theirs = (mine, [s["peak_bearing_u1"]] + theirs) if key == "peak_u" else (mine[1:], theirs)
-        checks += [(f"impacts {field}{b}[{i}]", a, c) for i, (a, c) in enumerate(zip(mine, theirs, strict=True))]
-assert s["status"] == "ok" and u["status"] == "ok" and at("impacts/status") == 0
+# with the coupled run's floors at the gap (issue 25 §3: per-floor observers of the coupled run)
+checks = pair_checks(f, s, u, g, coupled_floors=True)
+assert s["status"] == "ok" and u["status"] == "ok" and f["impacts/status"][()].ravel()[g] == 0
 assert s["impact_count"] > 0, "no impacts at the gap"
-bad = [(n, a, c) for n, a, c in checks if not (a == c)]
-assert not bad, bad
+assert_equal(checks)
 zetas = [b["modal_damping"] for b in s["buildings"]]
 assert zetas == [[0.02, 0.05, 0.03], [0.02, 0.05, 0.03, 0.03, 0.03]], zetas
 print(f"ok   {name}: study == simulate bit for bit ({len(checks)} numbers; {s['impact_count']} impacts), modal ratios "
@@ -130,11 +62,33 @@ PY
 }
 same_as_simulate one
 # 2b. building 1 base-isolated on a linear bearing, its superstructure modally damped
-awk '{ print } /^storey_stiffness = / && !done { print "isolation = {bearing = \"linear\", base_mass = 3.0e5, k_eff = 1.2e7, zeta_eff = 0.1}"; done = 1 }' \
-  "$tmp/one.toml" > "$tmp/iso.toml"
-grep -c '^isolation = ' "$tmp/iso.toml" | grep -qx 1 || fail "iso.toml: expected one isolation line"
+shear_pair_study "$tmp/iso.toml" "${modal[@]}" \
+  'structures.building1.isolation={bearing = "linear", base_mass = 3.0e5, k_eff = 1.2e7, zeta_eff = 0.1}'
 "$bin" run "$tmp/iso.toml" --out "$tmp/iso.h5" --quiet > /dev/null 2>&1 || fail "the isolated modal study did not run"
 same_as_simulate iso --isolation1 linear --base-mass1 3e5 --bearing-keff1 1.2e7 --bearing-zeta1 0.1
+
+# 2c. /settings/structures.buildingK holds damping = "modal" and modal_zeta where the building has them, and nothing
+# with Rayleigh damping (the default: every earlier study's file and bits); per building as in [structures]
+shear_pair_study "$tmp/b2.toml" 'title="modal damping per building"' 'structures.building1.damping="modal"' \
+  'structures.building2.damping="modal"' 'structures.building2.modal_zeta=[0.04]'
+"$bin" run "$tmp/b2.toml" --out "$tmp/b2.h5" --quiet > /dev/null 2>&1 || fail "the per-building modal study did not run"
+/usr/bin/python3 - "$tmp" <<'PY'
+import sys, h5py
+tmp = sys.argv[1]
+def damping(name, b):
+    a = h5py.File(f"{tmp}/{name}.h5", "r")[f"settings/structures.building{b}"].attrs
+    d, z = a.get("damping"), a.get("modal_zeta")
+    return (d.decode() if isinstance(d, bytes) else d, None if z is None else [float(x) for x in z])
+modal = lambda *z: ("modal", list(z))
+want = {("one", 1): modal(0.02, 0.05, 0.03), ("one", 2): modal(0.02, 0.05, 0.03), ("iso", 1): modal(0.02, 0.05, 0.03),
+        ("r0", 1): modal(0.05, 0.03), ("r0", 2): modal(0.05, 0.03),
+        ("b2", 1): ("modal", None), ("b2", 2): modal(0.04),
+        ("rayleigh", 1): (None, None), ("rayleigh", 2): (None, None)}
+got = {k: damping(*k) for k in want}
+bad = {k: (got[k], w) for k, w in want.items() if got[k] != w}
+assert not bad, bad
+print(f"ok   settings: damping/modal_zeta of each building as given ({len(want)} buildings), none with Rayleigh")
+PY
 
 # 3. bad input
 fails=0

@@ -6,11 +6,15 @@
 #     rule puts them (building 1, 6.5 m high: the middle building's floor 2 at 6.4 m; building 3, 9.0 m: its roof at
 #     9.6 m) -- coupled: impact count, peak force, first impact, peak u of each building; uncoupled: every floor's
 #     peak u, drift and absolute acceleration, the peak closing; per element: the study's /system labels;
+#  1b. the same row with [structures] rayleigh_modes = [1, 3] (refused before: "rayleigh_modes is given for an SDOF
+#     building") equals simulate --rayleigh-modes2 1,3 bit for bit: the shear building takes modes 1 and 3, the SDOFs
+#     keep their zeta (the rule's one storey: their uncoupled peaks are 1.'s, building 2's all differ);
 #  2. quick-row with building 2 a shear building is bit-identical at 1 and 2 ranks, batch width 1 and
 #     skip_untouched = false, and every analysis's per-element rows give its totals (the SDOF joints' one element,
 #     whose level varies with the sample, lands in the joint's row): sum of element impacts = impact_count, largest
 #     element closing = peak_closing;
-#  3. bad input still refused: an SDOF with isolation in a row.
+#  3. bad input still refused: an SDOF with isolation in a row, an SDOF's own rayleigh_modes, [structures]
+#     rayleigh_modes where every building is an SDOF.
 # Synthetic records only (no ../shared needed). Args: <pounding binary> <source dir>
 set -euo pipefail
 bin=$1; src=$2
@@ -78,35 +82,43 @@ sim() {
     --storeys2 3 --storey-mass2 3e5 --storey-stiffness2 9.80665e7 \
     --storeys3 1 --storey-height3 9.6 --m3 6.0e5 --T3 0.7 --json "$@"
 }
-sim --contact hertzdamp --e 0.5 > "$tmp/sim.json"
-sim --contact none > "$tmp/free.json"
-/usr/bin/python3 - "$tmp" <<'PY'
-import json, sys, h5py
-tmp = sys.argv[1]
-f = h5py.File(f"{tmp}/one.h5", "r")
-s, u = json.load(open(f"{tmp}/sim.json")), json.load(open(f"{tmp}/free.json"))
-g = list(f["impacts/gap_ratios"][()]).index(0.5)
+# same_as_simulate NAME [simulate options]: the study $tmp/NAME.h5 against simulate with those options
+same_as_simulate() {
+  simulate_both "$@"
+  PYTHONPATH="$src/tests/lib" /usr/bin/python3 - "$tmp" "$1" <<'PY'
+import sys
+from study_simulate import load, pair_checks, assert_equal
+f, s, u, g = load(*sys.argv[1:3])
+name = sys.argv[2]
 assert abs(0.5 * f["models/code_gap"][()][0] - 0.0465) < 1e-15, f["models/code_gap"][()]  # d = 0.093 m
-at = lambda name: f[name][()].ravel()[g]
-checks = [("impact_count", at("impacts/impact_count"), s["impact_count"]),
-          ("peak_force", at("impacts/peak_force"), s["peak_force"]),
-          ("t_first_impact", at("impacts/t_first_impact"), s["t_first_impact"]),
-          ("uncoupled peak_closing", f["uncoupled/peak_closing"][()].ravel()[0], u["peak_closing"])]
-for b in (1, 2, 3):
-    checks.append((f"peak_u{b}", at(f"impacts/peak_u{b}"), max(s[f"peak_u{b}"])))
-    for field, key in (("peak_u_floors", "peak_u"), ("peak_drift", "peak_drift"), ("peak_acc_floors", "peak_abs_acc")):
-        mine = list(f[f"uncoupled/{field}{b}"][()].ravel())
-        theirs = u[f"{key}{b}_g" if key == "peak_abs_acc" else f"{key}{b}"]
-        checks += [(f"uncoupled {field}{b}[{i}]", a, c) for i, (a, c) in enumerate(zip(mine, theirs, strict=True))]
-assert s["status"] == "ok" and u["status"] == "ok" and at("impacts/status") == 0
+checks = pair_checks(f, s, u, g, buildings=3)
+assert s["status"] == "ok" and u["status"] == "ok" and f["impacts/status"][()].ravel()[g] == 0
 assert s["impact_count"] > 0, "no impacts at the gap"
-bad = [(n, a, c) for n, a, c in checks if not (a == c)]
-assert not bad, bad
+assert_equal(checks)
 labels = [x.decode() if isinstance(x, bytes) else x for x in f["system/element_label"][()]]
 theirs = [lv["label"] for lv in s["levels"]]
 assert labels == theirs, (labels, theirs)
-print(f"ok   (SDOF, 3-storey, SDOF) study == simulate bit for bit ({len(checks)} numbers; {s['impact_count']} impacts; "
-      f"elements {labels})")
+print(f"ok   {name}: (SDOF, 3-storey, SDOF) study == simulate bit for bit ({len(checks)} numbers; "
+      f"{s['impact_count']} impacts; elements {labels})")
+PY
+}
+same_as_simulate one
+# 1b. [structures] rayleigh_modes = [1, 3] in the same row: the shear building takes modes 1 and 3, the SDOFs keep
+# their zeta (the rule's one storey) -- simulate --rayleigh-modes2 1,3; the SDOFs' uncoupled peaks are one.h5's
+sed 's/^\[structures\]$/[structures]\nrayleigh_modes = [1, 3]/' "$tmp/one.toml" > "$tmp/modes.toml"
+grep -qx 'rayleigh_modes = \[1, 3\]' "$tmp/modes.toml" || fail "modes.toml: no rayleigh_modes line"
+"$bin" run "$tmp/modes.toml" --out "$tmp/modes.h5" > "$tmp/modes.out" 2>&1 || { cat "$tmp/modes.out"; fail "the row with [structures] rayleigh_modes did not run"; }
+grep -q 'building2: .*Rayleigh damping on modes 1 and 3' "$tmp/modes.out" || fail "building 2's model line: $(grep building2 "$tmp/modes.out")"
+same_as_simulate modes --rayleigh-modes2 1,3
+/usr/bin/python3 - "$tmp" <<'PY'
+import sys, h5py
+import numpy as np
+tmp = sys.argv[1]
+a, b = h5py.File(f"{tmp}/one.h5", "r"), h5py.File(f"{tmp}/modes.h5", "r")
+for k in ("peak_u_floors1", "peak_u_floors3", "peak_acc_floors1", "peak_acc_floors3"):
+    assert np.array_equal(a[f"uncoupled/{k}"][()], b[f"uncoupled/{k}"][()]), f"an SDOF's {k} changed with the modes"
+assert (a["uncoupled/peak_u_floors2"][()] != b["uncoupled/peak_u_floors2"][()]).all(), "the modes changed nothing"
+print("ok   modes: the SDOFs' uncoupled peaks unchanged, the shear building's all changed")
 PY
 
 # 2. invariance of a mixed quick row, and the per-element rows give the totals
@@ -135,6 +147,10 @@ PY
 # 3. bad input
 fails=0
 body=$(cat "$src/studies/quick-row.toml")
+expect_error all_sdof 'rayleigh_modes is given and every building is an SDOF.*\[structures\].rayleigh_modes' \
+  "$(echo "$body" | sed 's/^\[structures\]$/[structures]\nrayleigh_modes = [1, 3]/')"
+expect_error sdof_own_modes 'rayleigh_modes is given for an SDOF building.*\[structures.building3\].rayleigh_modes' \
+  "$(echo "$body" | sed 's/^\[structures.building3\]/[structures.building2]\nmodel = "shear"\n\n[structures.building3]\nrayleigh_modes = [1, 3]/')"
 expect_error sdof_isolated 'isolation is given for an SDOF building' \
   "$(echo "$body" | sed 's/^\[structures.building3\]/[structures.building2]\nmodel = "shear"\n\n[structures.building3]\nisolation = {bearing = "linear", k_eff = 1e7}/')"
 [ $fails -eq 0 ] || exit 1

@@ -16,92 +16,30 @@ bin=$1; src=$2
 study=$PWD/unused.toml
 . "$src/tests/lib/study_invariance.sh"  # $tmp, expect_error
 fail() { echo "FAIL: $*"; exit 1; }
+. "$src/tests/lib/shear_pair_study.sh"  # sine_record, shear_pair_study, shear_pair_simulate
 
-awk 'BEGIN { dt = 0.01; for (i = 0; i <= 1000; i++) { t = i * dt;
-       a = 0.30 * sin(2 * 3.14159265 * 0.9 * t) + 0.12 * sin(2 * 3.14159265 * 3.1 * t + 0.4);
-       printf "%.2f %.8f\n", t, a } }' > "$tmp/rec.txt"
-write_study() {  # write_study NAME STEPPER
-  cat > "$tmp/$1.toml" <<EOF
-title = "steppers on shear buildings"
-seed = 7
-scene = "impacts"
-output = "out.h5"
-
-[records]
-files = ["rec.txt"]
-polarity = "recorded"
-
-[structures]
-model = "shear"
-storey_height = 3.2
-zeta = 0.05
-hysteresis = "elastic"
-samples_per_pair = 1
-
-[structures.building1]
-period = 0.78
-height = 9.6
-storeys = 3
-mass = 9.0e5
-storey_stiffness = 9.80665e7
-
-[structures.building2]
-period = 1.22
-height = 16.0
-storeys = 5
-mass = 1.5e6
-storey_stiffness = 9.80665e7
-
-[gaps]
-ratios = [0.1, 0.2, 0.5, 1.0]
-
-[analysis]
-max_dt = 0.001
-stepper = "$2"
-
-[contact]
-law = "hertzdamp"
-e = 0.5
-EOF
+sine_record "$tmp/rec.txt" 0.30 0.9 0.12 3.1 1000
+write_study() {  # write_study NAME STEPPER [KEY=VALUE ...]
+  local name=$1 st=$2; shift 2
+  shear_pair_study "$tmp/$name.toml" 'title="steppers on shear buildings"' "analysis.stepper=\"$st\"" "$@"
 }
 sim() {  # sim STEPPER [options]
   local st=$1; shift
-  "$bin" simulate --record "$tmp/rec.txt" --storeys1 3 --storey-mass1 3e5 --storey-stiffness1 9.80665e7 \
-    --storeys2 5 --storey-mass2 3e5 --storey-stiffness2 9.80665e7 --gap 0.064 --zeta 0.05 --elastic \
-    --dt 0.001 --stepper "$st" --json "$@"
+  shear_pair_simulate --stepper "$st" "$@"
 }
 # same_as_simulate NAME STEPPER [simulate options]: the study $tmp/NAME.h5 against simulate with those options
 same_as_simulate() {
-  local name=$1 st=$2; shift 2
-  sim "$st" "$@" --contact hertzdamp --e 0.5 > "$tmp/$name-sim.json"
-  sim "$st" "$@" --contact none > "$tmp/$name-free.json"
-  /usr/bin/python3 - "$tmp" "$name" <<'PY'
-import json, sys, h5py
-tmp, name = sys.argv[1], sys.argv[2]
-f = h5py.File(f"{tmp}/{name}.h5", "r")
-s, u = json.load(open(f"{tmp}/{name}-sim.json")), json.load(open(f"{tmp}/{name}-free.json"))
-iso = "peak_bearing_u1" in u
-g = list(f["impacts/gap_ratios"][()]).index(0.5)
+  simulate_both "$@"
+  PYTHONPATH="$src/tests/lib" /usr/bin/python3 - "$tmp" "$1" <<'PY'
+import sys
+from study_simulate import load, pair_checks, assert_equal
+f, s, u, g = load(*sys.argv[1:3])
+name = sys.argv[2]
 assert abs(0.5 * f["models/code_gap"][()][0] - 0.064) < 1e-15
-at = lambda name: f[name][()].ravel()[g]
-checks = [("impact_count", at("impacts/impact_count"), s["impact_count"]),
-          ("peak_force", at("impacts/peak_force"), s["peak_force"]),
-          ("t_first_impact", at("impacts/t_first_impact"), s["t_first_impact"]),
-          ("peak_u1", at("impacts/peak_u1"), max(s["peak_u1"] + ([s["peak_bearing_u1"]] if iso else []))),
-          ("peak_u2", at("impacts/peak_u2"), max(s["peak_u2"])),
-          ("uncoupled peak_closing", f["uncoupled/peak_closing"][()].ravel()[0], u["peak_closing"])]
-for b in (1, 2):
-    base = iso and b == 1
-    for field, key in (("peak_u_floors", "peak_u"), ("peak_drift", "peak_drift"), ("peak_acc_floors", "peak_abs_acc")):
-        mine = list(f[f"uncoupled/{field}{b}"][()].ravel())
-        theirs = u[f"{key}{b}_g" if key == "peak_abs_acc" else f"{key}{b}"]
-        if base:
-            mine, theirs = (mine, [u["peak_bearing_u1"]] + theirs) if key == "peak_u" else (mine[1:], theirs)
-        checks += [(f"uncoupled {field}{b}[{i}]", a, c) for i, (a, c) in enumerate(zip(mine, theirs, strict=True))]
+checks = pair_checks(f, s, u, g)
 assert s["status"] in ("ok", "coarse") and u["status"] == "ok", (s["status"], u["status"])
 assert s["impact_count"] > 0, "no impacts at the gap"
-bad = [(n, a, c) for n, a, c in checks if not (a == c)]
-assert not bad, bad
+assert_equal(checks)
 print(f"ok   {name}: study == simulate bit for bit ({len(checks)} numbers; {s['impact_count']} impacts, "
       f"peak u {max(s['peak_u1']):.6g} / {max(s['peak_u2']):.6g} m, stepper {s['stepper']})")
 PY
@@ -126,8 +64,8 @@ for k in ("uncoupled/peak_u_floors2", "impacts/peak_u2"):
 PY
 
 # 2. building 1 isolated on a lead-rubber bearing, rk4
-awk '{ print } /^storey_stiffness = / && !done { print "isolation = {bearing = \"lead-rubber\", base_mass = 3.0e5, k1 = 6.0e7, k2 = 6.0e6, qd = 1.5e5}"; done = 1 }' \
-  "$tmp/rk4.toml" > "$tmp/iso.toml"
+write_study iso rk4 \
+  'structures.building1.isolation={bearing = "lead-rubber", base_mass = 3.0e5, k1 = 6.0e7, k2 = 6.0e6, qd = 1.5e5}'
 "$bin" run "$tmp/iso.toml" --out "$tmp/iso.h5" --quiet > "$tmp/iso.out" 2>&1 || { cat "$tmp/iso.out"; fail "the isolated rk4 study did not run"; }
 same_as_simulate iso rk4 --isolation1 lead-rubber --base-mass1 3e5 --bearing-k1-1 6e7 --bearing-k2-1 6e6 --bearing-qd1 1.5e5
 

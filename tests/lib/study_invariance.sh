@@ -4,6 +4,9 @@
 #   full.h5 (skip_untouched = false) equal to r0.h5 but for the settings they change. Leaves them in $tmp.
 # bad_run <want> <file>: `pounding run FILE` in $tmp (FILE relative to it) must exit 2 with exactly one ERROR line
 # matching "ERROR: .*<want>" and write no results (needs the script's fail "<what>").
+# simulate_both <name> [options]: the script's sim [options] with contact (--contact hertzdamp --e 0.5) into
+# $tmp/<name>-sim.json and without (--contact none) into $tmp/<name>-free.json, beside the study $tmp/<name>.h5 (read by
+# tests/lib/study_simulate.py load).
 # expect_error <name> <pattern> <study text>: the same for a study given as text, counting failures in $fails (the
 # script sets fails=0 and exits non-zero at the end when it is not 0), printing "ok" or "FAIL" per case.
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMPI_MCA_rmaps_base_oversubscribe=1
@@ -37,6 +40,12 @@ bad_run() {
   [ ! -e "$tmp/bad.h5" ] || fail "$file: wrote results"
   grep -q "ERROR: .*$want" "$tmp/bad.err" || fail "$file: the error does not name $want: $(cat "$tmp/bad.err")"
   [ "$(grep -c ERROR "$tmp/bad.err")" -eq 1 ] || fail "$file: more than one ERROR line: $(cat "$tmp/bad.err")"
+}
+
+simulate_both() {
+  local name=$1; shift
+  sim "$@" --contact hertzdamp --e 0.5 > "$tmp/$name-sim.json"
+  sim "$@" --contact none > "$tmp/$name-free.json"
 }
 
 expect_error() {

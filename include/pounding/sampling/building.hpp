@@ -38,7 +38,8 @@
 //     rayleigh_modes [i, j]: the two modes Rayleigh damping gives exactly zeta (default [1, 2]; two different whole
 //                   numbers in [1, 200], either order; not with damping = "modal"). A sample with fewer than j storeys
 //                   takes model::rayleigh_modes_for(i, j, n): j' = min(j, n), i' = min(i, j' - 1); one storey: the
-//                   SDOF's c = 2 zeta sqrt(k m). Also a [structures] default.
+//                   SDOF's c = 2 zeta sqrt(k m). Also a [structures] default, which an SDOF building of a mixed
+//                   row or pair does not take (it keeps its zeta; refused only where every building is an SDOF).
 //     isolation     {bearing = "linear", base_mass, k_eff, zeta_eff} | {bearing = "lead-rubber", base_mass, k1, k2,
 //                   qd} | {bearing = "friction-pendulum", base_mass, radius, mu_slow, mu_fast, rate, u_y} |
 //                   {bearing = "bouc-wen", base_mass, k1, k2, qd, a, beta, gamma, eta}: a base mass (default one

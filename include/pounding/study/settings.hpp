@@ -93,6 +93,12 @@ void visit_structure_settings(const StructureModel& m, V& v) {
       // Rayleigh's modes where not 1 and 2 (absent otherwise: the bits of every earlier study)
       if (b.shear() && !b.modal_damping && !b.rayleigh_default())
         v(sec, "rayleigh_modes", std::vector<double>{double(b.rayleigh_i), double(b.rayleigh_j)});
+      // classical modal damping where chosen (absent with Rayleigh, the default: the bits of every earlier study);
+      // modal_zeta where given (without it every mode takes the building's zeta)
+      if (b.shear() && b.modal_damping) {
+        v(sec, "damping", S("modal"));
+        if (!b.modal_zeta.empty()) v(sec, "modal_zeta", b.modal_zeta);
+      }
     }
   }
 }

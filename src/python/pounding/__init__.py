@@ -122,12 +122,29 @@ def analyze(pairs, record, contact="none", stepper="central-difference", substep
     return out
 
 
+def _rayleigh_modes(modes, counts, modal_zeta):
+    """analyze_storeys' rayleigh_modes as one (i, j), i < j, per building, flat: (i1, j1, i2, j2, ...)."""
+    pairs = [modes] * len(counts) if np.ndim(modes) == 1 else list(modes)
+    if np.ndim(modes) not in (1, 2) or len(pairs) != len(counts) or any(len(p) != 2 for p in pairs):
+        raise ValueError(f"rayleigh_modes: (i, j) for every building or one pair per building ({len(counts)}), "
+                         f"not {modes!r}")
+    flat = []
+    for p in pairs:
+        if any(float(x) != int(x) for x in p) or int(p[0]) == int(p[1]):
+            raise ValueError(f"rayleigh_modes: {tuple(p)!r} is not two different whole mode numbers, e.g. (1, 3)")
+        flat += sorted(int(x) for x in p)
+    if modal_zeta and flat != [1, 2] * len(counts):
+        raise ValueError("rayleigh_modes is given with modal_zeta (modal damping gives every mode its ratio): "
+                         "give one of them")
+    return flat
+
+
 def analyze_storeys(buildings, record, storeys=(1, 1), storey_height=3.2, contact="none",
                     stepper="central-difference", substeps=1, *, kh=None, e=None, n=1.5,
                     damping="lankarani-nikravesh", contact_levels="common", level_tolerance=0.05,
                     stiffness_profile="uniform", energy=False, duration=0.0, displacement_limit=10.0, batch=64,
-                    threads=0, modal_zeta=None, isolation=None, moat=None, density=2400.0, youngs=24.86e9,
-                    poisson=0.15):
+                    threads=0, modal_zeta=None, rayleigh_modes=(1, 2), isolation=None, moat=None, density=2400.0,
+                    youngs=24.86e9, poisson=0.15):
     """A row of multi-storey shear buildings side by side (two or more), pounding floor to floor (the engine's
     system stepper, as `pounding simulate --storeys1 N --storeys2 M [--buildings K] [--isolation1 ...]` and the
     studies with model = "shear"); buildings 1 and 2 may stand on isolators inside moat walls. One topology per
@@ -144,6 +161,10 @@ def analyze_storeys(buildings, record, storeys=(1, 1), storey_height=3.2, contac
     modal_zeta: [z1, z2, ...] gives every multi-storey building classical modal damping instead of Rayleigh, the
       ratio of each mode from mode 1, the last repeating (as `pounding simulate --modal-zeta`); one storey keeps zeta.
       Not with isolation (as simulate).
+    rayleigh_modes: (i, j), the two modes that get zeta exactly (Rayleigh; default (1, 2)), for every building, or
+      one pair per building (as simulate --rayleigh-modesK i,j and the study key rayleigh_modes); a building with
+      fewer than j storeys takes j' = min(j, n), i' = min(i, j' - 1) -- the highest two it has -- and one storey
+      keeps the SDOF's zeta (as the studies' rule). Not with modal_zeta.
     isolation: None or one entry per building, None (fixed base) or a dict {"bearing": "linear" | "lead-rubber" |
       "friction-pendulum" | "bouc-wen", ...} with the study keys' names and ranges (study reference, section
       "isolation") and simulate's defaults: base_mass (kg; one floor's mass), linear: k_eff (N/m), zeta_eff (0.1);
@@ -170,7 +191,7 @@ def analyze_storeys(buildings, record, storeys=(1, 1), storey_height=3.2, contac
     counts = [int(s) for s in storeys]
     heights = ([float(h) for h in storey_height] if np.ndim(storey_height) else [float(storey_height)] * len(counts))
     topology = _core._Topology(counts, heights, float(level_tolerance), contact_levels, stiffness_profile,
-                               [float(z) for z in (modal_zeta or [])])
+                               [float(z) for z in (modal_zeta or [])], _rayleigh_modes(rayleigh_modes, counts, modal_zeta))
     iso = list(isolation) if isolation is not None else [None] * len(counts)
     moats = list(moat) if moat is not None else [None] * len(counts)
     return _core.analyze_storeys(d, ag, dt, topology, stepper, contact, damping, n, substeps, energy, duration,

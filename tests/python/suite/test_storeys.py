@@ -65,6 +65,57 @@ def test_modal_damping_same_bits_as_simulate(tmp_path):
         pounding.analyze_storeys(b, rec, modal_zeta=[0.7], **kw)
 
 
+@pytest.mark.skipif(bool(NOT_CLAIMED), reason=f"not applicable: {NOT_CLAIMED}")
+def test_rayleigh_modes_same_bits_as_simulate(tmp_path):
+    """rayleigh_modes= gives pounding simulate --rayleigh-modesK i,j's numbers bit for bit: one pair per building, a
+    4-storey building asked for (6, 3) taking the rule's modes 3 and 4 (j' = min(j, n), i' = min(i, j' - 1)), and one
+    pair for every building; a one-storey building keeps its zeta (one pair for both = the SDOF's default with the
+    other's); the default is (1, 2) and other modes differ."""
+    path = write_at2(tmp_path / "sweep.AT2", REC.acc_g, REC.dt)
+    rec = pounding.read_record(str(path))
+
+    def simulate(storeys1, *options):
+        args = [cli(), "simulate", "--record", str(path), "--storeys1", str(storeys1), "--storeys2", "4",
+                "--storey-mass1", "4e5", "--storey-stiffness1", "3e8", "--storey-mass2", "3e5", "--storey-stiffness2",
+                "2.5e8", "--gap", "0.02", "--contact", "hertzdamp", "--kh", "2e9", "--e", "0.65", "--dt", "0.0025",
+                "--json", *options]
+        return json.loads(subprocess.run(args, capture_output=True, text=True, check=True).stdout)
+
+    b = dict(floor_mass1=[4e5], storey_stiffness1=[3e8], yield_drift1=[0.02 / 6], alpha1=[0.05],
+             floor_mass2=[3e5], storey_stiffness2=[2.5e8], yield_drift2=[0.02 / 6], alpha2=[0.05], gap=[0.02])
+    kw = dict(contact="hertzdamp", kh=2e9, e=0.65, substeps=2)
+
+    def same(r, j):
+        for key in ("peak_u1", "peak_drift1", "final_u1", "peak_u2", "peak_drift2", "final_u2"):
+            assert r[key][0].tolist() == j[key], key
+        assert (r["peak_acc2"][0] / G).tolist() == j["peak_abs_acc2_g"]
+        for e, lv in enumerate(j["levels"]):
+            assert r["impact_count"][0, e] == lv["impacts"] and r["peak_force"][0, e] == lv["peak_force"]
+            assert r["peak_closing"][0, e] == lv["peak_closing"]
+        assert sum(lv["impacts"] for lv in j["levels"]) > 0
+
+    j = simulate(3, "--rayleigh-modes1", "1,3", "--rayleigh-modes2", "3,4")
+    assert [x["rayleigh_modes"] for x in j["buildings"]] == [[1, 3], [3, 4]]
+    r = pounding.analyze_storeys(b, rec, storeys=(3, 4), rayleigh_modes=[(3, 1), (6, 3)], **kw)
+    same(r, j)
+    same(pounding.analyze_storeys(b, rec, storeys=(3, 4), rayleigh_modes=(1, 3), **kw),
+         simulate(3, "--rayleigh-modes1", "1,3", "--rayleigh-modes2", "1,3"))
+    one = pounding.analyze_storeys(b, rec, storeys=(1, 4), rayleigh_modes=(1, 3), **kw)  # the SDOF keeps its zeta
+    own = pounding.analyze_storeys(b, rec, storeys=(1, 4), rayleigh_modes=[(1, 2), (1, 3)], **kw)
+    for key in ("peak_u1", "peak_u2", "peak_force", "impact_count"):
+        assert np.array_equal(one[key], own[key]), key
+    default = pounding.analyze_storeys(b, rec, storeys=(3, 4), **kw)
+    same(default, simulate(3))
+    assert default["peak_u2"][0].tolist() != r["peak_u2"][0].tolist()
+    for bad, match in (((2, 2), "two different"), ((1,), r"\(i, j\)"), ((1, 2.5), "whole"), ([(1, 2)], r"\(i, j\)")):
+        with pytest.raises(ValueError, match=match):
+            pounding.analyze_storeys(b, rec, storeys=(3, 4), rayleigh_modes=bad, **kw)
+    with pytest.raises(ValueError, match="rayleigh_modes"):
+        pounding.analyze_storeys(b, rec, storeys=(3, 4), rayleigh_modes=(0, 2), **kw)
+    with pytest.raises(ValueError, match="modal_zeta"):
+        pounding.analyze_storeys(b, rec, storeys=(3, 4), rayleigh_modes=(1, 3), modal_zeta=[0.05], **kw)
+
+
 def test_one_storey_each_is_the_pair():
     pairs = pounding.testing.benchmark_batch(13)
     b = dict(floor_mass1=pairs["m1"], storey_stiffness1=pairs["k1"], storey_yield1=pairs["fy1"],
