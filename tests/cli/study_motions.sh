@@ -103,7 +103,7 @@ bad_key() {  # <key> <replacement sed expression>
   echo "   refused: $(grep ERROR "$tmp/bad.err")"
 }
 bad_key coherency 's/^coherency = .*/coherency = "smooth"/'
-bad_key positions 's/^positions = .*/positions = [0.0, 80.0, 40.0]/'
+bad_key positions 's/^positions = .*/positions = [80.0, 0.0]/'
 bad_key supports 's/^positions = .*/supports = 17/'
 bad_key velocity 's/^velocity = .*/velocity = -400.0/'
 bad_key soil 's/^soil = .*/soil = ["C", "D", "E"]/'
@@ -133,5 +133,6 @@ set -e
 [ "$rc" = 130 ] || fail "a stop while generating: exit $rc, want 130: $(cat "$tmp/long.err" "$tmp/long.out")"
 [ ! -e "$tmp/long.h5" ] && [ ! -e "$tmp/long.h5.ckpt" ] || fail "a stop while generating left $(ls "$tmp" | grep long)"
 grep -q 'records: support motions' "$tmp/long.err" "$tmp/long.out" || fail "no progress line while generating: $(cat "$tmp/long.err")"
+grep -q 'interrupted while the records were made' "$tmp/long.err" || fail "the stop did not come while generating: $(cat "$tmp/long.err")"
 echo "5. SIGINT while generating: exit 130, nothing written"
 echo "study_motions: ok"

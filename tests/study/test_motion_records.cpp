@@ -35,6 +35,9 @@ period = 1.0
 support = 2
 [[bridge.joint]]
 gap = 0.05
+[contact]
+law = "hertzdamp"
+stiffness = 2.0e9
 )";
 
 // A bridge study whose [records.motions] holds `keys` (one per line).
@@ -185,7 +188,7 @@ TEST(MotionRecords, BadKeysAreRefusedNamingTheKeyAndTheFile) {
       {"soil = \"D\"\nloss = \"high\"\nz = 0.9", "z", ""},
       {"spectrum = \"csv\"\nloss = \"high\"", "spectrum_file", "spectrum csv needs a spectrum file"},
       {"spectrum = \"ec8\"\nloss = \"high\"", "spectrum", "unknown spectrum 'ec8'"},
-      {"soil = \"D\"\nloss = \"high\"\nwave_passage = \"no\"", "wave_passage", "wave_passage must be a boolean"},
+      {"soil = \"D\"\nloss = \"high\"\nwave_passage = \"no\"", "wave_passage", "wave_passage must be true or false"},
       {"soil = \"D\"\nloss = \"high\"\nsupport = 2", "support", "unknown key 'support'"},
   };
   for (const Bad& b : cases) {
@@ -209,8 +212,8 @@ TEST(MotionRecords, TheRecordsTableRefusesWhatDoesNotApply) {
   const std::string no_bridge = "seed = 1\n[records]\n[records.motions]\n" + motions + "\n";
   EXPECT_NE(where(no_bridge).find("[records].motions"), std::string::npos);
   // three frames on supports 1..3 and two generated supports
-  const std::string three = study_text(motions) + "[[bridge.frame]]\nmass = 1.0e6\nperiod = 1.0\nsupport = 3\n"
-                                                  "[[bridge.joint]]\ngap = 0.05\n";
+  std::string three = study_text(motions);
+  three.insert(three.find("[contact]"), "[[bridge.frame]]\nmass = 1.0e6\nperiod = 1.0\nsupport = 3\n[[bridge.joint]]\ngap = 0.05\n");
   EXPECT_NE(where(three).find("[records].motions"), std::string::npos);
 }
 
