@@ -184,6 +184,9 @@ constexpr StudyKey keys[] = {
     {"records.motions", "realisations", "integer", "20", "", "[1, 10000]", "Realisations generated: the study's records.", 1, 10000},
     {"records.motions", "first", "integer", "1", "", "[1, 1000000]", "Number of the first realisation (pounding motions --first).", 1, 1000000},
     {"records.motions", "seed", "integer", "the study's seed", "", "[0, 2^64 - 1]", "Seed of the motions (pounding motions --seed)."},
+    {"records.motions", "uniform", "boolean", "false", "", "true | false",
+     "true: every support takes support 1's motion -- the uniform-input comparison of the same realisations (the "
+     "same as putting every frame on support 1)."},
     {"records.files", "scale", "number", "1.0", "", "(0, 1000]", "Factor applied to this record.", 1e-6, 1e3},
 
     // ---------------------------------------------------------------- [structures]

@@ -31,8 +31,9 @@ RecordPlan plan_motion_records(const Study& s) {
       if (j == 0)
         out.record = std::move(rec);
       else
-        out.more_supports.push_back(std::move(rec));
+        out.more_supports.push_back(m->uniform ? out.record : std::move(rec));
     }
+    if (m->uniform) out.note += "; uniform input: every support takes support 1's motion";
     return out;
   };
   RecordPlan plan{m->count, std::move(make), "records: support motions", "realisations"};

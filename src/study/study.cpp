@@ -110,9 +110,6 @@ spatial::Request read_motion_request(TableReader& m, const std::string& path, st
                           "rise", "strong", "decay", "f_min", "f_max", "match_range", "match_points", "iterations",
                           "tolerance", "realisations", "first", "seed"})
     if (m.get(key)) q.given.insert(key);
-  m.finish("supports, spacing, positions, velocity, wave_passage, coherency, loss, beta, luco_wong_a, spectrum, soil, "
-           "z, r, spectrum_file, damping, dt, duration, rise, strong, decay, f_min, f_max, match_range, match_points, "
-           "iterations, tolerance, realisations, first, seed");
   return q;
 }
 
@@ -122,9 +119,13 @@ void parse_record_motions(Study& s, TableReader& r, const std::string& path) {
   if (!t) return;
   TableReader m(t, path, "records.motions");
   const spatial::Request q = read_motion_request(m, path, s.seed);
+  auto motions = std::make_shared<StudyMotions>();
+  motions->uniform = m.boolean("uniform", false);
+  m.finish("supports, spacing, positions, velocity, wave_passage, coherency, loss, beta, luco_wong_a, spectrum, soil, "
+           "z, r, spectrum_file, damping, dt, duration, rise, strong, decay, f_min, f_max, match_range, match_points, "
+           "iterations, tolerance, realisations, first, seed, uniform");
   spatial::OptionNames names;
   names.where = [&m](std::string_view key) { return m.where(key); };
-  auto motions = std::make_shared<StudyMotions>();
   motions->settings = spatial::settings_from(q, names);
   motions->first = static_cast<std::uint64_t>(q.first - 1);
   motions->count = static_cast<std::size_t>(q.realisations);

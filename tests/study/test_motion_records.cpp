@@ -217,6 +217,18 @@ TEST(MotionRecords, TheRecordsTableRefusesWhatDoesNotApply) {
   EXPECT_NE(where(three).find("[records].motions"), std::string::npos);
 }
 
+TEST(MotionRecords, UniformGivesEverySupportTheMotionOfSupportOne) {
+  const Study s = parse_study(study_text(quick), "m.toml");
+  const Study u = parse_study(study_text(quick + "\nuniform = true"), "m.toml");
+  const std::vector<StudyRecord> a = make_records(plan_study_records(s), 1), b = make_records(plan_study_records(u), 1);
+  ASSERT_EQ(a.size(), b.size());
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    EXPECT_TRUE(same_bits(b[i].record.acc, a[i].record.acc));
+    EXPECT_TRUE(same_bits(b[i].more_supports.at(0).acc, a[i].record.acc));
+    EXPECT_FALSE(same_bits(a[i].more_supports.at(0).acc, a[i].record.acc));
+  }
+}
+
 TEST(MotionRecords, TheStudySeedIsTheDefault) {
   const Study s = parse_study(study_text("soil = \"D\"\nloss = \"high\""), "m.toml");
   EXPECT_EQ(s.motions->settings.seed, 11u);

@@ -126,6 +126,7 @@ void visit_motion_settings(const StudyMotions& m, V&& v) {
   v(section, "realisations", static_cast<std::int64_t>(m.count));
   v(section, "seed", static_cast<std::int64_t>(x.seed));
   v(section, "seed_from", S(m.seed_given ? "[records.motions] seed" : "the study's seed"));
+  v(section, "uniform", m.uniform);
 }
 
 template <class V>

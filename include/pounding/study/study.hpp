@@ -123,6 +123,7 @@ struct StudyMotions {
   std::uint64_t first = 0;  // index of the first realisation (realisation first + 1 in pounding motions' numbering)
   std::size_t count = 0;
   bool seed_given = false;  // false: the study's seed
+  bool uniform = false;     // uniform = true: every support takes support 1's motion (the uniform-input comparison)
   std::string where;        // "file:line [records.motions]" for errors found when the records are made
 };
 
