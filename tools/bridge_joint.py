@@ -16,8 +16,8 @@ analysis without contact). Uniform input: both spans on support 1's record.
 
 NOT the coupled bridge analysis: no contact, restrainers, bearings or abutments. With --study STUDY.toml (a bridge
 study on two supports, e.g. studies/bridge-joint.toml) every case is also run COUPLED through the study runner
-(`pounding run`, [records] directory = the case's folder, supports = 2; uniform input: the same study without
-`support = 2`), and the table gains the study's answers beside this script's: the median peak closing (the study's
+(`pounding run`, [records] directory = the case's folder, supports = 2 in place of the study's [records.motions];
+uniform input: the same study without `support = 2`), and the table gains the study's answers beside this script's: the median peak closing (the study's
 /uncoupled/peak_closing, its central-difference run of the same segments) and the gap for P = 10 % (the same
 definition, np.quantile(closing, 0.9)), the largest relative difference of the per-realisation closings, and the
 study's mean joint impact count at the gap for P = 10 %.
@@ -78,13 +78,19 @@ def run_study(pounding, study, folder, out, uniform):
     (recorded sign), the impact counts [R, G] and the gap axis (m)."""
     import h5py
     text = open(study).read()
-    lines = []
+    lines, table = [], ""
     for line in text.splitlines():
-        if line.startswith("directory = "):
-            line = f'directory = "{os.path.abspath(folder)}"'
+        if line.startswith("["):
+            table = line.strip()
+        if table == "[records.motions]":  # the study's own generator gives way to the case's folder
+            continue
+        if table == "[records]" and (line.startswith("directory = ") or line.startswith("supports = ")):
+            continue
         if uniform and line.strip() == "support = 2":
             continue
         lines.append(line)
+        if line.strip() == "[records]":
+            lines += [f'directory = "{os.path.abspath(folder)}"', "supports = 2"]
     path = out + (".uniform" if uniform else ".svgm")
     with open(path + ".toml", "w") as f:
         f.write("\n".join(lines) + "\n")

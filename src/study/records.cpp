@@ -56,6 +56,7 @@ std::map<std::string, std::vector<std::string>> support_sets(const Study& s) {
 }  // namespace
 
 RecordPlan plan_study_records(const Study& s) {
+  if (s.motions) return plan_motion_records(s);
   if (s.files.empty() && s.directory.empty()) return plan_suite_records(s);
   // one analysis input: a file, or the files of a realisation's supports (support 1 first)
   struct Source {
@@ -121,7 +122,7 @@ RecordPlan plan_study_records(const Study& s) {
     }
     return r;
   };
-  return {shared->size(), std::move(make)};
+  return {shared->size(), std::move(make), {}, {}};
 }
 
 namespace {
@@ -130,7 +131,10 @@ namespace {
 struct Made {
   std::optional<StudyRecord> record;
   std::exception_ptr error;
+  bool stopped = false;  // not made: a stop was raised first (RecordPlan::phase)
 };
+
+constexpr const char* records_phase = "making the records";
 
 std::vector<std::size_t> share_of(std::size_t count, int rank, int ranks) {
   std::vector<std::size_t> mine;
@@ -139,15 +143,31 @@ std::vector<std::size_t> share_of(std::size_t count, int rank, int ranks) {
 }
 
 // make(i) for every i of `which` on this process's threads; an error stays with its index.
-std::vector<Made> make_each(const RecordPlan& plan, const std::vector<std::size_t>& which, int threads) {
+// With a plan's phase and a hook: progress on a Meter, and no record started after a stop (marked stopped).
+std::vector<Made> make_each(const RecordPlan& plan, const std::vector<std::size_t>& which, int threads,
+                           const WorkHook* hook) {
   std::vector<Made> made(which.size());
+  std::optional<Meter> meter;
+  if (hook && !plan.phase.empty()) meter.emplace(hook, plan.phase, which.size(), plan.unit);
   parallel_blocks(which.size(), thread_count(threads, which.size()), [&](std::size_t first, std::size_t last) {
-    for (std::size_t k = first; k < last; ++k) try {
+    for (std::size_t k = first; k < last; ++k) {
+      if (meter && meter->stopped()) {
+        made[k].stopped = true;
+        continue;
+      }
+      try {
         made[k].record.emplace(plan.make(which[k]));
       } catch (...) {
         made[k].error = std::current_exception();
       }
+      if (meter) meter->step();
+    }
   });
+  if (meter) try {
+      meter->finish();  // the final progress line
+    } catch (const Cancelled&) {
+      // a stop after the last record: every record of the share was made
+    }
   return made;
 }
 
@@ -220,7 +240,8 @@ StudyRecord get_record(Reader& in) {
   return r;
 }
 
-// an error as bytes: kind 1 InputError (what, where, fix), kind 2 anything else (its message)
+// an error as bytes: kind 1 InputError (what, where, fix), kind 2 anything else (its message); kind 3 (no bytes
+// after it, make_record_share): not made, stopped
 void put_error(std::string& b, const std::exception_ptr& e) {
   try {
     std::rethrow_exception(e);
@@ -246,6 +267,7 @@ std::vector<StudyRecord> in_order(std::vector<Made> made) {
   std::vector<StudyRecord> out;
   out.reserve(made.size());
   for (Made& m : made) {
+    if (m.stopped) throw Cancelled(records_phase);
     if (m.error) std::rethrow_exception(m.error);
     out.push_back(std::move(*m.record));
   }
@@ -254,18 +276,20 @@ std::vector<StudyRecord> in_order(std::vector<Made> made) {
 
 }  // namespace
 
-std::vector<StudyRecord> make_records(const RecordPlan& plan, int threads) {
-  return in_order(make_each(plan, share_of(plan.count, 0, 1), threads));
+std::vector<StudyRecord> make_records(const RecordPlan& plan, int threads, const WorkHook* hook) {
+  return in_order(make_each(plan, share_of(plan.count, 0, 1), threads, hook));
 }
 
-std::string make_record_share(const RecordPlan& plan, int rank, int ranks, int threads) {
+std::string make_record_share(const RecordPlan& plan, int rank, int ranks, int threads, const WorkHook* hook) {
   const std::vector<std::size_t> mine = share_of(plan.count, rank, ranks);
-  const std::vector<Made> made = make_each(plan, mine, threads);
+  const std::vector<Made> made = make_each(plan, mine, threads, hook);
   std::string b;
   put_u64(b, made.size());
   for (std::size_t k = 0; k < made.size(); ++k) {
     put_u64(b, mine[k]);
-    if (made[k].error) {
+    if (made[k].stopped) {
+      put_u64(b, 3);
+    } else if (made[k].error) {
       put_error(b, made[k].error);
     } else {
       put_u64(b, 0), put_record(b, *made[k].record);
@@ -286,6 +310,8 @@ std::vector<StudyRecord> join_record_shares(const std::vector<std::string>& shar
       const std::uint64_t kind = in.u64();
       if (kind == 0) {
         made[i].record.emplace(get_record(in));
+      } else if (kind == 3) {
+        made[i].stopped = true;
       } else {
         made[i].error = get_error(in, kind);
       }

@@ -668,6 +668,7 @@ struct Inputs {
   std::vector<StudyRecord> records;
   StripePlan stripes;  // a fragility study's stripes (none otherwise)
   std::optional<StudySelection> selection;  // [records] select: the records chosen to [target_spectrum]
+  bool stopped = false;  // a stop while the records were made (every rank agrees: it is in the exchanged shares)
 };
 
 // A finished results file is replaced by a rerun of its own study (the same study text) only: another study's
@@ -692,7 +693,7 @@ void check_replaceable_results(const std::string& out, const std::string& where,
 // the shares are exchanged). The output is checked and the checkpoint locked (rank 0) before any work: a bad path
 // or a second run on one output stops here.
 Inputs load_inputs(const parallel::Session& session, const std::string& study_path, const RunOptions& opt,
-                   std::optional<Checkpoint>& ckpt) {
+                   std::optional<Checkpoint>& ckpt, const RunContext& ctx) {
   std::string text;
   session.agree([&] {
     if (session.root()) text = files::read_text(study_path, "the study file");
@@ -714,19 +715,28 @@ Inputs load_inputs(const parallel::Session& session, const std::string& study_pa
   // the records: each rank reads or synthesises its share (records rank, rank + ranks, ...) on its threads, the
   // shares are exchanged, and every rank joins them into the same records bit for bit (a record that failed is
   // the first error in record order on every rank)
+  // (generated motions: with progress lines and the stop flag; a stop leaves records unmade on every rank's share,
+  // so every rank sees it in the joined shares and returns stopped together)
   RecordPlan plan;
   std::string share;
+  const WorkHook hook = ctx.hook();
   session.agree([&] {
     inject_fault("load", session.rank());
     plan = plan_study_records(in->study);
-    share = make_record_share(plan, session.rank(), session.size());
+    share = make_record_share(plan, session.rank(), session.size(), 0, &hook);
   });
   const std::vector<std::string> shares = session.allgather(share);
   share.clear();
   session.agree([&] {
     if (in->study.select > 0) in->selection.emplace();
-    in->records = finish_study_records(in->study, join_record_shares(shares, plan.count),
-                                       in->selection ? &*in->selection : nullptr);
+    std::vector<StudyRecord> made;
+    try {
+      made = join_record_shares(shares, plan.count);
+    } catch (const Cancelled&) {
+      in->stopped = true;
+      return;
+    }
+    in->records = finish_study_records(in->study, std::move(made), in->selection ? &*in->selection : nullptr);
     if (in->records.empty()) throw InputError("the study resolves to no records", study_path, "check [records]");
     // shear buildings: every sample's highest frequency against the integration step, before any work
     if (session.root()) check_shear_steps(in->study, in->records);
@@ -1234,7 +1244,11 @@ RunOutcome run_study(const parallel::Session& session, const std::string& study_
   T[timing::Phase::mpi_start] = opt.mpi_start_s;
   const auto t_inputs = std::chrono::steady_clock::now();
   std::optional<Checkpoint> ckpt;  // rank 0: the main file; a worker: its slice (opened in open_checkpoint)
-  const Inputs in = load_inputs(session, study_path, opt, ckpt);
+  const Inputs in = load_inputs(session, study_path, opt, ckpt, ctx);
+  if (in.stopped) {  // nothing done: the checkpoint this run created goes with ckpt
+    if (session.root()) ctx.say("\ninterrupted while the records were made: nothing done, no checkpoint left");
+    return {130, in.out, {}, T, {}};
+  }
   const WorkPlan L = plan_work(in);
   Tally tally;
   // rank 0; with [outputs] per_model = false every rank (each folds its own units into its Reductions)

@@ -9,6 +9,8 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <limits>
+#include <memory>
 
 #include <fmt/format.h>
 #include <toml++/toml.h>
@@ -61,6 +63,83 @@ void parse_record_files(Study& s, TableReader& r, const std::string& path) {
   }
 }
 
+// soil = "D" or soil = ["A", "D"] (one class per support)
+std::vector<std::string> read_soil(TableReader& m) {
+  const toml::node* n = m.get("soil");
+  if (!n) return {};
+  if (n->is_string()) return {config::string(*n, "soil", m.where("soil"))};
+  std::vector<std::string> out;
+  if (const toml::array* a = n->as_array())
+    for (const toml::node& e : *a) {
+      if (!e.is_string()) break;
+      out.push_back(e.value<std::string>().value());
+    }
+  if (out.empty() || out.size() != (n->is_array() ? n->as_array()->size() : 0))
+    throw InputError(fmt::format("soil must be a site class or an array of them, not {}", config::type_name(*n)),
+                     m.where("soil"), "write soil = \"D\" or soil = [\"A\", \"D\"] (one per support)");
+  return out;
+}
+
+// The keys of [records.motions] into the motion layer's request (its checks name the key: OptionNames).
+spatial::Request read_motion_request(TableReader& m, const std::string& path, std::uint64_t study_seed) {
+  constexpr double inf = std::numeric_limits<double>::infinity();
+  constexpr long big = 1000000000;
+  spatial::Request q;
+  const auto num = [&](const char* key, double& x) { x = m.number(key, x, -inf, inf, "finite numbers"); };
+  const auto whole = [&](const char* key, int& x) { x = static_cast<int>(m.integer(key, x, -big, big)); };
+  whole("supports", q.supports), whole("match_points", q.match_points), whole("iterations", q.iterations);
+  whole("realisations", q.realisations), whole("first", q.first);
+  const std::pair<const char*, double*> numbers[] = {
+      {"spacing", &q.spacing}, {"velocity", &q.velocity}, {"beta", &q.beta}, {"luco_wong_a", &q.luco_wong_a},
+      {"z", &q.z}, {"r", &q.r}, {"damping", &q.damping}, {"dt", &q.dt}, {"duration", &q.duration},
+      {"rise", &q.rise}, {"strong", &q.strong}, {"decay", &q.decay}, {"f_min", &q.f_min}, {"f_max", &q.f_max},
+      {"tolerance", &q.tolerance}};
+  for (const auto& [key, x] : numbers) num(key, *x);
+  q.positions = m.numbers("positions", {}, -inf, inf, "finite numbers");
+  q.match_range = m.numbers("match_range", q.match_range, -inf, inf, "finite numbers");
+  q.wave_passage = m.boolean("wave_passage", true);
+  q.coherency = m.string("coherency", q.coherency);
+  q.loss = m.string("loss", "");
+  q.spectrum = m.string("spectrum", q.spectrum);
+  q.spectrum_file = resolve_relative(path, m.string("spectrum_file", ""));
+  q.soil = read_soil(m);
+  const toml::node* seed = m.get("seed");
+  q.seed = seed ? config::seed(*seed, "seed", m.where("seed")) : study_seed;
+  for (const char* key : {"supports", "spacing", "positions", "velocity", "wave_passage", "coherency", "loss", "beta",
+                          "luco_wong_a", "spectrum", "soil", "z", "r", "spectrum_file", "damping", "dt", "duration",
+                          "rise", "strong", "decay", "f_min", "f_max", "match_range", "match_points", "iterations",
+                          "tolerance", "realisations", "first", "seed"})
+    if (m.get(key)) q.given.insert(key);
+  return q;
+}
+
+// [records.motions]: the study generates its records (StudyMotions); its supports feed a bridge's channels.
+void parse_record_motions(Study& s, TableReader& r, const std::string& path) {
+  const toml::table* t = r.table("motions");
+  if (!t) return;
+  TableReader m(t, path, "records.motions");
+  const spatial::Request q = read_motion_request(m, path, s.seed);
+  auto motions = std::make_shared<StudyMotions>();
+  motions->uniform = m.boolean("uniform", false);
+  m.finish("supports, spacing, positions, velocity, wave_passage, coherency, loss, beta, luco_wong_a, spectrum, soil, "
+           "z, r, spectrum_file, damping, dt, duration, rise, strong, decay, f_min, f_max, match_range, match_points, "
+           "iterations, tolerance, realisations, first, seed, uniform");
+  spatial::OptionNames names;
+  names.where = [&m](std::string_view key) { return m.where(key); };
+  motions->settings = spatial::settings_from(q, names);
+  motions->first = static_cast<std::uint64_t>(q.first - 1);
+  motions->count = static_cast<std::size_t>(q.realisations);
+  motions->seed_given = q.has("seed");
+  motions->where = r.where("motions");
+  for (const char* key : {"supports", "units", "dt", "real_dir", "synthetic_only", "select"})
+    if (r.get(key))
+      throw InputError(fmt::format("[records] {} does not apply to generated motions ([records.motions])", key),
+                       r.where(key), "delete it (the supports are [records.motions] supports or positions)");
+  s.supports = static_cast<int>(motions->settings.positions.size());
+  s.supports_where = motions->where;
+  s.motions = std::move(motions);
+}
+
 void parse_records(Study& s, const toml::table* t, const std::string& path) {
   TableReader r(t, path, "records");
   s.suite = r.string("suite", "");
@@ -91,7 +170,8 @@ void parse_records(Study& s, const toml::table* t, const std::string& path) {
     s.polarity_given = true;
   }
   parse_record_files(s, r, path);
-  if (r.get("supports")) {
+  parse_record_motions(s, r, path);
+  if (!s.motions && r.get("supports")) {
     s.supports = static_cast<int>(r.integer("supports", 0));
     s.supports_where = r.where("supports");
     if (s.directory.empty())
@@ -103,11 +183,11 @@ void parse_records(Study& s, const toml::table* t, const std::string& path) {
                        "delete select (or supports)");
   }
   r.finish("suite, real_dir, directory, files, scale, units, dt, limit, synthetic_only, select, max_per_event, components, "
-           "polarity, supports");
-  int sources = !s.suite.empty() + !s.directory.empty() + !s.files.empty();
+           "polarity, supports, motions");
+  int sources = !s.suite.empty() + !s.directory.empty() + !s.files.empty() + (s.motions != nullptr);
   if (sources != 1)
     throw InputError(sources == 0 ? "the study names no records" : "the study names records in more than one way",
-                     fmt::format("{} [records]", path), "give exactly one of suite, directory or files");
+                     fmt::format("{} [records]", path), "give exactly one of suite, directory, files or [records.motions]");
 }
 
 void parse_gaps(Study& s, const toml::table* t, const std::string& path) {
@@ -545,9 +625,11 @@ static void parse_bridge(Study& s, TableReader& top, const toml::table* bridge, 
     throw InputError(fmt::format("the bridge stands on {} supports (its largest support = {}), and the records give {}",
                                  channels, channels, std::max(1, s.supports)),
                      s.supports > 0 ? s.supports_where : fmt::format("{} [records].supports", path),
-                     fmt::format("give [records] supports = {} and a directory of support motions (pounding motions "
-                                 "--supports {} --out DIR), or put every frame on support 1",
-                                 channels, channels));
+                     s.motions ? fmt::format("give [records.motions] supports = {} (or {} positions), or put every "
+                                             "frame on support 1", channels, channels)
+                               : fmt::format("give [records] supports = {} and a directory of support motions (pounding "
+                                             "motions --supports {} --out DIR), or put every frame on support 1",
+                                             channels, channels));
 }
 
 Study parse_study(const std::string& text, const std::string& path) {
@@ -589,6 +671,9 @@ Study parse_study(const std::string& text, const std::string& path) {
       s.intensity.method == FragilityMethod::ida &&
       !(s.structures.building(0).hysteresis == Hysteresis::elastic && s.structures.building(1).hysteresis == Hysteresis::elastic);
   if (!s.structures.bridge) check_shear_study(s, top, structures, path);
+  if (s.motions && !s.structures.bridge)
+    throw InputError("[records.motions] generates a bridge's support motions, and the study has no [bridge]",
+                     s.motions->where, "add a [bridge] whose frames name their support, or name records another way");
   if (s.supports > 0 && !s.structures.bridge)
     throw InputError("[records] supports feeds a bridge's supports, and the study has no [bridge]", s.supports_where,
                      "add a [bridge] whose frames name their support, or delete supports");

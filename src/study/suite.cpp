@@ -41,7 +41,7 @@ RecordPlan plan_suite_records(const Study& s) {
     sr.note = r.note;
     return sr;
   };
-  return {suite->entries.size(), std::move(make)};
+  return {suite->entries.size(), std::move(make), {}, {}};
 }
 
 }  // namespace pounding

@@ -6,8 +6,8 @@
 #   samples_per_pair = 2 (the models per period pair: the period grid itself is kept, so is the T1 x T2 map);
 #   [report] bootstrap = 100 replicates; output removed;
 #   [records] limit = 3 (the first 3 records) unless the study selects records (select keeps its count: the
-#   selection is what its figure shows), sets a limit already, or reads multi-support realisations (supports: the
-#   3 realisations generated here by `pounding motions`);
+#   selection is what its figure shows), sets a limit already, or reads multi-support realisations from a directory
+#   (supports: the 3 realisations generated here by `pounding motions`); [records.motions] realisations = 3;
 #   paths to ../../shared/records/real made absolute.
 # The stripes, gap ratios, periods and durations are kept. The check that the reduction kept the study's form:
 # tests/cli/html_studies.py compares the shipped and the reduced file's tables and keys (only [records] limit may
@@ -37,11 +37,13 @@ for study in "$src"/studies/*.toml; do
     printf 'skip\t%s\tneeds the real records in %s (see README)\n' "$name" "$real" >> "$out/studies.tsv"; continue
   fi
   limit='s/^\[records\]$/[records]\nlimit = 3/'
-  grep -q -E '^(select|limit|supports) *=' "$study" && limit=''
+  if grep -q -E '^(select|limit) *=' "$study" || { grep -q '^directory = ' "$study" && grep -q '^supports = ' "$study"; }; then
+    limit=''
+  fi
   sed -e 's/^samples_per_pair = [0-9_]*/samples_per_pair = 2/' -e 's/^bootstrap = [0-9_]*/bootstrap = 100/' \
-      -e '/^output = /d' -e "s|^directory = \"../../shared/records/real\"|directory = \"$real\"|" \
+      -e '/^output = /d' -e 's/^realisations = [0-9_]*/realisations = 3/' -e "s|^directory = \"../../shared/records/real\"|directory = \"$real\"|" \
       -e "s|\"../../shared/records/real/|\"$real/|g" ${limit:+-e "$limit"} "$study" > "$out/studies/$name.toml"
-  if grep -q '^supports = ' "$study"; then  # a multi-support bridge (studies/bridge-joint.toml): its generated motions
+  if grep -q '^directory = ' "$study" && grep -q '^supports = ' "$study"; then  # a bridge reading support motions
     dir=$(sed -n 's/^directory = "\(.*\)"/\1/p' "$study")
     n_sup=$(sed -n 's/^supports = \([0-9]*\)/\1/p' "$study")
     mkdir -p "$(dirname "$out/studies/$dir")"

@@ -120,6 +120,15 @@ std::string study_with(const config::StudyKey& k, const std::string& value) {
     s.sections["records"] = {{"files", fmt::format("[{{path = \"a.AT2\", {} = {}}}]", key, value)}};
     return s.text();
   }
+  if (section == "records.motions") {  // generated support motions: sobczyk needs loss (or beta), nzs1170.5 soil
+    s.sections["records"] = {};
+    Section m{{"loss", "\"high\""}, {"soil", "\"D\""}};
+    if (key == "beta" || key == "luco_wong_a") m.erase("loss");
+    if (key == "luco_wong_a") m["coherency"] = "\"luco-wong\"";
+    m[key] = value;
+    s.sections["records.motions"] = m;
+    return s.text();
+  }
   if (section == "isolation" || section == "moat") {  // inline tables of a shear building
     const auto inline_table = [](const Section& t) {
       std::string out;

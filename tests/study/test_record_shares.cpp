@@ -73,7 +73,7 @@ TEST(RecordShares, MultiSupportRecordsTravelWhole) {
                           StudyRecord r = base.make(i);
                           for (std::size_t j = 0; j < i; ++j) r.more_supports.push_back(base.make((i + j + 1) % 3).record);
                           return r;
-                        }};
+                        }, {}, {}};
   const std::vector<StudyRecord> serial = make_records(plan, 1);
   EXPECT_EQ(serial[2].more_supports.size(), 2u);
   expect_same(join_record_shares({make_record_share(plan, 0, 2), make_record_share(plan, 1, 2)}, plan.count), serial);
@@ -110,7 +110,7 @@ TEST(RecordShares, TheFirstFailingRecordInOrderIsTheError) {
                     if (i == 2) throw InputError("record two is bad", "suite.toml:12", "fix two");
                     if (i == 4) throw InputError("record four is bad", "suite.toml:14", "fix four");
                     return good.make(i % 2);
-                  }};
+                  }, {}, {}};
   auto expect_two = [](auto&& f) {
     try {
       f();

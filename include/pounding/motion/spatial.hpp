@@ -48,9 +48,12 @@
 #include <complex>
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <optional>
+#include <set>
 #include <span>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "pounding/core/enum_names.hpp"
@@ -114,8 +117,35 @@ struct Settings {
   std::uint64_t seed = 1;
   const DesignSpectrum& target(std::size_t support) const { return targets.size() == 1 ? targets[0] : targets[support]; }
 };
-// Throws InputError naming the setting (its command-line option) and the allowed range.
-void validate(const Settings& s);
+// How a message names an option: `pounding motions`' --key-name (no `where`), or a study's
+// [records.motions] key with its file:line (`where(key)`). Keys are the study's names (f_max, wave_passage, ...);
+// on the command line f_max is --f-max and wave_passage is --no-wave-passage.
+struct OptionNames {
+  std::function<std::string(std::string_view key)> where;  // empty: the command line
+  std::string name(std::string_view key) const;            // "--f-max" or "f_max"
+  std::string at(std::string_view key) const;              // where an error points
+};
+
+// The user's options before any check: the options of `pounding motions` and the keys of a study's
+// [records.motions] (defaults as documented there), and which of them were given. settings_from makes the
+// Settings and runs every check of both (ranges and combinations: ONE set of messages), then validate().
+struct Request {
+  int supports = 2, match_points = 30, iterations = 10, realisations = 20, first = 1;
+  double spacing = 100, velocity = 500, beta = 0, luco_wong_a = 2.5e-4, z = 0.4, r = 1.0, damping = 0.05, dt = 0.01,
+         duration = 20, rise = 2, strong = 8, decay = 0.5, f_min = 0.1, f_max = 25, tolerance = 0.1;
+  std::vector<double> positions, match_range{0.05, 4.0};
+  std::string coherency = "sobczyk", loss, spectrum = "nzs1170.5", spectrum_file;
+  std::vector<std::string> soil;  // one site class for every support, or one per support
+  bool wave_passage = true;
+  std::uint64_t seed = 1;
+  std::set<std::string, std::less<>> given;  // the keys the user gave
+  bool has(std::string_view key) const { return given.find(key) != given.end(); }
+};
+Settings settings_from(const Request& r, const OptionNames& names = {});
+// Throws InputError naming the setting (its command-line option or study key) and the allowed range.
+void validate(const Settings& s, const OptionNames& names = {});
+// One line naming the method and every setting (the README of `pounding motions`, a study's report).
+std::string describe(const Settings& s);
 // match_periods or its default.
 std::vector<double> matching_periods(const Settings& s);
 

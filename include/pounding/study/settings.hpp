@@ -103,6 +103,38 @@ void visit_structure_settings(const StructureModel& m, V& v) {
   }
 }
 
+// [records.motions] as resolved (supports as positions, loss as beta, the seed used) and `generator`, the one line
+// the report prints (spatial::describe).
+template <class V>
+void visit_motion_settings(const StudyMotions& m, V&& v) {
+  using S = std::string;
+  const spatial::Settings& x = m.settings;
+  const char* section = "records.motions";
+  v(section, "generator", spatial::describe(x));
+  v(section, "positions", x.positions);
+  v(section, "velocity", x.velocity);
+  v(section, "wave_passage", x.wave_passage);
+  v(section, "coherency", S(to_string(x.coherency.model)));
+  if (x.coherency.model == spatial::CoherencyModel::sobczyk) v(section, "beta", x.coherency.beta);
+  if (x.coherency.model == spatial::CoherencyModel::luco_wong) v(section, "luco_wong_a", x.coherency.lw_a);
+  std::vector<std::string> targets;
+  for (const DesignSpectrum& d : x.targets) targets.push_back(d.describe());
+  v(section, "targets", targets);
+  v(section, "damping", x.damping);
+  v(section, "dt", x.dt);
+  v(section, "duration", x.duration);
+  v(section, "envelope", std::vector<double>{x.envelope.rise, x.envelope.strong, x.envelope.decay});
+  v(section, "f_range", std::vector<double>{x.f_min, x.f_max});
+  v(section, "match_periods", x.match_periods);
+  v(section, "iterations", static_cast<std::int64_t>(x.iterations));
+  v(section, "tolerance", x.tolerance);
+  v(section, "first", static_cast<std::int64_t>(m.first + 1));
+  v(section, "realisations", static_cast<std::int64_t>(m.count));
+  v(section, "seed", static_cast<std::int64_t>(x.seed));
+  v(section, "seed_from", S(m.seed_given ? "[records.motions] seed" : "the study's seed"));
+  v(section, "uniform", m.uniform);
+}
+
 template <class V>
 void visit_settings(const Study& s, V&& v) {
   using S = std::string;
@@ -128,6 +160,7 @@ void visit_settings(const Study& s, V&& v) {
   v("records", "select", static_cast<std::int64_t>(s.select));
   v("records", "polarity", S(to_string(s.polarity)));  // absent in older files: "recorded"
   if (s.supports > 0) v("records", "supports", static_cast<std::int64_t>(s.supports));  // a multi-support bridge
+  if (s.motions) visit_motion_settings(*s.motions, v);  // [records.motions]: what the generator was given
   if (s.target.enabled) {  // [target_spectrum] (study/target_spectrum.hpp); absent otherwise
     const TargetSpectrumSection& x = s.target;
     v("target_spectrum", "code", S(to_string(x.spec.code)));

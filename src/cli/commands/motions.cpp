@@ -12,6 +12,7 @@
 //                      sees the supports of one realisation as one event -- motion/library.hpp)
 //   README.md          every setting, the coherency model and the target spectra, with their sources
 // A stop (SIGINT/SIGTERM) between or within realisations ends the command with exit 130 and writes nothing.
+#include <algorithm>
 #include <atomic>
 #include <cerrno>
 #include <csignal>
@@ -34,23 +35,16 @@ namespace pounding::cli {
 namespace {
 
 namespace fs = std::filesystem;
-using spatial::CoherencyLoss;
-using spatial::CoherencyModel;
 
 std::atomic<bool> motions_stop{false};
 extern "C" void on_motions_stop(int) { motions_stop.store(true); }
 
+// The options as given (spatial::Request: the checks are the motion layer's, shared with [records.motions]), and
+// what only the command has: the output folder, the label, --quiet.
 struct MotionsOpts {
-  int supports = 2, realisations = 20, first = 1, iterations = 10, match_points = 30;
-  double spacing = 100, velocity = 500, z = 0.4, r = 1.0, damping = 0.05, dt = 0.01, duration = 20;
-  double rise = 2, strong = 8, decay = 0.5, f_min = 0.1, f_max = 25, tolerance = 0.1, beta = 0, lw_a = 2.5e-4;
-  std::vector<double> positions, match_range{0.05, 4.0};
-  std::string coherency = "sobczyk", loss, spectrum = "nzs1170.5", soil, spectrum_file, out, label = "svgm";
-  std::uint64_t seed = 1;
+  spatial::Request req;
+  std::string soil, out, label = "svgm";
   bool no_wave_passage = false, quiet = false;
-  CLI::Option *o_positions = nullptr, *o_supports = nullptr, *o_spacing = nullptr, *o_beta = nullptr,
-              *o_lw = nullptr, *o_loss = nullptr, *o_soil = nullptr, *o_z = nullptr, *o_r = nullptr,
-              *o_file = nullptr;
 };
 
 std::vector<std::string> split_commas(const std::string& text) {
@@ -60,115 +54,19 @@ std::vector<std::string> split_commas(const std::string& text) {
   return out;
 }
 
-spatial::Coherency coherency_of(const MotionsOpts& o) {
-  spatial::Coherency c;
-  const auto model = parse_enum(spatial::coherency_model_names, o.coherency);
-  if (!model)
-    throw InputError(fmt::format("unknown coherency model '{}'", escaped_excerpt(o.coherency)), "--coherency",
-                     "use " + enum_name_list(spatial::coherency_model_names, " or "));
-  c.model = *model;
-  const bool loss = o.o_loss->count() > 0, beta = o.o_beta->count() > 0;
-  if (c.model == CoherencyModel::sobczyk) {
-    if (loss && beta) throw InputError("both --loss and --beta", "--beta", "give one: a loss level or beta itself");
-    if (!loss && !beta)
-      throw InputError("sobczyk needs a coherency loss level", "--loss",
-                       "give --loss low|medium|high (beta 0.0005/0.001/0.002 1/m) or --beta");
-    if (loss) {
-      const auto l = parse_enum(spatial::coherency_loss_names, o.loss);
-      if (!l)
-        throw InputError(fmt::format("unknown loss level '{}'", escaped_excerpt(o.loss)), "--loss",
-                         "use low, medium or high");
-      c.beta = spatial::sobczyk_beta(*l);
-    } else {
-      c.beta = o.beta;
+// The given options' keys (--f-max -> f_max, --no-wave-passage -> wave_passage) and the derived values.
+spatial::Settings settings_of(MotionsOpts& o, const CLI::App& c) {
+  spatial::Request& r = o.req;
+  for (const auto* opt : c.get_options())
+    if (opt->count() > 0 && opt->get_name().rfind("--", 0) == 0) {
+      std::string key = opt->get_name().substr(2);
+      if (key == "no-wave-passage") key = "wave-passage";
+      std::replace(key.begin(), key.end(), '-', '_');
+      r.given.insert(key);
     }
-  } else if (loss || beta) {
-    throw InputError(fmt::format("--{} applies to --coherency sobczyk only", loss ? "loss" : "beta"),
-                     loss ? "--loss" : "--beta",
-                     c.model == CoherencyModel::harichandran_vanmarcke
-                         ? "Harichandran-Vanmarcke has one published set (SMART-1 Event 20): drop the option"
-                         : "drop the option");
-  }
-  if (o.o_lw->count() > 0 && c.model != CoherencyModel::luco_wong)
-    throw InputError("--luco-wong-a applies to --coherency luco-wong only", "--luco-wong-a", "drop the option");
-  c.lw_a = o.lw_a;
-  return c;
-}
-
-std::vector<DesignSpectrum> targets_of(const MotionsOpts& o, std::size_t n) {
-  std::vector<DesignSpectrum> out;
-  if (o.spectrum == "nzs1170.5") {
-    if (o.o_file->count() > 0)
-      throw InputError("--spectrum-file belongs to --spectrum csv", "--spectrum-file", "give --spectrum csv or drop it");
-    if (o.o_soil->count() == 0)
-      throw InputError("--spectrum nzs1170.5 needs the site class", "--soil", "give --soil A|B|C|D|E (or one per support, A,A,D,D)");
-    const auto classes = split_commas(o.soil);
-    if (classes.size() != 1 && classes.size() != n)
-      throw InputError(fmt::format("{} site classes for {} supports", classes.size(), n), "--soil",
-                       "give one class for all supports or one per support");
-    for (const auto& text : classes) {
-      const auto site = parse_nzs1170_site(text);
-      if (!site)
-        throw InputError(fmt::format("unknown NZS 1170.5 site class '{}'", escaped_excerpt(text)), "--soil",
-                         "use A, B, C, D or E");
-      Nzs1170Spectrum s{*site, o.z, o.r};
-      try {
-        out.emplace_back(s);
-      } catch (const InputError& e) {
-        const std::string opt = e.what_part().find("Z") != std::string::npos ? "--z" : "--r";
-        throw InputError(e.what_part(), opt, e.fix());
-      }
-    }
-  } else if (o.spectrum == "csv") {
-    if (o.o_soil->count() > 0 || o.o_z->count() > 0 || o.o_r->count() > 0)
-      throw InputError("--soil, --z and --r belong to --spectrum nzs1170.5", "--spectrum", "drop them with csv");
-    if (o.o_file->count() == 0)
-      throw InputError("--spectrum csv needs --spectrum-file", "--spectrum-file", "give a file of period_s,sa_g lines");
-    out.emplace_back(read_tabulated_spectrum(o.spectrum_file));
-  } else {
-    throw InputError(fmt::format("unknown spectrum '{}'", escaped_excerpt(o.spectrum)), "--spectrum",
-                     "use nzs1170.5 or csv");
-  }
-  return out;
-}
-
-spatial::Settings settings_of(const MotionsOpts& o) {
-  spatial::Settings s;
-  if (o.o_positions->count() > 0) {
-    if (o.o_supports->count() > 0 || o.o_spacing->count() > 0)
-      throw InputError("--positions with --supports/--spacing", "--positions", "give either --positions or --supports and --spacing");
-    s.positions = o.positions;
-  } else {
-    if (o.supports < 2 || o.supports > 16)
-      throw InputError(fmt::format("{} supports given", o.supports), "--supports", "give 2 to 16 supports");
-    require_range(o.spacing, 1.0, 10000.0, "--spacing", "[1, 10000] m");
-    for (int j = 0; j < o.supports; ++j) s.positions.push_back(o.spacing * j);
-  }
-  s.velocity = o.velocity;
-  s.wave_passage = !o.no_wave_passage;
-  s.coherency = coherency_of(o);
-  s.targets = targets_of(o, s.positions.size());
-  s.damping = o.damping;
-  s.dt = o.dt;
-  s.duration = o.duration;
-  s.envelope = {o.rise, o.strong, o.decay};
-  s.f_min = o.f_min;
-  s.f_max = o.f_max;
-  if (o.match_range.size() != 2 || !(o.match_range[0] > 0) || !(o.match_range[1] > o.match_range[0]))
-    throw InputError("--match-range is not LO,HI with 0 < LO < HI", "--match-range", "give e.g. --match-range 0.05,4");
-  if (o.match_points < 2 || o.match_points > 200)
-    throw InputError(fmt::format("{} matching points", o.match_points), "--match-points", "give 2 to 200");
-  for (int i = 0; i < o.match_points; ++i)
-    s.match_periods.push_back(o.match_range[0] *
-                              std::pow(o.match_range[1] / o.match_range[0], static_cast<double>(i) / (o.match_points - 1)));
-  s.iterations = o.iterations;
-  s.tolerance = o.tolerance;
-  s.seed = o.seed;
-  spatial::validate(s);
-  if (o.realisations < 1 || o.realisations > 10000)
-    throw InputError(fmt::format("{} realisations", o.realisations), "--realisations", "give 1 to 10000");
-  if (o.first < 1 || o.first > 1000000)
-    throw InputError(fmt::format("first realisation {}", o.first), "--first", "give 1 to 1000000");
+  r.wave_passage = !o.no_wave_passage;
+  if (r.has("soil")) r.soil = split_commas(o.soil);
+  const spatial::Settings s = spatial::settings_from(r);
   if (o.label.empty() || o.label.size() > 40 || o.label.find_first_of("\t\n\r") != std::string::npos)
     throw InputError("--label is empty, longer than 40 characters or holds a tab/newline", "--label", "give a short name");
   return s;
@@ -207,7 +105,7 @@ std::string readme(const MotionsOpts& o, const spatial::Settings& s, const std::
                    s.damping, s.dt, s.duration, s.envelope.rise, s.envelope.strong, s.envelope.decay, s.f_min, s.f_max);
   t += fmt::format("- matching: {} periods {:g}-{:g} s, at most {} updates, tolerance {:g} (largest |PSA/Sa - 1|)\n",
                    s.match_periods.size(), s.match_periods.front(), s.match_periods.back(), s.iterations, s.tolerance);
-  t += fmt::format("- seed {}, realisations {} to {}\n", s.seed, o.first, o.first + o.realisations - 1);
+  t += fmt::format("- seed {}, realisations {} to {}\n", s.seed, o.req.first, o.req.first + o.req.realisations - 1);
   t += "\nUnits: acceleration in g (AT2). MANIFEST.tsv: misfit = largest |PSA/Sa - 1| over the matching band, updates "
        "= spectrum-matching updates made.\n";
   return t;
@@ -252,42 +150,43 @@ void add_motions(CLI::App& app) {
   auto o = std::make_shared<MotionsOpts>();
   auto* c = app.add_subcommand("motions", "spatially varying, spectrum-compatible support motions (bridges): one AT2 "
                                           "file per support per realisation (Deodatis 1996)");
-  o->o_supports = c->add_option("--supports", o->supports, "number of supports, evenly spaced (2-16; default 2)");
-  o->o_spacing = c->add_option("--spacing", o->spacing, "support spacing, m (default 100)");
-  o->o_positions = c->add_option("--positions", o->positions, "support positions along the propagation direction, m "
-                                                              "(increasing; instead of --supports/--spacing)")->delimiter(',');
-  c->add_option("--velocity", o->velocity, "apparent wave velocity, m/s (default 500)");
+  spatial::Request& q = o->req;
+  c->add_option("--supports", q.supports, "number of supports, evenly spaced (2-16; default 2)");
+  c->add_option("--spacing", q.spacing, "support spacing, m (default 100)");
+  c->add_option("--positions", q.positions, "support positions along the propagation direction, m "
+                                            "(increasing; instead of --supports/--spacing)")->delimiter(',');
+  c->add_option("--velocity", q.velocity, "apparent wave velocity, m/s (default 500)");
   c->add_flag("--no-wave-passage", o->no_wave_passage, "no time delay between supports");
-  c->add_option("--coherency", o->coherency, "coherency model: sobczyk (default), harichandran-vanmarcke, luco-wong, none");
-  o->o_loss = c->add_option("--loss", o->loss, "coherency loss (sobczyk): low, medium, high (beta 0.0005/0.001/0.002 1/m)");
-  o->o_beta = c->add_option("--beta", o->beta, "sobczyk beta, 1/m (instead of --loss)");
-  o->o_lw = c->add_option("--luco-wong-a", o->lw_a, "luco-wong alpha/v_s, s/m (default 2.5e-4)");
-  c->add_option("--spectrum", o->spectrum, "target: nzs1170.5 (default) or csv");
-  o->o_soil = c->add_option("--soil", o->soil, "NZS 1170.5 site class A-E, or one per support (A,A,D,D)");
-  o->o_z = c->add_option("--z", o->z, "NZS 1170.5 hazard factor Z (default 0.4)");
-  o->o_r = c->add_option("--r", o->r, "NZS 1170.5 return period factor R (default 1)");
-  o->o_file = c->add_option("--spectrum-file", o->spectrum_file, "csv target: period_s,sa_g lines");
-  c->add_option("--damping", o->damping, "damping ratio of the spectra (default 0.05)");
-  c->add_option("--dt", o->dt, "time step, s (default 0.01)");
-  c->add_option("--duration", o->duration, "duration, s (default 20)");
-  c->add_option("--rise", o->rise, "envelope rise time t1, s (default 2)");
-  c->add_option("--strong", o->strong, "envelope strong phase t2 - t1, s (default 8)");
-  c->add_option("--decay", o->decay, "envelope decay rate after t2, 1/s (default 0.5)");
-  c->add_option("--f-min", o->f_min, "lowest frequency of the PSD, Hz (default 0.1)");
-  c->add_option("--f-max", o->f_max, "highest frequency of the PSD, Hz (default 25)");
-  c->add_option("--match-range", o->match_range, "matching periods LO,HI, s (default 0.05,4)")->delimiter(',');
-  c->add_option("--match-points", o->match_points, "matching periods, log-spaced (default 30)");
-  c->add_option("--iterations", o->iterations, "spectrum-matching updates at most (default 10; 0: none)");
-  c->add_option("--tolerance", o->tolerance, "largest |PSA/Sa - 1| that ends the matching (default 0.1)");
-  c->add_option("--realisations", o->realisations, "number of realisations (default 20)");
-  c->add_option("--first", o->first, "number of the first realisation (default 1)");
-  c->add_option("--seed", o->seed, "master seed (default 1)");
+  c->add_option("--coherency", q.coherency, "coherency model: sobczyk (default), harichandran-vanmarcke, luco-wong, none");
+  c->add_option("--loss", q.loss, "coherency loss (sobczyk): low, medium, high (beta 0.0005/0.001/0.002 1/m)");
+  c->add_option("--beta", q.beta, "sobczyk beta, 1/m (instead of --loss)");
+  c->add_option("--luco-wong-a", q.luco_wong_a, "luco-wong alpha/v_s, s/m (default 2.5e-4)");
+  c->add_option("--spectrum", q.spectrum, "target: nzs1170.5 (default) or csv");
+  c->add_option("--soil", o->soil, "NZS 1170.5 site class A-E, or one per support (A,A,D,D)");
+  c->add_option("--z", q.z, "NZS 1170.5 hazard factor Z (default 0.4)");
+  c->add_option("--r", q.r, "NZS 1170.5 return period factor R (default 1)");
+  c->add_option("--spectrum-file", q.spectrum_file, "csv target: period_s,sa_g lines");
+  c->add_option("--damping", q.damping, "damping ratio of the spectra (default 0.05)");
+  c->add_option("--dt", q.dt, "time step, s (default 0.01)");
+  c->add_option("--duration", q.duration, "duration, s (default 20)");
+  c->add_option("--rise", q.rise, "envelope rise time t1, s (default 2)");
+  c->add_option("--strong", q.strong, "envelope strong phase t2 - t1, s (default 8)");
+  c->add_option("--decay", q.decay, "envelope decay rate after t2, 1/s (default 0.5)");
+  c->add_option("--f-min", q.f_min, "lowest frequency of the PSD, Hz (default 0.1)");
+  c->add_option("--f-max", q.f_max, "highest frequency of the PSD, Hz (default 25)");
+  c->add_option("--match-range", q.match_range, "matching periods LO,HI, s (default 0.05,4)")->delimiter(',');
+  c->add_option("--match-points", q.match_points, "matching periods, log-spaced (default 30)");
+  c->add_option("--iterations", q.iterations, "spectrum-matching updates at most (default 10; 0: none)");
+  c->add_option("--tolerance", q.tolerance, "largest |PSA/Sa - 1| that ends the matching (default 0.1)");
+  c->add_option("--realisations", q.realisations, "number of realisations (default 20)");
+  c->add_option("--first", q.first, "number of the first realisation (default 1)");
+  c->add_option("--seed", q.seed, "master seed (default 1)");
   c->add_option("--label", o->label, "name of the set in MANIFEST.tsv (default svgm)");
   c->add_option("--out", o->out, "output folder (new or empty)")->required();
   c->add_flag("--quiet", o->quiet, "no progress lines");
   c->callback([o, c] {
     while (o->out.size() > 1 && o->out.back() == '/') o->out.pop_back();
-    const spatial::Settings s = settings_of(*o);
+    const spatial::Settings s = settings_of(*o, *c);
     check_out_dir(o->out);
     std::string command_line = "pounding motions";
     for (const auto* opt : c->get_options())
@@ -306,7 +205,8 @@ void add_motions(CLI::App& app) {
       };
     std::vector<spatial::Realisation> rs;
     try {
-      rs = spatial::simulate_all(s, static_cast<std::uint64_t>(o->first - 1), static_cast<std::size_t>(o->realisations), &hook);
+      rs = spatial::simulate_all(s, static_cast<std::uint64_t>(o->req.first - 1),
+                                    static_cast<std::size_t>(o->req.realisations), &hook);
     } catch (const Cancelled& e) {
       fmt::print(stderr, " stopped: {}; nothing written\n", e.what());
       throw ExitRequest{130};
