@@ -257,7 +257,9 @@ constexpr StudyKey keys[] = {
     {"structures", "damping", "string", "\"rayleigh\"", "", "\"rayleigh\" | \"modal\"",
      "Shear model: rayleigh = C = a0 M + a1 K0 with the building's zeta at modes 1 and 2 (the other modes get "
      "a0 / (2 omega) + a1 omega / 2); modal = classical modal damping C = M Phi diag(2 zeta_j omega_j / M_j) Phi' M, "
-     "every mode exactly its ratio (modal_zeta, else zeta). The default of both buildings."},
+     "every mode exactly its ratio (modal_zeta, else zeta). The default of both buildings; in a row mixing SDOF and "
+     "shear buildings it damps the shear buildings and the SDOFs keep their zeta (refused where every building is an "
+     "SDOF)."},
     {"structures", "modal_zeta", "array of numbers", "every mode the building's zeta", "", "[0, 0.5] each",
      "With damping = \"modal\": the damping ratio per mode from mode 1, the last value repeating for the higher "
      "modes (a one-storey building takes the first). The default of both buildings.", 0.0, 0.5},

@@ -687,6 +687,8 @@ BuildingModel parse_building(const toml::table* t, const std::string& file, cons
   // [structures] rayleigh_modes of a row mixing SDOF and shear buildings: the SDOF's one mode keeps its zeta (the
   // rule j' = min(j, n), i' = min(i, j' - 1) at n = 1); its own table's rayleigh_modes is refused (check_shear_keys)
   if (!b.shear() && !(t && t->get("rayleigh_modes"))) b.rayleigh_i = 1, b.rayleigh_j = 2;
+  // the same for [structures] damping = "modal" (and its modal_zeta): the shear buildings' damping; an SDOF keeps zeta
+  if (!b.shear() && !(t && (t->get("damping") || t->get("modal_zeta")))) b.modal_damping = false, b.modal_zeta.clear();
   if (r.get("floor_mass")) b.floor_mass = r.number("floor_mass", 0.0);
   if (r.get("storey_stiffness")) b.storey_stiffness = r.number("storey_stiffness", 0.0);
   read_isolation(r, file, name, b);

@@ -243,13 +243,17 @@ void resolve_row(StructureModel& m, const std::vector<const toml::table*>& table
   // (study/system_block.cpp mixed_row_levels)
 }
 
-// [structures] rayleigh_modes damps the shear buildings; an SDOF building keeps its zeta (the rule's one storey,
-// model::rayleigh_modes_for; parse_building drops the inherited modes), so the key is refused only where no
-// building has storeys to damp.
-void check_shared_rayleigh(const StructureModel& m, const WhereFn& where) {
-  if ((m.rayleigh_i == 1 && m.rayleigh_j == 2) || m.any_shear()) return;
-  throw InputError("rayleigh_modes is given and every building is an SDOF", where("rayleigh_modes"),
-                   "add model = \"shear\" to [structures] or to a building's table, or remove rayleigh_modes");
+// [structures] rayleigh_modes and damping = "modal" damp the shear buildings; an SDOF building keeps its zeta (the
+// rule's one storey, model::rayleigh_modes_for; a one-storey building's only mode takes zeta; parse_building drops the
+// inherited keys), so each is refused only where no building has storeys to damp.
+void check_shared_damping(const StructureModel& m, const WhereFn& where) {
+  if (m.any_shear()) return;
+  if (!(m.rayleigh_i == 1 && m.rayleigh_j == 2))
+    throw InputError("rayleigh_modes is given and every building is an SDOF", where("rayleigh_modes"),
+                     "add model = \"shear\" to [structures] or to a building's table, or remove rayleigh_modes");
+  if (m.modal_damping)
+    throw InputError("damping = \"modal\" is given and every building is an SDOF", where("damping"),
+                     "add model = \"shear\" to [structures] or to a building's table, or remove damping and modal_zeta");
 }
 
 }  // namespace
@@ -290,7 +294,8 @@ StructureModel parse_structure_model(const toml::table& table, const std::string
     if (r.get("storey_height"))
       m.storey_height = r.number("storey_height", 0.0);
     BuildingModel d = m.default_building();
-    if (!d.shear()) d.rayleigh_i = 1, d.rayleigh_j = 2;  // modes for the shear buildings only (check_shared_rayleigh)
+    if (!d.shear())  // modes and modal damping for the shear buildings only (check_shared_damping)
+      d.rayleigh_i = 1, d.rayleigh_j = 2, d.modal_damping = false, d.modal_zeta.clear();
     check_shear_keys(d, [&](std::string_view key) { return r.where(key); });
   }
   const std::array<const toml::table*, 2> buildings{r.table("building1"), r.table("building2")};
@@ -322,7 +327,7 @@ StructureModel parse_structure_model(const toml::table& table, const std::string
   validate_building(m.default_building(), where);
   resolve_buildings(m, buildings, file, where, rule_explicit);
   resolve_row(m, row_tables, file, where, rule_explicit);
-  check_shared_rayleigh(m, where);
+  check_shared_damping(m, where);
   return m;
 }
 

@@ -9,12 +9,14 @@
 #  1b. the same row with [structures] rayleigh_modes = [1, 3] (refused before: "rayleigh_modes is given for an SDOF
 #     building") equals simulate --rayleigh-modes2 1,3 bit for bit: the shear building takes modes 1 and 3, the SDOFs
 #     keep their zeta (the rule's one storey: their uncoupled peaks are 1.'s, building 2's all differ);
+#  1c. the same row with [structures] damping = "modal", modal_zeta = [0.03, 0.06] (refused before: "damping is given
+#     for an SDOF building") equals simulate --modal-zeta 0.03,0.06 bit for bit; the SDOFs keep their zeta;
 #  2. quick-row with building 2 a shear building is bit-identical at 1 and 2 ranks, batch width 1 and
 #     skip_untouched = false, and every analysis's per-element rows give its totals (the SDOF joints' one element,
 #     whose level varies with the sample, lands in the joint's row): sum of element impacts = impact_count, largest
 #     element closing = peak_closing;
-#  3. bad input still refused: an SDOF with isolation in a row, an SDOF's own rayleigh_modes, [structures]
-#     rayleigh_modes where every building is an SDOF.
+#  3. bad input still refused: an SDOF with isolation in a row, an SDOF's own rayleigh_modes or damping, [structures]
+#     rayleigh_modes or damping = "modal" where every building is an SDOF.
 # Synthetic records only (no ../shared needed). Args: <pounding binary> <source dir>
 set -euo pipefail
 bin=$1; src=$2
@@ -120,6 +122,23 @@ for k in ("peak_u_floors1", "peak_u_floors3", "peak_acc_floors1", "peak_acc_floo
 assert (a["uncoupled/peak_u_floors2"][()] != b["uncoupled/peak_u_floors2"][()]).all(), "the modes changed nothing"
 print("ok   modes: the SDOFs' uncoupled peaks unchanged, the shear building's all changed")
 PY
+# 1c. [structures] damping = "modal" with modal_zeta in the same row (refused before: "damping is given for an SDOF
+# building"): the shear building takes classical modal damping, the SDOFs keep their zeta -- simulate --modal-zeta
+sed 's/^\[structures\]$/[structures]\ndamping = "modal"\nmodal_zeta = [0.03, 0.06]/' "$tmp/one.toml" > "$tmp/modal.toml"
+grep -qx 'damping = "modal"' "$tmp/modal.toml" || fail "modal.toml: no damping line"
+"$bin" run "$tmp/modal.toml" --out "$tmp/modal.h5" > "$tmp/modal.out" 2>&1 || { cat "$tmp/modal.out"; fail "the row with [structures] damping = modal did not run"; }
+grep -q 'building2: .*classical modal damping' "$tmp/modal.out" || fail "building 2's model line: $(grep building2 "$tmp/modal.out")"
+same_as_simulate modal --modal-zeta 0.03,0.06
+/usr/bin/python3 - "$tmp" <<'PY'
+import sys, h5py
+import numpy as np
+tmp = sys.argv[1]
+a, b = h5py.File(f"{tmp}/one.h5", "r"), h5py.File(f"{tmp}/modal.h5", "r")
+for k in ("peak_u_floors1", "peak_u_floors3", "peak_acc_floors1", "peak_acc_floors3"):
+    assert np.array_equal(a[f"uncoupled/{k}"][()], b[f"uncoupled/{k}"][()]), f"an SDOF's {k} changed with modal damping"
+assert (a["uncoupled/peak_u_floors2"][()] != b["uncoupled/peak_u_floors2"][()]).all(), "modal damping changed nothing"
+print("ok   modal: the SDOFs' uncoupled peaks unchanged, the shear building's all changed")
+PY
 
 # 2. invariance of a mixed quick row, and the per-element rows give the totals
 sed 's/^\[structures.building3\]/[structures.building2]\nmodel = "shear"\n\n[structures.building3]/' \
@@ -151,6 +170,10 @@ expect_error all_sdof 'rayleigh_modes is given and every building is an SDOF.*\[
   "$(echo "$body" | sed 's/^\[structures\]$/[structures]\nrayleigh_modes = [1, 3]/')"
 expect_error sdof_own_modes 'rayleigh_modes is given for an SDOF building.*\[structures.building3\].rayleigh_modes' \
   "$(echo "$body" | sed 's/^\[structures.building3\]/[structures.building2]\nmodel = "shear"\n\n[structures.building3]\nrayleigh_modes = [1, 3]/')"
+expect_error all_sdof_modal 'damping = "modal" is given and every building is an SDOF.*\[structures\].damping' \
+  "$(echo "$body" | sed 's/^\[structures\]$/[structures]\ndamping = "modal"/')"
+expect_error sdof_own_damping 'damping is given for an SDOF building.*\[structures.building3\].damping' \
+  "$(echo "$body" | sed 's/^\[structures.building3\]/[structures.building2]\nmodel = "shear"\n\n[structures.building3]\ndamping = "modal"/')"
 expect_error sdof_isolated 'isolation is given for an SDOF building' \
   "$(echo "$body" | sed 's/^\[structures.building3\]/[structures.building2]\nmodel = "shear"\n\n[structures.building3]\nisolation = {bearing = "linear", k_eff = 1e7}/')"
 [ $fails -eq 0 ] || exit 1
