@@ -105,40 +105,35 @@ print(f"ok   {name}: (SDOF, 3-storey, SDOF) study == simulate bit for bit ({len(
 PY
 }
 same_as_simulate one
-# 1b. [structures] rayleigh_modes = [1, 3] in the same row: the shear building takes modes 1 and 3, the SDOFs keep
-# their zeta (the rule's one storey) -- simulate --rayleigh-modes2 1,3; the SDOFs' uncoupled peaks are one.h5's
-sed 's/^\[structures\]$/[structures]\nrayleigh_modes = [1, 3]/' "$tmp/one.toml" > "$tmp/modes.toml"
-grep -qx 'rayleigh_modes = \[1, 3\]' "$tmp/modes.toml" || fail "modes.toml: no rayleigh_modes line"
-"$bin" run "$tmp/modes.toml" --out "$tmp/modes.h5" > "$tmp/modes.out" 2>&1 || { cat "$tmp/modes.out"; fail "the row with [structures] rayleigh_modes did not run"; }
-grep -q 'building2: .*Rayleigh damping on modes 1 and 3' "$tmp/modes.out" || fail "building 2's model line: $(grep building2 "$tmp/modes.out")"
-same_as_simulate modes --rayleigh-modes2 1,3
-/usr/bin/python3 - "$tmp" <<'PY'
+# shared_damping NAME KEYS MODEL_LINE [simulate options]: one.toml with KEYS (TOML lines, \n-separated) added to
+# [structures]; building 2's model line matches MODEL_LINE, the study equals simulate with the options bit for bit,
+# the SDOFs' uncoupled peaks are one.h5's and every floor of the shear building differs
+shared_damping() {
+  local name=$1 keys=$2 line=$3
+  shift 3
+  sed "s/^\[structures\]\$/[structures]\n$keys/" "$tmp/one.toml" > "$tmp/$name.toml"
+  grep -qxF "${keys%%\\n*}" "$tmp/$name.toml" || fail "$name.toml: no ${keys%%\\n*} line"
+  "$bin" run "$tmp/$name.toml" --out "$tmp/$name.h5" > "$tmp/$name.out" 2>&1 \
+    || { cat "$tmp/$name.out"; fail "the row with [structures] ${keys%%\\n*} did not run"; }
+  grep -q "building2: .*$line" "$tmp/$name.out" || fail "building 2's model line: $(grep building2 "$tmp/$name.out")"
+  same_as_simulate "$name" "$@"
+  /usr/bin/python3 - "$tmp" "$name" <<'PY'
 import sys, h5py
 import numpy as np
-tmp = sys.argv[1]
-a, b = h5py.File(f"{tmp}/one.h5", "r"), h5py.File(f"{tmp}/modes.h5", "r")
+tmp, name = sys.argv[1:3]
+a, b = h5py.File(f"{tmp}/one.h5", "r"), h5py.File(f"{tmp}/{name}.h5", "r")
 for k in ("peak_u_floors1", "peak_u_floors3", "peak_acc_floors1", "peak_acc_floors3"):
-    assert np.array_equal(a[f"uncoupled/{k}"][()], b[f"uncoupled/{k}"][()]), f"an SDOF's {k} changed with the modes"
-assert (a["uncoupled/peak_u_floors2"][()] != b["uncoupled/peak_u_floors2"][()]).all(), "the modes changed nothing"
-print("ok   modes: the SDOFs' uncoupled peaks unchanged, the shear building's all changed")
+    assert np.array_equal(a[f"uncoupled/{k}"][()], b[f"uncoupled/{k}"][()]), f"an SDOF's {k} changed ({name})"
+assert (a["uncoupled/peak_u_floors2"][()] != b["uncoupled/peak_u_floors2"][()]).all(), f"{name} changed nothing"
+print(f"ok   {name}: the SDOFs' uncoupled peaks unchanged, the shear building's all changed")
 PY
+}
+# 1b. [structures] rayleigh_modes = [1, 3] in the same row: the shear building takes modes 1 and 3, the SDOFs keep
+# their zeta (the rule's one storey) -- simulate --rayleigh-modes2 1,3
+shared_damping modes 'rayleigh_modes = [1, 3]' 'Rayleigh damping on modes 1 and 3' --rayleigh-modes2 1,3
 # 1c. [structures] damping = "modal" with modal_zeta in the same row (refused before: "damping is given for an SDOF
 # building"): the shear building takes classical modal damping, the SDOFs keep their zeta -- simulate --modal-zeta
-sed 's/^\[structures\]$/[structures]\ndamping = "modal"\nmodal_zeta = [0.03, 0.06]/' "$tmp/one.toml" > "$tmp/modal.toml"
-grep -qx 'damping = "modal"' "$tmp/modal.toml" || fail "modal.toml: no damping line"
-"$bin" run "$tmp/modal.toml" --out "$tmp/modal.h5" > "$tmp/modal.out" 2>&1 || { cat "$tmp/modal.out"; fail "the row with [structures] damping = modal did not run"; }
-grep -q 'building2: .*classical modal damping' "$tmp/modal.out" || fail "building 2's model line: $(grep building2 "$tmp/modal.out")"
-same_as_simulate modal --modal-zeta 0.03,0.06
-/usr/bin/python3 - "$tmp" <<'PY'
-import sys, h5py
-import numpy as np
-tmp = sys.argv[1]
-a, b = h5py.File(f"{tmp}/one.h5", "r"), h5py.File(f"{tmp}/modal.h5", "r")
-for k in ("peak_u_floors1", "peak_u_floors3", "peak_acc_floors1", "peak_acc_floors3"):
-    assert np.array_equal(a[f"uncoupled/{k}"][()], b[f"uncoupled/{k}"][()]), f"an SDOF's {k} changed with modal damping"
-assert (a["uncoupled/peak_u_floors2"][()] != b["uncoupled/peak_u_floors2"][()]).all(), "modal damping changed nothing"
-print("ok   modal: the SDOFs' uncoupled peaks unchanged, the shear building's all changed")
-PY
+shared_damping modal 'damping = "modal"\nmodal_zeta = [0.03, 0.06]' 'classical modal damping' --modal-zeta 0.03,0.06
 
 # 2. invariance of a mixed quick row, and the per-element rows give the totals
 sed 's/^\[structures.building3\]/[structures.building2]\nmodel = "shear"\n\n[structures.building3]/' \
