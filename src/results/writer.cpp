@@ -277,22 +277,37 @@ void write_group(h5::hid root, const Group& gr) {
 
 }  // namespace
 
-void write(const std::string& path, const Results& r) {
+Writer::Writer(const std::string& path, const Results& r) {
   check_system(r);
-  h5::AtomicFile f(path);
-  const auto root = f.root();
+  file_ = std::make_unique<h5::AtomicFile>(path);
+  const auto root = file_->root();
   write_header_start(root, r.header, r.system.empty() ? pair_format_version : format_version);
   write_settings(root, r.settings);
-  write_header_end(root, r.header);
   write_records(root, r.records);
   write_models(root, r.models);
   write_gaps(root, r.gaps, r.model_count());
   for (const char* group : {"records", "models", "gaps"})
     if (h5::exists(root, group)) label_group(root, group);
   write_fields(root, r);  // labelled from their schema rows
-  for (const Group& g : r.groups) write_group(root, g);
   if (!r.system.empty()) write_system(root, r.system);
-  f.commit();
+}
+
+Writer::~Writer() = default;
+Writer::Writer(Writer&&) noexcept = default;
+Writer& Writer::operator=(Writer&&) noexcept = default;
+
+void Writer::finish(const Results& r) {
+  if (!file_) throw std::logic_error("results::Writer::finish called twice");
+  const auto root = file_->root();
+  write_header_end(root, r.header);
+  for (const Group& g : r.groups) write_group(root, g);
+  file_->commit();
+  file_.reset();
+}
+
+void write(const std::string& path, const Results& r) {
+  Writer w(path, r);
+  w.finish(r);
 }
 
 }  // namespace pounding::results

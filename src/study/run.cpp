@@ -14,6 +14,7 @@
 #include <memory>
 #include <mutex>
 #include <optional>
+#include <thread>
 
 #include <fmt/format.h>
 
@@ -1140,8 +1141,9 @@ results::Group timing_group(const timing::Times& T, std::size_t units, std::size
   g.set("units", static_cast<std::int64_t>(units));
   g.set("units_resumed", static_cast<std::int64_t>(units_resumed));
   g.set("threads", static_cast<std::int64_t>(threads));
-  g.set("description", std::string("wall_s: from this process's start (before MPI start-up) to the start of the "
-                                   "results write, so it holds every phase but results_write; after --resume only "
+  g.set("description", std::string("wall_s: from this process's start (before MPI start-up) to the end of the "
+                                   "report (the results write's bulk runs beside the report), so it holds every "
+                                   "phase but results_write, the write's part after the report; after --resume only "
                                    "this invocation (units_resumed units came from the checkpoint); threads: the "
                                    "worker threads per rank (results do not depend on it); the compute phase sums a "
                                    "rank's threads"));
@@ -1152,6 +1154,52 @@ results::Group timing_group(const timing::Times& T, std::size_t units, std::size
 void remove_checkpoint(Checkpoint& main) {
   for (const std::string& path : slice_paths(main.path())) ::unlink(path.c_str());
   main.remove();
+}
+
+// The report (RunOptions::report) rendered on a thread of its own while this thread writes the bulk of the results
+// file (results::Writer: everything the report's end does not change), so the two serial phases after the units
+// overlap: on the paper study the report takes 0.2 s and the bulk 0.2-0.4 s on 2 cores. HDF5 is called from this
+// thread only; the report reads `res`, which neither side changes. Sets the report, its time and its bootstrap's, and
+// in `write_s` the wall time the bulk added after the report ended (0 when the report took longer). An error or a
+// stop on either side is thrown here after both have ended, the report's first; the unfinished Writer then leaves
+// nothing on disk. Without a report the bulk alone, all of it in `write_s`.
+results::Writer report_beside_write(const RunOptions& opt, const RunContext& ctx, const std::string& out,
+                                    results::Results& res, std::string& report, timing::Times& T, double& write_s) {
+  using timing::Phase;
+  const auto t0 = std::chrono::steady_clock::now();
+  if (!opt.report) {
+    results::Writer file(out, res);
+    write_s = timing::seconds_since(t0);
+    return file;
+  }
+  res.path = out;
+  res.header.wall_time_s = NAN;
+  std::exception_ptr report_error;
+  double bootstrap_s = 0;
+  std::chrono::steady_clock::time_point report_end;
+  std::thread renderer([&] {
+    try {
+      report = opt.report(res, ctx.hook(), bootstrap_s);
+    } catch (...) {
+      report_error = std::current_exception();
+    }
+    report_end = std::chrono::steady_clock::now();
+  });
+  std::optional<results::Writer> file;
+  std::exception_ptr write_error;
+  try {
+    file.emplace(out, res);
+  } catch (...) {
+    write_error = std::current_exception();
+  }
+  const auto bulk_end = std::chrono::steady_clock::now();
+  renderer.join();
+  if (report_error) std::rethrow_exception(report_error);
+  if (write_error) std::rethrow_exception(write_error);
+  T[Phase::bootstrap] += bootstrap_s;
+  T[Phase::report] = std::chrono::duration<double>(report_end - t0).count();
+  write_s = std::max(0.0, std::chrono::duration<double>(bulk_end - report_end).count());
+  return std::move(*file);
 }
 
 int finish(const parallel::Session& session, const Inputs& in, const WorkPlan& L, Checkpoint* ckpt, Tally& tally,
@@ -1183,13 +1231,10 @@ int finish(const parallel::Session& session, const Inputs& in, const WorkPlan& L
       // the analyses the caller adds (fragility, hazard: report/fragility.hpp), with progress and the stop flag
       if (opt.analyse) opt.analyse(res, ctx.hook());
       analysis = T[Phase::analysis] = timing::seconds_since(t_analysis);
-      if (opt.report) {  // the report pounding run prints, from these results (its wall time filled in below)
-        const auto t_report = std::chrono::steady_clock::now();
-        res.path = in.out;
-        res.header.wall_time_s = NAN;
-        report = opt.report(res, ctx.hook(), T[Phase::bootstrap]);
-        T[Phase::report] = timing::seconds_since(t_report);
-      }
+      // the report pounding run prints, from these results (its wall time filled in below), rendered while this
+      // thread writes the file's bulk; results_write counts what the write adds after the report
+      double write_s = 0;
+      results::Writer file = report_beside_write(opt, ctx, in.out, res, report, T, write_s);
       total = T.wall = timing::seconds_since(timing::program_start());
       res.header.wall_time_s = total;
       if (const auto at = report.find("wall time nan s"); at != std::string::npos)
@@ -1197,8 +1242,9 @@ int finish(const parallel::Session& session, const Inputs& in, const WorkPlan& L
       for (std::size_t i = static_cast<std::size_t>(Phase::analysis); i < timing::phase_count; ++i) T.max[i] = T.rank0[i];
       res.groups.push_back(timing_group(T, L.units(), units_resumed, threads));
       const auto t_write = std::chrono::steady_clock::now();
-      results::write(in.out, res);
-      T.max[static_cast<std::size_t>(Phase::results_write)] = T[Phase::results_write] = timing::seconds_since(t_write);
+      file.finish(res);
+      T.max[static_cast<std::size_t>(Phase::results_write)] = T[Phase::results_write] =
+          write_s + timing::seconds_since(t_write);
       T.wall = timing::seconds_since(timing::program_start());
     } catch (const Cancelled& c) {
       ckpt->sync();

@@ -32,9 +32,11 @@ inline constexpr std::array<std::string_view, phase_count> phase_meanings{
     "storing the units' results in the tally (rank 0, inside units)",
     "appending and flushing the checkpoint (rank 0, inside units)",
     "the analyses after the units (a fragility study's fit, hazard; rank 0)",
-    "the Markdown report that pounding run prints (rank 0)",
+    "the Markdown report that pounding run prints (rank 0; the results file's bulk is written beside it on another "
+    "thread)",
     "the separation bootstrap inside the report (rank 0)",
-    "writing the results file (rank 0; not in the file's own /timing, which is written by it)"};
+    "writing the results file, the part after the report (rank 0: the bulk not done beside the report, then the "
+    "header's end and the groups; not in the file's own /timing, which is written by it)"};
 
 struct Times {
   std::array<double, phase_count> rank0{}, max{};  // s

@@ -5,12 +5,34 @@
 // Errors: InputError (the OS error, e.g. a full disk), std::runtime_error (HDF5), std::logic_error (a dataset
 // without units and description, a field that does not fill its shape, an inconsistent SystemTable, per-floor or
 // per-element fields without a SystemTable or whose floors or elements differ from it -- refused before any file).
+#include <memory>
 #include <string>
 
 #include "pounding/results/results.hpp"
 
+namespace pounding::h5 {
+class AtomicFile;
+}
+
 namespace pounding::results {
 
 void write(const std::string& path, const Results& r);
+
+// The same file in two parts, so a caller can render its report while the bulk is written (study/run.cpp: the report
+// on another thread; HDF5 is called from the writer's thread only). The constructor builds in memory everything of
+// `r` but its header's closing attributes (wall time, exclusions) and its extra groups (/timing, analyses,
+// selection); finish() adds those from `r` -- the Results given to the constructor, completed, not another one --
+// and renames the file into place. A Writer destroyed without finish() leaves nothing on disk.
+class Writer {
+ public:
+  Writer(const std::string& path, const Results& r);
+  ~Writer();
+  Writer(Writer&&) noexcept;
+  Writer& operator=(Writer&&) noexcept;
+  void finish(const Results& r);
+
+ private:
+  std::unique_ptr<h5::AtomicFile> file_;
+};
 
 }  // namespace pounding::results
