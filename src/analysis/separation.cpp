@@ -490,10 +490,16 @@ double ddc_rho(double T1, double T2, double z1, double z2) {
   return num / den;
 }
 
-std::vector<Rule> code_rules(const DesignPair& p, double coefficient) {
+std::array<double, code_rule_count> code_rule_gaps(const DesignPair& p) {
   const double abs = p.u1 + p.u2, srss = std::hypot(p.u1, p.u2);
   const double rho = ddc_rho(p.T1, p.T2, p.zeta1, p.zeta2);
   const double ddc = std::sqrt(std::max(0.0, p.u1 * p.u1 + p.u2 * p.u2 - 2.0 * rho * p.u1 * p.u2));
+  return {p.code_gap, abs, srss, ddc, srss, abs, abs, srss, 0.7 * srss};
+}
+
+std::vector<Rule> code_rules(const DesignPair& p, double coefficient) {
+  const std::array<double, code_rule_count> g = code_rule_gaps(p);
+  const double abs = g[1], srss = g[2], ddc = g[3];
   const bool s2800 = coefficient == 0.005;
   std::string coef = std::to_string(coefficient);
   coef.erase(coef.find_last_not_of('0') + 1);
@@ -521,7 +527,7 @@ std::vector<Rule> code_rules(const DesignPair& p, double coefficient) {
        "sqrt(u1^2 + u2^2)", srss},
       {"EC8 formula, same property, floor levels coincide (mean record peaks)",
        "EN 1998-1 sec. 4.4.2.7(3) 0.7 x the SRSS distance, fed the mean of the records' uncoupled peaks, not d_s",
-       "0.7 sqrt(u1^2 + u2^2)", 0.7 * srss},
+       "0.7 sqrt(u1^2 + u2^2)", g[8]},
   };
 }
 

@@ -24,6 +24,8 @@ std::span<const T> column_or_empty(const results::Results& r, const char* group,
   return r.find(group, name) ? std::span<const T>(r.column<T>(group, name)) : std::span<const T>();
 }
 
+struct UncoupledCounts;
+
 struct Data {
   const results::Results& res;
   const results::Header& h;
@@ -77,8 +79,12 @@ struct Data {
   separation::BootstrapResult bootstrap(bool metres, std::span<const double> targets, std::span<const double> gaps,
                                         bool lognormal = false) const;
   const separation::Prepared& prepared(bool metres) const;  // demands(metres) ranked (once per report)
+  // count_uncoupled's answers at gap ratio x, from one pass over the analyses (kept for the report: its tables ask
+  // per record, per period pair and in total at the same few ratios).
+  const UncoupledCounts& uncoupled_counts(double x) const;
 
  private:
+  mutable std::vector<std::pair<double, std::shared_ptr<const UncoupledCounts>>> uncoupled_;
   mutable std::shared_ptr<const separation::Prepared> prepared_[2];  // demands(false), demands(true)
   struct Computed {
     bool metres, lognormal;
@@ -91,6 +97,13 @@ struct Data {
 struct Count {
   std::int64_t hits = 0, n = 0;
   double pct() const { return n ? 100.0 * static_cast<double>(hits) / static_cast<double>(n) : NAN; }
+};
+// The uncoupled verdicts at one gap ratio per independent record, per period pair (i1 n2 + i2, the model table's
+// grid indices) and in all.
+struct UncoupledCounts {
+  std::vector<Count> per_record, per_pair;
+  std::size_t n1 = 0, n2 = 0;
+  Count total;
 };
 
 std::string pct(double p);

@@ -92,7 +92,7 @@ std::string floors_section(const Data& r) {
                   : fmt::format("| {} | {} |", sys.building_label[b], isolated ? f : f + 1);
       for (std::size_t g = 0; g < r.gaps(); ++g) {
         std::size_t n = 0;
-        s += " " + cell(r, x, f, g, n) + " |";
+        s += fmt::format(" {} |", cell(r, x, f, g, n));  // not " " + cell(...): GCC 12's -Wrestrict false positive
       }
       s += "\n";
     }

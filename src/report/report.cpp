@@ -200,11 +200,49 @@ const separation::Prepared& Data::prepared(bool metres) const {
   return *prepared_[metres];
 }
 
+const UncoupledCounts& Data::uncoupled_counts(double x) const {
+  for (const auto& [ratio, counts] : uncoupled_)
+    if (ratio == x) return *counts;
+  auto u = std::make_shared<UncoupledCounts>();
+  const std::size_t M = models();
+  const bool grid = mod.i1.size() == M && mod.i2.size() == M;  // the grid indices (files may lack them)
+  for (std::size_t m = 0; grid && m < M; ++m) {
+    u->n1 = std::max<std::size_t>(u->n1, mod.i1[m] >= 0 ? static_cast<std::size_t>(mod.i1[m]) + 1 : 0);
+    u->n2 = std::max<std::size_t>(u->n2, mod.i2[m] >= 0 ? static_cast<std::size_t>(mod.i2[m]) + 1 : 0);
+  }
+  u->per_record.resize((records() + per_record - 1) / per_record);
+  u->per_pair.resize(u->n1 * u->n2);
+  for (std::size_t k = 0; k < records(); ++k) {
+    Count& rc = u->per_record[k / per_record];
+    for (std::size_t m = 0; m < M; ++m) {
+      const std::size_t idx = k * M + m;
+      if (!ok(status[idx])) continue;
+      const int hit = peak_closing[idx] > x * mod.code_gap[m];
+      ++rc.n, rc.hits += hit;
+      if (grid && mod.i1[m] >= 0 && mod.i2[m] >= 0) {
+        Count& pc = u->per_pair[static_cast<std::size_t>(mod.i1[m]) * u->n2 + static_cast<std::size_t>(mod.i2[m])];
+        ++pc.n, pc.hits += hit;
+      }
+    }
+  }
+  for (const Count& c : u->per_record) u->total.n += c.n, u->total.hits += c.hits;
+  uncoupled_.emplace_back(x, u);
+  return *uncoupled_.back().second;
+}
+
 std::string pct(double p) { return std::isnan(p) ? "n/a" : fmt::format("{:.2f}%", p); }
 
-// uncoupled: hit when peak closing > ratio * code gap (contact is delta = u1 - u2 - gap > 0)
+// uncoupled: hit when peak closing > ratio * code gap (contact is delta = u1 - u2 - gap > 0). Per record, per pair
+// and in all from Data::uncoupled_counts (one pass per ratio: the period matrix and the CSV asked a pass per pair and
+// ratio, 726 passes over the 10^8 analyses of a large study); a record and a pair together by their own pass.
 Count count_uncoupled(const Data& r, double ratio, int rec, int pair_i1, int pair_i2) {
   if (r.red) return reduced_count(r, ratio, rec, pair_i1, pair_i2);
+  if (rec < 0 || pair_i1 < 0) {
+    const UncoupledCounts& u = r.uncoupled_counts(ratio);
+    if (pair_i1 < 0) return rec < 0 ? u.total : static_cast<std::size_t>(rec) < u.per_record.size() ? u.per_record[rec] : Count{};
+    const auto a = static_cast<std::size_t>(pair_i1), b = static_cast<std::size_t>(pair_i2);
+    return pair_i2 >= 0 && a < u.n1 && b < u.n2 ? u.per_pair[a * u.n2 + b] : Count{};
+  }
   Count c;
   const std::size_t M = r.models();
   for (std::size_t k = 0; k < r.records(); ++k) {

@@ -95,7 +95,8 @@ separation::DesignPair design_pair(const Data& r) {
 }
 
 // The rules' gaps of model m for a grid study: each building's mean peak over the ok records of that model.
-std::vector<separation::Rule> model_rules(const Data& r, std::size_t m) {
+// Model m's design pair for the code rules: each building's mean uncoupled peak over the records (ok analyses).
+separation::DesignPair model_design_pair(const Data& r, std::size_t m) {
   separation::DesignPair p;
   double s1 = 0, s2 = 0;
   std::size_t n = 0;
@@ -104,7 +105,7 @@ std::vector<separation::Rule> model_rules(const Data& r, std::size_t m) {
   p.u1 = s1 / static_cast<double>(n), p.u2 = s2 / static_cast<double>(n);
   p.T1 = r.mod.T1[m], p.T2 = r.mod.T2[m], p.zeta1 = r.zeta(1, m), p.zeta2 = r.zeta(2, m);
   p.code_gap = r.mod.code_gap[m];
-  return separation::code_rules(p, r.set.code_gap_coefficient);
+  return p;
 }
 
 // A target t (a fraction) is resolved by N independent records when floor(t N) >= 1 (some record may exceed it).
@@ -170,13 +171,15 @@ std::string grid_rules(const Data& r) {
 std::vector<GridRuleRow> grid_rule_rows(const Data& r) {
   std::vector<GridRuleRow> rows;
   for (std::size_t m = 0; m < r.models(); ++m) {
-    const std::vector<separation::Rule> rules = model_rules(r, m);
-    if (rows.empty())
-      for (const separation::Rule& rule : rules) rows.push_back({rule, 0, 0, NAN, {}});
+    const separation::DesignPair p = model_design_pair(r, m);
+    if (rows.empty())  // the rows' texts (and model 0's gaps) once; each model's gaps without them
+      for (const separation::Rule& rule : separation::code_rules(p, r.set.code_gap_coefficient))
+        rows.push_back({rule, 0, 0, NAN, {}});
+    const std::array<double, separation::code_rule_count> gaps = separation::code_rule_gaps(p);
     for (std::size_t k = 0; k < r.records(); ++k) {
       const std::size_t i = k * r.models() + m;
       if (!r.ok(r.status[i])) continue;
-      for (std::size_t j = 0; j < rules.size(); ++j) ++rows[j].n, rows[j].hits += r.peak_closing[i] > rules[j].gap;
+      for (std::size_t j = 0; j < gaps.size(); ++j) ++rows[j].n, rows[j].hits += r.peak_closing[i] > gaps[j];
     }
   }
   for (GridRuleRow& row : rows) {

@@ -176,6 +176,9 @@ TEST(CodeRules, GapsInMetres) {
   EXPECT_NE(rules[4].clause.find("12.12.3"), std::string::npos);
   EXPECT_NE(rules[8].clause.find("4.4.2.7"), std::string::npos);
   EXPECT_EQ(code_rules(p, 0.01)[0].name, "coefficient rule");
+  // the text-free gaps a grid report evaluates per model: the rules' own, in order
+  ASSERT_EQ(rules.size(), code_rule_count);
+  for (std::size_t j = 0; j < code_rule_count; ++j) EXPECT_EQ(code_rule_gaps(p)[j], rules[j].gap) << rules[j].name;
   // identical periods: rho = 1 and DDC = |u1 - u2|
   const DesignPair same{.u1 = 0.12, .u2 = 0.16, .T1 = 1.0, .T2 = 1.0, .zeta1 = 0.05, .zeta2 = 0.05, .code_gap = 0.3};
   EXPECT_NEAR(code_rules(same, 0.005)[3].gap, 0.04, 1e-12);

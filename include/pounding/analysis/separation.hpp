@@ -48,6 +48,7 @@
 // the record effect. Its interval is the same two-stage bootstrap (the same replicates, refitted), so it
 // includes record-to-record variability. It extrapolates: a target beyond the records rests on the lognormal
 // tail, and the report labels it so.
+#include <array>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
@@ -169,5 +170,9 @@ struct Rule {
 // properties: the sum; same property: SRSS; x 0.7 where floor levels coincide), in this order. `coefficient` names the first row
 // ("Standard 2800" at 0.005).
 std::vector<Rule> code_rules(const DesignPair& p, double coefficient);
+// The gaps of code_rules, in its order and from the same arithmetic (code_rules takes them from here), without the
+// texts: a grid study's report evaluates the rules for each of up to 10^7 models.
+inline constexpr std::size_t code_rule_count = 9;
+std::array<double, code_rule_count> code_rule_gaps(const DesignPair& p);
 
 }  // namespace pounding::separation
