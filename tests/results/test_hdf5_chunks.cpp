@@ -6,6 +6,8 @@
 //  - the values read back through HDF5 equal the values written, for 1-D and 2-D datasets of every numeric type,
 //    at the sizes around the compression threshold (4096 values) and the chunk length (65536 rows), with a
 //    partial last chunk;
+//  - the engine's reader (h5::read_*, which inflates the chunks on every CPU) returns the values from the engine's
+//    chunks, from HDF5's own, and from the layout of files before 2026-11-27 (deflate level 4 alone, large chunks);
 //  - the dataset declares the deflate filter (and, for values wider than a byte, the shuffle filter before it), so
 //    the chunks are not raw bytes by accident.
 #include <hdf5.h>
@@ -30,6 +32,17 @@ std::vector<T> ramp(std::size_t n) {  // compressible but not constant: a slow r
   for (std::size_t i = 0; i < n; ++i) v[i] = static_cast<T>((i / 7) % 251 + (i % 3));
   return v;
 }
+
+template <class T>
+std::vector<T> read_back(hid_t file, const std::string& name);  // the engine's reader
+template <>
+std::vector<double> read_back<double>(hid_t f, const std::string& n) { return h5::read_doubles(f, n); }
+template <>
+std::vector<std::int64_t> read_back<std::int64_t>(hid_t f, const std::string& n) { return h5::read_int64(f, n); }
+template <>
+std::vector<std::int32_t> read_back<std::int32_t>(hid_t f, const std::string& n) { return h5::read_int32(f, n); }
+template <>
+std::vector<std::uint8_t> read_back<std::uint8_t>(hid_t f, const std::string& n) { return h5::read_uint8(f, n); }
 
 template <class T>
 hid_t native_type();
@@ -81,12 +94,25 @@ void check_shape(std::vector<std::size_t> dims) {
     h5::Handle space(H5Dget_space(engine.get()));
     h5::Handle ref(H5Dcreate2(f.root(), "reference", native_type<T>(), space.get(), H5P_DEFAULT, dcpl.get(), H5P_DEFAULT));
     ASSERT_GE(ref.get(), 0);
+    // the layout of files before 2026-11-27: deflate at level 4 alone, chunks of up to 4 Mi values
+    h5::Handle old_dcpl(H5Pcreate(H5P_DATASET_CREATE));
+    if (total >= 4096) {
+      std::vector<hsize_t> chunk(dims.begin(), dims.end());
+      chunk[0] = std::min<hsize_t>({chunk[0], 65536, std::max<hsize_t>(1, (hsize_t{1} << 22) / (total / dims[0]))});
+      ASSERT_GE(H5Pset_chunk(old_dcpl.get(), static_cast<int>(chunk.size()), chunk.data()), 0);
+      ASSERT_GE(H5Pset_deflate(old_dcpl.get(), 4), 0);
+    }
+    h5::Handle old(H5Dcreate2(f.root(), "old", native_type<T>(), space.get(), H5P_DEFAULT, old_dcpl.get(), H5P_DEFAULT));
+    ASSERT_GE(old.get(), 0);
     if (total > 0) {
       ASSERT_GE(H5Dwrite(ref.get(), native_type<T>(), H5S_ALL, H5S_ALL, H5P_DEFAULT, values.data()), 0);
+      ASSERT_GE(H5Dwrite(old.get(), native_type<T>(), H5S_ALL, H5S_ALL, H5P_DEFAULT, values.data()), 0);
     }
     f.commit();
   }
   h5::Handle file = h5::open_read(path);
+  for (const char* name : {"engine", "reference", "old"})
+    EXPECT_EQ(read_back<T>(file.get(), name), values) << label << ": the engine's reader on '" << name << "'";
   std::vector<T> back(total);
   {
     h5::Handle ds(H5Dopen2(file.get(), "engine", H5P_DEFAULT));
