@@ -924,6 +924,16 @@ void sync_checkpoint(Checkpoint& c, const Tally& tally) {
   else c.sync();
 }
 
+// An error during the units (a failed unit or write, on any rank): a snapshot rank saves what it folded so far, so its
+// checkpoint keeps every finished unit as unit records do; if that save fails too, the previous snapshot stays.
+void save_after_error(Checkpoint* ckpt, const Tally& tally) noexcept {
+  if (!ckpt || !ckpt->snapshots()) return;
+  try {
+    ckpt->save(tally.snapshot());
+  } catch (...) {  // the error being thrown is the one to report
+  }
+}
+
 // Seconds between the periodic flushes: 5 (POUNDING_TEST_CHECKPOINT_S sets another, for tests only).
 double checkpoint_interval_s() {
   static const double s = [] {
@@ -1316,7 +1326,13 @@ RunOutcome run_study(const parallel::Session& session, const std::string& study_
   double wall = 0.0;
   const int threads = study_threads(opt.threads >= 0 ? opt.threads : in.study.threads, session.size(), todo.size());
   std::size_t remote = 0;  // rank 0: units the workers stored in their slices
-  const bool complete = execute(session, in, L, todo, ckpt ? &*ckpt : nullptr, tally, remote, ctx, wall, T, threads);
+  bool complete = false;
+  try {
+    complete = execute(session, in, L, todo, ckpt ? &*ckpt : nullptr, tally, remote, ctx, wall, T, threads);
+  } catch (...) {
+    save_after_error(ckpt ? &*ckpt : nullptr, tally);
+    throw;
+  }
   if (complete) assemble(session, in, L, tally, key, T);
   std::vector<double> phases(T.rank0.begin(), T.rank0.end());  // every rank: the maxima of the phases so far
   session.max_to_root(phases);

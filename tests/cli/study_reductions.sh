@@ -143,6 +143,15 @@ else
   ls "$tmp"/k.h5.ckpt* > /dev/null 2>&1 && fail "checkpoint files left after the results: $(ls "$tmp"/k.h5.ckpt*)"
 fi
 cmp "$tmp/red.h5" "$tmp/narrow.h5" --ignore=study_text,batch,output || fail "batch 3 vs the default differ"
+# a unit that fails on rank 1 (its third): every rank saves what it folded before the job stops (exit 2), so the
+# resume starts from more than nothing (the 5 s periodic snapshot never came) and gives the same file
+rc=0; POUNDING_INJECT_FAULT=compute@1 timeout 300 mpirun -np 2 "$bin" run "$tmp/red.toml" --out "$tmp/f.h5" --quiet \
+  > /dev/null 2> "$tmp/f.err" || rc=$?
+"$bin" run "$tmp/red.toml" --out "$tmp/f.h5" --resume --quiet > /dev/null 2> "$tmp/f2.err" || fail "resume after a failed unit: $(cat "$tmp/f2.err")"
+done_at=$(sed -n 's/^resuming: \([0-9]*\) of.*/\1/p' "$tmp/f2.err")
+{ [ "$rc" -eq 2 ] && [ "${done_at:-0}" -gt 0 ]; } && echo "ok   failed unit (exit 2): $(cat "$tmp/f2.err" | head -1)" \
+  || fail "failed unit: exit $rc, resumed with '${done_at}' units: $(cat "$tmp/f.err")"
+cmp "$tmp/red.h5" "$tmp/f.h5" || fail "a failed unit + --resume differs"
 "$bin" run "$tmp/red.toml" --out "$tmp/int.h5" --threads 1 > /dev/null 2> "$tmp/int.err" &
 pid=$!
 for _ in $(seq 1 400); do
