@@ -1,6 +1,7 @@
 #pragma once
 // The run's checkpoint <out>.ckpt: every finished work unit, appended by rank 0, so that a killed or
-// failed run continues with --resume and gives bit-identical results.
+// failed run continues with --resume and gives bit-identical results ([outputs] per_model = false: one snapshot of
+// the rank's reductions instead, format 5 below).
 //
 // Format 4 (little-endian): header = magic "PNDCKPT4", study hash (u64), unit count (u64), build hash (u64),
 // build description length (u64) + bytes; then records = unit (u64), byte count (u64), that many payload
