@@ -8,7 +8,8 @@
 #     The checkpoint is one snapshot per rank (format 5, issue 27.5): a 3-rank job killed (-9) and resumed at 2 ranks,
 #     stopped again, its absorbed slices put back (a stop between rank 0's snapshot and their removal), resumed at 1
 #     rank: the same file. Its size does not grow with the models (256 and 1024 samples per pair: the difference is
-#     the done bits alone); a damaged snapshot and a per_model = true resume of it are refused.
+#     the done bits alone); a damaged snapshot, a slice sharing part of its units with the main file
+#     (tests/cli/snapshot.py) and a per_model = true resume of a snapshot are refused; a failed unit keeps the units.
 #  3. the memory check admits with per_model = false the study it refuses with per_model = true.
 #  4. the impacts scene and [report] html with per_model = false: one clear error each, exit 2, nothing written.
 # Synthetic records only (no ../shared). Args: <pounding binary> <source dir>
@@ -173,6 +174,12 @@ rc=0; "$bin" run "$tmp/red.toml" --out "$tmp/int.h5" --resume --quiet > /dev/nul
 { [ "$rc" -eq 2 ] && [ "$(grep -c ERROR "$tmp/bad.err")" -eq 1 ] && grep -q "int.h5.ckpt is damaged" "$tmp/bad.err"; } \
   && echo "ok   damaged snapshot refused: $(cat "$tmp/bad.err")" || fail "damaged snapshot: exit $rc: $(cat "$tmp/bad.err")"
 cp "$tmp/int.keep" "$tmp/int.h5.ckpt"
+# a slice sharing one unit with the main file and holding one more (two runs' files mixed): refused, never summed
+/usr/bin/python3 "$src/tests/cli/snapshot.py" overlap "$tmp/int.h5.ckpt" "$tmp/int.h5.ckpt.rank1" > /dev/null
+rc=0; "$bin" run "$tmp/red.toml" --out "$tmp/int.h5" --resume --quiet > /dev/null 2> "$tmp/ovl.err" || rc=$?
+{ [ "$rc" -eq 2 ] && [ "$(grep -c ERROR "$tmp/ovl.err")" -eq 1 ] && grep -q "int.h5.ckpt.rank1 shares 1 of its 2 units" "$tmp/ovl.err"; } \
+  && echo "ok   partly overlapping snapshot refused: $(cat "$tmp/ovl.err")" || fail "partly overlapping snapshot: exit $rc: $(cat "$tmp/ovl.err")"
+rm "$tmp/int.h5.ckpt.rank1"
 "$bin" run "$tmp/red.toml" --out "$tmp/int.h5" --resume --quiet --threads 2 > /dev/null 2>&1
 cmp "$tmp/red.h5" "$tmp/int.h5" || fail "SIGINT + --resume differs"
 
