@@ -145,8 +145,8 @@ else
 fi
 cmp "$tmp/red.h5" "$tmp/narrow.h5" --ignore=study_text,batch,output || fail "batch 3 vs the default differ"
 # a unit that fails on rank 1 (its third): every rank saves what it folded before the job stops (exit 2), so the
-# resume starts from more than nothing (the 5 s periodic snapshot never came) and gives the same file
-rc=0; POUNDING_INJECT_FAULT=compute@1 timeout 300 mpirun -np 2 "$bin" run "$tmp/red.toml" --out "$tmp/f.h5" --quiet \
+# resume starts from more than nothing (no periodic snapshot: 1000 s apart here) and gives the same file
+rc=0; POUNDING_TEST_CHECKPOINT_S=1000 POUNDING_INJECT_FAULT=compute@1 timeout 300 mpirun -np 2 "$bin" run "$tmp/red.toml" --out "$tmp/f.h5" --quiet \
   > /dev/null 2> "$tmp/f.err" || rc=$?
 "$bin" run "$tmp/red.toml" --out "$tmp/f.h5" --resume --quiet > /dev/null 2> "$tmp/f2.err" || fail "resume after a failed unit: $(cat "$tmp/f2.err")"
 done_at=$(sed -n 's/^resuming: \([0-9]*\) of.*/\1/p' "$tmp/f2.err")
@@ -184,7 +184,7 @@ rm "$tmp/int.h5.ckpt.rank1"
 cmp "$tmp/red.h5" "$tmp/int.h5" || fail "SIGINT + --resume differs"
 
 # the checkpoint's size does not grow with the models: 256 and 1024 samples per pair (3,025 and 12,100 units of 256
-# models), each stopped (SIGINT) after a snapshot with units; the sizes differ by the done bits (one per unit) alone,
+# models), each stopped by SIGTERM (exit 143, docs/cluster.md) after a snapshot with units; the sizes differ by the done bits (one per unit) alone,
 # where unit records would hold 25 bytes per analysis
 size_at() {  # size_at <samples>: the stopped run's checkpoint bytes
   sed "s/^samples_per_pair = 8/samples_per_pair = $1/" "$tmp/red.toml" > "$tmp/s$1.toml"
@@ -194,10 +194,12 @@ size_at() {  # size_at <samples>: the stopped run's checkpoint bytes
     [ -f "$tmp/s$1.h5.ckpt" ] && [ "$(stat -c %s "$tmp/s$1.h5.ckpt")" -gt 20000 ] && break
     sleep 0.05
   done
-  kill -INT "$pid"; wait "$pid" || true
+  kill -TERM "$pid"; local rc=0; wait "$pid" || rc=$?
+  [ "$rc" -eq 143 ] || echo "SIGTERM gave exit $rc (want 143): $(cat "$tmp/s$1.err")" >&2
   stat -c %s "$tmp/s$1.h5.ckpt"
 }
-a=$(size_at 256); b=$(size_at 1024)
+a=$(size_at 256 2> "$tmp/size.err"); b=$(size_at 1024 2>> "$tmp/size.err")
+[ -s "$tmp/size.err" ] && fail "$(cat "$tmp/size.err")"
 want=$(( (12100 + 7) / 8 - (3025 + 7) / 8 ))
 { [ $((b - a)) -eq "$want" ] && [ "$b" -lt 1000000 ]; } \
   && echo "ok   checkpoint bytes at 256 and 1024 samples per pair: $a and $b (difference $((b - a)) = the done bits; unit records: 25 bytes per analysis)" \
