@@ -25,6 +25,7 @@ namespace {
 
 // Format 4 (issue 27.4): records checksummed with XXH64 (format 3: the same layout with FNV-1a, ~30x slower per byte).
 constexpr char magic_v4[8] = {'P', 'N', 'D', 'C', 'K', 'P', 'T', '4'};
+constexpr char magic_v5[8] = {'P', 'N', 'D', 'C', 'K', 'P', 'T', '5'};  // snapshots ([outputs] per_model = false)
 constexpr char magic_old[7] = {'P', 'N', 'D', 'C', 'K', 'P', 'T'};  // + '1' or '2': payloads of doubles; '3': FNV-1a
 constexpr std::uint64_t max_payload = 1ULL << 31;  // bytes per unit: far above any real unit
 
@@ -62,7 +63,90 @@ std::uint64_t record_checksum(std::uint64_t unit, std::uint64_t count, const std
   return files::xxh64(data, count, files::xxh64(head, sizeof head));
 }
 
+std::string header_bytes(const char (&magic)[8], const CheckpointKey& key) {
+  std::string head(magic, 8);
+  const std::uint64_t blen = key.build.size();
+  for (std::uint64_t v : {key.study_hash, key.units, key.build_hash, blen})
+    head.append(reinterpret_cast<const char*>(&v), 8);
+  return head + key.build;
+}
+
+template <class T>
+void put(std::string& out, const std::vector<T>& v) {
+  out.append(reinterpret_cast<const char*>(v.data()), v.size() * sizeof(T));
+}
+
+// Format 5: the header, three lengths, the arrays, XXH64 of everything before it.
+std::string encode_snapshot(const CheckpointKey& key, const ReductionSnapshot& s) {
+  std::string out = header_bytes(magic_v5, key);
+  for (std::uint64_t n : {std::uint64_t{s.counts.size()}, std::uint64_t{s.summary.size()}, std::uint64_t{s.done.size()}})
+    out.append(reinterpret_cast<const char*>(&n), 8);
+  put(out, s.counts), put(out, s.summary), put(out, s.done);
+  const std::uint64_t sum = files::xxh64(out.data(), out.size());
+  out.append(reinterpret_cast<const char*>(&sum), 8);
+  return out;
+}
+
+template <class T>
+std::uint64_t get(const std::string& b, std::size_t at) {
+  T v{};
+  std::memcpy(&v, b.data() + at, sizeof v);
+  return v;
+}
+
+// Reads a whole format-5 file `b` (magic checked): "" and the snapshot, or why it is damaged.
+std::string decode_snapshot(const std::string& b, std::uint64_t& study, std::uint64_t& units, std::uint64_t& build_hash,
+                            std::string& build, ReductionSnapshot& s) {
+  if (b.size() < 40 + 24 + 8) return fmt::format("it is {} bytes long, shorter than any snapshot", b.size());
+  if (files::xxh64(b.data(), b.size() - 8) != get<std::uint64_t>(b, b.size() - 8))
+    return "its checksum does not match its bytes (damaged or cut short)";
+  study = get<std::uint64_t>(b, 8), units = get<std::uint64_t>(b, 16), build_hash = get<std::uint64_t>(b, 24);
+  const std::uint64_t blen = get<std::uint64_t>(b, 32);
+  if (blen > 4096 || 40 + blen + 24 + 8 > b.size()) return "its header is impossible";
+  build = b.substr(40, blen);
+  std::size_t at = 40 + blen;
+  const std::uint64_t nc = get<std::uint64_t>(b, at), ns = get<std::uint64_t>(b, at + 8), nd = get<std::uint64_t>(b, at + 16);
+  at += 24;
+  if (nc > b.size() / 8 || ns > b.size() / 8 || at + 8 * nc + 8 * ns + nd + 8 != b.size() ||
+      (nd != 0 && nd != (units + 7) / 8))
+    return "its lengths do not add up to its size";
+  s.counts.resize(nc), s.summary.resize(ns), s.done.resize(nd);
+  std::memcpy(s.counts.data(), b.data() + at, 8 * nc);
+  std::memcpy(s.summary.data(), b.data() + at + 8 * nc, 8 * ns);
+  std::memcpy(s.done.data(), b.data() + at + 8 * nc + 8 * ns, nd);
+  if (nd && units % 8 && (s.done.back() >> (units % 8)) != 0) return "it marks units beyond the study's";
+  return "";
+}
+
+// A format-5 file (magic read): its kind for `key`, and the snapshot when wanted.
+CheckpointScan scan_snapshot(const std::string& path, const CheckpointKey& key, CheckpointScan s,
+                             ReductionSnapshot* out) {
+  s.format = 5;
+  const std::string b = files::read_text(path, "the checkpoint", std::size_t{1} << 40);
+  ReductionSnapshot snap;
+  std::uint64_t h = 0, n = 0, bh = 0;
+  s.stopped_at = decode_snapshot(b, h, n, bh, s.build, snap);
+  s.good_bytes = s.file_bytes = b.size();
+  if (!s.stopped_at.empty()) {
+    s.kind = CheckpointScan::Kind::damaged;
+    return s;
+  }
+  s.units_total = n;
+  s.units_done = snap.units_done();
+  s.kind = h != key.study_hash || n != key.units ? CheckpointScan::Kind::other_study
+           : bh == key.build_hash               ? CheckpointScan::Kind::ours
+                                                : CheckpointScan::Kind::other_build;
+  if (out && s.kind == CheckpointScan::Kind::ours) *out = std::move(snap);
+  return s;
+}
+
 }  // namespace
+
+std::uint64_t ReductionSnapshot::units_done() const {
+  std::uint64_t n = 0;
+  for (std::uint8_t b : done) n += static_cast<std::uint64_t>(__builtin_popcount(b));
+  return n;
+}
 
 CheckpointKey this_build() {
   CheckpointKey k;
@@ -99,7 +183,7 @@ CheckpointKey this_build() {
   return k;
 }
 
-Checkpoint::Checkpoint(std::string path) : path_(std::move(path)) {
+Checkpoint::Checkpoint(std::string path, bool snapshots) : path_(std::move(path)), snapshots_(snapshots) {
   created_ = ::access(path_.c_str(), F_OK) != 0;
   fd_ = ::open(path_.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
   if (fd_ < 0) {
@@ -127,8 +211,8 @@ Checkpoint::~Checkpoint() {
   ::close(fd_);  // releases the lock
 }
 
-CheckpointScan Checkpoint::scan(const CheckpointKey& key, const UnitFn& on_unit) {
-  return scan_checkpoint(path_, key, on_unit);
+CheckpointScan Checkpoint::scan(const CheckpointKey& key, const UnitFn& on_unit, ReductionSnapshot* snapshot) {
+  return scan_checkpoint(path_, key, on_unit, snapshot);
 }
 
 std::string slice_path(const std::string& main, int rank) { return main + ".rank" + std::to_string(rank); }
@@ -153,7 +237,8 @@ std::vector<std::string> slice_paths(const std::string& main) {
   return out;
 }
 
-CheckpointScan scan_checkpoint(const std::string& path_, const CheckpointKey& key, const Checkpoint::UnitFn& on_unit) {
+CheckpointScan scan_checkpoint(const std::string& path_, const CheckpointKey& key, const Checkpoint::UnitFn& on_unit,
+                               ReductionSnapshot* snapshot) {
   CheckpointScan s;
   std::ifstream in(path_, std::ios::binary);
   {
@@ -172,6 +257,7 @@ CheckpointScan scan_checkpoint(const std::string& path_, const CheckpointKey& ke
     s.format = m[7] - '0';
     return s;
   }
+  if (std::memcmp(m, magic_v5, 8) == 0) return scan_snapshot(path_, key, s, snapshot);
   if (std::memcmp(m, magic_v4, 8) != 0) {
     s.kind = CheckpointScan::Kind::not_checkpoint;
     return s;
@@ -235,11 +321,12 @@ void Checkpoint::start(const CheckpointKey& key) {
     throw InputError(fmt::format("cannot reset the checkpoint: {}", std::strerror(err)), path_,
                      "check the disk and the path");
   }
-  std::string head(magic_v4, 8);
-  const std::uint64_t blen = key.build.size();
-  for (std::uint64_t v : {key.study_hash, key.units, key.build_hash, blen})
-    head.append(reinterpret_cast<const char*>(&v), 8);
-  head += key.build;
+  key_ = key;
+  if (snapshots_) {
+    save(ReductionSnapshot{});
+    return;
+  }
+  const std::string head = header_bytes(magic_v4, key);
   good_ = 0;
   try {
     files::write_all(fd_, head.data(), head.size(), path_);
@@ -251,7 +338,10 @@ void Checkpoint::start(const CheckpointKey& key) {
   sync();
 }
 
-void Checkpoint::resume(const CheckpointScan& scanned) {
+void Checkpoint::resume(const CheckpointScan& scanned, const CheckpointKey& key) {
+  key_ = key;
+  units_ = scanned.units_done;
+  if (snapshots_) return;  // the caller's next save replaces the file (a snapshot, or unit records of an older build)
   if (::ftruncate(fd_, static_cast<off_t>(scanned.good_bytes)) != 0 ||
       ::lseek(fd_, static_cast<off_t>(scanned.good_bytes), SEEK_SET) < 0) {
     const int err = errno;
@@ -259,7 +349,36 @@ void Checkpoint::resume(const CheckpointScan& scanned) {
                      "check the disk and the path");
   }
   good_ = scanned.good_bytes;
-  units_ = scanned.units_done;
+}
+
+void Checkpoint::save(const ReductionSnapshot& snap) {
+  const std::string bytes = encode_snapshot(key_, snap);
+  const std::string tmp = fmt::format("{}.tmp{}", path_, static_cast<long>(::getpid()));
+  const int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
+  auto fail = [&](const char* step) {
+    const int err = errno;
+    if (fd >= 0) ::close(fd), ::unlink(tmp.c_str());
+    throw InputError(fmt::format("cannot write the checkpoint snapshot ({}): {}; the previous snapshot stays", step,
+                                 std::strerror(err)),
+                     path_, "check the disk (space, quota), then rerun with --resume");
+  };
+  if (fd < 0) fail("create");
+  // nobody else knows the temporary yet: locked before the rename, the file at path_ is never unlocked
+  if (::flock(fd, LOCK_EX | LOCK_NB) != 0) fail("lock");
+  try {
+    files::write_all(fd, bytes.data(), bytes.size(), tmp);
+  } catch (const InputError& e) {
+    ::close(fd), ::unlink(tmp.c_str());
+    throw InputError(e.what_part() + "; the previous checkpoint snapshot stays", path_, e.fix() + ", then rerun with --resume");
+  }
+  if (::fsync(fd) != 0) fail("fsync");
+  if (::rename(tmp.c_str(), path_.c_str()) != 0) fail("rename");
+  const std::filesystem::path dir = std::filesystem::path(path_).parent_path();
+  if (const int dfd = ::open(dir.empty() ? "." : dir.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC); dfd >= 0)
+    ::fsync(dfd), ::close(dfd);  // the rename survives a power cut once the folder is on disk
+  if (fd_ >= 0) ::close(fd_);  // the replaced file (unlinked by the rename) and its lock
+  fd_ = fd;
+  units_ = snap.units_done();
 }
 
 void Checkpoint::append(std::uint64_t unit, std::span<const std::byte> payload) {
@@ -293,48 +412,51 @@ void Checkpoint::sync() {
   }
 }
 
-std::uint64_t open_for_run(Checkpoint& ckpt, const CheckpointKey& key, bool resume, bool force,
-                           const Checkpoint::UnitFn& on_unit, std::string* dropped) {
+namespace {
+
+// A fresh run (no --resume) that would discard progress, or a file it must not overwrite, without --force.
+void refuse_fresh(const CheckpointScan& s, const std::string& p, bool snapshots) {
+  using K = CheckpointScan::Kind;
+  const std::string discard = " or --force to discard it";
+  switch (s.kind) {
+    case K::empty: break;
+    case K::ours:
+      if (s.units_done > 0)
+        throw InputError(fmt::format("checkpoint {} holds {} of {} units of this study", p, human(s.units_done),
+                                     human(s.units_total)),
+                         p, "rerun with --resume to continue" + discard);
+      break;
+    case K::other_build:
+      if (s.units_done > 0)
+        throw InputError(fmt::format("checkpoint {} holds {} of {} units of this study, written by another build "
+                                     "({})", p, human(s.units_done), human(s.units_total), s.build),
+                         p, "rerun with that build and --resume to continue" + discard);
+      break;
+    case K::other_study:
+      throw InputError(fmt::format("checkpoint {} holds {} units of a different study{}", p, human(s.units_done),
+                                   s.format == 5 && !snapshots ? " (reductions only: [outputs] per_model = false)" : ""),
+                       p, "give another --out, resume that study" + discard);
+    case K::old_format:
+      throw InputError(fmt::format("checkpoint {} was written by an older pounding (checkpoint format {})", p, s.format),
+                       p, "finish it with that version, or rerun with --force to discard it");
+    case K::damaged:
+      throw InputError(fmt::format("checkpoint {} is damaged: {}", p, s.stopped_at), p,
+                       "restore it from a copy and rerun with --resume," + discard);
+    case K::not_checkpoint:
+      throw InputError(fmt::format("{} exists and is not a pounding checkpoint", p), p,
+                       "move it away, give another --out, or rerun with --force to overwrite it");
+  }
+}
+
+// --resume of a checkpoint that is not this study's, this build's and this kind's.
+void refuse_resume(const CheckpointScan& s, const Checkpoint& ckpt, const CheckpointKey& key) {
   using K = CheckpointScan::Kind;
   const std::string& p = ckpt.path();
-  if (resume && force)
-    throw InputError("--resume and --force contradict each other", "--resume --force",
-                     "give --resume to continue the checkpoint or --force to discard it");
-  if (!resume) {
-    const CheckpointScan s = ckpt.scan(key);
-    if (!force) {
-      const std::string discard = " or --force to discard it";
-      switch (s.kind) {
-        case K::empty: break;
-        case K::ours:
-          if (s.units_done > 0)
-            throw InputError(fmt::format("checkpoint {} holds {} of {} units of this study", p, human(s.units_done),
-                                         human(s.units_total)),
-                             p, "rerun with --resume to continue" + discard);
-          break;
-        case K::other_build:
-          if (s.units_done > 0)
-            throw InputError(fmt::format("checkpoint {} holds {} of {} units of this study, written by another build "
-                                         "({})", p, human(s.units_done), human(s.units_total), s.build),
-                             p, "rerun with that build and --resume to continue" + discard);
-          break;
-        case K::other_study:
-          throw InputError(fmt::format("checkpoint {} holds {} units of a different study", p, human(s.units_done)), p,
-                           "give another --out, resume that study" + discard);
-        case K::old_format:
-          throw InputError(fmt::format("checkpoint {} was written by an older pounding (checkpoint format {})", p,
-                                       s.format),
-                           p,
-                           "finish it with that version, or rerun with --force to discard it");
-        case K::not_checkpoint:
-          throw InputError(fmt::format("{} exists and is not a pounding checkpoint", p), p,
-                           "move it away, give another --out, or rerun with --force to overwrite it");
-      }
-    }
-    ckpt.start(key);
-    return 0;
-  }
-  const CheckpointScan s = ckpt.scan(key, on_unit);
+  if (s.format == 5 && !ckpt.snapshots() && (s.kind == K::ours || s.kind == K::other_study))
+    throw InputError("the checkpoint holds reductions only (a run with [outputs] per_model = false) and this study keeps "
+                     "per-model outputs",
+                     p, "resume with the study file that started the run (per_model = false), or rerun with --force to "
+                        "start afresh");
   switch (s.kind) {
     case K::empty:
       if (ckpt.existed())
@@ -356,9 +478,32 @@ std::uint64_t open_for_run(Checkpoint& ckpt, const CheckpointKey& key, bool resu
     case K::old_format:
       throw InputError(fmt::format("the checkpoint was written by an older pounding (checkpoint format {})", s.format), p,
                        "finish it with that version, or rerun with --force to start afresh");
+    case K::damaged:
+      throw InputError(fmt::format("the checkpoint snapshot {} is damaged: {}; its units cannot be trusted", p,
+                                   s.stopped_at),
+                       p, "restore the file from a copy, or rerun with --force to start afresh");
     case K::not_checkpoint:
       throw InputError("the checkpoint file is not a pounding checkpoint", p, "move it away and run with --force");
   }
+}
+
+}  // namespace
+
+std::uint64_t open_for_run(Checkpoint& ckpt, const CheckpointKey& key, bool resume, bool force,
+                           const Checkpoint::UnitFn& on_unit, std::string* dropped, const SnapshotFn& on_snapshot) {
+  const std::string& p = ckpt.path();
+  if (resume && force)
+    throw InputError("--resume and --force contradict each other", "--resume --force",
+                     "give --resume to continue the checkpoint or --force to discard it");
+  if (!resume) {
+    if (!force) refuse_fresh(ckpt.scan(key), p, ckpt.snapshots());
+    ckpt.start(key);
+    return 0;
+  }
+  ReductionSnapshot snap;
+  const CheckpointScan s = ckpt.scan(key, on_unit, &snap);
+  refuse_resume(s, ckpt, key);
+  if (s.format == 5 && on_snapshot) on_snapshot(std::move(snap));
   if (dropped && s.file_bytes > s.good_bytes) {
     // the bytes after the last valid record: a torn last record of a killed run, or damage (then whole units go)
     const std::uint64_t per_unit = s.units_done ? (s.good_bytes - 40 - s.build.size()) / s.units_done : 0;
@@ -369,7 +514,7 @@ std::uint64_t open_for_run(Checkpoint& ckpt, const CheckpointKey& key, bool resu
                            per_unit ? fmt::format(" (about {} units)", human(std::max<std::uint64_t>(1, lost / per_unit)))
                                     : "");
   }
-  ckpt.resume(s);
+  ckpt.resume(s, key);
   return s.units_done;
 }
 

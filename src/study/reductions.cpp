@@ -98,6 +98,14 @@ void Reductions::set_counts(std::span<const std::int64_t> summed) {
   if (at != summed.size()) throw std::logic_error("Reductions::set_counts: too many counts");
 }
 
+void Reductions::add_counts(std::span<const std::int64_t> more) {
+  std::vector<std::int64_t> c = counts();
+  if (more.size() != c.size())
+    throw std::invalid_argument(fmt::format("{} counts, this study's reductions have {}", more.size(), c.size()));
+  for (std::size_t k = 0; k < c.size(); ++k) c[k] += more[k];
+  set_counts(c);
+}
+
 // [seen, varied, gap_min, gap_max, first_ (15)]
 std::vector<double> Reductions::summary() const {
   std::vector<double> v = {seen_ ? 1.0 : 0.0, varied_ ? 1.0 : 0.0, gap_min_, gap_max_};
@@ -106,7 +114,7 @@ std::vector<double> Reductions::summary() const {
 }
 
 void Reductions::merge_summary(std::span<const double> o) {
-  if (o.size() != 4 + first_.size()) throw std::logic_error("Reductions::merge_summary: wrong length");
+  if (o.size() != 4 + first_.size()) throw std::invalid_argument("Reductions::merge_summary: wrong length");
   if (o[0] == 0.0) return;  // that rank folded no model
   std::array<double, 15> first{};
   std::copy(o.begin() + 4, o.end(), first.begin());

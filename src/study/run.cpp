@@ -710,8 +710,9 @@ Inputs load_inputs(const parallel::Session& session, const std::string& study_pa
     if (in->study.html)  // [report] html = true: the HTML report's path is checked before any work too
       files::check_output_path(files::with_extension(in->out, ".html"), in->out_where + " ([report] html = true: its .html)");
     if (!opt.force) check_replaceable_results(in->out, in->out_where, in->study);
-    ckpt.emplace(in->out + ".ckpt");
+    ckpt.emplace(in->out + ".ckpt", !in->study.per_model);  // per_model = false: snapshots (study/checkpoint.hpp)
     files::remove_stale_temporaries(in->out);
+    files::remove_stale_temporaries(ckpt->path());  // a snapshot's temporary left by a SIGKILL
   });
   // the records: each rank reads or synthesises its share (records rank, rank + ranks, ...) on its threads, the
   // shares are exchanged, and every rank joins them into the same records bit for bit (a record that failed is
@@ -801,13 +802,37 @@ CheckpointKey checkpoint_key(const Inputs& in, const WorkPlan& L) {
 }
 
 // ---- phase 3: checkpoint and resume (rank 0); every rank learns which units remain ---------------
+// [outputs] per_model = false (snapshots): rank 0 adds a rank's snapshot to its tally. The main file is read first;
+// a snapshot whose units are all done already was absorbed into rank 0's by a resume that stopped before removing
+// it (skipped: its counts are in rank 0's), one sharing only some of them is two runs' files mixed (refused: a unit
+// must never count twice).
+void absorb_snapshot(Tally& tally, const std::string& path, const ReductionSnapshot& snap) {
+  std::size_t n = 0, seen = 0;
+  for (std::size_t u = 0; u < tally.units(); ++u)
+    if (snap.has(u)) ++n, seen += tally.done(u) ? 1 : 0;
+  if (n == 0 || seen == n) return;
+  if (seen > 0)
+    throw InputError(fmt::format("checkpoint {} shares {} of its {} units with the checkpoint files read before it "
+                                 "(files of two runs mixed)",
+                                 path, seen, n),
+                     path, "move the files of the other run away, or rerun with --force to start afresh");
+  try {
+    tally.absorb(snap);
+  } catch (const std::invalid_argument& e) {
+    throw InputError(fmt::format("checkpoint {} does not fit this study: {}", path, e.what()), path,
+                     "rerun with --force to start afresh");
+  }
+}
+
 // Rank 0: the slices beside the main file (workers' units, any earlier rank count; study/checkpoint.hpp). A fresh run
 // refuses one holding progress (unless --force) as it refuses the main file, then removes it; --resume loads each
-// one's units by id and cuts off a torn tail (said, as for the main file).
-void open_slices(const RunOptions& opt, const Checkpoint& main, const CheckpointKey& key, Tally& tally,
-                 const RunContext& ctx) {
+// one's units by id and cuts off a torn tail (said, as for the main file). Returns the slices read on --resume.
+std::vector<std::string> open_slices(const RunOptions& opt, const Checkpoint& main, const CheckpointKey& key,
+                                     Tally& tally, const RunContext& ctx) {
+  std::vector<std::string> read;
   for (const std::string& path : slice_paths(main.path())) {
-    Checkpoint c(path);
+    Checkpoint c(path, main.snapshots());
+    files::remove_stale_temporaries(path);
     struct stat st {};
     if (::stat(path.c_str(), &st) == 0 && st.st_size == 0) {  // a rank killed before its header: nothing in it
       c.remove();
@@ -824,21 +849,27 @@ void open_slices(const RunOptions& opt, const Checkpoint& main, const Checkpoint
         [&](std::size_t u, std::vector<std::byte>&& d) {
           if (!tally.done(u)) tally.store(u, d);
         },
-        &dropped);
+        &dropped, [&](ReductionSnapshot&& snap) { absorb_snapshot(tally, path, snap); });
     if (!dropped.empty()) ctx.say(fmt::format("checkpoint {}: {}", path, dropped));
+    read.push_back(path);
   }
+  return read;
 }
 
-// Every worker opens its own slice (continued on --resume, else started); rank 0 then checks that it sees every
-// worker's slice: the results are assembled from them, so the output folder must be shared by every node.
+// Every worker opens its own slice (continued on --resume, else started; a snapshot slice always starts empty: rank 0
+// has absorbed and removed the old one); rank 0 then checks that it sees every worker's slice: the results are
+// assembled from them, so the output folder must be shared by every node.
 void open_worker_slice(const parallel::Session& session, const RunOptions& opt, const Inputs& in,
                        std::optional<Checkpoint>& ckpt, const CheckpointKey& key) {
   session.agree([&] {
     if (session.root()) return;
-    ckpt.emplace(slice_path(in.out + ".ckpt", session.rank()));
+    ckpt.emplace(slice_path(in.out + ".ckpt", session.rank()), !in.study.per_model);
+    files::remove_stale_temporaries(ckpt->path());
     struct stat st {};
-    if (opt.resume && ::stat(ckpt->path().c_str(), &st) == 0 && st.st_size > 0) ckpt->resume(ckpt->scan(key));
-    else ckpt->start(key);
+    if (!ckpt->snapshots() && opt.resume && ::stat(ckpt->path().c_str(), &st) == 0 && st.st_size > 0)
+      ckpt->resume(ckpt->scan(key), key);
+    else
+      ckpt->start(key);
   });
   session.agree([&] {
     if (!session.root()) return;
@@ -854,6 +885,9 @@ void open_worker_slice(const parallel::Session& session, const RunOptions& opt, 
   });
 }
 
+// Rank 0 loads the main file and the slices. With snapshots (per_model = false) everything loaded is then saved as
+// rank 0's one snapshot BEFORE the slices are removed (and before the workers start theirs afresh): a stop between
+// the two leaves slices whose units rank 0's snapshot holds, skipped by absorb_snapshot at the next resume.
 std::vector<std::size_t> open_checkpoint(const parallel::Session& session, const RunOptions& opt, const Inputs& in,
                                          const WorkPlan& L, std::optional<Checkpoint>& ckpt, const CheckpointKey& key,
                                          Tally& tally, const RunContext& ctx) {
@@ -861,10 +895,15 @@ std::vector<std::size_t> open_checkpoint(const parallel::Session& session, const
   session.agree([&] {
     if (!session.root()) return;
     std::string dropped;
-    open_for_run(*ckpt, key, opt.resume, opt.force,
-                 [&](std::size_t u, std::vector<std::byte>&& d) { tally.store(u, d); }, &dropped);
+    open_for_run(
+        *ckpt, key, opt.resume, opt.force, [&](std::size_t u, std::vector<std::byte>&& d) { tally.store(u, d); },
+        &dropped, [&](ReductionSnapshot&& snap) { absorb_snapshot(tally, ckpt->path(), snap); });
     if (!dropped.empty()) ctx.say(fmt::format("checkpoint {}: {}", ckpt->path(), dropped));
-    open_slices(opt, *ckpt, key, tally, ctx);
+    const std::vector<std::string> read = open_slices(opt, *ckpt, key, tally, ctx);
+    if (ckpt->snapshots() && opt.resume) {
+      ckpt->save(tally.snapshot());
+      for (const std::string& path : read) ::unlink(path.c_str());
+    }
     for (std::uint64_t u = 0; u < L.units(); ++u)
       if (!tally.done(u)) todo_bytes.append(reinterpret_cast<const char*>(&u), sizeof u);
     if (opt.resume) ctx.say(fmt::format("resuming: {} of {} units already done", tally.units_done(), L.units()));
@@ -878,6 +917,31 @@ std::vector<std::size_t> open_checkpoint(const parallel::Session& session, const
   }
   if (session.size() > 1) open_worker_slice(session, opt, in, ckpt, key);
   return todo;
+}
+
+// A flush of a rank's checkpoint: fsync of its appended units, or (snapshots) its reductions saved whole.
+void sync_checkpoint(Checkpoint& c, const Tally& tally) {
+  if (c.snapshots()) c.save(tally.snapshot());
+  else c.sync();
+}
+
+// An error during the units (a failed unit or write, on any rank): a snapshot rank saves what it folded so far, so its
+// checkpoint keeps every finished unit as unit records do; if that save fails too, the previous snapshot stays.
+void save_after_error(Checkpoint* ckpt, const Tally& tally) noexcept {
+  if (!ckpt || !ckpt->snapshots()) return;
+  try {
+    ckpt->save(tally.snapshot());
+  } catch (...) {  // the error being thrown is the one to report
+  }
+}
+
+// Seconds between the periodic flushes: 5 (POUNDING_TEST_CHECKPOINT_S sets another, for tests only).
+double checkpoint_interval_s() {
+  static const double s = [] {
+    const char* v = std::getenv("POUNDING_TEST_CHECKPOINT_S");
+    return v ? std::atof(v) : 5.0;
+  }();
+  return s;
 }
 
 // "building1: shear building, storeys from each sample's height at 3.2 m, ..." (a study with a shear building)
@@ -1018,9 +1082,9 @@ bool execute(const parallel::Session& session, const Inputs& in, const WorkPlan&
   const std::size_t at_start = tally.units_done();
   auto tick = [&] {
     const auto now = std::chrono::steady_clock::now();
-    if (now - last_sync > std::chrono::seconds(5)) {
+    if (now - last_sync > std::chrono::duration<double>(checkpoint_interval_s())) {
       Stopwatch w(T[Phase::checkpoint]);
-      ckpt->sync(), last_sync = now;
+      sync_checkpoint(*ckpt, tally), last_sync = now;
     }
     if (!ctx.progress || !session.root()) return;
     ProgressReport p;
@@ -1058,7 +1122,7 @@ bool execute(const parallel::Session& session, const Inputs& in, const WorkPlan&
           tally.store(u, d);
         }
         Stopwatch w(T[Phase::checkpoint]);
-        ckpt->append(u, d);
+        if (!ckpt->snapshots()) ckpt->append(u, d);  // a snapshot holds the folded counts instead (saved in tick)
       },
       [&](std::size_t u, int) {
         ckpt->keep();  // the main file stays with the slices even if rank 0 stored no unit
@@ -1070,7 +1134,7 @@ bool execute(const parallel::Session& session, const Inputs& in, const WorkPlan&
   double final_sync = 0;
   {
     Stopwatch w(final_sync);
-    ckpt->sync();  // every rank: its units are on disk before rank 0 reads the slices (or the run stops)
+    sync_checkpoint(*ckpt, tally);  // every rank: its units are on disk before rank 0 reads the slices (or the run stops)
   }
   T[Phase::checkpoint] += final_sync;
   final_sync_s = final_sync;
@@ -1091,6 +1155,7 @@ void merge_reductions(const parallel::Session& session, Tally& tally) {
   const std::vector<double> mine = red.summary(), all = session.gather_to_root(mine);
   if (!session.root()) return;
   red.set_counts(counts);  // every rank's, rank 0's included
+  tally.merged_elsewhere();  // a later snapshot of rank 0 (a stop in the analysis) holds every unit
   for (int r = 1; r < session.size(); ++r)
     red.merge_summary(std::span<const double>(all).subspan(static_cast<std::size_t>(r) * mine.size(), mine.size()));
 }
@@ -1247,7 +1312,7 @@ int finish(const parallel::Session& session, const Inputs& in, const WorkPlan& L
           write_s + timing::seconds_since(t_write);
       T.wall = timing::seconds_since(timing::program_start());
     } catch (const Cancelled& c) {
-      ckpt->sync();
+      sync_checkpoint(*ckpt, tally);
       stopped_in = c.phase();
       rc = 130;
       return;
@@ -1307,7 +1372,13 @@ RunOutcome run_study(const parallel::Session& session, const std::string& study_
   double wall = 0.0;
   const int threads = study_threads(opt.threads >= 0 ? opt.threads : in.study.threads, session.size(), todo.size());
   std::size_t remote = 0;  // rank 0: units the workers stored in their slices
-  const bool complete = execute(session, in, L, todo, ckpt ? &*ckpt : nullptr, tally, remote, ctx, wall, T, threads);
+  bool complete = false;
+  try {
+    complete = execute(session, in, L, todo, ckpt ? &*ckpt : nullptr, tally, remote, ctx, wall, T, threads);
+  } catch (...) {
+    save_after_error(ckpt ? &*ckpt : nullptr, tally);
+    throw;
+  }
   if (complete) assemble(session, in, L, tally, key, T);
   std::vector<double> phases(T.rank0.begin(), T.rank0.end());  // every rank: the maxima of the phases so far
   session.max_to_root(phases);

@@ -71,6 +71,29 @@ void Tally::store(std::size_t unit, std::span<const std::byte> payload) {
   done_[unit] = 1;
 }
 
+ReductionSnapshot Tally::snapshot() const {
+  ReductionSnapshot s;
+  s.counts = reductions_->counts();
+  s.summary = reductions_->summary();
+  s.done.assign((done_.size() + 7) / 8, 0);
+  for (std::size_t u = 0; u < done_.size(); ++u)
+    if (done_[u] == 1) s.done[u / 8] = static_cast<std::uint8_t>(s.done[u / 8] | (1u << (u % 8)));
+  return s;
+}
+
+void Tally::absorb(const ReductionSnapshot& snap) {
+  if (snap.units_done() == 0) return;  // an empty snapshot (a rank that had folded nothing yet)
+  if (snap.done.size() != (done_.size() + 7) / 8)
+    throw std::invalid_argument(fmt::format("it marks {} units, the study has {}", 8 * snap.done.size(), done_.size()));
+  reductions_->add_counts(snap.counts);
+  reductions_->merge_summary(snap.summary);
+  for (std::size_t u = 0; u < done_.size(); ++u)
+    if (snap.has(u)) {
+      if (!done_[u]) ++n_done_;
+      done_[u] = 1;
+    }
+}
+
 std::vector<results::Field> Tally::take_fields() {
   std::vector<results::Field> out;
   for (std::size_t k = 0; k < columns_.size(); ++k) out.push_back({plan_.fields[k], std::move(columns_[k])});

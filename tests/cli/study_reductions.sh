@@ -5,6 +5,11 @@
 #     is within one bin (a factor 10^(1/200)) above the per-model run's exact order statistic; no /uncoupled, no
 #     per-model /models in the reductions file; the report says what comes from histograms.
 #  2. bit-identical reductions for 1 process, mpirun -np 2, --threads 1/2, batch = 1, and SIGINT + --resume.
+#     The checkpoint is one snapshot per rank (format 5, issue 27.5): a 3-rank job killed (-9) and resumed at 2 ranks,
+#     stopped again, its absorbed slices put back (a stop between rank 0's snapshot and their removal), resumed at 1
+#     rank: the same file. Its size does not grow with the models (256 and 1024 samples per pair: the difference is
+#     the done bits alone); a damaged snapshot, a slice sharing part of its units with the main file
+#     (tests/cli/snapshot.py) and a per_model = true resume of a snapshot are refused; a failed unit keeps the units.
 #  3. the memory check admits with per_model = false the study it refuses with per_model = true.
 #  4. the impacts scene and [report] html with per_model = false: one clear error each, exit 2, nothing written.
 # Synthetic records only (no ../shared). Args: <pounding binary> <source dir>
@@ -101,7 +106,11 @@ cmp "$tmp/red.h5" "$tmp/r2.h5" || fail "1 process vs mpirun -np 2 differ"
 # its slices hold units, resumed at 2 ranks (rank 0 folds the slices' units at resume, the workers their new ones)
 timeout 300 mpirun -np 3 --oversubscribe "$bin" run "$tmp/red.toml" --out "$tmp/r3.h5" --quiet > /dev/null 2>&1
 cmp "$tmp/red.h5" "$tmp/r3.h5" || fail "1 process vs mpirun -np 3 differ"
-setsid mpirun -np 3 --oversubscribe "$bin" run "$tmp/red.toml" --out "$tmp/k.h5" --quiet > /dev/null 2>&1 &
+# (128 samples per pair here, 387,200 analyses: long enough for the stops to land while units remain)
+sed 's/^samples_per_pair = 8/samples_per_pair = 128/' "$tmp/red.toml" > "$tmp/mid.toml"
+"$bin" run "$tmp/mid.toml" --out "$tmp/mid.h5" --quiet > /dev/null 2>&1
+export POUNDING_TEST_CHECKPOINT_S=0.05  # snapshots every 50 ms (5 s by default): a kill finds units in them
+setsid mpirun -np 3 --oversubscribe "$bin" run "$tmp/mid.toml" --out "$tmp/k.h5" --quiet > /dev/null 2>&1 &
 job=$!
 for _ in $(seq 1 400); do
   [ -f "$tmp/k.h5.ckpt.rank2" ] && [ "$(stat -c %s "$tmp/k.h5.ckpt.rank2")" -gt 20000 ] && break
@@ -112,12 +121,38 @@ for _ in $(seq 1 200); do pgrep -s "$job" > /dev/null || break; sleep 0.05; done
 wait "$job" 2>/dev/null || true
 if [ -f "$tmp/k.h5" ]; then echo "note: the 3-rank run finished before the kill; resume not exercised"
 else
-  timeout 300 mpirun -np 2 "$bin" run "$tmp/red.toml" --out "$tmp/k.h5" --resume --quiet > /dev/null 2> "$tmp/k.err" \
-    || fail "resume at 2 ranks of a 3-rank cut: $(cat "$tmp/k.err")"
-  cmp "$tmp/red.h5" "$tmp/k.h5" || fail "3-rank cut resumed at 2 ranks differs"
-  echo "ok   3-rank cut resumed at 2 ranks: $(grep resuming "$tmp/k.err")"
+  for f in "$tmp"/k.h5.ckpt*; do [ "$(head -c 8 "$f")" = PNDCKPT5 ] || fail "$f is not a snapshot (format 5)"; done
+  mkdir "$tmp/cut" && cp "$tmp"/k.h5.ckpt.rank* "$tmp/cut/"
+  # resumed at 2 ranks with --threads 1 and killed (-9) once rank 0 has absorbed the slices ("resuming" is said after
+  # its snapshot is saved and the slices removed), then the cut's slices put back: all their units are in rank 0's
+  # snapshot, so they must be skipped, not counted twice
+  setsid mpirun -np 2 "$bin" run "$tmp/mid.toml" --out "$tmp/k.h5" --resume --threads 1 > /dev/null 2> "$tmp/k.err" &
+  job=$!
+  for _ in $(seq 1 400); do grep -q resuming "$tmp/k.err" && break; sleep 0.05; done
+  pkill -9 -s "$job" 2>/dev/null || true
+  for _ in $(seq 1 200); do pgrep -s "$job" > /dev/null || break; sleep 0.05; done
+  wait "$job" 2>/dev/null || true
+  if [ -f "$tmp/k.h5" ]; then echo "note: the 2-rank resume finished before its kill; stale slices not exercised"
+  else
+    cp "$tmp"/cut/k.h5.ckpt.rank2 "$tmp/"  # rank 2 was not part of the 2-rank run: its cut slice is back as it was
+    timeout 300 "$bin" run "$tmp/mid.toml" --out "$tmp/k.h5" --resume --quiet > /dev/null 2> "$tmp/k2.err" \
+      || fail "resume at 1 rank with a stale slice: $(cat "$tmp/k2.err")"
+    echo "ok   3-rank cut: $(grep resuming "$tmp/k.err") at 2 ranks, stopped; with the stale slice back at 1 rank: $(grep resuming "$tmp/k2.err")"
+  fi
+  [ -f "$tmp/k.h5" ] || timeout 300 mpirun -np 2 "$bin" run "$tmp/mid.toml" --out "$tmp/k.h5" --resume --quiet > /dev/null 2>&1
+  cmp "$tmp/mid.h5" "$tmp/k.h5" || fail "3-rank cut resumed (2 ranks, then 1) differs"
+  ls "$tmp"/k.h5.ckpt* > /dev/null 2>&1 && fail "checkpoint files left after the results: $(ls "$tmp"/k.h5.ckpt*)"
 fi
 cmp "$tmp/red.h5" "$tmp/narrow.h5" --ignore=study_text,batch,output || fail "batch 3 vs the default differ"
+# a unit that fails on rank 1 (its third): every rank saves what it folded before the job stops (exit 2), so the
+# resume starts from more than nothing (no periodic snapshot: 1000 s apart here) and gives the same file
+rc=0; POUNDING_TEST_CHECKPOINT_S=1000 POUNDING_INJECT_FAULT=compute@1 timeout 300 mpirun -np 2 "$bin" run "$tmp/red.toml" --out "$tmp/f.h5" --quiet \
+  > /dev/null 2> "$tmp/f.err" || rc=$?
+"$bin" run "$tmp/red.toml" --out "$tmp/f.h5" --resume --quiet > /dev/null 2> "$tmp/f2.err" || fail "resume after a failed unit: $(cat "$tmp/f2.err")"
+done_at=$(sed -n 's/^resuming: \([0-9]*\) of.*/\1/p' "$tmp/f2.err")
+{ [ "$rc" -eq 2 ] && [ "${done_at:-0}" -gt 0 ]; } && echo "ok   failed unit (exit 2): $(cat "$tmp/f2.err" | head -1)" \
+  || fail "failed unit: exit $rc, resumed with '${done_at}' units: $(cat "$tmp/f.err")"
+cmp "$tmp/red.h5" "$tmp/f.h5" || fail "a failed unit + --resume differs"
 "$bin" run "$tmp/red.toml" --out "$tmp/int.h5" --threads 1 > /dev/null 2> "$tmp/int.err" &
 pid=$!
 for _ in $(seq 1 400); do
@@ -128,8 +163,48 @@ kill -INT "$pid"
 rc=0; wait "$pid" || rc=$?
 [ "$rc" -eq 130 ] || fail "SIGINT exit code $rc (want 130): $(cat "$tmp/int.err")"
 [ -f "$tmp/int.h5" ] && fail "results file after SIGINT"
+# the same checkpoint resumed by the per-model study, and damaged: one error each, exit 2, the checkpoint kept
+cp "$tmp/int.h5.ckpt" "$tmp/int.keep"
+rc=0; "$bin" run "$tmp/full.toml" --out "$tmp/int.h5" --resume --quiet > /dev/null 2> "$tmp/mix.err" || rc=$?
+{ [ "$rc" -eq 2 ] && [ "$(grep -c ERROR "$tmp/mix.err")" -eq 1 ] && grep -q "reductions only" "$tmp/mix.err" \
+  && command cmp -s "$tmp/int.h5.ckpt" "$tmp/int.keep"; } && echo "ok   per_model = true --resume of a snapshot refused: $(cat "$tmp/mix.err")" \
+  || fail "per_model = true --resume of a snapshot: exit $rc: $(cat "$tmp/mix.err")"
+printf '\x55' | dd of="$tmp/int.h5.ckpt" bs=1 seek=300 conv=notrunc status=none
+rc=0; "$bin" run "$tmp/red.toml" --out "$tmp/int.h5" --resume --quiet > /dev/null 2> "$tmp/bad.err" || rc=$?
+{ [ "$rc" -eq 2 ] && [ "$(grep -c ERROR "$tmp/bad.err")" -eq 1 ] && grep -q "int.h5.ckpt is damaged" "$tmp/bad.err"; } \
+  && echo "ok   damaged snapshot refused: $(cat "$tmp/bad.err")" || fail "damaged snapshot: exit $rc: $(cat "$tmp/bad.err")"
+cp "$tmp/int.keep" "$tmp/int.h5.ckpt"
+# a slice sharing one unit with the main file and holding one more (two runs' files mixed): refused, never summed
+/usr/bin/python3 "$src/tests/cli/snapshot.py" overlap "$tmp/int.h5.ckpt" "$tmp/int.h5.ckpt.rank1" > /dev/null
+rc=0; "$bin" run "$tmp/red.toml" --out "$tmp/int.h5" --resume --quiet > /dev/null 2> "$tmp/ovl.err" || rc=$?
+{ [ "$rc" -eq 2 ] && [ "$(grep -c ERROR "$tmp/ovl.err")" -eq 1 ] && grep -q "int.h5.ckpt.rank1 shares 1 of its 2 units" "$tmp/ovl.err"; } \
+  && echo "ok   partly overlapping snapshot refused: $(cat "$tmp/ovl.err")" || fail "partly overlapping snapshot: exit $rc: $(cat "$tmp/ovl.err")"
+rm "$tmp/int.h5.ckpt.rank1"
 "$bin" run "$tmp/red.toml" --out "$tmp/int.h5" --resume --quiet --threads 2 > /dev/null 2>&1
 cmp "$tmp/red.h5" "$tmp/int.h5" || fail "SIGINT + --resume differs"
+
+# the checkpoint's size does not grow with the models: 256 and 1024 samples per pair (3,025 and 12,100 units of 256
+# models), each stopped by SIGTERM (exit 143, docs/cluster.md) after a snapshot with units; the sizes differ by the done bits (one per unit) alone,
+# where unit records would hold 25 bytes per analysis
+size_at() {  # size_at <samples>: the stopped run's checkpoint bytes
+  sed "s/^samples_per_pair = 8/samples_per_pair = $1/" "$tmp/red.toml" > "$tmp/s$1.toml"
+  "$bin" run "$tmp/s$1.toml" --out "$tmp/s$1.h5" --threads 1 > /dev/null 2> "$tmp/s$1.err" &
+  local pid=$!
+  for _ in $(seq 1 400); do
+    [ -f "$tmp/s$1.h5.ckpt" ] && [ "$(stat -c %s "$tmp/s$1.h5.ckpt")" -gt 20000 ] && break
+    sleep 0.05
+  done
+  kill -TERM "$pid"; local rc=0; wait "$pid" || rc=$?
+  [ "$rc" -eq 143 ] || echo "SIGTERM gave exit $rc (want 143): $(cat "$tmp/s$1.err")" >&2
+  stat -c %s "$tmp/s$1.h5.ckpt"
+}
+a=$(size_at 256 2> "$tmp/size.err"); b=$(size_at 1024 2>> "$tmp/size.err")
+[ -s "$tmp/size.err" ] && fail "$(cat "$tmp/size.err")"
+want=$(( (12100 + 7) / 8 - (3025 + 7) / 8 ))
+{ [ $((b - a)) -eq "$want" ] && [ "$b" -lt 1000000 ]; } \
+  && echo "ok   checkpoint bytes at 256 and 1024 samples per pair: $a and $b (difference $((b - a)) = the done bits; unit records: 25 bytes per analysis)" \
+  || fail "checkpoint bytes at 256 and 1024 samples per pair: $a and $b (want a difference of $want, below 1 MB)"
+unset POUNDING_TEST_CHECKPOINT_S
 
 # 3. the memory check (POUNDING_TEST_MEMORY_AVAILABLE stands in for MemAvailable: 2 GiB)
 mem() {  # mem <per_model>: one record, one period pair, 2e7 samples

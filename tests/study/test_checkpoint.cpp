@@ -201,6 +201,131 @@ TEST(Checkpoint, FailedAppendKeepsTheFileResumable) {
   EXPECT_EQ(s.good_bytes, fs::file_size(p)) << "a partial record was left at the end";
 }
 
+// Format 5 (issue 27.5, [outputs] per_model = false): one snapshot per file, replaced whole. Its size is the counts'
+// and summary's plus a bit per unit, the lock survives every save (the new file is locked before the rename), and a
+// resume reads back exactly what was saved.
+namespace {
+ReductionSnapshot snapshot(std::initializer_list<std::size_t> units, std::size_t total = 100) {
+  ReductionSnapshot s;
+  s.counts = {7, 0, -3, 1LL << 40};
+  s.summary = {1.0, 0.0, 0.01, 0.25};
+  s.done.assign((total + 7) / 8, 0);
+  for (std::size_t u : units) s.done[u / 8] = static_cast<std::uint8_t>(s.done[u / 8] | (1u << (u % 8)));
+  return s;
+}
+}  // namespace
+
+TEST(CheckpointSnapshot, SavedWholeLockedAndReadBack) {
+  TempDir t;
+  const std::string p = t.file("s.h5.ckpt");
+  const std::size_t header = 40 + key().build.size();
+  {
+    Checkpoint c(p, true);
+    open_for_run(c, key(), false, false, {});  // an empty snapshot: no unit
+    EXPECT_EQ(fs::file_size(p), header + 24 + 8);
+    c.save(snapshot({3, 7}));
+    c.save(snapshot({3, 7, 42, 99}));  // replaced, not appended
+    EXPECT_EQ(fs::file_size(p), header + 24 + 4 * 8 + 4 * 8 + 13 + 8);
+    try {
+      Checkpoint other(p, true);
+      ADD_FAILURE() << "the lock lapsed with the rename";
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.what()).find("in use by process"), std::string::npos) << e.what();
+    }
+    for (const auto& e : fs::directory_iterator(t.dir))
+      EXPECT_EQ(e.path().filename().string().find(".tmp"), std::string::npos) << "temporary left: " << e.path();
+  }
+  {
+    ReductionSnapshot got;
+    int delivered = 0;
+    Checkpoint c(p, true);
+    EXPECT_EQ(open_for_run(c, key(), true, false, {}, nullptr,
+                           [&](ReductionSnapshot&& s) { got = std::move(s), ++delivered; }),
+              4u);
+    EXPECT_EQ(delivered, 1);
+    EXPECT_EQ(got.counts, snapshot({}).counts);
+    EXPECT_EQ(got.summary, snapshot({}).summary);
+    EXPECT_EQ(got.done, snapshot({3, 7, 42, 99}).done);
+    EXPECT_TRUE(got.has(99) && got.has(3) && !got.has(4));
+  }
+  // a fresh run refuses to discard the snapshot's progress, as it refuses unit records
+  Checkpoint c(p, true);
+  EXPECT_THROW(open_for_run(c, key(), false, false, {}), InputError);
+}
+
+TEST(CheckpointSnapshot, DamagedIsRefusedNamingTheFile) {
+  TempDir t;
+  const std::string p = t.file("d.h5.ckpt");
+  {
+    Checkpoint c(p, true);
+    open_for_run(c, key(), false, false, {});
+    c.save(snapshot({1, 2, 3}));
+  }
+  auto resume = [&]() -> std::string {
+    Checkpoint c(p, true);
+    try {
+      open_for_run(c, key(), true, false, {}, nullptr, [](ReductionSnapshot&&) {});
+    } catch (const InputError& e) {
+      return std::string(e.what()) + " | " + e.fix();
+    }
+    return "accepted";
+  };
+  EXPECT_EQ(resume(), "accepted");
+  {  // one flipped bit inside the counts
+    std::fstream f(p, std::ios::in | std::ios::out | std::ios::binary);
+    f.seekp(static_cast<std::streamoff>(40 + key().build.size() + 24 + 3));
+    f.put('\x01');
+  }
+  const std::string flipped = resume();
+  EXPECT_NE(flipped.find("damaged"), std::string::npos) << flipped;
+  EXPECT_NE(flipped.find(p), std::string::npos) << flipped;
+  EXPECT_NE(flipped.find("--force"), std::string::npos) << flipped;
+  fs::resize_file(p, fs::file_size(p) - 5);  // cut short
+  EXPECT_NE(resume().find("damaged"), std::string::npos);
+  Checkpoint c(p, true);
+  try {  // a fresh run does not overwrite it silently either
+    open_for_run(c, key(), false, false, {});
+    ADD_FAILURE() << "a damaged snapshot was overwritten without --force";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("damaged"), std::string::npos) << e.what();
+  }
+}
+
+// A snapshot met by a per_model = true run is refused as reductions-only; unit records (a per_model = false run of a
+// build before format 5) still resume into a run with snapshots, and its next save turns the file into a snapshot.
+TEST(CheckpointSnapshot, KindsMixed) {
+  TempDir t;
+  const std::string p = t.file("m.h5.ckpt");
+  {
+    Checkpoint c(p, true);
+    open_for_run(c, key(), false, false, {});
+    c.save(snapshot({5}));
+  }
+  {
+    Checkpoint c(p);
+    try {
+      open_for_run(c, key(), true, false, {});
+      ADD_FAILURE() << "a snapshot resumed per model";
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.what()).find("reductions only"), std::string::npos) << e.what();
+    }
+  }
+  fs::remove(p);
+  {
+    Checkpoint c(p);
+    open_for_run(c, key(), false, false, {});
+    for (std::size_t u : {4, 8}) c.append(u, payload(u));
+  }
+  std::vector<std::size_t> units;
+  Checkpoint c(p, true);
+  EXPECT_EQ(open_for_run(c, key(), true, false, [&](std::size_t u, std::vector<std::byte>&&) { units.push_back(u); }),
+            2u);
+  EXPECT_EQ(units, (std::vector<std::size_t>{4, 8}));
+  c.save(snapshot({4, 8}));
+  EXPECT_EQ(c.scan(key()).format, 5);
+  EXPECT_EQ(c.scan(key()).units_done, 2u);
+}
+
 TEST(AtomicFile, ReplacesWholeOrNotAtAll) {
   TempDir t;
   const std::string p = t.file("a.bin");

@@ -50,6 +50,8 @@ class Reductions {
   // range; merged), each as a flat vector of fixed length for the same study and plan.
   std::vector<std::int64_t> counts() const;
   void set_counts(std::span<const std::int64_t> summed);
+  // Adds counts of the same length (a checkpoint snapshot's); throws std::invalid_argument on another length.
+  void add_counts(std::span<const std::int64_t> more);
   std::vector<double> summary() const;
   void merge_summary(std::span<const double> other);
   std::int64_t excluded(std::size_t row) const { return excluded_[row]; }
