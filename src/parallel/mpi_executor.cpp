@@ -3,6 +3,7 @@
 #include "pounding/parallel/executor.hpp"
 
 #include <mpi.h>
+#include <sched.h>
 
 #include <algorithm>
 #include <cstdint>
@@ -12,6 +13,7 @@
 #include <deque>
 #include <list>
 #include <string>
+#include <thread>
 
 #include "pounding/core/error.hpp"
 #include "unit_pool.hpp"
@@ -399,6 +401,37 @@ void Session::abort(int code) const {
   std::exit(code);
 }
 
+void Session::lend_cpus_to_root() const {
+  if (!mpi_ || size_ == 1) return;
+  MPI_Comm node = MPI_COMM_NULL;  // the ranks sharing rank 0's memory (its node), rank 0 first (key = world rank)
+  if (MPI_Comm_split_type(MPI_COMM_WORLD, MPI_COMM_TYPE_SHARED, rank_, MPI_INFO_NULL, &node) != MPI_SUCCESS) return;
+  cpu_set_t mine;
+  CPU_ZERO(&mine);
+  if (sched_getaffinity(0, sizeof mine, &mine) != 0) CPU_ZERO(&mine);
+  int local = 0, n = 1;
+  MPI_Comm_rank(node, &local), MPI_Comm_size(node, &n);
+  std::vector<cpu_set_t> all(rank_ == 0 ? static_cast<std::size_t>(n) : 0);
+  MPI_Gather(&mine, static_cast<int>(sizeof mine), MPI_BYTE, all.data(), static_cast<int>(sizeof mine), MPI_BYTE, 0, node);
+  MPI_Comm_free(&node);
+  if (rank_ != 0 || local != 0) return;
+  cpu_set_t joined = mine;
+  for (cpu_set_t& s : all) CPU_OR(&joined, &joined, &s);
+  if (CPU_COUNT(&joined) > CPU_COUNT(&mine)) sched_setaffinity(0, sizeof joined, &joined);
+}
+
+// MPI_Allreduce of `mine` (MPI_MIN) that waits by polling with short sleeps: a blocking collective spins a core on
+// every waiting rank, the cores rank 0 borrows for its report and write (lend_cpus_to_root).
+static int min_over_ranks_politely(int mine) {
+  int first = mine;
+  MPI_Request req = MPI_REQUEST_NULL;
+  MPI_Iallreduce(&mine, &first, 1, MPI_INT, MPI_MIN, MPI_COMM_WORLD, &req);
+  for (int done = 0;;) {
+    MPI_Test(&req, &done, MPI_STATUS_IGNORE);
+    if (done) return first;
+    std::this_thread::sleep_for(std::chrono::microseconds(200));
+  }
+}
+
 void Session::agree(const std::function<void()>& phase) const {
   if (!mpi_ || size_ == 1) {
     phase();
@@ -410,8 +443,7 @@ void Session::agree(const std::function<void()>& phase) const {
   } catch (...) {
     f.capture(rank_);
   }
-  int mine = f.set ? rank_ : size_, first = size_;
-  MPI_Allreduce(&mine, &first, 1, MPI_INT, MPI_MIN, MPI_COMM_WORLD);
+  const int first = min_over_ranks_politely(f.set ? rank_ : size_);
   if (first == size_) return;
   std::string msg = f.pack();
   broadcast_from(msg, first);

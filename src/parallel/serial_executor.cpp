@@ -67,6 +67,8 @@ void Session::abort(int code) const { std::exit(code); }
 
 void Session::agree(const std::function<void()>& phase) const { phase(); }
 
+void Session::lend_cpus_to_root() const {}
+
 bool run_units(const Session&, const std::vector<std::size_t>& todo, const ComputeFn& compute,
                const ResultFn& on_result, const DoneFn&, const TickFn& tick, const std::atomic<bool>& stop) {
   for (std::size_t u : todo) {

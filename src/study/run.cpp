@@ -1274,6 +1274,7 @@ int finish(const parallel::Session& session, const Inputs& in, const WorkPlan& L
   int rc = 0;
   std::string summary_line, stopped_in;
   double total = 0, analysis = 0;
+  session.lend_cpus_to_root();  // the other ranks wait in agree() below: rank 0's report and write use their CPUs
   session.agree([&] {
     if (!session.root()) return;
     inject_fault("write", 0);

@@ -36,7 +36,14 @@ class Session {
   // Runs `phase` on this rank. If it throws on any rank, every rank throws the error of the lowest failing
   // rank (as an InputError with the same what/where/fix), so the whole job stops together, promptly, and
   // rank 0 prints one message. `phase` must not itself communicate.
+  // The other ranks wait (without spinning: agree polls and sleeps) while rank 0 works.
   void agree(const std::function<void()>& phase) const;
+  // Collective, before a phase only rank 0 works in (the report and the results write after the units): the ranks on
+  // rank 0's node lend it their CPUs -- their affinity masks joined into the mask of rank 0's calling thread, which
+  // the threads it starts inherit -- since they only wait until the next agree() returns. Under mpirun's default
+  // binding rank 0 is otherwise held to one core for its threaded report and deflate while the others idle. The
+  // kernel keeps the mask within the job's cpuset; a failure to widen it changes nothing.
+  void lend_cpus_to_root() const;
 
  private:
   int rank_ = 0, size_ = 1;
