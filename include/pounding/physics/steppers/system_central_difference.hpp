@@ -32,6 +32,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <cstdlib>
+#include <cstring>
 #include <memory>
 #include <new>
 #include <type_traits>
@@ -99,6 +100,9 @@ struct Layout {
   // its body's matrix (-1: a DOF with a floor dashpot) and its body; ndense = the rows (sum of n_b^2)
   std::vector<int> dense_row, dense_body;
   int ndense = 0;
+  // the stick path applies (stick_walk; src/physics/run_system.cpp's stick_layout says when), and its walk meets the
+  // springs in index order (else the hysteretic increments wait in the T row for the sum in index order)
+  bool stick = false, stick_ordered = false;
 };
 // How an element's force enters a DOF's resisting force q (step 6): +F (left point), -F (right point),
 // +N F / -N F with N the element's N1L, N2L, N1R or N2R row (interpolated sides, as pinned fmas).
@@ -115,7 +119,7 @@ struct Topo {
   bool any_smooth, any_link;
   const Side *left, *right;
   const int *contrib_start, *contrib_elem, *contrib_how;
-  bool any_dashpot;
+  bool any_dashpot, stick_ordered;
   const int *dof_chan, *spring_ci, *spring_cj, *elem_cl, *elem_cr;  // null with one channel
   const char *spring_cross, *elem_cross;
   const int *dense_row, *dense_body;  // null without dense damping
@@ -126,7 +130,7 @@ struct Topo {
         body_start(L.body_start.data()), body_dofs(L.body_dofs.data()), link_start(L.link_start.data()), link(L.link.data()),
         dashpot(L.dashpot.data()), law(L.law.data()), any_smooth(L.any_smooth), any_link(L.any_link), left(L.left.data()), right(L.right.data()),
         contrib_start(L.contrib_start.data()), contrib_elem(L.contrib_elem.data()), contrib_how(L.contrib_how.data()),
-        any_dashpot(L.any_dashpot), dof_chan(ptr(L.dof_chan)), spring_ci(ptr(L.spring_ci)), spring_cj(ptr(L.spring_cj)),
+        any_dashpot(L.any_dashpot), stick_ordered(L.stick_ordered), dof_chan(ptr(L.dof_chan)), spring_ci(ptr(L.spring_ci)), spring_cj(ptr(L.spring_cj)),
         elem_cl(ptr(L.elem_cl)), elem_cr(ptr(L.elem_cr)), spring_cross(ptr(L.spring_cross)), elem_cross(ptr(L.elem_cross)),
         dense_row(ptr(L.dense_row)), dense_body(ptr(L.dense_body)) {}
   template <class X> static const X* ptr(const std::vector<X>& v) { return v.empty() ? nullptr : v.data(); }
@@ -239,6 +243,36 @@ POUNDING_INLINE GroundOffset ground_offset(const double* g, int a, int b) {
   return {y[5] - x[5], (y[5] - y[4]) - (x[5] - x[4]), y[3] - x[3], y[2] - x[2]};
 }
 
+// The value itself, opaque to the optimiser: a product passed through it is never contracted into an FMA with a later
+// sum. GCC fuses a * b into its adds when every use of the product is an add; the stick path recomputes values that
+// the generic path stores, and pins the products the generic code keeps unfused. No instruction is emitted.
+POUNDING_INLINE V opaque(const V& x) {
+#if defined(__GNUC__) && (defined(__x86_64__) || defined(__i386__))
+  if constexpr (sizeof(V) >= 16) {
+    using Raw = double __attribute__((vector_size(sizeof(V))));
+    Raw r;
+    std::memcpy(&r, &x, sizeof r);
+    asm("" : "+v"(r));
+    V y;
+    std::memcpy(&y, &r, sizeof r);
+    return y;
+  }
+#endif
+  return x;
+}
+
+// The stick path's values of DOF j at n+1 besides the rows: u from U (predict_u's store), vh, du and vp recomputed
+// from Vel and A (step n until the walk writes step n+1) by predict()'s operations: vh and vp the FMAs GCC makes of
+// predict's sums (hh a has two adding uses), du = h vh unfused (predict stores it), so the bits of predict's rows.
+struct Kin {
+  V u, vh, du, vp;
+};
+POUNDING_INLINE Kin kin(Chunk c, int j, const V& h, const V& hh) {
+  const V v = c.dof(Vel, j), a = c.dof(A, j);
+  const V vh = lane::fma(hh, a, v);
+  return {c.dof(U, j), vh, opaque(h * vh), lane::fma(hh, a, vh)};
+}
+
 // The displacement-like value of a side from DOF rows `f` (x = N1 u_p + N2 u_q as one pinned contraction).
 POUNDING_INLINE V side_value(Chunk c, const Side& s, int f, int e, bool left) {
   switch (s.kind) {
@@ -256,6 +290,35 @@ POUNDING_INLINE V relative(Chunk c, Topo L, int f, int e) {
   if (l.kind == SideKind::wall) return -side_value(c, r, f, e, false);
   return side_value(c, l, f, e, true) - side_value(c, r, f, e, false);
 }
+// The stick path's relative value of element e (point and wall sides only) for rows U, Vel, VP, DU: VP and DU
+// recomputed (kin), as the generic relative() reads them from predict's rows.
+template <bool Stick> POUNDING_INLINE V rel(Chunk c, Topo L, int f, int e, const StepCtx& s) {
+  if constexpr (!Stick) {
+    return relative(c, L, f, e);
+  } else {
+    auto val = [&](const Side& x) {
+      if (f != VP && f != DU) return c.dof(f, x.p);
+      const Kin k = kin(c, x.p, V(s.h), V(s.hh));
+      return f == VP ? k.vp : k.du;
+    };
+    const Side &l = L.left[e], &r = L.right[e];
+    if (r.kind == SideKind::wall) return val(l);
+    if (l.kind == SideKind::wall) return -val(r);
+    return val(l) - val(r);
+  }
+}
+
+// Step 1 of the stick path: only u <- u + h vh is stored (the walk recomputes vh, du and vp: kin), and v for the
+// energy terms.
+template <bool WithEnergy> POUNDING_INLINE void predict_u(Chunk c, Topo L, const StepCtx& s) {
+  const V h(s.h), hh(s.hh);
+  for (int j = 0; j < L.ndof; ++j) {
+    const V v = c.dof(Vel, j), a = c.dof(A, j);
+    if constexpr (WithEnergy) c.dof(VO, j, v);
+    c.dof(U, j, c.dof(U, j) + opaque(h * lane::fma(hh, a, v)));
+  }
+}
+
 // Step 1: the kinematics before the forces at n+1.
 template <bool WithEnergy> POUNDING_INLINE void predict(Chunk c, Topo L, const StepCtx& s) {
   const V h(s.h), hh(s.hh);
@@ -379,14 +442,14 @@ template <bool WithEnergy> POUNDING_INLINE void springs(Chunk c, Topo L, const d
 
 // Step 5 for one element of law `Law`: the force at n+1 (muthukumar eq. 10's latch for Hertzdamp), the
 // stability guard, and the element's contact bookkeeping.
-template <class Law, class Exp>
+template <class Law, class Exp, bool Stick = false>
 POUNDING_INLINE void element(Chunk c, Topo L, int e, StepCtx& s, double v0_min, Exp n,
                              const VelocityRestitution* restitution) {
   const V zero(0.0), one(1.0);
   // a cross-channel element forms its kinematics from total displacements: + (ug_L - ug_R)
   const bool cross = L.elem_cross != nullptr && L.elem_cross[e];
   const GroundOffset go = cross ? ground_offset(s.gch, L.elem_cr[e], L.elem_cl[e]) : GroundOffset{0, 0, 0, 0};
-  const V cl = cross ? relative(c, L, U, e) + V(go.u1) : relative(c, L, U, e), d = cl - c.elm(GAP, e);
+  const V cl = cross ? relative(c, L, U, e) + V(go.u1) : rel<Stick>(c, L, U, e, s), d = cl - c.elm(GAP, e);
   {  // step 10's closing observer (x_L - x_R and when), on this step's unfrozen state: only bad lanes differ, and
      // they report NaN
     const V pc = c.elm(PCLOSE, e);
@@ -400,7 +463,7 @@ POUNDING_INLINE void element(Chunk c, Topo L, int e, StepCtx& s, double v0_min, 
   V nF = zero, onset = zero, clamp = zero;
   if constexpr (Law::traits.has_force) {
     if (any_touch) {
-      const V dd = cross ? relative(c, L, VP, e) + V(go.v1) : relative(c, L, VP, e);
+      const V dd = cross ? relative(c, L, VP, e) + V(go.v1) : rel<Stick>(c, L, VP, e, s);
       const simd::M on = (d > zero) && !(dprev > zero);
       onset = lane::select(on, one, zero);
       contact::State<V> st{c.elm(IV0, e)};
@@ -408,7 +471,7 @@ POUNDING_INLINE void element(Chunk c, Topo L, int e, StepCtx& s, double v0_min, 
         if (lane::any(on)) {  // approach velocity at the interpolated closing instant inside the step
           const V den = d - dprev;
           const V sc = lane::min(lane::max(-dprev / lane::select(den > zero, den, one), zero), one);
-          const V ddo = cross ? relative(c, L, Vel, e) + V(go.v0) : relative(c, L, Vel, e);  // v at the step's start
+          const V ddo = cross ? relative(c, L, Vel, e) + V(go.v0) : rel<Stick>(c, L, Vel, e, s);  // v at the step's start
           Law::template on_onset<V>(st, on, ddo + sc * (dd - ddo), v0_min);
           if (restitution) [[unlikely]] restitution_onset(c, e, st.iv0, on, *restitution);
           c.elm(IV0, e, st.iv0);
@@ -427,7 +490,7 @@ POUNDING_INLINE void element(Chunk c, Topo L, int e, StepCtx& s, double v0_min, 
   }
   if constexpr (Law::traits.has_force || Law::traits.impulsive) {
     if (any_touch || s.force_prev[e]) {
-      c.elm(WC, e, c.elm(WC, e) + contact_work(c.elm(F, e), nF, cross ? relative(c, L, DU, e) + V(go.du) : relative(c, L, DU, e)));
+      c.elm(WC, e, c.elm(WC, e) + contact_work(c.elm(F, e), nF, cross ? relative(c, L, DU, e) + V(go.du) : rel<Stick>(c, L, DU, e, s)));
       // the supports' work through a cross element (energy input besides -m ag v): its force over the ground
       // motions' difference, by the same rule
       if (cross) c.lan(EIN, c.lan(EIN) + contact_work(c.elm(F, e), nF, V(go.du)));
@@ -517,6 +580,86 @@ POUNDING_INLINE void forces(Chunk c, Topo L, StepCtx& s) {
   s.rate = sv + sa;
 }
 
+// The stick path's spring sp from its lower side lo (or the ground) to its upper side up: the bilinear return
+// (springs()' operations on the same values), its |d| and |f| observers; returns t, with the storey dashpot.
+template <bool WithEnergy>
+POUNDING_INLINE V stick_spring(Chunk c, Topo L, int sp, const Kin& up, const Kin& lo, bool ground, V& dhys) {
+  using H = model::BilinearKinematic;
+  const V dd = ground ? up.du : up.du - lo.du, d = ground ? up.u : up.u - lo.u;
+  const V fo = c.spr(FS, sp);
+  const H::Params<V> p{c.spr(K, sp), c.spr(AK, sp), c.spr(QY, sp), c.spr(KP, sp)};
+  const V f = H::restoring<V>(p, fo, dd, d);
+  if constexpr (WithEnergy) {
+    const V x = H::dissipated<V>(p, fo, dd, f);
+    if (L.stick_ordered)
+      dhys = sp == 0 ? x : dhys + x;
+    else
+      c.spr(T, sp, x);
+  }
+  c.spr(FS, sp, f);
+  V t = f;
+  if (L.dashpot[static_cast<std::size_t>(sp)]) t = lane::fma(c.spr(CS, sp), ground ? up.vp : up.vp - lo.vp, f);
+  c.spr(PD, sp, lane::max(c.spr(PD, sp), lane::abs(d)));
+  c.spr(PF, sp, lane::max(c.spr(PF, sp), lane::abs(f)));
+  return t;
+}
+
+// DOF j's force of the stick path from q (the springs' share): the floor dashpot to the ground, the point elements
+// in element order, then forces()' na, nv, |a + ag| observer; the guard's |u| observer. Returns |u|.
+POUNDING_INLINE V stick_dof(Chunk c, Topo L, int j, V q, const Kin& k, const V& hh, double ag1) {
+  q = lane::fma(c.dof(CF, j), k.vp, q);
+  for (int x = L.contrib_start[j]; x < L.contrib_start[j + 1]; ++x) {
+    const V f = c.elm(F, L.contrib_elem[x]);
+    if (L.contrib_how[x] == left_point) q += f; else q -= f;
+  }
+  const V na = -ag1 - q * c.dof(IM, j), nv = k.vh + hh * na;
+  c.dof(A, j, na), c.dof(Vel, j, nv);
+  c.dof(PA, j, lane::max(c.dof(PA, j), lane::abs(na + V(ag1))));
+  const V x = lane::abs(k.u);
+  c.dof(PU, j, lane::max(c.dof(PU, j), x));
+  return x;
+}
+
+// Steps 3, 4, 6, 7 and the guard's sum for sticks (Layout::stick): one walk per body from the bottom, each spring
+// evaluated once as t_above of its lower DOF and t_below of its upper one (kept in a register), the walk's DOF
+// values recomputed (kin). Springs come in index order (stick_layout), so the hysteretic sum keeps its order; the
+// rate measure is folded over DOFs in index order after the walk. Returns the guard's sum over bodies of max |u|.
+template <bool WithEnergy> POUNDING_INLINE V stick_walk(Chunk c, Topo L, StepCtx& s) {
+  const V h(s.h), hh(s.hh);
+  V dhys(0.0), dsum(0.0);
+  for (int b = 0; b < L.nbody; ++b) {
+    const int k0 = L.body_start[b], k1 = L.body_start[b + 1];
+    Kin cur = kin(c, L.body_dofs[k0], h, hh);
+    V tb = stick_spring<WithEnergy>(c, L, L.below[L.body_dofs[k0]], cur, cur, true, dhys), mx(0.0);
+    for (int k = k0; k < k1; ++k) {
+      V q = tb;
+      Kin nxt = cur;
+      if (k + 1 < k1) {
+        const int jn = L.body_dofs[k + 1];
+        nxt = kin(c, jn, h, hh);
+        tb = stick_spring<WithEnergy>(c, L, L.below[jn], nxt, cur, false, dhys);
+        q -= tb;
+      }
+      const V x = stick_dof(c, L, L.body_dofs[k], q, cur, hh, s.ag1);
+      mx = k == k0 ? x : lane::max(mx, x);
+      cur = nxt;
+    }
+    dsum = b == 0 ? mx : dsum + mx;
+  }
+  if constexpr (WithEnergy) {
+    if (!L.stick_ordered)
+      for (int k = 0; k < L.nspring; ++k) dhys = k == 0 ? c.spr(T, k) : dhys + c.spr(T, k);
+    c.lan(EHYS, c.lan(EHYS) + dhys);
+  }
+  V sv(0.0), sa(0.0);
+  for (int j = 0; j < L.ndof; ++j) {
+    sv = j == 0 ? lane::abs(c.dof(Vel, j)) : sv + lane::abs(c.dof(Vel, j));
+    sa = j == 0 ? lane::abs(c.dof(A, j)) : sa + lane::abs(c.dof(A, j));
+  }
+  s.rate = sv + sa;
+  return dsum;
+}
+
 // Step 8: input and viscous energy, the sums over DOFs left-folded by pinned FMAs (for two DOFs exactly the
 // pair's fma(m2, in2, m1 in1)); storey dashpots after the floor dashpots.
 POUNDING_INLINE void energy(Chunk c, Topo L, const StepCtx& s) {
@@ -554,22 +697,9 @@ POUNDING_INLINE void energy(Chunk c, Topo L, const StepCtx& s) {
   c.lan(EVIS, lane::fma(hh, evis, c.lan(EVIS)));
 }
 
-// Step 9: the divergence guard (kernel/guard.hpp) over bodies: the sum in body order of each body's largest |u|
-// (with step 10's |u| observer), the rate measure from forces() (sum |v| + sum |a|: only its finiteness is read);
-// a bad lane is frozen at rest.
-POUNDING_INLINE void guard(Chunk c, Topo L, StepCtx& s) {
+// The guard's test of the sum of the bodies' largest |u| and of the rate measure; a bad lane is frozen at rest.
+POUNDING_INLINE void freeze(Chunk c, Topo L, StepCtx& s, const V& dsum) {
   const V lim(s.lim), zero(0.0);
-  V dsum(0.0);
-  for (int b = 0; b < L.nbody; ++b) {
-    V mx(0.0);
-    for (int k = L.body_start[b]; k < L.body_start[b + 1]; ++k) {
-      const int j = L.body_dofs[k];
-      const V x = lane::abs(c.dof(U, j));
-      c.dof(PU, j, lane::max(c.dof(PU, j), x));
-      mx = k == L.body_start[b] ? x : lane::max(mx, x);
-    }
-    dsum = b == 0 ? mx : dsum + mx;
-  }
   if (lane::all(within(dsum, s.rate, lim)) && !s.any_bad) return;
   s.any_bad = true;
   const V bad = lane::max(c.lan(BAD), divergence_code(dsum, s.rate, lim));
@@ -583,6 +713,24 @@ POUNDING_INLINE void guard(Chunk c, Topo L, StepCtx& s) {
   for (int e = 0; e < L.nelem; ++e) c.elm(F, e, lane::select(frozen, zero, c.elm(F, e)));
 }
 
+// Step 9: the divergence guard (kernel/guard.hpp) over bodies: the sum in body order of each body's largest |u|
+// (with step 10's |u| observer), the rate measure from forces() (sum |v| + sum |a|: only its finiteness is read);
+// a bad lane is frozen at rest.
+POUNDING_INLINE void guard(Chunk c, Topo L, StepCtx& s) {
+  V dsum(0.0);
+  for (int b = 0; b < L.nbody; ++b) {
+    V mx(0.0);
+    for (int k = L.body_start[b]; k < L.body_start[b + 1]; ++k) {
+      const int j = L.body_dofs[k];
+      const V x = lane::abs(c.dof(U, j));
+      c.dof(PU, j, lane::max(c.dof(PU, j), x));
+      mx = k == L.body_start[b] ? x : lane::max(mx, x);
+    }
+    dsum = b == 0 ? mx : dsum + mx;
+  }
+  freeze(c, L, s, dsum);
+}
+
 // The elements of one contact group, with the group's law and exponent fixed once per run (a function pointer
 // per group: one indirect call per group and step, uniform across lanes).
 struct Group {
@@ -592,14 +740,15 @@ struct Group {
   bool impulsive = false;
   const VelocityRestitution* restitution = nullptr;  // e(v0) at each onset (Hertzdamp; null: the element's e)
   void (*run)(const Chunk&, const Topo&, const Group&, StepCtx&) = nullptr;
+  void (*run_stick)(const Chunk&, const Topo&, const Group&, StepCtx&) = nullptr;  // the stick path's
 };
-template <class Law, class Exp>
+template <class Law, class Exp, bool Stick>
 void group_elements(const Chunk& chunk, const Topo& topo, const Group& g, StepCtx& s) {
   const Chunk c = chunk;  // locals: by reference through the function pointer, no copy of the call's arguments
   const Topo L = topo;
   Exp n{};
   if constexpr (!std::is_same_v<Exp, contact::Exp15>) n = Exp{g.n};
-  for (int e : g.elems) element<Law, Exp>(c, L, e, s, g.v0_min, n, g.restitution);
+  for (int e : g.elems) element<Law, Exp, Stick>(c, L, e, s, g.v0_min, n, g.restitution);
 }
 
 struct Run {
@@ -612,9 +761,10 @@ struct Run {
   // multi-support: per channel, acceleration, velocity and baseline-corrected displacement at every step (empty: one
   // channel, `ag`)
   std::vector<const double*> ch_ag, ch_vg, ch_ug;
+  bool stick = false;  // the stick path (Layout::stick, no impulsive group)
 };
 
-template <bool WithEnergy> POUNDING_INLINE void step(Chunk c, const Run& R, long stepi, StepCtx& s) {
+template <bool WithEnergy, bool Stick> POUNDING_INLINE void step(Chunk c, const Run& R, long stepi, StepCtx& s) {
   const Topo L = R.topo;
   s.ag0 = R.ag[stepi], s.ag1 = R.ag[stepi + 1];
   s.t = V(static_cast<double>(stepi + 1) * R.h);
@@ -622,6 +772,14 @@ template <bool WithEnergy> POUNDING_INLINE void step(Chunk c, const Run& R, long
     double* x = s.gch + 6 * k;
     x[0] = R.ch_ag[k][stepi], x[1] = R.ch_ag[k][stepi + 1], x[2] = R.ch_vg[k][stepi], x[3] = R.ch_vg[k][stepi + 1];
     x[4] = R.ch_ug[k][stepi], x[5] = R.ch_ug[k][stepi + 1];
+  }
+  if constexpr (Stick) {
+    predict_u<WithEnergy>(c, L, s);
+    for (const Group& g : *R.groups) g.run_stick(c, L, g, s);
+    const V dsum = stick_walk<WithEnergy>(c, L, s);
+    if constexpr (WithEnergy) energy(c, L, s);
+    freeze(c, L, s, dsum);
+    return;
   }
   predict<WithEnergy>(c, L, s);
   for (const Group& g : *R.groups)
@@ -643,7 +801,10 @@ template <bool WithEnergy> void run_tile(const Pool& pool, int np, const Run& R)
     StepCtx s{R.h, 0.5 * R.h, 0.0, 0.0, V(0.0), V(R.h), V(0.0), R.lim, lane::any(c.lan(BAD) > V(0.0)), force_prev.get(),
               R.ch_ag.empty() ? nullptr : gch.data()};
     for (int e = 0; e < R.layout->nelem; ++e) force_prev[static_cast<std::size_t>(e)] = lane::any(c.elm(F, e) > V(0.0));
-    for (long k = 0; k < R.nsteps; ++k) step<WithEnergy>(c, R, k, s);
+    if (R.stick)
+      for (long k = 0; k < R.nsteps; ++k) step<WithEnergy, true>(c, R, k, s);
+    else
+      for (long k = 0; k < R.nsteps; ++k) step<WithEnergy, false>(c, R, k, s);
     pool.scatter(base);
   }
 }
@@ -654,6 +815,6 @@ extern template void run_tile<false>(const Pool&, int, const Run&);
 // The element function of a group with contact law `law` (Exp15 when n == 1.5 for a law that reads n, else
 // RuntimeExponent, as run_batch does): src/physics/instantiate_system_central_difference.cpp.
 using GroupFn = void (*)(const Chunk&, const Topo&, const Group&, StepCtx&);
-GroupFn group_runner(ContactLaw law, double n);
+GroupFn group_runner(ContactLaw law, double n, bool stick = false);
 
 }  // namespace pounding::kernel::sys
