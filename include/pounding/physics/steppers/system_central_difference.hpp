@@ -233,6 +233,7 @@ struct StepCtx {
   bool* force_prev;  // per element: some lane of the chunk touched in the previous step (bool: no char aliasing)
   // multi-support: per channel c at this step, gch[6 c + k] = ag0, ag1, vg0, vg1, ug0, ug1 (null with one channel)
   double* gch = nullptr;
+  bool advance = false;  // the stick path: the walk stores the next step's predicted u (not in the last step)
 };
 // The ground motions' difference between the two sides of a cross-channel spring or element this step: the
 // displacement at n+1 (gu1), its increment (gdu), the velocity at n+1 (gv1) and at n (gv0); side `b` minus side `a`.
@@ -261,16 +262,21 @@ POUNDING_INLINE V opaque(const V& x) {
   return x;
 }
 
-// The stick path's values of DOF j at n+1 besides the rows: u from U (predict_u's store), vh, du and vp recomputed
-// from Vel and A (step n until the walk writes step n+1) by predict()'s operations: vh and vp the FMAs GCC makes of
-// predict's sums (hh a has two adding uses), du = h vh unfused (predict stores it), so the bits of predict's rows.
+// The stick path's values of DOF j at n+1 besides the rows: u from U (the predicted u the walk stored in the step
+// before, or predict_u's before the first step), vh, du and vp recomputed from Vel and A (step n until the walk
+// writes step n+1) by predict()'s operations: vh and vp the FMAs GCC makes of predict's sums (hh a has two adding
+// uses), du = h vh unfused (predict stores it), so the bits of predict's rows; v for the energy terms (VO).
 struct Kin {
-  V u, vh, du, vp;
+  V u, v, vh, du, vp;
 };
 POUNDING_INLINE Kin kin(Chunk c, int j, const V& h, const V& hh) {
   const V v = c.dof(Vel, j), a = c.dof(A, j);
   const V vh = lane::fma(hh, a, v);
-  return {c.dof(U, j), vh, opaque(h * vh), lane::fma(hh, a, vh)};
+  return {c.dof(U, j), v, vh, opaque(h * vh), lane::fma(hh, a, vh)};
+}
+// predict()'s u + h (v + hh a): the displacement of the next step from this step's u, v, a.
+POUNDING_INLINE V next_u(const V& u, const V& v, const V& a, const V& h, const V& hh) {
+  return u + opaque(h * lane::fma(hh, a, v));
 }
 
 // The displacement-like value of a side from DOF rows `f` (x = N1 u_p + N2 u_q as one pinned contraction).
@@ -308,15 +314,11 @@ template <bool Stick> POUNDING_INLINE V rel(Chunk c, Topo L, int f, int e, const
   }
 }
 
-// Step 1 of the stick path: only u <- u + h vh is stored (the walk recomputes vh, du and vp: kin), and v for the
-// energy terms.
-template <bool WithEnergy> POUNDING_INLINE void predict_u(Chunk c, Topo L, const StepCtx& s) {
+// Step 1 of the stick path before its first step: only u <- u + h vh is stored (the walk recomputes vh, du and vp:
+// kin); every later step's u is stored by the walk of the step before (stick_dof).
+POUNDING_INLINE void predict_u(Chunk c, Topo L, const StepCtx& s) {
   const V h(s.h), hh(s.hh);
-  for (int j = 0; j < L.ndof; ++j) {
-    const V v = c.dof(Vel, j), a = c.dof(A, j);
-    if constexpr (WithEnergy) c.dof(VO, j, v);
-    c.dof(U, j, c.dof(U, j) + opaque(h * lane::fma(hh, a, v)));
-  }
+  for (int j = 0; j < L.ndof; ++j) c.dof(U, j, next_u(c.dof(U, j), c.dof(Vel, j), c.dof(A, j), h, hh));
 }
 
 // Step 1: the kinematics before the forces at n+1.
@@ -605,18 +607,23 @@ POUNDING_INLINE V stick_spring(Chunk c, Topo L, int sp, const Kin& up, const Kin
 }
 
 // DOF j's force of the stick path from q (the springs' share): the floor dashpot to the ground, the point elements
-// in element order, then forces()' na, nv, |a + ag| observer; the guard's |u| observer. Returns |u|.
-POUNDING_INLINE V stick_dof(Chunk c, Topo L, int j, V q, const Kin& k, const V& hh, double ag1) {
+// in element order, then forces()' na, nv, |a + ag| observer; the guard's |u| observer; the next step's predicted u
+// (predict()'s operations: the guard's freeze zeroes it with u, v and a, which gives the same +0). Returns |u|.
+template <bool WithEnergy>
+POUNDING_INLINE V stick_dof(Chunk c, Topo L, int j, V q, const Kin& k, const StepCtx& s, const V& h, const V& hh) {
+  const double ag1 = s.ag1;
   q = lane::fma(c.dof(CF, j), k.vp, q);
   for (int x = L.contrib_start[j]; x < L.contrib_start[j + 1]; ++x) {
     const V f = c.elm(F, L.contrib_elem[x]);
     if (L.contrib_how[x] == left_point) q += f; else q -= f;
   }
   const V na = -ag1 - q * c.dof(IM, j), nv = k.vh + hh * na;
+  if constexpr (WithEnergy) c.dof(VO, j, k.v);
   c.dof(A, j, na), c.dof(Vel, j, nv);
   c.dof(PA, j, lane::max(c.dof(PA, j), lane::abs(na + V(ag1))));
   const V x = lane::abs(k.u);
   c.dof(PU, j, lane::max(c.dof(PU, j), x));
+  if (s.advance) c.dof(U, j, next_u(k.u, nv, na, h, hh));
   return x;
 }
 
@@ -640,7 +647,7 @@ template <bool WithEnergy> POUNDING_INLINE V stick_walk(Chunk c, Topo L, StepCtx
         tb = stick_spring<WithEnergy>(c, L, L.below[jn], nxt, cur, false, dhys);
         q -= tb;
       }
-      const V x = stick_dof(c, L, L.body_dofs[k], q, cur, hh, s.ag1);
+      const V x = stick_dof<WithEnergy>(c, L, L.body_dofs[k], q, cur, s, h, hh);
       mx = k == k0 ? x : lane::max(mx, x);
       cur = nxt;
     }
@@ -774,7 +781,7 @@ template <bool WithEnergy, bool Stick> POUNDING_INLINE void step(Chunk c, const 
     x[4] = R.ch_ug[k][stepi], x[5] = R.ch_ug[k][stepi + 1];
   }
   if constexpr (Stick) {
-    predict_u<WithEnergy>(c, L, s);
+    s.advance = stepi + 1 < R.nsteps;
     for (const Group& g : *R.groups) g.run_stick(c, L, g, s);
     const V dsum = stick_walk<WithEnergy>(c, L, s);
     if constexpr (WithEnergy) energy(c, L, s);
@@ -801,9 +808,10 @@ template <bool WithEnergy> void run_tile(const Pool& pool, int np, const Run& R)
     StepCtx s{R.h, 0.5 * R.h, 0.0, 0.0, V(0.0), V(R.h), V(0.0), R.lim, lane::any(c.lan(BAD) > V(0.0)), force_prev.get(),
               R.ch_ag.empty() ? nullptr : gch.data()};
     for (int e = 0; e < R.layout->nelem; ++e) force_prev[static_cast<std::size_t>(e)] = lane::any(c.elm(F, e) > V(0.0));
-    if (R.stick)
+    if (R.stick) {
+      if (R.nsteps > 0) predict_u(c, R.topo, s);
       for (long k = 0; k < R.nsteps; ++k) step<WithEnergy, true>(c, R, k, s);
-    else
+    } else
       for (long k = 0; k < R.nsteps; ++k) step<WithEnergy, false>(c, R, k, s);
     pool.scatter(base);
   }
