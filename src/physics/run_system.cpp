@@ -86,6 +86,27 @@ bool stick_layout(Layout& L) {
   return true;
 }
 
+// The stick walk's nodes (Layout::walk): body by body, bottom up, with the chunk offsets of each DOF's and spring's
+// rows and of each element force the DOF takes (system_central_difference.hpp's Chunk layout).
+void walk_nodes(Layout& L) {
+  const int W = simd::W;
+  for (std::size_t b = 0; b + 1 < L.body_start.size(); ++b)
+    for (int k = L.body_start[b]; k < L.body_start[b + 1]; ++k) {
+      sys::StickNode n;
+      n.dof = L.body_dofs[static_cast<std::size_t>(k)], n.spring = L.below[static_cast<std::size_t>(n.dof)];
+      n.d_off = n.dof * sys::dof_rows * W, n.s_off = n.spring * sys::spring_rows * W;
+      n.body = static_cast<int>(b), n.first = k == L.body_start[b], n.top = k + 1 == L.body_start[b + 1];
+      n.dashpot = L.dashpot[static_cast<std::size_t>(n.spring)] != 0;
+      n.c0 = static_cast<int>(L.walk_f.size());
+      for (int x = L.contrib_start[static_cast<std::size_t>(n.dof)]; x < L.contrib_start[static_cast<std::size_t>(n.dof) + 1]; ++x) {
+        L.walk_f.push_back((L.contrib_elem[static_cast<std::size_t>(x)] * sys::elem_rows + sys::F) * W);
+        L.walk_neg.push_back(L.contrib_how[static_cast<std::size_t>(x)] == sys::right_point ? 1 : 0);
+      }
+      n.c1 = static_cast<int>(L.walk_f.size());
+      L.walk.push_back(n);
+    }
+}
+
 Layout layout_of(const model::System& S) {
   Layout L;
   L.ndof = S.ndof();
@@ -155,6 +176,7 @@ Layout layout_of(const model::System& S) {
     L.contrib_start.push_back(static_cast<int>(L.contrib_elem.size()));
   }
   L.stick = stick_layout(L);
+  if (L.stick) walk_nodes(L);
   return L;
 }
 

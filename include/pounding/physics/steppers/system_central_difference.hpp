@@ -73,6 +73,13 @@ enum ElemRow : int {
 };
 enum LaneRow : int { BAD, EIN, EVIS, EHYS, lane_rows };
 
+// One DOF of the stick walk: its index, its spring below, their offsets in the chunk (doubles from Chunk::pd, ::ps),
+// the range of its element contributions (Layout::walk_f, walk_neg), its body and place in it, the storey dashpot.
+struct StickNode {
+  int dof = 0, spring = 0, d_off = 0, s_off = 0, c0 = 0, c1 = 0, body = 0;
+  bool first = false, top = false, dashpot = false;
+};
+
 // The topology as flat index lists, derived once per run from the System.
 struct Layout {
   int ndof = 0, nspring = 0, nelem = 0;
@@ -103,6 +110,10 @@ struct Layout {
   // the stick path applies (stick_walk; src/physics/run_system.cpp's stick_layout says when), and its walk meets the
   // springs in index order (else the hysteretic increments wait in the T row for the sum in index order)
   bool stick = false, stick_ordered = false;
+  // the stick walk (body by body, bottom up): per DOF its node, and its element forces' offsets and sides
+  std::vector<StickNode> walk;
+  std::vector<int> walk_f;
+  std::vector<char> walk_neg;
 };
 // How an element's force enters a DOF's resisting force q (step 6): +F (left point), -F (right point),
 // +N F / -N F with N the element's N1L, N2L, N1R or N2R row (interpolated sides, as pinned fmas).
@@ -120,6 +131,9 @@ struct Topo {
   const Side *left, *right;
   const int *contrib_start, *contrib_elem, *contrib_how;
   bool any_dashpot, stick_ordered;
+  const StickNode* walk;
+  const int* walk_f;
+  const char* walk_neg;
   const int *dof_chan, *spring_ci, *spring_cj, *elem_cl, *elem_cr;  // null with one channel
   const char *spring_cross, *elem_cross;
   const int *dense_row, *dense_body;  // null without dense damping
@@ -130,7 +144,8 @@ struct Topo {
         body_start(L.body_start.data()), body_dofs(L.body_dofs.data()), link_start(L.link_start.data()), link(L.link.data()),
         dashpot(L.dashpot.data()), law(L.law.data()), any_smooth(L.any_smooth), any_link(L.any_link), left(L.left.data()), right(L.right.data()),
         contrib_start(L.contrib_start.data()), contrib_elem(L.contrib_elem.data()), contrib_how(L.contrib_how.data()),
-        any_dashpot(L.any_dashpot), stick_ordered(L.stick_ordered), dof_chan(ptr(L.dof_chan)), spring_ci(ptr(L.spring_ci)), spring_cj(ptr(L.spring_cj)),
+        any_dashpot(L.any_dashpot), stick_ordered(L.stick_ordered), walk(L.walk.data()),
+        walk_f(L.walk_f.data()), walk_neg(L.walk_neg.data()), dof_chan(ptr(L.dof_chan)), spring_ci(ptr(L.spring_ci)), spring_cj(ptr(L.spring_cj)),
         elem_cl(ptr(L.elem_cl)), elem_cr(ptr(L.elem_cr)), spring_cross(ptr(L.spring_cross)), elem_cross(ptr(L.elem_cross)),
         dense_row(ptr(L.dense_row)), dense_body(ptr(L.dense_body)) {}
   template <class X> static const X* ptr(const std::vector<X>& v) { return v.empty() ? nullptr : v.data(); }
@@ -269,10 +284,14 @@ POUNDING_INLINE V opaque(const V& x) {
 struct Kin {
   V u, v, vh, du, vp;
 };
-POUNDING_INLINE Kin kin(Chunk c, int j, const V& h, const V& hh) {
-  const V v = c.dof(Vel, j), a = c.dof(A, j);
+POUNDING_INLINE Kin kin(const double* pd, const V& h, const V& hh) {
+  auto at = [pd](int f) { return pd + static_cast<std::ptrdiff_t>(f) * simd::W; };
+  const V v = Chunk::ld(at(Vel)), a = Chunk::ld(at(A));
   const V vh = lane::fma(hh, a, v);
-  return {c.dof(U, j), v, vh, opaque(h * vh), lane::fma(hh, a, vh)};
+  return {Chunk::ld(at(U)), v, vh, opaque(h * vh), lane::fma(hh, a, vh)};
+}
+POUNDING_INLINE Kin kin(Chunk c, int j, const V& h, const V& hh) {
+  return kin(c.pd + Chunk::at(j, dof_rows, 0), h, hh);
 }
 // predict()'s u + h (v + hh a): the displacement of the next step from this step's u, v, a.
 POUNDING_INLINE V next_u(const V& u, const V& v, const V& a, const V& h, const V& hh) {
@@ -582,76 +601,86 @@ POUNDING_INLINE void forces(Chunk c, Topo L, StepCtx& s) {
   s.rate = sv + sa;
 }
 
-// The stick path's spring sp from its lower side lo (or the ground) to its upper side up: the bilinear return
-// (springs()' operations on the same values), its |d| and |f| observers; returns t, with the storey dashpot.
+// The stick path's spring (its rows at `ps`, index sp) from its lower side lo (or the ground) to its upper side up:
+// the bilinear return (springs()' operations on the same values), its |d| and |f| observers; returns t, with the
+// storey dashpot.
 template <bool WithEnergy>
-POUNDING_INLINE V stick_spring(Chunk c, Topo L, int sp, const Kin& up, const Kin& lo, bool ground, V& dhys) {
+POUNDING_INLINE V stick_spring(Topo L, double* ps, int sp, bool dashpot, const Kin& up, const Kin& lo, bool ground,
+                               V& dhys) {
   using H = model::BilinearKinematic;
+  auto at = [ps](int f) { return ps + static_cast<std::ptrdiff_t>(f) * simd::W; };
   const V dd = ground ? up.du : up.du - lo.du, d = ground ? up.u : up.u - lo.u;
-  const V fo = c.spr(FS, sp);
-  const H::Params<V> p{c.spr(K, sp), c.spr(AK, sp), c.spr(QY, sp), c.spr(KP, sp)};
+  const V fo = Chunk::ld(at(FS));
+  const H::Params<V> p{Chunk::ld(at(K)), Chunk::ld(at(AK)), Chunk::ld(at(QY)), Chunk::ld(at(KP))};
   const V f = H::restoring<V>(p, fo, dd, d);
   if constexpr (WithEnergy) {
     const V x = H::dissipated<V>(p, fo, dd, f);
     if (L.stick_ordered)
       dhys = sp == 0 ? x : dhys + x;
     else
-      c.spr(T, sp, x);
+      Chunk::st(x, at(T));
   }
-  c.spr(FS, sp, f);
+  Chunk::st(f, at(FS));
   V t = f;
-  if (L.dashpot[static_cast<std::size_t>(sp)]) t = lane::fma(c.spr(CS, sp), ground ? up.vp : up.vp - lo.vp, f);
-  c.spr(PD, sp, lane::max(c.spr(PD, sp), lane::abs(d)));
-  c.spr(PF, sp, lane::max(c.spr(PF, sp), lane::abs(f)));
+  if (dashpot) t = lane::fma(Chunk::ld(at(CS)), ground ? up.vp : up.vp - lo.vp, f);
+  Chunk::st(lane::max(Chunk::ld(at(PD)), lane::abs(d)), at(PD));
+  Chunk::st(lane::max(Chunk::ld(at(PF)), lane::abs(f)), at(PF));
   return t;
 }
 
-// DOF j's force of the stick path from q (the springs' share): the floor dashpot to the ground, the point elements
-// in element order, then forces()' na, nv, |a + ag| observer; the guard's |u| observer; the next step's predicted u
-// (predict()'s operations: the guard's freeze zeroes it with u, v and a, which gives the same +0). Returns |u|.
+// A DOF's force of the stick path (its rows at `pd`) from q (the springs' share): the floor dashpot to the ground,
+// the point elements in element order (F at pe + off, subtracted on a right side), then forces()' na, nv, |a + ag|
+// observer; the guard's |u| observer; the next step's predicted u (predict()'s operations: the guard's freeze zeroes
+// it with u, v and a, which gives the same +0). Returns |u|.
 template <bool WithEnergy>
-POUNDING_INLINE V stick_dof(Chunk c, Topo L, int j, V q, const Kin& k, const StepCtx& s, const V& h, const V& hh) {
+POUNDING_INLINE V stick_dof(Chunk c, Topo L, const StickNode& n, V q, const Kin& k, const StepCtx& s, const V& h,
+                            const V& hh) {
+  double* pd = c.pd + n.d_off;
+  auto at = [pd](int f) { return pd + static_cast<std::ptrdiff_t>(f) * simd::W; };
   const double ag1 = s.ag1;
-  q = lane::fma(c.dof(CF, j), k.vp, q);
-  for (int x = L.contrib_start[j]; x < L.contrib_start[j + 1]; ++x) {
-    const V f = c.elm(F, L.contrib_elem[x]);
-    if (L.contrib_how[x] == left_point) q += f; else q -= f;
+  q = lane::fma(Chunk::ld(at(CF)), k.vp, q);
+  for (int x = n.c0; x < n.c1; ++x) {
+    const V f = Chunk::ld(c.pe + L.walk_f[x]);
+    if (L.walk_neg[x]) q -= f; else q += f;
   }
-  const V na = -ag1 - q * c.dof(IM, j), nv = k.vh + hh * na;
-  if constexpr (WithEnergy) c.dof(VO, j, k.v);
-  c.dof(A, j, na), c.dof(Vel, j, nv);
-  c.dof(PA, j, lane::max(c.dof(PA, j), lane::abs(na + V(ag1))));
+  const V na = -ag1 - q * Chunk::ld(at(IM)), nv = k.vh + hh * na;
+  if constexpr (WithEnergy) Chunk::st(k.v, at(VO));
+  Chunk::st(na, at(A)), Chunk::st(nv, at(Vel));
+  Chunk::st(lane::max(Chunk::ld(at(PA)), lane::abs(na + V(ag1))), at(PA));
   const V x = lane::abs(k.u);
-  c.dof(PU, j, lane::max(c.dof(PU, j), x));
-  if (s.advance) c.dof(U, j, next_u(k.u, nv, na, h, hh));
+  Chunk::st(lane::max(Chunk::ld(at(PU)), x), at(PU));
+  if (s.advance) Chunk::st(next_u(k.u, nv, na, h, hh), at(U));
   return x;
 }
 
-// Steps 3, 4, 6, 7 and the guard's sum for sticks (Layout::stick): one walk per body from the bottom, each spring
-// evaluated once as t_above of its lower DOF and t_below of its upper one (kept in a register), the walk's DOF
-// values recomputed (kin). Springs come in index order (stick_layout), so the hysteretic sum keeps its order; the
-// rate measure is folded over DOFs in index order after the walk. Returns the guard's sum over bodies of max |u|.
+// Steps 3, 4, 6, 7 and the guard's sum for sticks (Layout::stick): one walk per body from the bottom (Layout::walk,
+// with each DOF's and spring's row offsets and its element forces' offsets precomputed), each spring evaluated once
+// as t_above of its lower DOF and t_below of its upper one (kept in a register), the walk's DOF values recomputed
+// (kin). The hysteretic increments are summed in spring order (in the walk when it meets the springs in index order,
+// else after it from the T row), the rate measure over DOFs in index order after the walk. Returns the guard's sum
+// over bodies of max |u|.
 template <bool WithEnergy> POUNDING_INLINE V stick_walk(Chunk c, Topo L, StepCtx& s) {
   const V h(s.h), hh(s.hh);
-  V dhys(0.0), dsum(0.0);
-  for (int b = 0; b < L.nbody; ++b) {
-    const int k0 = L.body_start[b], k1 = L.body_start[b + 1];
-    Kin cur = kin(c, L.body_dofs[k0], h, hh);
-    V tb = stick_spring<WithEnergy>(c, L, L.below[L.body_dofs[k0]], cur, cur, true, dhys), mx(0.0);
-    for (int k = k0; k < k1; ++k) {
-      V q = tb;
-      Kin nxt = cur;
-      if (k + 1 < k1) {
-        const int jn = L.body_dofs[k + 1];
-        nxt = kin(c, jn, h, hh);
-        tb = stick_spring<WithEnergy>(c, L, L.below[jn], nxt, cur, false, dhys);
-        q -= tb;
-      }
-      const V x = stick_dof<WithEnergy>(c, L, L.body_dofs[k], q, cur, s, h, hh);
-      mx = k == k0 ? x : lane::max(mx, x);
-      cur = nxt;
+  V dhys(0.0), dsum(0.0), mx(0.0), tb(0.0);
+  Kin cur{};
+  for (int k = 0; k < L.ndof; ++k) {
+    const StickNode& n = L.walk[k];
+    if (n.first) {
+      cur = kin(c.pd + n.d_off, h, hh);
+      tb = stick_spring<WithEnergy>(L, c.ps + n.s_off, n.spring, n.dashpot, cur, cur, true, dhys);
     }
-    dsum = b == 0 ? mx : dsum + mx;
+    V q = tb;
+    Kin nxt = cur;
+    if (!n.top) {
+      const StickNode& m = L.walk[k + 1];
+      nxt = kin(c.pd + m.d_off, h, hh);
+      tb = stick_spring<WithEnergy>(L, c.ps + m.s_off, m.spring, m.dashpot, nxt, cur, false, dhys);
+      q -= tb;
+    }
+    const V x = stick_dof<WithEnergy>(c, L, n, q, cur, s, h, hh);
+    mx = n.first ? x : lane::max(mx, x);
+    if (n.top) dsum = n.body == 0 ? mx : dsum + mx;
+    cur = nxt;
   }
   if constexpr (WithEnergy) {
     if (!L.stick_ordered)
