@@ -105,6 +105,9 @@ void walk_nodes(Layout& L) {
       n.c1 = static_cast<int>(L.walk_f.size());
       L.walk.push_back(n);
     }
+  for (std::size_t e = 0; e < L.left.size(); ++e)
+    for (const sys::Side& x : {L.left[e], L.right[e]})
+      L.walk_side.push_back(x.kind == sys::SideKind::wall ? -1 : x.p * sys::dof_rows * W);
 }
 
 Layout layout_of(const model::System& S) {

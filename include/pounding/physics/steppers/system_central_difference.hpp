@@ -114,6 +114,7 @@ struct Layout {
   std::vector<StickNode> walk;
   std::vector<int> walk_f;
   std::vector<char> walk_neg;
+  std::vector<int> walk_side;  // per element, its left and right DOF's chunk offset (-1: a wall)
 };
 // How an element's force enters a DOF's resisting force q (step 6): +F (left point), -F (right point),
 // +N F / -N F with N the element's N1L, N2L, N1R or N2R row (interpolated sides, as pinned fmas).
@@ -134,6 +135,7 @@ struct Topo {
   const StickNode* walk;
   const int* walk_f;
   const char* walk_neg;
+  const int* walk_side;
   const int *dof_chan, *spring_ci, *spring_cj, *elem_cl, *elem_cr;  // null with one channel
   const char *spring_cross, *elem_cross;
   const int *dense_row, *dense_body;  // null without dense damping
@@ -145,7 +147,8 @@ struct Topo {
         dashpot(L.dashpot.data()), law(L.law.data()), any_smooth(L.any_smooth), any_link(L.any_link), left(L.left.data()), right(L.right.data()),
         contrib_start(L.contrib_start.data()), contrib_elem(L.contrib_elem.data()), contrib_how(L.contrib_how.data()),
         any_dashpot(L.any_dashpot), stick_ordered(L.stick_ordered), walk(L.walk.data()),
-        walk_f(L.walk_f.data()), walk_neg(L.walk_neg.data()), dof_chan(ptr(L.dof_chan)), spring_ci(ptr(L.spring_ci)), spring_cj(ptr(L.spring_cj)),
+        walk_f(L.walk_f.data()), walk_neg(L.walk_neg.data()),
+        walk_side(L.walk_side.data()), dof_chan(ptr(L.dof_chan)), spring_ci(ptr(L.spring_ci)), spring_cj(ptr(L.spring_cj)),
         elem_cl(ptr(L.elem_cl)), elem_cr(ptr(L.elem_cr)), spring_cross(ptr(L.spring_cross)), elem_cross(ptr(L.elem_cross)),
         dense_row(ptr(L.dense_row)), dense_body(ptr(L.dense_body)) {}
   template <class X> static const X* ptr(const std::vector<X>& v) { return v.empty() ? nullptr : v.data(); }
@@ -321,14 +324,14 @@ template <bool Stick> POUNDING_INLINE V rel(Chunk c, Topo L, int f, int e, const
   if constexpr (!Stick) {
     return relative(c, L, f, e);
   } else {
-    auto val = [&](const Side& x) {
-      if (f != VP && f != DU) return c.dof(f, x.p);
-      const Kin k = kin(c, x.p, V(s.h), V(s.hh));
+    auto val = [&](int off) {
+      if (f != VP && f != DU) return Chunk::ld(c.pd + off + static_cast<std::ptrdiff_t>(f) * simd::W);
+      const Kin k = kin(c.pd + off, V(s.h), V(s.hh));
       return f == VP ? k.vp : k.du;
     };
-    const Side &l = L.left[e], &r = L.right[e];
-    if (r.kind == SideKind::wall) return val(l);
-    if (l.kind == SideKind::wall) return -val(r);
+    const int l = L.walk_side[2 * e], r = L.walk_side[2 * e + 1];
+    if (r < 0) return val(l);
+    if (l < 0) return -val(r);
     return val(l) - val(r);
   }
 }
@@ -475,8 +478,10 @@ POUNDING_INLINE void element(Chunk c, Topo L, int e, StepCtx& s, double v0_min, 
      // they report NaN
     const V pc = c.elm(PCLOSE, e);
     const auto up = cl > pc;
-    c.elm(PCLOSE, e, lane::select(up, cl, pc));
-    c.elm(TPCLOSE, e, lane::select(up, s.t, c.elm(TPCLOSE, e)));
+    if (!Stick || lane::any(up)) {  // the stick path skips the stores that would write the rows' own values
+      c.elm(PCLOSE, e, lane::select(up, cl, pc));
+      c.elm(TPCLOSE, e, lane::select(up, s.t, c.elm(TPCLOSE, e)));
+    }
   }
   const simd::M touching = d > zero;
   const bool any_touch = lane::any(touching);
