@@ -53,7 +53,8 @@ const char* const field_names[] = {"peak_u", "peak_acc", "final_u", "final_v", "
                                    "impact_count", "clamp_count", "restitution_outside", "status"};
 
 // `width` lanes of system S: every body a yielding stick with Rayleigh damping whose numbers vary per lane, every
-// element's gap, kc and e varied; lane 5 starts past the displacement limit (diverged in step 1).
+// element's gap, kc and e varied; lane 5 starts past the displacement limit (diverged in step 1), lanes 6 and 7 at
+// huge velocities.
 SystemBatch batch(const model::System& S, std::size_t width, double gap) {
   SystemBatch B;
   B.resize(S, width);
@@ -77,6 +78,9 @@ SystemBatch batch(const model::System& S, std::size_t width, double gap) {
     }
   }
   if (width > 5) B.u0[SystemBatch::at(S.ndof() - 1, 5, width)] = 20.0;
+  // lanes 6 and 7 diverge with |v| + |a| near and past the overflow (the walk's rate measure hands over to the
+  // index-order sum, stick_walk)
+  if (width > 7) B.v0[SystemBatch::at(0, 6, width)] = 3e299, B.v0[SystemBatch::at(0, 7, width)] = 1e307;
   return B;
 }
 

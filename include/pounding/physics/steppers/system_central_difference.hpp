@@ -636,10 +636,10 @@ POUNDING_INLINE V stick_spring(Topo L, double* ps, int sp, bool dashpot, const K
 // A DOF's force of the stick path (its rows at `pd`) from q (the springs' share): the floor dashpot to the ground,
 // the point elements in element order (F at pe + off, subtracted on a right side), then forces()' na, nv, |a + ag|
 // observer; the guard's |u| observer; the next step's predicted u (predict()'s operations: the guard's freeze zeroes
-// it with u, v and a, which gives the same +0). Returns |u|.
+// it with u, v and a, which gives the same +0); |v| + |a| into `rate`. Returns |u|.
 template <bool WithEnergy>
 POUNDING_INLINE V stick_dof(Chunk c, Topo L, const StickNode& n, V q, const Kin& k, const StepCtx& s, const V& h,
-                            const V& hh) {
+                            const V& hh, V& rate) {
   double* pd = c.pd + n.d_off;
   auto at = [pd](int f) { return pd + static_cast<std::ptrdiff_t>(f) * simd::W; };
   const double ag1 = s.ag1;
@@ -655,6 +655,7 @@ POUNDING_INLINE V stick_dof(Chunk c, Topo L, const StickNode& n, V q, const Kin&
   const V x = lane::abs(k.u);
   Chunk::st(lane::max(Chunk::ld(at(PU)), x), at(PU));
   if (s.advance) Chunk::st(next_u(k.u, nv, na, h, hh), at(U));
+  rate = rate + (lane::abs(nv) + lane::abs(na));
   return x;
 }
 
@@ -662,11 +663,14 @@ POUNDING_INLINE V stick_dof(Chunk c, Topo L, const StickNode& n, V q, const Kin&
 // with each DOF's and spring's row offsets and its element forces' offsets precomputed), each spring evaluated once
 // as t_above of its lower DOF and t_below of its upper one (kept in a register), the walk's DOF values recomputed
 // (kin). The hysteretic increments are summed in spring order (in the walk when it meets the springs in index order,
-// else after it from the T row), the rate measure over DOFs in index order after the walk. Returns the guard's sum
-// over bodies of max |u|.
+// else after it from the T row). The guard reads only whether the rate measure (sum |v| + sum |a| over DOFs in index
+// order) is finite: the walk sums the same terms in its own order, and where that sum is below 1e300 in every lane
+// the index-order sum (within a relative 2 (ndof + 1) eps of it) is finite too, so the walk's sum stands in for it;
+// else (a lane near overflow, inf or NaN: a diverging lane) the index-order sum is formed from the rows.
+// Returns the guard's sum over bodies of max |u|.
 template <bool WithEnergy> POUNDING_INLINE V stick_walk(Chunk c, Topo L, StepCtx& s) {
   const V h(s.h), hh(s.hh);
-  V dhys(0.0), dsum(0.0), mx(0.0), tb(0.0);
+  V dhys(0.0), dsum(0.0), mx(0.0), tb(0.0), rate(0.0);
   Kin cur{};
   for (int k = 0; k < L.ndof; ++k) {
     const StickNode& n = L.walk[k];
@@ -682,7 +686,7 @@ template <bool WithEnergy> POUNDING_INLINE V stick_walk(Chunk c, Topo L, StepCtx
       tb = stick_spring<WithEnergy>(L, c.ps + m.s_off, m.spring, m.dashpot, nxt, cur, false, dhys);
       q -= tb;
     }
-    const V x = stick_dof<WithEnergy>(c, L, n, q, cur, s, h, hh);
+    const V x = stick_dof<WithEnergy>(c, L, n, q, cur, s, h, hh, rate);
     mx = n.first ? x : lane::max(mx, x);
     if (n.top) dsum = n.body == 0 ? mx : dsum + mx;
     cur = nxt;
@@ -692,12 +696,15 @@ template <bool WithEnergy> POUNDING_INLINE V stick_walk(Chunk c, Topo L, StepCtx
       for (int k = 0; k < L.nspring; ++k) dhys = k == 0 ? c.spr(T, k) : dhys + c.spr(T, k);
     c.lan(EHYS, c.lan(EHYS) + dhys);
   }
-  V sv(0.0), sa(0.0);
-  for (int j = 0; j < L.ndof; ++j) {
-    sv = j == 0 ? lane::abs(c.dof(Vel, j)) : sv + lane::abs(c.dof(Vel, j));
-    sa = j == 0 ? lane::abs(c.dof(A, j)) : sa + lane::abs(c.dof(A, j));
+  s.rate = rate;
+  if (!lane::all(rate < V(1e300))) [[unlikely]] {
+    V sv(0.0), sa(0.0);
+    for (int j = 0; j < L.ndof; ++j) {
+      sv = j == 0 ? lane::abs(c.dof(Vel, j)) : sv + lane::abs(c.dof(Vel, j));
+      sa = j == 0 ? lane::abs(c.dof(A, j)) : sa + lane::abs(c.dof(A, j));
+    }
+    s.rate = sv + sa;
   }
-  s.rate = sv + sa;
   return dsum;
 }
 
