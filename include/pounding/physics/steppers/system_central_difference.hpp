@@ -29,6 +29,8 @@
 //  9. divergence guard over bodies (sum of each body's max |u|, with the |u| observer), freeze of bad lanes
 // Observers updated before the freeze differ from the pair's order only in lanes that the freeze marks bad, which
 // report NaN. The SDOF pair through this stepper gives the pair kernel's bits (test_system_kernel).
+// Shear sticks (Layout::stick) take the stick path instead: steps 1-9 as the elements, then one walk per body
+// (stick_walk) with the same operations in the same order; test_system_stick holds it to the generic path's bits.
 #include <cstddef>
 #include <cstdint>
 #include <cstdlib>
