@@ -8,13 +8,11 @@ namespace pounding::kernel::sys {
 template void run_tile<true>(const Pool&, int, const Run&);
 template void run_tile<false>(const Pool&, int, const Run&);
 
-GroupFn group_runner(ContactLaw law, double n, bool stick) {
-  return contact::visit_law(law, [n, stick]<class Law>() -> GroupFn {
+GroupFn group_runner(ContactLaw law, double n) {
+  return contact::visit_law(law, [n]<class Law>() -> GroupFn {
     if constexpr (Law::traits.uses_exponent)
-      if (n != 1.5)
-        return stick ? &group_elements<Law, contact::RuntimeExponent, true>
-                     : &group_elements<Law, contact::RuntimeExponent, false>;
-    return stick ? &group_elements<Law, contact::Exp15, true> : &group_elements<Law, contact::Exp15, false>;
+      if (n != 1.5) return &group_elements<Law, contact::RuntimeExponent>;
+    return &group_elements<Law, contact::Exp15>;
   });
 }
 

@@ -272,7 +272,6 @@ Plan make_plan(const SystemBatch& B, std::span<const ContactModel> models, doubl
     G.impulsive = contact::traits(models[g].law).impulsive;
     G.restitution = restitution;  // validate: every group hertzdamp when given
     G.run = sys::group_runner(models[g].law, models[g].n);
-    G.run_stick = sys::group_runner(models[g].law, models[g].n, true);
   }
   const auto& els = B.system->contacts();
   for (std::size_t e = 0; e < els.size(); ++e) {

@@ -34,7 +34,6 @@
 #include <cstddef>
 #include <cstdint>
 #include <cstdlib>
-#include <cstring>
 #include <memory>
 #include <new>
 #include <type_traits>
@@ -253,6 +252,7 @@ struct StepCtx {
   bool* force_prev;  // per element: some lane of the chunk touched in the previous step (bool: no char aliasing)
   // multi-support: per channel c at this step, gch[6 c + k] = ag0, ag1, vg0, vg1, ug0, ug1 (null with one channel)
   double* gch = nullptr;
+  bool stick = false;    // the stick path's step (elements read their sides through Layout::walk_side, rel)
   bool advance = false;  // the stick path: the walk stores the next step's predicted u (not in the last step)
 };
 // The ground motions' difference between the two sides of a cross-channel spring or element this step: the
@@ -272,11 +272,9 @@ POUNDING_INLINE V opaque(const V& x) {
   if constexpr (sizeof(V) >= 16) {
     using Raw = double __attribute__((vector_size(sizeof(V))));
     Raw r;
-    std::memcpy(&r, &x, sizeof r);
+    x.copy_to(reinterpret_cast<double*>(&r), simd::stdx::element_aligned);
     asm("" : "+v"(r));
-    V y;
-    std::memcpy(&y, &r, sizeof r);
-    return y;
+    return V(reinterpret_cast<const double*>(&r), simd::stdx::element_aligned);
   }
 #endif
   return x;
@@ -322,8 +320,8 @@ POUNDING_INLINE V relative(Chunk c, Topo L, int f, int e) {
 }
 // The stick path's relative value of element e (point and wall sides only) for rows U, Vel, VP, DU: VP and DU
 // recomputed (kin), as the generic relative() reads them from predict's rows.
-template <bool Stick> POUNDING_INLINE V rel(Chunk c, Topo L, int f, int e, const StepCtx& s) {
-  if constexpr (!Stick) {
+POUNDING_INLINE V rel(Chunk c, Topo L, int f, int e, const StepCtx& s) {
+  if (!s.stick) {
     return relative(c, L, f, e);
   } else {
     auto val = [&](int off) {
@@ -468,19 +466,19 @@ template <bool WithEnergy> POUNDING_INLINE void springs(Chunk c, Topo L, const d
 
 // Step 5 for one element of law `Law`: the force at n+1 (muthukumar eq. 10's latch for Hertzdamp), the
 // stability guard, and the element's contact bookkeeping.
-template <class Law, class Exp, bool Stick = false>
+template <class Law, class Exp>
 POUNDING_INLINE void element(Chunk c, Topo L, int e, StepCtx& s, double v0_min, Exp n,
                              const VelocityRestitution* restitution) {
   const V zero(0.0), one(1.0);
   // a cross-channel element forms its kinematics from total displacements: + (ug_L - ug_R)
   const bool cross = L.elem_cross != nullptr && L.elem_cross[e];
   const GroundOffset go = cross ? ground_offset(s.gch, L.elem_cr[e], L.elem_cl[e]) : GroundOffset{0, 0, 0, 0};
-  const V cl = cross ? relative(c, L, U, e) + V(go.u1) : rel<Stick>(c, L, U, e, s), d = cl - c.elm(GAP, e);
+  const V cl = cross ? relative(c, L, U, e) + V(go.u1) : rel(c, L, U, e, s), d = cl - c.elm(GAP, e);
   {  // step 10's closing observer (x_L - x_R and when), on this step's unfrozen state: only bad lanes differ, and
      // they report NaN
     const V pc = c.elm(PCLOSE, e);
     const auto up = cl > pc;
-    if (!Stick || lane::any(up)) {  // the stick path skips the stores that would write the rows' own values
+    if (!s.stick || lane::any(up)) {  // the stick path skips the stores that would write the rows' own values
       c.elm(PCLOSE, e, lane::select(up, cl, pc));
       c.elm(TPCLOSE, e, lane::select(up, s.t, c.elm(TPCLOSE, e)));
     }
@@ -491,7 +489,7 @@ POUNDING_INLINE void element(Chunk c, Topo L, int e, StepCtx& s, double v0_min, 
   V nF = zero, onset = zero, clamp = zero;
   if constexpr (Law::traits.has_force) {
     if (any_touch) {
-      const V dd = cross ? relative(c, L, VP, e) + V(go.v1) : rel<Stick>(c, L, VP, e, s);
+      const V dd = cross ? relative(c, L, VP, e) + V(go.v1) : rel(c, L, VP, e, s);
       const simd::M on = (d > zero) && !(dprev > zero);
       onset = lane::select(on, one, zero);
       contact::State<V> st{c.elm(IV0, e)};
@@ -499,7 +497,7 @@ POUNDING_INLINE void element(Chunk c, Topo L, int e, StepCtx& s, double v0_min, 
         if (lane::any(on)) {  // approach velocity at the interpolated closing instant inside the step
           const V den = d - dprev;
           const V sc = lane::min(lane::max(-dprev / lane::select(den > zero, den, one), zero), one);
-          const V ddo = cross ? relative(c, L, Vel, e) + V(go.v0) : rel<Stick>(c, L, Vel, e, s);  // v at the step's start
+          const V ddo = cross ? relative(c, L, Vel, e) + V(go.v0) : rel(c, L, Vel, e, s);  // v at the step's start
           Law::template on_onset<V>(st, on, ddo + sc * (dd - ddo), v0_min);
           if (restitution) [[unlikely]] restitution_onset(c, e, st.iv0, on, *restitution);
           c.elm(IV0, e, st.iv0);
@@ -518,7 +516,7 @@ POUNDING_INLINE void element(Chunk c, Topo L, int e, StepCtx& s, double v0_min, 
   }
   if constexpr (Law::traits.has_force || Law::traits.impulsive) {
     if (any_touch || s.force_prev[e]) {
-      c.elm(WC, e, c.elm(WC, e) + contact_work(c.elm(F, e), nF, cross ? relative(c, L, DU, e) + V(go.du) : rel<Stick>(c, L, DU, e, s)));
+      c.elm(WC, e, c.elm(WC, e) + contact_work(c.elm(F, e), nF, cross ? relative(c, L, DU, e) + V(go.du) : rel(c, L, DU, e, s)));
       // the supports' work through a cross element (energy input besides -m ag v): its force over the ground
       // motions' difference, by the same rule
       if (cross) c.lan(EIN, c.lan(EIN) + contact_work(c.elm(F, e), nF, V(go.du)));
@@ -790,15 +788,14 @@ struct Group {
   bool impulsive = false;
   const VelocityRestitution* restitution = nullptr;  // e(v0) at each onset (Hertzdamp; null: the element's e)
   void (*run)(const Chunk&, const Topo&, const Group&, StepCtx&) = nullptr;
-  void (*run_stick)(const Chunk&, const Topo&, const Group&, StepCtx&) = nullptr;  // the stick path's
 };
-template <class Law, class Exp, bool Stick>
+template <class Law, class Exp>
 void group_elements(const Chunk& chunk, const Topo& topo, const Group& g, StepCtx& s) {
   const Chunk c = chunk;  // locals: by reference through the function pointer, no copy of the call's arguments
   const Topo L = topo;
   Exp n{};
   if constexpr (!std::is_same_v<Exp, contact::Exp15>) n = Exp{g.n};
-  for (int e : g.elems) element<Law, Exp, Stick>(c, L, e, s, g.v0_min, n, g.restitution);
+  for (int e : g.elems) element<Law, Exp>(c, L, e, s, g.v0_min, n, g.restitution);
 }
 
 struct Run {
@@ -825,7 +822,7 @@ template <bool WithEnergy, bool Stick> POUNDING_INLINE void step(Chunk c, const 
   }
   if constexpr (Stick) {
     s.advance = stepi + 1 < R.nsteps;
-    for (const Group& g : *R.groups) g.run_stick(c, L, g, s);
+    for (const Group& g : *R.groups) g.run(c, L, g, s);
     const V dsum = stick_walk<WithEnergy>(c, L, s);
     if constexpr (WithEnergy) energy(c, L, s);
     freeze(c, L, s, dsum);
@@ -852,6 +849,7 @@ template <bool WithEnergy> void run_tile(const Pool& pool, int np, const Run& R)
               R.ch_ag.empty() ? nullptr : gch.data()};
     for (int e = 0; e < R.layout->nelem; ++e) force_prev[static_cast<std::size_t>(e)] = lane::any(c.elm(F, e) > V(0.0));
     if (R.stick) {
+      s.stick = true;
       if (R.nsteps > 0) predict_u(c, R.topo, s);
       for (long k = 0; k < R.nsteps; ++k) step<WithEnergy, true>(c, R, k, s);
     } else
@@ -866,6 +864,6 @@ extern template void run_tile<false>(const Pool&, int, const Run&);
 // The element function of a group with contact law `law` (Exp15 when n == 1.5 for a law that reads n, else
 // RuntimeExponent, as run_batch does): src/physics/instantiate_system_central_difference.cpp.
 using GroupFn = void (*)(const Chunk&, const Topo&, const Group&, StepCtx&);
-GroupFn group_runner(ContactLaw law, double n, bool stick = false);
+GroupFn group_runner(ContactLaw law, double n);
 
 }  // namespace pounding::kernel::sys
