@@ -4,6 +4,7 @@
 // several contact laws, with yielding storeys and one lane diverging (the guard's freeze).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <cstdlib>
@@ -92,7 +93,8 @@ ContactModel law(ContactLaw l, double n = 1.5) {
 
 // Runs B through the stick path (run_system) and the generic path, with and without energy, under `cm`; every field
 // bit for bit. Returns the total impact count (the runs must pound).
-long compare(const SystemBatch& B, const ContactModel& cm, const std::string& what, bool lane5_diverges = true) {
+long compare(const SystemBatch& B, const ContactModel& cm, const std::string& what, bool lane5_diverges = true,
+             const VelocityRestitution* restitution = nullptr) {
   EXPECT_TRUE(physics::testing::stick_path(*B.system)) << what << ": the stick path must run this topology";
   const std::vector<double> ag = builtin_motion(0.01, 5.0);
   const GroundMotion gm{0.01, ag, 0.0};
@@ -100,7 +102,7 @@ long compare(const SystemBatch& B, const ContactModel& cm, const std::string& wh
   long impacts = 0;
   for (bool energy : {false, true}) {
     KernelSettings ks;
-    ks.substeps = 4, ks.energy = energy;
+    ks.substeps = 4, ks.energy = energy, ks.restitution = restitution;
     SystemResult fast, ref;
     run_system(B, groups, gm, ks, fast);
     physics::testing::run_system_generic(B, groups, gm, ks, ref);
@@ -130,6 +132,21 @@ TEST(SystemStick, ThreeVersusFiveStoreysIsTheGenericPath) {
   for (const model::System& S : {test::shear_row({3, 5}, true), model::shear_buildings(sticks)})
     for (const ContactModel& cm : laws())
       EXPECT_GT(compare(batch(S, 37, 0.01), cm, std::string(to_string(cm.law))), 20);
+}
+
+// e(v0) at every onset (KernelSettings::restitution, the element's latched damping): a made-up curve e = 0.8 - 0.3 v0
+// (v0 in m/s, clamped at 0.2), its Hertzdamp damping 8 (1 - e) / (5 e), v0 above 1 m/s counted outside.
+TEST(SystemStick, VelocityDependentRestitutionIsTheGenericPath) {
+  if (!bits_claimed()) GTEST_SKIP() << std::getenv("POUNDING_BITS_NOT_CLAIMED");
+  VelocityRestitution r;
+  r.damping = [](const void*, double v0) {
+    const double e = std::max(0.8 - 0.3 * v0, 0.2);
+    return 8.0 * (1.0 - e) / (5.0 * e);
+  };
+  r.outside = [](const void*, double v0) { return v0 > 1.0; };
+  std::vector<model::StickTopology> sticks(2);
+  sticks[0].storeys = 3, sticks[1].storeys = 5;
+  EXPECT_GT(compare(batch(model::shear_buildings(sticks), 21, 0.01), law(ContactLaw::hertzdamp), "e(v0)", true, &r), 20);
 }
 
 // A row of three buildings (5, 3, 4 storeys) and a row of three SDOFs.
