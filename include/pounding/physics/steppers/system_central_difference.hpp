@@ -280,6 +280,15 @@ POUNDING_INLINE V opaque(const V& x) {
   return x;
 }
 
+// a b + c as predict() gets it: one FMA where the target has one (GCC contracts predict's sums), else unfused.
+POUNDING_INLINE V contracted(const V& a, const V& b, const V& c) {
+#if defined(__FMA__) || defined(__AVX512F__)
+  return lane::fma(a, b, c);
+#else
+  return a * b + c;
+#endif
+}
+
 // The stick path's values of DOF j at n+1 besides the rows: u from U (the predicted u the walk stored in the step
 // before, or predict_u's before the first step), vh, du and vp recomputed from Vel and A (step n until the walk
 // writes step n+1) by predict()'s operations: vh and vp the FMAs GCC makes of predict's sums (hh a has two adding
@@ -290,15 +299,15 @@ struct Kin {
 POUNDING_INLINE Kin kin(const double* pd, const V& h, const V& hh) {
   auto at = [pd](int f) { return pd + static_cast<std::ptrdiff_t>(f) * simd::W; };
   const V v = Chunk::ld(at(Vel)), a = Chunk::ld(at(A));
-  const V vh = lane::fma(hh, a, v);
-  return {Chunk::ld(at(U)), v, vh, opaque(h * vh), lane::fma(hh, a, vh)};
+  const V vh = contracted(hh, a, v);
+  return {Chunk::ld(at(U)), v, vh, opaque(h * vh), contracted(hh, a, vh)};
 }
 POUNDING_INLINE Kin kin(Chunk c, int j, const V& h, const V& hh) {
   return kin(c.pd + Chunk::at(j, dof_rows, 0), h, hh);
 }
 // predict()'s u + h (v + hh a): the displacement of the next step from this step's u, v, a.
 POUNDING_INLINE V next_u(const V& u, const V& v, const V& a, const V& h, const V& hh) {
-  return u + opaque(h * lane::fma(hh, a, v));
+  return u + opaque(h * contracted(hh, a, v));
 }
 
 // The displacement-like value of a side from DOF rows `f` (x = N1 u_p + N2 u_q as one pinned contraction).
