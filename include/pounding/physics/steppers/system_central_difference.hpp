@@ -29,8 +29,9 @@
 //  9. divergence guard over bodies (sum of each body's max |u|, with the |u| observer), freeze of bad lanes
 // Observers updated before the freeze differ from the pair's order only in lanes that the freeze marks bad, which
 // report NaN. The SDOF pair through this stepper gives the pair kernel's bits (test_system_kernel).
-// Shear sticks (Layout::stick) take the stick path instead: steps 1-9 as the elements, then one walk per body
-// (stick_walk) with the same operations in the same order; test_system_stick holds it to the generic path's bits.
+// Shear sticks (Layout::stick) take the stick path instead: step 5 first, then one walk per body (stick_walk) for steps
+// 3, 4, 6, 7, the guard's sums and the next step's step 1, with the same operations in the same order as here;
+// test_system_stick holds it to the generic path's bits.
 #include <cstddef>
 #include <cstdint>
 #include <cstdlib>
@@ -301,9 +302,6 @@ POUNDING_INLINE Kin kin(const double* pd, const V& h, const V& hh) {
   const V v = Chunk::ld(at(Vel)), a = Chunk::ld(at(A));
   const V vh = contracted(hh, a, v);
   return {Chunk::ld(at(U)), v, vh, opaque(h * vh), contracted(hh, a, vh)};
-}
-POUNDING_INLINE Kin kin(Chunk c, int j, const V& h, const V& hh) {
-  return kin(c.pd + Chunk::at(j, dof_rows, 0), h, hh);
 }
 // predict()'s u + h (v + hh a): the displacement of the next step from this step's u, v, a.
 POUNDING_INLINE V next_u(const V& u, const V& v, const V& a, const V& h, const V& hh) {
