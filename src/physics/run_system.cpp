@@ -53,6 +53,63 @@ void dense_rows(const model::System& S, Layout& L) {
   }
 }
 
+// Whether the stick path (system_central_difference.hpp's stick_walk) runs this layout with the generic path's bits:
+// bilinear springs only, each DOF with its own spring below (from the ground at a body's bottom, else from the DOF
+// below it in the body), a spring above only toward the next DOF of its body, floor dashpots to the ground, point and
+// wall sides only, one ground channel, no links, no dense damping rows. Sets Layout::stick_ordered when the walk
+// (body by body, bottom up) meets the springs in index order.
+bool stick_layout(Layout& L) {
+  if (L.any_smooth || L.any_link || !L.dof_chan.empty() || !L.dense_row.empty() || !L.refd.empty() ||
+      L.nspring != L.ndof)
+    return false;
+  for (int r : L.ref)
+    if (r >= 0) return false;
+  int next = 0;
+  L.stick_ordered = true;
+  for (std::size_t b = 0; b + 1 < L.body_start.size(); ++b)
+    for (int k = L.body_start[b]; k < L.body_start[b + 1]; ++k) {
+      const int j = L.body_dofs[static_cast<std::size_t>(k)], s = L.below[static_cast<std::size_t>(j)];
+      const int lower = k == L.body_start[b] ? model::ground : L.body_dofs[static_cast<std::size_t>(k - 1)];
+      L.stick_ordered = L.stick_ordered && s == next++;
+      if (L.si[static_cast<std::size_t>(s)] != lower || L.sj[static_cast<std::size_t>(s)] != j) return false;
+      const int na = L.above_start[static_cast<std::size_t>(j) + 1] - L.above_start[static_cast<std::size_t>(j)];
+      const bool top = k + 1 == L.body_start[b + 1];
+      if (na != (top ? 0 : 1)) return false;
+      if (!top && L.above[static_cast<std::size_t>(L.above_start[static_cast<std::size_t>(j)])] !=
+                      L.below[static_cast<std::size_t>(L.body_dofs[static_cast<std::size_t>(k + 1)])])
+        return false;
+    }
+  for (int how : L.contrib_how)
+    if (how != sys::left_point && how != sys::right_point) return false;
+  for (std::size_t e = 0; e < L.left.size(); ++e)
+    if (L.left[e].kind == sys::SideKind::interpolated || L.right[e].kind == sys::SideKind::interpolated) return false;
+  return true;
+}
+
+// The stick walk's nodes (Layout::walk): body by body, bottom up, with the chunk offsets of each DOF's and spring's
+// rows and of each element force the DOF takes (system_central_difference.hpp's Chunk layout).
+void walk_nodes(Layout& L) {
+  const int W = simd::W;
+  for (std::size_t b = 0; b + 1 < L.body_start.size(); ++b)
+    for (int k = L.body_start[b]; k < L.body_start[b + 1]; ++k) {
+      sys::StickNode n;
+      n.dof = L.body_dofs[static_cast<std::size_t>(k)], n.spring = L.below[static_cast<std::size_t>(n.dof)];
+      n.d_off = n.dof * sys::dof_rows * W, n.s_off = n.spring * sys::spring_rows * W;
+      n.body = static_cast<int>(b), n.first = k == L.body_start[b], n.top = k + 1 == L.body_start[b + 1];
+      n.dashpot = L.dashpot[static_cast<std::size_t>(n.spring)] != 0;
+      n.c0 = static_cast<int>(L.walk_f.size());
+      for (int x = L.contrib_start[static_cast<std::size_t>(n.dof)]; x < L.contrib_start[static_cast<std::size_t>(n.dof) + 1]; ++x) {
+        L.walk_f.push_back((L.contrib_elem[static_cast<std::size_t>(x)] * sys::elem_rows + sys::F) * W);
+        L.walk_neg.push_back(L.contrib_how[static_cast<std::size_t>(x)] == sys::right_point ? 1 : 0);
+      }
+      n.c1 = static_cast<int>(L.walk_f.size());
+      L.walk.push_back(n);
+    }
+  for (std::size_t e = 0; e < L.left.size(); ++e)
+    for (const sys::Side& x : {L.left[e], L.right[e]})
+      L.walk_side.push_back(x.kind == sys::SideKind::wall ? -1 : x.p * sys::dof_rows * W);
+}
+
 Layout layout_of(const model::System& S) {
   Layout L;
   L.ndof = S.ndof();
@@ -121,6 +178,8 @@ Layout layout_of(const model::System& S) {
     }
     L.contrib_start.push_back(static_cast<int>(L.contrib_elem.size()));
   }
+  L.stick = stick_layout(L);
+  if (L.stick) walk_nodes(L);
   return L;
 }
 
@@ -467,7 +526,7 @@ GroundHistory ground_history(const Schedule& s) {
 }
 
 void run_dynamic(const SystemBatch& B, std::span<const ContactModel> models, std::span<const GroundMotion> motions,
-                 const KernelSettings& ks, SystemResult& out, std::size_t tile) {
+                 const KernelSettings& ks, SystemResult& out, std::size_t tile, bool generic = false) {
   out.resize(*B.system, B.width);
   if (B.width == 0) return;
   const Schedule s = make_schedule(motions[0], ks.substeps);
@@ -475,6 +534,8 @@ void run_dynamic(const SystemBatch& B, std::span<const ContactModel> models, std
   const std::size_t tw = tile == 0 ? default_system_tile(B.width) : tile;
   const Pool T(P.L, tw);
   sys::Run R{&P.L, sys::Topo(P.L), &P.groups, s.ag.data(), s.nsteps, s.h, ks.displacement_limit, {}, {}, {}};
+  R.stick = P.L.stick && !generic &&
+            std::none_of(P.groups.begin(), P.groups.end(), [](const sys::Group& g) { return g.impulsive; });
   std::vector<Schedule> ch;
   std::vector<GroundHistory> gh;
   std::vector<double> ag0(static_cast<std::size_t>(P.L.ndof), s.ag[0]);
@@ -598,6 +659,13 @@ void run_system_dynamic(const SystemBatch& batch, std::span<const ContactModel> 
   if (lane_stepper(settings)) return run_lane_stepper(batch, groups, motion, settings, out);
   run_dynamic(batch, groups, std::span<const GroundMotion>(&motion, 1), settings, out, tile);
 }
+void run_system_generic(const SystemBatch& batch, std::span<const ContactModel> groups, const GroundMotion& motion,
+                        const KernelSettings& settings, SystemResult& out) {
+  throw_first(validate(batch, groups, motion, settings));
+  throw_first(system_stepper_problems(batch, groups, settings));
+  run_dynamic(batch, groups, std::span<const GroundMotion>(&motion, 1), settings, out, 0, true);
+}
+bool stick_path(const model::System& system) { return layout_of(system).stick; }
 }  // namespace testing
 
 }  // namespace pounding::physics

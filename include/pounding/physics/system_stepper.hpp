@@ -28,6 +28,12 @@ namespace testing {
 // `tile`: lanes per tile, a multiple of simd::W (0: default_system_tile).
 void run_system_dynamic(const SystemBatch& batch, std::span<const ContactModel> groups, const GroundMotion& motion,
                         const KernelSettings& settings, SystemResult& out, std::size_t tile = 0);
+// The dynamic layout's generic path even where the stick path (Layout::stick) would run: the reference its bits are
+// compared with (test_system_stick.cpp). Central difference only.
+void run_system_generic(const SystemBatch& batch, std::span<const ContactModel> groups, const GroundMotion& motion,
+                        const KernelSettings& settings, SystemResult& out);
+// Whether the stick path runs `system` (an impulsive contact law aside).
+bool stick_path(const model::System& system);
 }  // namespace testing
 
 }  // namespace pounding::physics

@@ -29,6 +29,9 @@
 //  9. divergence guard over bodies (sum of each body's max |u|, with the |u| observer), freeze of bad lanes
 // Observers updated before the freeze differ from the pair's order only in lanes that the freeze marks bad, which
 // report NaN. The SDOF pair through this stepper gives the pair kernel's bits (test_system_kernel).
+// Shear sticks (Layout::stick) take the stick path instead: step 5 first, then one walk per body (stick_walk) for steps
+// 3, 4, 6, 7, the guard's sums and the next step's step 1, with the same operations in the same order as here;
+// test_system_stick holds it to the generic path's bits.
 #include <cstddef>
 #include <cstdint>
 #include <cstdlib>
@@ -72,6 +75,13 @@ enum ElemRow : int {
 };
 enum LaneRow : int { BAD, EIN, EVIS, EHYS, lane_rows };
 
+// One DOF of the stick walk: its index, its spring below, their offsets in the chunk (doubles from Chunk::pd, ::ps),
+// the range of its element contributions (Layout::walk_f, walk_neg), its body and place in it, the storey dashpot.
+struct StickNode {
+  int dof = 0, spring = 0, d_off = 0, s_off = 0, c0 = 0, c1 = 0, body = 0;
+  bool first = false, top = false, dashpot = false;
+};
+
 // The topology as flat index lists, derived once per run from the System.
 struct Layout {
   int ndof = 0, nspring = 0, nelem = 0;
@@ -99,6 +109,14 @@ struct Layout {
   // its body's matrix (-1: a DOF with a floor dashpot) and its body; ndense = the rows (sum of n_b^2)
   std::vector<int> dense_row, dense_body;
   int ndense = 0;
+  // the stick path applies (stick_walk; src/physics/run_system.cpp's stick_layout says when), and its walk meets the
+  // springs in index order (else the hysteretic increments wait in the T row for the sum in index order)
+  bool stick = false, stick_ordered = false;
+  // the stick walk (body by body, bottom up): per DOF its node, and its element forces' offsets and sides
+  std::vector<StickNode> walk;
+  std::vector<int> walk_f;
+  std::vector<char> walk_neg;
+  std::vector<int> walk_side;  // per element, its left and right DOF's chunk offset (-1: a wall)
 };
 // How an element's force enters a DOF's resisting force q (step 6): +F (left point), -F (right point),
 // +N F / -N F with N the element's N1L, N2L, N1R or N2R row (interpolated sides, as pinned fmas).
@@ -115,7 +133,11 @@ struct Topo {
   bool any_smooth, any_link;
   const Side *left, *right;
   const int *contrib_start, *contrib_elem, *contrib_how;
-  bool any_dashpot;
+  bool any_dashpot, stick_ordered;
+  const StickNode* walk;
+  const int* walk_f;
+  const char* walk_neg;
+  const int* walk_side;
   const int *dof_chan, *spring_ci, *spring_cj, *elem_cl, *elem_cr;  // null with one channel
   const char *spring_cross, *elem_cross;
   const int *dense_row, *dense_body;  // null without dense damping
@@ -126,7 +148,9 @@ struct Topo {
         body_start(L.body_start.data()), body_dofs(L.body_dofs.data()), link_start(L.link_start.data()), link(L.link.data()),
         dashpot(L.dashpot.data()), law(L.law.data()), any_smooth(L.any_smooth), any_link(L.any_link), left(L.left.data()), right(L.right.data()),
         contrib_start(L.contrib_start.data()), contrib_elem(L.contrib_elem.data()), contrib_how(L.contrib_how.data()),
-        any_dashpot(L.any_dashpot), dof_chan(ptr(L.dof_chan)), spring_ci(ptr(L.spring_ci)), spring_cj(ptr(L.spring_cj)),
+        any_dashpot(L.any_dashpot), stick_ordered(L.stick_ordered), walk(L.walk.data()),
+        walk_f(L.walk_f.data()), walk_neg(L.walk_neg.data()),
+        walk_side(L.walk_side.data()), dof_chan(ptr(L.dof_chan)), spring_ci(ptr(L.spring_ci)), spring_cj(ptr(L.spring_cj)),
         elem_cl(ptr(L.elem_cl)), elem_cr(ptr(L.elem_cr)), spring_cross(ptr(L.spring_cross)), elem_cross(ptr(L.elem_cross)),
         dense_row(ptr(L.dense_row)), dense_body(ptr(L.dense_body)) {}
   template <class X> static const X* ptr(const std::vector<X>& v) { return v.empty() ? nullptr : v.data(); }
@@ -229,6 +253,8 @@ struct StepCtx {
   bool* force_prev;  // per element: some lane of the chunk touched in the previous step (bool: no char aliasing)
   // multi-support: per channel c at this step, gch[6 c + k] = ag0, ag1, vg0, vg1, ug0, ug1 (null with one channel)
   double* gch = nullptr;
+  bool stick = false;    // the stick path's step (elements read their sides through Layout::walk_side, rel)
+  bool advance = false;  // the stick path: the walk stores the next step's predicted u (not in the last step)
 };
 // The ground motions' difference between the two sides of a cross-channel spring or element this step: the
 // displacement at n+1 (gu1), its increment (gdu), the velocity at n+1 (gv1) and at n (gv0); side `b` minus side `a`.
@@ -237,6 +263,49 @@ POUNDING_INLINE GroundOffset ground_offset(const double* g, int a, int b) {
   const double* x = g + 6 * a;
   const double* y = g + 6 * b;
   return {y[5] - x[5], (y[5] - y[4]) - (x[5] - x[4]), y[3] - x[3], y[2] - x[2]};
+}
+
+// The value itself, opaque to the optimiser: a product passed through it is never contracted into an FMA with a later
+// sum. GCC fuses a * b into its adds when every use of the product is an add; the stick path recomputes values that
+// the generic path stores, and pins the products the generic code keeps unfused. No instruction is emitted.
+POUNDING_INLINE V opaque(const V& x) {
+#if defined(__GNUC__) && (defined(__x86_64__) || defined(__i386__))
+  if constexpr (sizeof(V) >= 16) {
+    using Raw = double __attribute__((vector_size(sizeof(V))));
+    Raw r;
+    x.copy_to(reinterpret_cast<double*>(&r), simd::stdx::element_aligned);
+    asm("" : "+v"(r));
+    return V(reinterpret_cast<const double*>(&r), simd::stdx::element_aligned);
+  }
+#endif
+  return x;
+}
+
+// a b + c as predict() gets it: one FMA where the target has one (GCC contracts predict's sums), else unfused.
+POUNDING_INLINE V contracted(const V& a, const V& b, const V& c) {
+#if defined(__FMA__) || defined(__AVX512F__)
+  return lane::fma(a, b, c);
+#else
+  return a * b + c;
+#endif
+}
+
+// The stick path's values of DOF j at n+1 besides the rows: u from U (the predicted u the walk stored in the step
+// before, or predict_u's before the first step), vh, du and vp recomputed from Vel and A (step n until the walk
+// writes step n+1) by predict()'s operations: vh and vp the FMAs GCC makes of predict's sums (hh a has two adding
+// uses), du = h vh unfused (predict stores it), so the bits of predict's rows; v for the energy terms (VO).
+struct Kin {
+  V u, v, vh, du, vp;
+};
+POUNDING_INLINE Kin kin(const double* pd, const V& h, const V& hh) {
+  auto at = [pd](int f) { return pd + static_cast<std::ptrdiff_t>(f) * simd::W; };
+  const V v = Chunk::ld(at(Vel)), a = Chunk::ld(at(A));
+  const V vh = contracted(hh, a, v);
+  return {Chunk::ld(at(U)), v, vh, opaque(h * vh), contracted(hh, a, vh)};
+}
+// predict()'s u + h (v + hh a): the displacement of the next step from this step's u, v, a.
+POUNDING_INLINE V next_u(const V& u, const V& v, const V& a, const V& h, const V& hh) {
+  return u + opaque(h * contracted(hh, a, v));
 }
 
 // The displacement-like value of a side from DOF rows `f` (x = N1 u_p + N2 u_q as one pinned contraction).
@@ -256,6 +325,31 @@ POUNDING_INLINE V relative(Chunk c, Topo L, int f, int e) {
   if (l.kind == SideKind::wall) return -side_value(c, r, f, e, false);
   return side_value(c, l, f, e, true) - side_value(c, r, f, e, false);
 }
+// The stick path's relative value of element e (point and wall sides only) for rows U, Vel, VP, DU: VP and DU
+// recomputed (kin), as the generic relative() reads them from predict's rows.
+POUNDING_INLINE V rel(Chunk c, Topo L, int f, int e, const StepCtx& s) {
+  if (!s.stick) {
+    return relative(c, L, f, e);
+  } else {
+    auto val = [&](int off) {
+      if (f != VP && f != DU) return Chunk::ld(c.pd + off + static_cast<std::ptrdiff_t>(f) * simd::W);
+      const Kin k = kin(c.pd + off, V(s.h), V(s.hh));
+      return f == VP ? k.vp : k.du;
+    };
+    const int l = L.walk_side[2 * e], r = L.walk_side[2 * e + 1];
+    if (r < 0) return val(l);
+    if (l < 0) return -val(r);
+    return val(l) - val(r);
+  }
+}
+
+// Step 1 of the stick path before its first step: only u <- u + h vh is stored (the walk recomputes vh, du and vp:
+// kin); every later step's u is stored by the walk of the step before (stick_dof).
+POUNDING_INLINE void predict_u(Chunk c, Topo L, const StepCtx& s) {
+  const V h(s.h), hh(s.hh);
+  for (int j = 0; j < L.ndof; ++j) c.dof(U, j, next_u(c.dof(U, j), c.dof(Vel, j), c.dof(A, j), h, hh));
+}
+
 // Step 1: the kinematics before the forces at n+1.
 template <bool WithEnergy> POUNDING_INLINE void predict(Chunk c, Topo L, const StepCtx& s) {
   const V h(s.h), hh(s.hh);
@@ -386,13 +480,15 @@ POUNDING_INLINE void element(Chunk c, Topo L, int e, StepCtx& s, double v0_min, 
   // a cross-channel element forms its kinematics from total displacements: + (ug_L - ug_R)
   const bool cross = L.elem_cross != nullptr && L.elem_cross[e];
   const GroundOffset go = cross ? ground_offset(s.gch, L.elem_cr[e], L.elem_cl[e]) : GroundOffset{0, 0, 0, 0};
-  const V cl = cross ? relative(c, L, U, e) + V(go.u1) : relative(c, L, U, e), d = cl - c.elm(GAP, e);
+  const V cl = cross ? relative(c, L, U, e) + V(go.u1) : rel(c, L, U, e, s), d = cl - c.elm(GAP, e);
   {  // step 10's closing observer (x_L - x_R and when), on this step's unfrozen state: only bad lanes differ, and
      // they report NaN
     const V pc = c.elm(PCLOSE, e);
     const auto up = cl > pc;
-    c.elm(PCLOSE, e, lane::select(up, cl, pc));
-    c.elm(TPCLOSE, e, lane::select(up, s.t, c.elm(TPCLOSE, e)));
+    if (!s.stick || lane::any(up)) {  // the stick path skips the stores that would write the rows' own values
+      c.elm(PCLOSE, e, lane::select(up, cl, pc));
+      c.elm(TPCLOSE, e, lane::select(up, s.t, c.elm(TPCLOSE, e)));
+    }
   }
   const simd::M touching = d > zero;
   const bool any_touch = lane::any(touching);
@@ -400,7 +496,7 @@ POUNDING_INLINE void element(Chunk c, Topo L, int e, StepCtx& s, double v0_min, 
   V nF = zero, onset = zero, clamp = zero;
   if constexpr (Law::traits.has_force) {
     if (any_touch) {
-      const V dd = cross ? relative(c, L, VP, e) + V(go.v1) : relative(c, L, VP, e);
+      const V dd = cross ? relative(c, L, VP, e) + V(go.v1) : rel(c, L, VP, e, s);
       const simd::M on = (d > zero) && !(dprev > zero);
       onset = lane::select(on, one, zero);
       contact::State<V> st{c.elm(IV0, e)};
@@ -408,7 +504,7 @@ POUNDING_INLINE void element(Chunk c, Topo L, int e, StepCtx& s, double v0_min, 
         if (lane::any(on)) {  // approach velocity at the interpolated closing instant inside the step
           const V den = d - dprev;
           const V sc = lane::min(lane::max(-dprev / lane::select(den > zero, den, one), zero), one);
-          const V ddo = cross ? relative(c, L, Vel, e) + V(go.v0) : relative(c, L, Vel, e);  // v at the step's start
+          const V ddo = cross ? relative(c, L, Vel, e) + V(go.v0) : rel(c, L, Vel, e, s);  // v at the step's start
           Law::template on_onset<V>(st, on, ddo + sc * (dd - ddo), v0_min);
           if (restitution) [[unlikely]] restitution_onset(c, e, st.iv0, on, *restitution);
           c.elm(IV0, e, st.iv0);
@@ -427,7 +523,7 @@ POUNDING_INLINE void element(Chunk c, Topo L, int e, StepCtx& s, double v0_min, 
   }
   if constexpr (Law::traits.has_force || Law::traits.impulsive) {
     if (any_touch || s.force_prev[e]) {
-      c.elm(WC, e, c.elm(WC, e) + contact_work(c.elm(F, e), nF, cross ? relative(c, L, DU, e) + V(go.du) : relative(c, L, DU, e)));
+      c.elm(WC, e, c.elm(WC, e) + contact_work(c.elm(F, e), nF, cross ? relative(c, L, DU, e) + V(go.du) : rel(c, L, DU, e, s)));
       // the supports' work through a cross element (energy input besides -m ag v): its force over the ground
       // motions' difference, by the same rule
       if (cross) c.lan(EIN, c.lan(EIN) + contact_work(c.elm(F, e), nF, V(go.du)));
@@ -517,6 +613,108 @@ POUNDING_INLINE void forces(Chunk c, Topo L, StepCtx& s) {
   s.rate = sv + sa;
 }
 
+// The stick path's spring (its rows at `ps`, index sp) from its lower side lo (or the ground) to its upper side up:
+// the bilinear return (springs()' operations on the same values), its |d| and |f| observers; returns t, with the
+// storey dashpot.
+template <bool WithEnergy>
+POUNDING_INLINE V stick_spring(Topo L, double* ps, int sp, bool dashpot, const Kin& up, const Kin& lo, bool ground,
+                               V& dhys) {
+  using H = model::BilinearKinematic;
+  auto at = [ps](int f) { return ps + static_cast<std::ptrdiff_t>(f) * simd::W; };
+  const V dd = ground ? up.du : up.du - lo.du, d = ground ? up.u : up.u - lo.u;
+  const V fo = Chunk::ld(at(FS));
+  const H::Params<V> p{Chunk::ld(at(K)), Chunk::ld(at(AK)), Chunk::ld(at(QY)), Chunk::ld(at(KP))};
+  const V f = H::restoring<V>(p, fo, dd, d);
+  if constexpr (WithEnergy) {
+    const V x = H::dissipated<V>(p, fo, dd, f);
+    if (L.stick_ordered)
+      dhys = sp == 0 ? x : dhys + x;
+    else
+      Chunk::st(x, at(T));
+  }
+  Chunk::st(f, at(FS));
+  V t = f;
+  if (dashpot) t = lane::fma(Chunk::ld(at(CS)), ground ? up.vp : up.vp - lo.vp, f);
+  Chunk::st(lane::max(Chunk::ld(at(PD)), lane::abs(d)), at(PD));
+  Chunk::st(lane::max(Chunk::ld(at(PF)), lane::abs(f)), at(PF));
+  return t;
+}
+
+// A DOF's force of the stick path (its rows at `pd`) from q (the springs' share): the floor dashpot to the ground,
+// the point elements in element order (F at pe + off, subtracted on a right side), then forces()' na, nv, |a + ag|
+// observer; the guard's |u| observer; the next step's predicted u (predict()'s operations: the guard's freeze zeroes
+// it with u, v and a, which gives the same +0); |v| + |a| into `rate`. Returns |u|.
+template <bool WithEnergy>
+POUNDING_INLINE V stick_dof(Chunk c, Topo L, const StickNode& n, V q, const Kin& k, const StepCtx& s, const V& h,
+                            const V& hh, V& rate) {
+  double* pd = c.pd + n.d_off;
+  auto at = [pd](int f) { return pd + static_cast<std::ptrdiff_t>(f) * simd::W; };
+  const double ag1 = s.ag1;
+  q = lane::fma(Chunk::ld(at(CF)), k.vp, q);
+  for (int x = n.c0; x < n.c1; ++x) {
+    const V f = Chunk::ld(c.pe + L.walk_f[x]);
+    if (L.walk_neg[x]) q -= f; else q += f;
+  }
+  const V na = -ag1 - q * Chunk::ld(at(IM)), nv = k.vh + hh * na;
+  if constexpr (WithEnergy) Chunk::st(k.v, at(VO));
+  Chunk::st(na, at(A)), Chunk::st(nv, at(Vel));
+  Chunk::st(lane::max(Chunk::ld(at(PA)), lane::abs(na + V(ag1))), at(PA));
+  const V x = lane::abs(k.u);
+  Chunk::st(lane::max(Chunk::ld(at(PU)), x), at(PU));
+  if (s.advance) Chunk::st(next_u(k.u, nv, na, h, hh), at(U));
+  rate = rate + (lane::abs(nv) + lane::abs(na));
+  return x;
+}
+
+// Steps 3, 4, 6, 7 and the guard's sum for sticks (Layout::stick): one walk per body from the bottom (Layout::walk,
+// with each DOF's and spring's row offsets and its element forces' offsets precomputed), each spring evaluated once
+// as t_above of its lower DOF and t_below of its upper one (kept in a register), the walk's DOF values recomputed
+// (kin). The hysteretic increments are summed in spring order (in the walk when it meets the springs in index order,
+// else after it from the T row). The guard reads only whether the rate measure (sum |v| + sum |a| over DOFs in index
+// order) is finite: the walk sums the same terms in its own order, and where that sum is below 1e300 in every lane
+// the index-order sum (within a relative 2 (ndof + 1) eps of it) is finite too, so the walk's sum stands in for it;
+// else (a lane near overflow, inf or NaN: a diverging lane) the index-order sum is formed from the rows.
+// Returns the guard's sum over bodies of max |u|.
+template <bool WithEnergy> POUNDING_INLINE V stick_walk(Chunk c, Topo L, StepCtx& s) {
+  const V h(s.h), hh(s.hh);
+  V dhys(0.0), dsum(0.0), mx(0.0), tb(0.0), rate(0.0);
+  Kin cur{};
+  for (int k = 0; k < L.ndof; ++k) {
+    const StickNode& n = L.walk[k];
+    if (n.first) {
+      cur = kin(c.pd + n.d_off, h, hh);
+      tb = stick_spring<WithEnergy>(L, c.ps + n.s_off, n.spring, n.dashpot, cur, cur, true, dhys);
+    }
+    V q = tb;
+    Kin nxt = cur;
+    if (!n.top) {
+      const StickNode& m = L.walk[k + 1];
+      nxt = kin(c.pd + m.d_off, h, hh);
+      tb = stick_spring<WithEnergy>(L, c.ps + m.s_off, m.spring, m.dashpot, nxt, cur, false, dhys);
+      q -= tb;
+    }
+    const V x = stick_dof<WithEnergy>(c, L, n, q, cur, s, h, hh, rate);
+    mx = n.first ? x : lane::max(mx, x);
+    if (n.top) dsum = n.body == 0 ? mx : dsum + mx;
+    cur = nxt;
+  }
+  if constexpr (WithEnergy) {
+    if (!L.stick_ordered)
+      for (int k = 0; k < L.nspring; ++k) dhys = k == 0 ? c.spr(T, k) : dhys + c.spr(T, k);
+    c.lan(EHYS, c.lan(EHYS) + dhys);
+  }
+  s.rate = rate;
+  if (!lane::all(rate < V(1e300))) [[unlikely]] {
+    V sv(0.0), sa(0.0);
+    for (int j = 0; j < L.ndof; ++j) {
+      sv = j == 0 ? lane::abs(c.dof(Vel, j)) : sv + lane::abs(c.dof(Vel, j));
+      sa = j == 0 ? lane::abs(c.dof(A, j)) : sa + lane::abs(c.dof(A, j));
+    }
+    s.rate = sv + sa;
+  }
+  return dsum;
+}
+
 // Step 8: input and viscous energy, the sums over DOFs left-folded by pinned FMAs (for two DOFs exactly the
 // pair's fma(m2, in2, m1 in1)); storey dashpots after the floor dashpots.
 POUNDING_INLINE void energy(Chunk c, Topo L, const StepCtx& s) {
@@ -554,22 +752,9 @@ POUNDING_INLINE void energy(Chunk c, Topo L, const StepCtx& s) {
   c.lan(EVIS, lane::fma(hh, evis, c.lan(EVIS)));
 }
 
-// Step 9: the divergence guard (kernel/guard.hpp) over bodies: the sum in body order of each body's largest |u|
-// (with step 10's |u| observer), the rate measure from forces() (sum |v| + sum |a|: only its finiteness is read);
-// a bad lane is frozen at rest.
-POUNDING_INLINE void guard(Chunk c, Topo L, StepCtx& s) {
+// The guard's test of the sum of the bodies' largest |u| and of the rate measure; a bad lane is frozen at rest.
+POUNDING_INLINE void freeze(Chunk c, Topo L, StepCtx& s, const V& dsum) {
   const V lim(s.lim), zero(0.0);
-  V dsum(0.0);
-  for (int b = 0; b < L.nbody; ++b) {
-    V mx(0.0);
-    for (int k = L.body_start[b]; k < L.body_start[b + 1]; ++k) {
-      const int j = L.body_dofs[k];
-      const V x = lane::abs(c.dof(U, j));
-      c.dof(PU, j, lane::max(c.dof(PU, j), x));
-      mx = k == L.body_start[b] ? x : lane::max(mx, x);
-    }
-    dsum = b == 0 ? mx : dsum + mx;
-  }
   if (lane::all(within(dsum, s.rate, lim)) && !s.any_bad) return;
   s.any_bad = true;
   const V bad = lane::max(c.lan(BAD), divergence_code(dsum, s.rate, lim));
@@ -581,6 +766,24 @@ POUNDING_INLINE void guard(Chunk c, Topo L, StepCtx& s) {
   if (L.any_smooth)
     for (int k = 0; k < L.nspring; ++k) c.spr(Z, k, lane::select(frozen, zero, c.spr(Z, k)));
   for (int e = 0; e < L.nelem; ++e) c.elm(F, e, lane::select(frozen, zero, c.elm(F, e)));
+}
+
+// Step 9: the divergence guard (kernel/guard.hpp) over bodies: the sum in body order of each body's largest |u|
+// (with step 10's |u| observer), the rate measure from forces() (sum |v| + sum |a|: only its finiteness is read);
+// a bad lane is frozen at rest.
+POUNDING_INLINE void guard(Chunk c, Topo L, StepCtx& s) {
+  V dsum(0.0);
+  for (int b = 0; b < L.nbody; ++b) {
+    V mx(0.0);
+    for (int k = L.body_start[b]; k < L.body_start[b + 1]; ++k) {
+      const int j = L.body_dofs[k];
+      const V x = lane::abs(c.dof(U, j));
+      c.dof(PU, j, lane::max(c.dof(PU, j), x));
+      mx = k == L.body_start[b] ? x : lane::max(mx, x);
+    }
+    dsum = b == 0 ? mx : dsum + mx;
+  }
+  freeze(c, L, s, dsum);
 }
 
 // The elements of one contact group, with the group's law and exponent fixed once per run (a function pointer
@@ -612,9 +815,10 @@ struct Run {
   // multi-support: per channel, acceleration, velocity and baseline-corrected displacement at every step (empty: one
   // channel, `ag`)
   std::vector<const double*> ch_ag, ch_vg, ch_ug;
+  bool stick = false;  // the stick path (Layout::stick, no impulsive group)
 };
 
-template <bool WithEnergy> POUNDING_INLINE void step(Chunk c, const Run& R, long stepi, StepCtx& s) {
+template <bool WithEnergy, bool Stick> POUNDING_INLINE void step(Chunk c, const Run& R, long stepi, StepCtx& s) {
   const Topo L = R.topo;
   s.ag0 = R.ag[stepi], s.ag1 = R.ag[stepi + 1];
   s.t = V(static_cast<double>(stepi + 1) * R.h);
@@ -622,6 +826,14 @@ template <bool WithEnergy> POUNDING_INLINE void step(Chunk c, const Run& R, long
     double* x = s.gch + 6 * k;
     x[0] = R.ch_ag[k][stepi], x[1] = R.ch_ag[k][stepi + 1], x[2] = R.ch_vg[k][stepi], x[3] = R.ch_vg[k][stepi + 1];
     x[4] = R.ch_ug[k][stepi], x[5] = R.ch_ug[k][stepi + 1];
+  }
+  if constexpr (Stick) {
+    s.advance = stepi + 1 < R.nsteps;
+    for (const Group& g : *R.groups) g.run(c, L, g, s);
+    const V dsum = stick_walk<WithEnergy>(c, L, s);
+    if constexpr (WithEnergy) energy(c, L, s);
+    freeze(c, L, s, dsum);
+    return;
   }
   predict<WithEnergy>(c, L, s);
   for (const Group& g : *R.groups)
@@ -643,7 +855,12 @@ template <bool WithEnergy> void run_tile(const Pool& pool, int np, const Run& R)
     StepCtx s{R.h, 0.5 * R.h, 0.0, 0.0, V(0.0), V(R.h), V(0.0), R.lim, lane::any(c.lan(BAD) > V(0.0)), force_prev.get(),
               R.ch_ag.empty() ? nullptr : gch.data()};
     for (int e = 0; e < R.layout->nelem; ++e) force_prev[static_cast<std::size_t>(e)] = lane::any(c.elm(F, e) > V(0.0));
-    for (long k = 0; k < R.nsteps; ++k) step<WithEnergy>(c, R, k, s);
+    if (R.stick) {
+      s.stick = true;
+      if (R.nsteps > 0) predict_u(c, R.topo, s);
+      for (long k = 0; k < R.nsteps; ++k) step<WithEnergy, true>(c, R, k, s);
+    } else
+      for (long k = 0; k < R.nsteps; ++k) step<WithEnergy, false>(c, R, k, s);
     pool.scatter(base);
   }
 }
