@@ -26,12 +26,6 @@ using namespace pounding::physics;
 
 namespace {
 
-// Identical bits are claimed for the Release build only ($POUNDING_BITS_NOT_CLAIMED says why not, NOTES.md).
-bool bits_claimed() {
-  const char* why = std::getenv("POUNDING_BITS_NOT_CLAIMED");
-  return !why || !*why;
-}
-
 // Bit-equal count and largest relative difference of two arrays (NaN equals NaN; the scale is the larger of the
 // two magnitudes and 1e-300).
 struct Compare {
@@ -129,8 +123,8 @@ TEST(SystemKernel, SdofPairThroughTheDynamicLayoutIsThePairKernel) {
       // relative on displacements (final_u2, stereomechanical) and 4.4e-9 on the elastic Hertz law's
       // contact_energy, which is the cancellation residual work - stored of a law that dissipates nothing:
       // rounding, not physics (a wrong term moves an observer by 1e-3 or more), so 1e-7 there.
-      EXPECT_LE(c.worst, bits_claimed() ? 1e-12 : 1e-7) << name << ": " << c.where;
-      if (bits_claimed()) {
+      EXPECT_LE(c.worst, test::bits_claimed() ? 1e-12 : 1e-7) << name << ": " << c.where;
+      if (test::bits_claimed()) {
         EXPECT_EQ(c.bits, c.n) << name << ": not bit-identical, worst " << c.where;
       }
     }

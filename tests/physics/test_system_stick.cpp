@@ -25,12 +25,6 @@ using namespace pounding::physics;
 
 namespace {
 
-// Identical bits are claimed for the Release build only ($POUNDING_BITS_NOT_CLAIMED says why not, NOTES.md).
-bool bits_claimed() {
-  const char* why = std::getenv("POUNDING_BITS_NOT_CLAIMED");
-  return !why || !*why;
-}
-
 // Every array of `r` as raw bytes, field by field.
 std::vector<std::vector<unsigned char>> fields(const SystemResult& r) {
   std::vector<std::vector<unsigned char>> out;
@@ -126,7 +120,7 @@ std::vector<ContactModel> laws() {
 // A 3- vs 5-storey pair, DOFs level-major (test::shear_row) and body by body (model::shear_buildings), Hertzdamp,
 // linear, Kelvin and Hertz with n = 1.3 at the three common floors.
 TEST(SystemStick, ThreeVersusFiveStoreysIsTheGenericPath) {
-  if (!bits_claimed()) GTEST_SKIP() << std::getenv("POUNDING_BITS_NOT_CLAIMED");
+  if (!test::bits_claimed()) GTEST_SKIP() << std::getenv("POUNDING_BITS_NOT_CLAIMED");
   std::vector<model::StickTopology> sticks(2);
   sticks[0].storeys = 3, sticks[1].storeys = 5;
   for (const model::System& S : {test::shear_row({3, 5}, true), model::shear_buildings(sticks)})
@@ -137,7 +131,7 @@ TEST(SystemStick, ThreeVersusFiveStoreysIsTheGenericPath) {
 // e(v0) at every onset (KernelSettings::restitution, the element's latched damping): a made-up curve e = 0.8 - 0.3 v0
 // (v0 in m/s, clamped at 0.2), its Hertzdamp damping 8 (1 - e) / (5 e), v0 above 1 m/s counted outside.
 TEST(SystemStick, VelocityDependentRestitutionIsTheGenericPath) {
-  if (!bits_claimed()) GTEST_SKIP() << std::getenv("POUNDING_BITS_NOT_CLAIMED");
+  if (!test::bits_claimed()) GTEST_SKIP() << std::getenv("POUNDING_BITS_NOT_CLAIMED");
   VelocityRestitution r;
   r.damping = [](const void*, double v0) {
     const double e = std::max(0.8 - 0.3 * v0, 0.2);
@@ -151,7 +145,7 @@ TEST(SystemStick, VelocityDependentRestitutionIsTheGenericPath) {
 
 // A row of three buildings (5, 3, 4 storeys) and a row of three SDOFs.
 TEST(SystemStick, RowsAreTheGenericPath) {
-  if (!bits_claimed()) GTEST_SKIP() << std::getenv("POUNDING_BITS_NOT_CLAIMED");
+  if (!test::bits_claimed()) GTEST_SKIP() << std::getenv("POUNDING_BITS_NOT_CLAIMED");
   std::vector<model::StickTopology> sticks(3);
   sticks[0].storeys = 5, sticks[1].storeys = 3, sticks[2].storeys = 4;
   for (const ContactModel& cm : laws())
@@ -162,7 +156,7 @@ TEST(SystemStick, RowsAreTheGenericPath) {
 // A 4-storey building against a wall at its roof and at its second floor (wall on the right of one, on the left of
 // the other), and the bench's shear pair.
 TEST(SystemStick, WallAndBenchPairAreTheGenericPath) {
-  if (!bits_claimed()) GTEST_SKIP() << std::getenv("POUNDING_BITS_NOT_CLAIMED");
+  if (!test::bits_claimed()) GTEST_SKIP() << std::getenv("POUNDING_BITS_NOT_CLAIMED");
   model::System::Parts P;
   P.bodies.push_back({{0, 1, 2, 3}, {3.2, 6.4, 9.6, 12.8}, 0, model::ground, true, model::DampingForm::dashpots, false,
                       "building1"});
