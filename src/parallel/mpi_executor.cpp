@@ -322,8 +322,27 @@ class Master {
 };
 }  // namespace
 
+// Open MPI probes its network transports in MPI_Init even when every rank is on one node: initialising the `cm`
+// messaging layer (its MTLs: libfabric, PSM, PSM2) took about 0.2 s of a 0.3 s MPI_Init on the 2-core VM, and ob1 over
+// shared memory (vader) is what it then selects anyway. When Open MPI's launcher says every rank runs on this node
+// (OMPI_COMM_WORLD_LOCAL_SIZE equals OMPI_COMM_WORLD_SIZE: the same on every rank, so every rank decides alike) and
+// the user has chosen no messaging layer (no OMPI_MCA_pml or OMPI_MCA_mtl in the environment, which `mpirun --mca`
+// also sets), cm is excluded before MPI_Init. POUNDING_MPI_TRANSPORTS=all keeps Open MPI's own choice (docs/cluster.md).
+namespace {
+void skip_network_layers_on_one_node() {
+  const char* keep = std::getenv("POUNDING_MPI_TRANSPORTS");
+  if (keep != nullptr && std::strcmp(keep, "all") == 0) return;
+  const char* n = std::getenv("OMPI_COMM_WORLD_SIZE");
+  const char* local = std::getenv("OMPI_COMM_WORLD_LOCAL_SIZE");
+  if (n == nullptr || local == nullptr || std::strcmp(n, local) != 0) return;
+  if (std::getenv("OMPI_MCA_pml") != nullptr || std::getenv("OMPI_MCA_mtl") != nullptr) return;
+  setenv("OMPI_MCA_pml", "^cm", 0);
+}
+}  // namespace
+
 Session::Session(int& argc, char**& argv) {
   if (!launched_by_mpi()) return;
+  skip_network_layers_on_one_node();
   int provided = 0;
   MPI_Init_thread(&argc, &argv, MPI_THREAD_FUNNELED, &provided);
   MPI_Comm_rank(MPI_COMM_WORLD, &rank_);

@@ -64,3 +64,25 @@ print(f"ok: wall {wall:.3f} s in the file, {printed} s printed, process {took:.3
       f"compute rank 0 {t['compute']:.3f} s / max {m['compute']:.3f} s, report {t['report']:.3f} s")
 PY
 echo "ok: timing line, --timings table and /timing consistent ($ranks ranks)"
+# On one node the network messaging layer (Open MPI's pml cm and its MTLs) is not loaded, unless the user chose a
+# layer or POUNDING_MPI_TRANSPORTS=all (src/parallel/mpi_executor.cpp); Open MPI's own pml_base_verbose says which
+# components it loaded. The results are the same either way.
+if [ "$ranks" -gt 1 ]; then
+  loaded() { grep -c "components_open: found loaded component cm$" "$1" || true; }
+  run_v() {  # <out.h5> <log> [env ...]: the run with Open MPI's pml selection verbose
+    timeout 120 mpirun -np 2 env OMPI_MCA_pml_base_verbose=10 "${@:3}" "$bin" run "$tmp/s.toml" --out "$1" --quiet \
+      > /dev/null 2> "$2" || { cat "$2"; fail "the verbose run ${*:3}"; }
+  }
+  run_v "$tmp/v0.h5" "$tmp/v0.log"
+  run_v "$tmp/v1.h5" "$tmp/v1.log" POUNDING_MPI_TRANSPORTS=all
+  run_v "$tmp/v2.h5" "$tmp/v2.log" OMPI_MCA_mtl=^psm
+  [ "$(loaded "$tmp/v0.log")" -eq 0 ] || fail "one node: Open MPI still loaded pml cm"
+  grep -q "components_open: found loaded component ob1$" "$tmp/v0.log" || fail "no pml ob1 in Open MPI's verbose output"
+  [ "$(loaded "$tmp/v1.log")" -eq 2 ] || fail "POUNDING_MPI_TRANSPORTS=all: want cm loaded on both ranks"
+  [ "$(loaded "$tmp/v2.log")" -eq 2 ] || fail "OMPI_MCA_mtl set by the user: want Open MPI's own choice (cm loaded)"
+  for n in 1 2; do
+    /usr/bin/python3 "$src/tests/cli/compare_results.py" "$tmp/v0.h5" "$tmp/v$n.h5" --ignore=output > /dev/null \
+      || fail "results differ with POUNDING_MPI_TRANSPORTS / OMPI_MCA_mtl"
+  done
+  echo "ok: one node, pml cm not loaded; loaded with POUNDING_MPI_TRANSPORTS=all or a user's OMPI_MCA_mtl; results equal"
+fi
