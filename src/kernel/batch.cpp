@@ -7,6 +7,14 @@
 
 namespace pounding {
 
+bool kernel_fuses_multiply_add() {
+#if defined(__FMA__) || defined(__AVX512F__)
+  return true;
+#else
+  return false;
+#endif
+}
+
 Structure Structure::from_period(double m, double T, double zeta, double fy, double alpha) {
   Structure s;
   s.m = m;

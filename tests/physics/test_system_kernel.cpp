@@ -123,8 +123,12 @@ TEST(SystemKernel, SdofPairThroughTheDynamicLayoutIsThePairKernel) {
       // relative on displacements (final_u2, stereomechanical) and 4.4e-9 on the elastic Hertz law's
       // contact_energy, which is the cancellation residual work - stored of a law that dissipates nothing:
       // rounding, not physics (a wrong term moves an observer by 1e-3 or more), so 1e-7 there.
-      EXPECT_LE(c.worst, test::bits_claimed() ? 1e-12 : 1e-7) << name << ": " << c.where;
-      if (test::bits_claimed()) {
+      // Without FMA (POUNDING_KERNEL_ARCH=OFF on x86-64) the pair kernel's a * b + c stays unfused while the
+      // stepper's pinned lane::fma is exactly rounded: measured 2026-11-27 worst 3.6e-14 relative on velocities and
+      // 2.3e-12 on contact_energy (the linear law), every observer within the 1e-7 below; bits are not claimed there.
+      const bool claimed = test::bits_claimed() && kernel_fuses_multiply_add();
+      EXPECT_LE(c.worst, claimed ? 1e-12 : 1e-7) << name << ": " << c.where;
+      if (claimed) {
         EXPECT_EQ(c.bits, c.n) << name << ": not bit-identical, worst " << c.where;
       }
     }

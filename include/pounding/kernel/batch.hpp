@@ -36,6 +36,13 @@ enum class Stepper : std::uint8_t {
 };
 inline constexpr std::string_view stepper_names = "central-difference, newmark, rk4, nigam-jennings";
 
+// Whether the kernel libraries were compiled for a vector unit with fused multiply-add (POUNDING_KERNEL_ARCH native on
+// an FMA machine, x86-64-v3, x86-64-v4). The pair kernel's bits and the system stepper's (which pins its products as
+// explicit FMAs, lane::fma) agree only there: without FMA the compiler leaves the pair kernel's a * b + c unfused while
+// lane::fma stays exactly rounded (tests/physics/test_system_kernel.cpp). Defined in src/kernel/batch.cpp, compiled
+// with the kernel's flags.
+bool kernel_fuses_multiply_add();
+
 // coarse: ran to the end (status ok) but the contact was not resolved: the lane's h omega_c (BatchResult::
 // h_omega_contact) exceeds the accuracy limit of its stepper x law (physics/resolution.hpp); peaks are returned.
 enum class LaneStatus : std::uint8_t { ok = 0, diverged = 1, non_finite = 2, coarse = 3 };
