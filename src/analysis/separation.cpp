@@ -14,6 +14,7 @@
 
 #include "pounding/core/parallel_for.hpp"
 #include "pounding/core/progress.hpp"
+#include "pounding/core/radix_sort.hpp"
 #include "pounding/core/random.hpp"
 
 namespace pounding::separation {
@@ -119,9 +120,10 @@ std::shared_ptr<const Prepared> prepare(const Demands& d, int threads) {
   const std::size_t R = d.records;
   p->values.resize(R), p->ranks.resize(R);
   parallel_blocks(R, threads, [&](std::size_t first, std::size_t last) {
+    std::vector<std::uint64_t> scratch;
     for (std::size_t k = first; k < last; ++k) {
       p->values[k] = d.record(k);
-      std::sort(p->values[k].begin(), p->values[k].end());
+      radix_sort(p->values[k], scratch);  // linear: std::sort took 13.6 of 45 s of a report on 10^8 analyses
       p->ranks[k].resize(p->values[k].size());
     }
   });
