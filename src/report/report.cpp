@@ -195,7 +195,20 @@ const separation::Prepared& Data::prepared(bool metres) const {
   if (!prepared_[metres]) {
     double unused = 0;
     timing::Stopwatch w(bootstrap_s ? *bootstrap_s : unused);
-    prepared_[metres] = separation::prepare(demands(metres), bootstrap_settings().threads);
+    // demands(metres) record by record, without the array of every demand
+    const std::size_t M = models(), per = per_record * M;
+    prepared_[metres] = separation::prepare(
+        independent(),
+        [&](std::size_t k, std::vector<double>& v) {
+          v.clear();
+          v.reserve(per);
+          for (std::size_t i = k * per; i < (k + 1) * per; ++i) {
+            if (!ok(status[i])) continue;
+            const double z = metres ? peak_closing[i] : peak_closing[i] / mod.code_gap[i % M];
+            if (!std::isnan(z)) v.push_back(z);
+          }
+        },
+        bootstrap_settings().threads);
   }
   return *prepared_[metres];
 }
