@@ -232,19 +232,28 @@ std::vector<UncoupledCounts> count_pass(const Data& r, const std::vector<double>
   parallel_blocks(part.size(), T, [&](std::size_t t, std::size_t) {  // one block of models per thread
     std::vector<UncoupledCounts>& u = part[t];
     const std::size_t m0 = M * t / part.size(), m1 = M * (t + 1) / part.size();
-    for (std::size_t k = 0; k < r.records(); ++k)
+    const std::size_t P = shape.per_pair.size();
+    // flat, for the inner loop; slot 0 also takes the models outside the grid (added with 0)
+    std::vector<std::int64_t> pair_n(std::max<std::size_t>(P, 1), 0), pair_hits(std::max<std::size_t>(P, 1) * X, 0), hits(X);
+    for (std::size_t k = 0; k < r.records(); ++k) {
+      std::int64_t n = 0;
+      std::fill(hits.begin(), hits.end(), 0);
       for (std::size_t m = m0; m < m1; ++m) {
         const std::size_t idx = k * M + m;
         if (!r.ok(r.status[idx])) continue;
         const bool in_grid = grid && mod.i1[m] >= 0 && mod.i2[m] >= 0;
         const std::size_t pair = in_grid ? static_cast<std::size_t>(mod.i1[m]) * shape.n2 + static_cast<std::size_t>(mod.i2[m]) : 0;
+        ++n, pair_n[pair] += in_grid;
+        const double closing = r.peak_closing[idx], gap = mod.code_gap[m];
         for (std::size_t j = 0; j < X; ++j) {
-          const int hit = r.peak_closing[idx] > xs[j] * mod.code_gap[m];
-          Count& rc = u[j].per_record[k / r.per_record];
-          ++rc.n, rc.hits += hit;
-          if (in_grid) ++u[j].per_pair[pair].n, u[j].per_pair[pair].hits += hit;
+          const int hit = closing > xs[j] * gap;
+          hits[j] += hit, pair_hits[pair * X + j] += in_grid ? hit : 0;
         }
       }
+      for (std::size_t j = 0; j < X; ++j) u[j].per_record[k / r.per_record].n += n, u[j].per_record[k / r.per_record].hits += hits[j];
+    }
+    for (std::size_t j = 0; j < X; ++j)
+      for (std::size_t q = 0; q < P; ++q) u[j].per_pair[q].n += pair_n[q], u[j].per_pair[q].hits += pair_hits[q * X + j];
   });
   std::vector<UncoupledCounts> out(X, shape);
   for (std::size_t j = 0; j < X; ++j) {
