@@ -125,14 +125,16 @@ void merge_ranks(Prepared& p, const std::vector<std::size_t>& lo, const std::vec
   const std::size_t R = lo.size(), L = std::bit_ceil(std::max<std::size_t>(R, 1));
   std::vector<std::size_t> next(lo), end(hi);
   next.resize(L, 0), end.resize(L, 0);  // the leaves past the records: empty
-  std::vector<double> head(L, 0.0);
-  for (std::size_t k = 0; k < R; ++k)
-    if (next[k] < end[k]) head[k] = p.values[k][next[k]];
-  const auto before = [&](std::size_t a, std::size_t b) {  // record a's next value goes before record b's
-    if (next[a] == end[a]) return false;
-    if (next[b] == end[b]) return true;
-    return head[a] < head[b] || (!(head[b] < head[a]) && a < b);
+  // a record's next value as its radix key (the doubles' order; -0.0 as +0.0, equal as before), `done` when the
+  // record is exhausted (the key of a NaN, which no demand is)
+  constexpr std::uint64_t done = ~std::uint64_t{0};
+  std::vector<std::uint64_t> head(L, done);
+  const auto advance = [&](std::size_t k) {
+    const double v = next[k] < end[k] ? p.values[k][next[k]] : 0.0;
+    head[k] = next[k] < end[k] ? radix_key(std::bit_cast<std::uint64_t>(v == 0 ? 0.0 : v)) : done;
   };
+  for (std::size_t k = 0; k < R; ++k) advance(k);
+  const auto before = [&](std::size_t a, std::size_t b) { return head[a] < head[b] || (head[a] == head[b] && a < b); };
   std::vector<std::size_t> loser(L), win(2 * L);
   for (std::size_t i = 0; i < L; ++i) win[L + i] = i;
   for (std::size_t n = L - 1; n >= 1; --n) {
@@ -142,9 +144,9 @@ void merge_ranks(Prepared& p, const std::vector<std::size_t>& lo, const std::vec
   std::size_t w = L > 1 ? win[1] : 0;
   std::size_t offset = 0;
   for (std::size_t k = 0; k < R; ++k) offset += lo[k];
-  for (auto i = static_cast<std::uint32_t>(offset); next[w] < end[w]; ++i) {
+  for (auto i = static_cast<std::uint32_t>(offset); head[w] != done; ++i) {
     p.ranks[w][next[w]++] = i;
-    if (next[w] < end[w]) head[w] = p.values[w][next[w]];
+    advance(w);
     for (std::size_t n = (L + w) / 2; n >= 1; n /= 2)  // replay w's path: the winner goes on up
       if (before(loser[n], w)) std::swap(loser[n], w);
   }
