@@ -14,6 +14,7 @@
 
 #include "pounding/core/parallel_for.hpp"
 #include "pounding/core/progress.hpp"
+#include "pounding/core/radix_sort.hpp"
 #include "pounding/core/random.hpp"
 
 namespace pounding::separation {
@@ -114,14 +115,58 @@ double Prepared::at(std::size_t i) const {
   return NAN;
 }
 
+namespace {
+
+// The pooled ranks of the values at positions [lo[k], hi[k]) of every record k, which are the ranks from
+// sum_k lo[k] on: a k-way merge on a tournament (loser) tree over the records, equal values ordered by record (and
+// within a record by position). log2(records) comparisons per value; a binary heap of (value, record) pairs, the
+// merge before, took 3 s of a 10^8-analysis report.
+void merge_ranks(Prepared& p, const std::vector<std::size_t>& lo, const std::vector<std::size_t>& hi) {
+  const std::size_t R = lo.size(), L = std::bit_ceil(std::max<std::size_t>(R, 1));
+  std::vector<std::size_t> next(lo), end(hi);
+  next.resize(L, 0), end.resize(L, 0);  // the leaves past the records: empty
+  // a record's next value as its radix key (the doubles' order; -0.0 as +0.0, equal as before), `done` when the
+  // record is exhausted (the key of a NaN, which no demand is)
+  constexpr std::uint64_t done = ~std::uint64_t{0};
+  std::vector<std::uint64_t> head(L, done);
+  const auto advance = [&](std::size_t k) {
+    const double v = next[k] < end[k] ? p.values[k][next[k]] : 0.0;
+    head[k] = next[k] < end[k] ? radix_key(std::bit_cast<std::uint64_t>(v == 0 ? 0.0 : v)) : done;
+  };
+  for (std::size_t k = 0; k < R; ++k) advance(k);
+  const auto before = [&](std::size_t a, std::size_t b) { return head[a] < head[b] || (head[a] == head[b] && a < b); };
+  std::vector<std::size_t> loser(L), win(2 * L);
+  for (std::size_t i = 0; i < L; ++i) win[L + i] = i;
+  for (std::size_t n = L - 1; n >= 1; --n) {
+    const std::size_t a = win[2 * n], b = win[2 * n + 1];
+    before(a, b) ? (win[n] = a, loser[n] = b) : (win[n] = b, loser[n] = a);
+  }
+  std::size_t w = L > 1 ? win[1] : 0;
+  std::size_t offset = 0;
+  for (std::size_t k = 0; k < R; ++k) offset += lo[k];
+  for (auto i = static_cast<std::uint32_t>(offset); head[w] != done; ++i) {
+    p.ranks[w][next[w]++] = i;
+    advance(w);
+    for (std::size_t n = (L + w) / 2; n >= 1; n /= 2)  // replay w's path: the winner goes on up
+      if (before(loser[n], w)) std::swap(loser[n], w);
+  }
+}
+
+}  // namespace
+
 std::shared_ptr<const Prepared> prepare(const Demands& d, int threads) {
+  return prepare(d.records, [&](std::size_t k, std::vector<double>& v) { v = d.record(k); }, threads);
+}
+
+std::shared_ptr<const Prepared> prepare(std::size_t records, const RecordDemands& record, int threads) {
   auto p = std::make_shared<Prepared>();
-  const std::size_t R = d.records;
+  const std::size_t R = records;
   p->values.resize(R), p->ranks.resize(R);
   parallel_blocks(R, threads, [&](std::size_t first, std::size_t last) {
+    std::vector<std::uint64_t> scratch;
     for (std::size_t k = first; k < last; ++k) {
-      p->values[k] = d.record(k);
-      std::sort(p->values[k].begin(), p->values[k].end());
+      record(k, p->values[k]);
+      radix_sort(p->values[k], scratch);  // linear: std::sort took 13.6 of 45 s of a report on 10^8 analyses
       p->ranks[k].resize(p->values[k].size());
     }
   });
@@ -147,27 +192,7 @@ std::shared_ptr<const Prepared> prepare(const Demands& d, int threads) {
                                : static_cast<std::size_t>(std::lower_bound(p->values[k].begin(), p->values[k].end(), pivot[t]) -
                                                           p->values[k].begin());
   parallel_blocks(parts, static_cast<int>(parts), [&](std::size_t t0, std::size_t t1) {
-    for (std::size_t t = t0; t < t1; ++t) {
-      using Head = std::pair<double, std::uint32_t>;  // value, record
-      std::vector<Head> heap;
-      std::vector<std::size_t> next(first[t]);
-      std::size_t offset = 0;
-      for (std::size_t k = 0; k < R; ++k) {
-        offset += first[t][k];
-        if (next[k] < first[t + 1][k]) heap.push_back({p->values[k][next[k]], static_cast<std::uint32_t>(k)});
-      }
-      const auto later = [](const Head& x, const Head& y) { return x > y; };
-      std::make_heap(heap.begin(), heap.end(), later);
-      for (auto i = static_cast<std::uint32_t>(offset); !heap.empty(); ++i) {
-        std::pop_heap(heap.begin(), heap.end(), later);
-        const std::uint32_t k = heap.back().second;
-        p->ranks[k][next[k]++] = i;
-        if (next[k] < first[t + 1][k])
-          heap.back().first = p->values[k][next[k]], std::push_heap(heap.begin(), heap.end(), later);
-        else
-          heap.pop_back();
-      }
-    }
+    for (std::size_t t = t0; t < t1; ++t) merge_ranks(*p, first[t], first[t + 1]);
   });
   return p;
 }

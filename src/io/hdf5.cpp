@@ -8,6 +8,7 @@
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
+#include <future>
 #include <optional>
 #include <stdexcept>
 
@@ -146,53 +147,122 @@ std::optional<DeflatedLayout> deflated_layout(hid_t ds, hid_t type, std::span<co
   return DeflatedLayout{chunk[0], shuffle};
 }
 
-// The inverse of shuffle_bytes.
+// The inverse of shuffle_bytes, element widths of 2, 4 and 8 bytes with the width fixed at compile time (one write
+// of a whole value per i: the generic loop's byte-strided writes were a tenth of a 10^8-analysis report's reading).
+template <std::size_t E>
+void unshuffle_fixed(const Bytef* src, Bytef* dst, std::size_t n) {
+  for (std::size_t i = 0; i < n; ++i) {
+    Bytef v[E];
+    for (std::size_t k = 0; k < E; ++k) v[k] = src[k * n + i];
+    std::memcpy(dst + i * E, v, E);
+  }
+}
 void unshuffle_bytes(const Bytef* src, Bytef* dst, std::size_t bytes, std::size_t element) {
   const std::size_t n = bytes / element;
+  switch (element) {
+    case 2: return unshuffle_fixed<2>(src, dst, n);
+    case 4: return unshuffle_fixed<4>(src, dst, n);
+    case 8: return unshuffle_fixed<8>(src, dst, n);
+    default: break;
+  }
   for (std::size_t k = 0; k < element; ++k)
     for (std::size_t i = 0; i < n; ++i) dst[i * element + k] = src[k * n + i];
 }
 
-// The mirror of write_chunks_deflated: every chunk's stored bytes read on this thread (H5Dread_chunk; HDF5 is not
-// called from other threads), then inflated and unshuffled on every CPU into `out`. Returns false (nothing usable
-// in `out`) where a chunk is unallocated or was stored with a filter skipped; the caller then reads by H5Dread.
-// `pounding report` on a 10^8-analysis file spent 40 % of its time in HDF5's single-threaded inflate.
+// Where a chunked dataset's chunks go in memory (write_nd's layout: chunks along the first dimension).
+struct ChunkGeometry {
+  std::size_t element, row_bytes, chunk_bytes, chunks, rows;
+  hsize_t chunk0;
+  bool shuffle;
+  std::size_t ndims;
+  ChunkGeometry(std::size_t element_, std::span<const hsize_t> dims, const DeflatedLayout& lay)
+      : element(element_), row_bytes(element_), chunk0(lay.chunk0), shuffle(lay.shuffle), ndims(dims.size()) {
+    for (std::size_t k = 1; k < dims.size(); ++k) row_bytes *= static_cast<std::size_t>(dims[k]);
+    chunk_bytes = static_cast<std::size_t>(lay.chunk0) * row_bytes;
+    chunks = static_cast<std::size_t>((dims[0] + lay.chunk0 - 1) / lay.chunk0);
+    rows = static_cast<std::size_t>(dims[0]);
+  }
+  std::size_t rows_in(std::size_t c) const {
+    return std::min<std::size_t>(static_cast<std::size_t>(chunk0), rows - c * static_cast<std::size_t>(chunk0));
+  }
+};
+
+// Chunk c's stored (filtered) bytes into `stored`, on the calling thread; false where the chunk is unallocated or
+// was stored with a filter skipped.
+bool read_stored_chunk(hid_t ds, const std::string& name, const ChunkGeometry& g, std::size_t c, std::vector<Bytef>& stored) {
+  std::vector<hsize_t> offset(g.ndims, 0);
+  offset[0] = static_cast<hsize_t>(c) * g.chunk0;
+  hsize_t size = 0;
+  if (H5Dget_chunk_storage_size(ds, offset.data(), &size) < 0 || size == 0) return false;
+  stored.resize(static_cast<std::size_t>(size));
+  std::uint32_t mask = 0;
+  check(H5Dread_chunk(ds, H5P_DEFAULT, offset.data(), &mask, stored.data()), fmt::format("read chunk {} of {}", c, name));
+  return mask == 0;
+}
+
+// Chunk c inflated and unshuffled into its rows of `out` (a full chunk straight there, the last one through
+// `ordered`); the zlib status. Any thread: no HDF5 call.
+int inflate_chunk(const std::vector<Bytef>& stored, const ChunkGeometry& g, std::size_t c, void* out,
+                  std::vector<Bytef>& plain, std::vector<Bytef>& ordered) {
+  plain.resize(g.chunk_bytes);
+  uLongf size = static_cast<uLongf>(g.chunk_bytes);
+  int status = uncompress(plain.data(), &size, stored.data(), static_cast<uLong>(stored.size()));
+  if (status == Z_OK && size != g.chunk_bytes) status = Z_DATA_ERROR;
+  if (status != Z_OK) return status;
+  const std::size_t n = g.rows_in(c);
+  Bytef* dst = static_cast<Bytef*>(out) + c * static_cast<std::size_t>(g.chunk0) * g.row_bytes;
+  if (!g.shuffle) {
+    std::memcpy(dst, plain.data(), n * g.row_bytes);
+  } else if (n == static_cast<std::size_t>(g.chunk0)) {
+    unshuffle_bytes(plain.data(), dst, g.chunk_bytes, g.element);
+  } else {  // the padded last chunk: its whole width unshuffled, its rows kept
+    ordered.resize(g.chunk_bytes);
+    unshuffle_bytes(plain.data(), ordered.data(), g.chunk_bytes, g.element);
+    std::memcpy(dst, ordered.data(), n * g.row_bytes);
+  }
+  return Z_OK;
+}
+
+// Chunks [first, last) read on this thread (HDF5 is not called from other threads) into `stored`; false as
+// read_stored_chunk.
+bool read_stored_batch(hid_t ds, const std::string& name, const ChunkGeometry& g, std::size_t first, std::size_t last,
+                       std::vector<std::vector<Bytef>>& stored) {
+  stored.resize(std::max(stored.size(), last - first));
+  for (std::size_t c = first; c < last; ++c)
+    if (!read_stored_chunk(ds, name, g, c, stored[c - first])) return false;
+  return true;
+}
+
+// The mirror of write_chunks_deflated: chunks read in batches on this thread while the batch before is inflated and
+// unshuffled on every CPU into `out` (two batches of stored bytes in memory, not the whole file's). Returns false
+// (nothing usable in `out`) where a chunk is unallocated or was stored with a filter skipped; the caller then reads
+// by H5Dread. `pounding report` on a 10^8-analysis file spent 40 % of its time in HDF5's single-threaded inflate.
 bool read_chunks_deflated(hid_t ds, const std::string& name, void* out, std::size_t element,
                           std::span<const hsize_t> dims, const DeflatedLayout& lay) {
-  std::size_t row_bytes = element;
-  for (std::size_t k = 1; k < dims.size(); ++k) row_bytes *= static_cast<std::size_t>(dims[k]);
-  const std::size_t chunk_bytes = static_cast<std::size_t>(lay.chunk0) * row_bytes;
-  const std::size_t chunks = static_cast<std::size_t>((dims[0] + lay.chunk0 - 1) / lay.chunk0);
-  std::vector<std::vector<Bytef>> stored(chunks);
-  std::vector<hsize_t> offset(dims.size(), 0);
-  for (std::size_t c = 0; c < chunks; ++c) {
-    offset[0] = static_cast<hsize_t>(c) * lay.chunk0;
-    hsize_t size = 0;
-    if (H5Dget_chunk_storage_size(ds, offset.data(), &size) < 0 || size == 0) return false;
-    stored[c].resize(static_cast<std::size_t>(size));
-    std::uint32_t mask = 0;
-    check(H5Dread_chunk(ds, H5P_DEFAULT, offset.data(), &mask, stored[c].data()), fmt::format("read chunk {} of {}", c, name));
-    if (mask != 0) return false;
-  }
-  std::vector<int> status(chunks, Z_OK);
-  parallel_blocks(chunks, thread_count(0, chunks), [&](std::size_t first, std::size_t last) {
-    std::vector<Bytef> plain(chunk_bytes), ordered(lay.shuffle ? chunk_bytes : 0);
-    for (std::size_t c = first; c < last; ++c) {
-      uLongf size = static_cast<uLongf>(chunk_bytes);
-      status[c] = uncompress(plain.data(), &size, stored[c].data(), static_cast<uLong>(stored[c].size()));
-      if (status[c] == Z_OK && size != chunk_bytes) status[c] = Z_DATA_ERROR;
-      if (status[c] != Z_OK) continue;
-      const Bytef* src = plain.data();
-      if (lay.shuffle) {
-        unshuffle_bytes(plain.data(), ordered.data(), chunk_bytes, element);
-        src = ordered.data();
-      }
-      const std::size_t r0 = c * static_cast<std::size_t>(lay.chunk0);
-      const std::size_t n = std::min<std::size_t>(static_cast<std::size_t>(lay.chunk0), static_cast<std::size_t>(dims[0]) - r0);
-      std::memcpy(static_cast<Bytef*>(out) + r0 * row_bytes, src, n * row_bytes);
+  const ChunkGeometry g(element, dims, lay);
+  constexpr std::size_t batch = 256;  // chunks: about 32 MiB inflated
+  std::vector<std::vector<Bytef>> stored[2];
+  std::vector<int> status(g.chunks, Z_OK);
+  if (!read_stored_batch(ds, name, g, 0, std::min(batch, g.chunks), stored[0])) return false;
+  for (std::size_t b0 = 0, side = 0; b0 < g.chunks; b0 += batch, side ^= 1) {
+    const std::size_t b1 = std::min(b0 + batch, g.chunks);
+    auto inflate = std::async(std::launch::async, [&, b0, b1, side] {
+      parallel_blocks(b1 - b0, thread_count(0, b1 - b0), [&](std::size_t first, std::size_t last) {
+        std::vector<Bytef> plain, ordered;
+        for (std::size_t i = first; i < last; ++i) status[b0 + i] = inflate_chunk(stored[side][i], g, b0 + i, out, plain, ordered);
+      });
+    });
+    bool next = true;
+    try {
+      if (b1 < g.chunks) next = read_stored_batch(ds, name, g, b1, std::min(b1 + batch, g.chunks), stored[side ^ 1]);
+    } catch (...) {
+      inflate.get();
+      throw;
     }
-  });
-  for (std::size_t c = 0; c < chunks; ++c)
+    inflate.get();
+    if (!next) return false;
+  }
+  for (std::size_t c = 0; c < g.chunks; ++c)
     if (status[c] != Z_OK) throw std::runtime_error(fmt::format("zlib error {} inflating chunk {} of {}", status[c], c, name));
   return true;
 }
@@ -211,6 +281,29 @@ std::vector<T> read_all(hid group, const std::string& name, hid_t type) {
     if (read_chunks_deflated(ds.get(), name, out.data(), sizeof(T), dims, *lay)) return out;
   check(H5Dread(ds.get(), type, H5S_ALL, H5S_ALL, H5P_DEFAULT, out.data()), "read " + name);
   return out;
+}
+
+// read_doubles_if_constant on a compressed dataset: chunk by chunk on this thread, stopping at the first chunk
+// with a value unlike the first (`varies`). false: not readable this way (the caller reads it whole).
+bool probe_chunks(hid_t ds, const std::string& name, std::span<const hsize_t> dims, const DeflatedLayout& lay,
+                  std::vector<double>& out, bool& varies) {
+  const ChunkGeometry g(sizeof(double), dims, lay);
+  std::vector<Bytef> stored, plain, ordered;
+  const std::size_t per_chunk = static_cast<std::size_t>(g.chunk0) * (g.row_bytes / sizeof(double));
+  for (std::size_t c = 0; c < g.chunks; ++c) {
+    if (!read_stored_chunk(ds, name, g, c, stored)) return false;
+    if (const int status = inflate_chunk(stored, g, c, out.data(), plain, ordered); status != Z_OK)
+      throw std::runtime_error(fmt::format("zlib error {} inflating chunk {} of {}", status, c, name));
+    const std::size_t first = c * per_chunk, last = std::min(out.size(), first + per_chunk);
+    const double v0 = out[0];
+    if (!std::all_of(out.begin() + static_cast<std::ptrdiff_t>(first), out.begin() + static_cast<std::ptrdiff_t>(last),
+                     [&](double x) { return x == v0; })) {
+      varies = true;
+      return true;
+    }
+  }
+  varies = false;
+  return true;
 }
 
 void write_attr_raw(hid obj, const std::string& name, hid_t type, const void* value) {
@@ -474,6 +567,22 @@ std::vector<std::string> member_names(hid group) {
 }
 
 std::vector<double> read_doubles(hid g, const std::string& n) { return read_all<double>(g, n, H5T_NATIVE_DOUBLE); }
+std::optional<std::vector<double>> read_doubles_if_constant(hid g, const std::string& n) {
+  if (!exists(g, n)) throw std::runtime_error(fmt::format("HDF5: dataset '{}' not found", n));
+  Handle ds(checked(H5Dopen2(g, n.c_str(), H5P_DEFAULT), "open " + n));
+  Handle space(checked(H5Dget_space(ds.get()), "space " + n));
+  std::vector<double> out(static_cast<std::size_t>(std::max<hssize_t>(0, H5Sget_simple_extent_npoints(space.get()))));
+  std::vector<hsize_t> dims(static_cast<std::size_t>(std::max(0, H5Sget_simple_extent_ndims(space.get()))));
+  if (!dims.empty()) H5Sget_simple_extent_dims(space.get(), dims.data(), nullptr);
+  bool varies = false;
+  const auto lay = out.empty() ? std::nullopt : deflated_layout(ds.get(), H5T_NATIVE_DOUBLE, dims);
+  if (!lay || !probe_chunks(ds.get(), n, dims, *lay, out, varies)) {
+    out = read_doubles(g, n);
+    varies = !out.empty() && !std::all_of(out.begin(), out.end(), [&](double x) { return x == out.front(); });
+  }
+  if (varies) return std::nullopt;
+  return out;
+}
 std::vector<std::int64_t> read_int64(hid g, const std::string& n) {
   return read_all<std::int64_t>(g, n, H5T_NATIVE_INT64);
 }

@@ -9,6 +9,7 @@
 
 #include "data.hpp"
 #include "pounding/core/machine.hpp"
+#include "pounding/core/parallel_for.hpp"
 #include "pounding/core/timing.hpp"
 #include "legacy_v1.hpp"
 #include "pounding/analysis/stats.hpp"
@@ -54,8 +55,7 @@ Data::Data(const results::Results& r, const WorkHook* hook_, double* bootstrap_s
                       &ModelTable::c1, &ModelTable::c2, &ModelTable::code_gap, &ModelTable::zeta1, &ModelTable::zeta2,
                       &ModelTable::alpha1, &ModelTable::alpha2, &ModelTable::kh}) {
     if (column == &ModelTable::kh && !impacts) continue;
-    const std::vector<double>& v = mod.*column;
-    if (!v.empty() && std::any_of(v.begin(), v.end(), [&](double x) { return !(x == v.front()); })) fixed_pair = false;
+    if (!mod.constant(column)) fixed_pair = false;
   }
   if ((red = r.group("reductions"))) {
     red_models = static_cast<std::size_t>(red->number("models"));
@@ -195,39 +195,94 @@ const separation::Prepared& Data::prepared(bool metres) const {
   if (!prepared_[metres]) {
     double unused = 0;
     timing::Stopwatch w(bootstrap_s ? *bootstrap_s : unused);
-    prepared_[metres] = separation::prepare(demands(metres), bootstrap_settings().threads);
+    // demands(metres) record by record, without the array of every demand
+    const std::size_t M = models(), per = per_record * M;
+    prepared_[metres] = separation::prepare(
+        independent(),
+        [&](std::size_t k, std::vector<double>& v) {
+          v.clear();
+          v.reserve(per);
+          for (std::size_t i = k * per; i < (k + 1) * per; ++i) {
+            if (!ok(status[i])) continue;
+            const double z = metres ? peak_closing[i] : peak_closing[i] / mod.code_gap[i % M];
+            if (!std::isnan(z)) v.push_back(z);
+          }
+        },
+        bootstrap_settings().threads);
   }
   return *prepared_[metres];
 }
 
-const UncoupledCounts& Data::uncoupled_counts(double x) const {
-  for (const auto& [ratio, counts] : uncoupled_)
-    if (ratio == x) return *counts;
-  auto u = std::make_shared<UncoupledCounts>();
-  const std::size_t M = models();
+namespace {
+// The uncoupled counts at every ratio of xs, from one pass over the analyses on every CPU (blocks of models, their
+// integer counts added after: the same for any thread count).
+std::vector<UncoupledCounts> count_pass(const Data& r, const std::vector<double>& xs) {
+  const std::size_t M = r.models(), X = xs.size();
+  const auto& mod = r.mod;
   const bool grid = mod.i1.size() == M && mod.i2.size() == M;  // the grid indices (files may lack them)
+  UncoupledCounts shape;
   for (std::size_t m = 0; grid && m < M; ++m) {
-    u->n1 = std::max<std::size_t>(u->n1, mod.i1[m] >= 0 ? static_cast<std::size_t>(mod.i1[m]) + 1 : 0);
-    u->n2 = std::max<std::size_t>(u->n2, mod.i2[m] >= 0 ? static_cast<std::size_t>(mod.i2[m]) + 1 : 0);
+    shape.n1 = std::max<std::size_t>(shape.n1, mod.i1[m] >= 0 ? static_cast<std::size_t>(mod.i1[m]) + 1 : 0);
+    shape.n2 = std::max<std::size_t>(shape.n2, mod.i2[m] >= 0 ? static_cast<std::size_t>(mod.i2[m]) + 1 : 0);
   }
-  u->per_record.resize((records() + per_record - 1) / per_record);
-  u->per_pair.resize(u->n1 * u->n2);
-  for (std::size_t k = 0; k < records(); ++k) {
-    Count& rc = u->per_record[k / per_record];
-    for (std::size_t m = 0; m < M; ++m) {
-      const std::size_t idx = k * M + m;
-      if (!ok(status[idx])) continue;
-      const int hit = peak_closing[idx] > x * mod.code_gap[m];
-      ++rc.n, rc.hits += hit;
-      if (grid && mod.i1[m] >= 0 && mod.i2[m] >= 0) {
-        Count& pc = u->per_pair[static_cast<std::size_t>(mod.i1[m]) * u->n2 + static_cast<std::size_t>(mod.i2[m])];
-        ++pc.n, pc.hits += hit;
+  shape.per_record.resize((r.records() + r.per_record - 1) / r.per_record);
+  shape.per_pair.resize(shape.n1 * shape.n2);
+  const int T = thread_count(0, M / 65536 + 1);
+  std::vector<std::vector<UncoupledCounts>> part(static_cast<std::size_t>(T), std::vector<UncoupledCounts>(X, shape));
+  parallel_blocks(part.size(), T, [&](std::size_t t, std::size_t) {  // one block of models per thread
+    std::vector<UncoupledCounts>& u = part[t];
+    const std::size_t m0 = M * t / part.size(), m1 = M * (t + 1) / part.size();
+    const std::size_t P = shape.per_pair.size();
+    // flat, for the inner loop; slot 0 also takes the models outside the grid (added with 0)
+    std::vector<std::int64_t> pair_n(std::max<std::size_t>(P, 1), 0), pair_hits(std::max<std::size_t>(P, 1) * X, 0), hits(X);
+    for (std::size_t k = 0; k < r.records(); ++k) {
+      std::int64_t n = 0;
+      std::fill(hits.begin(), hits.end(), 0);
+      for (std::size_t m = m0; m < m1; ++m) {
+        const std::size_t idx = k * M + m;
+        if (!r.ok(r.status[idx])) continue;
+        const bool in_grid = grid && mod.i1[m] >= 0 && mod.i2[m] >= 0;
+        const std::size_t pair = in_grid ? static_cast<std::size_t>(mod.i1[m]) * shape.n2 + static_cast<std::size_t>(mod.i2[m]) : 0;
+        ++n, pair_n[pair] += in_grid;
+        const double closing = r.peak_closing[idx], gap = mod.code_gap[m];
+        for (std::size_t j = 0; j < X; ++j) {
+          const int hit = closing > xs[j] * gap;
+          hits[j] += hit, pair_hits[pair * X + j] += in_grid ? hit : 0;
+        }
       }
+      for (std::size_t j = 0; j < X; ++j) u[j].per_record[k / r.per_record].n += n, u[j].per_record[k / r.per_record].hits += hits[j];
     }
+    for (std::size_t j = 0; j < X; ++j)
+      for (std::size_t q = 0; q < P; ++q) u[j].per_pair[q].n += pair_n[q], u[j].per_pair[q].hits += pair_hits[q * X + j];
+  });
+  std::vector<UncoupledCounts> out(X, shape);
+  for (std::size_t j = 0; j < X; ++j) {
+    for (const auto& u : part)
+      for (std::size_t i = 0; i < shape.per_record.size(); ++i)
+        out[j].per_record[i].n += u[j].per_record[i].n, out[j].per_record[i].hits += u[j].per_record[i].hits;
+    for (const auto& u : part)
+      for (std::size_t i = 0; i < shape.per_pair.size(); ++i)
+        out[j].per_pair[i].n += u[j].per_pair[i].n, out[j].per_pair[i].hits += u[j].per_pair[i].hits;
+    for (const Count& c : out[j].per_record) out[j].total.n += c.n, out[j].total.hits += c.hits;
   }
-  for (const Count& c : u->per_record) u->total.n += c.n, u->total.hits += c.hits;
-  uncoupled_.emplace_back(x, u);
-  return *uncoupled_.back().second;
+  return out;
+}
+}  // namespace
+
+const UncoupledCounts& Data::uncoupled_counts(double x) const {
+  const auto cached = [&](double y) -> const UncoupledCounts* {
+    for (const auto& [ratio, counts] : uncoupled_)
+      if (ratio == y) return counts.get();
+    return nullptr;
+  };
+  if (const UncoupledCounts* u = cached(x)) return *u;
+  // x and every gap ratio of the study not counted yet, in one pass (the tables ask for each of them)
+  std::vector<double> xs{x};
+  for (double y : set.gap_ratios)
+    if (!cached(y) && std::find(xs.begin(), xs.end(), y) == xs.end()) xs.push_back(y);
+  std::vector<UncoupledCounts> counts = count_pass(*this, xs);
+  for (std::size_t j = 0; j < xs.size(); ++j) uncoupled_.emplace_back(xs[j], std::make_shared<UncoupledCounts>(std::move(counts[j])));
+  return *cached(x);
 }
 
 std::string pct(double p) { return std::isnan(p) ? "n/a" : fmt::format("{:.2f}%", p); }

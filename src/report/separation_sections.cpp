@@ -1,6 +1,7 @@
 // The report's answers about separation (issue 13): a pair study's separation in metres with its bootstrap
 // interval, the code rules in metres with the probability of pounding at each, and their CSV rows.
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <optional>
 
@@ -8,6 +9,7 @@
 
 #include "data.hpp"
 #include "pounding/analysis/stats.hpp"
+#include "pounding/core/parallel_for.hpp"
 
 namespace pounding::report_detail {
 
@@ -170,18 +172,27 @@ std::string grid_rules(const Data& r) {
 
 std::vector<GridRuleRow> grid_rule_rows(const Data& r) {
   std::vector<GridRuleRow> rows;
-  for (std::size_t m = 0; m < r.models(); ++m) {
-    const separation::DesignPair p = model_design_pair(r, m);
-    if (rows.empty())  // the rows' texts (and model 0's gaps) once; each model's gaps without them
-      for (const separation::Rule& rule : separation::code_rules(p, r.set.code_gap_coefficient))
-        rows.push_back({rule, 0, 0, NAN, {}});
-    const std::array<double, separation::code_rule_count> gaps = separation::code_rule_gaps(p);
-    for (std::size_t k = 0; k < r.records(); ++k) {
-      const std::size_t i = k * r.models() + m;
-      if (!r.ok(r.status[i])) continue;
-      for (std::size_t j = 0; j < gaps.size(); ++j) ++rows[j].n, rows[j].hits += r.peak_closing[i] > gaps[j];
+  const std::size_t M = r.models();
+  if (M == 0) return rows;
+  for (const separation::Rule& rule : separation::code_rules(model_design_pair(r, 0), r.set.code_gap_coefficient))
+    rows.push_back({rule, 0, 0, NAN, {}});  // the rows' texts once; each model's gaps without them
+  // blocks of models on every CPU, their integer counts added after (the same for any thread count)
+  using Counts = std::array<std::int64_t, 2 * separation::code_rule_count>;  // n, hits per rule
+  const int T = thread_count(0, M / 65536 + 1);
+  std::vector<Counts> part(static_cast<std::size_t>(T), Counts{});
+  parallel_blocks(part.size(), T, [&](std::size_t t, std::size_t) {
+    Counts& c = part[t];
+    for (std::size_t m = M * t / part.size(); m < M * (t + 1) / part.size(); ++m) {
+      const std::array<double, separation::code_rule_count> gaps = separation::code_rule_gaps(model_design_pair(r, m));
+      for (std::size_t k = 0; k < r.records(); ++k) {
+        const std::size_t i = k * M + m;
+        if (!r.ok(r.status[i])) continue;
+        for (std::size_t j = 0; j < gaps.size(); ++j) ++c[2 * j], c[2 * j + 1] += r.peak_closing[i] > gaps[j];
+      }
     }
-  }
+  });
+  for (const Counts& c : part)
+    for (std::size_t j = 0; j < rows.size(); ++j) rows[j].n += c[2 * j], rows[j].hits += c[2 * j + 1];
   for (GridRuleRow& row : rows) {
     row.probability = row.n ? static_cast<double>(row.hits) / static_cast<double>(row.n) : NAN;
     row.wilson = wilson_interval(row.hits, row.n);

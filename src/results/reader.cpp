@@ -1,5 +1,6 @@
 #include "pounding/results/reader.hpp"
 
+#include <algorithm>
 #include <stdexcept>
 #include <type_traits>
 
@@ -93,11 +94,22 @@ RecordTable read_records(h5::hid root) {
   return t;
 }
 
-ModelTable read_models(h5::hid root) {
+// With LoadExtent::report a column outside report_model_columns is probed (h5::read_doubles_if_constant): kept
+// when the same for every model, else left empty and named in `varying`.
+void read_model_column(h5::hid g, std::string_view name, std::vector<double>& v, LoadExtent extent, ModelTable& t) {
+  const std::string n(name);
+  const auto& keep = report_model_columns;
+  if (extent == LoadExtent::all || std::find(std::begin(keep), std::end(keep), name) != std::end(keep) || !h5::exists(g, n))
+    return read_opt(g, n.c_str(), v);
+  if (auto c = h5::read_doubles_if_constant(g, n)) v = std::move(*c);
+  else t.varying.push_back(n);
+}
+
+ModelTable read_models(h5::hid root, LoadExtent extent) {
   ModelTable t;
   if (!h5::exists(root, "models")) return t;
   auto g = h5::open_group(root, "models");
-  for (const auto& [name, member] : model_doubles) read_opt(g.get(), std::string(name).c_str(), t.*member);
+  for (const auto& [name, member] : model_doubles) read_model_column(g.get(), name, t.*member, extent, t);
   read_opt(g.get(), "i1", t.i1);
   read_opt(g.get(), "i2", t.i2);
   read_opt(g.get(), "sample", t.sample);
@@ -117,12 +129,12 @@ ModelTable read_models(h5::hid root) {
 }
 
 // /gaps, or (a format-1 file) the same table from the study's [gaps] ratios, or the impacts group's gap axis.
-GapTable read_gaps(h5::hid root, const Results& r) {
+GapTable read_gaps(h5::hid root, const Results& r, LoadExtent extent) {
   GapTable t;
   if (h5::exists(root, "gaps")) {
     auto g = h5::open_group(root, "gaps");
     read_opt(g.get(), "ratios", t.ratios);
-    read_opt(g.get(), "metres", t.metres);
+    if (extent == LoadExtent::all) read_opt(g.get(), "metres", t.metres);
     return t;
   }
   if (const SettingValue* v = r.settings.find("gaps", "ratios"); v && std::holds_alternative<std::vector<double>>(*v))
@@ -194,7 +206,7 @@ Header load_header(const std::string& path) {
   return read_header(f.get());
 }
 
-Results load(const std::string& path, std::span<const FieldSpec> extra) {
+Results load(const std::string& path, std::span<const FieldSpec> extra, LoadExtent extent) {
   Results r;
   r.path = path;
   auto f = h5::open_read(path);
@@ -202,7 +214,7 @@ Results load(const std::string& path, std::span<const FieldSpec> extra) {
   r.header = read_header(root);
   r.settings = read_settings(root);
   r.records = read_records(root);
-  r.models = read_models(root);
+  r.models = read_models(root, extent);
   std::vector<FieldSpec> specs(std::begin(unit_fields), std::end(unit_fields));
   specs.insert(specs.end(), std::begin(derived_fields), std::end(derived_fields));
   specs.push_back(restitution_field);  // [contact] restitution only (absent otherwise: skipped)
@@ -218,7 +230,7 @@ Results load(const std::string& path, std::span<const FieldSpec> extra) {
     specs.push_back(outside);
   }
   read_fields(root, specs, r);  // format 1 stored some flat, format 2 with their shape: the values are the same
-  r.gaps = read_gaps(root, r);
+  r.gaps = read_gaps(root, r, extent);
   if (h5::exists(root, "uncoupled")) {
     auto g = h5::open_group(root, "uncoupled");
     std::int64_t stripes = 0;

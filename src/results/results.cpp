@@ -97,6 +97,13 @@ std::vector<FieldSpec> system_fields(const Extents& system, bool with_gaps) {
   return s;
 }
 
+bool ModelTable::constant(std::vector<double> ModelTable::*column) const {
+  for (const auto& [name, member] : model_doubles)
+    if (member == column && std::find(varying.begin(), varying.end(), name) != varying.end()) return false;
+  const std::vector<double>& v = this->*column;
+  return std::all_of(v.begin(), v.end(), [&](double x) { return x == v.front(); });
+}
+
 std::size_t field_index(std::span<const FieldSpec> schema, std::string_view group, std::string_view name) {
   for (std::size_t k = 0; k < schema.size(); ++k)
     if (schema[k].group == group && schema[k].name == name) return k;

@@ -14,6 +14,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstdint>
 #include <numeric>
 #include <string>
@@ -158,6 +159,39 @@ TEST(Hdf5Chunks, TwoDimensionalWithAPartialLastChunk) {
   check_shape<std::uint8_t>({1100, 4000});  // 4.4 Mi values: chunks of 4 rows
   check_shape<double>({25, 30976});          // the paper study's peaks: a chunk per record row
   check_shape<double>({30976, 6});           // its gaps in metres: chunks of 2730 rows, the last one partial
+}
+
+// The reader takes the chunks in batches of 256 (read on one thread while the batch before is inflated): several
+// batches, the last one partial and ending in a partial chunk.
+TEST(Hdf5Chunks, ManyBatchesOfChunks) {
+  check_shape<std::uint8_t>({16384 * 530 + 11});
+  check_shape<double>({16384 * 260 + 5});
+}
+
+// h5::read_doubles_if_constant: the values when all equal the first (a compressed column read whole, a small one
+// contiguous), nullopt when one differs -- in the first chunk, the last chunk's last value, a NaN anywhere.
+TEST(Hdf5Chunks, ReadDoublesIfConstant) {
+  testdata::TempDir tmp("hdf5-constant");
+  const std::string path = tmp.file("constant.h5");
+  const std::size_t n = 16384 * 5 + 7;
+  const std::vector<double> same(n, 2.5);
+  std::vector<double> first = same, last = same, nan = same;
+  first[3] = 2.0, last.back() = 2.5000000000000004, nan[n / 2] = NAN;
+  const std::vector<double> small(100, -1.0);
+  {
+    h5::AtomicFile f(path);
+    for (const auto& [name, v] : {std::pair{"same", &same}, {"first", &first}, {"last", &last}, {"nan", &nan}, {"small", &small}})
+      h5::write_dataset(f.root(), name, std::span<const double>(*v));
+    f.commit();
+  }
+  h5::Handle file = h5::open_read(path);
+  const auto got = h5::read_doubles_if_constant(file.get(), "same");
+  ASSERT_TRUE(got.has_value());
+  EXPECT_EQ(*got, same);
+  for (const char* name : {"first", "last", "nan"}) EXPECT_FALSE(h5::read_doubles_if_constant(file.get(), name).has_value()) << name;
+  const auto s = h5::read_doubles_if_constant(file.get(), "small");
+  ASSERT_TRUE(s.has_value());
+  EXPECT_EQ(*s, small);
 }
 
 }  // namespace

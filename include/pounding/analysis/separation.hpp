@@ -52,6 +52,7 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <span>
 #include <string>
@@ -118,6 +119,11 @@ struct Prepared {
   double at(std::size_t i) const;                 // the pooled value of rank i < N
 };
 std::shared_ptr<const Prepared> prepare(const Demands& d, int threads = 2);
+// The same from a function that fills record k's ok demands (no NaN, in model order, as Demands::record), called
+// on the threads: a caller holding the analyses in another layout (the report: peaks, status, code gaps) ranks them
+// without a copy of every demand first (800 MB at 10^8 analyses).
+using RecordDemands = std::function<void(std::size_t record, std::vector<double>& values)>;
+std::shared_ptr<const Prepared> prepare(std::size_t records, const RecordDemands& record, int threads = 2);
 
 // Separations at `targets` (fractions) and probabilities at `gaps`, each with its two-stage interval. With
 // replicates = 0 the intervals are the values themselves. A stop through s.hook throws Cancelled.

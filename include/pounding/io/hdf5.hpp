@@ -3,6 +3,7 @@
 // The only module that includes <hdf5.h>. Files are readable with h5py.
 #include <cstdint>
 #include <span>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -80,6 +81,10 @@ void write_attribute(hid obj, const std::string& name, std::span<const double> v
 void write_attribute(hid obj, const std::string& name, const std::vector<std::string>& values);
 
 std::vector<double> read_doubles(hid group, const std::string& name);
+// A dataset of doubles when every value equals (==) the first, else nullopt (and nothing more read than needed: a
+// compressed dataset chunk by chunk, stopping at the first chunk with another value). A reader that only needs to
+// know whether a column varies (results::LoadExtent::report) skips inflating it.
+std::optional<std::vector<double>> read_doubles_if_constant(hid group, const std::string& name);
 std::vector<std::int64_t> read_int64(hid group, const std::string& name);
 std::vector<std::int32_t> read_int32(hid group, const std::string& name);
 std::vector<std::uint8_t> read_uint8(hid group, const std::string& name);

@@ -98,7 +98,13 @@ struct ModelTable {
   std::vector<double> periods;            // building 1's grid (files before periods1/periods2: the one grid)
   std::vector<double> periods1, periods2;  // the buildings' grids (a period distribution: one slot, its median)
   double zeta = 0.05;
+  // Columns left empty because their values differ from model to model and the reader was asked only that
+  // (results::LoadExtent::report): their names.
+  std::vector<std::string> varying;
   std::size_t size() const { return T1.size(); }
+  // Whether every model has the same value in `column`: false when it is listed in `varying`, else from its values
+  // (an empty column: true).
+  bool constant(std::vector<double> ModelTable::*column) const;
 };
 
 // The double datasets of /models, in the file's order: the writer and the reader share this list.

@@ -262,7 +262,7 @@ void add_report(CLI::App& app) {
       files::write_text_atomically(o->html, text);
       return;
     }
-    const results::Results r = results::load(o->paths.front());
+    const results::Results r = results::load(o->paths.front(), {}, results::LoadExtent::report);
     fmt::print("{}", o->csv ? report_csv(r) : report_markdown(r));
   });
 }
