@@ -133,6 +133,7 @@ CheckpointScan scan_snapshot(const std::string& path, const CheckpointKey& key, 
   }
   s.units_total = n;
   s.units_done = snap.units_done();
+  s.same_text = h == key.study_hash;
   s.kind = h != key.study_hash || n != key.units ? CheckpointScan::Kind::other_study
            : bh == key.build_hash               ? CheckpointScan::Kind::ours
                                                 : CheckpointScan::Kind::other_build;
@@ -279,6 +280,7 @@ CheckpointScan scan_checkpoint(const std::string& path_, const CheckpointKey& ke
   }
   s.units_total = n;
   s.format = 4;
+  s.same_text = h == key.study_hash;
   if (h != key.study_hash || n != key.units) {
     s.kind = CheckpointScan::Kind::other_study;
   } else {
@@ -473,6 +475,12 @@ void refuse_resume(const CheckpointScan& s, const Checkpoint& ckpt, const Checkp
                                    s.build, key.build),
                        p, "resume with the build that started the run, or rerun with --force to start afresh");
     case K::other_study:
+      if (s.same_text)  // e.g. written before the impacts scene's default batch became 64 (study.hpp default_batch)
+        throw InputError(fmt::format("the checkpoint cuts this study into {} work units and this run into {}: it was "
+                                     "written with another [analysis] batch (before 2026-11-27 the impacts scene's "
+                                     "default was 256, now 64)",
+                                     human(s.units_total), human(key.units)),
+                         p, "finish it with the build that started the run, or rerun with --force to start afresh");
       throw InputError("the checkpoint belongs to a different study (study text, records or program format changed)", p,
                        "resume with the study file that started the run, or run with --force to start afresh");
     case K::old_format:
