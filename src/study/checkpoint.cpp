@@ -417,7 +417,7 @@ void Checkpoint::sync() {
 namespace {
 
 // A fresh run (no --resume) that would discard progress, or a file it must not overwrite, without --force.
-void refuse_fresh(const CheckpointScan& s, const std::string& p, bool snapshots) {
+void refuse_fresh(const CheckpointScan& s, const std::string& p, bool snapshots, std::uint64_t units) {
   using K = CheckpointScan::Kind;
   const std::string discard = " or --force to discard it";
   switch (s.kind) {
@@ -435,6 +435,11 @@ void refuse_fresh(const CheckpointScan& s, const std::string& p, bool snapshots)
                          p, "rerun with that build and --resume to continue" + discard);
       break;
     case K::other_study:
+      if (s.same_text)  // this study cut into other units: another batch (study.hpp default_batch)
+        throw InputError(fmt::format("checkpoint {} holds {} units of this study cut into {} units, this run into {} "
+                                     "(another [analysis] batch)",
+                                     p, human(s.units_done), human(s.units_total), human(units)),
+                         p, "give another --out, finish it with the build that started it" + discard);
       throw InputError(fmt::format("checkpoint {} holds {} units of a different study{}", p, human(s.units_done),
                                    s.format == 5 && !snapshots ? " (reductions only: [outputs] per_model = false)" : ""),
                        p, "give another --out, resume that study" + discard);
@@ -504,7 +509,7 @@ std::uint64_t open_for_run(Checkpoint& ckpt, const CheckpointKey& key, bool resu
     throw InputError("--resume and --force contradict each other", "--resume --force",
                      "give --resume to continue the checkpoint or --force to discard it");
   if (!resume) {
-    if (!force) refuse_fresh(ckpt.scan(key), p, ckpt.snapshots());
+    if (!force) refuse_fresh(ckpt.scan(key), p, ckpt.snapshots(), key.units);
     ckpt.start(key);
     return 0;
   }

@@ -121,6 +121,18 @@ TEST(Checkpoint, RefusesToDiscardProgressWithoutForce) {
     Checkpoint c(p);
     EXPECT_THROW(open_for_run(c, key(99, 3025), false, false, {}), InputError);  // another study's progress too
   }
+  {
+    Checkpoint c(p);  // this study cut into other units (another batch, e.g. the impacts scene's default 256 -> 64)
+    try {
+      open_for_run(c, key(11, 12100), false, false, {});
+      FAIL() << "a fresh run discarded another batch's progress";
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.what()).find("holds 812 units of this study cut into 3,025 units, this run into 12,100 "
+                                           "(another [analysis] batch)"),
+                std::string::npos)
+          << e.what();
+    }
+  }
   EXPECT_EQ(fs::file_size(p), size);
   Checkpoint c(p);
   EXPECT_EQ(open_for_run(c, key(11, 3025), false, true, {}), 0u);  // --force

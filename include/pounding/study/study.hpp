@@ -102,15 +102,15 @@ inline constexpr EnumName<Scene> scene_names[] = {
     {Scene::probability, "probability"}, {Scene::impacts, "impacts"}, {Scene::automatic, "auto"}};
 constexpr const auto& enum_names(Scene) { return scene_names; }  // to_string(Scene), enum_names.hpp
 
-// [analysis] coarse: LaneStatus::coarse analyses excluded from the statistics (like diverged) or kept (counted).
 // [analysis] batch when the study gives none: models per work unit (a unit is one record x one period pair x one
 // block of `batch` models). The impacts scene's unit (an uncoupled run, then coupled runs at every gap ratio at
 // h <= 2.5 ms) costs about 4.6x the probability scene's (8.98 against 1.95 ms at 256 on the device machine, README
 // "Speed"), so at 256 its paper-sized study has too few units for 1,000 ranks (3,025: 4 waves, at most 75.6 %
-// efficient; 64 gives 12,100 and 93.1 %, tools/predict_scaling.py) and loses nothing measurable at 2 ranks; the
-// probability scene's short units lost 10-15 % at 64, so it keeps 256. Results do not depend on the batch.
+// efficient; 64 gives 12,100 and 93.1 %, tools/predict_scaling.py) at ~4 % more time per model on 2 ranks (README);
+// the probability scene's short units lost 10-15 % at 64, so it keeps 256. Results do not depend on the batch.
 constexpr int default_batch(Scene scene) { return scene == Scene::impacts ? 64 : 256; }
 
+// [analysis] coarse: LaneStatus::coarse analyses excluded from the statistics (like diverged) or kept (counted).
 enum class CoarsePolicy : std::uint8_t { exclude, keep };
 inline constexpr EnumName<CoarsePolicy> coarse_policy_names[] = {{CoarsePolicy::exclude, "exclude"},
                                                                  {CoarsePolicy::keep, "keep"}};
