@@ -607,8 +607,11 @@ constexpr StudyKey keys[] = {
     {"analysis", "substeps", "integer", "1", "", "[1, 10000]", "Integration steps per record step.", 1, 10000},
     {"analysis", "max_dt", "number", "0.0025 in the impacts scene, 0 in the probability scene", "s", "[0, 1] (0: no cap)",
      "Largest integration step (docs/accuracy.md: 2.5 ms gives 1 % peak forces).", 0.0, 1.0},
-    {"analysis", "batch", "integer", "256", "", "[1, 65536]",
-     "Models integrated together (results do not depend on it).", 1, 65536},
+    {"analysis", "batch", "integer", "64 in the impacts scene, 256 in the probability scene", "", "[1, 65536]",
+     "Models integrated together, and the models of one work unit (one record x one period pair x one block of "
+     "batch models). The impacts scene's units are ~4.6x longer, so its default cuts the paper study into 12,100 "
+     "units instead of 3,025, enough for 1,000 ranks (docs/cluster.md). Results do not depend on it; the value used "
+     "is stored in /settings.", 1, 65536},
     {"analysis", "threads", "integer", "0", "", "[0, 1024] (0: automatic)",
      "Worker threads per rank, each computing its own units. 0: the CPUs this process may run on (its affinity "
      "mask) when the job is one rank, 1 per rank under mpirun with several ranks (nothing oversubscribes); a "

@@ -133,6 +133,7 @@ CheckpointScan scan_snapshot(const std::string& path, const CheckpointKey& key, 
   }
   s.units_total = n;
   s.units_done = snap.units_done();
+  s.same_text = h == key.study_hash;
   s.kind = h != key.study_hash || n != key.units ? CheckpointScan::Kind::other_study
            : bh == key.build_hash               ? CheckpointScan::Kind::ours
                                                 : CheckpointScan::Kind::other_build;
@@ -279,6 +280,7 @@ CheckpointScan scan_checkpoint(const std::string& path_, const CheckpointKey& ke
   }
   s.units_total = n;
   s.format = 4;
+  s.same_text = h == key.study_hash;
   if (h != key.study_hash || n != key.units) {
     s.kind = CheckpointScan::Kind::other_study;
   } else {
@@ -415,7 +417,7 @@ void Checkpoint::sync() {
 namespace {
 
 // A fresh run (no --resume) that would discard progress, or a file it must not overwrite, without --force.
-void refuse_fresh(const CheckpointScan& s, const std::string& p, bool snapshots) {
+void refuse_fresh(const CheckpointScan& s, const std::string& p, bool snapshots, std::uint64_t units) {
   using K = CheckpointScan::Kind;
   const std::string discard = " or --force to discard it";
   switch (s.kind) {
@@ -433,6 +435,11 @@ void refuse_fresh(const CheckpointScan& s, const std::string& p, bool snapshots)
                          p, "rerun with that build and --resume to continue" + discard);
       break;
     case K::other_study:
+      if (s.same_text)  // this study cut into other units: another batch (study.hpp default_batch)
+        throw InputError(fmt::format("checkpoint {} holds {} units of this study cut into {} units, this run into {} "
+                                     "(another [analysis] batch)",
+                                     p, human(s.units_done), human(s.units_total), human(units)),
+                         p, "give another --out, finish it with the build that started it" + discard);
       throw InputError(fmt::format("checkpoint {} holds {} units of a different study{}", p, human(s.units_done),
                                    s.format == 5 && !snapshots ? " (reductions only: [outputs] per_model = false)" : ""),
                        p, "give another --out, resume that study" + discard);
@@ -473,6 +480,12 @@ void refuse_resume(const CheckpointScan& s, const Checkpoint& ckpt, const Checkp
                                    s.build, key.build),
                        p, "resume with the build that started the run, or rerun with --force to start afresh");
     case K::other_study:
+      if (s.same_text)  // e.g. written before the impacts scene's default batch became 64 (study.hpp default_batch)
+        throw InputError(fmt::format("the checkpoint cuts this study into {} work units and this run into {}: it was "
+                                     "written with another [analysis] batch (before 2026-11-27 the impacts scene's "
+                                     "default was 256, now 64)",
+                                     human(s.units_total), human(key.units)),
+                         p, "finish it with the build that started the run, or rerun with --force to start afresh");
       throw InputError("the checkpoint belongs to a different study (study text, records or program format changed)", p,
                        "resume with the study file that started the run, or run with --force to start afresh");
     case K::old_format:
@@ -496,7 +509,7 @@ std::uint64_t open_for_run(Checkpoint& ckpt, const CheckpointKey& key, bool resu
     throw InputError("--resume and --force contradict each other", "--resume --force",
                      "give --resume to continue the checkpoint or --force to discard it");
   if (!resume) {
-    if (!force) refuse_fresh(ckpt.scan(key), p, ckpt.snapshots());
+    if (!force) refuse_fresh(ckpt.scan(key), p, ckpt.snapshots(), key.units);
     ckpt.start(key);
     return 0;
   }

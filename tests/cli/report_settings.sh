@@ -66,3 +66,17 @@ grep -q "d = 0.008 (h1 + h2)" "$tmp/b.md" && grep -q "300 replicates, 90 %" "$tm
 "$bin" report "$tmp/old.h5" > "$tmp/c.md"
 diff <(grep -v '^- results:' "$tmp/a.md") <(grep -v '^- results:' "$tmp/c.md") || { echo "FAIL: the older layout reports differently"; exit 1; }
 echo "report identical from /settings, without study text, and from the older layout"
+
+# /settings holds the batch the run used: the scene's default when the study gives none (impacts 64, probability 256,
+# auto as the scene it resolves to: study.hpp default_batch), the study's own otherwise (16 above)
+batch_of() {  # batch_of <scene> [analysis line]: the stored [analysis] batch of a run of the study above
+  sed -e "s/^scene = .*/scene = \"$1\"/" -e "s/^batch = 16$/${2:-}/" "$tmp/s.toml" > "$tmp/d.toml"
+  "$bin" run "$tmp/d.toml" --out "$tmp/d.h5" --quiet --force > /dev/null 2>&1 || { echo "FAIL: scene $1 did not run"; exit 1; }
+  /usr/bin/python3 -c "import h5py, sys; print(int(h5py.File(sys.argv[1])['settings/analysis'].attrs['batch']))" "$tmp/d.h5"
+}
+for want in "impacts  64" "auto 64" "probability 256" "impacts 32 batch = 32" "probability 8 batch = 8"; do
+  set -- $want; scene=$1 batch=$2; shift 2
+  got=$(batch_of "$scene" "$*")
+  [ "$got" = "$batch" ] || { echo "FAIL: scene $scene ${*:-without batch}: /settings says batch $got, want $batch"; exit 1; }
+done
+echo "/settings holds the batch used: impacts 64, auto (impacts) 64, probability 256 by default; a given batch as is"

@@ -121,6 +121,18 @@ TEST(Checkpoint, RefusesToDiscardProgressWithoutForce) {
     Checkpoint c(p);
     EXPECT_THROW(open_for_run(c, key(99, 3025), false, false, {}), InputError);  // another study's progress too
   }
+  {
+    Checkpoint c(p);  // this study cut into other units (another batch, e.g. the impacts scene's default 256 -> 64)
+    try {
+      open_for_run(c, key(11, 12100), false, false, {});
+      FAIL() << "a fresh run discarded another batch's progress";
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.what()).find("holds 812 units of this study cut into 3,025 units, this run into 12,100 "
+                                           "(another [analysis] batch)"),
+                std::string::npos)
+          << e.what();
+    }
+  }
   EXPECT_EQ(fs::file_size(p), size);
   Checkpoint c(p);
   EXPECT_EQ(open_for_run(c, key(11, 3025), false, true, {}), 0u);  // --force
@@ -145,7 +157,10 @@ TEST(Checkpoint, ResumeRefusesOtherStudyOtherBuildNothingAndOldFormat) {
     return std::string("accepted");
   };
   EXPECT_NE(message(key(12)).find("different study"), std::string::npos);
-  EXPECT_NE(message(key(11, 101)).find("different study"), std::string::npos);
+  // the same study text cut into other units: another batch (the impacts scene's default changed from 256 to 64)
+  const std::string recut = message(key(11, 101));
+  EXPECT_NE(recut.find("cuts this study into 100 work units and this run into 101"), std::string::npos) << recut;
+  EXPECT_NE(recut.find("[analysis] batch"), std::string::npos) << recut;
   const std::string other_build = message(key(11, 100, 6));
   EXPECT_NE(other_build.find("different build"), std::string::npos) << other_build;
   EXPECT_NE(other_build.find("test build 5"), std::string::npos) << other_build;  // names the writer's build

@@ -6,7 +6,8 @@
 // The clock starts at the process's start (program_start(): main() calls it first), so the wall time covers MPI
 // start-up, reading the study and records, the units, the analysis and the report -- everything the user waits
 // for. Phases are not exclusive: `units` is the work phase's wall time and `compute`, `reduce`, `checkpoint` are
-// the parts of it spent computing units, storing the workers' results (rank 0) and writing the checkpoint (rank 0);
+// the parts of it spent computing units, storing results and writing each rank's own checkpoint file (unit records
+// appended, or with [outputs] per_model = false snapshots of the folded counts);
 // `bootstrap` is the part of `report` spent in the separation bootstrap.
 #include <array>
 #include <chrono>
@@ -29,8 +30,11 @@ inline constexpr std::array<std::string_view, phase_count> phase_meanings{
     "the work phase: every unit computed, gathered and checkpointed (wall time)",
     "computing units on this rank (inside units), summed over the rank's worker threads: with T busy threads about "
     "T times units",
-    "storing the units' results in the tally (rank 0, inside units)",
-    "appending and flushing the checkpoint (rank 0, inside units)",
+    "storing the units' results (inside units): rank 0 the units it computed, in the result arrays; with [outputs] "
+    "per_model = false every rank folds its own units into its reductions",
+    "writing this rank's checkpoint file (inside units): with per-model outputs appending each unit it computed and "
+    "flushing every 5 s and at the end; with [outputs] per_model = false saving a snapshot of its folded counts "
+    "every 5 s and at the end",
     "the analyses after the units (a fragility study's fit, hazard; rank 0)",
     "the Markdown report that pounding run prints (rank 0; the results file's bulk is written beside it on another "
     "thread)",

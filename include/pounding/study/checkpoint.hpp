@@ -60,6 +60,7 @@ struct CheckpointScan {
   std::string stopped_at;         // why the scan stopped before the end ("" at the end): a bad checksum, ...
   std::string build;              // the writer's build description
   int format = 0;                 // the file's format (1, 2, 3: older; 4: unit records; 5: a snapshot), 0 when unknown
+  bool same_text = false;         // other_study with the study text, records and format of the key: the unit count differs
 };
 
 class Checkpoint {

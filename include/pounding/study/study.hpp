@@ -35,7 +35,8 @@
 //                "m/s", valid = [vmin, vmax]} (e(v0) at each impact instead of e: SDOF pairs, hertzdamp, central
 //                difference, the impacts scene; impacts outside the valid range counted: impacts/restitution_outside)
 //   [analysis]   stepper = "central-difference"; substeps = 1; max_dt = <s; 0: no cap; default 0.0025 in the impacts
-//                scene (cheapest step with 1 % peak force, docs/accuracy.md), 0 in the probability scene>; batch = 256; free_vibration = 0.0 (s);
+//                scene (cheapest step with 1 % peak force, docs/accuracy.md), 0 in the probability scene>; batch = <64 in
+//                the impacts scene, 256 in the probability scene (default_batch)>; free_vibration = 0.0 (s);
 //                displacement_limit = 10.0 (m); skip_untouched = true (impacts scene: pairs whose uncoupled
 //                peak closing stays below the gap are not rerun with contact; their results are identical);
 //                scale_elastic = true (multiple stripes: a model whose buildings stay elastic -- peak |u| below fy / k at
@@ -100,6 +101,14 @@ enum class Scene : std::uint8_t { probability, impacts, automatic };
 inline constexpr EnumName<Scene> scene_names[] = {
     {Scene::probability, "probability"}, {Scene::impacts, "impacts"}, {Scene::automatic, "auto"}};
 constexpr const auto& enum_names(Scene) { return scene_names; }  // to_string(Scene), enum_names.hpp
+
+// [analysis] batch when the study gives none: models per work unit (a unit is one record x one period pair x one
+// block of `batch` models). The impacts scene's unit (an uncoupled run, then coupled runs at every gap ratio at
+// h <= 2.5 ms) costs about 4.6x the probability scene's (8.98 against 1.95 ms at 256 on the device machine, README
+// "Speed"), so at 256 its paper-sized study has too few units for 1,000 ranks (3,025: 4 waves, at most 75.6 %
+// efficient; 64 gives 12,100 and 93.1 %, tools/predict_scaling.py) at ~4 % more time per model on 2 ranks (README);
+// the probability scene's short units lost 10-15 % at 64, so it keeps 256. Results do not depend on the batch.
+constexpr int default_batch(Scene scene) { return scene == Scene::impacts ? 64 : 256; }
 
 // [analysis] coarse: LaneStatus::coarse analyses excluded from the statistics (like diverged) or kept (counted).
 enum class CoarsePolicy : std::uint8_t { exclude, keep };
@@ -187,7 +196,7 @@ struct Study {
   Stepper stepper = Stepper::central_difference;
   int substeps = 1;
   double max_dt = 0.0;  // step cap (s): substeps = max(substeps, ceil(dt / max_dt)); default 2.5 ms (impacts), 0 (probability)
-  int batch = 256;
+  int batch = 256;  // [analysis] batch: the study's, or default_batch(scene) when not given (read as 0 until choose_scene)
   // [analysis] threads: worker threads per rank (0: the CPUs of the affinity mask on one rank, 1 per rank under
   // mpirun with several ranks); how the work runs, not what it computes: not in /settings, the results' bits do
   // not depend on it (pounding run --threads overrides it)
