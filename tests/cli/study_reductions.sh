@@ -216,6 +216,7 @@ rc=0; "$bin" run "$tmp/mem.toml" --out "$tmp/mem.h5" --quiet > /dev/null 2> "$tm
 { [ "$rc" -eq 2 ] && grep -q "per_model = false" "$tmp/mem.err"; } \
   && echo "ok   per_model = true refused on 2 GiB: $(cat "$tmp/mem.err")" || fail "per_model = true: exit $rc: $(cat "$tmp/mem.err")"
 mem false
+: > "$tmp/mem.err"  # emptied before the fork: the loop below must not read the refusal above (faults/run_fit_stop.sh)
 "$bin" run "$tmp/mem.toml" --out "$tmp/mem.h5" --threads 1 > /dev/null 2> "$tmp/mem.err" &
 pid=$!
 for _ in $(seq 1 400); do [ -f "$tmp/mem.h5.ckpt" ] && break; grep -q ERROR "$tmp/mem.err" && break; sleep 0.05; done

@@ -64,6 +64,10 @@ stop_in_fit() {  # stop_in_fit <label> <signal> <seconds> <out> <args...>: runs 
   local label=$1 sig=$2 limit=$3 out=$4; shift 4
   local want=130; [ "$sig" = TERM ] && want=143  # SIGTERM (a batch system's time limit) has its own code
   rm -f "$tmp/$out" "$tmp/$out.ckpt"
+  # emptied here, not only by the child's redirection: the child opens it after the fork, and until then wait_fit
+  # would read the previous run's "progress: fit:" and signal a process that has not yet installed its handlers
+  # (a background job of a script starts with SIGINT ignored: the run then finished with exit 0, 2 of 4 under load)
+  : > "$tmp/err"
   "$@" > "$tmp/stdout" 2> "$tmp/err" &
   local pid=$!
   if ! wait_fit "$tmp/err" "$pid"; then fail "$label: no 'progress: fit:' line within 60 s"; cat "$tmp/err"; kill -9 "$pid" 2> /dev/null; return 0; fi
@@ -97,6 +101,7 @@ if command -v mpirun > /dev/null; then
   # SIGTERM to mpirun itself: the ranks stop the same way (checkpoint kept, no results), but Open MPI's mpirun exits
   # 1 when it is signalled, whatever its ranks return (README, "Failure behaviour")
   rm -f "$tmp/e.h5" "$tmp/e.h5.ckpt"
+  : > "$tmp/err"  # see stop_in_fit
   timeout 120 mpirun --oversubscribe -np 2 "$bin" run "$tmp/long.toml" --out "$tmp/e.h5" > /dev/null 2> "$tmp/err" &
   pid=$!
   if wait_fit "$tmp/err" "$pid"; then
@@ -110,6 +115,7 @@ if command -v mpirun > /dev/null; then
   # SIGTERM to every rank but not to mpirun, as Slurm's srun / a time limit delivers it to each task: every rank
   # exits 143 (issue 27.6), and so does mpirun, which passes its ranks' code on
   rm -f "$tmp/f.h5" "$tmp/f.h5.ckpt"
+  : > "$tmp/err"  # see stop_in_fit
   timeout 120 mpirun --oversubscribe -np 2 "$bin" run "$tmp/long.toml" --out "$tmp/f.h5" > /dev/null 2> "$tmp/err" &
   pid=$!
   if wait_fit "$tmp/err" "$pid"; then
