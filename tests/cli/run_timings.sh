@@ -55,7 +55,8 @@ assert shown == f"{wall:.2f}", (shown, wall)
 inside = sum(t[p] for p in ("mpi_start", "inputs", "structures", "units", "analysis", "report"))
 assert inside <= wall + 1e-6, (inside, wall)
 assert t["bootstrap"] <= t["report"] and t["compute"] <= t["units"] + 1e-6, t
-assert wall <= took and printed >= wall and printed <= took, (wall, printed, took)
+# printed: the timing line's wall to 2 decimals (it adds the results write, which can be under 5 ms)
+assert wall <= took and printed + 0.005 >= wall and printed - 0.005 <= took, (wall, printed, took)
 assert all(m[p] >= t[p] for p in names), (t, m)
 assert t["report"] > 0 and t["units"] > 0 and m["compute"] > 0, t
 if ranks > 1:
