@@ -653,12 +653,16 @@ constexpr StudyKey keys[] = {
     {"outputs", "forces", "boolean", "true", "", "true | false", "Peak impact forces (impacts scene)."},
     {"outputs", "amplification", "boolean", "true", "", "true | false",
      "Amplification of the peak displacement by pounding (impacts scene)."},
-    {"outputs", "per_model", "boolean", "true", "", "true | false",
+    {"outputs", "per_model", "boolean or \"stream\"", "true", "", "true | false | \"stream\"",
      "false: keep only the reductions (per record and gap ratio the hit counts, per period pair the maps, the gap "
      "curve, per record a histogram of peak closing / code gap on a log grid of 200 bins per decade) instead of every "
      "model's peaks, so memory does not grow with the models (docs/results-format.md /reductions). Probability scene "
      "of an SDOF pair or grid study only; the report's tables are exact, its separation advice is read from the "
-     "histograms."},
+     "histograms. \"stream\": every model's peaks as with true, but rank 0 keeps only the reductions while the units "
+     "run and writes the per-model datasets from the checkpoint afterwards, chunk by chunk, into an on-disk temporary "
+     "renamed into place: memory grows with the models per record, not with records x models (README, \"Memory\"); "
+     "the file's datasets equal those of true, bit for bit; the run's report is the reductions' report (same "
+     "restrictions as false), `pounding report` on the file gives the full one."},
 
     // ---------------------------------------------------------------- [intensity]
     {"intensity", "measure", "string", "\"Sa\"", "", "\"PGA\" | \"PGV\" | \"Sa\" | \"Sa_avg\"",

@@ -197,36 +197,27 @@ void check_replaceable(const std::string& path, const std::string& where) {
                    where.empty() ? path : where, "give the path of a new or ordinary file");
 }
 
-void write_atomically(const std::string& given, std::span<const std::byte> bytes) {
+std::string replace_target(const std::string& given) {
   check_replaceable(given, "");
   // a link to a regular file: replace the file it names (beside it), and keep the link
-  std::string path = given;
   struct stat lst {};
   if (::lstat(given.c_str(), &lst) == 0 && S_ISLNK(lst.st_mode)) {
     std::error_code ec;
     const fs::path target = fs::canonical(given, ec);
-    if (!ec) path = target.string();
+    if (!ec) return target.string();
   }
-  const std::string tmp = fmt::format("{}.tmp{}", path, static_cast<long>(getpid()));
-  SignalHold hold;
-  int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
-  if (fd < 0) {
+  return given;
+}
+
+namespace {
+// fsync and close fd (the temporary `tmp` of `path`), rename it over path, fsync the folder; removes tmp on failure.
+void finish_temporary(int fd, const std::string& tmp, const std::string& path) {
+  if (::fsync(fd) != 0) {
     const int err = errno;
-    throw InputError(fmt::format("cannot create {}: {}", tmp, os_error(err)), path, fix_for(err));
-  }
-  auto fail = [&](int err, const char* step) {
     ::close(fd);
     ::unlink(tmp.c_str());
-    throw InputError(fmt::format("cannot write {} ({}): {}", path, step, os_error(err)), path, fix_for(err));
-  };
-  try {
-    write_all(fd, bytes.data(), bytes.size(), tmp);
-  } catch (const InputError& e) {
-    ::close(fd);
-    ::unlink(tmp.c_str());
-    throw InputError(fmt::format("{} (the temporary of {}, removed)", e.what_part(), path), path, e.fix());
+    throw InputError(fmt::format("cannot write {} (fsync): {}", path, os_error(err)), path, fix_for(err));
   }
-  if (::fsync(fd) != 0) fail(errno, "fsync");
   if (::close(fd) != 0) {
     const int err = errno;
     ::unlink(tmp.c_str());
@@ -243,6 +234,37 @@ void write_atomically(const std::string& given, std::span<const std::byte> bytes
     ::fsync(dfd);
     ::close(dfd);
   }
+}
+}  // namespace
+
+void commit_temporary(const std::string& tmp, const std::string& path) {
+  SignalHold hold;
+  int fd = ::open(tmp.c_str(), O_RDONLY | O_CLOEXEC);
+  if (fd < 0) {
+    const int err = errno;
+    ::unlink(tmp.c_str());
+    throw InputError(fmt::format("cannot open {}: {}", tmp, os_error(err)), path, fix_for(err));
+  }
+  finish_temporary(fd, tmp, path);
+}
+
+void write_atomically(const std::string& given, std::span<const std::byte> bytes) {
+  const std::string path = replace_target(given);
+  const std::string tmp = fmt::format("{}.tmp{}", path, static_cast<long>(getpid()));
+  SignalHold hold;
+  int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
+  if (fd < 0) {
+    const int err = errno;
+    throw InputError(fmt::format("cannot create {}: {}", tmp, os_error(err)), path, fix_for(err));
+  }
+  try {
+    write_all(fd, bytes.data(), bytes.size(), tmp);
+  } catch (const InputError& e) {
+    ::close(fd);
+    ::unlink(tmp.c_str());
+    throw InputError(fmt::format("{} (the temporary of {}, removed)", e.what_part(), path), path, e.fix());
+  }
+  finish_temporary(fd, tmp, path);
 }
 
 void write_text_atomically(const std::string& path, std::string_view text) {

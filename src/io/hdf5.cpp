@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <cerrno>
 #include <cstring>
 #include <filesystem>
 #include <future>
@@ -54,50 +55,99 @@ void shuffle_bytes(const Bytef* src, Bytef* dst, std::size_t bytes, std::size_t 
 // chunk's bytes, so a reader sees the same stream and the same values as when H5Dwrite ran the filters on one thread
 // (tests/results/test_hdf5_chunks.cpp compares the stored chunks with HDF5's own). The last chunk is padded with
 // zeros, the default fill value, as HDF5 pads it.
+// Chunk bytes [src, src + n) (n <= chunk_bytes: the last chunk is short) padded, shuffled and deflated into `out`;
+// returns zlib's status.
+int pack_chunk(const Bytef* src, std::size_t n, std::size_t chunk_bytes, std::size_t element, std::vector<Bytef>& padded,
+               std::vector<Bytef>& shuffled, std::vector<Bytef>& out) {
+  if (n < chunk_bytes) {
+    padded.assign(chunk_bytes, 0);
+    std::memcpy(padded.data(), src, n);
+    src = padded.data();
+  }
+  if (element > 1) {
+    shuffled.resize(chunk_bytes);
+    shuffle_bytes(src, shuffled.data(), chunk_bytes, element);
+    src = shuffled.data();
+  }
+  uLongf size = compressBound(static_cast<uLong>(chunk_bytes));
+  out.resize(size);
+  const int status = compress2(out.data(), &size, src, static_cast<uLong>(chunk_bytes), deflate_level);
+  out.resize(size);
+  return status;
+}
+
+struct ChunkRows {
+  std::size_t element, row_bytes, chunk_bytes, chunks, rows, chunk0;
+  ChunkRows(hid_t type, const std::string& name, std::span<const hsize_t> dims, hsize_t chunk0_)
+      : element(H5Tget_size(type)), rows(static_cast<std::size_t>(dims[0])), chunk0(static_cast<std::size_t>(chunk0_)) {
+    if (element == 0) throw std::runtime_error("HDF5 error: type size of " + name);
+    row_bytes = element;
+    for (std::size_t k = 1; k < dims.size(); ++k) row_bytes *= static_cast<std::size_t>(dims[k]);
+    chunk_bytes = chunk0 * row_bytes;
+    chunks = (rows + chunk0 - 1) / chunk0;
+  }
+  std::size_t rows_in(std::size_t c) const { return std::min(chunk0, rows - c * chunk0); }
+};
+
+void write_packed(hid_t ds, const std::string& name, std::size_t c, int status, std::size_t ndims, hsize_t chunk0,
+                  const std::vector<Bytef>& packed) {
+  if (status != Z_OK) throw std::runtime_error(fmt::format("zlib error {} compressing chunk {} of {}", status, c, name));
+  std::vector<hsize_t> offset(ndims, 0);
+  offset[0] = static_cast<hsize_t>(c) * chunk0;
+  check(H5Dwrite_chunk(ds, H5P_DEFAULT, 0, offset.data(), packed.size(), packed.data()),
+        fmt::format("write chunk {} of {}", c, name));
+}
+
 void write_chunks_deflated(hid_t ds, const std::string& name, const void* data, hid_t type,
                            std::span<const hsize_t> dims, hsize_t chunk0) {
-  const std::size_t element = H5Tget_size(type);
-  if (element == 0) throw std::runtime_error("HDF5 error: type size of " + name);
-  const hsize_t rows = dims[0];
-  std::size_t row_bytes = element;
-  for (std::size_t k = 1; k < dims.size(); ++k) row_bytes *= static_cast<std::size_t>(dims[k]);
-  const std::size_t chunk_bytes = static_cast<std::size_t>(chunk0) * row_bytes;
-  const std::size_t chunks = static_cast<std::size_t>((rows + chunk0 - 1) / chunk0);
-  std::vector<std::vector<Bytef>> packed(chunks);
-  std::vector<int> status(chunks, Z_OK);
-  parallel_blocks(chunks, thread_count(0, chunks), [&](std::size_t first, std::size_t last) {
-    std::vector<Bytef> padded, shuffled(element > 1 ? chunk_bytes : 0);
-    for (std::size_t c = first; c < last; ++c) {
-      const std::size_t r0 = c * static_cast<std::size_t>(chunk0);
-      const std::size_t n = std::min<std::size_t>(static_cast<std::size_t>(chunk0), static_cast<std::size_t>(rows) - r0);
-      const auto* src = static_cast<const Bytef*>(data) + r0 * row_bytes;
-      if (n * row_bytes < chunk_bytes) {
-        padded.assign(chunk_bytes, 0);
-        std::memcpy(padded.data(), src, n * row_bytes);
-        src = padded.data();
-      }
-      if (element > 1) {
-        shuffle_bytes(src, shuffled.data(), chunk_bytes, element);
-        src = shuffled.data();
-      }
-      uLongf size = compressBound(static_cast<uLong>(chunk_bytes));
-      packed[c].resize(size);
-      status[c] = compress2(packed[c].data(), &size, src, static_cast<uLong>(chunk_bytes), deflate_level);
-      packed[c].resize(size);
-    }
+  const ChunkRows g(type, name, dims, chunk0);
+  std::vector<std::vector<Bytef>> packed(g.chunks);
+  std::vector<int> status(g.chunks, Z_OK);
+  parallel_blocks(g.chunks, thread_count(0, g.chunks), [&](std::size_t first, std::size_t last) {
+    std::vector<Bytef> padded, shuffled;
+    for (std::size_t c = first; c < last; ++c)
+      status[c] = pack_chunk(static_cast<const Bytef*>(data) + c * g.chunk_bytes, g.rows_in(c) * g.row_bytes,
+                             g.chunk_bytes, g.element, padded, shuffled, packed[c]);
   });
-  std::vector<hsize_t> offset(dims.size(), 0);
-  for (std::size_t c = 0; c < chunks; ++c) {
-    if (status[c] != Z_OK)
-      throw std::runtime_error(fmt::format("zlib error {} compressing chunk {} of {}", status[c], c, name));
-    offset[0] = static_cast<hsize_t>(c) * chunk0;
-    check(H5Dwrite_chunk(ds, H5P_DEFAULT, 0, offset.data(), packed[c].size(), packed[c].data()),
-          fmt::format("write chunk {} of {}", c, name));
+  for (std::size_t c = 0; c < g.chunks; ++c) write_packed(ds, name, c, status[c], dims.size(), chunk0, packed[c]);
+}
+
+// The same chunks from a Fill, a window of them at a time (each thread fills, packs and keeps its chunks of the
+// window; they are written in chunk order): memory is the window's chunks, not the dataset.
+void write_chunks_filled(hid_t ds, const std::string& name, const Fill& fill, hid_t type, std::span<const hsize_t> dims,
+                         hsize_t chunk0) {
+  const ChunkRows g(type, name, dims, chunk0);
+  const std::size_t values_per_row = g.row_bytes / g.element;
+  const std::size_t threads = static_cast<std::size_t>(thread_count(0, g.chunks));
+  const std::size_t window = std::max<std::size_t>(threads, (std::size_t{64} << 20) / std::max<std::size_t>(1, g.chunk_bytes));
+  std::vector<std::vector<Bytef>> packed(std::min(window, g.chunks));
+  std::vector<int> status(packed.size(), Z_OK);
+  for (std::size_t w0 = 0; w0 < g.chunks; w0 += window) {
+    const std::size_t n = std::min(window, g.chunks - w0);
+    std::vector<std::exception_ptr> errors(n);
+    parallel_blocks(n, thread_count(static_cast<int>(threads), n), [&](std::size_t first, std::size_t last) {
+      std::vector<Bytef> raw(g.chunk_bytes), padded, shuffled;
+      for (std::size_t k = first; k < last; ++k) {
+        const std::size_t c = w0 + k, rows = g.rows_in(c);
+        try {
+          fill(c * g.chunk0 * values_per_row, rows * values_per_row, raw.data());
+        } catch (...) {
+          errors[k] = std::current_exception();
+          continue;
+        }
+        status[k] = pack_chunk(raw.data(), rows * g.row_bytes, g.chunk_bytes, g.element, padded, shuffled, packed[k]);
+      }
+    });
+    for (std::size_t k = 0; k < n; ++k) {
+      if (errors[k]) std::rethrow_exception(errors[k]);
+      write_packed(ds, name, w0 + k, status[k], dims.size(), chunk0, packed[k]);
+    }
   }
 }
 
-template <class T>
-void write_nd(hid group, const std::string& name, const T* data, hid_t type, std::span<const hsize_t> dims) {
+// write_nd's dataset creation: compressed and chunked along the first dimension (chunks of about chunk_values
+// values) from 4096 values, else contiguous; returns the dataset and chunk[0] (0: contiguous).
+std::pair<Handle, hsize_t> create_nd(hid group, const std::string& name, hid_t type, std::span<const hsize_t> dims) {
   Handle space(checked(H5Screate_simple(static_cast<int>(dims.size()), dims.data(), nullptr), "dataspace " + name));
   Handle plist(checked(H5Pcreate(H5P_DATASET_CREATE), "plist"));
   hsize_t total = 1;
@@ -113,7 +163,15 @@ void write_nd(hid group, const std::string& name, const T* data, hid_t type, std
   }
   Handle ds(checked(H5Dcreate2(group, name.c_str(), type, space.get(), H5P_DEFAULT, plist.get(), H5P_DEFAULT),
                     "create dataset " + name));
-  if (compressed) write_chunks_deflated(ds.get(), name, data, type, dims, chunk[0]);
+  return {std::move(ds), compressed ? chunk[0] : 0};
+}
+
+template <class T>
+void write_nd(hid group, const std::string& name, const T* data, hid_t type, std::span<const hsize_t> dims) {
+  const auto [ds, chunk0] = create_nd(group, name, type, dims);
+  hsize_t total = 1;
+  for (auto d : dims) total *= d;
+  if (chunk0) write_chunks_deflated(ds.get(), name, data, type, dims, chunk0);
   else if (total > 0) check(H5Dwrite(ds.get(), type, H5S_ALL, H5S_ALL, H5P_DEFAULT, data), "write " + name);
 }
 
@@ -339,10 +397,22 @@ Handle::~Handle() {
   id_ = -1;
 }
 
-AtomicFile::AtomicFile(std::string path) : path_(std::move(path)) {
+AtomicFile::AtomicFile(std::string path, Storage storage) : path_(std::move(path)) {
+  H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
+  if (storage == Storage::disk) {
+    path_ = files::replace_target(path_);
+    temporary_ = fmt::format("{}.tmp{}", path_, static_cast<long>(getpid()));
+    hid_t f = H5Fcreate(temporary_.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
+    if (f < 0) {
+      ::unlink(temporary_.c_str());
+      throw InputError(fmt::format("cannot create the results file's temporary {}", temporary_), path_,
+                       "check that the folder is writable and has space");
+    }
+    file_ = Handle(f);
+    return;
+  }
   // Built in memory (core driver, no backing store) and written by files::write_atomically on commit():
   // HDF5 never touches the disk, so a full disk is one clean OS error and never a half-closed HDF5 file.
-  H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
   Handle fapl(checked(H5Pcreate(H5P_FILE_ACCESS), "file access plist"));
   check(H5Pset_fapl_core(fapl.get(), 1 << 20, 0), "core driver");
   hid_t f = H5Fcreate(path_.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, fapl.get());
@@ -350,9 +420,24 @@ AtomicFile::AtomicFile(std::string path) : path_(std::move(path)) {
   file_ = Handle(f);
 }
 
-AtomicFile::~AtomicFile() = default;
+AtomicFile::~AtomicFile() {
+  if (temporary_.empty()) return;
+  file_ = Handle();
+  ::unlink(temporary_.c_str());
+}
 
 void AtomicFile::commit() {
+  if (!temporary_.empty()) {  // Storage::disk: HDF5 writes what it cached, then close, fsync, rename
+    if (H5Fflush(file_.get(), H5F_SCOPE_GLOBAL) < 0 || H5Fclose(file_.release()) < 0) {
+      const int err = errno;
+      throw InputError(fmt::format("cannot write {}: HDF5 could not write its temporary ({})", path_,
+                                   err ? std::strerror(err) : "no OS error given"),
+                       path_, "check the free space and the quota of the output folder; the temporary is removed");
+    }
+    const std::string tmp = std::exchange(temporary_, std::string());
+    files::commit_temporary(tmp, path_);
+    return;
+  }
   check(H5Fflush(file_.get(), H5F_SCOPE_GLOBAL), "flush " + path_);
   const ssize_t n = H5Fget_file_image(file_.get(), nullptr, 0);
   if (n < 0) throw std::runtime_error("HDF5 error: file image size of " + path_);
@@ -402,6 +487,23 @@ std::vector<std::size_t> dataset_shape(hid parent, const std::string& name) {
   return {d.begin(), d.end()};
 }
 bool attribute_exists(hid obj, const std::string& name) { return H5Aexists(obj, name.c_str()) > 0; }
+
+void write_dataset(hid g, const std::string& n, Type type, std::span<const std::size_t> dims, const Fill& fill) {
+  const hid_t t = type == Type::f64   ? H5T_NATIVE_DOUBLE
+                  : type == Type::i64 ? H5T_NATIVE_INT64
+                  : type == Type::i32 ? H5T_NATIVE_INT32
+                                      : H5T_NATIVE_UINT8;
+  if (dims.empty()) throw std::logic_error("write_dataset " + n + ": no dimensions");
+  std::vector<hsize_t> d(dims.begin(), dims.end());
+  const auto [ds, chunk0] = create_nd(g, n, t, d);
+  if (chunk0) return write_chunks_filled(ds.get(), n, fill, t, d, chunk0);
+  std::size_t total = 1;
+  for (std::size_t x : dims) total *= x;
+  if (total == 0) return;
+  std::vector<std::byte> all(total * H5Tget_size(t));
+  fill(0, total, all.data());
+  check(H5Dwrite(ds.get(), t, H5S_ALL, H5S_ALL, H5P_DEFAULT, all.data()), "write " + n);
+}
 
 void write_dataset(hid g, const std::string& n, std::span<const double> v) {
   hsize_t d[1] = {v.size()};

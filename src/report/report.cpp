@@ -736,13 +736,24 @@ void Markdown::restitution_per_element() {
 
 namespace report_detail {
 
+// Why a report is made from the reductions: the study kept only them, or (per_model = "stream") the run's own
+// report is, while every model's peaks went to the results file.
+std::string reductions_reason(const Data& r) {
+  if (r.res.settings.find("outputs", "stream"))
+    return "this run's report is made from the reductions it kept in memory ([outputs] per_model = \"stream\"); "
+           "every model's peaks are in the results file, and `pounding report` on it gives this section";
+  return "the study kept only its reductions ([outputs] per_model = false)";
+}
+
 // What the reductions-only report reads from histograms, and at which resolution.
 std::string histogram_note(const Data& r) {
   const double per_decade = r.red->number("histogram_per_decade");
-  return fmt::format("**From histograms** ([outputs] per_model = false): every x in this table is the upper edge of "
+  return fmt::format("**From histograms** ({}): every x in this table is the upper edge of "
                      "its bin on the log grid of {:g} bins per decade (bin width a factor {:.4f}, i.e. {:.2f} %), so "
                      "it is at most one bin width above the exact order statistic a per-model run gives; the "
                      "bootstrap draws the models within a record by counts of its histogram.\n\n",
+                     r.res.settings.find("outputs", "stream") ? "the reductions of [outputs] per_model = \"stream\""
+                                                              : "[outputs] per_model = false",
                      per_decade, std::pow(10.0, 1.0 / per_decade), 100 * (std::pow(10.0, 1.0 / per_decade) - 1));
 }
 
@@ -854,9 +865,10 @@ std::string pair_markdown(const Data& r) {
     md.raw(code_rules_section(r));
   }
   if (r.set.pair && r.red)
-    md.raw("\n## Separation for this pair\n\nNot given: the study kept only its reductions ([outputs] per_model = "
-           "false), which count closings in ratios x of each model's code gap; a separation in metres and the code "
-           "rules need each model's peaks and code gap. The advice in gap ratios is below.\n");
+    md.raw(fmt::format("\n## Separation for this pair\n\nNot given: {}. The reductions count closings in ratios x of "
+                       "each model's code gap; a separation in metres and the code rules need each model's peaks and "
+                       "code gap. The advice in gap ratios is below.\n",
+                       reductions_reason(r)));
   md.per_record();
   md.total();
   md.coupled_counts();
@@ -873,8 +885,9 @@ std::string pair_markdown(const Data& r) {
     md.raw(grid_advice_section(r));
     if (!r.red) md.raw(code_rules_section(r));
     else
-      md.raw("\n## Code separation rules\n\nNot given: the study kept only its reductions ([outputs] per_model = "
-             "false), and the rules' probabilities need each model's own peaks and code-rule gap.\n");
+      md.raw(fmt::format("\n## Code separation rules\n\nNot given: {}. The rules' probabilities need each model's "
+                         "own peaks and code-rule gap.\n",
+                         reductions_reason(r)));
   }
   md.impacts_table();
   md.raw(floors_section(r));

@@ -206,7 +206,12 @@ void write_fields(h5::hid root, const Results& r) {
     std::visit(
         [&](const auto& v) {
           using T = typename std::decay_t<decltype(v)>::value_type;
-          h5::write_dataset(g, name, std::span<const T>(v), std::span<const std::size_t>(shape));
+          if (!f.source) return h5::write_dataset(g, name, std::span<const T>(v), std::span<const std::size_t>(shape));
+          constexpr h5::Type type = std::is_same_v<T, double>         ? h5::Type::f64
+                                    : std::is_same_v<T, std::int64_t> ? h5::Type::i64
+                                    : std::is_same_v<T, std::int32_t> ? h5::Type::i32
+                                                                      : h5::Type::u8;
+          h5::write_dataset(g, name, type, std::span<const std::size_t>(shape), f.source);
         },
         f.data);
     label(g, f.spec.group, name, {f.spec.units, f.spec.description});
@@ -277,9 +282,9 @@ void write_group(h5::hid root, const Group& gr) {
 
 }  // namespace
 
-Writer::Writer(const std::string& path, const Results& r) {
+Writer::Writer(const std::string& path, const Results& r, bool on_disk) {
   check_system(r);
-  file_ = std::make_unique<h5::AtomicFile>(path);
+  file_ = std::make_unique<h5::AtomicFile>(path, on_disk ? h5::AtomicFile::Storage::disk : h5::AtomicFile::Storage::memory);
   const auto root = file_->root();
   write_header_start(root, r.header, r.system.empty() ? pair_format_version : format_version);
   write_settings(root, r.settings);

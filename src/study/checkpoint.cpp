@@ -238,8 +238,9 @@ std::vector<std::string> slice_paths(const std::string& main) {
   return out;
 }
 
-CheckpointScan scan_checkpoint(const std::string& path_, const CheckpointKey& key, const Checkpoint::UnitFn& on_unit,
-                               ReductionSnapshot* snapshot) {
+namespace {
+CheckpointScan scan_file(const std::string& path_, const CheckpointKey& key, const Checkpoint::UnitFn& on_unit,
+                         ReductionSnapshot* snapshot, const UnitAtFn& on_at) {
   CheckpointScan s;
   std::ifstream in(path_, std::ios::binary);
   {
@@ -288,6 +289,7 @@ CheckpointScan scan_checkpoint(const std::string& path_, const CheckpointKey& ke
   }
   s.good_bytes = 40 + blen;
   const bool deliver = s.kind == CheckpointScan::Kind::ours && on_unit;
+  const bool locate = s.kind == CheckpointScan::Kind::ours && on_at;
   std::vector<std::byte> data;
   for (;;) {
     std::uint64_t unit = 0, count = 0, sum = 0;
@@ -310,11 +312,22 @@ CheckpointScan scan_checkpoint(const std::string& path_, const CheckpointKey& ke
       s.stopped_at = fmt::format("record {} (unit {}) fails its checksum (damaged bytes)", s.units_done + 1, unit);
       break;
     }
+    if (locate) on_at(static_cast<std::size_t>(unit), s.good_bytes + 16, count);
     s.good_bytes += 24 + count;
     ++s.units_done;
     if (deliver) on_unit(static_cast<std::size_t>(unit), std::move(data));
   }
   return s;
+}
+}  // namespace
+
+CheckpointScan scan_checkpoint(const std::string& path, const CheckpointKey& key, const Checkpoint::UnitFn& on_unit,
+                               ReductionSnapshot* snapshot) {
+  return scan_file(path, key, on_unit, snapshot, {});
+}
+
+CheckpointScan locate_units(const std::string& path, const CheckpointKey& key, const UnitAtFn& on_at) {
+  return scan_file(path, key, {}, nullptr, on_at);
 }
 
 void Checkpoint::start(const CheckpointKey& key) {

@@ -18,6 +18,7 @@
 #include "pounding/model/hysteresis/registry.hpp"
 #include "pounding/sampling/sampler.hpp"
 #include "pounding/study/settings.hpp"
+#include "pounding/study/spill.hpp"
 
 namespace pounding {
 
@@ -406,12 +407,13 @@ results::Group ida_group(const Study& study, const WorkPlan& plan, const StripeP
 }  // namespace
 
 results::Results make_results(const Study& study, const std::vector<StudyRecord>& records, const WorkPlan& plan,
-                              Tally& tally, const Exclusions& ex, const RunFacts& facts, const StripePlan& stripes) {
+                              Tally& tally, const Exclusions& ex, const RunFacts& facts, const StripePlan& stripes,
+                              const std::shared_ptr<const SpilledColumns>& spilled) {
   results::Results r;
   r.header = make_header(study, ex, facts);
   r.settings = settings_of(study);
   r.records = record_table(records);
-  if (const Reductions* red = tally.reductions()) {  // [outputs] per_model = false: the period grids, no models
+  if (const Reductions* red = tally.reductions(); red && !spilled) {  // [outputs] per_model = false: the period grids, no models
     const StructureSampler sampler(study.structures, study.seed);
     r.models.periods1 = sampler.building(0).periods, r.models.periods2 = sampler.building(1).periods;
     r.models.periods = r.models.periods1;
@@ -423,7 +425,7 @@ results::Results make_results(const Study& study, const std::vector<StudyRecord>
   r.models = model_table(study, plan);
   r.gaps = results::gap_table(study.gap_ratios, r.models.code_gap);  // every scene
   if (plan.impacts) r.gap_ratios = study.gap_ratios;
-  r.fields = tally.take_fields();
+  r.fields = spilled ? SpilledColumns::fields(spilled) : tally.take_fields();
   r.stripes = stripes.stripes;
   r.system = plan.system;  // empty for the SDOF pair: format 2
   results::add_derived_fields(r);

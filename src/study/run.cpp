@@ -34,6 +34,7 @@
 #include "pounding/study/make_results.hpp"
 #include "pounding/study/plan.hpp"
 #include "pounding/study/system_block.hpp"
+#include "pounding/study/spill.hpp"
 #include "pounding/study/tally.hpp"
 #include "pounding/study/unit_result.hpp"
 
@@ -766,6 +767,7 @@ WorkPlan plan_work(const Inputs& in) {
   L.impacts = s.scene == Scene::impacts;
   L.ida = s.intensity.bisection;
   L.per_model = s.per_model;
+  L.stream = s.stream;
   // shear buildings: results format 3 with the study's largest topology as /system (format 2 for an SDOF facing a
   // shear building, and for one storey each: system_table gives the SDOF pair nothing)
   if (runs_systems(s.structures))
@@ -1117,7 +1119,7 @@ bool execute(const parallel::Session& session, const Inputs& in, const WorkPlan&
       },
       threads,
       [&](std::size_t u, parallel::Payload&& d) {
-        if (session.root() || tally.reductions()) {  // a worker folds its own units into its Reductions
+        if (session.root() || tally.folds_on_every_rank()) {  // a worker folds its own units into its Reductions
           Stopwatch w(T[Phase::reduce]);
           tally.store(u, d);
         }
@@ -1126,7 +1128,7 @@ bool execute(const parallel::Session& session, const Inputs& in, const WorkPlan&
       },
       [&](std::size_t u, int) {
         ckpt->keep();  // the main file stays with the slices even if rank 0 stored no unit
-        if (tally.reductions()) tally.folded_elsewhere(u);  // merged from the worker's Reductions at the end
+        if (tally.folds_on_every_rank()) tally.folded_elsewhere(u);  // merged from the worker's Reductions at the end
         else ++remote;
       },
       tick, ctx.cancel ? *ctx.cancel : never, &master_stats);
@@ -1228,23 +1230,27 @@ void remove_checkpoint(Checkpoint& main) {
 // in `write_s` the wall time the bulk added after the report ended (0 when the report took longer). An error or a
 // stop on either side is thrown here after both have ended, the report's first; the unfinished Writer then leaves
 // nothing on disk. Without a report the bulk alone, all of it in `write_s`.
+// `view` (may be null: res): the results the report is made from ([outputs] per_model = "stream": the reductions'),
+// and `on_disk`: the file is built in an on-disk temporary (results::Writer).
 results::Writer report_beside_write(const RunOptions& opt, const RunContext& ctx, const std::string& out,
-                                    results::Results& res, std::string& report, timing::Times& T, double& write_s) {
+                                    results::Results& res, results::Results* view, bool on_disk, std::string& report,
+                                    timing::Times& T, double& write_s) {
   using timing::Phase;
   const auto t0 = std::chrono::steady_clock::now();
   if (!opt.report) {
-    results::Writer file(out, res);
+    results::Writer file(out, res, on_disk);
     write_s = timing::seconds_since(t0);
     return file;
   }
-  res.path = out;
-  res.header.wall_time_s = NAN;
+  if (!view) view = &res;
+  res.path = view->path = out;
+  res.header.wall_time_s = view->header.wall_time_s = NAN;
   std::exception_ptr report_error;
   double bootstrap_s = 0;
   std::chrono::steady_clock::time_point report_end;
   std::thread renderer([&] {
     try {
-      report = opt.report(res, ctx.hook(), bootstrap_s);
+      report = opt.report(*view, ctx.hook(), bootstrap_s);
     } catch (...) {
       report_error = std::current_exception();
     }
@@ -1253,7 +1259,7 @@ results::Writer report_beside_write(const RunOptions& opt, const RunContext& ctx
   std::optional<results::Writer> file;
   std::exception_ptr write_error;
   try {
-    file.emplace(out, res);
+    file.emplace(out, res, on_disk);
   } catch (...) {
     write_error = std::current_exception();
   }
@@ -1291,16 +1297,32 @@ int finish(const parallel::Session& session, const Inputs& in, const WorkPlan& L
                                 analysed - scaled);
     }
     try {
-      results::Results res = make_results(in.study, in.records, L, tally, ex, {key.build, session.size(), wall}, in.stripes);
+      // [outputs] per_model = "stream": the per-model fields are read from the checkpoint files as the file is
+      // written (study/spill.hpp), and the report is made from the reductions (`view`)
+      std::shared_ptr<const SpilledColumns> spilled;
+      if (L.stream) spilled = std::make_shared<const SpilledColumns>(L, in.out + ".ckpt", key);
+      const RunFacts facts{key.build, session.size(), wall};
+      results::Results res = make_results(in.study, in.records, L, tally, ex, facts, in.stripes, spilled);
+      if (spilled && !res.fields.empty())  // tests: POUNDING_INJECT_FAULT=stream@0 fails the streamed write half-way
+        res.fields.back().source = [fill = res.fields.back().source](std::size_t first, std::size_t n, void* to) {
+          inject_fault("stream", 0);
+          fill(first, n, to);
+        };
+      std::optional<results::Results> view;
+      if (L.stream) view.emplace(make_results(in.study, in.records, L, tally, ex, facts, in.stripes));
       if (in.selection) res.groups.push_back(selection_group(*in.selection));
       const auto t_analysis = std::chrono::steady_clock::now();
       // the analyses the caller adds (fragility, hazard: report/fragility.hpp), with progress and the stop flag
+      const std::size_t groups_before = res.groups.size();
       if (opt.analyse) opt.analyse(res, ctx.hook());
+      if (view) view->groups.insert(view->groups.end(), res.groups.begin() + (in.selection ? groups_before - 1 : groups_before),
+                                    res.groups.end());
       analysis = T[Phase::analysis] = timing::seconds_since(t_analysis);
       // the report pounding run prints, from these results (its wall time filled in below), rendered while this
       // thread writes the file's bulk; results_write counts what the write adds after the report
       double write_s = 0;
-      results::Writer file = report_beside_write(opt, ctx, in.out, res, report, T, write_s);
+      results::Writer file =
+          report_beside_write(opt, ctx, in.out, res, view ? &*view : nullptr, L.stream, report, T, write_s);
       total = T.wall = timing::seconds_since(timing::program_start());
       res.header.wall_time_s = total;
       if (const auto at = report.find("wall time nan s"); at != std::string::npos)

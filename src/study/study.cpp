@@ -369,7 +369,15 @@ void parse_outputs(Study& s, const toml::table* t, const std::string& path) {
   TableReader o(t, path, "outputs");
   s.want_forces = o.boolean("forces", true);
   s.want_amplification = o.boolean("amplification", true);
-  s.per_model = o.boolean("per_model", true);
+  // per_model = "stream": every model's peaks, written to the results file from the checkpoint in bounded memory
+  if (const toml::node* n = o.get("per_model"); n && n->is_string()) {
+    if (n->value_or(std::string()) != "stream")
+      throw InputError(fmt::format("per_model = \"{}\" is not a choice", n->value_or(std::string())), o.where("per_model"),
+                       "write per_model = true, false or \"stream\"");
+    s.per_model = true, s.stream = true;
+  } else {
+    s.per_model = o.boolean("per_model", true);
+  }
   s.per_model_where = o.where("per_model");
   o.finish("forces, amplification, per_model");
 }
@@ -377,7 +385,11 @@ void parse_outputs(Study& s, const toml::table* t, const std::string& path) {
 // [outputs] per_model = false keeps only the reductions of the probability scene of an SDOF pair (study/reductions.hpp);
 // what else would need per-model values it does not keep is refused before any work.
 void check_per_model(const Study& s) {
-  if (s.per_model) return;
+  if (s.per_model && !s.stream) return;
+  const char* what = s.stream ? "[outputs] per_model = \"stream\" makes the run's report from the reductions, which "
+                                "cover only the probability scene of an SDOF pair,"
+                              : "[outputs] per_model = false keeps only the reductions of the probability scene of an "
+                                "SDOF pair,";
   const char* why = s.scene == Scene::impacts ? "the impacts scene's forces and amplification are per model and gap"
                     : s.intensity.enabled     ? "a fragility study fits each model's stripes and IDA curves"
                     : runs_systems(s.structures)
@@ -386,11 +398,9 @@ void check_per_model(const Study& s) {
                     : s.html ? "the HTML report's figures (tools/pounding_plots.py) read per-model peaks"
                         : nullptr;
   if (why)
-    throw InputError(fmt::format("[outputs] per_model = false keeps only the reductions of the probability scene of "
-                                 "an SDOF pair, and {}", why),
-                     s.per_model_where,
+    throw InputError(fmt::format("{} and {}", what, why), s.per_model_where,
                      "write scene = \"probability\" for an SDOF pair or grid study without [intensity] or [report] "
-                     "html, or delete per_model (per-model outputs)");
+                     "html, or delete per_model (per-model outputs in memory)");
 }
 
 // The scene actually run (auto resolved from [outputs]), why, and the scene's default step cap
@@ -705,10 +715,15 @@ Study parse_study(const std::string& text, const std::string& path) {
 }
 
 double result_bytes(const Study& s, std::size_t records) {
-  if (!s.per_model)
-    return reduction_bytes(records * static_cast<std::size_t>(polarity_count(s.polarity)),
-                           static_cast<std::size_t>(s.structures.period_pair_count()), s.gap_ratios.size(),
-                           static_cast<std::size_t>(std::floor(s.curve_max / s.curve_step + 1e-9)));
+  if (!s.per_model || s.stream) {  // the reductions; "stream": and where each unit lies in the checkpoint (16 bytes)
+    const std::size_t rows = records * static_cast<std::size_t>(polarity_count(s.polarity));
+    const double units = s.stream ? static_cast<double>(rows) * static_cast<double>(s.structures.period_pair_count()) *
+                                        std::ceil(static_cast<double>(s.structures.samples_per_pair) / std::max(1, s.batch))
+                                  : 0.0;
+    return reduction_bytes(rows, static_cast<std::size_t>(s.structures.period_pair_count()), s.gap_ratios.size(),
+                           static_cast<std::size_t>(std::floor(s.curve_max / s.curve_step + 1e-9))) +
+           16.0 * units;
+  }
   const double per_model = 25.0 + (s.scene == Scene::impacts ? 45.0 * static_cast<double>(s.gap_ratios.size()) : 0.0);
   return static_cast<double>(records) * polarity_count(s.polarity) *
          static_cast<double>(std::max<std::size_t>(1, s.intensity.stripes())) * static_cast<double>(s.structures.period_pair_count()) *
@@ -802,7 +817,8 @@ void check_result_memory(const Study& s, std::size_t records) {
                                  s.structures.samples_per_pair, human_bytes(need), sizes, human_bytes(max_result_bytes)),
                      where,
                      fits >= 1 ? fmt::format("give samples_per_pair <= {:.0f} (the paper uses 256), or split the study, or "
-                                             "keep only the reductions ([outputs] per_model = false)", fits)
+                                             "keep only the reductions ([outputs] per_model = false), or write every "
+                                             "model's peaks in bounded memory ([outputs] per_model = \"stream\")", fits)
                                : std::string("split the study into fewer records, period pairs or gaps"));
   }
   const double per_sample_peak = per_sample * result_peak_factor +
@@ -818,7 +834,8 @@ void check_result_memory(const Study& s, std::size_t records) {
       where,
       fits >= 1 ? fmt::format("give samples_per_pair <= {:.0f}, or split the study (fewer records, period pairs, "
                               "stripes or gaps), or run on a machine with more memory, or keep only the reductions "
-                              "([outputs] per_model = false)",
+                              "([outputs] per_model = false), or write every model's peaks from the checkpoint in "
+                              "bounded memory ([outputs] per_model = \"stream\", probability scene of an SDOF pair)",
                               fits)
                 : std::string("split the study (fewer records, period pairs, stripes or gaps), or run on a machine with "
                               "more memory"));

@@ -16,7 +16,7 @@ Tally::Tally(const WorkPlan& plan) : plan_(plan) {
 }
 
 Tally::Tally(const WorkPlan& plan, const Study& study) : plan_(plan) {
-  if (plan.per_model) {
+  if (plan.per_model && !plan.stream) {
     *this = Tally(plan);
     return;
   }

@@ -9,13 +9,21 @@
 //  - the engine's reader (h5::read_*, which inflates the chunks on every CPU) returns the values from the engine's
 //    chunks, from HDF5's own, and from the layout of files before 2026-11-27 (deflate level 4 alone, large chunks);
 //  - the dataset declares the deflate filter (and, for values wider than a byte, the shuffle filter before it), so
-//    the chunks are not raw bytes by accident.
+//    the chunks are not raw bytes by accident;
+//  - a dataset written from an h5::Fill ([outputs] per_model = "stream", study/spill.hpp) is the same dataset: its
+//    stored chunks equal the in-memory write's, byte for byte, and every call asks for whole rows; an on-disk
+//    AtomicFile (Storage::disk) leaves nothing but the committed file, and nothing at all when a Fill throws.
 #include <hdf5.h>
 
 #include <gtest/gtest.h>
 
+#include <atomic>
 #include <cmath>
 #include <cstdint>
+#include <cstring>
+#include <filesystem>
+#include <stdexcept>
+#include <type_traits>
 #include <numeric>
 #include <string>
 #include <vector>
@@ -44,6 +52,12 @@ template <>
 std::vector<std::int32_t> read_back<std::int32_t>(hid_t f, const std::string& n) { return h5::read_int32(f, n); }
 template <>
 std::vector<std::uint8_t> read_back<std::uint8_t>(hid_t f, const std::string& n) { return h5::read_uint8(f, n); }
+
+template <class T>
+constexpr h5::Type engine_type() {
+  return std::is_same_v<T, double> ? h5::Type::f64 : std::is_same_v<T, std::int64_t> ? h5::Type::i64
+         : std::is_same_v<T, std::int32_t> ? h5::Type::i32 : h5::Type::u8;
+}
 
 template <class T>
 hid_t native_type();
@@ -89,6 +103,15 @@ void check_shape(std::vector<std::size_t> dims) {
   {
     h5::AtomicFile f(path);
     h5::write_dataset(f.root(), "engine", std::span<const T>(values), std::span<const std::size_t>(dims));
+    // the same values from a Fill, which must be asked for whole rows only
+    const std::size_t row = total && dims[0] ? total / dims[0] : 1;
+    std::atomic<bool> cut{false};
+    h5::write_dataset(f.root(), "filled", engine_type<T>(), std::span<const std::size_t>(dims),
+                      [&](std::size_t first, std::size_t n, void* out) {
+                        if (first % row || n % row || first + n > total) cut = true;
+                        std::memcpy(out, values.data() + first, std::min(n, total - std::min(first, total)) * sizeof(T));
+                      });
+    EXPECT_FALSE(cut) << label << ": a Fill asked for part of a row";
     // the reference: the same creation properties, the values through HDF5's own filter pipeline
     h5::Handle engine(H5Dopen2(f.root(), "engine", H5P_DEFAULT));
     h5::Handle dcpl(H5Dget_create_plist(engine.get()));
@@ -112,8 +135,9 @@ void check_shape(std::vector<std::size_t> dims) {
     f.commit();
   }
   h5::Handle file = h5::open_read(path);
-  for (const char* name : {"engine", "reference", "old"})
+  for (const char* name : {"engine", "reference", "old", "filled"})
     EXPECT_EQ(read_back<T>(file.get(), name), values) << label << ": the engine's reader on '" << name << "'";
+
   std::vector<T> back(total);
   {
     h5::Handle ds(H5Dopen2(file.get(), "engine", H5P_DEFAULT));
@@ -137,6 +161,7 @@ void check_shape(std::vector<std::size_t> dims) {
   }
   const auto ours = stored_chunks(file.get(), "engine"), theirs = stored_chunks(file.get(), "reference");
   ASSERT_EQ(ours.size(), theirs.size()) << label;
+  EXPECT_EQ(stored_chunks(file.get(), "filled"), ours) << label << ": the Fill's stored chunks differ from the in-memory write's";
   // chunks of about 2^14 values, so a large dataset is deflated on several CPUs
   EXPECT_GE(ours.size(), total > 32768 ? 2u : 1u) << label << ": one chunk only";
   for (std::size_t c = 0; c < ours.size(); ++c)
@@ -166,6 +191,45 @@ TEST(Hdf5Chunks, TwoDimensionalWithAPartialLastChunk) {
 TEST(Hdf5Chunks, ManyBatchesOfChunks) {
   check_shape<std::uint8_t>({16384 * 530 + 11});
   check_shape<double>({16384 * 260 + 5});
+}
+
+// Storage::disk: the file is built in <path>.tmp<pid> and renamed by commit(); destroyed without commit(), or after a
+// Fill threw half-way through a dataset of several windows, nothing is left in the folder.
+TEST(Hdf5Chunks, OnDiskFileLeavesNothingButTheCommittedFile) {
+  namespace fs = std::filesystem;
+  testdata::TempDir tmp("hdf5-disk");
+  const std::string path = tmp.file("disk.h5");
+  const auto files = [&] {
+    std::vector<std::string> names;
+    for (const auto& e : fs::directory_iterator(fs::path(path).parent_path())) names.push_back(e.path().filename().string());
+    return names;
+  };
+  const std::vector<double> v = ramp<double>(16384 * 1100);  // 1100 chunks of 128 KiB: three windows of 64 MiB
+  const std::size_t dims[] = {1100, 16384};
+  {
+    h5::AtomicFile f(path, h5::AtomicFile::Storage::disk);
+    EXPECT_EQ(files().size(), 1u);
+    EXPECT_NE(files().at(0).find("disk.h5.tmp"), std::string::npos) << files().at(0);
+    std::size_t calls = 0;
+    EXPECT_THROW(h5::write_dataset(f.root(), "x", h5::Type::f64, dims,
+                                   [&](std::size_t first, std::size_t n, void* out) {
+                                     if (first >= 16384 * 700) throw std::runtime_error("fill failed");
+                                     ++calls;
+                                     std::memcpy(out, v.data() + first, n * sizeof(double));
+                                   }),
+                 std::runtime_error);
+    EXPECT_GE(calls, 512u) << "the failure came before the second window";
+  }
+  EXPECT_TRUE(files().empty()) << "left after a failed Fill: " << files().at(0);
+  {
+    h5::AtomicFile f(path, h5::AtomicFile::Storage::disk);
+    h5::write_dataset(f.root(), "x", h5::Type::f64, dims,
+                      [&](std::size_t first, std::size_t n, void* out) { std::memcpy(out, v.data() + first, n * sizeof(double)); });
+    f.commit();
+  }
+  ASSERT_EQ(files(), std::vector<std::string>{"disk.h5"});
+  h5::Handle file = h5::open_read(path);
+  EXPECT_EQ(h5::read_doubles(file.get(), "x"), v);
 }
 
 // h5::read_doubles_if_constant: the values when all equal the first (a compressed column read whole, a small one

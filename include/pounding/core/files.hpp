@@ -36,6 +36,12 @@ void check_replaceable(const std::string& path, const std::string& where);
 // back meanwhile (delivered afterwards), so an interrupt never leaves the temporary behind. On any failure
 // the temporary is removed, `path` is untouched and InputError names the path and the OS error.
 void write_atomically(const std::string& path, std::span<const std::byte> bytes);
+// The file write_atomically replaces for `path`: path itself, or the regular file a symbolic link names (after
+// check_replaceable). A writer that builds its temporary itself (io/hdf5.hpp AtomicFile::Storage::disk) makes
+// `<target>.tmp<pid>` and hands it to commit_temporary: fsynced, renamed over target (SIGINT, SIGTERM and SIGHUP held
+// meanwhile), the folder fsynced; on failure the temporary is removed and InputError names path and the OS error.
+std::string replace_target(const std::string& path);
+void commit_temporary(const std::string& temporary, const std::string& target);
 // The same for text (CSV, AT2, ...).
 void write_text_atomically(const std::string& path, std::string_view text);
 

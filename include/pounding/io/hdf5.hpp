@@ -2,9 +2,11 @@
 // HDF5 infrastructure: RAII handles and a write_dataset(group, name, value) family.
 // The only module that includes <hdf5.h>. Files are readable with h5py.
 #include <cstdint>
+#include <functional>
 #include <span>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace pounding::h5 {
@@ -23,6 +25,7 @@ class Handle {
   ~Handle();
   hid get() const { return id_; }
   bool valid() const { return id_ >= 0; }
+  hid release() { return std::exchange(id_, -1); }  // the caller closes it
 
  private:
   hid id_ = -1;
@@ -31,9 +34,14 @@ class Handle {
 // A file built in memory and written to path by commit() through a temporary name and a rename
 // (files::write_atomically): destroyed without commit(), nothing is written; a failed write (disk full,
 // EFBIG) throws InputError with the OS error and leaves neither path nor a temporary.
+// Storage::disk builds it instead in an HDF5 file on disk, <path>.tmp<pid> beside path (files::remove_stale_temporaries
+// removes one a SIGKILL left), closed, fsynced and renamed on commit(), removed when destroyed without commit(): memory
+// stays HDF5's caches, whatever the file's size. An HDF5 error while it is built (a full disk among them) is a
+// std::runtime_error; the temporary goes with the object.
 class AtomicFile {
  public:
-  explicit AtomicFile(std::string path);
+  enum class Storage { memory, disk };
+  explicit AtomicFile(std::string path, Storage storage = Storage::memory);
   ~AtomicFile();
   AtomicFile(const AtomicFile&) = delete;
   AtomicFile& operator=(const AtomicFile&) = delete;
@@ -41,7 +49,7 @@ class AtomicFile {
   void commit();
 
  private:
-  std::string path_;
+  std::string path_, temporary_;  // temporary_: Storage::disk's file until commit() ("" otherwise)
   Handle file_;
 };
 
@@ -72,6 +80,13 @@ void write_dataset(hid group, const std::string& name, std::span<const std::int3
 void write_dataset(hid group, const std::string& name, std::span<const std::uint8_t> v,
                    std::span<const std::size_t> dims);
 void write_strings(hid group, const std::string& name, const std::vector<std::string>& v);
+// A dataset whose values are not held in memory: fill(first, count, out) writes values [first, first + count) of its
+// row-major flattening to out (count values of `type`). It is called for whole rows of the first dimension, from
+// several threads at once, a window of chunks at a time (about 64 MiB); an exception it throws is rethrown here. The
+// dataset is the one write_dataset gives for the same values and dims: layout, filters and stored bytes.
+using Fill = std::function<void(std::size_t first, std::size_t count, void* out)>;
+enum class Type { f64, i64, i32, u8 };
+void write_dataset(hid group, const std::string& name, Type type, std::span<const std::size_t> dims, const Fill& fill);
 
 void write_attribute(hid obj, const std::string& name, const std::string& value);
 void write_attribute(hid obj, const std::string& name, double value);

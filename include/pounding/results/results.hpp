@@ -4,6 +4,7 @@
 // everything. The study's settings are a generic table (section, key, value) filled from
 // study::visit_settings: this module depends on no study type.
 #include <cstdint>
+#include <functional>
 #include <optional>
 #include <span>
 #include <string>
@@ -156,6 +157,10 @@ GapTable gap_table(std::span<const double> ratios, std::span<const double> code_
 struct Field {
   FieldSpec spec;
   Column data;
+  // Values not held in memory ([outputs] per_model = "stream", study/spill.hpp): `data` is an empty vector of the
+  // stored type and source(first, count, out) writes values [first, first + count) of the row-major [records,
+  // models(, per lane)] column to out; the writer calls it chunk by chunk, from several threads (h5::Fill).
+  std::function<void(std::size_t first, std::size_t count, void* out)> source = {};
 };
 
 // A module's group (/intensity, /fragility, /hazard, ...): datasets that carry their own units and description,

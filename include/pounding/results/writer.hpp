@@ -25,7 +25,9 @@ void write(const std::string& path, const Results& r);
 // and renames the file into place. A Writer destroyed without finish() leaves nothing on disk.
 class Writer {
  public:
-  Writer(const std::string& path, const Results& r);
+  // on_disk: built in an on-disk temporary instead of memory (h5::AtomicFile::Storage::disk), for files larger than
+  // memory ([outputs] per_model = "stream": fields with a source).
+  Writer(const std::string& path, const Results& r, bool on_disk = false);
   ~Writer();
   Writer(Writer&&) noexcept;
   Writer& operator=(Writer&&) noexcept;

@@ -120,6 +120,11 @@ public:
 CheckpointScan scan_checkpoint(const std::string& path, const CheckpointKey& key, const Checkpoint::UnitFn& on_unit = {},
                                ReductionSnapshot* snapshot = nullptr);
 
+// The same scan, telling for each valid unit record of `key` where its payload lies in the file (byte offset and
+// length; checksums verified), without keeping the payloads ([outputs] per_model = "stream", study/spill.hpp).
+using UnitAtFn = std::function<void(std::size_t unit, std::uint64_t offset, std::uint64_t bytes)>;
+CheckpointScan locate_units(const std::string& path, const CheckpointKey& key, const UnitAtFn& on_at);
+
 // Rank r's slice of the checkpoint `main` (r >= 1): "<main>.rank<r>".
 std::string slice_path(const std::string& main, int rank);
 // The slices that exist beside `main` (any rank, any earlier rank count), in rank order.

@@ -3,6 +3,7 @@
 // finished study -- provenance, settings (visit_settings), records, sampled models and the tally's fields.
 #include <cstdint>
 #include <span>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -44,15 +45,20 @@ results::SystemTable system_table(const model::System& system, std::span<const C
 // The per-floor and per-element extents of `system` (results::Extents; empty for the SDOF pair).
 results::Extents extents_of(const model::System& system);
 
+class SpilledColumns;
+
 struct RunFacts {
   std::string build;  // this_build().build
   int ranks = 1;
   double wall_time_s = 0;
 };
 // Takes the tally's fields (the tally is left empty). A fragility study's stripes give the fields their leading
-// [stripes] dimension and the /intensity group; plan.system (not empty: format 3) becomes /system.
+// [stripes] dimension and the /intensity group; plan.system (not empty: format 3) becomes /system. A tally of
+// Reductions gives the reductions' results (/reductions, no models), unless `spilled` is given ([outputs] per_model =
+// "stream"): then the per-model results, their fields read from the checkpoint by `spilled` (study/spill.hpp).
 results::Results make_results(const Study& study, const std::vector<StudyRecord>& records, const WorkPlan& plan,
-                              Tally& tally, const Exclusions& ex, const RunFacts& facts, const StripePlan& stripes = {});
+                              Tally& tally, const Exclusions& ex, const RunFacts& facts, const StripePlan& stripes = {},
+                              const std::shared_ptr<const SpilledColumns>& spilled = {});
 // /intensity: the measure, the levels, each record's IM, and (stripes) the factors and dropped records.
 results::Group intensity_group(const Study& study, const StripePlan& stripes);
 

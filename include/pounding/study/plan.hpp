@@ -25,6 +25,7 @@ struct WorkPlan {
   bool impacts = false;                       // the scene runs coupled analyses per gap
   bool ida = false;                           // the bisection IDA of yielding pairs (study/run.cpp)
   bool per_model = true;                      // [outputs] per_model: false = rank 0 keeps reductions only (Tally)
+  bool stream = false;                        // per_model = "stream": rank 0 folds reductions, the columns stay on disk
   // Format 3: the study's System as /system (study/make_results.hpp system_table), empty for the SDOF pair. Set it
   // before `fields`: its extents (floors per building -- the tallest topology of the study --, elements) size the
   // per-floor and per-element rows, and make_results writes it (format 3) when it is not empty.

@@ -217,6 +217,9 @@ struct Study {
   // outputs wanted from the impacts scene
   bool want_forces = true, want_amplification = true;
   bool per_model = true;  // [outputs] per_model: false = reductions only (study/reductions.hpp)
+  // [outputs] per_model = "stream" (per_model stays true): every model's peaks, but written to the results file from
+  // the checkpoint after the units, in bounded memory (study/spill.hpp); the run's report from the reductions
+  bool stream = false;
   std::string per_model_where;  // "file:line [outputs].per_model"
   // [intensity] and [hazard] (study/intensity.hpp): a fragility study
   IntensitySpec intensity;
