@@ -52,32 +52,44 @@ bool Reductions::ok(std::uint8_t s) const {
 }
 
 void Reductions::fold(const UnitIndex& u, std::span<const std::uint8_t> status, std::span<const double> closing) {
-  const std::size_t lanes = status.size(), G = study_->gap_ratios.size(), C = curve_x_.size();
-  const std::size_t row = u.record, B = edges_.size() + 1;
-  std::vector<SampledPair> sp(lanes);
-  const SampleId pair = study_->structures.pair_id(static_cast<std::int64_t>(u.pair));
-  sampler_->sample_block(pair.i1, pair.i2, static_cast<std::int64_t>(u.block * plan_.batch), sp);
-  for (std::size_t j = 0; j < lanes; ++j) {
-    const SampledPair& q = sp[j];
-    const std::array<double, 15> key{q.s1.T, q.s2.T, q.s1.h, q.s2.h, q.s1.m, q.s2.m, q.s1.k, q.s2.k,
-                                     q.s1.fy, q.s2.fy, q.s1.c, q.s2.c, q.d, q.s1.alpha, q.s2.alpha};
-    if (!seen_) first_ = key, seen_ = true, gap_min_ = gap_max_ = q.d;
-    else if (key != first_) varied_ = true;
-    gap_min_ = std::min(gap_min_, q.d), gap_max_ = std::max(gap_max_, q.d);
-    if (!ok(status[j])) {
-      ++excluded_[row];
-      continue;
+  const std::size_t lanes = status.size(), row = u.record;
+  const std::size_t block = u.pair * plan_.blocks + u.block, m0 = plan_.first_model(u);
+  if (plan_.stream && drawn_.empty()) drawn_.assign(plan_.pairs * plan_.blocks, 0), gap_of_.assign(plan_.models(), 0.0);
+  if (!plan_.stream || !drawn_[block]) {  // draw the models (once per model with "stream"): the summary and each d
+    std::vector<SampledPair> sp(lanes);
+    const SampleId pair = study_->structures.pair_id(static_cast<std::int64_t>(u.pair));
+    sampler_->sample_block(pair.i1, pair.i2, static_cast<std::int64_t>(u.block * plan_.batch), sp);
+    if (plan_.stream) drawn_[block] = 1;
+    for (std::size_t j = 0; j < lanes; ++j) {
+      const SampledPair& q = sp[j];
+      const std::array<double, 15> key{q.s1.T, q.s2.T, q.s1.h, q.s2.h, q.s1.m, q.s2.m, q.s1.k, q.s2.k,
+                                       q.s1.fy, q.s2.fy, q.s1.c, q.s2.c, q.d, q.s1.alpha, q.s2.alpha};
+      if (!seen_) first_ = key, seen_ = true, gap_min_ = gap_max_ = q.d;
+      else if (key != first_) varied_ = true;
+      gap_min_ = std::min(gap_min_, q.d), gap_max_ = std::max(gap_max_, q.d);
+      if (plan_.stream) gap_of_[m0 + j] = q.d;
+      else fold_one(row, u.pair, status[j], closing[j], q.d);
     }
-    ++n_[row], ++pair_n_[row * plan_.pairs + u.pair];
-    const double c = closing[j], d = q.d;
-    for (std::size_t g = 0; g < G; ++g)
-      if (c > study_->gap_ratios[g] * d) ++gap_hits_[row * G + g], ++pair_hits_[(row * plan_.pairs + u.pair) * G + g];
-    const double z = c / d;  // the report's curve: z > x (strict, like delta > 0)
-    for (std::size_t i = 0; i < C && z > curve_x_[i]; ++i) ++curve_hits_[row * C + i];
-    // bin b: e_{b-1} < z <= e_b; 0 below e_0 (and NaN-free: ok analyses are finite), B - 1 above the last edge
-    const std::size_t b = static_cast<std::size_t>(std::lower_bound(edges_.begin(), edges_.end(), z) - edges_.begin());
-    ++histogram_[row * B + b];
+    if (!plan_.stream) return;
   }
+  for (std::size_t j = 0; j < lanes; ++j) fold_one(row, u.pair, status[j], closing[j], gap_of_[m0 + j]);
+}
+
+// One analysis (record row, period pair) with its status, peak closing and code gap d.
+void Reductions::fold_one(std::size_t row, std::size_t pair, std::uint8_t status, double c, double d) {
+  const std::size_t G = study_->gap_ratios.size(), C = curve_x_.size(), B = edges_.size() + 1;
+  if (!ok(status)) {
+    ++excluded_[row];
+    return;
+  }
+  ++n_[row], ++pair_n_[row * plan_.pairs + pair];
+  for (std::size_t g = 0; g < G; ++g)
+    if (c > study_->gap_ratios[g] * d) ++gap_hits_[row * G + g], ++pair_hits_[(row * plan_.pairs + pair) * G + g];
+  const double z = c / d;  // the report's curve: z > x (strict, like delta > 0)
+  for (std::size_t i = 0; i < C && z > curve_x_[i]; ++i) ++curve_hits_[row * C + i];
+  // bin b: e_{b-1} < z <= e_b; 0 below e_0 (and NaN-free: ok analyses are finite), B - 1 above the last edge
+  const std::size_t b = static_cast<std::size_t>(std::lower_bound(edges_.begin(), edges_.end(), z) - edges_.begin());
+  ++histogram_[row * B + b];
 }
 
 std::vector<std::int64_t> Reductions::counts() const {

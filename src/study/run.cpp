@@ -1119,7 +1119,7 @@ bool execute(const parallel::Session& session, const Inputs& in, const WorkPlan&
       },
       threads,
       [&](std::size_t u, parallel::Payload&& d) {
-        if (session.root() || tally.folds_on_every_rank()) {  // a worker folds its own units into its Reductions
+        if (session.root() || tally.reductions()) {  // a worker folds its own units into its Reductions
           Stopwatch w(T[Phase::reduce]);
           tally.store(u, d);
         }
@@ -1128,7 +1128,7 @@ bool execute(const parallel::Session& session, const Inputs& in, const WorkPlan&
       },
       [&](std::size_t u, int) {
         ckpt->keep();  // the main file stays with the slices even if rank 0 stored no unit
-        if (tally.folds_on_every_rank()) tally.folded_elsewhere(u);  // merged from the worker's Reductions at the end
+        if (tally.reductions()) tally.folded_elsewhere(u);  // merged from the worker's Reductions at the end
         else ++remote;
       },
       tick, ctx.cancel ? *ctx.cancel : never, &master_stats);
@@ -1148,8 +1148,9 @@ bool execute(const parallel::Session& session, const Inputs& in, const WorkPlan&
 // ---- phase 4b: rank 0 reads the workers' slices into the tally, by unit id ------------------------
 // After every rank has flushed its slice (the barrier). Only the main file and the slices hold the units, so one
 // missing here (a slice on a folder rank 0 does not see, damaged since) is an error before any result is written.
-// With [outputs] per_model = false every rank folded its own units: their integer counts are summed on rank 0 and
-// the models' summaries merged (order-free), and the slices are not read.
+// With [outputs] per_model = false or "stream" every rank folded its own units: their integer counts are summed on
+// rank 0 and the models' summaries merged (order-free), and the slices are not read here ("stream": they are read
+// when the results file is written, study/spill.hpp, which refuses a missing unit before anything is written).
 void merge_reductions(const parallel::Session& session, Tally& tally) {
   Reductions& red = *tally.reductions();
   std::vector<std::int64_t> counts = red.counts();
@@ -1166,7 +1167,7 @@ void assemble(const parallel::Session& session, const Inputs& in, const WorkPlan
               const CheckpointKey& key, timing::Times& T) {
   if (session.size() == 1) return;
   session.barrier();
-  if (!L.per_model) {
+  if (!L.per_model || L.stream) {  // every rank folded its own units into its Reductions
     timing::Stopwatch w(assemble_s);
     merge_reductions(session, tally);
   }
@@ -1174,7 +1175,7 @@ void assemble(const parallel::Session& session, const Inputs& in, const WorkPlan
     if (!session.root()) return;
     timing::Stopwatch w(assemble_s);
     const std::string main = in.out + ".ckpt";
-    if (L.per_model)
+    if (L.per_model && !L.stream)  // "stream": the slices are read when the results are written (study/spill.hpp)
       for (const std::string& path : slice_paths(main))
         scan_checkpoint(path, key, [&](std::size_t u, std::vector<std::byte>&& d) {
           if (!tally.done(u)) tally.store(u, d);
@@ -1273,6 +1274,24 @@ results::Writer report_beside_write(const RunOptions& opt, const RunContext& ctx
   return std::move(*file);
 }
 
+// The run's results (the selection's group added). [outputs] per_model = "stream": the per-model fields are read from
+// the checkpoint files as the file is written (study/spill.hpp), and `view` gets the results the report is made
+// from, the reductions'.
+results::Results run_results(const Inputs& in, const WorkPlan& L, Tally& tally, const Exclusions& ex,
+                             const RunFacts& facts, const CheckpointKey& key, std::optional<results::Results>& view) {
+  std::shared_ptr<const SpilledColumns> spilled;
+  if (L.stream) spilled = std::make_shared<const SpilledColumns>(L, in.out + ".ckpt", key);
+  results::Results res = make_results(in.study, in.records, L, tally, ex, facts, in.stripes, spilled);
+  if (spilled && !res.fields.empty())  // tests: POUNDING_INJECT_FAULT=stream@0 fails the streamed write half-way
+    res.fields.back().source = [fill = res.fields.back().source](std::size_t first, std::size_t n, void* to) {
+      inject_fault("stream", 0);
+      fill(first, n, to);
+    };
+  if (L.stream) view.emplace(make_results(in.study, in.records, L, tally, ex, facts, in.stripes));
+  if (in.selection) res.groups.push_back(selection_group(*in.selection));
+  return res;
+}
+
 int finish(const parallel::Session& session, const Inputs& in, const WorkPlan& L, Checkpoint* ckpt, Tally& tally,
            const CheckpointKey& key, double wall, const RunContext& ctx, const RunOptions& opt, timing::Times& T,
            std::size_t units_resumed, int threads, std::string& report) {
@@ -1297,20 +1316,8 @@ int finish(const parallel::Session& session, const Inputs& in, const WorkPlan& L
                                 analysed - scaled);
     }
     try {
-      // [outputs] per_model = "stream": the per-model fields are read from the checkpoint files as the file is
-      // written (study/spill.hpp), and the report is made from the reductions (`view`)
-      std::shared_ptr<const SpilledColumns> spilled;
-      if (L.stream) spilled = std::make_shared<const SpilledColumns>(L, in.out + ".ckpt", key);
-      const RunFacts facts{key.build, session.size(), wall};
-      results::Results res = make_results(in.study, in.records, L, tally, ex, facts, in.stripes, spilled);
-      if (spilled && !res.fields.empty())  // tests: POUNDING_INJECT_FAULT=stream@0 fails the streamed write half-way
-        res.fields.back().source = [fill = res.fields.back().source](std::size_t first, std::size_t n, void* to) {
-          inject_fault("stream", 0);
-          fill(first, n, to);
-        };
       std::optional<results::Results> view;
-      if (L.stream) view.emplace(make_results(in.study, in.records, L, tally, ex, facts, in.stripes));
-      if (in.selection) res.groups.push_back(selection_group(*in.selection));
+      results::Results res = run_results(in, L, tally, ex, {key.build, session.size(), wall}, key, view);
       const auto t_analysis = std::chrono::steady_clock::now();
       // the analyses the caller adds (fragility, hazard: report/fragility.hpp), with progress and the stop flag
       const std::size_t groups_before = res.groups.size();
@@ -1385,8 +1392,8 @@ RunOutcome run_study(const parallel::Session& session, const std::string& study_
   }
   const WorkPlan L = plan_work(in);
   Tally tally;
-  // rank 0; with [outputs] per_model = false every rank (each folds its own units into its Reductions)
-  if (session.root() || !L.per_model) tally = Tally(L, in.study);
+  // rank 0; with [outputs] per_model = false or "stream" every rank (each folds its own units into its Reductions)
+  if (session.root() || !L.per_model || L.stream) tally = Tally(L, in.study);
   const CheckpointKey key = checkpoint_key(in, L);  // every rank: the workers' slices carry it too
   const std::vector<std::size_t> todo = open_checkpoint(session, opt, in, L, ckpt, key, tally, ctx);
   const std::size_t units_resumed = tally.units_done();

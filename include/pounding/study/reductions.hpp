@@ -66,6 +66,13 @@ class Reductions {
   std::vector<double> curve_x_, edges_;
   std::vector<std::int64_t> n_, excluded_, gap_hits_, pair_n_, pair_hits_, curve_hits_, histogram_;
   std::vector<std::int32_t> pair_i1_, pair_i2_;
+  // [outputs] per_model = "stream" (plan.stream): each model's code gap d kept after its first fold (8 bytes per
+  // model; that mode's memory grows with the models anyway), so the other records' units of the same models are
+  // folded without drawing the models again (the draw is 0.4 us per model, most of a fold). per_model = false draws
+  // them every time and keeps nothing per model.
+  std::vector<double> gap_of_;
+  void fold_one(std::size_t row, std::size_t pair, std::uint8_t status, double closing, double d);
+  std::vector<char> drawn_;  // per (pair, block): gap_of_ holds its models' d
   // every model equal to the first folded (a fixed pair; the report's Wilson basis): order-independent
   std::array<double, 15> first_{};
   bool seen_ = false, varied_ = false;

@@ -18,12 +18,9 @@ class Tally {
   Tally() = default;
   explicit Tally(const WorkPlan& plan);
   // With plan.per_model = false the units are folded into Reductions (reductions.hpp) and no column is kept; with
-  // plan.stream (per_model = "stream") too, on rank 0 only: the per-model values stay in the checkpoint files, from
-  // which the results file is written (study/spill.hpp).
+  // plan.stream (per_model = "stream") too: the per-model values stay in the checkpoint files, from which the
+  // results file is written (study/spill.hpp).
   Tally(const WorkPlan& plan, const Study& study);
-  // Reductions that every rank folds for its own units and merges at the end (per_model = false; not "stream",
-  // where rank 0 folds every unit as it stores or reads it).
-  bool folds_on_every_rank() const { return reductions_ && !plan_.stream; }
 
   // Scatters one unit's serialised result (UnitResult::serialise) into the columns; throws std::runtime_error
   // on a payload of the wrong size. Storing a unit twice overwrites it.
