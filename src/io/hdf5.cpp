@@ -488,11 +488,15 @@ std::vector<std::size_t> dataset_shape(hid parent, const std::string& name) {
 }
 bool attribute_exists(hid obj, const std::string& name) { return H5Aexists(obj, name.c_str()) > 0; }
 
+namespace {
+hid_t native(Type type) {
+  return type == Type::f64 ? H5T_NATIVE_DOUBLE : type == Type::i64 ? H5T_NATIVE_INT64
+         : type == Type::i32 ? H5T_NATIVE_INT32 : H5T_NATIVE_UINT8;
+}
+}  // namespace
+
 void write_dataset(hid g, const std::string& n, Type type, std::span<const std::size_t> dims, const Fill& fill) {
-  const hid_t t = type == Type::f64   ? H5T_NATIVE_DOUBLE
-                  : type == Type::i64 ? H5T_NATIVE_INT64
-                  : type == Type::i32 ? H5T_NATIVE_INT32
-                                      : H5T_NATIVE_UINT8;
+  const hid_t t = native(type);
   if (dims.empty()) throw std::logic_error("write_dataset " + n + ": no dimensions");
   std::vector<hsize_t> d(dims.begin(), dims.end());
   const auto [ds, chunk0] = create_nd(g, n, t, d);
@@ -503,6 +507,79 @@ void write_dataset(hid g, const std::string& n, Type type, std::span<const std::
   std::vector<std::byte> all(total * H5Tget_size(t));
   fill(0, total, all.data());
   check(H5Dwrite(ds.get(), t, H5S_ALL, H5S_ALL, H5P_DEFAULT, all.data()), "write " + n);
+}
+
+namespace {
+
+// One dataset of write_datasets: its rows not yet written (chunked: fewer than a chunk, or the last short chunk;
+// contiguous: every row, written at the end).
+struct RowsSink {
+  Handle ds;
+  hsize_t chunk0 = 0;  // 0: contiguous
+  std::size_t row_bytes = 0, next_chunk = 0;
+  std::vector<Bytef> pending;
+};
+}  // namespace
+
+void write_datasets(std::span<const RowsDataset> sets, const RowsFill& fill, std::size_t window_rows) {
+  if (sets.empty()) return;
+  const std::size_t rows = sets[0].dims.at(0);
+  std::vector<RowsSink> sink(sets.size());
+  for (std::size_t k = 0; k < sets.size(); ++k) {
+    if (sets[k].dims.empty() || sets[k].dims[0] != rows)
+      throw std::logic_error("write_datasets: " + sets[k].name + " does not share the first dimension");
+    std::vector<hsize_t> d(sets[k].dims.begin(), sets[k].dims.end());
+    auto [ds, chunk0] = create_nd(sets[k].group, sets[k].name, native(sets[k].type), d);
+    sink[k].ds = std::move(ds), sink[k].chunk0 = chunk0;
+    sink[k].row_bytes = H5Tget_size(native(sets[k].type));
+    for (std::size_t j = 1; j < d.size(); ++j) sink[k].row_bytes *= static_cast<std::size_t>(d[j]);
+  }
+  std::vector<std::vector<Bytef>> window(sets.size());
+  std::vector<void*> out(sets.size());
+  struct Job {
+    std::size_t set, chunk, offset, bytes;
+    int status = Z_OK;
+    std::vector<Bytef> packed;
+  };
+  for (std::size_t w0 = 0; w0 < rows; w0 += window_rows) {
+    const std::size_t n = std::min(window_rows, rows - w0);
+    for (std::size_t k = 0; k < sets.size(); ++k) window[k].assign(n * sink[k].row_bytes, 0), out[k] = window[k].data();
+    fill(w0, n, out);
+    std::vector<Job> jobs;  // the chunks this window completes (the last one, short, at the end of the rows)
+    for (std::size_t k = 0; k < sets.size(); ++k) {
+      RowsSink& s = sink[k];
+      s.pending.insert(s.pending.end(), window[k].begin(), window[k].end());
+      if (!s.chunk0) continue;
+      const std::size_t chunk_bytes = static_cast<std::size_t>(s.chunk0) * s.row_bytes;
+      std::size_t at = 0;
+      while (s.pending.size() - at >= chunk_bytes || (w0 + n == rows && s.pending.size() > at)) {
+        const std::size_t b = std::min(chunk_bytes, s.pending.size() - at);
+        jobs.push_back({k, s.next_chunk++, at, b, Z_OK, {}});
+        at += b;
+      }
+    }
+    parallel_blocks(jobs.size(), thread_count(0, jobs.size()), [&](std::size_t first, std::size_t last) {
+      std::vector<Bytef> padded, shuffled;
+      for (std::size_t j = first; j < last; ++j) {
+        Job& b = jobs[j];
+        const RowsSink& s = sink[b.set];
+        b.status = pack_chunk(s.pending.data() + b.offset, b.bytes, static_cast<std::size_t>(s.chunk0) * s.row_bytes,
+                              H5Tget_size(native(sets[b.set].type)), padded, shuffled, b.packed);
+      }
+    });
+    std::vector<std::size_t> used(sets.size(), 0);
+    for (const Job& b : jobs) {
+      write_packed(sink[b.set].ds.get(), sets[b.set].name, b.chunk, b.status, sets[b.set].dims.size(), sink[b.set].chunk0,
+                   b.packed);
+      used[b.set] = b.offset + b.bytes;
+    }
+    for (std::size_t k = 0; k < sets.size(); ++k)
+      sink[k].pending.erase(sink[k].pending.begin(), sink[k].pending.begin() + static_cast<std::ptrdiff_t>(used[k]));
+  }
+  for (std::size_t k = 0; k < sets.size(); ++k)  // the contiguous (small) ones
+    if (!sink[k].chunk0 && !sink[k].pending.empty())
+      check(H5Dwrite(sink[k].ds.get(), native(sets[k].type), H5S_ALL, H5S_ALL, H5P_DEFAULT, sink[k].pending.data()),
+            "write " + sets[k].name);
 }
 
 void write_dataset(hid g, const std::string& n, std::span<const double> v) {

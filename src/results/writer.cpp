@@ -1,5 +1,6 @@
 #include "pounding/results/writer.hpp"
 
+#include <cstring>
 #include <map>
 #include <stdexcept>
 #include <type_traits>
@@ -159,6 +160,38 @@ void write_gaps(h5::hid root, const GapTable& t, std::size_t models) {
   h5::write_dataset(g.get(), "metres", std::span<const double>(t.metres), dims);
 }
 
+// [outputs] per_model = "stream": /models' per-model datasets and /gaps/metres from Results::model_rows, every
+// dataset a window of models at a time (each model drawn once), the same datasets write_models and write_gaps give.
+void write_streamed_models(h5::hid root, const Results& r) {
+  const std::size_t M = r.streamed_models, G = r.gaps.ratios.size();
+  const auto models = h5::open_group(root, "models");
+  std::vector<h5::RowsDataset> sets;
+  for (const auto& [name, member] : model_doubles) sets.push_back({models.get(), std::string(name), h5::Type::f64, {M}});
+  sets.push_back({models.get(), "i1", h5::Type::i32, {M}});
+  sets.push_back({models.get(), "i2", h5::Type::i32, {M}});
+  sets.push_back({models.get(), "sample", h5::Type::i64, {M}});
+  h5::Handle gaps;
+  if (G) {
+    gaps = h5::open_group(root, "gaps");
+    sets.push_back({gaps.get(), "metres", h5::Type::f64, {M, G}});
+  }
+  h5::write_datasets(sets, [&](std::size_t first, std::size_t n, std::span<void* const> out) {
+    ModelTable t;
+    r.model_rows(first, n, t);
+    std::size_t k = 0;
+    const auto put = [&](const auto& v) {
+      if (v.size() != n) throw std::logic_error("results: model_rows filled a column with the wrong count");
+      std::memcpy(out[k++], v.data(), n * sizeof(v[0]));
+    };
+    for (const auto& [name, member] : model_doubles) put(t.*member);
+    put(t.i1), put(t.i2), put(t.sample);
+    if (!G) return;
+    auto* metres = static_cast<double*>(out[k]);
+    for (std::size_t i = 0; i < n; ++i)
+      for (std::size_t g = 0; g < G; ++g) metres[i * G + g] = r.gaps.ratios[g] * t.code_gap[i];  // as gap_table
+  });
+}
+
 // The axes of a format-3 field, its dataset's `axes` attribute; "" for the [records, models(, gaps)] extents,
 // which the group's `shape` attribute names.
 std::string axes(const FieldSpec& s, bool stripes) {
@@ -290,7 +323,8 @@ Writer::Writer(const std::string& path, const Results& r, bool on_disk) {
   write_settings(root, r.settings);
   write_records(root, r.records);
   write_models(root, r.models);
-  write_gaps(root, r.gaps, r.model_count());
+  write_gaps(root, r.gaps, r.models.size());
+  if (r.model_rows) write_streamed_models(root, r);
   for (const char* group : {"records", "models", "gaps"})
     if (h5::exists(root, group)) label_group(root, group);
   write_fields(root, r);  // labelled from their schema rows

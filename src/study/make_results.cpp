@@ -13,6 +13,7 @@
 
 #include "pounding/contact/registry.hpp"
 #include "pounding/core/machine.hpp"
+#include "pounding/core/parallel_for.hpp"
 #include "pounding/core/type_list.hpp"
 #include "pounding/core/version.hpp"
 #include "pounding/model/hysteresis/registry.hpp"
@@ -65,28 +66,40 @@ results::RecordTable record_table(const std::vector<StudyRecord>& records) {
   return t;
 }
 
-// The models are resampled (a sample depends only on its pair and index): no rank ships them.
+// Models [first, first + n) of the table's per-model columns (each sized n), drawn on every CPU: a sample depends
+// only on its pair and index, so no rank ships them, and any window draws the same values.
+void draw_models(const Study& study, const WorkPlan& plan, const StructureSampler& sampler, std::size_t first,
+                 std::size_t n, results::ModelTable& t) {
+  for (const auto& [name, member] : results::model_doubles) (t.*member).resize(n);
+  t.i1.resize(n), t.i2.resize(n), t.sample.resize(n);
+  const std::size_t parts = std::max<std::size_t>(1, n / 4096);
+  parallel_blocks(parts, thread_count(0, parts), [&](std::size_t p0, std::size_t p1) {
+    std::vector<SampledPair> sp;
+    for (std::size_t i = p0 * n / parts; i < p1 * n / parts;) {
+      const std::size_t m = first + i, p = m / plan.samples, s0 = m % plan.samples;
+      const std::size_t count = std::min(plan.samples - s0, p1 * n / parts - i);
+      const SampleId pair = study.structures.pair_id(static_cast<std::int64_t>(p));
+      sp.resize(count);
+      sampler.sample_block(pair.i1, pair.i2, static_cast<std::int64_t>(s0), sp);
+      for (std::size_t j = 0; j < count; ++j, ++i) {
+        const auto& q = sp[j];
+        t.T1[i] = q.s1.T, t.T2[i] = q.s2.T, t.h1[i] = q.s1.h, t.h2[i] = q.s2.h, t.m1[i] = q.s1.m, t.m2[i] = q.s2.m;
+        t.k1[i] = q.s1.k, t.k2[i] = q.s2.k, t.fy1[i] = q.s1.fy, t.fy2[i] = q.s2.fy, t.code_gap[i] = q.d;
+        t.kh[i] = q.kh, t.i1[i] = q.id.i1, t.i2[i] = q.id.i2, t.sample[i] = q.id.sample;
+        t.aspect1[i] = q.s1.aspect, t.aspect2[i] = q.s2.aspect, t.rho1[i] = q.s1.rho, t.rho2[i] = q.s2.rho;
+        t.mbar1[i] = q.s1.mbar, t.mbar2[i] = q.s2.mbar, t.c1[i] = q.s1.c, t.c2[i] = q.s2.c;
+        t.zeta1[i] = q.s1.zeta, t.zeta2[i] = q.s2.zeta, t.alpha1[i] = q.s1.alpha, t.alpha2[i] = q.s2.alpha;
+      }
+    }
+  });
+}
+
 results::ModelTable model_table(const Study& study, const WorkPlan& plan) {
   const StructureSampler sampler(study.structures, study.seed);
   const std::size_t M = plan.models();
   results::ModelTable t;
-  for (const auto& [name, member] : results::model_doubles) (t.*member).resize(M);
-  t.i1.resize(M), t.i2.resize(M), t.sample.resize(M);
+  draw_models(study, plan, sampler, 0, M, t);
   std::vector<SampledPair> sp(plan.samples);
-  for (std::size_t p = 0; p < plan.pairs; ++p) {
-    const SampleId pair = study.structures.pair_id(static_cast<std::int64_t>(p));
-    sampler.sample_block(pair.i1, pair.i2, 0, sp);
-    for (std::size_t s = 0; s < plan.samples; ++s) {
-      const std::size_t m = p * plan.samples + s;
-      const auto& q = sp[s];
-      t.T1[m] = q.s1.T, t.T2[m] = q.s2.T, t.h1[m] = q.s1.h, t.h2[m] = q.s2.h, t.m1[m] = q.s1.m, t.m2[m] = q.s2.m;
-      t.k1[m] = q.s1.k, t.k2[m] = q.s2.k, t.fy1[m] = q.s1.fy, t.fy2[m] = q.s2.fy, t.code_gap[m] = q.d;
-      t.kh[m] = q.kh, t.i1[m] = q.id.i1, t.i2[m] = q.id.i2, t.sample[m] = q.id.sample;
-      t.aspect1[m] = q.s1.aspect, t.aspect2[m] = q.s2.aspect, t.rho1[m] = q.s1.rho, t.rho2[m] = q.s2.rho;
-      t.mbar1[m] = q.s1.mbar, t.mbar2[m] = q.s2.mbar, t.c1[m] = q.s1.c, t.c2[m] = q.s2.c;
-      t.zeta1[m] = q.s1.zeta, t.zeta2[m] = q.s2.zeta, t.alpha1[m] = q.s1.alpha, t.alpha2[m] = q.s2.alpha;
-    }
-  }
   // a row's buildings 3..n (a bridge's frames 3..n)
   t.row.resize(study.structures.bridge ? study.structures.bridge->frames() - 2 : study.structures.more.size());
   for (auto& b : t.row)
@@ -413,17 +426,25 @@ results::Results make_results(const Study& study, const std::vector<StudyRecord>
   r.header = make_header(study, ex, facts);
   r.settings = settings_of(study);
   r.records = record_table(records);
-  if (const Reductions* red = tally.reductions(); red && !spilled) {  // [outputs] per_model = false: the period grids, no models
-    const StructureSampler sampler(study.structures, study.seed);
-    r.models.periods1 = sampler.building(0).periods, r.models.periods2 = sampler.building(1).periods;
+  if (const Reductions* red = tally.reductions(); red) {  // per_model = false (and "stream"): the period grids
+    auto sampler = std::make_shared<const StructureSampler>(study.structures, study.seed);
+    r.models.periods1 = sampler->building(0).periods, r.models.periods2 = sampler->building(1).periods;
     r.models.periods = r.models.periods1;
     r.models.zeta = study.structures.zeta;
     r.gaps.ratios = study.gap_ratios;
-    r.groups.push_back(red->group());
-    return r;
+    if (!spilled) {
+      r.groups.push_back(red->group());
+      return r;
+    }
+    // "stream": the models' table drawn window by window as the file is written (results::Results::model_rows)
+    r.streamed_models = plan.models();
+    r.model_rows = [&study, plan, sampler](std::size_t first, std::size_t n, results::ModelTable& t) {
+      draw_models(study, plan, *sampler, first, n, t);
+    };
+  } else {
+    r.models = model_table(study, plan);
+    r.gaps = results::gap_table(study.gap_ratios, r.models.code_gap);  // every scene
   }
-  r.models = model_table(study, plan);
-  r.gaps = results::gap_table(study.gap_ratios, r.models.code_gap);  // every scene
   if (plan.impacts) r.gap_ratios = study.gap_ratios;
   r.fields = spilled ? SpilledColumns::fields(spilled) : tally.take_fields();
   r.stripes = stripes.stripes;

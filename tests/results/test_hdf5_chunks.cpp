@@ -12,7 +12,9 @@
 //    the chunks are not raw bytes by accident;
 //  - a dataset written from an h5::Fill ([outputs] per_model = "stream", study/spill.hpp) is the same dataset: its
 //    stored chunks equal the in-memory write's, byte for byte, and every call asks for whole rows; an on-disk
-//    AtomicFile (Storage::disk) leaves nothing but the committed file, and nothing at all when a Fill throws.
+//    AtomicFile (Storage::disk) leaves nothing but the committed file, and nothing at all when a Fill throws;
+//  - datasets written together by rows (h5::write_datasets: the streamed models' table) are the same datasets too,
+//    with windows shorter and longer than their chunks, and each row is asked for once, in order.
 #include <hdf5.h>
 
 #include <gtest/gtest.h>
@@ -230,6 +232,64 @@ TEST(Hdf5Chunks, OnDiskFileLeavesNothingButTheCommittedFile) {
   ASSERT_EQ(files(), std::vector<std::string>{"disk.h5"});
   h5::Handle file = h5::open_read(path);
   EXPECT_EQ(h5::read_doubles(file.get(), "x"), v);
+}
+
+// h5::write_datasets: four datasets of 70,001 rows (chunks of 16,384, 2,340, 5,461 and 70,001 rows) written in
+// windows of 1,000 rows (a chunk spans many windows) and of 65,536 rows (a window holds many chunks), and a set of
+// 500 rows whose first three datasets are contiguous (under 4096 values): each equals write_dataset's, stored chunks included.
+TEST(Hdf5Chunks, SeveralDatasetsWrittenByRows) {
+  testdata::TempDir tmp("hdf5-rows");
+  const std::string path = tmp.file("rows.h5");
+  for (const std::size_t rows : {std::size_t{70001}, std::size_t{500}}) {
+    const std::vector<double> a = ramp<double>(rows);
+    const std::vector<std::uint8_t> b = ramp<std::uint8_t>(rows * 7);
+    const std::vector<std::int32_t> c = ramp<std::int32_t>(rows * 3);
+    const std::vector<std::int64_t> d = ramp<std::int64_t>(rows * 9);
+    for (const std::size_t window : {std::size_t{1000}, std::size_t{65536}}) {
+      {
+        h5::AtomicFile f(path, h5::AtomicFile::Storage::disk);
+        const std::size_t da[] = {rows}, db[] = {rows, 7}, dc[] = {rows, 3}, dd[] = {rows, 9};
+        h5::write_dataset(f.root(), "a", std::span<const double>(a), da);
+        h5::write_dataset(f.root(), "b", std::span<const std::uint8_t>(b), db);
+        h5::write_dataset(f.root(), "c", std::span<const std::int32_t>(c), dc);
+        h5::write_dataset(f.root(), "d", std::span<const std::int64_t>(d), dd);
+        const std::vector<h5::RowsDataset> sets{{f.root(), "ra", h5::Type::f64, {rows}},
+                                                {f.root(), "rb", h5::Type::u8, {rows, 7}},
+                                                {f.root(), "rc", h5::Type::i32, {rows, 3}},
+                                                {f.root(), "rd", h5::Type::i64, {rows, 9}}};
+        std::size_t next = 0;
+        h5::write_datasets(
+            sets,
+            [&](std::size_t first, std::size_t n, std::span<void* const> out) {
+              EXPECT_EQ(first, next) << "rows asked out of order or twice";
+              next = first + n;
+              std::memcpy(out[0], a.data() + first, n * sizeof(double));
+              std::memcpy(out[1], b.data() + first * 7, n * 7);
+              std::memcpy(out[2], c.data() + first * 3, n * 3 * sizeof(std::int32_t));
+              std::memcpy(out[3], d.data() + first * 9, n * 9 * sizeof(std::int64_t));
+            },
+            window);
+        EXPECT_EQ(next, rows);
+        f.commit();
+      }
+      h5::Handle file = h5::open_read(path);
+      const std::string label = std::to_string(rows) + " rows, windows of " + std::to_string(window);
+      EXPECT_EQ(h5::read_doubles(file.get(), "ra"), a) << label;
+      EXPECT_EQ(h5::read_uint8(file.get(), "rb"), b) << label;
+      EXPECT_EQ(h5::read_int32(file.get(), "rc"), c) << label;
+      EXPECT_EQ(h5::read_int64(file.get(), "rd"), d) << label;
+      for (const char* name : {"a", "b", "c", "d"}) {
+        EXPECT_EQ(h5::dataset_shape(file.get(), std::string("r") + name), h5::dataset_shape(file.get(), name)) << label;
+        h5::Handle ds(H5Dopen2(file.get(), name, H5P_DEFAULT));
+        h5::Handle dcpl(H5Dget_create_plist(ds.get()));
+        if (H5Pget_layout(dcpl.get()) != H5D_CHUNKED) {  // under 4096 values: a, b, c at 500 rows
+          EXPECT_TRUE(rows == 500 && std::string(name) != "d") << label << ": " << name << " is contiguous";
+          continue;
+        }
+        EXPECT_EQ(stored_chunks(file.get(), std::string("r") + name), stored_chunks(file.get(), name)) << label << " " << name;
+      }
+    }
+  }
 }
 
 // h5::read_doubles_if_constant: the values when all equal the first (a compressed column read whole, a small one

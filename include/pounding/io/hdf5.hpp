@@ -87,6 +87,18 @@ void write_strings(hid group, const std::string& name, const std::vector<std::st
 using Fill = std::function<void(std::size_t first, std::size_t count, void* out)>;
 enum class Type { f64, i64, i32, u8 };
 void write_dataset(hid group, const std::string& name, Type type, std::span<const std::size_t> dims, const Fill& fill);
+// Several datasets that share their first dimension (rows), written together a window of rows at a time from one
+// call of fill(first_row, rows, out) per window, which writes rows [first_row, first_row + rows) of dataset k to
+// out[k] (row-major, dataset k's type): a caller whose rows are costly to make (the models' table, drawn once per
+// model for its 27 datasets) makes each row once. Each dataset is the one write_dataset gives for its values.
+struct RowsDataset {
+  hid group;
+  std::string name;
+  Type type;
+  std::vector<std::size_t> dims;
+};
+using RowsFill = std::function<void(std::size_t first_row, std::size_t rows, std::span<void* const> out)>;
+void write_datasets(std::span<const RowsDataset> sets, const RowsFill& fill, std::size_t window_rows = 65536);
 
 void write_attribute(hid obj, const std::string& name, const std::string& value);
 void write_attribute(hid obj, const std::string& name, double value);

@@ -285,7 +285,12 @@ struct Results {
   Group& group_for(std::string name);  // the group, created (at the end) when absent
 
   std::size_t record_count() const { return records.size(); }
-  std::size_t model_count() const { return models.size(); }
+  // [outputs] per_model = "stream" (study/spill.hpp): the models' table is not held (ModelTable's per-model columns
+  // and GapTable::metres stay empty) but drawn a window at a time as the file is written: model_rows(first, n, out)
+  // fills every per-model column of `out` with models [first, first + n); streamed_models is their count.
+  std::function<void(std::size_t first, std::size_t n, ModelTable& out)> model_rows = {};
+  std::size_t streamed_models = 0;
+  std::size_t model_count() const { return model_rows ? streamed_models : models.size(); }
   // [records] polarity: "both" (rows 2r, 2r + 1 are record r's two signs) or "recorded" (also every file written
   // before the key). polarities() is the number of analyses (rows) per independent record, 1 or 2, and
   // independent_records() the records the statistics resample. Throws std::runtime_error for a "both" file whose
