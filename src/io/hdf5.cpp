@@ -118,7 +118,10 @@ void write_chunks_filled(hid_t ds, const std::string& name, const Fill& fill, hi
                          hsize_t chunk0) {
   const ChunkRows g(type, name, dims, chunk0);
   const std::size_t values_per_row = g.row_bytes / g.element;
-  const std::size_t threads = static_cast<std::size_t>(thread_count(0, g.chunks));
+  // each thread holds a chunk, its shuffled copy and its deflated copy: at most 512 MiB of them (a chunk of a
+  // [records, models] column is a record row, 80 MB at 10^7 models), and 64 MiB of chunks per window
+  const std::size_t threads = std::clamp<std::size_t>((std::size_t{512} << 20) / std::max<std::size_t>(1, 3 * g.chunk_bytes), 1,
+                                                      static_cast<std::size_t>(thread_count(0, g.chunks)));
   const std::size_t window = std::max<std::size_t>(threads, (std::size_t{64} << 20) / std::max<std::size_t>(1, g.chunk_bytes));
   std::vector<std::vector<Bytef>> packed(std::min(window, g.chunks));
   std::vector<int> status(packed.size(), Z_OK);

@@ -779,16 +779,26 @@ int ranks_on_this_node() {
   return 1;
 }
 
+// [outputs] per_model = "stream": rank 0's peak (README, "Studies larger than memory"): the reductions and the unit
+// index (`need`), each model's code gap (8 bytes), the write's chunks with their shuffled and deflated copies (at most
+// 512 MiB of them and the window's deflated chunks, or 4 copies of one record row of 8 M bytes when that is more:
+// h5::write_dataset with a Fill), the models' window (64 MiB) and the base.
+double stream_peak_bytes(const Study& s, double need) {
+  const double M = static_cast<double>(s.structures.period_pair_count()) * static_cast<double>(s.structures.samples_per_pair);
+  constexpr double MiB = 1024.0 * 1024;
+  return need + 8.0 * M + std::max(640.0 * MiB, 4.0 * 8.0 * M) + 64.0 * MiB + rank_base_bytes;
+}
+
 void check_result_memory(const Study& s, std::size_t records) {
   const double need = result_bytes(s, records);
   const double avail = available_memory_bytes();
   const int local = ranks_on_this_node();
   // rank 0's peak: the gathered arrays, the results built from them, the HDF5 image and its copy written out
   // per_model = false builds no models' table (its reductions hold the period grids only)
-  const double models = s.per_model ? static_cast<double>(s.structures.period_pair_count()) *
-                                          static_cast<double>(s.structures.samples_per_pair)
-                                    : 0.0;
-  const double peak = need * result_peak_factor + models * model_peak_bytes + rank_base_bytes;
+  const double models = s.per_model && !s.stream ? static_cast<double>(s.structures.period_pair_count()) *
+                                                       static_cast<double>(s.structures.samples_per_pair)
+                                                 : 0.0;
+  const double peak = s.stream ? stream_peak_bytes(s, need) : need * result_peak_factor + models * model_peak_bytes + rank_base_bytes;
   const double share = avail - static_cast<double>(local - 1) * rank_base_bytes;  // the other ranks' part
   const bool over_machine = std::isfinite(avail) && peak > share;
   if (need <= max_result_bytes && !over_machine) return;

@@ -151,18 +151,18 @@ sed 's/^scene = .*/scene = "impacts"/' "$tmp/str.toml" > "$tmp/b2.toml"
 grep -q '^scene = "impacts"' "$tmp/b2.toml" || sed -i '1i scene = "impacts"' "$tmp/b2.toml"
 bad '"stream" in the impacts scene' "$tmp/b2.toml" 'per_model = "stream" makes the run.s report from the reductions'
 
-# 5. the memory check: 512 MiB "available" refuses 1024 samples per pair (3.1 M analyses: 77 MB of columns, about
-#    630 MB at rank 0's peak) with per_model = true, admits "stream" (the reductions and the unit index, about 320 MB
-#    with the models' table and the rank's base)
-sed 's/^samples_per_pair = 8/samples_per_pair = 1024/' "$tmp/full.toml" > "$tmp/big.toml"
+# 5. the memory check: 1.5 GiB "available" refuses 4096 samples per pair (12.4 M analyses: 310 MB of columns, about
+#    1.7 GB at rank 0's peak) with per_model = true, admits "stream" (about 980 MB: the base, the write's chunks at
+#    their bound, 8 bytes per model)
+sed 's/^samples_per_pair = 8/samples_per_pair = 4096/' "$tmp/full.toml" > "$tmp/big.toml"
 with_outputs '"stream"' "$tmp/big.toml" "$tmp/bigstr.toml"
-rc=0; POUNDING_TEST_MEMORY_AVAILABLE=536870912 "$bin" run "$tmp/big.toml" --out "$tmp/big.h5" --quiet > /dev/null 2> "$tmp/m.err" || rc=$?
-{ [ "$rc" -eq 2 ] && grep -q 'per_model = "stream"' "$tmp/m.err"; } && echo "ok   per_model = true refused at 512 MiB, the fix names \"stream\"" \
+rc=0; POUNDING_TEST_MEMORY_AVAILABLE=1610612736 "$bin" run "$tmp/big.toml" --out "$tmp/big.h5" --quiet > /dev/null 2> "$tmp/m.err" || rc=$?
+{ [ "$rc" -eq 2 ] && grep -q 'per_model = "stream"' "$tmp/m.err"; } && echo "ok   per_model = true refused at 1.5 GiB, the fix names \"stream\"" \
   || fail "memory check with per_model = true: exit $rc: $(cat "$tmp/m.err")"
-POUNDING_INJECT_FAULT=load@0 POUNDING_TEST_MEMORY_AVAILABLE=536870912 "$bin" run "$tmp/bigstr.toml" --out "$tmp/big2.h5" \
+POUNDING_INJECT_FAULT=load@0 POUNDING_TEST_MEMORY_AVAILABLE=1610612736 "$bin" run "$tmp/bigstr.toml" --out "$tmp/big2.h5" \
   --quiet > /dev/null 2> "$tmp/m2.err" || true
-grep -q "injected fault in phase 'load'" "$tmp/m2.err" && echo "ok   \"stream\" passes the memory check at 512 MiB (stopped at the load)" \
-  || fail "\"stream\" at 512 MiB: $(cat "$tmp/m2.err")"
+grep -q "injected fault in phase 'load'" "$tmp/m2.err" && echo "ok   \"stream\" passes the memory check at 1.5 GiB (stopped at the load)" \
+  || fail "\"stream\" at 1.5 GiB: $(cat "$tmp/m2.err")"
 
 [ "$fails" -eq 0 ] || { echo "$fails failure(s)"; exit 1; }
 echo "all stream checks passed"
