@@ -86,4 +86,10 @@ if [ "$ranks" -gt 1 ]; then
       || fail "results differ with POUNDING_MPI_TRANSPORTS / OMPI_MCA_mtl"
   done
   echo "ok: one node, pml cm not loaded; loaded with POUNDING_MPI_TRANSPORTS=all or a user's OMPI_MCA_mtl; results equal"
+  # any other value is refused on every rank before MPI starts, said once, nothing written
+  rc=0; timeout 120 mpirun -np 2 env POUNDING_MPI_TRANSPORTS=none "$bin" run "$tmp/s.toml" --out "$tmp/v3.h5" --quiet \
+    > /dev/null 2> "$tmp/v3.err" || rc=$?
+  { [ "$rc" -eq 2 ] && [ "$(grep -c ERROR "$tmp/v3.err")" -eq 1 ] && grep -q "POUNDING_MPI_TRANSPORTS=none is not a choice" "$tmp/v3.err" \
+    && [ ! -e "$tmp/v3.h5" ]; } && echo "ok: POUNDING_MPI_TRANSPORTS=none refused: $(cat "$tmp/v3.err")" \
+    || fail "POUNDING_MPI_TRANSPORTS=none: exit $rc: $(cat "$tmp/v3.err")"
 fi

@@ -141,6 +141,17 @@ void write_html_report(const std::string& results_path, const std::string& html_
 
 // One `pounding run` on this rank; returns the exit code (the MPI session has ended when it returns).
 int run_job(const RunOpts& o) {
+  // POUNDING_MPI_TRANSPORTS (parallel/mpi_executor.cpp, docs/cluster.md): "all" or unset; anything else is a typo that
+  // would silently be the default. Refused on every rank before MPI starts, said once (rank 0, or no launcher).
+  if (const char* t = std::getenv("POUNDING_MPI_TRANSPORTS"); t && *t && std::string_view(t) != "all") {
+    const char* rank = std::getenv("OMPI_COMM_WORLD_RANK");
+    if (!rank) rank = std::getenv("PMI_RANK");
+    if (!rank || std::string_view(rank) == "0")
+      fmt::print(stderr, " ERROR: POUNDING_MPI_TRANSPORTS={} is not a choice, the environment, unset it (on one node "
+                         "pounding leaves out Open MPI's network layers) or set it to all (Open MPI's own choice; "
+                         "docs/cluster.md)\n", t);
+    return 2;
+  }
   int argc = 0;
   char** argv = nullptr;
   const auto t_mpi = std::chrono::steady_clock::now();
