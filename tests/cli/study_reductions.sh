@@ -15,6 +15,7 @@
 # Synthetic records only (no ../shared). Args: <pounding binary> <source dir>
 set -euo pipefail
 bin=$1; src=$(cd "$2" && pwd)
+. "$src/tests/lib/kill_job.sh"
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMPI_MCA_rmaps_base_oversubscribe=1
 tmp=$(mktemp -d); trap 'rm -rf "$tmp"' EXIT
 fails=0
@@ -110,15 +111,7 @@ cmp "$tmp/red.h5" "$tmp/r3.h5" || fail "1 process vs mpirun -np 3 differ"
 sed 's/^samples_per_pair = 8/samples_per_pair = 128/' "$tmp/red.toml" > "$tmp/mid.toml"
 "$bin" run "$tmp/mid.toml" --out "$tmp/mid.h5" --quiet > /dev/null 2>&1
 export POUNDING_TEST_CHECKPOINT_S=0.05  # snapshots every 50 ms (5 s by default): a kill finds units in them
-setsid mpirun -np 3 --oversubscribe "$bin" run "$tmp/mid.toml" --out "$tmp/k.h5" --quiet > /dev/null 2>&1 &
-job=$!
-for _ in $(seq 1 400); do
-  [ -f "$tmp/k.h5.ckpt.rank2" ] && [ "$(stat -c %s "$tmp/k.h5.ckpt.rank2")" -gt 20000 ] && break
-  sleep 0.05
-done
-pkill -9 -s "$job" 2>/dev/null || true
-for _ in $(seq 1 200); do pgrep -s "$job" > /dev/null || break; sleep 0.05; done
-wait "$job" 2>/dev/null || true
+kill_when_grown "$tmp/k.h5.ckpt.rank2" 20000 mpirun -np 3 --oversubscribe "$bin" run "$tmp/mid.toml" --out "$tmp/k.h5" --quiet
 if [ -f "$tmp/k.h5" ]; then echo "note: the 3-rank run finished before the kill; resume not exercised"
 else
   for f in "$tmp"/k.h5.ckpt*; do [ "$(head -c 8 "$f")" = PNDCKPT5 ] || fail "$f is not a snapshot (format 5)"; done

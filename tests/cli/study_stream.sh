@@ -16,6 +16,7 @@
 # Synthetic records only (no ../shared). Args: <pounding binary> <source dir>
 set -euo pipefail
 bin=$1; src=$(cd "$2" && pwd)
+. "$src/tests/lib/kill_job.sh"
 export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMPI_MCA_rmaps_base_oversubscribe=1
 tmp=$(mktemp -d); trap 'rm -rf "$tmp"' EXIT
 fails=0
@@ -109,15 +110,7 @@ same "$tmp/full.h5" "$tmp/narrow.h5" "batch = 3 (units of 3 models)"
 sed 's/^samples_per_pair = 8/samples_per_pair = 128/' "$tmp/full.toml" > "$tmp/mid.toml"
 with_outputs '"stream"' "$tmp/mid.toml" "$tmp/midstr.toml"
 "$bin" run "$tmp/mid.toml" --out "$tmp/mid.h5" --quiet > /dev/null 2>&1
-setsid mpirun -np 3 --oversubscribe "$bin" run "$tmp/midstr.toml" --out "$tmp/k.h5" --quiet > /dev/null 2>&1 &
-job=$!
-for _ in $(seq 1 400); do
-  [ -f "$tmp/k.h5.ckpt.rank2" ] && [ "$(stat -c %s "$tmp/k.h5.ckpt.rank2")" -gt 200000 ] && break
-  sleep 0.05
-done
-pkill -9 -s "$job" 2>/dev/null || true
-for _ in $(seq 1 200); do pgrep -s "$job" > /dev/null || break; sleep 0.05; done
-wait "$job" 2>/dev/null || true
+kill_when_grown "$tmp/k.h5.ckpt.rank2" 200000 mpirun -np 3 --oversubscribe "$bin" run "$tmp/midstr.toml" --out "$tmp/k.h5" --quiet
 if [ -f "$tmp/k.h5" ]; then echo "note: the 3-rank run finished before the kill; resume not exercised"
 else
   timeout 300 mpirun -np 2 "$bin" run "$tmp/midstr.toml" --out "$tmp/k.h5" --resume > /dev/null 2> "$tmp/k.err" \
