@@ -1277,16 +1277,29 @@ results::Writer report_beside_write(const RunOptions& opt, const RunContext& ctx
 // The run's results (the selection's group added). [outputs] per_model = "stream": the per-model fields are read from
 // the checkpoint files as the file is written (study/spill.hpp), and `view` gets the results the report is made
 // from, the reductions'.
+// `meter` ("stream"): the write's progress and stop, counted in values (each per-model field's, and a model row each).
 results::Results run_results(const Inputs& in, const WorkPlan& L, Tally& tally, const Exclusions& ex,
-                             const RunFacts& facts, const CheckpointKey& key, std::optional<results::Results>& view) {
+                             const RunFacts& facts, const CheckpointKey& key, std::optional<results::Results>& view,
+                             const WorkHook* hook, std::shared_ptr<Meter>& meter) {
   std::shared_ptr<const SpilledColumns> spilled;
   if (L.stream) spilled = std::make_shared<const SpilledColumns>(L, in.out + ".ckpt", key);
   results::Results res = make_results(in.study, in.records, L, tally, ex, facts, in.stripes, spilled);
-  if (spilled && !res.fields.empty())  // tests: POUNDING_INJECT_FAULT=stream@0 fails the streamed write half-way
-    res.fields.back().source = [fill = res.fields.back().source](std::size_t first, std::size_t n, void* to) {
-      inject_fault("stream", 0);
-      fill(first, n, to);
+  if (spilled) {
+    std::size_t total = res.streamed_models;
+    for (const results::Field& f : res.fields) total += L.analysis_records() * L.models() * L.per_lane(f.spec);
+    static const std::string phase = "results write: per-model datasets from the checkpoint";
+    meter = std::make_shared<Meter>(hook, phase, total, "values");
+    for (results::Field& f : res.fields)
+      f.source = [fill = f.source, m = meter, last = &f == &res.fields.back()](std::size_t first, std::size_t n, void* to) {
+        if (last) inject_fault("stream", 0);  // tests: POUNDING_INJECT_FAULT=stream@0 fails the write half-way
+        if (!m->step(n)) throw Cancelled(phase);
+        fill(first, n, to);
+      };
+    res.model_rows = [rows = res.model_rows, m = meter](std::size_t first, std::size_t n, results::ModelTable& t) {
+      if (!m->step(n)) throw Cancelled(phase);
+      rows(first, n, t);
     };
+  }
   if (L.stream) view.emplace(make_results(in.study, in.records, L, tally, ex, facts, in.stripes));
   if (in.selection) res.groups.push_back(selection_group(*in.selection));
   return res;
@@ -1317,7 +1330,9 @@ int finish(const parallel::Session& session, const Inputs& in, const WorkPlan& L
     }
     try {
       std::optional<results::Results> view;
-      results::Results res = run_results(in, L, tally, ex, {key.build, session.size(), wall}, key, view);
+      std::shared_ptr<Meter> meter;  // "stream": the write's progress
+      const WorkHook hook = ctx.hook();
+      results::Results res = run_results(in, L, tally, ex, {key.build, session.size(), wall}, key, view, &hook, meter);
       const auto t_analysis = std::chrono::steady_clock::now();
       // the analyses the caller adds (fragility, hazard: report/fragility.hpp), with progress and the stop flag
       const std::size_t groups_before = res.groups.size();
@@ -1330,6 +1345,7 @@ int finish(const parallel::Session& session, const Inputs& in, const WorkPlan& L
       double write_s = 0;
       results::Writer file =
           report_beside_write(opt, ctx, in.out, res, view ? &*view : nullptr, L.stream, report, T, write_s);
+      if (meter) meter->finish();
       total = T.wall = timing::seconds_since(timing::program_start());
       res.header.wall_time_s = total;
       if (const auto at = report.find("wall time nan s"); at != std::string::npos)
