@@ -110,7 +110,8 @@ std::vector<LevelRecord> selected_records(const std::string& record_dir, const M
     if (kept.size() != want.size())
       throw InputError(fmt::format("--records matched: {} of the {} matched records are in the directory's "
                                    "MANIFEST.tsv at the paper's PGA band", kept.size(), want.size()),
-                       record_dir, "use the real records of ../shared/records/real (README)");
+                       record_dir,
+                       "use the real records of ../shared/records/real (docs/ground-motions.md)");
     recs = std::move(kept);
   }
   if (!opt.levels.empty())

@@ -660,7 +660,8 @@ constexpr StudyKey keys[] = {
      "of an SDOF pair or grid study only; the report's tables are exact, its separation advice is read from the "
      "histograms. \"stream\": every model's peaks as with true, but rank 0 keeps only the reductions while the units "
      "run and writes the per-model datasets from the checkpoint afterwards, chunk by chunk, into an on-disk temporary "
-     "renamed into place: memory grows with the models per record, not with records x models (README, \"Memory\"); "
+     "renamed into place: memory grows with the models per record, not with records x models "
+     "(docs/studies.md, \"Studies larger than memory\"); "
      "the file's datasets equal those of true, bit for bit; the run's report is the reductions' report (same "
      "restrictions as false), `pounding report` on the file gives the full one."},
 

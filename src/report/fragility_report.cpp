@@ -47,7 +47,7 @@ struct View {
 std::string overview(const View& v) {
   const Results& r = v.r;
   std::string s = fmt::format("# Pounding fragility study: {}\n\n", r.header.title);
-  if (!r.header.exclusion_warning.empty())  // the banner of every report (README, "Failure behaviour": exit 3)
+  if (!r.header.exclusion_warning.empty())  // the banner of every report (docs/failure-behaviour.md: exit 3)
     s += fmt::format("> **WARNING — results not trustworthy as they stand:** {}.\n\n", r.header.exclusion_warning);
   s += fmt::format("- results: `{}` (written {}, commit {}, {} rank(s), wall time {:.2f} s)\n", r.path, r.header.date,
                    r.header.git_commit.substr(0, 12), r.header.ranks, r.header.wall_time_s);

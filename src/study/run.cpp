@@ -1046,9 +1046,10 @@ void announce(const parallel::Session& session, const Inputs& in, const WorkPlan
     if (rr.synthetic && rr.polarity > 0) ctx.say(fmt::format("record {}: synthetic stand-in ({})", rr.id, rr.note));
 }
 
-// Test-only: POUNDING_MASTER_SERVICE=1 measures the master's service time per unit (issue 27.4; README "Speed",
-// tools/predict_scaling.py): units return stored results at once, rank 0 prints the master's time per unit and
-// bytes per unit after the units, and the run ends without results (the checkpoint is removed).
+// Test-only: POUNDING_MASTER_SERVICE=1 measures the master's service time per unit (issue 27.4;
+// docs/performance.md "Scaling across ranks", tools/predict_scaling.py): units return stored results at once,
+// rank 0 prints the master's time per unit and bytes per unit after the units, and the run ends without results
+// (the checkpoint is removed).
 bool master_service_mode() {
   static const bool on = [] {
     const char* v = std::getenv("POUNDING_MASTER_SERVICE");

@@ -403,11 +403,11 @@ void check_per_model(const Study& s) {
                      "html, or delete per_model (per-model outputs in memory)");
 }
 
-// The scene actually run (auto resolved from [outputs]), why, and the scene's default step cap
-// (docs/accuracy.md and the README's accuracy section): the coupled runs need h <= 2.5 ms for 1 % peak
-// forces; the at-least-one-impact probability of the full paper study moves by at most 0.02 percentage points
-// between the record step (10 ms) and 2.5 ms, so the probability scene integrates at the record step. The scene's
-// default batch too (default_batch: shorter units for the impacts scene's long ones, so 1,000 ranks find work).
+// The scene actually run (auto resolved from [outputs]), why, and the scene's default step cap (docs/accuracy.md):
+// the coupled runs need h <= 2.5 ms for 1 % peak forces; the at-least-one-impact probability of the full paper study
+// moves by at most 0.02 percentage points between the record step (10 ms) and 2.5 ms, so the probability scene
+// integrates at the record step. The scene's default batch too (default_batch: shorter units for the impacts scene's
+// long ones, so 1,000 ranks find work).
 void choose_scene(Study& s) {
   const bool max_dt_given = s.max_dt >= 0.0;
   s.scene = s.scene_requested;
@@ -779,10 +779,10 @@ int ranks_on_this_node() {
   return 1;
 }
 
-// [outputs] per_model = "stream": rank 0's peak (README, "Studies larger than memory"): the reductions and the unit
-// index (`need`), each model's code gap (8 bytes), the write's chunks with their shuffled and deflated copies (at most
-// 512 MiB of them and the window's deflated chunks, or 4 copies of one record row of 8 M bytes when that is more:
-// h5::write_dataset with a Fill), the models' window (64 MiB) and the base.
+// [outputs] per_model = "stream": rank 0's peak (docs/studies.md, "Studies larger than memory"): the reductions and
+// the unit index (`need`), each model's code gap (8 bytes), the write's chunks with their shuffled and deflated copies
+// (at most 512 MiB of them and the window's deflated chunks, or 4 copies of one record row of 8 M bytes when that is
+// more: h5::write_dataset with a Fill), the models' window (64 MiB) and the base.
 double stream_peak_bytes(const Study& s, double need) {
   const double M = static_cast<double>(s.structures.period_pair_count()) * static_cast<double>(s.structures.samples_per_pair);
   constexpr double MiB = 1024.0 * 1024;

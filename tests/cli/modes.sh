@@ -81,9 +81,9 @@ for m, r in zip(j["modes"], rows):
 assert abs(sum(m["effective_mass"] for m in j["modes"]) - float(rows[-1]["cumulative_ratio"]) * j["total_mass"]) < 1e-6
 PY
 
-# the help points to the README, not to sources
+# the help points to the documentation (docs/buildings.md), not to sources
 "$bin" modes --help > "$tmp/help.txt"
-grep -q "README" "$tmp/help.txt" || fail "--help does not point to the README"
+grep -q "docs/buildings.md" "$tmp/help.txt" || fail "--help does not point to docs/buildings.md"
 ! grep -q "src/" "$tmp/help.txt" || fail "--help names a source file"
 
 # bad input: <option named in the message> <args...>

@@ -1,5 +1,6 @@
 // `pounding modes`: periods, frequencies, participation, effective masses, Rayleigh damping ratios and mode
-// shapes of a shear building (issue 25 §2; docs/architecture.md §2.2.3; README "Modes of a shear building").
+// shapes of a shear building (issue 25 §2; docs/architecture.md §2.2.3; docs/buildings.md "Modes of a shear
+// building").
 //
 //   modes (--storeys N --mass M | --masses m1,m2,...)
 //         (--stiffness K | --stiffnesses k1,k2,... | --period T1 [--profile uniform|shear] [--storey-height h|h1,h2,...])
@@ -306,7 +307,8 @@ std::string as_table(const Building& b, const model::Modes& md, const std::vecto
 void add_modes(CLI::App& app) {
   auto o = std::make_shared<ModesOpts>();
   auto* c = app.add_subcommand("modes", "periods, frequencies, participation factors, effective masses, Rayleigh damping "
-                                        "ratios and mode shapes of a shear building (README, 'Modes of a shear building')");
+                                        "ratios and mode shapes of a shear building "
+                                        "(docs/buildings.md, 'Modes of a shear building')");
   c->add_option("--storeys", o->storeys, "number of storeys, [1, 200] (with --mass; optional with --masses)");
   c->add_option("--mass", o->mass, "floor mass, kg, the same on every floor (with --storeys)");
   c->add_option("--masses", o->masses, "floor masses, kg, bottom first: m1,m2,...");

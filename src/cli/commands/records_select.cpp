@@ -289,7 +289,8 @@ void print_selection(const Selection& s, const Library& lib, const std::vector<S
 void add_records_select(CLI::App* records) {
   auto o = std::make_shared<SelectOpts>();
   auto* c = records->add_subcommand("select", "choose and scale records to a code design spectrum (ASCE 7-16, "
-                                              "ASCE 7-10 or EC8 rule); README.md \"Records to a design spectrum\" explains the "
+                                              "ASCE 7-10 or EC8 rule); docs/ground-motions.md \"Records to a "
+                                              "design spectrum\" explains the "
                                               "method; inside a study: [target_spectrum] in docs/study-reference.md");
   c->add_option("files", o->files, "record files (or --directory)");
   c->add_option("--directory", o->directory, "a folder: every .AT2 and .txt file in it, sorted by name");

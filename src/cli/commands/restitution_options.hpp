@@ -21,7 +21,7 @@ struct RestitutionOpts {
 
   void add(CLI::App* c) {
     c->add_option("--restitution-preset", preset,
-                  fmt::format("e(v0) preset: {} (the bridge paper's eq. 15, provisional: see README)",
+                  fmt::format("e(v0) preset: {} (the bridge paper's eq. 15, provisional: see docs/contact.md)",
                               contact::restitution_preset_names));
     c->add_option("--restitution-polynomial", polynomial,
                   "e(v0) = c0 + c1 v + c2 v^2 + ... : the coefficients, constant term first, comma-separated");

@@ -1055,7 +1055,7 @@ void count_storey_options(CLI::App* c, SimulateOptions& o) {
 void add_bridge_options(CLI::App* c, SimulateOptions& o) {
   c->add_option("--bridge", o.bridge,
                 "a bridge: frames, joints (gap, contact, restrainers, bearings) and abutments in a TOML file "
-                "(README 'Bridges'); the contact options apply at the joints");
+                "(docs/bridges.md); the contact options apply at the joints");
   c->add_option("--support-record", o.support_records,
                 "bridge: the record of support K (repeat the option, in support order; the file's support = K picks it)");
   c->add_option("--wave-delay", o.wave_delay,

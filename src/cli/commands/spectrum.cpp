@@ -166,7 +166,8 @@ std::vector<double> spectrum_periods(const SpectrumOpts& o) {
 void add_spectrum(CLI::App& app) {
   auto o = std::make_shared<SpectrumOpts>();
   auto* c = app.add_subcommand("spectrum", "a code design spectrum (ASCE 7-16, EC8, Standard 2800, csv) at given "
-                                           "periods: Sa in g and Sd in m, as a table or CSV (README, 'Design spectra')");
+                                           "periods: Sa in g and Sd in m, as a table or CSV "
+                                           "(docs/ground-motions.md, 'Design spectra')");
   c->add_option("--code", o->code, "\"ASCE 7-16\", \"EC8\", \"Standard 2800\" or \"csv\"");
   auto add = [&](const char* name, auto& value, const char* help) { o->opt[name] = c->add_option(name, value, help); };
   add("--sds", o->sds, "ASCE 7-16: SDS, design short-period Sa (g), (0, 5]");
