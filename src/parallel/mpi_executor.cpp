@@ -25,6 +25,10 @@ constexpr int tag_work = 1, tag_result = 2, tag_error = 3;
 constexpr std::int64_t stop_unit = -1;
 constexpr char sep = '\x1f';  // separates what, where and fix in an error message
 
+// A worker's report of a unit it was stopped inside (StopRequested): -2 - unit (stop_unit is -1), so the master
+// puts the unit back among those still to do and the run ends as stopped.
+std::int64_t abandoned(std::int64_t unit) { return -2 - unit; }
+
 bool launched_by_mpi() {
   for (const char* v : {"OMPI_COMM_WORLD_SIZE", "PMI_SIZE", "PMIX_RANK", "SLURM_STEP_NUM_TASKS", "MPI_LOCALNRANKS"})
     if (std::getenv(v)) return true;
@@ -96,6 +100,11 @@ bool worker_loop(const ComputeFn& compute, const ResultFn& on_result, const Tick
     try {
       on_result(static_cast<std::size_t>(unit), compute(static_cast<std::size_t>(unit)));
       tick();
+    } catch (const StopRequested&) {  // stopped inside the unit: tell the master it is still to do
+      MPI_Wait(&req[k], MPI_STATUS_IGNORE);
+      done[k] = abandoned(unit);
+      MPI_Isend(&done[k], 1, MPI_INT64_T, 0, tag_result, MPI_COMM_WORLD, &req[k]);
+      continue;
     } catch (...) {
       failed.capture(rank);
       std::string text = failed.pack();
@@ -151,11 +160,14 @@ bool worker_loop_threaded(const ThreadComputeFn& compute, int threads, const Res
     }
     if (std::optional<UnitPool::Done> d = pool.take(std::chrono::milliseconds(1)); d && !failed.set) {
       try {
-        if (d->error) std::rethrow_exception(d->error);
-        on_result(d->unit, std::move(d->payload));
-        tick();
+        const bool stopped = is_stop(d->error);  // stopped inside the unit: the master puts it back
+        if (d->error && !stopped) std::rethrow_exception(d->error);
+        if (!stopped) {
+          on_result(d->unit, std::move(d->payload));
+          tick();
+        }
         Send& out = sends.emplace_back();
-        out.unit = static_cast<std::int64_t>(d->unit);
+        out.unit = stopped ? abandoned(static_cast<std::int64_t>(d->unit)) : static_cast<std::int64_t>(d->unit);
         MPI_Isend(&out.unit, 1, MPI_INT64_T, 0, tag_result, MPI_COMM_WORLD, &out.request);
       } catch (...) {
         fail();
@@ -197,7 +209,17 @@ class Master {
       if (queue_.empty() || halted()) break;
       const std::size_t u = queue_.front();
       queue_.pop_front();
-      deliver([&] { on_result_(u, compute_(u)); });
+      Payload d;
+      try {
+        d = compute_(u);
+      } catch (const StopRequested&) {
+        queue_.push_front(u);  // stopped inside the unit: still to do
+        break;
+      } catch (...) {
+        failed_.capture(0);
+        break;
+      }
+      deliver([&] { on_result_(u, std::move(d)); });
     }
     while (outstanding_ > 0) service(true);
     for (int r = 1; r < size_; ++r) {
@@ -227,6 +249,10 @@ class Master {
       service(false);
       std::optional<UnitPool::Done> d = pool.take(std::chrono::milliseconds(1));
       if (!d || failed_.set) continue;
+      if (is_stop(d->error)) {
+        queue_.push_front(d->unit);  // stopped inside the unit: still to do
+        continue;
+      }
       if (d->error) {
         try {
           std::rethrow_exception(d->error);
@@ -278,6 +304,11 @@ class Master {
     MPI_Recv(&unit, 1, MPI_INT64_T, st.MPI_SOURCE, tag_result, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
     --in_flight_[static_cast<std::size_t>(st.MPI_SOURCE)];
     --outstanding_;
+    if (unit < 0) {  // the worker was stopped inside it: still to do, and that worker gets no more units
+      queue_.push_front(static_cast<std::size_t>(-2 - unit));
+      dead_[static_cast<std::size_t>(st.MPI_SOURCE)] = 1;
+      return;
+    }
     if (send_unit(st.MPI_SOURCE)) ++outstanding_;
     if (!failed_.set) deliver([&] { on_done_(static_cast<std::size_t>(unit), st.MPI_SOURCE); });
     if (stats_) {
@@ -475,7 +506,13 @@ bool run_units(const Session& s, const std::vector<std::size_t>& todo, const Com
   if (s.size() == 1) {
     for (std::size_t u : todo) {
       if (stop.load()) return false;
-      on_result(u, compute(u));
+      Payload d;
+      try {
+        d = compute(u);
+      } catch (const StopRequested&) {
+        return false;  // stopped inside the unit: nothing of it is stored
+      }
+      on_result(u, std::move(d));
       tick();
     }
     return true;

@@ -73,7 +73,13 @@ bool run_units(const Session&, const std::vector<std::size_t>& todo, const Compu
                const ResultFn& on_result, const DoneFn&, const TickFn& tick, const std::atomic<bool>& stop) {
   for (std::size_t u : todo) {
     if (stop.load()) return false;
-    on_result(u, compute(u));
+    Payload d;
+    try {
+      d = compute(u);
+    } catch (const StopRequested&) {
+      return false;  // stopped inside the unit: nothing of it is stored
+    }
+    on_result(u, std::move(d));
     tick();
   }
   return true;

@@ -1,5 +1,7 @@
 #include "unit_pool.hpp"
 
+#include "pounding/core/error.hpp"
+
 #include <utility>
 
 namespace pounding::parallel {
@@ -84,6 +86,17 @@ void UnitPool::work(int thread) {
 // One rank's units on `threads` threads (threads > 1): at most 2 threads units handed to the pool at a time, so a
 // stop or an error leaves within a unit's time (the queued ones are dropped, the running ones finish and are
 // stored unless a unit failed). on_result and tick run on the calling thread.
+bool is_stop(const std::exception_ptr& error) {
+  if (!error) return false;
+  try {
+    std::rethrow_exception(error);
+  } catch (const StopRequested&) {
+    return true;
+  } catch (...) {
+    return false;
+  }
+}
+
 bool run_units_threaded(const std::vector<std::size_t>& todo, const ThreadComputeFn& compute, int threads,
                         const ResultFn& on_result, const TickFn& tick, const std::atomic<bool>& stop) {
   UnitPool pool(compute, threads);
@@ -97,6 +110,7 @@ bool run_units_threaded(const std::vector<std::size_t>& todo, const ThreadComput
     std::optional<UnitPool::Done> d = pool.take();
     if (!d) break;
     if (failed) continue;  // nothing more is stored after a failure
+    if (is_stop(d->error)) continue;  // stopped inside the unit: still to do (the run reports itself stopped)
     if (d->error) {
       failed = d->error;
       continue;

@@ -55,6 +55,9 @@ class UnitPool {
 };
 
 // run_units on one rank with threads > 1 (both executors).
+// Whether a unit's error is a stop inside it (StopRequested): the unit is still to do, not a failure.
+bool is_stop(const std::exception_ptr& error);
+
 bool run_units_threaded(const std::vector<std::size_t>& todo, const ThreadComputeFn& compute, int threads,
                         const ResultFn& on_result, const TickFn& tick, const std::atomic<bool>& stop);
 

@@ -534,6 +534,7 @@ void run_dynamic(const SystemBatch& B, std::span<const ContactModel> models, std
   const std::size_t tw = tile == 0 ? default_system_tile(B.width) : tile;
   const Pool T(P.L, tw);
   sys::Run R{&P.L, sys::Topo(P.L), &P.groups, s.ag.data(), s.nsteps, s.h, ks.displacement_limit, {}, {}, {}};
+  R.stop = ks.stop;
   R.stick = P.L.stick && !generic &&
             std::none_of(P.groups.begin(), P.groups.end(), [](const sys::Group& g) { return g.impulsive; });
   std::vector<Schedule> ch;
@@ -559,6 +560,7 @@ void run_dynamic(const SystemBatch& B, std::span<const ContactModel> models, std
       sys::run_tile<true>(T, static_cast<int>(np), R);
     else
       sys::run_tile<false>(T, static_cast<int>(np), R);
+    if (ks.stop && ks.stop->load()) throw StopRequested();  // the tile was left unfinished: nothing of it is kept
     for (std::size_t i = 0; i < n; ++i) collect_lane(T, i, LaneView{B, P.L, base + i}, P, ks, out);
   }
 }

@@ -10,6 +10,7 @@
 #include <fmt/format.h>
 
 #include "pounding/contact/registry.hpp"
+#include "pounding/core/error.hpp"
 #include "pounding/contact/stability.hpp"
 #include "pounding/kernel/guard.hpp"
 #include "pounding/kernel/observers.hpp"
@@ -717,6 +718,7 @@ void run_lane_stepper(const SystemBatch& B, std::span<const ContactModel> groups
     W.size(M);
     init_state(M, B, l, s.ag[0], S, W);
     for (long k = 0; k < s.nsteps && !(S.bad > 0.0); ++k) {
+      if (k % 4096 == 0 && ks.stop && ks.stop->load(std::memory_order_relaxed)) throw StopRequested();
       const double t = static_cast<double>(k + 1) * s.h;
       if (ks.stepper == Stepper::newmark)
         newmark_step(M, S, W, C, t, s.ag[static_cast<size_t>(k)], s.ag[static_cast<size_t>(k) + 1]);

@@ -50,7 +50,8 @@ struct Progress {
   }
   void units(const ProgressReport& p) const {
     poll();
-    if (!callback.is_none()) call(callback, "units", p.units_done, p.units_total, p.elapsed_s, p.final);
+    const bool start = p.units_done == p.units_at_start && p.elapsed_s == 0 && !p.final;  // the units start
+    if (!callback.is_none() && !start) call(callback, "units", p.units_done, p.units_total, p.elapsed_s, p.final);
   }
   void phase(const PhaseProgress& p) const {
     poll();

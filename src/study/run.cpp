@@ -85,8 +85,10 @@ constexpr std::size_t imp_h_omega = results::unit_field("impacts", "h_omega_cont
 class UnitComputer {
  public:
   UnitComputer(const Study& s, const std::vector<StudyRecord>& records, const StripePlan& stripes,
-               const StructureSampler& sampler, const WorkPlan& plan, int rank, std::atomic<int>& computed)
+               const StructureSampler& sampler, const WorkPlan& plan, int rank, std::atomic<int>& computed,
+               const std::atomic<bool>* stop)
       : s_(s), records_(records), stripes_(stripes), sampler_(sampler), plan_(plan), rank_(rank), computed_(computed) {
+    ks_base_.stop = stop;  // a stop reaches the steppers inside a unit (StopRequested: the unit is left to --resume)
     ks_base_.stepper = s.stepper;
     ks_base_.displacement_limit = s.displacement_limit;
     uncoupled_ = s.contact;
@@ -1062,6 +1064,15 @@ double final_sync_s = 0;  // the units phase's closing fsync of the checkpoint (
 parallel::MasterStats master_stats;  // rank 0's serving of the workers' units, for the line above
 double assemble_s = 0;    // rank 0's reading of the workers' slices after the units, for the line above
 
+ProgressReport progress_report(const WorkPlan& L, std::size_t done, std::size_t at_start, double elapsed_s) {
+  ProgressReport p;
+  p.units_done = done, p.units_total = L.units(), p.units_at_start = at_start;
+  p.models_per_unit = static_cast<double>(L.samples * L.unit_stripes()) / static_cast<double>(L.blocks);
+  p.elapsed_s = elapsed_s;
+  p.final = done == L.units();
+  return p;
+}
+
 // ---- phase 4: the work (every rank computes and checkpoints its own units; rank 0 schedules) -----
 // `threads` worker threads per rank, each with its own UnitComputer (parallel::run_units with a ThreadComputeFn).
 // Each rank appends the units it computed to its own checkpoint file (rank 0: <out>.ckpt, rank r: its slice) on the
@@ -1076,7 +1087,8 @@ bool execute(const parallel::Session& session, const Inputs& in, const WorkPlan&
   std::atomic<int> computed{0};
   std::vector<std::unique_ptr<UnitComputer>> computers;
   for (int t = 0; t < threads; ++t)
-    computers.push_back(std::make_unique<UnitComputer>(in.study, in.records, in.stripes, sampler, L, session.rank(), computed));
+    computers.push_back(std::make_unique<UnitComputer>(in.study, in.records, in.stripes, sampler, L, session.rank(), computed,
+                                                       ctx.cancel));
   std::vector<double> compute_s(static_cast<std::size_t>(threads), 0.0);  // each thread's compute seconds
   T[timing::Phase::structures] = timing::seconds_since(t_setup);
   using timing::Phase, timing::Stopwatch;
@@ -1090,13 +1102,10 @@ bool execute(const parallel::Session& session, const Inputs& in, const WorkPlan&
       sync_checkpoint(*ckpt, tally), last_sync = now;
     }
     if (!ctx.progress || !session.root()) return;
-    ProgressReport p;
-    p.units_done = tally.units_done() + remote, p.units_total = L.units(), p.units_at_start = at_start;
-    p.models_per_unit = static_cast<double>(L.samples * L.unit_stripes()) / static_cast<double>(L.blocks);
-    p.elapsed_s = std::chrono::duration<double>(now - t0).count();
-    p.final = p.units_done == L.units();
-    ctx.progress(p);
+    ctx.progress(progress_report(L, tally.units_done() + remote, at_start, std::chrono::duration<double>(now - t0).count()));
   };
+  // the units start (no line: the display's clock for a long first unit)
+  if (ctx.progress && session.root() && !todo.empty()) ctx.progress(progress_report(L, at_start, at_start, 0.0));
   static const std::atomic<bool> never{false};
   // Test-only (issue 27.4, POUNDING_MASTER_SERVICE): every rank computes one unit of each size once and returns a
   // copy of it for every later unit, so the workers answer at once and the run measures the master alone.

@@ -20,6 +20,14 @@ class InputError : public std::runtime_error {
   std::string what_, where_, fix_;
 };
 
+// A stop (SIGINT, SIGTERM, a batch system's time limit) reached inside a unit of work: the unit is abandoned
+// unfinished, never stored, and computed again by --resume. Thrown by the steppers' callers when
+// KernelSettings::stop was raised during the run; the executors put the unit back among those still to do.
+class StopRequested : public std::exception {
+ public:
+  const char* what() const noexcept override { return "stopped inside a unit of work (it is computed again on --resume)"; }
+};
+
 // Throws InputError unless lo <= value <= hi (and value is finite). name is the option or key.
 void require_range(double value, double lo, double hi, const std::string& name, const std::string& range_text);
 // Throws InputError unless value > 0 and finite.

@@ -21,7 +21,8 @@ struct ProgressReport {
 
 struct RunContext {
   std::function<void(const std::string&)> info;                // one line for the user (rank 0 only)
-  std::function<void(const ProgressReport&)> progress;         // after each finished unit (rank 0 only)
+  // once as the units start (units_done = units_at_start, elapsed 0), then after each finished unit (rank 0 only)
+  std::function<void(const ProgressReport&)> progress;
   const std::atomic<bool>* cancel = nullptr;                   // raised: stop handing out work, keep progress
   // Progress of the phases after the units (the fragility fit's bootstrap, ...; core/progress.hpp), rank 0 only.
   std::function<void(const PhaseProgress&)> phase_progress;

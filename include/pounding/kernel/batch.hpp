@@ -16,6 +16,7 @@
 //
 // Equations of motion (muthukumar-desroches-2006-hertzdamp.txt, eq. 1):
 //   m1 a1 + c1 v1 + fs1(u1) + F = -m1 ag,   m2 a2 + c2 v2 + fs2(u2) - F = -m2 ag.
+#include <atomic>
 #include <cstdint>
 #include <limits>
 #include <span>
@@ -122,6 +123,9 @@ struct KernelSettings {
   bool locate_contact = false;
   SeriesRecorder* series = nullptr;
   const VelocityRestitution* restitution = nullptr;  // e(v0) per impact (central difference, hertzdamp only)
+  // Raised (a stop signal): the steppers return at their next check (every few thousand steps, and between tiles
+  // and lanes), and physics::run_system / run_batch throw StopRequested instead of returning a partial result.
+  const std::atomic<bool>* stop = nullptr;
 };
 
 // Per-lane observer reductions.

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "pounding/contact/law.hpp"
+#include "pounding/core/error.hpp"
 #include "pounding/contact/resolution.hpp"
 #include "pounding/physics/resolution.hpp"
 #include "pounding/physics/steppers/registry.hpp"
@@ -133,6 +134,7 @@ void run_batch_t(const PairBatch& batch, const ContactModel& cm, const GroundMot
   auto tile = std::make_unique<kernel::Tile>();
   kernel::Tile& T = *tile;
   for (std::size_t base = 0; base < width; base += kernel::tile_width) {
+    if (ks.stop && ks.stop->load(std::memory_order_relaxed)) throw StopRequested();  // a stop: between two tiles
     T.n = static_cast<int>(std::min<std::size_t>(kernel::tile_width, width - base));
     // lanes past n up to the SIMD chunk boundary are padded with copies of the tile's first lane
     T.np = std::min(kernel::tile_width, (T.n + simd::W - 1) / simd::W * simd::W);

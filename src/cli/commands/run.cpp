@@ -6,9 +6,12 @@
 #include <atomic>
 #include <chrono>
 #include <cmath>
+#include <condition_variable>
 #include <csignal>
 #include <cstdio>
 #include <memory>
+#include <mutex>
+#include <thread>
 
 #include <fmt/format.h>
 
@@ -60,26 +63,53 @@ class TerminalProgress {
  public:
   TerminalProgress() : tty_(isatty(fileno(stderr)) != 0) {}
   void operator()(const ProgressReport& p) {
+    std::lock_guard lock(mutex_);
     const auto now = std::chrono::steady_clock::now();
+    units_ = p, units_at_ = now, in_units_ = !p.final;
+    if (p.units_done == p.units_at_start && p.elapsed_s == 0 && !p.final) {  // the units start: the heartbeat's clock
+      last_ = now;
+      return;
+    }
     if (!p.final && now - last_ < std::chrono::milliseconds(tty_ ? 250 : 10000)) return;
+    print(p, now);
+  }
+  // Called every second by a clock thread: while units run but none finished for an interval (a long unit: a tall
+  // building at a fine step), the last report again with the time elapsed, so a long unit is never silent.
+  void heartbeat() {
+    std::lock_guard lock(mutex_);
+    const auto now = std::chrono::steady_clock::now();
+    if (!in_units_ || now - last_ < std::chrono::milliseconds(tty_ ? 1000 : 10000)) return;
+    ProgressReport p = units_;
+    p.elapsed_s += std::chrono::duration<double>(now - units_at_).count();
+    print(p, now);
+  }
+
+ private:
+  void print(const ProgressReport& p, std::chrono::steady_clock::time_point now) {
     last_ = now;
     const double rate = static_cast<double>(p.units_done - p.units_at_start) * p.models_per_unit /
                         std::max(p.elapsed_s, 1e-9);
     const double frac = static_cast<double>(p.units_done) / static_cast<double>(p.units_total);
     const double eta = static_cast<double>(p.units_total - p.units_done) * p.models_per_unit / std::max(rate, 1e-9);
+    // no unit finished yet (a long first unit): no rate, no estimate
+    const std::string eta_text = p.units_done == p.units_at_start ? std::string("after the first unit") : hms(eta);
     if (tty_) {
       const int w = 30, fill = static_cast<int>(frac * w);
       fmt::print(stderr, "\r[{}{}] {:5.1f}%  units {}/{}  {:.0f} models/s  ETA {}{}", std::string(fill, '#'),
-                 std::string(w - fill, '.'), 100 * frac, p.units_done, p.units_total, rate, hms(eta),
+                 std::string(w - fill, '.'), 100 * frac, p.units_done, p.units_total, rate, eta_text,
                  p.final ? "\n" : "");
     } else {
       fmt::print(stderr, "progress: units {}/{} ({:.1f}%), {:.0f} models/s, elapsed {}, ETA {}\n", p.units_done,
-                 p.units_total, 100 * frac, rate, hms(p.elapsed_s), hms(eta));
+                 p.units_total, 100 * frac, rate, hms(p.elapsed_s), eta_text);
     }
   }
+
+ public:
   // The phases after the units (the fit's bootstrap and jackknife, core/progress.hpp): the same bar or lines, the
   // first report of each phase at once.
   void operator()(const PhaseProgress& p) {
+    std::lock_guard lock(mutex_);
+    in_units_ = false;
     const auto now = std::chrono::steady_clock::now();
     const bool fresh = p.phase != phase_;
     if (!fresh && !p.final && now - last_ < std::chrono::milliseconds(tty_ ? 250 : 10000)) return;
@@ -102,6 +132,36 @@ class TerminalProgress {
   std::chrono::steady_clock::time_point last_{};
   std::string phase_;
   bool phase_done_ = false;
+  std::mutex mutex_;  // the clock thread's heartbeat and the run's own reports
+  ProgressReport units_{};
+  std::chrono::steady_clock::time_point units_at_{};
+  bool in_units_ = false;
+};
+
+// The clock of TerminalProgress::heartbeat: a thread that wakes every second until destroyed.
+class ProgressClock {
+ public:
+  explicit ProgressClock(std::shared_ptr<TerminalProgress> bar)
+      : thread_([this, bar = std::move(bar)] {
+          std::unique_lock lock(mutex_);
+          while (!cv_.wait_for(lock, std::chrono::seconds(1), [this] { return done_; })) bar->heartbeat();
+        }) {}
+  ~ProgressClock() {
+    {
+      std::lock_guard lock(mutex_);
+      done_ = true;
+    }
+    cv_.notify_one();
+    thread_.join();
+  }
+  ProgressClock(const ProgressClock&) = delete;
+  ProgressClock& operator=(const ProgressClock&) = delete;
+
+ private:
+  std::mutex mutex_;
+  std::condition_variable cv_;
+  bool done_ = false;
+  std::thread thread_;  // last: started once the members it uses exist
 };
 
 struct RunOpts {
@@ -179,15 +239,18 @@ int run_job(const RunOpts& o) {
     ro.mpi_start_s = mpi_start_s;
     RunContext ctx;
     ctx.cancel = &stop_requested;
+    std::unique_ptr<ProgressClock> clock;
     if (session.root()) {
       ctx.info = [](const std::string& line) { fmt::print(stderr, "{}\n", line); };
       if (!o.quiet) {
         auto bar = std::make_shared<TerminalProgress>();
         ctx.progress = [bar](const ProgressReport& p) { (*bar)(p); };
         ctx.phase_progress = [bar](const PhaseProgress& p) { (*bar)(p); };
+        clock = std::make_unique<ProgressClock>(bar);
       }
     }
     RunOutcome r = run_study(session, o.study, ro, ctx);
+    clock.reset();
     r.code = stop_code(session, r.code);
     if (session.root() && r.code == 143)
       fmt::print(stderr, "stopped by SIGTERM (a batch system's time limit or scancel): exit 143; the checkpoint keeps "

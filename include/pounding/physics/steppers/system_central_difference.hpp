@@ -32,6 +32,8 @@
 // Shear sticks (Layout::stick) take the stick path instead: step 5 first, then one walk per body (stick_walk) for steps
 // 3, 4, 6, 7, the guard's sums and the next step's step 1, with the same operations in the same order as here;
 // test_system_stick holds it to the generic path's bits.
+#include <algorithm>
+#include <atomic>
 #include <cstddef>
 #include <cstdint>
 #include <cstdlib>
@@ -816,7 +818,13 @@ struct Run {
   // channel, `ag`)
   std::vector<const double*> ch_ag, ch_vg, ch_ug;
   bool stick = false;  // the stick path (Layout::stick, no impulsive group)
+  // Raised: return at the next check (every stop_check steps) and leave the tile unfinished; the caller discards
+  // it (physics::run_system throws StopRequested). nullptr: run to the end.
+  const std::atomic<bool>* stop = nullptr;
 };
+
+// Steps between two looks at Run::stop: a few ms of a long unit, nothing against a step's cost.
+inline constexpr long stop_check = 4096;
 
 template <bool WithEnergy, bool Stick> POUNDING_INLINE void step(Chunk c, const Run& R, long stepi, StepCtx& s) {
   const Topo L = R.topo;
@@ -858,9 +866,16 @@ template <bool WithEnergy> void run_tile(const Pool& pool, int np, const Run& R)
     if (R.stick) {
       s.stick = true;
       if (R.nsteps > 0) predict_u(c, R.topo, s);
-      for (long k = 0; k < R.nsteps; ++k) step<WithEnergy, true>(c, R, k, s);
-    } else
-      for (long k = 0; k < R.nsteps; ++k) step<WithEnergy, false>(c, R, k, s);
+    }
+    // the same steps in the same order, in blocks between two looks at the stop flag
+    for (long k0 = 0; k0 < R.nsteps; k0 += stop_check) {
+      if (R.stop && R.stop->load(std::memory_order_relaxed)) return;
+      const long k1 = std::min(R.nsteps, k0 + stop_check);
+      if (R.stick)
+        for (long k = k0; k < k1; ++k) step<WithEnergy, true>(c, R, k, s);
+      else
+        for (long k = k0; k < k1; ++k) step<WithEnergy, false>(c, R, k, s);
+    }
     pool.scatter(base);
   }
 }
