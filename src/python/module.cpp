@@ -12,21 +12,54 @@
 #include <stdexcept>
 #include <thread>
 
+#include <fmt/format.h>
+
 #include "pounding/core/error.hpp"
 #include "pounding/core/progress.hpp"
 #include "pounding/core/version.hpp"
 
 namespace pounding::python {
 
-std::vector<double> to_vector(const py::handle& values, const std::string& what) {
+std::string given(const py::handle& value) {
+  try {
+    const std::string type = py::str(py::type::of(value).attr("__name__")).cast<std::string>();
+    if (py::hasattr(value, "shape") && py::hasattr(value, "dtype"))  // an array: its shape and type, never its values
+      return fmt::format("a {} of shape {} ({})", type, py::str(value.attr("shape")).cast<std::string>(),
+                         py::str(value.attr("dtype")).cast<std::string>());
+    std::string repr = py::repr(value).cast<std::string>();
+    if (repr.size() > 40) repr = repr.substr(0, 37) + "...";
+    return fmt::format("{} {}", type, repr);
+  } catch (const py::error_already_set&) {
+    return "an object that cannot be shown";
+  }
+}
+
+Array checked_array(const py::handle& values, const std::string& what) {
   Array a;
   try {
-    a = Array::ensure(values);
+    a = Array::ensure(values);  // a null array (error cleared) where numpy cannot convert it
   } catch (const py::error_already_set&) {
     a = Array();
   }
-  if (!a || a.ndim() != 1) throw py::value_error(what + ": a 1-D array of numbers is needed");
+  if (!a) throw py::value_error(fmt::format("{}: numbers are needed, got {}", what, given(values)));
+  return a;
+}
+
+std::vector<double> to_vector(const py::handle& values, const std::string& what) {
+  const Array a = checked_array(values, what);
+  if (a.ndim() != 1) throw py::value_error(fmt::format("{}: a 1-D array of numbers is needed, got {}", what, given(values)));
   return {a.data(), a.data() + a.size()};
+}
+
+double to_number(const py::handle& value, const std::string& what) {
+  if (!py::isinstance<py::bool_>(value) && !py::isinstance<py::str>(value) && !py::isinstance<py::bytes>(value)) {
+    try {
+      const py::float_ x(py::reinterpret_borrow<py::object>(value));  // int, float, numpy scalars, a 0-D array
+      return x.cast<double>();
+    } catch (const py::error_already_set&) {
+    }
+  }
+  throw py::value_error(fmt::format("{}: a number is needed, got {}", what, given(value)));
 }
 
 namespace {

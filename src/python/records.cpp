@@ -54,7 +54,7 @@ py::dict spectrum_py(const Record& r, const py::handle& periods, double zeta) {
 }
 
 double number(const py::dict& p, const char* key, std::optional<double> def = {}) {
-  if (p.contains(key)) return p[key].cast<double>();
+  if (p.contains(key)) return to_number(p[key], std::string("design_spectrum: ") + key);
   if (def) return *def;
   throw py::value_error(std::string("design_spectrum: the parameter '") + key + "' is missing");
 }

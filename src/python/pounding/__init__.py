@@ -37,6 +37,17 @@ _CONTACT_FIELDS = ("t_first_impact", "peak_force", "peak_penetration", "contact_
                    "h_omega_contact")
 
 
+def _given(value):
+    """What a caller gave, short enough for an error message (an array's shape, never its values)."""
+    if hasattr(value, "shape") and hasattr(value, "dtype"):
+        return f"a {type(value).__name__} of shape {tuple(value.shape)} ({value.dtype})"
+    try:
+        text = repr(value)
+    except Exception:  # noqa: BLE001  (a repr that fails: say so, do not mask the caller's error)
+        text = "(no repr)"
+    return f"{type(value).__name__} {text if len(text) <= 40 else text[:37] + '...'}"
+
+
 def _pairs_dict(pairs, kh, e):
     """dict of arrays or numpy structured array -> dict of contiguous float64 arrays with the kernel's names."""
     if isinstance(pairs, np.ndarray) and pairs.dtype.names:
@@ -53,10 +64,13 @@ def _pairs_dict(pairs, kh, e):
     width = None
     out = {}
     for key, value in d.items():
-        a = np.ascontiguousarray(np.asarray(value, dtype=np.float64))
-        if a.ndim == 0:
-            raise ValueError(f"pairs['{key}']: a 1-D array (one value per pair) is needed, got a scalar")
-        out[key] = a
+        try:
+            a = np.asarray(value, dtype=np.float64)
+        except (TypeError, ValueError):
+            raise ValueError(f"pairs['{key}']: numbers are needed, got {_given(value)}") from None
+        if a.ndim != 1:  # checked before ascontiguousarray, which makes a scalar 1-D
+            raise ValueError(f"pairs['{key}']: a 1-D array (one value per pair) is needed, got {_given(value)}")
+        out[key] = np.ascontiguousarray(a)
         width = len(a) if width is None else width
     for key, value in (("kc", kh), ("e", e)):
         if value is None:
