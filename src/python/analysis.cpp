@@ -52,6 +52,7 @@ py::dict fit_msa_py(const py::handle& im, const py::handle& n, const py::handle&
 }
 
 stripes::Settings settings_of(int bootstrap, double confidence, std::uint64_t seed, double years, int threads) {
+  check_threads(threads);
   stripes::Settings s;
   s.bootstrap = bootstrap, s.confidence = confidence, s.seed = seed, s.years = years, s.threads = threads;
   return s;

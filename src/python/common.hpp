@@ -34,6 +34,13 @@ std::vector<double> to_vector(const py::handle& values, const std::string& what)
 // One number (int, float, numpy scalar; not bool, not a string); ValueError naming `what` and what was given.
 double to_number(const py::handle& value, const std::string& what);
 
+// The run settings every engine call checks, as the CLI does (InputError -> ValueError naming the argument, its range
+// and the fix): threads in [0, 1024] (0: every core); duration 0 (the record's own length) or positive and finite
+// (s); displacement_limit positive and finite (m).
+void check_threads(int threads);
+void check_duration(double duration);
+void check_displacement_limit(double displacement_limit);
+
 // Runs work(b) for every b in [0, batches) on `threads` threads (0: every core) with the GIL released; the calling
 // thread takes the GIL every 50 ms to check for Ctrl-C (PyErr_CheckSignals) and then stops the workers after their
 // current batch and throws error_already_set (KeyboardInterrupt). The first exception of a worker is rethrown.

@@ -105,6 +105,7 @@ Setup make_setup(const py::handle& ag_values, double dt, const std::string& step
   if (ag.ndim() != 1 || ag.size() < 2)
     throw py::value_error("ag: a 1-D array of at least 2 samples (m/s^2) is needed, got " + given(ag_values));
   Setup s;
+  check_duration(duration), check_displacement_limit(u_limit);
   s.ks.stepper = parse_stepper(stepper);  // InputError -> ValueError naming the allowed values
   s.cm.law = parse_contact_law(contact);
   s.cm.damping = parse_damping_law(damping);
@@ -170,6 +171,7 @@ void place(const BatchResult& part, std::size_t first, BatchResult& out) {
 py::dict analyze_py(const py::dict& pairs, const py::handle& ag, double dt, const std::string& stepper,
                     const std::string& contact, const std::string& damping, double n, int substeps, bool energy,
                     double duration, double displacement_limit, std::size_t width, int threads) {
+  check_threads(threads);
   const PairBatch all = batch_from_dict(pairs);
   const Setup s = make_setup(ag, dt, stepper, contact, damping, n, substeps, energy, duration, displacement_limit);
   // Every pair checked before any work, numbered as the caller numbers them (a batch would count from 0).

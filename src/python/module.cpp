@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <atomic>
 #include <chrono>
+#include <cmath>
 #include <condition_variable>
 #include <exception>
 #include <mutex>
@@ -60,6 +61,24 @@ double to_number(const py::handle& value, const std::string& what) {
     }
   }
   throw py::value_error(fmt::format("{}: a number is needed, got {}", what, given(value)));
+}
+
+void check_threads(int threads) {
+  if (threads < 0 || threads > 1024)
+    throw InputError(fmt::format("threads = {} is outside [0, 1024]", threads), "threads",
+                     "give the worker threads, 1 to 1024, or 0 for every core");
+}
+
+void check_duration(double duration) {
+  if (!std::isfinite(duration) || duration < 0)
+    throw InputError(fmt::format("duration = {} is outside [0, inf) s", duration), "duration",
+                     "give the analysis length in s, or 0 for the record's own length");
+}
+
+void check_displacement_limit(double displacement_limit) {
+  if (!std::isfinite(displacement_limit) || displacement_limit <= 0)
+    throw InputError(fmt::format("displacement_limit = {} is outside (0, inf) m", displacement_limit),
+                     "displacement_limit", "give |u1| + |u2| in m above which a run counts as diverged (default 10)");
 }
 
 namespace {

@@ -153,6 +153,19 @@ def _rayleigh_modes(modes, counts, modal_zeta):
     return flat
 
 
+def _storey_count(value):
+    """One building's storeys: a whole number (2.5 was taken as 2)."""
+    try:
+        count = int(value)
+        whole = not isinstance(value, bool) and count == value
+    except (TypeError, ValueError):
+        whole = False
+    if not whole:
+        raise ValueError(f"storeys: {value!r} is not a whole number of storeys; give one integer per building, "
+                         "1 or more, e.g. storeys=(3, 5)")
+    return count
+
+
 def analyze_storeys(buildings, record, storeys=(1, 1), storey_height=3.2, contact="none",
                     stepper="central-difference", substeps=1, *, kh=None, e=None, n=1.5,
                     damping="lankarani-nikravesh", contact_levels="common", level_tolerance=0.05,
@@ -202,7 +215,7 @@ def analyze_storeys(buildings, record, storeys=(1, 1), storey_height=3.2, contac
     ag, dt = _motion(record)
     d = _pairs_dict(buildings, kh, e)
     _require_law_numbers(contact, d)
-    counts = [int(s) for s in storeys]
+    counts = [_storey_count(s) for s in storeys]
     heights = ([float(h) for h in storey_height] if np.ndim(storey_height) else [float(storey_height)] * len(counts))
     topology = _core._Topology(counts, heights, float(level_tolerance), contact_levels, stiffness_profile,
                                [float(z) for z in (modal_zeta or [])], _rayleigh_modes(rayleigh_modes, counts, modal_zeta))

@@ -88,3 +88,62 @@ def test_hazard_curve_that_is_not_numbers():
         _core.analysis.rate(0.5, 0.4, (1e-4, "x"), 50.0)
     with pytest.raises(ValueError, match=r"curve: \(k0, k\) of a power law .* got str 'abc'"):
         _core.analysis.rate(0.5, 0.4, "abc", 50.0)
+
+
+# issue 44 item 10: arguments out of range named with their range and the fix; unknown keywords refused
+G = 9.80665
+
+
+def pair_dict():
+    import numpy as np
+    return {k: np.full(2, v) for k, v in dict(m1=1e6, k1=4e7, c1=1e5, m2=2e6, k2=3e7, c2=2e5, gap=0.02).items()}
+
+
+def motion():
+    import numpy as np
+    return (0.3 * np.sin(np.arange(300) * 0.05), 0.01)
+
+
+def test_design_spectrum_refuses_an_unknown_keyword():
+    with pytest.raises(TypeError, match=r"unknown parameter 'TL' \(did you mean 'tl'\?\); it takes sds, sd1, tl, ss, s1, "
+                                        r"site_class"):
+        pounding.design_spectrum("asce7-16", [0.5, 1.0], sds=1.0, sd1=0.6, TL=4)
+    with pytest.raises(TypeError, match=r"design_spectrum\(\"ec8\"\): unknown parameter 'sds'; it takes type, ground"):
+        pounding.design_spectrum_text("ec8", agr=0.3, sds=1.0)
+    assert "TL = 4 s" in pounding.design_spectrum_text("asce7-16", sds=1.0, sd1=0.6, tl=4)
+
+
+@pytest.mark.parametrize("kw, want", [
+    (dict(threads=-3), r"threads = -3 is outside \[0, 1024\], threads, give the worker threads, 1 to 1024, or 0 for "
+                       r"every core"),
+    (dict(displacement_limit=float("nan")), r"displacement_limit = nan is outside \(0, inf\) m, displacement_limit, give"),
+    (dict(displacement_limit=-1.0), r"displacement_limit = -1 is outside \(0, inf\) m"),
+    (dict(duration=float("nan")), r"duration = nan is outside \[0, inf\) s, duration, give the analysis length in s, or "
+                                  r"0 for the record's own length"),
+    (dict(duration=-2.0), r"duration = -2 is outside \[0, inf\) s"),
+])
+def test_run_settings_out_of_range_name_the_argument(kw, want):
+    with pytest.raises(ValueError, match=want):
+        pounding.analyze(pair_dict(), motion(), **kw)
+    with pytest.raises(ValueError, match=want):
+        pounding.analyze_storeys({"floor_mass1": [1e5, 1e5], "floor_mass2": [1e5, 1e5], "period1": [0.5, 0.5],
+                                  "period2": [0.8, 0.8], "gap": [0.05, 0.05]}, motion(), storeys=(2, 3), **kw)
+    if "threads" not in kw:
+        with pytest.raises(ValueError, match=want):
+            pounding.simulate({k: v[0] for k, v in pair_dict().items()}, motion(), **kw)
+
+
+def test_storeys_must_be_whole_numbers():
+    b = {"floor_mass1": [1e5], "floor_mass2": [1e5], "period1": [0.5], "period2": [0.8], "gap": [0.05]}
+    for bad in ((2.5, 3), ("2", 3), (True, 3)):
+        with pytest.raises(ValueError, match=r"storeys: .* is not a whole number of storeys; give one integer per "
+                                             r"building, 1 or more, e.g. storeys=\(3, 5\)"):
+            pounding.analyze_storeys(b, motion(), storeys=bad)
+    assert pounding.analyze_storeys(b, motion(), storeys=(2.0, 3))["status"][0] == 0
+
+
+def test_an_empty_record_is_refused():
+    for acc in ([], [0.1]):
+        with pytest.raises(ValueError, match=r"Record: acc_g holds [01] value\(s\), Record\(acc_g=\), give at least 2 "
+                                             r"accelerations"):
+            pounding.Record(acc, 0.01)
