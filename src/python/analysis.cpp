@@ -52,6 +52,7 @@ py::dict fit_msa_py(const py::handle& im, const py::handle& n, const py::handle&
 }
 
 stripes::Settings settings_of(int bootstrap, double confidence, std::uint64_t seed, double years, int threads) {
+  check_threads(threads);
   stripes::Settings s;
   s.bootstrap = bootstrap, s.confidence = confidence, s.seed = seed, s.years = years, s.threads = threads;
   return s;
@@ -59,10 +60,12 @@ stripes::Settings settings_of(int bootstrap, double confidence, std::uint64_t se
 
 std::unique_ptr<HazardCurve> curve_of(const py::object& curve) {
   if (curve.is_none()) return nullptr;
-  const auto t = curve.cast<py::tuple>();
-  if (t.size() != 2) throw py::value_error("curve: (k0, k) of a power law or (im, rate) arrays of a table is needed");
+  const char* const need = "curve: (k0, k) of a power law or (im, rate) arrays of a table is needed, got ";
+  if (!py::isinstance<py::tuple>(curve) && !py::isinstance<py::list>(curve)) throw py::value_error(need + given(curve));
+  const auto t = py::tuple(py::reinterpret_borrow<py::sequence>(curve));
+  if (t.size() != 2) throw py::value_error(need + given(curve));
   if (py::isinstance<py::float_>(t[0]) || py::isinstance<py::int_>(t[0]))
-    return std::make_unique<HazardCurve>(HazardCurve::power_law(t[0].cast<double>(), t[1].cast<double>()));
+    return std::make_unique<HazardCurve>(HazardCurve::power_law(to_number(t[0], "curve k0"), to_number(t[1], "curve k")));
   return std::make_unique<HazardCurve>(
       HazardCurve::from_table(to_vector(t[0], "curve im"), to_vector(t[1], "curve rate")));
 }
@@ -111,8 +114,9 @@ py::dict rate_py(double theta, double beta, const py::object& curve, double year
 
 // demands[s, r, m] (peak closing over each model's gap unit), levels[s]: Baker MLE per gap and the risk-targeted gap.
 stripes::Demands demands_of(const py::handle& demands, const py::handle& levels) {
-  const auto a = Array::ensure(demands);
-  if (!a || a.ndim() != 3) throw py::value_error("demands: a 3-D array [stripe, record, model] is needed");
+  const Array a = checked_array(demands, "demands");
+  if (a.ndim() != 3)
+    throw py::value_error("demands: a 3-D array [stripe, record, model] is needed, got " + given(demands));
   stripes::Demands d;
   d.levels = to_vector(levels, "levels");
   if (d.levels.size() != static_cast<std::size_t>(a.shape(0)))

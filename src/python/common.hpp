@@ -23,8 +23,23 @@ py::array_t<T> to_numpy(const std::vector<T>& v) {
   return a;
 }
 
-// A 1-D float64 array as a vector; `what` names it in the ValueError.
+// What a caller gave, short enough for an error message: "str 'abc'", "list [{}]" (the repr cut to 40
+// characters), "a ndarray of shape (2, 3) (float64)" (an array's shape, never its values).
+std::string given(const py::handle& value);
+// Any value numpy converts to float64 numbers, as a C-contiguous array; ValueError "<what>: numbers are needed, got
+// <given>" where it cannot (Array::ensure's null array, never dereferenced: issue 44 item 4).
+Array checked_array(const py::handle& values, const std::string& what);
+// A 1-D float64 array as a vector; `what` names it in the ValueError, with what was given.
 std::vector<double> to_vector(const py::handle& values, const std::string& what);
+// One number (int, float, numpy scalar; not bool, not a string); ValueError naming `what` and what was given.
+double to_number(const py::handle& value, const std::string& what);
+
+// The run settings every engine call checks, as the CLI does (InputError -> ValueError naming the argument, its range
+// and the fix): threads in [0, 1024] (0: every core); duration 0 (the record's own length) or positive and finite
+// (s); displacement_limit positive and finite (m).
+void check_threads(int threads);
+void check_duration(double duration);
+void check_displacement_limit(double displacement_limit);
 
 // Runs work(b) for every b in [0, batches) on `threads` threads (0: every core) with the GIL released; the calling
 // thread takes the GIL every 50 ms to check for Ctrl-C (PyErr_CheckSignals) and then stops the workers after their

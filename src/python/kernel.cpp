@@ -49,10 +49,18 @@ bool optional_key(const std::string& key) {
 }
 
 // dict of 1-D arrays -> PairBatch. Missing initial conditions: at rest; fy: elastic (inf); alpha 0; kc 0 and e 1
-// (the laws that need them refuse those values in validate, naming the pair).
+// (the laws that need them refuse those values in validate, naming the pair). Every column is converted with a check
+// (checked_array): m1's unchecked conversion, which sizes the batch, crashed on pairs['m1'] = 'abc' (issue 44 item 4).
 PairBatch batch_from_dict(const py::dict& d) {
   if (!d.contains("m1")) throw py::value_error("pairs: the key 'm1' is missing (give every pair parameter)");
-  const auto width = static_cast<std::size_t>(Array::ensure(d["m1"]).size());
+  auto column = [&](const char* key) {
+    const std::string what = std::string("pairs['") + key + "']";
+    Array a = checked_array(d[key], what);
+    if (a.ndim() != 1)
+      throw py::value_error(what + ": a 1-D array (one value per pair) is needed, got " + given(d[key]));
+    return a;
+  };
+  const auto width = static_cast<std::size_t>(column("m1").size());
   PairBatch b;
   b.resize(width);
   visit_batch(b, [&](const char* key, std::vector<double>& v) {
@@ -62,11 +70,11 @@ PairBatch batch_from_dict(const py::dict& d) {
       if (std::string(key) == "e") std::fill(v.begin(), v.end(), 1.0);
       return;
     }
-    Array a = Array::ensure(d[key]);
-    if (!a || a.ndim() != 1 || static_cast<std::size_t>(a.size()) != width)
-      throw py::value_error(std::string("pairs['") + key + "']: a 1-D array of " + std::to_string(width) +
-                            " values (one per pair) is needed");
-    std::memcpy(v.data(), a.data(), width * sizeof(double));
+    const Array a = column(key);
+    if (static_cast<std::size_t>(a.size()) != width)
+      throw py::value_error(std::string("pairs['") + key + "']: " + std::to_string(width) + " values (one per pair, as " +
+                            "pairs['m1']) are needed, got " + std::to_string(a.size()));
+    std::copy_n(a.data(), width, v.data());
   });
   for (const auto& kv : d) {
     bool known = false;
@@ -91,10 +99,13 @@ struct Setup {
   double dt = 0, duration = 0;
 };
 
-Setup make_setup(const Array& ag, double dt, const std::string& stepper, const std::string& contact,
+Setup make_setup(const py::handle& ag_values, double dt, const std::string& stepper, const std::string& contact,
                  const std::string& damping, double n, int substeps, bool energy, double duration, double u_limit) {
-  if (ag.ndim() != 1 || ag.size() < 2) throw py::value_error("ag: a 1-D array of at least 2 samples (m/s^2) is needed");
+  const Array ag = checked_array(ag_values, "ag");
+  if (ag.ndim() != 1 || ag.size() < 2)
+    throw py::value_error("ag: a 1-D array of at least 2 samples (m/s^2) is needed, got " + given(ag_values));
   Setup s;
+  check_duration(duration), check_displacement_limit(u_limit);
   s.ks.stepper = parse_stepper(stepper);  // InputError -> ValueError naming the allowed values
   s.cm.law = parse_contact_law(contact);
   s.cm.damping = parse_damping_law(damping);
@@ -123,7 +134,7 @@ py::dict result_dict(const BatchResult& r, bool energy) {
   return out;
 }
 
-py::dict run_batch_py(const py::dict& pairs, const Array& ag, double dt, const std::string& stepper,
+py::dict run_batch_py(const py::dict& pairs, const py::handle& ag, double dt, const std::string& stepper,
                       const std::string& contact, const std::string& damping, double n, int substeps, bool energy,
                       double duration, double displacement_limit) {
   PairBatch batch = batch_from_dict(pairs);
@@ -157,9 +168,10 @@ void place(const BatchResult& part, std::size_t first, BatchResult& out) {
   });
 }
 
-py::dict analyze_py(const py::dict& pairs, const Array& ag, double dt, const std::string& stepper,
+py::dict analyze_py(const py::dict& pairs, const py::handle& ag, double dt, const std::string& stepper,
                     const std::string& contact, const std::string& damping, double n, int substeps, bool energy,
                     double duration, double displacement_limit, std::size_t width, int threads) {
+  check_threads(threads);
   const PairBatch all = batch_from_dict(pairs);
   const Setup s = make_setup(ag, dt, stepper, contact, damping, n, substeps, energy, duration, displacement_limit);
   // Every pair checked before any work, numbered as the caller numbers them (a batch would count from 0).
@@ -178,7 +190,7 @@ py::dict analyze_py(const py::dict& pairs, const Array& ag, double dt, const std
 }
 
 // One pair with the full time series (the kernel's SeriesRecorder, as `pounding simulate --series`).
-py::tuple simulate_py(const py::dict& pair, const Array& ag, double dt, const std::string& stepper,
+py::tuple simulate_py(const py::dict& pair, const py::handle& ag, double dt, const std::string& stepper,
                       const std::string& contact, const std::string& damping, double n, int substeps, bool energy,
                       double duration, double displacement_limit) {
   PairBatch batch = batch_from_dict(pair);

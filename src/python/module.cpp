@@ -6,11 +6,14 @@
 #include <algorithm>
 #include <atomic>
 #include <chrono>
+#include <cmath>
 #include <condition_variable>
 #include <exception>
 #include <mutex>
 #include <stdexcept>
 #include <thread>
+
+#include <fmt/format.h>
 
 #include "pounding/core/error.hpp"
 #include "pounding/core/progress.hpp"
@@ -18,15 +21,64 @@
 
 namespace pounding::python {
 
-std::vector<double> to_vector(const py::handle& values, const std::string& what) {
+std::string given(const py::handle& value) {
+  try {
+    const std::string type = py::str(py::type::of(value).attr("__name__")).cast<std::string>();
+    if (py::hasattr(value, "shape") && py::hasattr(value, "dtype"))  // an array: its shape and type, never its values
+      return fmt::format("a {} of shape {} ({})", type, py::str(value.attr("shape")).cast<std::string>(),
+                         py::str(value.attr("dtype")).cast<std::string>());
+    std::string repr = py::repr(value).cast<std::string>();
+    if (repr.size() > 40) repr = repr.substr(0, 37) + "...";
+    return fmt::format("{} {}", type, repr);
+  } catch (const py::error_already_set&) {
+    return "an object that cannot be shown";
+  }
+}
+
+Array checked_array(const py::handle& values, const std::string& what) {
   Array a;
   try {
-    a = Array::ensure(values);
+    a = Array::ensure(values);  // a null array (error cleared) where numpy cannot convert it
   } catch (const py::error_already_set&) {
     a = Array();
   }
-  if (!a || a.ndim() != 1) throw py::value_error(what + ": a 1-D array of numbers is needed");
+  if (!a) throw py::value_error(fmt::format("{}: numbers are needed, got {}", what, given(values)));
+  return a;
+}
+
+std::vector<double> to_vector(const py::handle& values, const std::string& what) {
+  const Array a = checked_array(values, what);
+  if (a.ndim() != 1) throw py::value_error(fmt::format("{}: a 1-D array of numbers is needed, got {}", what, given(values)));
   return {a.data(), a.data() + a.size()};
+}
+
+double to_number(const py::handle& value, const std::string& what) {
+  if (!py::isinstance<py::bool_>(value) && !py::isinstance<py::str>(value) && !py::isinstance<py::bytes>(value)) {
+    try {
+      const py::float_ x(py::reinterpret_borrow<py::object>(value));  // int, float, numpy scalars, a 0-D array
+      return x.cast<double>();
+    } catch (const py::error_already_set&) {
+    }
+  }
+  throw py::value_error(fmt::format("{}: a number is needed, got {}", what, given(value)));
+}
+
+void check_threads(int threads) {
+  if (threads < 0 || threads > 1024)
+    throw InputError(fmt::format("threads = {} is outside [0, 1024]", threads), "threads",
+                     "give the worker threads, 1 to 1024, or 0 for every core");
+}
+
+void check_duration(double duration) {
+  if (!std::isfinite(duration) || duration < 0)
+    throw InputError(fmt::format("duration = {} is outside [0, inf) s", duration), "duration",
+                     "give the analysis length in s, or 0 for the record's own length");
+}
+
+void check_displacement_limit(double displacement_limit) {
+  if (!std::isfinite(displacement_limit) || displacement_limit <= 0)
+    throw InputError(fmt::format("displacement_limit = {} is outside (0, inf) m", displacement_limit),
+                     "displacement_limit", "give |u1| + |u2| in m above which a run counts as diverged (default 10)");
 }
 
 namespace {

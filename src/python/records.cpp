@@ -1,11 +1,16 @@
 // Ground-motion records, response spectra and code design spectra: the engine's readers and formulas
 // (motion/records.hpp, spectrum.hpp, design_spectrum.hpp), not copies.
+#include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <map>
 #include <optional>
 #include <string>
 #include <variant>
 #include <vector>
+
+#include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include "common.hpp"
 #include "pounding/core/error.hpp"
@@ -54,7 +59,7 @@ py::dict spectrum_py(const Record& r, const py::handle& periods, double zeta) {
 }
 
 double number(const py::dict& p, const char* key, std::optional<double> def = {}) {
-  if (p.contains(key)) return p[key].cast<double>();
+  if (p.contains(key)) return to_number(p[key], std::string("design_spectrum: ") + key);
   if (def) return *def;
   throw py::value_error(std::string("design_spectrum: the parameter '") + key + "' is missing");
 }
@@ -82,7 +87,31 @@ DesignSpectrum::Params asce7_params(const py::dict& p) {
   return Asce7Spectrum{number(p, "sds"), number(p, "sd1"), number(p, "tl", 8.0)};
 }
 
+// The parameters each code takes: any other is a TypeError naming it and these (issue 44 item 10: TL=4 was ignored,
+// leaving tl at its default).
+void check_parameters(const std::string& code, const py::dict& p) {
+  static const std::map<std::string, std::vector<std::string>> taken{
+      {"asce7-16", {"sds", "sd1", "tl", "ss", "s1", "site_class"}},
+      {"ec8", {"type", "ground", "agr", "importance", "damping_percent"}},
+      {"2800", {"a", "importance", "soil"}},
+      {"nzs1170", {"site", "z", "r"}},
+      {"table", {"table_periods", "table_sa", "file"}}};
+  const auto keys = taken.find(code);
+  if (keys == taken.end()) return;  // an unknown code: spectrum_params names the codes
+  for (const auto& kv : p) {
+    const std::string name = py::str(kv.first).cast<std::string>();
+    if (std::find(keys->second.begin(), keys->second.end(), name) != keys->second.end()) continue;
+    std::string lower = name;
+    for (char& c : lower) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    const bool close = std::find(keys->second.begin(), keys->second.end(), lower) != keys->second.end();
+    throw py::type_error(fmt::format("design_spectrum(\"{}\"): unknown parameter '{}'{}; it takes {}", code, name,
+                                     close ? fmt::format(" (did you mean '{}'?)", lower) : "",
+                                     fmt::format("{}", fmt::join(keys->second, ", "))));
+  }
+}
+
 DesignSpectrum::Params spectrum_params(const std::string& code, const py::dict& p) {
+  check_parameters(code, p);
   if (code == "asce7-16") return asce7_params(p);
   if (code == "ec8") {
     const char* const grounds[] = {"A", "B", "C", "D", "E"};
@@ -130,6 +159,9 @@ Record record_from_arrays(const py::handle& acc_g, double dt, const std::string&
   Record r;
   r.name = name, r.source = "python:" + name, r.dt = dt;
   r.acc = to_vector(acc_g, "acc_g");
+  if (r.acc.size() < 2)
+    throw InputError(fmt::format("Record: acc_g holds {} value(s)", r.acc.size()), "Record(acc_g=)",
+                     "give at least 2 accelerations (g), one per step dt");
   if (!(dt >= record_dt_min && dt <= record_dt_max))
     throw py::value_error("Record: dt = " + std::to_string(dt) + " s is outside [1e-4, 0.1] s");
   for (double& a : r.acc) {

@@ -462,13 +462,16 @@ void set_lane(physics::SystemBatch& all, std::size_t l, const Lanes& L, const st
   }
 }
 
-py::dict analyze_storeys_py(const py::dict& buildings, const Array& ag, double dt, const TopologyArgs& t,
+py::dict analyze_storeys_py(const py::dict& buildings, const py::handle& ag_values, double dt, const TopologyArgs& t,
                             const std::string& stepper, const std::string& contact, const std::string& damping,
                             double n, int substeps, bool energy, double duration, double u_limit, std::size_t width,
                             int threads, const py::list& isolation, const py::list& moat, const MoatMaterial& mat) {
   const std::size_t nb = t.storeys.size();
+  check_threads(threads), check_duration(duration), check_displacement_limit(u_limit);
   const Lanes L = lanes_from(buildings, nb);
-  if (ag.ndim() != 1 || ag.size() < 2) throw py::value_error("ag: a 1-D array of at least 2 samples (m/s^2) is needed");
+  const Array ag = checked_array(ag_values, "ag");
+  if (ag.ndim() != 1 || ag.size() < 2)
+    throw py::value_error("ag: a 1-D array of at least 2 samples (m/s^2) is needed, got " + given(ag_values));
   const std::vector<BaseInputs> base = base_inputs(isolation, moat, nb, L.n);
   validate_bases(base, L.n, L.e_given);
   const std::vector<model::StickTopology> sticks = sticks_of(t, base);

@@ -8,6 +8,7 @@
 #include <fmt/format.h>
 
 #include "data.hpp"
+#include "pounding/report/escape.hpp"
 
 namespace pounding::report_detail {
 
@@ -21,14 +22,16 @@ double median(std::vector<double> v) {
   return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
 }
 
-// "joint 1 (F1|F2)": the element's label and the frames on its two sides
+// "joint 1 (F1\|F2)": the element's label and the frames on its two sides, as a Markdown table cell (the '|' escaped:
+// unescaped it split the row, issue 45 item 3)
 std::string joint_name(const results::SystemTable& sys, std::size_t e) {
   auto frame = [&](std::int32_t dof) {
     return dof >= 0 && static_cast<std::size_t>(dof) < sys.dof_building.size()
-               ? sys.building_label[static_cast<std::size_t>(sys.dof_building[static_cast<std::size_t>(dof)])]
+               ? report::md_cell(sys.building_label[static_cast<std::size_t>(sys.dof_building[static_cast<std::size_t>(dof)])])
                : std::string("?");
   };
-  return fmt::format("{} ({}|{})", sys.element_label[e], frame(sys.element_left_dof[e]), frame(sys.element_right_dof[e]));
+  return fmt::format("{} ({}\\|{})", report::md_cell(sys.element_label[e]), frame(sys.element_left_dof[e]),
+                     frame(sys.element_right_dof[e]));
 }
 
 // Per frame: the median peak displacement without pounding and with it at each gap ratio.
@@ -52,7 +55,7 @@ std::string frames_table(const Data& r) {
     std::vector<double> v;
     for (std::size_t i = 0; i < R * M; ++i)
       if (r.ok(r.status[i])) v.push_back(u[i]);
-    s += fmt::format("| {} | {:.4g} |", sys.building_label[b], median(v));
+    s += fmt::format("| {} | {:.4g} |", report::md_cell(sys.building_label[b]), median(v));
     if (r.impacts && r.res.find("impacts", name.c_str())) {
       const std::vector<double>& c = r.res.column<double>("impacts", name);
       const std::size_t G = r.gaps();
@@ -77,7 +80,7 @@ std::string bridge_section(const Data& r) {
   const std::size_t R = r.records(), M = r.models();
   const double d = r.set.bridge_d;
   const std::vector<double>& closing = r.res.column<double>("uncoupled", "peak_closing_elements");  // [R, M, E]
-  std::string s = fmt::format("\n## Bridge: joints and frames\n\n{}.\n\n", r.set.bridge_text);
+  std::string s = fmt::format("\n## Bridge: joints and frames\n\n{}.\n\n", report::md_text(r.set.bridge_text));
   s += fmt::format(
       "Each joint's gap at ratio x is x d + (its gap - d), d = {:g} m. P(joint touches) is the share of the ok analyses "
       "whose uncoupled peak closing exceeds that gap (first passage at that joint; the bridge pounds when any joint "
@@ -107,7 +110,7 @@ std::string bridge_section(const Data& r) {
     const std::vector<double>& force = r.res.column<double>("impacts", "element_peak_force");
     s += fmt::format("\nCoupled runs ({}): per joint and gap ratio, the mean impact count over the analyses in which the "
                      "joint is hit and the largest peak force (MN).\n\n| joint |",
-                     r.h.contact_law);
+                     report::md_text(r.h.contact_law));
     rule = "|---|";
     for (std::size_t g = 0; g < G; ++g) s += fmt::format(" x = {:g}: impacts, max force |", r.res.gap_ratios[g]), rule += "---|";
     s += "\n" + rule + "\n";

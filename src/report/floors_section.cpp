@@ -11,6 +11,7 @@
 #include <fmt/format.h>
 
 #include "data.hpp"
+#include "pounding/report/escape.hpp"
 
 namespace pounding::report_detail {
 
@@ -88,8 +89,8 @@ std::string floors_section(const Data& r) {
     if (x.floors == 0) continue;
     const bool isolated = b < sys.building_isolated.size() && sys.building_isolated[b];
     for (std::size_t f = bridge ? x.floors - 1 : 0; f < x.floors; ++f) {
-      s += bridge ? fmt::format("| {} |", sys.building_label[b])
-                  : fmt::format("| {} | {} |", sys.building_label[b], isolated ? f : f + 1);
+      const std::string label = report::md_cell(sys.building_label[b]);
+      s += bridge ? fmt::format("| {} |", label) : fmt::format("| {} | {} |", label, isolated ? f : f + 1);
       for (std::size_t g = 0; g < r.gaps(); ++g) {
         std::size_t n = 0;
         s += fmt::format(" {} |", cell(r, x, f, g, n));  // not " " + cell(...): GCC 12's -Wrestrict false positive

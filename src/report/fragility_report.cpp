@@ -5,6 +5,7 @@
 
 #include <fmt/format.h>
 
+#include "pounding/report/escape.hpp"
 #include "pounding/report/fragility.hpp"
 #include "pounding/report/report.hpp"
 
@@ -46,13 +47,16 @@ struct View {
 
 std::string overview(const View& v) {
   const Results& r = v.r;
-  std::string s = fmt::format("# Pounding fragility study: {}\n\n", r.header.title);
+  // every string read from the results file is escaped (report/escape.hpp, issue 44 item 9)
+  std::string s = fmt::format("# Pounding fragility study: {}\n\n", report::md_text(r.header.title));
   if (!r.header.exclusion_warning.empty())  // the banner of every report (docs/failure-behaviour.md: exit 3)
-    s += fmt::format("> **WARNING — results not trustworthy as they stand:** {}.\n\n", r.header.exclusion_warning);
-  s += fmt::format("- results: `{}` (written {}, commit {}, {} rank(s), wall time {:.2f} s)\n", r.path, r.header.date,
-                   r.header.git_commit.substr(0, 12), r.header.ranks, r.header.wall_time_s);
-  s += fmt::format("- machine: {}\n", run_machine(r.header));
-  s += fmt::format("- intensity measure: **{}**{}\n", v.in.text("description"),
+    s += fmt::format("> **WARNING — results not trustworthy as they stand:** {}.\n\n",
+                     report::md_text(r.header.exclusion_warning));
+  s += fmt::format("- results: {} (written {}, commit {}, {} rank(s), wall time {:.2f} s)\n", report::md_code(r.path),
+                   report::md_text(r.header.date), report::md_text(r.header.git_commit.substr(0, 12)), r.header.ranks,
+                   r.header.wall_time_s);
+  s += fmt::format("- machine: {}\n", report::md_text(run_machine(r.header)));
+  s += fmt::format("- intensity measure: **{}**{}\n", report::md_text(v.in.text("description")),
                    v.r.settings.find("intensity", "period_pair") && v.r.settings.number("intensity", "period_pair") != 0
                        ? " — period \"pair\": the geometric mean of the two buildings' median periods"
                        : "");
@@ -166,7 +170,8 @@ std::string target_section(const View& v) {
 }
 
 std::string fragility_table(const View& v) {
-  std::string s = fmt::format("## Fragility per gap: P(pound | {} = x) = Phi(ln(x / theta) / beta)\n\n", v.in.text("measure"));
+  std::string s = fmt::format("## Fragility per gap: P(pound | {} = x) = Phi(ln(x / theta) / beta)\n\n",
+                              report::md_text(v.in.text("measure")));
   const auto& theta = v.fr.get<double>("theta");
   const auto& beta = v.fr.get<double>("beta");
   const auto& status = v.fr.get<std::string>("status");
@@ -274,10 +279,10 @@ std::string hazard_section(const View& v) {
   std::string s = "## Site hazard\n\n";
   const std::string curve = h.text("curve");
   s += curve.empty() ? fmt::format("- power law lambda(x) = k0 x^-k, k0 = {:.4g} per year, k = {:.3g}\n", h.number("k0"), h.number("k"))
-                     : fmt::format("- hazard curve `{}` ({} points, log-log interpolation; beyond its ends the end "
+                     : fmt::format("- hazard curve {} ({} points, log-log interpolation; beyond its ends the end "
                                    "slopes are extended and the share of the rate they give is reported)\n",
-                                   curve, h.get<double>("im").size());
-  if (!h.text("source").empty()) s += fmt::format("- source: {}\n", h.text("source"));
+                                   report::md_code(curve), h.get<double>("im").size());
+  if (!h.text("source").empty()) s += fmt::format("- source: {}\n", report::md_text(h.text("source")));
   const auto& tail = h.get<double>("tail_share");
   const double worst = tail.empty() ? 0 : *std::max_element(tail.begin(), tail.end());
   if (worst > 0.01)

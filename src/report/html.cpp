@@ -15,6 +15,7 @@
 #include "pounding/kernel/batch.hpp"
 #include "pounding/physics/resolution.hpp"
 #include "pounding/physics/single_impact.hpp"
+#include "pounding/report/escape.hpp"
 #include "pounding/report/report.hpp"
 
 namespace pounding {
@@ -276,12 +277,11 @@ std::string records_html(const results::Results& r) {
   std::vector<std::vector<std::string>> rows{{"record", "name (event, station)", "source", "synthetic", "PGA g", "dt s",
                                               "points", "duration s"}};
   for (std::size_t k = 0; k < rec.size(); k += per)
-    rows.push_back({rec.id[k], k < rec.name.size() ? rec.name[k] : "", k < rec.source.size() ? rec.source[k] : "",
-                    rec.synthetic[k] ? "yes" : "no", fmt::format("{:.3f}", rec.pga_g[k]), fmt::format("{:g}", rec.dt[k]),
-                    std::to_string(rec.npts[k]), fmt::format("{:.2f}", rec.duration[k])});
-  for (auto& row : rows)
-    for (auto& c : row)  // table_html reads Markdown inline text: keep '*' and '`' of names literal
-      std::replace(c.begin(), c.end(), '`', '\'');
+    // table_html reads Markdown inline text: the names escaped for it, shown as they are
+    rows.push_back({report::md_cell(rec.id[k]), report::md_cell(k < rec.name.size() ? rec.name[k] : ""),
+                    report::md_cell(k < rec.source.size() ? rec.source[k] : ""), rec.synthetic[k] ? "yes" : "no",
+                    fmt::format("{:.3f}", rec.pga_g[k]), fmt::format("{:g}", rec.dt[k]), std::to_string(rec.npts[k]),
+                    fmt::format("{:.2f}", rec.duration[k])});
   return report_detail::table_html(rows, per == 2 ? "Records (each applied with both signs)" : "Records");
 }
 
@@ -303,12 +303,9 @@ std::string provenance_html(const results::Results& r, const std::string& id, To
            {"report rendered", fmt::format("on host '{}'", html_escape(host))}});
   s += "<h3>Accuracy of the engine for this study</h3>\n" + accuracy_statement(h);
   std::vector<std::vector<std::string>> rows{{"section", "key", "value"}};
-  for (const auto& e : r.settings.entries) {
-    std::string v = setting_text(e.value);
-    std::replace(v.begin(), v.end(), '`', '\'');
-    std::replace(v.begin(), v.end(), '|', '/');
-    rows.push_back({e.section.empty() ? "(top)" : e.section, e.key, v});
-  }
+  for (const auto& e : r.settings.entries)  // Markdown inline text for table_html: escaped, shown as they are
+    rows.push_back({e.section.empty() ? "(top)" : report::md_cell(e.section), report::md_cell(e.key),
+                    report::md_cell(setting_text(e.value))});
   s += "<h3>Settings as the run used them</h3>\n" + report_detail::table_html(rows);
   s += "<h3>Records</h3>\n";
   if (const auto* g = r.settings.find("records.motions", "generator"); g && std::holds_alternative<std::string>(*g))
@@ -375,7 +372,7 @@ std::string compare_html(const std::vector<const results::Results*>& files, cons
     const std::string letter(1, static_cast<char>('A' + i)), p = fmt::format("s{}", i + 1);
     answers += "<div class=\"study\"><h2 class=\"study-title\">" + letter + ": " + html_escape(title_of(s)) + "</h2>\n" +
                answer_html(s.blocks, p + "-answer") + "</div>\n";
-    toc.entries.emplace_back(p, letter + ": " + title_of(s));
+    toc.entries.emplace_back(p, letter + ": " + report::md_text(title_of(s)));  // Toc::html reads Markdown
     Toc inner;
     parts += "<section id=\"" + p + "\"><h2>" + letter + ": " + html_escape(title_of(s)) + "</h2>\n" +
              figures_html(s.figures, p + "-figures") + tables_html(s.blocks, p + "-", inner) +

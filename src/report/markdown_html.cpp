@@ -5,6 +5,8 @@
 
 #include <fmt/format.h>
 
+#include "pounding/report/escape.hpp"
+
 namespace pounding::report_detail {
 
 namespace {
@@ -23,23 +25,26 @@ std::string_view trim(std::string_view s) {
   return s;
 }
 
-// "| a | b |" -> {"a", "b"}; "\|" stays a character of its cell.
+// "| a | b |" -> {"a", "b"}. A backslash pair stays in its cell as it is ("\\|": a backslash, then the cell ends),
+// except "\|", which is a '|' of the cell (GitHub's tables: the pipe is unescaped before the inline text is read).
 std::vector<std::string> table_cells(std::string_view line) {
   line = trim(line);
   if (starts_with(line, "|")) line.remove_prefix(1);
-  if (!line.empty() && line.back() == '|' && !(line.size() > 1 && line[line.size() - 2] == '\\')) line.remove_suffix(1);
   std::vector<std::string> cells;
   std::string cell;
+  bool closed = false;  // the line ended with an unescaped '|'
   for (std::size_t i = 0; i < line.size(); ++i) {
-    if (line[i] == '\\' && i + 1 < line.size() && line[i + 1] == '|') {
-      cell += '|', ++i;
+    closed = false;
+    if (line[i] == '\\' && i + 1 < line.size()) {
+      if (line[i + 1] != '|') cell += '\\';
+      cell += line[++i];
     } else if (line[i] == '|') {
-      cells.emplace_back(trim(cell)), cell.clear();
+      cells.emplace_back(trim(cell)), cell.clear(), closed = true;
     } else {
       cell += line[i];
     }
   }
-  cells.emplace_back(trim(cell));
+  if (!closed) cells.emplace_back(trim(cell));
   return cells;
 }
 
@@ -114,20 +119,7 @@ std::vector<MdBlock> parse_markdown(std::string_view md) {
   return out;
 }
 
-std::string html_escape(std::string_view s) {
-  std::string o;
-  o.reserve(s.size());
-  for (char c : s) {
-    switch (c) {
-      case '&': o += "&amp;"; break;
-      case '<': o += "&lt;"; break;
-      case '>': o += "&gt;"; break;
-      case '"': o += "&quot;"; break;
-      default: o += c;
-    }
-  }
-  return o;
-}
+std::string html_escape(std::string_view s) { return report::html_text(s); }
 
 std::string inline_html(std::string_view md) {
   std::string o;
@@ -140,6 +132,11 @@ std::string inline_html(std::string_view md) {
         i = end + 1;
         continue;
       }
+    }
+    if (md[i] == '\\' && i + 1 < md.size() && std::ispunct(static_cast<unsigned char>(md[i + 1]))) {
+      o += html_escape(md.substr(i + 1, 1));  // an escaped character (report/escape.hpp md_text): itself
+      i += 2;
+      continue;
     }
     if (md.substr(i, 2) == "**" && (bold || md.find("**", i + 2) != std::string_view::npos)) {
       o += bold ? "</strong>" : "<strong>";

@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include "data.hpp"
+#include "pounding/report/escape.hpp"
 
 namespace pounding::report_detail {
 
@@ -16,7 +17,7 @@ std::string selection_section(const results::Results& r) {
   std::string s = "\n## Records selected to the design spectrum\n\n";
   s += fmt::format("Target: {}. {} of {} candidate records chosen ({} with a least-squares factor within [{:g}, {:g}]) "
                    "by the misfit of ln Sa over {} periods; suite factor F = {:.4f}.\n\n",
-                   g->text("target_description"), ids.size(), static_cast<long>(g->number("candidates")),
+                   report::md_text(g->text("target_description")), ids.size(), static_cast<long>(g->number("candidates")),
                    static_cast<long>(g->number("eligible")), g->number("min_scale"), g->number("max_scale"),
                    g->get<double>("periods").size(), g->number("suite_factor"));
   // event/station: results written before issue 23 item 7 have none ("-")
@@ -24,12 +25,12 @@ std::string selection_section(const results::Results& r) {
   auto text_at = [&](const char* name, std::size_t k) {
     if (!has_identity) return std::string("-");
     const auto& v = g->get<std::string>(name);
-    return k < v.size() && !v[k].empty() ? v[k] : std::string("-");
+    return k < v.size() && !v[k].empty() ? report::md_cell(v[k]) : std::string("-");
   };
   s += "| record | event | station | comp. | factor f_i F | f_i | misfit (MSE of ln Sa) |\n"
        "|---|---|---|---|---|---|---|\n";
   for (std::size_t k = 0; k < ids.size(); ++k)
-    s += fmt::format("| {} | {} | {} | {} | {:.4f} | {:.4f} | {:.5f} |\n", ids[k], text_at("event", k),
+    s += fmt::format("| {} | {} | {} | {} | {:.4f} | {:.4f} | {:.5f} |\n", report::md_cell(ids[k]), text_at("event", k),
                      text_at("station", k), text_at("component", k), scale[k], f[k], mse[k]);
   if (has_identity) {
     const auto mpe = static_cast<long>(g->number("max_per_event"));
@@ -37,7 +38,7 @@ std::string selection_section(const results::Results& r) {
                      "chosen.\n", mpe == 0 ? std::string("any number") : std::to_string(mpe), g->text("components"));
     if (const auto* w = g->attribute("refused"))
       if (const auto* list = std::get_if<std::vector<std::string>>(w))
-        for (const auto& line : *list) s += "- passed over: " + line + "\n";
+        for (const auto& line : *list) s += "- passed over: " + report::md_text(line) + "\n";
   }
   const bool none = g->text("rule") == "none";
   s += fmt::format("\n{}: {} (smallest mean/target {:.4f}{}).\n", g->text("rule_text"),
@@ -46,7 +47,7 @@ std::string selection_section(const results::Results& r) {
                    g->text("rule") == "EC8" ? fmt::format(", mean PGA / ag S {:.4f}", g->number("pga_ratio")) : "");
   if (const auto* w = g->attribute("warnings"))
     if (const auto* list = std::get_if<std::vector<std::string>>(w))
-      for (const auto& line : *list) s += "- warning: " + line + "\n";
+      for (const auto& line : *list) s += "- warning: " + report::md_text(line) + "\n";
   return s;
 }
 

@@ -8,6 +8,7 @@
 #include <fmt/format.h>
 
 #include "data.hpp"
+#include "pounding/report/escape.hpp"
 #include "pounding/analysis/stats.hpp"
 #include "pounding/core/parallel_for.hpp"
 
@@ -53,7 +54,7 @@ std::string buildings(const Data& r) {
     const std::string section = fmt::format("structures.building{}", b);
     std::string given;
     for (const char* key : {"period", "height", "mass", "zeta", "yield"})
-      if (const std::string t = setting_text(r, section, key); !t.empty()) given += fmt::format("{} {}; ", key, t);
+      if (const std::string t = setting_text(r, section, key); !t.empty()) given += fmt::format("{} {}; ", key, report::md_text(t));
     s += given.empty() ? "\n" : fmt::format(" — as given: {}\n", given.substr(0, given.size() - 2));
   }
   return s;

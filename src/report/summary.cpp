@@ -8,6 +8,7 @@
 #include <fmt/format.h>
 
 #include "pounding/physics/resolution.hpp"
+#include "pounding/report/escape.hpp"
 #include "pounding/report/json.hpp"
 
 namespace pounding {
@@ -46,8 +47,8 @@ std::string run_header(const Record& rec, const KernelSettings& ks, const Contac
   std::string s;
   auto line = [&](std::string_view name, const auto& value) { s += fmt::format("{}: {}\n", name, value); };
   auto num = [&](std::string_view name, double v) { s += fmt::format("{}: {:.6g}\n", name, v); };
-  line("record", rec.name);
-  line("record_source", rec.source);
+  line("record", report::one_line(rec.name));  // `name: value` lines: a newline in a name would forge a line
+  line("record_source", report::one_line(rec.source));
   num("record_dt_s", rec.dt);
   num("record_pga_g", rec.pga() / g_accel);
   line("stepper", to_string(ks.stepper));
@@ -232,7 +233,8 @@ std::string list(const std::vector<double>& v) {
   return s;
 }
 
-std::string isolation_lines(const std::string& label, const IsolationReport& iso) {
+std::string isolation_lines(const std::string& building_label, const IsolationReport& iso) {
+  const std::string label = report::one_line(building_label);
   std::string s = fmt::format("{}_bearing: {}\n", label, iso.bearing);
   s += fmt::format("{}_base_mass_kg: {:.6g}\n{}_isolator_k_N_m: {:.6g}\n", label, iso.base_mass, label, iso.k);
   s += fmt::format("{}_isolator_fy_N: {:.6g}\n{}_isolator_alpha: {:.6g}\n", label, iso.fy, label, iso.alpha);
@@ -253,7 +255,8 @@ std::string base_lines(const std::string& k, const BaseValues& bv) {
 
 std::string format_system_summary(const SystemRunReport& run) {
   std::string s;
-  auto line = [&](std::string_view name, const auto& value) { s += fmt::format("{}: {}\n", name, value); };
+  // names hold the user's labels (buildings, contact levels, link springs): kept on their line
+  auto line = [&](std::string_view name, const auto& value) { s += fmt::format("{}: {}\n", report::one_line(name), value); };
   auto num = [&](std::string_view name, double v) { s += fmt::format("{}: {:.6g}\n", name, v); };
   const Record& rec = *run.record;
   const KernelSettings& ks = *run.settings;

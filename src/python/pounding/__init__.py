@@ -37,6 +37,17 @@ _CONTACT_FIELDS = ("t_first_impact", "peak_force", "peak_penetration", "contact_
                    "h_omega_contact")
 
 
+def _given(value):
+    """What a caller gave, short enough for an error message (an array's shape, never its values)."""
+    if hasattr(value, "shape") and hasattr(value, "dtype"):
+        return f"a {type(value).__name__} of shape {tuple(value.shape)} ({value.dtype})"
+    try:
+        text = repr(value)
+    except Exception:  # noqa: BLE001  (a repr that fails: say so, do not mask the caller's error)
+        text = "(no repr)"
+    return f"{type(value).__name__} {text if len(text) <= 40 else text[:37] + '...'}"
+
+
 def _pairs_dict(pairs, kh, e):
     """dict of arrays or numpy structured array -> dict of contiguous float64 arrays with the kernel's names."""
     if isinstance(pairs, np.ndarray) and pairs.dtype.names:
@@ -53,10 +64,13 @@ def _pairs_dict(pairs, kh, e):
     width = None
     out = {}
     for key, value in d.items():
-        a = np.ascontiguousarray(np.asarray(value, dtype=np.float64))
-        if a.ndim == 0:
-            raise ValueError(f"pairs['{key}']: a 1-D array (one value per pair) is needed, got a scalar")
-        out[key] = a
+        try:
+            a = np.asarray(value, dtype=np.float64)
+        except (TypeError, ValueError):
+            raise ValueError(f"pairs['{key}']: numbers are needed, got {_given(value)}") from None
+        if a.ndim != 1:  # checked before ascontiguousarray, which makes a scalar 1-D
+            raise ValueError(f"pairs['{key}']: a 1-D array (one value per pair) is needed, got {_given(value)}")
+        out[key] = np.ascontiguousarray(a)
         width = len(a) if width is None else width
     for key, value in (("kc", kh), ("e", e)):
         if value is None:
@@ -139,6 +153,19 @@ def _rayleigh_modes(modes, counts, modal_zeta):
     return flat
 
 
+def _storey_count(value):
+    """One building's storeys: a whole number (2.5 was taken as 2)."""
+    try:
+        count = int(value)
+        whole = not isinstance(value, bool) and count == value
+    except (TypeError, ValueError):
+        whole = False
+    if not whole:
+        raise ValueError(f"storeys: {value!r} is not a whole number of storeys; give one integer per building, "
+                         "1 or more, e.g. storeys=(3, 5)")
+    return count
+
+
 def analyze_storeys(buildings, record, storeys=(1, 1), storey_height=3.2, contact="none",
                     stepper="central-difference", substeps=1, *, kh=None, e=None, n=1.5,
                     damping="lankarani-nikravesh", contact_levels="common", level_tolerance=0.05,
@@ -188,7 +215,7 @@ def analyze_storeys(buildings, record, storeys=(1, 1), storey_height=3.2, contac
     ag, dt = _motion(record)
     d = _pairs_dict(buildings, kh, e)
     _require_law_numbers(contact, d)
-    counts = [int(s) for s in storeys]
+    counts = [_storey_count(s) for s in storeys]
     heights = ([float(h) for h in storey_height] if np.ndim(storey_height) else [float(storey_height)] * len(counts))
     topology = _core._Topology(counts, heights, float(level_tolerance), contact_levels, stiffness_profile,
                                [float(z) for z in (modal_zeta or [])], _rayleigh_modes(rayleigh_modes, counts, modal_zeta))
