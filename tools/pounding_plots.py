@@ -316,6 +316,20 @@ def plot_fit(fr, sel, a, title):
     return fig
 
 
+def interval_bars(ax, x, y, lo, hi, color, label):
+    """Points with their interval drawn as it is: a bootstrap percentile interval need not contain the point
+    estimate (a rate near its cap), which errorbar refuses ("'yerr' must not contain negative values"). y None: the
+    interval alone."""
+    x, lo, hi = np.asarray(x, float), np.asarray(lo, float), np.asarray(hi, float)
+    ok = np.isfinite(lo) & np.isfinite(hi)
+    ax.vlines(x[ok], lo[ok], hi[ok], color=color, lw=1.2, label=label if y is None else None)
+    w = 0.006 * (np.nanmax(x) - np.nanmin(x) if len(x) > 1 else 1.0)
+    ax.hlines(np.concatenate([lo[ok], hi[ok]]), np.concatenate([x[ok], x[ok]]) - w, np.concatenate([x[ok], x[ok]]) + w,
+              color=color, lw=1.2)
+    if y is not None:
+        ax.plot(x, y, "o", color=color, label=label)
+
+
 def plot_rate(f, fr, sel, a, title):
     h = f["hazard"]
     at = h.attrs
@@ -351,19 +365,15 @@ def plot_rate(f, fr, sel, a, title):
               else "rate versus separation (fragility refitted at each gap, point estimate)")
     ax_p.plot(cx, 100 * cp, "C0", lw=1.5, label=f"P(pounding in {years:g} years) = 1 - exp(-rate {years:g})")
     s = np.array(sel)
-    ax_r.errorbar(xs[s], rate[s], yerr=[rate[s] - rlo[s], rhi[s] - rate[s]], fmt="o", color="C3", capsize=3,
-                  label=f"the study's gaps, {conf} bootstrap interval over records")
-    ax_p.errorbar(xs[s], 100 * prob[s], yerr=[100 * (prob[s] - plo[s]), 100 * (phi_[s] - prob[s])], fmt="o",
-                  color="C3", capsize=3, label=f"the study's gaps, {conf} bootstrap interval")
+    interval_bars(ax_r, xs[s], rate[s], rlo[s], rhi[s], "C3", f"the study's gaps, {conf} bootstrap interval over records")
+    interval_bars(ax_p, xs[s], 100 * prob[s], 100 * plo[s], 100 * phi_[s], "C3", f"the study's gaps, {conf} bootstrap interval")
     if "rate_jack_hi" in h:  # files written before the jackknife have none
         jl, jh = h["rate_jack_lo"][()][s], h["rate_jack_hi"][()][s]
         pjl, pjh = h["probability_jack_lo"][()][s], h["probability_jack_hi"][()][s]
         ok = np.isfinite(jl) & np.isfinite(jh)
         dx = 0.012 * (cx.max() if len(cx) else xs.max())  # beside the bootstrap bars
-        ax_r.errorbar(xs[s][ok] + dx, rate[s][ok], yerr=[rate[s][ok] - jl[ok], jh[ok] - rate[s][ok]], fmt="none",
-                      ecolor="C1", capsize=3, label=f"{conf} jackknife interval over records")
-        ax_p.errorbar(xs[s][ok] + dx, 100 * prob[s][ok], yerr=[100 * (prob[s][ok] - pjl[ok]), 100 * (pjh[ok] - prob[s][ok])],
-                      fmt="none", ecolor="C1", capsize=3, label=f"{conf} jackknife interval")
+        interval_bars(ax_r, xs[s][ok] + dx, None, jl[ok], jh[ok], "C1", f"{conf} jackknife interval over records")
+        interval_bars(ax_p, xs[s][ok] + dx, None, 100 * pjl[ok], 100 * pjh[ok], "C1", f"{conf} jackknife interval")
     tlabel = f"{target:g} % in {years:g} years"
     ax_r.axhline(lam, color="k", ls="--", lw=1, label=f"{tlabel}: lambda = {lam:.3g} per year")
     ax_p.axhline(target, color="k", ls="--", lw=1, label=tlabel)

@@ -44,6 +44,21 @@ assert unit == 1 and round(x * 0.0254) == 200 and round(y * 0.0254) == 200, (x, 
 PY
 done
 
+# a rate whose bootstrap interval lies above it (a percentile interval need not hold the point estimate: a rate near
+# its cap, as a red team found): the rate figure is drawn, not dropped with "'yerr' must not contain negative values"
+cp "$tmp/fp.h5" "$tmp/cap.h5"
+"$py" - "$tmp/cap.h5" <<'PY'
+import sys, h5py
+with h5py.File(sys.argv[1], "r+") as f:
+    h = f["hazard"]
+    for v, lo in (("annual_rate", "rate_lo"), ("probability", "probability_lo")):
+        x = h[v][()]
+        x[0] = 0.9 * h[lo][()][0]
+        h[v][...] = x
+PY
+MPLBACKEND=Agg "$py" "$tool" "$tmp/cap.h5" -o "$tmp/cap/fp" > "$tmp/cap.out" 2>&1 || fail "a rate below its interval: $(cat "$tmp/cap.out")"
+[ -f "$tmp/cap/fp-rate.png" ] || fail "a rate below its interval: no rate figure ($(cat "$tmp/cap.out"))"
+
 # --format svg, and --gaps: a subset of the study's gaps
 MPLBACKEND=Agg "$py" "$tool" "$tmp/fp.h5" -o "$tmp/svg/fp" --format svg --gaps 0.5 1.0 > "$tmp/svg.out"
 for kind in fragility fit rate; do
