@@ -250,13 +250,33 @@ class Results:
             return {k: v[()] for k, v in f[group].items() if isinstance(v, h5py.Dataset)}
 
     def frame(self, group):
-        """The 1-D datasets of a group of equal length as one DataFrame (e.g. "hazard", "fragility")."""
+        """A group's datasets as one DataFrame. 1-D datasets of equal length (e.g. "hazard", "fragility", "models")
+        become columns. A group of per-analysis arrays, record x model (e.g. "uncoupled"), becomes one row per
+        analysis: columns record (its index), record_id (from /records/id), model (its index) and every dataset of
+        that shape. Datasets of other shapes are left out: Results.arrays(group) has them all."""
+        import numpy as np
         import pandas as pd
-        a = {k: v for k, v in self.arrays(group).items() if getattr(v, "ndim", 0) == 1}
-        if not a:
-            raise KeyError(f"/{group} holds no 1-D datasets")
-        n = max(len(v) for v in a.values())
-        return pd.DataFrame({k: v for k, v in a.items() if len(v) == n})
+        arrays = self.arrays(group)
+        a = {k: v for k, v in arrays.items() if getattr(v, "ndim", 0) == 1}
+        if a:
+            n = max(len(v) for v in a.values())
+            return pd.DataFrame({k: v for k, v in a.items() if len(v) == n})
+        two = {k: v for k, v in arrays.items() if getattr(v, "ndim", 0) == 2}
+        if not two:
+            shapes = {k: getattr(v, "shape", ()) for k, v in arrays.items()}
+            raise KeyError(f"/{group} holds neither 1-D nor record x model datasets ({shapes}): "
+                           f"use Results.arrays({group!r})")
+        shape = max((v.shape for v in two.values()), key=lambda sh: sum(v.shape == sh for v in two.values()))
+        r, m = np.meshgrid(np.arange(shape[0]), np.arange(shape[1]), indexing="ij")
+        cols = {"record": r.ravel(), "model": m.ravel()}
+        ids = self.arrays("records").get("id") if group != "records" else None
+        if ids is not None and len(ids) == shape[0]:
+            ids = np.array([x.decode() if isinstance(x, bytes) else str(x) for x in ids])
+            cols = {"record": cols["record"], "record_id": ids[cols["record"]], "model": cols["model"]}
+        for k, v in two.items():
+            if v.shape == shape:
+                cols[k] = v.ravel()
+        return pd.DataFrame(cols)
 
 
 def _h5py():

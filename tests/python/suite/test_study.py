@@ -229,3 +229,18 @@ def test_pair_code_rules_and_advice_are_numbers(tmp_path):
         assert abs(row["gap_m"] - gap) < 5e-7, (name, row["gap_m"], gap)
         assert row["hits"] == int((z > gap).sum()) and row["n"] == z.size, name
         assert abs(row["probability"] - (z > gap).mean()) < 5e-7, name
+
+
+def test_results_frame_of_per_analysis_arrays(tmp_path):
+    """Results.frame("uncoupled") (record x model arrays) is one row per analysis, with the record's id."""
+    need("pandas")
+    need("h5py")
+    res = pounding.Study(QUICK).run(out=str(tmp_path / "q.h5"), progress=False)
+    r = pounding.study.Results(str(tmp_path / "q.h5"))
+    df = r.frame("uncoupled")
+    u = r.arrays("uncoupled")["peak_closing"]
+    assert res.exit_code == 0 and len(df) == u.size == 25 * 3872
+    assert list(df.columns[:3]) == ["record", "record_id", "model"]
+    assert np.array_equal(df["peak_closing"].to_numpy(), u.ravel(), equal_nan=True)
+    assert df["record_id"].iloc[0] == "EQ1" and df["record_id"].iloc[-1] == "EQ25" and df["model"].iloc[-1] == 3871
+    assert r.frame("models").shape[0] == 3872  # 1-D datasets: as before
