@@ -72,7 +72,7 @@ struct Columns {
 };
 
 Columns read_columns(const std::string& path) {
-  const std::string text = files::read_text(path, "the kinematics file", std::size_t{64} << 20, true);
+  const std::string text = files::read_text(path, "the kinematics file", std::size_t{64} << 20);
   Columns C;
   std::vector<std::string>& names = C.names;
   std::vector<std::vector<double>>& cols = C.cols;
