@@ -267,7 +267,10 @@ void add_replay(CLI::App& app) {
   c->add_flag("--json", o->json, "print the summary as one JSON object");
   o->rest.add(c);
   c->callback([o, c] {
-    if (!o->out.empty()) files::check_output_path(o->out, "--out");
+    if (!o->out.empty()) {
+      files::check_output_not_input(o->out, {o->input}, "--out");  // never over the measured kinematics
+      files::check_output_path(o->out, "--out");
+    }
     ContactModel cm;
     cm.law = as_option("--law", [&] { return parse_contact_law(o->law); });
     cm.damping = as_option("--damping-law", [&] { return parse_damping_law(o->damping_law); });
