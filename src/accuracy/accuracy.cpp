@@ -193,6 +193,7 @@ void write_cases(const std::string& path, const std::vector<Case>& cases, const 
 }
 
 std::vector<Case> read_cases(const std::string& path) {
+  files::check_input_file(path, "the case/reference CSV");  // a FIFO would block the ifstream
   std::ifstream f(path);
   if (!f) throw InputError(fmt::format("cannot read '{}'", path), path, "give an existing case/reference CSV");
   std::string line;

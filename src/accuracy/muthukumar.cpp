@@ -15,6 +15,7 @@
 
 #include "pounding/accuracy/accuracy.hpp"
 #include "pounding/core/error.hpp"
+#include "pounding/core/files.hpp"
 
 namespace pounding::accuracy {
 
@@ -80,6 +81,7 @@ std::string pga_level(double pga) {
 
 std::vector<LevelRecord> banded_records(const std::string& record_dir) {
   std::vector<LevelRecord> recs;
+  files::check_input_file(record_dir + "/MANIFEST.tsv", "the records manifest MANIFEST.tsv");  // never a FIFO
   std::ifstream f(record_dir + "/MANIFEST.tsv");
   if (!f) throw InputError("cannot read MANIFEST.tsv", record_dir, "give the real-record directory");
   std::string line;

@@ -109,48 +109,72 @@ std::uint64_t xxh64(const void* data, std::size_t n, std::uint64_t seed) {
   return h;
 }
 
-std::string read_text(const std::string& path, const std::string& what, std::size_t max_bytes, bool regular_only) {
-  auto fail = [&](int err) {
-    const char* fix = err == ENOENT || err == ENOTDIR ? "check the path"
-                      : err == EISDIR             ? "give a file, not a folder"
-                      : err == EACCES || err == EPERM ? "check its permissions"
-                                                      : "check the disk and the path";
-    return InputError(fmt::format("cannot read {}: {}", what, os_error(err)), path, fix);
-  };
+namespace {
+// What a path that is not a regular file is, for messages.
+const char* kind_of(mode_t mode) {
+  return S_ISDIR(mode)    ? "a folder"
+         : S_ISFIFO(mode) ? "a FIFO (named pipe)"
+         : S_ISCHR(mode)  ? "a character device"
+         : S_ISBLK(mode)  ? "a block device"
+         : S_ISSOCK(mode) ? "a socket"
+                          : "not a regular file";
+}
+
+InputError read_error(const std::string& path, const std::string& what, int err) {
+  const char* fix = err == ENOENT || err == ENOTDIR ? "check the path"
+                    : err == EISDIR               ? "give a file, not a folder"
+                    : err == EACCES || err == EPERM ? "check its permissions"
+                                                    : "check the disk and the path";
+  return InputError(fmt::format("cannot read {}: {}", what, err == ENOENT ? std::string("not found") : os_error(err)),
+                    path, fix);
+}
+
+// An input that exists but is not a regular file: a folder, FIFO, socket or device is never read (a FIFO blocks
+// until a writer comes, /dev/zero never ends, a folder is a mistake).
+// `limit`: the reader's size limit, named in the fix ("16 MiB"), or empty.
+InputError not_regular_error(const std::string& path, const std::string& what, mode_t mode, const std::string& limit = "") {
+  if (S_ISDIR(mode))
+    return InputError(fmt::format("cannot read {}: the path is a folder", what), path, "give a file, not a folder");
+  return InputError(fmt::format("cannot read {}: the path is {}, not a regular file", what, kind_of(mode)), path,
+                    fmt::format("give the path of an ordinary file{} (pounding reads no FIFO, socket or device: it "
+                                "could block or never end)", limit.empty() ? "" : " of at most " + limit));
+}
+}  // namespace
+
+void check_input_file(const std::string& path, const std::string& what) {
+  struct stat st {};
+  if (::stat(path.c_str(), &st) != 0) throw read_error(path, what, errno);  // stat never opens: a FIFO cannot block it
+  if (!S_ISREG(st.st_mode)) throw not_regular_error(path, what, st.st_mode);
+}
+
+std::string read_text(const std::string& path, const std::string& what, std::size_t max_bytes) {
   // O_NONBLOCK: opening a FIFO must not wait for a writer before we know what the path is
   int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC | O_NONBLOCK);
-  if (fd < 0) throw fail(errno);
-  std::string text;
+  if (fd < 0) throw read_error(path, what, errno);
   struct stat st {};
   if (::fstat(fd, &st) != 0) {
     const int err = errno;
     ::close(fd);
-    throw fail(err);
+    throw read_error(path, what, err);
   }
   const std::string limit = max_bytes % (1 << 20) == 0 ? fmt::format("{} MiB", max_bytes >> 20) : fmt::format("{} bytes", max_bytes);
-  if (S_ISDIR(st.st_mode)) {
+  if (!S_ISREG(st.st_mode)) {
     ::close(fd);
-    throw fail(EISDIR);
+    throw not_regular_error(path, what, st.st_mode, limit);
   }
-  if (!S_ISREG(st.st_mode) && regular_only) {
-    ::close(fd);
-    const char* kind = S_ISFIFO(st.st_mode) ? "a FIFO (named pipe)" : S_ISCHR(st.st_mode) ? "a character device"
-                       : S_ISBLK(st.st_mode) ? "a block device" : S_ISSOCK(st.st_mode) ? "a socket" : "not a regular file";
-    throw InputError(fmt::format("cannot read {}: the path is {}, not a regular file", what, kind), path,
-                     fmt::format("give an ordinary file (at most {})", limit));
-  }
-  if (S_ISREG(st.st_mode) && static_cast<std::uint64_t>(st.st_size) > max_bytes) {
+  if (static_cast<std::uint64_t>(st.st_size) > max_bytes) {
     ::close(fd);
     throw InputError(fmt::format("cannot read {}: it holds {} bytes, more than the limit of {}", what,
                                  static_cast<std::uint64_t>(st.st_size), limit),
                      path, "check the path (is it the right file?)");
   }
-  ::fcntl(fd, F_SETFL, ::fcntl(fd, F_GETFL) & ~O_NONBLOCK);  // a pipe allowed: wait for its data as usual
-  if (S_ISREG(st.st_mode) && st.st_size > 0) text.reserve(static_cast<std::size_t>(st.st_size));
+  ::fcntl(fd, F_SETFL, ::fcntl(fd, F_GETFL) & ~O_NONBLOCK);
+  std::string text;
+  if (st.st_size > 0) text.reserve(static_cast<std::size_t>(st.st_size));
   char buf[1 << 16];
   for (;;) {
     const ssize_t r = ::read(fd, buf, sizeof buf);
-    if (r > 0 && text.size() + static_cast<std::size_t>(r) > max_bytes) {
+    if (r > 0 && text.size() + static_cast<std::size_t>(r) > max_bytes) {  // a file that grows while it is read
       ::close(fd);
       throw InputError(fmt::format("cannot read {}: more than the limit of {}", what, limit), path,
                        "check the path (is it the right file?)");
@@ -160,7 +184,7 @@ std::string read_text(const std::string& path, const std::string& what, std::siz
       if (errno == EINTR) continue;
       const int err = errno;
       ::close(fd);
-      throw fail(err);
+      throw read_error(path, what, err);
     }
     text.append(buf, static_cast<std::size_t>(r));
   }
@@ -183,18 +207,13 @@ void write_all(int fd, const void* data, std::size_t n, const std::string& path)
   }
 }
 
-void check_replaceable(const std::string& path, const std::string& where) {
+void check_replaceable(const std::string& path, const std::string& where, const std::string& fix) {
   struct stat st {};
   if (::stat(path.c_str(), &st) != 0) return;  // a new file (or a dangling link: the rename replaces the link)
   if (S_ISREG(st.st_mode)) return;
-  const char* kind = S_ISDIR(st.st_mode)    ? "a folder"
-                     : S_ISFIFO(st.st_mode) ? "a FIFO (named pipe)"
-                     : S_ISCHR(st.st_mode)  ? "a character device"
-                     : S_ISBLK(st.st_mode)  ? "a block device"
-                     : S_ISSOCK(st.st_mode) ? "a socket"
-                                            : "not a regular file";
-  throw InputError(fmt::format("the output path '{}' exists and is {}; pounding replaces only regular files", path, kind),
-                   where.empty() ? path : where, "give the path of a new or ordinary file");
+  throw InputError(fmt::format("the output path '{}' exists and is {}; pounding replaces only regular files", path,
+                               kind_of(st.st_mode)),
+                   where.empty() ? path : where, fix.empty() ? "give the path of a new or ordinary file" : fix);
 }
 
 std::string replace_target(const std::string& given) {
@@ -309,6 +328,28 @@ void check_output_path(const std::string& path, const std::string& where) {
   }
   ::close(fd);
   ::unlink(probe.c_str());
+}
+
+bool same_file(const std::string& a, const std::string& b) {
+  struct stat sa {}, sb {};
+  if (::stat(a.c_str(), &sa) == 0 && ::stat(b.c_str(), &sb) == 0) return sa.st_dev == sb.st_dev && sa.st_ino == sb.st_ino;
+  // one is not there yet (two outputs of one command): the same path once absolute, links resolved, . and .. gone
+  std::error_code ea, eb;
+  const fs::path ca = fs::weakly_canonical(fs::absolute(a, ea), ea), cb = fs::weakly_canonical(fs::absolute(b, eb), eb);
+  return !ea && !eb ? ca == cb : fs::path(a).lexically_normal() == fs::path(b).lexically_normal();
+}
+
+void check_output_not_input(const std::string& output, const std::vector<std::string>& inputs, const std::string& where,
+                            std::string_view role, const std::string& fix) {
+  if (output.empty()) return;
+  for (const std::string& input : inputs) {
+    if (input.empty() || !same_file(output, input)) continue;
+    throw InputError(fmt::format("the output path '{}' is the same file as {} '{}'; writing it would destroy {}", output,
+                                 role, input, role),
+                     where.empty() ? output : where,
+                     fix.empty() ? fmt::format("give the output a path of its own: pounding never writes over {}", role)
+                                 : fix);
+  }
 }
 
 int remove_stale_temporaries(const std::string& path) {

@@ -452,6 +452,7 @@ void AtomicFile::commit() {
 }
 
 Handle open_read(const std::string& path) {
+  files::check_input_file(path, "the HDF5 file");  // H5Fopen of a FIFO blocks, of a folder says only "cannot open"
   H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
   hid_t f = H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
   if (f < 0) throw InputError("cannot open HDF5 file", path, "give an existing results file written by pounding");
@@ -459,6 +460,7 @@ Handle open_read(const std::string& path) {
 }
 
 Handle open_rw(const std::string& path) {
+  files::check_input_file(path, "the HDF5 file");
   H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
   hid_t f = H5Fopen(path.c_str(), H5F_ACC_RDWR, H5P_DEFAULT);
   if (f < 0) throw InputError("cannot open HDF5 file for writing", path, "check the path and permissions");

@@ -445,9 +445,7 @@ Record parse_record(std::string_view text, const std::string& where, const ReadO
 }
 
 Record read_record(const std::string& path, const ReadOptions& options) {
-  std::error_code ec;
-  if (!std::filesystem::is_regular_file(path, ec))
-    throw InputError("record file not found", path, "check the path (records are read from disk, not the repo)");
+  // read_text refuses a missing file, a folder, a FIFO, a socket or a device (/dev/zero) by what it is
   return parse_record(files::read_text(path, "the record file"), path, options);
 }
 

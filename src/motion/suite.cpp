@@ -213,7 +213,10 @@ std::vector<Candidate> scan_directory(const std::string& dir) {
   // the files: record_files_in (library.hpp), the one reader of a records directory
   const std::vector<std::string> paths = record_files_in(dir, "the records directory (--records-dir, [records] real_dir)");
   std::map<std::string, std::string> manifest;
-  if (std::ifstream m(fs::path(dir) / "MANIFEST.tsv"); m) {
+  const fs::path mpath = fs::path(dir) / "MANIFEST.tsv";
+  std::error_code ec;
+  if (fs::is_regular_file(mpath, ec)) {  // a FIFO or a device is left unread, as library.cpp does (an ifstream blocks)
+    std::ifstream m(mpath);
     std::string line;
     while (std::getline(m, line)) {
       std::stringstream ls(line);

@@ -112,7 +112,7 @@ void read_manifest(const std::string& dir, FigureSet& out) {
     }
     std::string svg;
     try {
-      svg = files::read_text(dir + "/" + f[2], "a figure", 32u << 20, true);
+      svg = files::read_text(dir + "/" + f[2], "a figure", 32u << 20);
     } catch (const std::exception& e) {
       out.left_out.push_back(f[1] + ": " + e.what());
       continue;

@@ -185,6 +185,10 @@ CheckpointKey this_build() {
 }
 
 Checkpoint::Checkpoint(std::string path, bool snapshots) : path_(std::move(path)), snapshots_(snapshots) {
+  // a checkpoint is read back: a FIFO here (a worker's slice too) would block the first read forever, deaf to
+  // SIGTERM; a device would be written to
+  files::check_replaceable(path_, path_, "remove it (a checkpoint is a regular file that pounding writes and reads "
+                                         "back), or give another --out");
   created_ = ::access(path_.c_str(), F_OK) != 0;
   fd_ = ::open(path_.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
   if (fd_ < 0) {

@@ -154,7 +154,7 @@ bool parse_number(const std::string& s, double& v) {
 
 void read_hazard_csv(const std::string& file, std::vector<double>& im, std::vector<double>& rate) {
   // a regular file of at most 16 MiB (a hazard table of 100,000 rows is ~3 MiB): a FIFO or /dev/zero is refused
-  std::string text = files::read_text(file, "the hazard curve", std::size_t{16} << 20, true);
+  std::string text = files::read_text(file, "the hazard curve", std::size_t{16} << 20);
   if (text.starts_with("\xEF\xBB\xBF")) text.erase(0, 3);  // the UTF-8 byte-order mark of Excel's "CSV UTF-8"
   std::istringstream in(text);
   std::string line;

@@ -9,12 +9,14 @@
 #include <mutex>
 #include <optional>
 #include <stdexcept>
+#include <variant>
 
 #include <fmt/format.h>
 
 #include "pounding/core/error.hpp"
 #include "pounding/core/parallel_for.hpp"
 #include "pounding/motion/library.hpp"
+#include "pounding/motion/suite.hpp"
 #include "pounding/study/study.hpp"
 
 namespace pounding {
@@ -54,6 +56,35 @@ std::map<std::string, std::vector<std::string>> support_sets(const Study& s) {
 }
 
 }  // namespace
+
+std::vector<std::string> study_input_files(const Study& s) {
+  std::vector<std::string> out{s.path};
+  for (const auto& f : s.files) out.push_back(f.path);
+  auto folder = [&](const std::string& dir) {
+    if (dir.empty()) return;
+    try {
+      for (auto& p : record_files_in(dir, "")) out.push_back(std::move(p));
+    } catch (const InputError&) {  // missing or empty: the records phase says so
+    }
+    std::error_code ec;
+    if (const fs::path m = fs::path(dir) / "MANIFEST.tsv"; fs::exists(m, ec)) out.push_back(m.string());
+  };
+  folder(s.directory);
+  folder(s.real_dir);
+  if (!s.suite.empty() && s.suite != "builtin") {
+    out.push_back(s.suite);
+    try {
+      for (const SuiteEntry& e : load_suite(s.suite).entries) out.push_back(e.file);
+    } catch (const InputError&) {  // the records phase says why
+    }
+  }
+  out.push_back(s.hazard.curve);
+  if (s.target.enabled && s.target.spec.code == TargetCode::csv) out.push_back(s.target.spec.table.source);
+  if (s.motions)  // spectrum = "csv": the table each support's target was read from
+    for (const DesignSpectrum& t : s.motions->settings.targets)
+      if (const auto* table = std::get_if<TabulatedSpectrum>(&t.params())) out.push_back(table->source);
+  return out;
+}
 
 RecordPlan plan_study_records(const Study& s) {
   if (s.motions) return plan_motion_records(s);

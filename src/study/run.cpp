@@ -693,6 +693,30 @@ void check_replaceable_results(const std::string& out, const std::string& where,
                    where, "give another output path, or rerun with --force to replace them");
 }
 
+// The run's outputs -- the results file, its checkpoint <out>.ckpt and with [report] html = true the HTML report
+// (the results' name with .html) -- before any work: none of them may be a file the study reads, nor one of the
+// others (--out r.html would leave only the report), nor a folder, FIFO or device (the checkpoint is read back: a
+// FIFO there would block the run forever).
+void check_outputs(const Inputs& in) {
+  const std::vector<std::string> inputs = study_input_files(in.study);
+  const std::string ckpt = in.out + ".ckpt", ckpt_where = in.out_where + " (its checkpoint " + ckpt + ")";
+  files::check_output_not_input(in.out, inputs, in.out_where);
+  files::check_output_not_input(ckpt, inputs, ckpt_where);
+  files::check_output_not_input(ckpt, {in.out}, ckpt_where, "the results file");
+  files::check_output_path(in.out, in.out_where);
+  files::check_replaceable(ckpt, ckpt_where, fmt::format("remove {} (the checkpoint is a regular file that pounding "
+                                                          "writes and reads back), or give another --out", ckpt));
+  if (!in.study.html) return;
+  const std::string html = files::with_extension(in.out, ".html");
+  const std::string html_where = in.out_where + " ([report] html = true: its .html, " + html + ")";
+  files::check_output_not_input(html, {in.out}, html_where, "the results file",
+                                fmt::format("give the results a name with another extension, e.g. --out {}: the report "
+                                            "goes beside it as {}", files::with_extension(in.out, ".h5"), html));
+  files::check_output_not_input(html, {ckpt}, html_where, "the checkpoint");
+  files::check_output_not_input(html, inputs, html_where);
+  files::check_output_path(html, html_where);
+}
+
 // Every rank parses the same text (rank 0 reads the file) and holds the same records (each rank makes a share,
 // the shares are exchanged). The output is checked and the checkpoint locked (rank 0) before any work: a bad path
 // or a second run on one output stops here.
@@ -709,9 +733,7 @@ Inputs load_inputs(const parallel::Session& session, const std::string& study_pa
   in->out_where = opt.out_given ? "--out" : study_path + ": output";
   session.agree([&] {
     if (!session.root()) return;
-    files::check_output_path(in->out, in->out_where);
-    if (in->study.html)  // [report] html = true: the HTML report's path is checked before any work too
-      files::check_output_path(files::with_extension(in->out, ".html"), in->out_where + " ([report] html = true: its .html)");
+    check_outputs(*in);
     if (!opt.force) check_replaceable_results(in->out, in->out_where, in->study);
     ckpt.emplace(in->out + ".ckpt", !in->study.per_model);  // per_model = false: snapshots (study/checkpoint.hpp)
     files::remove_stale_temporaries(in->out);

@@ -6,18 +6,22 @@
 #include <span>
 #include <string>
 #include <string_view>
+#include <vector>
 
 namespace pounding::files {
 
 // The whole file `path` as bytes (binary-safe: NUL bytes and CRLF kept). `what` names the file in the
 // message ("the study file"). Throws InputError naming the path and the OS error when it cannot be read
-// (missing, a folder, no permission, I/O error), and naming the limit when it holds more than max_bytes (a
-// regular file is refused by its size before reading; a pipe or device once max_bytes have been read: no input
-// can eat memory, /dev/zero included). regular_only: a FIFO, device or socket is refused before reading (never
-// blocks); without it a pipe (`run <(...)`) is read as usual.
+// (missing, no permission, I/O error), naming what the path is when it is not a regular file (a folder, a FIFO, a
+// socket, a device such as /dev/zero: refused before any byte is read, and the open never blocks: O_NONBLOCK, then
+// fstat), and naming the limit when it holds more than max_bytes (refused by its size before reading).
 inline constexpr std::size_t default_read_limit = std::size_t{256} << 20;  // 256 MiB
-std::string read_text(const std::string& path, const std::string& what, std::size_t max_bytes = default_read_limit,
-                      bool regular_only = false);
+std::string read_text(const std::string& path, const std::string& what, std::size_t max_bytes = default_read_limit);
+
+// The same refusals for a reader that opens the file itself (HDF5, record and CSV readers): InputError unless
+// `path` is an existing regular file (a link to one is fine). Only stat(2): never blocks, never opens. Call it just
+// before the open; `what` as for read_text.
+void check_input_file(const std::string& path, const std::string& what);
 
 // Writes all n bytes to fd (retrying short writes and EINTR). Throws InputError naming path and the OS
 // error (ENOSPC, EFBIG, EIO, ...) otherwise.
@@ -27,9 +31,9 @@ void write_all(int fd, const void* data, std::size_t n, const std::string& path)
 // memory and commits through it), so no writer can replace a device node, a FIFO, a socket or a folder: the
 // path must be new or a regular file (a symbolic link to a regular file replaces that file and keeps the link).
 // check_replaceable throws InputError otherwise (the existing-and-not-regular test alone; `where` names the
-// option or key, the path itself when empty). check_output_path calls it before any work; call it (or
-// check_output_path) at the start of a command so that the refusal comes before the work.
-void check_replaceable(const std::string& path, const std::string& where);
+// option or key, the path itself when empty; `fix` replaces the default fix). check_output_path calls it before
+// any work; call it (or check_output_path) at the start of a command so that the refusal comes before the work.
+void check_replaceable(const std::string& path, const std::string& where, const std::string& fix = "");
 
 // Replaces `path` by `bytes` atomically (refusing a path that exists and is not a regular file, see above): a temporary `<path>.tmp<pid>` in the same directory is written in
 // full, fsynced and renamed over `path`, then the directory is fsynced. SIGINT, SIGTERM and SIGHUP are held
@@ -50,6 +54,19 @@ void write_text_atomically(const std::string& path, std::string_view text);
 // created there (a probe file is created and removed). `where` names the option or key that gave the path.
 // Throws InputError with the fix.
 void check_output_path(const std::string& path, const std::string& where);
+
+// Whether a and b name the same file: the same device and inode when both exist (so a symbolic or hard link, `./x`
+// and `dir/../x` are caught, not only equal strings), else the same absolute path with links and `..` resolved (an
+// output not written yet against another output of the same command).
+bool same_file(const std::string& a, const std::string& b);
+
+// Refuses, before any work, an output that is the same file (same_file) as one of `inputs`: every command that
+// reads files and writes files calls it for each output with every path it reads (and, for outputs that must not
+// collide, with its other outputs and role "the results file"). InputError naming both paths, `where` (the option
+// or key of the output) and the fix (`fix`, or "give the output a path of its own"); nothing is read or written.
+// Empty paths are ignored.
+void check_output_not_input(const std::string& output, const std::vector<std::string>& inputs, const std::string& where,
+                            std::string_view role = "the input", const std::string& fix = "");
 
 // `path` with its extension (the part after the last '.' of its file name) replaced by `ext` (".html"), or `ext`
 // appended when the file name has none: the HTML report written next to a results file ([report] html = true).

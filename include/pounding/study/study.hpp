@@ -292,6 +292,12 @@ struct RecordPlan {
   std::string phase, unit;  // e.g. "records: support motions", "realisations"; empty: no progress, no stop
 };
 RecordPlan plan_study_records(const Study& study);
+// Every file the study reads, as far as the study text names them: the study file, [records] files, the record
+// files of [records] directory and real_dir (and their MANIFEST.tsv), the suite file and the files its entries
+// name, [hazard] curve, [target_spectrum] file, [records.motions] spectrum_file. `pounding run` refuses an output
+// (results, HTML report, checkpoint) that is one of them (files::check_output_not_input). A folder or suite that
+// cannot be read adds nothing here (reading the records then says why).
+std::vector<std::string> study_input_files(const Study& study);
 // make(i) for every i on `threads` threads (0: the CPUs this process may use); the records in order, or the error
 // of the first record (in order) that failed, whichever thread met it.
 std::vector<StudyRecord> make_records(const RecordPlan& plan, int threads = 0, const WorkHook* hook = nullptr);

@@ -18,6 +18,7 @@
 #include "pounding/accuracy/accuracy.hpp"
 #include "pounding/accuracy/muthukumar.hpp"
 #include "cli/commands.hpp"
+#include "cli/commands/records_options.hpp"
 #include "pounding/core/error.hpp"
 #include "pounding/core/files.hpp"
 #include "pounding/physics/resolution.hpp"
@@ -46,6 +47,7 @@ void add_models(CLI::App* acc, const RecordsDir& dir) {
   c->add_option("--laws", o->laws, "contact laws")->capture_default_str();
   c->add_option("--out", o->out, "output CSV (its directory receives <record>.ag)")->capture_default_str();
   c->callback([o, dir] {
+    files::check_output_not_input(o->out, records_read({}, *dir), "--out");  // before any work
     require_positive(o->n, "--n");
     auto models = A::sample_models(o->n);
     auto recs = A::default_records();
@@ -75,6 +77,7 @@ void add_agree(CLI::App* acc, const RecordsDir& dir) {
   c->add_flag("--no-locate", o->no_locate, "do not locate the contact onset");
   c->add_option("--out", o->out, "per-case CSV (engine beside reference)");
   c->callback([o, dir] {
+    files::check_output_not_input(o->out, records_read({o->reference}, *dir), "--out");  // before any work
     auto cases = A::read_cases(o->reference);
     A::EngineSetting es{parse_stepper(o->stepper), o->substeps, !o->no_locate};
     double secs = 0;
@@ -122,6 +125,7 @@ void add_chart(CLI::App* acc, const RecordsDir& dir) {
                 "chart's row except the timing columns")
       ->delimiter(',');
   c->callback([o, dir] {
+    files::check_output_not_input(o->out, records_read({o->reference, o->uncoupled}, *dir), "--out");  // before any work
     require_positive(o->repeats, "--repeats");
     std::vector<A::ChartRowId> only;
     for (const auto& r : o->rows) only.push_back(A::parse_chart_row_id(r));
@@ -175,6 +179,10 @@ void add_stability(CLI::App* acc, const RecordsDir& dir) {
   c->add_flag("--no-free", o->no_free, "skip the free-vibration limits (stability CSV)");
   c->add_flag("--no-stiff", o->no_stiff, "skip the stiff steel-frame contact (stiff-contact CSV)");
   c->callback([o, dir] {
+    const std::vector<std::string> inputs = records_read({}, *dir);  // before any work: no output over a record
+    if (!o->no_free) files::check_output_not_input(o->out, inputs, "--out");
+    if (!o->no_stiff) files::check_output_not_input(o->stiff_out, inputs, "--stiff-out");
+    if (!o->no_free && !o->no_stiff) files::check_output_not_input(o->stiff_out, {o->out}, "--stiff-out", "the --out file");
     if (!o->no_free) write_free_vibration(*o);
     if (!o->no_stiff) write_stiff_contact(*o, *dir);
   });
@@ -197,6 +205,7 @@ void add_resolution(CLI::App* acc) {
   c->add_option("--points-per-decade", o->points_per_decade, "h grid density")->capture_default_str();
   c->add_option("--phases", o->phases, "onset positions inside a step per h")->capture_default_str();
   c->callback([o] {
+    files::check_output_not_input(o->limits_out, {o->out}, "--limits-out", "the --out file");  // before any work
     const auto pts = A::resolution_sweep(o->schemes, o->laws, o->points_per_decade, o->phases);
     std::ostringstream s;
     s << "scheme,law,steps,h_omega_contact,peak_force,force_error,e_effective,e_error,status\n";
@@ -302,6 +311,7 @@ void add_validate_muthukumar(CLI::App* acc, const RecordsDir& dir) {
   c->add_flag("--table-i", o->table_i, "print the paper's Table I against our records (CSV) and exit");
   c->callback([o, dir] {
     if (o->table_i) return print_table_i();
+    files::check_output_not_input(o->out, records_read({}, *dir), "--out");  // before any work
     std::vector<std::string> log;
     auto rows = A::muthukumar(*dir, o->mo, &log);
     files::write_text_atomically(o->out, muthukumar_csv(rows));

@@ -9,7 +9,7 @@ namespace pounding::cli {
 
 physics::BridgeSpec read_bridge_file(const std::string& path, double kc_default, double e_default,
                                      const std::string& restitution_given_by) {
-  const std::string text = files::read_text(path, "bridge file", 16u << 20, true);
+  const std::string text = files::read_text(path, "bridge file", 16u << 20);
   const toml::table root = config::parse(text, path, "fix the bridge file's syntax");
   // the file's top level is a study's [bridge] without the study's own keys (samples, period_cov, mass_cov)
   config::TableReader r(&root, path, "", "bridge");

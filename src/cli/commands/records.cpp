@@ -120,6 +120,12 @@ void add_spectrum(CLI::App* records) {
   c->add_option("--quantity", o->quantity, "psa (g), psv (m/s) or sd (m)")->capture_default_str();
   c->add_option("-o,--output", o->out, "CSV file (default: standard output)");
   c->callback([o] {
+    if (!o->out.empty()) {  // before any work: never over a record, the suite file or a file of --records-dir
+      std::vector<std::string> inputs = records_read(o->files, o->suite.records_dir);
+      if (o->suite.suite != "default") inputs.push_back(o->suite.suite);
+      files::check_output_not_input(o->out, inputs, "-o");
+      files::check_output_path(o->out, "-o");
+    }
     if (o->quantity != "psa" && o->quantity != "psv" && o->quantity != "sd")
       throw InputError(fmt::format("--quantity {}", o->quantity), "--quantity", "use psa, psv or sd");
     if (!(o->damping >= 0 && o->damping < 1))
@@ -215,6 +221,12 @@ void add_suite(CLI::App* records) {
   c->callback([o] {
     const auto rs = resolve(o->suite, o->suite.suite);
     if (!o->write_dir.empty()) {
+      // before any file is written: no <dir>/<id>.AT2 may be a record just read or the suite file (--write into
+      // --records-dir would replace the real records by their copies)
+      std::vector<std::string> inputs = records_read({o->suite.suite}, o->suite.records_dir);
+      for (const auto& r : rs) inputs.push_back(r.record.source);
+      for (const auto& r : rs)
+        files::check_output_not_input((std::filesystem::path(o->write_dir) / (r.id + ".AT2")).string(), inputs, "--write");
       std::error_code ec;
       std::filesystem::create_directories(o->write_dir, ec);
       if (ec) throw InputError("cannot create directory", o->write_dir, ec.message());

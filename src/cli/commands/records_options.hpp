@@ -1,6 +1,7 @@
 #pragma once
 // Options and helpers the `pounding records` subcommands share (records.cpp, records_select.cpp).
 #include <cmath>
+#include <filesystem>
 #include <string>
 #include <vector>
 
@@ -8,6 +9,7 @@
 #include <fmt/format.h>
 
 #include "pounding/core/error.hpp"
+#include "pounding/motion/library.hpp"
 #include "pounding/motion/records.hpp"
 
 namespace pounding::cli {
@@ -27,6 +29,18 @@ inline void add_read_options(CLI::App* c, ReadOpts& o) {
   c->add_option("--units", o.units, "units of the values in text files: g, m/s2, cm/s2 (AT2 headers that name "
                                     "their units win)")->capture_default_str();
   c->add_option("--dt-record", o.dt_record, "time step of one-column files (s)");
+}
+
+// What a records command reads, for files::check_output_not_input: the files given, and with a folder its record files
+// (record_files_in) and MANIFEST.tsv; a folder that cannot be listed adds nothing (reading it then says why).
+inline std::vector<std::string> records_read(std::vector<std::string> files, const std::string& dir = "") {
+  if (dir.empty()) return files;
+  try {
+    for (auto& p : record_files_in(dir, "")) files.push_back(std::move(p));
+  } catch (const InputError&) {
+  }
+  files.push_back((std::filesystem::path(dir) / "MANIFEST.tsv").string());
+  return files;
 }
 
 // Records that an analysis would refuse are still shown (these commands are how one inspects them), with the

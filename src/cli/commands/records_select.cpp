@@ -314,7 +314,12 @@ void add_records_select(CLI::App* records) {
   c->add_option("-o,--output", o->out, "CSV for tools/plot_spectra.py (scaled spectra, target, mean)");
   add_read_options(c, o->read);
   c->callback([o] {
-    if (!o->out.empty()) files::check_output_path(o->out, "-o");  // before any work: no device or FIFO replaced
+    if (!o->out.empty()) {  // before any work: never over a record, a file of --directory or the target table
+      std::vector<std::string> inputs = records_read(o->files, o->directory);
+      inputs.push_back(o->target_csv);
+      files::check_output_not_input(o->out, inputs, "-o");
+      files::check_output_path(o->out, "-o");  // no device or FIFO replaced
+    }
     if (!(o->damping >= 0 && o->damping < 1))
       throw InputError(fmt::format("--damping {} is outside [0, 1)", o->damping), "--damping", "give e.g. 0.05");
     const SelectionOptions so = selection_options(*o);

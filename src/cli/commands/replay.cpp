@@ -72,7 +72,7 @@ struct Columns {
 };
 
 Columns read_columns(const std::string& path) {
-  const std::string text = files::read_text(path, "the kinematics file", std::size_t{64} << 20, true);
+  const std::string text = files::read_text(path, "the kinematics file", std::size_t{64} << 20);
   Columns C;
   std::vector<std::string>& names = C.names;
   std::vector<std::vector<double>>& cols = C.cols;
@@ -267,7 +267,10 @@ void add_replay(CLI::App& app) {
   c->add_flag("--json", o->json, "print the summary as one JSON object");
   o->rest.add(c);
   c->callback([o, c] {
-    if (!o->out.empty()) files::check_output_path(o->out, "--out");
+    if (!o->out.empty()) {
+      files::check_output_not_input(o->out, {o->input}, "--out");  // never over the measured kinematics
+      files::check_output_path(o->out, "--out");
+    }
     ContactModel cm;
     cm.law = as_option("--law", [&] { return parse_contact_law(o->law); });
     cm.damping = as_option("--damping-law", [&] { return parse_damping_law(o->damping_law); });

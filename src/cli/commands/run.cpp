@@ -325,7 +325,8 @@ void add_report(CLI::App& app) {
       throw InputError(fmt::format("{} results files given", o->paths.size()), "pounding report",
                        "give one results file, or add --html OUT.html to compare two side by side");
     if (!o->html.empty()) {
-      files::check_output_path(o->html, "--html");  // before any work
+      files::check_output_not_input(o->html, o->paths, "--html");  // before any work: never over a results file
+      files::check_output_path(o->html, "--html");
       std::vector<results::Results> all;
       for (const auto& p : o->paths) all.push_back(results::load(p));
       FigureOptions fo = default_figure_options();

@@ -159,7 +159,8 @@ void run_sample(const SampleOptions& o) {
   if (!csv && !h5)
     throw InputError(fmt::format("--out {} has no .csv or .h5 extension", o.out), "--out",
                      "name the output FILE.csv or FILE.h5");
-  files::check_output_path(o.out, "--out");  // before any work: never a device, FIFO or folder
+  files::check_output_not_input(o.out, {o.study}, "--out");  // before any work: never the study file
+  files::check_output_path(o.out, "--out");                    // nor a device, FIFO or folder
   const toml::table root =
       config::parse(files::read_text(o.study, "the study file"), o.study, "fix the study file's syntax");
   // only the seed and [structures] are read: the rest of the study need not be complete

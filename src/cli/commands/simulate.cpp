@@ -857,6 +857,13 @@ std::string with_restitution(std::string json, const SimulateOptions& o, const B
 // Runs the pair, prints the summary and writes --series; returns the exit code (3: diverged, the numbers
 // printed are not results).
 int run_simulate(SimulateOptions& o) {
+  if (!o.series.empty()) {  // never over the record, a support's record or the bridge file; never a device or FIFO
+    std::vector<std::string> inputs = o.support_records;
+    inputs.push_back(o.record);
+    inputs.push_back(o.bridge);
+    files::check_output_not_input(o.series, inputs, "--series");
+    files::check_output_path(o.series, "--series");
+  }
   validate_scalars(o);  // everything is validated before any work or output
   const ContactModel cm = contact_model(o);
   KernelSettings ks = kernel_settings(o);
