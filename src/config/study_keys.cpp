@@ -3,8 +3,11 @@
 #include "pounding/config/study_keys.hpp"
 
 #include <cmath>
+#include <stdexcept>
 
 #include <fmt/format.h>
+
+#include "pounding/core/error.hpp"
 
 namespace pounding::config {
 
@@ -784,6 +787,29 @@ const StudyKey* find_study_key(std::string_view section, std::string_view key) {
   for (const StudyKey& k : keys)
     if (k.section == section && k.key == key) return &k;
   return nullptr;
+}
+
+const StudyKey& study_key(std::string_view section, std::string_view key) {
+  const StudyKey* k = find_study_key(section, key);
+  if (k == nullptr) throw std::logic_error(fmt::format("study key [{}].{} is not described", section, key));
+  return *k;
+}
+
+std::string study_section_text(std::string_view section) {
+  if (section == "isolation" || section == "moat") return fmt::format("{} = {{...}}", section);
+  if (section == "structures.buildingN") return "[structures.buildingK]";
+  if (section == "bridge.frame" || section == "bridge.joint") return fmt::format("[[{}]]", section);
+  return section.empty() ? std::string("top level") : fmt::format("[{}]", section);
+}
+
+void require_key_range(double value, std::string_view section, std::string_view key, const std::string& name,
+                       std::string_view note) {
+  const StudyKey& d = study_key(section, key);
+  if (std::isnan(d.lo) || std::isnan(d.hi))
+    throw std::logic_error(fmt::format("study key {}.{} has no numeric range", section, key));
+  require_range(value, d.lo, d.hi, name,
+                fmt::format("{}{}{} ({}as {} in a study's {})", d.range, d.units.empty() ? "" : " ", d.units, note, key,
+                            study_section_text(section)));
 }
 
 std::string study_reference_markdown() {
