@@ -153,8 +153,8 @@ void add_motions(CLI::App& app) {
   spatial::Request& q = o->req;
   c->add_option("--supports", q.supports, "number of supports, evenly spaced (2-16; default 2)");
   c->add_option("--spacing", q.spacing, "support spacing, m (default 100)");
-  c->add_option("--positions", q.positions, "support positions along the propagation direction, m "
-                                            "(increasing; instead of --supports/--spacing)")->delimiter(',');
+  add_number_list(c, "--positions", q.positions, "support positions along the propagation direction, m "
+                                                 "(increasing; instead of --supports/--spacing)");
   c->add_option("--velocity", q.velocity, "apparent wave velocity, m/s (default 500)");
   c->add_flag("--no-wave-passage", o->no_wave_passage, "no time delay between supports");
   c->add_option("--coherency", q.coherency, "coherency model: sobczyk (default), harichandran-vanmarcke, luco-wong, none");
@@ -174,7 +174,7 @@ void add_motions(CLI::App& app) {
   c->add_option("--decay", q.decay, "envelope decay rate after t2, 1/s (default 0.5)");
   c->add_option("--f-min", q.f_min, "lowest frequency of the PSD, Hz (default 0.1)");
   c->add_option("--f-max", q.f_max, "highest frequency of the PSD, Hz (default 25)");
-  c->add_option("--match-range", q.match_range, "matching periods LO,HI, s (default 0.05,4)")->delimiter(',');
+  add_number_list(c, "--match-range", q.match_range, "matching periods LO,HI, s (default 0.05,4)");
   c->add_option("--match-points", q.match_points, "matching periods, log-spaced (default 30)");
   c->add_option("--iterations", q.iterations, "spectrum-matching updates at most (default 10; 0: none)");
   c->add_option("--tolerance", q.tolerance, "largest |PSA/Sa - 1| that ends the matching (default 0.1)");

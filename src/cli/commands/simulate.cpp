@@ -928,8 +928,7 @@ void add_contact_level_options(CLI::App* c, SimulateOptions* o) {
       ->capture_default_str();
   c->add_option("--level-tolerance", o->level_tolerance, "floors whose levels differ by at most this (m) pound")
       ->capture_default_str();
-  c->add_option("--gap-offsets", o->gap_offsets, "per contact level from level 1, added to --gap (m), comma-separated")
-      ->delimiter(',');
+  add_number_list(c, "--gap-offsets", o->gap_offsets, "per contact level from level 1, added to --gap (m), comma-separated");
   c->add_option("--shape-functions", o->shape_functions,
                 "a floor striking a column between two floors: linear (N2 = xi) or cubic (the fixed-fixed column, "
                 "N2 = 3 xi^2 - 2 xi^3) weights of the two floors")
@@ -953,9 +952,8 @@ void add_storey_options(CLI::App* c, SimulateOptions& opts) {
     c->add_option("--storey-height" + k, o->b[i].height,
                   "height of each storey of building " + k + " (m); floors at levels within 0.05 m pound")
         ->capture_default_str();
-    c->add_option("--rayleigh-modes" + k, o->b[i].rayleigh_modes,
-                  "the two modes i,j of building " + k + " that get --zeta exactly (Rayleigh; default 1,2)")
-        ->delimiter(',');
+    add_number_list(c, "--rayleigh-modes" + k, o->b[i].rayleigh_modes,
+                    "the two modes i,j of building " + k + " that get --zeta exactly (Rayleigh; default 1,2)");
   }
   for (int i = 0; i < 2; ++i) {
     const std::string k = std::to_string(i + 1);
@@ -1011,8 +1009,7 @@ void add_storey_options(CLI::App* c, SimulateOptions& opts) {
     c->add_option("--storey-stiffness" + k, x.st.stiffness, "stiffness of each storey of building " + k + " (N/m)")
         ->group(group);
     c->add_option("--storey-height" + k, x.st.height, "height of each storey of building " + k + " (m)")->group(group);
-    c->add_option("--rayleigh-modes" + k, x.st.rayleigh_modes, "Rayleigh's two modes i,j of building " + k)
-        ->delimiter(',')
+    add_number_list(c, "--rayleigh-modes" + k, x.st.rayleigh_modes, "Rayleigh's two modes i,j of building " + k)
         ->group(group);
   }
 }
@@ -1076,10 +1073,9 @@ void add_damping_options(CLI::App* c, SimulateOptions* o) {
   c->add_option("--zeta", o->zeta, "viscous damping ratio of both structures (multi-storey: Rayleigh damping with this "
                                    "ratio at modes 1 and 2, or --rayleigh-modesK i,j)")
       ->capture_default_str();
-  c->add_option("--modal-zeta", o->modal_zeta,
-                "multi-storey buildings: classical modal damping instead of Rayleigh, the ratio of each mode from mode 1 "
-                "(z1,z2,...; the last repeats for the higher modes; one-storey buildings keep --zeta)")
-      ->delimiter(',');
+  add_number_list(c, "--modal-zeta", o->modal_zeta,
+                  "multi-storey buildings: classical modal damping instead of Rayleigh, the ratio of each mode from "
+                  "mode 1 (z1,z2,...; the last repeats for the higher modes; one-storey buildings keep --zeta)");
 }
 
 void add_simulate(CLI::App& app) {

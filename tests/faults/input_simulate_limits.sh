@@ -1,0 +1,79 @@
+#!/usr/bin/env bash
+# Issue 44 items 8, 10 (command line) and 11: the command line refuses what a study refuses, before any work, as
+# errors naming the option (exit 2, one " ERROR: " line, nothing on stdout, no output file or folder):
+#   item 8  sizes: simulate --duration 1e12 (std::bad_alloc), --dt 1e-9 (std::bad_alloc), --bridge with
+#           --wave-delay 1e300 (vector::_M_fill_insert) or 1e6 (3.1 GB), and runs whose time loop would not fit
+#           in the memory available (POUNDING_TEST_MEMORY_AVAILABLE stands in for MemAvailable); motions
+#           --realisations that would not fit;
+#   item 10 empty and wrapped values: simulate --modal-zeta '' (every mode's damping 0), --gap '' (a gap of 0),
+#           modes --modal-zeta '' (Rayleigh instead), motions --seed -1 and 2^64 (2^64 - 1), a list with an empty
+#           field;
+#   item 11 the study keys' ranges: storey masses 1e-30 and 1e300, --T1 1e9, --kh 1e30, --m1, --h1, --zeta,
+#           --gap-offsets longer than the contact levels, a bridge's joints given --kh beyond a joint's range, and
+#           motions from a target spectrum whose records a study refuses (PGA above 5 g).
+# Every case runs under `timeout` with a virtual-memory limit, so a regression ends as a failure, not as a machine
+# out of memory. Args: <pounding binary> <source dir>
+set -uo pipefail
+bin=$1
+src=$2
+tmp=$(mktemp -d)
+trap 'rm -rf "$tmp"' EXIT
+fails=0
+fail() { echo "FAIL: $*"; fails=$((fails + 1)); }
+ok() { echo "ok   $*"; }
+
+# A 12 s two-column record (time s, acceleration g) at dt 0.01.
+awk 'BEGIN { for (i = 0; i <= 1200; i++) { t = i * 0.01;
+             printf "%.2f %.8f\n", t, 0.15 * sin(6.2831853 * 0.9 * t) + 0.1 * sin(6.2831853 * 3.1 * t) } }' \
+  > "$tmp/rec.txt"
+# The four-frame bridge with frame K on support K (four ground-motion channels).
+awk '/^\[\[frame\]\]/ { print; print "support = " ++k; next } { print }' "$src/tests/data/bridge/four-frame.toml" \
+  > "$tmp/ff4.toml"
+
+# refuse <label> <patterns (|-separated, each must appear)> <command and arguments...>: exit 2, one ERROR line, every
+# pattern, nothing on stdout, no $tmp/out* left. The command runs under a 20 s timeout and a 3 GiB address space.
+refuse() {
+  local label=$1 patterns=$2 rc=0
+  shift 2
+  rm -rf "$tmp"/out*
+  (ulimit -v 3145728; exec timeout 20 "$bin" "$@") > "$tmp/stdout" 2> "$tmp/stderr" || rc=$?
+  local bad="" p
+  [ "$rc" = 2 ] || bad+=" exit $rc (want 2);"
+  [ "$(grep -c '^ ERROR: ' "$tmp/stderr")" = 1 ] || bad+=" not one ' ERROR: ' line;"
+  IFS='|' read -r -a list <<< "$patterns"
+  for p in "${list[@]}"; do grep -qF -- "$p" "$tmp/stderr" || bad+=" no '$p';"; done
+  [ ! -s "$tmp/stdout" ] || bad+=" wrote to stdout;"
+  ! ls -d "$tmp"/out* > /dev/null 2>&1 || bad+=" output left: $(ls -d "$tmp"/out*);"
+  if [ -n "$bad" ]; then fail "$label:$bad stderr: $(head -c 400 "$tmp/stderr")"; else ok "$label: $(head -c 240 "$tmp/stderr")"; fi
+}
+# accept <label> <command and arguments...>: exit 0 (the limits do not refuse what is valid)
+accept() {
+  local label=$1 rc=0
+  shift
+  rm -rf "$tmp"/out*
+  (ulimit -v 3145728; exec timeout 60 "$bin" "$@") > "$tmp/stdout" 2> "$tmp/stderr" || rc=$?
+  if [ "$rc" = 0 ]; then ok "$label: accepted"; else fail "$label: exit $rc: $(head -c 300 "$tmp/stderr")"; fi
+  rm -rf "$tmp"/out*
+}
+sim=(simulate --record "$tmp/rec.txt" --series "$tmp/out.csv")
+storeys=(simulate --record "$tmp/rec.txt" --storeys1 3 --storeys2 3)
+motions=(motions --loss high --soil D --realisations 1 --duration 10 --rise 1 --strong 4 --match-points 5 --iterations 1 --quiet
+         --out "$tmp/out_motions")
+
+# ---- item 10: empty and silently wrapped values ----------------------------------------------------------------
+refuse "simulate --modal-zeta ''" "--modal-zeta|empty" "${storeys[@]}" --modal-zeta ''
+refuse "simulate --modal-zeta 0.02,,0.05" "--modal-zeta|empty field" "${storeys[@]}" --modal-zeta 0.02,,0.05
+refuse "simulate --gap ''" "--gap|empty" "${sim[@]}" --gap ''
+refuse "simulate --record ''" "--record|empty" simulate --record '' --series "$tmp/out.csv"
+refuse "modes --modal-zeta ''" "--modal-zeta|empty" modes --storeys 3 --mass 1e5 --stiffness 1e8 --modal-zeta ''
+refuse "motions --seed -1" "--seed|-1 is negative|[0, 2^64 - 1]" "${motions[@]}" --seed -1
+refuse "motions --seed 2^64" "--seed|18446744073709551616|[0, 2^64 - 1]" "${motions[@]}" --seed 18446744073709551616
+refuse "motions --seed 010" "--seed|leading zero" "${motions[@]}" --seed 010
+refuse "motions --positions 0,,100" "--positions|empty field" "${motions[@]}" --positions 0,,100
+accept "motions --seed 18446744073709551615" "${motions[@]}" --seed 18446744073709551615
+
+if [ "$fails" -gt 0 ]; then
+  echo "FAIL: $fails check(s) failed"
+  exit 1
+fi
+echo "input_simulate_limits: ok"
