@@ -235,8 +235,9 @@ constexpr StudyKey keys[] = {
      "Young's modulus of the equivalent spheres (57000 sqrt(4000) psi).", 1e-300, 1e13},
     {"structures", "contact_poisson", "number", "0.15", "", "[0, 0.5)", "Poisson's ratio of the equivalent spheres.",
      0.0, 0.499999},
-    {"structures", "kh", "number", "0", "N/m^1.5", "[0, inf)",
-     "The Hertz stiffness for every pair; 0: from equivalent spheres of the two buildings.", 0.0, inf},
+    {"structures", "kh", "number", "0", "N/m^1.5", "[0, 1e20]",
+     "The Hertz stiffness for every pair; 0: from equivalent spheres of the two buildings. The upper end is [contact] "
+     "stiffness's (and simulate --kh's).", 0.0, 1e20},
     {"structures", "equal_heights", "boolean", "false", "", "true | false",
      "One height for both buildings, uniform on the intersection of their rule intervals (needs heights from the "
      "rule and grid or fixed periods)."},
@@ -251,9 +252,9 @@ constexpr StudyKey keys[] = {
      "have at the same level (within 0.05 m). A shear building of one storey is the SDOF bit for bit. With "
      "[intensity] (fragility: stripes, IDA) every stripe runs the shear buildings on the scaled record, except that "
      "a lane whose every storey and bearing stays elastic is scaled from the lowest stripe (scale_elastic)."},
-    {"structures", "storey_height", "number", "3.2", "m", "(0, 10] ([2, 10] for model = \"sdof\")",
+    {"structures", "storey_height", "number", "3.2", "m", "[0.01, 10] ([2, 10] for model = \"sdof\")",
      "The storey height of both buildings (each may override it): the code rules' storey count and the shear "
-     "model's storeys (max(1, round(height / storey_height)) per sample) and floor levels.", 1e-300, 10.0},
+     "model's storeys (max(1, round(height / storey_height)) per sample) and floor levels.", 0.01, 10.0},
     {"structures", "stiffness_profile", "string", "\"uniform\"", "", "\"uniform\" | \"shear\"",
      "Shear model, storey stiffnesses from T1: uniform = equal storeys; shear = proportional to the storey shear of "
      "an inverted-triangle load (model::stiffness_shape), both scaled so the fundamental period is T1."},
@@ -362,11 +363,11 @@ constexpr StudyKey keys[] = {
     {"structures.buildingN", "storeys", "integer", "round(height / storey_height), at least 1", "", "[1, 200]",
      "Storeys above the base: Standard 2800's 0.005 h rule is for at most 8.", 1, 200},
     {"structures.buildingN", "storey_height", "number", "[structures] storey_height (3.2)", "m",
-     "(0, 10] ([2, 10] for model = \"sdof\")",
+     "[0.01, 10] ([2, 10] for model = \"sdof\")",
      "The default of storeys (max(1, round(height / storey_height))) and, for model = \"shear\", every storey's "
      "height: floor k at k storey_height (a scale model's frames may be 0.1 m). Shear buildings of different storey "
      "heights pound floor to floor where levels agree within [contact] level_tolerance and floor to column elsewhere "
-     "(docs/floor-contact.md).", 1e-300, 10.0},
+     "(docs/floor-contact.md).", 0.01, 10.0},
     {"structures.buildingN", "model", "string", "[structures] model", "", "\"sdof\" | \"shear\"",
      "As in [structures]: an SDOF building may pair with a shear building (it meets the floor nearest its height, "
      "its roof if the other is lower)."},

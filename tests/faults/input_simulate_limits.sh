@@ -72,6 +72,30 @@ refuse "motions --seed 010" "--seed|leading zero" "${motions[@]}" --seed 010
 refuse "motions --positions 0,,100" "--positions|empty field" "${motions[@]}" --positions 0,,100
 accept "motions --seed 18446744073709551615" "${motions[@]}" --seed 18446744073709551615
 
+# ---- item 11: the ranges of the study keys that mean the same quantity ----------------------------------------------
+refuse "simulate --storey-mass1 1e-30" "--storey-mass1|[1e-3, 1e9] kg|floor_mass" "${storeys[@]}" --storey-mass1 1e-30
+refuse "simulate --storey-mass1 1e300" "--storey-mass1|[1e-3, 1e9] kg|floor_mass" "${storeys[@]}" --storey-mass1 1e300
+refuse "simulate --storey-stiffness2 1e15" "--storey-stiffness2|[1, 1e12]" "${storeys[@]}" --storey-stiffness2 1e15
+refuse "simulate --storey-height1 0.001" "--storey-height1|[0.01, 10]" "${storeys[@]}" --storey-height1 0.001
+refuse "simulate --T1 1e9" "--T1|[0.02, 20]|period" "${sim[@]}" --T1 1e9
+refuse "simulate --T3 1e9 (a row)" "--T3|[0.02, 20]" simulate --record "$tmp/rec.txt" --buildings 3 --T3 1e9
+refuse "simulate --kh 1e30" "--kh|(0, 1e20]|stiffness" "${sim[@]}" --kh 1e30
+refuse "simulate --m1 1e-30" "--m1|[1e3, 1e10]|mass" "${sim[@]}" --m1 1e-30
+refuse "simulate --h1 5000" "--h1|[2, 1000]" "${sim[@]}" --h1 5000
+refuse "simulate --zeta 0.9" "--zeta|[0, 0.5]" "${sim[@]}" --zeta 0.9
+refuse "simulate --k1 1e15" "--k1|[1, 1e12]" "${sim[@]}" --k1 1e15
+refuse "simulate --fy1 1" "--fy1|times the weight|yield_coefficient" "${sim[@]}" --fy1 1
+refuse "simulate --density 1e9" "--density|contact_density" "${sim[@]}" --density 1e9
+refuse "simulate --gap-offsets longer than the levels" "--gap-offsets|5 values|levels 1 to 3" \
+  "${storeys[@]}" --gap-offsets 0,0,0,0,0
+refuse "simulate --gap-offsets -0.05" "--gap-offsets|[0, 10]" "${storeys[@]}" --gap 0.1 --gap-offsets -0.05,0,0
+grep -v contact_stiffness "$src/tests/data/bridge/four-frame.toml" > "$tmp/nokc.toml"
+refuse "simulate --bridge (joints without a stiffness) --kh 1e18" "--kh|[1, 1e16]|contact_stiffness" \
+  simulate --record "$tmp/rec.txt" --bridge "$tmp/nokc.toml" --kh 1e18
+accept "simulate --storeys1 3 --storeys2 3 (defaults)" "${storeys[@]}" --duration 2 --gap 0.5
+accept "simulate --m1 1e3 --T1 0.5 --kh 1e20" simulate --record "$tmp/rec.txt" --duration 2 --m1 1e3 --T1 0.5 --kh 1e20 \
+  --gap 0.5
+
 if [ "$fails" -gt 0 ]; then
   echo "FAIL: $fails check(s) failed"
   exit 1

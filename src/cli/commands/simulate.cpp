@@ -167,7 +167,17 @@ Structure make_structure(double m, double T, double k, double h, double fy, doub
                          const std::string& i, bool k_given, bool fy_given) {
   require_positive(m, "--m" + i);
   if (k_given) require_positive(k, "--k" + i);
-  if (fy_given) require_positive(fy, "--fy" + i);
+  if (fy_given) {
+    require_positive(fy, "--fy" + i);
+    // the yield coefficient Cy = fy / (m g) a study's building may have
+    const config::StudyKey& cy = config::study_key("structures.buildingN", "yield_coefficient");
+    const double w = m * g_accel;
+    if (!(fy >= cy.lo * w && fy <= cy.hi * w))
+      throw InputError(fmt::format("--fy{} = {} N is {:.3g} times the weight m g = {:.6g} N", i, fy, fy / w, w), "--fy" + i,
+                       fmt::format("give a yield force of {} times m g, [{:.6g}, {:.6g}] N (as yield_coefficient in a "
+                                   "study's [structures.buildingK])",
+                                   cy.range, cy.lo * w, cy.hi * w));
+  }
   Structure s;
   if (k_given) {
     s.m = m, s.k = k, s.c = 2.0 * zeta * std::sqrt(k * m);
@@ -211,25 +221,61 @@ void write_series_h5(const std::string& path, const SeriesRecorder& r, const std
   f.commit();
 }
 
-// The scalar options, checked before any work or output.
+// The scalar options, checked before any work or output. A quantity a study also sets is checked against that
+// study key's range (config::require_key_range: one range per quantity for simulate, Python and the studies).
 void validate_scalars(const SimulateOptions& o) {
-  require_range(o.zeta, 0.0, 0.999, "--zeta", "[0, 1)");
-  for (double z : o.modal_zeta) require_range(z, 0.0, 0.5, "--modal-zeta", "[0, 0.5] each");
-  require_range(o.alpha, 0.0, std::nextafter(1.0, 0.0), "--alpha", "[0, 1)");
+  using config::require_key_range;
+  require_key_range(o.zeta, "structures", "zeta", "--zeta");
+  for (double z : o.modal_zeta) require_key_range(z, "structures", "modal_zeta", "--modal-zeta", "each; ");
+  require_key_range(o.alpha, "structures", "alpha", "--alpha");
   if (!std::isfinite(o.gap) || o.gap < 0)
     throw InputError(fmt::format("--gap = {} must be >= 0", o.gap), "--gap", "give the at-rest separation in m");
-  require_range(o.e, std::nextafter(0.0, 1.0), 1.0, "--e", "(0, 1]");
+  require_key_range(o.e, "contact", "e", "--e");
   if (o.dt_given) require_positive(o.dt, "--dt");
   if (o.duration_given) require_positive(o.duration, "--duration");
-  if (o.kh_given) require_positive(o.kh, "--kh");
-  require_positive(o.u_limit, "--u-limit");
+  if (o.kh_given) require_positive(o.kh, "--kh"), require_key_range(o.kh, "contact", "stiffness", "--kh");
+  require_key_range(o.u_limit, "analysis", "displacement_limit", "--u-limit");
+  require_key_range(o.density, "structures", "contact_density", "--density");
+  require_key_range(o.youngs, "structures", "contact_youngs_modulus", "--E");
+  require_key_range(o.poisson, "structures", "contact_poisson", "--nu");
+}
+
+// A building's options as given (not inherited), against the study keys of a building: --mK its mass, --TK its
+// period, --hK its height, --kK its stiffness (an SDOF is a one-storey shear building: storey_stiffness),
+// --storey-massK, --storey-stiffnessK, --storey-heightK the shear model's floor_mass, storey_stiffness,
+// storey_height. A storey mass of 1e300 kg ran to "status: ok" with infinite energies; --T1 1e9 ran.
+struct GivenBuilding {
+  std::string k;
+  double m, T, kk, h;
+  bool m_given, T_given, k_given, h_given;
+  const SimulateOptions::Storeys& st;
+};
+void validate_building(const GivenBuilding& b) {
+  using config::require_key_range;
+  constexpr std::string_view B = "structures.buildingN";
+  if (b.m_given) require_key_range(b.m, B, "mass", "--m" + b.k);
+  if (b.T_given) require_key_range(b.T, B, "period", "--T" + b.k);
+  if (b.k_given) require_key_range(b.kk, B, "storey_stiffness", "--k" + b.k, "an SDOF is a one-storey building; ");
+  if (b.h_given) require_key_range(b.h, B, "height", "--h" + b.k, "the default mass m = mbar rho r^2 h comes from it; ");
+  if (b.st.mass_given) require_key_range(b.st.mass, B, "floor_mass", "--storey-mass" + b.k);
+  if (b.st.stiffness_given) require_key_range(b.st.stiffness, B, "storey_stiffness", "--storey-stiffness" + b.k);
+  if (b.st.height_given) require_key_range(b.st.height, B, "storey_height", "--storey-height" + b.k);
+}
+void validate_buildings(const SimulateOptions& o) {
+  // --T1, --T2 and --h1, --h2 have defaults in range: checked whether given or not
+  validate_building({"1", o.m1, o.T1, o.k1, o.h1, o.m1_given, true, o.k1_given, true, o.b[0]});
+  validate_building({"2", o.m2, o.T2, o.k2, o.h2, o.m2_given, true, o.k2_given, true, o.b[1]});
+  for (int K = 3; K <= std::min(o.buildings, SimulateOptions::max_buildings); ++K) {
+    const SimulateOptions::RowBuilding& x = o.more[K - 3];
+    validate_building({std::to_string(K), x.m, x.T, x.k, x.h, x.m_given, x.T_given, x.k_given, x.h_given, x.st});
+  }
 }
 
 ContactModel contact_model(const SimulateOptions& o) {
   ContactModel cm;
   cm.law = as_option("--contact", [&] { return parse_contact_law(o.contact); });
   cm.damping = as_option("--damping-law", [&] { return parse_damping_law(o.damping_law); });
-  require_range(o.n, 1.0, 3.0, "--n", "[1, 3]");
+  config::require_key_range(o.n, "contact", "n", "--n");
   cm.n = o.n;
   return cm;
 }
@@ -327,9 +373,7 @@ void validate_storeys(const SimulateOptions& o) {
     if (b.storeys < 1 || b.storeys > model::max_storeys)
       throw InputError(fmt::format("--storeys{} = {} is out of range", k, b.storeys), "--storeys" + k,
                        fmt::format("give a number of storeys in [1, {}]", model::max_storeys));
-    require_range(b.height, 0.01, 100.0, "--storey-height" + k, "[0.01, 100] m");
-    if (b.mass_given) require_positive(b.mass, "--storey-mass" + k);
-    if (b.stiffness_given) require_positive(b.stiffness, "--storey-stiffness" + k);
+    config::require_key_range(b.height, "structures.buildingN", "storey_height", "--storey-height" + k);  // default 3.2
     if (b.storeys == 1) continue;
     const bool given[] = {i == 0 ? o.m1_given : o.m2_given, i == 0 ? o.k1_given : o.k2_given,
                           i == 0 ? o.fy1_given : o.fy2_given, i == 0 ? o.h1_given : o.h2_given};
@@ -348,13 +392,10 @@ void validate_storeys(const SimulateOptions& o) {
     throw InputError("--series records an SDOF pair only", "--series", "drop --series or the storey options");
   if (o.contact_levels != "common" && o.contact_levels != "top")
     throw unknown_key_error(o.contact_levels, "--contact-levels", "--contact-levels", "common, top", "argument");
-  require_range(o.level_tolerance, 0.0, 1.0, "--level-tolerance", "[0, 1] m");
+  config::require_key_range(o.level_tolerance, "contact", "level_tolerance", "--level-tolerance");
   if (!parse_enum(model::shape_functions_names, o.shape_functions))
     throw unknown_key_error(o.shape_functions, "--shape-functions", "--shape-functions", "linear, cubic", "argument");
-  for (double off : o.gap_offsets)
-    if (!std::isfinite(off) || o.gap + off < 0)
-      throw InputError(fmt::format("--gap-offsets value {} makes a gap of {} m", off, o.gap + off), "--gap-offsets",
-                       "give offsets (m) with --gap + offset >= 0");
+  for (double off : o.gap_offsets) config::require_key_range(off, "contact", "gap_offsets", "--gap-offsets", "each; ");
 }
 
 // Building i's numbers. One storey: the SDOF options unchanged (make_structure), so two one-storey buildings of
@@ -435,8 +476,8 @@ void set_storey_contacts(const SimulateOptions& o, const ContactModel& cm, physi
   if (needs_kh && !o.kh_given) require_positive(0.0, "--kh (linear/Kelvin stiffness, N/m)");
   int top = 0;
   for (const model::ContactElement& ce : sys.contacts()) top = std::max(top, ce.level);
-  if (!o.gap_offsets.empty() && static_cast<int>(o.gap_offsets.size()) < top)
-    throw InputError(fmt::format("--gap-offsets has {} values and the buildings pound up to level {}",
+  if (!o.gap_offsets.empty() && static_cast<int>(o.gap_offsets.size()) != top)  // more: they were silently ignored
+    throw InputError(fmt::format("--gap-offsets has {} values and the buildings pound at levels 1 to {}",
                                  o.gap_offsets.size(), top),
                      "--gap-offsets", fmt::format("give one offset (m) per level from level 1 to {}", top));
   physics::set_contacts(batch, 0, o.gap, 0.0, o.e, o.gap_offsets,
@@ -544,12 +585,7 @@ void resolve_row(SimulateOptions& o) {
         if (user)
           throw InputError(fmt::format("{}{} describes an SDOF, and building {} has {} storeys", name, k, k, x.st.storeys),
                            name + k, "give the storey options --storey-mass" + k + " / --storey-stiffness" + k);
-    require_range(x.st.height, 0.01, 100.0, "--storey-height" + k, "[0.01, 100] m");
-    if (x.st.mass_given) require_positive(x.st.mass, "--storey-mass" + k);
-    if (x.st.stiffness_given) require_positive(x.st.stiffness, "--storey-stiffness" + k);
-    if (x.h_given) require_positive(x.h, "--h" + k);
-    if (x.m_given) require_positive(x.m, "--m" + k);
-    if (x.T_given) require_positive(x.T, "--T" + k);
+    // the values given for building K were checked by validate_buildings, those it inherits as building 1's or 2's
   }
 }
 
@@ -858,6 +894,7 @@ std::string with_restitution(std::string json, const SimulateOptions& o, const B
 // printed are not results).
 int run_simulate(SimulateOptions& o) {
   validate_scalars(o);  // everything is validated before any work or output
+  validate_buildings(o);
   const ContactModel cm = contact_model(o);
   KernelSettings ks = kernel_settings(o);
   if (o.curve && (o.storey_mode() || cm.law != ContactLaw::hertzdamp || ks.stepper != Stepper::central_difference))
