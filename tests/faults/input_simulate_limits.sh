@@ -72,6 +72,24 @@ refuse "motions --seed 010" "--seed|leading zero" "${motions[@]}" --seed 010
 refuse "motions --positions 0,,100" "--positions|empty field" "${motions[@]}" --positions 0,,100
 accept "motions --seed 18446744073709551615" "${motions[@]}" --seed 18446744073709551615
 
+# ---- item 8: sizes with no upper bound ----------------------------------------------------------------------------
+refuse "simulate --duration 1e12" "--duration|free vibration|give --duration <= 1012 s" "${sim[@]}" --duration 1e12
+refuse "simulate --dt 1e-9" "--dt|1e+07 integration steps per record step|10000" "${sim[@]}" --dt 1e-9
+refuse "simulate --bridge --wave-delay 1e300" "--wave-delay|[0, 200] s" \
+  simulate --record "$tmp/rec.txt" --bridge "$tmp/ff4.toml" --wave-delay 1e300
+refuse "simulate --bridge --wave-delay 1e6" "--wave-delay|[0, 200] s" \
+  simulate --record "$tmp/rec.txt" --bridge "$tmp/ff4.toml" --wave-delay 1e6
+# within the ranges, beyond the memory: POUNDING_TEST_MEMORY_AVAILABLE stands in for MemAvailable
+export POUNDING_TEST_MEMORY_AVAILABLE=1073741824
+refuse "simulate --duration 1000 --dt 1e-6 on a 1 GiB machine" "--duration|the run needs 89.4 GiB|every step kept for --series|1 GiB of memory available" \
+  "${sim[@]}" --duration 1000 --dt 1e-6
+export POUNDING_TEST_MEMORY_AVAILABLE=67108864
+refuse "simulate --bridge --wave-delay 200 --dt 0.0005 on a 64 MiB machine" \
+  "--wave-delay|4 supports of 61201 samples|64 MiB of memory available" \
+  simulate --record "$tmp/rec.txt" --bridge "$tmp/ff4.toml" --wave-delay 200 --dt 0.0005
+accept "simulate --duration 60 on a 64 MiB machine" "${sim[@]}" --duration 60 --gap 0.5
+unset POUNDING_TEST_MEMORY_AVAILABLE
+
 # ---- item 11: the ranges of the study keys that mean the same quantity ----------------------------------------------
 refuse "simulate --storey-mass1 1e-30" "--storey-mass1|[1e-3, 1e9] kg|floor_mass" "${storeys[@]}" --storey-mass1 1e-30
 refuse "simulate --storey-mass1 1e300" "--storey-mass1|[1e-3, 1e9] kg|floor_mass" "${storeys[@]}" --storey-mass1 1e300

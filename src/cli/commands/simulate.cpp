@@ -25,6 +25,7 @@
 #include "pounding/physics/velocity_restitution.hpp"
 #include "pounding/report/json.hpp"
 #include "pounding/core/files.hpp"
+#include "pounding/core/machine.hpp"
 #include "pounding/io/hdf5.hpp"
 #include "pounding/model/shear_building.hpp"
 #include "pounding/physics/batch.hpp"
@@ -311,12 +312,58 @@ Record ground_motion(const SimulateOptions& o) {
 
 // Substeps per record step for --dt, which must divide it.
 int substeps_for(const SimulateOptions& o, double record_dt) {
-  double q = record_dt / o.dt;
+  const double q = record_dt / o.dt;
+  const config::StudyKey& most = config::study_key("analysis", "substeps");  // 1e-9 s: 5e6 substeps, std::bad_alloc
+  if (!(q <= most.hi + 0.5))
+    throw InputError(fmt::format("--dt = {} s is {:.4g} integration steps per record step of {} s, more than the {:g} a "
+                                 "study allows",
+                                 o.dt, q, record_dt, most.hi),
+                     "--dt",
+                     fmt::format("give --dt >= {:.6g} s (the record step / {:g}, as [analysis] substeps)",
+                                 record_dt / most.hi, most.hi));
   const int substeps = static_cast<int>(std::lround(q));
   if (substeps < 1 || std::abs(q - substeps) > 1e-9 * q)
     throw InputError(fmt::format("--dt = {} does not divide the record step {}", o.dt, record_dt), "--dt",
                      "give the record step divided by a whole number");
   return substeps;
+}
+
+// The sizes the options set, checked before any record is copied or padded and before the time loop (issue 44 item 8:
+// --duration 1e12 and --dt 1e-9 ended in std::bad_alloc, --wave-delay 1e300 in vector::_M_fill_insert): free
+// vibration after the record at most a study's [analysis] free_vibration, and the memory of the run -- every support's
+// record (`samples` each, padded), and per integration step the time loop's schedule (physics::make_schedule: ag; with
+// several supports each channel's ag, vg, ug) and --series' 11 columns -- within the memory available
+// (available_memory_bytes, core/machine.hpp; the measure of a study's memory check).
+void check_sizes(const SimulateOptions& o, double record_dt, std::size_t samples, int channels) {
+  const double record_length = record_dt * static_cast<double>(samples > 0 ? samples - 1 : 0);
+  const config::StudyKey& fv = config::study_key("analysis", "free_vibration");
+  if (o.duration_given && o.duration - record_length > fv.hi)
+    throw InputError(fmt::format("--duration = {} s is the record's {:.6g} s and {:.6g} s of free vibration, more than "
+                                 "the {:g} s a study allows",
+                                 o.duration, record_length, o.duration - record_length, fv.hi),
+                     "--duration",
+                     fmt::format("give --duration <= {:.6g} s (the record and at most {:g} s of free vibration, as "
+                                 "[analysis] free_vibration)",
+                                 record_length + fv.hi, fv.hi));
+  const int substeps = o.dt_given ? substeps_for(o, record_dt) : 1;
+  const double length = o.duration_given ? o.duration : record_length;
+  const double steps = std::ceil(length / record_dt) * substeps;
+  const double per_step = 1.0 + (channels > 1 ? 3.0 * channels : 0.0) + (o.series.empty() ? 0.0 : 11.0);
+  const double need = 8.0 * (2.0 * channels * static_cast<double>(samples) + per_step * (steps + 1.0));
+  const double avail = available_memory_bytes();
+  if (!(std::isfinite(avail) && need > avail)) return;
+  const double fit = std::floor((avail / 8.0 - 2.0 * channels * static_cast<double>(samples)) / per_step);
+  const std::string where = o.wave_delay_given ? "--wave-delay" : o.duration_given ? "--duration" : o.dt_given ? "--dt" : "--record";
+  throw InputError(
+      fmt::format("the run needs {} ({:.4g} s in {:.4g} integration steps of {:.4g} s{}{}), more than the {} of memory "
+                  "available on this machine (MemAvailable)",
+                  human_bytes(need), length, steps, record_dt / substeps,
+                  channels > 1 ? fmt::format(", {} supports of {} samples each", channels, samples) : std::string(),
+                  o.series.empty() ? "" : ", every step kept for --series", human_bytes(avail)),
+      where,
+      fit >= 1 ? fmt::format("give a shorter --duration, a longer --dt{} (at most {:.4g} steps fit)",
+                             o.wave_delay_given ? " or a shorter --wave-delay" : "", fit)
+               : std::string("give a shorter record or fewer supports"));
 }
 
 PairParams pair_params(const SimulateOptions& o, const ContactModel& cm, const Structure& s1, const Structure& s2) {
@@ -693,6 +740,7 @@ int run_storeys(SimulateOptions& o, const ContactModel& cm, KernelSettings& ks) 
   for (std::size_t e = 0; e < sys.contacts().size(); ++e)
     run.contact_stiffness[e] = batch.kc[e], run.contact_gap[e] = batch.gap[e];
   Record rec = ground_motion(o);
+  check_sizes(o, rec.dt, rec.acc.size(), 1);
   const double record_length = rec.duration();
   const double analysis_length = cut_to_duration(o, rec);
   if (o.dt_given) ks.substeps = substeps_for(o, rec.dt);
@@ -764,6 +812,19 @@ void bridge_report(const physics::BridgeSpec& spec, const physics::SystemBatch& 
   run.gap = spec.joints.empty() ? 0.0 : spec.joints[0].gap;
 }
 
+// --wave-delay: the delay between neighbouring supports a study's support motions can have, at most the largest
+// [records.motions] spacing over the smallest velocity (10000 m / 50 m/s = 200 s). 1e300 s ended in
+// vector::_M_fill_insert, 1e6 s took 3.1 GB.
+void check_wave_delay(const SimulateOptions& o) {
+  const double most = config::study_key("records.motions", "spacing").hi / config::study_key("records.motions", "velocity").lo;
+  if (!(std::isfinite(o.wave_delay) && o.wave_delay >= 0 && o.wave_delay <= most))
+    throw InputError(fmt::format("--wave-delay = {} s is out of range", o.wave_delay), "--wave-delay",
+                     fmt::format("give the delay between neighbouring supports in [0, {:g}] s (a study's support motions: "
+                                 "[records.motions] spacing <= {:g} m over velocity >= {:g} m/s)",
+                                 most, config::study_key("records.motions", "spacing").hi,
+                                 config::study_key("records.motions", "velocity").lo));
+}
+
 // The ground motion of every support of a bridge: --support-record files (one per support, the same step; a shorter
 // one padded with zeros), or --record (or the built-in sweep) delayed by k * --wave-delay at support k + 1 (a whole
 // number of record steps), or the one record for every support of a one-channel bridge.
@@ -784,11 +845,13 @@ std::vector<Record> support_motions(const SimulateOptions& o, int channels) {
         throw InputError(fmt::format("{} has step {} s, {} has {} s", f, recs.back().dt, o.support_records[0], recs.front().dt),
                          "--support-record", "resample the records to one time step");
     }
+    std::size_t longest = 0;
+    for (const Record& r : recs) longest = std::max(longest, r.acc.size());
+    check_sizes(o, recs.front().dt, longest, channels);
   } else {
     const Record base = ground_motion(o);
     if (o.wave_delay_given) {
-      if (!(std::isfinite(o.wave_delay) && o.wave_delay >= 0))
-        throw InputError(fmt::format("--wave-delay = {} must be >= 0", o.wave_delay), "--wave-delay", "give the delay between neighbouring supports (s)");
+      check_wave_delay(o);
       const double q = o.wave_delay / base.dt;
       if (std::abs(q - std::round(q)) > 1e-9 * std::max(1.0, q))
         throw InputError(fmt::format("--wave-delay = {} s is not a whole number of record steps ({} s)", o.wave_delay, base.dt),
@@ -798,6 +861,7 @@ std::vector<Record> support_motions(const SimulateOptions& o, int channels) {
                        "give --support-record per support, or --wave-delay S to delay --record from support to support");
     }
     const auto shift = static_cast<std::size_t>(std::llround(o.wave_delay_given ? o.wave_delay / base.dt : 0.0));
+    check_sizes(o, base.dt, base.acc.size() + shift * static_cast<std::size_t>(channels - 1), channels);
     for (int k = 0; k < channels; ++k) {
       Record r = base;
       r.acc.insert(r.acc.begin(), shift * static_cast<std::size_t>(k), 0.0);
@@ -913,6 +977,7 @@ int run_simulate(SimulateOptions& o) {
   Structure s1 = make_structure(o.m1, o.T1, o.k1, o.h1, o.fy1, o.alpha, o.zeta, o.elastic, "1", o.k1_given, o.fy1_given);
   Structure s2 = make_structure(o.m2, o.T2, o.k2, o.h2, o.fy2, o.alpha, o.zeta, o.elastic, "2", o.k2_given, o.fy2_given);
   Record rec = ground_motion(o);
+  check_sizes(o, rec.dt, rec.acc.size(), 1);
   const double record_length = rec.duration();
   const double analysis_length = cut_to_duration(o, rec);
   if (o.dt_given) ks.substeps = substeps_for(o, rec.dt);
