@@ -114,6 +114,43 @@ accept "simulate --storeys1 3 --storeys2 3 (defaults)" "${storeys[@]}" --duratio
 accept "simulate --m1 1e3 --T1 0.5 --kh 1e20" simulate --record "$tmp/rec.txt" --duration 2 --m1 1e3 --T1 0.5 --kh 1e20 \
   --gap 0.5
 
+# ---- motions: what a study refuses ---------------------------------------------------------------------------------
+printf 'period_s,sa_g\n0,1e29\n0.5,1e29\n20,1e29\n' > "$tmp/huge_sa.csv"
+refuse "motions from a csv target of Sa 1e29 g" "--spectrum-file|PGA|above the 5 g|a study refuses these records" \
+  motions --loss high --realisations 1 --duration 10 --rise 1 --strong 4 --match-points 5 --iterations 1 --quiet \
+  --spectrum csv --spectrum-file "$tmp/huge_sa.csv" --out "$tmp/out_motions"
+export POUNDING_TEST_MEMORY_AVAILABLE=1073741824
+refuse "motions --realisations 10000 (600 s, 4 supports) on a 1 GiB machine" \
+  "--realisations|10000 realisations x 4 supports x 120001 samples need 35.8 GiB|--realisations <= 279" \
+  motions --loss high --soil D --supports 4 --realisations 10000 --duration 600 --dt 0.005 --quiet --out "$tmp/out_motions"
+# the same check for a study's [records.motions] (spatial::settings_from: one check for both)
+cat > "$tmp/out_study.toml" <<'TOML'
+seed = 26
+[records.motions]
+supports = 4
+loss = "high"
+soil = "D"
+duration = 600.0
+dt = 0.005
+realisations = 10000
+[bridge]
+[[bridge.frame]]
+mass = 1895413.0
+period = 1.0
+[[bridge.frame]]
+mass = 1895413.0
+period = 0.8
+support = 2
+[[bridge.joint]]
+gap = 0.01
+[contact]
+stiffness = 2.0e9
+TOML
+mv "$tmp/out_study.toml" "$tmp/motions_study.toml"
+refuse "a study's [records.motions] realisations = 10000 on a 1 GiB machine" \
+  "motions_study.toml|realisations|35.8 GiB|realisations <= 279" run "$tmp/motions_study.toml" --out "$tmp/out.h5" --quiet
+unset POUNDING_TEST_MEMORY_AVAILABLE
+
 if [ "$fails" -gt 0 ]; then
   echo "FAIL: $fails check(s) failed"
   exit 1

@@ -28,6 +28,7 @@
 #include "pounding/core/files.hpp"
 #include "pounding/core/progress.hpp"
 #include "pounding/motion/design_spectrum.hpp"
+#include "pounding/motion/records.hpp"
 #include "pounding/motion/spatial.hpp"
 
 namespace pounding::cli {
@@ -144,6 +145,20 @@ void write_folder(const std::string& dir, const MotionsOpts& o, const spatial::S
   }
 }
 
+// The records a study would refuse: [records.motions] runs require_analysable on the same realisations (a PGA above
+// 5 g, records.hpp), so `motions` refuses them too, before anything is written (a csv target of Sa 1e29 g wrote AT2
+// files of PGA 5.4e29 g).
+void check_analysable(const MotionsOpts& o, const std::vector<spatial::Realisation>& rs) {
+  for (const spatial::Realisation& r : rs)
+    for (std::size_t j = 0; j < r.supports.size(); ++j)
+      if (const auto e = analysis_problem(r.supports[j], {1.0, "", ""}))
+        throw InputError(fmt::format("realisation {} support {}: {}", r.index + 1, j + 1, e->what_part()),
+                         o.req.spectrum == "csv" ? "--spectrum-file" : "--z/--r",
+                         fmt::format("a study refuses these records ([records.motions] with the same options): give a "
+                                     "target spectrum in g whose motions stay within {} g",
+                                     record_pga_max_g));
+}
+
 }  // namespace
 
 void add_motions(CLI::App& app) {
@@ -211,6 +226,7 @@ void add_motions(CLI::App& app) {
       fmt::print(stderr, " stopped: {}; nothing written\n", e.what());
       throw ExitRequest{130};
     }
+    check_analysable(*o, rs);
     write_folder(o->out, *o, s, rs, command_line);
     double worst = 0;
     for (const auto& r : rs)
