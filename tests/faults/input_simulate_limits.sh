@@ -3,8 +3,8 @@
 # errors naming the option (exit 2, one " ERROR: " line, nothing on stdout, no output file or folder):
 #   item 8  sizes: simulate --duration 1e12 (std::bad_alloc), --dt 1e-9 (std::bad_alloc), --bridge with
 #           --wave-delay 1e300 (vector::_M_fill_insert) or 1e6 (3.1 GB), and runs whose time loop would not fit
-#           in the memory available (POUNDING_TEST_MEMORY_AVAILABLE stands in for MemAvailable); motions
-#           --realisations that would not fit;
+#           in the memory available (POUNDING_TEST_MEMORY_AVAILABLE stands in for MemAvailable); collide --steps
+#           2e9 (std::bad_alloc); motions --realisations and a study's [records.motions] that would not fit;
 #   item 10 empty and wrapped values: simulate --modal-zeta '' (every mode's damping 0), --gap '' (a gap of 0),
 #           modes --modal-zeta '' (Rayleigh instead), motions --seed -1 and 2^64 (2^64 - 1), a list with an empty
 #           field;
@@ -88,6 +88,8 @@ refuse "simulate --bridge --wave-delay 200 --dt 0.0005 on a 64 MiB machine" \
   "--wave-delay|4 supports of 61201 samples|64 MiB of memory available" \
   simulate --record "$tmp/rec.txt" --bridge "$tmp/ff4.toml" --wave-delay 200 --dt 0.0005
 accept "simulate --duration 60 on a 64 MiB machine" "${sim[@]}" --duration 60 --gap 0.5
+export POUNDING_TEST_MEMORY_AVAILABLE=1073741824
+refuse "collide --steps 2e9 on a 1 GiB machine" "--steps|needs 44.7 GiB|give --steps <=" collide --steps 2000000000
 unset POUNDING_TEST_MEMORY_AVAILABLE
 
 # ---- item 11: the ranges of the study keys that mean the same quantity ----------------------------------------------
