@@ -2,7 +2,7 @@
 // value into 0 or the default (`--modal-zeta ''` damped every mode with 0, `--gap ''` was a gap of 0, `--record ''`
 // the built-in sweep), reads an unsigned integer with strtoull (`--seed -1` became 2^64 - 1, `--seed 2^64` saturated
 // to it), an integer in base 0 (`010` was 8) and drops the empty fields of a delimited list (`0.02,,0.05`).
-#include <cerrno>
+#include <algorithm>
 #include <charconv>
 #include <cstdint>
 #include <cstdlib>
@@ -84,7 +84,6 @@ std::vector<double> number_list(const std::string& text, const std::string& opti
     const std::size_t end = std::min(text.find(',', pos), text.size());
     const std::string field = text.substr(pos, end - pos);
     char* stop = nullptr;
-    errno = 0;
     const double v = field.empty() ? 0.0 : std::strtod(field.c_str(), &stop);
     if (field.empty() || stop != field.c_str() + field.size())
       throw InputError(fmt::format("{} '{}' has {} where a number belongs", option, escaped_excerpt(text),
