@@ -1,6 +1,9 @@
 #pragma once
 // Command-line front end: each sub-command lives in src/cli/commands/<name>.cpp and registers itself on the
 // CLI11 app; main() only parses and dispatches. Handlers throw InputError for bad input.
+#include <string>
+#include <vector>
+
 #include <CLI/CLI.hpp>
 
 #include "pounding/core/error.hpp"
@@ -35,6 +38,17 @@ auto as_option(const char* option, Parse parse) {
     throw InputError(e.what_part(), option, e.fix());
   }
 }
+
+// Every option of `app` and of its sub-commands that takes a value refuses an empty one, and an integer option refuses
+// what CLI11 would silently change (a negative value for an unsigned one, a value beyond the type, a leading zero it
+// reads as octal): a CLI::ValidationError "--seed: -1 is negative: give a whole number in [0, 2^64 - 1] ..." (issue 44
+// item 10; src/cli/values.cpp). main() applies it once, after every command is registered.
+void require_values(CLI::App& app);
+
+// A comma-separated list of numbers as ONE option value (CLI11's delimiter drops empty fields: "0.02,,0.05" was two
+// values): every field must be a number, else InputError naming `option` and the accepted form.
+std::vector<double> number_list(const std::string& text, const std::string& option);
+CLI::Option* add_number_list(CLI::App* c, const std::string& name, std::vector<double>& out, const std::string& help);
 
 // Thrown by a sub-command that wrote its output but must end with a non-zero exit code (3: a run diverged or
 // a collision failed, its numbers are not results); main() returns `code`. Nothing process-wide holds it.

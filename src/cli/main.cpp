@@ -67,6 +67,7 @@ int main(int argc, char** argv) {
   pounding::cli::add_motions(app);
   pounding::cli::add_accuracy(app);
   pounding::cli::add_study_reference(app);
+  pounding::cli::require_values(app);  // no empty value, no silently wrapped integer (issue 44 item 10)
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

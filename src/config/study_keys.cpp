@@ -3,8 +3,11 @@
 #include "pounding/config/study_keys.hpp"
 
 #include <cmath>
+#include <stdexcept>
 
 #include <fmt/format.h>
+
+#include "pounding/core/error.hpp"
 
 namespace pounding::config {
 
@@ -232,8 +235,9 @@ constexpr StudyKey keys[] = {
      "Young's modulus of the equivalent spheres (57000 sqrt(4000) psi).", 1e-300, 1e13},
     {"structures", "contact_poisson", "number", "0.15", "", "[0, 0.5)", "Poisson's ratio of the equivalent spheres.",
      0.0, 0.499999},
-    {"structures", "kh", "number", "0", "N/m^1.5", "[0, inf)",
-     "The Hertz stiffness for every pair; 0: from equivalent spheres of the two buildings.", 0.0, inf},
+    {"structures", "kh", "number", "0", "N/m^1.5", "[0, 1e20]",
+     "The Hertz stiffness for every pair; 0: from equivalent spheres of the two buildings. The upper end is [contact] "
+     "stiffness's (and simulate --kh's).", 0.0, 1e20},
     {"structures", "equal_heights", "boolean", "false", "", "true | false",
      "One height for both buildings, uniform on the intersection of their rule intervals (needs heights from the "
      "rule and grid or fixed periods)."},
@@ -248,9 +252,9 @@ constexpr StudyKey keys[] = {
      "have at the same level (within 0.05 m). A shear building of one storey is the SDOF bit for bit. With "
      "[intensity] (fragility: stripes, IDA) every stripe runs the shear buildings on the scaled record, except that "
      "a lane whose every storey and bearing stays elastic is scaled from the lowest stripe (scale_elastic)."},
-    {"structures", "storey_height", "number", "3.2", "m", "(0, 10] ([2, 10] for model = \"sdof\")",
+    {"structures", "storey_height", "number", "3.2", "m", "[0.01, 10] ([2, 10] for model = \"sdof\")",
      "The storey height of both buildings (each may override it): the code rules' storey count and the shear "
-     "model's storeys (max(1, round(height / storey_height)) per sample) and floor levels.", 1e-300, 10.0},
+     "model's storeys (max(1, round(height / storey_height)) per sample) and floor levels.", 0.01, 10.0},
     {"structures", "stiffness_profile", "string", "\"uniform\"", "", "\"uniform\" | \"shear\"",
      "Shear model, storey stiffnesses from T1: uniform = equal storeys; shear = proportional to the storey shear of "
      "an inverted-triangle load (model::stiffness_shape), both scaled so the fundamental period is T1."},
@@ -359,11 +363,11 @@ constexpr StudyKey keys[] = {
     {"structures.buildingN", "storeys", "integer", "round(height / storey_height), at least 1", "", "[1, 200]",
      "Storeys above the base: Standard 2800's 0.005 h rule is for at most 8.", 1, 200},
     {"structures.buildingN", "storey_height", "number", "[structures] storey_height (3.2)", "m",
-     "(0, 10] ([2, 10] for model = \"sdof\")",
+     "[0.01, 10] ([2, 10] for model = \"sdof\")",
      "The default of storeys (max(1, round(height / storey_height))) and, for model = \"shear\", every storey's "
      "height: floor k at k storey_height (a scale model's frames may be 0.1 m). Shear buildings of different storey "
      "heights pound floor to floor where levels agree within [contact] level_tolerance and floor to column elsewhere "
-     "(docs/floor-contact.md).", 1e-300, 10.0},
+     "(docs/floor-contact.md).", 0.01, 10.0},
     {"structures.buildingN", "model", "string", "[structures] model", "", "\"sdof\" | \"shear\"",
      "As in [structures]: an SDOF building may pair with a shear building (it meets the floor nearest its height, "
      "its roof if the other is lower)."},
@@ -784,6 +788,29 @@ const StudyKey* find_study_key(std::string_view section, std::string_view key) {
   for (const StudyKey& k : keys)
     if (k.section == section && k.key == key) return &k;
   return nullptr;
+}
+
+const StudyKey& study_key(std::string_view section, std::string_view key) {
+  const StudyKey* k = find_study_key(section, key);
+  if (k == nullptr) throw std::logic_error(fmt::format("study key [{}].{} is not described", section, key));
+  return *k;
+}
+
+std::string study_section_text(std::string_view section) {
+  if (section == "isolation" || section == "moat") return fmt::format("{} = {{...}}", section);
+  if (section == "structures.buildingN") return "[structures.buildingK]";
+  if (section == "bridge.frame" || section == "bridge.joint") return fmt::format("[[{}]]", section);
+  return section.empty() ? std::string("top level") : fmt::format("[{}]", section);
+}
+
+void require_key_range(double value, std::string_view section, std::string_view key, const std::string& name,
+                       std::string_view note) {
+  const StudyKey& d = study_key(section, key);
+  if (std::isnan(d.lo) || std::isnan(d.hi))
+    throw std::logic_error(fmt::format("study key {}.{} has no numeric range", section, key));
+  require_range(value, d.lo, d.hi, name,
+                fmt::format("{}{}{} ({}as {} in a study's {})", d.range, d.units.empty() ? "" : " ", d.units, note, key,
+                            study_section_text(section)));
 }
 
 std::string study_reference_markdown() {

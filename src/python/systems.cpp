@@ -12,7 +12,10 @@
 #include <string>
 #include <vector>
 
+#include <fmt/format.h>
+
 #include "common.hpp"
+#include "pounding/config/study_keys.hpp"
 #include "pounding/model/modes.hpp"
 #include "pounding/model/shear_building.hpp"
 #include "pounding/physics/batch.hpp"
@@ -56,6 +59,17 @@ void check(const std::vector<double>& v, const std::string& key, double lo, doub
                             std::to_string(hi) + ")");
 }
 
+// A building's quantity that a study also sets: that study key's range (config/study_keys.hpp, one range per quantity
+// for the studies, `pounding simulate` and Python; issue 44 item 11).
+void check_key(const std::vector<double>& v, const std::string& name, std::string_view key) {
+  const config::StudyKey& k = config::study_key("structures.buildingN", key);
+  for (std::size_t l = 0; l < v.size(); ++l)
+    if (!(v[l] >= k.lo && v[l] <= k.hi))
+      throw py::value_error(fmt::format("{} (lane {}) = {} is out of range, {}, give a value in {}{}{} (as {} in a "
+                                        "study's [structures.buildingK])",
+                                        name, l, v[l], name, k.range, k.units.empty() ? "" : " ", k.units, key));
+}
+
 const char* const kBuildingKeys[] = {"floor_mass", "storey_stiffness", "period", "storey_yield", "yield_drift",
                                      "yield_coefficient", "alpha", "zeta"};
 
@@ -90,14 +104,14 @@ Lanes lanes_from(const py::dict& d, std::size_t nb) {
     L.cy[b] = lane_array(d, "yield_coefficient" + s, L.n, false);
     L.alpha[b] = lane_array(d, "alpha" + s, L.n, false, 0.0);
     L.zeta[b] = lane_array(d, "zeta" + s, L.n, false, 0.05);
-    check(L.mass[b], "floor_mass" + s, 0.0, 1e12, true);
-    check(L.stiffness[b], "storey_stiffness" + s, 0.0, 1e16, true);
-    check(L.period[b], "period" + s, 0.0, 100.0, true);
+    check_key(L.mass[b], "floor_mass" + s, "floor_mass");
+    check_key(L.stiffness[b], "storey_stiffness" + s, "storey_stiffness");
+    check_key(L.period[b], "period" + s, "period");
     check(L.fy[b], "storey_yield" + s, 0.0, std::numeric_limits<double>::infinity(), true);  // inf: elastic
     check(L.drift[b], "yield_drift" + s, 0.0, 1.0, true);
-    check(L.cy[b], "yield_coefficient" + s, 0.0, 10.0, true);
-    check(L.alpha[b], "alpha" + s, 0.0, 1.0, false);
-    check(L.zeta[b], "zeta" + s, 0.0, 1.0, false);
+    check_key(L.cy[b], "yield_coefficient" + s, "yield_coefficient");
+    check_key(L.alpha[b], "alpha" + s, "alpha");
+    check_key(L.zeta[b], "zeta" + s, "zeta");
   }
   L.kc = lane_array(d, "kc", L.n, false, 0.0);
   L.e_given = d.contains("e");
@@ -406,8 +420,11 @@ std::vector<model::StickTopology> sticks_of(const TopologyArgs& t, const std::ve
   for (std::size_t b = 0; b < nb; ++b) {
     if (t.storeys[b] < 1 || t.storeys[b] > model::max_storeys)
       throw py::value_error("storeys: 1 to " + std::to_string(model::max_storeys) + " storeys per building");
-    if (!(t.heights[b] >= 0.01 && t.heights[b] <= 100.0))
-      throw py::value_error("storey_height: every storey height in [0.01, 100] m");
+    const config::StudyKey& hk = config::study_key("structures.buildingN", "storey_height");  // as simulate's
+    if (!(t.heights[b] >= hk.lo && t.heights[b] <= hk.hi))
+      throw py::value_error(fmt::format("storey_height: every storey height in [{:g}, {:g}] m (as storey_height in a "
+                                        "study), not {}",
+                                        hk.lo, hk.hi, t.heights[b]));
     sticks[b].storeys = t.storeys[b], sticks[b].storey_heights = {t.heights[b]};
     if (!t.modal_zeta.empty() && sticks[b].storeys > 1) sticks[b].damping = model::DampingForm::dense;
     if (!base[b].isolated) continue;

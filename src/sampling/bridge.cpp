@@ -8,6 +8,7 @@
 #include <fmt/format.h>
 
 #include "pounding/config/config.hpp"
+#include "pounding/config/study_keys.hpp"
 #include "pounding/core/error.hpp"
 #include "pounding/model/hysteresis/bridge_links.hpp"
 #include "pounding/sampling/building.hpp"
@@ -111,6 +112,9 @@ physics::BridgeJoint joint(const toml::table* t, const std::string& file, const 
                      r.where("contact_stiffness"),
                      fmt::format("give contact_stiffness (law units: N/m^n for the Hertz family, N/m linear) or {}",
                                  d.kc_source));
+  if (r.get("contact_stiffness") == nullptr)  // the default given to every joint: a joint's range (issue 44 item 11)
+    config::require_key_range(d.kc, "bridge.joint", "contact_stiffness", d.kc_source,
+                              "the default of every joint without its own; ");
   j.kc = r.number("contact_stiffness", d.kc);
   if (!d.restitution_given_by.empty() && r.get("restitution") != nullptr)
     throw InputError(fmt::format("the joint gives its own restitution and {} gives every joint e(v0)",
@@ -118,6 +122,8 @@ physics::BridgeJoint joint(const toml::table* t, const std::string& file, const 
                      r.where("restitution"),
                      fmt::format("drop the joint's restitution (the curve replaces it at every impact), or drop {}",
                                  d.restitution_given_by));
+  if (r.get("restitution") == nullptr && d.restitution_given_by.empty())
+    config::require_key_range(d.e, "bridge.joint", "restitution", d.e_source, "the default of every joint without its own; ");
   j.e = r.number("restitution", d.e);
   if (const toml::table* rt = r.table("restrainer")) {
     config::TableReader rr(rt, file, name + ".restrainer", "bridge.restrainer");
@@ -258,7 +264,7 @@ BridgeModel parse_bridge_model(const toml::table* bridge, const std::string& fil
                                std::int64_t* samples, const std::string& restitution_given_by) {
   config::TableReader r(bridge, file, "bridge");
   BridgeReadDefaults d;
-  d.kc = kc_default, d.e = e_default, d.kc_source = "[contact] stiffness", d.study = true;
+  d.kc = kc_default, d.e = e_default, d.kc_source = "[contact] stiffness", d.e_source = "[contact] e", d.study = true;
   d.restitution_given_by = restitution_given_by;
   BridgeModel m;
   m.spec = read_bridge(r, file, "bridge.", d);

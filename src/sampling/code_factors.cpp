@@ -48,7 +48,7 @@ CodeFactors read_code_factors(const toml::table* t, const std::string& file, con
   both_or_neither(r, "s2800_ru", "s2800_cd", "Standard 2800 table 3-4, the building's lateral-load system");
   f.s2800_importance = one_of(r, "s2800_importance", {0.8, 1.0, 1.2, 1.4}, "0.8, 1.0, 1.2 or 1.4 (Standard 2800 I)");
   if (r.get("storeys")) f.storeys = r.integer("storeys", 0, 1, 200);
-  f.storey_height = number("storey_height", 1e-300, 10.0, "(0, 10] m ([2, 10] m for an SDOF building)");
+  if (r.get("storey_height")) f.storey_height = r.number("storey_height", 0.0);  // the registry's range, [0.01, 10] m
   return f;
 }
 

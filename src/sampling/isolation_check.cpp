@@ -15,16 +15,7 @@
 namespace pounding::sampling {
 namespace {
 
-// An input checked against the range of the study key that means the same.
-void require_key_range(double value, std::string_view section, std::string_view key, const std::string& option,
-                       std::string_view note = "") {
-  const config::StudyKey* d = config::find_study_key(section, key);
-  if (d == nullptr || std::isnan(d->lo) || std::isnan(d->hi))
-    throw std::logic_error(fmt::format("study key {}.{} has no numeric range", section, key));
-  require_range(value, d->lo, d->hi, option,
-                fmt::format("{}{}{} ({}as {} in a study's {} = {{...}})", d->range, d->units.empty() ? "" : " ",
-                            d->units, note, key, section));
-}
+using config::require_key_range;  // the study keys' ranges (config/study_keys.hpp)
 
 void check_pendulum(const IsolationInput& s, const IsolationNames& name) {
   if (s.k_eff_given || s.zeta_given || s.lrb_given)

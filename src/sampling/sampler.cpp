@@ -78,7 +78,7 @@ void validate_shared(const StructureModel& m, const WhereFn& where) {
   need(m.contact_youngs_modulus > 0 && m.contact_youngs_modulus <= 1e13, "contact_youngs_modulus",
        m.contact_youngs_modulus, "(0, 1e13] Pa", where);
   need(m.contact_poisson >= 0 && m.contact_poisson < 0.5, "contact_poisson", m.contact_poisson, "[0, 0.5)", where);
-  need(m.kh >= 0, "kh", m.kh, "[0, inf) N/m^1.5 (0: equivalent spheres)", where);
+  need(m.kh >= 0 && m.kh <= 1e20, "kh", m.kh, "[0, 1e20] N/m^1.5 (0: equivalent spheres)", where);
 }
 
 // equal_heights: heights from the rule and grid (or fixed) periods in both buildings, and a common height for

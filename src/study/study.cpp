@@ -21,6 +21,7 @@
 #include "pounding/physics/shear_building.hpp"
 #include "pounding/core/error.hpp"
 #include "pounding/core/files.hpp"
+#include "pounding/core/machine.hpp"
 
 namespace pounding {
 
@@ -728,49 +729,6 @@ double result_bytes(const Study& s, std::size_t records) {
   return static_cast<double>(records) * polarity_count(s.polarity) *
          static_cast<double>(std::max<std::size_t>(1, s.intensity.stripes())) * static_cast<double>(s.structures.period_pair_count()) *
          static_cast<double>(s.structures.samples_per_pair) * per_model;
-}
-
-namespace {
-std::string human_bytes(double b) {
-  const char* units[] = {"bytes", "KiB", "MiB", "GiB", "TiB", "PiB", "EiB"};
-  int i = 0;
-  while (b >= 1024.0 && i < 6) b /= 1024.0, ++i;
-  return i == 0 ? fmt::format("{:.0f} bytes", b) : fmt::format("{:.3g} {}", b, units[i]);
-}
-}  // namespace
-
-double available_memory_bytes() {
-  if (const char* v = std::getenv("POUNDING_TEST_MEMORY_AVAILABLE")) return std::atof(v);  // tests only
-  double avail = NAN;
-  {
-    std::ifstream in("/proc/meminfo");
-    std::string key;
-    double kb = 0;
-    std::string unit;
-    while (in >> key >> kb) {
-      std::getline(in, unit);
-      if (key == "MemAvailable:") {
-        avail = kb * 1024.0;
-        break;
-      }
-    }
-  }
-  // a container's limit (cgroup v2, then v1): what is left of it
-  auto read_number = [](const char* path) {
-    std::ifstream in(path);
-    std::string s;
-    if (!(in >> s) || s == "max") return static_cast<double>(NAN);
-    char* end = nullptr;
-    const double v = std::strtod(s.c_str(), &end);
-    return end && *end == 0 && v > 0 && v < 1e18 ? v : static_cast<double>(NAN);
-  };
-  for (const auto& [limit, usage] : {std::pair{"/sys/fs/cgroup/memory.max", "/sys/fs/cgroup/memory.current"},
-                                    std::pair{"/sys/fs/cgroup/memory/memory.limit_in_bytes",
-                                              "/sys/fs/cgroup/memory/memory.usage_in_bytes"}}) {
-    const double l = read_number(limit), u = read_number(usage);
-    if (std::isfinite(l) && std::isfinite(u)) avail = std::isfinite(avail) ? std::min(avail, l - u) : l - u;
-  }
-  return avail;
 }
 
 int ranks_on_this_node() {

@@ -118,7 +118,7 @@ refuse --stiffness/--stiffnesses/--period --storeys 3 --mass 1e5
 refuse --stiffness/--stiffnesses/--period --storeys 3 --mass 1e5 --stiffness 1e8 --period 0.5
 refuse --period --storeys 3 --mass 1e5 --period 0
 refuse --period --storeys 3 --mass 1e5 --period 100
-refuse --period --storeys 200 --mass 1e10 --period 0.01
+refuse --period --storeys 200 --mass 1e9 --period 0.02
 refuse --profile --storeys 3 --mass 1e5 --period 0.5 --profile triangle
 refuse --profile --storeys 3 --mass 1e5 --stiffness 1e8 --profile shear
 refuse --storey-height --storeys 3 --mass 1e5 --stiffness 1e8 --storey-height 3
@@ -135,7 +135,8 @@ refuse --modal-zeta --storeys 3 --mass 1e5 --stiffness 1e8 --modal-zeta 0.05 --r
 refuse --modal-zeta --storeys 2 --mass 1e5 --stiffness 1e8 --modal-zeta 0.05,0.04,0.03
 refuse --modal-zeta --storeys 2 --mass 1e5 --stiffness 1e8 --modal-zeta 0.05,0.6
 refuse --modes --storeys 3 --mass 1e5 --stiffness 1e8 --modes 4
-refuse --masses/--stiffnesses --masses 0.001,1e10 --stiffnesses 1e8,1e8
+# masses 13 decades apart: beyond a study's floor_mass range (the ranges keep a stick within 12 decades)
+refuse --masses --masses 0.001,1e10 --stiffnesses 1e8,1e8
 refuse --csv/--json --storeys 3 --mass 1e5 --stiffness 1e8 --csv --json
 refuse --bogus --storeys 3 --mass 1e5 --stiffness 1e8 --bogus 1
 echo "modes: all checks passed"

@@ -122,7 +122,7 @@ check_path() {  # check_path <label> <regex> <args...>
 }
 check_path "--out DIR" "is an existing folder" --out "$tmp/dir"
 check_path "--out DIR/" "names a folder" --out "$tmp/dir/"
-check_path "--out ''" "output path is empty" --out ""
+check_path "--out ''" "out: the value is empty" --out ""
 check_path "missing parent" "does not exist" --out "$tmp/nope/r.h5"
 check_path "special file" "exists and is a character device; pounding replaces only regular files" --out /dev/null
 if [ "$(id -u)" -eq 0 ] && id nobody > /dev/null 2>&1; then

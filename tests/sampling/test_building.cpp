@@ -389,7 +389,7 @@ TEST(BuildingErrors, CodeFactors) {  // issue 23 item 5: the code design factors
   expect_error(b1 + "s2800_importance = 1.3\n", "s2800_importance", "0.8, 1.0, 1.2 or 1.4");
   expect_error(b1 + "storeys = 0\n", "storeys", "[1, 200]");
   expect_error(b1 + "storeys = 2.5\n", "storeys");
-  expect_error(b1 + "storey_height = 12\n", "storey_height", "[2, 10] m");
+  expect_error(b1 + "storey_height = 12\n", "storey_height", "[0.01, 10] ([2, 10] for model = \"sdof\") m");
   const StructureModel m = parse(b1 + "asce7_r = 8\nasce7_cd = 5.5\nasce7_ie = 1.25\nec8_q = 3.9\nstoreys = 6\n"
                                       "[structures.building2]\ns2800_ru = 7.5\ns2800_cd = 5.5\ns2800_importance = 1.2\n"
                                       "storey_height = 3.5\n");

@@ -48,6 +48,19 @@ std::string study_section_of(std::string_view table_name);
 
 // The key's description, or nullptr.
 const StudyKey* find_study_key(std::string_view section, std::string_view key);
+// The key's description; std::logic_error when it is not described (a programming error).
+const StudyKey& study_key(std::string_view section, std::string_view key);
+
+// THE range of a quantity for every front end (issue 44 item 11): an input that means the same as a study key --
+// `pounding simulate`'s and `modes`' options, the Python module's arguments, a bridge file's defaults -- is checked
+// against that key's lo, hi, so the command line, Python and a study accept the same storey masses, periods,
+// stiffnesses. InputError "<name> = <value> is out of range" at `name` (not finite included), the fix
+// "give a value in <range> <units> (<note>as <key> in a study's <section>)". std::logic_error when the key has no
+// numeric range.
+void require_key_range(double value, std::string_view section, std::string_view key, const std::string& name,
+                       std::string_view note = "");
+// "[structures.buildingK]", "isolation = {...}", "[analysis]": where a study sets a key of `section`, for messages.
+std::string study_section_text(std::string_view section);
 
 // docs/study-reference.md.
 std::string study_reference_markdown();

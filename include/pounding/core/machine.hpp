@@ -16,4 +16,11 @@ Machine this_machine();
 // "host 'h', CPU model, n CPUs" for reports; pieces that are unknown are left out, "" when all are.
 std::string machine_text(const Machine& m);
 
+// The memory this process may still use: MemAvailable, or less when a cgroup (container) limit leaves less; NaN
+// when unknown. POUNDING_TEST_MEMORY_AVAILABLE (bytes) replaces it in tests. The one measure every memory check
+// before work uses (a study's result arrays, simulate's time loop, the support motions of `pounding motions`).
+double available_memory_bytes();
+// "512 bytes", "3.5 MiB", "25 TiB" (powers of 1024, three significant digits) for messages.
+std::string human_bytes(double bytes);
+
 }  // namespace pounding

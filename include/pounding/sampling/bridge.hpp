@@ -36,6 +36,8 @@ struct BridgeReadDefaults {
   double kc = std::numeric_limits<double>::quiet_NaN();  // a joint's contact_stiffness when absent (NaN: required)
   double e = 1.0;                                        // a joint's restitution when absent
   std::string kc_source = "--kh";                        // what gives kc (named in the error when it is missing)
+  std::string e_source = "--e";                          // what gives e
+  // kc and e given to a joint are checked against the joint's keys' ranges, as the joint's own values are
   bool study = false;                                    // a study: restrainer slack required, joint gaps > 0
   std::string restitution_given_by;  // non-empty: what gives every joint its restitution (a joint's own is refused)
 };

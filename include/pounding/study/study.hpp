@@ -242,9 +242,8 @@ inline constexpr double max_result_bytes = 64.0 * 1024 * 1024 * 1024;  // 64 GiB
 inline constexpr double result_peak_factor = 4.0;
 inline constexpr double model_peak_bytes = 500.0;
 inline constexpr double rank_base_bytes = 256.0 * 1024 * 1024;
-// The memory this process may still use: MemAvailable, or less when a cgroup (container) limit leaves less;
-// NaN when unknown (then only max_result_bytes applies). POUNDING_TEST_MEMORY_AVAILABLE (bytes) replaces it in tests.
-double available_memory_bytes();
+// The memory this process may still use: available_memory_bytes() (core/machine.hpp); NaN when unknown (then only
+// max_result_bytes applies).
 // Throws InputError naming [structures] samples_per_pair (file:line), the memory needed and the largest
 // samples_per_pair that fits, when result_bytes(study, records) > max_result_bytes, or when rank 0's peak
 // (result_peak_factor x result_bytes + rank_base_bytes) exceeds the memory available on this machine less

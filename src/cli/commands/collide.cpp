@@ -20,6 +20,7 @@
 #include "pounding/physics/single_impact.hpp"
 #include "pounding/physics/velocity_restitution.hpp"
 #include "pounding/core/error.hpp"
+#include "pounding/core/machine.hpp"
 #include "pounding/report/json.hpp"
 
 namespace pounding::cli {
@@ -222,6 +223,15 @@ void add_collide(CLI::App& app) {
       throw InputError(fmt::format("a restitution curve with the elastic {} law (it delivers e = 1)", to_string(cm.law)),
                        "--law", "choose a damped law (hertzdamp, kelvin, jankowski, stereomechanical)");
     if (o->steps < 100) throw InputError(fmt::format("--steps = {} is too few", o->steps), "--steps", "give >= 100");
+    // the run covers 3 contact durations at --steps per duration: one schedule row per step (physics::make_schedule)
+    // -- 2e9 ended in std::bad_alloc (issue 44 item 8)
+    if (const double need = 8.0 * (3.0 * o->steps + 1.0), avail = available_memory_bytes();
+        std::isfinite(avail) && need > avail)
+      throw InputError(fmt::format("--steps = {} needs {} for the run's {} steps, more than the {} of memory available "
+                                   "on this machine (MemAvailable)",
+                                   o->steps, human_bytes(need), 3.0 * o->steps, human_bytes(avail)),
+                       "--steps", fmt::format("give --steps <= {:.0f} (the default 20000 resolves every law)",
+                                              std::floor(avail / 24.0)));
     const Stepper stepper = as_option("--stepper", [&] { return parse_stepper(o->stepper); });
     if (!o->sweep.empty()) {
       run_sweep(*o, cm, stepper, curve ? &*curve : nullptr, c->count("--e") > 0);

@@ -23,6 +23,7 @@
 
 #include "cli/commands.hpp"
 #include "cli/commands/records_options.hpp"
+#include "pounding/config/study_keys.hpp"
 #include "pounding/core/error.hpp"
 #include "pounding/model/modes.hpp"
 
@@ -52,11 +53,17 @@ struct Range {
   double lo, hi;
   std::string text;  // the range and an example, for the fix
 };
-const Range mass_range{1e-3, 1e10, "[0.001, 1e10] kg per floor (a 1/30-scale frame floor 6.53, a concrete floor 1e5 to 1e7)"};
-const Range stiffness_range{1.0, 1e13, "[1, 1e13] N/m per storey (a 1/30-scale frame storey 137.5e3, a real storey 1e7 to 1e10)"};
-const Range period_range{0.01, 20.0, "[0.01, 20] s"};
-const Range height_range{0.01, 10.0, "[0.01, 10] m (3.2 for a typical storey, 0.1 for the 1/30-scale frames)"};
-const Range zeta_range{0.0, 0.5, "[0, 0.5] (0.05 for 5 %)"};
+// The ranges of a study's shear building (config/study_keys.hpp: one range per quantity for the studies, simulate,
+// modes and Python), with an example.
+Range key_range(std::string_view key, std::string_view example) {
+  const config::StudyKey& k = config::study_key("structures.buildingN", key);
+  return {k.lo, k.hi, fmt::format("{}{}{} ({}; as {} in a study)", k.range, k.units.empty() ? "" : " ", k.units, example, key)};
+}
+const Range mass_range = key_range("floor_mass", "a 1/30-scale frame floor 6.53, a concrete floor 1e5 to 1e7");
+const Range stiffness_range = key_range("storey_stiffness", "a 1/30-scale frame storey 137.5e3, a real storey 1e7 to 1e10");
+const Range period_range = key_range("period", "the first period T1");
+const Range height_range = key_range("storey_height", "3.2 for a typical storey, 0.1 for the 1/30-scale frames");
+const Range zeta_range = key_range("zeta", "0.05 for 5 %");
 
 bool given(const std::string& s) { return !s.empty(); }
 

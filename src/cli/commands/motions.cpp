@@ -28,6 +28,7 @@
 #include "pounding/core/files.hpp"
 #include "pounding/core/progress.hpp"
 #include "pounding/motion/design_spectrum.hpp"
+#include "pounding/motion/records.hpp"
 #include "pounding/motion/spatial.hpp"
 
 namespace pounding::cli {
@@ -144,6 +145,20 @@ void write_folder(const std::string& dir, const MotionsOpts& o, const spatial::S
   }
 }
 
+// The records a study would refuse: [records.motions] runs require_analysable on the same realisations (a PGA above
+// 5 g, records.hpp), so `motions` refuses them too, before anything is written (a csv target of Sa 1e29 g wrote AT2
+// files of PGA 5.4e29 g).
+void check_analysable(const MotionsOpts& o, const std::vector<spatial::Realisation>& rs) {
+  for (const spatial::Realisation& r : rs)
+    for (std::size_t j = 0; j < r.supports.size(); ++j)
+      if (const auto e = analysis_problem(r.supports[j], {1.0, "", ""}))
+        throw InputError(fmt::format("realisation {} support {}: {}", r.index + 1, j + 1, e->what_part()),
+                         o.req.spectrum == "csv" ? "--spectrum-file" : "--z/--r",
+                         fmt::format("a study refuses these records ([records.motions] with the same options): give a "
+                                     "target spectrum in g whose motions stay within {} g",
+                                     record_pga_max_g));
+}
+
 }  // namespace
 
 void add_motions(CLI::App& app) {
@@ -153,8 +168,8 @@ void add_motions(CLI::App& app) {
   spatial::Request& q = o->req;
   c->add_option("--supports", q.supports, "number of supports, evenly spaced (2-16; default 2)");
   c->add_option("--spacing", q.spacing, "support spacing, m (default 100)");
-  c->add_option("--positions", q.positions, "support positions along the propagation direction, m "
-                                            "(increasing; instead of --supports/--spacing)")->delimiter(',');
+  add_number_list(c, "--positions", q.positions, "support positions along the propagation direction, m "
+                                                 "(increasing; instead of --supports/--spacing)");
   c->add_option("--velocity", q.velocity, "apparent wave velocity, m/s (default 500)");
   c->add_flag("--no-wave-passage", o->no_wave_passage, "no time delay between supports");
   c->add_option("--coherency", q.coherency, "coherency model: sobczyk (default), harichandran-vanmarcke, luco-wong, none");
@@ -174,7 +189,7 @@ void add_motions(CLI::App& app) {
   c->add_option("--decay", q.decay, "envelope decay rate after t2, 1/s (default 0.5)");
   c->add_option("--f-min", q.f_min, "lowest frequency of the PSD, Hz (default 0.1)");
   c->add_option("--f-max", q.f_max, "highest frequency of the PSD, Hz (default 25)");
-  c->add_option("--match-range", q.match_range, "matching periods LO,HI, s (default 0.05,4)")->delimiter(',');
+  add_number_list(c, "--match-range", q.match_range, "matching periods LO,HI, s (default 0.05,4)");
   c->add_option("--match-points", q.match_points, "matching periods, log-spaced (default 30)");
   c->add_option("--iterations", q.iterations, "spectrum-matching updates at most (default 10; 0: none)");
   c->add_option("--tolerance", q.tolerance, "largest |PSA/Sa - 1| that ends the matching (default 0.1)");
@@ -211,6 +226,7 @@ void add_motions(CLI::App& app) {
       fmt::print(stderr, " stopped: {}; nothing written\n", e.what());
       throw ExitRequest{130};
     }
+    check_analysable(*o, rs);
     write_folder(o->out, *o, s, rs, command_line);
     double worst = 0;
     for (const auto& r : rs)

@@ -25,6 +25,7 @@
 #include "pounding/physics/velocity_restitution.hpp"
 #include "pounding/report/json.hpp"
 #include "pounding/core/files.hpp"
+#include "pounding/core/machine.hpp"
 #include "pounding/io/hdf5.hpp"
 #include "pounding/model/shear_building.hpp"
 #include "pounding/physics/batch.hpp"
@@ -167,7 +168,17 @@ Structure make_structure(double m, double T, double k, double h, double fy, doub
                          const std::string& i, bool k_given, bool fy_given) {
   require_positive(m, "--m" + i);
   if (k_given) require_positive(k, "--k" + i);
-  if (fy_given) require_positive(fy, "--fy" + i);
+  if (fy_given) {
+    require_positive(fy, "--fy" + i);
+    // the yield coefficient Cy = fy / (m g) a study's building may have
+    const config::StudyKey& cy = config::study_key("structures.buildingN", "yield_coefficient");
+    const double w = m * g_accel;
+    if (!(fy >= cy.lo * w && fy <= cy.hi * w))
+      throw InputError(fmt::format("--fy{} = {} N is {:.3g} times the weight m g = {:.6g} N", i, fy, fy / w, w), "--fy" + i,
+                       fmt::format("give a yield force of {} times m g, [{:.6g}, {:.6g}] N (as yield_coefficient in a "
+                                   "study's [structures.buildingK])",
+                                   cy.range, cy.lo * w, cy.hi * w));
+  }
   Structure s;
   if (k_given) {
     s.m = m, s.k = k, s.c = 2.0 * zeta * std::sqrt(k * m);
@@ -211,25 +222,61 @@ void write_series_h5(const std::string& path, const SeriesRecorder& r, const std
   f.commit();
 }
 
-// The scalar options, checked before any work or output.
+// The scalar options, checked before any work or output. A quantity a study also sets is checked against that
+// study key's range (config::require_key_range: one range per quantity for simulate, Python and the studies).
 void validate_scalars(const SimulateOptions& o) {
-  require_range(o.zeta, 0.0, 0.999, "--zeta", "[0, 1)");
-  for (double z : o.modal_zeta) require_range(z, 0.0, 0.5, "--modal-zeta", "[0, 0.5] each");
-  require_range(o.alpha, 0.0, std::nextafter(1.0, 0.0), "--alpha", "[0, 1)");
+  using config::require_key_range;
+  require_key_range(o.zeta, "structures", "zeta", "--zeta");
+  for (double z : o.modal_zeta) require_key_range(z, "structures", "modal_zeta", "--modal-zeta", "each; ");
+  require_key_range(o.alpha, "structures", "alpha", "--alpha");
   if (!std::isfinite(o.gap) || o.gap < 0)
     throw InputError(fmt::format("--gap = {} must be >= 0", o.gap), "--gap", "give the at-rest separation in m");
-  require_range(o.e, std::nextafter(0.0, 1.0), 1.0, "--e", "(0, 1]");
+  require_key_range(o.e, "contact", "e", "--e");
   if (o.dt_given) require_positive(o.dt, "--dt");
   if (o.duration_given) require_positive(o.duration, "--duration");
-  if (o.kh_given) require_positive(o.kh, "--kh");
-  require_positive(o.u_limit, "--u-limit");
+  if (o.kh_given) require_positive(o.kh, "--kh"), require_key_range(o.kh, "contact", "stiffness", "--kh");
+  require_key_range(o.u_limit, "analysis", "displacement_limit", "--u-limit");
+  require_key_range(o.density, "structures", "contact_density", "--density");
+  require_key_range(o.youngs, "structures", "contact_youngs_modulus", "--E");
+  require_key_range(o.poisson, "structures", "contact_poisson", "--nu");
+}
+
+// A building's options as given (not inherited), against the study keys of a building: --mK its mass, --TK its
+// period, --hK its height, --kK its stiffness (an SDOF is a one-storey shear building: storey_stiffness),
+// --storey-massK, --storey-stiffnessK, --storey-heightK the shear model's floor_mass, storey_stiffness,
+// storey_height. A storey mass of 1e300 kg ran to "status: ok" with infinite energies; --T1 1e9 ran.
+struct GivenBuilding {
+  std::string k;
+  double m, T, kk, h;
+  bool m_given, T_given, k_given, h_given;
+  const SimulateOptions::Storeys& st;
+};
+void validate_building(const GivenBuilding& b) {
+  using config::require_key_range;
+  constexpr std::string_view B = "structures.buildingN";
+  if (b.m_given) require_key_range(b.m, B, "mass", "--m" + b.k);
+  if (b.T_given) require_key_range(b.T, B, "period", "--T" + b.k);
+  if (b.k_given) require_key_range(b.kk, B, "storey_stiffness", "--k" + b.k, "an SDOF is a one-storey building; ");
+  if (b.h_given) require_key_range(b.h, B, "height", "--h" + b.k, "the default mass m = mbar rho r^2 h comes from it; ");
+  if (b.st.mass_given) require_key_range(b.st.mass, B, "floor_mass", "--storey-mass" + b.k);
+  if (b.st.stiffness_given) require_key_range(b.st.stiffness, B, "storey_stiffness", "--storey-stiffness" + b.k);
+  if (b.st.height_given) require_key_range(b.st.height, B, "storey_height", "--storey-height" + b.k);
+}
+void validate_buildings(const SimulateOptions& o) {
+  // --T1, --T2 and --h1, --h2 have defaults in range: checked whether given or not
+  validate_building({"1", o.m1, o.T1, o.k1, o.h1, o.m1_given, true, o.k1_given, true, o.b[0]});
+  validate_building({"2", o.m2, o.T2, o.k2, o.h2, o.m2_given, true, o.k2_given, true, o.b[1]});
+  for (int K = 3; K <= std::min(o.buildings, SimulateOptions::max_buildings); ++K) {
+    const SimulateOptions::RowBuilding& x = o.more[K - 3];
+    validate_building({std::to_string(K), x.m, x.T, x.k, x.h, x.m_given, x.T_given, x.k_given, x.h_given, x.st});
+  }
 }
 
 ContactModel contact_model(const SimulateOptions& o) {
   ContactModel cm;
   cm.law = as_option("--contact", [&] { return parse_contact_law(o.contact); });
   cm.damping = as_option("--damping-law", [&] { return parse_damping_law(o.damping_law); });
-  require_range(o.n, 1.0, 3.0, "--n", "[1, 3]");
+  config::require_key_range(o.n, "contact", "n", "--n");
   cm.n = o.n;
   return cm;
 }
@@ -265,12 +312,58 @@ Record ground_motion(const SimulateOptions& o) {
 
 // Substeps per record step for --dt, which must divide it.
 int substeps_for(const SimulateOptions& o, double record_dt) {
-  double q = record_dt / o.dt;
+  const double q = record_dt / o.dt;
+  const config::StudyKey& most = config::study_key("analysis", "substeps");  // 1e-9 s: 5e6 substeps, std::bad_alloc
+  if (!(q <= most.hi + 0.5))
+    throw InputError(fmt::format("--dt = {} s is {:.4g} integration steps per record step of {} s, more than the {:g} a "
+                                 "study allows",
+                                 o.dt, q, record_dt, most.hi),
+                     "--dt",
+                     fmt::format("give --dt >= {:.6g} s (the record step / {:g}, as [analysis] substeps)",
+                                 record_dt / most.hi, most.hi));
   const int substeps = static_cast<int>(std::lround(q));
   if (substeps < 1 || std::abs(q - substeps) > 1e-9 * q)
     throw InputError(fmt::format("--dt = {} does not divide the record step {}", o.dt, record_dt), "--dt",
                      "give the record step divided by a whole number");
   return substeps;
+}
+
+// The sizes the options set, checked before any record is copied or padded and before the time loop (issue 44 item 8:
+// --duration 1e12 and --dt 1e-9 ended in std::bad_alloc, --wave-delay 1e300 in vector::_M_fill_insert): free
+// vibration after the record at most a study's [analysis] free_vibration, and the memory of the run -- every support's
+// record (`samples` each, padded), and per integration step the time loop's schedule (physics::make_schedule: ag; with
+// several supports each channel's ag, vg, ug) and --series' 11 columns -- within the memory available
+// (available_memory_bytes, core/machine.hpp; the measure of a study's memory check).
+void check_sizes(const SimulateOptions& o, double record_dt, std::size_t samples, int channels) {
+  const double record_length = record_dt * static_cast<double>(samples > 0 ? samples - 1 : 0);
+  const config::StudyKey& fv = config::study_key("analysis", "free_vibration");
+  if (o.duration_given && o.duration - record_length > fv.hi)
+    throw InputError(fmt::format("--duration = {} s is the record's {:.6g} s and {:.6g} s of free vibration, more than "
+                                 "the {:g} s a study allows",
+                                 o.duration, record_length, o.duration - record_length, fv.hi),
+                     "--duration",
+                     fmt::format("give --duration <= {:.6g} s (the record and at most {:g} s of free vibration, as "
+                                 "[analysis] free_vibration)",
+                                 record_length + fv.hi, fv.hi));
+  const int substeps = o.dt_given ? substeps_for(o, record_dt) : 1;
+  const double length = o.duration_given ? o.duration : record_length;
+  const double steps = std::ceil(length / record_dt) * substeps;
+  const double per_step = 1.0 + (channels > 1 ? 3.0 * channels : 0.0) + (o.series.empty() ? 0.0 : 11.0);
+  const double need = 8.0 * (2.0 * channels * static_cast<double>(samples) + per_step * (steps + 1.0));
+  const double avail = available_memory_bytes();
+  if (!(std::isfinite(avail) && need > avail)) return;
+  const double fit = std::floor((avail / 8.0 - 2.0 * channels * static_cast<double>(samples)) / per_step);
+  const std::string where = o.wave_delay_given ? "--wave-delay" : o.duration_given ? "--duration" : o.dt_given ? "--dt" : "--record";
+  throw InputError(
+      fmt::format("the run needs {} ({:.4g} s in {:.4g} integration steps of {:.4g} s{}{}), more than the {} of memory "
+                  "available on this machine (MemAvailable)",
+                  human_bytes(need), length, steps, record_dt / substeps,
+                  channels > 1 ? fmt::format(", {} supports of {} samples each", channels, samples) : std::string(),
+                  o.series.empty() ? "" : ", every step kept for --series", human_bytes(avail)),
+      where,
+      fit >= 1 ? fmt::format("give a shorter --duration, a longer --dt{} (at most {:.4g} steps fit)",
+                             o.wave_delay_given ? " or a shorter --wave-delay" : "", fit)
+               : std::string("give a shorter record or fewer supports"));
 }
 
 PairParams pair_params(const SimulateOptions& o, const ContactModel& cm, const Structure& s1, const Structure& s2) {
@@ -327,9 +420,7 @@ void validate_storeys(const SimulateOptions& o) {
     if (b.storeys < 1 || b.storeys > model::max_storeys)
       throw InputError(fmt::format("--storeys{} = {} is out of range", k, b.storeys), "--storeys" + k,
                        fmt::format("give a number of storeys in [1, {}]", model::max_storeys));
-    require_range(b.height, 0.01, 100.0, "--storey-height" + k, "[0.01, 100] m");
-    if (b.mass_given) require_positive(b.mass, "--storey-mass" + k);
-    if (b.stiffness_given) require_positive(b.stiffness, "--storey-stiffness" + k);
+    config::require_key_range(b.height, "structures.buildingN", "storey_height", "--storey-height" + k);  // default 3.2
     if (b.storeys == 1) continue;
     const bool given[] = {i == 0 ? o.m1_given : o.m2_given, i == 0 ? o.k1_given : o.k2_given,
                           i == 0 ? o.fy1_given : o.fy2_given, i == 0 ? o.h1_given : o.h2_given};
@@ -348,13 +439,10 @@ void validate_storeys(const SimulateOptions& o) {
     throw InputError("--series records an SDOF pair only", "--series", "drop --series or the storey options");
   if (o.contact_levels != "common" && o.contact_levels != "top")
     throw unknown_key_error(o.contact_levels, "--contact-levels", "--contact-levels", "common, top", "argument");
-  require_range(o.level_tolerance, 0.0, 1.0, "--level-tolerance", "[0, 1] m");
+  config::require_key_range(o.level_tolerance, "contact", "level_tolerance", "--level-tolerance");
   if (!parse_enum(model::shape_functions_names, o.shape_functions))
     throw unknown_key_error(o.shape_functions, "--shape-functions", "--shape-functions", "linear, cubic", "argument");
-  for (double off : o.gap_offsets)
-    if (!std::isfinite(off) || o.gap + off < 0)
-      throw InputError(fmt::format("--gap-offsets value {} makes a gap of {} m", off, o.gap + off), "--gap-offsets",
-                       "give offsets (m) with --gap + offset >= 0");
+  for (double off : o.gap_offsets) config::require_key_range(off, "contact", "gap_offsets", "--gap-offsets", "each; ");
 }
 
 // Building i's numbers. One storey: the SDOF options unchanged (make_structure), so two one-storey buildings of
@@ -435,8 +523,8 @@ void set_storey_contacts(const SimulateOptions& o, const ContactModel& cm, physi
   if (needs_kh && !o.kh_given) require_positive(0.0, "--kh (linear/Kelvin stiffness, N/m)");
   int top = 0;
   for (const model::ContactElement& ce : sys.contacts()) top = std::max(top, ce.level);
-  if (!o.gap_offsets.empty() && static_cast<int>(o.gap_offsets.size()) < top)
-    throw InputError(fmt::format("--gap-offsets has {} values and the buildings pound up to level {}",
+  if (!o.gap_offsets.empty() && static_cast<int>(o.gap_offsets.size()) != top)  // more: they were silently ignored
+    throw InputError(fmt::format("--gap-offsets has {} values and the buildings pound at levels 1 to {}",
                                  o.gap_offsets.size(), top),
                      "--gap-offsets", fmt::format("give one offset (m) per level from level 1 to {}", top));
   physics::set_contacts(batch, 0, o.gap, 0.0, o.e, o.gap_offsets,
@@ -544,12 +632,7 @@ void resolve_row(SimulateOptions& o) {
         if (user)
           throw InputError(fmt::format("{}{} describes an SDOF, and building {} has {} storeys", name, k, k, x.st.storeys),
                            name + k, "give the storey options --storey-mass" + k + " / --storey-stiffness" + k);
-    require_range(x.st.height, 0.01, 100.0, "--storey-height" + k, "[0.01, 100] m");
-    if (x.st.mass_given) require_positive(x.st.mass, "--storey-mass" + k);
-    if (x.st.stiffness_given) require_positive(x.st.stiffness, "--storey-stiffness" + k);
-    if (x.h_given) require_positive(x.h, "--h" + k);
-    if (x.m_given) require_positive(x.m, "--m" + k);
-    if (x.T_given) require_positive(x.T, "--T" + k);
+    // the values given for building K were checked by validate_buildings, those it inherits as building 1's or 2's
   }
 }
 
@@ -657,6 +740,7 @@ int run_storeys(SimulateOptions& o, const ContactModel& cm, KernelSettings& ks) 
   for (std::size_t e = 0; e < sys.contacts().size(); ++e)
     run.contact_stiffness[e] = batch.kc[e], run.contact_gap[e] = batch.gap[e];
   Record rec = ground_motion(o);
+  check_sizes(o, rec.dt, rec.acc.size(), 1);
   const double record_length = rec.duration();
   const double analysis_length = cut_to_duration(o, rec);
   if (o.dt_given) ks.substeps = substeps_for(o, rec.dt);
@@ -728,6 +812,19 @@ void bridge_report(const physics::BridgeSpec& spec, const physics::SystemBatch& 
   run.gap = spec.joints.empty() ? 0.0 : spec.joints[0].gap;
 }
 
+// --wave-delay: the delay between neighbouring supports a study's support motions can have, at most the largest
+// [records.motions] spacing over the smallest velocity (10000 m / 50 m/s = 200 s). 1e300 s ended in
+// vector::_M_fill_insert, 1e6 s took 3.1 GB.
+void check_wave_delay(const SimulateOptions& o) {
+  const double most = config::study_key("records.motions", "spacing").hi / config::study_key("records.motions", "velocity").lo;
+  if (!(std::isfinite(o.wave_delay) && o.wave_delay >= 0 && o.wave_delay <= most))
+    throw InputError(fmt::format("--wave-delay = {} s is out of range", o.wave_delay), "--wave-delay",
+                     fmt::format("give the delay between neighbouring supports in [0, {:g}] s (a study's support motions: "
+                                 "[records.motions] spacing <= {:g} m over velocity >= {:g} m/s)",
+                                 most, config::study_key("records.motions", "spacing").hi,
+                                 config::study_key("records.motions", "velocity").lo));
+}
+
 // The ground motion of every support of a bridge: --support-record files (one per support, the same step; a shorter
 // one padded with zeros), or --record (or the built-in sweep) delayed by k * --wave-delay at support k + 1 (a whole
 // number of record steps), or the one record for every support of a one-channel bridge.
@@ -748,11 +845,13 @@ std::vector<Record> support_motions(const SimulateOptions& o, int channels) {
         throw InputError(fmt::format("{} has step {} s, {} has {} s", f, recs.back().dt, o.support_records[0], recs.front().dt),
                          "--support-record", "resample the records to one time step");
     }
+    std::size_t longest = 0;
+    for (const Record& r : recs) longest = std::max(longest, r.acc.size());
+    check_sizes(o, recs.front().dt, longest, channels);
   } else {
     const Record base = ground_motion(o);
     if (o.wave_delay_given) {
-      if (!(std::isfinite(o.wave_delay) && o.wave_delay >= 0))
-        throw InputError(fmt::format("--wave-delay = {} must be >= 0", o.wave_delay), "--wave-delay", "give the delay between neighbouring supports (s)");
+      check_wave_delay(o);
       const double q = o.wave_delay / base.dt;
       if (std::abs(q - std::round(q)) > 1e-9 * std::max(1.0, q))
         throw InputError(fmt::format("--wave-delay = {} s is not a whole number of record steps ({} s)", o.wave_delay, base.dt),
@@ -762,6 +861,7 @@ std::vector<Record> support_motions(const SimulateOptions& o, int channels) {
                        "give --support-record per support, or --wave-delay S to delay --record from support to support");
     }
     const auto shift = static_cast<std::size_t>(std::llround(o.wave_delay_given ? o.wave_delay / base.dt : 0.0));
+    check_sizes(o, base.dt, base.acc.size() + shift * static_cast<std::size_t>(channels - 1), channels);
     for (int k = 0; k < channels; ++k) {
       Record r = base;
       r.acc.insert(r.acc.begin(), shift * static_cast<std::size_t>(k), 0.0);
@@ -865,6 +965,7 @@ int run_simulate(SimulateOptions& o) {
     files::check_output_path(o.series, "--series");
   }
   validate_scalars(o);  // everything is validated before any work or output
+  validate_buildings(o);
   const ContactModel cm = contact_model(o);
   KernelSettings ks = kernel_settings(o);
   if (o.curve && (o.storey_mode() || cm.law != ContactLaw::hertzdamp || ks.stepper != Stepper::central_difference))
@@ -883,6 +984,7 @@ int run_simulate(SimulateOptions& o) {
   Structure s1 = make_structure(o.m1, o.T1, o.k1, o.h1, o.fy1, o.alpha, o.zeta, o.elastic, "1", o.k1_given, o.fy1_given);
   Structure s2 = make_structure(o.m2, o.T2, o.k2, o.h2, o.fy2, o.alpha, o.zeta, o.elastic, "2", o.k2_given, o.fy2_given);
   Record rec = ground_motion(o);
+  check_sizes(o, rec.dt, rec.acc.size(), 1);
   const double record_length = rec.duration();
   const double analysis_length = cut_to_duration(o, rec);
   if (o.dt_given) ks.substeps = substeps_for(o, rec.dt);
@@ -935,8 +1037,7 @@ void add_contact_level_options(CLI::App* c, SimulateOptions* o) {
       ->capture_default_str();
   c->add_option("--level-tolerance", o->level_tolerance, "floors whose levels differ by at most this (m) pound")
       ->capture_default_str();
-  c->add_option("--gap-offsets", o->gap_offsets, "per contact level from level 1, added to --gap (m), comma-separated")
-      ->delimiter(',');
+  add_number_list(c, "--gap-offsets", o->gap_offsets, "per contact level from level 1, added to --gap (m), comma-separated");
   c->add_option("--shape-functions", o->shape_functions,
                 "a floor striking a column between two floors: linear (N2 = xi) or cubic (the fixed-fixed column, "
                 "N2 = 3 xi^2 - 2 xi^3) weights of the two floors")
@@ -960,9 +1061,8 @@ void add_storey_options(CLI::App* c, SimulateOptions& opts) {
     c->add_option("--storey-height" + k, o->b[i].height,
                   "height of each storey of building " + k + " (m); floors at levels within 0.05 m pound")
         ->capture_default_str();
-    c->add_option("--rayleigh-modes" + k, o->b[i].rayleigh_modes,
-                  "the two modes i,j of building " + k + " that get --zeta exactly (Rayleigh; default 1,2)")
-        ->delimiter(',');
+    add_number_list(c, "--rayleigh-modes" + k, o->b[i].rayleigh_modes,
+                    "the two modes i,j of building " + k + " that get --zeta exactly (Rayleigh; default 1,2)");
   }
   for (int i = 0; i < 2; ++i) {
     const std::string k = std::to_string(i + 1);
@@ -1018,8 +1118,7 @@ void add_storey_options(CLI::App* c, SimulateOptions& opts) {
     c->add_option("--storey-stiffness" + k, x.st.stiffness, "stiffness of each storey of building " + k + " (N/m)")
         ->group(group);
     c->add_option("--storey-height" + k, x.st.height, "height of each storey of building " + k + " (m)")->group(group);
-    c->add_option("--rayleigh-modes" + k, x.st.rayleigh_modes, "Rayleigh's two modes i,j of building " + k)
-        ->delimiter(',')
+    add_number_list(c, "--rayleigh-modes" + k, x.st.rayleigh_modes, "Rayleigh's two modes i,j of building " + k)
         ->group(group);
   }
 }
@@ -1083,10 +1182,9 @@ void add_damping_options(CLI::App* c, SimulateOptions* o) {
   c->add_option("--zeta", o->zeta, "viscous damping ratio of both structures (multi-storey: Rayleigh damping with this "
                                    "ratio at modes 1 and 2, or --rayleigh-modesK i,j)")
       ->capture_default_str();
-  c->add_option("--modal-zeta", o->modal_zeta,
-                "multi-storey buildings: classical modal damping instead of Rayleigh, the ratio of each mode from mode 1 "
-                "(z1,z2,...; the last repeats for the higher modes; one-storey buildings keep --zeta)")
-      ->delimiter(',');
+  add_number_list(c, "--modal-zeta", o->modal_zeta,
+                  "multi-storey buildings: classical modal damping instead of Rayleigh, the ratio of each mode from "
+                  "mode 1 (z1,z2,...; the last repeats for the higher modes; one-storey buildings keep --zeta)");
 }
 
 void add_simulate(CLI::App& app) {

@@ -142,6 +142,27 @@ def test_storeys_must_be_whole_numbers():
     assert pounding.analyze_storeys(b, motion(), storeys=(2.0, 3))["status"][0] == 0
 
 
+@pytest.mark.parametrize("key, value, want", [
+    ("floor_mass1", 1e-30, r"floor_mass1 \(lane 0\) = 1e-30 is out of range, floor_mass1, give a value in \[1e-3, 1e9\] kg "
+                           r"\(as floor_mass in a study's \[structures.buildingK\]\)"),
+    ("floor_mass2", 1e300, r"floor_mass2 \(lane 0\) = 1e\+300 is out of range"),
+    ("period1", 1e9, r"period1 \(lane 0\) = 1000000000 is out of range, period1, give a value in \[0.02, 20\]"),
+    ("zeta2", 0.9, r"zeta2 \(lane 0\) = 0.9 is out of range, zeta2, give a value in \[0, 0.5\]"),
+    ("yield_coefficient1", 50.0, r"yield_coefficient1 \(lane 0\) = 50 is out of range"),
+])
+def test_storey_numbers_take_the_study_keys_ranges(key, value, want):
+    """Issue 44 item 11: the ranges of a study's floor_mass, period, zeta, yield_coefficient (config::study_key), as
+    `pounding simulate --storey-massK` etc.; they were (0, 1e12) kg, (0, 100) s, [0, 1), (0, 10)."""
+    b = {"floor_mass1": [1e5], "floor_mass2": [1e5], "period1": [0.5], "period2": [0.8], "gap": [0.05]}
+    b[key] = [value]
+    with pytest.raises(ValueError, match=want):
+        pounding.analyze_storeys(b, motion(), storeys=(2, 3))
+    with pytest.raises(ValueError, match=r"storey_height: every storey height in \[0.01, 10\] m \(as storey_height in a "
+                                         r"study\), not 50"):
+        pounding.analyze_storeys({"floor_mass1": [1e5], "floor_mass2": [1e5], "period1": [0.5], "period2": [0.8],
+                                  "gap": [0.05]}, motion(), storeys=(2, 3), storey_height=50.0)
+
+
 def test_an_empty_record_is_refused():
     for acc in ([], [0.1]):
         with pytest.raises(ValueError, match=r"Record: acc_g holds [01] value\(s\), Record\(acc_g=\), give at least 2 "
