@@ -19,6 +19,11 @@ inline constexpr std::size_t default_read_limit = std::size_t{256} << 20;  // 25
 std::string read_text(const std::string& path, const std::string& what, std::size_t max_bytes = default_read_limit,
                       bool regular_only = false);
 
+// An OS error as a message names it: strerror with the name of the common ones ("No space left on device (ENOSPC)"),
+// and what to do about it ("free disk space (or choose another folder) and rerun").
+std::string os_error(int err);
+std::string fix_for(int err);
+
 // Writes all n bytes to fd (retrying short writes and EINTR). Throws InputError naming path and the OS
 // error (ENOSPC, EFBIG, EIO, ...) otherwise.
 void write_all(int fd, const void* data, std::size_t n, const std::string& path);
