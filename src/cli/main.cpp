@@ -6,9 +6,11 @@
 #include "cli/errors.hpp"
 #include "pounding/core/timing.hpp"
 #include "pounding/core/version.hpp"
+#include "pounding/io/hdf5.hpp"
 
 int main(int argc, char** argv) {
   pounding::timing::program_start();  // the clock of the run's wall time and phases (core/timing.hpp)
+  pounding::h5::skip_cleanup_at_exit();  // a file whose close failed must not crash the exit (io/hdf5.hpp)
   CLI::App app{"pounding: probability of seismic pounding between adjacent structures"};
   app.set_version_flag("--version", std::string(pounding::program_version) + " (" + pounding::git_commit + ")");
   app.require_subcommand(1);

@@ -50,17 +50,7 @@ hid checked(hid_t id, const std::string& what) {
   return id;
 }
 
-// Before the library's first call: no clean-up at exit (H5_term_library). Every file this program opens is closed
-// by its Handle; one whose close failed (a full disk) stays in HDF5's tables half torn down, and the clean-up at
-// exit then crashed on it (SIGSEGV in H5F__close_cb, HDF5 1.10.8) after the run had printed its error.
-void start_library() {
-  static const bool started = [] {
-    H5dont_atexit();
-    return true;
-  }();
-  (void)started;
-  H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
-}
+void start_library() { H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr); }
 
 // The filters of a compressed dataset: HDF5's byte shuffle (for elements wider than a byte), then deflate at level 1.
 // The shuffle puts byte k of every value together, so the exponent and high mantissa bytes of doubles form long
@@ -417,6 +407,8 @@ void write_attr_raw(hid obj, const std::string& name, hid_t type, const void* va
 
 }  // namespace
 
+void skip_cleanup_at_exit() { H5dont_atexit(); }
+
 Handle& Handle::operator=(Handle&& o) noexcept {
   if (this != &o) {
     this->~Handle();
@@ -466,9 +458,10 @@ AtomicFile::AtomicFile(std::string path, Storage storage) : path_(std::move(path
 
 AtomicFile::~AtomicFile() { abandon(); }
 
-// Storage::disk without commit(): the temporary emptied first (truncate), so that on a full disk HDF5 has the room to
-// write what it still holds and its close succeeds; the objects of the file still open closed, the file closed, the
-// temporary removed.
+// Storage::disk without commit(): the temporary emptied first (truncate), so that on a full disk (ENOSPC) HDF5 has
+// the room to write what it still holds and its close succeeds (beyond ulimit -f, EFBIG, it fails again: the
+// executable's skip_cleanup_at_exit keeps that from crashing the exit); the objects of the file still open closed,
+// the file closed, the temporary removed.
 void AtomicFile::abandon() noexcept {
   if (temporary_.empty()) return;
   if (file_.valid()) {

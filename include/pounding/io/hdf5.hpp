@@ -15,6 +15,14 @@ namespace pounding::h5 {
 
 using hid = std::int64_t;  // hid_t without including hdf5.h
 
+// For a program, before its first HDF5 call: HDF5 does not clean up at exit (H5_term_library). The pounding
+// executable closes every file through its Handle; a file whose close failed stays in HDF5's tables half torn down,
+// and the clean-up at exit crashed on it (SIGSEGV in H5F__close_cb, HDF5 1.10.8) after the failed write had been
+// reported. AtomicFile gives a full disk (ENOSPC) room to close; under ulimit -f (EFBIG) or on EIO the close's own
+// writes still fail. Not for a library in a host process (the Python module): other HDF5 users there may count on
+// that clean-up.
+void skip_cleanup_at_exit();
+
 // Owns one HDF5 identifier (file, group, dataset, ...) and closes it.
 class Handle {
  public:
