@@ -142,7 +142,8 @@ InputError describe_failure(const std::exception_ptr& e, const std::string& sect
           ? "give the study fewer records, period pairs or samples_per_pair, or [outputs] per_model = false or "
             "\"stream\" (rank 0 then holds the reductions only; docs/studies.md), or run on a machine with more memory"
           : fmt::format("give the command a smaller problem (a shorter duration, a coarser step, a smaller width, "
-                        "fewer storeys, periods or samples: {}), or run it where more memory is free", see_help(section));
+                        "fewer storeys, periods or samples: {}), or run it where more memory is free",
+                        see_help(section));
   try {
     std::rethrow_exception(e);
   } catch (const InputError& x) {
@@ -182,7 +183,8 @@ int finish_output(const CLI::App& app, int code) {
   const int err = errno;  // 0: an earlier write failed (fmt::print reported none), flushing did not
   fmt::print(stderr, " ERROR: cannot write the output: {}, standard output of {}, {}\n",
              err ? files::os_error(err) : "a write failed", selected(app).section,
-             err ? files::fix_for(err) : "check where the output goes (a full disk, a device, a closed pipe) and rerun");
+             err ? files::fix_for(err)
+                 : "check where the output goes (a full disk, a device, a closed pipe) and rerun");
   return 2;
 }
 

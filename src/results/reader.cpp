@@ -213,9 +213,10 @@ void require_results_file(h5::hid root, const std::string& path) {
                      path, "give a results file written by `pounding run STUDY.toml --out R.h5`");
   const std::int64_t v = h5::read_int64_attribute(root, "format_version");
   if (v < 1 || v > format_version)
-    throw InputError(fmt::format("{} has results format {}; this pounding reads formats 1 to {}", path, v, format_version),
-                     path, v > format_version ? "read it with the newer pounding that wrote it"
-                                              : "give a results file written by `pounding run STUDY.toml --out R.h5`");
+    throw InputError(
+        fmt::format("{} has results format {}; this pounding reads formats 1 to {}", path, v, format_version), path,
+        v > format_version ? "read it with the newer pounding that wrote it"
+                           : "give a results file written by `pounding run STUDY.toml --out R.h5`");
 }
 
 // A results file opened and checked, then read by `read`: an HDF5 or zlib error on the way (a damaged or truncated
