@@ -1,53 +1,16 @@
 // pounding: Monte Carlo seismic-pounding engine. Parses the command line and dispatches.
-#include <cstdio>
 #include <exception>
 #include <string>
-#include <vector>
-
-#include <fmt/format.h>
 
 #include "cli/commands.hpp"
-#include "pounding/core/error.hpp"
+#include "cli/errors.hpp"
 #include "pounding/core/timing.hpp"
 #include "pounding/core/version.hpp"
-
-namespace {
-
-// An unknown option, a surplus argument or an unknown sub-command, in the wording of every other unknown-key
-// error (pounding::unknown_key_error); nullptr-free: returns false when the parse error is something else.
-bool unknown_name_error(const CLI::App& app, pounding::InputError& out) {
-  // the deepest sub-command the parser selected, and its path ("pounding records show")
-  const CLI::App* cur = &app;
-  std::string section = "pounding";
-  while (!cur->get_subcommands().empty()) {
-    cur = cur->get_subcommands().front();
-    section += " " + cur->get_name();
-  }
-  std::vector<std::string> extra = cur->remaining();
-  if (extra.empty()) extra = app.remaining(true);
-  if (extra.empty()) return false;
-  const std::string& name = extra.front();
-  std::string allowed;
-  auto add = [&](const std::string& s) { allowed += (allowed.empty() ? "" : ", ") + s; };
-  const bool wants_command = cur->get_require_subcommand_min() > 0 && cur->get_subcommands().empty();
-  if (wants_command && name.rfind("-", 0) != 0) {
-    for (const CLI::App* s : cur->get_subcommands([](const CLI::App*) { return true; })) add(s->get_name());
-    out = pounding::unknown_key_error(name, section, "command line", allowed, "command");
-    return true;
-  }
-  for (const CLI::Option* o : cur->get_options()) {
-    const std::string n = o->get_name(false, false);
-    if (!n.empty() && n != "--help") add(n);
-  }
-  out = pounding::unknown_key_error(name, section, "command line", allowed + " (see " + section + " --help)",
-                                    name.rfind("-", 0) == 0 ? "option" : "argument");
-  return true;
-}
-
-}  // namespace
+#include "pounding/io/hdf5.hpp"
 
 int main(int argc, char** argv) {
   pounding::timing::program_start();  // the clock of the run's wall time and phases (core/timing.hpp)
+  pounding::h5::skip_cleanup_at_exit();  // a file whose close failed must not crash the exit (io/hdf5.hpp)
   CLI::App app{"pounding: probability of seismic pounding between adjacent structures"};
   app.set_version_flag("--version", std::string(pounding::program_version) + " (" + pounding::git_commit + ")");
   app.require_subcommand(1);
@@ -71,28 +34,11 @@ int main(int argc, char** argv) {
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    pounding::InputError unknown("", "", "");
-    if ((dynamic_cast<const CLI::ExtrasError*>(&e) || dynamic_cast<const CLI::RequiredError*>(&e)) &&
-        unknown_name_error(app, unknown)) {
-      fmt::print(stderr, " ERROR: {}\n", unknown.what());
-      return 2;
-    }
-    // a value of the wrong type or outside an option's range: one house-style line naming the option
-    if (dynamic_cast<const CLI::ConversionError*>(&e) || dynamic_cast<const CLI::ValidationError*>(&e)) {
-      fmt::print(stderr, " ERROR: {}, command line, give a value of the option's type and range (--help lists them)\n",
-                 e.what());
-      return 2;
-    }
-    int rc = app.exit(e);
-    return rc == 0 ? 0 : 2;
+    return pounding::cli::report_parse_error(app, e);
   } catch (const pounding::cli::ExitRequest& e) {
-    return e.code;
-  } catch (const pounding::InputError& e) {
-    fmt::print(stderr, " ERROR: {}\n", e.what());
-    return 2;
-  } catch (const std::exception& e) {
-    fmt::print(stderr, " ERROR: {}\n", e.what());
-    return 1;
+    return pounding::cli::finish_output(app, e.code);
+  } catch (...) {  // every other error: one ERROR line and exit 2 (docs/failure-behaviour.md)
+    return pounding::cli::report_failure(app, std::current_exception());
   }
-  return 0;
+  return pounding::cli::finish_output(app, 0);
 }

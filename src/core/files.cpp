@@ -18,8 +18,6 @@ namespace pounding::files {
 
 namespace fs = std::filesystem;
 
-namespace {
-
 std::string os_error(int err) {
   const char* name = err == ENOSPC ? " (ENOSPC)" : err == EFBIG ? " (EFBIG)" : err == EIO ? " (EIO)" : err == EDQUOT ? " (EDQUOT)" : "";
   return fmt::format("{}{}", std::strerror(err), name);
@@ -31,6 +29,8 @@ std::string fix_for(int err) {
   if (err == EACCES || err == EPERM || err == EROFS) return "write to a folder you may write to";
   return "check the disk and the path, and rerun";
 }
+
+namespace {
 
 // Holds back SIGINT/SIGTERM/SIGHUP for its lifetime; pending ones are delivered when it ends.
 class SignalHold {

@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cstdio>
 #include <cerrno>
+#include <cstdlib>
 #include <cstring>
 #include <filesystem>
 #include <future>
@@ -22,13 +23,34 @@
 namespace pounding::h5 {
 namespace {
 
+// The OS error of the failed read or write on HDF5's error stack ("..., errno = 28, error message = ..." from its
+// file drivers), 0 when none is there. Read right after the failed call: the next API call clears the stack.
+int stack_os_error() {
+  int err = 0;
+  H5Ewalk2(
+      H5E_DEFAULT, H5E_WALK_UPWARD,
+      [](unsigned, const H5E_error2_t* e, void* data) -> herr_t {
+        const char* at = e->desc ? std::strstr(e->desc, "errno = ") : nullptr;
+        if (at && *static_cast<int*>(data) == 0) *static_cast<int*>(data) = std::atoi(at + 8);
+        return 0;
+      },
+      &err);
+  return err;
+}
+
+[[noreturn]] void fail(const std::string& what) {
+  const int err = stack_os_error();
+  throw Error(err ? fmt::format("HDF5 error: {}: {}", what, std::strerror(err)) : "HDF5 error: " + what, what, err);
+}
 void check(herr_t status, const std::string& what) {
-  if (status < 0) throw std::runtime_error("HDF5 error: " + what);
+  if (status < 0) fail(what);
 }
 hid checked(hid_t id, const std::string& what) {
-  if (id < 0) throw std::runtime_error("HDF5 error: " + what);
+  if (id < 0) fail(what);
   return id;
 }
+
+void start_library() { H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr); }
 
 // The filters of a compressed dataset: HDF5's byte shuffle (for elements wider than a byte), then deflate at level 1.
 // The shuffle puts byte k of every value together, so the exponent and high mantissa bytes of doubles form long
@@ -284,6 +306,15 @@ int inflate_chunk(const std::vector<Bytef>& stored, const ChunkGeometry& g, std:
   return Z_OK;
 }
 
+// A stored chunk that zlib cannot inflate (a damaged file): named with its dataset's path in the file.
+[[noreturn]] void damaged_chunk(hid_t ds, const std::string& name, std::size_t c, int status) {
+  char path[512];
+  const ssize_t n = H5Iget_name(ds, path, sizeof path);
+  throw std::runtime_error(fmt::format("chunk {} of {} is damaged (zlib error {}: {})", c,
+                                       n > 0 && static_cast<std::size_t>(n) < sizeof path ? std::string(path) : name,
+                                       status, zError(status)));
+}
+
 // Chunks [first, last) read on this thread (HDF5 is not called from other threads) into `stored`; false as
 // read_stored_chunk.
 bool read_stored_batch(hid_t ds, const std::string& name, const ChunkGeometry& g, std::size_t first, std::size_t last,
@@ -324,7 +355,7 @@ bool read_chunks_deflated(hid_t ds, const std::string& name, void* out, std::siz
     if (!next) return false;
   }
   for (std::size_t c = 0; c < g.chunks; ++c)
-    if (status[c] != Z_OK) throw std::runtime_error(fmt::format("zlib error {} inflating chunk {} of {}", status[c], c, name));
+    if (status[c] != Z_OK) damaged_chunk(ds, name, c, status[c]);
   return true;
 }
 
@@ -354,7 +385,7 @@ bool probe_chunks(hid_t ds, const std::string& name, std::span<const hsize_t> di
   for (std::size_t c = 0; c < g.chunks; ++c) {
     if (!read_stored_chunk(ds, name, g, c, stored)) return false;
     if (const int status = inflate_chunk(stored, g, c, out.data(), plain, ordered); status != Z_OK)
-      throw std::runtime_error(fmt::format("zlib error {} inflating chunk {} of {}", status, c, name));
+      damaged_chunk(ds, name, c, status);
     const std::size_t first = c * per_chunk, last = std::min(out.size(), first + per_chunk);
     const double v0 = out[0];
     if (!std::all_of(out.begin() + static_cast<std::ptrdiff_t>(first), out.begin() + static_cast<std::ptrdiff_t>(last),
@@ -375,6 +406,8 @@ void write_attr_raw(hid obj, const std::string& name, hid_t type, const void* va
 }
 
 }  // namespace
+
+void skip_cleanup_at_exit() { H5dont_atexit(); }
 
 Handle& Handle::operator=(Handle&& o) noexcept {
   if (this != &o) {
@@ -401,7 +434,7 @@ Handle::~Handle() {
 }
 
 AtomicFile::AtomicFile(std::string path, Storage storage) : path_(std::move(path)) {
-  H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
+  start_library();
   if (storage == Storage::disk) {
     path_ = files::replace_target(path_);
     temporary_ = fmt::format("{}.tmp{}", path_, static_cast<long>(getpid()));
@@ -423,19 +456,51 @@ AtomicFile::AtomicFile(std::string path, Storage storage) : path_(std::move(path
   file_ = Handle(f);
 }
 
-AtomicFile::~AtomicFile() {
+AtomicFile::~AtomicFile() { abandon(); }
+
+// Storage::disk without commit(): the temporary emptied first (truncate), so that on a full disk (ENOSPC) HDF5 has
+// the room to write what it still holds and its close succeeds (beyond ulimit -f, EFBIG, it fails again: the
+// executable's skip_cleanup_at_exit keeps that from crashing the exit); the objects of the file still open closed,
+// the file closed, the temporary removed.
+void AtomicFile::abandon() noexcept {
   if (temporary_.empty()) return;
-  file_ = Handle();
-  ::unlink(temporary_.c_str());
+  if (file_.valid()) {
+    ::truncate(temporary_.c_str(), 0);
+    const unsigned kinds = H5F_OBJ_DATASET | H5F_OBJ_GROUP | H5F_OBJ_DATATYPE | H5F_OBJ_ATTR | H5F_OBJ_LOCAL;
+    try {
+      std::vector<hid_t> open(static_cast<std::size_t>(std::max<ssize_t>(0, H5Fget_obj_count(file_.get(), kinds))));
+      const ssize_t n = open.empty() ? 0 : H5Fget_obj_ids(file_.get(), kinds, open.size(), open.data());
+      for (ssize_t k = 0; k < n; ++k) {
+        Handle object(open[static_cast<std::size_t>(k)]);  // closed by its type
+      }
+    } catch (...) {  // no memory for the list: the close below still releases the file
+    }
+    file_ = Handle();
+  }
+  ::unlink(std::exchange(temporary_, std::string()).c_str());
+}
+
+void AtomicFile::fail(const std::exception_ptr& error) {
+  if (temporary_.empty()) std::rethrow_exception(error);
+  const std::string tmp = temporary_;
+  abandon();
+  try {
+    std::rethrow_exception(error);
+  } catch (const Error& e) {
+    if (e.os_error() == 0) throw;
+    throw InputError(fmt::format("cannot write {}: {} (the temporary of {}, removed; at HDF5's {})", tmp,
+                                 files::os_error(e.os_error()), path_, e.action()),
+                     path_, files::fix_for(e.os_error()));
+  }
 }
 
 void AtomicFile::commit() {
   if (!temporary_.empty()) {  // Storage::disk: HDF5 writes what it cached, then close, fsync, rename
-    if (H5Fflush(file_.get(), H5F_SCOPE_GLOBAL) < 0 || H5Fclose(file_.release()) < 0) {
-      const int err = errno;
-      throw InputError(fmt::format("cannot write {}: HDF5 could not write its temporary ({})", path_,
-                                   err ? std::strerror(err) : "no OS error given"),
-                       path_, "check the free space and the quota of the output folder; the temporary is removed");
+    try {
+      check(H5Fflush(file_.get(), H5F_SCOPE_GLOBAL), "flush " + temporary_);
+      check(H5Fclose(file_.release()), "close " + temporary_);  // a failed close: the id is never used again
+    } catch (...) {
+      fail(std::current_exception());
     }
     const std::string tmp = std::exchange(temporary_, std::string());
     files::commit_temporary(tmp, path_);
@@ -453,15 +518,19 @@ void AtomicFile::commit() {
 
 Handle open_read(const std::string& path) {
   files::check_input_file(path, "the HDF5 file");  // H5Fopen of a FIFO blocks, of a folder says only "cannot open"
-  H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
+  start_library();
   hid_t f = H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
-  if (f < 0) throw InputError("cannot open HDF5 file", path, "give an existing results file written by pounding");
-  return Handle(f);
+  if (f >= 0) return Handle(f);
+  const std::string fix = "give an existing results file written by pounding";
+  if (::access(path.c_str(), R_OK) != 0)
+    throw InputError(fmt::format("cannot open HDF5 file: {}", std::strerror(errno)), path, fix);
+  if (H5Fis_hdf5(path.c_str()) <= 0) throw InputError("cannot open HDF5 file: not an HDF5 file", path, fix);
+  throw InputError("cannot open HDF5 file", path, fix);
 }
 
 Handle open_rw(const std::string& path) {
   files::check_input_file(path, "the HDF5 file");
-  H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
+  start_library();
   hid_t f = H5Fopen(path.c_str(), H5F_ACC_RDWR, H5P_DEFAULT);
   if (f < 0) throw InputError("cannot open HDF5 file for writing", path, "check the path and permissions");
   return Handle(f);

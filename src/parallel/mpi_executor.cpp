@@ -12,6 +12,7 @@
 #include <chrono>
 #include <deque>
 #include <list>
+#include <new>
 #include <string>
 #include <thread>
 
@@ -46,6 +47,10 @@ struct Failure {
       throw;
     } catch (const InputError& e) {
       what = e.what_part(), where = e.where(), fix = e.fix();
+    } catch (const std::bad_alloc&) {
+      what = "out of memory", where = "rank " + std::to_string(rank);
+      fix = "give the study fewer records, period pairs or samples_per_pair, or [outputs] per_model = false or "
+            "\"stream\" (docs/studies.md), or run fewer ranks per node";
     } catch (const std::exception& e) {
       what = e.what(), where = "rank " + std::to_string(rank), fix = "rerun; if the run had started, --resume continues from its checkpoint";
     } catch (...) {

@@ -4,7 +4,11 @@
 #include <stdexcept>
 #include <type_traits>
 
+#include <fmt/format.h>
+
+#include "pounding/core/error.hpp"
 #include "pounding/io/hdf5.hpp"
+#include "pounding/results/schema.hpp"
 
 namespace pounding::results {
 
@@ -199,18 +203,56 @@ SystemTable read_system(h5::hid root) {
   return t;
 }
 
+// An HDF5 file that pounding did not write (no integer format_version at its root: h5py's, another program's, an
+// empty one) or of a format this build does not know, refused before anything is read from it.
+void require_results_file(h5::hid root, const std::string& path) {
+  if (!h5::attribute_exists(root, "format_version") ||
+      h5::attribute_kind(root, "format_version") != h5::AttributeKind::integer)
+    throw InputError(fmt::format("{} is not a pounding results file (an HDF5 file without the integer "
+                                 "format_version attribute pounding writes: written by another program)", path),
+                     path, "give a results file written by `pounding run STUDY.toml --out R.h5`");
+  const std::int64_t v = h5::read_int64_attribute(root, "format_version");
+  if (v < 1 || v > format_version)
+    throw InputError(
+        fmt::format("{} has results format {}; this pounding reads formats 1 to {}", path, v, format_version), path,
+        v > format_version ? "read it with the newer pounding that wrote it"
+                           : "give a results file written by `pounding run STUDY.toml --out R.h5`");
+}
+
+// A results file opened and checked, then read by `read`: an HDF5 or zlib error on the way (a damaged or truncated
+// file) becomes an InputError naming the file.
+template <class Read>
+auto read_results_file(const std::string& path, Read&& read) {
+  const h5::Handle f = h5::open_read(path);
+  try {
+    require_results_file(f.get(), path);
+    return read(f.get());
+  } catch (const InputError&) {
+    throw;
+  } catch (const std::runtime_error& e) {  // h5::Error, zlib, an inconsistent /system
+    throw InputError(fmt::format("cannot read {}: {}", path, e.what()), path,
+                     "the file is damaged or was cut short: rerun the study that wrote it (pounding run), or use an "
+                     "intact copy");
+  }
+}
+
+Results read_results(h5::hid root, const std::string& path, std::span<const FieldSpec> extra, LoadExtent extent);
+
 }  // namespace
 
 Header load_header(const std::string& path) {
-  auto f = h5::open_read(path);
-  return read_header(f.get());
+  return read_results_file(path, [](h5::hid root) { return read_header(root); });
 }
 
 Results load(const std::string& path, std::span<const FieldSpec> extra, LoadExtent extent) {
+  return read_results_file(path, [&](h5::hid root) { return read_results(root, path, extra, extent); });
+}
+
+namespace {
+
+Results read_results(h5::hid root, const std::string& path, std::span<const FieldSpec> extra, LoadExtent extent) {
   Results r;
   r.path = path;
-  auto f = h5::open_read(path);
-  const auto root = f.get();
   r.header = read_header(root);
   r.settings = read_settings(root);
   r.records = read_records(root);
@@ -240,5 +282,7 @@ Results load(const std::string& path, std::span<const FieldSpec> extra, LoadExte
   read_groups(root, r);
   return r;
 }
+
+}  // namespace
 
 }  // namespace pounding::results

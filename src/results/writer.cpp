@@ -319,16 +319,20 @@ Writer::Writer(const std::string& path, const Results& r, bool on_disk) {
   check_system(r);
   file_ = std::make_unique<h5::AtomicFile>(path, on_disk ? h5::AtomicFile::Storage::disk : h5::AtomicFile::Storage::memory);
   const auto root = file_->root();
-  write_header_start(root, r.header, r.system.empty() ? pair_format_version : format_version);
-  write_settings(root, r.settings);
-  write_records(root, r.records);
-  write_models(root, r.models);
-  write_gaps(root, r.gaps, r.models.size());
-  if (r.model_rows) write_streamed_models(root, r);
-  for (const char* group : {"records", "models", "gaps"})
-    if (h5::exists(root, group)) label_group(root, group);
-  write_fields(root, r);  // labelled from their schema rows
-  if (!r.system.empty()) write_system(root, r.system);
+  try {
+    write_header_start(root, r.header, r.system.empty() ? pair_format_version : format_version);
+    write_settings(root, r.settings);
+    write_records(root, r.records);
+    write_models(root, r.models);
+    write_gaps(root, r.gaps, r.models.size());
+    if (r.model_rows) write_streamed_models(root, r);
+    for (const char* group : {"records", "models", "gaps"})
+      if (h5::exists(root, group)) label_group(root, group);
+    write_fields(root, r);  // labelled from their schema rows
+    if (!r.system.empty()) write_system(root, r.system);
+  } catch (...) {  // on disk (a full disk): the temporary closed and removed now, the OS error named
+    file_->fail(std::current_exception());
+  }
 }
 
 Writer::~Writer() = default;
@@ -338,8 +342,12 @@ Writer& Writer::operator=(Writer&&) noexcept = default;
 void Writer::finish(const Results& r) {
   if (!file_) throw std::logic_error("results::Writer::finish called twice");
   const auto root = file_->root();
-  write_header_end(root, r.header);
-  for (const Group& g : r.groups) write_group(root, g);
+  try {
+    write_header_end(root, r.header);
+    for (const Group& g : r.groups) write_group(root, g);
+  } catch (...) {
+    file_->fail(std::current_exception());
+  }
   file_->commit();
   file_.reset();
 }

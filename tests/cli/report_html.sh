@@ -109,7 +109,8 @@ mkdir "$tmp/adir"
 expect_error "adir" "$bin" report "$studies/quick.h5" --html "$tmp/adir"
 expect_error "2 results files" "$bin" report "$studies/quick.h5" "$studies/example-pair.h5"
 set +e; "$bin" report "$studies/quick.h5" --html "$tmp/x.html" --csv > /dev/null 2> "$tmp/bad.err"; rc=$?; set -e
-[ "$rc" = 2 ] && grep -q "excludes" "$tmp/bad.err" || fail "--html with --csv: exit $rc, $(cat "$tmp/bad.err")"
+[ "$rc" = 2 ] && grep -q "^ ERROR: --.* and --.* of pounding report cannot be given together, command line, give one of them" "$tmp/bad.err" ||
+  fail "--html with --csv: exit $rc, $(cat "$tmp/bad.err")"
 # README shows the first screen of studies/example-pair.toml's report (a small PNG in docs/img)
 img=$src/docs/img/report-example-pair.png
 grep -q '](docs/img/report-example-pair.png)' "$src/README.md" || fail "README does not show docs/img/report-example-pair.png"

@@ -23,6 +23,11 @@ std::string read_text(const std::string& path, const std::string& what, std::siz
 // before the open; `what` as for read_text.
 void check_input_file(const std::string& path, const std::string& what);
 
+// An OS error as a message names it: strerror with the name of the common ones ("No space left on device (ENOSPC)"),
+// and what to do about it ("free disk space (or choose another folder) and rerun").
+std::string os_error(int err);
+std::string fix_for(int err);
+
 // Writes all n bytes to fd (retrying short writes and EINTR). Throws InputError naming path and the OS
 // error (ENOSPC, EFBIG, EIO, ...) otherwise.
 void write_all(int fd, const void* data, std::size_t n, const std::string& path);

@@ -2,7 +2,9 @@
 // HDF5 infrastructure: RAII handles and a write_dataset(group, name, value) family.
 // The only module that includes <hdf5.h>. Files are readable with h5py.
 #include <cstdint>
+#include <exception>
 #include <functional>
+#include <stdexcept>
 #include <span>
 #include <optional>
 #include <string>
@@ -12,6 +14,14 @@
 namespace pounding::h5 {
 
 using hid = std::int64_t;  // hid_t without including hdf5.h
+
+// For a program, before its first HDF5 call: HDF5 does not clean up at exit (H5_term_library). The pounding
+// executable closes every file through its Handle; a file whose close failed stays in HDF5's tables half torn down,
+// and the clean-up at exit crashed on it (SIGSEGV in H5F__close_cb, HDF5 1.10.8) after the failed write had been
+// reported. AtomicFile gives a full disk (ENOSPC) room to close; under ulimit -f (EFBIG) or on EIO the close's own
+// writes still fail. Not for a library in a host process (the Python module): other HDF5 users there may count on
+// that clean-up.
+void skip_cleanup_at_exit();
 
 // Owns one HDF5 identifier (file, group, dataset, ...) and closes it.
 class Handle {
@@ -31,13 +41,28 @@ class Handle {
   hid id_ = -1;
 };
 
+// An HDF5 call that failed: what() is "HDF5 error: <action>[: <OS error>]". action(): what the call was doing
+// ("write chunk 3 of peak_u1"); os_error(): the OS error HDF5 reported for the read or write under it (ENOSPC,
+// EFBIG, EIO), 0 when it reported none.
+class Error : public std::runtime_error {
+ public:
+  Error(const std::string& what, std::string action, int os_error)
+      : std::runtime_error(what), action_(std::move(action)), os_error_(os_error) {}
+  const std::string& action() const { return action_; }
+  int os_error() const { return os_error_; }
+
+ private:
+  std::string action_;
+  int os_error_;
+};
+
 // A file built in memory and written to path by commit() through a temporary name and a rename
 // (files::write_atomically): destroyed without commit(), nothing is written; a failed write (disk full,
 // EFBIG) throws InputError with the OS error and leaves neither path nor a temporary.
 // Storage::disk builds it instead in an HDF5 file on disk, <path>.tmp<pid> beside path (files::remove_stale_temporaries
 // removes one a SIGKILL left), closed, fsynced and renamed on commit(), removed when destroyed without commit(): memory
-// stays HDF5's caches, whatever the file's size. An HDF5 error while it is built (a full disk among them) is a
-// std::runtime_error; the temporary goes with the object.
+// stays HDF5's caches, whatever the file's size. An HDF5 error while it is built (a full disk among them) is an
+// h5::Error; the temporary goes with the object, and fail() turns such an error into the InputError of a failed write.
 class AtomicFile {
  public:
   enum class Storage { memory, disk };
@@ -47,8 +72,13 @@ class AtomicFile {
   AtomicFile& operator=(const AtomicFile&) = delete;
   hid root() const { return file_.get(); }
   void commit();
+  // Called with the error that stopped the file being built: Storage::disk closes and removes the temporary at once
+  // and throws an h5::Error that carries an OS error as InputError("cannot write <temporary>: <OS error> (the
+  // temporary of <path>, removed ...)", path, the fix for that error); any other error is rethrown as it is.
+  [[noreturn]] void fail(const std::exception_ptr& error);
 
  private:
+  void abandon() noexcept;
   std::string path_, temporary_;  // temporary_: Storage::disk's file until commit() ("" otherwise)
   Handle file_;
 };

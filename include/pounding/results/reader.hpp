@@ -23,7 +23,9 @@ inline constexpr std::string_view report_model_columns[] = {"T1", "T2", "h1", "h
 
 Results load(const std::string& path, std::span<const FieldSpec> extra = {}, LoadExtent extent = LoadExtent::all);
 // The root attributes alone (provenance, the study's text): cheap, for the checks made before a run replaces a file.
-// Throws InputError when `path` is not an HDF5 file.
+// Both throw InputError naming `path` when it is not an HDF5 file, not a pounding results file (no integer
+// format_version at its root: another program's file) or of a newer format, and when reading it fails (an HDF5 or
+// zlib error: a damaged or truncated file).
 Header load_header(const std::string& path);
 
 }  // namespace pounding::results

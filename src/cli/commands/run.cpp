@@ -16,6 +16,7 @@
 #include <fmt/format.h>
 
 #include "cli/commands.hpp"
+#include "cli/errors.hpp"
 #include "pounding/core/error.hpp"
 #include "pounding/parallel/executor.hpp"
 #include "pounding/core/files.hpp"
@@ -267,9 +268,11 @@ int run_job(const RunOpts& o) {
     // thrown on every rank after the job stopped together (Session::agree, run_units): one message
     if (session.root()) fmt::print(stderr, " ERROR: {}\n", e.what());
     return 2;
-  } catch (const std::exception& e) {
-    // outside the agreed phases: this rank alone knows; end the job rather than let the others wait
-    fmt::print(stderr, " ERROR: {} (rank {})\n", e.what(), session.rank());
+  } catch (...) {
+    // outside the agreed phases: this rank alone knows; end the job rather than let the others wait. Out of memory
+    // and other unexpected errors in the wording of every error (cli/errors.hpp).
+    const InputError e = describe_failure(std::current_exception(), "pounding run");
+    fmt::print(stderr, " ERROR: {}, {} (rank {}), {}\n", e.what_part(), e.where(), session.rank(), e.fix());
     if (session.size() > 1) session.abort(2);
     return 2;
   }
