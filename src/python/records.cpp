@@ -163,7 +163,7 @@ Record record_from_arrays(const py::handle& acc_g, double dt, const std::string&
     throw InputError(fmt::format("Record: acc_g holds {} value(s)", r.acc.size()), "Record(acc_g=)",
                      "give at least 2 accelerations (g), one per step dt");
   if (!(dt >= record_dt_min && dt <= record_dt_max))
-    throw py::value_error("Record: dt = " + std::to_string(dt) + " s is outside [1e-4, 0.1] s");
+    throw py::value_error(fmt::format("Record: dt = {:g} s is outside [1e-4, 0.1] s", dt));
   for (double& a : r.acc) {
     if (!std::isfinite(a)) throw py::value_error("Record: acc_g holds a value that is not a finite number");
     a *= g_accel;
@@ -192,8 +192,8 @@ void bind_records(py::module_& m) {
       .def_property_readonly("pga_g", [](const Record& r) { return r.pga() / g_accel; })
       .def("measures", &measures_dict, "PGA (m/s^2), PGV (m/s), PGD (m), Arias (m/s), t05/t45/t95, d5_95 (s)")
       .def("__repr__", [](const Record& r) {
-        return "<pounding.Record " + r.name + ": " + std::to_string(r.acc.size()) + " points, dt " +
-               std::to_string(r.dt) + " s, PGA " + std::to_string(r.pga() / g_accel) + " g>";
+        return fmt::format("<pounding.Record {}: {} points, dt {:g} s, PGA {:.4g} g>", r.name, r.acc.size(), r.dt,
+                           r.pga() / g_accel);
       });
   m.def("read_record", &read_record_py, py::arg("path"), py::arg("units") = py::none(), py::arg("dt") = 0.0,
         "Reads a record (PEER AT2 NGA-West2/West1, the 4-line El Centro variant, two-column time/acc text, "

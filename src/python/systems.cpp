@@ -54,9 +54,8 @@ std::vector<double> lane_array(const py::dict& d, const std::string& key, std::s
 void check(const std::vector<double>& v, const std::string& key, double lo, double hi, bool open_lo) {
   for (std::size_t l = 0; l < v.size(); ++l)
     if (!(open_lo ? v[l] > lo : v[l] >= lo) || !(v[l] < hi || (std::isinf(hi) && v[l] == hi)))
-      throw py::value_error(key + " (lane " + std::to_string(l) + ") = " + std::to_string(v[l]) + " is out of range, " +
-                            key + ", give a value in " + (open_lo ? "(" : "[") + std::to_string(lo) + ", " +
-                            std::to_string(hi) + ")");
+      throw py::value_error(fmt::format("{0} (lane {1}) = {2:g} is out of range, {0}, give a value in {3}{4:g}, {5:g})", key,
+                                        l, v[l], open_lo ? "(" : "[", lo, hi));
 }
 
 // A building's quantity that a study also sets: that study key's range (config/study_keys.hpp, one range per quantity

@@ -168,3 +168,16 @@ def test_an_empty_record_is_refused():
         with pytest.raises(ValueError, match=r"Record: acc_g holds [01] value\(s\), Record\(acc_g=\), give at least 2 "
                                              r"accelerations"):
             pounding.Record(acc, 0.01)
+
+
+def test_ranges_are_printed_as_numbers_not_fixed_point():
+    """Messages print a range as 1e+16 or inf, not %f's '(0.000000, 10000000000000000.000000)'; Record's dt and repr too."""
+    b = {"floor_mass1": [1e5], "floor_mass2": [1e5], "period1": [0.5], "period2": [0.8], "gap": [0.05],
+         "yield_drift1": [2.0]}
+    with pytest.raises(ValueError, match=r"yield_drift1 \(lane 0\) = 2 is out of range, yield_drift1, give a value in "
+                                         r"\(0, 1\)") as e:
+        pounding.analyze_storeys(b, motion(), storeys=(2, 3))
+    assert "000000" not in str(e.value)
+    with pytest.raises(ValueError, match=r"Record: dt = 5 s is outside \[1e-4, 0.1\] s"):
+        pounding.Record([0.0, 0.1], 5.0)
+    assert repr(pounding.Record([0.0, 0.1, -0.2], 0.01, name="x")) == "<pounding.Record x: 3 points, dt 0.01 s, PGA 0.2 g>"
