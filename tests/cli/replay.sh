@@ -179,6 +179,13 @@ if $py -c "import matplotlib" 2>/dev/null; then
   $py "$src/tests/cli/plot_layout.py" -- "$src/tools/plot_replay.py" "$tmp/hd.csv" "$tmp/hd.png" || fail "replay figure"
 fi
 
+# a UTF-8 byte-order mark (Excel's "CSV UTF-8") is skipped, as in the study's CSV files: the same replay
+{ printf '\xef\xbb\xbf'; cat "$tmp/half.csv"; } > "$tmp/bom.csv"
+"$bin" replay --law hertz --kh 2e9 --input "$tmp/bom.csv" --out "$tmp/bom_out.csv" > /dev/null 2> "$tmp/bom.err" \
+  || fail "a kinematics file with a BOM was refused: $(cat "$tmp/bom.err")"
+cmp -s "$tmp/bom_out.csv" "$tmp/hertz.csv" || fail "a kinematics file with a BOM gives another replay than without"
+echo "ok: a UTF-8 BOM is skipped"
+
 # bad input
 bad() {
   local where=$1; shift

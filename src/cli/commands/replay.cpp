@@ -72,7 +72,8 @@ struct Columns {
 };
 
 Columns read_columns(const std::string& path) {
-  const std::string text = files::read_text(path, "the kinematics file", std::size_t{64} << 20);
+  std::string text = files::read_text(path, "the kinematics file", std::size_t{64} << 20);
+  if (text.starts_with("\xEF\xBB\xBF")) text.erase(0, 3);  // the UTF-8 byte-order mark of Excel's "CSV UTF-8"
   Columns C;
   std::vector<std::string>& names = C.names;
   std::vector<std::vector<double>>& cols = C.cols;
