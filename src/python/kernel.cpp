@@ -7,9 +7,12 @@
 #include <string>
 #include <vector>
 
+#include <fmt/format.h>
+
 #include "common.hpp"
 #include "pounding/contact/registry.hpp"
 #include "pounding/core/error.hpp"
+#include "pounding/core/machine.hpp"
 #include "pounding/physics/batch.hpp"
 #include "pounding/physics/single_impact.hpp"
 #include "pounding/physics/validate.hpp"
@@ -51,8 +54,29 @@ bool optional_key(const std::string& key) {
 // dict of 1-D arrays -> PairBatch. Missing initial conditions: at rest; fy: elastic (inf); alpha 0; kc 0 and e 1
 // (the laws that need them refuse those values in validate, naming the pair). Every column is converted with a check
 // (checked_array): m1's unchecked conversion, which sizes the batch, crashed on pairs['m1'] = 'abc' (issue 44 item 4).
+// The memory a batch of `width` pairs takes here, checked before any column is copied: the pairs' columns, the
+// result (twice while the threads place their parts) and the arrays returned, 8 bytes a value. 10^9 pairs were
+// copied (24 GB) until the process was killed.
+void check_batch_memory(std::size_t width) {
+  PairBatch probe;
+  std::size_t columns = 0;
+  visit_batch(probe, [&](const char*, std::vector<double>&) { ++columns; });
+  const double per_pair = 8.0 * static_cast<double>(columns + 3 * 26);
+  const double need = per_pair * static_cast<double>(width), have = available_memory_bytes();
+  if (need > have)
+    throw py::value_error(fmt::format(
+        "pairs: {} pairs need about {} of memory ({:.0f} bytes a pair: the columns copied, the results and the arrays "
+        "returned), {} is available; give the pairs in parts of at most {} and join the results",
+        width, human_bytes(need), per_pair, human_bytes(have), static_cast<std::size_t>(have / per_pair)));
+}
+
 PairBatch batch_from_dict(const py::dict& d) {
   if (!d.contains("m1")) throw py::value_error("pairs: the key 'm1' is missing (give every pair parameter)");
+  try {  // the size first, before any column is converted (a view of 10^9 values costs nothing until copied)
+    check_batch_memory(py::len(d["m1"]));
+  } catch (const py::error_already_set&) {  // no length: column("m1") below names what was given
+  } catch (const py::type_error&) {
+  }
   auto column = [&](const char* key) {
     const std::string what = std::string("pairs['") + key + "']";
     Array a = checked_array(d[key], what);
@@ -246,6 +270,8 @@ py::list status_names() {
 }  // namespace
 
 void bind_kernel(py::module_& m) {
+  m.def("check_batch_memory", &check_batch_memory, py::arg("width"),
+        "ValueError unless a batch of `width` pairs fits in the memory available (before any column is copied)");
   m.def("run_batch", &run_batch_py, py::arg("pairs"), py::arg("ag"), py::arg("dt"),
         py::arg("stepper") = "central-difference", py::arg("contact") = "hertzdamp",
         py::arg("damping") = "lankarani-nikravesh", py::arg("n") = 1.5, py::arg("substeps") = 1,

@@ -63,6 +63,13 @@ def _pairs_dict(pairs, kh, e):
         d["kc"] = d.pop("kh")
     width = None
     out = {}
+    for value in d.values():  # the size first: copying 10^9 pairs' columns was an out-of-memory kill
+        try:
+            n = len(value)
+        except TypeError:
+            continue  # not a sequence: the loop below names it
+        _core.check_batch_memory(n)
+        break
     for key, value in d.items():
         try:
             a = np.asarray(value, dtype=np.float64)

@@ -8,6 +8,7 @@ import subprocess
 import sys
 import textwrap
 
+import numpy as np
 import pytest
 
 import pounding
@@ -181,3 +182,17 @@ def test_ranges_are_printed_as_numbers_not_fixed_point():
     with pytest.raises(ValueError, match=r"Record: dt = 5 s is outside \[1e-4, 0.1\] s"):
         pounding.Record([0.0, 0.1], 5.0)
     assert repr(pounding.Record([0.0, 0.1, -0.2], 0.01, name="x")) == "<pounding.Record x: 3 points, dt 0.01 s, PGA 0.2 g>"
+
+
+def test_a_batch_larger_than_memory_is_refused_before_any_copy():
+    """10^9 pairs (views that cost nothing until copied) were copied column by column until the process was killed:
+    the size is checked first, naming the memory needed and available and the largest part that fits."""
+    n = 10**9
+    pairs = {k: np.broadcast_to(np.float64(v), (n,)) for k, v in
+             dict(m1=1e5, m2=1e5, k1=4e6, k2=4e6, c1=1e4, c2=1e4, gap=0.05).items()}
+    for call in (lambda: pounding.analyze(pairs, (np.zeros(100), 0.01)),
+                 lambda: pounding._core.check_batch_memory(n)):
+        with pytest.raises(ValueError, match=r"pairs: 1000000000 pairs need about .* of memory .* is available; give "
+                                             r"the pairs in parts of at most \d+ and join the results"):
+            call()
+    pounding._core.check_batch_memory(1000)  # a small batch passes
