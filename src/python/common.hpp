@@ -6,6 +6,7 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#include <atomic>
 #include <cstring>
 #include <functional>
 #include <string>
@@ -44,8 +45,10 @@ void check_displacement_limit(double displacement_limit);
 // Runs work(b) for every b in [0, batches) on `threads` threads (0: every core) with the GIL released; the calling
 // thread takes the GIL every 50 ms to check for Ctrl-C (PyErr_CheckSignals) and then stops the workers after their
 // current batch and throws error_already_set (KeyboardInterrupt). The first exception of a worker is rethrown.
-// Results must not depend on the order: each b writes only its own lanes.
-void run_parallel(std::size_t batches, int threads, const std::function<void(std::size_t)>& work);
+// Results must not depend on the order: each b writes only its own lanes. `stop` (optional): raised at Ctrl-C, so a
+// batch that passes it to the steppers (KernelSettings::stop) ends within a few thousand steps instead of running on.
+void run_parallel(std::size_t batches, int threads, const std::function<void(std::size_t)>& work,
+                  std::atomic<bool>* stop = nullptr);
 
 void bind_kernel(py::module_& m);    // kernel.cpp: run_batch, analyze, simulate, status names
 void bind_records(py::module_& m);   // records.cpp: Record, read_record, spectrum, design_spectrum

@@ -108,7 +108,8 @@ struct Workers {
 
 }  // namespace
 
-void run_parallel(std::size_t batches, int threads, const std::function<void(std::size_t)>& work) {
+void run_parallel(std::size_t batches, int threads, const std::function<void(std::size_t)>& work,
+                  std::atomic<bool>* stop) {
   if (batches == 0) return;
   if (threads <= 0) threads = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
   Workers w(batches);
@@ -127,7 +128,10 @@ void run_parallel(std::size_t batches, int threads, const std::function<void(std
         interrupted = PyErr_CheckSignals() != 0;  // the KeyboardInterrupt stays set
       }
       lock.lock();
-      if (interrupted) break;
+      if (interrupted) {
+        if (stop) stop->store(true);  // the running batches' steppers stop too (StopRequested, dropped below)
+        break;
+      }
     }
     w.stop = true;
     lock.unlock();

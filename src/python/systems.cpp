@@ -515,12 +515,17 @@ py::dict analyze_storeys_py(const py::dict& buildings, const py::handle& ag_valu
   physics::throw_first(physics::validate(all, groups, gm, ks));  // every pair before any run, numbered as given
   physics::SystemResult out;
   out.resize(sys, L.n);
-  run_parallel(batches, threads, [&](std::size_t b) {
-    const std::size_t first = b * width, count = std::min(width, L.n - first);
-    physics::SystemResult part;
-    physics::run_system(slice(all, first, count), groups, gm, ks, part);
-    place(part, first, out);
-  });
+  std::atomic<bool> stop{false};  // Ctrl-C reaches the steppers: a single long lane stops within 4096 steps
+  ks.stop = &stop;
+  run_parallel(
+      batches, threads,
+      [&](std::size_t b) {
+        const std::size_t first = b * width, count = std::min(width, L.n - first);
+        physics::SystemResult part;
+        physics::run_system(slice(all, first, count), groups, gm, ks, part);
+        place(part, first, out);
+      },
+      &stop);
   return result_dict(sys, out, cm.law != ContactLaw::none);
 }
 

@@ -153,3 +153,21 @@ def test_batches_threads_and_errors():
         pounding.analyze_storeys(bad, REC, storeys=(4, 6))
     with pytest.raises(ValueError, match="period1"):
         pounding.analyze_storeys({k: v for k, v in b.items() if k != "period1"}, REC, storeys=(4, 6))
+
+
+def test_ctrl_c_stops_a_single_long_lane():
+    """Ctrl-C reaches the steppers: one 10- against 15-storey pair at substeps=10000 (about 16 s of work on the 2-core
+    VM) raises KeyboardInterrupt within a second of SIGINT, not at the lane's end."""
+    import signal
+    import threading
+    import time
+    b = {"floor_mass1": [1e5], "floor_mass2": [1e5], "period1": [1.0], "period2": [1.5], "gap": [0.05]}
+    ag_g = 0.3 * np.sin(np.arange(4000) * 0.02)
+    timer = threading.Timer(1.0, lambda: os.kill(os.getpid(), signal.SIGINT))
+    timer.start()
+    t0 = time.monotonic()
+    with pytest.raises(KeyboardInterrupt):
+        pounding.analyze_storeys(b, (ag_g, 0.01), storeys=(10, 15), substeps=10000)
+    took = time.monotonic() - t0
+    timer.join()
+    assert took < 3.0, f"KeyboardInterrupt {took:.2f} s after the call (SIGINT at 1 s)"
