@@ -7,7 +7,7 @@
 #     needs a sub-command given none. --help and --version stay exit 0 with nothing on stderr.
 #  2. the other parse errors: a value of the wrong type, two options that exclude each other, an option without
 #     the option it needs, an option without its value, an unknown command.
-#  3. the paths that ended with exit 1: out of memory (simulate --duration 1e12 and bench --width 1e11 under a 2 GiB
+#  3. the paths that ended with exit 1: out of memory (bench --width 1e11 under a 2 GiB
 #     address-space limit: "out of memory" and how to make the problem smaller), a damaged chunk of a results file
 #     (the file named, not just "zlib error -5 inflating chunk 1 of ..."), an HDF5 attribute of another type, output
 #     to a full device (> /dev/full: exit 1, or exit 0 with the output lost); and an HDF5 file of another program
@@ -132,8 +132,6 @@ if ! (ulimit -v 2097152 && "$bin" --version) > /dev/null 2>&1; then
   echo "note: pounding does not start under a 2 GiB address-space limit (a sanitizer build?): out of memory not checked"
 else
   (ulimit -v 2097152; f0=$fails
-   expect_error "out of memory (simulate)" "^ ERROR: out of memory, pounding simulate, give the command a smaller problem" -- \
-     "$bin" simulate --duration 1e12
    expect_error "out of memory (bench)" "^ ERROR: out of memory, pounding bench, give the command a smaller problem" -- \
      "$bin" bench --width 100000000000
    [ "$fails" = "$f0" ]) || fails=$((fails + 1))
