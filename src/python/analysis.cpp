@@ -96,7 +96,13 @@ py::dict fit_ida_py(const py::handle& capacities, std::optional<double> censored
   if (!(cap > 0) || !std::isfinite(cap)) throw py::value_error("fit_ida: censored_at must be finite and > 0");
   c.cap.assign(c.records, cap);
   const auto hazard = curve_of(curve);
-  const auto g = stripes::fit_ida(c, {}, settings_of(bootstrap, confidence, seed, years, 1), hazard.get(), 0.0);
+  stripes::GapFragility g;
+  run_interruptible([&](const std::atomic<bool>& stop) {  // Ctrl-C ends the bootstrap within one replicate
+    const WorkHook hook{{}, &stop};
+    auto s = settings_of(bootstrap, confidence, seed, years, 1);
+    s.hook = &hook;
+    g = stripes::fit_ida(c, {}, s, hazard.get(), 0.0);
+  });
   return gap_fragility_dict(g);
 }
 
@@ -132,10 +138,12 @@ py::list fit_stripes_py(const py::handle& demands, const py::handle& levels, con
   const auto x = to_vector(gaps, "gaps");
   const auto hazard = curve_of(curve);
   std::vector<stripes::GapFragility> fits;
-  {
-    py::gil_scoped_release unlocked;
-    fits = stripes::fit_msa(d, x, settings_of(bootstrap, confidence, seed, years, threads), hazard.get());
-  }
+  auto s = settings_of(bootstrap, confidence, seed, years, threads);
+  run_interruptible([&](const std::atomic<bool>& stop) {  // Ctrl-C ends the bootstrap within one replicate
+    const WorkHook hook{{}, &stop};
+    s.hook = &hook;
+    fits = stripes::fit_msa(d, x, s, hazard.get());
+  });
   py::list out;
   for (const auto& g : fits) out.append(gap_fragility_dict(g));
   return out;
@@ -148,10 +156,12 @@ py::dict target_gap_py(const py::handle& demands, const py::handle& levels, cons
   const auto hazard = curve_of(curve);
   if (!hazard) throw py::value_error("risk_targeted_gap: a hazard curve is needed");
   stripes::TargetGap t;
-  {
-    py::gil_scoped_release unlocked;
-    t = stripes::risk_targeted_gap(d, *hazard, lambda_target, settings_of(bootstrap, confidence, seed, years, threads));
-  }
+  auto s = settings_of(bootstrap, confidence, seed, years, threads);
+  run_interruptible([&](const std::atomic<bool>& stop) {  // Ctrl-C ends the replicates within one replicate
+    const WorkHook hook{{}, &stop};
+    s.hook = &hook;
+    t = stripes::risk_targeted_gap(d, *hazard, lambda_target, s);
+  });
   py::dict r;
   r["gap"] = t.gap, r["ci"] = py::make_tuple(t.lo, t.hi), r["lambda_target"] = t.lambda_target, r["rate"] = t.rate;
   r["range"] = py::make_tuple(t.range_lo, t.range_hi), r["replicates"] = t.replicates;

@@ -49,6 +49,10 @@ void check_displacement_limit(double displacement_limit);
 // batch that passes it to the steppers (KernelSettings::stop) ends within a few thousand steps instead of running on.
 void run_parallel(std::size_t batches, int threads, const std::function<void(std::size_t)>& work,
                   std::atomic<bool>* stop = nullptr);
+// One long engine call (a spectrum, a fragility fit's bootstrap) on a worker thread with the GIL released, while this
+// thread watches for Ctrl-C: the call gets a stop flag (raised at Ctrl-C; it should end within one step of its loop)
+// and this throws error_already_set (KeyboardInterrupt) instead of waiting for the call to finish.
+void run_interruptible(const std::function<void(const std::atomic<bool>& stop)>& work);
 
 void bind_kernel(py::module_& m);    // kernel.cpp: run_batch, analyze, simulate, status names
 void bind_records(py::module_& m);   // records.cpp: Record, read_record, spectrum, design_spectrum

@@ -141,6 +141,11 @@ void run_parallel(std::size_t batches, int threads, const std::function<void(std
   if (w.error) std::rethrow_exception(w.error);
 }
 
+void run_interruptible(const std::function<void(const std::atomic<bool>& stop)>& work) {
+  std::atomic<bool> stop{false};
+  run_parallel(1, 1, [&](std::size_t) { work(stop); }, &stop);
+}
+
 }  // namespace pounding::python
 
 PYBIND11_MODULE(_core, m) {

@@ -46,10 +46,7 @@ py::dict spectrum_py(const Record& r, const py::handle& periods, double zeta) {
     if (!(p > 0) || !std::isfinite(p)) throw py::value_error("periods: every period must be finite and > 0 s");
   if (!(zeta >= 0 && zeta < 1)) throw py::value_error("zeta: the damping ratio must be in [0, 1)");
   Spectrum s;
-  {
-    py::gil_scoped_release unlocked;
-    s = response_spectrum(r, t, zeta);
-  }
+  run_interruptible([&](const std::atomic<bool>& stop) { s = response_spectrum(r, t, zeta, &stop); });  // Ctrl-C
   py::dict d;
   d["period"] = to_numpy(s.periods), d["sd"] = to_numpy(s.sd), d["psv"] = to_numpy(s.psv), d["psa"] = to_numpy(s.psa);
   std::vector<double> g(s.psa);

@@ -99,3 +99,23 @@ def test_risk_targeted_gap_meets_its_target():
     assert t["ci"][0] <= t["gap"] <= t["ci"][1]
     with pytest.raises(ValueError, match="one of them"):
         pounding.hazard.risk_targeted_gap(d, levels, curve)
+
+
+def test_ctrl_c_stops_a_long_bootstrap():
+    """Ctrl-C reaches the bootstrap: 10^5 replicates over 20 gaps (minutes of work) raise KeyboardInterrupt within a
+    second of SIGINT."""
+    import os
+    import signal
+    import threading
+    import time
+    rng = np.random.default_rng(7)
+    levels = np.array([0.1, 0.2, 0.4, 0.8, 1.6])
+    d = levels[:, None, None] * np.exp(0.4 * rng.standard_normal((1, 40, 50))) * 0.25
+    timer = threading.Timer(0.5, lambda: os.kill(os.getpid(), signal.SIGINT))
+    timer.start()
+    t0 = time.monotonic()
+    with pytest.raises(KeyboardInterrupt):
+        pounding.fragility.fit_stripes(d, levels, np.linspace(0.05, 0.5, 20), bootstrap=100_000, threads=1)
+    took = time.monotonic() - t0
+    timer.join()
+    assert took < 2.5, f"KeyboardInterrupt {took:.2f} s after the call (SIGINT at 0.5 s)"

@@ -1,5 +1,6 @@
 """pounding.read_record, spectrum and design_spectrum: the engine's readers and formulas (issue 28, item 2)."""
 import math
+import os
 import subprocess
 
 import numpy as np
@@ -90,3 +91,20 @@ def test_design_spectra_closed_forms():
         pounding.design_spectrum("asce7-16", T, sds=-1.0, sd1=0.6)
     with pytest.raises(ValueError, match="unknown code"):
         pounding.design_spectrum("ubc97", T)
+
+
+def test_ctrl_c_stops_a_long_spectrum():
+    """Ctrl-C reaches the oscillators: 200 short periods of a 10^6-sample record (about 20 s of work on the 2-core VM)
+    raise KeyboardInterrupt within a second of SIGINT, not after the last period."""
+    import signal
+    import threading
+    import time
+    rec = pounding.Record(0.3 * np.sin(np.arange(1_000_000) * 0.05), 0.01, name="long")
+    timer = threading.Timer(0.5, lambda: os.kill(os.getpid(), signal.SIGINT))
+    timer.start()
+    t0 = time.monotonic()
+    with pytest.raises(KeyboardInterrupt):
+        pounding.spectrum(rec, np.full(200, 0.01))
+    took = time.monotonic() - t0
+    timer.join()
+    assert took < 2.5, f"KeyboardInterrupt {took:.2f} s after the call (SIGINT at 0.5 s)"
