@@ -49,6 +49,10 @@ void require_values(CLI::App& app);
 // values): every field must be a number, else InputError naming `option` and the accepted form.
 std::vector<double> number_list(const std::string& text, const std::string& option);
 CLI::Option* add_number_list(CLI::App* c, const std::string& name, std::vector<double>& out, const std::string& help);
+// The same for a list option that also takes several values (`--laws linear kelvin` or `--laws linear,kelvin`): every
+// value split at commas, an empty field refused; words as given, or numbers checked as number_list does.
+CLI::Option* add_list(CLI::App* c, const std::string& name, std::vector<std::string>& out, const std::string& help);
+CLI::Option* add_list(CLI::App* c, const std::string& name, std::vector<double>& out, const std::string& help);
 
 // Thrown by a sub-command that wrote its output but must end with a non-zero exit code (3: a run diverged or
 // a collision failed, its numbers are not results); main() returns `code`. Nothing process-wide holds it.

@@ -95,6 +95,46 @@ std::vector<double> number_list(const std::string& text, const std::string& opti
   }
 }
 
+namespace {
+
+std::vector<std::string> word_list(const std::vector<std::string>& values, const std::string& option) {
+  std::vector<std::string> out;
+  for (const std::string& text : values) {
+    std::size_t pos = 0;
+    while (true) {
+      const std::size_t end = std::min(text.find(',', pos), text.size());
+      if (end == pos)
+        throw InputError(fmt::format("{} '{}' has an empty field", option, escaped_excerpt(text)), option,
+                         "give the values separated by commas or spaces, e.g. a,b or a b (no empty field)");
+      out.push_back(text.substr(pos, end - pos));
+      if (end == text.size()) break;
+      pos = end + 1;
+    }
+  }
+  return out;
+}
+
+}  // namespace
+
+CLI::Option* add_list(CLI::App* c, const std::string& name, std::vector<std::string>& out, const std::string& help) {
+  return c
+      ->add_option_function<std::vector<std::string>>(
+          name, [&out, name](const std::vector<std::string>& v) { out = word_list(v, name); }, help)
+      ->type_name("A,B,...");
+}
+
+CLI::Option* add_list(CLI::App* c, const std::string& name, std::vector<double>& out, const std::string& help) {
+  return c
+      ->add_option_function<std::vector<std::string>>(
+          name,
+          [&out, name](const std::vector<std::string>& v) {
+            out.clear();
+            for (const std::string& w : word_list(v, name)) out.push_back(number_list(w, name).front());
+          },
+          help)
+      ->type_name("X,Y,...");
+}
+
 CLI::Option* add_number_list(CLI::App* c, const std::string& name, std::vector<double>& out, const std::string& help) {
   return c
       ->add_option_function<std::string>(

@@ -7,7 +7,7 @@
 #           2e9 (std::bad_alloc); motions --realisations and a study's [records.motions] that would not fit;
 #   item 10 empty and wrapped values: simulate --modal-zeta '' (every mode's damping 0), --gap '' (a gap of 0),
 #           modes --modal-zeta '' (Rayleigh instead), motions --seed -1 and 2^64 (2^64 - 1), a list with an empty
-#           field;
+#           field (accuracy's lists dropped it: --laws linear,,kelvin ran two laws); bench --duration 1e9;
 #   item 11 the study keys' ranges: storey masses 1e-30 and 1e300, --T1 1e9, --kh 1e30, --m1, --h1, --zeta,
 #           --gap-offsets longer than the contact levels, a bridge's joints given --kh beyond a joint's range, and
 #           motions from a target spectrum whose records a study refuses (PGA above 5 g).
@@ -70,6 +70,10 @@ refuse "motions --seed -1" "--seed|-1 is negative|[0, 2^64 - 1]" "${motions[@]}"
 refuse "motions --seed 2^64" "--seed|18446744073709551616|[0, 2^64 - 1]" "${motions[@]}" --seed 18446744073709551616
 refuse "motions --seed 010" "--seed|leading zero" "${motions[@]}" --seed 010
 refuse "motions --positions 0,,100" "--positions|empty field" "${motions[@]}" --positions 0,,100
+refuse "accuracy restitution --laws linear,,kelvin" "--laws|empty field" accuracy restitution --laws linear,,kelvin
+refuse "accuracy restitution --targets 0.5,,0.6" "--targets|empty field" accuracy restitution --targets 0.5,,0.6
+refuse "accuracy chart --rows with an empty field" "--rows|empty field" accuracy chart --rows ,central-difference:hertzdamp:2
+refuse "accuracy validate-muthukumar --ratios 0.3,,0.5" "--ratios|empty field" accuracy validate-muthukumar --ratios 0.3,,0.5
 accept "motions --seed 18446744073709551615" "${motions[@]}" --seed 18446744073709551615
 
 # ---- item 8: sizes with no upper bound ----------------------------------------------------------------------------
@@ -90,6 +94,7 @@ refuse "simulate --bridge --wave-delay 200 --dt 0.0005 on a 64 MiB machine" \
 accept "simulate --duration 60 on a 64 MiB machine" "${sim[@]}" --duration 60 --gap 0.5
 export POUNDING_TEST_MEMORY_AVAILABLE=1073741824
 refuse "collide --steps 2e9 on a 1 GiB machine" "--steps|needs 44.7 GiB|give --steps <=" collide --steps 2000000000
+refuse "bench --duration 1e9 on a 1 GiB machine" "--duration|of memory available|give --duration <=" bench --duration 1e9
 unset POUNDING_TEST_MEMORY_AVAILABLE
 
 # ---- item 11: the ranges of the study keys that mean the same quantity ----------------------------------------------

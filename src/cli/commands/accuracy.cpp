@@ -120,10 +120,9 @@ void add_chart(CLI::App* acc, const RecordsDir& dir) {
   c->add_option("--repeats", o->repeats, "timing repeats (median)")->capture_default_str();
   c->add_option("--kmax", o->kmax, "dt = record dt x 2^-k, k = 0..kmax")->capture_default_str();
   c->add_option("--uncoupled", o->uncoupled, "larger uncoupled reference CSV for the probability table");
-  c->add_option("--rows", o->rows,
-                "only these rows, stepper:law:k (e.g. central-difference:hertzdamp:2); each equals the full "
-                "chart's row except the timing columns")
-      ->delimiter(',');
+  add_list(c, "--rows", o->rows,
+           "only these rows, stepper:law:k (e.g. central-difference:hertzdamp:2); each equals the full "
+           "chart's row except the timing columns");
   c->callback([o, dir] {
     files::check_output_not_input(o->out, records_read({o->reference, o->uncoupled}, *dir), "--out");  // before any work
     require_positive(o->repeats, "--repeats");
@@ -236,9 +235,8 @@ void add_restitution(CLI::App* acc) {
   auto o = std::make_shared<O>();
   auto* c = acc->add_subcommand("restitution", "effective vs target e for every damping law; Kelvin's tension");
   c->add_option("--out", o->out, "restitution CSV")->capture_default_str();
-  c->add_option("--laws", o->laws, "only these laws' rows (default: all eight)")->delimiter(',');
-  c->add_option("--targets", o->targets, "only these target e of the table's 0.10, 0.15, ..., 1.00")
-      ->delimiter(',');
+  add_list(c, "--laws", o->laws, "only these laws' rows (default: all eight)");
+  add_list(c, "--targets", o->targets, "only these target e of the table's 0.10, 0.15, ..., 1.00");
   c->callback([o] {
     std::vector<double> targets;  // 0.05 i exactly as in the full table, so a subset gives the same rows
     for (int i = 2; i <= 20; ++i)
@@ -305,8 +303,8 @@ void add_validate_muthukumar(CLI::App* acc, const RecordsDir& dir) {
   c->add_option("--records", o->mo.records,
                 "all (every record in a PGA band) or matched (the paper's Table I records we hold)")
       ->capture_default_str();
-  c->add_option("--levels", o->mo.levels, "PGA levels to run (low moderate high; default all)")->delimiter(',');
-  c->add_option("--ratios", o->mo.ratios, "T1/T2 to run (0.3 0.5 0.7; default all)")->delimiter(',');
+  add_list(c, "--levels", o->mo.levels, "PGA levels to run (low moderate high; default all)");
+  add_list(c, "--ratios", o->mo.ratios, "T1/T2 to run (0.3 0.5 0.7; default all)");
   c->add_option("--substeps", o->mo.substeps, "substeps per record step (default: h <= 0.5 ms)");
   c->add_flag("--table-i", o->table_i, "print the paper's Table I against our records (CSV) and exit");
   c->callback([o, dir] {

@@ -1,6 +1,7 @@
 // `pounding bench`: the kernel benchmark (ns per pair-step, median of repeats) on the named workload; with
 // --storeys N the system stepper's (ns per DOF-step) on two N-storey shear buildings.
 #include <algorithm>
+#include <cmath>
 #include <chrono>
 #include <ctime>
 #include <memory>
@@ -14,6 +15,7 @@
 
 #include "cli/commands.hpp"
 #include "pounding/core/error.hpp"
+#include "pounding/core/machine.hpp"
 #include "pounding/contact/registry.hpp"
 #include "pounding/physics/batch.hpp"
 #include "pounding/physics/system_stepper.hpp"
@@ -172,7 +174,20 @@ void add_bench(CLI::App& app) {
   c->callback([o] {
     if (o->width < 1) throw InputError("--width must be >= 1", "--width", "give a batch width of 1 or more");
     if (o->repeats < 1) throw InputError("--repeats must be >= 1", "--repeats", "give 1 or more");
+    if (o->substeps < 1) throw InputError("--substeps must be >= 1", "--substeps", "give 1 or more integration steps per record step");
     require_positive(o->duration, "--duration");
+    // the record's samples (the motion and its copy in the ground motion) and, for the system workloads, one schedule
+    // value per integration step (physics::make_schedule), before anything is allocated: --duration 1e9 ended in
+    // std::bad_alloc
+    if (const double samples = std::floor(o->duration / o->dt) + 2.0,
+        need = 8.0 * (2.0 * samples + samples * std::max(1, o->substeps)), avail = available_memory_bytes();
+        std::isfinite(avail) && need > avail)
+      throw InputError(fmt::format("--duration = {:g} s needs {} for its {:.4g} samples at {:g} s, more than the {} of "
+                                   "memory available on this machine (MemAvailable)",
+                                   o->duration, human_bytes(need), samples, o->dt, human_bytes(avail)),
+                       "--duration",
+                       fmt::format("give --duration <= {:.4g} s (the default 40 s is the benchmark's workload)",
+                                   avail / need * o->duration));
     ContactModel cm;
     cm.law = parse_contact_law(o->contact);
     cm.damping = parse_damping_law(o->damping);
