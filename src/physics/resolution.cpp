@@ -3,6 +3,9 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
+#include <cmath>
+
 namespace pounding::physics {
 
 namespace {
@@ -24,6 +27,61 @@ std::string describe(const CoarseSummary& c) {
                      "-- an estimate: the peak penetration, and with it the Hertz tangent, changes with the step",
                      substeps_for_limit(c.substeps_at_max, c.hw_max, c.limit), floor3(c.h_at_max * c.limit / c.hw_max));
   return s;
+}
+
+StepChoice choose_step(bool given, int substeps, double record_dt, double h_stability, int max_substeps,
+                       const std::function<StepResolution(int)>& run) {
+  StepChoice c;
+  c.given = given, c.record_dt = record_dt, c.h_stability = h_stability;
+  c.substeps_stability = c.first_substeps = substeps;
+  for (;;) {
+    const StepResolution r = run(substeps);
+    if (++c.runs == 1) c.first = r;
+    c.substeps = substeps, c.last = r;
+    if (given || r.resolved() || substeps >= max_substeps || c.runs >= step_max_runs) return c;
+    const int next = r.diverged ? 4 * substeps : substeps_for_limit(substeps, r.hw, step_margin * r.limit);
+    substeps = std::min(max_substeps, std::max(substeps + 1, next));
+  }
+}
+
+std::string describe(const StepChoice& c) {
+  const std::string step = c.substeps == 1 ? fmt::format("{:.6g} s (the record step)", c.h())
+                                           : fmt::format("{:.6g} s (record step {:g} s / {})", c.h(), c.record_dt,
+                                                         c.substeps);
+  if (c.given) return step + ", given (--dt)";
+  std::string s = step + ", chosen: ";
+  s += std::isfinite(c.h_stability)
+           ? fmt::format("stable for the structures (h < {:.4g} s{})", c.h_stability,
+                         c.substeps_stability > 1 ? fmt::format(": {} substeps at least", c.substeps_stability) : "")
+           : std::string("the record step");
+  auto at = [](const StepResolution& r) {
+    return r.diverged ? std::string("the run diverged") : fmt::format("h·ω_c {:.3g}", r.hw);
+  };
+  if (c.runs == 1 && c.last.diverged) return s + "; the run diverged";
+  if (c.runs == 1 && std::isnan(c.last.hw)) return s + "; no contact force to resolve";
+  if (c.runs == 1)
+    return s + fmt::format("; the contact resolved at it (h·ω_c {:.3g} <= {:.3g}, from the run's peak penetration)",
+                           c.last.hw, c.last.limit);
+  s += fmt::format("; the contact needed a shorter step: {}{} at {} substep(s), then {}{} at {} (target {:g} x the "
+                   "limit; {} runs)",
+                   at(c.first), c.first.diverged ? "" : fmt::format(" > {:.3g}", c.first.limit), c.first_substeps,
+                   at(c.last), std::isnan(c.last.hw) && !c.last.diverged ? " (no contact force)" : "", c.substeps,
+                   step_margin, c.runs);
+  if (!c.last.resolved()) s += "; still not resolved";
+  return s;
+}
+
+std::string coarse_advice(const StepChoice& c) {
+  if (c.last.resolved()) return "";
+  const std::string tail = c.given ? ", or leave --dt out to let simulate choose the step" : "";
+  if (c.last.diverged)
+    return fmt::format("the run diverged at {:.6g} s: give a shorter --dt (e.g. {:.6g}, record step {:g} s / {}){}",
+                       c.h(), c.record_dt / (4 * c.substeps), c.record_dt, 4 * c.substeps, tail);
+  if (!(c.last.limit > 0)) return "";
+  const int n = substeps_for_limit(c.substeps, c.last.hw, step_margin * c.last.limit);
+  return fmt::format("the contact is not resolved (h·ω_c {:.3g} > {:.3g} at {:.6g} s): give --dt {:.6g} (record step "
+                     "{:g} s / {}){}",
+                     c.last.hw, c.last.limit, c.h(), c.record_dt / n, c.record_dt, n, tail);
 }
 
 }  // namespace pounding::physics

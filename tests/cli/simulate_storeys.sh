@@ -143,11 +143,11 @@ assert [x["xi"] for x in c["column_shears"]] == [x["xi"] for x in cs]
 print("ok:   floors against columns:", ", ".join(f'{l["label"]} {l["impacts"]}' for l in b["levels"]))
 PY
 
-# a diverged run (Hertz contact of 3.2e10 N/m^1.5 at the record step 0.01 s): exit 3, status diverged, the totals
+# a diverged run (Hertz contact of 3.2e10 N/m^1.5 at the record step 0.01 s, given as --dt): exit 3, status diverged, the totals
 # -1 like every per-level count (the kernel's mark of a lane without results), not a sum of marks
 set +e
 sim --storeys1 3 --storey-mass1 2e5 --storey-stiffness1 3e8 --storeys2 5 --storey-mass2 2.5e5 \
-    --storey-stiffness2 2.2e8 --gap 0.01 --kh 3.2e10 --json > "$tmp/div.json"
+    --storey-stiffness2 2.2e8 --gap 0.01 --kh 3.2e10 --dt 0.01 --json > "$tmp/div.json"
 rc=$?
 set -e
 [ $rc -eq 3 ] || fail "a diverged multi-storey run exits $rc, want 3"
@@ -214,8 +214,12 @@ bad "--shape-functions" --storeys1 3 --storey-height2 3.5 --shape-functions quad
 bad "--gap-offsets" --storeys1 3 --storeys2 3 --gap-offsets 0,0
 bad "--gap-offsets" --storeys1 3 --gap 0.1 --gap-offsets -0.2
 [ ! -e "$tmp/s.csv" ] || fail "a refused run wrote its series"
-# the structure's own top frequency beyond central difference's limit: refused with the substeps that satisfy it
-bad "--dt (default: the record step), give --dt <= 4.7619e-05 s" --storeys1 5 --storey-mass1 1e3 --storey-stiffness1 3e11
+# the structure's own top frequency beyond central difference's limit: --dt at the record step refused with the substeps
+# that satisfy it; without --dt simulate takes them (physics::choose_step) and says so
+bad "--dt, give --dt <= 4.7619e-05 s" --storeys1 5 --storey-mass1 1e3 --storey-stiffness1 3e11 --dt 0.01
+sim --storeys1 5 --storey-mass1 1e3 --storey-stiffness1 3e11 > "$tmp/stiff.txt" || fail "the stiff storeys without --dt: exit $?"
+grep -q '^step: 4.7619e-05 s (record step 0.01 s / 210), chosen: stable for the structures (h < 4.78e-05 s: 210 substeps at least)' \
+  "$tmp/stiff.txt" || fail "the stiff storeys' step: $(grep '^step' "$tmp/stiff.txt")"
 # Rayleigh-damped tall buildings of short storeys: 40 storeys of 1 m at --dt 0.005 pass the undamped h omega_max < 2
 # (1.62), but the storey dashpots on the stepper's predicted velocity need h^2 w^2 + 4 h (2 zeta w) < 4 (Gershgorin's
 # bounds: omega_max <= 324 rad/s, 2 zeta omega <= 418 1/s, h <= 0.00211 s; physics::structure_step_max): refused

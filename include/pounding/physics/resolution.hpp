@@ -13,6 +13,7 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <limits>
 #include <string>
 
@@ -53,6 +54,42 @@ inline double h_omega(double h, double k_t, double meff) { return h * std::sqrt(
 inline int substeps_for_limit(int substeps, double hw_max, double limit) {
   return static_cast<int>(std::ceil(substeps * hw_max / limit - 1e-9));
 }
+
+// The step of a single run when the user gives none (`pounding simulate` without --dt): the structures' stability
+// first (the fewest substeps per record step under physics::structure_step_max's bound), then the contact. The
+// engine predicts the contact's h omega_c at the peak penetration by running the analysis (a pilot run at the step
+// so far; the guard's h omega_c comes from the run's own peak penetration), and keeps the run when every contact
+// element is resolved (h omega_c <= the limit of its stepper x law) -- so where the record step already resolves
+// the contact, the result is today's, bit for bit. Otherwise it runs again at ceil(n h omega_c / (margin limit))
+// substeps (margin 0.8: the peak penetration, and with it the Hertz tangent, changes with the step; a diverged run: 4 n), until resolved,
+// at most `max_runs` runs or `max_substeps` substeps; the last run is the result (still coarse if it could not be
+// resolved: the run says so, and which step would).
+struct StepResolution {
+  double hw = std::numeric_limits<double>::quiet_NaN();  // largest h omega_c / limit over the elements: its h omega_c
+  double limit = no_limit;                                // ... and that element's limit (NaN hw: no contact force)
+  bool diverged = false;                                  // the run diverged (or went non-finite): no h omega_c
+  bool resolved() const { return !diverged && !(hw > limit); }
+};
+struct StepChoice {
+  bool given = false;                 // the user gave the step (--dt): one run, nothing chosen
+  double record_dt = 0;               // s
+  int substeps = 1;                   // of the final run
+  int substeps_stability = 1;         // the structures' stability alone
+  double h_stability = no_limit;      // their bound, s (inf: none computed)
+  int runs = 0;                       // analyses run (pilot runs + the final one)
+  StepResolution first, last;         // the first and the final run's worst contact element
+  int first_substeps = 1;
+  double h() const { return record_dt / substeps; }
+};
+inline constexpr double step_margin = 0.8;
+inline constexpr int step_max_runs = 6;
+// run(n) runs the analysis at record_dt / n and returns its worst element (largest h omega_c / limit).
+StepChoice choose_step(bool given, int substeps, double record_dt, double h_stability, int max_substeps,
+                       const std::function<StepResolution(int substeps)>& run);
+// "0.000625 s (record step 0.005 s / 8), chosen: ..." -- how the step came about, for the run's output; and, when the
+// final run is still coarse, the --dt that would resolve it (empty otherwise).
+std::string describe(const StepChoice& c);
+std::string coarse_advice(const StepChoice& c);
 
 // A study's (or a run's) coarse analyses, for the report and the run output.
 struct CoarseSummary {

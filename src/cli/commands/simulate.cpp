@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <functional>
 #include <array>
 #include <limits>
 #include <memory>
@@ -32,6 +33,7 @@
 #include "pounding/physics/bridge.hpp"
 #include "pounding/physics/shear_building.hpp"
 #include "pounding/physics/system_batch.hpp"
+#include "pounding/physics/resolution.hpp"
 #include "pounding/physics/validate.hpp"
 #include "pounding/motion/records.hpp"
 #include "pounding/report/summary.hpp"
@@ -366,6 +368,37 @@ void check_sizes(const SimulateOptions& o, double record_dt, std::size_t samples
                : std::string("give a shorter record or fewer supports"));
 }
 
+// The most substeps the step chooser may take (physics::choose_step): [analysis] substeps' range, and the memory of
+// the time loop's schedule (and --series) at that step -- check_sizes' formula, so a refined step cannot run out of
+// memory after the first run.
+int most_substeps(const SimulateOptions& o, double record_dt, std::size_t samples, int channels) {
+  const double key_hi = config::study_key("analysis", "substeps").hi;
+  const double record_length = record_dt * static_cast<double>(samples > 0 ? samples - 1 : 0);
+  const double length = o.duration_given ? o.duration : record_length;
+  const double per_step = 1.0 + (channels > 1 ? 3.0 * channels : 0.0) + (o.series.empty() ? 0.0 : 11.0);
+  const double avail = available_memory_bytes();
+  if (!std::isfinite(avail)) return static_cast<int>(key_hi);
+  const double fit = (avail / 8.0 - 2.0 * channels * static_cast<double>(samples)) / per_step;
+  return static_cast<int>(std::clamp(std::floor(fit / (std::ceil(length / record_dt) + 1.0)), 1.0, key_hi));
+}
+
+// The worst contact element of a run for the step chooser: the largest h omega_c / limit of its stepper x law (each
+// element's group's law); NaN h omega_c when no element carried a force.
+physics::StepResolution worst_element(const model::System& sys, std::span<const ContactModel> groups,
+                                      const KernelSettings& ks, const physics::SystemResult& r) {
+  physics::StepResolution w;
+  const auto status = static_cast<LaneStatus>(r.status[0]);
+  w.diverged = status == LaneStatus::diverged || status == LaneStatus::non_finite;
+  double worst = -1.0;
+  for (std::size_t e = 0; e < sys.contacts().size() && !w.diverged; ++e) {
+    const double hw = r.h_omega_contact[physics::SystemBatch::at(static_cast<int>(e), 0, r.width)];
+    const double limit = physics::resolution_limit(ks, groups[sys.contacts()[e].group].law);
+    if (!(hw > 0.0) || hw / limit <= worst) continue;
+    worst = hw / limit, w.hw = hw, w.limit = limit;
+  }
+  return w;
+}
+
 PairParams pair_params(const SimulateOptions& o, const ContactModel& cm, const Structure& s1, const Structure& s2) {
   PairParams p;
   p.s1 = s1, p.s2 = s2, p.gap = o.gap, p.e = o.e;
@@ -512,6 +545,52 @@ void check_step(const SimulateOptions& o, const physics::SystemBatch& batch, con
                                h, s.h_max, rule, s.omega_max, s.damping),
                    o.dt_given ? "--dt" : "--dt (default: the record step)",
                    fmt::format("give --dt <= {:.6g} s (the record step {} s / {})", record_dt / need, record_dt, need));
+}
+
+// The step of a system run (multi-storey, isolated, bridge): --dt checked against the structures' stability, or,
+// without --dt, the fewest substeps that are stable and then resolve the contact (physics::choose_step; `run` runs
+// the coupled analysis at ks.substeps). The step's story goes to the output ("step: ..."); a run still coarse
+// prints what would resolve it on stderr too (the JSON output has it as "step_advice").
+physics::StepChoice choose_system_step(const SimulateOptions& o, const physics::SystemBatch& batch,
+                                       std::span<const ContactModel> groups, KernelSettings& ks, const Record& rec,
+                                       int channels, const std::function<const physics::SystemResult&()>& run) {
+  double h_stability = physics::no_limit;
+  if (o.dt_given) {
+    ks.substeps = substeps_for(o, rec.dt);
+    check_step(o, batch, ks, rec.dt);
+  } else {
+    const physics::StructureStep st = physics::structure_step_max(batch, 0, ks.stepper);
+    h_stability = st.h_max;
+    if (rec.dt / ks.substeps >= st.h_max) ks.substeps = static_cast<int>(st.substeps(rec.dt));
+  }
+  const int most = std::max(ks.substeps, most_substeps(o, rec.dt, rec.acc.size(), channels));
+  const physics::StepChoice c =
+      physics::choose_step(o.dt_given, ks.substeps, rec.dt, h_stability, most, [&](int n) {
+        ks.substeps = n;
+        return worst_element(*batch.system, groups, ks, run());
+      });
+  ks.substeps = c.substeps;
+  return c;
+}
+
+// "step: ..." for the text output, the JSON members step / step_runs / step_advice, and the advice on stderr.
+std::string step_text(const physics::StepChoice& c) {
+  std::string s = fmt::format("step: {}\n", physics::describe(c));
+  if (const std::string a = physics::coarse_advice(c); !a.empty()) s += fmt::format("step_advice: {}\n", a);
+  return s;
+}
+std::string with_step_json(std::string json, const physics::StepChoice& c) {
+  const std::size_t end = json.rfind('}');
+  if (end == std::string::npos) return json;
+  report::JsonWriter w;
+  w.begin_object().member("step", physics::describe(c)).member("step_runs", c.runs).member("step_substeps", c.substeps);
+  if (const std::string a = physics::coarse_advice(c); !a.empty()) w.member("step_advice", a);
+  const std::string add = w.end_object().str();
+  json.insert(end, "," + add.substr(1, add.rfind('}') - 1));
+  return json;
+}
+void warn_coarse(const physics::StepChoice& c) {
+  if (const std::string a = physics::coarse_advice(c); !a.empty()) fmt::print(stderr, "warning: {}\n", a);
 }
 
 // The contact elements' numbers: gap = --gap (+ --gap-offsets per level), kc = --kh or the equivalent-sphere Hertz
@@ -743,11 +822,12 @@ int run_storeys(SimulateOptions& o, const ContactModel& cm, KernelSettings& ks) 
   check_sizes(o, rec.dt, rec.acc.size(), 1);
   const double record_length = rec.duration();
   const double analysis_length = cut_to_duration(o, rec);
-  if (o.dt_given) ks.substeps = substeps_for(o, rec.dt);
-  if (!sys.is_sdof_pair()) check_step(o, batch, ks, rec.dt);
   GroundMotion gm{rec.dt, rec.acc, analysis_length > record_length ? analysis_length : 0.0};
   physics::SystemResult r;
-  physics::run_system(batch, groups, gm, ks, r);
+  const physics::StepChoice step = choose_system_step(o, batch, groups, ks, rec, 1, [&]() -> const physics::SystemResult& {
+    physics::run_system(batch, groups, gm, ks, r);
+    return r;
+  });
   // the uncoupled run (no pounding between the buildings; moats stay, architecture §2.6.2) for the amplification
   std::vector<ContactModel> free_groups = groups;
   free_groups[0].law = ContactLaw::none;
@@ -758,11 +838,12 @@ int run_storeys(SimulateOptions& o, const ContactModel& cm, KernelSettings& ks) 
   run.system = &sys, run.result = &r, run.record = &rec, run.settings = &ks, run.contact = &cm;
   run.e_target = o.e, run.gap = o.gap, run.analysis_duration = analysis_length;
   if (o.json) {
-    fmt::print("{}", with_column_shears_json(format_system_json(run), sys, r));
+    fmt::print("{}", with_step_json(with_column_shears_json(format_system_json(run), sys, r), step));
   } else {
-    fmt::print("{}{}{}", describe_duration(record_length, analysis_length), format_system_summary(run),
-               column_shears_text(sys, r));
+    fmt::print("{}{}{}{}", describe_duration(record_length, analysis_length), step_text(step),
+               format_system_summary(run), column_shears_text(sys, r));
   }
+  warn_coarse(step);
   return r.status[0] != 0 ? 3 : 0;
 }
 
@@ -899,16 +980,19 @@ int run_bridge(SimulateOptions& o, const ContactModel& cm, KernelSettings& ks) {
   const double record_length = rec.duration();
   double analysis_length = 0.0;
   for (Record& x : recs) analysis_length = cut_to_duration(o, x);
-  if (o.dt_given) ks.substeps = substeps_for(o, rec.dt);
-  check_step(o, batch, ks, rec.dt);
   const std::vector<ContactModel> groups(sys.groups().size(), cm);
   std::vector<GroundMotion> gm;
   for (const Record& x : recs) gm.push_back({x.dt, x.acc, analysis_length > record_length ? analysis_length : 0.0});
   physics::SystemResult r, free;
   std::optional<physics::HertzdampRestitution> rest;  // e(v0) at every joint impact (--restitution-*)
-  KernelSettings free_ks = ks;  // open joints: no impact, no curve
   if (o.curve) ks.restitution = &rest.emplace(*o.curve, cm).hook;
-  physics::run_system(batch, groups, std::span<const GroundMotion>(gm), ks, r);
+  const physics::StepChoice step =
+      choose_system_step(o, batch, groups, ks, rec, static_cast<int>(recs.size()), [&]() -> const physics::SystemResult& {
+        physics::run_system(batch, groups, std::span<const GroundMotion>(gm), ks, r);
+        return r;
+      });
+  KernelSettings free_ks = ks;  // open joints: no impact, no curve
+  free_ks.restitution = nullptr;
   std::vector<ContactModel> free_groups = groups;  // the same chain with open joints: the amplification
   for (ContactModel& g : free_groups) g.law = ContactLaw::none;
   physics::run_system(batch, free_groups, std::span<const GroundMotion>(gm), free_ks, free);
@@ -931,12 +1015,14 @@ int run_bridge(SimulateOptions& o, const ContactModel& cm, KernelSettings& ks) {
       const std::size_t close = json.rfind('}');
       json = json.substr(0, close) + "," + add.substr(1, add.rfind('}') - 1) + json.substr(close);
     }
-    fmt::print("{}", json);
+    fmt::print("{}", with_step_json(json, step));
   } else {
-    fmt::print("{}{}{}", describe_duration(record_length, analysis_length), supports, format_system_summary(run));
+    fmt::print("{}{}{}{}", describe_duration(record_length, analysis_length), supports, step_text(step),
+               format_system_summary(run));
     if (o.curve)
       fmt::print("restitution: {}\nrestitution_outside_valid: {} of {} impacts\n", o.curve->describe(), outside, impacts);
   }
+  warn_coarse(step);
   return r.status[0] != 0 ? 3 : 0;
 }
 
@@ -988,6 +1074,7 @@ int run_simulate(SimulateOptions& o) {
   const double record_length = rec.duration();
   const double analysis_length = cut_to_duration(o, rec);
   if (o.dt_given) ks.substeps = substeps_for(o, rec.dt);
+  const int most = std::max(ks.substeps, most_substeps(o, rec.dt, rec.acc.size(), 1));
   const PairParams p = pair_params(o, cm, s1, s2);
 
   SeriesRecorder series;
@@ -1004,14 +1091,30 @@ int run_simulate(SimulateOptions& o) {
   BatchResult r;
   std::optional<physics::HertzdampRestitution> rest;
   if (o.curve) ks.restitution = &rest.emplace(*o.curve, cm).hook;
-  run_batch(b, cm, gm, ks, r);
+  // the step: --dt, or the record step refined until the contact is resolved (physics::choose_step)
+  const physics::StepChoice step =
+      physics::choose_step(o.dt_given, ks.substeps, rec.dt, physics::no_limit, most, [&](int n) {
+        ks.substeps = n;
+        series.clear();
+        run_batch(b, cm, gm, ks, r);
+        physics::StepResolution w;
+        const auto status = static_cast<LaneStatus>(r.status[0]);
+        w.diverged = status == LaneStatus::diverged || status == LaneStatus::non_finite;
+        if (!w.diverged && r.h_omega_contact[0] > 0.0)
+          w.hw = r.h_omega_contact[0], w.limit = physics::resolution_limit(ks, cm.law);
+        return w;
+      });
+  ks.substeps = step.substeps;
 
-  std::string text = describe_run(o, record_length, analysis_length) + format_summary(r, 0, cm, p, rec, ks);
+  std::string text = describe_run(o, record_length, analysis_length) + step_text(step) +
+                     format_summary(r, 0, cm, p, rec, ks);
   if (o.curve)
     text += fmt::format("restitution: {}\nrestitution_outside_valid: {} of {} impacts\nrestitution_note: each impact "
                         "took e(v0) at its latched approach velocity; e_target and xibar above are --e's, not used\n",
                         o.curve->describe(), r.restitution_outside[0], r.impact_count[0]);
-  fmt::print("{}", o.json ? with_restitution(pair_json(o, b, r, cm, p, rec, ks, gm, analysis_length), o, r) : text);
+  fmt::print("{}", o.json ? with_step_json(with_restitution(pair_json(o, b, r, cm, p, rec, ks, gm, analysis_length), o, r), step)
+                          : text);
+  warn_coarse(step);
   if (!o.series.empty()) {
     if (std::filesystem::path(o.series).extension() == ".csv")
       write_series_csv(o.series, series);
