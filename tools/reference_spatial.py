@@ -18,7 +18,15 @@ within 0.2 % of the continuous one for T >= 0.1 s at dt = 0.01 s).
       over realisations, then over +-0.3 Hz) against the model at 1-5 Hz within --coherency-tol, (3) with
       --spectrum: the mean 5 % PSA of every record against the NZS 1170.5 target at 20 log-spaced periods in
       --band within --spectrum-tol (relative). Exit 1 with the failing numbers, 0 when all hold.
-  reference_spatial.py selftest      the model forms against the published vectors T6.1-T6.3
+      --site F1,Z1:F2,Z2 (Der Kiureghian 1996 site filters of the pair, f_g in Hz): the model's site phase theta_s
+      is also checked against the phase of the estimated cross-spectrum (after the wave-passage shift) at 1-5 Hz.
+  reference_spatial.py table TABLE --model M [--beta B --lw-a A --hv A,alpha,k,f0,b] [--velocity V]
+                         [--no-wave-passage] [--positions X1,X2,.. --site F1,Z1:F2,Z2:..]
+      reads `pounding motions --coherency-table` output and recomputes every row (|gamma|, theta_w, theta_s, gamma)
+      here; exit 1 when a value differs by more than 1e-9 (the table prints 10 decimals).
+  reference_spatial.py factors --model M [...] --positions X1,X2,.. [--site ...] --f F
+      prints the lower-triangular Cholesky factor of Gamma(f) (numpy.linalg.cholesky): |L| and arg L per entry.
+  reference_spatial.py selftest      the model forms against the published vectors T6.1-T6.4
 """
 import argparse
 import csv
@@ -47,6 +55,86 @@ def coherency(model, f, xi, v=500.0, beta=0.001, lw_a=2.5e-4, hv=(0.736, 0.147, 
     if model == "none":
         return np.ones_like(w * xi)
     raise SystemExit(f"unknown model {model}")
+
+
+def site_transfer(fg, zg, f):
+    """Der Kiureghian 1996: H(w) = (wg^2 + 2 i zg wg w) / (wg^2 - w^2 + 2 i zg wg w), wg = 2 pi fg (Hz)."""
+    wg = 2 * np.pi * fg
+    w = 2 * np.pi * np.asarray(f, dtype=float)
+    return (wg ** 2 + 2j * zg * wg * w) / (wg ** 2 - w ** 2 + 2j * zg * wg * w)
+
+
+def site_phase(site_j, site_k, f):
+    """theta_s = atan2(Im H_j H_k*, Re H_j H_k*)."""
+    h = site_transfer(*site_j, f) * np.conj(site_transfer(*site_k, f))
+    return np.arctan2(h.imag, h.real)
+
+
+def gamma_jk(a, f, xj, xk, site_j=None, site_k=None):
+    """Complex coherency of the point at xj against the point at xk (the phase of j minus that of k):
+    |gamma(|xj - xk|)| exp(i (theta_w + theta_s)), theta_w = -w (xj - xk) / v_app."""
+    mag = coherency(a.model, f, abs(xj - xk), a.velocity, a.beta, a.lw_a, hv_of(a))
+    tw = 0.0 if a.no_wave_passage else -2 * np.pi * f * (xj - xk) / a.velocity
+    ts = site_phase(site_j, site_k, f) if site_j is not None else 0.0
+    return mag * np.exp(1j * (tw + ts)), mag, tw, ts
+
+
+def hv_of(a):
+    return tuple(float(x) for x in a.hv.split(",")) if getattr(a, "hv", None) else (0.736, 0.147, 5210.0, 1.09, 2.78)
+
+
+def sites_of(text):
+    return [tuple(float(x) for x in p.split(",")) for p in text.split(":")] if text else None
+
+
+def table(a):
+    """Every row of `pounding motions --coherency-table` recomputed here."""
+    bad = 0
+    rows = 0
+    positions = [float(x) for x in a.positions.split(",")] if a.positions else None
+    sites = sites_of(a.site)
+    for line in open(a.table):
+        v = line.split()
+        if not v or line.startswith("#") or v[0] in ("f_Hz", "j"):
+            continue
+        if len(v) == 6:  # f, xi, |gamma|, theta_w, re, im: the downstream point against the upstream one
+            f, xi = float(v[0]), float(v[1])
+            g, mag, tw, ts = gamma_jk(a, f, xi, 0.0)
+            want = [mag, tw, g.real, g.imag]
+            got = [float(x) for x in v[2:6]]
+        elif len(v) == 9:  # j, k, f, xi, |gamma|, theta_w, theta_s, re, im
+            j, k, f = int(v[0]) - 1, int(v[1]) - 1, float(v[2])
+            if positions is None or sites is None:
+                print("FAIL: a site-response row needs --positions and --site")
+                return 1
+            g, mag, tw, ts = gamma_jk(a, f, positions[j], positions[k], sites[j], sites[k])
+            want = [positions[j] - positions[k], mag, tw, ts, g.real, g.imag]
+            got = [float(x) for x in v[3:9]]
+        else:
+            print("FAIL: unexpected row:", line.rstrip())
+            return 1
+        rows += 1
+        if max(abs(x - y) for x, y in zip(got, want)) > 1e-9:
+            print("FAIL:", line.rstrip(), "reference", " ".join(f"{x:.10f}" for x in want))
+            bad = 1
+    print(f"table: {rows} rows recomputed, {'differences above' if bad else 'all within 1e-9'}")
+    return 1 if bad or rows == 0 else 0
+
+
+def factors(a):
+    x = [float(v) for v in a.positions.split(",")]
+    sites = sites_of(a.site)
+    n = len(x)
+    gam = np.eye(n, dtype=complex)
+    for j in range(n):
+        for k in range(n):
+            if j != k:
+                gam[j, k] = gamma_jk(a, a.f, x[j], x[k], sites[j] if sites else None, sites[k] if sites else None)[0]
+    L = np.linalg.cholesky(gam)
+    for j in range(n):
+        print(" ".join(f"{abs(L[j, k]):.10f}/{np.angle(L[j, k]) if abs(L[j, k]) > 0 else 0.0:+.10f}" for k in range(j + 1)))
+    print(f"|L L^H - Gamma| = {np.max(np.abs(L @ L.conj().T - gam)):.3g}")
+    return 0
 
 
 def nzs_ch(site, t):
@@ -141,7 +229,9 @@ def check(a):
     print(f"lag of the peak: {lag} steps ({lag * dt:.3f} s); wave passage {expect:.2f} steps ({delay:.3f} s)")
     if a.no_wave_passage:
         expect = 0.0
-    if abs(lag - expect) > a.lag_tol_steps:
+    if a.site:
+        print("lag not checked with --site: the site phase adds a group delay to the wave passage")
+    elif abs(lag - expect) > a.lag_tol_steps:
         failures.append(f"cross-correlation peak at {lag} steps, expected {expect:.2f} +- {a.lag_tol_steps}")
     # (2) coherency
     if a.model:
@@ -161,7 +251,16 @@ def check(a):
         for fc in (1.0, 2.0, 3.0, 4.0, 5.0):
             sel = np.abs(f - fc) <= 0.3
             est = abs(pxy[sel].sum()) / math.sqrt(pxx[sel].sum() * pyy[sel].sum())
-            model = float(coherency(a.model, fc, xi, a.velocity, a.beta, a.lw_a))
+            model = float(coherency(a.model, fc, xi, a.velocity, a.beta, a.lw_a, hv_of(a)))
+            if a.site:
+                # the site phase turns quickly near a soft site's frequency: compare with what the same band average
+                # gives for the model, sum_i gamma(f_i) sqrt(Sxx_i Syy_i) / sqrt(sum Sxx sum Syy) over the bins used,
+                # gamma(f_i) = |gamma(f_i)| exp(i theta_s(k, j; f_i)) (theta_w is shifted out)
+                sj, sk = sites_of(a.site)
+                fi = f[sel]
+                gi = coherency(a.model, fi, xi, a.velocity, a.beta, a.lw_a, hv_of(a)) * np.exp(1j * site_phase(sk, sj, fi))
+                model_c = (gi * np.sqrt(pxx[sel] * pyy[sel])).sum() / math.sqrt(pxx[sel].sum() * pyy[sel].sum())
+                model = float(abs(model_c))
             # standard error of |gamma^| from nu averaged periodograms, (1 - g^2)/sqrt(2 nu) (Bendat & Piersol,
             # Random Data, 9.3), nu = realisations x Welch segments x bins in the band; bias (1 - g^2)^2 / (2 nu g)
             # is below 0.01 here. Tolerance: --coherency-tol or 4 standard errors (at least 0.03).
@@ -170,6 +269,16 @@ def check(a):
             print(f"coherency at {fc:.0f} Hz: estimated {est:.3f}, model {model:.3f}, tolerance {tol:.3f} (nu = {nu})")
             if abs(est - model) > tol:
                 failures.append(f"coherency at {fc} Hz: estimated {est:.3f}, model {model:.3f}, tol {tol:.3f}")
+            if a.site:
+                # the phase of support k minus that of j once the wave passage is shifted out: theta_s(k, j). scipy's
+                # csd(x, y) is conj(X) Y, the phase of y minus that of x. Standard error of the phase estimate
+                # sqrt(1 - g^2) / (g sqrt(2 nu)) (Bendat & Piersol 9.3); tolerance 4 of them, at least 0.03 rad.
+                ph = float(np.angle(pxy[sel].sum()))
+                want = float(np.angle(model_c))
+                ptol = max(0.03, 4 * math.sqrt(max(1 - model ** 2, 0.0)) / (model * math.sqrt(2 * nu)))
+                print(f"site phase at {fc:.0f} Hz: estimated {ph:+.3f} rad, model {want:+.3f} rad, tolerance {ptol:.3f}")
+                if abs(ph - want) > ptol:
+                    failures.append(f"site phase at {fc} Hz: estimated {ph:+.3f}, model {want:+.3f}, tol {ptol:.3f}")
     # (3) mean response spectrum
     if a.spectrum:
         lo, hi = [float(x) for x in a.band.split(",")]
@@ -204,6 +313,31 @@ def selftest():
         if np.max(np.abs(got - want)) > 1e-9:
             print("selftest FAIL", model, beta, f, got, want)
             bad = 1
+    # T6.1 Event 24 set
+    ev24 = (0.626, 0.022, 19700.0, 2.02, 3.47)
+    for f, want in ((1, [0.9434744706, 0.8919170227, 0.8019762650]), (5, [0.7734308714, 0.6263098936, 0.4673460234])):
+        got = coherency("harichandran-vanmarcke", f, xi, hv=ev24)
+        if np.max(np.abs(got - want)) > 1e-9:
+            print("selftest FAIL HV Event 24", f, got, want)
+            bad = 1
+    # T6.4 Der Kiureghian: Luco-Wong 2.5e-4 s/m, 500 m/s, site k (wg = 5 pi, zg = 0.6), site l (wg = 2 pi, zg = 0.4)
+    a = argparse.Namespace(model="luco-wong", velocity=500.0, beta=0.001, lw_a=2.5e-4, no_wave_passage=False, hv=None)
+    sk, sl = (2.5, 0.6), (1.0, 0.4)
+    for f, want in ((1, 0.8244292455), (5, 0.3597798082)):
+        if abs(site_phase(sk, sl, f) - want) > 1e-9:
+            print("selftest FAIL theta_s", f, site_phase(sk, sl, f), want)
+            bad = 1
+    t64 = {(1, 50): 0.9748002034 + 0.1936578087j, (1, 100): 0.8859122461 - 0.4086677129j,
+           (1, 200): -0.1067058822 - 0.8997124941j, (5, 50): -0.8022140950 - 0.3017540224j,
+           (5, 100): 0.5050905991 + 0.1899905785j, (5, 200): 0.0793752806 + 0.0298571296j}
+    for (f, x), want in t64.items():
+        got = gamma_jk(a, f, x, 0.0, sk, sl)[0]
+        if abs(got - want) > 1e-9:
+            print("selftest FAIL T6.4", f, x, got, want)
+            bad = 1
+    if abs(site_phase(sk, sk, 3.0)) > 0:
+        print("selftest FAIL theta_s of one site")
+        bad = 1
     table_d = {0.0: 1.12, 0.6: 2.84, 1.0: 1.93, 2.0: 1.07, 4.0: 0.40}
     for t, v in table_d.items():
         if abs(nzs_ch("D", t) - v) > 0.0051:
@@ -233,6 +367,8 @@ def main():
     k.add_argument("--lw-a", type=float, default=2.5e-4)
     k.add_argument("--rise", type=float, default=2.0)
     k.add_argument("--strong", type=float, default=8.0)
+    k.add_argument("--hv", help="A,alpha,k,f0,b (default: SMART-1 Event 20)")
+    k.add_argument("--site", help="f_g,zeta_g of support j:of support k (Der Kiureghian site phase)")
     k.add_argument("--coherency-tol", type=float, default=0.0)
     k.add_argument("--lag-tol-steps", type=float, default=1.0)
     k.add_argument("--spectrum")
@@ -241,10 +377,28 @@ def main():
     k.add_argument("--r", type=float, default=1.0)
     k.add_argument("--band", default="0.1,3")
     k.add_argument("--spectrum-tol", type=float, default=0.10)
+    for name in ("table", "factors"):
+        t = sub.add_parser(name)
+        if name == "table":
+            t.add_argument("table")
+        else:
+            t.add_argument("--f", type=float, required=True)
+        t.add_argument("--model", required=True)
+        t.add_argument("--beta", type=float, default=0.001)
+        t.add_argument("--lw-a", type=float, default=2.5e-4)
+        t.add_argument("--hv")
+        t.add_argument("--velocity", type=float, default=500.0)
+        t.add_argument("--no-wave-passage", action="store_true")
+        t.add_argument("--positions")
+        t.add_argument("--site")
     sub.add_parser("selftest")
     a = p.parse_args()
     if a.cmd == "selftest":
         return selftest()
+    if a.cmd == "table":
+        return table(a)
+    if a.cmd == "factors":
+        return factors(a)
     if a.cmd == "coherency":
         for f in [float(x) for x in a.f.split(",")]:
             for xi in [float(x) for x in a.xi.split(",")]:

@@ -134,6 +134,74 @@ std::complex<double> coherency(const Coherency& c, double w, double xj, double x
   return std::polar(mag, -w * (xj - xk) / v_app);
 }
 
+std::complex<double> site_transfer(const Site& site, double w) {
+  const double wg = two_pi * site.frequency;
+  const cplx num(wg * wg, 2.0 * site.damping * wg * w);
+  return num / cplx(wg * wg - w * w, 2.0 * site.damping * wg * w);
+}
+
+double site_phase(const Site& j, const Site& k, double w) {
+  const cplx h = site_transfer(j, w) * std::conj(site_transfer(k, w));
+  return std::atan2(h.imag(), h.real());  // DK96: atan2, not atan (the phase may pass pi/2)
+}
+
+std::complex<double> coherency_between(const Settings& s, double w, std::size_t j, std::size_t k) {
+  const double xj = s.positions[j], xk = s.positions[k];
+  if (s.sites.empty()) return coherency(s.coherency, w, xj, xk, s.velocity, s.wave_passage);
+  const double mag = lagged_coherency(s.coherency, w, std::abs(xj - xk), s.velocity);
+  const double theta_w = s.wave_passage ? -w * (xj - xk) / s.velocity : 0.0;
+  return std::polar(mag, theta_w + site_phase(s.sites[j], s.sites[k], w));
+}
+
+std::vector<double> support_separations(const Settings& s) {
+  std::vector<double> d;
+  for (std::size_t j = 0; j < s.positions.size(); ++j)
+    for (std::size_t k = 0; k < j; ++k) d.push_back(std::abs(s.positions[j] - s.positions[k]));
+  std::sort(d.begin(), d.end());
+  d.erase(std::unique(d.begin(), d.end()), d.end());
+  return d;
+}
+
+std::string coherency_table(const Settings& s, std::span<const double> frequencies, std::span<const double> distances) {
+  const auto shown = [](double x) { return std::abs(x) < 5e-11 ? 0.0 : x; };  // no "-0.0000000000" for a rounding residue
+  std::string t = fmt::format("# coherency: {}\n", s.coherency.describe());
+  t += s.wave_passage ? fmt::format("# wave passage: apparent velocity {:g} m/s, theta_w = -2 pi f xi / v_app (the "
+                                    "downstream point against the upstream one)\n",
+                                    s.velocity)
+                      : "# no wave passage: theta_w = 0\n";
+  t += "# gamma = |gamma| exp(i theta_w)\n";
+  t += fmt::format("{:>10}  {:>10}  {:>12}  {:>13}  {:>13}  {:>13}\n", "f_Hz", "xi_m", "abs_gamma", "theta_w_rad",
+                   "re_gamma", "im_gamma");
+  for (double f : frequencies)
+    for (double xi : distances) {
+      const double w = two_pi * f;
+      const double mag = lagged_coherency(s.coherency, w, xi, s.velocity);
+      const double theta_w = s.wave_passage ? -w * xi / s.velocity : 0.0;
+      const cplx g = std::polar(mag, theta_w);
+      t += fmt::format("{:>10g}  {:>10g}  {:>12.10f}  {:>13.10f}  {:>13.10f}  {:>13.10f}\n", f, xi, mag, shown(theta_w),
+                       shown(g.real()), shown(g.imag()));
+    }
+  if (s.sites.empty()) return t;
+  t += "#\n# site response (Der Kiureghian 1996): gamma_jk = |gamma(xi)| exp(i (theta_w + theta_s)), theta_s = "
+       "arg(H_j conj(H_k)), between the supports (j downstream of k, xi = x_j - x_k)\n";
+  for (std::size_t j = 0; j < s.sites.size(); ++j)
+    t += fmt::format("# support {} at {:g} m: f_g = {:g} Hz (w_g = {:.6g} rad/s), zeta_g = {:g}\n", j + 1,
+                     s.positions[j], s.sites[j].frequency, two_pi * s.sites[j].frequency, s.sites[j].damping);
+  t += fmt::format("{:>3}  {:>3}  {:>10}  {:>10}  {:>12}  {:>13}  {:>13}  {:>13}  {:>13}\n", "j", "k", "f_Hz", "xi_m",
+                   "abs_gamma", "theta_w_rad", "theta_s_rad", "re_gamma", "im_gamma");
+  for (double f : frequencies)
+    for (std::size_t j = 1; j < s.positions.size(); ++j)
+      for (std::size_t k = 0; k < j; ++k) {
+        const double w = two_pi * f;
+        const cplx g = coherency_between(s, w, j, k);
+        const double theta_w = s.wave_passage ? -w * (s.positions[j] - s.positions[k]) / s.velocity : 0.0;
+        t += fmt::format("{:>3}  {:>3}  {:>10g}  {:>10g}  {:>12.10f}  {:>13.10f}  {:>13.10f}  {:>13.10f}  {:>13.10f}\n",
+                         j + 1, k + 1, f, s.positions[j] - s.positions[k], std::abs(g), shown(theta_w),
+                         shown(site_phase(s.sites[j], s.sites[k], w)), shown(g.real()), shown(g.imag()));
+      }
+  return t;
+}
+
 std::vector<std::complex<double>> cholesky(std::span<const std::complex<double>> a, std::size_t n) {
   std::vector<cplx> L(n * n, cplx{0.0, 0.0});
   for (std::size_t j = 0; j < n; ++j) {
@@ -209,9 +277,7 @@ struct Generator {
         omega[m * N + l] = w;
         for (std::size_t j = 0; j < n; ++j)
           for (std::size_t k = 0; k < n; ++k)
-            gamma[j * n + k] = j == k ? cplx{1.0, 0.0}
-                                      : coherency(s.coherency, w, s.positions[j], s.positions[k], s.velocity,
-                                                  s.wave_passage);
+            gamma[j * n + k] = j == k ? cplx{1.0, 0.0} : coherency_between(s, w, j, k);
         const auto f = cholesky(gamma, n);
         std::copy(f.begin(), f.end(), L.begin() + static_cast<std::ptrdiff_t>((m * N + l) * n * n));
       }

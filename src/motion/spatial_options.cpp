@@ -7,6 +7,7 @@
 
 #include "pounding/core/error.hpp"
 #include "pounding/core/machine.hpp"
+#include "pounding/config/study_keys.hpp"
 #include "pounding/motion/spatial.hpp"
 
 namespace pounding::spatial {
@@ -28,6 +29,15 @@ void in_range(double value, double lo, double hi, std::string_view key, const Op
     throw InputError(fmt::format("{} = {} is out of range", k.name(key), value), k.at(key),
                      fmt::format("give a value in {}", text));
 }
+
+// A quantity that is also a [records.motions] key takes the registry's range (src/config/study_keys.cpp): one
+// range for the command line and the study, shown as the reference documents it.
+void key_range(double value, std::string_view key, const OptionNames& k) {
+  const config::StudyKey& d = config::study_key("records.motions", key);
+  in_range(value, d.lo, d.hi, key, k, d.units.empty() ? std::string(d.range) : fmt::format("{} {}", d.range, d.units));
+}
+
+constexpr const char* hv_keys[] = {"hv_a", "hv_alpha", "hv_k", "hv_f0", "hv_b"};
 
 Coherency coherency_of(const Request& o, const OptionNames& k) {
   Coherency c;
@@ -58,14 +68,43 @@ Coherency coherency_of(const Request& o, const OptionNames& k) {
     const char* key = loss ? "loss" : "beta";
     throw InputError(fmt::format("{} applies to coherency sobczyk only", k.name(key)), k.at(key),
                      c.model == CoherencyModel::harichandran_vanmarcke
-                         ? "Harichandran-Vanmarcke has one published set (SMART-1 Event 20): drop the option"
+                         ? fmt::format("drop the option (Harichandran-Vanmarcke takes {}, {}, {}, {}, {})",
+                                       k.name("hv_a"), k.name("hv_alpha"), k.name("hv_k"), k.name("hv_f0"),
+                                       k.name("hv_b"))
                          : "drop the option");
   }
+  for (const char* key : hv_keys)
+    if (o.has(key) && c.model != CoherencyModel::harichandran_vanmarcke)
+      throw InputError(fmt::format("{} applies to coherency harichandran-vanmarcke only", k.name(key)), k.at(key),
+                       fmt::format("drop the option, or give {} harichandran-vanmarcke", k.name("coherency")));
+  c.hv_a = o.hv_a, c.hv_alpha = o.hv_alpha, c.hv_k = o.hv_k, c.hv_f0 = o.hv_f0, c.hv_b = o.hv_b;
   if (o.has("luco_wong_a") && c.model != CoherencyModel::luco_wong)
     throw InputError(fmt::format("{} applies to coherency luco-wong only", k.name("luco_wong_a")), k.at("luco_wong_a"),
                      "drop the option");
   c.lw_a = o.luco_wong_a;
   return c;
+}
+
+// Der Kiureghian's site term: site_frequency and site_damping together, each one value for all supports or one
+// per support.
+std::vector<Site> sites_of(const Request& o, const OptionNames& k, std::size_t n) {
+  const bool f = o.has("site_frequency"), z = o.has("site_damping");
+  if (!f && !z) return {};
+  if (f != z) {
+    const char* missing = f ? "site_damping" : "site_frequency";
+    throw InputError(fmt::format("{} without {}", k.name(f ? "site_frequency" : "site_damping"), k.name(missing)),
+                     k.at(missing),
+                     fmt::format("give both {} (Hz) and {} (one value for all supports or one per support)",
+                                 k.name("site_frequency"), k.name("site_damping")));
+  }
+  for (const auto& [key, v] : {std::pair{"site_frequency", &o.site_frequency}, std::pair{"site_damping", &o.site_damping}})
+    if (v->size() != 1 && v->size() != n)
+      throw InputError(fmt::format("{} values of {} for {} supports", v->size(), k.name(key), n), k.at(key),
+                       "give one value for all supports or one per support");
+  std::vector<Site> out(n);
+  for (std::size_t j = 0; j < n; ++j)
+    out[j] = {o.site_frequency[o.site_frequency.size() == 1 ? 0 : j], o.site_damping[o.site_damping.size() == 1 ? 0 : j]};
+  return out;
 }
 
 std::vector<DesignSpectrum> nzs_targets(const Request& o, const OptionNames& k, std::size_t n) {
@@ -242,6 +281,19 @@ void validate(const Settings& s, const OptionNames& k) {
   const auto& c = s.coherency;
   if (c.model == CoherencyModel::sobczyk) in_range(c.beta, 0.0, 0.1, "beta", k, "[0, 0.1] 1/m");
   if (c.model == CoherencyModel::luco_wong) in_range(c.lw_a, 0.0, 1e-2, "luco_wong_a", k, "[0, 0.01] s/m");
+  if (c.model == CoherencyModel::harichandran_vanmarcke) {
+    const double values[] = {c.hv_a, c.hv_alpha, c.hv_k, c.hv_f0, c.hv_b};
+    for (std::size_t i = 0; i < std::size(hv_keys); ++i) key_range(values[i], hv_keys[i], k);
+  }
+  if (!s.sites.empty()) {
+    if (s.sites.size() != s.positions.size())
+      throw InputError(fmt::format("{} sites for {} supports", s.sites.size(), s.positions.size()),
+                       k.at("site_frequency"), "give one value for all supports or one per support");
+    for (const Site& site : s.sites) {
+      key_range(site.frequency, "site_frequency", k);
+      key_range(site.damping, "site_damping", k);
+    }
+  }
 }
 
 Settings settings_from(const Request& o, const OptionNames& k) {
@@ -250,6 +302,7 @@ Settings settings_from(const Request& o, const OptionNames& k) {
   s.velocity = o.velocity;
   s.wave_passage = o.wave_passage;
   s.coherency = coherency_of(o, k);
+  s.sites = sites_of(o, k, s.positions.size());
   s.targets = targets_of(o, k, s.positions.size());
   s.damping = o.damping;
   s.dt = o.dt;
@@ -274,6 +327,11 @@ std::string describe(const Settings& s) {
   std::string t = fmt::format("Deodatis (1996) spectral representation, supports at x = {} m; ", fmt::join(s.positions, ", "));
   t += s.wave_passage ? fmt::format("wave passage at {:g} m/s; ", s.velocity) : "no wave passage; ";
   t += fmt::format("coherency {}; ", s.coherency.describe());
+  if (!s.sites.empty()) {
+    std::vector<std::string> sites;
+    for (const Site& x : s.sites) sites.push_back(fmt::format("{:g} Hz/{:g}", x.frequency, x.damping));
+    t += fmt::format("site response (Der Kiureghian 1996) f_g/zeta_g {}; ", fmt::join(sites, ", "));
+  }
   for (std::size_t j = 0; j < s.targets.size(); ++j)
     t += fmt::format("target{} {}; ", s.targets.size() == 1 ? "" : fmt::format(" support {}", j + 1), s.targets[j].describe());
   t += fmt::format("damping {:g}, dt {:g} s, duration {:g} s, envelope {:g}/{:g} s/{:g} 1/s, PSD {:g}-{:g} Hz, "

@@ -92,12 +92,15 @@ spatial::Request read_motion_request(TableReader& m, const std::string& path, st
   whole("realisations", q.realisations), whole("first", q.first);
   const std::pair<const char*, double*> numbers[] = {
       {"spacing", &q.spacing}, {"velocity", &q.velocity}, {"beta", &q.beta}, {"luco_wong_a", &q.luco_wong_a},
+      {"hv_a", &q.hv_a}, {"hv_alpha", &q.hv_alpha}, {"hv_k", &q.hv_k}, {"hv_f0", &q.hv_f0}, {"hv_b", &q.hv_b},
       {"z", &q.z}, {"r", &q.r}, {"damping", &q.damping}, {"dt", &q.dt}, {"duration", &q.duration},
       {"rise", &q.rise}, {"strong", &q.strong}, {"decay", &q.decay}, {"f_min", &q.f_min}, {"f_max", &q.f_max},
       {"tolerance", &q.tolerance}};
   for (const auto& [key, x] : numbers) num(key, *x);
   q.positions = m.numbers("positions", {}, -inf, inf, "finite numbers");
   q.match_range = m.numbers("match_range", q.match_range, -inf, inf, "finite numbers");
+  q.site_frequency = m.numbers("site_frequency", {}, -inf, inf, "finite numbers");
+  q.site_damping = m.numbers("site_damping", {}, -inf, inf, "finite numbers");
   q.wave_passage = m.boolean("wave_passage", true);
   q.coherency = m.string("coherency", q.coherency);
   q.loss = m.string("loss", "");
@@ -107,7 +110,8 @@ spatial::Request read_motion_request(TableReader& m, const std::string& path, st
   const toml::node* seed = m.get("seed");
   q.seed = seed ? config::seed(*seed, "seed", m.where("seed")) : study_seed;
   for (const char* key : {"supports", "spacing", "positions", "velocity", "wave_passage", "coherency", "loss", "beta",
-                          "luco_wong_a", "spectrum", "soil", "z", "r", "spectrum_file", "damping", "dt", "duration",
+                          "luco_wong_a", "hv_a", "hv_alpha", "hv_k", "hv_f0", "hv_b", "site_frequency", "site_damping",
+                          "spectrum", "soil", "z", "r", "spectrum_file", "damping", "dt", "duration",
                           "rise", "strong", "decay", "f_min", "f_max", "match_range", "match_points", "iterations",
                           "tolerance", "realisations", "first", "seed"})
     if (m.get(key)) q.given.insert(key);
@@ -122,7 +126,8 @@ void parse_record_motions(Study& s, TableReader& r, const std::string& path) {
   const spatial::Request q = read_motion_request(m, path, s.seed);
   auto motions = std::make_shared<StudyMotions>();
   motions->uniform = m.boolean("uniform", false);
-  m.finish("supports, spacing, positions, velocity, wave_passage, coherency, loss, beta, luco_wong_a, spectrum, soil, "
+  m.finish("supports, spacing, positions, velocity, wave_passage, coherency, loss, beta, luco_wong_a, hv_a, hv_alpha, "
+           "hv_k, hv_f0, hv_b, site_frequency, site_damping, spectrum, soil, "
            "z, r, spectrum_file, damping, dt, duration, rise, strong, decay, f_min, f_max, match_range, match_points, "
            "iterations, tolerance, realisations, first, seed, uniform");
   spatial::OptionNames names;

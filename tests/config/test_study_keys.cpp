@@ -125,6 +125,9 @@ std::string study_with(const config::StudyKey& k, const std::string& value) {
     Section m{{"loss", "\"high\""}, {"soil", "\"D\""}};
     if (key == "beta" || key == "luco_wong_a") m.erase("loss");
     if (key == "luco_wong_a") m["coherency"] = "\"luco-wong\"";
+    if (key.rfind("hv_", 0) == 0) m.erase("loss"), m["coherency"] = "\"harichandran-vanmarcke\"";
+    if (key == "site_frequency") m["site_damping"] = "[0.5]";
+    if (key == "site_damping") m["site_frequency"] = "[2.0]";
     m[key] = value;
     s.sections["records.motions"] = m;
     return s.text();

@@ -3,12 +3,14 @@
 // NZS 1170.5 shape factor against table 3.1, and the generated motions: wave-passage delay in the lagged
 // cross-correlation, estimated coherency against the model, mean response spectrum against the target,
 // reproducibility, baseline, stop.
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include <atomic>
 #include <cmath>
 #include <complex>
 #include <numbers>
+#include <string>
 #include <vector>
 
 #include "pounding/core/error.hpp"
@@ -86,6 +88,161 @@ TEST(SpatialCoherency, CholeskyOfTheCoherencyMatrixMatchesT65) {
   EXPECT_NEAR(std::abs(R[3]), 1.0, 1e-12);
 }
 
+TEST(SpatialCoherency, HarichandranVanmarckeTakesTheUsersParameters) {
+  // T6.1 Event 24 set (A = 0.626, alpha = 0.022, k = 19700 m, f0 = 2.02 Hz, b = 3.47), through the options as a
+  // study or the command line gives them; the defaults stay Event 20.
+  spatial::Request q;
+  q.coherency = "harichandran-vanmarcke", q.soil = {"D"};
+  q.hv_a = 0.626, q.hv_alpha = 0.022, q.hv_k = 19700, q.hv_f0 = 2.02, q.hv_b = 3.47;
+  q.given = {"coherency", "soil", "hv_a", "hv_alpha", "hv_k", "hv_f0", "hv_b"};
+  const spatial::Settings s = spatial::settings_from(q);
+  const double xi[3] = {50, 100, 200};
+  const double ev24_1[3] = {0.9434744706, 0.8919170227, 0.8019762650};
+  const double ev24_5[3] = {0.7734308714, 0.6263098936, 0.4673460234};
+  for (int i = 0; i < 3; ++i) {
+    EXPECT_NEAR(spatial::lagged_coherency(s.coherency, two_pi * 1, xi[i], 500), ev24_1[i], 1e-9);
+    EXPECT_NEAR(spatial::lagged_coherency(s.coherency, two_pi * 5, xi[i], 500), ev24_5[i], 1e-9);
+  }
+  EXPECT_NE(s.coherency.describe().find("k = 19700 m"), std::string::npos) << s.coherency.describe();
+  spatial::Request d;
+  d.coherency = "harichandran-vanmarcke", d.soil = {"D"}, d.given = {"coherency", "soil"};
+  EXPECT_NEAR(spatial::lagged_coherency(spatial::settings_from(d).coherency, two_pi * 5, 200, 500), 0.3525109158, 1e-9);
+}
+
+// The message of a refused request, or "" when it is accepted.
+std::string refusal(const spatial::Request& q) {
+  try {
+    spatial::settings_from(q);
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(SpatialCoherency, HarichandranVanmarckeAndSiteParametersAreRangeChecked) {
+  const auto hv = [](const char* key, double v) {
+    spatial::Request q;
+    q.coherency = "harichandran-vanmarcke", q.soil = {"D"}, q.given = {"coherency", "soil", key};
+    double* x = std::string(key) == "hv_a" ? &q.hv_a : std::string(key) == "hv_alpha" ? &q.hv_alpha
+              : std::string(key) == "hv_k" ? &q.hv_k : std::string(key) == "hv_f0" ? &q.hv_f0 : &q.hv_b;
+    *x = v;
+    return refusal(q);
+  };
+  EXPECT_NE(hv("hv_a", 1.5).find("--hv-a"), std::string::npos) << hv("hv_a", 1.5);
+  EXPECT_NE(hv("hv_a", 1.5).find("[0.001, 1]"), std::string::npos) << hv("hv_a", 1.5);
+  EXPECT_NE(hv("hv_alpha", 0).find("--hv-alpha"), std::string::npos);
+  EXPECT_NE(hv("hv_k", -5).find("--hv-k"), std::string::npos);
+  EXPECT_NE(hv("hv_k", -5).find("m"), std::string::npos);
+  EXPECT_NE(hv("hv_f0", 0).find("--hv-f0"), std::string::npos);
+  EXPECT_NE(hv("hv_b", std::nan("")).find("--hv-b"), std::string::npos);
+  EXPECT_EQ(hv("hv_a", 1.0), "");
+  EXPECT_EQ(hv("hv_b", 3.47), "");
+  // an HV parameter with another model is refused, not ignored
+  spatial::Request q;
+  q.loss = "high", q.soil = {"D"}, q.given = {"loss", "soil", "hv_k"};
+  EXPECT_NE(refusal(q).find("--hv-k applies to coherency harichandran-vanmarcke only"), std::string::npos) << refusal(q);
+  // site response: both lists, one value or one per support, in range
+  spatial::Request site;
+  site.loss = "high", site.soil = {"D"}, site.supports = 3, site.given = {"loss", "soil", "supports", "site_frequency"};
+  site.site_frequency = {2.5, 1.0, 5.0};
+  EXPECT_NE(refusal(site).find("--site-damping"), std::string::npos) << refusal(site);
+  site.given.insert("site_damping");
+  site.site_damping = {0.6, 0.4};
+  EXPECT_NE(refusal(site).find("2 values of --site-damping for 3 supports"), std::string::npos) << refusal(site);
+  site.site_damping = {0.6};
+  EXPECT_EQ(refusal(site), "");
+  site.site_frequency = {2.5, 0.0, 5.0};
+  EXPECT_NE(refusal(site).find("--site-frequency = 0 is out of range"), std::string::npos) << refusal(site);
+  site.site_frequency = {2.5, 1.0, 5.0}, site.site_damping = {0.6, 0.4, 3.0};
+  EXPECT_NE(refusal(site).find("--site-damping = 3 is out of range"), std::string::npos) << refusal(site);
+  // a study names the key and where it is
+  spatial::OptionNames study;
+  study.where = [](std::string_view key) { return fmt::format("s.toml:7 [records.motions].{}", key); };
+  spatial::Request st;
+  st.coherency = "harichandran-vanmarcke", st.soil = {"D"}, st.given = {"coherency", "soil", "hv_f0"}, st.hv_f0 = 500;
+  try {
+    spatial::settings_from(st, study);
+    ADD_FAILURE() << "hv_f0 = 500 accepted";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("hv_f0 = 500 is out of range"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("s.toml:7 [records.motions].hv_f0"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("[0.01, 100] Hz"), std::string::npos) << e.what();
+  }
+}
+
+TEST(SpatialCoherency, DerKiureghianSiteResponseMatchesT64) {
+  // T6.4: Luco-Wong 2.5e-4 s/m, v_app = 500 m/s, xi_L = xi; site k (w_g = 5 pi, zeta_g = 0.6: f_g = 2.5 Hz), site l
+  // (w_g = 2 pi, zeta_g = 0.4: 1 Hz). Here support 2 at xi (downstream) has site k, support 1 at 0 has site l, so
+  // Gamma_21 = gamma_kl with theta_w = -w xi / v_app.
+  const spatial::Site k{2.5, 0.6}, l{1.0, 0.4};
+  EXPECT_NEAR(spatial::site_phase(k, l, two_pi * 1), 0.8244292455, 1e-9);
+  EXPECT_NEAR(spatial::site_phase(k, l, two_pi * 5), 0.3597798082, 1e-9);
+  EXPECT_EQ(spatial::site_phase(k, k, two_pi * 3), 0.0);
+  EXPECT_NEAR(spatial::site_phase(l, k, two_pi * 1), -0.8244292455, 1e-9);
+  spatial::Settings s;
+  s.coherency.model = CoherencyModel::luco_wong;
+  s.coherency.lw_a = 2.5e-4;
+  s.velocity = 500;
+  s.sites = {l, k};
+  const std::complex<double> want[2][3] = {
+      {{0.9748002034, 0.1936578087}, {0.8859122461, -0.4086677129}, {-0.1067058822, -0.8997124941}},
+      {{-0.8022140950, -0.3017540224}, {0.5050905991, 0.1899905785}, {0.0793752806, 0.0298571296}}};
+  const double f[2] = {1, 5}, xi[3] = {50, 100, 200};
+  for (int a = 0; a < 2; ++a)
+    for (int b = 0; b < 3; ++b) {
+      s.positions = {0.0, xi[b]};
+      const auto g = spatial::coherency_between(s, two_pi * f[a], 1, 0);
+      EXPECT_NEAR(g.real(), want[a][b].real(), 1e-9) << f[a] << " Hz " << xi[b] << " m";
+      EXPECT_NEAR(g.imag(), want[a][b].imag(), 1e-9) << f[a] << " Hz " << xi[b] << " m";
+      EXPECT_EQ(spatial::coherency_between(s, two_pi * f[a], 0, 1), std::conj(g));  // Hermitian
+    }
+  // without sites the generator's Gamma is coherency() bit for bit (the shipped studies' motions do not change)
+  s.sites.clear();
+  EXPECT_EQ(spatial::coherency_between(s, two_pi * 2, 1, 0), spatial::coherency(s.coherency, two_pi * 2, 200, 0, 500, true));
+}
+
+TEST(SpatialCoherency, CholeskyWithSiteResponseMatchesTheNumpyReference) {
+  // As T6.5 (HV Event 20, x = 0, 100, 200 m, 500 m/s, f = 2 Hz) with sites 2.5 Hz/0.6, 1 Hz/0.4, 5 Hz/0.3:
+  //   python3 tools/reference_spatial.py factors --model harichandran-vanmarcke --positions 0,100,200 --f 2
+  //           --site 2.5,0.6:1,0.4:5,0.3          (numpy.linalg.cholesky)
+  // theta_s = arg H_j - arg H_k is a diagonal unitary similarity: |L| is T6.5's, arg L_jm gains arg H_j - arg H_m.
+  spatial::Settings s;
+  s.coherency.model = CoherencyModel::harichandran_vanmarcke;
+  s.positions = {0, 100, 200};
+  s.sites = {{2.5, 0.6}, {1.0, 0.4}, {5.0, 0.3}};
+  const double w = two_pi * 2;
+  std::vector<std::complex<double>> a(9);
+  for (std::size_t j = 0; j < 3; ++j)
+    for (std::size_t k = 0; k < 3; ++k) a[j * 3 + k] = j == k ? 1.0 : spatial::coherency_between(s, w, j, k);
+  const auto L = spatial::cholesky(a, 3);
+  const double mag[3][3] = {{1, 0, 0}, {0.8301269703, 0.5575744014, 0}, {0.6955860844, 0.4532170072, 0.5574534453}};
+  const double arg[3][3] = {{0, 0, 0}, {2.5775056922, 0, 0}, {1.6609152070, -0.9165904853, 0}};
+  for (int j = 0; j < 3; ++j)
+    for (int k = 0; k <= j; ++k) {
+      EXPECT_NEAR(std::abs(L[j * 3 + k]), mag[j][k], 1e-9) << j << k;
+      EXPECT_NEAR(std::arg(L[j * 3 + k]), arg[j][k], 1e-9) << j << k;
+    }
+}
+
+TEST(SpatialCoherency, TableListsTheCoherencyUsed) {
+  spatial::Settings s;
+  s.coherency.model = CoherencyModel::luco_wong;
+  s.positions = {0.0, 50.0, 200.0};
+  const std::vector<double> f{1, 5};
+  EXPECT_EQ(spatial::support_separations(s), (std::vector<double>{50, 150, 200}));
+  const std::string t = spatial::coherency_table(s, f, std::vector<double>{50, 100, 200});
+  EXPECT_NE(t.find("f_Hz"), std::string::npos);
+  EXPECT_NE(t.find("0.9938504834"), std::string::npos) << t;  // T6.2, 1 Hz 50 m
+  EXPECT_NE(t.find("0.0848049725"), std::string::npos) << t;  // T6.2, 5 Hz 200 m
+  EXPECT_NE(t.find("-0.6283185307"), std::string::npos) << t; // theta_w, 1 Hz 50 m
+  EXPECT_EQ(t.find("theta_s"), std::string::npos);
+  s.sites = {{1.0, 0.4}, {2.5, 0.6}, {1.0, 0.4}};
+  const std::string u = spatial::coherency_table(s, f, std::vector<double>{50});
+  EXPECT_NE(u.find("theta_s_rad"), std::string::npos);
+  EXPECT_NE(u.find("0.9748002034"), std::string::npos) << u;  // T6.4, 1 Hz 50 m: support 2 against support 1
+  EXPECT_NE(u.find("0.8244292455"), std::string::npos) << u;
+}
+
 TEST(Nzs1170, ShapeFactorMatchesTable31) {
   // NZS 1170.5:2004 table 3.1 (modal/numerical integration column), two decimals as printed
   const double T[] = {0.0, 0.1, 0.2, 0.3, 0.4, 0.5, 0.6, 0.7, 0.8, 0.9, 1.0, 1.5, 2.0, 2.5, 3.0, 3.5, 4.0, 4.5};
@@ -160,7 +317,8 @@ TEST(SpatialMotions, LaggedCrossCorrelationPeaksAtTheWavePassageDelay) {
 // Smoothed-periodogram estimate of |gamma_12| at frequency f (Hz): the strong phase (envelope = 1) of support 1
 // and the same window of support 2 shifted by the wave-passage delay (lagged coherency), Hann-tapered; cross-
 // and auto-periodograms averaged over the realisations and over the DFT bins within +-bw Hz of f.
-double estimated_coherency(const std::vector<spatial::Realisation>& rs, const spatial::Settings& s, double f, double bw) {
+std::complex<double> estimated_cross(const std::vector<spatial::Realisation>& rs, const spatial::Settings& s, double f,
+                                     double bw) {
   const int shift = static_cast<int>(std::lround((s.positions[1] - s.positions[0]) / s.velocity / s.dt));
   const int t0 = static_cast<int>(std::lround(s.envelope.rise / s.dt));
   const int len = static_cast<int>(std::lround(s.envelope.strong / s.dt)) - shift;
@@ -180,7 +338,10 @@ double estimated_coherency(const std::vector<spatial::Realisation>& rs, const sp
       s11 += std::norm(X1);
       s22 += std::norm(X2);
     }
-  return std::abs(s12) / std::sqrt(s11 * s22);
+  return s12 / std::sqrt(s11 * s22);
+}
+double estimated_coherency(const std::vector<spatial::Realisation>& rs, const spatial::Settings& s, double f, double bw) {
+  return std::abs(estimated_cross(rs, s, f, bw));
 }
 
 TEST(SpatialMotions, EstimatedCoherencyOfManyRealisationsMatchesTheModel) {
@@ -203,6 +364,30 @@ TEST(SpatialMotions, EstimatedCoherencyOfManyRealisationsMatchesTheModel) {
   const double model_low = spatial::lagged_coherency(low.coherency, two_pi * 3.0, 100.0, 500.0);
   EXPECT_NEAR(estimated_coherency(rl, low, 3.0, 0.3), model_low, 0.05);
   EXPECT_GT(std::abs(estimated_coherency(rl, low, 3.0, 0.3) - estimated_coherency(rs, s, 3.0, 0.3)), 0.3);
+}
+
+TEST(SpatialMotions, SiteResponseShiftsThePhaseBetweenSupports) {
+  // Der Kiureghian's site term in generated motions: support 1 on a stiff site (2.5 Hz, 0.6), support 2 on a soft
+  // one (1 Hz, 0.4), Luco-Wong 2.5e-4 s/m (|gamma| 0.98-0.63 at 1-5 Hz over 100 m). Once the wave passage is
+  // shifted out, the phase of the estimated cross-spectrum X1 X2* is theta_s(1, 2) = arg H_1 H_2* (+0.82 rad at 1 Hz,
+  // +0.36 at 5 Hz); without sites it is 0 (the test can fail). 40 realisations, no matching.
+  auto s = two_supports();
+  s.coherency.model = CoherencyModel::luco_wong;
+  s.iterations = 0;
+  s.sites = {{2.5, 0.6}, {1.0, 0.4}};
+  const auto rs = spatial::simulate_all(s, 0, 40);
+  auto plain = s;
+  plain.sites.clear();
+  const auto rp = spatial::simulate_all(plain, 0, 40);
+  for (double f : {1.0, 2.0, 3.0, 5.0}) {
+    const double want = spatial::site_phase(s.sites[0], s.sites[1], two_pi * f);
+    EXPECT_NEAR(std::arg(estimated_cross(rs, s, f, 0.3)), want, 0.08) << f << " Hz";
+    EXPECT_NEAR(std::arg(estimated_cross(rp, plain, f, 0.3)), 0.0, 0.08) << f << " Hz";
+    EXPECT_NEAR(std::abs(estimated_cross(rs, s, f, 0.3)),
+                spatial::lagged_coherency(s.coherency, two_pi * f, 100.0, 500.0), 0.05) << f << " Hz";
+  }
+  // support 1 leads the factorisation (L_11 = 1): its motion is the same with or without the site term
+  EXPECT_EQ(rs[0].supports[0].acc, rp[0].supports[0].acc);
 }
 
 TEST(SpatialMotions, MeanResponseSpectrumMatchesTheTarget) {

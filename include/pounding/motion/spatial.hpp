@@ -42,6 +42,19 @@
 //     A = 0.736, alpha = 0.147, k = 5210 m, f0 = 1.09 Hz, b = 2.78 (one published set: no loss levels).
 //   Luco & Wong (1986), EESD 14(6):891-908: |gamma| = exp(-(a w xi)^2), a = alpha / v_s in s/m (2e-4 .. 3e-4).
 //   none: |gamma| = 1 (wave passage only, or identical motions without it).
+// The Harichandran-Vanmarcke parameters are the user's (hv_a, hv_alpha, hv_k, hv_f0, hv_b); the defaults are
+// the Event 20 set above. T6.1 also lists the Event 24 set (A = 0.626, alpha = 0.022, k = 19700 m, f0 = 2.02 Hz,
+// b = 3.47).
+//
+// Site response (Der Kiureghian 1996, "A coherency model for spatially varying ground motions", EESD
+// 25(1):99-111): with a site filter per support, gamma_jk = |gamma(xi)| exp(i (theta_w + theta_s)),
+//   theta_w = -w (x_j - x_k) / v_app (the wave passage above),
+//   theta_s = atan2(Im H_j H_k*, Re H_j H_k*),  H(w) = (wg^2 + 2 i zg wg w) / (wg^2 - w^2 + 2 i zg wg w),
+// wg = 2 pi f_g, the absolute-acceleration transfer function of the soil column (Kanai-Tajimi filter) at each
+// support, in the same e^{+i w t} convention as the wave passage (the phase of j minus that of k). DK96 puts
+// |H_k|^2 into the auto-PSD of support k as well; here each support's auto-PSD is its own target spectrum's
+// (spectrum-compatible: the matching iteration would remove any |H_k|^2 to within its tolerance, and a site class
+// per support already carries the amplification), so the site term changes the phase between the supports only.
 // Randomness: the phases of realisation r are Phi_ml = 2 pi u, u from splitmix64 of a counter (key(seed, r) +
 // m N + l) -- a pure function of (seed, r, m, l), so a realisation is the same bits whatever the order of work.
 #include <atomic>
@@ -83,6 +96,15 @@ struct Coherency {
   double lw_a = 2.5e-4;  // Luco-Wong alpha / v_s, s/m
   std::string describe() const;  // the model, its parameters and its source, one line
 };
+// A support's soil filter (Der Kiureghian 1996): predominant frequency f_g (Hz, wg = 2 pi f_g) and damping zeta_g.
+struct Site {
+  double frequency = 2.5;  // Hz
+  double damping = 0.6;
+};
+// H(w) of the site (absolute acceleration over bedrock acceleration), w in rad/s.
+std::complex<double> site_transfer(const Site& site, double w);
+// theta_s = atan2(Im H_j H_k*, Re H_j H_k*) in rad (0 for the same site).
+double site_phase(const Site& j, const Site& k, double w);
 // Sobczyk's beta for a loss level (high loss = weak correlation = the largest beta).
 double sobczyk_beta(CoherencyLoss loss);
 // |gamma| at circular frequency w (rad/s), separation xi >= 0 (m), apparent velocity v_app (m/s, Sobczyk only).
@@ -106,6 +128,7 @@ struct Settings {
   double velocity = 500.0;        // apparent wave velocity, m/s
   bool wave_passage = true;
   Coherency coherency;
+  std::vector<Site> sites;              // one per support (Der Kiureghian's site response), or none (no site term)
   std::vector<DesignSpectrum> targets;  // one for every support, or one for all
   double damping = 0.05;                // of the target and of the matched spectra
   double dt = 0.01, duration = 20.0;    // s
@@ -117,6 +140,8 @@ struct Settings {
   std::uint64_t seed = 1;
   const DesignSpectrum& target(std::size_t support) const { return targets.size() == 1 ? targets[0] : targets[support]; }
 };
+// Gamma_jk(w) of the generator: coherency() of supports j and k, times exp(i theta_s) with site response.
+std::complex<double> coherency_between(const Settings& s, double w, std::size_t j, std::size_t k);
 // How a message names an option: `pounding motions`' --key-name (no `where`), or a study's
 // [records.motions] key with its file:line (`where(key)`). Keys are the study's names (f_max, wave_passage, ...);
 // on the command line f_max is --f-max and wave_passage is --no-wave-passage.
@@ -133,7 +158,9 @@ struct Request {
   int supports = 2, match_points = 30, iterations = 10, realisations = 20, first = 1;
   double spacing = 100, velocity = 500, beta = 0, luco_wong_a = 2.5e-4, z = 0.4, r = 1.0, damping = 0.05, dt = 0.01,
          duration = 20, rise = 2, strong = 8, decay = 0.5, f_min = 0.1, f_max = 25, tolerance = 0.1;
+  double hv_a = 0.736, hv_alpha = 0.147, hv_k = 5210.0, hv_f0 = 1.09, hv_b = 2.78;  // Coherency's defaults
   std::vector<double> positions, match_range{0.05, 4.0};
+  std::vector<double> site_frequency, site_damping;  // Hz and ratio: one for all supports or one per support
   std::string coherency = "sobczyk", loss, spectrum = "nzs1170.5", spectrum_file;
   std::vector<std::string> soil;  // one site class for every support, or one per support
   bool wave_passage = true;
@@ -148,6 +175,14 @@ void validate(const Settings& s, const OptionNames& names = {});
 std::string describe(const Settings& s);
 // match_periods or its default.
 std::vector<double> matching_periods(const Settings& s);
+
+// The coherency the generator uses, as a table (`pounding motions --coherency-table`, the README of its folder):
+// the model at frequencies f (Hz) and separations xi (m) -- |gamma|, theta_w = -2 pi f xi / v_app (the downstream
+// point against the upstream one), gamma -- and, with site response, Gamma_jk of every pair of supports j > k
+// (j downstream) with theta_s. Lines starting with '#' describe; then a header with units and one row per value.
+std::string coherency_table(const Settings& s, std::span<const double> frequencies, std::span<const double> distances);
+// The default separations of the table: every distinct distance between two supports.
+std::vector<double> support_separations(const Settings& s);
 
 // The frequency grid: dw = 2 pi / (M dt), N frequencies l = 0 .. N-1 (w_ml < 2 pi f_max), M >= 2 x steps.
 struct Grid {

@@ -117,6 +117,17 @@ void visit_motion_settings(const StudyMotions& m, V&& v) {
   v(section, "coherency", S(to_string(x.coherency.model)));
   if (x.coherency.model == spatial::CoherencyModel::sobczyk) v(section, "beta", x.coherency.beta);
   if (x.coherency.model == spatial::CoherencyModel::luco_wong) v(section, "luco_wong_a", x.coherency.lw_a);
+  if (x.coherency.model == spatial::CoherencyModel::harichandran_vanmarcke) {
+    const auto& c = x.coherency;
+    v(section, "hv_a", c.hv_a), v(section, "hv_alpha", c.hv_alpha), v(section, "hv_k", c.hv_k);
+    v(section, "hv_f0", c.hv_f0), v(section, "hv_b", c.hv_b);
+  }
+  if (!x.sites.empty()) {  // Der Kiureghian's site response, one entry per support
+    std::vector<double> f, z;
+    for (const spatial::Site& site : x.sites) f.push_back(site.frequency), z.push_back(site.damping);
+    v(section, "site_frequency", f);
+    v(section, "site_damping", z);
+  }
   std::vector<std::string> targets;
   for (const DesignSpectrum& d : x.targets) targets.push_back(d.describe());
   v(section, "targets", targets);

@@ -10,11 +10,16 @@
 //   MANIFEST.tsv       file, event, station, component, realisation, support, position_m, pga_g, misfit, updates
 //                      (event "<label> realisation RRR", station "support JJ at X m": the engine's directory reader
 //                      sees the supports of one realisation as one event -- motion/library.hpp)
-//   README.md          every setting, the coherency model and the target spectra, with their sources
+//   README.md          every setting, the coherency model and the target spectra, with their sources, and the
+//                      coherency table (below) at the supports' separations
+// --coherency-table prints the coherency the generator uses (spatial::coherency_table) at --coherency-frequencies
+// (Hz, default 0.5,1,2,5,10) and --coherency-distances (m, default: every distinct separation of the supports):
+// with --out it then generates as usual, without --out it only prints.
 // A stop (SIGINT/SIGTERM) between or within realisations ends the command with exit 130 and writes nothing.
 #include <algorithm>
 #include <atomic>
 #include <cerrno>
+#include <cmath>
 #include <csignal>
 #include <cstring>
 #include <filesystem>
@@ -45,8 +50,23 @@ extern "C" void on_motions_stop(int) { motions_stop.store(true); }
 struct MotionsOpts {
   spatial::Request req;
   std::string soil, out, label = "svgm";
-  bool no_wave_passage = false, quiet = false;
+  bool no_wave_passage = false, quiet = false, coherency_table = false;
+  std::vector<double> table_frequencies{0.5, 1.0, 2.0, 5.0, 10.0}, table_distances;  // Hz, m (empty: the supports')
 };
+
+// The table's frequencies and separations (options of the command only, not of a study).
+void check_table_points(const std::vector<double>& v, double lo, double hi, const char* option, const char* range) {
+  if (v.empty() || v.size() > 100)
+    throw InputError(fmt::format("{} holds {} values", option, v.size()), option, "give 1 to 100 values");
+  for (double x : v)
+    if (!std::isfinite(x) || x < lo || x > hi)
+      throw InputError(fmt::format("{} holds {}, out of range", option, x), option, fmt::format("give values in {}", range));
+}
+
+std::string table_of(const MotionsOpts& o, const spatial::Settings& s) {
+  const std::vector<double> d = o.table_distances.empty() ? spatial::support_separations(s) : o.table_distances;
+  return spatial::coherency_table(s, o.table_frequencies, d);
+}
 
 std::vector<std::string> split_commas(const std::string& text) {
   std::vector<std::string> out;
@@ -68,6 +88,9 @@ spatial::Settings settings_of(MotionsOpts& o, const CLI::App& c) {
   r.wave_passage = !o.no_wave_passage;
   if (r.has("soil")) r.soil = split_commas(o.soil);
   const spatial::Settings s = spatial::settings_from(r);
+  check_table_points(o.table_frequencies, 0.01, 100.0, "--coherency-frequencies", "[0.01, 100] Hz");
+  if (!o.table_distances.empty())
+    check_table_points(o.table_distances, 0.0, 1e5, "--coherency-distances", "[0, 100000] m");
   if (o.label.empty() || o.label.size() > 40 || o.label.find_first_of("\t\n\r") != std::string::npos)
     throw InputError("--label is empty, longer than 40 characters or holds a tab/newline", "--label", "give a short name");
   return s;
@@ -107,6 +130,8 @@ std::string readme(const MotionsOpts& o, const spatial::Settings& s, const std::
   t += fmt::format("- matching: {} periods {:g}-{:g} s, at most {} updates, tolerance {:g} (largest |PSA/Sa - 1|)\n",
                    s.match_periods.size(), s.match_periods.front(), s.match_periods.back(), s.iterations, s.tolerance);
   t += fmt::format("- seed {}, realisations {} to {}\n", s.seed, o.req.first, o.req.first + o.req.realisations - 1);
+  t += "\nThe coherency the generator used (|gamma| dimensionless, phases in rad; `pounding motions --coherency-table`):"
+       "\n\n```\n" + table_of(o, s) + "```\n";
   t += "\nUnits: acceleration in g (AT2). MANIFEST.tsv: misfit = largest |PSA/Sa - 1| over the matching band, updates "
        "= spectrum-matching updates made.\n";
   return t;
@@ -159,6 +184,30 @@ void check_analysable(const MotionsOpts& o, const std::vector<spatial::Realisati
                                      record_pga_max_g));
 }
 
+// The coherency model, its parameters, the site response and the table of what is used.
+void add_coherency_options(CLI::App* c, MotionsOpts& o) {
+  spatial::Request& q = o.req;
+  c->add_option("--coherency", q.coherency, "coherency model: sobczyk (default), harichandran-vanmarcke, luco-wong, none");
+  c->add_option("--loss", q.loss, "coherency loss (sobczyk): low, medium, high (beta 0.0005/0.001/0.002 1/m)");
+  c->add_option("--beta", q.beta, "sobczyk beta, 1/m (instead of --loss)");
+  c->add_option("--luco-wong-a", q.luco_wong_a, "luco-wong alpha/v_s, s/m (default 2.5e-4)");
+  c->add_option("--hv-a", q.hv_a, "harichandran-vanmarcke A (default 0.736, SMART-1 Event 20)");
+  c->add_option("--hv-alpha", q.hv_alpha, "harichandran-vanmarcke alpha (default 0.147)");
+  c->add_option("--hv-k", q.hv_k, "harichandran-vanmarcke k, m (default 5210)");
+  c->add_option("--hv-f0", q.hv_f0, "harichandran-vanmarcke f0, Hz (default 1.09)");
+  c->add_option("--hv-b", q.hv_b, "harichandran-vanmarcke b (default 2.78)");
+  add_number_list(c, "--site-frequency", q.site_frequency,
+                  "site response (Der Kiureghian 1996): soil filter frequency f_g, Hz, one for all or one per support");
+  add_number_list(c, "--site-damping", q.site_damping,
+                  "site response: soil filter damping zeta_g, one for all or one per support (with --site-frequency)");
+  c->add_flag("--coherency-table", o.coherency_table,
+              "print the coherency used (|gamma|, phases, gamma) at --coherency-frequencies x --coherency-distances; "
+              "without --out only print");
+  add_number_list(c, "--coherency-frequencies", o.table_frequencies, "frequencies of the table, Hz (default 0.5,1,2,5,10)");
+  add_number_list(c, "--coherency-distances", o.table_distances,
+                  "separations of the table, m (default: every distinct separation of the supports)");
+}
+
 }  // namespace
 
 void add_motions(CLI::App& app) {
@@ -172,10 +221,7 @@ void add_motions(CLI::App& app) {
                                                  "(increasing; instead of --supports/--spacing)");
   c->add_option("--velocity", q.velocity, "apparent wave velocity, m/s (default 500)");
   c->add_flag("--no-wave-passage", o->no_wave_passage, "no time delay between supports");
-  c->add_option("--coherency", q.coherency, "coherency model: sobczyk (default), harichandran-vanmarcke, luco-wong, none");
-  c->add_option("--loss", q.loss, "coherency loss (sobczyk): low, medium, high (beta 0.0005/0.001/0.002 1/m)");
-  c->add_option("--beta", q.beta, "sobczyk beta, 1/m (instead of --loss)");
-  c->add_option("--luco-wong-a", q.luco_wong_a, "luco-wong alpha/v_s, s/m (default 2.5e-4)");
+  add_coherency_options(c, *o);
   c->add_option("--spectrum", q.spectrum, "target: nzs1170.5 (default) or csv");
   c->add_option("--soil", o->soil, "NZS 1170.5 site class A-E, or one per support (A,A,D,D)");
   c->add_option("--z", q.z, "NZS 1170.5 hazard factor Z (default 0.4)");
@@ -197,12 +243,17 @@ void add_motions(CLI::App& app) {
   c->add_option("--first", q.first, "number of the first realisation (default 1)");
   c->add_option("--seed", q.seed, "master seed (default 1)");
   c->add_option("--label", o->label, "name of the set in MANIFEST.tsv (default svgm)");
-  c->add_option("--out", o->out, "output folder (new or empty)")->required();
+  c->add_option("--out", o->out, "output folder (new or empty; not needed with --coherency-table)");
   c->add_flag("--quiet", o->quiet, "no progress lines");
   c->callback([o, c] {
     while (o->out.size() > 1 && o->out.back() == '/') o->out.pop_back();
     const spatial::Settings s = settings_of(*o, *c);
+    if (o->coherency_table && o->out.empty()) {
+      fmt::print("{}", table_of(*o, s));
+      return;
+    }
     check_out_dir(o->out);
+    if (o->coherency_table) fmt::print("{}", table_of(*o, s));
     std::string command_line = "pounding motions";
     for (const auto* opt : c->get_options())
       if (opt->count() > 0 && opt->get_name() != "--help") {
