@@ -116,6 +116,35 @@ std::string wilson_basis(const Data& r);
 // its signs with polarity "both") and one period pair (i1 >= 0), or all.
 Count count_uncoupled(const Data& r, double ratio, int rec, int pair_i1 = -1, int pair_i2 = -1);
 
+// A target t (a fraction) is resolved by N independent records when floor(t N) >= 1 (some record may exceed it); an
+// unresolved target's empirical answer is (close to) the largest record's demand, whatever t (separation_sections.cpp).
+bool resolved_by(double t, std::size_t N);
+// The largest ok demand of each independent record that has one (both signs, every model): N = its size.
+std::vector<double> record_peaks(const separation::Demands& d);
+// What record k of the table is: "stand-in" (a synthetic stand-in for a missing recording), "generated" (a motion a
+// generator made for the study, [records.motions]: its source starts "synthetic:") or "recorded" (report.cpp); and
+// the report's "synthetic" cell for it: yes, generated, no.
+std::string record_kind(const results::RecordTable& t, std::size_t k);
+std::string synthetic_cell(const results::RecordTable& t, std::size_t k);
+// The gap ratio x as a column title; "x d = g m" when the code gap is the same for every model (report.cpp).
+std::string gap_title(const Data& r, double x);
+
+// The moat walls of the isolated buildings (moat_section.cpp): per building with a moat, its walls (elements of a group
+// that is not study-gap with a wall side) and their gap (/system/element_gap_offset; NaN in files that hold 0 there).
+struct MoatBuilding {
+  std::size_t body = 0;
+  std::string label;
+  std::vector<std::size_t> walls;
+  double gap = NAN;
+};
+std::vector<MoatBuilding> moat_buildings(const results::SystemTable& sys);
+// "Moat walls: probability that the isolated base hits its moat": P(at least one moat-wall impact) with the report's
+// interval, without pounding and with it at each gap ratio, and the base's peak displacement; "" without a moat.
+std::string moat_section(const Data& r);
+std::string moat_csv(const Data& r);  // rows "moat" of the CSV report
+// The same per stripe of a fragility study (levels: the stripes' IM values, im: their measure and units).
+std::string moat_fragility_section(const results::Results& r, std::span<const double> levels, const std::string& im);
+
 // Sections on separations (separation_sections.cpp).
 std::string pair_separation_section(const Data& r);  // the pair's separation in metres (report's first section)
 std::string code_rules_section(const Data& r);
@@ -125,10 +154,15 @@ std::string grid_advice_section(const Data& r);      // a grid study's separatio
 // One target of a grid (or bridge) study's advice: the target in %, the order statistic with its bootstrap interval
 // (gap ratios; a bridge's in units of d) and the cubic's root (a grid's only). Built once (report.cpp), formatted by
 // grid_advice_section and separation_csv (replicates: the bootstrap's, may be null).
+// A bridge's row also says whether the records resolve the target (resolved_by over the independent records with an
+// ok analysis, as the pair's advice) and, where they do not, carries the lognormal's estimate (units of d).
 struct AdviceRow {
   double target = 0;
   separation::Estimate estimate;
   std::optional<double> cubic;
+  bool resolved = true;
+  std::size_t records = 0;
+  separation::Estimate lognormal{NAN, NAN, NAN};
 };
 std::vector<AdviceRow> grid_advice_rows(const Data& r, int* replicates = nullptr);
 // One code rule of a grid study: the rule (model 0's name, clause, formula; each model has its own gap), the

@@ -5,6 +5,7 @@
 
 #include <fmt/format.h>
 
+#include "data.hpp"
 #include "pounding/report/escape.hpp"
 #include "pounding/report/fragility.hpp"
 #include "pounding/report/report.hpp"
@@ -296,7 +297,9 @@ std::string hazard_section(const View& v) {
 
 std::string fragility_markdown(const Results& r) {
   const View v(r);
-  return overview(v) + target_section(v) + fragility_table(v) + observed_table(v) + hazard_section(v) + stripes_section(v);
+  return overview(v) + target_section(v) + fragility_table(v) + observed_table(v) +
+         report_detail::moat_fragility_section(r, v.levels, v.in.text("measure") + " " + v.units) + hazard_section(v) +
+         stripes_section(v);
 }
 
 std::string fragility_csv(const Results& r) {

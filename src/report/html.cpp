@@ -10,6 +10,7 @@
 
 #include <fmt/format.h>
 
+#include "data.hpp"
 #include "markdown_html.hpp"
 #include "pounding/contact/model.hpp"
 #include "pounding/kernel/batch.hpp"
@@ -145,12 +146,25 @@ std::string answer_body(const std::vector<MdBlock>& blocks) {
   return "<p>This results file holds no separation advice; the tables below hold what it has.</p>\n";
 }
 
+// An isolated building's moat: the probability that its base hits the walls, quoted from the Markdown's table
+// (issue 45 item 2); "" without a moat.
+std::string moat_answer(const std::vector<MdBlock>& blocks) {
+  std::string heading;
+  const auto sec = section_of(blocks, "Moat walls", &heading);
+  const MdBlock* t = first_table(sec);
+  if (!t) return "";
+  return "<p>Probability that the isolated base hits its moat walls (at least one moat-wall impact), with its "
+         "interval:</p>\n" +
+         report_detail::table_html(pick_columns(*t, {"building", "moat gap", "run", "level", "P(moat impact)",
+                                                     "~% interval", "records with", "base peak 84th"}));
+}
+
 std::string answer_html(const std::vector<MdBlock>& blocks, const std::string& id = "answer") {
   std::string s = "<section class=\"answer\" id=\"" + id + "\" aria-labelledby=\"" + id + "-title\">\n<h2 id=\"" + id +
                   "-title\">The answer</h2>\n";
   for (const MdBlock& b : blocks)  // the banner of a run with too many excluded analyses
     if (b.kind == MdBlock::Kind::quote) s += block_html(b);
-  return s + answer_body(blocks) + "</section>\n";
+  return s + answer_body(blocks) + moat_answer(blocks) + "</section>\n";
 }
 
 struct Toc {
@@ -279,7 +293,7 @@ std::string records_html(const results::Results& r) {
   for (std::size_t k = 0; k < rec.size(); k += per)
     // table_html reads Markdown inline text: the names escaped for it, shown as they are
     rows.push_back({report::md_cell(rec.id[k]), report::md_cell(k < rec.name.size() ? rec.name[k] : ""),
-                    report::md_cell(k < rec.source.size() ? rec.source[k] : ""), rec.synthetic[k] ? "yes" : "no",
+                    report::md_cell(k < rec.source.size() ? rec.source[k] : ""), report_detail::synthetic_cell(rec, k),
                     fmt::format("{:.3f}", rec.pga_g[k]), fmt::format("{:g}", rec.dt[k]), std::to_string(rec.npts[k]),
                     fmt::format("{:.2f}", rec.duration[k])});
   return report_detail::table_html(rows, per == 2 ? "Records (each applied with both signs)" : "Records");

@@ -446,11 +446,13 @@ void Markdown::overview() {
   out("- scene: **{}** — {}\n", report::md_text(r.h.scene), report::md_text(r.h.scene_reason));
   out("- contact: {} ({}), e = {}; stepper {}\n", report::md_text(r.h.contact_law), report::md_text(r.h.damping_law),
       r.h.restitution, report::md_text(r.h.stepper));
-  std::size_t synth = 0;
-  for (auto v : r.rec.synthetic) synth += v;
+  std::size_t synth = 0, generated = 0;
+  for (std::size_t k = 0; k < R; ++k) synth += r.rec.synthetic[k], generated += record_kind(r.rec, k) == "generated";
   const std::size_t N = r.independent();
-  out("- {} records ({} synthetic stand-ins, {} real), {} models per record, seed {}\n", N, synth / r.per_record,
-      (R - synth) / r.per_record, M, r.h.seed);
+  // motions a generator made for the study ([records.motions]) are neither stand-ins nor recorded (issue 45 item 3)
+  out("- {} records ({}{} synthetic stand-ins, {} real), {} models per record, seed {}\n", N,
+      generated ? fmt::format("{} generated, ", generated / r.per_record) : "", synth / r.per_record,
+      (R - synth - generated) / r.per_record, M, r.h.seed);
   const std::string mover = r.set.bridge ? "a joint closes (its left frame moves towards its right one)"
                                          : "building 1 moves towards building 2";
   const std::string closing = r.set.bridge ? "u_left - u_right at a joint" : "u1 - u2";
@@ -509,14 +511,6 @@ void Markdown::excluded_uncoupled() {
       }
 }
 
-// The gap ratio x as a column title; "x d = g m" when the code gap is the same for every model.
-std::string gap_title(const Data& r, double x) {
-  if (r.red && r.set.pair && r.red->number("code_gap_min") == r.red->number("code_gap_max"))
-    return fmt::format("{}d = {:.3f} m", x, x * r.red->number("code_gap_min"));
-  if ((!r.set.pair && !r.set.bridge) || r.mod.code_gap.empty()) return fmt::format("{}d", x);
-  const auto [lo, hi] = std::minmax_element(r.mod.code_gap.begin(), r.mod.code_gap.end());
-  return *lo == *hi ? fmt::format("{}d = {:.3f} m", x, x * *lo) : fmt::format("{}d", x);
-}
 
 // Table 2: per record
 void Markdown::per_record() {
@@ -530,7 +524,7 @@ void Markdown::per_record() {
   out("\n");
   for (std::size_t k = 0; k < r.independent(); ++k) {
     const std::size_t row = k * r.per_record;
-    out("| {} | {} | {:.2f} |", report::md_cell(r.rec.id[row]), r.rec.synthetic[row] ? "yes" : "no", r.rec.pga_g[row]);
+    out("| {} | {} | {:.2f} |", report::md_cell(r.rec.id[row]), synthetic_cell(r.rec, row), r.rec.pga_g[row]);
     for (double x : ratios) {
       Count c = count_uncoupled(r, x, static_cast<int>(k));
       out(" {} ({}) |", c.hits, pct(c.pct()));
@@ -741,6 +735,27 @@ void Markdown::restitution_per_element() {
 
 namespace report_detail {
 
+// The gap ratio x as a column title; "x d = g m" when the code gap is the same for every model.
+std::string gap_title(const Data& r, double x) {
+  if (r.red && r.set.pair && r.red->number("code_gap_min") == r.red->number("code_gap_max"))
+    return fmt::format("{}d = {:.3f} m", x, x * r.red->number("code_gap_min"));
+  if ((!r.set.pair && !r.set.bridge) || r.mod.code_gap.empty()) return fmt::format("{}d", x);
+  const auto [lo, hi] = std::minmax_element(r.mod.code_gap.begin(), r.mod.code_gap.end());
+  return *lo == *hi ? fmt::format("{}d = {:.3f} m", x, x * *lo) : fmt::format("{}d", x);
+}
+
+std::string record_kind(const results::RecordTable& t, std::size_t k) {
+  if (t.synthetic[k]) return "stand-in";
+  // a generated motion's source names its generator ("synthetic:spatial seed 1 realisation 3 support 1",
+  // motion/spatial.cpp); a recorded one's is its file or repository
+  return k < t.source.size() && t.source[k].rfind("synthetic:", 0) == 0 ? "generated" : "recorded";
+}
+
+std::string synthetic_cell(const results::RecordTable& t, std::size_t k) {
+  const std::string kind = record_kind(t, k);
+  return kind == "stand-in" ? "yes" : kind == "generated" ? "generated" : "no";
+}
+
 // Why a report is made from the reductions: the study kept only them, or (per_model = "stream") the run's own
 // report is, while every model's peaks went to the results file.
 std::string reductions_reason(const Data& r) {
@@ -778,15 +793,24 @@ std::vector<AdviceRow> grid_advice_rows(const Data& r, int* replicates) {
   const ReportSettings& set = r.set;
   std::vector<double> targets;
   for (double t : set.targets) targets.push_back(t / 100.0);
-  const separation::BootstrapResult b = r.red ? histogram_bootstrap(r, targets) : r.bootstrap(false, targets, {});
+  // a bridge: with the lognormal, for the targets its records do not resolve (as the pair's advice; one bootstrap
+  // with separation_csv's, which asks the same)
+  const separation::BootstrapResult b =
+      r.red ? histogram_bootstrap(r, targets) : r.bootstrap(false, targets, {}, set.bridge);
   if (replicates) *replicates = b.replicates;
   // a bridge's d is one number (the smallest joint gap); a grid's heights come from the period-height rule: ratios,
   // and the cubic's root beside them
   const std::optional<CubicFit> f = set.bridge ? std::nullopt : ratio_fit(r);
+  const std::size_t N = !set.bridge ? 0 : r.red ? r.independent() : record_peaks(r.demands(false)).size();
   std::vector<AdviceRow> rows;
-  for (std::size_t i = 0; i < targets.size(); ++i)
+  for (std::size_t i = 0; i < targets.size(); ++i) {
     rows.push_back({set.targets[i], b.separation[i],
                     f ? solve_fit(*f, set.targets[i], set.fit_min, set.fit_max) : std::nullopt});
+    if (!set.bridge) continue;
+    rows.back().records = N;
+    rows.back().resolved = resolved_by(targets[i], N);
+    if (i < b.lognormal.size()) rows.back().lognormal = b.lognormal[i];
+  }
   return rows;
 }
 
@@ -805,8 +829,12 @@ std::string grid_advice_section(const Data& r) {
   std::string s =
       set.bridge
           ? fmt::format("\n## Joint gap advice (any joint)\n\n{} of D); the gap of the joint(s) at d is x d, every other "
-                        "joint's x d + (gap_j - d). {}\n\n| target | x | gap x d (m) | {:.0f} % interval (m) | advice "
-                        "(m, upper end) |\n|---|---|---|---|---|\n",
+                        "joint's x d + (gap_j - d). {} The records, not the analyses, limit how fine a target can be: "
+                        "with N independent records a target t with floor(t N) = 0 is **not resolved by N records** "
+                        "(the empirical gap is (close to) the largest record's D, whatever t); its advice is then the "
+                        "upper end of a lognormal fitted to D (parametric, extrapolated; D <= 0 a point mass at 0), so "
+                        "labelled.\n\n| target | x | gap x d (m) | {:.0f} % interval (m) | advice (m, upper end) |\n"
+                        "|---|---|---|---|---|\n",
                         exceed, interval, 100 * set.confidence)
           : fmt::format("\n## Separation advice in gap ratios x of the code gap d\n\n{}). {} Heights here come from the "
                         "period-height rule, so no separation is given in metres.\n\n| target | x | {:.0f} % interval | "
@@ -816,8 +844,12 @@ std::string grid_advice_section(const Data& r) {
   for (const AdviceRow& row : rows) {
     const separation::Estimate& e = row.estimate;
     const double d = set.bridge_d;
-    s += set.bridge ? fmt::format("| {}% | {:.3f} | {:.4f} | [{:.4f}, {:.4f}] | **{:.4f}** |\n", row.target, e.value,
-                                  e.value * d, e.lo * d, e.hi * d, e.hi * d)
+    const std::string lognormal = std::isnan(row.lognormal.hi) ? "n/a" : fmt::format("{:.4f}", row.lognormal.hi * d);
+    const std::string advice = row.resolved ? fmt::format("**{:.4f}**", e.hi * d)
+                                            : fmt::format("not resolved by {} records; lognormal: **{}**", row.records,
+                                                          lognormal);
+    s += set.bridge ? fmt::format("| {}% | {:.3f} | {:.4f} | [{:.4f}, {:.4f}] | {} |\n", row.target, e.value,
+                                  e.value * d, e.lo * d, e.hi * d, advice)
                     : fmt::format("| {}% | {:.3f} | [{:.3f}, {:.3f}] | **{:.3f}** | {} |\n", row.target, e.value,
                                   e.lo, e.hi, e.hi, row.cubic ? fmt::format("{:.3f}", *row.cubic) : "outside fit range");
   }
@@ -877,6 +909,7 @@ std::string pair_markdown(const Data& r) {
   md.per_record();
   md.total();
   md.coupled_counts();
+  md.raw(moat_section(r));  // an isolated building in a moat ("" otherwise)
   if (r.set.bridge) {  // the buildings' code rules, period matrix and u1/u2 amplification do not apply
     md.raw(grid_advice_section(r));
     md.raw(bridge_section(r));
@@ -923,7 +956,7 @@ std::string pair_csv(const Data& r) {
   Curve c = curve_of(r, r.set.curve_step, r.set.curve_max, -1);
   for (std::size_t i = 0; i < c.x.size(); ++i)
     s += fmt::format("curve,,{:.4f},,,,{},{:.6f},,,,\n", c.x[i], c.n, c.p[i]);
-  if (!r.red) return s + separation_csv(r);
+  if (!r.red) return s + separation_csv(r) + moat_csv(r);
   // [outputs] per_model = false: the separations in gap ratios from the histograms (bin upper edges)
   std::vector<double> targets;
   for (double t : r.set.targets) targets.push_back(t / 100.0);

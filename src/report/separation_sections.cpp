@@ -111,8 +111,20 @@ separation::DesignPair model_design_pair(const Data& r, std::size_t m) {
   return p;
 }
 
-// A target t (a fraction) is resolved by N independent records when floor(t N) >= 1 (some record may exceed it).
+}  // namespace
+
 bool resolved_by(double t, std::size_t N) { return std::floor(t * static_cast<double>(N)) >= 1; }
+
+std::vector<double> record_peaks(const separation::Demands& d) {
+  std::vector<double> peaks;
+  for (std::size_t k = 0; k < d.records; ++k) {
+    const std::vector<double> z = d.record(k);
+    if (!z.empty()) peaks.push_back(*std::max_element(z.begin(), z.end()));
+  }
+  return peaks;
+}
+
+namespace {
 
 std::string interval(const separation::Estimate& e, double scale, const char* f) {
   return fmt::format("[{}, {}]", fmt::format(fmt::runtime(f), scale * e.lo), fmt::format(fmt::runtime(f), scale * e.hi));
@@ -211,11 +223,7 @@ struct PairAdviceRows {
 
 PairAdviceRows pair_advice_rows(const Data& r, const separation::BootstrapResult& b) {
   const separation::Demands d = r.demands(true);
-  std::vector<double> record_peak;  // each independent record's largest ok demand (both signs, every model)
-  for (std::size_t k = 0; k < d.records; ++k) {
-    const std::vector<double> z = d.record(k);
-    if (!z.empty()) record_peak.push_back(*std::max_element(z.begin(), z.end()));
-  }
+  const std::vector<double> record_peak = record_peaks(d);
   const double dcode = median(r.mod.code_gap);
   const std::optional<CubicFit> f = metres_fit(r, d.pooled(), dcode);
   PairAdviceRows rows;
@@ -299,24 +307,27 @@ std::string separation_csv(const Data& r) {
   const double unit = r.set.pair ? median(r.mod.code_gap) : 1.0;
   const int n = r.set.pair ? static_cast<int>(std::floor(r.set.curve_max / r.set.curve_step + 1e-9)) : 0;
   for (int i = 1; i <= n; ++i) gaps.push_back(r.set.curve_step * i * unit);
-  const separation::BootstrapResult b = r.bootstrap(r.set.pair, targets, gaps, r.set.pair);
-  const std::size_t N = d.pooled().size();
+  // pairs and bridges: with the lognormal, the advice of a target the records do not resolve
+  const bool lognormal = r.set.pair || r.set.bridge;
+  const separation::BootstrapResult b = r.bootstrap(r.set.pair, targets, gaps, lognormal);
+  const std::size_t N = d.pooled().size(), records = record_peaks(d).size();
   std::string s;
   for (std::size_t i = 0; i < targets.size(); ++i) {
     const separation::Estimate& e = b.separation[i];
-    // name: "not resolved by R records" where floor(t R) = 0 (R independent records)
+    // name: "not resolved by R records" where floor(t R) = 0 (R independent records with an ok analysis)
     const std::string note =
-        !r.set.pair || resolved_by(targets[i], d.records) ? "" : fmt::format("\"not resolved by {} records\"", d.records);
+        !lognormal || resolved_by(targets[i], records) ? "" : fmt::format("\"not resolved by {} records\"", records);
     s += r.set.pair ? fmt::format("separation,,{:.6f},,,,{},{},{:.6f},{:.6f},{:.6f},{}\n", e.value / unit, N, targets[i],
                                   e.value, e.lo, e.hi, note)
                     : fmt::format("separation,,{:.6f},,,,{},{},,{:.6f},{:.6f},{}\n", e.value, N, targets[i], e.lo, e.hi,
                                   note);
   }
-  for (std::size_t i = 0; i < b.lognormal.size(); ++i) {  // pair studies: the parametric (lognormal) estimate
-    const separation::Estimate& e = b.lognormal[i];
-    s += fmt::format("separation_lognormal,,{:.6f},,,,{},{},{:.6f},{:.6f},{:.6f},\"lognormal fit: mu {:.9g} sigma {:.9g} "
+  for (std::size_t i = 0; i < b.lognormal.size(); ++i) {  // pairs and bridges: the parametric (lognormal) estimate
+    const separation::Estimate& e = b.lognormal[i];       // (a bridge's in units of d, as its separation rows)
+    s += fmt::format("separation_lognormal,,{:.6f},,,,{},{},{},{:.6f},{:.6f},\"lognormal fit: mu {:.9g} sigma {:.9g} "
                      "p0 {:.9g}\"\n",
-                     e.value / unit, N, targets[i], e.value, e.lo, e.hi, b.fit.mu, b.fit.sigma, b.fit.p0);
+                     e.value / unit, N, targets[i], r.set.pair ? fmt::format("{:.6f}", e.value) : "", e.lo, e.hi,
+                     b.fit.mu, b.fit.sigma, b.fit.p0);
   }
   const std::vector<double> z = d.pooled();
   for (std::size_t i = 0; i < gaps.size(); ++i) {

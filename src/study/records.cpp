@@ -25,6 +25,26 @@ namespace fs = std::filesystem;
 
 namespace {
 
+// [records] files naming the real records beside the clone (../shared/records/real: 85 PEER accelerograms, not the
+// project's to redistribute, so not in the repository): one error for every missing one, saying where they go, before
+// any is read (issue 45 item 3: studies/four-frame-bridge.toml stopped on the first path, "check the path")
+void require_real_records(const Study& s) {
+  std::vector<std::string> missing;
+  for (const auto& f : s.files)
+    if (f.path.find("shared/records/real/") != std::string::npos && !fs::exists(f.path)) missing.push_back(f.path);
+  if (missing.empty()) return;
+  const fs::path dir = fs::absolute(fs::path(missing.front()).parent_path()).lexically_normal();
+  throw InputError(
+      fmt::format("{} of the study's {} record files are missing from the real records ({}{}), expected in {}",
+                  missing.size(), s.files.size(), fs::path(missing.front()).filename().string(),
+                  missing.size() > 1 ? ", ..." : "", dir.string()),
+      s.path + " [records] files",
+      fmt::format("put the real records (the folder records/real with MANIFEST.tsv that ../shared/records/README.md "
+                  "describes; the project does not redistribute them) at {}, i.e. ../shared/records/real beside the "
+                  "clone, or change the paths in [records] files to where they are",
+                  dir.string()));
+}
+
 // [records] supports = N: the directory's files grouped per realisation -- stem PREFIX_sJJ is support JJ of
 // realisation PREFIX (pounding motions' rRRR_sJJ.AT2) -- each group exactly supports 1..N (checked here, before
 // any file is read; their dt and length when the group is read).
@@ -96,6 +116,7 @@ RecordPlan plan_study_records(const Study& s) {
     double scale = 1.0;
   };
   std::vector<Source> sources;
+  require_real_records(s);
   if (!s.files.empty()) {
     for (const auto& f : s.files)
       sources.push_back({{f.path},

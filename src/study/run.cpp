@@ -584,8 +584,9 @@ class UnitComputer {
     }
   }
 
-  // lane i's per-element impacts at gap g: from coupled_ lane j, or (j = npos) untouched: no impacts at the elements
-  // its topology has (those with an uncoupled closing)
+  // lane i's per-element impacts at gap g: from coupled_ lane j, or (j = npos) untouched: no impacts at the study-gap
+  // elements its topology has (those with an uncoupled closing), and a moat wall's of the uncoupled run (the walls act
+  // there too, and the coupled run of an untouched lane is the uncoupled run; they held 0, issue 45 item 2)
   void put_table_coupled(UnitResult& out, std::size_t i, std::size_t g, std::size_t j) {
     const std::size_t E = block_->layout().elements;
     auto count = out.lane_values<std::int32_t>(f_e_count_, i);
@@ -598,6 +599,10 @@ class UnitComputer {
         const std::size_t x = j * E + e;
         count[o] = coupled_.e_count[x], force[o] = coupled_.e_force[x], pen[o] = coupled_.e_penetration[x];
         first[o] = coupled_.e_first[x], hw[o] = coupled_.e_hw[x];
+      } else if (!std::isnan(peaks_.e_closing[i * E + e]) && !study_gap(e)) {
+        const std::size_t x = i * E + e;
+        count[o] = peaks_.e_count[x], force[o] = peaks_.e_force[x], pen[o] = peaks_.e_penetration[x];
+        first[o] = peaks_.e_first[x], hw[o] = peaks_.e_hw[x];
       } else if (!std::isnan(peaks_.e_closing[i * E + e])) {
         count[o] = 0, force[o] = 0.0, pen[o] = 0.0, first[o] = NAN;
         hw[o] = peaks_.status[i] == 0 && has_force ? 0.0 : NAN;
@@ -610,6 +615,12 @@ class UnitComputer {
         else if (!std::isnan(peaks_.e_closing[i * E + e])) outside[g * E + e] = 0;
     }
     put_floors_coupled(out, i, g, j);
+  }
+
+  // element e of the plan's /system belongs to a study-gap group (a moat wall does not)
+  bool study_gap(std::size_t e) const {
+    const results::SystemTable& t = plan_.system;
+    return e >= t.element_group.size() || t.group_study_gap[static_cast<std::size_t>(t.element_group[e])] != 0;
   }
 
   // lane i's per-floor peaks at gap g: from coupled_ lane j, or (j = npos, a lane that never touched) its uncoupled

@@ -309,16 +309,22 @@ std::vector<double> SystemBlock::element_offsets(const model::System& sys) const
     const std::vector<double>& o = model_.bridge->offsets;
     return std::all_of(o.begin(), o.end(), [](double x) { return x == 0.0; }) ? std::vector<double>{} : o;
   }
-  if (offsets_.empty() && joint_offsets_.empty()) return {};
   std::vector<double> out(sys.contacts().size(), 0.0);
+  bool any = !offsets_.empty() || !joint_offsets_.empty();
   for (std::size_t e = 0; e < out.size(); ++e) {
     const model::ContactElement& ce = sys.contacts()[e];
-    if (!sys.groups()[static_cast<std::size_t>(ce.group)].study_gap) continue;
+    if (!sys.groups()[static_cast<std::size_t>(ce.group)].study_gap) {
+      // a moat wall: the whole gap, its building's moat gap (set_lane's set_moat; the base is the non-wall side)
+      const model::Side& base = ce.left.kind == model::SideKind::wall ? ce.right : ce.left;
+      out[e] = model_.row_building(static_cast<std::size_t>(sys.body_of(base.p))).moat_gap;
+      any = true;
+      continue;
+    }
     if (ce.level >= 1 && static_cast<std::size_t>(ce.level) <= offsets_.size())
       out[e] = offsets_[static_cast<std::size_t>(ce.level - 1)];
     if (!joint_offsets_.empty()) out[e] += joint_offsets_[joint_index(sys, e)];  // set_lane's order: gap + level + joint
   }
-  return out;
+  return any ? out : std::vector<double>{};
 }
 
 std::vector<ContactModel> SystemBlock::groups(const LaneTopology& t, const ContactModel& pounding) const {

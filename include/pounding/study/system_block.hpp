@@ -178,8 +178,9 @@ class SystemBlock {
 
   // The contact models of a run: group 0 the pounding (`pounding`), then one per moat, building order.
   std::vector<ContactModel> groups(const LaneTopology& t, const ContactModel& pounding) const;
-  // Each element's gap offset in `sys` (a study-gap element: gap_offsets[level - 1], 0 beyond the list; others 0):
-  // the results' /system/element_gap_offset. Empty without gap_offsets.
+  // Each element's gap offset in `sys` (a study-gap element: gap_offsets[level - 1], 0 beyond the list, plus its
+  // joint's offset; a moat wall, whose group is not study-gap: the whole gap, its building's moat gap): the results'
+  // /system/element_gap_offset (docs/results-format.md). Empty without gap offsets and moat walls.
   std::vector<double> element_offsets(const model::System& sys) const;
 
  private:
