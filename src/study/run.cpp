@@ -776,8 +776,9 @@ Inputs load_inputs(const parallel::Session& session, const std::string& study_pa
     }
     in->records = finish_study_records(in->study, std::move(made), in->selection ? &*in->selection : nullptr);
     if (in->records.empty()) throw InputError("the study resolves to no records", study_path, "check [records]");
-    // shear buildings: every sample's highest frequency against the integration step, before any work
-    if (session.root()) check_shear_steps(in->study, in->records);
+    // shear buildings: every sample's highest frequency against the integration step, before any work; without
+    // [analysis] substeps / max_dt it chooses a stable max_dt, so every rank runs it (the same choice everywhere)
+    check_shear_steps(in->study, in->records);
     if (in->study.intensity.enabled) {
       std::vector<double> im;
       for (const auto& rr : in->records) im.push_back(intensity(rr.record, in->study.intensity.im));

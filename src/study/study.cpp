@@ -333,6 +333,7 @@ namespace {
 void parse_analysis(Study& s, const toml::table* t, const std::string& path) {
   TableReader a(t, path, "analysis");
   s.stepper = a.choice("stepper", "central-difference", parse_stepper);
+  s.step_given = a.get("substeps") != nullptr || a.get("max_dt") != nullptr;
   s.substeps = static_cast<int>(a.integer("substeps", 1));
   s.max_dt = a.number("max_dt", -1.0);
   s.batch = static_cast<int>(a.integer("batch", 0));  // 0: the scene's default, set by choose_scene

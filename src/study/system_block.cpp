@@ -448,7 +448,7 @@ void SystemBlock::coupled(std::span<const SampledPair> pairs, std::span<const st
   run(pairs, lanes, ratio, cm, cn, gm, ks, out);
 }
 
-void check_shear_steps(const Study& study, std::span<const StudyRecord> records, std::size_t max_models) {
+void check_shear_steps(Study& study, std::span<const StudyRecord> records, std::size_t max_models) {
   const StructureModel& model = study.structures;
   // Newmark (average acceleration) is unconditionally stable for the linear part (contact: the resolution guard);
   // central difference and RK4 have their limits (physics::structure_step_max)
@@ -485,6 +485,17 @@ void check_shear_steps(const Study& study, std::span<const StudyRecord> records,
   const double h_min = worst.h_max, w_at = worst.omega_max, c_at = worst.damping;
   if (h < h_min) return;
   const double need = worst.substeps(dt);
+  if (!study.step_given) {  // choose: the largest 3-digit step below 0.999 h_min
+    const double q = std::pow(10.0, std::floor(std::log10(0.999 * h_min)) - 2.0);
+    const double cap = std::floor(0.999 * h_min / q) * q;
+    study.max_dt = study.max_dt > 0 ? std::min(study.max_dt, cap) : cap;
+    study.scene_reason += fmt::format(
+        "; step: max_dt = {:g} s, chosen for the {}' stability (sample ({}, {}, {}) needs h < {:.4g} s; the record step "
+        "{:g} s needs {:g} substeps; give [analysis] substeps or max_dt to set the step yourself)",
+        study.max_dt, model.bridge ? "bridge's frames and links" : "shear buildings", at.i1, at.i2, at.sample, h_min, dt,
+        std::ceil(dt / study.max_dt - 1e-9));
+    return;
+  }
   const std::string rule = study.stepper == Stepper::central_difference
                                ? fmt::format("central difference (omega_max <= {:.6g} rad/s, 2 zeta omega <= {:.4g} 1/s by "
                                              "Gershgorin's bounds; h^2 omega^2 + 4 h (2 zeta omega) < 4)", w_at, c_at)

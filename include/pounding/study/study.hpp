@@ -196,6 +196,9 @@ struct Study {
   Stepper stepper = Stepper::central_difference;
   int substeps = 1;
   double max_dt = 0.0;  // step cap (s): substeps = max(substeps, ceil(dt / max_dt)); default 2.5 ms (impacts), 0 (probability)
+  // [analysis] substeps or max_dt given: the step is the user's (check_shear_steps refuses one the structures cannot
+  // follow); otherwise check_shear_steps lowers max_dt to a stable step and says so in scene_reason
+  bool step_given = false;
   int batch = 256;  // [analysis] batch: the study's, or default_batch(scene) when not given (read as 0 until choose_scene)
   // [analysis] threads: worker threads per rank (0: the CPUs of the affinity mask on one rank, 1 per rank under
   // mpirun with several ranks); how the work runs, not what it computes: not in /settings, the results' bits do

@@ -225,7 +225,9 @@ class SystemBlock {
 // mode, Gershgorin's bounds on M^-1 K0 and M^-1 C; the bound physics::validate checks per lane). InputError naming
 // [analysis] substeps / max_dt, the sample and the step that would do, for the study-wide worst case. Scans up to
 // `max_models` models (the first of each period pair beyond that: the run's own per-lane check, physics::validate,
-// still refuses the rest, later).
-void check_shear_steps(const Study& study, std::span<const StudyRecord> records, std::size_t max_models = 250000);
+// still refuses the rest, later). Without [analysis] substeps / max_dt (study.step_given false) the step is chosen
+// instead: max_dt lowered to the worst case's bound (rounded down to 3 digits, below 0.999 of it) and the reason
+// appended to study.scene_reason (stored in the results, printed by the run) -- a study that was stable keeps its step.
+void check_shear_steps(Study& study, std::span<const StudyRecord> records, std::size_t max_models = 250000);
 
 }  // namespace pounding
