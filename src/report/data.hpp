@@ -188,4 +188,27 @@ separation::BuildingCode building_code(const Data& r, int b, std::size_t model =
 separation::CodeDesign code_design(const Data& r);
 std::string coefficient_scope(const Data& r, std::vector<separation::Rule>& rules);
 
+// The code rules at each contact level of a pair of shear buildings (code_levels.cpp): each building as the codes
+// see it (its period -- the study's where it states it --, storeys, storey height, the first mode's Gamma1 phi1 at
+// every floor from model/modes.hpp), its contact levels (model::shear_buildings of those buildings, with the study's
+// level tolerance, levels and shape functions) and the section; none for an SDOF pair (its rows above are its one
+// level), an isolated building or a grid study.
+struct LevelBuilding {
+  separation::BuildingCode code;
+  std::string period_source;  // "as given", "the study's median (lognormal ...)", "median of 160 samples"
+  int storeys = 1;
+  double storey_height = 0;
+  std::string profile;        // "uniform" | "shear"
+  double gamma_roof = 1;      // Gamma1 with phi1(roof) = 1
+  std::vector<double> gphi;   // Gamma1 phi1 at floors 1..storeys
+};
+struct CodeLevels {
+  LevelBuilding b[2];
+  std::vector<separation::ContactLevel> levels;
+  std::string levels_rule;  // how the levels were found, in words
+};
+std::optional<CodeLevels> code_levels(const Data& r);
+std::string code_levels_section(const Data& r);
+std::string code_levels_csv(const Data& r);  // rows code_level of the CSV report
+
 }  // namespace pounding::report_detail
