@@ -49,6 +49,21 @@ double code_period(const Data& r, int b, std::string& source) {
   return median_of(T);
 }
 
+}  // namespace
+
+std::vector<double> first_mode_gphi(int storeys, double storey_height, model::StiffnessProfile profile) {
+  // equal floor masses (the study splits each sample's mass equally, or takes floor_mass): the shape does not
+  // depend on their value, nor on the stiffnesses' scale
+  const std::vector<double> m(static_cast<std::size_t>(storeys), 1.0), h{storey_height};
+  const std::vector<double> k = model::stiffness_shape(m, h, profile);
+  const model::Modes modes = model::shear_stick_modes(m, k);
+  std::vector<double> g;
+  for (std::size_t i = 0; i < m.size(); ++i) g.push_back(modes.gamma[0] * modes.phi[0][i]);
+  return g;
+}
+
+namespace {
+
 LevelBuilding level_building(const Data& r, int b) {
   const results::Settings& s = r.res.settings;
   const std::string sec = fmt::format("structures.building{}", b);
@@ -59,13 +74,8 @@ LevelBuilding level_building(const Data& r, int b) {
   x.code.storey_height = x.storey_height;
   x.storeys = text_or(s, sec, "model", "sdof") == "shear" ? static_cast<int>(x.code.resolved_storeys()) : 1;
   x.profile = text_or(s, sec, "stiffness_profile", "uniform");
-  const auto profile = parse_enum(model::stiffness_profile_names, x.profile).value_or(model::StiffnessProfile::uniform);
-  // equal floor masses (the study splits each sample's mass equally, or takes floor_mass): the shape does not
-  // depend on their value, nor on the stiffnesses' scale
-  const std::vector<double> m(static_cast<std::size_t>(x.storeys), 1.0), h{x.storey_height};
-  const std::vector<double> k = model::stiffness_shape(m, h, profile);
-  const model::Modes modes = model::shear_stick_modes(m, k);
-  for (std::size_t i = 0; i < m.size(); ++i) x.gphi.push_back(modes.gamma[0] * modes.phi[0][i]);
+  x.gphi = first_mode_gphi(x.storeys, x.storey_height,
+                           parse_enum(model::stiffness_profile_names, x.profile).value_or(model::StiffnessProfile::uniform));
   x.gamma_roof = x.gphi.back();
   return x;
 }
@@ -73,6 +83,48 @@ LevelBuilding level_building(const Data& r, int b) {
 std::string metres(double v) { return fmt::format("{:.4f}", v); }
 
 }  // namespace
+
+std::vector<separation::ContactLevel> contact_levels(const LevelBuilding (&b)[2], double tolerance,
+                                                    model::ContactLevels levels, model::ShapeFunctions shape) {
+  std::vector<separation::ContactLevel> out;
+  std::vector<model::StickTopology> sticks(2);
+  for (int i = 0; i < 2; ++i) {
+    sticks[i].storeys = b[i].storeys, sticks[i].storey_heights = {b[i].storey_height};
+    sticks[i].columns = b[i].storeys > 1;  // an SDOF beside a shear building meets its floors only
+  }
+  const model::System sys = model::shear_buildings(sticks, tolerance, levels);
+  // a side's (building, height, Gamma1 phi1); a column side between floors p (may be the ground) and q at weight xi
+  const auto side = [&](const model::Side& sd, double xi, int& body, double& z, double& g) {
+    const auto at = [&](int dof, int& bb, double& zz, double& gg) {
+      if (dof == model::ground) {
+        zz = 0, gg = 0;
+        return;
+      }
+      bb = sys.body_of(dof);
+      const model::Body& B = sys.bodies()[static_cast<std::size_t>(bb)];
+      const std::size_t f = static_cast<std::size_t>(std::find(B.dofs.begin(), B.dofs.end(), dof) - B.dofs.begin());
+      zz = B.heights[f], gg = b[bb].gphi[f];
+    };
+    if (sd.kind == model::SideKind::point) return at(sd.p, body, z, g);
+    double z0, g0, z1, g1;
+    int b0 = -1;
+    at(sd.p, b0, z0, g0), at(sd.q, body, z1, g1);
+    const double w = model::column_weight(xi, shape);
+    z = z0 + xi * (z1 - z0), g = (1 - w) * g0 + w * g1;
+  };
+  for (const model::ContactElement& ce : sys.contacts()) {
+    separation::ContactLevel L;
+    L.label = ce.label;
+    int bl = 0, br = 1;
+    double zl, gl, zr, gr;
+    side(ce.left, ce.xi, bl, zl, gl), side(ce.right, ce.xi, br, zr, gr);
+    L.z1 = bl == 0 ? zl : zr, L.gphi1 = bl == 0 ? gl : gr;
+    L.z2 = bl == 0 ? zr : zl, L.gphi2 = bl == 0 ? gr : gl;
+    L.floors_coincide = ce.left.kind == model::SideKind::point && ce.right.kind == model::SideKind::point;
+    out.push_back(L);
+  }
+  return out;
+}
 
 std::optional<CodeLevels> code_levels(const Data& r) {
   const results::Settings& s = r.res.settings;
@@ -91,12 +143,7 @@ std::optional<CodeLevels> code_levels(const Data& r) {
                           .value_or(model::ContactLevels::common);
   const auto shape = parse_enum(model::shape_functions_names, text_or(s, "contact", "shape_functions", "linear"))
                          .value_or(model::ShapeFunctions::linear);
-  std::vector<model::StickTopology> sticks(2);
-  for (int b = 0; b < 2; ++b) {
-    sticks[b].storeys = c.b[b].storeys, sticks[b].storey_heights = {c.b[b].storey_height};
-    sticks[b].columns = c.b[b].storeys > 1;  // an SDOF beside a shear building meets its floors only
-  }
-  const model::System sys = model::shear_buildings(sticks, tolerance, levels);
+  c.levels = contact_levels(c.b, tolerance, levels, shape);
   c.levels_rule = fmt::format(
       "the levels where the model makes the buildings pound: {} (level tolerance {:g} m){}",
       levels == model::ContactLevels::top ? "the lower roof only ([contact] levels = \"top\")"
@@ -106,36 +153,6 @@ std::optional<CodeLevels> code_levels(const Data& r) {
       shape == model::ShapeFunctions::cubic ? "; a column point's Gamma1 phi1 from its floors' by the cubic shape "
                                               "functions ([contact] shape_functions)"
                                             : "; a column point's Gamma1 phi1 interpolated linearly between its floors");
-  // a side's (building, height, Gamma1 phi1); a column side between floors p (may be the ground) and q at weight xi
-  const auto side = [&](const model::Side& sd, double xi, int& body, double& z, double& g) {
-    const auto at = [&](int dof, int& bb, double& zz, double& gg) {
-      if (dof == model::ground) {
-        zz = 0, gg = 0;
-        return;
-      }
-      bb = sys.body_of(dof);
-      const model::Body& B = sys.bodies()[static_cast<std::size_t>(bb)];
-      const std::size_t f = static_cast<std::size_t>(std::find(B.dofs.begin(), B.dofs.end(), dof) - B.dofs.begin());
-      zz = B.heights[f], gg = c.b[bb].gphi[f];
-    };
-    if (sd.kind == model::SideKind::point) return at(sd.p, body, z, g);
-    double z0, g0, z1, g1;
-    int b0 = -1;
-    at(sd.p, b0, z0, g0), at(sd.q, body, z1, g1);
-    const double w = model::column_weight(xi, shape);
-    z = z0 + xi * (z1 - z0), g = (1 - w) * g0 + w * g1;
-  };
-  for (const model::ContactElement& ce : sys.contacts()) {
-    separation::ContactLevel L;
-    L.label = ce.label;
-    int bl = 0, br = 1;
-    double zl, gl, zr, gr;
-    side(ce.left, ce.xi, bl, zl, gl), side(ce.right, ce.xi, br, zr, gr);
-    L.z1 = bl == 0 ? zl : zr, L.gphi1 = bl == 0 ? gl : gr;
-    L.z2 = bl == 0 ? zr : zl, L.gphi2 = bl == 0 ? gr : gl;
-    L.floors_coincide = ce.left.kind == model::SideKind::point && ce.right.kind == model::SideKind::point;
-    c.levels.push_back(L);
-  }
   return c;
 }
 

@@ -14,6 +14,8 @@
 #include "pounding/analysis/separation.hpp"
 #include "pounding/analysis/stats.hpp"
 #include "pounding/kernel/batch.hpp"
+#include "pounding/model/modes.hpp"
+#include "pounding/model/shear_building.hpp"
 #include "pounding/report/report.hpp"
 #include "pounding/results/results.hpp"
 
@@ -208,6 +210,12 @@ struct CodeLevels {
   std::string levels_rule;  // how the levels were found, in words
 };
 std::optional<CodeLevels> code_levels(const Data& r);
+// Gamma1 phi1 at floors 1..storeys of a shear building of equal floor masses and `profile` storeys (1 for one storey)
+std::vector<double> first_mode_gphi(int storeys, double storey_height, model::StiffnessProfile profile);
+// The contact levels of the two buildings (left, right) as model::shear_buildings makes them, each side's height and
+// Gamma1 phi1 (a column side interpolated by `shape`)
+std::vector<separation::ContactLevel> contact_levels(const LevelBuilding (&b)[2], double tolerance,
+                                                    model::ContactLevels levels, model::ShapeFunctions shape);
 std::string code_levels_section(const Data& r);
 std::string code_levels_csv(const Data& r);  // rows code_level of the CSV report
 
