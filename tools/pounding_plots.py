@@ -503,6 +503,26 @@ def plot_pair(f, rows, source):
     for i, (gm, (prob, names)) in enumerate(sorted(rules.items())):
         ax.axvline(gm, color=f"C{2 + i % 8}", lw=1.2, alpha=0.9,
                    label=textwrap.fill(" / ".join(names), 44) + f":\n  {gm:.3f} m, P = {100 * prob:.1f} %")
+    # the codes' design displacements (rows code_design: ASCE 7-16, EC8 or Standard 2800 from the design spectrum)
+    # dashed, and for shear buildings each rule's governing contact level (rows code_level, the largest over the
+    # levels) dotted; gid "code_design" / "code_level" (tests/cli/plot_layout.py finds them)
+    design = {}
+    for r in rows:
+        if r["table"] == "code_design":
+            design.setdefault(round(float(r["gap_m"]), 6), [float(r["probability"]), []])[1].append(r["name"])
+    for i, (gm, (prob, names)) in enumerate(sorted(design.items())):
+        ax.axvline(gm, color=f"C{(2 + len(rules) + i) % 10}", lw=1.4, ls="--", alpha=0.9, gid="code_design",
+                   label=textwrap.fill(" / ".join(names), 44) + f":\n  {gm:.3f} m, P = {100 * prob:.1f} %")
+    governing = {}
+    for r in rows:
+        if r["table"] == "code_level":
+            rule, _, level = r["name"].partition(" at ")
+            if float(r["gap_m"]) > governing.get(rule, (-1.0, ""))[0]:
+                governing[rule] = (float(r["gap_m"]), level)
+    for i, (rule, (gm, level)) in enumerate(sorted(governing.items(), key=lambda kv: kv[1][0])):
+        ax.axvline(gm, color=f"C{(2 + len(rules) + len(design) + i) % 10}", lw=1.4, ls=":", gid="code_level",
+                   label=textwrap.fill(f"{rule}, governing contact {level}", 44) + f":\n  {gm:.3f} m")
+    rules = {**rules, **{g: None for g in design}, **{g: None for g, _ in governing.values()}}  # x-axis extent
 
     # separation advice: the estimate (dot) with its interval, and the advised separation (its upper end, a
     # diamond on a dashed line up to the target) labelled right beside that diamond

@@ -201,4 +201,74 @@ CodeDesign code_design_rules(const TargetSpectrumSpec* spec, const BuildingCode&
   return out;
 }
 
+ModalInputs code_modal_inputs(const TargetSpectrumSpec& spec, const BuildingCode& b) {
+  ModalInputs x;
+  switch (spec.code) {
+    case TargetCode::asce7_16:
+      x.sa_g = sa(spec.asce7, b.T), x.factor = b.asce7_r > 0 ? b.asce7_cd / b.asce7_r : NAN;
+      break;
+    case TargetCode::ec8:
+      x.sa_g = b.ec8_q > 0 ? ec8_design_sa(spec.ec8, b.ec8_q, b.T) : NAN, x.factor = b.ec8_q > 0 ? b.ec8_q : NAN;
+      break;
+    case TargetCode::iran2800: {
+      Iran2800Spectrum s = spec.iran2800;
+      s.importance = b.s2800_importance > 0 ? b.s2800_importance : spec.iran2800.importance;
+      x.sa_g = sa(s, b.T), x.factor = b.s2800_ru > 0 ? b.s2800_cd / b.s2800_ru : NAN;
+      break;
+    }
+    case TargetCode::csv: return {NAN, NAN, NAN};
+  }
+  x.sd = spectral_displacement(x.sa_g, b.T);
+  return x;
+}
+
+std::vector<LevelRow> code_level_rows(const TargetSpectrumSpec* spec, const BuildingCode& b1, const BuildingCode& b2,
+                                      const ContactLevel& L, double coefficient) {
+  std::vector<LevelRow> rows;
+  if (coefficient > 0) {
+    const bool s2800 = coefficient == 0.005;
+    rows.push_back({s2800 ? "Standard 2800 0.005 h at the level" : "coefficient rule at the level",
+                    s2800 ? "Standard 2800 (4th ed.): each building (up to 8 storeys) 0.005 x its height at the level "
+                            "from the property line; linear in height, no mode"
+                          : "[structures] code_gap_coefficient x each building's height at the level; linear in height",
+                    "ABS", coefficient * L.z1, coefficient * L.z2, coefficient * (L.z1 + L.z2)});
+  }
+  if (!spec || spec->code == TargetCode::csv) return rows;
+  const ModalInputs x1 = code_modal_inputs(*spec, b1), x2 = code_modal_inputs(*spec, b2);
+  if (!(x1.factor > 0) || !(x2.factor > 0)) return rows;  // code_design_rules' notes say which factors are missing
+  const double d1 = x1.factor * L.gphi1 * x1.sd, d2 = x2.factor * L.gphi2 * x2.sd;
+  const auto both = [&](const std::string& code, const std::string& separate, const std::string& same) {
+    rows.push_back({code + " design, separate lots", separate, "ABS", d1, d2, d1 + d2});
+    rows.push_back({code + " design, same property", same, "SRSS", d1, d2, std::hypot(d1, d2)});
+  };
+  switch (spec->code) {
+    case TargetCode::asce7_16:
+      both("ASCE 7-16",
+           "ASCE 7-16 sec. 12.12.3, each building set back from the property line by its delta_M(z) = (Cd / R) "
+           "Gamma1 phi1(z) Sd(T1) (12.8.6, 12.9.1, first mode)",
+           "ASCE 7-16 sec. 12.12.3, delta_MT = sqrt(delta_M1^2 + delta_M2^2), delta_M(z) = (Cd / R) Gamma1 phi1(z) "
+           "Sd(T1) (12.8.6, 12.9.1, first mode)");
+      break;
+    case TargetCode::ec8:
+      both("EC8",
+           "EN 1998-1 sec. 4.4.2.7(2)a, each building from the boundary by its d_s(z) = q Gamma1 phi1(z) S_d(T1) g "
+           "T1^2/4pi^2 (4.3.4 eq. 4.23, 4.3.3.3 first mode)",
+           "EN 1998-1 sec. 4.4.2.7(2)b, SRSS of d_s(z) = q Gamma1 phi1(z) S_d(T1) g T1^2/4pi^2 (4.3.4 eq. 4.23, "
+           "4.3.3.3 first mode)");
+      if (L.floors_coincide)
+        rows.push_back({"EC8 design, same property, floor levels coincide",
+                        "EN 1998-1 sec. 4.4.2.7(3), 0.7 x the SRSS distance where the floor levels coincide",
+                        "0.7 SRSS", d1, d2, 0.7 * std::hypot(d1, d2)});
+      break;
+    case TargetCode::iran2800:
+      rows.push_back({"Standard 2800 design drift joint",
+                      "Standard 2800 (4th ed.), each building from the property line by its Delta_M(z) = (Cd / Ru) "
+                      "Gamma1 phi1(z) A B I g T1^2/4pi^2 (first mode; P-Delta not included)",
+                      "ABS", d1, d2, d1 + d2});
+      break;
+    case TargetCode::csv: break;
+  }
+  return rows;
+}
+
 }  // namespace pounding::separation

@@ -14,6 +14,8 @@
 #include "pounding/analysis/separation.hpp"
 #include "pounding/analysis/stats.hpp"
 #include "pounding/kernel/batch.hpp"
+#include "pounding/model/modes.hpp"
+#include "pounding/model/shear_building.hpp"
 #include "pounding/report/report.hpp"
 #include "pounding/results/results.hpp"
 
@@ -187,5 +189,34 @@ std::optional<TargetSpectrumSpec> study_design_spectrum(const results::Settings&
 separation::BuildingCode building_code(const Data& r, int b, std::size_t model = static_cast<std::size_t>(-1));
 separation::CodeDesign code_design(const Data& r);
 std::string coefficient_scope(const Data& r, std::vector<separation::Rule>& rules);
+
+// The code rules at each contact level of a pair of shear buildings (code_levels.cpp): each building as the codes
+// see it (its period -- the study's where it states it --, storeys, storey height, the first mode's Gamma1 phi1 at
+// every floor from model/modes.hpp), its contact levels (model::shear_buildings of those buildings, with the study's
+// level tolerance, levels and shape functions) and the section; none for an SDOF pair (its rows above are its one
+// level), an isolated building or a grid study.
+struct LevelBuilding {
+  separation::BuildingCode code;
+  std::string period_source;  // "as given", "the study's median (lognormal ...)", "median of 160 samples"
+  int storeys = 1;
+  double storey_height = 0;
+  std::string profile;        // "uniform" | "shear"
+  double gamma_roof = 1;      // Gamma1 with phi1(roof) = 1
+  std::vector<double> gphi;   // Gamma1 phi1 at floors 1..storeys
+};
+struct CodeLevels {
+  LevelBuilding b[2];
+  std::vector<separation::ContactLevel> levels;
+  std::string levels_rule;  // how the levels were found, in words
+};
+std::optional<CodeLevels> code_levels(const Data& r);
+// Gamma1 phi1 at floors 1..storeys of a shear building of equal floor masses and `profile` storeys (1 for one storey)
+std::vector<double> first_mode_gphi(int storeys, double storey_height, model::StiffnessProfile profile);
+// The contact levels of the two buildings (left, right) as model::shear_buildings makes them, each side's height and
+// Gamma1 phi1 (a column side interpolated by `shape`)
+std::vector<separation::ContactLevel> contact_levels(const LevelBuilding (&b)[2], double tolerance,
+                                                    model::ContactLevels levels, model::ShapeFunctions shape);
+std::string code_levels_section(const Data& r);
+std::string code_levels_csv(const Data& r);  // rows code_level of the CSV report
 
 }  // namespace pounding::report_detail

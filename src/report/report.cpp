@@ -900,6 +900,7 @@ std::string pair_markdown(const Data& r) {
   if (r.set.pair && !r.red) {
     md.raw(pair_separation_section(r));
     md.raw(code_rules_section(r));
+    md.raw(code_levels_section(r));  // shear buildings: the rules at each contact level ("" for an SDOF pair)
   }
   if (r.set.pair && r.red)
     md.raw(fmt::format("\n## Separation for this pair\n\nNot given: {}. The reductions count closings in ratios x of "
@@ -956,7 +957,7 @@ std::string pair_csv(const Data& r) {
   Curve c = curve_of(r, r.set.curve_step, r.set.curve_max, -1);
   for (std::size_t i = 0; i < c.x.size(); ++i)
     s += fmt::format("curve,,{:.4f},,,,{},{:.6f},,,,\n", c.x[i], c.n, c.p[i]);
-  if (!r.red) return s + separation_csv(r) + moat_csv(r);
+  if (!r.red) return s + separation_csv(r) + code_levels_csv(r) + moat_csv(r);
   // [outputs] per_model = false: the separations in gap ratios from the histograms (bin upper edges)
   std::vector<double> targets;
   for (double t : r.set.targets) targets.push_back(t / 100.0);

@@ -146,3 +146,55 @@ TEST(CodeDisplacement, Standard2800CoefficientRuleScope) {
   low.s2800_importance = 1.0;
   EXPECT_TRUE(s2800_coefficient_scope(b1, low, 0.0).inside);
 }
+
+// Per contact level (a 5-storey building of 4.0 m storeys, T 0.6 s, R 8, Cd 5.5, beside an 8-storey one of 3.0 m
+// storeys, T 0.9 s, R 6, Cd 5; uniform storey stiffnesses, equal floor masses; the ASCE spectrum above). Gamma1 phi1
+// from numpy's eigh of the uniform chain (M = I): 5 storeys [0.35627144974809083, 0.6836799054654871,
+// 0.9557006812430261, 1.1502962715970573, 1.2517016991016336], 8 storeys [0.23329095290398882, 0.45863746220848983,
+// 0.6683656228124866, 0.8553333937478125, ...]. Sa(0.6) = 0.56 / 0.6 g, Sd = 0.08346419638755508 m, (Cd / R) Sd =
+// 0.05738163501644412 m; Sa(0.9) = 0.56 / 0.9 g, Sd = 0.1251962945813326 m, (Cd / R) Sd = 0.10433024548444385 m.
+// The floors meet at 12 m (floor 3 / floor 4): delta_M1 = 0.05483966767605432, delta_M2 = 0.08923714294075173,
+// separate lots 0.14407681061680605, same property 0.1047409033331689; the 0.005 h rule 0.005 (12 + 12) = 0.12.
+// Building 2's floor 3 (9 m) on building 1's column between floors 2 (8 m) and 3 (12 m), xi = 0.25:
+// Gamma1 phi1 = 0.75 x 0.6836799054654871 + 0.25 x 0.9557006812430261 (the report interpolates; here given).
+TEST(CodeDisplacement, PerContactLevelAsce7) {
+  BuildingCode b1 = building(0.6, 20.0), b2 = building(0.9, 24.0);
+  b1.asce7_r = 8, b1.asce7_cd = 5.5, b2.asce7_r = 6, b2.asce7_cd = 5;
+  const TargetSpectrumSpec s = asce();
+  const ModalInputs x1 = code_modal_inputs(s, b1), x2 = code_modal_inputs(s, b2);
+  EXPECT_NEAR(x1.sa_g, 0.56 / 0.6, 1e-14);
+  EXPECT_NEAR(x1.sd, 0.08346419638755508, 1e-14);
+  EXPECT_NEAR(x1.factor * x1.sd, 0.05738163501644412, 1e-14);
+  EXPECT_NEAR(x2.factor * x2.sd, 0.10433024548444385, 1e-14);
+
+  ContactLevel L;
+  L.label = "level 3/4", L.z1 = 12.0, L.z2 = 12.0, L.gphi1 = 0.9557006812430261, L.gphi2 = 0.8553333937478125;
+  const std::vector<LevelRow> rows = code_level_rows(&s, b1, b2, L, 0.005);
+  ASSERT_EQ(rows.size(), 3u);
+  EXPECT_EQ(rows[0].rule, "Standard 2800 0.005 h at the level");
+  EXPECT_NEAR(rows[0].gap, 0.12, 1e-15);
+  EXPECT_EQ(rows[1].combination, "ABS");
+  EXPECT_NEAR(rows[1].d1, 0.05483966767605432, 1e-6 * 0.0548);
+  EXPECT_NEAR(rows[1].d2, 0.08923714294075173, 1e-6 * 0.0892);
+  EXPECT_NEAR(rows[1].gap, 0.14407681061680605, 1e-6 * 0.144);
+  EXPECT_EQ(rows[2].combination, "SRSS");
+  EXPECT_NEAR(rows[2].gap, 0.1047409033331689, 1e-6 * 0.105);
+
+  // a floor against a column: no EC8 0.7 row there; an SDOF (Gamma1 phi1 = 1) gives code_design_rules' values
+  ContactLevel c;
+  c.z1 = 9.0, c.z2 = 9.0, c.gphi1 = 0.75 * 0.6836799054654871 + 0.25 * 0.9557006812430261;
+  c.gphi2 = 0.6683656228124866, c.floors_coincide = false;
+  const std::vector<LevelRow> col = code_level_rows(&s, b1, b2, c, 0.005);
+  EXPECT_NEAR(col[1].d1, 0.05738163501644412 * c.gphi1, 1e-15);
+  EXPECT_NEAR(col[0].gap, 0.09, 1e-15);
+  ContactLevel one;
+  const std::vector<LevelRow> sdof = code_level_rows(&s, b1, b2, one, 0.0);
+  const CodeDesign d = code_design_rules(&s, b1, b2);
+  ASSERT_EQ(sdof.size(), d.rules.size());
+  for (std::size_t i = 0; i < sdof.size(); ++i) EXPECT_NEAR(sdof[i].gap, d.rules[i].gap, 1e-15) << d.rules[i].name;
+
+  TargetSpectrumSpec e = ec8();
+  b1.ec8_q = 3.9, b2.ec8_q = 3.9;
+  EXPECT_EQ(code_level_rows(&e, b1, b2, L, 0).size(), 3u);  // separate, same, 0.7 where the floors coincide
+  EXPECT_EQ(code_level_rows(&e, b1, b2, c, 0).size(), 2u);
+}

@@ -144,7 +144,20 @@ def check(fig, name):
         seps = [(100 * float(r["probability"]),
                  lognormal[r["probability"]] if r["name"].startswith("not resolved") else float(r["hi"]))
                 for r in rows if r["table"] == "separation"]
-        rules = [float(r["gap_m"]) for r in rows if r["table"] == "code_rule"]
+        rules = [float(r["gap_m"]) for r in rows if r["table"] in ("code_rule", "code_design")]
+        governing = {}
+        for r in rows:  # each per-level rule's governing (largest) separation over the contact levels
+            if r["table"] == "code_level":
+                rule = r["name"].partition(" at ")[0]
+                governing[rule] = max(governing.get(rule, 0.0), float(r["gap_m"]))
+        rules += list(governing.values())
+        # every code design row (ASCE 7-16, EC8, Standard 2800) and every governing per-level gap is drawn
+        for gid, want in (("code_design", [float(r["gap_m"]) for r in rows if r["table"] == "code_design"]),
+                          ("code_level", list(governing.values()))):
+            drawn = [line.get_xdata()[0] for line in ax.lines if line.get_gid() == gid]
+            for v in want:
+                if not any(abs(x - v) <= 1e-6 for x in drawn):
+                    bad.append(f"no {gid} line at {v:.4f} m")
         x_end = max([g[hi >= 0.5].max()] + [s for _, s in seps] + rules)
         right = ax.get_xlim()[1]
         if not x_end <= right <= 1.3 * x_end:

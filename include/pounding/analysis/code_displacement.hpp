@@ -67,5 +67,46 @@ struct CodeDesign {
 // The rows of the code whose design spectrum the study gives (spec; a csv spectrum is not a code's and gives
 // none) for the buildings whose factors are given; `spec` null: no design spectrum.
 CodeDesign code_design_rules(const TargetSpectrumSpec* spec, const BuildingCode& b1, const BuildingCode& b2);
+// ---------------------------------------------------------------- per contact level (multi-storey buildings)
+// A pair of shear buildings meets at its contact levels (where floors face floors within the level tolerance, or a
+// floor faces the neighbour's column; with [contact] levels = "top" only the lower roof). Each code's design
+// displacement is a first-mode value there: the linear analysis each clause names (ASCE 7-16 12.9.1 modal response
+// spectrum, EN 1998-1 4.3.3.3 modal analysis, Standard 2800 dynamic analysis) gives, from the first mode alone,
+// u(z) = Gamma1 phi1(z) Sd(T1) -- Gamma1 phi1(z) the building's own first-mode participation at height z from its
+// mass and stiffness (model/modes.hpp, what `pounding modes` prints: with phi1 = 1 at the roof, Gamma1 phi1(roof) =
+// gamma_roof) -- times each code's factors as above:
+//   ASCE 7-16   delta_M(z) = (Cd / R) Gamma1 phi1(z) Sd(T1)          (12.8.6 / 12.9.1.4 Cd / Ie on Ie / R)
+//   EN 1998-1   d_s(z) = q Gamma1 phi1(z) S_d(T1) g T1^2 / 4 pi^2     (4.3.4, eq. 4.23)
+//   Standard    Delta_M(z) = (Cd / Ru) Gamma1 phi1(z) A B I g T1^2 / 4 pi^2
+//   2800
+// An SDOF (one storey) has Gamma1 phi1 = 1 at its one level: the values of code_design_rules. The coefficient rule
+// is linear in height (Standard 2800's 0.005 h of each building at that level: coefficient (z1 + z2)); it needs no
+// mode. Combinations as above: separate lots/properties the sum, same property SRSS, EN 1998-1 4.4.2.7(3) 0.7 SRSS
+// only where the two floors' levels coincide (a floor-to-floor level).
+struct ContactLevel {
+  std::string label;              // "level 4/5" (model::shear_buildings' element label)
+  double z1 = 0, z2 = 0;          // m above the ground: each building's point of contact (a column side: the striking floor's level)
+  double gphi1 = 1, gphi2 = 1;    // Gamma1 phi1 at that point (a column side: interpolated between its floors)
+  bool floors_coincide = true;    // floor to floor (not a floor against a column)
+};
+
+struct LevelRow {
+  std::string rule, clause, combination;  // the row's name, its clause, "ABS" | "SRSS" | "0.7 SRSS"
+  double d1 = 0, d2 = 0;                  // each building's displacement at the level (m)
+  double gap = 0;                         // the required separation (m)
+};
+
+// Each building's first-mode inputs of a code at period T (for the report's hand-check table): Sa in g (the code's
+// design spectrum value the displacement takes), Sd = Sa g T^2 / 4 pi^2 (m), and the factor f such that the code's
+// displacement at z is f Gamma1 phi1(z) Sd: ASCE Cd / R, EC8 q, Standard 2800 Cd / Ru (with its I inside Sa).
+struct ModalInputs {
+  double sa_g = 0, sd = 0, factor = 0;
+};
+ModalInputs code_modal_inputs(const TargetSpectrumSpec& spec, const BuildingCode& b);
+
+// The rows of one contact level: the coefficient rule (coefficient > 0) and the design rows of the study's spectrum
+// code (none without a spectrum or the factors: code_design_rules' notes say why), in code_design_rules' order.
+std::vector<LevelRow> code_level_rows(const TargetSpectrumSpec* spec, const BuildingCode& b1, const BuildingCode& b2,
+                                      const ContactLevel& level, double coefficient);
 
 }  // namespace pounding::separation

@@ -240,6 +240,9 @@ void visit_settings(const Study& s, V&& v) {
   v("contact", "stiffness", s.contact_stiffness);
   // shear buildings and rows (absent where not given: the other studies' bits)
   if (s.contact_levels != model::ContactLevels::common) v("contact", "levels", S(to_string(s.contact_levels)));
+  // where the floors meet (the report's code rules per contact level rebuild them); absent at the defaults
+  if (s.level_tolerance != 0.05) v("contact", "level_tolerance", s.level_tolerance);
+  if (s.shape_functions != model::ShapeFunctions::linear) v("contact", "shape_functions", S(to_string(s.shape_functions)));
   if (!s.gap_offsets.empty()) v("contact", "gap_offsets", s.gap_offsets);
   if (!s.joint_gap_offsets.empty()) v("contact", "joint_gap_offsets", s.joint_gap_offsets);
   if (s.restitution) v("contact", "restitution", s.restitution->describe());  // e(v0); absent: e for every impact
