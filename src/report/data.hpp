@@ -151,6 +151,10 @@ std::string moat_fragility_section(const results::Results& r, std::span<const do
 std::string pair_separation_section(const Data& r);  // the pair's separation in metres (report's first section)
 std::string code_rules_section(const Data& r);
 std::string floors_section(const Data& r);  // per-floor (bridges: per-deck) amplification of a System (floors_section.cpp)
+// Per contact element: P(hit), peak force given a hit, column shears; per floor: acceleration amplification
+// (levels_section.cpp); the CSV's rows level, level_force, level_shear_below/above, floor_acc
+std::string levels_section(const Data& r);
+std::string levels_csv(const Data& r);
 std::string bridge_section(const Data& r);  // a bridge study's joints and frames by name (bridge_section.cpp)       // the code rules: in metres for a pair, probabilities for a grid
 std::string grid_advice_section(const Data& r);      // a grid study's separation advice in gap ratios
 // One target of a grid (or bridge) study's advice: the target in %, the order statistic with its bootstrap interval

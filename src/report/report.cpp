@@ -915,6 +915,7 @@ std::string pair_markdown(const Data& r) {
     md.raw(grid_advice_section(r));
     md.raw(bridge_section(r));
     md.raw(floors_section(r));
+    md.raw(levels_section(r));
     if (r.impacts) md.restitution_note();
     return std::move(md).text();
   }
@@ -930,6 +931,7 @@ std::string pair_markdown(const Data& r) {
   }
   md.impacts_table();
   md.raw(floors_section(r));
+  md.raw(levels_section(r));
   return std::move(md).text();
 }
 
@@ -957,7 +959,7 @@ std::string pair_csv(const Data& r) {
   Curve c = curve_of(r, r.set.curve_step, r.set.curve_max, -1);
   for (std::size_t i = 0; i < c.x.size(); ++i)
     s += fmt::format("curve,,{:.4f},,,,{},{:.6f},,,,\n", c.x[i], c.n, c.p[i]);
-  if (!r.red) return s + separation_csv(r) + code_levels_csv(r) + moat_csv(r);
+  if (!r.red) return s + separation_csv(r) + code_levels_csv(r) + moat_csv(r) + levels_csv(r);
   // [outputs] per_model = false: the separations in gap ratios from the histograms (bin upper edges)
   std::vector<double> targets;
   for (double t : r.set.targets) targets.push_back(t / 100.0);
