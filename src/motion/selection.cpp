@@ -231,8 +231,13 @@ void add_warnings(Selection& s, const SelectionOptions& o, std::span<const Selec
   const std::size_t n = s.chosen.size();
   if (o.rule == ScalingRule::asce7_16) {
     if (n < 11) s.warnings.push_back(fmt::format("ASCE 7-16 16.2.2 asks for at least 11 records, {} chosen", n));
-    s.warnings.push_back("ASCE 7-16 16.2 scales maximum-direction (RotD100) spectra to the MCER target; these are "
-                         "single-component spectra against that target, so the factors are conservative (larger)");
+    s.warnings.push_back(
+        o.mcer_target
+            ? "ASCE 7-16 16.2 scales maximum-direction (RotD100) spectra to the MCER target; these are "
+              "single-component spectra against that target, so the factors are conservative (larger)"
+            : "ASCE 7-16 16.2 scales records to the MCER spectrum (1.5 x the design spectrum); this target is the "
+              "design-level spectrum, so the records are scaled to a design-level demand (give mcer = true, or "
+              "--mcer, for the code's target); single-component spectra make the factors conservative (larger)");
   }
   if (o.rule == ScalingRule::asce7_10 && n < 7)
     s.warnings.push_back(fmt::format("ASCE 7-10 16.1.4 uses the mean response only with at least 7 records ({} "

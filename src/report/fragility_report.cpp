@@ -252,18 +252,26 @@ std::string stripes_section(const View& v) {
   const auto& scale = in.get<double>("scale");
   const auto& dropped = in.get<std::uint8_t>("dropped");
   const std::size_t S = v.levels.size(), R = v.r.record_count(), P = v.r.polarities();  // a record's signs: one
+  // records selected to a spectrum ([records] select) carry their selection factor f_i F already: the factor against
+  // the recording, which the [0.25, 4] practice is about, is that times the stripe's
+  const results::Group* sel_group = v.r.group("selection");
+  const std::vector<double>* sel = sel_group && sel_group->find("scale") ? &sel_group->get<double>("scale") : nullptr;
   std::string s = fmt::format("## Stripes and scale factors\n\nEach record is scaled by level / IM; a factor above "
                               "max_scale = {:g} drops the record from that stripe. Factors outside [0.25, 4] distort "
-                              "the record's spectral shape relative to its IM (research note 1.5): counted below.\n\n"
+                              "the record's spectral shape relative to its IM (research note 1.5): counted below{}.\n\n"
                               "| level {} | records | dropped | factor min | median | max | outside [0.25, 4] |\n"
                               "|---|---|---|---|---|---|---|\n",
-                              in.number("max_scale"), v.units);
+                              in.number("max_scale"),
+                              sel ? ", each factor the record's selection factor (f_i F) times the stripe's, its scale "
+                                    "against the recording"
+                                  : "",
+                              v.units);
   for (std::size_t j = 0; j < S; ++j) {
     std::vector<double> f;
     std::size_t drop = 0, outside = 0;
     for (std::size_t k = 0; k < R; k += P) {
       if (dropped[j * R + k]) { ++drop; continue; }
-      const double x = scale[j * R + k];
+      const double x = scale[j * R + k] * (sel && k / P < sel->size() ? (*sel)[k / P] : 1.0);
       f.push_back(x), outside += x < 0.25 || x > 4;
     }
     std::sort(f.begin(), f.end());

@@ -499,7 +499,16 @@ void Markdown::excluded_uncoupled() {
       if (ex[k]) out("  - record {}: {} excluded\n", report::md_text(r.record_label(k)), ex[k]);
     return;
   }
-  out("- excluded (diverged or non-finite) analyses: **{}** of {}\n", bad, R * M);
+  // the header's (and the banner's) count: uncoupled and coupled analyses together; the uncoupled part is this one
+  const std::int64_t all_bad = r.h.excluded_analyses, all = r.h.total_analyses;
+  if (r.impacts && all > static_cast<std::int64_t>(R * M))
+    out("- excluded analyses: **{}** of {} ({:.3g} %): uncoupled (diverged or non-finite) {} of {}; coupled ({}) {} "
+        "of {}\n",
+        all_bad, all, all ? 100.0 * static_cast<double>(all_bad) / static_cast<double>(all) : 0.0, bad, R * M,
+        r.keep_coarse ? "diverged or non-finite; coarse ones kept" : "coarse, diverged or non-finite",
+        all_bad - static_cast<std::int64_t>(bad), all - static_cast<std::int64_t>(R * M));
+  else
+    out("- excluded (diverged or non-finite) analyses: **{}** of {}\n", bad, R * M);
   if (!bad) return;
   int shown = 0;
   for (std::size_t k = 0; k < R && shown < 10; ++k)
@@ -576,11 +585,29 @@ void Markdown::total() {
 
 void Markdown::coupled_counts() {
   if (!r.impacts) return;
-  out("\nCoupled runs ({}): models with at least one counted impact per gap, beside the uncoupled count "
-      "(they must agree):\n\n| gap ratio | coupled | uncoupled |\n|---|---|---|\n", report::md_text(r.h.contact_law));
-  for (std::size_t g = 0; g < r.gaps(); ++g) {
-    Count c = count_coupled(r, g, -1), u = count_uncoupled(r, r.res.gap_ratios[g], -1);
-    out("| {} | {} / {} | {} / {} |\n", r.res.gap_ratios[g], c.hits, c.n, u.hits, u.n);
+  out("\nCoupled runs ({}): models with at least one counted impact per gap, beside the uncoupled count. Whether a "
+      "pair touches depends only on the motion before its first contact, so on the same analyses the two counts "
+      "must agree (\"uncoupled, same analyses\"); the coupled count leaves out the analyses excluded at that gap "
+      "(coarse, diverged or non-finite coupled runs), which is why its n can be below the uncoupled n:\n\n"
+      "| gap ratio | coupled | uncoupled, same analyses | uncoupled, all | excluded coupled runs |\n"
+      "|---|---|---|---|---|\n",
+      report::md_text(r.h.contact_law));
+  const std::size_t M = r.models(), G = r.gaps();
+  for (std::size_t g = 0; g < G; ++g) {
+    const double x = r.res.gap_ratios[g];
+    Count c = count_coupled(r, g, -1), u = count_uncoupled(r, x, -1), same;
+    std::size_t excluded = 0;
+    for (std::size_t k = 0; k < r.records(); ++k)
+      for (std::size_t m = 0; m < M; ++m) {
+        if (!r.ok(r.status[k * M + m])) continue;
+        if (!r.ok(r.imp_status[(k * M + m) * G + g])) {
+          ++excluded;
+          continue;
+        }
+        ++same.n;
+        same.hits += r.peak_closing[k * M + m] > x * r.mod.code_gap[m];
+      }
+    out("| {} | {} / {} | {} / {} | {} / {} | {} |\n", x, c.hits, c.n, same.hits, same.n, u.hits, u.n, excluded);
   }
 }
 

@@ -1002,6 +1002,38 @@ std::string describe_structure(const StructureModel& m, int i) {
          (b.moat ? "; moat: " + b.moat_text() : std::string());
 }
 
+// Heavy amplitude scaling distorts a record's magnitude-duration-shape consistency (the research note, 2.3; practice
+// keeps factors within about [0.25, 4]): name each record scaled outside that range at a stripe, and where.
+void warn_scale_factors(const Inputs& in, const RunContext& ctx) {
+  const StripePlan& p = in.stripes;
+  if (!p.stripes) return;
+  // A selected record ([records] select) is already scaled by its selection factor f_i F: the record's factor
+  // against its recording is that times the stripe's.
+  const IntensitySpec& x = in.study.intensity;
+  const std::size_t P = static_cast<std::size_t>(polarity_count(in.study.polarity));
+  std::size_t outside = 0;
+  for (std::size_t r = 0; r < p.records; r += P) {
+    const double sel = in.selection && r / P < in.selection->selection.scale.size() ? in.selection->selection.scale[r / P] : 1.0;
+    std::string at;
+    for (std::size_t s = 0; s < p.stripes; ++s) {
+      const double f = p.scale[s * p.records + r] * sel;
+      if (!p.dropped[s * p.records + r] && (f < 0.25 || f > 4.0))
+        at += fmt::format("{}x{:.3g}{} at {:g}", at.empty() ? "" : ", ", f,
+                          in.selection ? fmt::format(" (selection {:.3g} x stripe {:.3g})", sel, p.scale[s * p.records + r])
+                                       : std::string(),
+                          x.levels[s]);
+    }
+    if (at.empty()) continue;
+    ++outside;
+    ctx.say(fmt::format("record {}: scale factor outside [0.25, 4] (IM {:.3g} {}): {}", in.records[r].id, p.im[r],
+                        im_units(x.im.measure), at));
+  }
+  if (outside)
+    ctx.say(fmt::format("{} of {} records are scaled outside [0.25, 4] at some stripe: large factors can bias "
+                        "the response (Baker 2015 prefers records selected near each level); the report counts them",
+                        outside, p.records / static_cast<std::size_t>(polarity_count(in.study.polarity))));
+}
+
 void announce(const parallel::Session& session, const Inputs& in, const WorkPlan& L, const RunContext& ctx) {
   if (!session.root()) return;
   ctx.say(fmt::format("pounding run: {} ({} records{}, {} models, scene {}, {} units on {} rank{})", in.study.title,
@@ -1056,28 +1088,7 @@ void announce(const parallel::Session& session, const Inputs& in, const WorkPlan
                         dropped.empty() ? "" : fmt::format("; records dropped (factor above max_scale = {:g}): {}",
                                                            x.max_scale, dropped)));
   }
-  if (const StripePlan& p = in.stripes; p.stripes) {
-    // Heavy amplitude scaling distorts a record's magnitude-duration-shape consistency (the research note, 2.3;
-    // practice keeps factors within about [0.25, 4]): name each record scaled outside that range, and where.
-    const IntensitySpec& x = in.study.intensity;
-    std::size_t outside = 0;
-    for (std::size_t r = 0; r < p.records; r += static_cast<std::size_t>(polarity_count(in.study.polarity))) {
-      std::string at;
-      for (std::size_t s = 0; s < p.stripes; ++s) {
-        const double f = p.scale[s * p.records + r];
-        if (!p.dropped[s * p.records + r] && (f < 0.25 || f > 4.0))
-          at += fmt::format("{}x{:.3g} at {:g}", at.empty() ? "" : ", ", f, x.levels[s]);
-      }
-      if (at.empty()) continue;
-      ++outside;
-      ctx.say(fmt::format("record {}: scale factor outside [0.25, 4] (IM {:.3g} {}): {}", in.records[r].id, p.im[r],
-                          im_units(x.im.measure), at));
-    }
-    if (outside)
-      ctx.say(fmt::format("{} of {} records are scaled outside [0.25, 4] at some stripe: large factors can bias "
-                          "the response (Baker 2015 prefers records selected near each level); the report counts them",
-                          outside, p.records / static_cast<std::size_t>(polarity_count(in.study.polarity))));
-  }
+  warn_scale_factors(in, ctx);
   for (const auto& rr : in.records)
     if (rr.synthetic && rr.polarity > 0) ctx.say(fmt::format("record {}: synthetic stand-in ({})", rr.id, rr.note));
 }

@@ -222,6 +222,7 @@ std::vector<StudyRecord> select_study_records(const Study& s, std::vector<StudyR
     out.sources.push_back(r.record.source.empty() ? r.note : r.record.source);
   }
   try {
+    out.options.mcer_target = t.spec.mcer;
     out.selection = select_records(candidates, make_target_spectrum(t.spec, t.options.damping), out.options);
   } catch (const InputError& e) {
     throw in_study_terms(e, s);

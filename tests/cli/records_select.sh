@@ -44,7 +44,12 @@ PY
 "$bin" records select --asce7 1.0,0.6,8 --period 0.8 --count 7 --directory "$tmp/lib" -o "$tmp/asce16.csv" \
   > "$tmp/asce16.out"
 grep -q "condition holds: yes" "$tmp/asce16.out" || fail "ASCE 7-16: $(cat "$tmp/asce16.out")"
-grep -q "RotD100" "$tmp/asce16.out" || fail "ASCE 7-16: no RotD100 warning"
+# ASCE 7-16 16.2 scales to the MCER spectrum: a design-level target says so; --mcer gets the RotD100 note only
+grep -q "this target is the design-level spectrum" "$tmp/asce16.out" || fail "ASCE 7-16, design target: no MCER note"
+"$bin" records select --asce7 1.0,0.6,8 --mcer --period 0.8 --count 7 --directory "$tmp/lib" -o "$tmp/asce16m.csv" \
+  > "$tmp/asce16m.out"
+grep -q "RotD100" "$tmp/asce16m.out" || fail "ASCE 7-16, --mcer: no RotD100 warning"
+! grep -q "design-level" "$tmp/asce16m.out" || fail "ASCE 7-16, --mcer: called a design-level target"
 grep -q "at least 11 records, 7 chosen" "$tmp/asce16.out" || fail "ASCE 7-16: no record-count warning"
 check_csv "$tmp/asce16.csv" 0.9
 "$bin" records select --asce7 1.0,0.6,8 --rule "ASCE 7-10" --period 0.8 --count 7 "$tmp"/lib/rec*.AT2 \

@@ -134,7 +134,7 @@ assert min(l["impacts"] for l in hd["levels"]) > 0, "every joint must be hit by 
 # the report's per-deck amplification (one analysis: the median is its own ratio) = simulate's, per frame's deck
 md = open(sys.argv[1][:-3] + ".md").read().split("## Per-deck amplification")
 assert len(md) == 2, "no per-deck amplification section in the report"
-rows = {l.split("|")[1].strip(): l.split("|")[2].strip() for l in md[1].splitlines() if l.startswith("| F")}
+rows = {l.split("|")[1].strip(): l.split("|")[2].strip() for l in md[1].split("\n## ")[0].splitlines() if l.startswith("| F")}
 for b in (1, 2, 3, 4):
     want = " / ".join(f"{hd[k][-1] / none[k][-1]:.3g}" for k in (f"peak_u{b}", f"peak_drift{b}", f"peak_abs_acc{b}_g"))
     assert rows.get(f"F{b}") == want, (b, rows.get(f"F{b}"), want)

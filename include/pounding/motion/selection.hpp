@@ -72,6 +72,7 @@ struct SelectionOptions {
   double damping = 0.05;     // of the record spectra, [0, selection_damping_max]
   std::size_t max_per_event = default_max_per_event;  // records of one event at most; 0: no limit
   ComponentRule components = ComponentRule::one;
+  bool mcer_target = false;  // the target is ASCE 7's MCER spectrum (1.5 x design): what ASCE 7-16 16.2 scales to
 };
 void validate(const SelectionOptions& options);  // InputError naming the option
 

@@ -133,6 +133,23 @@ void bench_system(const SystemBenchOptions& o, const ContactModel& cm, const Ker
   fmt::print("lanes_not_ok: {} ({} coarse)\n", bad, coarse);
 }
 
+// --duration > 0, --substeps >= 1, and the record's samples (the motion and its copy in the ground motion) and, for the system workloads, one schedule
+// value per integration step (physics::make_schedule), before anything is allocated: --duration 1e9 ended in
+// std::bad_alloc.
+void check_bench_sizes(double duration, double dt, int substeps) {
+  require_positive(duration, "--duration");
+  if (substeps < 1) throw InputError("--substeps must be >= 1", "--substeps", "give 1 or more integration steps per record step");
+  const double samples = std::floor(duration / dt) + 2.0;
+  const double need = 8.0 * (2.0 * samples + samples * std::max(1, substeps)), avail = available_memory_bytes();
+  if (!std::isfinite(avail) || need <= avail) return;
+  throw InputError(fmt::format("--duration = {:g} s needs {} for its {:.4g} samples at {:g} s, more than the {} of "
+                               "memory available on this machine (MemAvailable)",
+                               duration, human_bytes(need), samples, dt, human_bytes(avail)),
+                   "--duration",
+                   fmt::format("give --duration <= {:.4g} s (the default 40 s is the benchmark's workload)",
+                               avail / need * duration));
+}
+
 }  // namespace
 
 void add_bench(CLI::App& app) {
@@ -174,20 +191,7 @@ void add_bench(CLI::App& app) {
   c->callback([o] {
     if (o->width < 1) throw InputError("--width must be >= 1", "--width", "give a batch width of 1 or more");
     if (o->repeats < 1) throw InputError("--repeats must be >= 1", "--repeats", "give 1 or more");
-    if (o->substeps < 1) throw InputError("--substeps must be >= 1", "--substeps", "give 1 or more integration steps per record step");
-    require_positive(o->duration, "--duration");
-    // the record's samples (the motion and its copy in the ground motion) and, for the system workloads, one schedule
-    // value per integration step (physics::make_schedule), before anything is allocated: --duration 1e9 ended in
-    // std::bad_alloc
-    if (const double samples = std::floor(o->duration / o->dt) + 2.0,
-        need = 8.0 * (2.0 * samples + samples * std::max(1, o->substeps)), avail = available_memory_bytes();
-        std::isfinite(avail) && need > avail)
-      throw InputError(fmt::format("--duration = {:g} s needs {} for its {:.4g} samples at {:g} s, more than the {} of "
-                                   "memory available on this machine (MemAvailable)",
-                                   o->duration, human_bytes(need), samples, o->dt, human_bytes(avail)),
-                       "--duration",
-                       fmt::format("give --duration <= {:.4g} s (the default 40 s is the benchmark's workload)",
-                                   avail / need * o->duration));
+    check_bench_sizes(o->duration, o->dt, o->substeps);
     ContactModel cm;
     cm.law = parse_contact_law(o->contact);
     cm.damping = parse_damping_law(o->damping);

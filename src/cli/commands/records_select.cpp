@@ -322,7 +322,8 @@ void add_records_select(CLI::App* records) {
     }
     if (!(o->damping >= 0 && o->damping < 1))
       throw InputError(fmt::format("--damping {} is outside [0, 1)", o->damping), "--damping", "give e.g. 0.05");
-    const SelectionOptions so = selection_options(*o);
+    SelectionOptions so = selection_options(*o);
+    so.mcer_target = o->mcer;
     const TargetSpectrumSpec spec = target_spec(*o);
     const DesignSpectrum target = as_option(target_flag(spec.code), [&] { return make_target_spectrum(spec, o->damping); });
     const std::string target_text = describe_target(spec, target);

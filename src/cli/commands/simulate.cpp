@@ -1042,6 +1042,27 @@ std::string with_restitution(std::string json, const SimulateOptions& o, const B
 
 // Runs the pair, prints the summary and writes --series; returns the exit code (3: diverged, the numbers
 // printed are not results).
+// The SDOF pair's step: --dt, or the record step refined until the contact is resolved (physics::choose_step); the
+// series (when recorded) holds the final run only.
+physics::StepChoice choose_pair_step(bool given, int most, const PairBatch& b, const ContactModel& cm,
+                                     const GroundMotion& gm, KernelSettings& ks, SeriesRecorder& series,
+                                     BatchResult& r) {
+  const physics::StepChoice step =
+      physics::choose_step(given, ks.substeps, gm.dt, physics::no_limit, most, [&](int n) {
+        ks.substeps = n;
+        series.clear();
+        run_batch(b, cm, gm, ks, r);
+        physics::StepResolution w;
+        const auto status = static_cast<LaneStatus>(r.status[0]);
+        w.diverged = status == LaneStatus::diverged || status == LaneStatus::non_finite;
+        if (!w.diverged && r.h_omega_contact[0] > 0.0)
+          w.hw = r.h_omega_contact[0], w.limit = physics::resolution_limit(ks, cm.law);
+        return w;
+      });
+  ks.substeps = step.substeps;
+  return step;
+}
+
 int run_simulate(SimulateOptions& o) {
   if (!o.series.empty()) {  // never over the record, a support's record or the bridge file; never a device or FIFO
     std::vector<std::string> inputs = o.support_records;
@@ -1091,20 +1112,7 @@ int run_simulate(SimulateOptions& o) {
   BatchResult r;
   std::optional<physics::HertzdampRestitution> rest;
   if (o.curve) ks.restitution = &rest.emplace(*o.curve, cm).hook;
-  // the step: --dt, or the record step refined until the contact is resolved (physics::choose_step)
-  const physics::StepChoice step =
-      physics::choose_step(o.dt_given, ks.substeps, rec.dt, physics::no_limit, most, [&](int n) {
-        ks.substeps = n;
-        series.clear();
-        run_batch(b, cm, gm, ks, r);
-        physics::StepResolution w;
-        const auto status = static_cast<LaneStatus>(r.status[0]);
-        w.diverged = status == LaneStatus::diverged || status == LaneStatus::non_finite;
-        if (!w.diverged && r.h_omega_contact[0] > 0.0)
-          w.hw = r.h_omega_contact[0], w.limit = physics::resolution_limit(ks, cm.law);
-        return w;
-      });
-  ks.substeps = step.substeps;
+  const physics::StepChoice step = choose_pair_step(o.dt_given, most, b, cm, gm, ks, series, r);
 
   std::string text = describe_run(o, record_length, analysis_length) + step_text(step) +
                      format_summary(r, 0, cm, p, rec, ks);
