@@ -378,12 +378,15 @@ constexpr StudyKey keys[] = {
     {"structures.buildingN", "model", "string", "[structures] model", "", "\"sdof\" | \"shear\"",
      "As in [structures]: an SDOF building may pair with a shear building (it meets the floor nearest its height, "
      "its roof if the other is lower)."},
-    {"structures.buildingN", "floor_mass", "number", "the building's mass / storeys", "kg", "[1e-3, 1e9]",
-     "Shear model: the mass of every floor. Absent: the building's mass (given or the mass-index model) split "
-     "equally over its floors.", 1e-3, 1e9},
-    {"structures.buildingN", "storey_stiffness", "number", "stiffness_profile scaled to the period", "N/m",
-     "[1, 1e12]",
-     "Shear model: the stiffness of every storey. Absent: stiffness_profile scaled so the fundamental period is the "
+    {"structures.buildingN", "floor_mass", "number or array of numbers", "the building's mass / storeys", "kg",
+     "[1e-3, 1e9] each",
+     "Shear model: the mass of every floor, or an array of one mass per floor from the bottom (storeys given, as "
+     "many values: floor_mass = [2.5e5, 2.5e5, 1.8e5]). Absent: the building's mass (given or the mass-index model) "
+     "split equally over its floors.", 1e-3, 1e9},
+    {"structures.buildingN", "storey_stiffness", "number or array of numbers", "stiffness_profile scaled to the period",
+     "N/m", "[1, 1e12] each",
+     "Shear model: the stiffness of every storey, or an array of one per storey from the bottom (storeys given, as "
+     "many values). Absent: stiffness_profile scaled so the fundamental period is the "
      "building's period (sampled or given); given, the building's T1 is this stiffness's and the period only "
      "selects the height.", 1.0, 1e12},
     {"structures.buildingN", "stiffness_profile", "string", "[structures] stiffness_profile", "",

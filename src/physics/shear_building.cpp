@@ -9,6 +9,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "pounding/contact/model.hpp"
 #include "pounding/kernel/batch.hpp"
 
 namespace pounding::physics {
@@ -289,6 +290,17 @@ std::array<double, 2> contact_masses(const SystemBatch& batch, std::size_t lane,
   if (l < 0) l = r;
   if (r < 0) r = l;
   return {l, r};
+}
+
+void set_sphere_stiffness(SystemBatch& batch, std::size_t lane, double density, double youngs, double poisson) {
+  require(batch.system != nullptr && lane < batch.width, "the batch is not sized (SystemBatch::resize)");
+  const model::System& sys = *batch.system;
+  for (std::size_t e = 0; e < sys.contacts().size(); ++e) {
+    if (!sys.groups()[static_cast<std::size_t>(sys.contacts()[e].group)].study_gap) continue;  // a moat: set_moat's
+    const std::array<double, 2> mm = contact_masses(batch, lane, static_cast<int>(e));  // a column: its nearer floor
+    batch.kc[SystemBatch::at(static_cast<int>(e), lane, batch.width)] =
+        hertz_stiffness_spheres(mm[0], mm[1], density, youngs, poisson);
+  }
 }
 
 }  // namespace pounding::physics

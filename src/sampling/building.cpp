@@ -364,9 +364,23 @@ double required_number(config::TableReader& r, std::string_view key) {
 // The shear model's keys against the building's model: floor_mass and storey_stiffness need model = "shear", and a
 // storey_height below 2 m (the 1/30-scale frames' 0.1 m) is a model's, not a real building's code storey.
 void check_shear_keys(const BuildingModel& b, const WhereFn& where) {
+  // A fixed height with storeys given must be storeys x storey_height where that product is the model's: a shear
+  // building's roof level (its floors stand at k storey_height) or a storey_height given with both. It was used
+  // silently beside the floors (its mass-index mass, its period-height rule): 30 m of 10 storeys of 3.2 m.
+  const bool own_storey_height = b.code.storey_height > 0;
+  if (b.height.kind == Distribution::Kind::fixed && b.code.storeys > 0 && (b.shear() || own_storey_height)) {
+    const double sh = b.storey_height(), product = b.code.storeys * sh, h = b.height.value;
+    if (std::abs(h - product) > 1e-6 * product)
+      throw InputError(fmt::format("height = {:g} m disagrees with storeys x storey_height = {} x {:g} m = {:g} m{}", h,
+                                   b.code.storeys, sh, product, own_storey_height ? "" : " (the default storey height)"),
+                       where("height"),
+                       fmt::format("give height = {:g}, storey_height = {:.6g} (height / storeys) or storeys = {} -- "
+                                   "the three must agree",
+                                   product, h / b.code.storeys, std::max(1L, std::lround(h / sh))));
+  }
   if (!b.shear()) {
-    for (auto [key, v] : {std::pair{"floor_mass", b.floor_mass}, {"storey_stiffness", b.storey_stiffness}})
-      if (v > 0)
+    for (auto [key, v] : {std::pair{"floor_mass", &b.floor_mass}, {"storey_stiffness", &b.storey_stiffness}})
+      if (!v->empty())
         throw InputError(fmt::format("{} is given for an SDOF building", key), where(key),
                          fmt::format("add model = \"shear\" to this table (or [structures]), or remove {}", key));
     for (auto [key, given] : {std::pair{"isolation", b.isolated}, {"moat", b.moat}, {"damping", b.modal_damping},
@@ -378,8 +392,36 @@ void check_shear_keys(const BuildingModel& b, const WhereFn& where) {
       throw InputError(fmt::format("storey_height = {:g} m is below 2 m for an SDOF building", b.code.storey_height),
                        where("storey_height"),
                        "give a storey height in [2, 10] m, or model = \"shear\" for a scale model's storeys (0, 10] m");
+    return;
+  }
+  // an array of one value per floor / storey: as many as the storeys given
+  for (auto [key, v] : {std::pair{"floor_mass", &b.floor_mass}, {"storey_stiffness", &b.storey_stiffness}}) {
+    if (v->size() <= 1) continue;
+    if (b.code.storeys <= 0)
+      throw InputError(fmt::format("{} holds {} values (one per storey) and storeys is not given", key, v->size()),
+                       where(key),
+                       fmt::format("add storeys = {} to this table (a sampled building's storeys vary with its "
+                                   "height), or give {} one number for every storey",
+                                   v->size(), key));
+    if (v->size() != static_cast<std::size_t>(b.code.storeys))
+      throw InputError(fmt::format("{} holds {} values and the building has storeys = {}", key, v->size(),
+                                   b.code.storeys),
+                       where(key),
+                       fmt::format("give {} one number (every storey) or {} numbers, one per storey from the bottom",
+                                   key, b.code.storeys));
   }
 }
+
+namespace {
+// A shear building's per-floor key: a number (every floor) or an array (one per floor, bottom first), each in the
+// key's range (study_keys.cpp); empty when absent.
+std::vector<double> per_storey(config::TableReader& r, std::string_view key) {
+  const toml::node* n = r.get(key);
+  if (!n) return {};
+  if (n->is_array()) return r.numbers(key, {});
+  return {r.number(key, 0.0)};
+}
+}  // namespace
 
 namespace {
 
@@ -689,8 +731,8 @@ BuildingModel parse_building(const toml::table* t, const std::string& file, cons
   if (!b.shear() && !(t && t->get("rayleigh_modes"))) b.rayleigh_i = 1, b.rayleigh_j = 2;
   // the same for [structures] damping = "modal" (and its modal_zeta): the shear buildings' damping; an SDOF keeps zeta
   if (!b.shear() && !(t && (t->get("damping") || t->get("modal_zeta")))) b.modal_damping = false, b.modal_zeta.clear();
-  if (r.get("floor_mass")) b.floor_mass = r.number("floor_mass", 0.0);
-  if (r.get("storey_stiffness")) b.storey_stiffness = r.number("storey_stiffness", 0.0);
+  if (r.get("floor_mass")) b.floor_mass = per_storey(r, "floor_mass");
+  if (r.get("storey_stiffness")) b.storey_stiffness = per_storey(r, "storey_stiffness");
   read_isolation(r, file, name, b);
   read_moat(r, file, name, b);
   r.finish(std::string("periods, period_min, period_max, period_step, period, height, mass, zeta, yield_coefficient, "

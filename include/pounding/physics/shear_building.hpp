@@ -129,6 +129,12 @@ void set_contacts(SystemBatch& batch, std::size_t lane, double gap, double kc, d
 // floor above), so xi -> 0 / 1 gives the floor-to-floor element's masses; a wall: the other side's.
 std::array<double, 2> contact_masses(const SystemBatch& batch, std::size_t lane, int element);
 
+// The default contact stiffness of lane `lane`'s pounding elements (those of study-gap groups; a moat keeps its own):
+// kc = the equivalent-sphere Hertz stiffness (contact::hertz_stiffness_spheres) of the two floor masses each joins
+// (contact_masses) -- `pounding simulate` without --kh and Python's analyze_storeys without kh, one rule. Call after
+// the buildings' masses are set.
+void set_sphere_stiffness(SystemBatch& batch, std::size_t lane, double density, double youngs, double poisson);
+
 // The struck column's fixed-end shears per unit contact force at xi (a fixed-fixed column, no floor rotation, point
 // load at a = xi h: V_below = (1 - xi)^2 (1 + 2 xi), V_above = xi^2 (3 - 2 xi), summing to 1; Karayannis & Favvata
 // 2005, ../shared/research/systems-and-bridges.md §3) -- the extra shear the impact puts into the column below and

@@ -9,6 +9,7 @@
 #include <limits>
 #include <memory>
 #include <numbers>
+#include <numeric>
 #include <span>
 #include <string>
 #include <vector>
@@ -74,12 +75,15 @@ struct SimulateOptions {
   // multi-storey buildings (issue 25 §4): any of these options makes both buildings shear buildings
   struct Storeys {
     int storeys = 1;
-    double mass = 0, stiffness = 0, height = 3.2;
-    bool storeys_given = false, mass_given = false, stiffness_given = false, height_given = false;
+    // one value (every floor / storey) or one per floor / storey, bottom first (--storey-massK 2e5,2e5,1.5e5)
+    std::vector<double> mass, stiffness, height{3.2}, yield;
+    bool storeys_given = false, mass_given = false, stiffness_given = false, height_given = false, yield_given = false;
     std::vector<double> rayleigh_modes;  // --rayleigh-modesK i,j: Rayleigh's two modes (default 1, 2)
     bool rayleigh_given = false;
     std::string rayleigh_option;  // the option that gave them (building K >= 3 may inherit building 1's or 2's)
-    bool any() const { return storeys_given || mass_given || stiffness_given || height_given || rayleigh_given; }
+    bool any() const {
+      return storeys_given || mass_given || stiffness_given || height_given || yield_given || rayleigh_given;
+    }
   };
   Storeys b[2];
   // base isolation (issue 25 §2): bearing, base mass, bearing numbers, moat walls; any of these makes building i
@@ -260,9 +264,12 @@ void validate_building(const GivenBuilding& b) {
   if (b.T_given) require_key_range(b.T, B, "period", "--T" + b.k);
   if (b.k_given) require_key_range(b.kk, B, "storey_stiffness", "--k" + b.k, "an SDOF is a one-storey building; ");
   if (b.h_given) require_key_range(b.h, B, "height", "--h" + b.k, "the default mass m = mbar rho r^2 h comes from it; ");
-  if (b.st.mass_given) require_key_range(b.st.mass, B, "floor_mass", "--storey-mass" + b.k);
-  if (b.st.stiffness_given) require_key_range(b.st.stiffness, B, "storey_stiffness", "--storey-stiffness" + b.k);
-  if (b.st.height_given) require_key_range(b.st.height, B, "storey_height", "--storey-height" + b.k);
+  // a list: every value in the key's range
+  for (double v : b.st.mass) require_key_range(v, B, "floor_mass", "--storey-mass" + b.k, "each; ");
+  for (double v : b.st.stiffness) require_key_range(v, B, "storey_stiffness", "--storey-stiffness" + b.k, "each; ");
+  for (double v : b.st.height) require_key_range(v, B, "storey_height", "--storey-height" + b.k, "each; ");
+  // (a study's shear building has no storey_yield key: the bridge frame's, the same quantity)
+  for (double v : b.st.yield) require_key_range(v, "bridge.frame", "storey_yield", "--storey-yield" + b.k, "each; ");
 }
 void validate_buildings(const SimulateOptions& o) {
   // --T1, --T2 and --h1, --h2 have defaults in range: checked whether given or not
@@ -444,6 +451,22 @@ void validate_isolation(const SimulateOptions& o, int i) {
   });
 }
 
+// A storey list of building k: one value (every floor or storey) or one per floor / storey, bottom first.
+void check_storey_counts(const SimulateOptions::Storeys& b, const std::string& k) {
+  const std::pair<const std::vector<double>*, const char*> lists[] = {
+      {&b.mass, "--storey-mass"}, {&b.stiffness, "--storey-stiffness"}, {&b.height, "--storey-height"},
+      {&b.yield, "--storey-yield"}};
+  for (const auto& [v, name] : lists) {
+    const std::size_t n = v->size();
+    if (n <= 1 || n == static_cast<std::size_t>(b.storeys)) continue;  // 0: not given
+    throw InputError(fmt::format("{}{} has {} values and building {} has {} storeys", name, k, n, k, b.storeys),
+                     name + k,
+                     fmt::format("give one value (every storey) or {} values, one per storey from the bottom, "
+                                 "comma-separated (or --storeys{} {})",
+                                 b.storeys, k, n));
+  }
+}
+
 // The storey options, checked before any work: counts, heights, masses and stiffnesses, and the SDOF options that
 // mean nothing for a building of several storeys.
 void validate_storeys(const SimulateOptions& o) {
@@ -453,14 +476,14 @@ void validate_storeys(const SimulateOptions& o) {
     if (b.storeys < 1 || b.storeys > model::max_storeys)
       throw InputError(fmt::format("--storeys{} = {} is out of range", k, b.storeys), "--storeys" + k,
                        fmt::format("give a number of storeys in [1, {}]", model::max_storeys));
-    config::require_key_range(b.height, "structures.buildingN", "storey_height", "--storey-height" + k);  // default 3.2
+    check_storey_counts(b, k);
     if (b.storeys == 1) continue;
     const bool given[] = {i == 0 ? o.m1_given : o.m2_given, i == 0 ? o.k1_given : o.k2_given,
                           i == 0 ? o.fy1_given : o.fy2_given, i == 0 ? o.h1_given : o.h2_given};
     const char* name[] = {"--m", "--k", "--fy", "--h"};
     const std::string fix[] = {"give the mass of each floor with --storey-mass" + k,
                                "give --storey-stiffness" + k + " (or --T" + k + ")",
-                               "drop --fy" + k + ": storeys yield at a drift of 0.02 h / 6 (or give --elastic)",
+                               "give each storey's yield force with --storey-yield" + k + " (default: a drift of 0.02 h / 6)",
                                "give each storey's height with --storey-height" + k};
     for (int j = 0; j < 4; ++j)
       if (given[j])
@@ -495,11 +518,16 @@ physics::ShearSpec shear_spec(const SimulateOptions& o, const Side& side, const 
     spec.floor_mass = {sdof.m}, spec.storey_stiffness = {sdof.k}, spec.storey_yield = {sdof.fy};
     return spec;
   }
-  spec.floor_mass = {b.mass_given ? b.mass : mass_from_height(b.storeys * b.height) / b.storeys};
-  if (b.stiffness_given) spec.storey_stiffness = {b.stiffness};
+  // the default mass: the mass model's at the building's height (storeys x storey height, or the storeys' sum)
+  const double height = b.height.size() == 1 ? b.storeys * b.height[0]
+                                             : std::accumulate(b.height.begin(), b.height.end(), 0.0);
+  spec.floor_mass = b.mass_given ? b.mass : std::vector<double>{mass_from_height(height) / b.storeys};
+  if (b.stiffness_given) spec.storey_stiffness = b.stiffness;
   else spec.period = side.T;
   if (spec.storey_stiffness.empty()) require_positive(spec.period, "--T" + side.k);
-  if (!o.elastic) spec.yield_drift = 0.02 / 6.0;
+  if (o.elastic) return spec;  // fy = inf, as an SDOF's --elastic wins over --fy
+  if (b.yield_given) spec.storey_yield = b.yield;
+  else spec.yield_drift = 0.02 / 6.0;
   return spec;
 }
 
@@ -606,18 +634,17 @@ void set_storey_contacts(const SimulateOptions& o, const ContactModel& cm, physi
     throw InputError(fmt::format("--gap-offsets has {} values and the buildings pound at levels 1 to {}",
                                  o.gap_offsets.size(), top),
                      "--gap-offsets", fmt::format("give one offset (m) per level from level 1 to {}", top));
-  physics::set_contacts(batch, 0, o.gap, 0.0, o.e, o.gap_offsets,
+  physics::set_contacts(batch, 0, o.gap, o.kh_given ? o.kh : 0.0, o.e, o.gap_offsets,
                         *parse_enum(model::shape_functions_names, o.shape_functions));
+  // no --kh: equivalent spheres of the floor masses each element joins (a column: its nearer floor)
+  if (!o.kh_given) physics::set_sphere_stiffness(batch, 0, o.density, o.youngs, o.poisson);
   for (std::size_t e = 0; e < sys.contacts().size(); ++e) {
     const model::ContactElement& ce = sys.contacts()[e];
     if (!sys.groups()[static_cast<std::size_t>(ce.group)].study_gap) {  // a moat: set_moat's numbers
       run.contact_stiffness.push_back(0.0), run.contact_gap.push_back(0.0);
       continue;
     }
-    const std::array<double, 2> mm = physics::contact_masses(batch, 0, static_cast<int>(e));  // a column: its nearer floor
-    const double kc = o.kh_given ? o.kh : hertz_stiffness_spheres(mm[0], mm[1], o.density, o.youngs, o.poisson);
-    batch.kc[e] = kc;
-    run.contact_stiffness.push_back(kc);
+    run.contact_stiffness.push_back(batch.kc[e]);
     run.contact_gap.push_back(batch.gap[e]);
   }
 }
@@ -701,11 +728,13 @@ void resolve_row(SimulateOptions& o) {
     if (!x.st.mass_given) x.st.mass = t.mass, x.st.mass_given = t.mass_given;
     if (!x.st.stiffness_given) x.st.stiffness = t.stiffness, x.st.stiffness_given = t.stiffness_given;
     if (!x.st.height_given) x.st.height = t.height, x.st.height_given = t.height_given;
+    if (!x.st.yield_given) x.st.yield = t.yield, x.st.yield_given = t.yield_given;
     if (!x.st.rayleigh_given)
       x.st.rayleigh_modes = t.rayleigh_modes, x.st.rayleigh_given = t.rayleigh_given, x.st.rayleigh_option = t.rayleigh_option;
     if (x.st.storeys < 1 || x.st.storeys > model::max_storeys)
       throw InputError(fmt::format("--storeys{} = {} is out of range", k, x.st.storeys), "--storeys" + k,
                        fmt::format("give a number of storeys in [1, {}]", model::max_storeys));
+    check_storey_counts(x.st, k);
     if (x.st.storeys > 1)
       for (auto [user, name] : {std::pair{x.m_user, "--m"}, {x.k_user, "--k"}, {x.fy_user, "--fy"}})
         if (user)
@@ -771,23 +800,26 @@ int run_storeys(SimulateOptions& o, const ContactModel& cm, KernelSettings& ks) 
   validate_storeys(o);
   resolve_row(o);
   // the one-storey buildings' SDOF numbers, checked as today
-  if (o.b[0].storeys == 1 && o.b[0].mass_given) o.m1 = o.b[0].mass, o.m1_given = true;
-  if (o.b[1].storeys == 1 && o.b[1].mass_given) o.m2 = o.b[1].mass, o.m2_given = true;
-  if (o.b[0].storeys == 1 && o.b[0].stiffness_given) o.k1 = o.b[0].stiffness, o.k1_given = true;
-  if (o.b[1].storeys == 1 && o.b[1].stiffness_given) o.k2 = o.b[1].stiffness, o.k2_given = true;
+  if (o.b[0].storeys == 1 && o.b[0].mass_given) o.m1 = o.b[0].mass[0], o.m1_given = true;
+  if (o.b[1].storeys == 1 && o.b[1].mass_given) o.m2 = o.b[1].mass[0], o.m2_given = true;
+  if (o.b[0].storeys == 1 && o.b[0].stiffness_given) o.k1 = o.b[0].stiffness[0], o.k1_given = true;
+  if (o.b[1].storeys == 1 && o.b[1].stiffness_given) o.k2 = o.b[1].stiffness[0], o.k2_given = true;
+  if (o.b[0].storeys == 1 && o.b[0].yield_given) o.fy1 = o.b[0].yield[0], o.fy1_given = true;
+  if (o.b[1].storeys == 1 && o.b[1].yield_given) o.fy2 = o.b[1].yield[0], o.fy2_given = true;
   resolve_masses(o);
   std::vector<Side> sides = sides_of(o);
   std::vector<Structure> sdof;
   for (Side& x : sides) {
-    if (x.st.storeys == 1 && x.st.mass_given) x.m = x.st.mass, x.m_given = true;
-    if (x.st.storeys == 1 && x.st.stiffness_given) x.kk = x.st.stiffness, x.k_given = true;
+    if (x.st.storeys == 1 && x.st.mass_given) x.m = x.st.mass[0], x.m_given = true;
+    if (x.st.storeys == 1 && x.st.stiffness_given) x.kk = x.st.stiffness[0], x.k_given = true;
+    if (x.st.storeys == 1 && x.st.yield_given) x.fy = x.st.yield[0], x.fy_given = true;
     if (!x.m_given) x.m = mass_from_height(x.h);  // buildings 3..N (1 and 2: resolve_masses)
     sdof.push_back(make_structure(x.m, x.T, x.kk, x.h, x.fy, o.alpha, o.zeta, o.elastic, x.k, x.k_given, x.fy_given));
   }
   check_rayleigh_modes(o, sides);
   std::vector<model::StickTopology> sticks(sides.size());
   for (std::size_t i = 0; i < sides.size(); ++i) {
-    sticks[i].storeys = sides[i].st.storeys, sticks[i].storey_heights = {sides[i].st.height};
+    sticks[i].storeys = sides[i].st.storeys, sticks[i].storey_heights = sides[i].st.height;
     if (!o.modal_zeta.empty() && sticks[i].storeys > 1) sticks[i].damping = model::DampingForm::dense;
     if (i >= 2) continue;  // isolation: buildings 1 and 2
     sticks[i].isolated = !o.iso[i].bearing.empty(), sticks[i].moat = o.iso[i].moat_given;
@@ -800,7 +832,8 @@ int run_storeys(SimulateOptions& o, const ContactModel& cm, KernelSettings& ks) 
                                      "drop --modal-zeta");
   // a floor meets at most one floor of its neighbour: the tolerance below half the smallest storey height
   double h_min = std::numeric_limits<double>::infinity();
-  for (const model::StickTopology& st : sticks) h_min = std::min(h_min, st.storey_heights[0]);
+  for (const model::StickTopology& st : sticks)
+    h_min = std::min(h_min, *std::min_element(st.storey_heights.begin(), st.storey_heights.end()));
   if (!(o.level_tolerance < 0.5 * h_min))
     throw InputError(fmt::format("--level-tolerance {:g} m is not below half the smallest storey height ({:g} m): a "
                                  "floor could meet two floors of its neighbour",
@@ -1156,14 +1189,19 @@ void add_storey_options(CLI::App* c, SimulateOptions& opts) {
                   "storeys of building " + k + " (a shear building; any storey option makes both buildings shear "
                   "buildings, a one-storey one keeps the SDOF options)")
         ->capture_default_str();
-    c->add_option("--storey-mass" + k, o->b[i].mass,
-                  "mass of each floor of building " + k + " (kg); default: the mass model's at storeys x storey "
-                  "height, split equally");
-    c->add_option("--storey-stiffness" + k, o->b[i].stiffness,
-                  "stiffness of each storey of building " + k + " (N/m); default: uniform storeys scaled to --T" + k);
-    c->add_option("--storey-height" + k, o->b[i].height,
-                  "height of each storey of building " + k + " (m); floors at levels within 0.05 m pound")
-        ->capture_default_str();
+    // one value: every floor / storey; one per floor / storey: bottom first
+    add_number_list(c, "--storey-mass" + k, o->b[i].mass,
+                    "mass of each floor of building " + k + " (kg; one value, or one per floor from the bottom: "
+                    "2e5,2e5,1.5e5); default: the mass model's at storeys x storey height, split equally");
+    add_number_list(c, "--storey-stiffness" + k, o->b[i].stiffness,
+                    "stiffness of each storey of building " + k + " (N/m; one value or one per storey); default: "
+                    "uniform storeys scaled to --T" + k);
+    add_number_list(c, "--storey-height" + k, o->b[i].height,
+                    "height of each storey of building " + k + " (m; one value or one per storey, default 3.2); "
+                    "floors at levels within 0.05 m pound");
+    add_number_list(c, "--storey-yield" + k, o->b[i].yield,
+                    "yield force (storey shear) of each storey of building " + k + " (N; one value or one per "
+                    "storey); default: a drift of 0.02 h / 6 (--elastic: none)");
     add_number_list(c, "--rayleigh-modes" + k, o->b[i].rayleigh_modes,
                     "the two modes i,j of building " + k + " that get --zeta exactly (Rayleigh; default 1,2)");
   }
@@ -1217,10 +1255,17 @@ void add_storey_options(CLI::App* c, SimulateOptions& opts) {
     c->add_option("--h" + k, x.h, "height of building " + k + " (m)")->group(group);
     c->add_option("--fy" + k, x.fy, "yield force of building " + k + " (N)")->group(group);
     c->add_option("--storeys" + k, x.st.storeys, "storeys of building " + k)->group(group);
-    c->add_option("--storey-mass" + k, x.st.mass, "mass of each floor of building " + k + " (kg)")->group(group);
-    c->add_option("--storey-stiffness" + k, x.st.stiffness, "stiffness of each storey of building " + k + " (N/m)")
+    add_number_list(c, "--storey-mass" + k, x.st.mass, "mass of each floor of building " + k + " (kg; one or per floor)")
         ->group(group);
-    c->add_option("--storey-height" + k, x.st.height, "height of each storey of building " + k + " (m)")->group(group);
+    add_number_list(c, "--storey-stiffness" + k, x.st.stiffness,
+                    "stiffness of each storey of building " + k + " (N/m; one or per storey)")
+        ->group(group);
+    add_number_list(c, "--storey-height" + k, x.st.height,
+                    "height of each storey of building " + k + " (m; one or per storey)")
+        ->group(group);
+    add_number_list(c, "--storey-yield" + k, x.st.yield,
+                    "yield force of each storey of building " + k + " (N; one or per storey)")
+        ->group(group);
     add_number_list(c, "--rayleigh-modes" + k, x.st.rayleigh_modes, "Rayleigh's two modes i,j of building " + k)
         ->group(group);
   }
@@ -1239,10 +1284,11 @@ void count_row_options(CLI::App* c, SimulateOptions& o) {
     x.m_user = x.m_given, x.k_user = x.k_given, x.fy_user = x.fy_given;
     x.st.storeys_given = c->count("--storeys" + k) > 0, x.st.mass_given = c->count("--storey-mass" + k) > 0;
     x.st.stiffness_given = c->count("--storey-stiffness" + k) > 0, x.st.height_given = c->count("--storey-height" + k) > 0;
+    x.st.yield_given = c->count("--storey-yield" + k) > 0;
     x.st.rayleigh_given = c->count("--rayleigh-modes" + k) > 0, x.st.rayleigh_option = "--rayleigh-modes" + k;
     if (K <= o.buildings) continue;
     for (const char* name : {"--T", "--m", "--k", "--h", "--fy", "--storeys", "--storey-mass", "--storey-stiffness",
-                             "--storey-height", "--rayleigh-modes"})
+                             "--storey-height", "--storey-yield", "--rayleigh-modes"})
       if (c->count(name + k) > 0)
         throw InputError(fmt::format("{}{} is for building {} and the row has --buildings {}", name, k, k, o.buildings),
                          name + k, fmt::format("give --buildings {} (or more), or drop {}{}", K, name, k));
@@ -1255,7 +1301,7 @@ void count_storey_options(CLI::App* c, SimulateOptions& o) {
     const std::string k = std::to_string(i + 1);
     o.b[i].storeys_given = c->count("--storeys" + k) > 0, o.b[i].mass_given = c->count("--storey-mass" + k) > 0;
     o.b[i].stiffness_given = c->count("--storey-stiffness" + k) > 0;
-    o.b[i].height_given = c->count("--storey-height" + k) > 0;
+    o.b[i].height_given = c->count("--storey-height" + k) > 0, o.b[i].yield_given = c->count("--storey-yield" + k) > 0;
     o.b[i].rayleigh_given = c->count("--rayleigh-modes" + k) > 0, o.b[i].rayleigh_option = "--rayleigh-modes" + k;
   }
 }

@@ -1,0 +1,73 @@
+#!/usr/bin/env bash
+# The inputs an engineer has, in a study of shear buildings:
+#  1. [structures.buildingK] floor_mass and storey_stiffness as arrays, one per floor / storey from the bottom (storeys
+#     given): a one-record, one-model study equals, bit for bit, simulate --storey-mass1 a,b,c --storey-stiffness1 ...
+#     (coupled and uncoupled numbers); /settings holds the arrays; the run's model line lists them;
+#  2. the model's mass is the floors': models/m1 = the sum of floor_mass (the mass key is not what the floors carry)
+#     and the report's building line prints it;
+#  3. bad input, one ERROR each, exit 2, no results: an array of the wrong length, an array without storeys, a value
+#     out of range, a height that disagrees with storeys x storey_height.
+# Synthetic records only (no ../shared needed). Args: <pounding binary> <source dir>
+set -euo pipefail
+bin=$1; src=$2
+. "$src/tests/lib/study_invariance.sh"  # $tmp, expect_error
+. "$src/tests/lib/shear_pair_study.sh"  # sine_record, shear_pair_study, shear_pair_simulate
+fail() { echo "FAIL: $*"; exit 1; }
+
+# 1. study == simulate with per-storey lists, bit for bit
+sine_record "$tmp/rec.txt" 0.25 0.9 0.10 3.1
+shear_pair_study "$tmp/one.toml" 'title="per-storey inputs"' 'structures.building1.floor_mass=[3.5e5, 3.0e5, 2.0e5]' \
+  'structures.building1.storey_stiffness=[1.2e8, 9.80665e7, 7.0e7]'
+"$bin" run "$tmp/one.toml" --out "$tmp/one.h5" > "$tmp/one.out" 2>&1 || { cat "$tmp/one.out"; fail "the study did not run"; }
+grep -q 'building1: .*floors of 350000, 300000, 200000 kg, storeys of 1.2e+08, 9.80665e+07, 7e+07 N/m' "$tmp/one.out" \
+  || fail "the run's model line does not list building 1's floors: $(grep building1 "$tmp/one.out")"
+gap=$(/usr/bin/python3 -c "import sys, h5py; print(repr(0.5 * h5py.File(sys.argv[1], 'r')['models/code_gap'][()].ravel()[0]))" "$tmp/one.h5")
+pair_gap=$gap
+sim() {
+  "$bin" simulate --record "$tmp/rec.txt" --storeys1 3 --storey-mass1 3.5e5,3.0e5,2.0e5 \
+    --storey-stiffness1 1.2e8,9.80665e7,7.0e7 --storeys2 5 --storey-mass2 3e5 --storey-stiffness2 9.80665e7 \
+    --gap "$pair_gap" --elastic --zeta 0.05 --dt 0.001 --json "$@"
+}
+simulate_both one
+PYTHONPATH="$src/tests/lib" /usr/bin/python3 - "$tmp" <<'PY'
+import sys
+import h5py
+import numpy as np
+from study_simulate import load, pair_checks, assert_equal
+tmp = sys.argv[1]
+f, s, u, g = load(tmp, "one")
+checks = pair_checks(f, s, u, g)
+assert s["status"] == "ok" and u["status"] == "ok"
+assert s["impact_count"] > 0, "no impacts at the gap"
+assert_equal(checks)
+assert s["buildings"][0]["floor_mass"] == [3.5e5, 3.0e5, 2.0e5], s["buildings"][0]
+m1 = f["models/m1"][()].ravel()[0]
+assert m1 == 8.5e5, f"models/m1 = {m1}, want the floors' 8.5e5 kg (the mass key says 9e5)"
+found = {}
+def visit(name, obj):
+    for k, v in obj.attrs.items():
+        if k in ("floor_mass", "storey_stiffness"):
+            found[name + "/" + k] = [float(x) for x in np.atleast_1d(v)]
+f["settings"].visititems(visit)
+assert found["structures.building1/floor_mass"] == [3.5e5, 3.0e5, 2.0e5], found
+assert found["structures.building1/storey_stiffness"] == [1.2e8, 9.80665e7, 7.0e7], found
+print(f"ok   study == simulate with per-storey lists bit for bit ({len(checks)} numbers; {s['impact_count']} "
+      f"impacts); models/m1 = {m1:g} kg, the floors'; settings {found}")
+PY
+grep -q 'building 1: .*mass 850 t' <("$bin" report "$tmp/one.h5" 2>&1) \
+  || fail "the report's building line does not print the floors' mass: $("$bin" report "$tmp/one.h5" 2>&1 | grep 'building 1:')"
+echo "ok   the report prints the floors' 850 t"
+
+# 3. bad input
+fails=0
+body=$(cat "$src/studies/quick-storeys.toml")
+b1() { echo "$body" | sed "s/^\[gaps\]/[structures.building1]\n$1\n\n[gaps]/"; }
+expect_error mass_count 'floor_mass holds 2 values and the building has storeys = 3.*\[structures.building1\].floor_mass' \
+  "$(b1 'storeys = 3\nheight = 9.6\nfloor_mass = [2e5, 2e5]')"
+expect_error no_storeys 'floor_mass holds 3 values (one per storey) and storeys is not given' \
+  "$(b1 'floor_mass = [2e5, 2e5, 1e5]')"
+expect_error stiffness_range 'storey_stiffness holds -1, out of range' \
+  "$(b1 'storeys = 2\nheight = 6.4\nstorey_stiffness = [1e8, -1]')"
+expect_error height_storeys 'height = 30 m disagrees with storeys x storey_height = 10 x 3.2 m = 32 m.*give height = 32, storey_height = 3 (height / storeys) or storeys = 9' \
+  "$(b1 'storeys = 10\nheight = 30.0')"
+[ $fails -eq 0 ] || exit 1
