@@ -47,7 +47,7 @@ struct PerStorey {
 
 struct Lanes {
   std::size_t n = 0;
-  std::vector<PerStorey> mass, stiffness, fy;
+  std::vector<PerStorey> mass, stiffness, fy, u0, v0;  // u0, v0: initial floor displacement / velocity (m, m/s)
   std::vector<std::vector<double>> period, drift, cy, alpha, zeta;
   std::vector<double> gap, kc, e;
   bool e_given = false, kc_given = false;  // no kc: equivalent spheres of the floor masses (simulate's default --kh)
@@ -102,7 +102,7 @@ void check_key(const std::vector<double>& v, const std::string& name, std::strin
 }
 
 const char* const kBuildingKeys[] = {"floor_mass", "storey_stiffness", "period", "storey_yield", "yield_drift",
-                                     "yield_coefficient", "alpha", "zeta"};
+                                     "yield_coefficient", "alpha", "zeta", "initial_u", "initial_v"};
 
 void check_names(const py::dict& d, std::size_t nb) {
   for (const auto& kv : d) {
@@ -123,7 +123,7 @@ Lanes lanes_from(const py::dict& d, const std::vector<int>& storeys) {
   if (!d.contains("gap")) throw py::value_error("buildings: the key 'gap' is missing");
   L.gap = to_vector(d["gap"], "buildings['gap']");
   L.n = L.gap.size();
-  for (auto* v : {&L.mass, &L.stiffness, &L.fy}) v->resize(nb);
+  for (auto* v : {&L.mass, &L.stiffness, &L.fy, &L.u0, &L.v0}) v->resize(nb);
   for (auto* v : {&L.period, &L.drift, &L.cy, &L.alpha, &L.zeta}) v->resize(nb);
   for (std::size_t b = 0; b < nb; ++b) {
     const std::string s = std::to_string(b + 1);
@@ -133,6 +133,13 @@ Lanes lanes_from(const py::dict& d, const std::vector<int>& storeys) {
     if (L.stiffness[b].empty() == L.period[b].empty())
       throw py::value_error("buildings: give storey_stiffness" + s + " or period" + s + " (one of them)");
     L.fy[b] = storey_array(d, "storey_yield" + s, L.n, storeys[b], false);
+    L.u0[b] = storey_array(d, "initial_u" + s, L.n, storeys[b], false);
+    L.v0[b] = storey_array(d, "initial_v" + s, L.n, storeys[b], false);
+    for (const auto& [v, name] : {std::pair{&L.u0[b], "initial_u"}, {&L.v0[b], "initial_v"}})
+      for (std::size_t i = 0; i < v->v.size(); ++i)
+        if (!std::isfinite(v->v[i]))
+          throw py::value_error(fmt::format("{}{} (lane {}) = {} is not finite, give finite numbers (m, m/s)", name, s,
+                                            i / v->cols, v->v[i]));
     L.drift[b] = lane_array(d, "yield_drift" + s, L.n, false);
     L.cy[b] = lane_array(d, "yield_coefficient" + s, L.n, false);
     L.alpha[b] = lane_array(d, "alpha" + s, L.n, false, 0.0);
@@ -507,6 +514,16 @@ void set_lane(physics::SystemBatch& all, std::size_t l, const Lanes& L, const st
                                      sampling::isolation_spec(lane_input(base[bi], l, true), s.floor_mass[0]));
     else
       physics::set_shear_building(all, l, static_cast<int>(bi), s);
+  }
+  for (std::size_t bi = 0; bi < sticks.size(); ++bi) {  // the floors' initial state (an isolated base at rest)
+    const std::vector<int>& dofs = all.system->bodies()[bi].dofs;
+    const std::size_t first = sticks[bi].isolated ? 1 : 0;
+    for (const auto& [in, field] : {std::pair{&L.u0[bi], &all.u0}, {&L.v0[bi], &all.v0}}) {
+      if (in->empty()) continue;
+      const std::vector<double> v = in->lane(l);
+      for (std::size_t d = first; d < dofs.size(); ++d)
+        (*field)[physics::SystemBatch::at(dofs[d], l, all.width)] = v.size() == 1 ? v[0] : v[d - first];
+    }
   }
   physics::set_contacts(all, l, L.gap[l], L.kc[l], L.e[l]);
   if (!L.kc_given) physics::set_sphere_stiffness(all, l, mat.density, mat.youngs, mat.poisson);  // as simulate's

@@ -70,6 +70,10 @@ struct SimulateOptions {
   bool k1_given = false, k2_given = false, fy1_given = false, fy2_given = false, dt_given = false, kh_given = false;
   bool duration_given = false, m1_given = false, m2_given = false, h1_given = false, h2_given = false;
   bool json = false;
+  // initial displacement / velocity of buildings 1 and 2 relative to the ground (m, m/s): one value (the SDOF, or
+  // every floor) or one per floor from the bottom (an isolated building may lead with its base): pull-back and
+  // free-vibration tests; empty: at rest
+  std::vector<double> initial_u[2], initial_v[2];
   RestitutionOpts rest;                              // e(v0) (issue 26 §3): --restitution-*
   std::optional<contact::RestitutionCurve> curve;    // parsed in the callback
   // multi-storey buildings (issue 25 §4): any of these options makes both buildings shear buildings
@@ -406,8 +410,11 @@ physics::StepResolution worst_element(const model::System& sys, std::span<const 
   return w;
 }
 
+void set_pair_initial(const SimulateOptions& o, PairParams& p);
+
 PairParams pair_params(const SimulateOptions& o, const ContactModel& cm, const Structure& s1, const Structure& s2) {
   PairParams p;
+  set_pair_initial(o, p);  // --initial-u1/v1/u2/v2
   p.s1 = s1, p.s2 = s2, p.gap = o.gap, p.e = o.e;
   if (contact::traits(cm.law).explicit_stiffness) {
     if (!o.kh_given) require_positive(0.0, fmt::format("--kh ({} stiffness, N/m)", to_string(cm.law)));
@@ -416,6 +423,34 @@ PairParams pair_params(const SimulateOptions& o, const ContactModel& cm, const S
     p.kc = o.kh_given ? o.kh : hertz_stiffness_spheres(s1.m, s2.m, o.density, o.youngs, o.poisson);
   }
   return p;
+}
+
+// --initial-uK / --initial-vK: one finite value per DOF within --u-limit (m) / any finite velocity (m/s); `dofs` the
+// counts a list may have (1 always).
+void check_initial(const SimulateOptions& o, int i, std::initializer_list<std::size_t> dofs, const std::string& what) {
+  const std::string k = std::to_string(i + 1);
+  for (const auto& [v, name] : {std::pair{&o.initial_u[i], "--initial-u"}, {&o.initial_v[i], "--initial-v"}}) {
+    if (v->empty()) continue;
+    if (std::find(dofs.begin(), dofs.end(), v->size()) == dofs.end())
+      throw InputError(fmt::format("{}{} has {} values and building {} {}", name, k, v->size(), k, what), name + k,
+                       fmt::format("give one value (every floor) or one per floor from the bottom ({})",
+                                   fmt::join(dofs, " or ")));
+    const bool u = std::string_view(name) == "--initial-u";
+    for (double x : *v)
+      if (!std::isfinite(x) || (u && !(std::abs(x) < o.u_limit)))
+        throw InputError(fmt::format("{}{} = {} is out of range", name, k, x), name + k,
+                         u ? fmt::format("give displacements (m) below --u-limit {:g} m in magnitude", o.u_limit)
+                           : std::string("give finite velocities (m/s)"));
+  }
+}
+
+// The SDOF pair's initial state (PairParams u1, v1, u2, v2).
+void set_pair_initial(const SimulateOptions& o, PairParams& p) {
+  for (int i = 0; i < 2; ++i) check_initial(o, i, {1}, "is an SDOF (one value)");
+  if (!o.initial_u[0].empty()) p.u1 = o.initial_u[0][0];
+  if (!o.initial_v[0].empty()) p.v1 = o.initial_v[0][0];
+  if (!o.initial_u[1].empty()) p.u2 = o.initial_u[1][0];
+  if (!o.initial_v[1].empty()) p.v2 = o.initial_v[1][0];
 }
 
 // ---- multi-storey buildings (issue 25 §4; docs/architecture.md §2.7.3) ----
@@ -796,16 +831,40 @@ std::string with_column_shears_json(std::string json, const model::System& sys, 
   return json;
 }
 
+// Buildings 1 and 2's initial state in lane 0 (batch.u0, v0 by DOF): one value on every floor, one per floor, or for
+// an isolated building one per DOF, its base first.
+void set_system_initial(const SimulateOptions& o, const model::System& sys, const std::vector<model::StickTopology>& sticks,
+                        physics::SystemBatch& batch) {
+  for (int i = 0; i < 2; ++i) {
+    const auto n = static_cast<std::size_t>(sticks[i].storeys);
+    check_initial(o, i, sticks[i].isolated ? std::initializer_list<std::size_t>{1, n, n + 1}
+                                           : std::initializer_list<std::size_t>{1, n},
+                  fmt::format("has {} floors{}", n, sticks[i].isolated ? " on its base" : ""));
+    const std::vector<int>& dofs = sys.bodies()[static_cast<std::size_t>(i)].dofs;  // an isolated body: base first
+    for (auto [v, field] : {std::pair{&o.initial_u[i], &batch.u0}, {&o.initial_v[i], &batch.v0}}) {
+      if (v->empty()) continue;
+      const std::size_t skip = sticks[i].isolated && v->size() != n + 1 ? 1 : 0;  // floors only: the base at rest
+      for (std::size_t d = skip; d < dofs.size(); ++d)
+        (*field)[physics::SystemBatch::at(dofs[d], 0, batch.width)] = v->size() == 1 ? v->front() : (*v)[d - skip];
+    }
+  }
+}
+
+// The one-storey buildings 1 and 2: their storey options as the SDOF's numbers (checked as the SDOF's).
+void one_storey_sdof_numbers(SimulateOptions& o) {
+  for (int i = 0; i < 2; ++i) {
+    const SimulateOptions::Storeys& b = o.b[i];
+    if (b.storeys != 1) continue;
+    if (b.mass_given) (i == 0 ? o.m1 : o.m2) = b.mass[0], (i == 0 ? o.m1_given : o.m2_given) = true;
+    if (b.stiffness_given) (i == 0 ? o.k1 : o.k2) = b.stiffness[0], (i == 0 ? o.k1_given : o.k2_given) = true;
+    if (b.yield_given) (i == 0 ? o.fy1 : o.fy2) = b.yield[0], (i == 0 ? o.fy1_given : o.fy2_given) = true;
+  }
+}
+
 int run_storeys(SimulateOptions& o, const ContactModel& cm, KernelSettings& ks) {
   validate_storeys(o);
   resolve_row(o);
-  // the one-storey buildings' SDOF numbers, checked as today
-  if (o.b[0].storeys == 1 && o.b[0].mass_given) o.m1 = o.b[0].mass[0], o.m1_given = true;
-  if (o.b[1].storeys == 1 && o.b[1].mass_given) o.m2 = o.b[1].mass[0], o.m2_given = true;
-  if (o.b[0].storeys == 1 && o.b[0].stiffness_given) o.k1 = o.b[0].stiffness[0], o.k1_given = true;
-  if (o.b[1].storeys == 1 && o.b[1].stiffness_given) o.k2 = o.b[1].stiffness[0], o.k2_given = true;
-  if (o.b[0].storeys == 1 && o.b[0].yield_given) o.fy1 = o.b[0].yield[0], o.fy1_given = true;
-  if (o.b[1].storeys == 1 && o.b[1].yield_given) o.fy2 = o.b[1].yield[0], o.fy2_given = true;
+  one_storey_sdof_numbers(o);
   resolve_masses(o);
   std::vector<Side> sides = sides_of(o);
   std::vector<Structure> sdof;
@@ -846,6 +905,7 @@ int run_storeys(SimulateOptions& o, const ContactModel& cm, KernelSettings& ks) 
   batch.resize(sys, 1);
   SystemRunReport run;
   set_buildings(o, sides, sdof, sticks, batch, run);
+  set_system_initial(o, sys, sticks, batch);
   set_storey_contacts(o, cm, batch, run);
   const std::vector<ContactModel> groups = set_moats(o, cm, batch);
   // the moat elements' stiffness and gap in the report (set_storey_contacts wrote the floor elements')
@@ -1180,6 +1240,8 @@ void add_contact_level_options(CLI::App* c, SimulateOptions* o) {
       ->capture_default_str();
 }
 
+void add_row_options(CLI::App* c, SimulateOptions& opts);
+
 // The multi-storey options (issue 25 §4): storeys, floors, levels.
 void add_storey_options(CLI::App* c, SimulateOptions& opts) {
   SimulateOptions* o = &opts;
@@ -1245,9 +1307,14 @@ void add_storey_options(CLI::App* c, SimulateOptions& opts) {
                 "--k3, --h3, --fy3, --storeys3, --storey-mass3, --storey-stiffness3, --storey-height3 ...; an option "
                 "not given: building 1's for odd K, building 2's for even K)")
       ->capture_default_str();
+  add_row_options(c, opts);
+}
+
+// The options of a row's buildings 3..8 (--buildings N, docs/rows.md).
+void add_row_options(CLI::App* c, SimulateOptions& opts) {
   for (int K = 3; K <= SimulateOptions::max_buildings; ++K) {
     const std::string k = std::to_string(K);
-    SimulateOptions::RowBuilding& x = o->more[K - 3];
+    SimulateOptions::RowBuilding& x = opts.more[K - 3];
     const std::string group = "Row (--buildings N >= 3)";
     c->add_option("--T" + k, x.T, "period of building " + k + " (s)")->group(group);
     c->add_option("--m" + k, x.m, "mass of building " + k + " (kg)")->group(group);
@@ -1303,6 +1370,19 @@ void count_storey_options(CLI::App* c, SimulateOptions& o) {
     o.b[i].stiffness_given = c->count("--storey-stiffness" + k) > 0;
     o.b[i].height_given = c->count("--storey-height" + k) > 0, o.b[i].yield_given = c->count("--storey-yield" + k) > 0;
     o.b[i].rayleigh_given = c->count("--rayleigh-modes" + k) > 0, o.b[i].rayleigh_option = "--rayleigh-modes" + k;
+  }
+}
+
+// --initial-uK, --initial-vK: buildings 1 and 2 released displaced or moving (pull-back, free vibration).
+void add_initial_options(CLI::App* c, SimulateOptions& o) {
+  for (int i = 0; i < 2; ++i) {
+    const std::string k = std::to_string(i + 1);
+    add_number_list(c, "--initial-u" + k, o.initial_u[i],
+                    "initial displacement of building " + k + " relative to the ground (m): one value (an SDOF, or "
+                    "every floor) or one per floor from the bottom (an isolated building may lead with its base); a "
+                    "pull-back test with a record of zeros and --duration");
+    add_number_list(c, "--initial-v" + k, o.initial_v[i],
+                    "initial velocity of building " + k + " (m/s), one value or one per floor as --initial-u" + k);
   }
 }
 
@@ -1378,6 +1458,7 @@ void add_simulate(CLI::App& app) {
   c->add_option("--u-limit", o->u_limit, "|u1| + |u2| above this (m) marks the run diverged")->capture_default_str();
   c->add_flag("--locate-contact", o->locate, "rk4: locate each contact onset inside its step (high-accuracy mode)");
   c->add_option("--series", o->series, "write the time series to FILE.csv or FILE.h5");
+  add_initial_options(c, *o);
   add_storey_options(c, *o);
   add_bridge_options(c, *o);
   add_output_and_restitution_options(c, *o);

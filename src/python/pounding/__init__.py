@@ -194,7 +194,9 @@ def analyze_storeys(buildings, record, storeys=(1, 1), storey_height=3.2, contac
       row per pair, one value per floor / storey from the bottom (a building that is not uniform) -- or period{b} (T1 in s -- of the fixed-base superstructure for an
       isolated building; stiffness_profile "uniform" or "shear" scaled to it), the storey strength as storey_yield{b}
       (N) or yield_drift{b} (theta_y) or yield_coefficient{b} (Cy) -- none: elastic --, alpha{b} (0), zeta{b} (0.05,
-      Rayleigh on modes 1 and 2; the SDOF's ratio for one storey); gap (m, between every two neighbours), kc (or
+      Rayleigh on modes 1 and 2; the SDOF's ratio for one storey), initial_u{b}, initial_v{b} (m, m/s: the floors'
+      initial displacement and velocity relative to the ground, every floor or [pair, floor]; default at rest --
+      pull-back and free-vibration tests; an isolated base starts at rest); gap (m, between every two neighbours), kc (or
       kh=) and e where the law needs them; a Hertz-family law without kc / kh takes, per element, the
       equivalent-sphere stiffness of the two floor masses it joins (density, youngs, poisson), as `pounding
       simulate` without --kh; a linear or Kelvin law needs kc.
@@ -229,7 +231,8 @@ def analyze_storeys(buildings, record, storeys=(1, 1), storey_height=3.2, contac
     element] (NaN / -1 for the pounding elements with contact="none"; a moat's are computed with its own law);
     status and e_* per pair (e_* NaN unless energy=True). Validation first: a ValueError names the pair's lane."""
     ag, dt = _motion(record)
-    d = _pairs_dict(buildings, kh, e, per_storey=("floor_mass", "storey_stiffness", "storey_yield"))
+    d = _pairs_dict(buildings, kh, e, per_storey=("floor_mass", "storey_stiffness", "storey_yield", "initial_u",
+                                                   "initial_v"))
     _require_law_numbers(contact, d, sphere_default=True)
     counts = [_storey_count(s) for s in storeys]
     heights = ([[float(x) for x in np.atleast_1d(h)] for h in storey_height] if isinstance(storey_height, (list, tuple))

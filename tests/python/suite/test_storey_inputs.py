@@ -79,3 +79,22 @@ def test_per_storey_errors():
                                  contact="hertzdamp", kh=2e9, e=0.65)
     with pytest.raises(ValueError, match="linear.*kh"):  # N/m laws have no equivalent-sphere default
         pounding.analyze_storeys(_buildings(), REC, storeys=(3, 4), contact="linear", e=0.65)
+
+
+@pytest.mark.skipif(bool(NOT_CLAIMED), reason=f"not applicable: {NOT_CLAIMED}")
+def test_initial_state_same_bits_as_simulate(tmp_path):
+    """initial_u1 / initial_v1 ([pair, floor]) are simulate's --initial-u1 / --initial-v1: a free vibration after a
+    record of zeros, every floor's final displacement bit for bit; at rest it stays at rest."""
+    zeros = pounding.Record(np.zeros(401), 0.005, name="zeros")
+    path = write_at2(tmp_path / "zeros.AT2", zeros.acc_g, zeros.dt)
+    rec = pounding.read_record(str(path))
+    args = [cli(), "simulate", "--record", str(path), "--storeys1", "2", "--storey-mass1", "2e5,1.5e5",
+            "--storey-stiffness1", "2e8,1.5e8", "--initial-u1", "0.02,0.05", "--initial-v1", "0,0.1", "--storeys2", "1",
+            "--storey-mass2", "1e5", "--storey-stiffness2", "1e8", "--elastic", "--contact", "none", "--gap", "1",
+            "--dt", "0.0025", "--duration", "3", "--json"]
+    j = json.loads(subprocess.run(args, capture_output=True, text=True, check=True).stdout)
+    b = dict(floor_mass1=[[2e5, 1.5e5]], storey_stiffness1=[[2e8, 1.5e8]], initial_u1=[[0.02, 0.05]],
+             initial_v1=[[0.0, 0.1]], floor_mass2=[1e5], storey_stiffness2=[1e8], gap=[1.0])
+    r = pounding.analyze_storeys(b, rec, storeys=(2, 1), substeps=2, duration=3.0)
+    assert r["final_u1"][0].tolist() == j["final_u1"] and r["peak_u1"][0].tolist() == j["peak_u1"]
+    assert r["peak_u1"][0, 1] >= 0.05 and r["final_u2"][0, 0] == 0.0
