@@ -158,6 +158,9 @@ IsolationNumbers isolation_numbers(std::span<const double> h, const ShearSpec& s
           {iso.k1, alpha, iso.qd / (iso.k1 - iso.k2), iso.bw_a, iso.bw_beta, iso.bw_gamma, iso.bw_eta}));
     } else {
       out.isolator = {iso.k1, iso.qd * iso.k1 / (iso.k1 - iso.k2), iso.k2 / iso.k1};  // SB §2: Fy = Qd/(1 - k2/k1)
+      require(std::isfinite(iso.zeta_eff) && iso.zeta_eff >= 0.0 && iso.zeta_eff < 1.0, "zeta_eff must be in [0, 1)");
+      // the rubber's viscous damping on the post-yield (rubber) stiffness; 0: the hysteresis alone, as before
+      if (iso.zeta_eff > 0.0) out.c_base = 2.0 * iso.zeta_eff * std::sqrt(iso.k2 * out.m_total);
     }
   }
   return out;

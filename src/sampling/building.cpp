@@ -442,7 +442,7 @@ constexpr unsigned bit(physics::Bearing b) { return 1u << static_cast<unsigned>(
 constexpr unsigned lin = bit(physics::Bearing::linear), lrb = bit(physics::Bearing::lead_rubber),
                    fps = bit(physics::Bearing::friction_pendulum), bw = bit(physics::Bearing::bouc_wen);
 constexpr BearingKey bearing_keys[] = {
-    {"k_eff", lin, lin},       {"zeta_eff", lin, 0},     {"k1", lrb | bw, lrb | bw}, {"k2", lrb | bw, lrb | bw},
+    {"k_eff", lin, lin},       {"zeta_eff", lin | lrb, 0},     {"k1", lrb | bw, lrb | bw}, {"k2", lrb | bw, lrb | bw},
     {"qd", lrb | bw, lrb | bw}, {"radius", fps, fps},    {"mu_slow", fps, fps},      {"mu_fast", fps, 0},
     {"rate", fps, 0},          {"u_y", fps, 0},          {"a", bw, 0},               {"beta", bw, 0},
     {"gamma", bw, 0},          {"eta", bw, 0}};
@@ -508,7 +508,9 @@ void read_isolation(config::TableReader& r, const std::string& file, const std::
   });
   iso.base_mass = q.number("base_mass", 0.0);
   check_bearing_keys(q, iso.bearing);
-  iso.k_eff = q.number("k_eff", 0.0), iso.zeta_eff = q.number("zeta_eff", physics::default_bearing_zeta);
+  // zeta_eff: the linear bearing's ratio (default 0.1), a lead-rubber bearing's rubber dashpot (default none)
+  iso.k_eff = q.number("k_eff", 0.0);
+  iso.zeta_eff = q.number("zeta_eff", iso.bearing == physics::Bearing::linear ? physics::default_bearing_zeta : 0.0);
   iso.k1 = q.number("k1", 0.0), iso.k2 = q.number("k2", 0.0), iso.qd = q.number("qd", 0.0);
   if ((bit(iso.bearing) & (lrb | bw)) && !(iso.k2 < iso.k1))
     throw InputError(fmt::format("k2 = {:g} N/m is not below k1 = {:g} N/m", iso.k2, iso.k1), q.where("k2"),
@@ -607,9 +609,9 @@ std::string BuildingModel::isolation_text() const {
     case physics::Bearing::bouc_wen:
       return fmt::format("{} bearing k1 {:g} N/m, k2 {:g} N/m, qd {:g} N, a {:g}, beta {:g}, gamma {:g}, eta {}; {}",
                          bearing_name(i.bearing), i.k1, i.k2, i.qd, i.bw_a, i.bw_beta, i.bw_gamma, i.bw_eta, base);
-    default:
-      return fmt::format("{} bearing k1 {:g} N/m, k2 {:g} N/m, qd {:g} N; {}", bearing_name(i.bearing), i.k1, i.k2,
-                         i.qd, base);
+    default:  // zeta_eff only where given (the text of every earlier study otherwise)
+      return fmt::format("{} bearing k1 {:g} N/m, k2 {:g} N/m, qd {:g} N{}; {}", bearing_name(i.bearing), i.k1, i.k2,
+                         i.qd, i.zeta_eff > 0 ? fmt::format(", zeta_eff {:g} (on k2)", i.zeta_eff) : "", base);
   }
 }
 

@@ -5,7 +5,9 @@
 #  - the periods of a non-uniform 3-storey building against an independent SciPy eigh
 #    (tools/reference_systems.py modes) within 1e-9;
 #  - one value is the uniform building bit for bit (the list "2e5" = the number 2e5);
-#  - a list of the wrong length, a value out of the key's range: one ERROR line naming the option (and the count).
+#  - a list of the wrong length, a value out of the key's range: one ERROR line naming the option (and the count);
+#  - --yield-coefficientK: a 3-storey building's base storey yields at Cy M g (the upper ones by the shear profile), an
+#    SDOF is --fyK = Cy m g bit for bit; --scale 2 doubles a linear run's every peak exactly (a power of two).
 # Needs /usr/bin/python3 with numpy and scipy: skipped (exit 77) without them, a failure under CI=true.
 # Args: <pounding binary> <source dir>
 set -euo pipefail
@@ -52,3 +54,32 @@ bad "--storey-yield1 = 0 is out of range" --storeys1 2 --storey-yield1 1e6,0 --s
 bad "--storey-mass3 has 2 values and building 3 has 3 storeys" --buildings 3 --storeys1 2 --storeys2 2 --storeys3 3 \
     --storey-mass3 1e5,1e5
 echo "ok:   a list of the wrong length or a value out of range: one ERROR naming the option"
+
+# 4. --yield-coefficientK and --scale
+sim --storeys1 3 --storey-mass1 2e5,2e5,1.5e5 --storey-stiffness1 3e8 --yield-coefficient1 0.1 --storeys2 2 \
+    --duration 3 --dt 0.001 --json > "$tmp/cy.json"
+"$py" - "$tmp/cy.json" <<'PY' || fail "--yield-coefficient1 of a 3-storey building"
+import json, sys
+y = json.load(open(sys.argv[1]))["buildings"][0]["storey_yield"]
+base = 0.1 * 5.5e5 * 9.80665
+assert abs(y[0] - base) <= 1e-12 * base and y[0] > y[1] > y[2] > 0, (y, base)
+print(f"ok:   --yield-coefficient1 0.1: storey yields {[round(v) for v in y]} N, the base's Cy M g = {base:.6g} N")
+PY
+sim --m1 1e6 --yield-coefficient1 0.1 --duration 3 --json > "$tmp/cy1.json"
+sim --m1 1e6 --fy1 "$("$py" -c 'print(repr(0.1 * 1e6 * 9.80665))')" --duration 3 --json > "$tmp/fy1.json"
+cmp -s "$tmp/cy1.json" "$tmp/fy1.json" || fail "--yield-coefficient1 0.1 differs from --fy1 = 0.1 m g"
+sim --storeys1 3 --storey-mass1 2e5 --storey-stiffness1 3e8 --storeys2 2 --elastic --contact none --gap 1 \
+    --duration 4 --dt 0.001 --json > "$tmp/x1.json"
+sim --storeys1 3 --storey-mass1 2e5 --storey-stiffness1 3e8 --storeys2 2 --elastic --contact none --gap 1 \
+    --duration 4 --dt 0.001 --json --scale 2 > "$tmp/x2.json"
+"$py" - "$tmp/x1.json" "$tmp/x2.json" <<'PY' || fail "--scale 2"
+import json, sys
+a, b = (json.load(open(p)) for p in sys.argv[1:3])
+for k in ("peak_u1", "peak_u2", "peak_drift1"):
+    assert [2 * x for x in a[k]] == b[k], (k, a[k], b[k])
+print(f"ok:   --scale 2: every peak exactly twice ({a['peak_u1'][-1]:.6g} -> {b['peak_u1'][-1]:.6g} m)")
+PY
+bad "--yield-coefficient1 with --storey-yield1" --storeys1 2 --storey-yield1 1e6 --yield-coefficient1 0.1 --storeys2 2
+bad "--scale = 0 is out of range" --scale 0
+bad "--yield-coefficient2 = 9 is out of range" --yield-coefficient2 9
+echo "ok:   --yield-coefficient with another strength, --scale and Cy out of range: one ERROR each"

@@ -5,6 +5,7 @@
 #     (coupled and uncoupled numbers); /settings holds the arrays; the run's model line lists them;
 #  2. the model's mass is the floors': models/m1 = the sum of floor_mass (the mass key is not what the floors carry)
 #     and the report's building line prints it;
+#  2b. a lead-rubber bearing's rubber dashpot (isolation zeta_eff): study == simulate --bearing-zeta1, c_b as formula;
 #  3. bad input, one ERROR each, exit 2, no results: an array of the wrong length, an array without storeys, a value
 #     out of range, a height that disagrees with storeys x storey_height.
 # Synthetic records only (no ../shared needed). Args: <pounding binary> <source dir>
@@ -58,6 +59,36 @@ grep -q 'building 1: .*mass 850 t' <("$bin" report "$tmp/one.h5" 2>&1) \
   || fail "the report's building line does not print the floors' mass: $("$bin" report "$tmp/one.h5" 2>&1 | grep 'building 1:')"
 echo "ok   the report prints the floors' 850 t"
 
+# 2b. a lead-rubber bearing's rubber dashpot (isolation zeta_eff, simulate --bearing-zeta1): c_b = 2 zeta sqrt(k2
+#     M_total); the study equals simulate bit for bit, and differs from the bearing without it
+lrb='bearing = "lead-rubber", base_mass = 3.0e5, k1 = 1.2e8, k2 = 1.2e7, qd = 6.0e5'
+shear_pair_study "$tmp/lrb.toml" 'title="lead-rubber dashpot"' "structures.building1.isolation={$lrb, zeta_eff = 0.05}"
+"$bin" run "$tmp/lrb.toml" --out "$tmp/lrb.h5" > "$tmp/lrb.out" 2>&1 || { cat "$tmp/lrb.out"; fail "the LRB study did not run"; }
+gap=$(/usr/bin/python3 -c "import sys, h5py; print(repr(0.5 * h5py.File(sys.argv[1], 'r')['models/code_gap'][()].ravel()[0]))" "$tmp/lrb.h5")
+lrb_opts=(--isolation1 lead-rubber --base-mass1 3e5 --bearing-k1-1 1.2e8 --bearing-k2-1 1.2e7 --bearing-qd1 6e5)
+sim() { pair_gap=$gap shear_pair_simulate "${lrb_opts[@]}" "$@"; }
+simulate_both lrb --bearing-zeta1 0.05
+sim --contact none > "$tmp/lrb-nodashpot.json"
+PYTHONPATH="$src/tests/lib" /usr/bin/python3 - "$tmp" <<'PY'
+import json, math, sys
+from study_simulate import load, pair_checks, assert_equal
+tmp = sys.argv[1]
+f, s, u, g = load(tmp, "lrb")
+checks = pair_checks(f, s, u, g)
+assert s["status"] == "ok" and u["status"] == "ok" and s["impact_count"] > 0
+assert_equal(checks)
+c = s["buildings"][0]["isolation"]["bearing_c"]
+want = 2 * 0.05 * math.sqrt(1.2e7 * (3e5 + 9e5))
+assert abs(c - want) <= 1e-12 * want, (c, want)
+none = json.load(open(f"{tmp}/lrb-nodashpot.json"))
+assert none["buildings"][0]["isolation"]["bearing_c"] == 0 and none["peak_bearing_u1"] > u["peak_bearing_u1"], \
+    (none["peak_bearing_u1"], u["peak_bearing_u1"])
+text = f["settings/structures.building1"].attrs["isolation"]
+assert "zeta_eff 0.05 (on k2)" in str(text), text
+print(f"ok   lead-rubber zeta_eff 0.05: c_b = {c:.6g} N s/m = 2 zeta sqrt(k2 M_total); study == simulate bit for bit "
+      f"({len(checks)} numbers); bearing peak {u['peak_bearing_u1']:.4g} m, {none['peak_bearing_u1']:.4g} m without")
+PY
+
 # 3. bad input
 fails=0
 body=$(cat "$src/studies/quick-storeys.toml")
@@ -68,6 +99,7 @@ expect_error no_storeys 'floor_mass holds 3 values (one per storey) and storeys 
   "$(b1 'floor_mass = [2e5, 2e5, 1e5]')"
 expect_error stiffness_range 'storey_stiffness holds -1, out of range' \
   "$(b1 'storeys = 2\nheight = 6.4\nstorey_stiffness = [1e8, -1]')"
+expect_error bw_zeta 'linear keys\|zeta_eff' "$(b1 'isolation = {bearing = "bouc-wen", k1 = 3e7, k2 = 1.2e6, qd = 6e5, zeta_eff = 0.05}')"
 expect_error height_storeys 'height = 30 m disagrees with storeys x storey_height = 10 x 3.2 m = 32 m.*give height = 32, storey_height = 3 (height / storeys) or storeys = 9' \
   "$(b1 'storeys = 10\nheight = 30.0')"
 [ $fails -eq 0 ] || exit 1

@@ -82,7 +82,9 @@ inline constexpr double default_bearing_zeta = 0.1;
 struct IsolationSpec {
   Bearing bearing = Bearing::linear;
   double base_mass = 0.0;               // kg, > 0 (a massless base makes the system singular, SB §2 pitfalls)
-  double k_eff = 0.0, zeta_eff = 0.0;   // linear: N/m, ratio
+  // linear: N/m, ratio; lead-rubber: zeta_eff the rubber's viscous ratio on the post-yield stiffness, a dashpot
+  // c_b = 2 zeta_eff sqrt(k2 M_total) beside the hysteresis (0: none, the bearing of every earlier run)
+  double k_eff = 0.0, zeta_eff = 0.0;
   double k1 = 0.0, k2 = 0.0, qd = 0.0;  // lead-rubber and Bouc-Wen: N/m, N/m (0 <= k2 < k1), N (> 0)
   // friction pendulum: radius R (m), friction at rest and at high speed, rate (s/m), smoothing u_y (m)
   double radius = 0.0, mu_slow = 0.0, mu_fast = 0.0, rate = 0.0, uy = 2.5e-4;

@@ -74,6 +74,9 @@ struct SimulateOptions {
   // every floor) or one per floor from the bottom (an isolated building may lead with its base): pull-back and
   // free-vibration tests; empty: at rest
   std::vector<double> initial_u[2], initial_v[2];
+  double scale = 1.0;  // --scale: a factor on the record (as a study's [records] scale)
+  double cy[2] = {0, 0};  // --yield-coefficientK: buildings 1 and 2 yield at a base shear Cy M g (0: not given)
+  bool scale_given = false, cy_given[2] = {false, false};
   RestitutionOpts rest;                              // e(v0) (issue 26 §3): --restitution-*
   std::optional<contact::RestitutionCurve> curve;    // parsed in the callback
   // multi-storey buildings (issue 25 §4): any of these options makes both buildings shear buildings
@@ -140,6 +143,9 @@ void resolve_masses(SimulateOptions& o) {
                        fmt::format("give the height in m (the default mass comes from it), or give --m{}", i));
     *m = mass_from_height(h);
   }
+  // --yield-coefficientK of an SDOF (a one-storey building): fy = Cy m g, the mass resolved above
+  if (o.cy_given[0]) o.fy1 = o.cy[0] * o.m1 * physics::standard_gravity, o.fy1_given = true;
+  if (o.cy_given[1]) o.fy2 = o.cy[1] * o.m2 * physics::standard_gravity, o.fy2_given = true;
 }
 
 // What the pair and the analysis are beyond the summary: the masses and where they came from, and the analysis
@@ -236,6 +242,16 @@ void write_series_h5(const std::string& path, const SeriesRecorder& r, const std
 // study key's range (config::require_key_range: one range per quantity for simulate, Python and the studies).
 void validate_scalars(const SimulateOptions& o) {
   using config::require_key_range;
+  if (o.scale_given) require_key_range(o.scale, "records", "scale", "--scale");
+  for (int i = 0; i < 2; ++i) {
+    if (!o.cy_given[i]) continue;
+    const std::string k = std::to_string(i + 1);
+    require_key_range(o.cy[i], "structures.buildingN", "yield_coefficient", "--yield-coefficient" + k);
+    if ((i == 0 ? o.fy1_given : o.fy2_given) || o.b[i].yield_given)
+      throw InputError(fmt::format("--yield-coefficient{0} with --{1}{0}: two strengths for building {0}", k,
+                                   o.b[i].yield_given ? "storey-yield" : "fy"),
+                       "--yield-coefficient" + k, "give one of them");
+  }
   require_key_range(o.zeta, "structures", "zeta", "--zeta");
   for (double z : o.modal_zeta) require_key_range(z, "structures", "modal_zeta", "--modal-zeta", "each; ");
   require_key_range(o.alpha, "structures", "alpha", "--alpha");
@@ -318,8 +334,12 @@ Record ground_motion(const SimulateOptions& o) {
     ro.units = as_option("--units", [&] { return parse_units(o.units); });
     ro.dt = o.dt_record;
     rec = read_record(o.record, ro);
-    require_analysable(rec, {1.0, "", "add --units cm/s2"});  // 2 s long, PGA <= 5 g (records.hpp)
   }
+  if (o.scale_given) {  // as a study's [records] scale: every sample times the factor, then the checks
+    for (double& a : rec.acc) a *= o.scale;
+    rec.source += fmt::format(", scaled by {:g}", o.scale);
+  }
+  if (!o.record.empty()) require_analysable(rec, {1.0, "", "add --units cm/s2"});  // 2 s long, PGA <= 5 g (records.hpp)
   return rec;
 }
 
@@ -561,7 +581,9 @@ physics::ShearSpec shear_spec(const SimulateOptions& o, const Side& side, const 
   else spec.period = side.T;
   if (spec.storey_stiffness.empty()) require_positive(spec.period, "--T" + side.k);
   if (o.elastic) return spec;  // fy = inf, as an SDOF's --elastic wins over --fy
+  const int i = std::stoi(side.k) - 1;  // --yield-coefficientK: buildings 1 and 2
   if (b.yield_given) spec.storey_yield = b.yield;
+  else if (i < 2 && o.cy_given[i]) spec.yield_coefficient = o.cy[i];  // base shear Cy M g, upper storeys by the profile
   else spec.yield_drift = 0.02 / 6.0;
   return spec;
 }
@@ -1278,7 +1300,8 @@ void add_storey_options(CLI::App* c, SimulateOptions& opts) {
     c->add_option("--base-mass" + k, s.base_mass, "mass of building " + k + "'s base (kg); default: one floor's mass");
     c->add_option("--bearing-keff" + k, s.k_eff, "linear bearing: effective stiffness of all isolators (N/m)");
     c->add_option("--bearing-zeta" + k, s.zeta_eff,
-                  fmt::format("linear bearing: damping ratio, c_b = 2 zeta sqrt(k_eff M_total) (default {:g})",
+                  fmt::format("linear bearing: damping ratio, c_b = 2 zeta sqrt(k_eff M_total) (default {:g}); "
+                              "lead-rubber: the rubber's dashpot c_b = 2 zeta sqrt(k2 M_total) (default none)",
                               physics::default_bearing_zeta));
     c->add_option("--bearing-k1-" + k, s.k1, "lead-rubber: elastic stiffness k1 (N/m)");
     c->add_option("--bearing-k2-" + k, s.k2, "lead-rubber: post-yield stiffness k2 < k1 (N/m)");
@@ -1362,8 +1385,10 @@ void count_row_options(CLI::App* c, SimulateOptions& o) {
   }
 }
 
-// Which storey options of buildings 1 and 2 were given.
+// Which storey options of buildings 1 and 2 were given (and --scale, --yield-coefficientK).
 void count_storey_options(CLI::App* c, SimulateOptions& o) {
+  o.scale_given = c->count("--scale") > 0;
+  o.cy_given[0] = c->count("--yield-coefficient1") > 0, o.cy_given[1] = c->count("--yield-coefficient2") > 0;
   for (int i = 0; i < 2; ++i) {
     const std::string k = std::to_string(i + 1);
     o.b[i].storeys_given = c->count("--storeys" + k) > 0, o.b[i].mass_given = c->count("--storey-mass" + k) > 0;
@@ -1373,8 +1398,16 @@ void count_storey_options(CLI::App* c, SimulateOptions& o) {
   }
 }
 
-// --initial-uK, --initial-vK: buildings 1 and 2 released displaced or moving (pull-back, free vibration).
+// --initial-uK, --initial-vK: buildings 1 and 2 released displaced or moving (pull-back, free vibration); --scale and
+// --yield-coefficientK (the record's factor and the strengths a study would give).
 void add_initial_options(CLI::App* c, SimulateOptions& o) {
+  c->add_option("--scale", o.scale, "a factor on the record's accelerations (as a study's [records] scale)");
+  for (int i = 0; i < 2; ++i) {
+    const std::string k = std::to_string(i + 1);
+    c->add_option("--yield-coefficient" + k, o.cy[i],
+                  "building " + k + " yields at a base shear Cy M g (an SDOF: fy = Cy m g; storeys: the upper ones by "
+                  "the shear profile), instead of --fy" + k + " / --storey-yield" + k);
+  }
   for (int i = 0; i < 2; ++i) {
     const std::string k = std::to_string(i + 1);
     add_number_list(c, "--initial-u" + k, o.initial_u[i],

@@ -213,7 +213,8 @@ def analyze_storeys(buildings, record, storeys=(1, 1), storey_height=3.2, contac
     isolation: None or one entry per building, None (fixed base) or a dict {"bearing": "linear" | "lead-rubber" |
       "friction-pendulum" | "bouc-wen", ...} with the study keys' names and ranges (study reference, section
       "isolation") and simulate's defaults: base_mass (kg; one floor's mass), linear: k_eff (N/m), zeta_eff (0.1);
-      lead-rubber and bouc-wen: k1, k2 (N/m, k2 < k1), qd (N), bouc-wen also a (1), beta (0.5), gamma (0.5), eta (1);
+      lead-rubber and bouc-wen: k1, k2 (N/m, k2 < k1), qd (N), lead-rubber also zeta_eff (0: the rubber's dashpot
+      2 zeta_eff sqrt(k2 M_total)), bouc-wen also a (1), beta (0.5), gamma (0.5), eta (1);
       friction-pendulum: radius (m), mu_slow, mu_fast (mu_slow), rate (s/m, 0), u_y (2.5e-4 m). Buildings 1 and 2
       only, as simulate.
     moat: None or one entry per building, None or a dict {"gap": m (each side), "stiffness": N/m^n (default the

@@ -98,3 +98,25 @@ def test_initial_state_same_bits_as_simulate(tmp_path):
     r = pounding.analyze_storeys(b, rec, storeys=(2, 1), substeps=2, duration=3.0)
     assert r["final_u1"][0].tolist() == j["final_u1"] and r["peak_u1"][0].tolist() == j["peak_u1"]
     assert r["peak_u1"][0, 1] >= 0.05 and r["final_u2"][0, 0] == 0.0
+
+
+@pytest.mark.skipif(bool(NOT_CLAIMED), reason=f"not applicable: {NOT_CLAIMED}")
+def test_lead_rubber_dashpot_same_bits_as_simulate(tmp_path):
+    """isolation zeta_eff on a lead-rubber bearing is simulate's --bearing-zeta1 (the rubber's dashpot on k2); without
+    it the bearing has none, as before."""
+    path = write_at2(tmp_path / "sweep.AT2", REC.acc_g, REC.dt)
+    rec = pounding.read_record(str(path))
+    lrb = ["--isolation1", "lead-rubber", "--base-mass1", "3e5", "--bearing-k1-1", "1.2e8", "--bearing-k2-1", "1.2e7",
+           "--bearing-qd1", "6e5"]
+    b = dict(floor_mass1=[3e5], storey_stiffness1=[9.80665e7], floor_mass2=[3e5], storey_stiffness2=[9.80665e7],
+             gap=[0.5])
+    for zeta in (0.05, None):
+        args = [cli(), "simulate", "--record", str(path), "--storeys1", "3", "--storey-mass1", "3e5",
+                "--storey-stiffness1", "9.80665e7", "--storeys2", "5", "--storey-mass2", "3e5", "--storey-stiffness2",
+                "9.80665e7", "--elastic", "--contact", "none", "--gap", "0.5", "--dt", "0.0025", "--json", *lrb,
+                *(["--bearing-zeta1", str(zeta)] if zeta else [])]
+        j = json.loads(subprocess.run(args, capture_output=True, text=True, check=True).stdout)
+        iso = dict(bearing="lead-rubber", base_mass=3e5, k1=1.2e8, k2=1.2e7, qd=6e5, **({"zeta_eff": zeta} if zeta else {}))
+        r = pounding.analyze_storeys(b, rec, storeys=(3, 5), substeps=2, isolation=[iso, None])
+        assert r["peak_bearing_u1"][0] == j["peak_bearing_u1"] and r["peak_u1"][0].tolist() == j["peak_u1"]
+        assert (j["buildings"][0]["isolation"]["bearing_c"] > 0) == bool(zeta)
