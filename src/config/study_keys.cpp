@@ -389,6 +389,11 @@ constexpr StudyKey keys[] = {
      "many values). Absent: stiffness_profile scaled so the fundamental period is the "
      "building's period (sampled or given); given, the building's T1 is this stiffness's and the period only "
      "selects the height.", 1.0, 1e12},
+    {"structures.buildingN", "storey_yield", "number or array of numbers", "drift / ductility or yield_coefficient",
+     "N", "[1, 1e16]",
+     "Shear model: the yield force (storey shear strength) of every storey, or an array of one per storey from the "
+     "bottom (storeys given, as many values). Instead of drift/ductility or yield_coefficient; not with hysteresis = "
+     "\"elastic\".", 1.0, 1e16},
     {"structures.buildingN", "stiffness_profile", "string", "[structures] stiffness_profile", "",
      "\"uniform\" | \"shear\"", "As in [structures]."},
     {"structures.buildingN", "damping", "string", "[structures] damping", "", "\"rayleigh\" | \"modal\"",

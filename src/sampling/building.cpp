@@ -379,7 +379,8 @@ void check_shear_keys(const BuildingModel& b, const WhereFn& where) {
                                    product, h / b.code.storeys, std::max(1L, std::lround(h / sh))));
   }
   if (!b.shear()) {
-    for (auto [key, v] : {std::pair{"floor_mass", &b.floor_mass}, {"storey_stiffness", &b.storey_stiffness}})
+    for (auto [key, v] : {std::pair{"floor_mass", &b.floor_mass}, {"storey_stiffness", &b.storey_stiffness},
+                          {"storey_yield", &b.storey_yield}})
       if (!v->empty())
         throw InputError(fmt::format("{} is given for an SDOF building", key), where(key),
                          fmt::format("add model = \"shear\" to this table (or [structures]), or remove {}", key));
@@ -395,7 +396,8 @@ void check_shear_keys(const BuildingModel& b, const WhereFn& where) {
     return;
   }
   // an array of one value per floor / storey: as many as the storeys given
-  for (auto [key, v] : {std::pair{"floor_mass", &b.floor_mass}, {"storey_stiffness", &b.storey_stiffness}}) {
+  for (auto [key, v] : {std::pair{"floor_mass", &b.floor_mass}, {"storey_stiffness", &b.storey_stiffness},
+                        {"storey_yield", &b.storey_yield}}) {
     if (v->size() <= 1) continue;
     if (b.code.storeys <= 0)
       throw InputError(fmt::format("{} holds {} values (one per storey) and storeys is not given", key, v->size()),
@@ -735,12 +737,19 @@ BuildingModel parse_building(const toml::table* t, const std::string& file, cons
   if (!b.shear() && !(t && (t->get("damping") || t->get("modal_zeta")))) b.modal_damping = false, b.modal_zeta.clear();
   if (r.get("floor_mass")) b.floor_mass = per_storey(r, "floor_mass");
   if (r.get("storey_stiffness")) b.storey_stiffness = per_storey(r, "storey_stiffness");
+  if (r.get("storey_yield")) {
+    b.storey_yield = per_storey(r, "storey_yield");
+    if (b.yield_coefficient.given() || r.get("drift") || r.get("ductility") || b.hysteresis == Hysteresis::elastic)
+      throw InputError("storey_yield is given with another strength (yield_coefficient, drift/ductility or hysteresis "
+                       "= \"elastic\")", r.where("storey_yield"),
+                       "give one strength: storey_yield (N per storey), yield_coefficient or drift and ductility");
+  }
   read_isolation(r, file, name, b);
   read_moat(r, file, name, b);
   r.finish(std::string("periods, period_min, period_max, period_step, period, height, mass, zeta, yield_coefficient, "
                        "alpha, hysteresis, aspect_ratios, rho_mean, rho_cov, mbar_mean, mbar_cov, mbar_min, mbar_max, "
                        "drift, ductility, height_min, height_max, ct_lower, ct_upper, height_exponent, model, "
-                       "floor_mass, storey_stiffness, stiffness_profile, damping, modal_zeta, rayleigh_modes, isolation, moat, ") +
+                       "floor_mass, storey_stiffness, storey_yield, stiffness_profile, damping, modal_zeta, rayleigh_modes, isolation, moat, ") +
            code_factor_keys);
   check_shear_keys(b, [&](std::string_view key) {
     return key == "storey_height" && !own_storey_height ? fallback(key) : where(key);

@@ -425,6 +425,7 @@ SampledStructure StructureSampler::draw_structure(const Side& side, const Unifor
     s.fy = b.yield_coefficient.given() ? side.cy.sample(u.cy) * s.m * standard_gravity
                                        : s.k * (b.drift * s.h / b.ductility);  // ductility 6 at 2 % drift (2.1)
     s.alpha = b.alpha;
+    if (b.shear() && !b.storey_yield.empty()) s.fy = b.storey_yield[0];  // the base storey's: the building's strength
   }
   return s;
 }

@@ -987,6 +987,8 @@ std::string describe_structure(const StructureModel& m, int i) {
   const BuildingModel b = m.row_building(static_cast<std::size_t>(i));
   if (!b.shear()) return fmt::format("building{}: SDOF (one storey facing the other building's floor nearest its height)", i + 1);
   const std::string yield = b.hysteresis == Hysteresis::elastic ? "elastic storeys"
+                            : !b.storey_yield.empty()
+                                ? fmt::format("storeys yielding at {:g} N", fmt::join(b.storey_yield, ", "))
                             : b.yield_coefficient.given()       ? "storey yield from the base shear Cy M g"
                                                                  : fmt::format("storeys yielding at drift ratio {:.4g}",
                                                                                b.drift / b.ductility);

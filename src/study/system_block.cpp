@@ -109,7 +109,8 @@ physics::ShearSpec shear_spec(const BuildingModel& b, const SampledStructure& s,
   if (!b.storey_stiffness.empty()) spec.storey_stiffness = b.storey_stiffness;
   else spec.period = s.T;
   if (b.hysteresis == Hysteresis::elastic) return spec;  // fy = inf
-  if (b.yield_coefficient.given()) spec.yield_coefficient = s.fy / (s.m * physics::standard_gravity);  // the drawn Cy
+  if (!b.storey_yield.empty()) spec.storey_yield = b.storey_yield;  // given: one, or one per storey
+  else if (b.yield_coefficient.given()) spec.yield_coefficient = s.fy / (s.m * physics::standard_gravity);  // the drawn Cy
   else spec.yield_drift = b.drift / b.ductility;  // the SDOF's u_y = drift h / ductility as a drift ratio per storey
   return spec;
 }

@@ -194,6 +194,7 @@ struct BuildingModel {
   // floor_mass (kg), storey_stiffness (N/m): empty when absent; one value (every floor / storey) or, with storeys
   // given, one per floor / storey from the bottom (a building that is not uniform)
   std::vector<double> floor_mass, storey_stiffness;
+  std::vector<double> storey_yield;  // N, the same way (empty: drift/ductility or yield_coefficient)
   model::StiffnessProfile profile = model::StiffnessProfile::uniform;
   // Damping of a shear building: Rayleigh on modes 1, 2 (false) or classical modal damping (modal_zeta per mode
   // from 1, the last repeating; empty: every mode the sampled zeta).

@@ -87,7 +87,8 @@ void visit_structure_settings(const StructureModel& m, V& v) {
       v(sec, "stiffness_profile", S(to_string(b.profile)));
       if (f.storey_height <= 0) v(sec, "storey_height", b.storey_height());
       // a number as before (the bits of every earlier study), an array where one per storey is given
-      for (auto [key, x] : {std::pair{"floor_mass", &b.floor_mass}, {"storey_stiffness", &b.storey_stiffness}}) {
+      for (auto [key, x] : {std::pair{"floor_mass", &b.floor_mass}, {"storey_stiffness", &b.storey_stiffness},
+                            {"storey_yield", &b.storey_yield}}) {
         if (x->size() == 1) v(sec, key, x->front());
         else if (x->size() > 1) v(sec, key, *x);
       }
