@@ -78,4 +78,5 @@ PY
 bad "--initial-u1 has 3 values and building 1 has 2 floors" --storeys1 2 --initial-u1 0.1,0.1,0.1 --storeys2 1
 bad "--initial-v2 has 2 values and building 2 is an SDOF" --initial-v2 0.1,0.2
 bad "--initial-u1 = 20 is out of range" --initial-u1 20
+bad "--initial-v2 describes building 2 and this run is a --bridge" --bridge "$src/studies/bridge-joint.toml" --initial-v2 0.1
 echo "ok:   bad initial states: one ERROR naming the option"

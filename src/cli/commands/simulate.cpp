@@ -243,6 +243,14 @@ void write_series_h5(const std::string& path, const SeriesRecorder& r, const std
 void validate_scalars(const SimulateOptions& o) {
   using config::require_key_range;
   if (o.scale_given) require_key_range(o.scale, "records", "scale", "--scale");
+  if (o.scale_given && !o.support_records.empty())  // it scales --record, not the supports' own records
+    throw InputError("--scale with --support-record", "--scale", "scale the support records' files, or drop --scale");
+  for (int i = 0; i < 2 && !o.bridge.empty(); ++i)  // a bridge's frames take their numbers from its file
+    for (const auto& [given, name] : {std::pair{!o.initial_u[i].empty(), "--initial-u"},
+                                      {!o.initial_v[i].empty(), "--initial-v"}, {o.cy_given[i], "--yield-coefficient"}})
+      if (given)
+        throw InputError(fmt::format("{}{} describes building {} and this run is a --bridge", name, i + 1, i + 1),
+                         name + std::to_string(i + 1), "drop it: the bridge file gives its frames' numbers");
   for (int i = 0; i < 2; ++i) {
     if (!o.cy_given[i]) continue;
     const std::string k = std::to_string(i + 1);
