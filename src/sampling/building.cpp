@@ -228,7 +228,12 @@ std::string BuildingModel::period_text() const {
 std::string BuildingModel::height_text() const {
   return height.given() ? height.describe("m") : "period-height rule";
 }
-std::string BuildingModel::mass_text() const { return mass.given() ? mass.describe("kg") : "mass-index model"; }
+std::string BuildingModel::mass_text() const {
+  // a shear building's floor_mass is its mass (the sampler's m): the mass key or model is not what the floors carry
+  if (shear() && !floor_mass.empty())
+    return mass.given() ? "the floors' (floor_mass; mass " + mass.describe("kg") + " not used)" : "the floors' (floor_mass)";
+  return mass.given() ? mass.describe("kg") : "mass-index model";
+}
 std::string BuildingModel::zeta_text() const { return zeta.describe(""); }
 std::string BuildingModel::damping_text() const {
   if (!modal_damping && rayleigh_default()) return "Rayleigh damping on modes 1 and 2";
