@@ -378,14 +378,22 @@ constexpr StudyKey keys[] = {
     {"structures.buildingN", "model", "string", "[structures] model", "", "\"sdof\" | \"shear\"",
      "As in [structures]: an SDOF building may pair with a shear building (it meets the floor nearest its height, "
      "its roof if the other is lower)."},
-    {"structures.buildingN", "floor_mass", "number", "the building's mass / storeys", "kg", "[1e-3, 1e9]",
-     "Shear model: the mass of every floor. Absent: the building's mass (given or the mass-index model) split "
-     "equally over its floors.", 1e-3, 1e9},
-    {"structures.buildingN", "storey_stiffness", "number", "stiffness_profile scaled to the period", "N/m",
-     "[1, 1e12]",
-     "Shear model: the stiffness of every storey. Absent: stiffness_profile scaled so the fundamental period is the "
+    {"structures.buildingN", "floor_mass", "number or array of numbers", "the building's mass / storeys", "kg",
+     "[1e-3, 1e9]",
+     "Shear model: the mass of every floor, or an array of one mass per floor from the bottom (storeys given, as "
+     "many values: floor_mass = [2.5e5, 2.5e5, 1.8e5]). Absent: the building's mass (given or the mass-index model) "
+     "split equally over its floors.", 1e-3, 1e9},
+    {"structures.buildingN", "storey_stiffness", "number or array of numbers", "stiffness_profile scaled to the period",
+     "N/m", "[1, 1e12]",
+     "Shear model: the stiffness of every storey, or an array of one per storey from the bottom (storeys given, as "
+     "many values). Absent: stiffness_profile scaled so the fundamental period is the "
      "building's period (sampled or given); given, the building's T1 is this stiffness's and the period only "
      "selects the height.", 1.0, 1e12},
+    {"structures.buildingN", "storey_yield", "number or array of numbers", "drift / ductility or yield_coefficient",
+     "N", "[1, 1e16]",
+     "Shear model: the yield force (storey shear strength) of every storey, or an array of one per storey from the "
+     "bottom (storeys given, as many values). Instead of drift/ductility or yield_coefficient; not with hysteresis = "
+     "\"elastic\".", 1.0, 1e16},
     {"structures.buildingN", "stiffness_profile", "string", "[structures] stiffness_profile", "",
      "\"uniform\" | \"shear\"", "As in [structures]."},
     {"structures.buildingN", "damping", "string", "[structures] damping", "", "\"rayleigh\" | \"modal\"",
@@ -413,8 +421,10 @@ constexpr StudyKey keys[] = {
      "The base slab's mass above the bearings.", 1e-3, 1e10},
     {"isolation", "k_eff", "number", "required (linear)", "N/m", "[1, 1e12]", "Linear bearing: effective stiffness.",
      1.0, 1e12},
-    {"isolation", "zeta_eff", "number", "0.1", "", "[0, 0.5]",
-     "Linear bearing: effective damping ratio (the default is simulate's --bearing-zeta and Python's).", 0.0, 0.5},
+    {"isolation", "zeta_eff", "number", "0.1 (linear), 0 (lead-rubber)", "", "[0, 0.5]",
+     "Linear bearing: effective damping ratio (the default is simulate's --bearing-zeta and Python's). Lead-rubber "
+     "bearing: the rubber's viscous damping, a dashpot c_b = 2 zeta_eff sqrt(k2 M_total) beside the hysteresis "
+     "(default none).", 0.0, 0.5},
     {"isolation", "k1", "number", "required (lead-rubber, bouc-wen)", "N/m", "[1, 1e12]",
      "Lead-rubber and Bouc-Wen bearings: elastic (pre-yield) stiffness.", 1.0, 1e12},
     {"isolation", "k2", "number", "required (lead-rubber, bouc-wen)", "N/m", "[0, 1e12], below k1",

@@ -9,6 +9,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "pounding/contact/model.hpp"
 #include "pounding/kernel/batch.hpp"
 
 namespace pounding::physics {
@@ -157,6 +158,9 @@ IsolationNumbers isolation_numbers(std::span<const double> h, const ShearSpec& s
           {iso.k1, alpha, iso.qd / (iso.k1 - iso.k2), iso.bw_a, iso.bw_beta, iso.bw_gamma, iso.bw_eta}));
     } else {
       out.isolator = {iso.k1, iso.qd * iso.k1 / (iso.k1 - iso.k2), iso.k2 / iso.k1};  // SB §2: Fy = Qd/(1 - k2/k1)
+      require(std::isfinite(iso.zeta_eff) && iso.zeta_eff >= 0.0 && iso.zeta_eff < 1.0, "zeta_eff must be in [0, 1)");
+      // the rubber's viscous damping on the post-yield (rubber) stiffness; 0: the hysteresis alone, as before
+      if (iso.zeta_eff > 0.0) out.c_base = 2.0 * iso.zeta_eff * std::sqrt(iso.k2 * out.m_total);
     }
   }
   return out;
@@ -289,6 +293,17 @@ std::array<double, 2> contact_masses(const SystemBatch& batch, std::size_t lane,
   if (l < 0) l = r;
   if (r < 0) r = l;
   return {l, r};
+}
+
+void set_sphere_stiffness(SystemBatch& batch, std::size_t lane, double density, double youngs, double poisson) {
+  require(batch.system != nullptr && lane < batch.width, "the batch is not sized (SystemBatch::resize)");
+  const model::System& sys = *batch.system;
+  for (std::size_t e = 0; e < sys.contacts().size(); ++e) {
+    if (!sys.groups()[static_cast<std::size_t>(sys.contacts()[e].group)].study_gap) continue;  // a moat: set_moat's
+    const std::array<double, 2> mm = contact_masses(batch, lane, static_cast<int>(e));  // a column: its nearer floor
+    batch.kc[SystemBatch::at(static_cast<int>(e), lane, batch.width)] =
+        hertz_stiffness_spheres(mm[0], mm[1], density, youngs, poisson);
+  }
 }
 
 }  // namespace pounding::physics

@@ -2,6 +2,7 @@
 // CLI's analysis (the fragility fit) and report, progress through a Python callable and Ctrl-C as the CLI's stop
 // flag; and the report of a results file, as `pounding report` renders it.
 #include <atomic>
+#include <chrono>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -69,6 +70,7 @@ py::dict run_study_py(const std::string& path, const std::optional<std::string>&
   bool interrupted = false;
   std::string failure;
   RunOptions ro;
+  ro.start = std::chrono::steady_clock::now();  // this call's wall time (the process started long before, or not yet)
   ro.out = out.value_or(""), ro.out_given = out.has_value(), ro.resume = resume, ro.force = force;
   ro.threads = threads;  // -1: the study's [analysis] threads
   ro.analyse = [](results::Results& r, const WorkHook& hook) { analyse_fragility(r, &hook); };

@@ -9,10 +9,12 @@
 #include <cmath>
 #include <functional>
 #include <limits>
+#include <span>
 #include <string>
 #include <vector>
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include "common.hpp"
 #include "pounding/config/study_keys.hpp"
@@ -32,11 +34,23 @@ namespace {
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 // The per-lane inputs, by name; absent optional ones are empty. Per building b (0-based) of the row.
+// A per-floor / per-storey input (floor_mass, storey_stiffness, storey_yield): `cols` values per lane, 1 (every floor
+// or storey) or one per floor / storey, bottom first; lane l's are v[l cols, (l + 1) cols).
+struct PerStorey {
+  std::vector<double> v;
+  std::size_t cols = 1;
+  bool empty() const { return v.empty(); }
+  std::vector<double> lane(std::size_t l) const {
+    return {v.begin() + static_cast<std::ptrdiff_t>(l * cols), v.begin() + static_cast<std::ptrdiff_t>((l + 1) * cols)};
+  }
+};
+
 struct Lanes {
   std::size_t n = 0;
-  std::vector<std::vector<double>> mass, stiffness, period, fy, drift, cy, alpha, zeta;
+  std::vector<PerStorey> mass, stiffness, fy, u0, v0;  // u0, v0: initial floor displacement / velocity (m, m/s)
+  std::vector<std::vector<double>> period, drift, cy, alpha, zeta;
   std::vector<double> gap, kc, e;
-  bool e_given = false;
+  bool e_given = false, kc_given = false;  // no kc: equivalent spheres of the floor masses (simulate's default --kh)
 };
 
 std::vector<double> lane_array(const py::dict& d, const std::string& key, std::size_t n, bool required,
@@ -51,6 +65,23 @@ std::vector<double> lane_array(const py::dict& d, const std::string& key, std::s
   return v;
 }
 
+// A per-storey key: one value per pair (n values), or a [pair, floor] array of n rows of 1 or `storeys` values.
+PerStorey storey_array(const py::dict& d, const std::string& key, std::size_t n, int storeys, bool required) {
+  if (!d.contains(key)) {
+    if (required) throw py::value_error("buildings: the key '" + key + "' is missing");
+    return {};
+  }
+  const std::string what = "buildings['" + key + "']";
+  const Array a = checked_array(d[key.c_str()], what);
+  const auto rows = a.ndim() >= 1 ? static_cast<std::size_t>(a.shape(0)) : 0;
+  const auto cols = a.ndim() == 2 ? static_cast<std::size_t>(a.shape(1)) : 1;
+  if (a.ndim() < 1 || a.ndim() > 2 || rows != n || (cols != 1 && cols != static_cast<std::size_t>(storeys)))
+    throw py::value_error(fmt::format("{}: {} values (one per pair, every storey) or a [pair, storey] array of shape "
+                                      "({}, {}) (one row per pair, bottom first) are needed, got shape ({})",
+                                      what, n, n, storeys, fmt::join(std::span(a.shape(), a.ndim()), ", ")));
+  return {{a.data(), a.data() + a.size()}, cols};
+}
+
 void check(const std::vector<double>& v, const std::string& key, double lo, double hi, bool open_lo) {
   for (std::size_t l = 0; l < v.size(); ++l)
     if (!(open_lo ? v[l] > lo : v[l] >= lo) || !(v[l] < hi || (std::isinf(hi) && v[l] == hi)))
@@ -60,17 +91,18 @@ void check(const std::vector<double>& v, const std::string& key, double lo, doub
 
 // A building's quantity that a study also sets: that study key's range (config/study_keys.hpp, one range per quantity
 // for the studies, `pounding simulate` and Python; issue 44 item 11).
-void check_key(const std::vector<double>& v, const std::string& name, std::string_view key) {
+void check_key(const std::vector<double>& v, const std::string& name, std::string_view key, std::size_t cols = 1) {
   const config::StudyKey& k = config::study_key("structures.buildingN", key);
-  for (std::size_t l = 0; l < v.size(); ++l)
-    if (!(v[l] >= k.lo && v[l] <= k.hi))
-      throw py::value_error(fmt::format("{} (lane {}) = {} is out of range, {}, give a value in {}{}{} (as {} in a "
+  for (std::size_t i = 0; i < v.size(); ++i)
+    if (!(v[i] >= k.lo && v[i] <= k.hi))
+      throw py::value_error(fmt::format("{} (lane {}{}) = {} is out of range, {}, give a value in {}{}{} (as {} in a "
                                         "study's [structures.buildingK])",
-                                        name, l, v[l], name, k.range, k.units.empty() ? "" : " ", k.units, key));
+                                        name, i / cols, cols > 1 ? fmt::format(", storey {}", i % cols + 1) : "",
+                                        v[i], name, k.range, k.units.empty() ? "" : " ", k.units, key));
 }
 
 const char* const kBuildingKeys[] = {"floor_mass", "storey_stiffness", "period", "storey_yield", "yield_drift",
-                                     "yield_coefficient", "alpha", "zeta"};
+                                     "yield_coefficient", "alpha", "zeta", "initial_u", "initial_v"};
 
 void check_names(const py::dict& d, std::size_t nb) {
   for (const auto& kv : d) {
@@ -84,34 +116,44 @@ void check_names(const py::dict& d, std::size_t nb) {
   }
 }
 
-Lanes lanes_from(const py::dict& d, std::size_t nb) {
+Lanes lanes_from(const py::dict& d, const std::vector<int>& storeys) {
+  const std::size_t nb = storeys.size();
   check_names(d, nb);
   Lanes L;
   if (!d.contains("gap")) throw py::value_error("buildings: the key 'gap' is missing");
   L.gap = to_vector(d["gap"], "buildings['gap']");
   L.n = L.gap.size();
-  for (auto* v : {&L.mass, &L.stiffness, &L.period, &L.fy, &L.drift, &L.cy, &L.alpha, &L.zeta}) v->resize(nb);
+  for (auto* v : {&L.mass, &L.stiffness, &L.fy, &L.u0, &L.v0}) v->resize(nb);
+  for (auto* v : {&L.period, &L.drift, &L.cy, &L.alpha, &L.zeta}) v->resize(nb);
   for (std::size_t b = 0; b < nb; ++b) {
     const std::string s = std::to_string(b + 1);
-    L.mass[b] = lane_array(d, "floor_mass" + s, L.n, true);
-    L.stiffness[b] = lane_array(d, "storey_stiffness" + s, L.n, false);
+    L.mass[b] = storey_array(d, "floor_mass" + s, L.n, storeys[b], true);
+    L.stiffness[b] = storey_array(d, "storey_stiffness" + s, L.n, storeys[b], false);
     L.period[b] = lane_array(d, "period" + s, L.n, false);
     if (L.stiffness[b].empty() == L.period[b].empty())
       throw py::value_error("buildings: give storey_stiffness" + s + " or period" + s + " (one of them)");
-    L.fy[b] = lane_array(d, "storey_yield" + s, L.n, false);
+    L.fy[b] = storey_array(d, "storey_yield" + s, L.n, storeys[b], false);
+    L.u0[b] = storey_array(d, "initial_u" + s, L.n, storeys[b], false);
+    L.v0[b] = storey_array(d, "initial_v" + s, L.n, storeys[b], false);
+    for (const auto& [v, name] : {std::pair{&L.u0[b], "initial_u"}, {&L.v0[b], "initial_v"}})
+      for (std::size_t i = 0; i < v->v.size(); ++i)
+        if (!std::isfinite(v->v[i]))
+          throw py::value_error(fmt::format("{}{} (lane {}) = {} is not finite, give finite numbers (m, m/s)", name, s,
+                                            i / v->cols, v->v[i]));
     L.drift[b] = lane_array(d, "yield_drift" + s, L.n, false);
     L.cy[b] = lane_array(d, "yield_coefficient" + s, L.n, false);
     L.alpha[b] = lane_array(d, "alpha" + s, L.n, false, 0.0);
     L.zeta[b] = lane_array(d, "zeta" + s, L.n, false, 0.05);
-    check_key(L.mass[b], "floor_mass" + s, "floor_mass");
-    check_key(L.stiffness[b], "storey_stiffness" + s, "storey_stiffness");
+    check_key(L.mass[b].v, "floor_mass" + s, "floor_mass", L.mass[b].cols);
+    check_key(L.stiffness[b].v, "storey_stiffness" + s, "storey_stiffness", L.stiffness[b].cols);
     check_key(L.period[b], "period" + s, "period");
-    check(L.fy[b], "storey_yield" + s, 0.0, std::numeric_limits<double>::infinity(), true);  // inf: elastic
+    check(L.fy[b].v, "storey_yield" + s, 0.0, std::numeric_limits<double>::infinity(), true);  // inf: elastic
     check(L.drift[b], "yield_drift" + s, 0.0, 1.0, true);
     check_key(L.cy[b], "yield_coefficient" + s, "yield_coefficient");
     check_key(L.alpha[b], "alpha" + s, "alpha");
     check_key(L.zeta[b], "zeta" + s, "zeta");
   }
+  L.kc_given = d.contains("kc");
   L.kc = lane_array(d, "kc", L.n, false, 0.0);
   L.e_given = d.contains("e");
   L.e = lane_array(d, "e", L.n, false, 1.0);
@@ -232,10 +274,10 @@ std::string python_name(const BaseInputs& in, std::size_t b, std::size_t l, std:
 
 physics::ShearSpec spec_of(const Lanes& L, std::size_t b, std::size_t l, model::StiffnessProfile profile) {
   physics::ShearSpec s;
-  s.floor_mass = {L.mass[b][l]};
-  if (!L.stiffness[b].empty()) s.storey_stiffness = {L.stiffness[b][l]};
+  s.floor_mass = L.mass[b].lane(l);
+  if (!L.stiffness[b].empty()) s.storey_stiffness = L.stiffness[b].lane(l);
   else s.period = L.period[b][l], s.profile = profile;
-  if (!L.fy[b].empty()) s.storey_yield = {L.fy[b][l]};
+  if (!L.fy[b].empty()) s.storey_yield = L.fy[b].lane(l);
   else if (!L.drift[b].empty()) s.yield_drift = L.drift[b][l];
   else if (!L.cy[b].empty()) s.yield_coefficient = L.cy[b][l];
   s.alpha = L.alpha[b][l], s.zeta = L.zeta[b][l];
@@ -391,14 +433,15 @@ py::dict result_dict(const model::System& sys, const physics::SystemResult& r, b
 
 struct TopologyArgs {
   std::vector<int> storeys;
-  std::vector<double> heights;
+  std::vector<std::vector<double>> heights;  // per building: one height (every storey) or one per storey
   double level_tolerance;
   std::string levels, profile;
   std::vector<double> modal_zeta;  // classical modal damping of the multi-storey buildings (empty: Rayleigh)
   std::vector<int> rayleigh;       // Rayleigh's modes i < j per building, flat (i1, j1, i2, j2, ...)
 };
 
-// The moat walls' equivalent-sphere material (simulate's --density, --E, --nu) for a moat without a stiffness.
+// The equivalent-sphere material (simulate's --density, --E, --nu) of the default contact stiffness: the pounding
+// elements' without kh / kc, a moat's without a stiffness.
 struct MoatMaterial {
   double density, youngs, poisson;
 };
@@ -420,11 +463,17 @@ std::vector<model::StickTopology> sticks_of(const TopologyArgs& t, const std::ve
     if (t.storeys[b] < 1 || t.storeys[b] > model::max_storeys)
       throw py::value_error("storeys: 1 to " + std::to_string(model::max_storeys) + " storeys per building");
     const config::StudyKey& hk = config::study_key("structures.buildingN", "storey_height");  // as simulate's
-    if (!(t.heights[b] >= hk.lo && t.heights[b] <= hk.hi))
-      throw py::value_error(fmt::format("storey_height: every storey height in [{:g}, {:g}] m (as storey_height in a "
-                                        "study), not {}",
-                                        hk.lo, hk.hi, t.heights[b]));
-    sticks[b].storeys = t.storeys[b], sticks[b].storey_heights = {t.heights[b]};
+    const std::vector<double>& h = t.heights[b];
+    if (h.size() != 1 && h.size() != static_cast<std::size_t>(t.storeys[b]))
+      throw py::value_error(fmt::format("storey_height[{}]: {} heights and building {} has {} storeys; give one height "
+                                        "(every storey) or {}, one per storey from the bottom",
+                                        b, h.size(), b + 1, t.storeys[b], t.storeys[b]));
+    for (double x : h)
+      if (!(x >= hk.lo && x <= hk.hi))
+        throw py::value_error(fmt::format("storey_height: every storey height in [{:g}, {:g}] m (as storey_height in a "
+                                          "study), not {}",
+                                          hk.lo, hk.hi, x));
+    sticks[b].storeys = t.storeys[b], sticks[b].storey_heights = h;
     if (!t.modal_zeta.empty() && sticks[b].storeys > 1) sticks[b].damping = model::DampingForm::dense;
     if (!base[b].isolated) continue;
     sticks[b].isolated = true, sticks[b].moat = base[b].moat;
@@ -466,7 +515,18 @@ void set_lane(physics::SystemBatch& all, std::size_t l, const Lanes& L, const st
     else
       physics::set_shear_building(all, l, static_cast<int>(bi), s);
   }
+  for (std::size_t bi = 0; bi < sticks.size(); ++bi) {  // the floors' initial state (an isolated base at rest)
+    const std::vector<int>& dofs = all.system->bodies()[bi].dofs;
+    const std::size_t first = sticks[bi].isolated ? 1 : 0;
+    for (const auto& [in, field] : {std::pair{&L.u0[bi], &all.u0}, {&L.v0[bi], &all.v0}}) {
+      if (in->empty()) continue;
+      const std::vector<double> v = in->lane(l);
+      for (std::size_t d = first; d < dofs.size(); ++d)
+        (*field)[physics::SystemBatch::at(dofs[d], l, all.width)] = v.size() == 1 ? v[0] : v[d - first];
+    }
+  }
   physics::set_contacts(all, l, L.gap[l], L.kc[l], L.e[l]);
+  if (!L.kc_given) physics::set_sphere_stiffness(all, l, mat.density, mat.youngs, mat.poisson);  // as simulate's
   for (std::size_t bi = 0; bi < sticks.size(); ++bi) {
     if (!sticks[bi].moat) continue;
     const sampling::IsolationInput in = lane_input(base[bi], l, true);
@@ -484,7 +544,8 @@ py::dict analyze_storeys_py(const py::dict& buildings, const py::handle& ag_valu
                             int threads, const py::list& isolation, const py::list& moat, const MoatMaterial& mat) {
   const std::size_t nb = t.storeys.size();
   check_threads(threads), check_duration(duration), check_displacement_limit(u_limit);
-  const Lanes L = lanes_from(buildings, nb);
+  if (nb < 2 || nb > 16) throw py::value_error("storeys: one count per building, 2 to 16 buildings");
+  const Lanes L = lanes_from(buildings, t.storeys);
   const Array ag = checked_array(ag_values, "ag");
   if (ag.ndim() != 1 || ag.size() < 2)
     throw py::value_error("ag: a 1-D array of at least 2 samples (m/s^2) is needed, got " + given(ag_values));
@@ -533,7 +594,7 @@ py::dict analyze_storeys_py(const py::dict& buildings, const py::handle& ag_valu
 
 void bind_systems(py::module_& m) {
   py::class_<TopologyArgs>(m, "_Topology")
-      .def(py::init<std::vector<int>, std::vector<double>, double, std::string, std::string, std::vector<double>,
+      .def(py::init<std::vector<int>, std::vector<std::vector<double>>, double, std::string, std::string, std::vector<double>,
                     std::vector<int>>());
   py::class_<MoatMaterial>(m, "_MoatMaterial").def(py::init<double, double, double>());
   m.def("analyze_storeys", &analyze_storeys_py, py::arg("buildings"), py::arg("ag"), py::arg("dt"),

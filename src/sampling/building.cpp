@@ -228,7 +228,12 @@ std::string BuildingModel::period_text() const {
 std::string BuildingModel::height_text() const {
   return height.given() ? height.describe("m") : "period-height rule";
 }
-std::string BuildingModel::mass_text() const { return mass.given() ? mass.describe("kg") : "mass-index model"; }
+std::string BuildingModel::mass_text() const {
+  // a shear building's floor_mass is its mass (the sampler's m): the mass key or model is not what the floors carry
+  if (shear() && !floor_mass.empty())
+    return mass.given() ? "the floors' (floor_mass; mass " + mass.describe("kg") + " not used)" : "the floors' (floor_mass)";
+  return mass.given() ? mass.describe("kg") : "mass-index model";
+}
 std::string BuildingModel::zeta_text() const { return zeta.describe(""); }
 std::string BuildingModel::damping_text() const {
   if (!modal_damping && rayleigh_default()) return "Rayleigh damping on modes 1 and 2";
@@ -364,9 +369,24 @@ double required_number(config::TableReader& r, std::string_view key) {
 // The shear model's keys against the building's model: floor_mass and storey_stiffness need model = "shear", and a
 // storey_height below 2 m (the 1/30-scale frames' 0.1 m) is a model's, not a real building's code storey.
 void check_shear_keys(const BuildingModel& b, const WhereFn& where) {
+  // A fixed height with storeys given must be storeys x storey_height where that product is the model's: a shear
+  // building's roof level (its floors stand at k storey_height) or a storey_height given with both. It was used
+  // silently beside the floors (its mass-index mass, its period-height rule): 30 m of 10 storeys of 3.2 m.
+  const bool own_storey_height = b.code.storey_height > 0;
+  if (b.height.kind == Distribution::Kind::fixed && b.code.storeys > 0 && (b.shear() || own_storey_height)) {
+    const double sh = b.storey_height(), product = b.code.storeys * sh, h = b.height.value;
+    if (std::abs(h - product) > 1e-6 * product)
+      throw InputError(fmt::format("height = {:g} m disagrees with storeys x storey_height = {} x {:g} m = {:g} m{}", h,
+                                   b.code.storeys, sh, product, own_storey_height ? "" : " (the default storey height)"),
+                       where("height"),
+                       fmt::format("give height = {:g}, storey_height = {:.6g} (height / storeys) or storeys = {} -- "
+                                   "the three must agree",
+                                   product, h / b.code.storeys, std::max(1L, std::lround(h / sh))));
+  }
   if (!b.shear()) {
-    for (auto [key, v] : {std::pair{"floor_mass", b.floor_mass}, {"storey_stiffness", b.storey_stiffness}})
-      if (v > 0)
+    for (auto [key, v] : {std::pair{"floor_mass", &b.floor_mass}, {"storey_stiffness", &b.storey_stiffness},
+                          {"storey_yield", &b.storey_yield}})
+      if (!v->empty())
         throw InputError(fmt::format("{} is given for an SDOF building", key), where(key),
                          fmt::format("add model = \"shear\" to this table (or [structures]), or remove {}", key));
     for (auto [key, given] : {std::pair{"isolation", b.isolated}, {"moat", b.moat}, {"damping", b.modal_damping},
@@ -378,8 +398,37 @@ void check_shear_keys(const BuildingModel& b, const WhereFn& where) {
       throw InputError(fmt::format("storey_height = {:g} m is below 2 m for an SDOF building", b.code.storey_height),
                        where("storey_height"),
                        "give a storey height in [2, 10] m, or model = \"shear\" for a scale model's storeys (0, 10] m");
+    return;
+  }
+  // an array of one value per floor / storey: as many as the storeys given
+  for (auto [key, v] : {std::pair{"floor_mass", &b.floor_mass}, {"storey_stiffness", &b.storey_stiffness},
+                        {"storey_yield", &b.storey_yield}}) {
+    if (v->size() <= 1) continue;
+    if (b.code.storeys <= 0)
+      throw InputError(fmt::format("{} holds {} values (one per storey) and storeys is not given", key, v->size()),
+                       where(key),
+                       fmt::format("add storeys = {} to this table (a sampled building's storeys vary with its "
+                                   "height), or give {} one number for every storey",
+                                   v->size(), key));
+    if (v->size() != static_cast<std::size_t>(b.code.storeys))
+      throw InputError(fmt::format("{} holds {} values and the building has storeys = {}", key, v->size(),
+                                   b.code.storeys),
+                       where(key),
+                       fmt::format("give {} one number (every storey) or {} numbers, one per storey from the bottom",
+                                   key, b.code.storeys));
   }
 }
+
+namespace {
+// A shear building's per-floor key: a number (every floor) or an array (one per floor, bottom first), each in the
+// key's range (study_keys.cpp); empty when absent.
+std::vector<double> per_storey(config::TableReader& r, std::string_view key) {
+  const toml::node* n = r.get(key);
+  if (!n) return {};
+  if (n->is_array()) return r.numbers(key, {});
+  return {r.number(key, 0.0)};
+}
+}  // namespace
 
 namespace {
 
@@ -400,7 +449,7 @@ constexpr unsigned bit(physics::Bearing b) { return 1u << static_cast<unsigned>(
 constexpr unsigned lin = bit(physics::Bearing::linear), lrb = bit(physics::Bearing::lead_rubber),
                    fps = bit(physics::Bearing::friction_pendulum), bw = bit(physics::Bearing::bouc_wen);
 constexpr BearingKey bearing_keys[] = {
-    {"k_eff", lin, lin},       {"zeta_eff", lin, 0},     {"k1", lrb | bw, lrb | bw}, {"k2", lrb | bw, lrb | bw},
+    {"k_eff", lin, lin},       {"zeta_eff", lin | lrb, 0},     {"k1", lrb | bw, lrb | bw}, {"k2", lrb | bw, lrb | bw},
     {"qd", lrb | bw, lrb | bw}, {"radius", fps, fps},    {"mu_slow", fps, fps},      {"mu_fast", fps, 0},
     {"rate", fps, 0},          {"u_y", fps, 0},          {"a", bw, 0},               {"beta", bw, 0},
     {"gamma", bw, 0},          {"eta", bw, 0}};
@@ -466,7 +515,9 @@ void read_isolation(config::TableReader& r, const std::string& file, const std::
   });
   iso.base_mass = q.number("base_mass", 0.0);
   check_bearing_keys(q, iso.bearing);
-  iso.k_eff = q.number("k_eff", 0.0), iso.zeta_eff = q.number("zeta_eff", physics::default_bearing_zeta);
+  // zeta_eff: the linear bearing's ratio (default 0.1), a lead-rubber bearing's rubber dashpot (default none)
+  iso.k_eff = q.number("k_eff", 0.0);
+  iso.zeta_eff = q.number("zeta_eff", iso.bearing == physics::Bearing::linear ? physics::default_bearing_zeta : 0.0);
   iso.k1 = q.number("k1", 0.0), iso.k2 = q.number("k2", 0.0), iso.qd = q.number("qd", 0.0);
   if ((bit(iso.bearing) & (lrb | bw)) && !(iso.k2 < iso.k1))
     throw InputError(fmt::format("k2 = {:g} N/m is not below k1 = {:g} N/m", iso.k2, iso.k1), q.where("k2"),
@@ -565,9 +616,9 @@ std::string BuildingModel::isolation_text() const {
     case physics::Bearing::bouc_wen:
       return fmt::format("{} bearing k1 {:g} N/m, k2 {:g} N/m, qd {:g} N, a {:g}, beta {:g}, gamma {:g}, eta {}; {}",
                          bearing_name(i.bearing), i.k1, i.k2, i.qd, i.bw_a, i.bw_beta, i.bw_gamma, i.bw_eta, base);
-    default:
-      return fmt::format("{} bearing k1 {:g} N/m, k2 {:g} N/m, qd {:g} N; {}", bearing_name(i.bearing), i.k1, i.k2,
-                         i.qd, base);
+    default:  // zeta_eff only where given (the text of every earlier study otherwise)
+      return fmt::format("{} bearing k1 {:g} N/m, k2 {:g} N/m, qd {:g} N{}; {}", bearing_name(i.bearing), i.k1, i.k2,
+                         i.qd, i.zeta_eff > 0 ? fmt::format(", zeta_eff {:g} (on k2)", i.zeta_eff) : "", base);
   }
 }
 
@@ -689,14 +740,21 @@ BuildingModel parse_building(const toml::table* t, const std::string& file, cons
   if (!b.shear() && !(t && t->get("rayleigh_modes"))) b.rayleigh_i = 1, b.rayleigh_j = 2;
   // the same for [structures] damping = "modal" (and its modal_zeta): the shear buildings' damping; an SDOF keeps zeta
   if (!b.shear() && !(t && (t->get("damping") || t->get("modal_zeta")))) b.modal_damping = false, b.modal_zeta.clear();
-  if (r.get("floor_mass")) b.floor_mass = r.number("floor_mass", 0.0);
-  if (r.get("storey_stiffness")) b.storey_stiffness = r.number("storey_stiffness", 0.0);
+  if (r.get("floor_mass")) b.floor_mass = per_storey(r, "floor_mass");
+  if (r.get("storey_stiffness")) b.storey_stiffness = per_storey(r, "storey_stiffness");
+  if (r.get("storey_yield")) {
+    b.storey_yield = per_storey(r, "storey_yield");
+    if (b.yield_coefficient.given() || r.get("drift") || r.get("ductility") || b.hysteresis == Hysteresis::elastic)
+      throw InputError("storey_yield is given with another strength (yield_coefficient, drift/ductility or hysteresis "
+                       "= \"elastic\")", r.where("storey_yield"),
+                       "give one strength: storey_yield (N per storey), yield_coefficient or drift and ductility");
+  }
   read_isolation(r, file, name, b);
   read_moat(r, file, name, b);
   r.finish(std::string("periods, period_min, period_max, period_step, period, height, mass, zeta, yield_coefficient, "
                        "alpha, hysteresis, aspect_ratios, rho_mean, rho_cov, mbar_mean, mbar_cov, mbar_min, mbar_max, "
                        "drift, ductility, height_min, height_max, ct_lower, ct_upper, height_exponent, model, "
-                       "floor_mass, storey_stiffness, stiffness_profile, damping, modal_zeta, rayleigh_modes, isolation, moat, ") +
+                       "floor_mass, storey_stiffness, storey_yield, stiffness_profile, damping, modal_zeta, rayleigh_modes, isolation, moat, ") +
            code_factor_keys);
   check_shear_keys(b, [&](std::string_view key) {
     return key == "storey_height" && !own_storey_height ? fallback(key) : where(key);

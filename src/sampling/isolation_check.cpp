@@ -35,10 +35,12 @@ void check_pendulum(const IsolationInput& s, const IsolationNames& name) {
 }
 
 void check_hysteretic(const IsolationInput& s, const IsolationNames& name) {  // lead-rubber, Bouc-Wen
-  if (s.k_eff_given || s.zeta_given)
+  // zeta_eff: a lead-rubber bearing's rubber dashpot (on k2); Bouc-Wen's damping is its hysteresis alone
+  if (s.k_eff_given || (s.zeta_given && s.bearing == "bouc-wen"))
     throw InputError(name("linear keys") + " describe a linear bearing and " + name("bearing") + " is " + s.bearing,
                      s.k_eff_given ? name("k_eff") : name("zeta_eff"),
                      "give " + name("k1") + ", " + name("k2") + " and " + name("qd"));
+  if (s.zeta_given) require_key_range(s.zeta_eff, "isolation", "zeta_eff", name("zeta_eff"));
   require_key_range(s.k1, "isolation", "k1", name("k1"), "required; ");
   require_key_range(s.k2, "isolation", "k2", name("k2"));
   if (!(s.k2 < s.k1))
@@ -121,7 +123,9 @@ physics::IsolationSpec isolation_spec(const IsolationInput& s, double floor_mass
   physics::IsolationSpec iso;
   iso.bearing = bearing_of(s.bearing);
   iso.base_mass = s.base_mass_given ? s.base_mass : floor_mass;  // default: one floor's mass
-  iso.k_eff = s.k_eff, iso.zeta_eff = s.zeta_eff, iso.k1 = s.k1, iso.k2 = s.k2, iso.qd = s.qd;
+  iso.k_eff = s.k_eff, iso.k1 = s.k1, iso.k2 = s.k2, iso.qd = s.qd;
+  // the linear bearing's ratio (default 0.1); a lead-rubber bearing's rubber dashpot only where given
+  iso.zeta_eff = iso.bearing == physics::Bearing::linear || s.zeta_given ? s.zeta_eff : 0.0;
   iso.radius = s.radius, iso.mu_slow = s.mu_slow, iso.mu_fast = s.mu_fast_given ? s.mu_fast : s.mu_slow;
   iso.rate = s.rate, iso.uy = s.uy;
   iso.bw_a = s.bw_a, iso.bw_beta = s.bw_beta, iso.bw_gamma = s.bw_gamma, iso.bw_eta = s.bw_eta;

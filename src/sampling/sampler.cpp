@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numeric>
 #include <functional>
 #include <limits>
 #include <map>
@@ -407,6 +408,12 @@ SampledStructure StructureSampler::draw_structure(const Side& side, const Unifor
     s.aspect = s.r = s.rho = s.mbar = std::numeric_limits<double>::quiet_NaN();
     s.m = side.mass.sample(u.mbar);
   }
+  if (b.shear() && !b.floor_mass.empty()) {
+    // the floors' mass is the building's (the mass drawn above, unused by the floors, was reported beside floors
+    // carrying another): floor_mass on each of the sample's storeys, or the per-floor values' sum
+    const double n = b.storeys_at(s.h);
+    s.m = b.floor_mass.size() == 1 ? n * b.floor_mass[0] : std::accumulate(b.floor_mass.begin(), b.floor_mass.end(), 0.0);
+  }
   s.zeta = b.zeta.random() ? side.zeta.sample(u.zeta) : b.zeta.median();
   Structure st = Structure::from_period(s.m, s.T, s.zeta);  // eqs (8), (9)
   s.k = st.k;
@@ -418,6 +425,7 @@ SampledStructure StructureSampler::draw_structure(const Side& side, const Unifor
     s.fy = b.yield_coefficient.given() ? side.cy.sample(u.cy) * s.m * standard_gravity
                                        : s.k * (b.drift * s.h / b.ductility);  // ductility 6 at 2 % drift (2.1)
     s.alpha = b.alpha;
+    if (b.shear() && !b.storey_yield.empty()) s.fy = b.storey_yield[0];  // the base storey's: the building's strength
   }
   return s;
 }

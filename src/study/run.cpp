@@ -17,6 +17,7 @@
 #include <thread>
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include "pounding/core/error.hpp"
 #include "pounding/core/parallel_for.hpp"
@@ -987,6 +988,8 @@ std::string describe_structure(const StructureModel& m, int i) {
   const BuildingModel b = m.row_building(static_cast<std::size_t>(i));
   if (!b.shear()) return fmt::format("building{}: SDOF (one storey facing the other building's floor nearest its height)", i + 1);
   const std::string yield = b.hysteresis == Hysteresis::elastic ? "elastic storeys"
+                            : !b.storey_yield.empty()
+                                ? fmt::format("storeys yielding at {:g} N", fmt::join(b.storey_yield, ", "))
                             : b.yield_coefficient.given()       ? "storey yield from the base shear Cy M g"
                                                                  : fmt::format("storeys yielding at drift ratio {:.4g}",
                                                                                b.drift / b.ductility);
@@ -994,8 +997,9 @@ std::string describe_structure(const StructureModel& m, int i) {
                      b.code.storeys > 0 ? fmt::format("{} storeys of {:g} m", b.code.storeys, b.storey_height())
                                         : fmt::format("storeys of {0:g} m, max(1, round(h / {0:g} m)) per sample",
                                                       b.storey_height()),
-                     b.floor_mass > 0 ? fmt::format("floors of {:g} kg", b.floor_mass) : "the mass split equally over the floors",
-                     b.storey_stiffness > 0 ? fmt::format("storeys of {:g} N/m", b.storey_stiffness)
+                     !b.floor_mass.empty() ? fmt::format("floors of {:g} kg", fmt::join(b.floor_mass, ", "))
+                                           : "the mass split equally over the floors",
+                     !b.storey_stiffness.empty() ? fmt::format("storeys of {:g} N/m", fmt::join(b.storey_stiffness, ", "))
                                             : fmt::format("{} storey stiffnesses scaled to T1", to_string(b.profile)),
                      yield, b.damping_text()) +
          (b.isolated ? "; isolated: " + b.isolation_text() : std::string()) +
@@ -1401,7 +1405,7 @@ int finish(const parallel::Session& session, const Inputs& in, const WorkPlan& L
       results::Writer file =
           report_beside_write(opt, ctx, in.out, res, view ? &*view : nullptr, L.stream, report, T, write_s);
       if (meter) meter->finish();
-      total = T.wall = timing::seconds_since(timing::program_start());
+      total = T.wall = timing::seconds_since(opt.start);
       res.header.wall_time_s = total;
       if (const auto at = report.find("wall time nan s"); at != std::string::npos)
         report.replace(at, 15, fmt::format("wall time {:.2f} s", total));
@@ -1411,7 +1415,7 @@ int finish(const parallel::Session& session, const Inputs& in, const WorkPlan& L
       file.finish(res);
       T.max[static_cast<std::size_t>(Phase::results_write)] = T[Phase::results_write] =
           write_s + timing::seconds_since(t_write);
-      T.wall = timing::seconds_since(timing::program_start());
+      T.wall = timing::seconds_since(opt.start);
     } catch (const Cancelled& c) {
       sync_checkpoint(*ckpt, tally);
       stopped_in = c.phase();

@@ -97,7 +97,7 @@ physics::ShearSpec shear_spec(const BuildingModel& b, const SampledStructure& s,
     const model::ModePair r = model::rayleigh_modes_for(b.rayleigh_i, b.rayleigh_j, storeys);
     spec.mode_i = r.i, spec.mode_j = r.j;
   }
-  if (storeys == 1 && !(b.floor_mass > 0) && !(b.storey_stiffness > 0)) {
+  if (storeys == 1 && b.floor_mass.empty() && b.storey_stiffness.empty()) {
     // the SDOF of the sample, bit for bit: k and c by Structure::from_period(m, T, zeta), its fy
     spec.floor_mass = {s.m};
     spec.period = s.T;
@@ -105,11 +105,12 @@ physics::ShearSpec shear_spec(const BuildingModel& b, const SampledStructure& s,
     return spec;
   }
   const double n = storeys;
-  spec.floor_mass = {b.floor_mass > 0 ? b.floor_mass : s.m / n};
-  if (b.storey_stiffness > 0) spec.storey_stiffness = {b.storey_stiffness};
+  spec.floor_mass = b.floor_mass.empty() ? std::vector<double>{s.m / n} : b.floor_mass;  // one, or one per floor
+  if (!b.storey_stiffness.empty()) spec.storey_stiffness = b.storey_stiffness;
   else spec.period = s.T;
   if (b.hysteresis == Hysteresis::elastic) return spec;  // fy = inf
-  if (b.yield_coefficient.given()) spec.yield_coefficient = s.fy / (s.m * physics::standard_gravity);  // the drawn Cy
+  if (!b.storey_yield.empty()) spec.storey_yield = b.storey_yield;  // given: one, or one per storey
+  else if (b.yield_coefficient.given()) spec.yield_coefficient = s.fy / (s.m * physics::standard_gravity);  // the drawn Cy
   else spec.yield_drift = b.drift / b.ductility;  // the SDOF's u_y = drift h / ductility as a drift ratio per storey
   return spec;
 }

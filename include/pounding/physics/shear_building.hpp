@@ -82,7 +82,9 @@ inline constexpr double default_bearing_zeta = 0.1;
 struct IsolationSpec {
   Bearing bearing = Bearing::linear;
   double base_mass = 0.0;               // kg, > 0 (a massless base makes the system singular, SB §2 pitfalls)
-  double k_eff = 0.0, zeta_eff = 0.0;   // linear: N/m, ratio
+  // linear: N/m, ratio; lead-rubber: zeta_eff the rubber's viscous ratio on the post-yield stiffness, a dashpot
+  // c_b = 2 zeta_eff sqrt(k2 M_total) beside the hysteresis (0: none, the bearing of every earlier run)
+  double k_eff = 0.0, zeta_eff = 0.0;
   double k1 = 0.0, k2 = 0.0, qd = 0.0;  // lead-rubber and Bouc-Wen: N/m, N/m (0 <= k2 < k1), N (> 0)
   // friction pendulum: radius R (m), friction at rest and at high speed, rate (s/m), smoothing u_y (m)
   double radius = 0.0, mu_slow = 0.0, mu_fast = 0.0, rate = 0.0, uy = 2.5e-4;
@@ -128,6 +130,12 @@ void set_contacts(SystemBatch& batch, std::size_t lane, double gap, double kc, d
 // a point side's floor; a column side's nearer floor (xi < 0.5: the floor below unless it is the ground, else the
 // floor above), so xi -> 0 / 1 gives the floor-to-floor element's masses; a wall: the other side's.
 std::array<double, 2> contact_masses(const SystemBatch& batch, std::size_t lane, int element);
+
+// The default contact stiffness of lane `lane`'s pounding elements (those of study-gap groups; a moat keeps its own):
+// kc = the equivalent-sphere Hertz stiffness (contact::hertz_stiffness_spheres) of the two floor masses each joins
+// (contact_masses) -- `pounding simulate` without --kh and Python's analyze_storeys without kh, one rule. Call after
+// the buildings' masses are set.
+void set_sphere_stiffness(SystemBatch& batch, std::size_t lane, double density, double youngs, double poisson);
 
 // The struck column's fixed-end shears per unit contact force at xi (a fixed-fixed column, no floor rotation, point
 // load at a = xi h: V_below = (1 - xi)^2 (1 + 2 xi), V_above = xi^2 (3 - 2 xi), summing to 1; Karayannis & Favvata

@@ -23,8 +23,10 @@
 //                   floors, docs/architecture.md §2.7.1; also a [structures] default). For "shear":
 //     storeys       given, or max(1, round(h / storey_height)) PER SAMPLE from its sampled height h
 //     storey_height every storey this high (m, (0, 10]; sdof buildings keep [2, 10]); floor k at k storey_height
-//     floor_mass    kg per floor (> 0); absent: the sampled total mass m split equally over the floors
-//     storey_stiffness  N/m per storey (> 0); absent: stiffness_profile scaled to the sampled period T1
+//     floor_mass    kg per floor (> 0): a number (every floor) or, with storeys given, an array of one per floor
+//                   (bottom first); absent: the sampled total mass m split equally over the floors
+//     storey_stiffness  N/m per storey (> 0), a number or one per storey as floor_mass; absent: stiffness_profile
+//                   scaled to the sampled period T1
 //                   (model::stiffness_for_period)
 //     stiffness_profile  "uniform" | "shear" (also a [structures] default)
 //     strength      the SDOF's rule per storey: drift/ductility -> every storey yields at the drift ratio
@@ -189,7 +191,10 @@ struct BuildingModel {
   std::string moat_law;
   // The structural model (the top of this header): sdof, or a shear building with these numbers (0: absent).
   StructureKind kind = StructureKind::sdof;
-  double floor_mass = 0, storey_stiffness = 0;
+  // floor_mass (kg), storey_stiffness (N/m): empty when absent; one value (every floor / storey) or, with storeys
+  // given, one per floor / storey from the bottom (a building that is not uniform)
+  std::vector<double> floor_mass, storey_stiffness;
+  std::vector<double> storey_yield;  // N, the same way (empty: drift/ductility or yield_coefficient)
   model::StiffnessProfile profile = model::StiffnessProfile::uniform;
   // Damping of a shear building: Rayleigh on modes 1, 2 (false) or classical modal damping (modal_zeta per mode
   // from 1, the last repeating; empty: every mode the sampled zeta).

@@ -1,6 +1,7 @@
 #pragma once
 // The study's main job: work units (record, period pair, sample block) -> kernel -> per-model results ->
 // checkpoint -> HDF5 results file. Orchestration only; MPI is behind pounding::parallel.
+#include <chrono>
 #include <functional>
 #include <string>
 
@@ -34,6 +35,10 @@ struct RunOptions {
   // [analysis] threads; 0 the automatic count (study_threads); > 0 that many on every rank.
   int threads = -1;
   double mpi_start_s = 0;  // the caller's MPI start-up (timing::Phase::mpi_start), measured before run_study
+  // Where the wall time starts: the process's start for `pounding run` (main() starts the clock); a caller in a
+  // longer-lived process (Python's Study.run) gives its own call's start -- the process's first call of
+  // program_start() came at the run's end there, and the report read "wall time 0.00 s".
+  std::chrono::steady_clock::time_point start = timing::program_start();
 };
 
 struct RunOutcome {

@@ -86,8 +86,12 @@ void visit_structure_settings(const StructureModel& m, V& v) {
       v(sec, "model", S(to_string(b.kind)));
       v(sec, "stiffness_profile", S(to_string(b.profile)));
       if (f.storey_height <= 0) v(sec, "storey_height", b.storey_height());
-      if (b.floor_mass > 0) v(sec, "floor_mass", b.floor_mass);
-      if (b.storey_stiffness > 0) v(sec, "storey_stiffness", b.storey_stiffness);
+      // a number as before (the bits of every earlier study), an array where one per storey is given
+      for (auto [key, x] : {std::pair{"floor_mass", &b.floor_mass}, {"storey_stiffness", &b.storey_stiffness},
+                            {"storey_yield", &b.storey_yield}}) {
+        if (x->size() == 1) v(sec, key, x->front());
+        else if (x->size() > 1) v(sec, key, *x);
+      }
       if (b.isolated) v(sec, "isolation", b.isolation_text());
       if (b.moat) v(sec, "moat", b.moat_text());
       // Rayleigh's modes where not 1 and 2 (absent otherwise: the bits of every earlier study)

@@ -9,6 +9,7 @@
 #include <limits>
 #include <memory>
 #include <numbers>
+#include <numeric>
 #include <span>
 #include <string>
 #include <vector>
@@ -69,17 +70,27 @@ struct SimulateOptions {
   bool k1_given = false, k2_given = false, fy1_given = false, fy2_given = false, dt_given = false, kh_given = false;
   bool duration_given = false, m1_given = false, m2_given = false, h1_given = false, h2_given = false;
   bool json = false;
+  // initial displacement / velocity of buildings 1 and 2 relative to the ground (m, m/s): one value (the SDOF, or
+  // every floor) or one per floor from the bottom (an isolated building may lead with its base): pull-back and
+  // free-vibration tests; empty: at rest
+  std::vector<double> initial_u[2], initial_v[2];
+  double scale = 1.0;  // --scale: a factor on the record (as a study's [records] scale)
+  double cy[2] = {0, 0};  // --yield-coefficientK: buildings 1 and 2 yield at a base shear Cy M g (0: not given)
+  bool scale_given = false, cy_given[2] = {false, false};
   RestitutionOpts rest;                              // e(v0) (issue 26 §3): --restitution-*
   std::optional<contact::RestitutionCurve> curve;    // parsed in the callback
   // multi-storey buildings (issue 25 §4): any of these options makes both buildings shear buildings
   struct Storeys {
     int storeys = 1;
-    double mass = 0, stiffness = 0, height = 3.2;
-    bool storeys_given = false, mass_given = false, stiffness_given = false, height_given = false;
+    // one value (every floor / storey) or one per floor / storey, bottom first (--storey-massK 2e5,2e5,1.5e5)
+    std::vector<double> mass, stiffness, height{3.2}, yield;
+    bool storeys_given = false, mass_given = false, stiffness_given = false, height_given = false, yield_given = false;
     std::vector<double> rayleigh_modes;  // --rayleigh-modesK i,j: Rayleigh's two modes (default 1, 2)
     bool rayleigh_given = false;
     std::string rayleigh_option;  // the option that gave them (building K >= 3 may inherit building 1's or 2's)
-    bool any() const { return storeys_given || mass_given || stiffness_given || height_given || rayleigh_given; }
+    bool any() const {
+      return storeys_given || mass_given || stiffness_given || height_given || yield_given || rayleigh_given;
+    }
   };
   Storeys b[2];
   // base isolation (issue 25 §2): bearing, base mass, bearing numbers, moat walls; any of these makes building i
@@ -132,6 +143,9 @@ void resolve_masses(SimulateOptions& o) {
                        fmt::format("give the height in m (the default mass comes from it), or give --m{}", i));
     *m = mass_from_height(h);
   }
+  // --yield-coefficientK of an SDOF (a one-storey building): fy = Cy m g, the mass resolved above
+  if (o.cy_given[0]) o.fy1 = o.cy[0] * o.m1 * physics::standard_gravity, o.fy1_given = true;
+  if (o.cy_given[1]) o.fy2 = o.cy[1] * o.m2 * physics::standard_gravity, o.fy2_given = true;
 }
 
 // What the pair and the analysis are beyond the summary: the masses and where they came from, and the analysis
@@ -228,6 +242,24 @@ void write_series_h5(const std::string& path, const SeriesRecorder& r, const std
 // study key's range (config::require_key_range: one range per quantity for simulate, Python and the studies).
 void validate_scalars(const SimulateOptions& o) {
   using config::require_key_range;
+  if (o.scale_given) require_key_range(o.scale, "records", "scale", "--scale");
+  if (o.scale_given && !o.support_records.empty())  // it scales --record, not the supports' own records
+    throw InputError("--scale with --support-record", "--scale", "scale the support records' files, or drop --scale");
+  for (int i = 0; i < 2 && !o.bridge.empty(); ++i)  // a bridge's frames take their numbers from its file
+    for (const auto& [given, name] : {std::pair{!o.initial_u[i].empty(), "--initial-u"},
+                                      {!o.initial_v[i].empty(), "--initial-v"}, {o.cy_given[i], "--yield-coefficient"}})
+      if (given)
+        throw InputError(fmt::format("{}{} describes building {} and this run is a --bridge", name, i + 1, i + 1),
+                         name + std::to_string(i + 1), "drop it: the bridge file gives its frames' numbers");
+  for (int i = 0; i < 2; ++i) {
+    if (!o.cy_given[i]) continue;
+    const std::string k = std::to_string(i + 1);
+    require_key_range(o.cy[i], "structures.buildingN", "yield_coefficient", "--yield-coefficient" + k);
+    if ((i == 0 ? o.fy1_given : o.fy2_given) || o.b[i].yield_given)
+      throw InputError(fmt::format("--yield-coefficient{0} with --{1}{0}: two strengths for building {0}", k,
+                                   o.b[i].yield_given ? "storey-yield" : "fy"),
+                       "--yield-coefficient" + k, "give one of them");
+  }
   require_key_range(o.zeta, "structures", "zeta", "--zeta");
   for (double z : o.modal_zeta) require_key_range(z, "structures", "modal_zeta", "--modal-zeta", "each; ");
   require_key_range(o.alpha, "structures", "alpha", "--alpha");
@@ -260,9 +292,12 @@ void validate_building(const GivenBuilding& b) {
   if (b.T_given) require_key_range(b.T, B, "period", "--T" + b.k);
   if (b.k_given) require_key_range(b.kk, B, "storey_stiffness", "--k" + b.k, "an SDOF is a one-storey building; ");
   if (b.h_given) require_key_range(b.h, B, "height", "--h" + b.k, "the default mass m = mbar rho r^2 h comes from it; ");
-  if (b.st.mass_given) require_key_range(b.st.mass, B, "floor_mass", "--storey-mass" + b.k);
-  if (b.st.stiffness_given) require_key_range(b.st.stiffness, B, "storey_stiffness", "--storey-stiffness" + b.k);
-  if (b.st.height_given) require_key_range(b.st.height, B, "storey_height", "--storey-height" + b.k);
+  // a list: every value in the key's range
+  for (double v : b.st.mass) require_key_range(v, B, "floor_mass", "--storey-mass" + b.k, "each; ");
+  for (double v : b.st.stiffness) require_key_range(v, B, "storey_stiffness", "--storey-stiffness" + b.k, "each; ");
+  for (double v : b.st.height) require_key_range(v, B, "storey_height", "--storey-height" + b.k, "each; ");
+  // (a study's shear building has no storey_yield key: the bridge frame's, the same quantity)
+  for (double v : b.st.yield) require_key_range(v, "bridge.frame", "storey_yield", "--storey-yield" + b.k, "each; ");
 }
 void validate_buildings(const SimulateOptions& o) {
   // --T1, --T2 and --h1, --h2 have defaults in range: checked whether given or not
@@ -307,8 +342,12 @@ Record ground_motion(const SimulateOptions& o) {
     ro.units = as_option("--units", [&] { return parse_units(o.units); });
     ro.dt = o.dt_record;
     rec = read_record(o.record, ro);
-    require_analysable(rec, {1.0, "", "add --units cm/s2"});  // 2 s long, PGA <= 5 g (records.hpp)
   }
+  if (o.scale_given) {  // as a study's [records] scale: every sample times the factor, then the checks
+    for (double& a : rec.acc) a *= o.scale;
+    rec.source += fmt::format(", scaled by {:g}", o.scale);
+  }
+  if (!o.record.empty()) require_analysable(rec, {1.0, "", "add --units cm/s2"});  // 2 s long, PGA <= 5 g (records.hpp)
   return rec;
 }
 
@@ -399,8 +438,11 @@ physics::StepResolution worst_element(const model::System& sys, std::span<const 
   return w;
 }
 
+void set_pair_initial(const SimulateOptions& o, PairParams& p);
+
 PairParams pair_params(const SimulateOptions& o, const ContactModel& cm, const Structure& s1, const Structure& s2) {
   PairParams p;
+  set_pair_initial(o, p);  // --initial-u1/v1/u2/v2
   p.s1 = s1, p.s2 = s2, p.gap = o.gap, p.e = o.e;
   if (contact::traits(cm.law).explicit_stiffness) {
     if (!o.kh_given) require_positive(0.0, fmt::format("--kh ({} stiffness, N/m)", to_string(cm.law)));
@@ -409,6 +451,34 @@ PairParams pair_params(const SimulateOptions& o, const ContactModel& cm, const S
     p.kc = o.kh_given ? o.kh : hertz_stiffness_spheres(s1.m, s2.m, o.density, o.youngs, o.poisson);
   }
   return p;
+}
+
+// --initial-uK / --initial-vK: one finite value per DOF within --u-limit (m) / any finite velocity (m/s); `dofs` the
+// counts a list may have (1 always).
+void check_initial(const SimulateOptions& o, int i, std::initializer_list<std::size_t> dofs, const std::string& what) {
+  const std::string k = std::to_string(i + 1);
+  for (const auto& [v, name] : {std::pair{&o.initial_u[i], "--initial-u"}, {&o.initial_v[i], "--initial-v"}}) {
+    if (v->empty()) continue;
+    if (std::find(dofs.begin(), dofs.end(), v->size()) == dofs.end())
+      throw InputError(fmt::format("{}{} has {} values and building {} {}", name, k, v->size(), k, what), name + k,
+                       fmt::format("give one value (every floor) or one per floor from the bottom ({})",
+                                   fmt::join(dofs, " or ")));
+    const bool u = std::string_view(name) == "--initial-u";
+    for (double x : *v)
+      if (!std::isfinite(x) || (u && !(std::abs(x) < o.u_limit)))
+        throw InputError(fmt::format("{}{} = {} is out of range", name, k, x), name + k,
+                         u ? fmt::format("give displacements (m) below --u-limit {:g} m in magnitude", o.u_limit)
+                           : std::string("give finite velocities (m/s)"));
+  }
+}
+
+// The SDOF pair's initial state (PairParams u1, v1, u2, v2).
+void set_pair_initial(const SimulateOptions& o, PairParams& p) {
+  for (int i = 0; i < 2; ++i) check_initial(o, i, {1}, "is an SDOF (one value)");
+  if (!o.initial_u[0].empty()) p.u1 = o.initial_u[0][0];
+  if (!o.initial_v[0].empty()) p.v1 = o.initial_v[0][0];
+  if (!o.initial_u[1].empty()) p.u2 = o.initial_u[1][0];
+  if (!o.initial_v[1].empty()) p.v2 = o.initial_v[1][0];
 }
 
 // ---- multi-storey buildings (issue 25 §4; docs/architecture.md §2.7.3) ----
@@ -444,6 +514,22 @@ void validate_isolation(const SimulateOptions& o, int i) {
   });
 }
 
+// A storey list of building k: one value (every floor or storey) or one per floor / storey, bottom first.
+void check_storey_counts(const SimulateOptions::Storeys& b, const std::string& k) {
+  const std::pair<const std::vector<double>*, const char*> lists[] = {
+      {&b.mass, "--storey-mass"}, {&b.stiffness, "--storey-stiffness"}, {&b.height, "--storey-height"},
+      {&b.yield, "--storey-yield"}};
+  for (const auto& [v, name] : lists) {
+    const std::size_t n = v->size();
+    if (n <= 1 || n == static_cast<std::size_t>(b.storeys)) continue;  // 0: not given
+    throw InputError(fmt::format("{}{} has {} values and building {} has {} storeys", name, k, n, k, b.storeys),
+                     name + k,
+                     fmt::format("give one value (every storey) or {} values, one per storey from the bottom, "
+                                 "comma-separated (or --storeys{} {})",
+                                 b.storeys, k, n));
+  }
+}
+
 // The storey options, checked before any work: counts, heights, masses and stiffnesses, and the SDOF options that
 // mean nothing for a building of several storeys.
 void validate_storeys(const SimulateOptions& o) {
@@ -453,14 +539,14 @@ void validate_storeys(const SimulateOptions& o) {
     if (b.storeys < 1 || b.storeys > model::max_storeys)
       throw InputError(fmt::format("--storeys{} = {} is out of range", k, b.storeys), "--storeys" + k,
                        fmt::format("give a number of storeys in [1, {}]", model::max_storeys));
-    config::require_key_range(b.height, "structures.buildingN", "storey_height", "--storey-height" + k);  // default 3.2
+    check_storey_counts(b, k);
     if (b.storeys == 1) continue;
     const bool given[] = {i == 0 ? o.m1_given : o.m2_given, i == 0 ? o.k1_given : o.k2_given,
                           i == 0 ? o.fy1_given : o.fy2_given, i == 0 ? o.h1_given : o.h2_given};
     const char* name[] = {"--m", "--k", "--fy", "--h"};
     const std::string fix[] = {"give the mass of each floor with --storey-mass" + k,
                                "give --storey-stiffness" + k + " (or --T" + k + ")",
-                               "drop --fy" + k + ": storeys yield at a drift of 0.02 h / 6 (or give --elastic)",
+                               "give each storey's yield force with --storey-yield" + k + " (default: a drift of 0.02 h / 6)",
                                "give each storey's height with --storey-height" + k};
     for (int j = 0; j < 4; ++j)
       if (given[j])
@@ -495,11 +581,18 @@ physics::ShearSpec shear_spec(const SimulateOptions& o, const Side& side, const 
     spec.floor_mass = {sdof.m}, spec.storey_stiffness = {sdof.k}, spec.storey_yield = {sdof.fy};
     return spec;
   }
-  spec.floor_mass = {b.mass_given ? b.mass : mass_from_height(b.storeys * b.height) / b.storeys};
-  if (b.stiffness_given) spec.storey_stiffness = {b.stiffness};
+  // the default mass: the mass model's at the building's height (storeys x storey height, or the storeys' sum)
+  const double height = b.height.size() == 1 ? b.storeys * b.height[0]
+                                             : std::accumulate(b.height.begin(), b.height.end(), 0.0);
+  spec.floor_mass = b.mass_given ? b.mass : std::vector<double>{mass_from_height(height) / b.storeys};
+  if (b.stiffness_given) spec.storey_stiffness = b.stiffness;
   else spec.period = side.T;
   if (spec.storey_stiffness.empty()) require_positive(spec.period, "--T" + side.k);
-  if (!o.elastic) spec.yield_drift = 0.02 / 6.0;
+  if (o.elastic) return spec;  // fy = inf, as an SDOF's --elastic wins over --fy
+  const int i = std::stoi(side.k) - 1;  // --yield-coefficientK: buildings 1 and 2
+  if (b.yield_given) spec.storey_yield = b.yield;
+  else if (i < 2 && o.cy_given[i]) spec.yield_coefficient = o.cy[i];  // base shear Cy M g, upper storeys by the profile
+  else spec.yield_drift = 0.02 / 6.0;
   return spec;
 }
 
@@ -606,18 +699,17 @@ void set_storey_contacts(const SimulateOptions& o, const ContactModel& cm, physi
     throw InputError(fmt::format("--gap-offsets has {} values and the buildings pound at levels 1 to {}",
                                  o.gap_offsets.size(), top),
                      "--gap-offsets", fmt::format("give one offset (m) per level from level 1 to {}", top));
-  physics::set_contacts(batch, 0, o.gap, 0.0, o.e, o.gap_offsets,
+  physics::set_contacts(batch, 0, o.gap, o.kh_given ? o.kh : 0.0, o.e, o.gap_offsets,
                         *parse_enum(model::shape_functions_names, o.shape_functions));
+  // no --kh: equivalent spheres of the floor masses each element joins (a column: its nearer floor)
+  if (!o.kh_given) physics::set_sphere_stiffness(batch, 0, o.density, o.youngs, o.poisson);
   for (std::size_t e = 0; e < sys.contacts().size(); ++e) {
     const model::ContactElement& ce = sys.contacts()[e];
     if (!sys.groups()[static_cast<std::size_t>(ce.group)].study_gap) {  // a moat: set_moat's numbers
       run.contact_stiffness.push_back(0.0), run.contact_gap.push_back(0.0);
       continue;
     }
-    const std::array<double, 2> mm = physics::contact_masses(batch, 0, static_cast<int>(e));  // a column: its nearer floor
-    const double kc = o.kh_given ? o.kh : hertz_stiffness_spheres(mm[0], mm[1], o.density, o.youngs, o.poisson);
-    batch.kc[e] = kc;
-    run.contact_stiffness.push_back(kc);
+    run.contact_stiffness.push_back(batch.kc[e]);
     run.contact_gap.push_back(batch.gap[e]);
   }
 }
@@ -701,11 +793,13 @@ void resolve_row(SimulateOptions& o) {
     if (!x.st.mass_given) x.st.mass = t.mass, x.st.mass_given = t.mass_given;
     if (!x.st.stiffness_given) x.st.stiffness = t.stiffness, x.st.stiffness_given = t.stiffness_given;
     if (!x.st.height_given) x.st.height = t.height, x.st.height_given = t.height_given;
+    if (!x.st.yield_given) x.st.yield = t.yield, x.st.yield_given = t.yield_given;
     if (!x.st.rayleigh_given)
       x.st.rayleigh_modes = t.rayleigh_modes, x.st.rayleigh_given = t.rayleigh_given, x.st.rayleigh_option = t.rayleigh_option;
     if (x.st.storeys < 1 || x.st.storeys > model::max_storeys)
       throw InputError(fmt::format("--storeys{} = {} is out of range", k, x.st.storeys), "--storeys" + k,
                        fmt::format("give a number of storeys in [1, {}]", model::max_storeys));
+    check_storey_counts(x.st, k);
     if (x.st.storeys > 1)
       for (auto [user, name] : {std::pair{x.m_user, "--m"}, {x.k_user, "--k"}, {x.fy_user, "--fy"}})
         if (user)
@@ -767,27 +861,54 @@ std::string with_column_shears_json(std::string json, const model::System& sys, 
   return json;
 }
 
+// Buildings 1 and 2's initial state in lane 0 (batch.u0, v0 by DOF): one value on every floor, one per floor, or for
+// an isolated building one per DOF, its base first.
+void set_system_initial(const SimulateOptions& o, const model::System& sys, const std::vector<model::StickTopology>& sticks,
+                        physics::SystemBatch& batch) {
+  for (int i = 0; i < 2; ++i) {
+    const auto n = static_cast<std::size_t>(sticks[i].storeys);
+    check_initial(o, i, sticks[i].isolated ? std::initializer_list<std::size_t>{1, n, n + 1}
+                                           : std::initializer_list<std::size_t>{1, n},
+                  fmt::format("has {} floors{}", n, sticks[i].isolated ? " on its base" : ""));
+    const std::vector<int>& dofs = sys.bodies()[static_cast<std::size_t>(i)].dofs;  // an isolated body: base first
+    for (auto [v, field] : {std::pair{&o.initial_u[i], &batch.u0}, {&o.initial_v[i], &batch.v0}}) {
+      if (v->empty()) continue;
+      const std::size_t skip = sticks[i].isolated && v->size() != n + 1 ? 1 : 0;  // floors only: the base at rest
+      for (std::size_t d = skip; d < dofs.size(); ++d)
+        (*field)[physics::SystemBatch::at(dofs[d], 0, batch.width)] = v->size() == 1 ? v->front() : (*v)[d - skip];
+    }
+  }
+}
+
+// The one-storey buildings 1 and 2: their storey options as the SDOF's numbers (checked as the SDOF's).
+void one_storey_sdof_numbers(SimulateOptions& o) {
+  for (int i = 0; i < 2; ++i) {
+    const SimulateOptions::Storeys& b = o.b[i];
+    if (b.storeys != 1) continue;
+    if (b.mass_given) (i == 0 ? o.m1 : o.m2) = b.mass[0], (i == 0 ? o.m1_given : o.m2_given) = true;
+    if (b.stiffness_given) (i == 0 ? o.k1 : o.k2) = b.stiffness[0], (i == 0 ? o.k1_given : o.k2_given) = true;
+    if (b.yield_given) (i == 0 ? o.fy1 : o.fy2) = b.yield[0], (i == 0 ? o.fy1_given : o.fy2_given) = true;
+  }
+}
+
 int run_storeys(SimulateOptions& o, const ContactModel& cm, KernelSettings& ks) {
   validate_storeys(o);
   resolve_row(o);
-  // the one-storey buildings' SDOF numbers, checked as today
-  if (o.b[0].storeys == 1 && o.b[0].mass_given) o.m1 = o.b[0].mass, o.m1_given = true;
-  if (o.b[1].storeys == 1 && o.b[1].mass_given) o.m2 = o.b[1].mass, o.m2_given = true;
-  if (o.b[0].storeys == 1 && o.b[0].stiffness_given) o.k1 = o.b[0].stiffness, o.k1_given = true;
-  if (o.b[1].storeys == 1 && o.b[1].stiffness_given) o.k2 = o.b[1].stiffness, o.k2_given = true;
+  one_storey_sdof_numbers(o);
   resolve_masses(o);
   std::vector<Side> sides = sides_of(o);
   std::vector<Structure> sdof;
   for (Side& x : sides) {
-    if (x.st.storeys == 1 && x.st.mass_given) x.m = x.st.mass, x.m_given = true;
-    if (x.st.storeys == 1 && x.st.stiffness_given) x.kk = x.st.stiffness, x.k_given = true;
+    if (x.st.storeys == 1 && x.st.mass_given) x.m = x.st.mass[0], x.m_given = true;
+    if (x.st.storeys == 1 && x.st.stiffness_given) x.kk = x.st.stiffness[0], x.k_given = true;
+    if (x.st.storeys == 1 && x.st.yield_given) x.fy = x.st.yield[0], x.fy_given = true;
     if (!x.m_given) x.m = mass_from_height(x.h);  // buildings 3..N (1 and 2: resolve_masses)
     sdof.push_back(make_structure(x.m, x.T, x.kk, x.h, x.fy, o.alpha, o.zeta, o.elastic, x.k, x.k_given, x.fy_given));
   }
   check_rayleigh_modes(o, sides);
   std::vector<model::StickTopology> sticks(sides.size());
   for (std::size_t i = 0; i < sides.size(); ++i) {
-    sticks[i].storeys = sides[i].st.storeys, sticks[i].storey_heights = {sides[i].st.height};
+    sticks[i].storeys = sides[i].st.storeys, sticks[i].storey_heights = sides[i].st.height;
     if (!o.modal_zeta.empty() && sticks[i].storeys > 1) sticks[i].damping = model::DampingForm::dense;
     if (i >= 2) continue;  // isolation: buildings 1 and 2
     sticks[i].isolated = !o.iso[i].bearing.empty(), sticks[i].moat = o.iso[i].moat_given;
@@ -800,7 +921,8 @@ int run_storeys(SimulateOptions& o, const ContactModel& cm, KernelSettings& ks) 
                                      "drop --modal-zeta");
   // a floor meets at most one floor of its neighbour: the tolerance below half the smallest storey height
   double h_min = std::numeric_limits<double>::infinity();
-  for (const model::StickTopology& st : sticks) h_min = std::min(h_min, st.storey_heights[0]);
+  for (const model::StickTopology& st : sticks)
+    h_min = std::min(h_min, *std::min_element(st.storey_heights.begin(), st.storey_heights.end()));
   if (!(o.level_tolerance < 0.5 * h_min))
     throw InputError(fmt::format("--level-tolerance {:g} m is not below half the smallest storey height ({:g} m): a "
                                  "floor could meet two floors of its neighbour",
@@ -813,6 +935,7 @@ int run_storeys(SimulateOptions& o, const ContactModel& cm, KernelSettings& ks) 
   batch.resize(sys, 1);
   SystemRunReport run;
   set_buildings(o, sides, sdof, sticks, batch, run);
+  set_system_initial(o, sys, sticks, batch);
   set_storey_contacts(o, cm, batch, run);
   const std::vector<ContactModel> groups = set_moats(o, cm, batch);
   // the moat elements' stiffness and gap in the report (set_storey_contacts wrote the floor elements')
@@ -1155,6 +1278,8 @@ void add_contact_level_options(CLI::App* c, SimulateOptions* o) {
       ->capture_default_str();
 }
 
+void add_row_options(CLI::App* c, SimulateOptions& opts);
+
 // The multi-storey options (issue 25 §4): storeys, floors, levels.
 void add_storey_options(CLI::App* c, SimulateOptions& opts) {
   SimulateOptions* o = &opts;
@@ -1164,14 +1289,19 @@ void add_storey_options(CLI::App* c, SimulateOptions& opts) {
                   "storeys of building " + k + " (a shear building; any storey option makes both buildings shear "
                   "buildings, a one-storey one keeps the SDOF options)")
         ->capture_default_str();
-    c->add_option("--storey-mass" + k, o->b[i].mass,
-                  "mass of each floor of building " + k + " (kg); default: the mass model's at storeys x storey "
-                  "height, split equally");
-    c->add_option("--storey-stiffness" + k, o->b[i].stiffness,
-                  "stiffness of each storey of building " + k + " (N/m); default: uniform storeys scaled to --T" + k);
-    c->add_option("--storey-height" + k, o->b[i].height,
-                  "height of each storey of building " + k + " (m); floors at levels within 0.05 m pound")
-        ->capture_default_str();
+    // one value: every floor / storey; one per floor / storey: bottom first
+    add_number_list(c, "--storey-mass" + k, o->b[i].mass,
+                    "mass of each floor of building " + k + " (kg; one value, or one per floor from the bottom: "
+                    "2e5,2e5,1.5e5); default: the mass model's at storeys x storey height, split equally");
+    add_number_list(c, "--storey-stiffness" + k, o->b[i].stiffness,
+                    "stiffness of each storey of building " + k + " (N/m; one value or one per storey); default: "
+                    "uniform storeys scaled to --T" + k);
+    add_number_list(c, "--storey-height" + k, o->b[i].height,
+                    "height of each storey of building " + k + " (m; one value or one per storey, default 3.2); "
+                    "floors at levels within 0.05 m pound");
+    add_number_list(c, "--storey-yield" + k, o->b[i].yield,
+                    "yield force (storey shear) of each storey of building " + k + " (N; one value or one per "
+                    "storey); default: a drift of 0.02 h / 6 (--elastic: none)");
     add_number_list(c, "--rayleigh-modes" + k, o->b[i].rayleigh_modes,
                     "the two modes i,j of building " + k + " that get --zeta exactly (Rayleigh; default 1,2)");
   }
@@ -1186,7 +1316,8 @@ void add_storey_options(CLI::App* c, SimulateOptions& opts) {
     c->add_option("--base-mass" + k, s.base_mass, "mass of building " + k + "'s base (kg); default: one floor's mass");
     c->add_option("--bearing-keff" + k, s.k_eff, "linear bearing: effective stiffness of all isolators (N/m)");
     c->add_option("--bearing-zeta" + k, s.zeta_eff,
-                  fmt::format("linear bearing: damping ratio, c_b = 2 zeta sqrt(k_eff M_total) (default {:g})",
+                  fmt::format("linear bearing: damping ratio, c_b = 2 zeta sqrt(k_eff M_total) (default {:g}); "
+                              "lead-rubber: the rubber's dashpot c_b = 2 zeta sqrt(k2 M_total) (default none)",
                               physics::default_bearing_zeta));
     c->add_option("--bearing-k1-" + k, s.k1, "lead-rubber: elastic stiffness k1 (N/m)");
     c->add_option("--bearing-k2-" + k, s.k2, "lead-rubber: post-yield stiffness k2 < k1 (N/m)");
@@ -1215,9 +1346,14 @@ void add_storey_options(CLI::App* c, SimulateOptions& opts) {
                 "--k3, --h3, --fy3, --storeys3, --storey-mass3, --storey-stiffness3, --storey-height3 ...; an option "
                 "not given: building 1's for odd K, building 2's for even K)")
       ->capture_default_str();
+  add_row_options(c, opts);
+}
+
+// The options of a row's buildings 3..8 (--buildings N, docs/rows.md).
+void add_row_options(CLI::App* c, SimulateOptions& opts) {
   for (int K = 3; K <= SimulateOptions::max_buildings; ++K) {
     const std::string k = std::to_string(K);
-    SimulateOptions::RowBuilding& x = o->more[K - 3];
+    SimulateOptions::RowBuilding& x = opts.more[K - 3];
     const std::string group = "Row (--buildings N >= 3)";
     c->add_option("--T" + k, x.T, "period of building " + k + " (s)")->group(group);
     c->add_option("--m" + k, x.m, "mass of building " + k + " (kg)")->group(group);
@@ -1225,10 +1361,17 @@ void add_storey_options(CLI::App* c, SimulateOptions& opts) {
     c->add_option("--h" + k, x.h, "height of building " + k + " (m)")->group(group);
     c->add_option("--fy" + k, x.fy, "yield force of building " + k + " (N)")->group(group);
     c->add_option("--storeys" + k, x.st.storeys, "storeys of building " + k)->group(group);
-    c->add_option("--storey-mass" + k, x.st.mass, "mass of each floor of building " + k + " (kg)")->group(group);
-    c->add_option("--storey-stiffness" + k, x.st.stiffness, "stiffness of each storey of building " + k + " (N/m)")
+    add_number_list(c, "--storey-mass" + k, x.st.mass, "mass of each floor of building " + k + " (kg; one or per floor)")
         ->group(group);
-    c->add_option("--storey-height" + k, x.st.height, "height of each storey of building " + k + " (m)")->group(group);
+    add_number_list(c, "--storey-stiffness" + k, x.st.stiffness,
+                    "stiffness of each storey of building " + k + " (N/m; one or per storey)")
+        ->group(group);
+    add_number_list(c, "--storey-height" + k, x.st.height,
+                    "height of each storey of building " + k + " (m; one or per storey)")
+        ->group(group);
+    add_number_list(c, "--storey-yield" + k, x.st.yield,
+                    "yield force of each storey of building " + k + " (N; one or per storey)")
+        ->group(group);
     add_number_list(c, "--rayleigh-modes" + k, x.st.rayleigh_modes, "Rayleigh's two modes i,j of building " + k)
         ->group(group);
   }
@@ -1247,24 +1390,48 @@ void count_row_options(CLI::App* c, SimulateOptions& o) {
     x.m_user = x.m_given, x.k_user = x.k_given, x.fy_user = x.fy_given;
     x.st.storeys_given = c->count("--storeys" + k) > 0, x.st.mass_given = c->count("--storey-mass" + k) > 0;
     x.st.stiffness_given = c->count("--storey-stiffness" + k) > 0, x.st.height_given = c->count("--storey-height" + k) > 0;
+    x.st.yield_given = c->count("--storey-yield" + k) > 0;
     x.st.rayleigh_given = c->count("--rayleigh-modes" + k) > 0, x.st.rayleigh_option = "--rayleigh-modes" + k;
     if (K <= o.buildings) continue;
     for (const char* name : {"--T", "--m", "--k", "--h", "--fy", "--storeys", "--storey-mass", "--storey-stiffness",
-                             "--storey-height", "--rayleigh-modes"})
+                             "--storey-height", "--storey-yield", "--rayleigh-modes"})
       if (c->count(name + k) > 0)
         throw InputError(fmt::format("{}{} is for building {} and the row has --buildings {}", name, k, k, o.buildings),
                          name + k, fmt::format("give --buildings {} (or more), or drop {}{}", K, name, k));
   }
 }
 
-// Which storey options of buildings 1 and 2 were given.
+// Which storey options of buildings 1 and 2 were given (and --scale, --yield-coefficientK).
 void count_storey_options(CLI::App* c, SimulateOptions& o) {
+  o.scale_given = c->count("--scale") > 0;
+  o.cy_given[0] = c->count("--yield-coefficient1") > 0, o.cy_given[1] = c->count("--yield-coefficient2") > 0;
   for (int i = 0; i < 2; ++i) {
     const std::string k = std::to_string(i + 1);
     o.b[i].storeys_given = c->count("--storeys" + k) > 0, o.b[i].mass_given = c->count("--storey-mass" + k) > 0;
     o.b[i].stiffness_given = c->count("--storey-stiffness" + k) > 0;
-    o.b[i].height_given = c->count("--storey-height" + k) > 0;
+    o.b[i].height_given = c->count("--storey-height" + k) > 0, o.b[i].yield_given = c->count("--storey-yield" + k) > 0;
     o.b[i].rayleigh_given = c->count("--rayleigh-modes" + k) > 0, o.b[i].rayleigh_option = "--rayleigh-modes" + k;
+  }
+}
+
+// --initial-uK, --initial-vK: buildings 1 and 2 released displaced or moving (pull-back, free vibration); --scale and
+// --yield-coefficientK (the record's factor and the strengths a study would give).
+void add_initial_options(CLI::App* c, SimulateOptions& o) {
+  c->add_option("--scale", o.scale, "a factor on the record's accelerations (as a study's [records] scale)");
+  for (int i = 0; i < 2; ++i) {
+    const std::string k = std::to_string(i + 1);
+    c->add_option("--yield-coefficient" + k, o.cy[i],
+                  "building " + k + " yields at a base shear Cy M g (an SDOF: fy = Cy m g; storeys: the upper ones by "
+                  "the shear profile), instead of --fy" + k + " / --storey-yield" + k);
+  }
+  for (int i = 0; i < 2; ++i) {
+    const std::string k = std::to_string(i + 1);
+    add_number_list(c, "--initial-u" + k, o.initial_u[i],
+                    "initial displacement of building " + k + " relative to the ground (m): one value (an SDOF, or "
+                    "every floor) or one per floor from the bottom (an isolated building may lead with its base); a "
+                    "pull-back test with a record of zeros and --duration");
+    add_number_list(c, "--initial-v" + k, o.initial_v[i],
+                    "initial velocity of building " + k + " (m/s), one value or one per floor as --initial-u" + k);
   }
 }
 
@@ -1340,6 +1507,7 @@ void add_simulate(CLI::App& app) {
   c->add_option("--u-limit", o->u_limit, "|u1| + |u2| above this (m) marks the run diverged")->capture_default_str();
   c->add_flag("--locate-contact", o->locate, "rk4: locate each contact onset inside its step (high-accuracy mode)");
   c->add_option("--series", o->series, "write the time series to FILE.csv or FILE.h5");
+  add_initial_options(c, *o);
   add_storey_options(c, *o);
   add_bridge_options(c, *o);
   add_output_and_restitution_options(c, *o);

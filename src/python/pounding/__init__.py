@@ -48,8 +48,9 @@ def _given(value):
     return f"{type(value).__name__} {text if len(text) <= 40 else text[:37] + '...'}"
 
 
-def _pairs_dict(pairs, kh, e):
-    """dict of arrays or numpy structured array -> dict of contiguous float64 arrays with the kernel's names."""
+def _pairs_dict(pairs, kh, e, per_storey=()):
+    """dict of arrays or numpy structured array -> dict of contiguous float64 arrays with the kernel's names; keys
+    starting with a name in per_storey may also be 2-D, [pair, floor] (analyze_storeys' per-storey values)."""
     if isinstance(pairs, np.ndarray) and pairs.dtype.names:
         names = pairs.dtype.names
         d = {name: pairs[name] for name in names}
@@ -75,7 +76,9 @@ def _pairs_dict(pairs, kh, e):
             a = np.asarray(value, dtype=np.float64)
         except (TypeError, ValueError):
             raise ValueError(f"pairs['{key}']: numbers are needed, got {_given(value)}") from None
-        if a.ndim != 1:  # checked before ascontiguousarray, which makes a scalar 1-D
+        if a.ndim == 2 and any(key.startswith(p) for p in per_storey):
+            pass  # [pair, floor]: its shape is checked against the building's storeys by the engine
+        elif a.ndim != 1:  # checked before ascontiguousarray, which makes a scalar 1-D
             raise ValueError(f"pairs['{key}']: a 1-D array (one value per pair) is needed, got {_given(value)}")
         out[key] = np.ascontiguousarray(a)
         width = len(a) if width is None else width
@@ -88,10 +91,12 @@ def _pairs_dict(pairs, kh, e):
     return out
 
 
-def _require_law_numbers(contact, d):
-    """A law that needs a stiffness or a restitution gets it from the caller, never from a silent default."""
+def _require_law_numbers(contact, d, sphere_default=False):
+    """A law that needs a stiffness or a restitution gets it from the caller, never from a silent default;
+    sphere_default: a Hertz-family law (N/m^n) without kh takes the equivalent-sphere stiffness of the masses it
+    joins, as `pounding simulate` without --kh (analyze_storeys)."""
     stiffness, restitution, unit = _core.contact_needs(contact)
-    if stiffness and "kc" not in d:
+    if stiffness and "kc" not in d and not (sphere_default and unit == "N/m^n"):
         raise ValueError(f"contact '{contact}' needs the contact stiffness, kh, give kh= ({unit}) or a 'kc' array")
     if restitution and "e" not in d:
         raise ValueError(f"contact '{contact}' needs the coefficient of restitution, e, give e= (0 < e <= 1) or an "
@@ -185,13 +190,19 @@ def analyze_storeys(buildings, record, storeys=(1, 1), storey_height=3.2, contac
     call (storeys, heights, bearings, moats); the numbers vary per pair.
 
     buildings: dict of per-pair arrays (SI) for b = 1 .. len(storeys): floor_mass{b} (kg, every floor),
-      storey_stiffness{b} (N/m, every storey) or period{b} (T1 in s -- of the fixed-base superstructure for an
+      storey_stiffness{b} (N/m, every storey) -- these two and storey_yield{b} also as [pair, storey] arrays of one
+      row per pair, one value per floor / storey from the bottom (a building that is not uniform) -- or period{b} (T1 in s -- of the fixed-base superstructure for an
       isolated building; stiffness_profile "uniform" or "shear" scaled to it), the storey strength as storey_yield{b}
       (N) or yield_drift{b} (theta_y) or yield_coefficient{b} (Cy) -- none: elastic --, alpha{b} (0), zeta{b} (0.05,
-      Rayleigh on modes 1 and 2; the SDOF's ratio for one storey); gap (m, between every two neighbours), kc (or
-      kh=) and e where the law needs them.
+      Rayleigh on modes 1 and 2; the SDOF's ratio for one storey), initial_u{b}, initial_v{b} (m, m/s: the floors'
+      initial displacement and velocity relative to the ground, every floor or [pair, floor]; default at rest --
+      pull-back and free-vibration tests; an isolated base starts at rest); gap (m, between every two neighbours), kc (or
+      kh=) and e where the law needs them; a Hertz-family law without kc / kh takes, per element, the
+      equivalent-sphere stiffness of the two floor masses it joins (density, youngs, poisson), as `pounding
+      simulate` without --kh; a linear or Kelvin law needs kc.
     storeys: one count per building, left to right (3 or more: a row, as simulate --buildings); storey_height: one
-      height (m) for every building or one per building. One storey each is the SDOF pair of analyze(), bit for bit.
+      height (m) for every building or one per building, each a number or a list of one height per storey (bottom
+      first). One storey each is the SDOF pair of analyze(), bit for bit.
     modal_zeta: [z1, z2, ...] gives every multi-storey building classical modal damping instead of Rayleigh, the
       ratio of each mode from mode 1, the last repeating (as `pounding simulate --modal-zeta`); one storey keeps zeta.
       Not with isolation (as simulate).
@@ -202,7 +213,8 @@ def analyze_storeys(buildings, record, storeys=(1, 1), storey_height=3.2, contac
     isolation: None or one entry per building, None (fixed base) or a dict {"bearing": "linear" | "lead-rubber" |
       "friction-pendulum" | "bouc-wen", ...} with the study keys' names and ranges (study reference, section
       "isolation") and simulate's defaults: base_mass (kg; one floor's mass), linear: k_eff (N/m), zeta_eff (0.1);
-      lead-rubber and bouc-wen: k1, k2 (N/m, k2 < k1), qd (N), bouc-wen also a (1), beta (0.5), gamma (0.5), eta (1);
+      lead-rubber and bouc-wen: k1, k2 (N/m, k2 < k1), qd (N), lead-rubber also zeta_eff (0: the rubber's dashpot
+      2 zeta_eff sqrt(k2 M_total)), bouc-wen also a (1), beta (0.5), gamma (0.5), eta (1);
       friction-pendulum: radius (m), mu_slow, mu_fast (mu_slow), rate (s/m, 0), u_y (2.5e-4 m). Buildings 1 and 2
       only, as simulate.
     moat: None or one entry per building, None or a dict {"gap": m (each side), "stiffness": N/m^n (default the
@@ -220,10 +232,12 @@ def analyze_storeys(buildings, record, storeys=(1, 1), storey_height=3.2, contac
     element] (NaN / -1 for the pounding elements with contact="none"; a moat's are computed with its own law);
     status and e_* per pair (e_* NaN unless energy=True). Validation first: a ValueError names the pair's lane."""
     ag, dt = _motion(record)
-    d = _pairs_dict(buildings, kh, e)
-    _require_law_numbers(contact, d)
+    d = _pairs_dict(buildings, kh, e, per_storey=("floor_mass", "storey_stiffness", "storey_yield", "initial_u",
+                                                   "initial_v"))
+    _require_law_numbers(contact, d, sphere_default=True)
     counts = [_storey_count(s) for s in storeys]
-    heights = ([float(h) for h in storey_height] if np.ndim(storey_height) else [float(storey_height)] * len(counts))
+    heights = ([[float(x) for x in np.atleast_1d(h)] for h in storey_height] if isinstance(storey_height, (list, tuple))
+               or np.ndim(storey_height) >= 1 else [[float(storey_height)]] * len(counts))
     topology = _core._Topology(counts, heights, float(level_tolerance), contact_levels, stiffness_profile,
                                [float(z) for z in (modal_zeta or [])], _rayleigh_modes(rayleigh_modes, counts, modal_zeta))
     iso = list(isolation) if isolation is not None else [None] * len(counts)
