@@ -15,6 +15,7 @@
 #include "pounding/physics/run_batch.hpp"
 #include "pounding/physics/steppers/system_central_difference.hpp"
 #include "pounding/physics/system_lane_stepper.hpp"
+#include "pounding/physics/system_series.hpp"
 #include "pounding/physics/system_stepper.hpp"
 
 namespace pounding::physics {
@@ -525,8 +526,29 @@ GroundHistory ground_history(const Schedule& s) {
   return g;
 }
 
+// The series recorder's tap (Run::record): one row of the recorded lane per call, step -1 the initial state.
+struct SeriesTap {
+  SystemSeries* out;
+  int ndof, nelem;
+  double h;
+  std::vector<const double*> ag;  // per DOF: its support's acceleration at every step
+  const double* ag1;              // support 1's
+  static void record(void* self, const sys::Chunk& c, int i, long stepi) {
+    auto* t = static_cast<SeriesTap*>(self);
+    const auto k = static_cast<std::size_t>(stepi + 1);
+    t->out->t.push_back(static_cast<double>(k) * t->h), t->out->ag.push_back(t->ag1[k]);
+    for (int j = 0; j < t->ndof; ++j) {
+      const auto J = static_cast<std::size_t>(j);
+      t->out->u[J].push_back(c.dof(sys::U, j)[i]);
+      t->out->a_abs[J].push_back(c.dof(sys::A, j)[i] + t->ag[J][k]);
+    }
+    for (int e = 0; e < t->nelem; ++e) t->out->force[static_cast<std::size_t>(e)].push_back(c.elm(sys::F, e)[i]);
+  }
+};
+
 void run_dynamic(const SystemBatch& B, std::span<const ContactModel> models, std::span<const GroundMotion> motions,
-                 const KernelSettings& ks, SystemResult& out, std::size_t tile, bool generic = false) {
+                 const KernelSettings& ks, SystemResult& out, std::size_t tile, bool generic = false,
+                 SystemSeries* series = nullptr) {
   out.resize(*B.system, B.width);
   if (B.width == 0) return;
   const Schedule s = make_schedule(motions[0], ks.substeps);
@@ -546,6 +568,15 @@ void run_dynamic(const SystemBatch& B, std::span<const ContactModel> models, std
       R.ch_ag.push_back(ch[k].ag.data()), R.ch_vg.push_back(gh[k].v.data()), R.ch_ug.push_back(gh[k].u.data());
     for (int j = 0; j < P.L.ndof; ++j) ag0[static_cast<std::size_t>(j)] = ch[static_cast<std::size_t>(P.L.dof_chan[static_cast<std::size_t>(j)])].ag[0];
   }
+  SeriesTap tap{series, P.L.ndof, P.L.nelem, s.h, {}, s.ag.data()};
+  if (series) {
+    series->clear();
+    series->u.resize(static_cast<std::size_t>(P.L.ndof)), series->a_abs.resize(static_cast<std::size_t>(P.L.ndof));
+    series->force.resize(static_cast<std::size_t>(P.L.nelem));
+    for (int j = 0; j < P.L.ndof; ++j)
+      tap.ag.push_back(ch.empty() ? s.ag.data() : ch[static_cast<std::size_t>(P.L.dof_chan[static_cast<std::size_t>(j)])].ag.data());
+    R.record = &SeriesTap::record, R.record_self = &tap;
+  }
   for (std::size_t base = 0; base < B.width; base += tw) {
     const std::size_t n = std::min(tw, B.width - base);
     // lanes past n up to the SIMD chunk boundary are copies of the tile's first lane
@@ -556,6 +587,8 @@ void run_dynamic(const SystemBatch& B, std::span<const ContactModel> models, std
       fill_elements(T, i, v, P);
       fill_accelerations(T, i, v, ag0);
     }
+    if (series)
+      R.record_lane = series->lane >= base && series->lane < base + n ? static_cast<long>(series->lane - base) : -1;
     if (ks.energy)
       sys::run_tile<true>(T, static_cast<int>(np), R);
     else
@@ -651,6 +684,20 @@ void run_system(const SystemBatch& batch, std::span<const ContactModel> groups, 
   for (const GroundMotion& m : channels) throw_first(validate(batch, groups, m, settings));
   throw_first(system_stepper_problems(batch, groups, settings));
   run_dynamic(batch, groups, channels, settings, out, 0);
+}
+
+void run_system_recorded(const SystemBatch& batch, std::span<const ContactModel> groups,
+                         std::span<const GroundMotion> channels, const KernelSettings& settings, SystemResult& out,
+                         SystemSeries& series) {
+  if (batch.system->is_sdof_pair() || lane_stepper(settings) || settings.stepper != Stepper::central_difference)
+    throw InputError("a system's series is recorded by the central-difference system stepper", "--series",
+                     batch.system->is_sdof_pair() ? "give the pair's SDOF options (no --storeys) for its series"
+                                                  : "use --stepper central-difference with --series");
+  if (!(series.lane < batch.width)) throw InputError("the series' lane is not in the batch", "--series", "record lane 0");
+  throw_first(channel_problems(*batch.system, channels));
+  for (const GroundMotion& m : channels) throw_first(validate(batch, groups, m, settings));
+  throw_first(system_stepper_problems(batch, groups, settings));
+  run_dynamic(batch, groups, channels, settings, out, 0, false, &series);
 }
 
 namespace testing {

@@ -205,7 +205,7 @@ bad "--storey-mass2" --storeys2 3 --storey-mass2 -5
 bad "--storey-stiffness1" --storeys1 3 --storey-stiffness1 nan
 bad "--k1" --storeys1 3 --k1 1e8
 bad "--h2" --storeys2 4 --h2 20
-bad "--series" --storeys1 3 --series "$tmp/s.csv"
+bad "--series" --storeys1 3 --series "$tmp/s.txt"
 bad "--contact-levels" --storeys1 3 --contact-levels roof
 bad "--level-tolerance" --storeys1 3 --level-tolerance 2
 bad "--level-tolerance, give --level-tolerance < 0.5 m" --storeys1 3 --storey-height1 1.0 --level-tolerance 0.6

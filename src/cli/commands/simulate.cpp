@@ -1,6 +1,7 @@
 // `pounding simulate`: one pair through one record -> observers (and optionally the time series).
 #include <optional>
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -34,6 +35,7 @@
 #include "pounding/physics/bridge.hpp"
 #include "pounding/physics/shear_building.hpp"
 #include "pounding/physics/system_batch.hpp"
+#include "pounding/physics/system_series.hpp"
 #include "pounding/physics/resolution.hpp"
 #include "pounding/physics/validate.hpp"
 #include "pounding/motion/records.hpp"
@@ -236,6 +238,94 @@ void write_series_h5(const std::string& path, const SeriesRecorder& r, const std
   h5::write_attribute(g.get(), "units", std::string("SI: s, m, m/s, m/s^2, N"));
   h5::write_attribute(f.root(), "summary", summary);
   f.commit();
+}
+
+// A system's series (physics/system_series.hpp): columns t, ag, then per DOF u and a_abs, per contact element F,
+// named by body (b1, b2, ...; an isolated body's DOF 1 is its base) and element label.
+std::vector<std::string> series_dof_names(const model::System& sys) {
+  std::vector<std::string> names(static_cast<std::size_t>(sys.ndof()));
+  for (std::size_t b = 0; b < sys.bodies().size(); ++b)
+    for (std::size_t k = 0; k < sys.bodies()[b].dofs.size(); ++k)
+      names[static_cast<std::size_t>(sys.bodies()[b].dofs[k])] = fmt::format("b{}_{}", b + 1, k + 1);
+  return names;
+}
+std::string series_element_name(const model::ContactElement& ce) {
+  std::string n = ce.label;
+  for (char& ch : n)
+    if (!std::isalnum(static_cast<unsigned char>(ch))) ch = '_';
+  return n;
+}
+
+void write_system_series_csv(const std::string& path, const physics::SystemSeries& r, const model::System& sys) {
+  fmt::memory_buffer out;
+  auto put = [&]<class... A>(fmt::format_string<A...> f, A&&... a) {
+    fmt::format_to(std::back_inserter(out), f, std::forward<A>(a)...);
+  };
+  const std::vector<std::string> dofs = series_dof_names(sys);
+  put("t_s,ag_m_s2");
+  for (const std::string& d : dofs) put(",u_{}_m", d);
+  for (const std::string& d : dofs) put(",a_abs_{}_m_s2", d);
+  for (const model::ContactElement& ce : sys.contacts()) put(",F_{}_N", series_element_name(ce));
+  put("\n");
+  for (std::size_t j = 0; j < r.t.size(); ++j) {
+    put("{:.17g},{:.17g}", r.t[j], r.ag[j]);
+    for (const auto& v : r.u) put(",{:.17g}", v[j]);
+    for (const auto& v : r.a_abs) put(",{:.17g}", v[j]);
+    for (const auto& v : r.force) put(",{:.17g}", v[j]);
+    put("\n");
+  }
+  files::write_text_atomically(path, std::string_view(out.data(), out.size()));
+}
+
+void write_system_series_h5(const std::string& path, const physics::SystemSeries& r, const model::System& sys,
+                            const std::string& summary) {
+  h5::AtomicFile f(path);
+  auto g = h5::create_group(f.root(), "series");
+  auto flat = [](const std::vector<std::vector<double>>& rows) {
+    std::vector<double> v;
+    for (const auto& x : rows) v.insert(v.end(), x.begin(), x.end());
+    return v;
+  };
+  const std::size_t steps = r.t.size();
+  auto units = [&](const char* name, const char* unit) {
+    h5::write_attribute(h5::open_dataset(g.get(), name).get(), "units", std::string(unit));
+  };
+  h5::write_dataset(g.get(), "t", r.t), units("t", "s");
+  h5::write_dataset(g.get(), "ag", r.ag), units("ag", "m/s^2");
+  for (const auto& [name, rows, unit] : {std::tuple{"u", &r.u, "m"}, {"a_abs", &r.a_abs, "m/s^2"}, {"force", &r.force, "N"}}) {
+    const std::size_t dims[] = {rows->size(), steps};
+    h5::write_dataset(g.get(), name, flat(*rows), dims), units(name, unit);
+  }
+  std::vector<std::string> elements;
+  for (const model::ContactElement& ce : sys.contacts()) elements.push_back(ce.label);
+  h5::write_strings(g.get(), "dof_names", series_dof_names(sys));
+  h5::write_strings(g.get(), "element_names", elements);
+  h5::write_attribute(g.get(), "units", std::string("SI: t s, ag and a_abs m/s^2 (support 1's ag; a_abs absolute), u m "
+                                                    "(relative to the DOF's support), force N; u, a_abs [dof][step], "
+                                                    "force [element][step]"));
+  h5::write_attribute(f.root(), "summary", summary);
+  f.commit();
+}
+
+// The coupled run of a system, recording its series when --series is given (the same numbers either way).
+const physics::SystemResult& run_coupled(const SimulateOptions& o, const physics::SystemBatch& batch,
+                                         std::span<const ContactModel> groups, std::span<const GroundMotion> gm,
+                                         const KernelSettings& ks, physics::SystemResult& r,
+                                         physics::SystemSeries& series) {
+  if (o.series.empty())
+    physics::run_system(batch, groups, gm, ks, r);
+  else
+    physics::run_system_recorded(batch, groups, gm, ks, r, series);
+  return r;
+}
+
+void write_system_series(const SimulateOptions& o, const physics::SystemSeries& series, const model::System& sys,
+                         const std::string& summary) {
+  if (o.series.empty()) return;
+  if (std::filesystem::path(o.series).extension() == ".csv")
+    write_system_series_csv(o.series, series, sys);
+  else
+    write_system_series_h5(o.series, series, sys, summary);
 }
 
 // The scalar options, checked before any work or output. A quantity a study also sets is checked against that
@@ -554,8 +644,6 @@ void validate_storeys(const SimulateOptions& o) {
                          name[j] + k, fix[j]);
   }
   for (int i = 0; i < 2; ++i) validate_isolation(o, i);
-  if (!o.series.empty())
-    throw InputError("--series records an SDOF pair only", "--series", "drop --series or the storey options");
   if (o.contact_levels != "common" && o.contact_levels != "top")
     throw unknown_key_error(o.contact_levels, "--contact-levels", "--contact-levels", "common, top", "argument");
   config::require_key_range(o.level_tolerance, "contact", "level_tolerance", "--level-tolerance");
@@ -947,9 +1035,9 @@ int run_storeys(SimulateOptions& o, const ContactModel& cm, KernelSettings& ks) 
   const double analysis_length = cut_to_duration(o, rec);
   GroundMotion gm{rec.dt, rec.acc, analysis_length > record_length ? analysis_length : 0.0};
   physics::SystemResult r;
+  physics::SystemSeries series;  // --series: the coupled run's (the final one of the step choice)
   const physics::StepChoice step = choose_system_step(o, batch, groups, ks, rec, 1, [&]() -> const physics::SystemResult& {
-    physics::run_system(batch, groups, gm, ks, r);
-    return r;
+    return run_coupled(o, batch, groups, std::span<const GroundMotion>(&gm, 1), ks, r, series);
   });
   // the uncoupled run (no pounding between the buildings; moats stay, architecture §2.6.2) for the amplification
   std::vector<ContactModel> free_groups = groups;
@@ -967,6 +1055,7 @@ int run_storeys(SimulateOptions& o, const ContactModel& cm, KernelSettings& ks) 
                format_system_summary(run), column_shears_text(sys, r));
   }
   warn_coarse(step);
+  write_system_series(o, series, sys, format_system_summary(run));
   return r.status[0] != 0 ? 3 : 0;
 }
 
@@ -1090,7 +1179,6 @@ int run_bridge(SimulateOptions& o, const ContactModel& cm, KernelSettings& ks) {
     if (given)
       throw InputError(fmt::format("{} describes a building of the pair, not a bridge frame", opt), opt,
                        "give the frames' numbers in the --bridge file");
-  if (!o.series.empty()) throw InputError("--series records the SDOF pair only", "--series", "drop --series with --bridge");
   const physics::BridgeSpec spec =
       read_bridge_file(o.bridge, o.kh_given ? o.kh : std::numeric_limits<double>::quiet_NaN(), o.e,
                        o.curve ? o.rest.option() : std::string());
@@ -1109,10 +1197,10 @@ int run_bridge(SimulateOptions& o, const ContactModel& cm, KernelSettings& ks) {
   physics::SystemResult r, free;
   std::optional<physics::HertzdampRestitution> rest;  // e(v0) at every joint impact (--restitution-*)
   if (o.curve) ks.restitution = &rest.emplace(*o.curve, cm).hook;
+  physics::SystemSeries series;  // --series: the coupled run's (the final one of the step choice)
   const physics::StepChoice step =
       choose_system_step(o, batch, groups, ks, rec, static_cast<int>(recs.size()), [&]() -> const physics::SystemResult& {
-        physics::run_system(batch, groups, std::span<const GroundMotion>(gm), ks, r);
-        return r;
+        return run_coupled(o, batch, groups, std::span<const GroundMotion>(gm), ks, r, series);
       });
   KernelSettings free_ks = ks;  // open joints: no impact, no curve
   free_ks.restitution = nullptr;
@@ -1146,6 +1234,7 @@ int run_bridge(SimulateOptions& o, const ContactModel& cm, KernelSettings& ks) {
       fmt::print("restitution: {}\nrestitution_outside_valid: {} of {} impacts\n", o.curve->describe(), outside, impacts);
   }
   warn_coarse(step);
+  write_system_series(o, series, sys, format_system_summary(run));
   return r.status[0] != 0 ? 3 : 0;
 }
 
@@ -1193,6 +1282,9 @@ int run_simulate(SimulateOptions& o) {
     inputs.push_back(o.bridge);
     files::check_output_not_input(o.series, inputs, "--series");
     files::check_output_path(o.series, "--series");
+    const std::string ext = std::filesystem::path(o.series).extension().string();
+    if (ext != ".csv" && ext != ".h5")
+      throw InputError(fmt::format("unknown series format '{}'", ext), "--series", "use a .csv or .h5 file name");
   }
   validate_scalars(o);  // everything is validated before any work or output
   validate_buildings(o);
@@ -1222,12 +1314,7 @@ int run_simulate(SimulateOptions& o) {
   const PairParams p = pair_params(o, cm, s1, s2);
 
   SeriesRecorder series;
-  if (!o.series.empty()) {
-    auto ext = std::filesystem::path(o.series).extension().string();
-    if (ext != ".csv" && ext != ".h5")
-      throw InputError(fmt::format("unknown series format '{}'", ext), "--series", "use a .csv or .h5 file name");
-    ks.series = &series;
-  }
+  if (!o.series.empty()) ks.series = &series;
   PairBatch b;
   b.resize(1);
   b.set(0, p);

@@ -821,6 +821,12 @@ struct Run {
   // Raised: return at the next check (every stop_check steps) and leave the tile unfinished; the caller discards
   // it (physics::run_system throws StopRequested). nullptr: run to the end.
   const std::atomic<bool>* stop = nullptr;
+  // A series recorder (physics/system_series.hpp): record(self, chunk, lane in the chunk, step) before the first step
+  // (step -1: the initial state) and after every step of the chunk that holds tile lane `record_lane`; that chunk runs
+  // the generic path (the stick path's bits equal it: test_system_stick). nullptr: nothing recorded.
+  void (*record)(void* self, const Chunk& c, int lane, long stepi) = nullptr;
+  void* record_self = nullptr;
+  long record_lane = -1;
 };
 
 // Steps between two looks at Run::stop: a few ms of a long unit, nothing against a step's cost.
@@ -863,15 +869,23 @@ template <bool WithEnergy> void run_tile(const Pool& pool, int np, const Run& R)
     StepCtx s{R.h, 0.5 * R.h, 0.0, 0.0, V(0.0), V(R.h), V(0.0), R.lim, lane::any(c.lan(BAD) > V(0.0)), force_prev.get(),
               R.ch_ag.empty() ? nullptr : gch.data()};
     for (int e = 0; e < R.layout->nelem; ++e) force_prev[static_cast<std::size_t>(e)] = lane::any(c.elm(F, e) > V(0.0));
-    if (R.stick) {
+    const bool rec = R.record && R.record_lane >= base && R.record_lane < base + simd::W;
+    const bool stick = R.stick && !rec;
+    if (stick) {
       s.stick = true;
       if (R.nsteps > 0) predict_u(c, R.topo, s);
     }
+    if (rec) R.record(R.record_self, c, static_cast<int>(R.record_lane - base), -1);
     // the same steps in the same order, in blocks between two looks at the stop flag
     for (long k0 = 0; k0 < R.nsteps; k0 += stop_check) {
       if (R.stop && R.stop->load(std::memory_order_relaxed)) return;
       const long k1 = std::min(R.nsteps, k0 + stop_check);
-      if (R.stick)
+      if (rec)
+        for (long k = k0; k < k1; ++k) {
+          step<WithEnergy, false>(c, R, k, s);
+          R.record(R.record_self, c, static_cast<int>(R.record_lane - base), k);
+        }
+      else if (stick)
         for (long k = k0; k < k1; ++k) step<WithEnergy, true>(c, R, k, s);
       else
         for (long k = k0; k < k1; ++k) step<WithEnergy, false>(c, R, k, s);
