@@ -237,7 +237,8 @@ void add_warnings(Selection& s, const SelectionOptions& o, std::span<const Selec
               "single-component spectra against that target, so the factors are conservative (larger)"
             : "ASCE 7-16 16.2 scales records to the MCER spectrum (1.5 x the design spectrum); this target is the "
               "design-level spectrum, so the records are scaled to a design-level demand (give mcer = true, or "
-              "--mcer, for the code's target); single-component spectra make the factors conservative (larger)");
+              "--mcer, for the code's target); single-component spectra against its maximum-direction (RotD100) "
+              "rule make the factors conservative (larger)");
   }
   if (o.rule == ScalingRule::asce7_10 && n < 7)
     s.warnings.push_back(fmt::format("ASCE 7-10 16.1.4 uses the mean response only with at least 7 records ({} "
