@@ -52,7 +52,7 @@ constexpr StudySection sections[] = {
     {"distribution.lognormal", "lognormal = {median, cov}",
      "ln X ~ N(ln median, sigma^2), sigma^2 = ln(1 + cov^2)."},
     {"distribution.uniform", "uniform = {min, max}", "X uniform on [min, max], min <= max."},
-    {"gaps", "[gaps]", "The gaps analysed, as ratios of the code separation d = code_gap_coefficient (h1 + h2)."},
+    {"gaps", "[gaps]", "The gaps analysed: ratios of the code separation d = code_gap_coefficient (h1 + h2), or metres."},
     {"contact", "[contact]", "The contact element between the buildings."},
     {"contact.restitution", "[contact] restitution = {...}",
      "A velocity-dependent coefficient of restitution e(v0) (contact/restitution.hpp): each impact of "
@@ -556,10 +556,22 @@ constexpr StudyKey keys[] = {
 
     // ---------------------------------------------------------------- [gaps]
     {"gaps", "ratios", "array of numbers", "[0.1, 0.2, 0.3, 0.5, 0.7, 1.0]", "", "(0, 100], strictly increasing",
-     "The gaps analysed (impacts scene) as ratios of the code separation d.", 1e-9, 100.0},
-    {"gaps", "curve_max", "number", "max(1.5, the largest ratio)", "", "[0.01, 100]",
-     "Upper end of the probability-versus-gap curve.", 0.01, 100.0},
-    {"gaps", "curve_step", "number", "0.005", "", "[1e-4, 1]", "Step of the probability-versus-gap curve.", 1e-4, 1.0},
+     "The gaps analysed as ratios x of each model's code separation d (gap = x d). Give ratios or metres, not both.",
+     1e-9, 100.0},
+    {"gaps", "metres", "array of numbers", "none (ratios)", "m", "(0, 5], strictly increasing",
+     "The gaps analysed in metres, instead of ratios: every model's gap at axis point g is metres[g] (a bridge: the "
+     "gap of the joint(s) at the reference gap, every other joint metres[g] + (its gap - reference)). curve_max, "
+     "curve_step and [report] fit_min, fit_max are then metres too; the report's axes and advice are in metres.",
+     1e-9, 5.0},
+    {"gaps", "curve_max", "number", "max(1.5, the largest ratio); metres: 1.5 x the largest gap", "ratio or m",
+     "[0.01, 100]", "Upper end of the probability-versus-gap curve, on the gap axis' unit.", 0.01, 100.0},
+    {"gaps", "curve_step", "number", "0.005", "ratio or m", "[1e-4, 1]",
+     "Step of the probability-versus-gap curve, on the gap axis' unit.", 1e-4, 1.0},
+    {"gaps", "existing", "number", "none", "m", "[0, 5]",
+     "The as-built gap (metres, either axis). The report gives P(pounding) at it with its interval (counted from the "
+     "uncoupled peak closings: closing > existing), marks it on the code-rules table and figure, and a fragility "
+     "study gives its curve when it is one of the axis gaps.",
+     0.0, 5.0},
 
     // ---------------------------------------------------------------- [contact]
     {"contact", "law", "string", "\"hertzdamp\"", "",
@@ -657,8 +669,10 @@ constexpr StudyKey keys[] = {
     // ---------------------------------------------------------------- [report]
     {"report", "targets", "array of numbers", "[10, 5, 1]", "%", "(0, 100)",
      "Probabilities of pounding whose separations the report gives.", 1e-6, 99.999},
-    {"report", "fit_min", "number", "0.1", "", "[0, 100]", "Lowest gap ratio of the cubic fit.", 0.0, 100.0},
-    {"report", "fit_max", "number", "1.0", "", "[0, 100], > fit_min", "Highest gap ratio of the cubic fit.", 0.0, 100.0},
+    {"report", "fit_min", "number", "0.1; [gaps] metres: 0.1 x the largest gap", "ratio or m", "[0, 100]",
+     "Lowest gap of the cubic fit, on the gap axis' unit.", 0.0, 100.0},
+    {"report", "fit_max", "number", "1.0; [gaps] metres: the largest gap", "ratio or m", "[0, 100], > fit_min",
+     "Highest gap of the cubic fit, on the gap axis' unit.", 0.0, 100.0},
     {"report", "confidence", "number", "0.95", "", "[0.5, 0.999]", "Level of the bootstrap intervals.", 0.5, 0.999},
     {"report", "bootstrap", "integer", "2000", "", "[0, 100000]",
      "Replicates of the two-stage bootstrap (records, then models within records); 0: no interval.", 0, 100000},

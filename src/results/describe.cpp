@@ -109,6 +109,12 @@ constexpr Row system_table[] = {
 
 constexpr Row field_group_table[] = {
     {"gap_ratios", {"1", "the gap axis of this group (= /gaps/ratios; kept for format-1 readers)"}},
+    {"gap_axis", {"m", "the gap axis of this group in metres (= /gaps/axis; [gaps] metres)"}},
+};
+// /gaps of a metres axis ([gaps] metres, the group's attribute unit = "m")
+constexpr Row metres_gaps_table[] = {
+    {"axis", {"m", "the study's gaps in metres ([gaps] metres): every model's gap at axis point g"}},
+    {"metres", {"m", "gap in metres of each model at each axis point: /gaps/axis, the same for every model"}},
 };
 
 template <std::size_t N>
@@ -169,6 +175,8 @@ std::optional<Description> find_row_model(std::string_view name) {
   }
   return std::nullopt;
 }
+
+std::optional<Description> describe_metres_axis(std::string_view name) { return find(metres_gaps_table, name); }
 
 std::optional<Description> describe(std::string_view group, std::string_view name) {
   if (group == "records") return find(records_table, name);

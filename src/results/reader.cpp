@@ -137,7 +137,9 @@ GapTable read_gaps(h5::hid root, const Results& r, LoadExtent extent) {
   GapTable t;
   if (h5::exists(root, "gaps")) {
     auto g = h5::open_group(root, "gaps");
-    read_opt(g.get(), "ratios", t.ratios);
+    // a metres axis ([gaps] metres): /gaps/axis with the attribute unit = "m"
+    t.in_metres = h5::attribute_exists(g.get(), "unit") && h5::read_string_attribute(g.get(), "unit") == "m";
+    read_opt(g.get(), t.in_metres ? "axis" : "ratios", t.ratios);
     if (extent == LoadExtent::all) read_opt(g.get(), "metres", t.metres);
     return t;
   }
@@ -156,6 +158,7 @@ void read_fields(h5::hid root, std::span<const FieldSpec> specs, Results& r) {
     auto g = h5::open_group(root, group);
     if (!h5::exists(g.get(), name)) continue;
     if (per_gap(spec.extent) && r.gap_ratios.empty()) read_opt(g.get(), "gap_ratios", r.gap_ratios);
+    if (per_gap(spec.extent) && r.gap_ratios.empty()) read_opt(g.get(), "gap_axis", r.gap_ratios);  // [gaps] metres
     Column c = make_column(spec, 0);
     std::visit([&](auto& v) { read_opt(g.get(), name.c_str(), v); }, c);
     r.fields.push_back({spec, std::move(c)});

@@ -110,12 +110,13 @@ std::size_t field_index(std::span<const FieldSpec> schema, std::string_view grou
   throw std::logic_error(fmt::format("no field {}/{} in this schema", group, name));
 }
 
-GapTable gap_table(std::span<const double> ratios, std::span<const double> code_gap) {
+GapTable gap_table(std::span<const double> ratios, std::span<const double> code_gap, bool in_metres) {
   GapTable t;
   t.ratios.assign(ratios.begin(), ratios.end());
+  t.in_metres = in_metres;
   t.metres.reserve(code_gap.size() * ratios.size());
-  for (double d : code_gap)
-    for (double x : ratios) t.metres.push_back(x * d);  // the report's test: peak closing > x * code_gap
+  for (double d : code_gap)  // the report's test: peak closing > x * code_gap (in metres: > x)
+    for (double x : ratios) t.metres.push_back(in_metres ? x : x * d);
   return t;
 }
 

@@ -112,9 +112,12 @@ void label(h5::hid g, std::string_view group, const std::string& name) {
 
 // Every dataset of /<group>, labelled from the group's table after it is written: a dataset added to the group
 // without a row in describe.cpp is refused.
-void label_group(h5::hid root, std::string_view group) {
+// A metres axis' /gaps/metres has its own description (describe_metres_axis).
+void label_group(h5::hid root, std::string_view group, bool metres_axis) {
   auto g = h5::open_group(root, std::string(group));
-  for (const std::string& name : h5::member_names(g.get())) label(g.get(), group, name);
+  for (const std::string& name : h5::member_names(g.get()))
+    if (metres_axis && group == "gaps") label(g.get(), group, name, describe_metres_axis(name).value_or(Description{}));
+    else label(g.get(), group, name);
 }
 
 void write_records(h5::hid root, const RecordTable& t) {
@@ -150,11 +153,12 @@ void write_models(h5::hid root, const ModelTable& t) {
       h5::write_dataset(g.get(), std::string(prefix) + std::to_string(b + 3), t.row[b].*member);
 }
 
-// /gaps/ratios [gaps] and /gaps/metres [models, gaps].
+// /gaps/ratios [gaps] (a metres axis: /gaps/axis and the attribute unit = "m") and /gaps/metres [models, gaps].
 void write_gaps(h5::hid root, const GapTable& t, std::size_t models) {
   if (t.ratios.empty()) return;
   auto g = h5::create_group(root, "gaps");
-  h5::write_dataset(g.get(), "ratios", t.ratios);
+  if (t.in_metres) h5::write_attribute(g.get(), "unit", std::string("m"));
+  h5::write_dataset(g.get(), t.in_metres ? "axis" : "ratios", t.ratios);
   if (models == 0) return;  // [outputs] per_model = false: no models, no metres
   const std::size_t dims[] = {models, t.ratios.size()};
   h5::write_dataset(g.get(), "metres", std::span<const double>(t.metres), dims);
@@ -188,7 +192,8 @@ void write_streamed_models(h5::hid root, const Results& r) {
     if (!G) return;
     auto* metres = static_cast<double*>(out[k]);
     for (std::size_t i = 0; i < n; ++i)
-      for (std::size_t g = 0; g < G; ++g) metres[i * G + g] = r.gaps.ratios[g] * t.code_gap[i];  // as gap_table
+      for (std::size_t g = 0; g < G; ++g)  // as gap_table
+        metres[i * G + g] = r.gaps.in_metres ? r.gaps.ratios[g] : r.gaps.ratios[g] * t.code_gap[i];
   });
 }
 
@@ -217,9 +222,10 @@ h5::hid field_group(h5::hid root, const Results& r, const FieldSpec& spec, std::
   const char* lead = r.stripes ? "[stripes, records, models" : "[records, models";
   h5::write_attribute(g.get(), "shape", fmt::format("{}{}]", lead, gaps ? ", gaps" : ""));
   if (r.stripes) h5::write_attribute(g.get(), "stripes", static_cast<std::int64_t>(r.stripes));
-  if (gaps) {
-    h5::write_dataset(g.get(), "gap_ratios", r.gap_ratios);
-    label(g.get(), spec.group, "gap_ratios");
+  if (gaps) {  // a metres axis ([gaps] metres): gap_axis, in metres
+    const char* axis = r.gaps.in_metres ? "gap_axis" : "gap_ratios";
+    h5::write_dataset(g.get(), axis, r.gap_ratios);
+    label(g.get(), spec.group, axis);
   }
   return groups.emplace(name, std::move(g)).first->second.get();
 }
@@ -327,7 +333,7 @@ Writer::Writer(const std::string& path, const Results& r, bool on_disk) {
     write_gaps(root, r.gaps, r.models.size());
     if (r.model_rows) write_streamed_models(root, r);
     for (const char* group : {"records", "models", "gaps"})
-      if (h5::exists(root, group)) label_group(root, group);
+      if (h5::exists(root, group)) label_group(root, group, r.gaps.in_metres);
     write_fields(root, r);  // labelled from their schema rows
     if (!r.system.empty()) write_system(root, r.system);
   } catch (...) {  // on disk (a full disk): the temporary closed and removed now, the OS error named

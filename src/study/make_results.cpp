@@ -402,7 +402,8 @@ results::Group ida_group(const Study& study, const WorkPlan& plan, const StripeP
   for (std::int64_t a : analyses) total += a;
   g.set("analyses_total", total);
   g.set("diverged_models", diverged);
-  g.add("gaps", study.gap_ratios, "1", "the gap axis: ratios of each model's code gap d");
+  if (study.gap_metres) g.add("gaps", study.gap_ratios, "m", "the gap axis in metres ([gaps] metres): every model's gap");
+  else g.add("gaps", study.gap_ratios, "1", "the gap axis: ratios of each model's code gap d");
   g.add("cap", cap, units,
         "each record's censoring point: its IM times the smallest scale_limit of its models; a capacity above it "
         "counts as censored there");
@@ -432,6 +433,7 @@ results::Results make_results(const Study& study, const std::vector<StudyRecord>
     r.models.periods = r.models.periods1;
     r.models.zeta = study.structures.zeta;
     r.gaps.ratios = study.gap_ratios;
+    r.gaps.in_metres = study.gap_metres;
     if (!spilled) {
       r.groups.push_back(red->group());
       return r;
@@ -443,7 +445,7 @@ results::Results make_results(const Study& study, const std::vector<StudyRecord>
     };
   } else {
     r.models = model_table(study, plan);
-    r.gaps = results::gap_table(study.gap_ratios, r.models.code_gap);  // every scene
+    r.gaps = results::gap_table(study.gap_ratios, r.models.code_gap, study.gap_metres);  // every scene
   }
   if (plan.impacts) r.gap_ratios = study.gap_ratios;
   r.fields = spilled ? SpilledColumns::fields(spilled) : tally.take_fields();

@@ -67,15 +67,16 @@ void Reductions::fold(const UnitIndex& u, std::span<const std::uint8_t> status, 
       if (!seen_) first_ = key, seen_ = true, gap_min_ = gap_max_ = q.d;
       else if (key != first_) varied_ = true;
       gap_min_ = std::min(gap_min_, q.d), gap_max_ = std::max(gap_max_, q.d);
-      if (plan_.stream) gap_of_[m0 + j] = q.d;
-      else fold_one(row, u.pair, status[j], closing[j], q.d);
+      if (plan_.stream) gap_of_[m0 + j] = study_->gap_unit(q);
+      else fold_one(row, u.pair, status[j], closing[j], study_->gap_unit(q));
     }
     if (!plan_.stream) return;
   }
   for (std::size_t j = 0; j < lanes; ++j) fold_one(row, u.pair, status[j], closing[j], gap_of_[m0 + j]);
 }
 
-// One analysis (record row, period pair) with its status, peak closing and code gap d.
+// One analysis (record row, period pair) with its status, peak closing and gap unit d (its code gap d, or 1 m with
+// [gaps] metres: Study::gap_unit).
 void Reductions::fold_one(std::size_t row, std::size_t pair, std::uint8_t status, double c, double d) {
   const std::size_t G = study_->gap_ratios.size(), C = curve_x_.size(), B = edges_.size() + 1;
   if (!ok(status)) {
@@ -146,11 +147,21 @@ results::Group Reductions::group() const {
   g.set("code_gap_min", gap_min_);
   g.set("code_gap_max", gap_max_);
   g.set("histogram_per_decade", static_cast<std::int64_t>(histogram_per_decade));
-  g.set("description",
+  const bool m = study_->gap_metres;  // [gaps] metres: every x below is metres and z the closing in metres
+  if (m) g.set("gap_unit", std::string("m"));
+  const char* x_unit = m ? "m" : "1";
+  if (m)
+    g.set("description",
+          std::string("[outputs] per_model = false: counts over the ok analyses (status 0, or coarse with [analysis] "
+                      "coarse = \"keep\") per record row, instead of per-model arrays; [gaps] metres: z = uncoupled "
+                      "peak closing in metres, every gap x in metres. Every value is an integer count: independent of "
+                      "ranks, threads, batch width and order"));
+  else g.set("description",
         std::string("[outputs] per_model = false: counts over the ok analyses (status 0, or coarse with [analysis] "
                     "coarse = \"keep\") per record row, instead of per-model arrays; z = uncoupled peak closing / code "
                     "gap d. Every value is an integer count: independent of ranks, threads, batch width and order"));
-  g.add("gap_ratios", study_->gap_ratios, "1", "the gap ratios x of gap_hits and pair_hits (gap = x d)");
+  g.add("gap_ratios", study_->gap_ratios, x_unit,
+        m ? "the gaps x (m, [gaps] metres) of gap_hits and pair_hits" : "the gap ratios x of gap_hits and pair_hits (gap = x d)");
   g.add("n", n_, "1", "ok analyses per record row [records]");
   g.add("excluded", excluded_, "1", "analyses with status != ok per record row (diverged, non-finite) [records]");
   g.add("gap_hits", gap_hits_, "1", "ok analyses with peak closing > x d per record row and gap ratio [records, gaps]",
@@ -162,10 +173,12 @@ results::Group Reductions::group() const {
   g.add("pair_hits", pair_hits_, "1",
         "ok analyses with peak closing > x d per record row, period pair and gap ratio [records, pairs, gaps]",
         {R, P, G});
-  g.add("curve_x", curve_x_, "1", "the gap curve's ratios x = curve_step c, c = 1..floor(curve_max / curve_step)");
+  g.add("curve_x", curve_x_, x_unit,
+        m ? "the gap curve's gaps x (m) = curve_step c, c = 1..floor(curve_max / curve_step)"
+          : "the gap curve's ratios x = curve_step c, c = 1..floor(curve_max / curve_step)");
   g.add("curve_hits", curve_hits_, "1", "ok analyses with z > x per record row and curve ratio [records, curve]",
         {R, curve_x_.size()});
-  g.add("histogram_edges", edges_, "1",
+  g.add("histogram_edges", edges_, x_unit,
         fmt::format("edges e_0..e_B of z's log grid, {} bins per decade from {:g} to {:g}", histogram_per_decade,
                     histogram_lo, histogram_hi));
   g.add("histogram", histogram_, "1",

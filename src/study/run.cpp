@@ -97,7 +97,7 @@ class UnitComputer {
     if (runs_systems(sampler.model()))
       block_.emplace(sampler.model(), s.contact, s.e, s.contact_levels, s.gap_offsets, s.level_tolerance,
                      s.shape_functions);
-    if (block_) block_->set_joint_offsets(s.joint_gap_offsets);
+    if (block_) block_->set_joint_offsets(s.joint_gap_offsets), block_->set_gap_metres(s.gap_metres);
     if (block_ && !plan.system.empty()) table_fields(plan);
     if (block_ && (plan.stripes || plan.ida)) block_->keep_springs(true);  // scales_linearly reads them
     if (s.restitution && plan.impacts) {  // e(v0) in the coupled runs (study.cpp: hertzdamp, CD, impacts scene)
@@ -292,7 +292,7 @@ class UnitComputer {
         for (std::size_t g = 0; g < G; ++g) {
           const std::size_t k = i * G + g;
           if (state[k] != open) continue;
-          if (pc_[i] > s_.gap_ratios[g] * pairs_[i].d) state[k] = found, hi[k] = f;
+          if (pc_[i] > s_.gap_at(g, pairs_[i])) state[k] = found, hi[k] = f;
           else lo[k] = f;
         }
       }
@@ -304,7 +304,7 @@ class UnitComputer {
         const std::size_t i = k / G;
         if (state[k] != found || !elastic_at(i, hi[k] / fa, ks.displacement_limit)) continue;
         const double D = block_ ? anchor_peaks_.closing[i] : anchor_.peak_closing[i];
-        const double f = fa * s_.gap_ratios[k % G] * pairs_[i].d / D;
+        const double f = fa * s_.gap_ratios[k % G] * s_.gap_unit(pairs_[i]) / D;  // the order of main's product
         lo[k] = hi[k] = std::clamp(f, lo[k], hi[k]);
       }
     if (block_) system_bisect(rec, ks, state, lo, hi, analyses);
@@ -357,7 +357,7 @@ class UnitComputer {
         // the kernel's limit is on |u1| + |u2| at one instant; the sum of the peaks bounds it (conservative)
         if (bres_.status[j] != 0 || f * (bres_.peak_u1[j] + bres_.peak_u2[j]) > ks.displacement_limit)
           state[k] = excluded;
-        else if (f * bres_.peak_closing[j] > s_.gap_ratios[g] * pairs_[i].d) hi[k] = f;
+        else if (f * bres_.peak_closing[j] > s_.gap_at(g, pairs_[i])) hi[k] = f;
         else lo[k] = f;
       }
     }
@@ -370,12 +370,13 @@ class UnitComputer {
     const std::size_t n = pairs_.size();
     lanes_.clear();
     for (std::size_t i = 0; i < n; ++i) {
-      const bool untouched = res_.status[i] == 0 && !(res_.peak_closing[i] > s_.gap_ratios[g] * pairs_[i].d);
+      const bool untouched = res_.status[i] == 0 && !(res_.peak_closing[i] > s_.gap_at(g, pairs_[i]));
       if (!s_.skip_untouched || !untouched) lanes_.push_back(i);
     }
     sub_.resize(lanes_.size());
     for (std::size_t j = 0; j < lanes_.size(); ++j) {
       PairParams pp = pairs_[lanes_[j]].pair_params(s_.gap_ratios[g], s_.e);
+      pp.gap = s_.gap_at(g, pairs_[lanes_[j]]);  // ratio x d (the same product), or metres
       if (s_.contact_stiffness > 0) pp.kc = s_.contact_stiffness;
       sub_.set(j, pp);
     }
@@ -444,7 +445,7 @@ class UnitComputer {
     for (std::size_t g = 0; g < G; ++g) {
       lanes_.clear();
       for (std::size_t i = 0; i < n; ++i) {
-        const bool untouched = peaks_.status[i] == 0 && !(peaks_.closing[i] > s_.gap_ratios[g] * pairs_[i].d);
+        const bool untouched = peaks_.status[i] == 0 && !(peaks_.closing[i] > s_.gap_at(g, pairs_[i]));
         if (!s_.skip_untouched || !untouched) lanes_.push_back(i);
       }
       if (!lanes_.empty())
@@ -579,7 +580,7 @@ class UnitComputer {
           ++analyses[i], ran = i, ran_f = f;
         }
         if (sub_peaks_.status[0] != 0) state[k] = excluded;
-        else if (sub_peaks_.closing[0] > s_.gap_ratios[g] * pairs_[i].d) hi[k] = f;
+        else if (sub_peaks_.closing[0] > s_.gap_at(g, pairs_[i])) hi[k] = f;
         else lo[k] = f;
       }
     }
@@ -1046,14 +1047,16 @@ void announce(const parallel::Session& session, const Inputs& in, const WorkPlan
                       session.size() > 1 ? "s" : ""));
   ctx.say(in.study.scene_reason);
   const StructureModel& sm = in.study.structures;
+  const bool m = in.study.gap_metres;
   if (sm.bridge)
-    ctx.say(fmt::format("a bridge: {}. The study gap ratio x sets every joint's gap to x d + (its gap - d), d = {:g} m "
+    ctx.say(fmt::format("a bridge: {}. The study gap {} sets every joint's gap to {} + (its gap - d), d = {:g} m "
                         "(the smallest joint gap); an analysis pounds when ANY joint closes",
-                        sm.bridge->describe(), sm.bridge->reference_gap));
+                        sm.bridge->describe(), m ? "g (m)" : "ratio x", m ? "g" : "x d", sm.bridge->reference_gap));
   if (sm.row())
-    ctx.say(fmt::format("a row of {} buildings, left to right: every joint with the study gap ratio x d (d = the row's "
-                        "largest joint code separation); an analysis pounds when ANY joint touches",
-                        sm.building_count()));
+    ctx.say(fmt::format("a row of {} buildings, left to right: every joint with the study gap {}; an analysis pounds "
+                        "when ANY joint touches",
+                        sm.building_count(),
+                        m ? "g ([gaps] metres)" : "ratio x d (d = the row's largest joint code separation)"));
   for (int b = 0; b < static_cast<int>(sm.building_count()) && sm.any_shear(); ++b) ctx.say(describe_structure(sm, b));
   if (in.study.polarity == Polarity::both)
     ctx.say(fmt::format("record polarity \"both\": each of the {} records applied with both signs, as two analyses of "

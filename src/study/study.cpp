@@ -198,13 +198,26 @@ void parse_records(Study& s, const toml::table* t, const std::string& path) {
 
 void parse_gaps(Study& s, const toml::table* t, const std::string& path) {
   TableReader g(t, path, "gaps");
-  s.gap_ratios = g.numbers("ratios", s.gap_ratios);
+  const bool ratios = g.get("ratios") != nullptr, metres = g.get("metres") != nullptr;
+  if (ratios && metres)
+    throw InputError("[gaps] gives both ratios and metres", g.where("metres"),
+                     "give one gap axis: ratios = [...] (ratios x of each model's code gap d) or metres = [...] (every "
+                     "model's gap in metres)");
+  s.gap_metres = metres;
+  const char* key = metres ? "metres" : "ratios";
+  s.gap_ratios = g.numbers(key, s.gap_ratios);
+  if (s.gap_ratios.empty())
+    throw InputError(fmt::format("[gaps] {} is empty", key), g.where(key), "give at least one gap");
   for (std::size_t i = 1; i < s.gap_ratios.size(); ++i)
     if (!(s.gap_ratios[i] > s.gap_ratios[i - 1]))
-      throw InputError("gap ratios must be strictly increasing", g.where("ratios"), "sort them and remove duplicates");
-  s.curve_max = g.number("curve_max", std::max(1.5, s.gap_ratios.back()));
+      throw InputError(fmt::format("gap {} must be strictly increasing ({:g} after {:g})", key, s.gap_ratios[i],
+                                   s.gap_ratios[i - 1]),
+                       g.where(key), "sort them and remove duplicates");
+  // the curve on the axis' unit: ratios up to 1.5 d (or the largest ratio), metres up to 1.5 x the largest gap
+  s.curve_max = g.number("curve_max", metres ? std::max(0.01, 1.5 * s.gap_ratios.back()) : std::max(1.5, s.gap_ratios.back()));
   s.curve_step = g.number("curve_step", 0.005);
-  g.finish("ratios, curve_max, curve_step");
+  s.existing_gap = g.number("existing", NAN);
+  g.finish("ratios, metres, curve_max, curve_step, existing");
 }
 
 // [contact] restitution: a preset's name, or a table {preset | polynomial | table, units, valid} (the options of
@@ -366,8 +379,9 @@ void parse_report(Study& s, const toml::table* t, const std::string& path) {
     throw InputError(fmt::format("compare_with = \"{}\" is not a published study the report knows", s.compare_with),
                      r.where("compare_with"), "write compare_with = \"stochastic-pounding\" or leave it out");
   s.html = r.boolean("html", false);
-  s.fit_min = r.number("fit_min", 0.1);
-  s.fit_max = r.number("fit_max", 1.0);
+  // on the gap axis' unit: ratios 0.1 to 1.0 d; metres 0.1 x to 1 x the largest gap
+  s.fit_min = r.number("fit_min", s.gap_metres ? 0.1 * s.gap_ratios.back() : 0.1);
+  s.fit_max = r.number("fit_max", s.gap_metres ? s.gap_ratios.back() : 1.0);
   if (!(s.fit_max > s.fit_min)) throw InputError("fit_max must exceed fit_min", r.where("fit_max"), "give fit_min < fit_max");
   r.finish("targets, fit_min, fit_max, confidence, bootstrap, compare_with, html");
 }
@@ -431,7 +445,8 @@ void choose_scene(Study& s) {
     s.scene_reason = "probability scene: whether a pair touches at gap g depends only on the motion before the first "
                      "contact, i.e. the uncoupled motion; one uncoupled run per model and record answers every gap";
   } else {
-    s.scene_reason = "impacts scene: one uncoupled run per model, then coupled contact runs at every gap ratio";
+    s.scene_reason = std::string("impacts scene: one uncoupled run per model, then coupled contact runs at every ") +
+                     (s.gap_metres ? "gap" : "gap ratio");
   }
   if (!max_dt_given) s.max_dt = s.scene == Scene::impacts ? 0.0025 : 0.0;
   if (s.batch == 0) s.batch = default_batch(s.scene);

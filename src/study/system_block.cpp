@@ -359,7 +359,7 @@ void SystemBlock::run(std::span<const SampledPair> pairs, std::span<const std::s
     batch_.resize(sys, end - at);
     for (std::size_t j = at; j < end; ++j) {
       const SampledPair& p = pairs[lanes[order_[j]]];
-      set_lane(batch_, j - at, p, t, ratio * p.d, cn);
+      set_lane(batch_, j - at, p, t, ratio * (gap_metres_ ? 1.0 : p.d), cn);  // Study::gap_unit
     }
     if (channels_.empty()) physics::run_system(batch_, groups, gm, ks, res_);
     else physics::run_system(batch_, groups, channels_, ks, res_);

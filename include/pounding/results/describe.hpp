@@ -21,6 +21,8 @@ struct Description {
 // The row of /<group>/<name>: the group's table (/system's included), then the schema's unit, per-element,
 // per-floor (any building: "peak_drift3") and derived fields; none when there is none.
 std::optional<Description> describe(std::string_view group, std::string_view name);
+// The rows of /gaps on a metres axis ([gaps] metres: /gaps/axis, and /gaps/metres described as such).
+std::optional<Description> describe_metres_axis(std::string_view name);
 
 // One dataset of a results file as `pounding results FILE` lists it.
 struct DatasetInfo {

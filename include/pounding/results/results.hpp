@@ -144,13 +144,18 @@ class Settings {
   std::string text(std::string_view section, std::string_view key) const;
 };
 
-// /gaps, in every scene: the study's gap ratios and the gap in metres each gives each model.
+// /gaps, in every scene: the study's gap axis and the gap in metres each point gives each model. The axis is ratios x
+// of each model's code gap d ([gaps] ratios: /gaps/ratios), or metres ([gaps] metres: /gaps/axis, the group's
+// attribute unit = "m"; issue 45 item 4): `ratios` holds the axis either way, in_metres says which.
 struct GapTable {
-  std::vector<double> ratios;  // [gaps]
-  std::vector<double> metres;  // [models x gaps], model-major: ratios[g] * code_gap[m]
+  std::vector<double> ratios;  // [gaps]: the axis (ratios of d, or metres when in_metres)
+  std::vector<double> metres;  // [models x gaps], model-major: ratios[g] * code_gap[m] (in_metres: ratios[g])
+  bool in_metres = false;
+  // model m's gap unit: its code gap d, or 1 (m) on a metres axis
+  double unit(std::span<const double> code_gap, std::size_t m) const { return in_metres ? 1.0 : code_gap[m]; }
 };
-// The gaps of `ratios` for models of code gap `code_gap` (m).
-GapTable gap_table(std::span<const double> ratios, std::span<const double> code_gap);
+// The gaps of `ratios` for models of code gap `code_gap` (m); in_metres: `ratios` are metres, every model's gap.
+GapTable gap_table(std::span<const double> ratios, std::span<const double> code_gap, bool in_metres = false);
 
 // One per-model output: its row of the schema and its values, flat and record-major ([records x models] or
 // [records x models x gaps]; the file stores them with that shape).

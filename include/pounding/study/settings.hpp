@@ -232,7 +232,8 @@ void visit_settings(const Study& s, V&& v) {
     v("bridge", "description", m.bridge->describe());
   }
 
-  v("gaps", "ratios", s.gap_ratios);
+  v("gaps", s.gap_metres ? "metres" : "ratios", s.gap_ratios);  // the axis' key names its unit (the report reads it)
+  if (!std::isnan(s.existing_gap)) v("gaps", "existing", s.existing_gap);  // absent: the other studies' bits
   v("gaps", "curve_max", s.curve_max);
   v("gaps", "curve_step", s.curve_step);
 

@@ -171,9 +171,19 @@ struct Study {
   std::shared_ptr<const StudyMotions> motions;  // [records.motions]: generated support motions (supports = their count)  // "file:line [records].supports" for errors found when the records load
   // structures
   StructureModel structures;
-  // gaps
+  // gaps: the axis. [gaps] ratios (gap_metres false): the values are ratios x of each model's code gap d, the gap
+  // x d; [gaps] metres (gap_metres true): the values are metres, every model's gap (issue 45 item 4). The name keeps
+  // the ratio mode's; gap_unit() is what a value multiplies. curve_max, curve_step and [report] fit_min, fit_max are
+  // on the same axis.
   std::vector<double> gap_ratios{0.1, 0.2, 0.3, 0.5, 0.7, 1.0};
+  bool gap_metres = false;
   double curve_max = 1.5, curve_step = 0.005;
+  // [gaps] existing (m): the as-built gap, reported with P(closing > existing) (NaN: not given)
+  double existing_gap = NAN;
+  // A sampled pair's gap unit: its code gap d (a bridge's reference gap) in ratio mode, 1 m in metres mode. The
+  // study gap at axis point g is gap_ratios[g] x gap_unit(p) (ratio mode: the product it always was, same bits).
+  double gap_unit(const SampledPair& p) const { return gap_metres ? 1.0 : p.d; }
+  double gap_at(std::size_t g, const SampledPair& p) const { return gap_ratios[g] * gap_unit(p); }
   // contact and analysis
   ContactModel contact;
   double e = 0.65;

@@ -133,17 +133,20 @@ class SystemBlock {
       : SystemBlock(s.structures, s.contact, s.e, s.contact_levels, s.gap_offsets, s.level_tolerance,
                     s.shape_functions) {
     set_joint_offsets(s.joint_gap_offsets);
+    set_gap_metres(s.gap_metres);
   }
   // [contact] joint_gap_offsets of a row: per joint left to right (m), added to every element of the joint besides
   // the per-level offsets; D = max over elements of (closing - both offsets). Empty: none.
   void set_joint_offsets(std::vector<double> offsets) { joint_offsets_ = std::move(offsets); }
+  // [gaps] metres: coupled()'s `ratio` is the study gap in metres, not a ratio of each lane's d (Study::gap_unit)
+  void set_gap_metres(bool on) { gap_metres_ = on; }
 
   // Every lane of `pairs`, uncoupled: `none` is the study's contact model with law none (the study-gap group's law);
   // status, u1, u2, closing = D.
   void uncoupled(std::span<const SampledPair> pairs, const ContactModel& none, const GroundMotion& gm,
                  const KernelSettings& ks, BlockPeaks& out);
-  // The lanes `lanes` (positions in `pairs`) coupled at gap = ratio d with contact model `cm`; out[j] is lane
-  // lanes[j]'s.
+  // The lanes `lanes` (positions in `pairs`) coupled at gap = ratio d (with [gaps] metres, a study's block: gap =
+  // ratio, in metres; Study::gap_unit) with contact model `cm`; out[j] is lane lanes[j]'s.
   void coupled(std::span<const SampledPair> pairs, std::span<const std::size_t> lanes, double ratio,
                const ContactModel& cm, const ContactNumbers& cn, const GroundMotion& gm, const KernelSettings& ks,
                BlockPeaks& out);
@@ -199,6 +202,7 @@ class SystemBlock {
   double e_;
   model::ContactLevels levels_;
   std::vector<double> offsets_, joint_offsets_;
+  bool gap_metres_ = false;  // [gaps] metres: a run's `ratio` is the study gap in metres (Study::gap_unit)
   double tolerance_ = 0.05;
   std::span<const GroundMotion> channels_;
   model::ShapeFunctions shape_ = model::ShapeFunctions::linear;
