@@ -522,7 +522,14 @@ def plot_pair(f, rows, source):
     for i, (rule, (gm, level)) in enumerate(sorted(governing.items(), key=lambda kv: kv[1][0])):
         ax.axvline(gm, color=f"C{(2 + len(rules) + len(design) + i) % 10}", lw=1.4, ls=":", gid="code_level",
                    label=textwrap.fill(f"{rule}, governing contact {level}", 44) + f":\n  {gm:.3f} m")
-    rules = {**rules, **{g: None for g in design}, **{g: None for g, _ in governing.values()}}  # x-axis extent
+    # [gaps] existing: the as-built gap (row "existing"), a black vertical line labelled with its metres
+    existing = [r for r in rows if r["table"] == "existing"]
+    for r in existing:
+        ge = float(r["gap_m"])
+        ax.axvline(ge, color="k", lw=2.0, ls="-.", gid="existing",
+                   label=f"existing {ge:g} m: P = {100 * float(r['probability']):.1f} %")
+    rules = {**rules, **{g: None for g in design}, **{g: None for g, _ in governing.values()},
+             **{float(r["gap_m"]): None for r in existing}}  # x-axis extent
 
     # separation advice: the estimate (dot) with its interval, and the advised separation (its upper end, a
     # diamond on a dashed line up to the target) labelled right beside that diamond
@@ -575,12 +582,25 @@ def plot_pair(f, rows, source):
 
 
 
+def metres_axis(f):
+    """[gaps] metres: the gap axis is metres (/gaps attribute unit = "m"), every model's gap the same."""
+    return "gaps" in f and attr_str(f["gaps"].attrs.get("unit", "")) == "m"
+
+
+def existing_gap(f):
+    """[gaps] existing (m), or None."""
+    g = f["settings/gaps"].attrs if "settings/gaps" in f else {}
+    return float(g["existing"]) if "existing" in g else None
+
+
 def grid_demands(f):
-    """A grid study's peak closings, ok mask and code gaps: (pc [records, models], ok, d [models])."""
+    """A grid study's peak closings, ok mask and gap units: (pc [records, models], ok, d [models]); d is each model's
+    code gap, or 1 (m) on a metres axis ([gaps] metres), so that pc / d is the demand on the study's axis."""
     pc = f["uncoupled/peak_closing"][()]
     R, M = pc.shape
     ok = f["uncoupled/status"][()].reshape(R, M) == 0  # [records, models]; format 1 stored it flat
-    return pc, ok, f["models/code_gap"][()]
+    d = f["models/code_gap"][()]
+    return pc, ok, np.ones_like(d) if metres_axis(f) else d
 
 
 def paper_compared(f):
@@ -595,7 +615,12 @@ def plot_probability(f, fit_min=0.1, fit_max=1.0, source=""):
     n = z.size
     if n == 0:
         raise SystemExit(f"plot_study.py: {source} has no valid analysis (all {pc.size} excluded); nothing to plot")
-    x = np.linspace(0.005, 1.5, 300)
+    metres = metres_axis(f)
+    if metres:  # the axis, curve and fit range in metres (the study's own settings)
+        top = float(f["settings/gaps"].attrs["curve_max"])
+        rep = f["settings/report"].attrs
+        fit_min, fit_max = float(rep["fit_min"]), float(rep["fit_max"])
+    x = np.linspace(0.005, 1.5, 300) if not metres else np.linspace(top / 300, top, 300)
     zs = np.sort(z)
     p = 100.0 * (n - np.searchsorted(zs, x, side="right")) / n
     sel = (x >= fit_min - 1e-12) & (x <= fit_max + 1e-12)
@@ -604,8 +629,8 @@ def plot_probability(f, fit_min=0.1, fit_max=1.0, source=""):
     fig, ax = plt.subplots(figsize=(7, 4.5))
     ax.plot(x, p, lw=2, label=f"this study, continuous (n = {n})")
     ax.plot(x[sel], np.polyval(c, x[sel]), "--", label="cubic fit: {:.1f}x³ {:+.1f}x² {:+.1f}x {:+.1f}".format(*c))
-    paper_x = np.array([0.1, 0.2, 0.3, 0.5, 0.7, 1.0])
-    if paper_compared(f):
+    paper_x = np.array([0.1, 0.2, 0.3, 0.5, 0.7, 1.0]) if not metres else f["gaps/axis"][()]
+    if paper_compared(f) and not metres:
         ax.plot(paper_x, [71.09, 45.56, 25.26, 6.12, 1.14, 0.0], "ks", label="paper, Table 3")
         xx = np.linspace(0.1, 1.0, 100)
         ax.plot(xx, -213.7 * xx**3 + 510.3 * xx**2 - 403.4 * xx + 106.8, "k:", label="paper, eq. 10")
@@ -614,7 +639,12 @@ def plot_probability(f, fit_min=0.1, fit_max=1.0, source=""):
         lo, hi = wilson(k, n)
         ax.errorbar([r], [100 * k / n], yerr=[[100 * (k / n - lo)], [100 * (hi - k / n)]], fmt="o", color="C3",
                     capsize=3)
-    ax.set_xlabel("gap ratio g / d  (d = 0.005 (h1 + h2))")
+    ge = existing_gap(f)
+    if ge is not None and (metres or np.all(d == d[0])):  # on a ratio axis only where every model has one d
+        xe = ge if metres else ge / d[0]
+        k = int(np.sum(pc[ok] > ge))
+        ax.axvline(xe, color="k", lw=2.0, ls="-.", gid="existing", label=f"existing {ge:g} m: P = {100 * k / n:.1f} %")
+    ax.set_xlabel("gap g (m)" if metres else "gap ratio g / d  (d = 0.005 (h1 + h2))")
     ax.set_ylabel("probability of at least one impact (%)")
     ax.set_title(wrap_title(attr_str(f.attrs["title"]), fig), fontsize=10)
     ax.grid(alpha=0.3)
@@ -636,6 +666,9 @@ def plot_periods(f, ratio=0.3):
     pc, ok, d = grid_demands(f)
     p1, p2 = period_grids(f)
     i1, i2 = f["models"]["i1"][()], f["models"]["i2"][()]
+    if metres_axis(f):  # the axis' third gap (or its last) in metres, not a ratio
+        axis = f["gaps/axis"][()]
+        ratio = float(axis[min(2, len(axis) - 1)])
     hit = (pc > ratio * d[None, :]) & ok
     mat = np.full((len(p1), len(p2)), np.nan)
     for a1 in range(len(p1)):
@@ -648,9 +681,20 @@ def plot_periods(f, ratio=0.3):
     fig.colorbar(im, label="probability of at least one impact (%)")
     ax.set_xlabel("T2 (s), right structure")
     ax.set_ylabel("T1 (s), left structure")
-    ax.set_title(f"gap ratio {ratio}")
+    ax.set_title(f"gap {ratio:g} m" if metres_axis(f) else f"gap ratio {ratio}")
     fig.tight_layout()
     return fig
+
+
+def impact_gaps(f):
+    """The impacts scene's gap axis and the metres one unit of it is: ([gaps] ratios) /impacts/gap_ratios and model 0's
+    code gap d (a bridge's reference gap); ([gaps] metres) /impacts/gap_axis and 1; (empty, d) without the scene."""
+    d = f["models/code_gap"][()] if "models/code_gap" in f else np.array([])
+    dref = float(d[0]) if d.size else float(f["settings/bridge"].attrs.get("reference_gap", 0.0)) \
+        if "settings/bridge" in f else 1.0
+    if "impacts/gap_axis" in f:
+        return f["impacts/gap_axis"][()], 1.0
+    return (f["impacts/gap_ratios"][()] if "impacts/gap_ratios" in f else np.array([])), dref
 
 
 def is_bridge(f):
@@ -692,9 +736,7 @@ def plot_bridge_joints(f, source=""):
     if n == 0:
         raise SystemExit(f"{source}: no valid analysis (all {R * M} excluded); nothing to plot")
     top = float(np.nanmax(closing)) if np.isfinite(closing).any() else 0.0
-    ratios = f["impacts/gap_ratios"][()] if "impacts/gap_ratios" in f else np.array([])
-    d = f["models/code_gap"][()]
-    dref = float(d[0]) if d.size else float(f["settings/bridge"].attrs.get("reference_gap", 0.0))
+    ratios, dref = impact_gaps(f)
     top = max(top, float(np.max(ratios) * dref + offsets.max()) if ratios.size else 0.0)
     x = np.linspace(0.0, 1.05 * max(top, 1e-6), 400)
     fig, ax = plt.subplots(figsize=(8, 4.6))
@@ -771,9 +813,8 @@ def bridge_input_curves(f, x):
     n = Ds.size
     p = 100.0 * (n - np.searchsorted(Ds, x, side="right")) / max(n, 1)
     bars = []
-    if "impacts/impact_count" in f and "impacts/gap_ratios" in f:
-        ratios = f["impacts/gap_ratios"][()]
-        d = f["models/code_gap"][()]
+    if "impacts/impact_count" in f and ("impacts/gap_ratios" in f or "impacts/gap_axis" in f):
+        ratios, dref = impact_gaps(f)
         cnt = f["impacts/impact_count"][()].reshape(R, M, len(ratios))
         st = f["impacts/status"][()].reshape(R, M, len(ratios)) == 0
         rid = np.asarray(f["records/id"][()]) if "records/id" in f else np.arange(R)
@@ -784,7 +825,7 @@ def bridge_input_curves(f, x):
                 continue
             hit = cnt[:, :, g][okg] > 0
             lo, hi, _ = wilson_clustered(hit, cl[okg])
-            bars.append((float(r * d[0]), 100.0 * hit.mean(), 100.0 * lo, 100.0 * hi))
+            bars.append((float(r * dref), 100.0 * hit.mean(), 100.0 * lo, 100.0 * hi))
     return p, n, bars
 
 
@@ -798,8 +839,9 @@ def plot_bridge_inputs(files, sources=()):
         D = f["uncoupled/peak_closing"][()]
         if np.isfinite(D).any():
             top = max(top, float(np.nanmax(D)))
-        if "impacts/gap_ratios" in f:
-            top = max(top, float(np.max(f["impacts/gap_ratios"][()]) * f["models/code_gap"][()][0]))
+        ratios, dref = impact_gaps(f)
+        if ratios.size:
+            top = max(top, float(np.max(ratios) * dref))
     x = np.linspace(0.0, 1.05 * top, 400)
     fig, ax = plt.subplots(figsize=(8, 4.6))
     for i, f in enumerate(files):

@@ -63,6 +63,12 @@ struct Data {
   // The reductions' per-record histograms of z (independent records: a record's two signs summed)
   separation::HistogramDemands histograms() const;
   std::size_t gaps() const { return res.gap_ratios.size(); }
+  // Model m's gap unit: its code gap d on a ratio axis, 1 (m) on a metres axis ([gaps] metres, issue 45 item 4): the
+  // gap at axis value x is x unit(m) and the demand closing / unit(m) (ratio axis: the products and quotients the
+  // report always took)
+  double unit(std::size_t m) const { return set.metres ? 1.0 : mod.code_gap[m]; }
+  // The gap axis as a column title and in a sentence: "gap ratio" / "gap ratio x", or "gap m" / "gap (m)"
+  const char* axis_title() const { return set.metres ? "gap m" : "gap ratio"; }
   bool paper() const { return set.compare_with == "stochastic-pounding"; }
   // Damping ratio of building b (1 or 2) of model m (per building when the file has it).
   double zeta(int b, std::size_t m) const;
@@ -128,7 +134,8 @@ std::vector<double> record_peaks(const separation::Demands& d);
 // the report's "synthetic" cell for it: yes, generated, no.
 std::string record_kind(const results::RecordTable& t, std::size_t k);
 std::string synthetic_cell(const results::RecordTable& t, std::size_t k);
-// The gap ratio x as a column title; "x d = g m" when the code gap is the same for every model (report.cpp).
+// The gap ratio x as a column title; "x d = g m" when the code gap is the same for every model; "x m" on a metres axis
+// (report.cpp).
 std::string gap_title(const Data& r, double x);
 
 // The moat walls of the isolated buildings (moat_section.cpp): per building with a moat, its walls (elements of a group
@@ -144,6 +151,10 @@ std::vector<MoatBuilding> moat_buildings(const results::SystemTable& sys);
 // interval, without pounding and with it at each gap ratio, and the base's peak displacement; "" without a moat.
 std::string moat_section(const Data& r);
 std::string moat_csv(const Data& r);  // rows "moat" of the CSV report
+// [gaps] existing (m): P(uncoupled peak closing > existing) over every ok analysis (exact, the per-model closings),
+// with the report's Wilson interval; the section's text (report.cpp), "" without an existing gap or per-model peaks.
+Count count_existing(const Data& r);
+std::string existing_section(const Data& r);
 // The same per stripe of a fragility study (levels: the stripes' IM values, im: their measure and units).
 std::string moat_fragility_section(const results::Results& r, std::span<const double> levels, const std::string& im);
 

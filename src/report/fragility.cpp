@@ -45,7 +45,8 @@ stripes::Settings stripe_settings(const Results& r) {
   return s;
 }
 
-// The demands of every (stripe or run, record, model) in gap units: peak closing / d (d the model's code gap);
+// The demands of every (stripe or run, record, model) in gap units: peak closing / d (d the model's code gap; on a
+// metres axis, [gaps] metres, 1: the closing in metres);
 // NaN for an analysis left out (diverged, non-finite, coarse unless kept, or a record dropped from the stripe).
 std::vector<double> demand_ratios(const Results& r) {
   const auto& pc = r.column<double>("uncoupled", "peak_closing");
@@ -54,7 +55,7 @@ std::vector<double> demand_ratios(const Results& r) {
   const std::size_t M = r.model_count();
   std::vector<double> d(pc.size(), NAN);
   for (std::size_t i = 0; i < pc.size(); ++i)
-    if (st[i] == 0 || (keep && st[i] == 3)) d[i] = pc[i] / r.models.code_gap[i % M];
+    if (st[i] == 0 || (keep && st[i] == 3)) d[i] = pc[i] / r.gaps.unit(r.models.code_gap, i % M);
   return d;
 }
 
@@ -207,9 +208,10 @@ void set_target_attributes(Group& h, const stripes::TargetGap& t, double d) {
 }
 
 // the rate-versus-separation curve of /hazard (MSA and bisection IDA; none for a linear IDA)
-void add_rate_curve(Group& h, const stripes::RateCurve& curve) {
+void add_rate_curve(Group& h, const stripes::RateCurve& curve, bool metres) {
   if (curve.gap.empty()) return;
-  h.add("curve_gap", curve.gap, "1", "gaps (ratios of d) of the rate-versus-separation curve");
+  if (metres) h.add("curve_gap", curve.gap, "m", "gaps (m, [gaps] metres) of the rate-versus-separation curve");
+  else h.add("curve_gap", curve.gap, "1", "gaps (ratios of d) of the rate-versus-separation curve");
   h.add("curve_rate", curve.rate, "1/year", "annual rate of pounding at each curve gap (point estimate)");
   h.add("curve_probability", curve.probability, "1", "probability of pounding in `years` at each curve gap");
   h.add("curve_rate_fitted", curve.rate_fitted, "1/year",
@@ -284,9 +286,15 @@ void analyse_fragility(Results& r, const WorkHook* hook) {
   g.set("confidence", st.confidence);
   g.set("replicates", static_cast<std::int64_t>(st.bootstrap));
   g.set("im_units", units);
-  g.set("gap_units", std::string("ratio of the code gap d"));
-  g.add("gaps", gaps, "1", "the gaps, as ratios of each model's code gap d");
-  if (pair_study(r)) {
+  if (r.gaps.in_metres) {  // [gaps] metres: the gaps are metres, every model's
+    g.set("gap_units", std::string("m"));
+    g.add("gaps", gaps, "m", "the gaps in metres ([gaps] metres: every model's gap)");
+    g.add("gaps_m", gaps, "m", "the gaps in metres (= gaps)");
+  } else {
+    g.set("gap_units", std::string("ratio of the code gap d"));
+    g.add("gaps", gaps, "1", "the gaps, as ratios of each model's code gap d");
+  }
+  if (pair_study(r) && !r.gaps.in_metres) {
     std::vector<double> m;
     for (double x : gaps) m.push_back(x * r.models.code_gap[0]);
     g.add("gaps_m", m, "m", "the gaps in metres (this pair's d times the ratio)");
@@ -296,9 +304,9 @@ void analyse_fragility(Results& r, const WorkHook* hook) {
   if (!hz) return;
   add_hazard_group(r, *hz, fits, st, demand, levels);
   Group& h = *const_cast<Group*>(r.group("hazard"));
-  const double d = pair_study(r) ? r.models.code_gap[0] : NAN;
+  const double d = r.gaps.in_metres ? 1.0 : pair_study(r) ? r.models.code_gap[0] : NAN;  // the axis' metres per unit
   set_target_attributes(h, target, d);
-  add_rate_curve(h, curve);
+  add_rate_curve(h, curve, r.gaps.in_metres);
 }
 
 }  // namespace pounding

@@ -32,18 +32,22 @@ struct View {
   std::vector<double> levels, gaps, gaps_m;
   std::string units;
   bool pair;
+  bool metres;  // [gaps] metres: the gaps are metres (/fragility gap_units = "m")
   View(const Results& res)
       : r(res), in(*res.group("intensity")), fr(*res.group("fragility")), hz(res.group("hazard")),
         levels(fr.get<double>("levels")), gaps(fr.get<double>("gaps")), units(in.text("units")),
-        pair(fr.find("gaps_m") != nullptr) {
+        pair(fr.find("gaps_m") != nullptr), metres(fr.attribute("gap_units") && fr.text("gap_units") == "m") {
     if (pair) gaps_m = fr.get<double>("gaps_m");
   }
   std::string gap_name(std::size_t k) const {
+    if (metres) return fmt::format("{:g} m", gaps[k]);
     return pair ? fmt::format("{:g} d = {:.3f} m", gaps[k], gaps_m[k]) : fmt::format("{:g} d", gaps[k]);
   }
-  std::string gap_value(double ratio, double metres) const {
-    return pair ? fmt::format("{:.3f} m ({:.3g} d)", metres, ratio) : fmt::format("{:.3g} d", ratio);
+  std::string gap_value(double ratio, double metres_value) const {
+    if (metres) return fmt::format("{:.3f} m", metres_value);
+    return pair ? fmt::format("{:.3f} m ({:.3g} d)", metres_value, ratio) : fmt::format("{:.3g} d", ratio);
   }
+  const char* unit() const { return metres ? "m" : "d"; }
 };
 
 std::string overview(const View& v) {
@@ -141,7 +145,8 @@ std::string target_beyond_stripes(const View& v, const Group& h) {
   for (std::size_t i = 1; i < g.size(); ++i)
     if (std::abs(g[i] - x) < std::abs(g[best] - x)) best = i;
   if (g.empty()) return "";
-  return beyond_stripes(v, fmt::format("the fitted rate at {:g} d (the curve's gap nearest the separation)", g[best]),
+  return beyond_stripes(v, fmt::format("the fitted rate at {:g} {} (the curve's gap nearest the separation)", g[best],
+                                       v.unit()),
                         h.get<double>("curve_share_below_stripes")[best], h.get<double>("curve_share_above_stripes")[best]) +
          ".\n\n";
 }
@@ -303,9 +308,32 @@ std::string hazard_section(const View& v) {
 
 }  // namespace
 
+// [gaps] existing (m): the fragility at the as-built gap when it is one of the study's gaps (in metres: a metres axis'
+// value, or a pair's x d), else a line that says it is not.
+std::string existing_fragility(const View& v) {
+  if (!v.r.settings.find("gaps", "existing")) return "";
+  const double g = v.r.settings.number("gaps", "existing");
+  std::size_t k = 0;
+  while (k < v.gaps.size() && !(v.metres ? v.gaps[k] == g : v.pair && v.gaps_m[k] == g)) ++k;
+  std::string s = fmt::format("## At the existing gap\n\nThe as-built gap, [gaps] existing = {:g} m: ", g);
+  if (k == v.gaps.size())
+    return s + fmt::format("not one of the study's gaps{}, so it has no fragility curve here; give it as one of "
+                           "[gaps] metres (or, for a pair, a ratio x with x d = {:g} m) to have its curve.\n\n",
+                           v.pair || v.metres ? "" : " (the heights vary, so no ratio is the same metres for every model)",
+                           g);
+  const auto& theta = v.fr.get<double>("theta");
+  const auto& beta = v.fr.get<double>("beta");
+  s += fmt::format("its fragility is the row {} below: median theta = {:.4g} {}, beta = {:.3f}", v.gap_name(k), theta[k],
+                   v.units, beta[k]);
+  if (v.hz)
+    s += fmt::format("; annual rate of pounding {:.3e}, P in {:g} years = {}", v.hz->get<double>("annual_rate")[k],
+                     v.hz->number("years"), fmt::format("{:.2f}%", 100 * v.hz->get<double>("probability")[k]));
+  return s + ".\n\n";
+}
+
 std::string fragility_markdown(const Results& r) {
   const View v(r);
-  return overview(v) + target_section(v) + fragility_table(v) + observed_table(v) +
+  return overview(v) + target_section(v) + existing_fragility(v) + fragility_table(v) + observed_table(v) +
          report_detail::moat_fragility_section(r, v.levels, v.in.text("measure") + " " + v.units) + hazard_section(v) +
          stripes_section(v);
 }
@@ -330,7 +358,8 @@ std::string fragility_csv(const Results& r) {
   if (v.hz && v.hz->find("curve_gap")) {
     const auto& cg = v.hz->get<double>("curve_gap");
     for (std::size_t k = 0; k < cg.size(); ++k)
-      s += fmt::format("rate_curve,{},{},,,,,,,,,,{},{}\n", cg[k], v.pair ? cg[k] * v.r.models.code_gap[0] : NAN,
+      s += fmt::format("rate_curve,{},{},,,,,,,,,,{},{}\n", cg[k],
+                       v.metres ? cg[k] : v.pair ? cg[k] * v.r.models.code_gap[0] : NAN,
                        v.hz->get<double>("curve_rate")[k], v.hz->get<double>("curve_probability")[k]);
   }
   if (v.hz) {

@@ -138,7 +138,7 @@ MoatTally moat_tally(const Data& r, const MoatBuilding& m, const MoatArrays& a, 
       if (!r.ok(r.imp_status[i * a.G + g])) continue;
       // an analysis that never touched its neighbour at this gap ran as the uncoupled one (skip_untouched: its
       // element rows then hold no impacts, also at the moat): the uncoupled verdict is its verdict
-      const bool untouched = r.ok(r.status[i]) && !(r.peak_closing[i] > r.res.gap_ratios[g] * r.mod.code_gap[mm]);
+      const bool untouched = r.ok(r.status[i]) && !(r.peak_closing[i] > r.res.gap_ratios[g] * r.unit(mm));
       if (untouched && std::isnan(m.gap)) continue;
       t.add(k / r.per_record, untouched ? a.hit(m, i) : a.hit(m, i, g), a.base(i, g));
     }

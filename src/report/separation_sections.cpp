@@ -126,6 +126,13 @@ std::vector<double> record_peaks(const separation::Demands& d) {
 
 namespace {
 
+// [gaps] existing as one more row of the code-rules table (after the rules and the codes' design rows), so that the
+// table, its CSV rows and the figure's lines mark it; nothing without an existing gap.
+void add_existing(const Data& r, std::vector<separation::Rule>& rules) {
+  if (!std::isnan(r.set.existing))
+    rules.push_back({fmt::format("existing {:g} m", r.set.existing), "as built", "[gaps] existing", r.set.existing});
+}
+
 std::string interval(const separation::Estimate& e, double scale, const char* f) {
   return fmt::format("[{}, {}]", fmt::format(fmt::runtime(f), scale * e.lo), fmt::format(fmt::runtime(f), scale * e.hi));
 }
@@ -136,6 +143,7 @@ std::string pair_rules(const Data& r) {
   const std::string scope = coefficient_scope(r, rules);
   const separation::CodeDesign design = code_design(r);  // the codes' own design displacements (code_design.cpp)
   rules.insert(rules.end(), design.rules.begin(), design.rules.end());
+  add_existing(r, rules);
   std::vector<double> gaps;
   for (const auto& rule : rules) gaps.push_back(rule.gap);
   const separation::Demands d = r.demands(true);
@@ -178,6 +186,12 @@ std::string grid_rules(const Data& r) {
   for (const GridRuleRow& row : grid_rule_rows(r))
     s += fmt::format("| {} | {} | {} | {} | [{:.2f}%, {:.2f}%] |\n", row.rule.name, row.rule.clause, row.rule.formula,
                      pct(row.n ? 100.0 * static_cast<double>(row.hits) / static_cast<double>(row.n) : NAN), 100 * row.wilson.lo, 100 * row.wilson.hi);
+  if (!std::isnan(r.set.existing)) {  // the as-built gap, every model's: the marker row
+    const Count c = count_existing(r);
+    const Interval w = wilson(r, c.hits, c.n);
+    s += fmt::format("| **existing {:g} m** | as built | [gaps] existing | {} | [{:.2f}%, {:.2f}%] |\n", r.set.existing,
+                     pct(c.pct()), 100 * w.lo, 100 * w.hi);
+  }
   return s;
 }
 
@@ -224,14 +238,15 @@ struct PairAdviceRows {
 PairAdviceRows pair_advice_rows(const Data& r, const separation::BootstrapResult& b) {
   const separation::Demands d = r.demands(true);
   const std::vector<double> record_peak = record_peaks(d);
-  const double dcode = median(r.mod.code_gap);
-  const std::optional<CubicFit> f = metres_fit(r, d.pooled(), dcode);
+  // the curve's and fit's unit: the median code gap on a ratio axis, 1 m on a metres axis ([gaps] metres)
+  const double unit = r.set.metres ? 1.0 : median(r.mod.code_gap);
+  const std::optional<CubicFit> f = metres_fit(r, d.pooled(), unit);
   PairAdviceRows rows;
   rows.records = record_peak.size();
   for (std::size_t i = 0; i < r.set.targets.size(); ++i) {
     const double v = b.separation[i].value;
     rows.above.push_back(std::count_if(record_peak.begin(), record_peak.end(), [&](double p) { return p > v; }));
-    rows.cubic.push_back(f ? solve_fit(*f, r.set.targets[i], r.set.fit_min * dcode, r.set.fit_max * dcode)
+    rows.cubic.push_back(f ? solve_fit(*f, r.set.targets[i], r.set.fit_min * unit, r.set.fit_max * unit)
                            : std::nullopt);
   }
   return rows;
@@ -251,7 +266,7 @@ std::string pair_separation_section(const Data& r) {
       "interval is a two-stage bootstrap over records and over models within records ({} replicates, {:.0f} %, "
       "seeded from the study's seed), so it includes record-to-record variability; **the advice is its upper "
       "end**. The code gap is d = {} (h1 + h2) = {:.3f} m{}. The cubic fit (P in % against metres over "
-      "[{}, {}] d) is a secondary summary.\n\n"
+      "[{}, {}] {}) is a secondary summary.\n\n"
       "The records, not the analyses, limit how fine a target can be: with N = {} independent records a target t "
       "with floor(t N) = 0 is **not resolved by N records** -- no record is expected to exceed it, and the empirical "
       "separation is (close to) the largest record's peak, whatever t. \"Records above\" counts the records with "
@@ -265,7 +280,7 @@ std::string pair_separation_section(const Data& r) {
       buildings(r), d.pooled().size(), b.replicates, 100 * r.set.confidence, r.set.code_gap_coefficient, dcode,
       std::all_of(r.mod.code_gap.begin(), r.mod.code_gap.end(), [&](double v) { return v == dcode; }) ? ""
                                                                                                           : " (median)",
-      r.set.fit_min, r.set.fit_max, N, b.fit.mu, b.fit.sigma, 100 * b.fit.p0, 100 * r.set.confidence,
+      r.set.fit_min, r.set.fit_max, r.set.metres ? "m" : "d", N, b.fit.mu, b.fit.sigma, 100 * b.fit.p0, 100 * r.set.confidence,
       100 * r.set.confidence);
   for (std::size_t i = 0; i < targets.size(); ++i) {
     const separation::Estimate& e = b.separation[i];
@@ -288,23 +303,71 @@ std::string pair_separation_section(const Data& r) {
 
 std::string code_rules_section(const Data& r) { return r.set.pair ? pair_rules(r) : grid_rules(r); }
 
+Count count_existing(const Data& r) {
+  Count c;
+  if (std::isnan(r.set.existing)) return c;
+  for (std::size_t i = 0; i < r.status.size() && i < r.peak_closing.size(); ++i)
+    if (r.ok(r.status[i])) ++c.n, c.hits += r.peak_closing[i] > r.set.existing;  // strict, as every gap's verdict
+  return c;
+}
+
+// [gaps] existing: the answer at the as-built gap, counted from every analysis's peak closing (exact at any gap,
+// not read off the axis), with the report's Wilson interval and the two-stage bootstrap's.
+std::string existing_section(const Data& r) {
+  const double g = r.set.existing;
+  if (std::isnan(g)) return "";
+  std::string s = fmt::format("\n## At the existing gap\n\nThe as-built gap, [gaps] existing = {:g} m{}: ", g,
+                              r.set.bridge ? " (the gap of the joint(s) at d; every other joint's existing + (gap_j - d))"
+                                           : "");
+  if (r.red) {  // reductions only: no per-model closings; exact when the existing gap is one of the metres axis' gaps
+    const auto at = std::find(r.set.gap_ratios.begin(), r.set.gap_ratios.end(), g);
+    if (!r.set.metres || at == r.set.gap_ratios.end())
+      return s + fmt::format("not given: {}, and it is not one of the study's gaps in metres ([gaps] metres), whose "
+                             "counts the reductions keep.\n",
+                             "the study kept only its reductions");
+    const Count c = count_uncoupled(r, g, -1);
+    const Interval w = wilson(r, c.hits, c.n);
+    return s + fmt::format("P(at least one impact) = **{}** ({} of {} analyses), Wilson 95 % [{:.2f}%, {:.2f}%].\n",
+                           pct(c.pct()), c.hits, c.n, 100 * w.lo, 100 * w.hi);
+  }
+  const Count c = count_existing(r);
+  const Interval w = wilson(r, c.hits, c.n);
+  const double gaps[] = {g};
+  const separation::BootstrapResult b = r.bootstrap(true, {}, gaps);
+  s += fmt::format("P(at least one impact) = **{}** ({} of {} analyses with an uncoupled peak closing above {:g} m, "
+                   "counted from every analysis, not read off the gap axis); {:.0f} % interval {} (two-stage "
+                   "bootstrap over records and models within records, {} replicates); Wilson 95 % [{:.2f}%, {:.2f}%] "
+                   "({}).{}\n",
+                   pct(c.pct()), c.hits, c.n, g, 100 * r.set.confidence, interval(b.probability[0], 100, "{:.2f}%"),
+                   b.replicates, 100 * w.lo, 100 * w.hi,
+                   r.fixed_pair ? wilson_basis(r) : "the sampling error of the models under these records",
+                   r.set.metres || r.set.bridge ? ""
+                                                : " Every model has this gap in metres, so its ratio x = existing / d "
+                                                  "varies with the model's code gap d.");
+  return s;
+}
+
 std::string separation_csv(const Data& r) {
   const std::vector<double> targets = fractions(r.set.targets);
   const separation::Demands d = r.demands(r.set.pair);
   std::vector<double> gaps;
   std::vector<separation::Rule> rules;
-  std::size_t formula_rules = 0;  // code_rule rows; after them code_design rows (the codes' design displacements)
+  // code_rule rows; after them code_design rows (the codes' design displacements), then [gaps] existing's
+  std::size_t formula_rules = 0, design_rules = 0;
   if (r.set.pair) {
     rules = separation::code_rules(design_pair(r), r.set.code_gap_coefficient);
     coefficient_scope(r, rules);
     formula_rules = rules.size();
     const separation::CodeDesign design = code_design(r);
     rules.insert(rules.end(), design.rules.begin(), design.rules.end());
+    design_rules = rules.size();
+    add_existing(r, rules);  // its row: table "existing"
     for (const auto& rule : rules) gaps.push_back(rule.gap);
   }
   // A pair study's curve with its band, in metres (a grid study's 10^5 analyses make 300 gaps x 2000 replicates
   // too slow for a report; its curve rows above have no band)
-  const double unit = r.set.pair ? median(r.mod.code_gap) : 1.0;
+  // (the column gap_ratio: the gap over the median code gap; on a metres axis the gap in metres, as the header says)
+  const double unit = r.set.pair && !r.set.metres ? median(r.mod.code_gap) : 1.0;
   const int n = r.set.pair ? static_cast<int>(std::floor(r.set.curve_max / r.set.curve_step + 1e-9)) : 0;
   for (int i = 1; i <= n; ++i) gaps.push_back(r.set.curve_step * i * unit);
   // pairs and bridges: with the lognormal, the advice of a target the records do not resolve
@@ -336,7 +399,8 @@ std::string separation_csv(const Data& r) {
     // a rule's hits: the analyses above its gap, as the Markdown table counts them (its Wilson row below)
     const std::int64_t hits = rule ? std::count_if(z.begin(), z.end(), [&](double v) { return v > gaps[i]; }) : -1;
     s += fmt::format("{},,{:.6f},,,{},{},{:.6f},{},{:.6f},{:.6f},{}\n",
-                     rule ? (i < formula_rules ? "code_rule" : "code_design") : "curve_band", gaps[i] / unit,
+                     rule ? (i < formula_rules ? "code_rule" : i < design_rules ? "code_design" : "existing") : "curve_band",
+                     gaps[i] / unit,
                      rule ? std::to_string(hits) : "", N, e.value, r.set.pair ? fmt::format("{:.6f}", gaps[i]) : "",
                      e.lo, e.hi, rule ? "\"" + rules[i].name + "\"" : "");
     if (rule) {
@@ -358,9 +422,17 @@ std::string separation_csv(const Data& r) {
     for (const GridRuleRow& row : grid_rule_rows(r))
       s += fmt::format("code_rule,,,,,{},{},{:.6f},,{:.6f},{:.6f},\"{}\"\n", row.hits, row.n, row.probability,
                        row.wilson.lo, row.wilson.hi, row.rule.name);
+
     for (const AdviceRow& row : grid_advice_rows(r))
       s += fmt::format("separation_cubic,,{},,,,,{},,,,{}\n", row.cubic ? fmt::format("{:.6f}", *row.cubic) : "",
                        row.target / 100, row.cubic ? "" : "\"outside fit range\"");
+  }
+  if (!r.set.pair && !std::isnan(r.set.existing)) {  // a grid's or bridge's as-built gap: every model's, in metres
+    const Count c = count_existing(r);
+    const Interval w = wilson(r, c.hits, c.n);
+    s += fmt::format("existing,,{},,,{},{},{:.6f},{:.6f},{:.6f},{:.6f},\"existing {:g} m\"\n",
+                     r.set.metres ? fmt::format("{:.6f}", r.set.existing) : "", c.hits, c.n, c.pct() / 100,
+                     r.set.existing, w.lo, w.hi, r.set.existing);
   }
   return s;
 }

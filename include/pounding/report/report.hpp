@@ -3,6 +3,7 @@
 // cubic fit (eq. 10), separation recommendations and code rules side by side. Markdown or CSV. The report's
 // settings come from the results' /settings; only files written before /settings existed go through the
 // study text (src/report/legacy_v1.cpp).
+#include <cmath>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -16,7 +17,9 @@ namespace pounding {
 // and whether the buildings' heights are given (a pair study: answers in metres) or come from the period-height
 // rule (a grid study: answers in ratios of the code gap d).
 struct ReportSettings {
-  std::vector<double> gap_ratios, targets;
+  std::vector<double> gap_ratios, targets;  // gap_ratios: the axis (metres when `metres`)
+  bool metres = false;   // [gaps] metres: the axis, curve and fit range are metres, every model's gap the same
+  double existing = NAN;  // [gaps] existing (m): the as-built gap; NaN when not given
   double code_gap_coefficient = 0.005;  // d = coefficient (h1 + h2) (Standard 2800: 0.005)
   double fit_min = 0.1, fit_max = 1.0, curve_max = 1.5, curve_step = 0.005;
   double confidence = 0.95;

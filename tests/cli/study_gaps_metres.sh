@@ -1,0 +1,188 @@
+#!/usr/bin/env bash
+# [gaps] metres and [gaps] existing (issue 45 items 4 and 6):
+#  1. a pair of fixed heights (d = 0.005 (20 + 30) = 0.25 m, one number) run with ratios and with metres = ratios x d
+#     gives the same counts at every gap: the uncoupled verdicts (closing > gap) and the coupled runs' impacts per gap
+#     (impacts scene), from the files and from the report's CSV; the metres file says its unit (/gaps unit = "m",
+#     /gaps/axis, /impacts/gap_axis, /settings/gaps/metres) and its report says metres (no "x d");
+#  2. a study with heights from the period-height rule (d varies per model) in metres counts closing > metres[g]
+#     per model, as h5py counts it from the per-model closings; [outputs] per_model = false gives the same counts;
+#  3. [gaps] existing: the report's P(pounding) at the existing gap equals the h5py count (closing > existing), in
+#     metres and in ratio mode, and the code-rules table marks it;
+#  4. bad input: one ERROR naming file:line and the key, exit 2, no results.
+# Needs /usr/bin/python3 with h5py. Args: <pounding binary> <source dir>
+set -euo pipefail
+bin=$1; src=$2
+. "$src/tests/lib/study_invariance.sh"  # $tmp, cmp, expect_error
+py=/usr/bin/python3
+fail() { echo "FAIL: $*"; exit 1; }
+
+pair() {  # <[gaps] lines> <scene>
+  cat <<EOT
+title = "a fixed pair, gaps in $2"
+seed = 5
+scene = "$3"
+[records]
+suite = "builtin"
+synthetic_only = true
+limit = 3
+[structures]
+samples_per_pair = 6
+zeta = 0.05
+alpha = 0.05
+[structures.building1]
+period = {lognormal = {median = 0.6, cov = 0.2}}
+height = 20.0
+mass = 2e6
+yield_coefficient = 0.3
+[structures.building2]
+period = {lognormal = {median = 1.1, cov = 0.2}}
+height = 30.0
+mass = 3e6
+yield_coefficient = 0.2
+[gaps]
+$1
+[contact]
+law = "hertzdamp"
+EOT
+}
+# 1. ratios against metres = ratios x d (d = 0.25 m: x d is exact, yet the counts are compared, not the floats)
+pair 'ratios = [0.05, 0.1, 0.2, 0.4]' ratios impacts > "$tmp/ratios.toml"
+pair 'metres = [0.0125, 0.025, 0.05, 0.1]
+existing = 0.03' metres impacts > "$tmp/metres.toml"
+pair 'ratios = [0.05, 0.1, 0.2, 0.4]
+existing = 0.03' "ratios with an existing gap" probability > "$tmp/ratios-existing.toml"
+for s in ratios metres ratios-existing; do
+  (cd "$tmp" && "$bin" run $s.toml --out $s.h5 > $s.md 2> $s.err) || { cat "$tmp/$s.err"; fail "$s.toml does not run"; }
+  "$bin" report "$tmp/$s.h5" --csv > "$tmp/$s.csv"
+done
+
+# 2. heights from the period-height rule: d per model; the small synthetic study with metres and an existing gap
+sed -e 's/^ratios = .*/metres = [0.01, 0.02, 0.04, 0.08]\nexisting = 0.03/' -e 's/^scene = .*/scene = "probability"/' \
+  "$src/tests/data/study-small-synthetic.toml" > "$tmp/grid.toml"
+sed 's/^\[analysis\]/[outputs]\nper_model = false\n\n[analysis]/' "$tmp/grid.toml" > "$tmp/grid-red.toml"
+for s in grid grid-red; do
+  (cd "$tmp" && "$bin" run $s.toml --out $s.h5 > $s.md 2> $s.err) || { cat "$tmp/$s.err"; fail "$s.toml does not run"; }
+  "$bin" report "$tmp/$s.h5" --csv > "$tmp/$s.csv"
+done
+
+"$py" - "$tmp" <<'PY'
+import csv, sys
+import h5py, numpy as np
+tmp = sys.argv[1]
+def rows(name, table):
+    return [r for r in csv.DictReader(open(f"{tmp}/{name}.csv")) if r["table"] == table]
+def s(v):
+    return v.decode() if isinstance(v, bytes) else str(v)
+
+# 1. the same counts per gap
+a, b = h5py.File(f"{tmp}/ratios.h5", "r"), h5py.File(f"{tmp}/metres.h5", "r")
+d = a["models/code_gap"][()]
+assert np.all(d == 0.25), d
+assert "unit" not in a["gaps"].attrs and "ratios" in a["gaps"] and "gap_ratios" in a["impacts"]
+assert s(b["gaps"].attrs["unit"]) == "m" and "ratios" not in b["gaps"] and s(b["gaps/axis"].attrs["units"]) == "m"
+assert "gap_axis" in b["impacts"] and "gap_ratios" not in b["impacts"]
+assert "metres" in b["settings/gaps"].attrs and "ratios" not in b["settings/gaps"].attrs
+assert np.array_equal(b["gaps/metres"][()], np.repeat(b["gaps/axis"][()][None, :], d.size, axis=0))
+pc_a, pc_b = a["uncoupled/peak_closing"][()], b["uncoupled/peak_closing"][()]
+st_a, st_b = a["uncoupled/status"][()], b["uncoupled/status"][()]
+assert np.array_equal(pc_a, pc_b) and np.array_equal(st_a, st_b)
+gm = b["gaps/axis"][()]
+ga = a["gaps/ratios"][()] * 0.25
+ok = st_a == 0
+for g in range(len(gm)):
+    na, nb = int(np.sum(pc_a[ok] > ga[g])), int(np.sum(pc_b[ok] > gm[g]))
+    assert na == nb, (g, na, nb)
+    ia = a["impacts/impact_count"][()][..., g] > 0
+    ib = b["impacts/impact_count"][()][..., g] > 0
+    assert int(ia.sum()) == int(ib.sum()), (g, ia.sum(), ib.sum())
+    assert np.array_equal(a["impacts/status"][()][..., g], b["impacts/status"][()][..., g])
+hits = 0
+for ra, rb in zip(rows("ratios", "total"), rows("metres", "total")):
+    assert (ra["hits"], ra["n"]) == (rb["hits"], rb["n"]), (ra, rb)
+    hits += int(ra["hits"])
+assert len(rows("metres", "total")) == 4 and hits > 0, "no gap pounds: the comparison would prove nothing"
+for ra, rb in zip(rows("ratios", "per_record"), rows("metres", "per_record")):
+    assert (ra["hits"], ra["n"]) == (rb["hits"], rb["n"]), (ra, rb)
+
+# 2. sampled heights in metres: closing > metres[g] per model
+f = h5py.File(f"{tmp}/grid.h5", "r")
+cg = f["models/code_gap"][()]
+assert cg.min() < cg.max(), "d should vary per model"
+pc, st = f["uncoupled/peak_closing"][()], f["uncoupled/status"][()]
+ok = st == 0
+gm = f["gaps/axis"][()]
+tot = rows("grid", "total")
+assert len(tot) == len(gm)
+for g, r in enumerate(tot):
+    want = int(np.sum(pc[ok] > gm[g]))
+    assert int(r["hits"]) == want and int(r["n"]) == int(ok.sum()), (g, r, want)
+    assert float(r["gap_ratio"]) == gm[g]
+    # the reductions-only run counts the same
+    red = h5py.File(f"{tmp}/grid-red.h5", "r")["reductions"]
+    assert s(red.attrs["gap_unit"]) == "m"
+    assert int(red["gap_hits"][()][:, g].sum()) == want, (g, red["gap_hits"][()][:, g].sum(), want)
+per = rows("grid", "per_record")
+N = len(per) // len(gm)  # independent records; a record's rows (its signs) are consecutive
+P = pc.shape[0] // N
+for i, r in enumerate(per):
+    k, g = i // len(gm), i % len(gm)
+    assert float(r["gap_ratio"]) == gm[g]
+    want = int(np.sum((pc[k * P:(k + 1) * P] > gm[g])[ok[k * P:(k + 1) * P]]))
+    assert int(r["hits"]) == want, (k, g, r, want)
+# the curve is on the metres axis: P(closing > x) at x = curve_step c
+for r in rows("grid", "curve")[:40]:
+    x = float(r["gap_ratio"])
+    want = np.sum(pc[ok] > x) / ok.sum()
+    assert abs(float(r["probability"]) - want) < 1e-6, (x, r["probability"], want)
+
+# 3. the existing gap: P(closing > existing), exact
+for name in ("grid", "metres", "ratios-existing"):
+    h = h5py.File(f"{tmp}/{name}.h5", "r")
+    e = float(h["settings/gaps"].attrs["existing"])
+    pc, ok = h["uncoupled/peak_closing"][()], h["uncoupled/status"][()] == 0
+    want = int(np.sum(pc[ok] > e))
+    ex = rows(name, "existing")
+    assert len(ex) == 1 and int(ex[0]["hits"]) == want and int(ex[0]["n"]) == int(ok.sum()), (name, ex, want)
+    assert abs(float(ex[0]["gap_m"]) - e) < 1e-12
+    md = open(f"{tmp}/{name}.md").read()
+    assert "## At the existing gap" in md, name
+    line = md.split("## At the existing gap")[1].split("\n\n")[1]
+    assert f"({want} of {int(ok.sum())} analyses" in line, (name, line, want)
+print("ratios = metres x d at every gap; metres counts = h5py; existing = h5py")
+PY
+
+# the report speaks metres on a metres axis, ratios x d otherwise
+grep -q '| gap m | models with impact' "$tmp/metres.md" || fail "the total table's header is not in metres"
+grep -q '| gap ratio | models with impact' "$tmp/ratios.md" || fail "the ratio study's header changed"
+grep -q '## Separation advice in metres' "$tmp/grid.md" || fail "the grid study's advice is not in metres"
+grep -q '| record | synthetic | PGA g | 0.0125 m |' "$tmp/metres.md" || fail "Table 2's headers are not in metres"
+if grep -q 'x d\b' "$tmp/grid.md"; then fail "a metres report speaks of x d: $(grep -n 'x d\b' "$tmp/grid.md" | head -3)"; fi
+grep -q '| existing 0.03 m | as built |' "$tmp/metres.md" || fail "the code-rules table does not mark the existing gap"
+grep -q '| \*\*existing 0.03 m\*\* | as built |' "$tmp/grid.md" || fail "the grid's code rules do not mark the existing gap"
+
+# 4. bad input
+fails=0
+base=$(pair 'ratios = [0.1]' x probability | sed '/^\[gaps\]/,$d')
+expect_error both 'gaps.*metres' "$base
+[gaps]
+ratios = [0.1, 0.2]
+metres = [0.02, 0.04]"
+expect_error negative 'gaps.*metres' "$base
+[gaps]
+metres = [-0.02, 0.04]"
+expect_error increasing 'strictly increasing.*gaps.*metres' "$base
+[gaps]
+metres = [0.04, 0.02]"
+expect_error absurd 'gaps.*metres' "$base
+[gaps]
+metres = [0.02, 6.0]"
+expect_error empty 'gaps.*metres' "$base
+[gaps]
+metres = []"
+expect_error existing 'gaps.*existing' "$base
+[gaps]
+metres = [0.02, 0.04]
+existing = -0.01"
+grep -q ':[0-9]* \[gaps\]' "$tmp/negative.out" || fail "the error does not name file:line: $(cat "$tmp/negative.out")"
+[ "$fails" -eq 0 ] || exit 1
+echo "PASS"
