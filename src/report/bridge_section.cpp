@@ -46,7 +46,7 @@ std::string frames_table(const Data& r) {
   s += "\n\n| frame | uncoupled |";
   rule = "|---|---|";
   if (r.impacts)
-    for (std::size_t g = 0; g < r.gaps(); ++g) s += fmt::format(" x = {:g} |", r.res.gap_ratios[g]), rule += "---|";
+    for (std::size_t g = 0; g < r.gaps(); ++g) s += fmt::format(" {} |", axis_label(r, r.res.gap_ratios[g])), rule += "---|";
   s += "\n" + rule + "\n";
   for (std::size_t b = 0; b < B; ++b) {
     const std::string name = fmt::format("peak_u{}", b + 1);
@@ -78,17 +78,17 @@ std::string bridge_section(const Data& r) {
   const std::size_t E = sys.element_label.size();
   if (!r.set.bridge || E == 0) return {};
   const std::size_t R = r.records(), M = r.models();
-  const double d = r.set.bridge_d;
+  const double d = r.set.bridge_d, unit = r.set.metres ? 1.0 : d;  // the axis' metres per unit ([gaps] metres: 1)
   const std::vector<double>& closing = r.res.column<double>("uncoupled", "peak_closing_elements");  // [R, M, E]
   std::string s = fmt::format("\n## Bridge: joints and frames\n\n{}.\n\n", report::md_text(r.set.bridge_text));
   s += fmt::format(
-      "Each joint's gap at ratio x is x d + (its gap - d), d = {:g} m. P(joint touches) is the share of the ok analyses "
+      "Each joint's gap at {} + (its gap - d), d = {:g} m. P(joint touches) is the share of the ok analyses "
       "whose uncoupled peak closing exceeds that gap (first passage at that joint; the bridge pounds when any joint "
       "does). Closings are the peak of u_left - u_right (m).\n\n| joint | gap at x = 1 (m) | median peak closing (m) |",
-      d);
+      r.set.metres ? "the study gap g (m) is g" : "ratio x is x d", d);
   const auto& ratios = r.set.gap_ratios;
   std::string rule = "|---|---|---|";
-  for (double x : ratios) s += fmt::format(" P at x = {:g} |", x), rule += "---|";
+  for (double x : ratios) s += fmt::format(" P at {} |", axis_label(r, x)), rule += "---|";
   s += "\n" + rule + "\n";
   for (std::size_t e = 0; e < E; ++e) {
     const double offset = e < sys.element_gap_offset.size() ? sys.element_gap_offset[e] : 0.0;
@@ -99,7 +99,7 @@ std::string bridge_section(const Data& r) {
     s += fmt::format("| {} | {:.4g} | {:.4g} |", joint_name(sys, e), d + offset, median(c));
     for (double x : ratios) {
       std::size_t hits = 0;
-      for (double v : c) hits += v > x * d + offset;
+      for (double v : c) hits += v > x * unit + offset;
       s += c.empty() ? " - |" : fmt::format(" {:.1f}% |", 100.0 * static_cast<double>(hits) / static_cast<double>(c.size()));
     }
     s += "\n";
@@ -112,7 +112,7 @@ std::string bridge_section(const Data& r) {
                      "joint is hit and the largest peak force (MN).\n\n| joint |",
                      report::md_text(r.h.contact_law));
     rule = "|---|";
-    for (std::size_t g = 0; g < G; ++g) s += fmt::format(" x = {:g}: impacts, max force |", r.res.gap_ratios[g]), rule += "---|";
+    for (std::size_t g = 0; g < G; ++g) s += fmt::format(" {}: impacts, max force |", axis_label(r, r.res.gap_ratios[g])), rule += "---|";
     s += "\n" + rule + "\n";
     for (std::size_t e = 0; e < E; ++e) {
       s += fmt::format("| {} |", joint_name(sys, e));

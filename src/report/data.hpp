@@ -137,6 +137,8 @@ std::string synthetic_cell(const results::RecordTable& t, std::size_t k);
 // The gap ratio x as a column title; "x d = g m" when the code gap is the same for every model; "x m" on a metres axis
 // (report.cpp).
 std::string gap_title(const Data& r, double x);
+// The axis value x in a column title of the system sections: "x = 0.3", or "0.04 m" on a metres axis (report.cpp).
+std::string axis_label(const Data& r, double x);
 
 // The moat walls of the isolated buildings (moat_section.cpp): per building with a moat, its walls (elements of a group
 // that is not study-gap with a wall side) and their gap (/system/element_gap_offset; NaN in files that hold 0 there).

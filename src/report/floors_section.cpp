@@ -82,7 +82,7 @@ std::string floors_section(const Data& r) {
              : "per building and floor, bottom first (floor 0: an isolated building's base on its isolators)");
   s += bridge ? "| frame |" : "| building | floor |";
   std::string rule = bridge ? "|---|" : "|---|---|";
-  for (std::size_t g = 0; g < r.gaps(); ++g) s += fmt::format(" x = {:g}: u / drift / acc |", r.res.gap_ratios[g]), rule += "---|";
+  for (std::size_t g = 0; g < r.gaps(); ++g) s += fmt::format(" {}: u / drift / acc |", axis_label(r, r.res.gap_ratios[g])), rule += "---|";
   s += "\n" + rule + "\n";
   for (std::size_t b = 0; b < sys.building_label.size(); ++b) {
     const Rows x = rows_of(r, b);

@@ -130,7 +130,7 @@ std::string levels_section(const Data& r) {
       "column under the peak force at xi (F (1 - xi)^2 (1 + 2 xi) and F xi^2 (3 - 2 xi), Karayannis and Favvata), "
       "not added to the storey shear of the drift. Forces in kN.\n\n",
       wilson_basis(r));
-  s += "| element | kind | gap ratio | P(hit) | 95 % interval | analyses hit | peak force median | peak force 84th "
+  s += std::string("| element | kind | ") + r.axis_title() + " | P(hit) | 95 % interval | analyses hit | peak force median | peak force 84th "
        "percentile | column shear below: median, 84th | column shear above: median, 84th |\n"
        "|---|---|---|---|---|---|---|---|---|---|\n";
   for (std::size_t e = 0; e < a.E; ++e) {
@@ -155,9 +155,10 @@ std::string levels_section(const Data& r) {
   s += fmt::format(
       "\nPeak absolute {} acceleration with pounding / without, per {} and gap ratio: its median and 84th percentile "
       "over the analyses that pounded there (status ok, at least one impact; the basis of the per-{} amplification), "
-      "N of them{}.\n\n| {} | gap ratio | median | 84th percentile | N |\n|---|{}---|---|---|---|\n",
+      "N of them{}.\n\n| {} | {} | median | 84th percentile | N |\n|---|{}---|---|---|---|\n",
       bridge ? "deck" : "floor", bridge ? "frame (its deck)" : "building and floor", bridge ? "deck" : "floor",
-      bridge ? "" : " (floor 0: an isolated building's base)", bridge ? "frame" : "building | floor", bridge ? "" : "---|");
+      bridge ? "" : " (floor 0: an isolated building's base)", bridge ? "frame" : "building | floor", r.axis_title(),
+      bridge ? "" : "---|");
   for (std::size_t b = 0; b < sys.building_label.size(); ++b) {
     const AccRows x = acc_rows(r, b);
     for (std::size_t f = bridge && x.floors ? x.floors - 1 : 0; f < x.floors; ++f)

@@ -795,6 +795,8 @@ std::string gap_title(const Data& r, double x) {
   return *lo == *hi ? fmt::format("{}d = {:.3f} m", x, x * *lo) : fmt::format("{}d", x);
 }
 
+std::string axis_label(const Data& r, double x) { return r.set.metres ? fmt::format("{:g} m", x) : fmt::format("x = {:g}", x); }
+
 std::string record_kind(const results::RecordTable& t, std::size_t k) {
   if (t.synthetic[k]) return "stand-in";
   // a generated motion's source names its generator ("synthetic:spatial seed 1 realisation 3 support 1",

@@ -113,7 +113,7 @@ void label(h5::hid g, std::string_view group, const std::string& name) {
 // Every dataset of /<group>, labelled from the group's table after it is written: a dataset added to the group
 // without a row in describe.cpp is refused.
 // A metres axis' /gaps/metres has its own description (describe_metres_axis).
-void label_group(h5::hid root, std::string_view group, bool metres_axis) {
+void label_group(h5::hid root, std::string_view group, bool metres_axis = false) {
   auto g = h5::open_group(root, std::string(group));
   for (const std::string& name : h5::member_names(g.get()))
     if (metres_axis && group == "gaps") label(g.get(), group, name, describe_metres_axis(name).value_or(Description{}));
