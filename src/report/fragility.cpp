@@ -224,6 +224,25 @@ void add_rate_curve(Group& h, const stripes::RateCurve& curve, bool metres) {
 
 }  // namespace
 
+namespace {
+// /fragility's gaps: ratios of each model's d (a pair's also in metres, gaps_m), or ([gaps] metres) metres.
+void add_gap_axis(Group& g, const Results& r, const std::vector<double>& gaps) {
+  if (r.gaps.in_metres) {  // [gaps] metres: the gaps are metres, every model's
+    g.set("gap_units", std::string("m"));
+    g.add("gaps", gaps, "m", "the gaps in metres ([gaps] metres: every model's gap)");
+    g.add("gaps_m", gaps, "m", "the gaps in metres (= gaps)");
+    return;
+  }
+  g.set("gap_units", std::string("ratio of the code gap d"));
+  g.add("gaps", gaps, "1", "the gaps, as ratios of each model's code gap d");
+  if (pair_study(r)) {
+    std::vector<double> m;
+    for (double x : gaps) m.push_back(x * r.models.code_gap[0]);
+    g.add("gaps_m", m, "m", "the gaps in metres (this pair's d times the ratio)");
+  }
+}
+}  // namespace
+
 bool is_fragility_study(const Results& r) { return r.group("intensity") != nullptr; }
 
 void analyse_fragility(Results& r, const WorkHook* hook) {
@@ -286,19 +305,7 @@ void analyse_fragility(Results& r, const WorkHook* hook) {
   g.set("confidence", st.confidence);
   g.set("replicates", static_cast<std::int64_t>(st.bootstrap));
   g.set("im_units", units);
-  if (r.gaps.in_metres) {  // [gaps] metres: the gaps are metres, every model's
-    g.set("gap_units", std::string("m"));
-    g.add("gaps", gaps, "m", "the gaps in metres ([gaps] metres: every model's gap)");
-    g.add("gaps_m", gaps, "m", "the gaps in metres (= gaps)");
-  } else {
-    g.set("gap_units", std::string("ratio of the code gap d"));
-    g.add("gaps", gaps, "1", "the gaps, as ratios of each model's code gap d");
-  }
-  if (pair_study(r) && !r.gaps.in_metres) {
-    std::vector<double> m;
-    for (double x : gaps) m.push_back(x * r.models.code_gap[0]);
-    g.add("gaps_m", m, "m", "the gaps in metres (this pair's d times the ratio)");
-  }
+  add_gap_axis(g, r, gaps);
   g.add("levels", levels, units, "the stripes' IM levels (the observed and fitted columns)");
   add_fit_rows(g, fits, levels.size(), units);
   if (!hz) return;

@@ -303,6 +303,31 @@ std::string pair_separation_section(const Data& r) {
 
 std::string code_rules_section(const Data& r) { return r.set.pair ? pair_rules(r) : grid_rules(r); }
 
+namespace {
+// A grid study's code rules (each model has its own gaps) and advice's cubic: rows code_rule, separation_cubic.
+std::string grid_csv(const Data& r) {
+  std::string s;
+  for (const GridRuleRow& row : grid_rule_rows(r))
+    s += fmt::format("code_rule,,,,,{},{},{:.6f},,{:.6f},{:.6f},\"{}\"\n", row.hits, row.n, row.probability,
+                     row.wilson.lo, row.wilson.hi, row.rule.name);
+
+  for (const AdviceRow& row : grid_advice_rows(r))
+    s += fmt::format("separation_cubic,,{},,,,,{},,,,{}\n", row.cubic ? fmt::format("{:.6f}", *row.cubic) : "",
+                     row.target / 100, row.cubic ? "" : "\"outside fit range\"");
+  return s;
+}
+
+// A grid's or bridge's row "existing" ([gaps] existing: every model's gap, in metres; a pair's is a code-rule row).
+std::string existing_csv(const Data& r) {
+  if (std::isnan(r.set.existing)) return "";
+  const Count c = count_existing(r);
+  const Interval w = wilson(r, c.hits, c.n);
+  return fmt::format("existing,,{},,,{},{},{:.6f},{:.6f},{:.6f},{:.6f},\"existing {:g} m\"\n",
+                     r.set.metres ? fmt::format("{:.6f}", r.set.existing) : "", c.hits, c.n, c.pct() / 100,
+                     r.set.existing, w.lo, w.hi, r.set.existing);
+}
+}  // namespace
+
 Count count_existing(const Data& r) {
   Count c;
   if (std::isnan(r.set.existing)) return c;
@@ -418,22 +443,8 @@ std::string separation_csv(const Data& r) {
                        c ? "" : "\"outside fit range\"");
     }
   }
-  if (!r.set.pair && !r.set.bridge) {  // a grid study's code rules (each model has its own gaps) and advice's cubic
-    for (const GridRuleRow& row : grid_rule_rows(r))
-      s += fmt::format("code_rule,,,,,{},{},{:.6f},,{:.6f},{:.6f},\"{}\"\n", row.hits, row.n, row.probability,
-                       row.wilson.lo, row.wilson.hi, row.rule.name);
-
-    for (const AdviceRow& row : grid_advice_rows(r))
-      s += fmt::format("separation_cubic,,{},,,,,{},,,,{}\n", row.cubic ? fmt::format("{:.6f}", *row.cubic) : "",
-                       row.target / 100, row.cubic ? "" : "\"outside fit range\"");
-  }
-  if (!r.set.pair && !std::isnan(r.set.existing)) {  // a grid's or bridge's as-built gap: every model's, in metres
-    const Count c = count_existing(r);
-    const Interval w = wilson(r, c.hits, c.n);
-    s += fmt::format("existing,,{},,,{},{},{:.6f},{:.6f},{:.6f},{:.6f},\"existing {:g} m\"\n",
-                     r.set.metres ? fmt::format("{:.6f}", r.set.existing) : "", c.hits, c.n, c.pct() / 100,
-                     r.set.existing, w.lo, w.hi, r.set.existing);
-  }
+  if (!r.set.pair && !r.set.bridge) s += grid_csv(r);
+  if (!r.set.pair) s += existing_csv(r);
   return s;
 }
 
