@@ -136,6 +136,10 @@ std::string answer_body(const std::vector<MdBlock>& blocks) {
         s += (starts_with(b->text, "**WARNING") ? "<p class=\"warning\">" : "<p class=\"advice\">") + inline_html(b->text) + "</p>\n";
     return s;
   }
+  if (auto sec = section_of(blocks, "Separation advice in metres", &heading); const MdBlock* t = first_table(sec))
+    return "<p>Separation advice in metres (the study's gaps are metres, every model's the same): the estimate, its "
+           "interval over records and models, and the advice (the interval's upper end).</p>\n" +
+           report_detail::table_html(pick_columns(*t, {"target", "x m", "~% interval", "advice"}));
   if (auto sec = section_of(blocks, "Separation advice in gap ratios", &heading); const MdBlock* t = first_table(sec))
     return "<p>Separation advice as a ratio x of the code gap d (heights from the period-height rule, so no metres): "
            "the estimate, its interval over records and models, and the advice (the interval's upper end).</p>\n" +
@@ -159,12 +163,20 @@ std::string moat_answer(const std::vector<MdBlock>& blocks) {
                                                      "~% interval", "records with", "base peak 84th"}));
 }
 
+// [gaps] existing: P(pounding) at the as-built gap with its intervals, quoted from the Markdown's paragraph; "" without.
+std::string existing_answer(const std::vector<MdBlock>& blocks) {
+  std::string heading;
+  for (const MdBlock* b : section_of(blocks, "At the existing gap", &heading))
+    if (b->kind == MdBlock::Kind::paragraph) return "<p class=\"advice\">" + inline_html(b->text) + "</p>\n";
+  return "";
+}
+
 std::string answer_html(const std::vector<MdBlock>& blocks, const std::string& id = "answer") {
   std::string s = "<section class=\"answer\" id=\"" + id + "\" aria-labelledby=\"" + id + "-title\">\n<h2 id=\"" + id +
                   "-title\">The answer</h2>\n";
   for (const MdBlock& b : blocks)  // the banner of a run with too many excluded analyses
     if (b.kind == MdBlock::Kind::quote) s += block_html(b);
-  return s + answer_body(blocks) + moat_answer(blocks) + "</section>\n";
+  return s + existing_answer(blocks) + answer_body(blocks) + moat_answer(blocks) + "</section>\n";
 }
 
 struct Toc {

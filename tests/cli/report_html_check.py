@@ -196,9 +196,12 @@ if "uncoupled" in f and "fragility" not in f:
     R, M = pc.shape
     ok = f["uncoupled/status"][()].reshape(R, M) == 0
     d = f["models/code_gap"][()]
-    t3 = find_table(report_tables, "gap ratio")
+    metres = "gaps" in f and f["gaps"].attrs.get("unit", b"") in (b"m", "m")  # [gaps] metres: every model's gap x
+    if metres:
+        d = np.ones_like(d)
+    t3 = find_table(report_tables, "gap m" if metres else "gap ratio")
     if t3 is None:
-        fail("no Table 3 (gap ratio | models with impact) in the HTML")
+        fail(f"no Table 3 ({'gap m' if metres else 'gap ratio'} | models with impact) in the HTML")
     else:
         for row in t3[1:]:
             x = float(row[0])
@@ -206,6 +209,12 @@ if "uncoupled" in f and "fragility" not in f:
             if row[1] != f"{hits} / {n}":
                 fail(f"Table 3 at {x}: HTML {row[1]!r}, HDF5 {hits} / {n}")
         checked.append(f"Table 3 ({len(t3) - 1} rows)")
+    if "settings/gaps" in f and "existing" in f["settings/gaps"].attrs:  # [gaps] existing: its P in the answer
+        e = float(f["settings/gaps"].attrs["existing"])
+        hits, n = int(np.sum((pc > e) & ok)), int(ok.sum())
+        if f"({hits} of {n} analyses" not in answer_text:
+            fail(f"P(pounding) at the existing gap {e} m ({hits} of {n}, HDF5) is not in the answer block")
+        checked.append(f"existing gap {e} m")
     sep = find_table(report_tables, "P(at least one impact)")
     if sep is not None:
         z = np.sort(pc[ok])[::-1]  # descending; with polarity both the rows are records x signs, same analyses
