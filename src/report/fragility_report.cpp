@@ -313,8 +313,10 @@ std::string hazard_section(const View& v) {
 std::string existing_fragility(const View& v) {
   if (!v.r.settings.find("gaps", "existing")) return "";
   const double g = v.r.settings.number("gaps", "existing");
+  // one of the gaps within a nanometre: a pair's x d is a product (0.5 x 0.35000000000000003 is not 0.175)
+  const auto same = [&](double m) { return std::abs(m - g) <= 1e-9; };
   std::size_t k = 0;
-  while (k < v.gaps.size() && !(v.metres ? v.gaps[k] == g : v.pair && v.gaps_m[k] == g)) ++k;
+  while (k < v.gaps.size() && !(v.metres ? same(v.gaps[k]) : v.pair && same(v.gaps_m[k]))) ++k;
   std::string s = fmt::format("## At the existing gap\n\nThe as-built gap, [gaps] existing = {:g} m: ", g);
   if (k == v.gaps.size())
     return s + fmt::format("not one of the study's gaps{}, so it has no fragility curve here; give it as one of "

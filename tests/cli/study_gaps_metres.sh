@@ -151,6 +151,63 @@ for name in ("grid", "metres", "ratios-existing"):
 print("ratios = metres x d at every gap; metres counts = h5py; existing = h5py")
 PY
 
+# 1b. fragility (stripes and the bisection IDA): the same pair in ratios and in metres = ratios x d (Python's product,
+# the engine's, written exactly) gives the same capacities, observed counts and fits; the existing gap's curve is given
+for s in fragility-pair fragility-pair-ida; do
+  sed -e 's/^samples_per_pair = .*/samples_per_pair = 6/' -e 's/^\[records\]/[records]\nlimit = 5/' -e '/^output = /d' \
+      -e 's/^bootstrap = .*/bootstrap = 100/' -e "s|^curve = \"|curve = \"$src/studies/|" "$src/studies/$s.toml" > "$tmp/$s.toml"
+  (cd "$tmp" && "$bin" run $s.toml --out $s.h5 --quiet > /dev/null 2> $s.err) || { cat "$tmp/$s.err"; fail "$s (ratios)"; }
+  m=$("$py" -c "import h5py, sys; f = h5py.File(sys.argv[1], 'r'); d = f['models/code_gap'][0]
+print(', '.join(repr(float(x * d)) for x in f['gaps/ratios'][()]))" "$tmp/$s.h5")
+  sed -e "s/^ratios = .*/metres = [$m]\nexisting = 0.175/" -e '/^curve_max = /d' "$tmp/$s.toml" > "$tmp/$s-m.toml"
+  (cd "$tmp" && "$bin" run $s-m.toml --out $s-m.h5 > $s-m.md 2> $s-m.err) || { cat "$tmp/$s-m.err"; fail "$s (metres)"; }
+  "$py" - "$tmp/$s.h5" "$tmp/$s-m.h5" <<'PY'
+import sys
+import h5py, numpy as np
+a, b = (h5py.File(p, "r") for p in sys.argv[1:3])
+assert b["fragility"].attrs["gap_units"] in ("m", b"m") and np.array_equal(b["fragility/gaps"][()], b["gaps/axis"][()])
+for name in ("fragility/theta", "fragility/beta", "fragility/observed_z", "fragility/observed_n", "ida/capacity"):
+    if name in a:
+        assert np.array_equal(a[name][()], b[name][()], equal_nan=True), name
+assert np.allclose(a["fragility/gaps_m"][()], b["fragility/gaps"][()], rtol=0, atol=1e-15)
+print(sys.argv[2], "= the ratio study's fits")
+PY
+  grep -q 'existing = 0.175 m: its fragility is the row 0.175 m' "$tmp/$s-m.md" || fail "$s: no fragility at the existing gap"
+done
+
+# 1c. systems: a bridge (the joint at the reference gap d takes the study gap, every other joint its gap + offset) and
+# a pair of 3-storey shear buildings of fixed heights, in ratios and in metres = ratios x d: every peak and impact count
+# bit for bit (the gaps are the same doubles)
+sed -e 's/^limit = .*/limit = 2/' "$src/tests/data/bridge/study-four-frame.toml" > "$tmp/bridge.toml"
+pair 'ratios = [0.05, 0.1, 0.2, 0.4]' "ratios, shear" impacts |
+  sed -e 's/^yield_coefficient = 0.3$/&\nmodel = "shear"\nstoreys = 5\nstorey_height = 4.0/' \
+      -e 's/^yield_coefficient = 0.2$/&\nmodel = "shear"\nstoreys = 6\nstorey_height = 5.0/' > "$tmp/shear.toml"
+for s in bridge shear; do
+  (cd "$tmp" && "$bin" run $s.toml --out $s.h5 --quiet > /dev/null 2> $s.err) || { cat "$tmp/$s.err"; fail "$s (ratios)"; }
+  m=$("$py" -c "import h5py, sys; f = h5py.File(sys.argv[1], 'r'); d = f['models/code_gap'][0]
+print(', '.join(repr(float(x * d)) for x in f['gaps/ratios'][()]))" "$tmp/$s.h5")
+  sed -e "s/^ratios = .*/metres = [$m]/" "$tmp/$s.toml" > "$tmp/$s-m.toml"
+  (cd "$tmp" && "$bin" run $s-m.toml --out $s-m.h5 > $s-m.md 2> $s-m.err) || { cat "$tmp/$s-m.err"; fail "$s (metres)"; }
+  "$py" - "$tmp/$s.h5" "$tmp/$s-m.h5" <<'PY'
+import sys
+import h5py, numpy as np
+a, b = (h5py.File(p, "r") for p in sys.argv[1:3])
+assert a.attrs["format_version"] == 3, "not a system"
+assert np.all(a["models/code_gap"][()] == a["models/code_gap"][0]), "d varies"
+n = 0
+for group in ("uncoupled", "impacts"):
+    for name in a[group]:
+        if name in ("gap_ratios", "gap_axis"):
+            continue
+        assert np.array_equal(a[group][name][()], b[group][name][()], equal_nan=True), f"{group}/{name}"
+        n += 1
+hits = int((a["impacts/impact_count"][()] > 0).sum())
+assert hits > 0, "no impacts: the comparison would prove nothing"
+print(f"{sys.argv[2]}: {n} datasets bit for bit, {hits} pounding analyses")
+PY
+done
+grep -q 'gap of the joint(s) at d = 0.0127 m' "$tmp/bridge-m.md" || fail "the bridge's metres are not explained"
+
 # the report speaks metres on a metres axis, ratios x d otherwise
 grep -q '| gap m | models with impact' "$tmp/metres.md" || fail "the total table's header is not in metres"
 grep -q '| gap ratio | models with impact' "$tmp/ratios.md" || fail "the ratio study's header changed"
