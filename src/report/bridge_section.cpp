@@ -84,8 +84,8 @@ std::string bridge_section(const Data& r) {
   s += fmt::format(
       "Each joint's gap at {} + (its gap - d), d = {:g} m. P(joint touches) is the share of the ok analyses "
       "whose uncoupled peak closing exceeds that gap (first passage at that joint; the bridge pounds when any joint "
-      "does). Closings are the peak of u_left - u_right (m).\n\n| joint | gap at x = 1 (m) | median peak closing (m) |",
-      r.set.metres ? "the study gap g (m) is g" : "ratio x is x d", d);
+      "does). Closings are the peak of u_left - u_right (m).\n\n| joint | {} | median peak closing (m) |",
+      r.set.metres ? "the study gap g (m) is g" : "ratio x is x d", d, r.set.metres ? "gap at g = d (m)" : "gap at x = 1 (m)");
   const auto& ratios = r.set.gap_ratios;
   std::string rule = "|---|---|---|";
   for (double x : ratios) s += fmt::format(" P at {} |", axis_label(r, x)), rule += "---|";

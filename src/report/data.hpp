@@ -156,6 +156,8 @@ std::string moat_csv(const Data& r);  // rows "moat" of the CSV report
 // [gaps] existing (m): P(uncoupled peak closing > existing) over every ok analysis (exact, the per-model closings),
 // with the report's Wilson interval; the section's text (report.cpp), "" without an existing gap or per-model peaks.
 Count count_existing(const Data& r);
+// Why a report is made from the reductions ([outputs] per_model = false, or the run's report of "stream"; report.cpp).
+std::string reductions_reason(const Data& r);
 std::string existing_section(const Data& r);
 // The same per stripe of a fragility study (levels: the stripes' IM values, im: their measure and units).
 std::string moat_fragility_section(const results::Results& r, std::span<const double> levels, const std::string& im);

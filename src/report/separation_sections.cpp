@@ -349,7 +349,7 @@ std::string existing_section(const Data& r) {
     if (!r.set.metres || at == r.set.gap_ratios.end())
       return s + fmt::format("not given: {}, and it is not one of the study's gaps in metres ([gaps] metres), whose "
                              "counts the reductions keep.\n",
-                             "the study kept only its reductions");
+                             reductions_reason(r));
     const Count c = count_uncoupled(r, g, -1);
     const Interval w = wilson(r, c.hits, c.n);
     return s + fmt::format("P(at least one impact) = **{}** ({} of {} analyses), Wilson 95 % [{:.2f}%, {:.2f}%].\n",

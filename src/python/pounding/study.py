@@ -151,7 +151,7 @@ class Results:
         if "rule_wilson" not in t:  # a grid study: lo, hi of its code_rule rows are the Wilson interval
             rules = rules.rename(columns={"lo": "wilson_lo", "hi": "wilson_hi"})
             return rules[["rule", "kind", "hits", "n", "probability", "wilson_lo", "wilson_hi"]]
-        w = t["rule_wilson"]
+        w = t["rule_wilson"].iloc[:len(rules)]  # then [gaps] existing's (its row: table "existing"), if any
         rules["wilson_lo"], rules["wilson_hi"] = w["lo"].to_numpy(), w["hi"].to_numpy()
         rules["hits"] = rules["hits"].astype("int64")
         return rules[["rule", "kind", "gap_m", "gap_ratio", "hits", "n", "probability", "lo", "hi", "wilson_lo",
@@ -161,7 +161,7 @@ class Results:
     def separation_advice(self):
         """The separation advice per target probability, from the CSV report's numbers (the rows the Markdown
         table formats), one row per target: target (a fraction), x (the separation in code gaps d; a bridge's in
-        units of its reference gap) and cubic_x (the root of the report's cubic fit, NaN outside its range). A grid
+        units of its reference gap; a study with [gaps] metres: in metres) and cubic_x (the root of the report's cubic fit, NaN outside its range). A grid
         or bridge study adds lo, hi (the two-stage bootstrap interval of x) and advice_x (its upper end); a pair
         study adds separation_m, lo_m, hi_m (the interval in metres), cubic_m, records_above (of `records`, the
         independent records), resolved (floor(t records) >= 1), lognormal_m, lognormal_lo_m, lognormal_hi_m (the
