@@ -159,6 +159,7 @@ class Fragility:
         self.gaps = g["gaps"][()]
         self.gaps_m = g["gaps_m"][()] if "gaps_m" in g else np.full(self.gaps.shape, np.nan)
         self.pair = bool(np.all(np.isfinite(self.gaps_m)))
+        self.metres = text(g.attrs.get("gap_units", "")) == "m"  # [gaps] metres: the gaps are metres
         self.levels = g["levels"][()]
         self.theta, self.beta = g["theta"][()], g["beta"][()]
         self.theta_lo, self.theta_hi = g["theta_lo"][()], g["theta_hi"][()]
@@ -180,6 +181,8 @@ class Fragility:
         self.measure = text(it.get("measure", "IM"))
 
     def label(self, i):
+        if self.metres:
+            return f"{self.gaps[i]:g} m"
         if self.pair:
             return f"{self.gaps[i]:g} d = {self.gaps_m[i]:.3f} m"
         return f"{self.gaps[i]:g} d"
@@ -282,7 +285,7 @@ def plot_fragility(fr, sel, a, title):
         axes[k // ncol][k % ncol].set_xlabel(textwrap.fill(fr.im_label, 48), fontsize=8)
     for row in axes:
         row[0].set_ylabel("P(pounding | IM)")
-    fig.suptitle(f"{title}\nfragility per gap: P = Phi(ln(x / theta) / beta)" + ("" if fr.pair else
+    fig.suptitle(f"{title}\nfragility per gap: P = Phi(ln(x / theta) / beta)" + ("" if fr.pair or fr.metres else
                  " (gaps as ratios of each model's code gap d)"), fontsize=9)
     fig.tight_layout(rect=(0, 0.07 if ncol == 3 and nrow > 1 else (0.12 if ncol == 3 else 0.36 / (1 + nrow)), 1, 1))
     return fig
@@ -342,7 +345,7 @@ def plot_rate(f, fr, sel, a, title):
     if fr.pair:
         d = float(np.median(fr.gaps_m / fr.gaps))
         xs, cx, unit = fr.gaps_m, cg * d, "m"
-        xlabel = f"separation between the buildings (m); d = {d:.3f} m"
+        xlabel = "separation between the buildings (m)" + ("" if fr.metres else f"; d = {d:.3f} m")
         tg, tlo, thi = (float(at.get(k, np.nan)) for k in ("target_gap_m", "target_gap_m_lo", "target_gap_m_hi"))
         jlo, jhi, adv = (float(at.get(k, np.nan)) for k in ("target_gap_m_jack_lo", "target_gap_m_jack_hi",
                                                              "target_gap_m_advice"))
@@ -396,6 +399,10 @@ def plot_rate(f, fr, sel, a, title):
             head += f", advice {adv:.3g} {unit}"
     else:
         head = f"no risk-targeted separation ({status}: {text(at.get('target_note', ''))})"
+    ge = existing_gap(f)  # [gaps] existing: the as-built gap, where the axis is metres
+    if ge is not None and unit == "m":
+        for ax in (ax_r, ax_p):
+            ax.axvline(ge, color="k", lw=2.0, ls="-.", gid="existing", label=f"existing {ge:g} m" if ax is ax_r else None)
     ax_r.set_yscale("log")
     ax_r.set_ylabel("annual rate of pounding (1/year)")
     ax_r.set_title(f"{title}\n{head}", fontsize=8)
