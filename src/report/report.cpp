@@ -1,3 +1,4 @@
+// The study report: Tables 2 and 3, the T1 x T2 map, the cubic fit, separation advice and code rules (Markdown, CSV).
 #include "pounding/report/report.hpp"
 
 #include <algorithm>

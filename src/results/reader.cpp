@@ -1,3 +1,4 @@
+// Reads a results file of any format (1, 2, 3) into Results.
 #include "pounding/results/reader.hpp"
 
 #include <algorithm>

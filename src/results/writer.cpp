@@ -1,3 +1,4 @@
+// Writes Results to an HDF5 file (format 3 with /system, else format 2), built in a temporary and renamed.
 #include "pounding/results/writer.hpp"
 
 #include <cstring>

@@ -1,3 +1,4 @@
+// The study's main job: work units through the kernel or the system stepper, checkpoint, results file, report.
 #include "pounding/study/run.hpp"
 
 #include <sys/stat.h>

