@@ -1,5 +1,5 @@
 // Named, deterministic workloads for `pounding bench`, the Google Benchmark and the examples.
-#include "pounding/testing/workloads.hpp"
+#include "pounding/workloads/workloads.hpp"
 
 #include <cmath>
 #include <numbers>
