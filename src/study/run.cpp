@@ -1387,6 +1387,15 @@ void add_histories(const Inputs& in, results::Results& res, results::Results* vi
   res.groups.push_back(std::move(g));
 }
 
+// After the caller's analyses: the report's results ("stream": `view`) get the groups they added (and the selection's),
+// then [outputs] histories are run.
+void after_analysis(const Inputs& in, results::Results& res, results::Results* view, std::size_t groups_before,
+                    const RunContext& ctx) {
+  if (view) view->groups.insert(view->groups.end(), res.groups.begin() + (in.selection ? groups_before - 1 : groups_before),
+                                res.groups.end());
+  if (!in.study.histories.empty()) add_histories(in, res, view, ctx);
+}
+
 int finish(const parallel::Session& session, const Inputs& in, const WorkPlan& L, Checkpoint* ckpt, Tally& tally,
            const CheckpointKey& key, double wall, const RunContext& ctx, const RunOptions& opt, timing::Times& T,
            std::size_t units_resumed, int threads, std::string& report) {
@@ -1419,9 +1428,7 @@ int finish(const parallel::Session& session, const Inputs& in, const WorkPlan& L
       // the analyses the caller adds (fragility, hazard: report/fragility.hpp), with progress and the stop flag
       const std::size_t groups_before = res.groups.size();
       if (opt.analyse) opt.analyse(res, ctx.hook());
-      if (view) view->groups.insert(view->groups.end(), res.groups.begin() + (in.selection ? groups_before - 1 : groups_before),
-                                    res.groups.end());
-      if (!in.study.histories.empty()) add_histories(in, res, view ? &*view : nullptr, ctx);
+      after_analysis(in, res, view ? &*view : nullptr, groups_before, ctx);
       analysis = T[Phase::analysis] = timing::seconds_since(t_analysis);
       // the report pounding run prints, from these results (its wall time filled in below), rendered while this
       // thread writes the file's bulk; results_write counts what the write adds after the report
