@@ -11,6 +11,7 @@
 #include <fmt/ranges.h>
 
 #include "pounding/core/error.hpp"
+#include "pounding/core/machine.hpp"
 #include "pounding/physics/batch.hpp"
 #include "pounding/physics/system_series.hpp"
 #include "pounding/physics/velocity_restitution.hpp"
@@ -130,6 +131,49 @@ std::vector<HistoryChoice> resolve_histories(const Study& s, const std::vector<S
     out.push_back(std::move(c));
   }
   return out;
+}
+
+namespace {
+
+// Series per history at most (t, ag, u and a_abs per DOF, force per element): the SDOF pair's 7; a System's from the
+// study's tallest topology (table_topology), or for an SDOF facing a shear building its tallest sample.
+double series_bound(const Study& s) {
+  if (!runs_systems(s.structures)) return 7.0;
+  if (const std::optional<LaneTopology> t = table_topology(s.structures, s.seed)) {
+    SystemBlock block(s);
+    const model::System& sys = block.table_system(*t);
+    return 2.0 + 2.0 * sys.ndof() + static_cast<double>(sys.contacts().size());
+  }
+  const StructureSampler sampler(s.structures, s.seed);
+  int dofs = 0;
+  for (std::int64_t p = 0; p < s.structures.period_pair_count(); ++p)
+    for (std::int64_t k = 0; k < s.structures.samples_per_pair; ++k) {
+      const LaneTopology t = lane_topology(s.structures, sampler.sample(s.structures.pair_id(p, k)));
+      int n = 0;
+      for (std::size_t b = 0; b < t.buildings(); ++b) n += t.storeys[b] + t.isolated[b];
+      dofs = std::max(dofs, n);
+    }
+  return 2.0 + 3.0 * dofs + 2.0;  // elements: at most one per floor, and two moat walls
+}
+
+}  // namespace
+
+void check_history_memory(const Study& s, const std::vector<StudyRecord>& records, std::size_t named) {
+  std::size_t count = named;
+  for (const HistorySpec& h : s.histories) count += static_cast<std::size_t>(h.worst);
+  if (count == 0) return;
+  double steps = 0;
+  for (const StudyRecord& r : records)
+    steps = std::max(steps, (r.record.duration() + s.free_vibration) / (r.record.dt / study_substeps(s, r.record.dt)) + 2);
+  const double bytes = static_cast<double>(count) * steps * series_bound(s) * sizeof(double);
+  // the histories are held in the results and again in the file's image before it is written
+  const double avail = available_memory_bytes(), limit = std::isnan(avail) ? 16e9 : avail / 3.0;
+  if (bytes <= limit) return;
+  throw InputError(fmt::format("the {} time histories need up to {} ({:.0f} steps x {:.0f} series each), more than the "
+                               "{} they may use here", count, human_bytes(bytes), steps, series_bound(s),
+                               human_bytes(limit)),
+                   s.histories.front().where,
+                   "choose fewer analyses (a smaller worst = N), or a larger [analysis] max_dt / fewer substeps");
 }
 
 namespace {

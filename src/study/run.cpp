@@ -783,6 +783,7 @@ Inputs load_inputs(const parallel::Session& session, const std::string& study_pa
     // [analysis] substeps / max_dt it chooses a stable max_dt, so every rank runs it (the same choice everywhere)
     check_shear_steps(in->study, in->records);
     in->histories = resolve_histories(in->study, in->records);  // a record or model that is not there: before any work
+    check_history_memory(in->study, in->records, in->histories.size());
     if (in->study.intensity.enabled) {
       std::vector<double> im;
       for (const auto& rr : in->records) im.push_back(intensity(rr.record, in->study.intensity.im));

@@ -12,7 +12,8 @@
 #     impacts summed over the elements, the largest force), the series' largest force per element the peak.
 #  4. Bad selections are refused before any work (exit 2, one ERROR naming the entry and the fix, no results file, no
 #     checkpoint): an unknown record, a model beyond the study, a gap not among the ratios, a coupled run in the
-#     probability scene, worst with a record, worst with per_model = false, a fragility study.
+#     probability scene, worst with a record, worst with per_model = false, a fragility study, histories that would
+#     not fit in the memory available (POUNDING_TEST_MEMORY_AVAILABLE).
 # Needs /usr/bin/python3 with numpy and h5py. Synthetic records only. Args: <pounding binary> <source dir>
 set -euo pipefail
 bin=$1; src=$(cd "$2" && pwd)
@@ -202,4 +203,6 @@ bad 'worst = N chooses its analyses' 'histories = [{ worst = 2, record = 0 }]'
 bad 'per_model = false' $'histories = { worst = 2 }\nper_model = false' probability
 bad 'not available in a fragility study' 'histories = [{ record = 0, model = 0 }]' probability \
     '[intensity]\nmeasure = "PGA"\nlevels = [0.1, 0.2, 0.3]'
+POUNDING_TEST_MEMORY_AVAILABLE=1e9 bad 'the 100 time histories need up to' 'histories = { worst = 100 }' impacts \
+    '[analysis]\nfree_vibration = 200'
 echo "PASS"

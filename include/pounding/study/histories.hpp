@@ -38,6 +38,11 @@ void check_histories(const Study& study);
 // (one of the study's gap ratios; "uncoupled"). InputError at the entry's file:line with the fix.
 std::vector<HistoryChoice> resolve_histories(const Study& study, const std::vector<StudyRecord>& records);
 
+// Before the first unit: the memory the histories will hold (the named ones and worst N each, at the longest record,
+// the study's largest System) against the memory available (a third of it: the results and the file's image hold
+// them). InputError at the first entry with the fix.
+void check_history_memory(const Study& study, const std::vector<StudyRecord>& records, std::size_t named);
+
 // After the units: study.histories' "worst" entries resolved from the per-model results `res` (its uncoupled /
 // impacts fields and /models code_gap), appended to `explicit_choices` in the entries' order (an analysis chosen
 // twice is kept once).
