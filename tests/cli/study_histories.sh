@@ -6,7 +6,7 @@
 #     peak_u1, peak_u2, peak_closing or impact_count, peak_force) equal the study's per-model values BIT FOR BIT, its
 #     series' largest force equals its peak force and its largest |u| its peak |u|; the worst 3 are the 3 largest peak
 #     forces; the report lists them; every other dataset and attribute equals the same study without the key
-#     (compare_results.py: /histories and its setting are the only additions).
+#     (compare_results.py: /histories and its setting are the only additions); 2 MPI ranks write the same file.
 #  2. The probability scene: { worst = 2 } picks the 2 largest peak closing / code gap; peaks bit for bit.
 #  3. Shear buildings (quick-storeys in small): a named coupled and the worst 2, peaks bit for bit (D over the floors,
 #     impacts summed over the elements, the largest force), the series' largest force per element the peak.
@@ -126,6 +126,12 @@ with h5py.File(sys.argv[1], "r") as f:
     assert H["3"].attrs["peak_force"] > 0
 print("ok   impacts scene: 5 histories, peaks bit for bit, worst 3 by force")
 PY
+
+# 2 ranks (rank 0 reruns the histories after the others' units): the same file, histories included
+export OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMPI_MCA_rmaps_base_oversubscribe=1
+mpirun -np 2 "$bin" run hist.toml --out np2.h5 > np2.log 2>&1 || fail "2 ranks: exit $? $(tail -3 np2.log)"
+"$py" "$src/tests/cli/compare_results.py" hist.h5 np2.h5 > cmp2.log || fail "2 ranks differ: $(head -20 cmp2.log)"
+echo "ok   2 ranks: the same file"
 
 # ---- 2. probability scene: worst by closing / code gap
 pair_study probability 'histories = { worst = 2 }' > prob.toml
