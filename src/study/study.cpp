@@ -12,9 +12,9 @@
 #include <fstream>
 #include <limits>
 #include <memory>
-#include <sstream>
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 #include <toml++/toml.h>
 
 #include "pounding/config/config.hpp"
@@ -411,6 +411,19 @@ HistorySpec parse_history(const toml::table& t, const std::string& path, std::si
   return h;
 }
 
+// An entry as it reads (its /settings text): { record = "EQ2", model = 5, gap = 0.1 }.
+std::string history_text(const HistorySpec& h) {
+  std::vector<std::string> k;
+  if (h.worst > 0) k.push_back(fmt::format("worst = {}", h.worst));
+  if (!h.record_name.empty()) k.push_back(fmt::format("record = \"{}\"", h.record_name));
+  else if (h.record_index >= 0) k.push_back(fmt::format("record = {}", h.record_index));
+  if (h.model >= 0) k.push_back(fmt::format("model = {}", h.model));
+  if (h.i1 >= 0) k.push_back(fmt::format("pair = [{}, {}]", h.i1, h.i2));
+  if (h.sample >= 0) k.push_back(fmt::format("sample = {}", h.sample));
+  if (h.gap_given) k.push_back(h.uncoupled ? std::string("gap = \"uncoupled\"") : fmt::format("gap = {}", h.gap_ratio));
+  return fmt::format("{{ {} }}", fmt::join(k, ", "));
+}
+
 // [outputs] histories: one entry (an inline table) or an array of them.
 void parse_histories(Study& s, TableReader& o, const std::string& path) {
   const toml::node* n = o.get("histories");
@@ -422,11 +435,12 @@ void parse_histories(Study& s, TableReader& o, const std::string& path) {
   else
     throw InputError("histories must be an entry { ... } or an array of entries", o.where("histories"),
                      "write histories = [{ record = \"EQ1\", model = 0, gap = \"uncoupled\" }, { worst = 3 }]");
-  for (std::size_t k = 0; k < entries.size(); ++k) s.histories.push_back(parse_history(*entries[k], path, k));
-  std::ostringstream text;
-  if (const toml::table* t = n->as_table()) text << toml::toml_formatter(*t, {});
-  else text << toml::toml_formatter(*n->as_array(), {});
-  s.histories_text = text.str();
+  std::vector<std::string> text;
+  for (std::size_t k = 0; k < entries.size(); ++k) {
+    s.histories.push_back(parse_history(*entries[k], path, k));
+    text.push_back(history_text(s.histories.back()));
+  }
+  s.histories_text = fmt::format("[{}]", fmt::join(text, ", "));
 }
 
 void parse_outputs(Study& s, const toml::table* t, const std::string& path) {
