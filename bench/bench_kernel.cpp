@@ -1,6 +1,6 @@
 // Google Benchmark of the batch kernel: ns per pair-step (counter "ns_per_pair_step") for each
 // stepper x contact law at batch widths 1, 16, 256, 1024, bilinear pairs, 40 s record at 0.005 s
-// (workload 'kernel-bilinear', see include/pounding/testing/workloads.hpp). Run:
+// (workload 'kernel-bilinear', see include/pounding/workloads/workloads.hpp). Run:
 //   build/bench_kernel --benchmark_repetitions=5 --benchmark_report_aggregates_only=true
 #include <benchmark/benchmark.h>
 
@@ -8,7 +8,7 @@
 
 #include "pounding/contact/registry.hpp"
 #include "pounding/physics/batch.hpp"
-#include "pounding/testing/workloads.hpp"
+#include "pounding/workloads/workloads.hpp"
 
 namespace {
 

@@ -3,7 +3,7 @@
 
     PYTHONPATH=build/python /usr/bin/python3 bench/python_analyze.py --pounding build/pounding [--pairs 100000]
 
-Workload: `pounding bench`'s (testing/workloads.hpp benchmark_batch: bilinear pairs, Hertzdamp, central difference,
+Workload: `pounding bench`'s (workloads/workloads.hpp benchmark_batch: bilinear pairs, Hertzdamp, central difference,
 the built-in 40 s sweep at 0.005 s = 8000 steps). Interleaved rounds, each: the C++ bench (one thread, one batch of
 256 pairs, its median of 3 repeats), then analyze() on `--pairs` pairs with threads=1 (the binding's overhead:
 batching, copies, validation of every pair, result dicts) and with every core, and pounding.run_batch (one

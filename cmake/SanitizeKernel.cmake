@@ -41,7 +41,7 @@ target_compile_features(sanitize_kernel PRIVATE cxx_std_20)
 target_compile_options(sanitize_kernel PRIVATE -O1 -fsanitize=address,undefined -fno-sanitize-recover=all
                        -fno-omit-frame-pointer)
 target_link_options(sanitize_kernel PRIVATE -fsanitize=address,undefined)
-target_link_libraries(sanitize_kernel PRIVATE GTest::gtest GTest::gtest_main pounding::physics pounding::testing fmt::fmt Boost::headers
+target_link_libraries(sanitize_kernel PRIVATE GTest::gtest GTest::gtest_main pounding::physics pounding::workloads fmt::fmt Boost::headers
                       Eigen3::Eigen Threads::Threads)
 # POUNDING_RELAXED_INLINE: the kernel's forced inlining becomes a hint (include/pounding/kernel/lane.hpp). Forced, the
 # instrumented instantiate_system_central_difference.cpp took about 17 min of CPU and 0.9 GB (GCC 12, this 2-core

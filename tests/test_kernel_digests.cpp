@@ -17,7 +17,7 @@
 
 #include "pounding/contact/registry.hpp"
 #include "pounding/physics/batch.hpp"
-#include "pounding/testing/workloads.hpp"
+#include "pounding/workloads/workloads.hpp"
 
 #ifndef POUNDING_TEST_SOURCE_DIR
 #error "POUNDING_TEST_SOURCE_DIR is set by CMakeLists.txt for the test targets"

@@ -1,3 +1,4 @@
+// Binomial intervals, the cubic fit of probability against gap ratio and the CQC correlation (analysis/stats.hpp).
 #include "pounding/analysis/stats.hpp"
 
 #include <Eigen/Dense>

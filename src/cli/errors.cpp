@@ -1,3 +1,4 @@
+// How a command ends when it cannot do its work: every error as one line (what, where, fix) and its exit code.
 #include "cli/errors.hpp"
 
 #include <cerrno>

@@ -66,6 +66,16 @@ constexpr StudySection sections[] = {
     {"analysis", "[analysis]", "Time integration and the treatment of analyses that fail."},
     {"report", "[report]", "What the report derives from the results."},
     {"outputs", "[outputs]", "What the impacts scene must deliver (scene = \"auto\" reads it)."},
+    {"outputs.histories", "[outputs] histories = [{...}, ...]",
+     "The analyses whose full time histories the results file stores (/histories/1, 2, ...; docs/studies.md, "
+     "\"Time histories of chosen analyses\"): after the units, rank 0 reruns each with the series recorder (the same "
+     "structure, record, step, contact and gap as the study) and stores t, per DOF u (relative to its support) and "
+     "absolute acceleration, per contact element force, with the record, model ids, gap and peaks as attributes; the "
+     "peaks equal the study's per-model values bit for bit. An entry is one analysis, {record, model or pair and "
+     "sample, gap}, or {worst = N} (with gap: at that gap only): the N analyses of the largest peak impact force "
+     "(impacts scene; coupled runs) or the largest peak closing / code gap (probability scene). SDOF pairs, shear "
+     "buildings, rows, isolated buildings and bridges (Systems: central difference); not in a fragility study "
+     "([intensity]); worst needs per_model = true."},
     {"intensity", "[intensity]",
      "A fragility study: the records are scaled to intensity-measure levels (stripes) and a fragility is fitted "
      "per gap."},
@@ -699,6 +709,29 @@ constexpr StudyKey keys[] = {
      "(docs/studies.md, \"Studies larger than memory\"); "
      "the file's datasets equal those of true, bit for bit; the run's report is the reductions' report (same "
      "restrictions as false), `pounding report` on the file gives the full one."},
+
+    {"outputs", "histories", "table or array of tables", "none", "", "{record, model | pair + sample, gap} | {worst}",
+     "Time histories of chosen analyses ([outputs] histories = [{...}] above), e.g. histories = [{ record = \"EQ1\", "
+     "model = 0, gap = 0.5 }, { worst = 3 }]."},
+    {"outputs.histories", "record", "string or integer", "required (not with worst)", "", "a /records id or row",
+     "The record: its id as in /records/id (with polarity = \"both\" the row as recorded; the reversed copy by its "
+     "row) or its row, 0-based."},
+    {"outputs.histories", "model", "integer", "none (or pair and sample)", "", "[0, models - 1]",
+     "The model: its row in /models, 0-based (= pair index x samples_per_pair + sample).", 0, 1e15},
+    {"outputs.histories", "pair", "array of numbers", "none (or model)", "", "[i1, i2], the period slots",
+     "The model's period pair as the study's ids /models/i1, i2 (0-based slots of the buildings' period grids); with "
+     "sample."},
+    {"outputs.histories", "sample", "integer", "none (or model)", "", "[0, samples_per_pair - 1]",
+     "The model's sample within its period pair (/models/sample); with pair.", 0, 1e15},
+    {"outputs.histories", "gap", "number or \"uncoupled\"", "\"uncoupled\" (probability scene); required (impacts)",
+     "", "one of [gaps] ratios (or metres) | \"uncoupled\"",
+     "Which run: the uncoupled one, or the coupled run at this gap ratio (impacts scene; with [gaps] metres, this gap "
+     "in metres). With worst: rank the analyses at this gap only."},
+    {"outputs.histories", "worst", "integer", "none", "", "[1, 100]",
+     "The N analyses of the largest peak impact force (impacts scene, coupled runs; ties: the first in record, "
+     "model, gap order) or the largest peak closing / code gap (probability scene; [gaps] metres: the largest peak closing); "
+     "diverged analyses are left out.",
+     1, 100},
 
     // ---------------------------------------------------------------- [intensity]
     {"intensity", "measure", "string", "\"Sa\"", "", "\"PGA\" | \"PGV\" | \"Sa\" | \"Sa_avg\"",

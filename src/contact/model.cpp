@@ -1,3 +1,4 @@
+// Contact models: the damping laws' xi(e), Hertzdamp's calibrated damping and restitution, names and checks.
 #include "pounding/contact/model.hpp"
 
 #include <charconv>

@@ -1,3 +1,4 @@
+// Velocity-dependent restitution e(v0): presets, polynomials and tables, their units and valid range.
 #include "pounding/contact/restitution.hpp"
 
 #include <algorithm>

@@ -1,3 +1,4 @@
+// InputError: bad input as what, where and how to fix it.
 #include "pounding/core/error.hpp"
 
 #include <algorithm>

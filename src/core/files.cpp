@@ -1,3 +1,4 @@
+// Files never left half-written: atomic replacement, writes that report the OS error, output checks before work.
 #include "pounding/core/files.hpp"
 
 #include <fcntl.h>

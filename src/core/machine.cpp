@@ -1,3 +1,4 @@
+// The machine a run happens on (host, CPU model, cores, available memory), for the results' provenance.
 #include "pounding/core/machine.hpp"
 
 #include <unistd.h>

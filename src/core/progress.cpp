@@ -1,3 +1,4 @@
+// Progress and stop for the long loops below the study layer, through the caller's WorkHook.
 #include "pounding/core/progress.hpp"
 
 #include <utility>

@@ -1,3 +1,4 @@
+// An LSD radix sort of doubles in std::sort's order (the bootstrap's and the histograms' sorts).
 #include "pounding/core/radix_sort.hpp"
 
 #include <array>

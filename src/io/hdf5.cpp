@@ -1,3 +1,4 @@
+// HDF5 handles and writers (datasets with units, chunked rows, the atomic file): the only user of <hdf5.h>.
 #include "pounding/io/hdf5.hpp"
 
 #include <hdf5.h>

@@ -1,3 +1,4 @@
+// The worker threads of one rank: each computes units through its own compute function and hands them back.
 #include "unit_pool.hpp"
 
 #include "pounding/core/error.hpp"

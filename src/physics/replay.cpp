@@ -1,3 +1,4 @@
+// A contact law replayed on imposed kinematics (penetration and its rate against time).
 #include "pounding/physics/replay.hpp"
 
 #include <algorithm>

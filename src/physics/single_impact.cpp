@@ -1,3 +1,4 @@
+// One free impact through the kernel: effective restitution, peak force, penetration, duration, energy loss.
 #include "pounding/physics/single_impact.hpp"
 
 #include <cmath>

@@ -1,3 +1,4 @@
+// Input checks of a batch outside the kernel: every problem listed, naming the lane and the field.
 #include "pounding/physics/validate.hpp"
 
 #include <algorithm>

@@ -16,7 +16,7 @@
 #include "pounding/physics/batch.hpp"
 #include "pounding/physics/single_impact.hpp"
 #include "pounding/physics/validate.hpp"
-#include "pounding/testing/workloads.hpp"
+#include "pounding/workloads/workloads.hpp"
 
 namespace pounding::python {
 namespace {

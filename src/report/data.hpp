@@ -198,6 +198,9 @@ struct GridRuleRow {
 std::vector<GridRuleRow> grid_rule_rows(const Data& r);
 // "Records selected to the design spectrum" from /selection ([records] select); "" without it (selection_section.cpp)
 std::string selection_section(const results::Results& r);
+// "Stored time histories" from /histories ([outputs] histories, study/histories.hpp): one row per history; ""
+// without it (selection_section.cpp)
+std::string histories_section(const results::Results& r);
 std::string separation_csv(const Data& r);           // rows pair_curve, separation, code_rule, code_design
 
 // The codes' own design displacements (code_design.cpp): the study's design spectrum from /settings (none without

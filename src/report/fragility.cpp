@@ -1,3 +1,4 @@
+// A fragility study's analysis and report: fragility curves per gap, hazard integration, risk-targeted gap.
 #include "pounding/report/fragility.hpp"
 
 #include <algorithm>

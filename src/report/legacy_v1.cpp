@@ -1,3 +1,4 @@
+// Results files from before /settings: the report's settings read back from the echoed study text.
 #include "legacy_v1.hpp"
 
 #include "pounding/study/study.hpp"

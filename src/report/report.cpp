@@ -1,3 +1,4 @@
+// The study report: Tables 2 and 3, the T1 x T2 map, the cubic fit, separation advice and code rules (Markdown, CSV).
 #include "pounding/report/report.hpp"
 
 #include <algorithm>
@@ -1054,7 +1055,8 @@ ReportTexts texts(const results::Results& results, bool with_markdown, bool with
   Data r(results, hook, &t.bootstrap_s);
   r.bootstrap_runs = &t.bootstraps;
   if (with_csv) t.csv = pair_csv(r);  // first: its bootstrap covers every target and gap the Markdown asks for
-  if (with_markdown) t.markdown = pair_markdown(r) + report_detail::selection_section(results);
+  if (with_markdown)
+    t.markdown = pair_markdown(r) + report_detail::selection_section(results) + report_detail::histories_section(results);
   return t;
 }
 }  // namespace

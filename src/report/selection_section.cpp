@@ -1,5 +1,8 @@
 // "Records selected to the design spectrum": the /selection group of a study with [records] select = N
 // (study/target_spectrum.hpp) as a short Markdown section.
+#include <algorithm>
+#include <string>
+
 #include <fmt/format.h>
 
 #include "data.hpp"
@@ -48,6 +51,37 @@ std::string selection_section(const results::Results& r) {
   if (const auto* w = g->attribute("warnings"))
     if (const auto* list = std::get_if<std::vector<std::string>>(w))
       for (const auto& line : *list) s += "- warning: " + report::md_text(line) + "\n";
+  return s;
+}
+
+// /histories: per stored history its analysis, run and peaks (the series are in the file: /histories/<n>/t, u, a_abs,
+// force; docs/results-format.md).
+std::string histories_section(const results::Results& r) {
+  const results::Group* g = r.group("histories");
+  if (!g || g->children.empty()) return "";
+  std::vector<const results::Group*> h;
+  for (const results::Group& c : g->children) h.push_back(&c);
+  std::stable_sort(h.begin(), h.end(), [](const results::Group* a, const results::Group* b) {
+    return std::stol("0" + a->name) < std::stol("0" + b->name);
+  });
+  std::string s = fmt::format("\n## Stored time histories\n\n{} analys{} rerun with the recorder ([outputs] histories): "
+                              "t, u and a_abs per DOF, force per contact element in /histories/<n>.\n\n",
+                              h.size(), h.size() == 1 ? "is" : "es");
+  s += "| n | record | model (i1, i2, sample) | run | gap (m) | peak closing (m) | peak force (N) | impacts | chosen |\n"
+       "|---|---|---|---|---|---|---|---|---|\n";
+  auto number = [](const results::Group* x, const char* key, const char* fmt_) {
+    return x->attribute(key) ? fmt::format(fmt::runtime(fmt_), x->number(key)) : std::string("-");
+  };
+  for (const results::Group* x : h) {
+    const bool coupled = x->text("run") == "coupled";
+    s += fmt::format("| {} | {} | {} ({}, {}, {}) | {} | {} | {} | {} | {} | {} |\n", x->name,
+                     report::md_cell(x->text("record")), static_cast<long>(x->number("model")),
+                     static_cast<long>(x->number("i1")), static_cast<long>(x->number("i2")),
+                     static_cast<long>(x->number("sample")),
+                     coupled ? fmt::format("coupled at {:g} d", x->number("gap_ratio")) : std::string("uncoupled"),
+                     number(x, "gap_m", "{:.4g}"), number(x, "peak_closing", "{:.4g}"), number(x, "peak_force", "{:.4g}"),
+                     number(x, "impact_count", "{:.0f}"), report::md_cell(x->text("chosen")));
+  }
   return s;
 }
 

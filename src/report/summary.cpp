@@ -1,3 +1,4 @@
+// Text summaries of kernel and system runs (simulate, collide): one `name: value` per line, SI units in the names.
 #include "pounding/report/summary.hpp"
 
 #include <algorithm>

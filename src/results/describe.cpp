@@ -1,3 +1,4 @@
+// The unit and one-line meaning of every dataset of a results file (its `units` and `description`).
 #include "pounding/results/describe.hpp"
 
 #include <optional>

@@ -1,3 +1,4 @@
+// Reads a results file of any format (1, 2, 3) into Results.
 #include "pounding/results/reader.hpp"
 
 #include <algorithm>
@@ -165,35 +166,46 @@ void read_fields(h5::hid root, std::span<const FieldSpec> specs, Results& r) {
   }
 }
 
-// Every group marked `module_group` (results.hpp), in name order.
-void read_groups(h5::hid root, Results& r) {
+// Group `name` under `parent`: its attributes, its datasets, and its sub-groups (their datasets only with
+// `child_data`: /histories' series, which the report does not read).
+Group read_group(h5::hid parent, const std::string& name, bool data, bool child_data) {
   using K = h5::DatasetKind;
+  auto g = h5::open_group(parent, name);
+  Group gr{name, {}, {}};
+  Settings attrs;
+  read_section(g.get(), "", attrs);
+  for (auto& a : attrs.entries)
+    if (a.key != "module_group") gr.attributes.emplace_back(a.key, std::move(a.value));
+  for (const std::string& d : h5::member_names(g.get())) {
+    if (h5::is_group(g.get(), d)) {
+      gr.children.push_back(read_group(g.get(), d, child_data, child_data));
+      continue;
+    }
+    if (!data || !stored_attribute_kind(g.get(), d).empty()) continue;  // an attribute (read_section has it)
+    GroupDataset ds{d, {}, h5::dataset_shape(g.get(), d), {}, {}};
+    if (ds.shape.size() <= 1) ds.shape.clear();
+    auto h = h5::open_dataset(g.get(), d);
+    read_opt(h.get(), "units", ds.units);
+    read_opt(h.get(), "description", ds.description);
+    switch (h5::dataset_kind(g.get(), d)) {
+      case K::strings: ds.data = h5::read_strings(g.get(), d); break;
+      case K::f64: ds.data = h5::read_doubles(g.get(), d); break;
+      case K::i64: ds.data = h5::read_int64(g.get(), d); break;
+      case K::u8: ds.data = h5::read_uint8(g.get(), d); break;
+      default: continue;
+    }
+    gr.datasets.push_back(std::move(ds));
+  }
+  return gr;
+}
+
+// Every group marked `module_group` (results.hpp), in name order.
+void read_groups(h5::hid root, Results& r, bool child_data) {
   for (const std::string& name : h5::member_names(root)) {
     if (!h5::is_group(root, name)) continue;
     auto g = h5::open_group(root, name);
     if (!h5::attribute_exists(g.get(), "module_group")) continue;
-    Group gr{name, {}, {}};
-    Settings attrs;
-    read_section(g.get(), "", attrs);
-    for (auto& a : attrs.entries)
-      if (a.key != "module_group") gr.attributes.emplace_back(a.key, std::move(a.value));
-    for (const std::string& d : h5::member_names(g.get())) {
-      if (!stored_attribute_kind(g.get(), d).empty()) continue;  // an attribute (read_section has it)
-      GroupDataset ds{d, {}, h5::dataset_shape(g.get(), d), {}, {}};
-      if (ds.shape.size() <= 1) ds.shape.clear();
-      auto h = h5::open_dataset(g.get(), d);
-      read_opt(h.get(), "units", ds.units);
-      read_opt(h.get(), "description", ds.description);
-      switch (h5::dataset_kind(g.get(), d)) {
-        case K::strings: ds.data = h5::read_strings(g.get(), d); break;
-        case K::f64: ds.data = h5::read_doubles(g.get(), d); break;
-        case K::i64: ds.data = h5::read_int64(g.get(), d); break;
-        case K::u8: ds.data = h5::read_uint8(g.get(), d); break;
-        default: continue;
-      }
-      gr.datasets.push_back(std::move(ds));
-    }
-    r.groups.push_back(std::move(gr));
+    r.groups.push_back(read_group(root, name, true, child_data));
   }
 }
 
@@ -282,7 +294,7 @@ Results read_results(h5::hid root, const std::string& path, std::span<const Fiel
     read_opt(g.get(), "stripes", stripes);
     r.stripes = static_cast<std::size_t>(stripes);
   }
-  read_groups(root, r);
+  read_groups(root, r, extent == LoadExtent::all);
   return r;
 }
 

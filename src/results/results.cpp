@@ -1,3 +1,4 @@
+// Results in memory: columns, the unit schema and the per-building field names.
 #include "pounding/results/results.hpp"
 
 #include <algorithm>

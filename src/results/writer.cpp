@@ -1,3 +1,4 @@
+// Writes Results to an HDF5 file (format 3 with /system, else format 2), built in a temporary and renamed.
 #include "pounding/results/writer.hpp"
 
 #include <cstring>
@@ -298,10 +299,12 @@ void check_system(const Results& r) {
   }
 }
 
-// A module group (results.hpp): marked, its attributes, its datasets with their shapes, units and descriptions.
-void write_group(h5::hid root, const Group& gr) {
+// A module group (results.hpp): marked, its attributes, its datasets with their shapes, units and descriptions, then
+// its sub-groups (not marked: the reader finds them under their module group).
+void write_group(h5::hid root, const Group& gr, const std::string& path = "") {
   auto g = h5::create_group(root, gr.name);
-  h5::write_attribute(g.get(), "module_group", std::int64_t{1});
+  const std::string name = path.empty() ? gr.name : path + "/" + gr.name;
+  if (path.empty()) h5::write_attribute(g.get(), "module_group", std::int64_t{1});
   for (const auto& [key, value] : gr.attributes) write_value(g.get(), key, value);
   for (const GroupDataset& d : gr.datasets) {
     std::visit(
@@ -315,8 +318,9 @@ void write_group(h5::hid root, const Group& gr) {
           }
         },
         d.data);
-    label(g.get(), gr.name, d.name, {d.units, d.description});
+    label(g.get(), name, d.name, {d.units, d.description});
   }
+  for (const Group& child : gr.children) write_group(g.get(), child, name);
 }
 
 }  // namespace

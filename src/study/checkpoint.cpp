@@ -1,3 +1,4 @@
+// The run's checkpoint <out>.ckpt: finished units appended by rank 0, read back by --resume.
 #include "pounding/study/checkpoint.hpp"
 
 #include <fcntl.h>

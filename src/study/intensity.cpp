@@ -1,3 +1,4 @@
+// The [intensity], [hazard] and [target_spectrum] sections that make a study a fragility study.
 #include "pounding/study/intensity.hpp"
 
 #include <algorithm>

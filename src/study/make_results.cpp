@@ -1,3 +1,4 @@
+// The end of a run: excluded analyses, and the Results of a finished study (provenance, settings, models, fields).
 #include "pounding/study/make_results.hpp"
 
 #include "pounding/sampling/bridge.hpp"

@@ -1,3 +1,4 @@
+// [outputs] per_model = false: the reductions folded in on rank 0 instead of every model's peaks.
 #include "pounding/study/reductions.hpp"
 
 #include <algorithm>

@@ -1,3 +1,4 @@
+// The study's main job: work units through the kernel or the system stepper, checkpoint, results file, report.
 #include "pounding/study/run.hpp"
 
 #include <sys/stat.h>
@@ -32,6 +33,7 @@
 #include "pounding/results/writer.hpp"
 #include "pounding/sampling/sampler.hpp"
 #include "pounding/study/checkpoint.hpp"
+#include "pounding/study/histories.hpp"
 #include "pounding/study/make_results.hpp"
 #include "pounding/study/plan.hpp"
 #include "pounding/study/system_block.hpp"
@@ -685,6 +687,7 @@ struct Inputs {
   std::vector<StudyRecord> records;
   StripePlan stripes;  // a fragility study's stripes (none otherwise)
   std::optional<StudySelection> selection;  // [records] select: the records chosen to [target_spectrum]
+  std::vector<HistoryChoice> histories;     // [outputs] histories: the named analyses (worst N: after the units)
   bool stopped = false;  // a stop while the records were made (every rank agrees: it is in the exchanged shares)
 };
 
@@ -741,7 +744,7 @@ Inputs load_inputs(const parallel::Session& session, const std::string& study_pa
   });
   session.broadcast(text);
   std::optional<Inputs> in;
-  session.agree([&] { in.emplace(Inputs{parse_study(text, study_path), {}, {}, {}, {}, {}}); });
+  session.agree([&] { in.emplace(Inputs{parse_study(text, study_path), {}, {}, {}, {}, {}, {}}); });
   in->out = opt.out_given ? opt.out : in->study.output;
   in->out_where = opt.out_given ? "--out" : study_path + ": output";
   session.agree([&] {
@@ -781,6 +784,8 @@ Inputs load_inputs(const parallel::Session& session, const std::string& study_pa
     // shear buildings: every sample's highest frequency against the integration step, before any work; without
     // [analysis] substeps / max_dt it chooses a stable max_dt, so every rank runs it (the same choice everywhere)
     check_shear_steps(in->study, in->records);
+    in->histories = resolve_histories(in->study, in->records);  // a record or model that is not there: before any work
+    check_history_memory(in->study, in->records, in->histories.size());
     if (in->study.intensity.enabled) {
       std::vector<double> im;
       for (const auto& rr : in->records) im.push_back(intensity(rr.record, in->study.intensity.im));
@@ -1367,6 +1372,35 @@ results::Results run_results(const Inputs& in, const WorkPlan& L, Tally& tally, 
   return res;
 }
 
+// [outputs] histories (study/histories.hpp): the named analyses and the worst N (ranked from `res`) rerun with the
+// recorder into /histories; `view` (the report's results, "stream") gets their attributes. Progress and a stop
+// through the context; a history whose peaks differ from the study's is said (it cannot be: the same code runs it).
+void add_histories(const Inputs& in, results::Results& res, results::Results* view, const RunContext& ctx) {
+  const std::vector<HistoryChoice> choices = choose_worst(in.study, res, in.histories);
+  ctx.say(fmt::format("histories: {} analys{} rerun with the recorder ([outputs] histories)", choices.size(),
+                      choices.size() == 1 ? "is" : "es"));
+  const WorkHook hook = ctx.hook();
+  std::string mismatch;
+  results::Group g = run_histories(in.study, in.records, choices, res, &hook, mismatch);
+  if (!mismatch.empty())
+    ctx.say(" WARNING: a stored history's peaks differ from the study's per-model values: " + mismatch);
+  if (view) {
+    results::Group light = g;
+    for (results::Group& c : light.children) c.datasets.clear();
+    view->groups.push_back(std::move(light));
+  }
+  res.groups.push_back(std::move(g));
+}
+
+// After the caller's analyses: the report's results ("stream": `view`) get the groups they added (and the selection's),
+// then [outputs] histories are run.
+void after_analysis(const Inputs& in, results::Results& res, results::Results* view, std::size_t groups_before,
+                    const RunContext& ctx) {
+  if (view) view->groups.insert(view->groups.end(), res.groups.begin() + (in.selection ? groups_before - 1 : groups_before),
+                                res.groups.end());
+  if (!in.study.histories.empty()) add_histories(in, res, view, ctx);
+}
+
 int finish(const parallel::Session& session, const Inputs& in, const WorkPlan& L, Checkpoint* ckpt, Tally& tally,
            const CheckpointKey& key, double wall, const RunContext& ctx, const RunOptions& opt, timing::Times& T,
            std::size_t units_resumed, int threads, std::string& report) {
@@ -1399,8 +1433,7 @@ int finish(const parallel::Session& session, const Inputs& in, const WorkPlan& L
       // the analyses the caller adds (fragility, hazard: report/fragility.hpp), with progress and the stop flag
       const std::size_t groups_before = res.groups.size();
       if (opt.analyse) opt.analyse(res, ctx.hook());
-      if (view) view->groups.insert(view->groups.end(), res.groups.begin() + (in.selection ? groups_before - 1 : groups_before),
-                                    res.groups.end());
+      after_analysis(in, res, view ? &*view : nullptr, groups_before, ctx);
       analysis = T[Phase::analysis] = timing::seconds_since(t_analysis);
       // the report pounding run prints, from these results (its wall time filled in below), rendered while this
       // thread writes the file's bulk; results_write counts what the write adds after the report

@@ -1,3 +1,4 @@
+// [outputs] per_model = "stream": per-model columns written from the checkpoint in bounded memory.
 #include "pounding/study/spill.hpp"
 
 #include <fcntl.h>

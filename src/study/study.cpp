@@ -1,6 +1,8 @@
+// A study file parsed once into a validated, immutable Study.
 #include "pounding/study/study.hpp"
 #include "pounding/study/system_block.hpp"
 #include "pounding/study/reductions.hpp"
+#include "pounding/study/histories.hpp"
 
 #include "pounding/sampling/bridge.hpp"
 
@@ -13,6 +15,7 @@
 #include <memory>
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 #include <toml++/toml.h>
 
 #include "pounding/config/config.hpp"
@@ -386,6 +389,75 @@ void parse_report(Study& s, const toml::table* t, const std::string& path) {
   r.finish("targets, fit_min, fit_max, confidence, bootstrap, compare_with, html");
 }
 
+// One entry of [outputs] histories (study/histories.hpp): { worst = N (, gap) } or { record, model | pair + sample,
+// gap }. The entries are checked against the records and models later (resolve_histories, check_histories).
+HistorySpec parse_history(const toml::table& t, const std::string& path, std::size_t k) {
+  TableReader r(&t, path, fmt::format("outputs.histories {}", k + 1), "outputs.histories");
+  HistorySpec h;
+  h.where = config::location(path, t.source()) + fmt::format(" [outputs] histories entry {}", k + 1);
+  h.worst = static_cast<int>(r.integer("worst", 0));
+  if (const toml::node* n = r.get("record")) {
+    if (n->is_string()) h.record_name = n->value_or(std::string());
+    else h.record_index = config::integer(*n, "record", r.where("record"));
+    if (h.record_name.empty() && h.record_index < 0)
+      throw InputError("record must be a record's id (as in /records/id) or its row (0, 1, ...)", r.where("record"),
+                       "write record = \"EQ3\" or record = 2");
+  }
+  h.model = r.integer("model", -1);
+  if (const toml::node* n = r.get("pair")) {
+    const std::vector<double> v = config::numbers(*n, "pair", r.where("pair"));
+    if (v.size() != 2 || v[0] != std::floor(v[0]) || v[1] != std::floor(v[1]) || v[0] < 0 || v[1] < 0)
+      throw InputError("pair must be two period indices [i1, i2] (/models/i1, i2)", r.where("pair"),
+                       "write pair = [0, 3] with sample = k, or model = <row of /models>");
+    h.i1 = static_cast<long>(v[0]), h.i2 = static_cast<long>(v[1]);
+  }
+  h.sample = r.integer("sample", -1);
+  if (const toml::node* n = r.get("gap")) {
+    h.gap_given = true;
+    if (n->is_string()) {
+      if (n->value_or(std::string()) != "uncoupled")
+        throw InputError(fmt::format("gap = \"{}\" is not a choice", n->value_or(std::string())), r.where("gap"),
+                         "write gap = \"uncoupled\" or one of the study's [gaps] ratios");
+    } else {
+      h.uncoupled = false, h.gap_ratio = config::number(*n, "gap", r.where("gap"));
+    }
+  }
+  r.finish("record, model, pair, sample, gap, worst");
+  return h;
+}
+
+// An entry as it reads (its /settings text): { record = "EQ2", model = 5, gap = 0.1 }.
+std::string history_text(const HistorySpec& h) {
+  std::vector<std::string> k;
+  if (h.worst > 0) k.push_back(fmt::format("worst = {}", h.worst));
+  if (!h.record_name.empty()) k.push_back(fmt::format("record = \"{}\"", h.record_name));
+  else if (h.record_index >= 0) k.push_back(fmt::format("record = {}", h.record_index));
+  if (h.model >= 0) k.push_back(fmt::format("model = {}", h.model));
+  if (h.i1 >= 0) k.push_back(fmt::format("pair = [{}, {}]", h.i1, h.i2));
+  if (h.sample >= 0) k.push_back(fmt::format("sample = {}", h.sample));
+  if (h.gap_given) k.push_back(h.uncoupled ? std::string("gap = \"uncoupled\"") : fmt::format("gap = {}", h.gap_ratio));
+  return fmt::format("{{ {} }}", fmt::join(k, ", "));
+}
+
+// [outputs] histories: one entry (an inline table) or an array of them.
+void parse_histories(Study& s, TableReader& o, const std::string& path) {
+  const toml::node* n = o.get("histories");
+  if (n == nullptr) return;
+  std::vector<const toml::table*> entries;
+  if (const toml::table* t = n->as_table()) entries.push_back(t);
+  else if (const toml::array* a = n->as_array(); a && !a->empty() && a->is_array_of_tables())
+    for (const toml::node& x : *a) entries.push_back(x.as_table());
+  else
+    throw InputError("histories must be an entry { ... } or an array of entries", o.where("histories"),
+                     "write histories = [{ record = \"EQ1\", model = 0, gap = \"uncoupled\" }, { worst = 3 }]");
+  std::vector<std::string> text;
+  for (std::size_t k = 0; k < entries.size(); ++k) {
+    s.histories.push_back(parse_history(*entries[k], path, k));
+    text.push_back(history_text(s.histories.back()));
+  }
+  s.histories_text = fmt::format("[{}]", fmt::join(text, ", "));
+}
+
 void parse_outputs(Study& s, const toml::table* t, const std::string& path) {
   TableReader o(t, path, "outputs");
   s.want_forces = o.boolean("forces", true);
@@ -400,7 +472,8 @@ void parse_outputs(Study& s, const toml::table* t, const std::string& path) {
     s.per_model = o.boolean("per_model", true);
   }
   s.per_model_where = o.where("per_model");
-  o.finish("forces, amplification, per_model");
+  parse_histories(s, o, path);
+  o.finish("forces, amplification, per_model, histories");
 }
 
 // [outputs] per_model = false keeps only the reductions of the probability scene of an SDOF pair (study/reductions.hpp);
@@ -717,6 +790,7 @@ Study parse_study(const std::string& text, const std::string& path) {
 
   choose_scene(s);
   check_per_model(s);
+  check_histories(s);
   check_restitution(s, top, path);
   // the results must fit in memory; the suite's record count is not known yet, so count at least one record
   check_result_memory(s, s.select > 0 ? static_cast<std::size_t>(s.select)

@@ -11,6 +11,7 @@
 #include "pounding/contact/registry.hpp"
 #include "pounding/core/error.hpp"
 #include "pounding/model/shear_building.hpp"
+#include "pounding/physics/batch.hpp"
 #include "pounding/physics/bridge.hpp"
 #include "pounding/physics/validate.hpp"
 
@@ -341,7 +342,7 @@ std::vector<ContactModel> SystemBlock::groups(const LaneTopology& t, const Conta
 
 void SystemBlock::run(std::span<const SampledPair> pairs, std::span<const std::size_t> lanes, double ratio,
                       const ContactModel& cm, const ContactNumbers& cn, const GroundMotion& gm,
-                      const KernelSettings& ks, BlockPeaks& out) {
+                      const KernelSettings& ks, BlockPeaks& out, physics::SystemSeries* series) {
   const std::size_t n = lanes.size(), nb = body_count(model_);
   out.resize(n, nb, layout_), out.springs.resize(keep_springs_ ? n : 0);
   keys_.resize(n);
@@ -361,8 +362,7 @@ void SystemBlock::run(std::span<const SampledPair> pairs, std::span<const std::s
       const SampledPair& p = pairs[lanes[order_[j]]];
       set_lane(batch_, j - at, p, t, ratio * (gap_metres_ ? 1.0 : p.d), cn);  // Study::gap_unit
     }
-    if (channels_.empty()) physics::run_system(batch_, groups, gm, ks, res_);
-    else physics::run_system(batch_, groups, channels_, ks, res_);
+    run_lanes(groups, gm, ks, series);
     const std::size_t w = end - at;
     const std::vector<std::size_t> to_table = table_indices(sys);
     for (std::size_t j = at; j < end; ++j) {
@@ -397,6 +397,40 @@ void SystemBlock::run(std::span<const SampledPair> pairs, std::span<const std::s
     }
     at = end;
   }
+}
+
+void SystemBlock::run_lanes(std::span<const ContactModel> groups, const GroundMotion& gm, const KernelSettings& ks,
+                             physics::SystemSeries* series) {
+  if (!series) {
+    if (channels_.empty()) physics::run_system(batch_, groups, gm, ks, res_);
+    else physics::run_system(batch_, groups, channels_, ks, res_);
+    return;
+  }
+  series->lane = 0;
+  if (!batch_.system->is_sdof_pair()) {
+    physics::run_system_recorded(batch_, groups, channels_.empty() ? std::span<const GroundMotion>(&gm, 1) : channels_,
+                                 ks, res_, *series);
+    return;
+  }
+  // run_system's SDOF pair: the pair kernel (validated as run_system validates it), its recorder in the series' form
+  physics::throw_first(physics::validate(batch_, groups, gm, ks));
+  SeriesRecorder rec;
+  KernelSettings k = ks;
+  k.series = &rec;
+  BatchResult r;
+  pounding::run_batch(physics::to_pair_batch(batch_), groups[0], gm, k, r);
+  res_ = physics::from_pair_result(r);
+  series->clear();
+  series->t = rec.t, series->ag = rec.ag;
+  series->u = {rec.u1, rec.u2}, series->a_abs = {rec.a1_abs, rec.a2_abs}, series->force = {rec.force};
+}
+
+const model::System& SystemBlock::record(std::span<const SampledPair> pairs, double ratio, const ContactModel& cm,
+                                         const ContactNumbers& cn, const GroundMotion& gm, const KernelSettings& ks,
+                                         BlockPeaks& out, physics::SystemSeries& series) {
+  const std::size_t one[] = {0};
+  run(pairs.first(1), one, ratio, cm, cn, gm, ks, out, &series);
+  return system(lane_topology(model_, pairs[0]));
 }
 
 // Lane l (of w) of the last run into lane k of out's per-floor and per-element rows (the table's order: to_table).

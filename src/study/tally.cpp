@@ -1,3 +1,4 @@
+// Per-model results gathered on rank 0 in fixed arrays, the same for any completion order or rank count.
 #include "pounding/study/tally.hpp"
 
 #include <cstring>

@@ -1,3 +1,4 @@
+// One work unit's results: a typed column per field of the plan's schema.
 #include "pounding/study/unit_result.hpp"
 
 #include <cstring>

@@ -34,7 +34,7 @@ ALLOWED = {
     "report": {"analysis", "results", "study", "physics", "contact", "model", "kernel", "motion", "sampling",
                "io", "config", "core"},
     "accuracy": {"physics", "contact", "model", "kernel", "motion", "sampling", "analysis", "config", "core"},
-    "testing": {"physics", "contact", "model", "kernel", "motion", "core"},
+    "workloads": {"physics", "contact", "model", "kernel", "motion", "core"},
     "cli": None,  # anything
     "python": None,  # anything
 }

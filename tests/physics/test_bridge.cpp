@@ -11,7 +11,7 @@
 #include <vector>
 
 #include "pounding/model/hysteresis/registry.hpp"
-#include "pounding/testing/workloads.hpp"
+#include "pounding/workloads/workloads.hpp"
 #include "pounding/physics/bridge.hpp"
 #include "pounding/core/error.hpp"
 #include "pounding/physics/system_batch.hpp"

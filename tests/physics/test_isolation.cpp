@@ -22,7 +22,7 @@
 #include "pounding/model/shear_building.hpp"
 #include "pounding/physics/shear_building.hpp"
 #include "pounding/physics/system_batch.hpp"
-#include "pounding/testing/workloads.hpp"
+#include "pounding/workloads/workloads.hpp"
 #include "temp_dir.hpp"
 #include "test_data.hpp"
 

@@ -18,7 +18,7 @@
 #include "pounding/core/error.hpp"
 #include "pounding/physics/batch.hpp"
 #include "pounding/physics/system_stepper.hpp"
-#include "pounding/testing/workloads.hpp"
+#include "pounding/workloads/workloads.hpp"
 #include "system_test_support.hpp"
 
 using namespace pounding;

@@ -24,7 +24,7 @@
 #include "pounding/physics/shear_building.hpp"
 #include "pounding/physics/system_batch.hpp"
 #include "pounding/physics/system_lane_stepper.hpp"
-#include "pounding/testing/workloads.hpp"
+#include "pounding/workloads/workloads.hpp"
 #include "system_reference.hpp"
 #include "system_test_support.hpp"
 #include "test_data.hpp"

@@ -71,6 +71,7 @@ struct BridgeAbutment {
   model::HyperbolicGap::Spec hyperbolic;  // k_max, k_ur, rf, f_ult, gap; side set by the builder
   std::optional<BridgeBilinear> bearing;
   int support = 0;  // the wall's ground-motion channel
+  double width = 0.0, height = 0.0;  // m: the back wall that gave epp's k and fy by Caltrans SDC (0: k, fy given)
   bool present() const { return backfill != Backfill::none || bearing.has_value(); }
 };
 struct BridgeSpec {

@@ -184,6 +184,9 @@ struct Group {
   std::string name;
   std::vector<GroupDataset> datasets;
   std::vector<std::pair<std::string, SettingValue>> attributes;
+  // Sub-groups (/histories/1, 2, ...: study/histories.hpp), written and read back like the group itself (the reader
+  // reads their datasets with LoadExtent::all only; their attributes always).
+  std::vector<Group> children;
 
   void add(std::string dataset, GroupData data, std::string units, std::string description,
            std::vector<std::size_t> shape = {});

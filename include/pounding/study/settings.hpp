@@ -275,6 +275,7 @@ void visit_settings(const Study& s, V&& v) {
   v("outputs", "amplification", s.want_amplification);
   v("outputs", "per_model", s.per_model);
   if (s.stream) v("outputs", "stream", s.stream);  // per_model = "stream" (absent otherwise, as in earlier files)
+  if (!s.histories.empty()) v("outputs", "histories", s.histories_text);  // absent without the key (earlier files' bits)
 
   if (s.intensity.enabled) {  // a fragility study (study/intensity.hpp); absent otherwise
     const IntensitySpec& x = s.intensity;

@@ -141,6 +141,19 @@ struct RecordFile {
   double scale = 1.0;
 };
 
+// One entry of [outputs] histories (study/histories.hpp): an explicit analysis or the worst N.
+struct HistorySpec {
+  std::string where;          // "file:line [outputs.histories N]"
+  int worst = 0;              // > 0: the worst N analyses (no record / model keys)
+  std::string record_name;    // record = "name" (as /records/id)
+  long record_index = -1;     // record = row (0-based)
+  long model = -1;            // model = /models row (0-based)
+  long i1 = -1, i2 = -1, sample = -1;  // pair = [i1, i2], sample = k (the study's ids)
+  bool gap_given = false;
+  bool uncoupled = true;      // gap = "uncoupled"; false: gap = gap_ratio
+  double gap_ratio = 0.0;
+};
+
 struct Study {
   std::string path;  // the study file
   std::string text;  // its full text (echoed into the results)
@@ -234,6 +247,9 @@ struct Study {
   // the checkpoint after the units, in bounded memory (study/spill.hpp); the run's report from the reductions
   bool stream = false;
   std::string per_model_where;  // "file:line [outputs].per_model"
+  // [outputs] histories (study/histories.hpp): the analyses whose full time histories the results file stores
+  std::vector<HistorySpec> histories;
+  std::string histories_text;  // the key's value as written (its /settings entry)
   // [intensity] and [hazard] (study/intensity.hpp): a fragility study
   IntensitySpec intensity;
   HazardSpec hazard;

@@ -29,6 +29,7 @@
 #include "pounding/model/system.hpp"
 #include "pounding/physics/shear_building.hpp"
 #include "pounding/physics/system_batch.hpp"
+#include "pounding/physics/system_series.hpp"
 #include "pounding/sampling/bridge.hpp"
 #include "pounding/sampling/sampler.hpp"
 #include "pounding/study/study.hpp"
@@ -151,6 +152,13 @@ class SystemBlock {
                const ContactModel& cm, const ContactNumbers& cn, const GroundMotion& gm, const KernelSettings& ks,
                BlockPeaks& out);
 
+  // pairs[0] run alone as coupled() would run it (ratio 0 and the law none: uncoupled()), recording its series
+  // (physics::run_system_recorded; an SDOF pair System through the pair kernel's recorder, as run_system runs it):
+  // the same numbers as that lane of any block ([outputs] histories, study/histories.hpp). Returns the lane's System.
+  const model::System& record(std::span<const SampledPair> pairs, double ratio, const ContactModel& cm,
+                              const ContactNumbers& cn, const GroundMotion& gm, const KernelSettings& ks,
+                              BlockPeaks& out, physics::SystemSeries& series);
+
   // A bridge on several supports: one motion per channel (the record's support 1 first; the same dt and length as
   // the motion the runs get), used instead of that motion while set; empty: uniform input.
   void set_channels(std::span<const GroundMotion> channels) { channels_ = channels; }
@@ -195,7 +203,11 @@ class SystemBlock {
   void keep_lane_springs(BlockPeaks::Springs& s, const model::System& sys, std::span<const ContactModel> groups,
                          std::size_t l, std::size_t w) const;
   void run(std::span<const SampledPair> pairs, std::span<const std::size_t> lanes, double ratio, const ContactModel& cm,
-           const ContactNumbers& cn, const GroundMotion& gm, const KernelSettings& ks, BlockPeaks& out);
+           const ContactNumbers& cn, const GroundMotion& gm, const KernelSettings& ks, BlockPeaks& out,
+           physics::SystemSeries* series = nullptr);
+  // batch_ through run_system into res_ (the motions: channels_, else gm); with `series` its lane 0 recorded
+  void run_lanes(std::span<const ContactModel> groups, const GroundMotion& gm, const KernelSettings& ks,
+                  physics::SystemSeries* series);
 
   const StructureModel& model_;
   ContactModel contact_;

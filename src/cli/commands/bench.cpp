@@ -19,7 +19,7 @@
 #include "pounding/contact/registry.hpp"
 #include "pounding/physics/batch.hpp"
 #include "pounding/physics/system_stepper.hpp"
-#include "pounding/testing/workloads.hpp"
+#include "pounding/workloads/workloads.hpp"
 
 namespace pounding::cli {
 

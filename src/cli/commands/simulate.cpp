@@ -41,7 +41,7 @@
 #include "pounding/motion/records.hpp"
 #include "pounding/report/summary.hpp"
 #include "pounding/sampling/isolation_check.hpp"
-#include "pounding/testing/workloads.hpp"
+#include "pounding/workloads/workloads.hpp"
 
 namespace pounding::cli {
 

@@ -249,6 +249,28 @@ class Results:
                 raise KeyError(f"no group /{group} in {self.path}; groups: {list(f.keys())}")
             return {k: v[()] for k, v in f[group].items() if isinstance(v, h5py.Dataset)}
 
+    def histories(self):
+        """The time histories a study stored ([outputs] histories; /histories/1, 2, ...), in order: a list of dicts,
+        each with the analysis' attributes (record, record_row, model, i1, i2, sample, run, gap_ratio, gap_m, the
+        peaks, ...) and its arrays: t (s), ag (m/s^2), u [dof, step] (m, relative to the support), a_abs [dof, step]
+        (m/s^2), force [element, step] (N), dof_names, element_names. [] when the file holds none."""
+        h5py = _h5py()
+        out = []
+        with h5py.File(self.path, "r") as f:
+            if "histories" not in f:
+                return out
+            for name in sorted(f["histories"].keys(), key=int):
+                g = f["histories"][name]
+                h = {k: (v.decode() if isinstance(v, bytes) else v) for k, v in g.attrs.items()}
+                for k, v in g.items():
+                    a = v[()]
+                    if a.dtype.kind in "OS":
+                        a = [x.decode() if isinstance(x, bytes) else str(x) for x in a]
+                    h[k] = a
+                h["n"] = int(name)
+                out.append(h)
+        return out
+
     def frame(self, group):
         """A group's datasets as one DataFrame. 1-D datasets of equal length (e.g. "hazard", "fragility", "models")
         become columns. A group of per-analysis arrays, record x model (e.g. "uncoupled"), becomes one row per

@@ -11,7 +11,7 @@
 #include "pounding/physics/batch.hpp"
 #include "pounding/core/version.hpp"
 #include "pounding/io/hdf5.hpp"
-#include "pounding/testing/workloads.hpp"
+#include "pounding/workloads/workloads.hpp"
 
 int main() {
   using namespace pounding;

@@ -1,4 +1,5 @@
-#include "pounding/testing/workloads.hpp"
+// Named, deterministic workloads for `pounding bench`, the Google Benchmark and the examples.
+#include "pounding/workloads/workloads.hpp"
 
 #include <cmath>
 #include <numbers>
