@@ -78,7 +78,9 @@ std::string histories_section(const results::Results& r) {
                      report::md_cell(x->text("record")), static_cast<long>(x->number("model")),
                      static_cast<long>(x->number("i1")), static_cast<long>(x->number("i2")),
                      static_cast<long>(x->number("sample")),
-                     coupled ? fmt::format("coupled at {:g} d", x->number("gap_ratio")) : std::string("uncoupled"),
+                     !coupled ? std::string("uncoupled")
+                     : x->attribute("gap_ratio") ? fmt::format("coupled at {:g} d", x->number("gap_ratio"))
+                                                 : fmt::format("coupled at {:g} m", x->number("gap_m")),  // [gaps] metres
                      number(x, "gap_m", "{:.4g}"), number(x, "peak_closing", "{:.4g}"), number(x, "peak_force", "{:.4g}"),
                      number(x, "impact_count", "{:.0f}"), report::md_cell(x->text("chosen")));
   }

@@ -56,6 +56,23 @@ for s in ratios metres ratios-existing; do
   "$bin" report "$tmp/$s.h5" --csv > "$tmp/$s.csv"
 done
 
+# 1d. [outputs] histories on a metres axis: gap = 0.05 is the coupled run at 0.05 m, its peaks the study's bit for bit
+sed 's/^\[contact\]/[outputs]\nhistories = [{ record = "EQ2", model = 1, gap = 0.05 }]\n\n[contact]/' "$tmp/metres.toml" \
+  > "$tmp/hist.toml"
+(cd "$tmp" && "$bin" run hist.toml --out hist.h5 --quiet > /dev/null 2> hist.err) || { cat "$tmp/hist.err"; fail "histories"; }
+"$py" - "$tmp/hist.h5" <<'PY'
+import sys
+import h5py, numpy as np
+f = h5py.File(sys.argv[1], "r")
+h = f["histories/1"].attrs
+g = list(f["gaps/axis"][()]).index(0.05)
+assert h["gap_m"] == 0.05 and "gap_ratio" not in h, dict(h)
+k, m = int(h["record_row"]), int(h["model"])
+for name in ("peak_force", "impact_count", "peak_u1", "peak_u2"):
+    assert h[name] == f["impacts/" + name][()][k, m, g], (name, h[name], f["impacts/" + name][()][k, m, g])
+print("histories at 0.05 m = the study's coupled run, bit for bit")
+PY
+
 # 2. heights from the period-height rule: d per model; the small synthetic study with metres and an existing gap
 sed -e 's/^ratios = .*/metres = [0.01, 0.02, 0.04, 0.08]\nexisting = 0.03/' -e 's/^scene = .*/scene = "probability"/' \
   "$src/tests/data/study-small-synthetic.toml" > "$tmp/grid.toml"

@@ -251,8 +251,8 @@ class Results:
 
     def histories(self):
         """The time histories a study stored ([outputs] histories; /histories/1, 2, ...), in order: a list of dicts,
-        each with the analysis' attributes (record, record_row, model, i1, i2, sample, run, gap_ratio, gap_m, the
-        peaks, ...) and its arrays: t (s), ag (m/s^2), u [dof, step] (m, relative to the support), a_abs [dof, step]
+        each with the analysis' attributes (record, record_row, model, i1, i2, sample, run, gap_ratio (none with
+        [gaps] metres), gap_m, the peaks, ...) and its arrays: t (s), ag (m/s^2), u [dof, step] (m, relative to the support), a_abs [dof, step]
         (m/s^2), force [element, step] (N), dof_names, element_names. [] when the file holds none."""
         h5py = _h5py()
         out = []
