@@ -165,14 +165,17 @@ results::Group Reductions::group() const {
         m ? "the gaps x (m, [gaps] metres) of gap_hits and pair_hits" : "the gap ratios x of gap_hits and pair_hits (gap = x d)");
   g.add("n", n_, "1", "ok analyses per record row [records]");
   g.add("excluded", excluded_, "1", "analyses with status != ok per record row (diverged, non-finite) [records]");
-  g.add("gap_hits", gap_hits_, "1", "ok analyses with peak closing > x d per record row and gap ratio [records, gaps]",
+  g.add("gap_hits", gap_hits_, "1",
+        m ? "ok analyses with peak closing > x (m) per record row and gap [records, gaps]"
+          : "ok analyses with peak closing > x d per record row and gap ratio [records, gaps]",
         {R, G});
   std::vector<std::int64_t> i1(pair_i1_.begin(), pair_i1_.end()), i2(pair_i2_.begin(), pair_i2_.end());
   g.add("pair_i1", i1, "1", "period pair p's index in building 1's period grid (/models/periods1) [pairs]");
   g.add("pair_i2", i2, "1", "period pair p's index in building 2's period grid (/models/periods2) [pairs]");
   g.add("pair_n", pair_n_, "1", "ok analyses per record row and period pair [records, pairs]", {R, P});
   g.add("pair_hits", pair_hits_, "1",
-        "ok analyses with peak closing > x d per record row, period pair and gap ratio [records, pairs, gaps]",
+        m ? "ok analyses with peak closing > x (m) per record row, period pair and gap [records, pairs, gaps]"
+          : "ok analyses with peak closing > x d per record row, period pair and gap ratio [records, pairs, gaps]",
         {R, P, G});
   g.add("curve_x", curve_x_, x_unit,
         m ? "the gap curve's gaps x (m) = curve_step c, c = 1..floor(curve_max / curve_step)"

@@ -306,7 +306,7 @@ class UnitComputer {
         const std::size_t i = k / G;
         if (state[k] != found || !elastic_at(i, hi[k] / fa, ks.displacement_limit)) continue;
         const double D = block_ ? anchor_peaks_.closing[i] : anchor_.peak_closing[i];
-        const double f = fa * s_.gap_ratios[k % G] * s_.gap_unit(pairs_[i]) / D;  // the order of main's product
+        const double f = fa * s_.gap_ratios[k % G] * s_.gap_unit(pairs_[i]) / D;  // (fa x) d / D in this order: ratio studies' bits
         lo[k] = hi[k] = std::clamp(f, lo[k], hi[k]);
       }
     if (block_) system_bisect(rec, ks, state, lo, hi, analyses);
