@@ -98,7 +98,8 @@ def run_study(pounding, study, folder, out, uniform):
                    stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
     h = h5py.File(path + ".h5", "r")
     D = h["uncoupled/peak_closing"][()][:, 0]
-    gaps = h["impacts/gap_ratios"][()] * h["models/code_gap"][0] if "impacts" in h else None
+    gaps = None if "impacts" not in h else h["impacts/gap_axis"][()] if "impacts/gap_axis" in h else \
+        h["impacts/gap_ratios"][()] * h["models/code_gap"][0]  # [gaps] metres: gap_axis is metres already
     count = h["impacts/impact_count"][()].reshape(len(D), -1) if "impacts" in h else None
     return D, count, gaps
 

@@ -56,7 +56,7 @@ def main():
     while f"peak_u{n + 1}" in u:
         n += 1
     R, M = u["peak_closing"].shape
-    x = imp["gap_ratios"][()]
+    x = imp["gap_ratios"][()] if "gap_ratios" in imp else imp["gap_axis"][()]  # [gaps] metres: the gaps in m
     G = len(x)
     ok_u = u["status"][()].reshape(R, M) == 0
     ok_c = imp["status"][()].reshape(R, M, G) == 0
