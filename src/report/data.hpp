@@ -69,7 +69,8 @@ struct Data {
   double unit(std::size_t m) const { return set.metres ? 1.0 : mod.code_gap[m]; }
   // The gap axis as a column title and in a sentence: "gap ratio" / "gap ratio x", or "gap m" / "gap (m)"
   const char* axis_title() const { return set.metres ? "gap m" : "gap ratio"; }
-  bool paper() const { return set.compare_with == "stochastic-pounding"; }
+  // the paper is in ratios of d: no comparison on a metres axis
+  bool paper() const { return set.compare_with == "stochastic-pounding" && !set.metres; }
   // Damping ratio of building b (1 or 2) of model m (per building when the file has it).
   double zeta(int b, std::size_t m) const;
   // The period grids of buildings 1 and 2 (the shared grid in files without per-building grids).
