@@ -660,9 +660,12 @@ constexpr StudyKey keys[] = {
     {"analysis", "max_excluded_fraction", "number", "0.001", "", "[0, 1]",
      "Largest fraction of all analyses that may be excluded (diverged, non-finite, coarse) before the run ends "
      "with exit code 3.", 0.0, 1.0},
-    {"analysis", "coarse", "string", "\"exclude\"", "", "\"exclude\" | \"keep\"",
-     "A coupled analysis the resolution guard marks coarse (its peak force is off by more than 1 %): excluded "
-     "from the statistics like a diverged one, or kept (still counted and reported)."},
+    {"analysis", "coarse", "string", "\"refine\"; \"exclude\" when substeps or max_dt is given", "",
+     "\"exclude\" | \"keep\" | \"refine\"",
+     "A coupled analysis the resolution guard marks coarse (its peak force is off by more than 1 %): excluded from "
+     "the statistics like a diverged one, kept (still counted and reported), or run again alone at a shorter step as "
+     "simulate without --dt does (excluded if still coarse after 6 runs; impacts/substeps holds each analysis's "
+     "substeps)."},
 
     // ---------------------------------------------------------------- [report]
     {"report", "targets", "array of numbers", "[10, 5, 1]", "%", "(0, 100)",

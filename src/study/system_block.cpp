@@ -123,6 +123,7 @@ void BlockPeaks::resize(std::size_t n, std::size_t nb, const TableLayout& t) {
   u.assign(n * nb, 0.0);
   impact_count.assign(n, 0), restitution_outside.assign(n, 0);
   peak_force.assign(n, 0.0), t_first_impact.assign(n, nan), h_omega_contact.assign(n, nan);
+  worst.assign(n, physics::StepResolution{});
   for (auto* f : {&floor_u, &floor_drift, &floor_acc}) {
     f->resize(t.floors.size());
     for (std::size_t b = 0; b < t.floors.size(); ++b) (*f)[b].assign(n * t.floors[b], nan);
@@ -143,6 +144,23 @@ void BlockPeaks::set_scaled(std::size_t to, const BlockPeaks& from, std::size_t 
     }
   const std::size_t E = e_closing.size() / status.size();
   for (std::size_t e = 0; e < E; ++e) e_closing[to * E + e] = scale * from.e_closing[k * E + e];
+}
+
+void BlockPeaks::set_lane(std::size_t to, const BlockPeaks& from, std::size_t k) {
+  const std::size_t n = status.size();
+  const auto row = [&](auto& mine, const auto& theirs) {  // lane k's values of `theirs` (of any width) as lane `to`'s
+    const std::size_t w = mine.size() / n;
+    std::copy_n(theirs.begin() + static_cast<std::ptrdiff_t>(k * w), w, mine.begin() + static_cast<std::ptrdiff_t>(to * w));
+  };
+  row(status, from.status), row(u1, from.u1), row(u2, from.u2), row(closing, from.closing), row(u, from.u);
+  row(impact_count, from.impact_count), row(restitution_outside, from.restitution_outside);
+  row(peak_force, from.peak_force), row(t_first_impact, from.t_first_impact), row(h_omega_contact, from.h_omega_contact);
+  row(worst, from.worst);
+  for (auto [mine, theirs] : {std::pair{&floor_u, &from.floor_u}, {&floor_drift, &from.floor_drift}, {&floor_acc, &from.floor_acc}})
+    for (std::size_t b = 0; b < mine->size(); ++b) row((*mine)[b], (*theirs)[b]);
+  row(e_closing, from.e_closing), row(e_force, from.e_force), row(e_penetration, from.e_penetration);
+  row(e_first, from.e_first), row(e_hw, from.e_hw), row(e_count, from.e_count), row(e_outside, from.e_outside);
+  if (!springs.empty()) springs[to] = from.springs[k];
 }
 
 bool SystemBlock::scales_linearly(const BlockPeaks& p, std::size_t k, double ratio, double limit) const {
@@ -394,6 +412,7 @@ void SystemBlock::run(std::span<const SampledPair> pairs, std::span<const std::s
       if (keep_springs_) keep_lane_springs(out.springs[k], sys, groups, l, w);
       out.closing[k] = D, out.impact_count[k] = count, out.peak_force[k] = force, out.restitution_outside[k] = outside;
       out.t_first_impact[k] = first, out.h_omega_contact[k] = hw;
+      out.worst[k] = physics::worst_element(sys, groups, ks, res_, l);
     }
     at = end;
   }
