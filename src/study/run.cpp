@@ -1022,7 +1022,9 @@ std::string describe_structure(const StructureModel& m, int i) {
                                                                  : fmt::format("storeys yielding at drift ratio {:.4g}",
                                                                                b.drift / b.ductility);
   return fmt::format("building{}: shear building, {}, {}, {}, {}, {}", i + 1,
-                     b.code.storeys > 0 ? fmt::format("{} storeys of {:g} m", b.code.storeys, b.storey_height())
+                     !b.storey_heights.empty()
+                         ? fmt::format("{} storeys of {:g} m", b.code.storeys, fmt::join(b.storey_heights, ", "))
+                     : b.code.storeys > 0 ? fmt::format("{} storeys of {:g} m", b.code.storeys, b.storey_height())
                                         : fmt::format("storeys of {0:g} m, max(1, round(h / {0:g} m)) per sample",
                                                       b.storey_height()),
                      !b.floor_mass.empty() ? fmt::format("floors of {:g} kg", fmt::join(b.floor_mass, ", "))

@@ -568,6 +568,7 @@ static void check_level_tolerance(const Study& s, config::TableReader& top, cons
   for (std::size_t b = 0; b < s.structures.building_count(); ++b) {
     const BuildingModel x = s.structures.row_building(b);
     if (x.shear() || s.structures.row()) h = std::min(h, x.shear() ? x.storey_height() : 3.2);
+    for (double y : x.storey_heights) h = std::min(h, y);  // storeys of different heights: the lowest
   }
   if (s.level_tolerance < 0.5 * h) return;
   const toml::table* c = top.table("contact");

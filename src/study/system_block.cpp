@@ -41,11 +41,11 @@ void mixed_row_levels(const StructureModel& model, const SampledPair& p, LaneTop
     if (i > 0) nb.push_back(i - 1);
     if (c + 1 < n) nb.push_back(c + 1);
     double roof = std::numeric_limits<double>::infinity();
-    for (std::size_t b : nb) roof = std::min(roof, t.storeys[b] * t.storey_height[b]);
+    for (std::size_t b : nb) roof = std::min(roof, t.level(b, t.storeys[b]));
     double best = nan;
     for (std::size_t b : nb)
       for (int k = 1; k <= t.storeys[b]; ++k) {
-        const double z = k * t.storey_height[b];
+        const double z = t.level(b, k);
         if (z > roof + 1e-9) break;
         if (std::isnan(best) || std::abs(z - h) < std::abs(best - h) || (std::abs(z - h) == std::abs(best - h) && z < best))
           best = z;
@@ -57,9 +57,32 @@ void mixed_row_levels(const StructureModel& model, const SampledPair& p, LaneTop
 
 }  // namespace
 
+double LaneTopology::level(std::size_t b, int k) const {
+  if (heights[b].empty()) return k * storey_height[b];
+  double z = 0.0;
+  for (int i = 0; i < k; ++i) z += heights[b][static_cast<std::size_t>(i)];  // bottom first, as shear_buildings sums
+  return z;
+}
+
+std::vector<double> LaneTopology::stick_heights(std::size_t b) const {
+  return heights[b].empty() ? std::vector<double>{storey_height[b]} : heights[b];
+}
+
+namespace {
+// The floor (1..storeys of building o) an SDOF facing it reaches: the nearest to its height h (ties: the upper).
+long sdof_floor(const LaneTopology& t, std::size_t o, double h) {
+  if (t.heights[o].empty()) return std::clamp<long>(std::lround(h / t.storey_height[o]), 1, t.storeys[o]);
+  long best = 1;
+  for (int k = 2; k <= t.storeys[o]; ++k)
+    if (std::abs(t.level(o, k) - h) <= std::abs(t.level(o, static_cast<int>(best)) - h)) best = k;
+  return best;
+}
+}  // namespace
+
 LaneTopology lane_topology(const StructureModel& model, const SampledPair& p) {
   const std::size_t n = p.buildings();
   LaneTopology t;
+  t.heights.assign(n, {});
   if (model.bridge) {  // every lane the same chain
     t.storeys.resize(n), t.isolated.assign(n, 0), t.moat.assign(n, 0), t.bridge = 1;
     t.storey_height.resize(n);
@@ -73,6 +96,7 @@ LaneTopology lane_topology(const StructureModel& model, const SampledPair& p) {
     t.storeys[i] = b.shear() ? b.storeys_at(p.structure(i).h) : 1;
     // an SDOF of a row of SDOFs: its one floor at the pair's 3.2 m (System::sdof_pair()), so every joint has one element
     t.storey_height[i] = b.shear() || n == 2 ? b.storey_height() : 3.2;
+    if (b.shear()) t.heights[i] = b.storey_heights;
     t.isolated[i] = b.shear() && b.isolated, t.moat[i] = t.isolated[i] && b.moat;
   }
   bool sdof = false;
@@ -82,8 +106,8 @@ LaneTopology lane_topology(const StructureModel& model, const SampledPair& p) {
     if (model.building(static_cast<int>(i)).shear()) continue;
     // an SDOF facing a shear building: one storey reaching the other's floor nearest its height (its roof at most)
     const std::size_t o = 1 - i;
-    const long k = std::clamp<long>(std::lround(p.structure(i).h / t.storey_height[o]), 1, t.storeys[o]);
-    t.storey_height[i] = static_cast<double>(k) * t.storey_height[o];
+    const long k = sdof_floor(t, o, p.structure(i).h);
+    t.storey_height[i] = t.heights[o].empty() ? static_cast<double>(k) * t.storey_height[o] : t.level(o, static_cast<int>(k));
   }
   return t;
 }
@@ -241,7 +265,7 @@ const model::System& SystemBlock::system(const LaneTopology& t) {
   if (!slot) {
     std::vector<model::StickTopology> sticks(t.buildings());
     for (std::size_t i = 0; i < t.buildings(); ++i) {
-      sticks[i].storeys = t.storeys[i], sticks[i].storey_heights = {t.storey_height[i]};
+      sticks[i].storeys = t.storeys[i], sticks[i].storey_heights = t.stick_heights(i);
       sticks[i].isolated = t.isolated[i], sticks[i].moat = t.moat[i];
       sticks[i].columns = model_.row_building(i).shear();  // an SDOF stands for a whole building: no column
       if (model_.row_building(i).modal_damping) sticks[i].damping = model::DampingForm::dense;
@@ -258,7 +282,7 @@ const model::System& SystemBlock::table_system(const LaneTopology& t) {
   if (!slot) {
     std::vector<model::StickTopology> sticks(t.buildings());
     for (std::size_t i = 0; i < t.buildings(); ++i) {
-      sticks[i].storeys = t.storeys[i], sticks[i].storey_heights = {t.storey_height[i]};
+      sticks[i].storeys = t.storeys[i], sticks[i].storey_heights = t.stick_heights(i);
       sticks[i].isolated = t.isolated[i], sticks[i].moat = t.moat[i];
       sticks[i].columns = model_.row_building(i).shear();  // an SDOF stands for a whole building: no column
       if (model_.row_building(i).modal_damping) sticks[i].damping = model::DampingForm::dense;

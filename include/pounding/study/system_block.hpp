@@ -42,11 +42,18 @@ namespace pounding {
 struct LaneTopology {
   std::vector<int> storeys{1, 1};
   std::vector<double> storey_height{3.2, 3.2};
+  // a shear building's storeys of different heights (storey_height as an array, bottom first; storey_height[b] is
+  // then their mean); empty: every storey storey_height[b] high
+  std::vector<std::vector<double>> heights{{}, {}};
   std::vector<std::uint8_t> isolated{0, 0}, moat{0, 0};  // base isolation, moat walls (the building's keys)
   // a bridge ([bridge], sampling/bridge.hpp): "buildings" are its frames (one floor each, storey_height their pier
   // heights), the System physics::bridge_system's (joints as the study-gap elements, restrainers, bearings, abutments)
   std::uint8_t bridge = 0;
   std::size_t buildings() const { return storeys.size(); }
+  // The level (m) of floor k of building b: k storey_height[b], or the sum of its first k heights.
+  double level(std::size_t b, int k) const;
+  // Building b's storey heights as model::StickTopology takes them: {storey_height[b]} or heights[b].
+  std::vector<double> stick_heights(std::size_t b) const;
   friend auto operator<=>(const LaneTopology&, const LaneTopology&) = default;
 };
 
