@@ -379,12 +379,13 @@ constexpr StudyKey keys[] = {
      0.8, 1.4},
     {"structures.buildingN", "storeys", "integer", "round(height / storey_height), at least 1", "", "[1, 200]",
      "Storeys above the base: Standard 2800's 0.005 h rule is for at most 8.", 1, 200},
-    {"structures.buildingN", "storey_height", "number", "[structures] storey_height (3.2)", "m",
+    {"structures.buildingN", "storey_height", "number or array of numbers", "[structures] storey_height (3.2)", "m",
      "[0.01, 10] ([2, 10] for model = \"sdof\")",
      "The default of storeys (max(1, round(height / storey_height))) and, for model = \"shear\", every storey's "
-     "height: floor k at k storey_height (a scale model's frames may be 0.1 m). Shear buildings of different storey "
-     "heights pound floor to floor where levels agree within [contact] level_tolerance and floor to column elsewhere "
-     "(docs/floor-contact.md).", 0.01, 10.0},
+     "height: floor k at k storey_height (a scale model's frames may be 0.1 m), or an array of one height per storey "
+     "from the bottom (storeys given, as many values; floor k at the sum of the first k; a fixed height must be their "
+     "sum). Shear buildings of different storey heights pound floor to floor where levels agree within [contact] "
+     "level_tolerance and floor to column elsewhere (docs/floor-contact.md).", 0.01, 10.0},
     {"structures.buildingN", "model", "string", "[structures] model", "", "\"sdof\" | \"shear\"",
      "As in [structures]: an SDOF building may pair with a shear building (it meets the floor nearest its height, "
      "its roof if the other is lower)."},
@@ -672,9 +673,12 @@ constexpr StudyKey keys[] = {
     {"analysis", "max_excluded_fraction", "number", "0.001", "", "[0, 1]",
      "Largest fraction of all analyses that may be excluded (diverged, non-finite, coarse) before the run ends "
      "with exit code 3.", 0.0, 1.0},
-    {"analysis", "coarse", "string", "\"exclude\"", "", "\"exclude\" | \"keep\"",
-     "A coupled analysis the resolution guard marks coarse (its peak force is off by more than 1 %): excluded "
-     "from the statistics like a diverged one, or kept (still counted and reported)."},
+    {"analysis", "coarse", "string", "\"refine\"; \"exclude\" when substeps or max_dt is given", "",
+     "\"exclude\" | \"keep\" | \"refine\"",
+     "A coupled analysis the resolution guard marks coarse (its peak force is off by more than 1 %): excluded from "
+     "the statistics like a diverged one, kept (still counted and reported), or run again alone at a shorter step as "
+     "simulate without --dt does (excluded if still coarse after 6 runs; impacts/substeps holds each analysis's "
+     "substeps)."},
 
     // ---------------------------------------------------------------- [report]
     {"report", "targets", "array of numbers", "[10, 5, 1]", "%", "(0, 100)",

@@ -6,6 +6,9 @@
 #include <algorithm>
 #include <cmath>
 
+#include "pounding/model/system.hpp"
+#include "pounding/physics/system_batch.hpp"
+
 namespace pounding::physics {
 
 namespace {
@@ -15,18 +18,67 @@ double floor3(double x) {  // rounded down to 3 significant digits (a step cap m
 }
 }  // namespace
 
+void CoarseSummary::add(double hw, std::uint8_t status, int substeps, int study_substeps, double dt) {
+  if (substeps > study_substeps) {
+    refined_min = refined++ == 0 ? substeps : std::min(refined_min, substeps);
+    refined_max = std::max(refined_max, substeps);
+  }
+  if (std::isnan(hw)) return;
+  ++analyses;
+  coarse += status == static_cast<std::uint8_t>(LaneStatus::coarse);
+  if (!(hw <= hw_max)) hw_max = hw, substeps_at_max = substeps, h_at_max = dt / substeps;
+}
+
+std::string CoarseSummary::refined_text() const {
+  if (refined == 0) return "";
+  return fmt::format("; refined: {} analyses run again at a shorter step ({} substeps)", refined,
+                     refined_min == refined_max ? fmt::format("{}", refined_min)
+                                                : fmt::format("{} to {}", refined_min, refined_max));
+}
+
 std::string describe(const CoarseSummary& c) {
-  std::string s = fmt::format("coarse: {} analyses (max h·ω_c {}, limit {})", c.coarse,
+  std::string s = fmt::format("coarse: {} analyses (max h·ω_c {}, limit {}){}", c.coarse,
                               std::isnan(c.hw_max) ? std::string("-") : fmt::format("{:.3g}", c.hw_max),
-                              std::isinf(c.limit) ? std::string("none") : fmt::format("{:.3g}", c.limit));
+                              std::isinf(c.limit) ? std::string("none") : fmt::format("{:.3g}", c.limit),
+                              c.refined_text());
   if (c.coarse == 0) return s;
-  s += fmt::format("; {} the statistics ([analysis] coarse = \"{}\")", c.kept ? "kept in" : "excluded from",
-                   c.kept ? "keep" : "exclude");
+  s += fmt::format("; {} the statistics ([analysis] coarse = \"{}\"{})",
+                   c.kept ? "kept in" : c.refine ? "still coarse after refining, excluded from" : "excluded from",
+                   c.kept ? "keep" : c.refine ? "refine" : "exclude",
+                   c.kept || c.refine ? "" : "; \"refine\" runs them again at a shorter step");
   if (std::isfinite(c.limit) && c.limit > 0 && c.hw_max > 0)
     s += fmt::format(". To bring the largest h·ω_c under the limit: [analysis] substeps = {} (or max_dt = {:.3g} s) "
                      "-- an estimate: the peak penetration, and with it the Hertz tangent, changes with the step",
                      substeps_for_limit(c.substeps_at_max, c.hw_max, c.limit), floor3(c.h_at_max * c.limit / c.hw_max));
   return s;
+}
+
+namespace {
+bool failed(std::uint8_t status) {
+  const auto s = static_cast<LaneStatus>(status);
+  return s == LaneStatus::diverged || s == LaneStatus::non_finite;
+}
+}  // namespace
+
+StepResolution lane_resolution(const BatchResult& r, std::size_t lane, const KernelSettings& ks, ContactLaw law) {
+  StepResolution w;
+  w.diverged = failed(r.status[lane]);
+  if (!w.diverged && r.h_omega_contact[lane] > 0.0) w.hw = r.h_omega_contact[lane], w.limit = resolution_limit(ks, law);
+  return w;
+}
+
+StepResolution worst_element(const model::System& sys, std::span<const ContactModel> groups, const KernelSettings& ks,
+                             const SystemResult& r, std::size_t lane) {
+  StepResolution w;
+  w.diverged = failed(r.status[lane]);
+  double worst = -1.0;
+  for (std::size_t e = 0; e < sys.contacts().size() && !w.diverged; ++e) {
+    const double hw = r.h_omega_contact[SystemBatch::at(static_cast<int>(e), lane, r.width)];
+    const double limit = resolution_limit(ks, groups[static_cast<std::size_t>(sys.contacts()[e].group)].law);
+    if (!(hw > 0.0) || hw / limit <= worst) continue;
+    worst = hw / limit, w.hw = hw, w.limit = limit;
+  }
+  return w;
 }
 
 StepChoice choose_step(bool given, int substeps, double record_dt, double h_stability, int max_substeps,

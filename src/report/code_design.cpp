@@ -26,6 +26,13 @@ double number_or(const results::Settings& s, std::string_view section, std::stri
 
 }  // namespace
 
+std::vector<double> storey_height_setting(const results::Settings& s, std::string_view section) {
+  const results::SettingValue* v = s.find(section, "storey_height");
+  if (!v) return {};
+  if (std::holds_alternative<std::vector<double>>(*v)) return s.numbers(section, "storey_height");
+  return {s.number(section, "storey_height")};
+}
+
 std::optional<TargetSpectrumSpec> study_design_spectrum(const results::Settings& s) {
   const results::SettingValue* code = s.find("target_spectrum", "code");
   if (!code || !std::holds_alternative<std::string>(*code)) return std::nullopt;
@@ -77,7 +84,10 @@ separation::BuildingCode building_code(const Data& r, int b, std::size_t model) 
   c.s2800_ru = number_or(s, sec, "s2800_ru", 0), c.s2800_cd = number_or(s, sec, "s2800_cd", 0);
   c.s2800_importance = number_or(s, sec, "s2800_importance", 0);
   c.storeys = std::lround(number_or(s, sec, "storeys", 0));
-  c.storey_height = number_or(s, sec, "storey_height", 0);
+  const std::vector<double> h = storey_height_setting(s, sec);  // one per storey: their mean, the code's storey
+  double sum = 0.0;
+  for (double x : h) sum += x;
+  c.storey_height = h.empty() ? 0.0 : sum / static_cast<double>(h.size());
   return c;
 }
 

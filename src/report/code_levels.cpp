@@ -8,6 +8,7 @@
 #include <cmath>
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include "data.hpp"
 #include "pounding/model/modes.hpp"
@@ -51,10 +52,10 @@ double code_period(const Data& r, int b, std::string& source) {
 
 }  // namespace
 
-std::vector<double> first_mode_gphi(int storeys, double storey_height, model::StiffnessProfile profile) {
+std::vector<double> first_mode_gphi(int storeys, const std::vector<double>& h, model::StiffnessProfile profile) {
   // equal floor masses (the study splits each sample's mass equally, or takes floor_mass): the shape does not
   // depend on their value, nor on the stiffnesses' scale
-  const std::vector<double> m(static_cast<std::size_t>(storeys), 1.0), h{storey_height};
+  const std::vector<double> m(static_cast<std::size_t>(storeys), 1.0);
   const std::vector<double> k = model::stiffness_shape(m, h, profile);
   const model::Modes modes = model::shear_stick_modes(m, k);
   std::vector<double> g;
@@ -70,11 +71,16 @@ LevelBuilding level_building(const Data& r, int b) {
   LevelBuilding x;
   x.code = building_code(r, b);
   x.code.T = code_period(r, b, x.period_source);
-  x.storey_height = s.find(sec, "storey_height") ? s.number(sec, "storey_height") : default_storey_height;
+  x.storey_heights = storey_height_setting(s, sec);
+  if (x.storey_heights.empty()) x.storey_heights = {default_storey_height};
+  double sum = 0.0;
+  for (double h : x.storey_heights) sum += h;
+  x.storey_height = sum / static_cast<double>(x.storey_heights.size());  // the code's storey height: their mean
   x.code.storey_height = x.storey_height;
   x.storeys = text_or(s, sec, "model", "sdof") == "shear" ? static_cast<int>(x.code.resolved_storeys()) : 1;
+  if (x.storeys == 1 && x.storey_heights.size() > 1) x.storey_heights = {sum};  // (not a shear building)
   x.profile = text_or(s, sec, "stiffness_profile", "uniform");
-  x.gphi = first_mode_gphi(x.storeys, x.storey_height,
+  x.gphi = first_mode_gphi(x.storeys, x.storey_heights,
                            parse_enum(model::stiffness_profile_names, x.profile).value_or(model::StiffnessProfile::uniform));
   x.gamma_roof = x.gphi.back();
   return x;
@@ -89,7 +95,7 @@ std::vector<separation::ContactLevel> contact_levels(const LevelBuilding (&b)[2]
   std::vector<separation::ContactLevel> out;
   std::vector<model::StickTopology> sticks(2);
   for (int i = 0; i < 2; ++i) {
-    sticks[i].storeys = b[i].storeys, sticks[i].storey_heights = {b[i].storey_height};
+    sticks[i].storeys = b[i].storeys, sticks[i].storey_heights = b[i].storey_heights;
     sticks[i].columns = b[i].storeys > 1;  // an SDOF beside a shear building meets its floors only
   }
   const model::System sys = model::shear_buildings(sticks, tolerance, levels);
@@ -182,8 +188,10 @@ std::string code_levels_section(const Data& r) {
                          : sp->code == TargetCode::ec8      ? "q"
                          : sp->code == TargetCode::iran2800 ? "Cd / Ru"
                                                             : "-";
-    s += fmt::format("| {} | {} x {:g} m ({}) | {:.4f} ({}) | {:.4f} | {} | {} | {} |\n", b + 1, x.storeys,
-                     x.storey_height, report::md_cell(x.profile), x.code.T, report::md_cell(x.period_source),
+    s += fmt::format("| {} | {} ({}) | {:.4f} ({}) | {:.4f} | {} | {} | {} |\n", b + 1,
+                     x.storey_heights.size() > 1 ? fmt::format("{:g} m", fmt::join(x.storey_heights, " + "))
+                                                 : fmt::format("{} x {:g} m", x.storeys, x.storey_height),
+                     report::md_cell(x.profile), x.code.T, report::md_cell(x.period_source),
                      x.gamma_roof, std::isfinite(in.sa_g) ? fmt::format("{:.5f}", in.sa_g) : "-",
                      std::isfinite(in.sd) ? fmt::format("{:.5f}", in.sd) : "-",
                      std::isfinite(in.factor) ? fmt::format("{} = {:.5g}", factor, in.factor) : "-");

@@ -223,6 +223,7 @@ struct LevelBuilding {
   std::string period_source;  // "as given", "the study's median (lognormal ...)", "median of 160 samples"
   int storeys = 1;
   double storey_height = 0;
+  std::vector<double> storey_heights;  // {storey_height}, or one per storey (storey_height as an array) bottom first
   std::string profile;        // "uniform" | "shear"
   double gamma_roof = 1;      // Gamma1 with phi1(roof) = 1
   std::vector<double> gphi;   // Gamma1 phi1 at floors 1..storeys
@@ -234,7 +235,11 @@ struct CodeLevels {
 };
 std::optional<CodeLevels> code_levels(const Data& r);
 // Gamma1 phi1 at floors 1..storeys of a shear building of equal floor masses and `profile` storeys (1 for one storey)
-std::vector<double> first_mode_gphi(int storeys, double storey_height, model::StiffnessProfile profile);
+// (storey_heights: one for every storey, or one per storey)
+std::vector<double> first_mode_gphi(int storeys, const std::vector<double>& storey_heights,
+                                    model::StiffnessProfile profile);
+// A building's /settings storey_height: {} absent, one number, or one per storey (an array, bottom first).
+std::vector<double> storey_height_setting(const results::Settings& s, std::string_view section);
 // The contact levels of the two buildings (left, right) as model::shear_buildings makes them, each side's height and
 // Gamma1 phi1 (a column side interpolated by `shape`)
 std::vector<separation::ContactLevel> contact_levels(const LevelBuilding (&b)[2], double tolerance,

@@ -507,6 +507,8 @@ void Markdown::gap_axis() {
         r.set.code_gap_coefficient, r.set.code_gap_coefficient == 0.005 ? ", Standard 2800" : "");
 }
 
+physics::CoarseSummary coarse_summary(const Data& r);
+
 void Markdown::excluded_uncoupled() {
   const std::size_t R = r.records(), M = r.models();
   std::size_t bad = 0;
@@ -523,10 +525,11 @@ void Markdown::excluded_uncoupled() {
   const std::int64_t all_bad = r.h.excluded_analyses, all = r.h.total_analyses;
   if (r.impacts && all > static_cast<std::int64_t>(R * M))
     out("- excluded analyses: **{}** of {} ({:.3g} %): uncoupled (diverged or non-finite) {} of {}; coupled ({}) {} "
-        "of {}\n",
+        "of {}{}\n",
         all_bad, all, all ? 100.0 * static_cast<double>(all_bad) / static_cast<double>(all) : 0.0, bad, R * M,
         r.keep_coarse ? "diverged or non-finite; coarse ones kept" : "coarse, diverged or non-finite",
-        all_bad - static_cast<std::int64_t>(bad), all - static_cast<std::int64_t>(R * M));
+        all_bad - static_cast<std::int64_t>(bad), all - static_cast<std::int64_t>(R * M),
+        r.h_omega.empty() ? std::string() : coarse_summary(r).refined_text());
   else
     out("- excluded (diverged or non-finite) analyses: **{}** of {}\n", bad, R * M);
   if (!bad) return;
@@ -695,19 +698,16 @@ physics::CoarseSummary coarse_summary(const Data& r) {
   physics::CoarseSummary c;
   c.limit = physics::resolution_limit(parse_stepper(r.h.stepper), false, parse_contact_law(r.h.contact_law));
   c.kept = r.keep_coarse;
+  c.refine = r.res.settings.find("analysis", "coarse") && r.res.settings.text("analysis", "coarse") == "refine";
+  const results::Field* f = r.res.find("impacts", "substeps");  // coarse = "refine": each analysis's substeps
+  const std::vector<std::int32_t>* used = f ? &std::get<std::vector<std::int32_t>>(f->data) : nullptr;
   const std::size_t MG = r.models() * r.gaps();
-  for (std::size_t k = 0; k < r.records(); ++k)
-    for (std::size_t i = k * MG; i < (k + 1) * MG; ++i) {
-      if (std::isnan(r.h_omega[i])) continue;
-      ++c.analyses;
-      c.coarse += r.imp_status[i] == static_cast<std::uint8_t>(LaneStatus::coarse);
-      if (!(r.h_omega[i] <= c.hw_max)) {
-        const double dt = r.rec.dt[k];
-        const int q = r.h.max_dt > 0 ? static_cast<int>(std::ceil(dt / r.h.max_dt - 1e-9)) : 1;
-        c.hw_max = r.h_omega[i], c.substeps_at_max = std::max(static_cast<int>(r.h.substeps), q);
-        c.h_at_max = dt / c.substeps_at_max;
-      }
-    }
+  for (std::size_t k = 0; k < r.records(); ++k) {
+    const double dt = r.rec.dt[k];
+    const int q = r.h.max_dt > 0 ? static_cast<int>(std::ceil(dt / r.h.max_dt - 1e-9)) : 1;
+    const int n = std::max(static_cast<int>(r.h.substeps), q);
+    for (std::size_t i = k * MG; i < (k + 1) * MG; ++i) c.add(r.h_omega[i], r.imp_status[i], used ? (*used)[i] : n, n, dt);
+  }
   return c;
 }
 

@@ -275,6 +275,7 @@ Results read_results(h5::hid root, const std::string& path, std::span<const Fiel
   std::vector<FieldSpec> specs(std::begin(unit_fields), std::end(unit_fields));
   specs.insert(specs.end(), std::begin(derived_fields), std::end(derived_fields));
   specs.push_back(restitution_field);  // [contact] restitution only (absent otherwise: skipped)
+  specs.push_back(refine_field);       // [analysis] coarse = "refine" only
   specs.insert(specs.end(), extra.begin(), extra.end());
   r.system = read_system(root);  // format 3: its extents name the per-floor and per-element fields
   if (!r.system.empty()) {

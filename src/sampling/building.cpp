@@ -9,6 +9,7 @@
 #include <boost/math/distributions/normal.hpp>
 #include <boost/math/policies/policy.hpp>
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include "pounding/config/config.hpp"
 #include "pounding/contact/registry.hpp"
@@ -369,11 +370,21 @@ double required_number(config::TableReader& r, std::string_view key) {
 // The shear model's keys against the building's model: floor_mass and storey_stiffness need model = "shear", and a
 // storey_height below 2 m (the 1/30-scale frames' 0.1 m) is a model's, not a real building's code storey.
 void check_shear_keys(const BuildingModel& b, const WhereFn& where) {
+  check_storey_heights(b, where);
   // A fixed height with storeys given must be storeys x storey_height where that product is the model's: a shear
   // building's roof level (its floors stand at k storey_height) or a storey_height given with both. It was used
   // silently beside the floors (its mass-index mass, its period-height rule): 30 m of 10 storeys of 3.2 m.
   const bool own_storey_height = b.code.storey_height > 0;
-  if (b.height.kind == Distribution::Kind::fixed && b.code.storeys > 0 && (b.shear() || own_storey_height)) {
+  if (b.height.kind == Distribution::Kind::fixed && !b.storey_heights.empty()) {  // the roof: their sum
+    double roof = 0.0;
+    for (double x : b.storey_heights) roof += x;
+    if (std::abs(b.height.value - roof) > 1e-6 * roof)
+      throw InputError(fmt::format("height = {:g} m disagrees with the sum of storey_height = [{:g}] m, {:g} m",
+                                   b.height.value, fmt::join(b.storey_heights, ", "), roof),
+                       where("height"),
+                       fmt::format("give height = {:g} (the roof level), or storey heights that add up to {:g} m",
+                                   roof, b.height.value));
+  } else if (b.height.kind == Distribution::Kind::fixed && b.code.storeys > 0 && (b.shear() || own_storey_height)) {
     const double sh = b.storey_height(), product = b.code.storeys * sh, h = b.height.value;
     if (std::abs(h - product) > 1e-6 * product)
       throw InputError(fmt::format("height = {:g} m disagrees with storeys x storey_height = {} x {:g} m = {:g} m{}", h,
@@ -428,6 +439,7 @@ std::vector<double> per_storey(config::TableReader& r, std::string_view key) {
   if (n->is_array()) return r.numbers(key, {});
   return {r.number(key, 0.0)};
 }
+
 }  // namespace
 
 namespace {
@@ -732,6 +744,7 @@ BuildingModel parse_building(const toml::table* t, const std::string& file, cons
   for (const char* key : {"asce7_r", "asce7_cd", "asce7_ie", "ec8_q", "s2800_ru", "s2800_cd", "s2800_importance",
                           "storeys", "storey_height"})
     r.get(key);  // code_factor_keys: known here, read and checked by read_code_factors
+  read_storey_heights(r, b);
   const bool own_storey_height = b.code.storey_height > 0;
   if (!own_storey_height) b.code.storey_height = shared_storey_height;
   read_shear_defaults(r, b);

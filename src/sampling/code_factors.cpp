@@ -48,7 +48,8 @@ CodeFactors read_code_factors(const toml::table* t, const std::string& file, con
   both_or_neither(r, "s2800_ru", "s2800_cd", "Standard 2800 table 3-4, the building's lateral-load system");
   f.s2800_importance = one_of(r, "s2800_importance", {0.8, 1.0, 1.2, 1.4}, "0.8, 1.0, 1.2 or 1.4 (Standard 2800 I)");
   if (r.get("storeys")) f.storeys = r.integer("storeys", 0, 1, 200);
-  if (r.get("storey_height")) f.storey_height = r.number("storey_height", 0.0);  // the registry's range, [0.01, 10] m
+  // the registry's range, [0.01, 10] m; an array (one per storey, a shear building's table): parse_building's
+  if (const toml::node* n = r.get("storey_height"); n && !n->is_array()) f.storey_height = r.number("storey_height", 0.0);
   return f;
 }
 

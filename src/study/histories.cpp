@@ -277,19 +277,20 @@ class HistoryRunner {
   }
 
   const SampledPair& pair() const { return pair_; }
-  KernelSettings settings(const Record& rec) const {
+  // substeps > 0: the analysis's own (impacts/substeps of [analysis] coarse = "refine", study/refine.hpp)
+  KernelSettings settings(const Record& rec, int substeps = 0) const {
     KernelSettings ks = ks_;
-    ks.substeps = study_substeps(s_, rec.dt);
+    ks.substeps = substeps > 0 ? substeps : study_substeps(s_, rec.dt);
     return ks;
   }
 
-  Rerun run(const HistoryChoice& c) {
+  Rerun run(const HistoryChoice& c, int substeps = 0) {
     const std::size_t samples = static_cast<std::size_t>(s_.structures.samples_per_pair);
     pair_ = sampler_.sample(s_.structures.pair_id(static_cast<std::int64_t>(c.model / samples),
                                                   static_cast<std::int64_t>(c.model % samples)));
     const StudyRecord& sr = records_[c.record];
     const GroundMotion gm{sr.record.dt, sr.record.acc, sr.record.duration() + s_.free_vibration};
-    KernelSettings ks = settings(sr.record);
+    KernelSettings ks = settings(sr.record, substeps);
     if (c.gap >= 0 && restitution_) ks.restitution = &restitution_->hook;
     const double ratio = c.gap >= 0 ? s_.gap_ratios[static_cast<std::size_t>(c.gap)] : 0.0;
     return block_ ? system(sr, gm, ks, c.gap >= 0, ratio) : sdof_pair(gm, ks, c.gap >= 0, ratio);
@@ -379,6 +380,15 @@ std::string compare(const Study& s, const results::Results& res, const HistoryCh
   return out;
 }
 
+// The substeps a coupled analysis ran at where the study refined coarse ones (impacts/substeps); 0: the study's.
+int analysis_substeps(const Study& s, const results::Results& res, const HistoryChoice& c) {
+  const results::Field* f = c.gap >= 0 ? find_field(res, "impacts", "substeps") : nullptr;
+  const auto* v = f ? std::get_if<std::vector<std::int32_t>>(&f->data) : nullptr;
+  const std::size_t M = res.models.size(), G = s.gap_ratios.size();
+  const std::size_t k = (c.record * M + c.model) * G + static_cast<std::size_t>(std::max<std::ptrdiff_t>(c.gap, 0));
+  return v && k < v->size() ? (*v)[k] : 0;
+}
+
 std::vector<double> flat(const std::vector<std::vector<double>>& rows) {
   std::vector<double> v;
   for (const auto& x : rows) v.insert(v.end(), x.begin(), x.end());
@@ -443,14 +453,15 @@ results::Group run_histories(const Study& s, const std::vector<StudyRecord>& rec
   HistoryRunner runner(s, records, hook ? hook->cancel : nullptr);
   for (std::size_t n = 0; n < choices.size() && !meter.stopped(); ++n) {
     Rerun r;
+    const int substeps = analysis_substeps(s, res, choices[n]);
     try {
-      r = runner.run(choices[n]);
+      r = runner.run(choices[n], substeps);
     } catch (const StopRequested&) {
       throw Cancelled(phase);
     }
     if (const std::string d = compare(s, res, choices[n], r); !d.empty())
       mismatch += fmt::format("{}history {}:{}", mismatch.empty() ? "" : "; ", n + 1, d);
-    const KernelSettings ks = runner.settings(records[choices[n].record].record);
+    const KernelSettings ks = runner.settings(records[choices[n].record].record, substeps);
     out.children.push_back(history_group(s, records, choices[n], runner.pair(), ks, std::move(r), n + 1));
     meter.step();
   }

@@ -131,19 +131,17 @@ physics::CoarseSummary coarse_summary(const Study& study, const WorkPlan& L, con
   physics::CoarseSummary c;
   c.limit = physics::resolution_limit(study.stepper, false, study.contact.law);
   c.kept = study.coarse == CoarsePolicy::keep;
+  c.refine = study.coarse == CoarsePolicy::refine;
   const std::size_t MG = L.models() * L.gaps;
   const auto& st = t.values<std::uint8_t>(imp_status);
   const auto& hw = t.values<double>(imp_h_omega);
-  for (std::size_t r = 0; r < L.records; ++r)
-    for (std::size_t i = r * MG; i < (r + 1) * MG; ++i) {
-      if (std::isnan(hw[i])) continue;  // no force law, or diverged
-      ++c.analyses;
-      c.coarse += st[i] == static_cast<std::uint8_t>(LaneStatus::coarse);
-      if (!(hw[i] <= c.hw_max)) {
-        const double dt = records[r % records.size()].record.dt;
-        c.hw_max = hw[i], c.substeps_at_max = study_substeps(study, dt), c.h_at_max = dt / c.substeps_at_max;
-      }
-    }
+  const std::vector<std::int32_t>* used =  // impacts/substeps: coarse = "refine" only
+      c.refine ? &t.values<std::int32_t>(results::field_index(L.fields, "impacts", "substeps")) : nullptr;
+  for (std::size_t r = 0; r < L.records; ++r) {
+    const double dt = records[r % records.size()].record.dt;
+    const int n = study_substeps(study, dt);
+    for (std::size_t i = r * MG; i < (r + 1) * MG; ++i) c.add(hw[i], st[i], used ? (*used)[i] : n, n, dt);
+  }
   return c;
 }
 

@@ -36,6 +36,7 @@
 #include "pounding/study/histories.hpp"
 #include "pounding/study/make_results.hpp"
 #include "pounding/study/plan.hpp"
+#include "pounding/study/refine.hpp"
 #include "pounding/study/system_block.hpp"
 #include "pounding/study/spill.hpp"
 #include "pounding/study/tally.hpp"
@@ -109,6 +110,7 @@ class UnitComputer {
         f_e_outside_ = results::field_index(plan.fields, "impacts", results::restitution_element_field.name);
     }
     if (plan.stripes) stripe_scaled_ = results::field_index(plan.fields, "uncoupled", "scaled");
+    if (s.coarse == CoarsePolicy::refine && plan.impacts) f_substeps_ = results::field_index(plan.fields, "impacts", "substeps");
     if (plan.ida) {
       ida_analyses_ = results::field_index(plan.fields, "ida", "analyses");
       ida_limit_ = results::field_index(plan.fields, "ida", "scale_limit");
@@ -385,6 +387,8 @@ class UnitComputer {
     KernelSettings kc = ks;
     if (restitution_) kc.restitution = &restitution_->hook;
     if (!lanes_.empty()) run_batch(sub_, s_.contact, gm, kc, cres_);
+    used_.assign(lanes_.size(), kc.substeps);  // [analysis] coarse = "refine": the coarse lanes again (study/refine.hpp)
+    if (f_substeps_ != npos && !lanes_.empty()) refine_pairs(sub_, s_.contact, gm, kc, cres_, one_, used_);
     std::span<std::int32_t> outside;
     if (restitution_) outside = out.values<std::int32_t>(f_rest_out_);
     auto status = out.values<std::uint8_t>(field::imp_status);
@@ -400,14 +404,26 @@ class UnitComputer {
         u1[k] = cres_.peak_u1[j], u2[k] = cres_.peak_u2[j], first[k] = cres_.t_first_impact[j];
         hw[k] = cres_.h_omega_contact[j];
         if (restitution_) outside[k] = cres_.restitution_outside[j];
+        if (f_substeps_ != npos) out.values<std::int32_t>(f_substeps_)[k] = used_[j];
         ++j;
       } else {
         status[k] = res_.status[i], count[k] = 0, force[k] = 0.0;
         u1[k] = res_.peak_u1[i], u2[k] = res_.peak_u2[i], first[k] = NAN;
         hw[k] = res_.status[i] == 0 && contact::traits(s_.contact.law).has_force ? 0.0 : NAN;  // never touched
         if (restitution_) outside[k] = 0;
+        if (f_substeps_ != npos) out.values<std::int32_t>(f_substeps_)[k] = ks.substeps;
       }
     }
+  }
+
+  // The coupled Systems of lanes_ at gap ratio `ratio` into coupled_, the coarse ones refined ([analysis] coarse =
+  // "refine", study/refine.hpp); used_[j]: lane j's substeps.
+  void coupled_systems(double ratio, const GroundMotion& gm, const KernelSettings& kc) {
+    used_.assign(lanes_.size(), kc.substeps);
+    if (lanes_.empty()) return;
+    const ContactNumbers cn{s_.e, s_.contact_stiffness};
+    block_->coupled(pairs_, lanes_, ratio, s_.contact, cn, gm, kc, coupled_);
+    if (f_substeps_ != npos) refine_systems(*block_, pairs_, lanes_, ratio, s_.contact, cn, gm, kc, coupled_, one_, used_);
   }
 
   // A block with a shear building (model = "shear"): the uncoupled Systems give status, the buildings' largest
@@ -450,9 +466,7 @@ class UnitComputer {
         const bool untouched = peaks_.status[i] == 0 && !(peaks_.closing[i] > s_.gap_at(g, pairs_[i]));
         if (!s_.skip_untouched || !untouched) lanes_.push_back(i);
       }
-      if (!lanes_.empty())
-        block_->coupled(pairs_, lanes_, s_.gap_ratios[g], s_.contact, ContactNumbers{s_.e, s_.contact_stiffness}, gm,
-                        kc, coupled_);
+      coupled_systems(s_.gap_ratios[g], gm, kc);
       for (std::size_t i = 0, j = 0; i < n; ++i) {
         const std::size_t k = i * G + g;  // [lane][gap]
         if (j < lanes_.size() && lanes_[j] == i) {
@@ -460,6 +474,7 @@ class UnitComputer {
           u1[k] = coupled_.u1[j], u2[k] = coupled_.u2[j], first[k] = coupled_.t_first_impact[j];
           hw[k] = coupled_.h_omega_contact[j];
           if (restitution_) outside[k] = coupled_.restitution_outside[j];
+          if (f_substeps_ != npos) out.values<std::int32_t>(f_substeps_)[k] = used_[j];
           for (std::size_t b = 2; b < nb; ++b) out.values<double>(f_row_imp_[b])[k] = coupled_.u[j * nb + b];
           if (table) put_table_coupled(out, i, g, j);
           ++j;
@@ -469,6 +484,7 @@ class UnitComputer {
           for (std::size_t b = 2; b < nb; ++b) out.values<double>(f_row_imp_[b])[k] = peaks_.u[i * nb + b];
           hw[k] = peaks_.status[i] == 0 && contact::traits(s_.contact.law).has_force ? 0.0 : NAN;  // never touched
           if (restitution_) outside[k] = 0;
+          if (f_substeps_ != npos) out.values<std::int32_t>(f_substeps_)[k] = ks.substeps;
           if (table) put_table_coupled(out, i, g, std::string::npos);
         }
       }
@@ -662,6 +678,12 @@ class UnitComputer {
   std::size_t f_rest_out_ = 0;
   BlockPeaks peaks_, coupled_;
   BlockPeaks anchor_peaks_, cur_, sub_peaks_;  // fragility studies of Systems: the anchor run, the peaks at a factor, a run
+  // [analysis] coarse = "refine": impacts/substeps (npos: another policy), each coupled lane's substeps, one lane's
+  // rerun (study/refine.hpp)
+  static constexpr std::size_t npos = std::string::npos;
+  std::size_t f_substeps_ = npos;
+  std::vector<std::int32_t> used_;
+  RefineScratch one_;
   std::vector<GroundMotion> channels_;  // a multi-support bridge's motions of the unit's record
   std::vector<std::size_t> f_floor_u_, f_floor_drift_, f_floor_acc_;
   std::vector<std::size_t> f_row_unc_, f_row_imp_;  // a row's buildings 3..n: uncoupled / impacts peak_u{b}
@@ -821,6 +843,7 @@ WorkPlan plan_work(const Inputs& in) {
     }
   L.fields = results::unit_schema(L.impacts, L.ida, L.stripes > 0, L.system.extents());
   if (s.restitution && L.impacts) L.fields.push_back(results::restitution_field);  // e(v0): impacts outside its range
+  if (s.coarse == CoarsePolicy::refine && L.impacts) L.fields.push_back(results::refine_field);  // each one's substeps
   if (s.restitution && L.impacts && !L.system.empty()) {  // ... and per contact element
     results::FieldSpec f = results::restitution_element_field;
     f.count = static_cast<std::uint32_t>(L.system.extents().elements);
@@ -1000,7 +1023,9 @@ std::string describe_structure(const StructureModel& m, int i) {
                                                                  : fmt::format("storeys yielding at drift ratio {:.4g}",
                                                                                b.drift / b.ductility);
   return fmt::format("building{}: shear building, {}, {}, {}, {}, {}", i + 1,
-                     b.code.storeys > 0 ? fmt::format("{} storeys of {:g} m", b.code.storeys, b.storey_height())
+                     !b.storey_heights.empty()
+                         ? fmt::format("{} storeys of {:g} m", b.code.storeys, fmt::join(b.storey_heights, ", "))
+                     : b.code.storeys > 0 ? fmt::format("{} storeys of {:g} m", b.code.storeys, b.storey_height())
                                         : fmt::format("storeys of {0:g} m, max(1, round(h / {0:g} m)) per sample",
                                                       b.storey_height()),
                      !b.floor_mass.empty() ? fmt::format("floors of {:g} kg", fmt::join(b.floor_mass, ", "))

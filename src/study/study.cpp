@@ -340,8 +340,9 @@ CoarsePolicy parse_coarse_policy(std::string_view name) {
   for (const auto& [v, n] : coarse_policy_names)
     if (n == name) return v;
   throw InputError(fmt::format("unknown coarse policy '{}'", name), "coarse",
-                   "use \"exclude\" (default: coarse analyses left out of the statistics like diverged ones) or "
-                   "\"keep\" (kept in the statistics, still counted and reported)");
+                   "use \"refine\" (default: coarse analyses run again at a shorter step, excluded if still coarse), "
+                   "\"exclude\" (left out of the statistics like diverged ones) or \"keep\" (kept in the statistics, "
+                   "still counted and reported)");
 }
 
 namespace {
@@ -359,7 +360,8 @@ void parse_analysis(Study& s, const toml::table* t, const std::string& path) {
   s.skip_untouched = a.boolean("skip_untouched", true);
   s.scale_elastic = a.boolean("scale_elastic", true);
   s.max_excluded_fraction = a.number("max_excluded_fraction", 0.001);
-  s.coarse = a.choice("coarse", "exclude", parse_coarse_policy);
+  // a step the user gave is the step of every analysis (as simulate --dt): refine only where the engine chose it
+  s.coarse = a.choice("coarse", s.step_given ? "exclude" : "refine", parse_coarse_policy);
   a.finish("stepper, substeps, max_dt, batch, threads, free_vibration, displacement_limit, skip_untouched, scale_elastic, "
            "max_excluded_fraction, coarse");
 }
@@ -581,6 +583,7 @@ static void check_level_tolerance(const Study& s, config::TableReader& top, cons
   for (std::size_t b = 0; b < s.structures.building_count(); ++b) {
     const BuildingModel x = s.structures.row_building(b);
     if (x.shear() || s.structures.row()) h = std::min(h, x.shear() ? x.storey_height() : 3.2);
+    for (double y : x.storey_heights) h = std::min(h, y);  // storeys of different heights: the lowest
   }
   if (s.level_tolerance < 0.5 * h) return;
   const toml::table* c = top.table("contact");
@@ -820,7 +823,8 @@ double result_bytes(const Study& s, std::size_t records) {
                            static_cast<std::size_t>(std::floor(s.curve_max / s.curve_step + 1e-9))) +
            16.0 * units;
   }
-  const double per_model = 25.0 + (s.scene == Scene::impacts ? 45.0 * static_cast<double>(s.gap_ratios.size()) : 0.0);
+  const double per_gap = 45.0 + (s.coarse == CoarsePolicy::refine ? 4.0 : 0.0);  // refine: impacts/substeps
+  const double per_model = 25.0 + (s.scene == Scene::impacts ? per_gap * static_cast<double>(s.gap_ratios.size()) : 0.0);
   return static_cast<double>(records) * polarity_count(s.polarity) *
          static_cast<double>(std::max<std::size_t>(1, s.intensity.stripes())) * static_cast<double>(s.structures.period_pair_count()) *
          static_cast<double>(s.structures.samples_per_pair) * per_model;

@@ -41,11 +41,11 @@ void mixed_row_levels(const StructureModel& model, const SampledPair& p, LaneTop
     if (i > 0) nb.push_back(i - 1);
     if (c + 1 < n) nb.push_back(c + 1);
     double roof = std::numeric_limits<double>::infinity();
-    for (std::size_t b : nb) roof = std::min(roof, t.storeys[b] * t.storey_height[b]);
+    for (std::size_t b : nb) roof = std::min(roof, t.level(b, t.storeys[b]));
     double best = nan;
     for (std::size_t b : nb)
       for (int k = 1; k <= t.storeys[b]; ++k) {
-        const double z = k * t.storey_height[b];
+        const double z = t.level(b, k);
         if (z > roof + 1e-9) break;
         if (std::isnan(best) || std::abs(z - h) < std::abs(best - h) || (std::abs(z - h) == std::abs(best - h) && z < best))
           best = z;
@@ -57,9 +57,32 @@ void mixed_row_levels(const StructureModel& model, const SampledPair& p, LaneTop
 
 }  // namespace
 
+double LaneTopology::level(std::size_t b, int k) const {
+  if (heights[b].empty()) return k * storey_height[b];
+  double z = 0.0;
+  for (int i = 0; i < k; ++i) z += heights[b][static_cast<std::size_t>(i)];  // bottom first, as shear_buildings sums
+  return z;
+}
+
+std::vector<double> LaneTopology::stick_heights(std::size_t b) const {
+  return heights[b].empty() ? std::vector<double>{storey_height[b]} : heights[b];
+}
+
+namespace {
+// The floor (1..storeys of building o) an SDOF facing it reaches: the nearest to its height h (ties: the upper).
+long sdof_floor(const LaneTopology& t, std::size_t o, double h) {
+  if (t.heights[o].empty()) return std::clamp<long>(std::lround(h / t.storey_height[o]), 1, t.storeys[o]);
+  long best = 1;
+  for (int k = 2; k <= t.storeys[o]; ++k)
+    if (std::abs(t.level(o, k) - h) <= std::abs(t.level(o, static_cast<int>(best)) - h)) best = k;
+  return best;
+}
+}  // namespace
+
 LaneTopology lane_topology(const StructureModel& model, const SampledPair& p) {
   const std::size_t n = p.buildings();
   LaneTopology t;
+  t.heights.assign(n, {});
   if (model.bridge) {  // every lane the same chain
     t.storeys.resize(n), t.isolated.assign(n, 0), t.moat.assign(n, 0), t.bridge = 1;
     t.storey_height.resize(n);
@@ -73,6 +96,7 @@ LaneTopology lane_topology(const StructureModel& model, const SampledPair& p) {
     t.storeys[i] = b.shear() ? b.storeys_at(p.structure(i).h) : 1;
     // an SDOF of a row of SDOFs: its one floor at the pair's 3.2 m (System::sdof_pair()), so every joint has one element
     t.storey_height[i] = b.shear() || n == 2 ? b.storey_height() : 3.2;
+    if (b.shear()) t.heights[i] = b.storey_heights;
     t.isolated[i] = b.shear() && b.isolated, t.moat[i] = t.isolated[i] && b.moat;
   }
   bool sdof = false;
@@ -82,8 +106,8 @@ LaneTopology lane_topology(const StructureModel& model, const SampledPair& p) {
     if (model.building(static_cast<int>(i)).shear()) continue;
     // an SDOF facing a shear building: one storey reaching the other's floor nearest its height (its roof at most)
     const std::size_t o = 1 - i;
-    const long k = std::clamp<long>(std::lround(p.structure(i).h / t.storey_height[o]), 1, t.storeys[o]);
-    t.storey_height[i] = static_cast<double>(k) * t.storey_height[o];
+    const long k = sdof_floor(t, o, p.structure(i).h);
+    t.storey_height[i] = t.heights[o].empty() ? static_cast<double>(k) * t.storey_height[o] : t.level(o, static_cast<int>(k));
   }
   return t;
 }
@@ -123,6 +147,7 @@ void BlockPeaks::resize(std::size_t n, std::size_t nb, const TableLayout& t) {
   u.assign(n * nb, 0.0);
   impact_count.assign(n, 0), restitution_outside.assign(n, 0);
   peak_force.assign(n, 0.0), t_first_impact.assign(n, nan), h_omega_contact.assign(n, nan);
+  worst.assign(n, physics::StepResolution{});
   for (auto* f : {&floor_u, &floor_drift, &floor_acc}) {
     f->resize(t.floors.size());
     for (std::size_t b = 0; b < t.floors.size(); ++b) (*f)[b].assign(n * t.floors[b], nan);
@@ -143,6 +168,23 @@ void BlockPeaks::set_scaled(std::size_t to, const BlockPeaks& from, std::size_t 
     }
   const std::size_t E = e_closing.size() / status.size();
   for (std::size_t e = 0; e < E; ++e) e_closing[to * E + e] = scale * from.e_closing[k * E + e];
+}
+
+void BlockPeaks::set_lane(std::size_t to, const BlockPeaks& from, std::size_t k) {
+  const std::size_t n = status.size();
+  const auto row = [&](auto& mine, const auto& theirs) {  // lane k's values of `theirs` (of any width) as lane `to`'s
+    const std::size_t w = mine.size() / n;
+    std::copy_n(theirs.begin() + static_cast<std::ptrdiff_t>(k * w), w, mine.begin() + static_cast<std::ptrdiff_t>(to * w));
+  };
+  row(status, from.status), row(u1, from.u1), row(u2, from.u2), row(closing, from.closing), row(u, from.u);
+  row(impact_count, from.impact_count), row(restitution_outside, from.restitution_outside);
+  row(peak_force, from.peak_force), row(t_first_impact, from.t_first_impact), row(h_omega_contact, from.h_omega_contact);
+  row(worst, from.worst);
+  for (auto [mine, theirs] : {std::pair{&floor_u, &from.floor_u}, {&floor_drift, &from.floor_drift}, {&floor_acc, &from.floor_acc}})
+    for (std::size_t b = 0; b < mine->size(); ++b) row((*mine)[b], (*theirs)[b]);
+  row(e_closing, from.e_closing), row(e_force, from.e_force), row(e_penetration, from.e_penetration);
+  row(e_first, from.e_first), row(e_hw, from.e_hw), row(e_count, from.e_count), row(e_outside, from.e_outside);
+  if (!springs.empty()) springs[to] = from.springs[k];
 }
 
 bool SystemBlock::scales_linearly(const BlockPeaks& p, std::size_t k, double ratio, double limit) const {
@@ -223,7 +265,7 @@ const model::System& SystemBlock::system(const LaneTopology& t) {
   if (!slot) {
     std::vector<model::StickTopology> sticks(t.buildings());
     for (std::size_t i = 0; i < t.buildings(); ++i) {
-      sticks[i].storeys = t.storeys[i], sticks[i].storey_heights = {t.storey_height[i]};
+      sticks[i].storeys = t.storeys[i], sticks[i].storey_heights = t.stick_heights(i);
       sticks[i].isolated = t.isolated[i], sticks[i].moat = t.moat[i];
       sticks[i].columns = model_.row_building(i).shear();  // an SDOF stands for a whole building: no column
       if (model_.row_building(i).modal_damping) sticks[i].damping = model::DampingForm::dense;
@@ -240,7 +282,7 @@ const model::System& SystemBlock::table_system(const LaneTopology& t) {
   if (!slot) {
     std::vector<model::StickTopology> sticks(t.buildings());
     for (std::size_t i = 0; i < t.buildings(); ++i) {
-      sticks[i].storeys = t.storeys[i], sticks[i].storey_heights = {t.storey_height[i]};
+      sticks[i].storeys = t.storeys[i], sticks[i].storey_heights = t.stick_heights(i);
       sticks[i].isolated = t.isolated[i], sticks[i].moat = t.moat[i];
       sticks[i].columns = model_.row_building(i).shear();  // an SDOF stands for a whole building: no column
       if (model_.row_building(i).modal_damping) sticks[i].damping = model::DampingForm::dense;
@@ -394,6 +436,7 @@ void SystemBlock::run(std::span<const SampledPair> pairs, std::span<const std::s
       if (keep_springs_) keep_lane_springs(out.springs[k], sys, groups, l, w);
       out.closing[k] = D, out.impact_count[k] = count, out.peak_force[k] = force, out.restitution_outside[k] = outside;
       out.t_first_impact[k] = first, out.h_omega_contact[k] = hw;
+      out.worst[k] = physics::worst_element(sys, groups, ks, res_, l);
     }
     at = end;
   }

@@ -32,13 +32,14 @@ grep -q "Excluded coupled analyses (diverged or non-finite, never counted as res
 grep -q "at gap ratio 0.1: diverged" "$tmp/stiff.md"
 
 # Resolution guard: a contact stiff enough to be under-resolved at the default step (h = 2.5 ms) but stable runs
-# to the end; those analyses are marked coarse (status 3, numbers kept, h omega_c above the limit), excluded by
-# default like diverged ones (exit 3 past max_excluded_fraction), and the advice brings them under the limit.
-sed -e 's/^law = "hertzdamp"/law = "linear"\nstiffness = 1e11/' \
+# to the end; those analyses are marked coarse (status 3, numbers kept, h omega_c above the limit), excluded with
+# coarse = "exclude" like diverged ones (exit 3 past max_excluded_fraction), and the advice brings them under the
+# limit (the default, "refine", reruns them: cli.study_refine).
+sed -e 's/^law = "hertzdamp"/law = "linear"\nstiffness = 1e11/' -e 's/^\[analysis\]/[analysis]\ncoarse = "exclude"/' \
     -e 's/^samples_per_pair = 8/samples_per_pair = 2/' "$src/tests/data/study-small-synthetic.toml" > "$tmp/coarse.toml"
 rc=0; "$bin" run "$tmp/coarse.toml" --out "$tmp/coarse.h5" --quiet > "$tmp/coarse.md" 2>/dev/null || rc=$?
 [ "$rc" -eq 3 ] || { echo "FAIL: coarse run exit code $rc (want 3: coarse analyses excluded past the fraction)"; exit 1; }
-grep -q "^coarse: [1-9][0-9]* analyses (max h·ω_c 0\.[3-9][0-9]*, limit 0.304); excluded from the statistics" "$tmp/coarse.md"
+grep -q "^coarse: [1-9][0-9]* analyses (max h·ω_c 0\.[3-9][0-9]*, limit 0.304); excluded from the statistics (\[analysis\] coarse = \"exclude\"; \"refine\" runs them again" "$tmp/coarse.md"
 adv=$(sed -n 's/.*\[analysis\] substeps = \([0-9]*\) (or max_dt.*/\1/p' "$tmp/coarse.md")
 [ -n "$adv" ] || { echo "FAIL: no substeps advice"; cat "$tmp/coarse.md"; exit 1; }
 grep -q "at gap ratio .*: coarse" "$tmp/coarse.md"
@@ -57,7 +58,7 @@ sed "s/^\[analysis\]/[analysis]\nsubsteps = $adv/" "$tmp/coarse.toml" > "$tmp/fi
 "$bin" run "$tmp/fine.toml" --out "$tmp/fine.h5" --quiet > "$tmp/fine.md" 2>/dev/null
 grep -q "^coarse: 0 analyses (max h·ω_c 0\.[0-2][0-9]*, limit 0.304)$" "$tmp/fine.md"
 # coarse = "keep": the same analyses counted and reported, kept in the statistics (no exclusion, exit 0)
-sed 's/^\[analysis\]/[analysis]\ncoarse = "keep"/' "$tmp/coarse.toml" > "$tmp/keep.toml"
+sed 's/^coarse = "exclude"/coarse = "keep"/' "$tmp/coarse.toml" > "$tmp/keep.toml"
 "$bin" run "$tmp/keep.toml" --out "$tmp/keep.h5" --quiet > "$tmp/keep.md" 2>/dev/null
 grep -q "^coarse: [1-9][0-9]* analyses .*kept in the statistics" "$tmp/keep.md"
 grep -q "| 0.1 | .* | 0 |$" "$tmp/keep.md"   # excluded column of the impacts table

@@ -3,7 +3,8 @@
 # (check_shear_steps): the quick storeys study with 1 m storeys (30-50 storeys, omega_max far above the record step's
 # reach) runs instead of stopping with "give [analysis] substeps >= 7"; the chosen max_dt is stored in the results
 # (/settings max_dt and the scene's reason) and printed; the results equal those of the same study with that max_dt
-# written in the file (bit for bit but the settings that name how the step came about). Given substeps = 1 it still
+# written in the file (bit for bit but the settings that name how the step came about, and [analysis] coarse, whose
+# default is "refine" for a chosen step and "exclude" for a given one). Given substeps = 1 it still
 # stops before any work with the step that would do. A study that was stable (the shipped quick storeys study) keeps
 # its step: no "step:" in its reason.
 # Args: <pounding binary> <source dir>
@@ -38,7 +39,8 @@ PY
 sed -e 's/^output = .*/output = "given.h5"/' -e 's/^\[analysis\]$/[analysis]\nmax_dt = 0.00152/' auto.toml > given.toml
 grep -q '^max_dt = 0.00152' given.toml || printf '\n[analysis]\nmax_dt = 0.00152\n' >> given.toml
 "$bin" run given.toml --quiet > /dev/null || fail "the study with max_dt = 0.00152: exit $?"
-"$py" "$src/tests/cli/compare_results.py" auto.h5 given.h5 --ignore=study_text,scene_reason,output > cmp.txt ||
+# coarse: its default follows whether the step was given ("refine" when chosen, "exclude" when given)
+"$py" "$src/tests/cli/compare_results.py" auto.h5 given.h5 --ignore=study_text,scene_reason,output,coarse > cmp.txt ||
   fail "chosen and given max_dt differ: $(head -20 cmp.txt)"
 echo "ok   chosen step 0.00152 s: results equal the same study with max_dt = 0.00152"
 # given substeps = 1: refused before any work, with the step that would do

@@ -15,12 +15,19 @@
 #include <cstdint>
 #include <functional>
 #include <limits>
+#include <span>
 #include <string>
 
 #include "pounding/contact/registry.hpp"
 #include "pounding/kernel/batch.hpp"
 
+namespace pounding::model {
+class System;
+}
+
 namespace pounding::physics {
+
+struct SystemResult;
 
 inline constexpr double resolution_tolerance = 0.01;  // relative peak-force error of one impact
 
@@ -81,6 +88,13 @@ struct StepChoice {
   int first_substeps = 1;
   double h() const { return record_dt / substeps; }
 };
+// A run's worst contact element, what choose_step's `run` returns (and what [analysis] coarse = "refine" reads, study/
+// refine.hpp): lane `lane` of a pair kernel run (its one element, the law `law`), or of a system run (the largest
+// h omega_c / limit over the elements, each with its group's law in `groups`); NaN h omega_c when no element carried a
+// force, diverged for a diverged or non-finite lane.
+StepResolution lane_resolution(const BatchResult& r, std::size_t lane, const KernelSettings& ks, ContactLaw law);
+StepResolution worst_element(const model::System& sys, std::span<const ContactModel> groups, const KernelSettings& ks,
+                             const SystemResult& r, std::size_t lane = 0);
 inline constexpr double step_margin = 0.8;
 inline constexpr int step_max_runs = 6;
 // run(n) runs the analysis at record_dt / n and returns its worst element (largest h omega_c / limit).
@@ -99,9 +113,18 @@ struct CoarseSummary {
   double h_at_max = 0;                    // the step (s) of the analysis with hw_max
   int substeps_at_max = 1;                // its substeps per record step
   bool kept = false;                      // [analysis] coarse = "keep"
+  bool refine = false;                    // [analysis] coarse = "refine" (study/refine.hpp): `coarse` is those still
+  std::int64_t refined = 0;               // coarse after it; the analyses run again at a shorter step,
+  int refined_min = 0, refined_max = 0;   // ... and the fewest and most substeps of their final runs
+  // One coupled analysis of a record of step dt: its h omega_c (NaN: no force law or diverged, not among `analyses`),
+  // status, the substeps it ran at and the study's substeps for dt (fewer than it ran at: refined).
+  void add(double hw, std::uint8_t status, int substeps, int study_substeps, double dt);
+  // "; refined: N analyses run again at a shorter step (A to B substeps)" (empty when none was)
+  std::string refined_text() const;
 };
-// "coarse: N analyses (max h·ω_c X, limit Y)", and when N > 0 the [analysis] substeps / max_dt that would bring
-// hw_max under the limit (an estimate), and whether they were excluded or kept.
+// "coarse: N analyses (max h·ω_c X, limit Y)", the refined ones ([analysis] coarse = "refine"), and when N > 0 the
+// [analysis] substeps / max_dt that would bring hw_max under the limit (an estimate), and whether they were excluded
+// or kept.
 std::string describe(const CoarseSummary& c);
 
 }  // namespace pounding::physics

@@ -111,6 +111,13 @@ inline constexpr FieldSpec restitution_field = {
     "impacts of this analysis whose approach velocity lay outside the valid range of the e(v0) curve ([contact] "
     "restitution: e extrapolated there); 0 for a pair that never touched, -1 not computed"};
 
+// What a unit of an impacts-scene study with [analysis] coarse = "refine" returns besides the unit_fields
+// (study/refine.hpp): each coupled analysis's integration steps per record step.
+inline constexpr FieldSpec refine_field = {
+    "impacts", "substeps", Dtype::i32, Extent::lane_gap, -1, "1",
+    "integration steps per record step of this analysis: the study's, or more where the resolution guard found it "
+    "coarse and it was run again at a shorter step ([analysis] coarse = \"refine\"); -1 not computed"};
+
 // Format 3: the same per contact element ([R, M, G, E], element order of /system/element_*); written beside
 // restitution_field (which sums it over the study-gap elements) by a study of Systems with [contact] restitution.
 inline constexpr FieldSpec restitution_element_field = {

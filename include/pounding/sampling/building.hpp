@@ -195,6 +195,10 @@ struct BuildingModel {
   // given, one per floor / storey from the bottom (a building that is not uniform)
   std::vector<double> floor_mass, storey_stiffness;
   std::vector<double> storey_yield;  // N, the same way (empty: drift/ductility or yield_coefficient)
+  // storey_height as an array (a shear building with storeys given): one height per storey from the bottom, floor k
+  // at the sum of the first k; code.storey_height is then their mean (the code rules' storey count). Empty: every
+  // storey storey_height() high.
+  std::vector<double> storey_heights;
   model::StiffnessProfile profile = model::StiffnessProfile::uniform;
   // Damping of a shear building: Rayleigh on modes 1, 2 (false) or classical modal damping (modal_zeta per mode
   // from 1, the last repeating; empty: every mode the sampled zeta).
@@ -256,6 +260,12 @@ void read_shear_defaults(config::TableReader& r, BuildingModel& b);
 
 // floor_mass / storey_stiffness / a storey_height below 2 m given to an SDOF building: InputError at where(key).
 void check_shear_keys(const BuildingModel& b, const WhereFn& where);
+
+// storey_height = [h1, h2, ...] in a building's table (src/sampling/storey_heights.cpp): read_storey_heights sets
+// storey_heights (more than one value) and code.storey_height = their mean; check_storey_heights refuses them for an
+// SDOF building, without storeys or with another count (InputError at where("storey_height")).
+void read_storey_heights(config::TableReader& r, BuildingModel& b);
+void check_storey_heights(const BuildingModel& b, const WhereFn& where);
 
 // The rule interval at T, or InputError naming T and both bounds (where) when it is empty.
 HeightInterval checked_rule_heights(const BuildingModel& b, double T, const std::string& where);

@@ -79,7 +79,7 @@ void visit_structure_settings(const StructureModel& m, V& v) {
     for (const auto& [key, value] : {std::pair<const char*, double>{"asce7_r", f.asce7_r}, {"asce7_cd", f.asce7_cd},
                                      {"asce7_ie", f.asce7_ie}, {"ec8_q", f.ec8_q}, {"s2800_ru", f.s2800_ru},
                                      {"s2800_cd", f.s2800_cd}, {"s2800_importance", f.s2800_importance},
-                                     {"storey_height", f.storey_height}})
+                                     {"storey_height", b.storey_heights.empty() ? f.storey_height : 0.0}})
       if (value > 0) v(sec, key, value);
     if (f.storeys > 0) v(sec, "storeys", static_cast<std::int64_t>(f.storeys));
     if (m.any_shear() || m.row()) {  // the structural model (sampling/building.hpp); absent from SDOF pair studies (their bits)
@@ -88,7 +88,7 @@ void visit_structure_settings(const StructureModel& m, V& v) {
       if (f.storey_height <= 0) v(sec, "storey_height", b.storey_height());
       // a number as before (the bits of every earlier study), an array where one per storey is given
       for (auto [key, x] : {std::pair{"floor_mass", &b.floor_mass}, {"storey_stiffness", &b.storey_stiffness},
-                            {"storey_yield", &b.storey_yield}}) {
+                            {"storey_yield", &b.storey_yield}, {"storey_height", &b.storey_heights}}) {
         if (x->size() == 1) v(sec, key, x->front());
         else if (x->size() > 1) v(sec, key, *x);
       }

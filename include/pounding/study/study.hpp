@@ -44,12 +44,15 @@
 //                the higher stripe instead of a run: the elastic response scales exactly with the record);
 //                max_excluded_fraction = 0.001 (in [0, 1]: the largest fraction of all analyses that may be
 //                excluded (diverged, non-finite) before the run ends with exit code 3 and a warning banner);
-//                coarse = "exclude" | "keep" (default "exclude"): what to do with a coupled analysis the resolution
-//                guard marks coarse (it ran, but its h omega_c exceeds the accuracy limit of the stepper x law,
-//                physics/resolution.hpp: its peak force is off by more than 1 %). "exclude" treats it like a diverged
-//                analysis (left out of the statistics, counted in max_excluded_fraction): a number known to be
-//                wrong is not averaged in silently. "keep" keeps it in the statistics (impact verdicts and counts
-//                are much less sensitive to the step than the peak force) but still counts and reports it.
+//                coarse = "refine" | "exclude" | "keep" (default "refine"; "exclude" when the study gives substeps or
+//                max_dt): what to do with a coupled analysis the resolution guard marks coarse (it ran, but its
+//                h omega_c exceeds the accuracy limit of the stepper x law, physics/resolution.hpp: its peak force is
+//                off by more than 1 %). "refine" runs it again alone at a shorter step, as `pounding simulate` without
+//                --dt does (study/refine.hpp; impacts/substeps holds each analysis's substeps), and excludes it only
+//                when still coarse after the last run. "exclude" treats it like a diverged analysis (left out of the
+//                statistics, counted in max_excluded_fraction): a number known to be wrong is not averaged in
+//                silently. "keep" keeps it in the statistics (impact verdicts and counts are much less sensitive to
+//                the step than the peak force) but still counts and reports it.
 //   [report]     targets = [10, 5, 1] (% probability); fit_min = 0.1; fit_max = 1.0 (gap ratios of the cubic fit);
 //                confidence = 0.95 and bootstrap = 2000 (the two-stage bootstrap over records and models within
 //                records behind the intervals of a pair study's separation in metres, analysis/separation.hpp;
@@ -110,10 +113,11 @@ constexpr const auto& enum_names(Scene) { return scene_names; }  // to_string(Sc
 // the probability scene's short units lost 10-15 % at 64, so it keeps 256. Results do not depend on the batch.
 constexpr int default_batch(Scene scene) { return scene == Scene::impacts ? 64 : 256; }
 
-// [analysis] coarse: LaneStatus::coarse analyses excluded from the statistics (like diverged) or kept (counted).
-enum class CoarsePolicy : std::uint8_t { exclude, keep };
-inline constexpr EnumName<CoarsePolicy> coarse_policy_names[] = {{CoarsePolicy::exclude, "exclude"},
-                                                                 {CoarsePolicy::keep, "keep"}};
+// [analysis] coarse: LaneStatus::coarse analyses excluded from the statistics (like diverged), kept (counted), or
+// refined: run again alone at a shorter step until resolved (study/refine.hpp), excluded when still coarse.
+enum class CoarsePolicy : std::uint8_t { exclude, keep, refine };
+inline constexpr EnumName<CoarsePolicy> coarse_policy_names[] = {
+    {CoarsePolicy::exclude, "exclude"}, {CoarsePolicy::keep, "keep"}, {CoarsePolicy::refine, "refine"}};
 constexpr const auto& enum_names(CoarsePolicy) { return coarse_policy_names; }
 CoarsePolicy parse_coarse_policy(std::string_view name);  // InputError naming the allowed values
 
@@ -232,7 +236,9 @@ struct Study {
   bool skip_untouched = true;  // impacts scene: pairs that never touch take their uncoupled results
   bool scale_elastic = true;   // stripes: models elastic at the lowest stripe and within yield take its peaks x ratio
   double max_excluded_fraction = 0.001;  // [analysis]: more excluded analyses than this fraction -> exit code 3
-  CoarsePolicy coarse = CoarsePolicy::exclude;  // [analysis] coarse: analyses marked coarse by the resolution guard
+  // [analysis] coarse: analyses marked coarse by the resolution guard; default "refine", "exclude" when the study gives
+  // the step ([analysis] substeps or max_dt: a step the user set is the step every analysis runs at)
+  CoarsePolicy coarse = CoarsePolicy::refine;
   // report
   std::vector<double> targets{10.0, 5.0, 1.0};
   double fit_min = 0.1, fit_max = 1.0;
@@ -259,7 +265,8 @@ struct Study {
 
 // Bytes of the per-model result arrays rank 0 gathers for `records` records (src/study/run.cpp): per record
 // and model, the uncoupled status (1 byte) and three peaks (8 bytes each) = 25 bytes; in the impacts scene,
-// per gap, a status (1), an impact count (4) and five doubles (40) = 45 bytes more. A double, so that absurd
+// per gap, a status (1), an impact count (4) and five doubles (40) = 45 bytes more (49 with [analysis] coarse =
+// "refine": the analysis's substeps). A double, so that absurd
 // sizes do not overflow.
 // With [outputs] per_model = false: the reductions' bytes instead (study/reductions.hpp reduction_bytes).
 double result_bytes(const Study& study, std::size_t records);

@@ -27,6 +27,7 @@
 #include <vector>
 
 #include "pounding/model/system.hpp"
+#include "pounding/physics/resolution.hpp"
 #include "pounding/physics/shear_building.hpp"
 #include "pounding/physics/system_batch.hpp"
 #include "pounding/physics/system_series.hpp"
@@ -41,11 +42,18 @@ namespace pounding {
 struct LaneTopology {
   std::vector<int> storeys{1, 1};
   std::vector<double> storey_height{3.2, 3.2};
+  // a shear building's storeys of different heights (storey_height as an array, bottom first; storey_height[b] is
+  // then their mean); empty: every storey storey_height[b] high
+  std::vector<std::vector<double>> heights{{}, {}};
   std::vector<std::uint8_t> isolated{0, 0}, moat{0, 0};  // base isolation, moat walls (the building's keys)
   // a bridge ([bridge], sampling/bridge.hpp): "buildings" are its frames (one floor each, storey_height their pier
   // heights), the System physics::bridge_system's (joints as the study-gap elements, restrainers, bearings, abutments)
   std::uint8_t bridge = 0;
   std::size_t buildings() const { return storeys.size(); }
+  // The level (m) of floor k of building b: k storey_height[b], or the sum of its first k heights.
+  double level(std::size_t b, int k) const;
+  // Building b's storey heights as model::StickTopology takes them: {storey_height[b]} or heights[b].
+  std::vector<double> stick_heights(std::size_t b) const;
   friend auto operator<=>(const LaneTopology&, const LaneTopology&) = default;
 };
 
@@ -90,6 +98,9 @@ struct BlockPeaks {
   // (KernelSettings::restitution; 0 without a curve, -1 for a failed lane)
   std::vector<std::int32_t> restitution_outside;
   std::vector<double> peak_force, t_first_impact, h_omega_contact;
+  // the worst contact element of every group (moat walls too): the largest h omega_c / limit of its stepper x law,
+  // what [analysis] coarse = "refine" reads (study/refine.hpp)
+  std::vector<physics::StepResolution> worst;
   // With a TableLayout: [lane][floor] per building (peak |u|, storey drift, peak |a + ag| in g) and [lane][element]
   // (peak closing; impact count, peak force, peak penetration, first impact, h omega_c, impacts outside the e(v0)
   // curve's range), NaN / -1 where the lane's topology has no such floor or element.
@@ -109,6 +120,8 @@ struct BlockPeaks {
   // Lane `to` = lane k of `from` (sized alike) with every displacement, closing and acceleration peak times `scale`
   // (1: a copy); the uncoupled values only (status, u1, u2, closing, u, the per-floor rows, e_closing).
   void set_scaled(std::size_t to, const BlockPeaks& from, std::size_t k, double scale);
+  // Lane `to` = lane k of `from` (laid out alike, of any width): every value, coupled ones and springs included.
+  void set_lane(std::size_t to, const BlockPeaks& from, std::size_t k);
 };
 
 // How the contacts of a coupled run are set.

@@ -511,23 +511,6 @@ int most_substeps(const SimulateOptions& o, double record_dt, std::size_t sample
   return static_cast<int>(std::clamp(std::floor(fit / (std::ceil(length / record_dt) + 1.0)), 1.0, key_hi));
 }
 
-// The worst contact element of a run for the step chooser: the largest h omega_c / limit of its stepper x law (each
-// element's group's law); NaN h omega_c when no element carried a force.
-physics::StepResolution worst_element(const model::System& sys, std::span<const ContactModel> groups,
-                                      const KernelSettings& ks, const physics::SystemResult& r) {
-  physics::StepResolution w;
-  const auto status = static_cast<LaneStatus>(r.status[0]);
-  w.diverged = status == LaneStatus::diverged || status == LaneStatus::non_finite;
-  double worst = -1.0;
-  for (std::size_t e = 0; e < sys.contacts().size() && !w.diverged; ++e) {
-    const double hw = r.h_omega_contact[physics::SystemBatch::at(static_cast<int>(e), 0, r.width)];
-    const double limit = physics::resolution_limit(ks, groups[sys.contacts()[e].group].law);
-    if (!(hw > 0.0) || hw / limit <= worst) continue;
-    worst = hw / limit, w.hw = hw, w.limit = limit;
-  }
-  return w;
-}
-
 void set_pair_initial(const SimulateOptions& o, PairParams& p);
 
 PairParams pair_params(const SimulateOptions& o, const ContactModel& cm, const Structure& s1, const Structure& s2) {
@@ -748,7 +731,7 @@ physics::StepChoice choose_system_step(const SimulateOptions& o, const physics::
   const physics::StepChoice c =
       physics::choose_step(o.dt_given, ks.substeps, rec.dt, h_stability, most, [&](int n) {
         ks.substeps = n;
-        return worst_element(*batch.system, groups, ks, run());
+        return physics::worst_element(*batch.system, groups, ks, run());
       });
   ks.substeps = c.substeps;
   return c;
@@ -1264,12 +1247,7 @@ physics::StepChoice choose_pair_step(bool given, int most, const PairBatch& b, c
         ks.substeps = n;
         series.clear();
         run_batch(b, cm, gm, ks, r);
-        physics::StepResolution w;
-        const auto status = static_cast<LaneStatus>(r.status[0]);
-        w.diverged = status == LaneStatus::diverged || status == LaneStatus::non_finite;
-        if (!w.diverged && r.h_omega_contact[0] > 0.0)
-          w.hw = r.h_omega_contact[0], w.limit = physics::resolution_limit(ks, cm.law);
-        return w;
+        return physics::lane_resolution(r, 0, ks, cm.law);
       });
   ks.substeps = step.substeps;
   return step;
