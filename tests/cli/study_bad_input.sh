@@ -33,7 +33,7 @@ expect_error no_seed 'seed' "$(echo "$body" | sed '/^seed = /d')"
 expect_error bad_law 'law' "$(echo "$body" | sed 's/^law = "hertzdamp"/law = "glue"/')"
 expect_error syntax 'syntax' "$(echo "$body" | sed 's/^\[gaps\]/[gaps/')"
 expect_error bad_stepper 'unknown stepper' "$(echo "$body" | sed 's/^batch = 3/stepper = "euler"\nbatch = 3/')"
-expect_error bad_coarse ':26 \[analysis\].coarse, use "exclude".*"keep"' \
+expect_error bad_coarse ':26 \[analysis\].coarse, use "refine".*"exclude".*"keep"' \
   "$(echo "$body" | sed 's/^batch = 3/coarse = "drop"\nbatch = 3/')"
 expect_error bad_polarity '\[records\].polarity, use "both".*"recorded"' \
   "$(echo "$body" | sed 's|^suite = "builtin"|suite = "builtin"\npolarity = "negative"|')"
