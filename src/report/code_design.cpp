@@ -72,8 +72,9 @@ separation::BuildingCode building_code(const Data& r, int b, std::size_t model) 
   const results::Settings& s = r.res.settings;
   const std::string sec = fmt::format("structures.building{}", b);
   separation::BuildingCode c;
-  if (model == static_cast<std::size_t>(-1)) {
-    c.T = median_of(b == 1 ? r.mod.T1 : r.mod.T2);
+  if (model == static_cast<std::size_t>(-1)) {  // the pair's: its period as the codes take it (code_period)
+    std::string source;
+    c.T = (b == 1 ? r.mod.T1 : r.mod.T2).empty() ? NAN : code_period(r, b, source);
     c.height = median_of(b == 1 ? r.mod.h1 : r.mod.h2);
   } else {
     c.T = (b == 1 ? r.mod.T1 : r.mod.T2)[model];

@@ -32,6 +32,8 @@ std::string text_or(const results::Settings& s, std::string_view section, std::s
   return v && std::holds_alternative<std::string>(*v) ? std::get<std::string>(*v) : def;
 }
 
+}  // namespace
+
 // Building b's period as the codes take it: the study's own number where it states one (a fixed period, or a
 // distribution's median: /models/periods<b> holds that one slot), else the median of the sampled periods.
 double code_period(const Data& r, int b, std::string& source) {
@@ -49,8 +51,6 @@ double code_period(const Data& r, int b, std::string& source) {
   source = fmt::format("median of {} samples", T.size());
   return median_of(T);
 }
-
-}  // namespace
 
 std::vector<double> first_mode_gphi(int storeys, const std::vector<double>& h, model::StiffnessProfile profile) {
   // equal floor masses (the study splits each sample's mass equally, or takes floor_mass): the shape does not

@@ -234,6 +234,9 @@ struct CodeLevels {
   std::string levels_rule;  // how the levels were found, in words
 };
 std::optional<CodeLevels> code_levels(const Data& r);
+// Building b's (1, 2) period as the code rules take it: the study's own number where it states one (a fixed period, or
+// a distribution's median), else the median of the sampled periods; `source` says which.
+double code_period(const Data& r, int b, std::string& source);
 // Gamma1 phi1 at floors 1..storeys of a shear building of equal floor masses and `profile` storeys (1 for one storey)
 // (storey_heights: one for every storey, or one per storey)
 std::vector<double> first_mode_gphi(int storeys, const std::vector<double>& storey_heights,

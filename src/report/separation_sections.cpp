@@ -83,7 +83,8 @@ std::optional<CubicFit> metres_fit(const Data& r, std::vector<double> z, double 
 }
 
 // The design values of the rules for a pair study: the mean of each building's own uncoupled peak over every ok
-// analysis; median periods, damping and code gap over the models.
+// analysis; the periods as the codes take them (code_period: the study's stated period or median, else the sampled
+// median, as the rules at each contact level), median damping and code gap over the models.
 separation::DesignPair design_pair(const Data& r) {
   separation::DesignPair p;
   double s1 = 0, s2 = 0;
@@ -91,10 +92,19 @@ separation::DesignPair design_pair(const Data& r) {
   for (std::size_t i = 0; i < r.status.size(); ++i)
     if (r.ok(r.status[i])) s1 += r.peak_u1[i], s2 += r.peak_u2[i], ++n;
   p.u1 = n ? s1 / static_cast<double>(n) : NAN, p.u2 = n ? s2 / static_cast<double>(n) : NAN;
-  p.T1 = median(r.mod.T1), p.T2 = median(r.mod.T2);
+  std::string source;
+  p.T1 = r.mod.T1.empty() ? NAN : code_period(r, 1, source), p.T2 = r.mod.T2.empty() ? NAN : code_period(r, 2, source);
   p.zeta1 = median(zetas(r, 1)), p.zeta2 = median(zetas(r, 2));
   p.code_gap = median(r.mod.code_gap);
   return p;
+}
+
+// Where building b's period of the rules comes from (code_period): "as given", "the study's median (...)", "median
+// of N samples".
+std::string period_source(const Data& r, int b) {
+  std::string source = "no models";
+  if (!(b == 1 ? r.mod.T1 : r.mod.T2).empty()) code_period(r, b, source);
+  return source;
 }
 
 // The rules' gaps of model m for a grid study: each building's mean peak over the ok records of that model.
@@ -157,11 +167,12 @@ std::string pair_rules(const Data& r) {
       "average over the suite as response-history provisions take it (EN 1998-1 sec. 4.3.3.4.3: at least 7 "
       "records; ASCE 7-16 ch. 16: 11) — not the code's design displacement from its design spectrum; the rows "
       "marked \"design\" (when the study gives a design spectrum and the buildings' factors) use those. DDC uses T1 = {:.3f} s, "
-      "T2 = {:.3f} s, damping {:.3g} and {:.3g} (medians over the models): rho = {:.3f}. Interval: the two-stage "
+      "T2 = {:.3f} s ({}; {}), damping {:.3g} and {:.3g} (medians over the models): rho = {:.3f}. Interval: the two-stage "
       "bootstrap ({} replicates); Wilson: {}.\n\n"
       "| rule | clause | formula | separation m | P(pounding) | {:.0f} % interval | Wilson 95 % |\n"
       "|---|---|---|---|---|---|---|\n",
-      z.size(), p.u1, p.u2, p.T1, p.T2, p.zeta1, p.zeta2, separation::ddc_rho(p.T1, p.T2, p.zeta1, p.zeta2),
+      z.size(), p.u1, p.u2, p.T1, p.T2, period_source(r, 1), period_source(r, 2), p.zeta1, p.zeta2,
+      separation::ddc_rho(p.T1, p.T2, p.zeta1, p.zeta2),
       b.replicates, r.fixed_pair ? wilson_basis(r) : "the sampling error under these records only",
       100 * r.set.confidence);
   for (std::size_t i = 0; i < rules.size(); ++i) {
