@@ -123,15 +123,15 @@ std::string levels_section(const Data& r) {
   std::string s = "\n## Per contact level: impacts, peak forces, column shears\n\n";
   if (!a.usable(lanes)) return s + "Not given: the file has no per-element rows (impacts/element_impact_count).\n";
   s += fmt::format(
-      "Per contact element and gap ratio: P(hit) is the share of the ok analyses (records x models) with at least one "
+      "Per contact element and gap: P(hit) is the share of the ok analyses (records x models) with at least one "
       "impact at that element, the interval {}; the peak impact force is the element's largest contact force, its "
       "median and 84th percentile (numpy's linear interpolation) over the analyses with a hit. Where a floor strikes "
       "the neighbour's column the column's extra shears below and above the contact point are those of a fixed-fixed "
       "column under the peak force at xi (F (1 - xi)^2 (1 + 2 xi) and F xi^2 (3 - 2 xi), Karayannis and Favvata), "
       "not added to the storey shear of the drift. Forces in kN.\n\n",
       wilson_basis(r));
-  s += std::string("| element | kind | ") + r.axis_title() + " | P(hit) | 95 % interval | analyses hit | peak force median | peak force 84th "
-       "percentile | column shear below: median, 84th | column shear above: median, 84th |\n"
+  s += std::string("| element | kind | ") + r.axis_title() + " | P(hit) | 95 % interval | analyses hit | peak force median kN | peak force 84th "
+       "percentile kN | column shear below kN: median, 84th | column shear above kN: median, 84th |\n"
        "|---|---|---|---|---|---|---|---|---|---|\n";
   for (std::size_t e = 0; e < a.E; ++e) {
     const double xi = column_xi(sys, e);
