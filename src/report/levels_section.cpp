@@ -36,11 +36,12 @@ double column_xi(const results::SystemTable& sys, std::size_t e) {
   return NAN;
 }
 
-std::string element_kind(const results::SystemTable& sys, std::size_t e) {
+// `bridge`: a bridge study's elements are its expansion joints (deck to deck), not floors.
+std::string element_kind(const results::SystemTable& sys, std::size_t e, bool bridge) {
   const double xi = column_xi(sys, e);
   if (!std::isnan(xi)) return fmt::format("floor to column (xi {:.3g})", xi);
   if (sys.element_left_kind[e] == "wall" || sys.element_right_kind[e] == "wall") return "wall";
-  return "floor to floor";
+  return bridge ? "deck to deck" : "floor to floor";
 }
 
 // One element at one gap ratio: its hits among the ok analyses and the peak forces of those hit.
@@ -146,7 +147,8 @@ std::string levels_section(const Data& r) {
         below = kn(v.below * f50) + ", " + kn(v.below * f84), above = kn(v.above * f50) + ", " + kn(v.above * f84);
       }
       s += fmt::format("| {} | {} | {} | {} | [{}, {}] | {} of {} | {} | {} | {} | {} |\n", report::md_cell(sys.element_label[e]),
-                       element_kind(sys, e), gap_title(r, r.res.gap_ratios[g]),
+                       element_kind(sys, e, r.res.settings.find("bridge", "reference_gap") != nullptr),
+                       gap_title(r, r.res.gap_ratios[g]),
                        pct(100.0 * static_cast<double>(t.hits) / static_cast<double>(t.n)), pct(100 * w.lo),
                        pct(100 * w.hi), t.hits, t.n, kn(f50), kn(f84), below, above);
     }
