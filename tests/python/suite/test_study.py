@@ -244,3 +244,29 @@ def test_results_frame_of_per_analysis_arrays(tmp_path):
     assert np.array_equal(df["peak_closing"].to_numpy(), u.ravel(), equal_nan=True)
     assert df["record_id"].iloc[0] == "EQ1" and df["record_id"].iloc[-1] == "EQ25" and df["model"].iloc[-1] == 3871
     assert r.frame("models").shape[0] == 3872  # 1-D datasets: as before
+
+
+def test_histories_read_back_equal_the_study(tmp_path):
+    """[outputs] histories from Python (issue 45 item 5): Results.histories() returns each stored analysis with its
+    arrays, and its peaks are the study's per-model values for that analysis (the worst two by peak force)."""
+    h5py = need("h5py")
+    studies = os.path.join(HERE, "..", "..", "..", "studies")
+    text = open(os.path.join(studies, "quick-impacts.toml")).read()
+    text = text.replace("samples_per_pair = 4", "samples_per_pair = 1").replace(
+        "synthetic_only = true", "synthetic_only = true\nlimit = 3")
+    text += '\n[outputs]\nhistories = [{ worst = 2 }]\n'
+    out = tmp_path / "h.h5"
+    res = pounding.Study(text, base_dir=studies).run(out=str(out), progress=False)
+    assert res.exit_code == 0
+    hs = pounding.Results(str(out)).histories()
+    assert [h["n"] for h in hs] == [1, 2] and all(h["run"] == "coupled" for h in hs)
+    with h5py.File(out) as f:
+        force = f["impacts"]["peak_force"][()]  # [record][model][gap]
+        ratios = list(f["gaps"]["ratios"][()])
+        largest = np.sort(np.nan_to_num(force, nan=-1.0).ravel())[::-1][:2]
+        for h in hs:
+            g = ratios.index(h["gap_ratio"])
+            assert h["peak_force"] == force[h["record_row"], h["model"], g]  # bit for bit
+            assert h["u"].shape[1] == h["t"].size == h["force"].shape[1]
+            assert np.max(h["force"]) == h["peak_force"]  # an SDOF pair: its one element's largest force
+        assert sorted([h["peak_force"] for h in hs], reverse=True) == list(largest)
