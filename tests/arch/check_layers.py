@@ -28,6 +28,7 @@ ALLOWED = {
     "parallel": {"core"},
     "motion": {"kernel", "config", "core"},
     "sampling": {"physics", "model", "contact", "kernel", "config", "core"},
+    "inventory": {"physics", "model", "contact", "kernel", "motion", "config", "core"},
     "results": {"io", "core"},
     "study": {"physics", "contact", "model", "kernel", "motion", "sampling", "parallel", "results", "config", "core"},
     "analysis": {"results", "motion", "kernel", "config", "core"},  # motion: design spectra (code_displacement)
