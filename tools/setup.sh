@@ -13,7 +13,7 @@ cd "$here"
 
 packages=(g++ make cmake ninja-build pkg-config git
           libeigen3-dev libopenmpi-dev openmpi-bin libhdf5-dev zlib1g-dev libboost-random-dev libgtest-dev
-          libcli11-dev libtomlplusplus-dev libfmt-dev libbenchmark-dev
+          libcli11-dev libtomlplusplus-dev libfmt-dev libbenchmark-dev nlohmann-json3-dev
           python3 python3-numpy python3-scipy python3-matplotlib python3-h5py python3-pandas python3-pytest
           python3-dev pybind11-dev
           chromium)  # chromium: the HTML report's browser test (cli.report_html_browser)
