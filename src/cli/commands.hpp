@@ -23,6 +23,7 @@ void add_results(CLI::App& app);   // src/cli/commands/results.cpp (the datasets
 void add_study_reference(CLI::App& app);  // src/cli/commands/study_reference.cpp (docs/study-reference.md)
 void add_spectrum(CLI::App& app);  // src/cli/commands/spectrum.cpp (a code design spectrum at given periods)
 void add_motions(CLI::App& app);  // src/cli/commands/motions.cpp (spatially varying support motions)
+void add_inventory(CLI::App& app);  // src/cli/commands/inventory.cpp (building inventories, ELF design)
 void add_modes(CLI::App& app);     // src/cli/commands/modes.cpp (modes and Rayleigh damping of a shear building)
 void add_stiffness(CLI::App& app);   // src/cli/commands/stiffness.cpp (impact-stiffness rules)
 void add_similitude(CLI::App& app);  // src/cli/commands/stiffness.cpp (shake-table model scale factors)

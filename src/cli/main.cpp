@@ -24,6 +24,7 @@ int main(int argc, char** argv) {
   pounding::cli::add_sample(app);
   pounding::cli::add_spectrum(app);
   pounding::cli::add_modes(app);
+  pounding::cli::add_inventory(app);
   pounding::cli::add_stiffness(app);
   pounding::cli::add_similitude(app);
   pounding::cli::add_replay(app);

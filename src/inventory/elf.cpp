@@ -158,11 +158,16 @@ double asce7_cu(double sd1) {
   return t.back().second;
 }
 
-SeismicCoefficient asce7_cs(double sds, double sd1, double s1, double tl, double T, double r, double ie) {
+SeismicCoefficient asce7_cs(double sds, double sd1, double s1, double tl, double T, double r, double ie, bool exception_2) {
   const double ri = r / ie;
   SeismicCoefficient c{sds / ri, "SDS/(R/Ie)"};
-  const double cap = T <= tl ? sd1 / (T * ri) : sd1 * tl / (T * T * ri);
-  if (cap < c.cs) c = {cap, T <= tl ? "SD1/(T R/Ie)" : "SD1 TL/(T^2 R/Ie)"};
+  const double factor = exception_2 ? 1.5 : 1.0;
+  const double cap = factor * (T <= tl ? sd1 / (T * ri) : sd1 * tl / (T * T * ri));
+  const bool capped = !exception_2 || T > 1.5 * sd1 / sds;
+  if (capped && cap < c.cs)
+    c = {cap, std::string(exception_2 ? "1.5 " : "") + (T <= tl ? "SD1/(T R/Ie)" : "SD1 TL/(T^2 R/Ie)")};
+  else if (exception_2 && !capped)
+    c.governs += " (11.4.8 exception 2, T <= 1.5 TS)";
   const double floor1 = 0.044 * sds * ie;
   if (std::max(floor1, 0.01) > c.cs) c = floor1 >= 0.01 ? SeismicCoefficient{floor1, "0.044 SDS Ie"} : SeismicCoefficient{0.01, "0.01"};
   if (s1 >= 0.6 && 0.5 * s1 / ri > c.cs) c = {0.5 * s1 / ri, "0.5 S1/(R/Ie)"};
@@ -172,7 +177,8 @@ SeismicCoefficient asce7_cs(double sds, double sd1, double s1, double tl, double
 double asce7_k(double T) { return T <= 0.5 ? 1.0 : T >= 2.5 ? 2.0 : 1.0 + (T - 0.5) / 2.0; }
 
 void set_design_values(DesignInput& in, const Asce7MapValues& maps) {
-  const Asce7SiteCoefficients c = asce7_site_coefficients(maps);
+  const Asce7SiteCoefficients c = asce7_site_coefficients(maps, true);
+  in.exception_2 = c.exception_2;
   in.sds = c.sds;
   in.sd1 = c.sd1;
   in.s1 = maps.s1;
@@ -195,7 +201,7 @@ DesignedBuilding design_elf(const DesignInput& in) {
   b.period = in.period > 0 ? in.period : b.cu * b.ta;
   b.period_rule = in.period > 0 ? "measured" : "Cu Ta";
   b.design_period = std::min(b.period, b.cu * b.ta);
-  b.cs = asce7_cs(in.sds, in.sd1, in.s1, in.tl, b.design_period, b.system->r, in.ie);
+  b.cs = asce7_cs(in.sds, in.sd1, in.s1, in.tl, b.design_period, b.system->r, in.ie, in.exception_2);
   const double unit = (in.unit_weight > 0 ? in.unit_weight : b.system->unit_weight) * 1e3;  // Pa
   b.floor_mass.assign(n, in.plan_area * unit / g);
   b.weight = g * b.floor_mass.front() * static_cast<double>(n);

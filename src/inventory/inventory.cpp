@@ -239,7 +239,11 @@ DesignInput design_input(const Building& b, double ss, double s1, double tl) {
   in.where = b.where;
   Asce7MapValues maps;
   maps.ss = ss, maps.s1 = s1, maps.site = b.site, maps.tl = tl;
-  set_design_values(in, maps);
+  try {
+    set_design_values(in, maps);
+  } catch (const InputError& e) {
+    throw InputError(e.what_part(), b.where + " " + e.where(), e.fix());
+  }
   return in;
 }
 

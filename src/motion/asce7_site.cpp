@@ -40,7 +40,7 @@ Asce7SiteClass parse_asce7_site_class(std::string_view name, const std::string& 
 
 std::string_view to_string(Asce7SiteClass c) { return site_names.at(static_cast<std::size_t>(c)); }
 
-Asce7SiteCoefficients asce7_site_coefficients(const Asce7MapValues& m) {
+Asce7SiteCoefficients asce7_site_coefficients(const Asce7MapValues& m, bool exception_2) {
   require_range(m.ss, 1e-6, 5.0, "Ss", "(0, 5] g (the mapped MCER Sa at 0.2 s)");
   require_range(m.s1, 1e-6, 3.0, "S1", "(0, 3] g (the mapped MCER Sa at 1 s)");
   using S = Asce7SiteClass;
@@ -55,7 +55,8 @@ Asce7SiteCoefficients asce7_site_coefficients(const Asce7MapValues& m) {
     throw InputError(fmt::format("Table 11.4-1 has no Fa for site class E at Ss = {:g} g: it gives 1.3 at 0.75 g and "
                                  "'see 11.4.8' at 1.0 g, so there is nothing to interpolate toward", m.ss),
                      "Ss", specific_fix);
-  if ((m.site == S::D || m.site == S::D_default || m.site == S::E) && m.s1 >= 0.2)
+  const bool d_exception = exception_2 && (m.site == S::D || m.site == S::D_default) && m.s1 >= 0.2;
+  if ((m.site == S::D || m.site == S::D_default || m.site == S::E) && m.s1 >= 0.2 && !d_exception)
     throw InputError(
         fmt::format("site class {} with S1 = {:g} g >= 0.2 needs the site-specific procedure of ASCE 7-16 11.4.8 "
                     "(Table 11.4-2 gives Fv there for TS only; {})",
@@ -86,6 +87,7 @@ Asce7SiteCoefficients asce7_site_coefficients(const Asce7MapValues& m) {
   c.fv = interpolate(s1_cols, fv[row], m.s1);
   c.sms = c.fa * m.ss, c.sm1 = c.fv * m.s1;
   c.sds = 2.0 / 3.0 * c.sms, c.sd1 = 2.0 / 3.0 * c.sm1;
+  c.exception_2 = d_exception;
   return c;
 }
 

@@ -174,3 +174,28 @@ TEST(Elf, PDeltaSpringOnACyclicPath) {
   }
   EXPECT_LT(worst, 1e-8 * b.strength[i]);
 }
+
+// 11.4.8 exception 2 (site class D, S1 >= 0.2): Ss 1.5, S1 0.6 on D: Fa 1.0, Fv 1.7 (for TS only): SDS 1.0, SD1 0.68,
+// TS 0.68 s. The worked example's T = Cu Ta = 0.791 s <= 1.5 TS = 1.02 s: Cs = SDS/(R/Ie) = 0.125 (no 12.8-3 cap).
+// A 12-storey frame: hn 38.4 m, Ta = 0.0466 x 38.4^0.9 = 0.0466 x 26.662 = 1.24246 s, T = 1.73945 s > 1.02 s:
+// Cs = 1.5 SD1/(T R/Ie) = 1.5 x 0.68 / (1.73945 x 8) = 0.073299.
+TEST(Elf, SiteClassDByException2) {
+  DesignInput in = worked_example();
+  Asce7MapValues maps;
+  maps.ss = 1.5, maps.s1 = 0.6, maps.site = Asce7SiteClass::D, maps.tl = 8;
+  set_design_values(in, maps);
+  EXPECT_TRUE(in.exception_2);
+  EXPECT_NEAR(in.sds, 1.0, 1e-12);
+  EXPECT_NEAR(in.sd1, 0.68, 1e-12);
+  const DesignedBuilding low = design_elf(in);
+  EXPECT_NEAR(low.cs.cs, 0.125, 1e-12);
+  EXPECT_NE(low.cs.governs.find("exception 2"), std::string::npos) << low.cs.governs;
+  in.storeys = 12;
+  const DesignedBuilding tall = design_elf(in);
+  EXPECT_NEAR(tall.period, 1.73945, 5e-5);
+  EXPECT_NEAR(tall.cs.cs, 1.5 * 0.68 / (tall.period * 8), 1e-12);
+  EXPECT_NEAR(tall.cs.cs, 0.073299, 5e-6);
+  EXPECT_EQ(tall.cs.governs, "1.5 SD1/(T R/Ie)");
+  maps.site = Asce7SiteClass::E;  // exception 3 is not taken: refused
+  EXPECT_THROW(set_design_values(in, maps), InputError);
+}

@@ -7,6 +7,9 @@
 //             A measured period replaces it (the design forces then use min(measured, Cu Ta), as 12.8.2 says).
 //   12.8.1.1  Cs = SDS / (R / Ie), at most SD1 / (T R / Ie) (T <= TL) or SD1 TL / (T^2 R / Ie) (T > TL), at least
 //             max(0.044 SDS Ie, 0.01) and, where S1 >= 0.6 g, at least 0.5 S1 / (R / Ie).  V = Cs W (12.8-1).
+//   11.4.8    site class D with S1 >= 0.2: exception 2 (Cs by 12.8-2 up to 1.5 TS, 1.5 x 12.8-3/4 beyond), the
+//             engineer's usual way out of the site-specific procedure for ELF designs; site class E with S1 >= 0.2
+//             and F are refused (asce7_site.hpp).
 //   12.8.3    Fx = Cvx V, Cvx = wx hx^k / sum wi hi^k, k = 1 (T <= 0.5 s), 2 (T >= 2.5 s), linear between.
 //   12.8.4    Vx = sum of Fi for i >= x.
 //   Table 12.2-1  R, Omega0, Cd of the system;  Table 12.12-1  the allowable storey drift (risk category I/II).
@@ -60,7 +63,10 @@ struct SeismicCoefficient {
   double cs = 0;
   std::string governs;
 };
-SeismicCoefficient asce7_cs(double sds, double sd1, double s1, double tl, double period, double r, double ie);
+// exception_2 (11.4.8, site class D with S1 >= 0.2): eq. 12.8-2 up to T = 1.5 TS, 1.5 x eqs. 12.8-3/4 beyond
+// ("1.5 SD1/(T R/Ie)", ...); the lower bounds as always.
+SeismicCoefficient asce7_cs(double sds, double sd1, double s1, double tl, double period, double r, double ie,
+                            bool exception_2 = false);
 // 12.8.3's exponent k at period T.
 double asce7_k(double period);
 
@@ -73,6 +79,7 @@ struct DesignInput {
   double period = 0;                  // s, a measured T1; 0: Cu Ta
   // The design values (g) and TL (s): from the maps and the site class by design_values(), or given.
   double sds = 0, sd1 = 0, s1 = 0, tl = 8;
+  bool exception_2 = false;           // site class D with S1 >= 0.2: Cs by 11.4.8 exception 2
   double ie = 1.0;                    // importance factor (Table 1.5-2)
   DesignLevel level = DesignLevel::high;
   double overstrength = 0;            // 0: the system's Omega0

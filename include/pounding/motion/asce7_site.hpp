@@ -39,11 +39,16 @@ struct Asce7MapValues {
 
 struct Asce7SiteCoefficients {
   double fa = 0, fv = 0, sms = 0, sm1 = 0, sds = 0, sd1 = 0;
+  // Site class D with S1 >= 0.2 taken by 11.4.8 exception 2 (asked for with `exception_2`): Fv is Table 11.4-2's
+  // value "for TS only", and the ELF's Cs is eq. 12.8-2 up to T = 1.5 TS and 1.5 x eqs. 12.8-3/4 beyond.
+  bool exception_2 = false;
 };
 
 // Fa and Fv and the spectral values; InputError (where: "Ss", "S1" or "site class") for the refused cases above
 // and for Ss, S1 outside their ranges.
-Asce7SiteCoefficients asce7_site_coefficients(const Asce7MapValues& m);
+// exception_2: site class D (and D-default) with S1 >= 0.2 is designed by 11.4.8 exception 2 (ELF only) instead of
+// being refused.
+Asce7SiteCoefficients asce7_site_coefficients(const Asce7MapValues& m, bool exception_2 = false);
 // The design spectrum of those values (SDS, SD1, TL), validated.
 Asce7Spectrum asce7_from_maps(const Asce7MapValues& m);
 // "Ss = 1.5 g, S1 = 0.6 g, site class C: Fa = 1.2, Fv = 1.4 (Tables 11.4-1/11.4-2), SMS = .., SM1 = .."
