@@ -23,18 +23,19 @@ constexpr double w_rc = 8.5, w_steel = 6.0, w_masonry = 10.0;
 
 // R, Omega0, Cd from Table 12.2-1; drift limits from Table 12.12-1 (risk category I/II): 0.020 hsx for "all other
 // structures", 0.007 hsx for masonry shear walls other than cantilevers.
-constexpr std::array<SystemRow, 11> system_table{{
-    {"rc-smf", "special reinforced concrete moment frame", 8, 3, 5.5, ct_rc_mf, x_rc_mf, 0.020, w_rc, Material::concrete, 0.05},
-    {"rc-imf", "intermediate reinforced concrete moment frame", 5, 3, 4.5, ct_rc_mf, x_rc_mf, 0.020, w_rc, Material::concrete, 0.05},
-    {"rc-omf", "ordinary reinforced concrete moment frame", 3, 3, 2.5, ct_rc_mf, x_rc_mf, 0.020, w_rc, Material::concrete, 0.05},
-    {"rc-special-wall", "special reinforced concrete shear walls (building frame)", 6, 2.5, 5, ct_other, x_other, 0.020, w_rc + 0.5, Material::concrete, 0.05},
-    {"rc-ordinary-wall", "ordinary reinforced concrete shear walls (building frame)", 5, 2.5, 4.5, ct_other, x_other, 0.020, w_rc + 0.5, Material::concrete, 0.05},
-    {"steel-smf", "special steel moment frame", 8, 3, 5.5, ct_steel_mf, x_steel_mf, 0.020, w_steel, Material::steel, 0.03},
-    {"steel-imf", "intermediate steel moment frame", 4.5, 3, 4, ct_steel_mf, x_steel_mf, 0.020, w_steel, Material::steel, 0.03},
-    {"steel-omf", "ordinary steel moment frame", 3.5, 3, 3, ct_steel_mf, x_steel_mf, 0.020, w_steel, Material::steel, 0.03},
-    {"steel-scbf", "special steel concentrically braced frame (building frame)", 6, 2, 5, ct_other, x_other, 0.020, w_steel, Material::steel, 0.03},
-    {"rm-ordinary-wall", "ordinary reinforced masonry shear walls (bearing wall)", 2, 2.5, 1.75, ct_other, x_other, 0.007, w_masonry, Material::masonry, 0.02},
-    {"urm-wall", "ordinary plain (unreinforced) masonry shear walls (bearing wall)", 1.5, 2.5, 1.25, ct_other, x_other, 0.007, w_masonry, Material::masonry, 0.02},
+constexpr std::array<SystemRow, 12> system_table{{
+    {"rc-smf", "special reinforced concrete moment frame", 8, 3, 5.5, ct_rc_mf, x_rc_mf, 0.020, w_rc, Material::concrete, 0.05, "rc-smf"},
+    {"rc-imf", "intermediate reinforced concrete moment frame", 5, 3, 4.5, ct_rc_mf, x_rc_mf, 0.020, w_rc, Material::concrete, 0.05, "rc-smf"},
+    {"rc-omf", "ordinary reinforced concrete moment frame", 3, 3, 2.5, ct_rc_mf, x_rc_mf, 0.020, w_rc, Material::concrete, 0.05, "rc-smf"},
+    {"rc-special-wall", "special reinforced concrete shear walls (building frame)", 6, 2.5, 5, ct_other, x_other, 0.020, w_rc + 0.5, Material::concrete, 0.05, "rc-special-wall"},
+    {"rc-ordinary-wall", "ordinary reinforced concrete shear walls (building frame)", 5, 2.5, 4.5, ct_other, x_other, 0.020, w_rc + 0.5, Material::concrete, 0.05, "rc-special-wall"},
+    {"steel-smf", "special steel moment frame", 8, 3, 5.5, ct_steel_mf, x_steel_mf, 0.020, w_steel, Material::steel, 0.03, "steel-smf"},
+    {"steel-imf", "intermediate steel moment frame", 4.5, 3, 4, ct_steel_mf, x_steel_mf, 0.020, w_steel, Material::steel, 0.03, "steel-smf"},
+    {"steel-omf", "ordinary steel moment frame", 3.5, 3, 3, ct_steel_mf, x_steel_mf, 0.020, w_steel, Material::steel, 0.03, "steel-smf"},
+    {"steel-scbf", "special steel concentrically braced frame (building frame)", 6, 2, 5, ct_other, x_other, 0.020, w_steel, Material::steel, 0.03, "steel-scbf"},
+    {"rm-special-wall", "special reinforced masonry shear walls (bearing wall)", 5, 2.5, 3.5, ct_other, x_other, 0.007, w_masonry, Material::masonry, 0.02, "rm-special-wall"},
+    {"rm-ordinary-wall", "ordinary reinforced masonry shear walls (bearing wall)", 2, 2.5, 1.75, ct_other, x_other, 0.007, w_masonry, Material::masonry, 0.02, "rm-special-wall"},
+    {"urm-wall", "ordinary plain (unreinforced) masonry shear walls (bearing wall)", 1.5, 2.5, 1.25, ct_other, x_other, 0.007, w_masonry, Material::masonry, 0.02, "rm-special-wall"},
 }};
 
 std::string system_keys() {
@@ -216,10 +217,13 @@ DesignedBuilding design_elf(const DesignInput& in) {
   for (std::size_t i = 0; i < n; ++i) b.fx[i] = b.base_shear * whk[i] / sum;
   for (std::size_t i = n; i-- > 0;) b.vx[i] = above += b.fx[i];
   b.stiffness = scaled_to_period(b.floor_mass, b.vx, b.period);
+  b.reference = &system_row(b.system->reference, in.where + " system");
+  b.cs_reference = asce7_cs(in.sds, in.sd1, in.s1, in.tl, b.design_period, b.reference->r, in.ie, in.exception_2);
   b.strength_factor = strength_factor(in.level);
-  b.overstrength = in.overstrength > 0 ? in.overstrength : b.system->omega0;
+  b.overstrength = in.overstrength > 0 ? in.overstrength : b.reference->omega0;
   b.strength.resize(n);
-  for (std::size_t i = 0; i < n; ++i) b.strength[i] = b.overstrength * b.strength_factor * b.vx[i];
+  const double capacity = b.overstrength * b.strength_factor * b.cs_reference.cs * b.weight;
+  for (std::size_t i = 0; i < n; ++i) b.strength[i] = capacity * b.vx[i] / b.base_shear;
   b.alpha = b.system->alpha;
   b.p_delta = in.p_delta;
   add_p_delta(b);
@@ -232,8 +236,10 @@ std::vector<std::string> describe(const DesignedBuilding& b) {
                             "({}) at {:.4g} s, W = {:.4g} MN, V = {:.4g} MN, k = {:.4g}",
                             b.system->key, b.system->description, b.floor_mass.size(), b.hn, b.ta, b.cu, b.period,
                             b.period_rule, b.cs.cs, b.cs.governs, b.design_period, b.weight / 1e6, b.base_shear / 1e6, b.k));
-  out.push_back(fmt::format("strength = {:.3g} (overstrength) x {:.3g} (design level) x Vx; alpha {:.3g}{}", b.overstrength,
-                            b.strength_factor, b.alpha, b.p_delta ? "; P-Delta in the storey springs" : ""));
+  out.push_back(fmt::format("capacity = {:.3g} (overstrength) x {:.3g} (design level) x Cs {:.4g} of {} ({}) x W = {:.4g} MN, "
+                            "over the storeys as Vx; alpha {:.3g}{}",
+                            b.overstrength, b.strength_factor, b.cs_reference.cs, b.reference->key, b.cs_reference.governs,
+                            b.strength.front() / 1e6, b.alpha, b.p_delta ? "; P-Delta in the storey springs" : ""));
   for (std::size_t i = 0; i < b.floor_mass.size(); ++i)
     out.push_back(fmt::format("storey {:>3}  level {:>7.3f} m  mass {:>10.4g} kg  Fx {:>10.4g} N  Vx {:>10.4g} N  "
                               "k {:>10.4g} N/m  Vy {:>10.4g} N",

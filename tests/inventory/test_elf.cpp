@@ -122,6 +122,21 @@ TEST(Elf, MeasuredPeriodAndEras) {
   EXPECT_NEAR(b.strength[0], 3 * 0.5 * b.vx[0], 1e-9 * b.vx[0]);
 }
 
+// An ordinary frame of a pre-code era takes the capacity of the modern special frame (its family's reference) at the
+// same period, times Omega0 3 and the era factor 1/4; its own R = 3 sets its design forces only.
+TEST(Elf, OldBuildingsTakeTheirFamilysModernCapacity) {
+  DesignInput in = worked_example();
+  in.system = "rc-omf";
+  in.level = DesignLevel::pre_code;
+  const DesignedBuilding b = design_elf(in);
+  EXPECT_NEAR(b.cs.cs, 0.25282, 5e-5);  // SD1/(T R/Ie) = 0.6 / (0.79108 x 3) with its own R = 3
+  EXPECT_EQ(b.reference->key, "rc-smf");
+  EXPECT_NEAR(b.cs_reference.cs, 0.094807, 5e-6);    // the worked example's Cs
+  EXPECT_NEAR(b.strength[0], 3 * 0.25 * 0.0948068 * b.weight, 1e-5 * b.strength[0]);
+  in.system = "urm-wall";
+  EXPECT_EQ(design_elf(in).reference->key, "rm-special-wall");
+}
+
 TEST(Elf, BadInputNamesTheField) {
   auto refused = [](DesignInput in, const char* field) {
     try {

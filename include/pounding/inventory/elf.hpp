@@ -16,8 +16,13 @@
 // The shear stick (stated rules, not code clauses):
 //   floor mass = plan area x unit weight / g (unit weight per system, kPa, overridable); the stiffness profile is
 //   proportional to the storey shears Vx (a nearly straight first mode) scaled so that the first period is T
-//   (model::shear_stick_modes); storey strength Vy,x = overstrength x era factor x Vx, overstrength Omega0 of Table
-//   12.2-1 unless given, the era factor from the design level (strength_factor(), HAZUS-MH design levels).
+//   (model::shear_stick_modes); storey strength Vy,x = overstrength x era factor x Cs,ref W x Vx / V: the capacity
+//   of the modern ductile system of the building's family (concrete frames: rc-smf, concrete walls:
+//   rc-special-wall, steel frames: steel-smf, braces: steel-scbf, masonry: rm-special-wall) designed at the same
+//   period and site, times its Omega0 unless given, times the era factor of the design level (strength_factor():
+//   1, 1/2, 1/4, 1/4 for HAZUS-MH's high, moderate, low and pre-code levels). The system's own R (a low R for an
+//   ordinary system) sets the design forces and Cd, not the capacity: a pre-code URM wall building designed today
+//   with R = 1.5 would be several times stronger than the buildings it stands for.
 //   P-Delta (an option): storey x carries the gravity load above it, P_x = g sum_{i >= x} m_i, whose geometric
 //   stiffness P_x / h_x is subtracted from the storey's spring. For the bilinear kinematic spring this is exact as a
 //   re-parametrisation: k' = k - g_x, alpha' = (alpha k - g_x) / k', Fy' = Fy k' / k gives F'(d) = F(d) - g_x d on
@@ -44,6 +49,7 @@ struct SystemRow {
   double unit_weight;            // kPa: floor weight per plan area (research/inventory-and-design.md section 2)
   Material material;
   double alpha;                  // post-yield stiffness ratio of its storeys
+  std::string_view reference;    // the modern ductile system of its family whose design sets the capacity
 };
 std::span<const SystemRow> systems();
 // The row of `key`; InputError naming `where` and listing the known keys otherwise.
@@ -95,6 +101,8 @@ struct DesignedBuilding {
   double design_period = 0;  // the period of the design forces, s
   double sds = 0, sd1 = 0;
   SeismicCoefficient cs;
+  const SystemRow* reference = nullptr;  // the system whose capacity the storeys take
+  SeismicCoefficient cs_reference;
   double weight = 0, base_shear = 0, k = 0;  // N, N, -
   std::vector<double> storey_height, floor_level;  // m (floor_level above the ground)
   std::vector<double> floor_mass, fx, vx;          // kg, N, N

@@ -67,13 +67,13 @@ void check(const CheckOpts& o) {
   }
   fmt::print("design: ASCE 7-16 ELF at Ss = {} g, S1 = {} g, TL = {} s on each building's site class; T = Cu Ta unless "
              "measured; strength = Omega0 x design-level factor x Vx (docs/inventory.md)\n", o.site.ss, o.site.s1, o.site.tl);
-  fmt::print("{:<12} {:<17} {:>3} {:>7} {:<9} {:<4} {:>7} {:>7} {:>9}\n", "id", "system", "n", "hn m", "level", "site", "T s",
-             "Cs", "V kN");
+  fmt::print("{:<12} {:<17} {:>3} {:>7} {:<9} {:<4} {:>7} {:>7} {:>9} {:>7}\n", "id", "system", "n", "hn m", "level", "site",
+             "T s", "Cs", "V kN", "Vy/W");
   for (std::size_t i = 0; i < inv.buildings.size(); ++i) {
     const auto& b = inv.buildings[i];
     const auto& d = designed[i];
-    fmt::print("{:<12} {:<17} {:>3} {:>7.2f} {:<9} {:<4} {:>7.3f} {:>7.4f} {:>9.0f}\n", b.id, b.system, b.storeys, d.hn,
-               to_string(b.level), to_string(b.site), d.period, d.cs.cs, d.base_shear / 1e3);
+    fmt::print("{:<12} {:<17} {:>3} {:>7.2f} {:<9} {:<4} {:>7.3f} {:>7.4f} {:>9.0f} {:>7.4f}\n", b.id, b.system, b.storeys,
+               d.hn, to_string(b.level), to_string(b.site), d.period, d.cs.cs, d.base_shear / 1e3, d.strength.front() / d.weight);
   }
   fmt::print("\n{:<12} {:<12} {:<12} {:>8} {:>10} {}\n", "a", "b", "kind", "gap m", "facing m", "floors");
   for (const auto& p : pairs)
