@@ -65,8 +65,9 @@ void check(const CheckOpts& o) {
     for (const std::string& k : inv.ignored) s += (s.empty() ? "" : ", ") + k;
     fmt::print("not used: {}\n", s);
   }
-  fmt::print("design: ASCE 7-16 ELF at Ss = {} g, S1 = {} g, TL = {} s on each building's site class; T = Cu Ta unless "
-             "measured; strength = Omega0 x design-level factor x Vx (docs/inventory.md)\n", o.site.ss, o.site.s1, o.site.tl);
+  fmt::print("design: ASCE 7-16 ELF at Ss = {} g, S1 = {} g, TL = {} s on each building's site class (site class D with "
+             "S1 >= 0.2 g by 11.4.8 exception 2); T = Cu Ta unless measured; Vy/W = Omega0 x design-level factor x Cs of the "
+             "family's modern ductile system (docs/inventory.md)\n", o.site.ss, o.site.s1, o.site.tl);
   fmt::print("{:<12} {:<17} {:>3} {:>7} {:<9} {:<4} {:>7} {:>7} {:>9} {:>7}\n", "id", "system", "n", "hn m", "level", "site",
              "T s", "Cs", "V kN", "Vy/W");
   for (std::size_t i = 0; i < inv.buildings.size(); ++i) {
