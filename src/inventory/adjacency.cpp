@@ -90,7 +90,8 @@ std::vector<Adjacency> from_footprints(const Inventory& inv, const AdjacencyRule
       const double gap = geo::bg::distance(poly[i], poly[j]);
       if (gap > rules.threshold) continue;
       Adjacency adj;
-      adj.a = i, adj.b = j, adj.gap = gap < 1e-3 ? 0.0 : gap;
+      // to the millimetre: positions written to 1e-9 degrees are good to 0.1 mm each, a gap to about 0.2 mm
+      adj.a = i, adj.b = j, adj.gap = std::round(gap * 1e3) / 1e3;
       adj.frontage = facing_length(poly[i], poly[j], gap + 1e-3);
       adj.kind = adj.frontage < rules.min_frontage ? Adjacency::Kind::corner
                  : adj.gap == 0                    ? Adjacency::Kind::wall

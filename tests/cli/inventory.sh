@@ -7,7 +7,7 @@
 #  - bad input: one " ERROR:" line naming the file:row or feature and the field, exit 2, no output left.
 # Args: <pounding binary> <source dir>
 set -euo pipefail
-bin=$1; src=$2
+bin=$(cd "$(dirname "$1")" && pwd)/$(basename "$1"); src=$(cd "$2" && pwd)
 tmp=$(mktemp -d); trap 'rm -rf "$tmp"' EXIT
 fail() { echo "FAIL: $*" >&2; exit 1; }
 py=/usr/bin/python3; [ -x "$py" ] || py=python3
@@ -44,11 +44,22 @@ grep -q "Cu = 1.45" "$tmp/steel_smf.out" || fail "steel_smf: Cu is not 1.45: $(h
 "$bin" inventory check "$src/studies/street.geojson" --pairs-csv "$tmp/pairs.csv" > "$tmp/street.out" || fail "check street"
 grep -q "14 buildings, 13 adjacent pairs" "$tmp/street.out" || fail "street: $(head -1 "$tmp/street.out")"
 [ "$(grep -c ',shared wall,' "$tmp/pairs.csv")" = 5 ] || fail "street: not 5 shared walls: $(cat "$tmp/pairs.csv")"
-# 105-107: 5 cm apart (positions written to 1e-9 degrees: 0.1 mm), facing 22 m, floors 3.0 m against 3.2 m
-awk -F, '$1 == "105-main" && $2 == "107-main" && $3 == "gap" && ($4 - 0.05)^2 < 4e-8 && $5 == 22 && $6 == "no" && $7 == 1.2 { ok = 1 }
+# 105-107: 5 cm apart (to the millimetre), facing 22 m, floors 3.0 m against 3.2 m
+awk -F, '$1 == "105-main" && $2 == "107-main" && $3 == "gap" && $4 == 0.05 && $5 == 22 && $6 == "no" && $7 == 1.2 { ok = 1 }
          END { exit !ok }' "$tmp/pairs.csv" || fail "street: 105-107 row: $(cat "$tmp/pairs.csv")"
 grep -q '^111-main,113-main,shared wall,0.0000,18.000,yes,0.000$' "$tmp/pairs.csv" || fail "street: the twins"
 echo "street: 14 buildings, 13 pairs, 5 shared walls"
+
+# a pair as a study: written, run (2 samples per record), the designed period and the measured gap in the results
+(cd "$tmp" && "$bin" inventory pair "$src/studies/street.geojson" --a 107-main --b 111-main --out pair.toml --samples 2 \
+   > pair.out) || fail "pair: $(cat "$tmp/pair.out")"
+grep -q '^existing = 0.1$' "$tmp/pair.toml" || fail "pair: the measured gap 0.1 m is not the existing gap: $(grep existing "$tmp/pair.toml")"
+grep -q '^mcer = true' "$tmp/pair.toml" || fail "pair: not at MCE shaking"
+(cd "$tmp" && "$bin" run pair.toml --quiet > run.out 2>&1) || fail "pair study: $(tail -3 "$tmp/run.out")"
+"$bin" report "$tmp/107-main--111-main.h5" > "$tmp/pair.md"
+grep -q "lognormal(median 1.20762 s" "$tmp/pair.md" || fail "pair: 107-main's period (Cu Ta = 1.2076 s) is not in the report"
+grep -q "At the existing gap" "$tmp/pair.md" || fail "pair: no answer at the existing gap"
+echo "pair: 107-main beside 111-main written as a study and run"
 
 # synth: deterministic in the seed
 "$bin" inventory synth --buildings 300 --seed 7 --out "$tmp/a.geojson" > /dev/null

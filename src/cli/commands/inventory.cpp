@@ -19,6 +19,7 @@
 #include "pounding/core/files.hpp"
 #include "pounding/inventory/elf.hpp"
 #include "pounding/inventory/inventory.hpp"
+#include "pounding/inventory/pair_study.hpp"
 #include "pounding/inventory/synth.hpp"
 
 namespace pounding::cli {
@@ -148,6 +149,54 @@ void add_design(CLI::App* inv) {
   c->callback([o] { design(*o); });
 }
 
+struct PairOpts {
+  std::string file, a, b, out;
+  inventory::PairStudyOptions study;
+  inventory::AdjacencyRules rules;
+  inventory::EraRule eras;
+};
+
+void pair(const PairOpts& o) {
+  files::check_output_path(o.out, "--out");
+  files::check_output_not_input(o.out, {o.file}, "--out");
+  const inventory::Inventory inv = inventory::read_inventory(o.file, o.eras);
+  for (const inventory::Adjacency& p : inventory::adjacent_pairs(inv, o.rules)) {
+    const std::string& x = inv.buildings[p.a].id;
+    const std::string& y = inv.buildings[p.b].id;
+    if ((x == o.a && y == o.b) || (x == o.b && y == o.a)) {
+      files::write_text_atomically(o.out, inventory::pair_study_text(inv, p, o.study));
+      fmt::print("wrote the study of {} beside {} to {}: pounding run {}\n", x, y, o.out, o.out);
+      return;
+    }
+  }
+  throw InputError(fmt::format("{} and {} are not an adjacent pair of {}", o.a, o.b, o.file), "--pair",
+                   "give two ids that `pounding inventory check` lists as a pair");
+}
+
+void add_pair(CLI::App* inv) {
+  auto o = std::make_shared<PairOpts>();
+  auto* c = inv->add_subcommand("pair", "write one adjacent pair of an inventory as a pair study");
+  c->add_option("file", o->file, "the inventory")->required();
+  c->add_option("--a", o->a, "the first building's id")->required();
+  c->add_option("--b", o->b, "the second building's id")->required();
+  c->add_option("--out", o->out, "the study file to write (.toml)")->required();
+  c->add_option("--ss", o->study.ss, "mapped MCER Sa at 0.2 s, g (default 1.5)");
+  c->add_option("--s1", o->study.s1, "mapped MCER Sa at 1 s, g (default 0.6)");
+  c->add_option("--tl", o->study.tl, "TL, s (default 8)");
+  c->add_option("--beta-period", o->study.beta_period, "lognormal dispersion of the period (default 0.25)");
+  c->add_option("--beta-strength", o->study.beta_strength, "lognormal dispersion of the strength (default 0.35)");
+  c->add_option("--beta-damping", o->study.beta_damping, "lognormal dispersion of the damping ratio (default 0.4)");
+  c->add_option_function<std::string>("--shaking", [o](const std::string& v) {
+    if (v != "mce" && v != "design") throw InputError(fmt::format("--shaking {}", v), "--shaking", "give mce or design");
+    o->study.mce = v == "mce";
+  }, "mce (default: records scaled to the MCER spectrum, 16.2) or design");
+  c->add_option("--samples", o->study.samples, "structure samples per record (default 20)");
+  c->add_option("--seed", o->study.seed, "the study's seed (default 1)");
+  c->add_option("--results", o->study.output, "the results file the study names (default <a>--<b>.h5)");
+  c->add_option("--threshold", o->rules.threshold, "footprints closer than this are neighbours, m (default 1)");
+  c->callback([o] { pair(*o); });
+}
+
 void add_synth(CLI::App* inv) {
   auto o = std::make_shared<inventory::SynthOptions>();
   auto out = std::make_shared<std::string>();
@@ -172,6 +221,7 @@ void add_inventory(CLI::App& app) {
   inv->require_subcommand(1);
   add_check(inv);
   add_design(inv);
+  add_pair(inv);
   add_synth(inv);
 }
 
