@@ -5,6 +5,9 @@
 #include <vector>
 
 #include <CLI/CLI.hpp>
+#include <functional>
+
+#include "pounding/study/run.hpp"
 
 #include "pounding/core/error.hpp"
 
@@ -29,6 +32,19 @@ void add_stiffness(CLI::App& app);   // src/cli/commands/stiffness.cpp (impact-s
 void add_similitude(CLI::App& app);  // src/cli/commands/stiffness.cpp (shake-table model scale factors)
 void add_replay(CLI::App& app);      // src/cli/commands/replay.cpp (a contact law on imposed kinematics)
 void add_accuracy(CLI::App& app);  // src/cli/commands/accuracy.cpp (accuracy/speed chart, stability, restitution, validation)
+
+// Several studies in one MPI session, one after another (`pounding inventory run`; `pounding run` is one): each as
+// `pounding run STUDY --out OUT` with the flags; `done` is called on rank 0 after each finished study (code 0 or 3)
+// with its outcome, instead of printing its report. Returns the first non-zero exit code (a stop ends the list).
+struct StudyJob {
+  std::string study, out;
+};
+struct StudyRunFlags {
+  bool resume = false, force = false, quiet = false, timings = false;
+  int threads = -1;
+};
+using StudyDone = std::function<void(std::size_t index, const RunOutcome& outcome)>;
+int run_study_files(const std::vector<StudyJob>& jobs, const StudyRunFlags& flags, const StudyDone& done);
 
 // Runs a shared parser (parse_stepper, parse_units, ...) and names the command-line option in its InputError.
 template <class Parse>

@@ -115,6 +115,7 @@ Inventory read_geojson(const std::string& path, const std::string& body, const E
     if (f["id"].empty() && feature.is_object() && feature.contains("id")) f["id"] = as_text(feature["id"]);
     Building b = detail::building_from_properties(f, where, eras, inv);
     b.footprint = ring_of(feature.is_object() ? feature.value("geometry", json()) : json(), b.where);
+    b.footprint_input = b.footprint;
     inv.buildings.push_back(std::move(b));
   }
   if (inv.buildings.empty()) return inv;

@@ -40,6 +40,7 @@ struct Building {
   std::string id;
   std::string where;                 // "street.geojson feature 3 (id B12)" / "street.csv:5"
   std::vector<Point> footprint;      // counter-clockwise ring, last point not repeated; empty in street mode
+  std::vector<Point> footprint_input;  // the ring as the file gives it (lon/lat or projected), for the GIS outputs
   std::string block;                 // street mode
   int order = 0;
   double frontage = 0, depth = 0;    // m

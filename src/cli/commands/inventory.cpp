@@ -215,6 +215,8 @@ void add_synth(CLI::App* inv) {
 
 }  // namespace
 
+void add_inventory_run(CLI::App* inv);  // src/cli/commands/inventory_run.cpp
+
 void add_inventory(CLI::App& app) {
   auto* inv = app.add_subcommand("inventory", "building inventories: check and design them, make synthetic cities "
                                               "(docs/inventory.md)");
@@ -223,6 +225,7 @@ void add_inventory(CLI::App& app) {
   add_design(inv);
   add_pair(inv);
   add_synth(inv);
+  add_inventory_run(inv);
 }
 
 }  // namespace pounding::cli

@@ -200,8 +200,59 @@ void write_html_report(const std::string& results_path, const std::string& html_
   fmt::print(stderr, "HTML report: {}\n", html_path);
 }
 
-// One `pounding run` on this rank; returns the exit code (the MPI session has ended when it returns).
-int run_job(const RunOpts& o) {
+// One study of a run on this rank, in the open session; returns its exit code.
+int run_one(const parallel::Session& session, const RunOpts& o, double mpi_start_s, const StudyDone& done,
+            std::size_t index) {
+  RunOptions ro;
+  ro.out = o.out;
+  ro.out_given = o.out_given;
+  ro.resume = o.resume;
+  ro.force = o.force;
+  ro.threads = o.threads;
+  // a fragility study's /fragility and /hazard (nothing for other studies)
+  ro.analyse = [](results::Results& r, const WorkHook& hook) { analyse_fragility(r, &hook); };
+  // the report, rendered before the results are written so that its time is in them (a stop there: exit 130)
+  ro.report = [](const results::Results& r, const WorkHook& hook, double& bootstrap_s) {
+    return report_markdown(r, &hook, &bootstrap_s);
+  };
+  ro.mpi_start_s = mpi_start_s;
+  ro.start = std::chrono::steady_clock::now();
+  if (index == 0) ro.start = timing::program_start();
+  RunContext ctx;
+  ctx.cancel = &stop_requested;
+  std::unique_ptr<ProgressClock> clock;
+  if (session.root()) {
+    ctx.info = [](const std::string& line) { fmt::print(stderr, "{}\n", line); };
+    if (!o.quiet) {
+      auto bar = std::make_shared<TerminalProgress>();
+      ctx.progress = [bar](const ProgressReport& p) { (*bar)(p); };
+      ctx.phase_progress = [bar](const PhaseProgress& p) { (*bar)(p); };
+      clock = std::make_unique<ProgressClock>(bar);
+    }
+  }
+  RunOutcome r = run_study(session, o.study, ro, ctx);
+  clock.reset();
+  r.code = stop_code(session, r.code);
+  if (session.root() && r.code == 143)
+    fmt::print(stderr, "stopped by SIGTERM (a batch system's time limit or scancel): exit 143; the checkpoint keeps "
+                       "every finished unit, rerun the same command with --resume (docs/cluster.md)\n");
+  if (session.root() && (r.code == 0 || r.code == 3)) {
+    if (done) {
+      done(index, r);
+    } else {
+      fmt::print("{}", r.report);
+      std::fflush(stdout);
+    }
+    if (!r.html.empty()) write_html_report(r.out, r.html);
+    r.times.wall = timing::seconds_since(ro.start);
+    print_timings(r.times, session.size(), o.timings);
+  }
+  return r.code;
+}
+
+// The studies of `jobs` one after another in one MPI session on this rank; returns the first non-zero exit code
+// (a stop ends the list), 0 when every study is done (the session has ended when it returns).
+int run_jobs(const std::vector<RunOpts>& jobs, const StudyDone& done) {
   // POUNDING_MPI_TRANSPORTS (parallel/mpi_executor.cpp, docs/cluster.md): "all" or unset; anything else is a typo that
   // would silently be the default. Refused on every rank before MPI starts, said once (rank 0, or no launcher).
   if (const char* t = std::getenv("POUNDING_MPI_TRANSPORTS"); t && *t && std::string_view(t) != "all") {
@@ -225,45 +276,12 @@ int run_job(const RunOpts& o) {
   std::signal(SIGUSR1, on_stop_signal);
   std::signal(SIGUSR2, on_stop_signal);
   try {
-    RunOptions ro;
-    ro.out = o.out;
-    ro.out_given = o.out_given;
-    ro.resume = o.resume;
-    ro.force = o.force;
-    ro.threads = o.threads;
-    // a fragility study's /fragility and /hazard (nothing for other studies)
-    ro.analyse = [](results::Results& r, const WorkHook& hook) { analyse_fragility(r, &hook); };
-    // the report, rendered before the results are written so that its time is in them (a stop there: exit 130)
-    ro.report = [](const results::Results& r, const WorkHook& hook, double& bootstrap_s) {
-      return report_markdown(r, &hook, &bootstrap_s);
-    };
-    ro.mpi_start_s = mpi_start_s;
-    RunContext ctx;
-    ctx.cancel = &stop_requested;
-    std::unique_ptr<ProgressClock> clock;
-    if (session.root()) {
-      ctx.info = [](const std::string& line) { fmt::print(stderr, "{}\n", line); };
-      if (!o.quiet) {
-        auto bar = std::make_shared<TerminalProgress>();
-        ctx.progress = [bar](const ProgressReport& p) { (*bar)(p); };
-        ctx.phase_progress = [bar](const PhaseProgress& p) { (*bar)(p); };
-        clock = std::make_unique<ProgressClock>(bar);
-      }
+    int code = 0;
+    for (std::size_t i = 0; i < jobs.size() && (code == 0 || code == 3); ++i) {
+      const int c = run_one(session, jobs[i], mpi_start_s, done, i);
+      if (c != 0 && (code == 0 || c != 3)) code = c;
     }
-    RunOutcome r = run_study(session, o.study, ro, ctx);
-    clock.reset();
-    r.code = stop_code(session, r.code);
-    if (session.root() && r.code == 143)
-      fmt::print(stderr, "stopped by SIGTERM (a batch system's time limit or scancel): exit 143; the checkpoint keeps "
-                         "every finished unit, rerun the same command with --resume (docs/cluster.md)\n");
-    if (session.root() && (r.code == 0 || r.code == 3)) {
-      fmt::print("{}", r.report);
-      std::fflush(stdout);
-      if (!r.html.empty()) write_html_report(r.out, r.html);
-      r.times.wall = timing::seconds_since(timing::program_start());
-      print_timings(r.times, session.size(), o.timings);
-    }
-    return r.code;
+    return code;
   } catch (const InputError& e) {
     // thrown on every rank after the job stopped together (Session::agree, run_units): one message
     if (session.root()) fmt::print(stderr, " ERROR: {}\n", e.what());
@@ -271,7 +289,7 @@ int run_job(const RunOpts& o) {
   } catch (...) {
     // outside the agreed phases: this rank alone knows; end the job rather than let the others wait. Out of memory
     // and other unexpected errors in the wording of every error (cli/errors.hpp).
-    const InputError e = describe_failure(std::current_exception(), "pounding run");
+    const InputError e = describe_failure(std::current_exception(), jobs.size() == 1 ? "pounding run" : "pounding inventory run");
     fmt::print(stderr, " ERROR: {}, {} (rank {}), {}\n", e.what_part(), e.where(), session.rank(), e.fix());
     if (session.size() > 1) session.abort(2);
     return 2;
@@ -279,6 +297,18 @@ int run_job(const RunOpts& o) {
 }
 
 }  // namespace
+
+int run_study_files(const std::vector<StudyJob>& jobs, const StudyRunFlags& flags, const StudyDone& done) {
+  std::vector<RunOpts> list;
+  for (const StudyJob& j : jobs) {
+    RunOpts o;
+    o.study = j.study, o.out = j.out, o.out_given = !j.out.empty();
+    o.resume = flags.resume, o.force = flags.force, o.quiet = flags.quiet, o.timings = flags.timings;
+    o.threads = flags.threads;
+    list.push_back(o);
+  }
+  return run_jobs(list, done);
+}
 
 void add_run(CLI::App& app) {
   auto o = std::make_shared<RunOpts>();
@@ -302,7 +332,7 @@ void add_run(CLI::App& app) {
     // A write beyond the file-size limit (ulimit -f) must be an EFBIG error we report, not SIGXFSZ.
     std::signal(SIGXFSZ, SIG_IGN);
     o->out_given = out->count() > 0;
-    if (const int code = run_job(*o)) throw ExitRequest{code};
+    if (const int code = run_jobs({*o}, nullptr)) throw ExitRequest{code};
   });
 }
 

@@ -1,0 +1,349 @@
+// `pounding inventory run STUDY.toml`: every adjacent pair of an inventory as a pair study, run one after another in one
+// MPI session, and the answers gathered per pair and per building into CSV, GeoJSON and a Markdown ranking.
+//
+// The study file is a template: its [inventory] section names the inventory and the site, every other section
+// ([records], [contact], [report], [analysis], [gaps] metres, seed) is each pair's; the pair's buildings, spectrum and
+// existing gap are written per pair (inventory/pair_study.hpp). Outputs beside the template's output R.h5:
+//   R.pairs/<a>--<b>.toml, .h5, .md   each pair's study, results and report (kept: a pair can be rerun alone)
+//   R.pairs.csv, R.pairs.geojson      one row / feature per pair (a line between the footprints' centres; GeoJSON
+//   R.buildings.geojson               inventories only) and one footprint per building with its worst neighbour
+//   R.md                              the pairs ranked by P(pounding) at their existing gap
+// A pair whose results exist and were made from the same study text is not run again (rerun with --force).
+#include <sys/stat.h>
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <memory>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <fmt/format.h>
+#include <toml++/toml.h>
+
+#include "cli/commands.hpp"
+#include "pounding/core/error.hpp"
+#include "pounding/core/files.hpp"
+#include "pounding/inventory/inventory.hpp"
+#include "pounding/inventory/pair_study.hpp"
+#include "pounding/report/report.hpp"
+#include "pounding/results/reader.hpp"
+
+namespace pounding::cli {
+namespace {
+
+struct Template {
+  std::string path, output_stem;
+  toml::table study;  // the template less [inventory]
+  inventory::PairStudyOptions pair;
+  inventory::AdjacencyRules rules;
+  inventory::EraRule eras;
+  std::string inventory_file;
+};
+
+std::string folder_of(const std::string& path) {
+  const auto slash = path.rfind('/');
+  return slash == std::string::npos ? "" : path.substr(0, slash + 1);
+}
+
+double num(const toml::table& t, const char* key, double fallback, const std::string& where) {
+  const toml::node* n = t.get(key);
+  if (!n) return fallback;
+  if (const auto v = n->value<double>()) return *v;
+  throw InputError(fmt::format("[inventory] {} is not a number", key), where, "give a number");
+}
+
+// [inventory]: file, ss, s1, tl, shaking, samples, records, beta_period, beta_strength, beta_damping, threshold,
+// min_frontage, level_tolerance, high_from, moderate_from.
+void read_inventory_section(const toml::table& inv, Template& t) {
+  static constexpr const char* keys[] = {"file", "ss", "s1", "tl", "shaking", "samples", "records", "beta_period",
+                                         "beta_strength", "beta_damping", "threshold", "min_frontage",
+                                         "level_tolerance", "high_from", "moderate_from"};
+  std::string all;
+  for (const char* k : keys) all += (all.empty() ? "" : ", ") + std::string(k);
+  for (const auto& [k, v] : inv)
+    if (std::find_if(std::begin(keys), std::end(keys), [&](const char* x) { return k.str() == x; }) == std::end(keys))
+      throw unknown_key_error(k.str(), "[inventory]", t.path, all);
+  const std::string where = t.path + " [inventory]";
+  const auto file = inv["file"].value<std::string>();
+  if (!file) throw InputError("[inventory] file is missing", where, "name the inventory: file = \"street.geojson\"");
+  t.inventory_file = file->front() == '/' ? *file : folder_of(t.path) + *file;
+  auto& p = t.pair;
+  p.ss = num(inv, "ss", p.ss, where), p.s1 = num(inv, "s1", p.s1, where), p.tl = num(inv, "tl", p.tl, where);
+  const std::string shaking = inv["shaking"].value_or(std::string("mce"));
+  if (shaking != "mce" && shaking != "design")
+    throw InputError(fmt::format("[inventory] shaking = \"{}\"", shaking), where, "give \"mce\" or \"design\"");
+  p.mce = shaking == "mce";
+  p.samples = static_cast<int>(num(inv, "samples", p.samples, where));
+  p.records = static_cast<int>(num(inv, "records", p.records, where));
+  p.beta_period = num(inv, "beta_period", p.beta_period, where);
+  p.beta_strength = num(inv, "beta_strength", p.beta_strength, where);
+  p.beta_damping = num(inv, "beta_damping", p.beta_damping, where);
+  require_range(p.samples, 1, 10000, where + " samples", "[1, 10000]");
+  require_range(p.records, 1, 1000, where + " records", "[1, 1000]");
+  for (double b : {p.beta_period, p.beta_strength, p.beta_damping})
+    require_range(b, 0.0, 1.0, where + " beta_*", "[0, 1] (a lognormal dispersion)");
+  t.rules.threshold = num(inv, "threshold", t.rules.threshold, where);
+  t.rules.min_frontage = num(inv, "min_frontage", t.rules.min_frontage, where);
+  t.rules.level_tolerance = num(inv, "level_tolerance", t.rules.level_tolerance, where);
+  t.eras.high_from = static_cast<int>(num(inv, "high_from", t.eras.high_from, where));
+  t.eras.moderate_from = static_cast<int>(num(inv, "moderate_from", t.eras.moderate_from, where));
+}
+
+Template read_template(const std::string& path) {
+  Template t;
+  t.path = path;
+  toml::table doc;
+  try {
+    doc = toml::parse(files::read_text(path, "study"), path);
+  } catch (const toml::parse_error& e) {
+    throw InputError(std::string(e.description()), fmt::format("{}:{}", path, e.source().begin.line), "fix the TOML syntax");
+  }
+  const toml::table* inv = doc["inventory"].as_table();
+  if (!inv) throw InputError("the study has no [inventory] section", path, "add [inventory] file = \"street.geojson\"");
+  read_inventory_section(*inv, t);
+  for (const char* own : {"structures", "target_spectrum"})
+    if (doc.contains(own))
+      throw InputError(fmt::format("[{}] is made per pair from the inventory", own), path,
+                       "remove it: the buildings and each site's spectrum come from [inventory] and the inventory file");
+  if (const toml::table* g = doc["gaps"].as_table(); g && g->contains("existing"))
+    throw InputError("[gaps] existing is each pair's measured gap", path + " [gaps] existing", "remove it");
+  const std::string out = doc["output"].value_or(std::string());
+  const std::string base = out.empty() ? path.substr(0, path.rfind('.')) : folder_of(path) + out;
+  t.output_stem = base.size() > 3 && base.compare(base.size() - 3, 3, ".h5") == 0 ? base.substr(0, base.size() - 3) : base;
+  doc.erase("inventory");
+  doc.erase("output");
+  doc.erase("title");
+  t.study = std::move(doc);
+  return t;
+}
+
+// The pair's study: the generated text with the template's sections over it ([gaps] merged key by key).
+std::string merged_study(const Template& t, const std::string& generated, const std::string& results_name) {
+  toml::table pair = toml::parse(generated);
+  for (const auto& [k, v] : t.study) {
+    if (k.str() == "gaps" && v.is_table()) {
+      for (const auto& [gk, gv] : *v.as_table()) pair["gaps"].as_table()->insert_or_assign(gk, gv);
+      continue;
+    }
+    pair.insert_or_assign(k, v);
+  }
+  pair.insert_or_assign("output", results_name);
+  std::ostringstream s;
+  s << "# Written by `pounding inventory run " << t.path << "` (docs/inventory.md): the template's sections over the "
+    << "pair's buildings.\n" << pair << "\n";
+  return s.str();
+}
+
+std::string file_safe(const std::string& id) {
+  std::string s;
+  for (char c : id) s += (std::isalnum(static_cast<unsigned char>(c)) || c == '-' || c == '_' || c == '.') ? c : '_';
+  return s;
+}
+
+struct PairAnswer {
+  double p = NAN, p_lo = NAN, p_hi = NAN;  // at the existing gap
+  std::vector<std::pair<double, double>> separation;  // (target, m)
+  std::string worst_level;
+  double worst_level_p = NAN, worst_level_force = NAN;  // at the axis gap nearest the existing one
+  bool done = false;
+};
+
+std::vector<std::string> csv_fields(const std::string& line) {
+  std::vector<std::string> out(1);
+  bool q = false;
+  for (char c : line) {
+    if (c == '"') q = !q;
+    else if (c == ',' && !q) out.emplace_back();
+    else out.back() += c;
+  }
+  return out;
+}
+
+double to_num(const std::string& s) { return s.empty() ? NAN : std::stod(s); }
+
+// The answers of one pair, read from its report's CSV rows (docs/results-format.md): existing, separation, level,
+// level_force.
+PairAnswer answer_of(const results::Results& r, double existing) {
+  PairAnswer a;
+  std::istringstream in(report_csv(r));
+  std::string line;
+  std::map<std::string, std::map<double, double>> level_p, level_f;
+  while (std::getline(in, line)) {
+    const std::vector<std::string> f = csv_fields(line);
+    if (f.size() < 12) continue;
+    if (f[0] == "existing") a.p = to_num(f[7]), a.p_lo = to_num(f[9]), a.p_hi = to_num(f[10]);
+    else if (f[0] == "separation") a.separation.emplace_back(to_num(f[7]), to_num(f[8]));
+    else if (f[0] == "level") level_p[f[11]][to_num(f[2])] = to_num(f[7]);
+    else if (f[0] == "level_force") level_f[f[11]][to_num(f[2])] = to_num(f[10]);
+  }
+  for (const auto& [name, byg] : level_p) {
+    double best_g = NAN;
+    for (const auto& [g, p] : byg)
+      if (std::isnan(best_g) || std::abs(g - existing) < std::abs(best_g - existing)) best_g = g;
+    const double p = byg.at(best_g);
+    if (std::isnan(a.worst_level_p) || p > a.worst_level_p) {
+      a.worst_level = name, a.worst_level_p = p;
+      const auto fi = level_f[name].find(best_g);
+      a.worst_level_force = fi == level_f[name].end() ? 0.0 : fi->second;
+    }
+  }
+  a.done = true;
+  return a;
+}
+
+struct RunInventoryOpts {
+  std::string study;
+  StudyRunFlags flags;
+};
+
+void run_inventory(const RunInventoryOpts& o);
+
+}  // namespace
+
+void add_inventory_run(CLI::App* inv) {
+  auto o = std::make_shared<RunInventoryOpts>();
+  auto* c = inv->add_subcommand("run", "every adjacent pair of an inventory as a pair study, and the answers per pair "
+                                       "and per building (CSV, GeoJSON, a ranking)");
+  c->add_option("study", o->study, "the study template with its [inventory] section (docs/inventory.md)")->required();
+  c->add_flag("--force", o->flags.force, "run every pair again, also those whose results exist");
+  c->add_flag("--quiet", o->flags.quiet, "no progress display");
+  c->add_option("--threads", o->flags.threads, "worker threads per rank (as pounding run)");
+  c->callback([o] { run_inventory(*o); });
+}
+
+namespace {
+
+std::string geo_pairs(const inventory::Inventory& inv, const std::vector<inventory::Adjacency>& pairs,
+                      const std::vector<PairAnswer>& ans) {
+  std::string s = "{\"type\": \"FeatureCollection\", \"features\": [\n";
+  for (std::size_t i = 0; i < pairs.size(); ++i) {
+    const auto& p = pairs[i];
+    const auto centre = [](const std::vector<inventory::Point>& r) {
+      double x = 0, y = 0;
+      for (const auto& q : r) x += q[0], y += q[1];
+      return inventory::Point{x / static_cast<double>(r.size()), y / static_cast<double>(r.size())};
+    };
+    const auto ca = centre(inv.buildings[p.a].footprint_input), cb = centre(inv.buildings[p.b].footprint_input);
+    s += fmt::format("{}{{\"type\": \"Feature\", \"properties\": {{\"a\": \"{}\", \"b\": \"{}\", \"kind\": \"{}\", \"gap_m\": {:.3f}, "
+                     "\"floors_aligned\": {}, \"p_existing\": {:.6g}, \"p_lo\": {:.6g}, \"p_hi\": {:.6g}{}}}, \"geometry\": "
+                     "{{\"type\": \"LineString\", \"coordinates\": [[{:.9f}, {:.9f}], [{:.9f}, {:.9f}]]}}}}",
+                     i ? ",\n" : "", inv.buildings[p.a].id, inv.buildings[p.b].id, to_string(p.kind), p.gap,
+                     p.floors_aligned ? "true" : "false", ans[i].p, ans[i].p_lo, ans[i].p_hi,
+                     [&] {
+                       std::string x;
+                       for (const auto& [t, m] : ans[i].separation) x += fmt::format(", \"separation_{:g}pct_m\": {:.4f}", 100 * t, m);
+                       return x;
+                     }(),
+                     ca[0], ca[1], cb[0], cb[1]);
+  }
+  return s + "\n]}\n";
+}
+
+// Each building's footprint (as the file gives it) with its worst neighbour: the largest P(pounding) at the existing gap.
+std::string geo_buildings(const inventory::Inventory& inv, const std::vector<inventory::Adjacency>& pairs,
+                          const std::vector<PairAnswer>& ans) {
+  std::string s = "{\"type\": \"FeatureCollection\", \"features\": [\n";
+  for (std::size_t b = 0; b < inv.buildings.size(); ++b) {
+    const inventory::Building& x = inv.buildings[b];
+    double worst = -1;
+    std::string neighbour;
+    for (std::size_t i = 0; i < pairs.size(); ++i)
+      if ((pairs[i].a == b || pairs[i].b == b) && ans[i].p > worst)
+        worst = ans[i].p, neighbour = inv.buildings[pairs[i].a == b ? pairs[i].b : pairs[i].a].id;
+    std::string ring;
+    for (const auto& q : x.footprint_input) ring += fmt::format("[{:.9f}, {:.9f}], ", q[0], q[1]);
+    if (!x.footprint_input.empty())
+      ring += fmt::format("[{:.9f}, {:.9f}]", x.footprint_input.front()[0], x.footprint_input.front()[1]);
+    s += fmt::format("{}{{\"type\": \"Feature\", \"properties\": {{\"id\": \"{}\", \"system\": \"{}\", \"storeys\": {}, "
+                     "\"design_level\": \"{}\", \"worst_neighbour\": {}, \"p_worst\": {}}}, \"geometry\": {}}}",
+                     b ? ",\n" : "", x.id, x.system, x.storeys, to_string(x.level),
+                     neighbour.empty() ? "null" : "\"" + neighbour + "\"", worst < 0 ? "null" : fmt::format("{:.6g}", worst),
+                     ring.empty() ? "null" : "{\"type\": \"Polygon\", \"coordinates\": [[" + ring + "]]}");
+  }
+  return s + "\n]}\n";
+}
+
+void run_inventory(const RunInventoryOpts& o) {
+  const Template t = read_template(o.study);
+  const inventory::Inventory inv = inventory::read_inventory(t.inventory_file, t.eras);
+  const std::vector<inventory::Adjacency> pairs = inventory::adjacent_pairs(inv, t.rules);
+  if (pairs.empty()) throw InputError("the inventory has no adjacent pair", t.inventory_file, "check --threshold and the footprints");
+  const std::string dir = t.output_stem + ".pairs";
+  for (const std::string& out : {t.output_stem + ".pairs.csv", t.output_stem + ".pairs.geojson",
+                                 t.output_stem + ".buildings.geojson", t.output_stem + ".md"}) {
+    files::check_output_path(out, o.study);
+    files::check_output_not_input(out, {o.study, t.inventory_file}, o.study);
+  }
+  ::mkdir(dir.c_str(), 0777);
+  std::vector<StudyJob> jobs;
+  std::vector<std::size_t> job_pair;
+  std::vector<std::string> stems(pairs.size());
+  std::vector<PairAnswer> answers(pairs.size());
+  for (std::size_t i = 0; i < pairs.size(); ++i) {
+    const auto& a = inv.buildings[pairs[i].a];
+    const auto& b = inv.buildings[pairs[i].b];
+    stems[i] = dir + "/" + file_safe(a.id) + "--" + file_safe(b.id);
+    const std::string text = merged_study(t, inventory::pair_study_text(inv, pairs[i], t.pair), stems[i] + ".h5");
+    bool current = false;
+    if (!o.flags.force && ::access((stems[i] + ".h5").c_str(), R_OK) == 0) {
+      try {
+        current = results::load(stems[i] + ".h5", {}, results::LoadExtent::report).header.study_text == text;
+      } catch (const std::exception&) {
+      }
+    }
+    if (current) continue;
+    files::write_text_atomically(stems[i] + ".toml", text);
+    jobs.push_back({stems[i] + ".toml", stems[i] + ".h5"});
+    job_pair.push_back(i);
+  }
+  fmt::print(stderr, "inventory {}: {} buildings, {} adjacent pairs; {} to run, {} current\n", t.inventory_file,
+             inv.buildings.size(), pairs.size(), jobs.size(), pairs.size() - jobs.size());
+  StudyRunFlags flags = o.flags;
+  flags.force = true;  // a pair rerun starts afresh: its text changed or it never finished
+  const int code = jobs.empty() ? 0 : run_study_files(jobs, flags, [&](std::size_t k, const RunOutcome& r) {
+    files::write_text_atomically(stems[job_pair[k]] + ".md", r.report);
+    fmt::print(stderr, "pair {}/{} done: {}\n", k + 1, jobs.size(), stems[job_pair[k]]);
+  });
+  if (code != 0 && code != 3) throw ExitRequest{code};
+  for (std::size_t i = 0; i < pairs.size(); ++i)
+    answers[i] = answer_of(results::load(stems[i] + ".h5", {}, results::LoadExtent::report), pairs[i].gap);
+  std::string csv = "building_a,building_b,kind,gap_m,frontage_m,floors_aligned,worst_floor_offset_m,p_existing,p_lo,p_hi";
+  for (const auto& [tgt, m] : answers.front().separation) csv += fmt::format(",separation_{:g}pct_m", 100 * tgt);
+  csv += ",worst_level,worst_level_p,worst_level_force_p84_N,results\n";
+  for (std::size_t i = 0; i < pairs.size(); ++i) {
+    const auto& p = pairs[i];
+    const auto& a = answers[i];
+    csv += fmt::format("{},{},{},{:.3f},{:.2f},{},{:.3f},{:.6g},{:.6g},{:.6g}", inv.buildings[p.a].id, inv.buildings[p.b].id,
+                       to_string(p.kind), p.gap, p.frontage, p.floors_aligned ? "yes" : "no", p.worst_offset, a.p, a.p_lo, a.p_hi);
+    for (const auto& [tgt, m] : a.separation) csv += fmt::format(",{:.4f}", m);
+    csv += fmt::format(",\"{}\",{:.6g},{:.6g},{}\n", a.worst_level, a.worst_level_p, a.worst_level_force, stems[i] + ".h5");
+  }
+  files::write_text_atomically(t.output_stem + ".pairs.csv", csv);
+  if (inv.footprints) {
+    files::write_text_atomically(t.output_stem + ".pairs.geojson", geo_pairs(inv, pairs, answers));
+    files::write_text_atomically(t.output_stem + ".buildings.geojson", geo_buildings(inv, pairs, answers));
+  }
+  std::vector<std::size_t> order(pairs.size());
+  for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+  std::stable_sort(order.begin(), order.end(), [&](std::size_t x, std::size_t y) { return answers[x].p > answers[y].p; });
+  std::string md = fmt::format("# Pounding along {}\n\n{} buildings, {} adjacent pairs; each pair's study, results and "
+                               "report in `{}/`.\n\n| rank | pair | kind | gap m | floors | P(pounding) at the gap | 95 % "
+                               "interval | separation for 10 % m | worst level | its peak force kN (84th pct) |\n|---|---|---|---|---|---|---|---|---|---|\n",
+                               inv.file, inv.buildings.size(), pairs.size(), dir);
+  for (std::size_t k = 0; k < order.size(); ++k) {
+    const auto& p = pairs[order[k]];
+    const auto& a = answers[order[k]];
+    const double sep10 = a.separation.empty() ? NAN : a.separation.front().second;
+    md += fmt::format("| {} | {} – {} | {} | {:.3f} | {} | {:.1f} % | [{:.1f}, {:.1f}] % | {:.3f} | {} | {:.0f} |\n", k + 1,
+                      inv.buildings[p.a].id, inv.buildings[p.b].id, to_string(p.kind), p.gap,
+                      p.floors_aligned ? "aligned" : "floor to column", 100 * a.p, 100 * a.p_lo, 100 * a.p_hi, sep10,
+                      a.worst_level.empty() ? "-" : a.worst_level, a.worst_level_force / 1e3);
+  }
+  files::write_text_atomically(t.output_stem + ".md", md);
+  fmt::print("{}", md);
+}
+
+}  // namespace
+}  // namespace pounding::cli
