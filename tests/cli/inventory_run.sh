@@ -34,6 +34,7 @@ TOML
 mkdir out
 "$bin" inventory run street.toml --quiet > run1.out 2> run1.err || fail "run: $(tail -3 run1.err)"
 grep -q "3 buildings, 2 adjacent pairs; 2 to run, 0 current" run1.err || fail "run: $(grep inventory run1.err)"
+grep -q "Pairs ranked by P(pounding)" out/street.html || fail "no ranking in street.html"
 for f in out/street.pairs.csv out/street.md out/street.pairs/A--B.toml out/street.pairs/A--B.h5 out/street.pairs/B--C.md; do
   [ -s "$f" ] || fail "missing $f"
 done

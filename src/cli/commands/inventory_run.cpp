@@ -7,7 +7,8 @@
 //   R.pairs/<a>--<b>.toml, .h5, .md   each pair's study, results and report (kept: a pair can be rerun alone)
 //   R.pairs.csv, R.pairs.geojson      one row / feature per pair (a line between the footprints' centres; GeoJSON
 //   R.buildings.geojson               inventories only) and one footprint per building with its worst neighbour
-//   R.md                              the pairs ranked by P(pounding) at their existing gap
+//   R.md, R.html                      the pairs ranked by P(pounding) at their existing gap; the HTML with a map of the
+//                                     footprints coloured by their worst neighbour's P
 // A pair whose results exist and were made from the same study text is not run again (rerun with --force).
 #include <sys/stat.h>
 
@@ -20,6 +21,7 @@
 #include <vector>
 
 #include <fmt/format.h>
+#include <nlohmann/json.hpp>
 #include <toml++/toml.h>
 
 #include "cli/commands.hpp"
@@ -27,14 +29,20 @@
 #include "pounding/core/files.hpp"
 #include "pounding/inventory/inventory.hpp"
 #include "pounding/inventory/pair_study.hpp"
+#include "pounding/report/escape.hpp"
 #include "pounding/report/report.hpp"
 #include "pounding/results/reader.hpp"
 
 namespace pounding::cli {
 namespace {
 
+using report::csv_field;
+using report::html_text;
+using report::md_cell;
+using report::md_text;
+
 struct Template {
-  std::string path, output_stem;
+  std::string path, output_stem, title;
   toml::table study;  // the template less [inventory]
   inventory::PairStudyOptions pair;
   inventory::AdjacencyRules rules;
@@ -112,6 +120,7 @@ Template read_template(const std::string& path) {
   const std::string out = doc["output"].value_or(std::string());
   const std::string base = out.empty() ? path.substr(0, path.rfind('.')) : folder_of(path) + out;
   t.output_stem = base.size() > 3 && base.compare(base.size() - 3, 3, ".h5") == 0 ? base.substr(0, base.size() - 3) : base;
+  t.title = doc["title"].value_or(std::string("Pounding along ") + path);
   doc.erase("inventory");
   doc.erase("output");
   doc.erase("title");
@@ -215,6 +224,13 @@ void add_inventory_run(CLI::App* inv) {
 
 namespace {
 
+using report::csv_field;
+using report::html_text;
+using report::md_cell;
+using report::md_text;
+
+std::string json_text(const std::string& s) { return nlohmann::json(s).dump(); }
+
 std::string geo_pairs(const inventory::Inventory& inv, const std::vector<inventory::Adjacency>& pairs,
                       const std::vector<PairAnswer>& ans) {
   std::string s = "{\"type\": \"FeatureCollection\", \"features\": [\n";
@@ -226,10 +242,10 @@ std::string geo_pairs(const inventory::Inventory& inv, const std::vector<invento
       return inventory::Point{x / static_cast<double>(r.size()), y / static_cast<double>(r.size())};
     };
     const auto ca = centre(inv.buildings[p.a].footprint_input), cb = centre(inv.buildings[p.b].footprint_input);
-    s += fmt::format("{}{{\"type\": \"Feature\", \"properties\": {{\"a\": \"{}\", \"b\": \"{}\", \"kind\": \"{}\", \"gap_m\": {:.3f}, "
+    s += fmt::format("{}{{\"type\": \"Feature\", \"properties\": {{\"a\": {}, \"b\": {}, \"kind\": \"{}\", \"gap_m\": {:.3f}, "
                      "\"floors_aligned\": {}, \"p_existing\": {:.6g}, \"p_lo\": {:.6g}, \"p_hi\": {:.6g}{}}}, \"geometry\": "
                      "{{\"type\": \"LineString\", \"coordinates\": [[{:.9f}, {:.9f}], [{:.9f}, {:.9f}]]}}}}",
-                     i ? ",\n" : "", inv.buildings[p.a].id, inv.buildings[p.b].id, to_string(p.kind), p.gap,
+                     i ? ",\n" : "", json_text(inv.buildings[p.a].id), json_text(inv.buildings[p.b].id), to_string(p.kind), p.gap,
                      p.floors_aligned ? "true" : "false", ans[i].p, ans[i].p_lo, ans[i].p_hi,
                      [&] {
                        std::string x;
@@ -256,13 +272,83 @@ std::string geo_buildings(const inventory::Inventory& inv, const std::vector<inv
     for (const auto& q : x.footprint_input) ring += fmt::format("[{:.9f}, {:.9f}], ", q[0], q[1]);
     if (!x.footprint_input.empty())
       ring += fmt::format("[{:.9f}, {:.9f}]", x.footprint_input.front()[0], x.footprint_input.front()[1]);
-    s += fmt::format("{}{{\"type\": \"Feature\", \"properties\": {{\"id\": \"{}\", \"system\": \"{}\", \"storeys\": {}, "
+    s += fmt::format("{}{{\"type\": \"Feature\", \"properties\": {{\"id\": {}, \"system\": \"{}\", \"storeys\": {}, "
                      "\"design_level\": \"{}\", \"worst_neighbour\": {}, \"p_worst\": {}}}, \"geometry\": {}}}",
-                     b ? ",\n" : "", x.id, x.system, x.storeys, to_string(x.level),
-                     neighbour.empty() ? "null" : "\"" + neighbour + "\"", worst < 0 ? "null" : fmt::format("{:.6g}", worst),
+                     b ? ",\n" : "", json_text(x.id), x.system, x.storeys, to_string(x.level),
+                     neighbour.empty() ? "null" : json_text(neighbour), worst < 0 ? "null" : fmt::format("{:.6g}", worst),
                      ring.empty() ? "null" : "{\"type\": \"Polygon\", \"coordinates\": [[" + ring + "]]}");
   }
   return s + "\n]}\n";
+}
+
+// Green (P = 0) through yellow to red (P = 1); grey without an answer.
+std::string colour(double p) {
+  if (std::isnan(p)) return "#bbbbbb";
+  const double t = std::clamp(p, 0.0, 1.0);
+  const auto mix = [](double a, double b, double u) { return static_cast<int>(std::lround(a + (b - a) * u)); };
+  return t < 0.5 ? fmt::format("#{:02x}{:02x}{:02x}", mix(26, 254, 2 * t), mix(152, 224, 2 * t), mix(80, 139, 2 * t))
+                 : fmt::format("#{:02x}{:02x}{:02x}", mix(254, 215, 2 * t - 1), mix(224, 48, 2 * t - 1), mix(139, 39, 2 * t - 1));
+}
+
+// The map: footprints in the local plane (metres, north up) filled by their worst neighbour's P(pounding), each pair a
+// line between the footprints' centres coloured by its own; every shape carries a tooltip.
+std::string svg_map(const inventory::Inventory& inv, const std::vector<inventory::Adjacency>& pairs,
+                    const std::vector<PairAnswer>& ans) {
+  double x0 = INFINITY, y0 = INFINITY, x1 = -INFINITY, y1 = -INFINITY;
+  for (const auto& b : inv.buildings)
+    for (const auto& q : b.footprint) x0 = std::min(x0, q[0]), x1 = std::max(x1, q[0]), y0 = std::min(y0, q[1]), y1 = std::max(y1, q[1]);
+  const double pad = 0.05 * std::max(x1 - x0, y1 - y0) + 1, w = x1 - x0 + 2 * pad, h = y1 - y0 + 2 * pad;
+  const auto X = [&](double x) { return x - x0 + pad; };
+  const auto Y = [&](double y) { return y1 + pad - y; };
+  std::string s = fmt::format("<svg xmlns=\"http://www.w3.org/2000/svg\" viewBox=\"0 0 {:.2f} {:.2f}\" "
+                              "style=\"width:100%;max-height:70vh;background:#f7f7f7\">\n", w, h);
+  std::vector<inventory::Point> centre(inv.buildings.size());
+  for (std::size_t b = 0; b < inv.buildings.size(); ++b) {
+    const auto& x = inv.buildings[b];
+    double worst = NAN, cx = 0, cy = 0;
+    for (std::size_t i = 0; i < pairs.size(); ++i)
+      if ((pairs[i].a == b || pairs[i].b == b) && !(ans[i].p <= worst)) worst = ans[i].p;
+    std::string pts;
+    for (const auto& q : x.footprint) pts += fmt::format("{:.2f},{:.2f} ", X(q[0]), Y(q[1])), cx += q[0], cy += q[1];
+    centre[b] = {cx / static_cast<double>(x.footprint.size()), cy / static_cast<double>(x.footprint.size())};
+    s += fmt::format("<polygon points=\"{}\" fill=\"{}\" stroke=\"#333\" stroke-width=\"{:.3g}\"><title>{}: {}, {} storeys, "
+                     "{}; worst neighbour P = {}</title></polygon>\n", pts, colour(worst), 0.002 * w, html_text(x.id), x.system,
+                     x.storeys, to_string(x.level), std::isnan(worst) ? std::string("-") : fmt::format("{:.1f} %", 100 * worst));
+  }
+  for (std::size_t i = 0; i < pairs.size(); ++i) {
+    const auto& a = centre[pairs[i].a];
+    const auto& b = centre[pairs[i].b];
+    s += fmt::format("<line x1=\"{:.2f}\" y1=\"{:.2f}\" x2=\"{:.2f}\" y2=\"{:.2f}\" stroke=\"{}\" stroke-width=\"{:.3g}\" "
+                     "stroke-linecap=\"round\"><title>{} - {}: gap {:.3f} m, P(pounding) {:.1f} %</title></line>\n",
+                     X(a[0]), Y(a[1]), X(b[0]), Y(b[1]), colour(ans[i].p), 0.006 * w, html_text(inv.buildings[pairs[i].a].id),
+                     html_text(inv.buildings[pairs[i].b].id), pairs[i].gap, 100 * ans[i].p);
+  }
+  return s + "</svg>\n";
+}
+
+std::string html_page(const std::string& title, const inventory::Inventory& inv, const std::vector<inventory::Adjacency>& pairs,
+                      const std::vector<PairAnswer>& ans, const std::vector<std::size_t>& order) {
+  std::string s = fmt::format("<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\"><title>{}</title><style>"
+                              "body{{font-family:sans-serif;max-width:1100px;margin:2em auto;padding:0 1em}}"
+                              "table{{border-collapse:collapse}}td,th{{border:1px solid #ccc;padding:3px 8px;text-align:right}}"
+                              "td:nth-child(2),th:nth-child(2){{text-align:left}}</style></head><body>\n<h1>{}</h1>\n"
+                              "<p>{} buildings, {} adjacent pairs from <code>{}</code>. Footprints are filled by the "
+                              "largest P(pounding) at the existing gap of any of their pairs, lines join the pairs: green "
+                              "0 %, yellow 50 %, red 100 % (hover for the numbers).</p>\n",
+                              html_text(title), html_text(title), inv.buildings.size(), pairs.size(), html_text(inv.file));
+  s += inv.footprints ? svg_map(inv, pairs, ans) : "<p>(a street-order inventory has no footprints to map)</p>\n";
+  s += "<h2>Pairs ranked by P(pounding) at the existing gap</h2>\n<table><tr><th>rank</th><th>pair</th><th>kind</th>"
+       "<th>gap m</th><th>floors</th><th>P(pounding)</th><th>95 % interval</th><th>separation for 10 % m</th></tr>\n";
+  for (std::size_t k = 0; k < order.size(); ++k) {
+    const auto& p = pairs[order[k]];
+    const auto& a = ans[order[k]];
+    s += fmt::format("<tr><td>{}</td><td>{} &ndash; {}</td><td>{}</td><td>{:.3f}</td><td>{}</td><td style=\"background:{}\">"
+                     "{:.1f} %</td><td>[{:.1f}, {:.1f}] %</td><td>{:.3f}</td></tr>\n",
+                     k + 1, html_text(inv.buildings[p.a].id), html_text(inv.buildings[p.b].id), to_string(p.kind), p.gap,
+                     p.floors_aligned ? "aligned" : "floor to column", colour(a.p), 100 * a.p, 100 * a.p_lo, 100 * a.p_hi,
+                     a.separation.empty() ? NAN : a.separation.front().second);
+  }
+  return s + "</table>\n</body></html>\n";
 }
 
 void run_inventory(const RunInventoryOpts& o) {
@@ -272,7 +358,7 @@ void run_inventory(const RunInventoryOpts& o) {
   if (pairs.empty()) throw InputError("the inventory has no adjacent pair", t.inventory_file, "check --threshold and the footprints");
   const std::string dir = t.output_stem + ".pairs";
   for (const std::string& out : {t.output_stem + ".pairs.csv", t.output_stem + ".pairs.geojson",
-                                 t.output_stem + ".buildings.geojson", t.output_stem + ".md"}) {
+                                 t.output_stem + ".buildings.geojson", t.output_stem + ".md", t.output_stem + ".html"}) {
     files::check_output_path(out, o.study);
     files::check_output_not_input(out, {o.study, t.inventory_file}, o.study);
   }
@@ -315,10 +401,12 @@ void run_inventory(const RunInventoryOpts& o) {
   for (std::size_t i = 0; i < pairs.size(); ++i) {
     const auto& p = pairs[i];
     const auto& a = answers[i];
-    csv += fmt::format("{},{},{},{:.3f},{:.2f},{},{:.3f},{:.6g},{:.6g},{:.6g}", inv.buildings[p.a].id, inv.buildings[p.b].id,
+    csv += fmt::format("{},{},{},{:.3f},{:.2f},{},{:.3f},{:.6g},{:.6g},{:.6g}", csv_field(inv.buildings[p.a].id),
+                       csv_field(inv.buildings[p.b].id),
                        to_string(p.kind), p.gap, p.frontage, p.floors_aligned ? "yes" : "no", p.worst_offset, a.p, a.p_lo, a.p_hi);
     for (const auto& [tgt, m] : a.separation) csv += fmt::format(",{:.4f}", m);
-    csv += fmt::format(",\"{}\",{:.6g},{:.6g},{}\n", a.worst_level, a.worst_level_p, a.worst_level_force, stems[i] + ".h5");
+    csv += fmt::format(",{},{:.6g},{:.6g},{}\n", csv_field(a.worst_level), a.worst_level_p, a.worst_level_force,
+                       csv_field(stems[i] + ".h5"));
   }
   files::write_text_atomically(t.output_stem + ".pairs.csv", csv);
   if (inv.footprints) {
@@ -328,20 +416,21 @@ void run_inventory(const RunInventoryOpts& o) {
   std::vector<std::size_t> order(pairs.size());
   for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
   std::stable_sort(order.begin(), order.end(), [&](std::size_t x, std::size_t y) { return answers[x].p > answers[y].p; });
-  std::string md = fmt::format("# Pounding along {}\n\n{} buildings, {} adjacent pairs; each pair's study, results and "
+  std::string md = fmt::format("# {}\n\n{} buildings, {} adjacent pairs; each pair's study, results and "
                                "report in `{}/`.\n\n| rank | pair | kind | gap m | floors | P(pounding) at the gap | 95 % "
                                "interval | separation for 10 % m | worst level | its peak force kN (84th pct) |\n|---|---|---|---|---|---|---|---|---|---|\n",
-                               inv.file, inv.buildings.size(), pairs.size(), dir);
+                               md_text(t.title), inv.buildings.size(), pairs.size(), dir);
   for (std::size_t k = 0; k < order.size(); ++k) {
     const auto& p = pairs[order[k]];
     const auto& a = answers[order[k]];
     const double sep10 = a.separation.empty() ? NAN : a.separation.front().second;
     md += fmt::format("| {} | {} – {} | {} | {:.3f} | {} | {:.1f} % | [{:.1f}, {:.1f}] % | {:.3f} | {} | {:.0f} |\n", k + 1,
-                      inv.buildings[p.a].id, inv.buildings[p.b].id, to_string(p.kind), p.gap,
+                      md_cell(inv.buildings[p.a].id), md_cell(inv.buildings[p.b].id), to_string(p.kind), p.gap,
                       p.floors_aligned ? "aligned" : "floor to column", 100 * a.p, 100 * a.p_lo, 100 * a.p_hi, sep10,
                       a.worst_level.empty() ? "-" : a.worst_level, a.worst_level_force / 1e3);
   }
   files::write_text_atomically(t.output_stem + ".md", md);
+  files::write_text_atomically(t.output_stem + ".html", html_page(t.title, inv, pairs, answers, order));
   fmt::print("{}", md);
 }
 
