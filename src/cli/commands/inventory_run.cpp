@@ -351,6 +351,25 @@ std::string html_page(const std::string& title, const inventory::Inventory& inv,
   return s + "</table>\n</body></html>\n";
 }
 
+// One row per pair: the adjacency, the answer at the existing gap, the separations, the worst level.
+std::string pairs_csv(const inventory::Inventory& inv, const std::vector<inventory::Adjacency>& pairs,
+                      const std::vector<PairAnswer>& answers, const std::vector<std::string>& stems) {
+  std::string csv = "building_a,building_b,kind,gap_m,frontage_m,floors_aligned,worst_floor_offset_m,p_existing,p_lo,p_hi";
+  for (const auto& [tgt, m] : answers.front().separation) csv += fmt::format(",separation_{:g}pct_m", 100 * tgt);
+  csv += ",worst_level,worst_level_p,worst_level_force_p84_N,results\n";
+  for (std::size_t i = 0; i < pairs.size(); ++i) {
+    const auto& p = pairs[i];
+    const auto& a = answers[i];
+    csv += fmt::format("{},{},{},{:.3f},{:.2f},{},{:.3f},{:.6g},{:.6g},{:.6g}", csv_field(inv.buildings[p.a].id),
+                       csv_field(inv.buildings[p.b].id),
+                       to_string(p.kind), p.gap, p.frontage, p.floors_aligned ? "yes" : "no", p.worst_offset, a.p, a.p_lo, a.p_hi);
+    for (const auto& [tgt, m] : a.separation) csv += fmt::format(",{:.4f}", m);
+    csv += fmt::format(",{},{:.6g},{:.6g},{}\n", csv_field(a.worst_level), a.worst_level_p, a.worst_level_force,
+                       csv_field(stems[i] + ".h5"));
+  }
+  return csv;
+}
+
 void run_inventory(const RunInventoryOpts& o) {
   const Template t = read_template(o.study);
   const inventory::Inventory inv = inventory::read_inventory(t.inventory_file, t.eras);
@@ -395,20 +414,7 @@ void run_inventory(const RunInventoryOpts& o) {
   if (code != 0 && code != 3) throw ExitRequest{code};
   for (std::size_t i = 0; i < pairs.size(); ++i)
     answers[i] = answer_of(results::load(stems[i] + ".h5", {}, results::LoadExtent::report), pairs[i].gap);
-  std::string csv = "building_a,building_b,kind,gap_m,frontage_m,floors_aligned,worst_floor_offset_m,p_existing,p_lo,p_hi";
-  for (const auto& [tgt, m] : answers.front().separation) csv += fmt::format(",separation_{:g}pct_m", 100 * tgt);
-  csv += ",worst_level,worst_level_p,worst_level_force_p84_N,results\n";
-  for (std::size_t i = 0; i < pairs.size(); ++i) {
-    const auto& p = pairs[i];
-    const auto& a = answers[i];
-    csv += fmt::format("{},{},{},{:.3f},{:.2f},{},{:.3f},{:.6g},{:.6g},{:.6g}", csv_field(inv.buildings[p.a].id),
-                       csv_field(inv.buildings[p.b].id),
-                       to_string(p.kind), p.gap, p.frontage, p.floors_aligned ? "yes" : "no", p.worst_offset, a.p, a.p_lo, a.p_hi);
-    for (const auto& [tgt, m] : a.separation) csv += fmt::format(",{:.4f}", m);
-    csv += fmt::format(",{},{:.6g},{:.6g},{}\n", csv_field(a.worst_level), a.worst_level_p, a.worst_level_force,
-                       csv_field(stems[i] + ".h5"));
-  }
-  files::write_text_atomically(t.output_stem + ".pairs.csv", csv);
+  files::write_text_atomically(t.output_stem + ".pairs.csv", pairs_csv(inv, pairs, answers, stems));
   if (inv.footprints) {
     files::write_text_atomically(t.output_stem + ".pairs.geojson", geo_pairs(inv, pairs, answers));
     files::write_text_atomically(t.output_stem + ".buildings.geojson", geo_buildings(inv, pairs, answers));
