@@ -56,6 +56,11 @@ std::string pair_study_text(const Inventory& inv, const Adjacency& pair, const P
   const DesignInput& site = ia.sd1 >= ib.sd1 ? ia : ib;  // the softer site: the larger design values
   const Building& on = ia.sd1 >= ib.sd1 ? a : b;
   std::vector<double> gaps{0.01, 0.02, 0.04, 0.06, 0.08, 0.10, 0.15, 0.20, 0.30, 0.50};
+  // the measured gap on the axis too (a fragility study answers at axis gaps only), unless a shared wall
+  if (pair.gap > 0 && std::find(gaps.begin(), gaps.end(), pair.gap) == gaps.end()) {
+    gaps.push_back(pair.gap);
+    std::sort(gaps.begin(), gaps.end());
+  }
   std::string out = fmt::format(
       "# {} beside {} in {}: {}, {:.3g} m apart today, facing {:.3g} m{}.\n"
       "# Written by `pounding inventory pair` from the buildings' ASCE 7-16 ELF designs (docs/inventory.md).\n"

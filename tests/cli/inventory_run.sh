@@ -60,6 +60,39 @@ cp out/street.pairs/B--C.h5 one_rank.h5
 timeout 300 mpirun -np 2 "$bin" inventory run street.toml --quiet --force > /dev/null 2> run4.err || fail "2 ranks: $(tail -3 run4.err)"
 /usr/bin/python3 "$src/tests/cli/compare_results.py" one_rank.h5 out/street.pairs/B--C.h5 > cmp.out || fail "2 ranks: $(tail -3 cmp.out)"
 echo "2 ranks: B-C bit-identical to 1 rank"
+# a fragility template: Sa stripes and a hazard curve (a path relative to the template, rebased for the pairs'
+# studies): P in 50 years at each measured gap, as the pair's own fragility report gives it
+mkdir hz
+cp "$src/studies/example-hazard.csv" .
+cat > hz.toml <<'TOML'
+seed = 7
+scene = "probability"
+output = "hz/street.h5"
+[inventory]
+file = "street.csv"
+samples = 2
+[records]
+suite = "builtin"
+synthetic_only = true
+limit = 3
+[intensity]
+measure = "Sa"
+period = "pair"
+levels = [0.2, 0.6, 1.2]
+max_scale = 10
+[hazard]
+curve = "example-hazard.csv"
+years = 50
+target = 2.0
+source = "example curve (tools/example_hazard.py)"
+TOML
+"$bin" inventory run hz.toml --quiet > hz.out 2> hz.err || fail "fragility template: $(tail -3 hz.err)"
+"$bin" report hz/street.pairs/A--B.h5 --csv > hzab.csv
+want=$(awk -F, '$1 == "fragility" && $3 == 0.04 { print $14 }' hzab.csv)
+got=$(awk -F, 'NR == 1 { for (i = 1; i <= NF; i++) if ($i == "p_hazard_years") c = i; next } $1 == "A" { print $c }' hz/street.pairs.csv)
+awk -v a="$want" -v b="$got" 'BEGIN { exit !(a != "" && (a - b)^2 < 1e-10 * (a^2 + 1e-30)) }' || fail "A-B in 50 years: pairs.csv $got, report $want"
+echo "fragility template: A-B P in 50 years $got as its report"
+
 # bad templates
 refuse() {
   local name=$1 want=$2

@@ -12,6 +12,8 @@
 // A pair whose results exist and were made from the same study text is not run again (rerun with --force).
 #include <sys/stat.h>
 
+#include <stdlib.h>
+
 #include <algorithm>
 #include <cmath>
 #include <map>
@@ -25,6 +27,7 @@
 #include <toml++/toml.h>
 
 #include "cli/commands.hpp"
+#include "pounding/config/study_keys.hpp"
 #include "pounding/core/error.hpp"
 #include "pounding/core/files.hpp"
 #include "pounding/inventory/inventory.hpp"
@@ -99,6 +102,32 @@ void read_inventory_section(const toml::table& inv, Template& t) {
   t.eras.moderate_from = static_cast<int>(num(inv, "moderate_from", t.eras.moderate_from, where));
 }
 
+// A path the template gives relative to itself, made absolute: the pair's study lives in another folder.
+std::string rebased(const std::string& value, const std::string& folder) {
+  if (value.empty() || value.front() == '/' || value == "builtin") return value;
+  return folder + value;
+}
+
+// Every key the study-key table describes as "relative to the study file", rebased to the template's folder: strings,
+// arrays of strings, and the `path` of tables in arrays ([records] files = [{path = .., scale = ..}]).
+void rebase_paths(toml::table& study, const std::string& folder) {
+  for (const config::StudyKey& k : config::study_keys()) {
+    if (k.meaning.find("relative to the study") == std::string_view::npos) continue;
+    toml::node* section = k.section.empty() ? &study : study.at_path(k.section).node();
+    toml::table* table = section ? section->as_table() : nullptr;
+    if (!table) continue;
+    toml::node* v = table->get(k.key);
+    if (!v) continue;
+    if (auto* str = v->as_string()) *str = rebased(str->get(), folder);
+    if (auto* arr = v->as_array())
+      for (toml::node& e : *arr) {
+        if (auto* str = e.as_string()) *str = rebased(str->get(), folder);
+        if (auto* tab = e.as_table())
+          if (auto* path = tab->get_as<std::string>("path")) *path = rebased(path->get(), folder);
+      }
+  }
+}
+
 Template read_template(const std::string& path) {
   Template t;
   t.path = path;
@@ -121,6 +150,10 @@ Template read_template(const std::string& path) {
   const std::string base = out.empty() ? path.substr(0, path.rfind('.')) : folder_of(path) + out;
   t.output_stem = base.size() > 3 && base.compare(base.size() - 3, 3, ".h5") == 0 ? base.substr(0, base.size() - 3) : base;
   t.title = doc["title"].value_or(std::string("Pounding along ") + path);
+  char* real = ::realpath(path.c_str(), nullptr);
+  const std::string folder = folder_of(real ? std::string(real) : path);
+  std::free(real);
+  rebase_paths(doc, folder.empty() ? "./" : folder);
   doc.erase("inventory");
   doc.erase("output");
   doc.erase("title");
@@ -138,6 +171,8 @@ std::string merged_study(const Template& t, const std::string& generated, const 
     }
     pair.insert_or_assign(k, v);
   }
+  // the template's own records without selection: taken as they are (a fragility study scales them to its stripes)
+  if (const toml::table* rec = t.study["records"].as_table(); rec && !rec->contains("select")) pair.erase("target_spectrum");
   pair.insert_or_assign("output", results_name);
   std::ostringstream s;
   s << "# Written by `pounding inventory run " << t.path << "` (docs/inventory.md): the template's sections over the "
@@ -156,7 +191,11 @@ struct PairAnswer {
   std::vector<std::pair<double, double>> separation;  // (target, m)
   std::string worst_level;
   double worst_level_p = NAN, worst_level_force = NAN;  // at the axis gap nearest the existing one
-  bool done = false;
+  // a fragility template (stripes and [hazard]): P(pounding) in the hazard's years at the existing gap, the
+  // risk-targeted separation at [hazard] target and the advice (its upper interval bound)
+  double p_years = NAN, risk_gap = NAN, risk_target = NAN, advice = NAN;
+  // the ranking's key: P at the existing gap, or in the hazard's years
+  double rank_key() const { return std::isnan(p) ? p_years : p; }
 };
 
 std::vector<std::string> csv_fields(const std::string& line) {
@@ -174,13 +213,32 @@ double to_num(const std::string& s) { return s.empty() ? NAN : std::stod(s); }
 
 // The answers of one pair, read from its report's CSV rows (docs/results-format.md): existing, separation, level,
 // level_force.
+// The fragility report's rows (docs/results-format.md): the fragility at the existing gap (on the axis: the pair's
+// study puts it there), the risk-targeted gap and the separation advice.
+void fragility_rows(const std::string& table, const std::vector<std::string>& f, const std::map<std::string, std::size_t>& col,
+                    double existing, PairAnswer& a) {
+  const auto at = [&](const char* name) { return to_num(f.at(col.at(name))); };
+  if (table == "fragility" && existing > 0 && std::abs(at("gap_m") - existing) < 1e-9) a.p_years = at("probability");
+  if (table == "risk_targeted_gap") a.risk_gap = at("gap_m"), a.risk_target = at("probability");
+  if (table == "separation_advice") a.advice = at("gap_m");
+}
+
 PairAnswer answer_of(const results::Results& r, double existing) {
   PairAnswer a;
   std::istringstream in(report_csv(r));
   std::string line;
   std::map<std::string, std::map<double, double>> level_p, level_f;
-  while (std::getline(in, line)) {
+  std::map<std::string, std::size_t> col;
+  for (bool header = true; std::getline(in, line); header = false) {
     const std::vector<std::string> f = csv_fields(line);
+    if (header) {
+      for (std::size_t i = 0; i < f.size(); ++i) col[f[i]] = i;
+      continue;
+    }
+    if (col.count("annual_rate")) {
+      fragility_rows(f[0], f, col, existing, a);
+      continue;
+    }
     if (f.size() < 12) continue;
     if (f[0] == "existing") a.p = to_num(f[7]), a.p_lo = to_num(f[9]), a.p_hi = to_num(f[10]);
     else if (f[0] == "separation") a.separation.emplace_back(to_num(f[7]), to_num(f[8]));
@@ -198,7 +256,6 @@ PairAnswer answer_of(const results::Results& r, double existing) {
       a.worst_level_force = fi == level_f[name].end() ? 0.0 : fi->second;
     }
   }
-  a.done = true;
   return a;
 }
 
@@ -307,7 +364,7 @@ std::string svg_map(const inventory::Inventory& inv, const std::vector<inventory
     const auto& x = inv.buildings[b];
     double worst = NAN, cx = 0, cy = 0;
     for (std::size_t i = 0; i < pairs.size(); ++i)
-      if ((pairs[i].a == b || pairs[i].b == b) && !(ans[i].p <= worst)) worst = ans[i].p;
+      if ((pairs[i].a == b || pairs[i].b == b) && !(ans[i].rank_key() <= worst)) worst = ans[i].rank_key();
     std::string pts;
     for (const auto& q : x.footprint) pts += fmt::format("{:.2f},{:.2f} ", X(q[0]), Y(q[1])), cx += q[0], cy += q[1];
     centre[b] = {cx / static_cast<double>(x.footprint.size()), cy / static_cast<double>(x.footprint.size())};
@@ -320,8 +377,8 @@ std::string svg_map(const inventory::Inventory& inv, const std::vector<inventory
     const auto& b = centre[pairs[i].b];
     s += fmt::format("<line x1=\"{:.2f}\" y1=\"{:.2f}\" x2=\"{:.2f}\" y2=\"{:.2f}\" stroke=\"{}\" stroke-width=\"{:.3g}\" "
                      "stroke-linecap=\"round\"><title>{} - {}: gap {:.3f} m, P(pounding) {:.1f} %</title></line>\n",
-                     X(a[0]), Y(a[1]), X(b[0]), Y(b[1]), colour(ans[i].p), 0.006 * w, html_text(inv.buildings[pairs[i].a].id),
-                     html_text(inv.buildings[pairs[i].b].id), pairs[i].gap, 100 * ans[i].p);
+                     X(a[0]), Y(a[1]), X(b[0]), Y(b[1]), colour(ans[i].rank_key()), 0.006 * w, html_text(inv.buildings[pairs[i].a].id),
+                     html_text(inv.buildings[pairs[i].b].id), pairs[i].gap, 100 * ans[i].rank_key());
   }
   return s + "</svg>\n";
 }
@@ -356,7 +413,8 @@ std::string pairs_csv(const inventory::Inventory& inv, const std::vector<invento
                       const std::vector<PairAnswer>& answers, const std::vector<std::string>& stems) {
   std::string csv = "building_a,building_b,kind,gap_m,frontage_m,floors_aligned,worst_floor_offset_m,p_existing,p_lo,p_hi";
   for (const auto& [tgt, m] : answers.front().separation) csv += fmt::format(",separation_{:g}pct_m", 100 * tgt);
-  csv += ",worst_level,worst_level_p,worst_level_force_p84_N,results\n";
+  csv += ",worst_level,worst_level_p,worst_level_force_p84_N,p_hazard_years,risk_targeted_gap_m,risk_target,"
+         "separation_advice_m,results\n";
   for (std::size_t i = 0; i < pairs.size(); ++i) {
     const auto& p = pairs[i];
     const auto& a = answers[i];
@@ -364,7 +422,8 @@ std::string pairs_csv(const inventory::Inventory& inv, const std::vector<invento
                        csv_field(inv.buildings[p.b].id),
                        to_string(p.kind), p.gap, p.frontage, p.floors_aligned ? "yes" : "no", p.worst_offset, a.p, a.p_lo, a.p_hi);
     for (const auto& [tgt, m] : a.separation) csv += fmt::format(",{:.4f}", m);
-    csv += fmt::format(",{},{:.6g},{:.6g},{}\n", csv_field(a.worst_level), a.worst_level_p, a.worst_level_force,
+    csv += fmt::format(",{},{:.6g},{:.6g},{:.6g},{:.6g},{:.6g},{:.6g},{}\n", csv_field(a.worst_level), a.worst_level_p,
+                       a.worst_level_force, a.p_years, a.risk_gap, a.risk_target, a.advice,
                        csv_field(stems[i] + ".h5"));
   }
   return csv;
@@ -421,19 +480,28 @@ void run_inventory(const RunInventoryOpts& o) {
   }
   std::vector<std::size_t> order(pairs.size());
   for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
-  std::stable_sort(order.begin(), order.end(), [&](std::size_t x, std::size_t y) { return answers[x].p > answers[y].p; });
+  std::stable_sort(order.begin(), order.end(),
+                   [&](std::size_t x, std::size_t y) {  // unanswered (a shared wall in a fragility study) first: in contact
+                     const double kx = answers[x].rank_key(), ky = answers[y].rank_key();
+                     return std::isnan(kx) ? !std::isnan(ky) : kx > ky;
+                   });
   std::string md = fmt::format("# {}\n\n{} buildings, {} adjacent pairs; each pair's study, results and "
                                "report in `{}/`.\n\n| rank | pair | kind | gap m | floors | P(pounding) at the gap | 95 % "
-                               "interval | separation for 10 % m | worst level | its peak force kN (84th pct) |\n|---|---|---|---|---|---|---|---|---|---|\n",
+                               "interval | separation for 10 % m | worst level | its peak force kN (84th pct) | P over the hazard's years | "
+                               "risk-targeted gap m |\n|---|---|---|---|---|---|---|---|---|---|---|---|\n",
                                md_text(t.title), inv.buildings.size(), pairs.size(), dir);
   for (std::size_t k = 0; k < order.size(); ++k) {
     const auto& p = pairs[order[k]];
     const auto& a = answers[order[k]];
     const double sep10 = a.separation.empty() ? NAN : a.separation.front().second;
-    md += fmt::format("| {} | {} – {} | {} | {:.3f} | {} | {:.1f} % | [{:.1f}, {:.1f}] % | {:.3f} | {} | {:.0f} |\n", k + 1,
+    const auto pct = [](double x) { return std::isnan(x) ? std::string("-") : fmt::format("{:.1f} %", 100 * x); };
+    const auto m = [](double x) { return std::isnan(x) ? std::string("-") : fmt::format("{:.3f}", x); };
+    md += fmt::format("| {} | {} – {} | {} | {:.3f} | {} | {} | [{}, {}] | {} | {} | {} | {} | {} |\n", k + 1,
                       md_cell(inv.buildings[p.a].id), md_cell(inv.buildings[p.b].id), to_string(p.kind), p.gap,
-                      p.floors_aligned ? "aligned" : "floor to column", 100 * a.p, 100 * a.p_lo, 100 * a.p_hi, sep10,
-                      a.worst_level.empty() ? "-" : a.worst_level, a.worst_level_force / 1e3);
+                      p.floors_aligned ? "aligned" : "floor to column", pct(a.p), pct(a.p_lo), pct(a.p_hi), m(sep10),
+                      a.worst_level.empty() ? "-" : a.worst_level,
+                      std::isnan(a.worst_level_force) ? std::string("-") : fmt::format("{:.0f}", a.worst_level_force / 1e3),
+                      pct(a.p_years), m(a.risk_gap));
   }
   files::write_text_atomically(t.output_stem + ".md", md);
   files::write_text_atomically(t.output_stem + ".html", html_page(t.title, inv, pairs, answers, order));
