@@ -56,7 +56,7 @@ void parse_record_files(Study& s, TableReader& r, const std::string& path) {
     } else if (auto tb = e.as_table()) {
       TableReader fr(tb, path, "records.files");
       rf.path = fr.string("path", "");
-      rf.scale = fr.number("scale", 1.0);
+      rf.scale = fr.number("scale");
       fr.finish("path, scale");
     } else {
       throw InputError("files entries must be strings or {path, scale} tables", r.where("files"), "fix the entry");
@@ -104,7 +104,7 @@ spatial::Request read_motion_request(TableReader& m, const std::string& path, st
   q.match_range = m.numbers("match_range", q.match_range, -inf, inf, "finite numbers");
   q.site_frequency = m.numbers("site_frequency", {}, -inf, inf, "finite numbers");
   q.site_damping = m.numbers("site_damping", {}, -inf, inf, "finite numbers");
-  q.wave_passage = m.boolean("wave_passage", true);
+  q.wave_passage = m.boolean("wave_passage");
   q.coherency = m.string("coherency", q.coherency);
   q.loss = m.string("loss", "");
   q.spectrum = m.string("spectrum", q.spectrum);
@@ -128,7 +128,7 @@ void parse_record_motions(Study& s, TableReader& r, const std::string& path) {
   TableReader m(t, path, "records.motions");
   const spatial::Request q = read_motion_request(m, path, s.seed);
   auto motions = std::make_shared<StudyMotions>();
-  motions->uniform = m.boolean("uniform", false);
+  motions->uniform = m.boolean("uniform");
   m.finish("supports, spacing, positions, velocity, wave_passage, coherency, loss, beta, luco_wong_a, hv_a, hv_alpha, "
            "hv_k, hv_f0, hv_b, site_frequency, site_damping, spectrum, soil, "
            "z, r, spectrum_file, damping, dt, duration, rise, strong, decay, f_min, f_max, match_range, match_points, "
@@ -155,11 +155,11 @@ void parse_records(Study& s, const toml::table* t, const std::string& path) {
   if (s.suite != "builtin") s.suite = resolve_relative(path, s.suite);
   s.real_dir = resolve_relative(path, r.string("real_dir", ""));
   s.directory = resolve_relative(path, r.string("directory", ""));
-  s.scale = r.number("scale", 1.0);
+  s.scale = r.number("scale");
   s.units = r.choice("units", "g", parse_units);
   s.dt_one_column = r.number("dt", 0.0);
-  s.record_limit = static_cast<int>(r.integer("limit", 0));
-  s.synthetic_only = r.boolean("synthetic_only", false);
+  s.record_limit = static_cast<int>(r.integer("limit"));
+  s.synthetic_only = r.boolean("synthetic_only");
   if (r.get("select")) {
     s.select = static_cast<int>(r.integer("select", 0));
     s.select_where = r.where("select");
@@ -218,7 +218,7 @@ void parse_gaps(Study& s, const toml::table* t, const std::string& path) {
                        g.where(key), "sort them and remove duplicates");
   // the curve on the axis' unit: ratios up to 1.5 d (or the largest ratio), metres up to 1.5 x the largest gap
   s.curve_max = g.number("curve_max", metres ? std::max(0.01, 1.5 * s.gap_ratios.back()) : std::max(1.5, s.gap_ratios.back()));
-  s.curve_step = g.number("curve_step", 0.005);
+  s.curve_step = g.number("curve_step");
   s.existing_gap = g.number("existing", NAN);
   g.finish("ratios, metres, curve_max, curve_step, existing");
 }
@@ -259,7 +259,7 @@ std::optional<contact::RestitutionCurve> read_restitution(TableReader& c, const 
                        "remove the key, or give the preset's numbers as polynomial = [...]");
     return r;
   }
-  r.units = q.string("units", "m/s");
+  r.units = q.string("units");
   r.per_mps = contact::restitution_units_per_mps(r.units);
   if (!(r.per_mps > 0.0))
     throw InputError(fmt::format("unknown velocity units '{}'", r.units), q.where("units"), "write units = \"m/s\", \"cm/s\" or \"mm/s\"");
@@ -299,12 +299,12 @@ void parse_contact(Study& s, const toml::table* t, const std::string& path) {
   s.contact.damping = c.choice("damping_law", "lankarani-nikravesh", parse_damping_law);
   if (!contact::traits(s.contact.law).has_force && !contact::traits(s.contact.law).impulsive)
     throw InputError("contact law 'none' cannot count impacts", c.where("law"), "choose a contact law (hertzdamp, kelvin, ...)");
-  s.e = c.number("e", 0.65);
+  s.e = c.number("e");
   if (c.get("e") && c.get("restitution"))
     throw InputError("[contact] e and restitution both given", c.where("e"), "remove e: the curve gives e(v0) at each impact");
   s.restitution = read_restitution(c, path);
-  s.contact.n = c.number("n", 1.5);
-  s.contact.v0_min = c.number("v0_min", 1e-3);
+  s.contact.n = c.number("n");
+  s.contact.v0_min = c.number("v0_min");
   s.contact_stiffness = c.number("stiffness", 0.0);
   if (contact::traits(s.contact.law).explicit_stiffness && !(s.contact_stiffness > 0))
     throw InputError(fmt::format("contact law '{}' needs a linear stiffness", to_string(s.contact.law)), c.where("stiffness"),
@@ -316,7 +316,7 @@ void parse_contact(Study& s, const toml::table* t, const std::string& path) {
   });
   s.gap_offsets = c.numbers("gap_offsets", {});
   s.joint_gap_offsets = c.numbers("joint_gap_offsets", {});
-  s.level_tolerance = c.number("level_tolerance", 0.05);
+  s.level_tolerance = c.number("level_tolerance");
   s.shape_functions = c.choice("shape_functions", "linear", [](const std::string& name) {
     if (auto v = parse_enum(model::shape_functions_names, name)) return *v;
     throw InputError(fmt::format("unknown shape_functions '{}'", name), "shape_functions",
@@ -351,15 +351,15 @@ void parse_analysis(Study& s, const toml::table* t, const std::string& path) {
   TableReader a(t, path, "analysis");
   s.stepper = a.choice("stepper", "central-difference", parse_stepper);
   s.step_given = a.get("substeps") != nullptr || a.get("max_dt") != nullptr;
-  s.substeps = static_cast<int>(a.integer("substeps", 1));
+  s.substeps = static_cast<int>(a.integer("substeps"));
   s.max_dt = a.number("max_dt", -1.0);
   s.batch = static_cast<int>(a.integer("batch", 0));  // 0: the scene's default, set by choose_scene
-  s.threads = static_cast<int>(a.integer("threads", 0));
-  s.free_vibration = a.number("free_vibration", 0.0);
-  s.displacement_limit = a.number("displacement_limit", 10.0);
-  s.skip_untouched = a.boolean("skip_untouched", true);
-  s.scale_elastic = a.boolean("scale_elastic", true);
-  s.max_excluded_fraction = a.number("max_excluded_fraction", 0.001);
+  s.threads = static_cast<int>(a.integer("threads"));
+  s.free_vibration = a.number("free_vibration");
+  s.displacement_limit = a.number("displacement_limit");
+  s.skip_untouched = a.boolean("skip_untouched");
+  s.scale_elastic = a.boolean("scale_elastic");
+  s.max_excluded_fraction = a.number("max_excluded_fraction");
   // a step the user gave is the step of every analysis (as simulate --dt): refine only where the engine chose it
   s.coarse = a.choice("coarse", s.step_given ? "exclude" : "refine", parse_coarse_policy);
   a.finish("stepper, substeps, max_dt, batch, threads, free_vibration, displacement_limit, skip_untouched, scale_elastic, "
@@ -377,13 +377,13 @@ void parse_report(Study& s, const toml::table* t, const std::string& path) {
                        "delete it; for a pair of given buildings set [structures.building1] height = <m> and "
                        "[structures.building2] height = <m> (a study with heights from the period-height rule "
                        "reports gaps as ratios of the code gap d)");
-  s.confidence = r.number("confidence", 0.95);
-  s.bootstrap = static_cast<int>(r.integer("bootstrap", 2000));
-  s.compare_with = r.string("compare_with", "");
+  s.confidence = r.number("confidence");
+  s.bootstrap = static_cast<int>(r.integer("bootstrap"));
+  s.compare_with = r.string("compare_with");
   if (!s.compare_with.empty() && s.compare_with != "stochastic-pounding")
     throw InputError(fmt::format("compare_with = \"{}\" is not a published study the report knows", s.compare_with),
                      r.where("compare_with"), "write compare_with = \"stochastic-pounding\" or leave it out");
-  s.html = r.boolean("html", false);
+  s.html = r.boolean("html");
   // on the gap axis' unit: ratios 0.1 to 1.0 d; metres 0.1 x to 1 x the largest gap
   s.fit_min = r.number("fit_min", s.gap_metres ? 0.1 * s.gap_ratios.back() : 0.1);
   s.fit_max = r.number("fit_max", s.gap_metres ? s.gap_ratios.back() : 1.0);
@@ -462,8 +462,8 @@ void parse_histories(Study& s, TableReader& o, const std::string& path) {
 
 void parse_outputs(Study& s, const toml::table* t, const std::string& path) {
   TableReader o(t, path, "outputs");
-  s.want_forces = o.boolean("forces", true);
-  s.want_amplification = o.boolean("amplification", true);
+  s.want_forces = o.boolean("forces");
+  s.want_amplification = o.boolean("amplification");
   // per_model = "stream": every model's peaks, written to the results file from the checkpoint in bounded memory
   if (const toml::node* n = o.get("per_model"); n && n->is_string()) {
     if (n->value_or(std::string()) != "stream")
