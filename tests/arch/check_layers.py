@@ -58,7 +58,8 @@ TOML_OUTSIDE_CONFIG = {
     "include/pounding/sampling/bridge.hpp", "include/pounding/sampling/building.hpp",
     "include/pounding/sampling/code_factors.hpp", "include/pounding/sampling/sampler.hpp",
     "include/pounding/study/intensity.hpp", "include/pounding/study/target_spectrum.hpp",
-    "src/cli/commands/sample.cpp", "src/motion/suite.cpp", "src/study/study.cpp",
+    "src/cli/commands/sample.cpp", "src/motion/suite.cpp", "src/study/study.cpp", "src/study/study_sections.cpp",
+    "src/study/study_sections.hpp",
 }
 INCLUDE = re.compile(r'#\s*include\s*"pounding/([^"]+)"')
 SYSTEM = re.compile(r'#\s*include\s*<([^>]+)>')
