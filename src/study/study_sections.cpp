@@ -6,6 +6,7 @@
 #include <cmath>
 #include <filesystem>
 #include <limits>
+#include <type_traits>
 
 #include <fmt/format.h>
 #include <fmt/ranges.h>
@@ -15,6 +16,7 @@
 #include "pounding/contact/registry.hpp"
 #include "pounding/core/error.hpp"
 #include "pounding/study/histories.hpp"
+#include "pounding/study/study_fields.hpp"
 
 namespace pounding {
 
@@ -23,6 +25,23 @@ namespace fs = std::filesystem;
 namespace {
 
 using config::TableReader;
+
+// The fields of one of study_fields' lists, each with its key's default and range (study_keys.cpp).
+template <class Fields>
+void read_fields(Study& s, TableReader& r, const Fields& fields) {
+  fields([&](const char* key, auto member) {
+    auto& x = s.*member;
+    using T = std::decay_t<decltype(x)>;
+    if constexpr (std::is_same_v<T, double>) x = r.number(key);
+    else if constexpr (std::is_same_v<T, int>) x = static_cast<int>(r.integer(key));
+    else if constexpr (std::is_same_v<T, bool>) x = r.boolean(key);
+    else if constexpr (std::is_same_v<T, std::string>) x = r.string(key);
+    else {
+      static_assert(std::is_same_v<T, std::vector<double>>);
+      x = r.numbers(key);
+    }
+  });
+}
 
 std::string resolve_relative(const std::string& study_path, const std::string& p) {
   if (p.empty() || fs::path(p).is_absolute()) return p;
@@ -147,11 +166,9 @@ void parse_records(Study& s, const toml::table* t, const std::string& path) {
   if (s.suite != "builtin") s.suite = resolve_relative(path, s.suite);
   s.real_dir = resolve_relative(path, r.string("real_dir", ""));
   s.directory = resolve_relative(path, r.string("directory", ""));
-  s.scale = r.number("scale");
+  read_fields(s, r, study_fields::records);
   s.units = r.choice("units", "g", parse_units);
   s.dt_one_column = r.number("dt", 0.0);
-  s.record_limit = static_cast<int>(r.integer("limit"));
-  s.synthetic_only = r.boolean("synthetic_only");
   if (r.get("select")) {
     s.select = static_cast<int>(r.integer("select", 0));
     s.select_where = r.where("select");
@@ -211,7 +228,7 @@ void parse_gaps(Study& s, const toml::table* t, const std::string& path) {
                        g.where(key), "sort them and remove duplicates");
   // the curve on the axis' unit: ratios up to 1.5 d (or the largest ratio), metres up to 1.5 x the largest gap
   s.curve_max = g.number("curve_max", metres ? std::max(0.01, 1.5 * s.gap_ratios.back()) : std::max(1.5, s.gap_ratios.back()));
-  s.curve_step = g.number("curve_step");
+  read_fields(s, g, study_fields::gaps);
   s.existing_gap = g.number("existing", NAN);
   g.finish("ratios, metres, curve_max, curve_step, existing");
 }
@@ -296,7 +313,7 @@ void parse_contact(Study& s, const toml::table* t, const std::string& path) {
   s.contact.damping = c.choice("damping_law", "lankarani-nikravesh", parse_damping_law);
   if (!contact::traits(s.contact.law).has_force && !contact::traits(s.contact.law).impulsive)
     throw InputError("contact law 'none' cannot count impacts", c.where("law"), "choose a contact law (hertzdamp, kelvin, ...)");
-  s.e = c.number("e");
+  read_fields(s, c, study_fields::contact);
   if (c.get("e") && c.get("restitution"))
     throw InputError("[contact] e and restitution both given", c.where("e"), "remove e: the curve gives e(v0) at each impact");
   s.restitution = read_restitution(c, path);
@@ -313,7 +330,6 @@ void parse_contact(Study& s, const toml::table* t, const std::string& path) {
   });
   s.gap_offsets = c.numbers("gap_offsets", {});
   s.joint_gap_offsets = c.numbers("joint_gap_offsets", {});
-  s.level_tolerance = c.number("level_tolerance");
   s.shape_functions = c.choice("shape_functions", "linear", [](const std::string& name) {
     if (auto v = parse_enum(model::shape_functions_names, name)) return *v;
     throw InputError(fmt::format("unknown shape_functions '{}'", name), "shape_functions",
@@ -346,15 +362,9 @@ void parse_analysis(Study& s, const toml::table* t, const std::string& path) {
   TableReader a(t, path, "analysis");
   s.stepper = a.choice("stepper", "central-difference", parse_stepper);
   s.step_given = a.get("substeps") != nullptr || a.get("max_dt") != nullptr;
-  s.substeps = static_cast<int>(a.integer("substeps"));
+  read_fields(s, a, study_fields::analysis);
   s.max_dt = a.number("max_dt", -1.0);
   s.batch = static_cast<int>(a.integer("batch", 0));  // 0: the scene's default, set by choose_scene
-  s.threads = static_cast<int>(a.integer("threads"));
-  s.free_vibration = a.number("free_vibration");
-  s.displacement_limit = a.number("displacement_limit");
-  s.skip_untouched = a.boolean("skip_untouched");
-  s.scale_elastic = a.boolean("scale_elastic");
-  s.max_excluded_fraction = a.number("max_excluded_fraction");
   // a step the user gave is the step of every analysis (as simulate --dt): refine only where the engine chose it
   s.coarse = a.choice("coarse", s.step_given ? "exclude" : "refine", parse_coarse_policy);
   a.finish("stepper, substeps, max_dt, batch, threads, free_vibration, displacement_limit, skip_untouched, scale_elastic, "
@@ -364,7 +374,7 @@ void parse_analysis(Study& s, const toml::table* t, const std::string& path) {
 
 void parse_report(Study& s, const toml::table* t, const std::string& path) {
   TableReader r(t, path, "report");
-  s.targets = r.numbers("targets", s.targets);
+  read_fields(s, r, study_fields::report);
   for (const char* key : {"h1", "h2"})
     if (r.get(key))
       throw InputError(fmt::format("[report] {} is no longer a setting: separations in metres come from the buildings' "
@@ -373,13 +383,9 @@ void parse_report(Study& s, const toml::table* t, const std::string& path) {
                        "delete it; for a pair of given buildings set [structures.building1] height = <m> and "
                        "[structures.building2] height = <m> (a study with heights from the period-height rule "
                        "reports gaps as ratios of the code gap d)");
-  s.confidence = r.number("confidence");
-  s.bootstrap = static_cast<int>(r.integer("bootstrap"));
-  s.compare_with = r.string("compare_with");
   if (!s.compare_with.empty() && s.compare_with != "stochastic-pounding")
     throw InputError(fmt::format("compare_with = \"{}\" is not a published study the report knows", s.compare_with),
                      r.where("compare_with"), "write compare_with = \"stochastic-pounding\" or leave it out");
-  s.html = r.boolean("html");
   // on the gap axis' unit: ratios 0.1 to 1.0 d; metres 0.1 x to 1 x the largest gap
   s.fit_min = r.number("fit_min", s.gap_metres ? 0.1 * s.gap_ratios.back() : 0.1);
   s.fit_max = r.number("fit_max", s.gap_metres ? s.gap_ratios.back() : 1.0);
@@ -462,8 +468,7 @@ void parse_histories(Study& s, TableReader& o, const std::string& path) {
 
 void parse_outputs(Study& s, const toml::table* t, const std::string& path) {
   TableReader o(t, path, "outputs");
-  s.want_forces = o.boolean("forces");
-  s.want_amplification = o.boolean("amplification");
+  read_fields(s, o, study_fields::outputs);
   // per_model = "stream": every model's peaks, written to the results file from the checkpoint in bounded memory
   if (const toml::node* n = o.get("per_model"); n && n->is_string()) {
     if (n->value_or(std::string()) != "stream")

@@ -11,6 +11,8 @@
 #include <set>
 #include <sstream>
 #include <string>
+#include <string_view>
+#include <type_traits>
 #include <utility>
 #include <variant>
 #include <vector>
@@ -22,6 +24,7 @@
 #include "pounding/core/files.hpp"
 #include "pounding/study/settings.hpp"
 #include "pounding/study/study.hpp"
+#include "pounding/study/study_fields.hpp"
 
 #include "test_data.hpp"
 
@@ -121,6 +124,37 @@ bool reached(const Pair& given, const config::StudyKey& k, const std::set<Pair>&
 }
 
 }  // namespace
+
+// Each field of study_fields.hpp's lists binds a described key of its section, once, of the member's type, with a
+// typed default (its reader takes it from the table).
+TEST(SettingsKeys, FieldListsBindEachKeyOnce) {
+  std::map<Pair, int> bound;
+  const auto count = [&](const std::string& section, const auto& fields) {
+    fields([&](const char* key, auto member) {
+      const std::string what = "[" + section + "]." + key;
+      ++bound[{section, key}];
+      const config::StudyKey* k = config::find_study_key(section, key);
+      ASSERT_NE(k, nullptr) << what;
+      using T = std::decay_t<decltype(std::declval<const Study&>().*member)>;
+      const std::string_view type = std::is_same_v<T, double>                ? "number"
+                                    : std::is_same_v<T, int>                 ? "integer"
+                                    : std::is_same_v<T, bool>                ? "boolean"
+                                    : std::is_same_v<T, std::string>         ? "string"
+                                    : std::is_same_v<T, std::vector<double>> ? "array of numbers"
+                                                                             : "?";
+      EXPECT_EQ(k->type, type) << what;
+      EXPECT_FALSE(std::holds_alternative<std::monostate>(config::typed_default(*k))) << what;
+    });
+  };
+  count("records", study_fields::records);
+  count("gaps", study_fields::gaps);
+  count("contact", study_fields::contact);
+  count("analysis", study_fields::analysis);
+  count("report", study_fields::report);
+  count("outputs", study_fields::outputs);
+  for (const auto& [key, n] : bound) EXPECT_EQ(n, 1) << "[" << key.first << "]." << key.second << " listed " << n << " times";
+  EXPECT_GE(bound.size(), 20u);
+}
 
 // Every rule is complete: `as` names its attribute, `none` its reason, `unless_default` has a typed default to
 // compare with.
