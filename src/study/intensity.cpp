@@ -12,9 +12,11 @@
 #include <fmt/format.h>
 
 #include "pounding/config/config.hpp"
+#include "pounding/config/fields.hpp"
 #include "pounding/core/error.hpp"
 #include "pounding/core/files.hpp"
 #include "pounding/sampling/sampler.hpp"
+#include "pounding/study/study_fields.hpp"
 
 namespace pounding {
 
@@ -244,9 +246,7 @@ HazardSpec parse_hazard(const toml::table* t, const std::string& path, const Int
     }
     check_hazard_covers_stripes(h, intensity, r.where("curve"));
   }
-  h.years = r.number("years");
-  h.target = r.number("target");
-  h.source = r.string("source");
+  config::read_fields(h, r, study_fields::hazard);
   r.finish("curve, k0, k, years, target, source");
   return h;
 }

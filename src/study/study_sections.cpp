@@ -6,13 +6,13 @@
 #include <cmath>
 #include <filesystem>
 #include <limits>
-#include <type_traits>
 
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 #include <toml++/toml.h>
 
 #include "pounding/config/config.hpp"
+#include "pounding/config/fields.hpp"
 #include "pounding/contact/registry.hpp"
 #include "pounding/core/error.hpp"
 #include "pounding/study/histories.hpp"
@@ -25,23 +25,6 @@ namespace fs = std::filesystem;
 namespace {
 
 using config::TableReader;
-
-// The fields of one of study_fields' lists, each with its key's default and range (study_keys.cpp).
-template <class Fields>
-void read_fields(Study& s, TableReader& r, const Fields& fields) {
-  fields([&](const char* key, auto member) {
-    auto& x = s.*member;
-    using T = std::decay_t<decltype(x)>;
-    if constexpr (std::is_same_v<T, double>) x = r.number(key);
-    else if constexpr (std::is_same_v<T, int>) x = static_cast<int>(r.integer(key));
-    else if constexpr (std::is_same_v<T, bool>) x = r.boolean(key);
-    else if constexpr (std::is_same_v<T, std::string>) x = r.string(key);
-    else {
-      static_assert(std::is_same_v<T, std::vector<double>>);
-      x = r.numbers(key);
-    }
-  });
-}
 
 std::string resolve_relative(const std::string& study_path, const std::string& p) {
   if (p.empty() || fs::path(p).is_absolute()) return p;
@@ -166,7 +149,7 @@ void parse_records(Study& s, const toml::table* t, const std::string& path) {
   if (s.suite != "builtin") s.suite = resolve_relative(path, s.suite);
   s.real_dir = resolve_relative(path, r.string("real_dir", ""));
   s.directory = resolve_relative(path, r.string("directory", ""));
-  read_fields(s, r, study_fields::records);
+  config::read_fields(s, r, study_fields::records);
   s.units = r.choice("units", "g", parse_units);
   s.dt_one_column = r.number("dt", 0.0);
   if (r.get("select")) {
@@ -228,7 +211,7 @@ void parse_gaps(Study& s, const toml::table* t, const std::string& path) {
                        g.where(key), "sort them and remove duplicates");
   // the curve on the axis' unit: ratios up to 1.5 d (or the largest ratio), metres up to 1.5 x the largest gap
   s.curve_max = g.number("curve_max", metres ? std::max(0.01, 1.5 * s.gap_ratios.back()) : std::max(1.5, s.gap_ratios.back()));
-  read_fields(s, g, study_fields::gaps);
+  config::read_fields(s, g, study_fields::gaps);
   s.existing_gap = g.number("existing", NAN);
   g.finish("ratios, metres, curve_max, curve_step, existing");
 }
@@ -313,7 +296,7 @@ void parse_contact(Study& s, const toml::table* t, const std::string& path) {
   s.contact.damping = c.choice("damping_law", "lankarani-nikravesh", parse_damping_law);
   if (!contact::traits(s.contact.law).has_force && !contact::traits(s.contact.law).impulsive)
     throw InputError("contact law 'none' cannot count impacts", c.where("law"), "choose a contact law (hertzdamp, kelvin, ...)");
-  read_fields(s, c, study_fields::contact);
+  config::read_fields(s, c, study_fields::contact);
   if (c.get("e") && c.get("restitution"))
     throw InputError("[contact] e and restitution both given", c.where("e"), "remove e: the curve gives e(v0) at each impact");
   s.restitution = read_restitution(c, path);
@@ -362,7 +345,7 @@ void parse_analysis(Study& s, const toml::table* t, const std::string& path) {
   TableReader a(t, path, "analysis");
   s.stepper = a.choice("stepper", "central-difference", parse_stepper);
   s.step_given = a.get("substeps") != nullptr || a.get("max_dt") != nullptr;
-  read_fields(s, a, study_fields::analysis);
+  config::read_fields(s, a, study_fields::analysis);
   s.max_dt = a.number("max_dt", -1.0);
   s.batch = static_cast<int>(a.integer("batch", 0));  // 0: the scene's default, set by choose_scene
   // a step the user gave is the step of every analysis (as simulate --dt): refine only where the engine chose it
@@ -374,7 +357,7 @@ void parse_analysis(Study& s, const toml::table* t, const std::string& path) {
 
 void parse_report(Study& s, const toml::table* t, const std::string& path) {
   TableReader r(t, path, "report");
-  read_fields(s, r, study_fields::report);
+  config::read_fields(s, r, study_fields::report);
   for (const char* key : {"h1", "h2"})
     if (r.get(key))
       throw InputError(fmt::format("[report] {} is no longer a setting: separations in metres come from the buildings' "
@@ -468,7 +451,7 @@ void parse_histories(Study& s, TableReader& o, const std::string& path) {
 
 void parse_outputs(Study& s, const toml::table* t, const std::string& path) {
   TableReader o(t, path, "outputs");
-  read_fields(s, o, study_fields::outputs);
+  config::read_fields(s, o, study_fields::outputs);
   // per_model = "stream": every model's peaks, written to the results file from the checkpoint in bounded memory
   if (const toml::node* n = o.get("per_model"); n && n->is_string()) {
     if (n->value_or(std::string()) != "stream")

@@ -9,10 +9,12 @@
 #include <fmt/format.h>
 
 #include "pounding/config/config.hpp"
+#include "pounding/config/fields.hpp"
 #include "pounding/core/error.hpp"
 #include "pounding/sampling/sampler.hpp"
 #include "pounding/study/intensity.hpp"
 #include "pounding/study/study.hpp"
+#include "pounding/study/study_fields.hpp"
 
 namespace pounding {
 
@@ -161,10 +163,7 @@ TargetSpectrumSection parse_target_spectrum(const toml::table* t, const std::str
   x.options.rule = r.get("rule") ? r.choice("rule", "", parse_scaling_rule) : default_scaling_rule(x.spec.code);
   read_range(x, r, structures);
   // the ranges of src/config/study_keys.cpp are validate()'s (selection.hpp: selection_period_min ...)
-  x.options.points = static_cast<int>(r.integer("points"));
-  x.options.damping = r.number("damping");
-  x.options.min_scale = r.number("min_scale");
-  x.options.max_scale = r.number("max_scale");
+  config::read_fields(x.options, r, study_fields::target_spectrum);
   r.finish("code, " + code_keys + ", rule, t_min, t_max, points, damping, min_scale, max_scale");
   if (x.options.min_scale > x.options.max_scale)
     throw InputError(fmt::format("min_scale = {:g} is above max_scale = {:g}", x.options.min_scale, x.options.max_scale),

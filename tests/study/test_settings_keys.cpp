@@ -125,6 +125,9 @@ bool reached(const Pair& given, const config::StudyKey& k, const std::set<Pair>&
 
 }  // namespace
 
+template <class Obj, class T>
+T member_type(T Obj::*);
+
 // Each field of study_fields.hpp's lists binds a described key of its section, once, of the member's type, with a
 // typed default (its reader takes it from the table).
 TEST(SettingsKeys, FieldListsBindEachKeyOnce) {
@@ -135,9 +138,9 @@ TEST(SettingsKeys, FieldListsBindEachKeyOnce) {
       ++bound[{section, key}];
       const config::StudyKey* k = config::find_study_key(section, key);
       ASSERT_NE(k, nullptr) << what;
-      using T = std::decay_t<decltype(std::declval<const Study&>().*member)>;
+      using T = std::decay_t<decltype(member_type(member))>;
       const std::string_view type = std::is_same_v<T, double>                ? "number"
-                                    : std::is_same_v<T, int>                 ? "integer"
+                                    : std::is_same_v<T, int> || std::is_same_v<T, long> ? "integer"
                                     : std::is_same_v<T, bool>                ? "boolean"
                                     : std::is_same_v<T, std::string>         ? "string"
                                     : std::is_same_v<T, std::vector<double>> ? "array of numbers"
@@ -152,6 +155,8 @@ TEST(SettingsKeys, FieldListsBindEachKeyOnce) {
   count("analysis", study_fields::analysis);
   count("report", study_fields::report);
   count("outputs", study_fields::outputs);
+  count("hazard", study_fields::hazard);
+  count("target_spectrum", study_fields::target_spectrum);
   for (const auto& [key, n] : bound) EXPECT_EQ(n, 1) << "[" << key.first << "]." << key.second << " listed " << n << " times";
   EXPECT_GE(bound.size(), 20u);
 }

@@ -46,10 +46,10 @@ void store_setting(const std::string& section, const char* key, const T& x, V& v
   else v(section, name, x);
 }
 
-// The fields of one of study_fields' lists, each by its store rule.
-template <class Fields, class V>
-void store_fields(const Study& s, const std::string& section, const Fields& fields, V& v) {
-  fields([&](const char* key, auto member) { store_setting(section, key, s.*member, v); });
+// The fields of one of study_fields' lists (of a Study, or of a section's own struct), each by its store rule.
+template <class Obj, class Fields, class V>
+void store_fields(const Obj& obj, const std::string& section, const Fields& fields, V& v) {
+  fields([&](const char* key, auto member) { store_setting(section, key, obj.*member, v); });
 }
 
 // [structures.buildingK] as resolved; a distribution as its describe() text.
@@ -202,10 +202,7 @@ void visit_target_settings(const Study& s, V& v) {
   v("target_spectrum", "t_min", x.options.t_lo);
   v("target_spectrum", "t_max", x.options.t_hi);
   v("target_spectrum", "range_given", x.range_given);
-  v("target_spectrum", "points", static_cast<std::int64_t>(x.options.points));
-  v("target_spectrum", "damping", x.options.damping);
-  v("target_spectrum", "min_scale", x.options.min_scale);
-  v("target_spectrum", "max_scale", x.options.max_scale);
+  store_fields(x.options, "target_spectrum", study_fields::target_spectrum, v);
   v("records", "max_per_event", static_cast<std::int64_t>(s.max_per_event));  // selection rules (with select)
   v("records", "components", S(to_string(s.components)));
   // the code's parameters, so the report can rebuild the design spectrum (code design displacements)
@@ -262,9 +259,7 @@ void visit_fragility_settings(const Study& s, V& v) {
     v("hazard", "rate", h.rate);
     v("hazard", "k0", h.k0);
     v("hazard", "k", h.k);
-    v("hazard", "years", h.years);
-    v("hazard", "target", h.target);
-    v("hazard", "source", h.source);
+    store_fields(h, "hazard", study_fields::hazard, v);
   }
 }
 

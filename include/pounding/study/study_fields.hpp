@@ -1,10 +1,12 @@
 #pragma once
 // The plain fields of each Study section, listed once (issue 46 step 8, docs/runner-design.md section 6): the
-// section's reader (src/study/study_sections.cpp, read_fields) reads each through config::TableReader with the
+// section's reader (src/study/study_sections.cpp, config::read_fields) reads each through config::TableReader with the
 // default and range of its key in src/config/study_keys.cpp, and visit_settings (settings.hpp, store_fields) stores
 // each by the key's store rule. A list is a generic lambda calling v(key, &Study::member) per field; the member is a double, int, bool,
 // std::string or std::vector<double>. A field whose default is computed, whose value is a name among choices, or
 // whose reading depends on other keys stays with its section's reader and its own line in visit_settings.
+#include "pounding/motion/selection.hpp"
+#include "pounding/study/intensity.hpp"
 #include "pounding/study/study.hpp"
 
 namespace pounding::study_fields {
@@ -45,6 +47,20 @@ inline constexpr auto report = [](auto&& v) {
 inline constexpr auto outputs = [](auto&& v) {
   v("forces", &Study::want_forces);
   v("amplification", &Study::want_amplification);
+};
+
+// Sections kept in structs of their own (their initialisers stay: the command line makes them too).
+inline constexpr auto hazard = [](auto&& v) {
+  v("years", &HazardSpec::years);
+  v("target", &HazardSpec::target);
+  v("source", &HazardSpec::source);
+};
+
+inline constexpr auto target_spectrum = [](auto&& v) {
+  v("points", &SelectionOptions::points);
+  v("damping", &SelectionOptions::damping);
+  v("min_scale", &SelectionOptions::min_scale);
+  v("max_scale", &SelectionOptions::max_scale);
 };
 
 }  // namespace pounding::study_fields
