@@ -3,6 +3,7 @@
 
 #include <cmath>
 #include <stdexcept>
+#include <typeinfo>
 
 #include <fmt/format.h>
 
@@ -129,6 +130,50 @@ std::string range_text(const StudyKey& k) {
   return k.units.empty() ? std::string(k.range) : fmt::format("{} {}", k.range, k.units);
 }
 }  // namespace
+
+// ---------------------------------------------------------------- typed defaults (study_keys.hpp)
+
+KeyDefault typed_default(const StudyKey& k) {
+  toml::table parsed;
+  try {
+    parsed = toml::parse("x = " + std::string(k.def));
+  } catch (const toml::parse_error&) {
+    return {};  // a sentence: computed by the caller
+  }
+  const toml::node& d = *parsed.get("x");
+  if (k.type == "number" && d.is_number()) return d.value<double>().value();
+  if (k.type == "integer" && d.is_integer()) return static_cast<long>(d.as_integer()->get());
+  if (k.type == "boolean" && d.is_boolean()) return d.as_boolean()->get();
+  if (k.type == "string" && d.is_string()) return d.as_string()->get();
+  if (k.type == "array of numbers" && d.is_array()) {
+    std::vector<double> out;
+    for (const toml::node& e : *d.as_array()) {
+      if (!e.is_number()) return {};
+      out.push_back(e.value<double>().value());
+    }
+    return out;
+  }
+  return {};
+}
+
+namespace {
+template <class T>
+T default_of(std::string_view section, std::string_view key) {
+  const KeyDefault d = typed_default(described(section, key));
+  if (const T* v = std::get_if<T>(&d)) return *v;
+  throw std::logic_error(fmt::format("study key [{}].{} has no {} default in src/config/study_keys.cpp: give the "
+                                     "default at the call",
+                                     section, key, typeid(T).name()));
+}
+}  // namespace
+
+double TableReader::number(std::string_view key) { return number(key, default_of<double>(section_, key)); }
+long TableReader::integer(std::string_view key) { return integer(key, default_of<long>(section_, key)); }
+std::vector<double> TableReader::numbers(std::string_view key) {
+  return numbers(key, default_of<std::vector<double>>(section_, key));
+}
+std::string TableReader::string(std::string_view key) { return string(key, default_of<std::string>(section_, key)); }
+bool TableReader::boolean(std::string_view key) { return boolean(key, default_of<bool>(section_, key)); }
 
 const toml::node* TableReader::get(std::string_view key) {
   described(section_, key);

@@ -168,13 +168,13 @@ constexpr StudyKey keys[] = {
      "motions --out DIR writes rRRR_sJJ.AT2) are one realisation's N support motions, support K's record drives "
      "channel K. Only with directory; not with select.", 2, 100},
     {"records.files", "path", "string", "required", "", "a record file", "The record file (relative to the study)."},
-    {"records.motions", "supports", "integer", "2", "", "[2, 16]", "Supports, evenly spaced `spacing` apart (not with positions).", 2, 16},
-    {"records.motions", "spacing", "number", "100", "m", "[1, 10000]", "Distance between neighbouring supports (not with positions).", 1, 10000},
+    {"records.motions", "supports", "integer", "2", "", "[2, 16]", "Supports, evenly spaced `spacing` apart (not with positions).", 2, 16, stored_as("positions")},
+    {"records.motions", "spacing", "number", "100", "m", "[1, 10000]", "Distance between neighbouring supports (not with positions).", 1, 10000, stored_as("positions")},
     {"records.motions", "positions", "array of numbers", "none", "m", "increasing, within 100 km, 2 to 16", "Support positions along the direction of propagation (instead of supports and spacing)."},
     {"records.motions", "velocity", "number", "500", "m/s", "[50, 100000]", "Apparent wave velocity of the wave passage.", 50, 100000.0},
     {"records.motions", "wave_passage", "boolean", "true", "", "true | false", "false: no time delay between the supports (coherency loss only)."},
     {"records.motions", "coherency", "string", "\"sobczyk\"", "", "\"sobczyk\" | \"harichandran-vanmarcke\" | \"luco-wong\" | \"none\"", "Coherency model (motion/spatial.hpp names each source)."},
-    {"records.motions", "loss", "string", "none (required with sobczyk unless beta)", "", "\"low\" | \"medium\" | \"high\"", "Sobczyk coherency loss: beta = 0.0005 / 0.001 / 0.002 1/m. Sobczyk only."},
+    {"records.motions", "loss", "string", "none (required with sobczyk unless beta)", "", "\"low\" | \"medium\" | \"high\"", "Sobczyk coherency loss: beta = 0.0005 / 0.001 / 0.002 1/m. Sobczyk only.", no_limit, no_limit, stored_as("beta")},
     {"records.motions", "beta", "number", "none", "1/m", "[0, 0.1]", "Sobczyk beta itself (instead of loss).", 0, 0.1},
     {"records.motions", "luco_wong_a", "number", "2.5e-4", "s/m", "[0, 0.01]", "Luco-Wong alpha / v_s (luco-wong only).", 0, 0.01},
     {"records.motions", "hv_a", "number", "0.736", "", "[0.001, 1]", "Harichandran-Vanmarcke A (harichandran-vanmarcke only; the defaults are SMART-1 Event 20).", 0.001, 1},
@@ -184,21 +184,21 @@ constexpr StudyKey keys[] = {
     {"records.motions", "hv_b", "number", "2.78", "", "[0.1, 20]", "Harichandran-Vanmarcke b (harichandran-vanmarcke only).", 0.1, 20},
     {"records.motions", "site_frequency", "array of numbers", "none (no site response)", "Hz", "[0.1, 50]", "Der Kiureghian (1996) site response: predominant frequency f_g of each support's soil filter (w_g = 2 pi f_g), one value for all supports or one per support; with site_damping. Adds the phase theta_s between supports.", 0.1, 50},
     {"records.motions", "site_damping", "array of numbers", "none (no site response)", "", "[0.02, 1]", "Der Kiureghian (1996) site response: damping zeta_g of each support's soil filter, one value for all supports or one per support; with site_frequency.", 0.02, 1},
-    {"records.motions", "spectrum", "string", "\"nzs1170.5\"", "", "\"nzs1170.5\" | \"csv\"", "Target spectrum: NZS 1170.5 (soil, z, r) or a csv file (spectrum_file)."},
-    {"records.motions", "soil", "string or array of strings", "none (required with nzs1170.5)", "", "\"A\" .. \"E\", one for all supports or one per support", "NZS 1170.5 site class(es)."},
-    {"records.motions", "z", "number", "0.4", "", "[0.1, 0.6]", "NZS 1170.5 hazard factor Z."},
-    {"records.motions", "r", "number", "1", "", "[0.2, 1.8]", "NZS 1170.5 return period factor R."},
-    {"records.motions", "spectrum_file", "string", "none (required with csv)", "", "a csv file", "period_s,sa_g lines (relative to the study file)."},
+    {"records.motions", "spectrum", "string", "\"nzs1170.5\"", "", "\"nzs1170.5\" | \"csv\"", "Target spectrum: NZS 1170.5 (soil, z, r) or a csv file (spectrum_file).", no_limit, no_limit, stored_as("targets")},
+    {"records.motions", "soil", "string or array of strings", "none (required with nzs1170.5)", "", "\"A\" .. \"E\", one for all supports or one per support", "NZS 1170.5 site class(es).", no_limit, no_limit, stored_as("targets")},
+    {"records.motions", "z", "number", "0.4", "", "[0.1, 0.6]", "NZS 1170.5 hazard factor Z.", no_limit, no_limit, stored_as("targets")},
+    {"records.motions", "r", "number", "1", "", "[0.2, 1.8]", "NZS 1170.5 return period factor R.", no_limit, no_limit, stored_as("targets")},
+    {"records.motions", "spectrum_file", "string", "none (required with csv)", "", "a csv file", "period_s,sa_g lines (relative to the study file).", no_limit, no_limit, stored_as("targets")},
     {"records.motions", "damping", "number", "0.05", "", "[0.005, 0.3]", "Damping ratio of the target and matched spectra.", 0.005, 0.3},
     {"records.motions", "dt", "number", "0.01", "s", "[0.001, 0.05]", "Time step of the generated motions.", 0.001, 0.05},
     {"records.motions", "duration", "number", "20", "s", "[2, 600]", "Duration of the generated motions (duration / dt <= 131072).", 2, 600},
-    {"records.motions", "rise", "number", "2", "s", "[0, duration]", "Envelope rise time t1 (Jennings, Housner & Tsai 1968)."},
-    {"records.motions", "strong", "number", "8", "s", "[0, duration]", "Envelope strong phase t2 - t1."},
-    {"records.motions", "decay", "number", "0.5", "1/s", "[0, 20]", "Envelope decay rate after t2.", 0, 20},
-    {"records.motions", "f_min", "number", "0.1", "Hz", "[0.01, 5]", "Lowest frequency of the simulated PSD.", 0.01, 5},
-    {"records.motions", "f_max", "number", "25", "Hz", "[1, 100], below 1/(2 dt)", "Highest frequency of the simulated PSD."},
-    {"records.motions", "match_range", "array of numbers", "[0.05, 4.0]", "s", "[LO, HI], 0.02 <= LO < HI <= 10", "Periods of the spectrum matching."},
-    {"records.motions", "match_points", "integer", "30", "", "[2, 200]", "Matching periods, log-spaced over match_range.", 2, 200},
+    {"records.motions", "rise", "number", "2", "s", "[0, duration]", "Envelope rise time t1 (Jennings, Housner & Tsai 1968).", no_limit, no_limit, stored_as("envelope")},
+    {"records.motions", "strong", "number", "8", "s", "[0, duration]", "Envelope strong phase t2 - t1.", no_limit, no_limit, stored_as("envelope")},
+    {"records.motions", "decay", "number", "0.5", "1/s", "[0, 20]", "Envelope decay rate after t2.", 0, 20, stored_as("envelope")},
+    {"records.motions", "f_min", "number", "0.1", "Hz", "[0.01, 5]", "Lowest frequency of the simulated PSD.", 0.01, 5, stored_as("f_range")},
+    {"records.motions", "f_max", "number", "25", "Hz", "[1, 100], below 1/(2 dt)", "Highest frequency of the simulated PSD.", no_limit, no_limit, stored_as("f_range")},
+    {"records.motions", "match_range", "array of numbers", "[0.05, 4.0]", "s", "[LO, HI], 0.02 <= LO < HI <= 10", "Periods of the spectrum matching.", no_limit, no_limit, stored_as("match_periods")},
+    {"records.motions", "match_points", "integer", "30", "", "[2, 200]", "Matching periods, log-spaced over match_range.", 2, 200, stored_as("match_periods")},
     {"records.motions", "iterations", "integer", "10", "", "[0, 100]", "Spectrum-matching updates at most (0: none).", 0, 100},
     {"records.motions", "tolerance", "number", "0.1", "", "[0, 1]", "Largest |PSA/Sa - 1| over the band that ends the matching.", 0, 1},
     {"records.motions", "realisations", "integer", "20", "", "[1, 10000]", "Realisations generated: the study's records.", 1, 10000},
@@ -214,9 +214,9 @@ constexpr StudyKey keys[] = {
      "The period grid of both buildings: every pair (T1, T2) of the grid is a period pair. Not with "
      "period_min/period_max/period_step.", 0.02, 20.0},
     {"structures", "period_min", "number", "1.00", "s", "[0.02, 20] (a real building)", "First period of a grid period_min:period_step:period_max.",
-     0.02, 20.0},
-    {"structures", "period_max", "number", "1.50", "s", "[0.02, 20] (a real building)", "Last period of the grid.", 0.02, 20.0},
-    {"structures", "period_step", "number", "0.05", "s", "> 0", "Step of the grid."},
+     0.02, 20.0, stored_as("periods")},
+    {"structures", "period_max", "number", "1.50", "s", "[0.02, 20] (a real building)", "Last period of the grid.", 0.02, 20.0, stored_as("periods")},
+    {"structures", "period_step", "number", "0.05", "s", "> 0", "Step of the grid.", no_limit, no_limit, stored_as("periods")},
     {"structures", "samples_per_pair", "integer", "256", "", "[1, 2^40] (and the results must fit in 64 GiB)",
      "Random structure pairs per period pair (the paper: 256 x 121 pairs = 30,976 models).", 1, 1099511627776.0},
     {"structures", "aspect_ratios", "array of numbers", "[1.0, 2.0, 3.0]", "", "(0, 100], 1 to 100 values",
@@ -268,22 +268,22 @@ constexpr StudyKey keys[] = {
      "both buildings "
      "have at the same level (within 0.05 m). A shear building of one storey is the SDOF bit for bit. With "
      "[intensity] (fragility: stripes, IDA) every stripe runs the shear buildings on the scaled record, except that "
-     "a lane whose every storey and bearing stays elastic is scaled from the lowest stripe (scale_elastic)."},
+     "a lane whose every storey and bearing stays elastic is scaled from the lowest stripe (scale_elastic).", no_limit, no_limit, stored_as("structures.buildingN/model")},
     {"structures", "storey_height", "number", "3.2", "m", "[0.01, 10] ([2, 10] for model = \"sdof\")",
      "The storey height of both buildings (each may override it): the code rules' storey count and the shear "
-     "model's storeys (max(1, round(height / storey_height)) per sample) and floor levels.", 0.01, 10.0},
+     "model's storeys (max(1, round(height / storey_height)) per sample) and floor levels.", 0.01, 10.0, stored_as("structures.buildingN/storey_height")},
     {"structures", "stiffness_profile", "string", "\"uniform\"", "", "\"uniform\" | \"shear\"",
      "Shear model, storey stiffnesses from T1: uniform = equal storeys; shear = proportional to the storey shear of "
-     "an inverted-triangle load (model::stiffness_shape), both scaled so the fundamental period is T1."},
+     "an inverted-triangle load (model::stiffness_shape), both scaled so the fundamental period is T1.", no_limit, no_limit, stored_as("structures.buildingN/stiffness_profile")},
     {"structures", "damping", "string", "\"rayleigh\"", "", "\"rayleigh\" | \"modal\"",
      "Shear model: rayleigh = C = a0 M + a1 K0 with the building's zeta at modes 1 and 2 (the other modes get "
      "a0 / (2 omega) + a1 omega / 2); modal = classical modal damping C = M Phi diag(2 zeta_j omega_j / M_j) Phi' M, "
      "every mode exactly its ratio (modal_zeta, else zeta). The default of both buildings; in a row mixing SDOF and "
      "shear buildings it damps the shear buildings and the SDOFs keep their zeta (refused where every building is an "
-     "SDOF)."},
+     "SDOF).", no_limit, no_limit, stored_as("structures.buildingN/damping")},
     {"structures", "modal_zeta", "array of numbers", "every mode the building's zeta", "", "[0, 0.5] each",
      "With damping = \"modal\": the damping ratio per mode from mode 1, the last value repeating for the higher "
-     "modes (a one-storey building takes the first). The default of both buildings.", 0.0, 0.5},
+     "modes (a one-storey building takes the first). The default of both buildings.", 0.0, 0.5, stored_as("structures.buildingN/modal_zeta")},
     {"structures", "rayleigh_modes", "array of numbers", "[1, 2]", "", "[1, 200], two different whole numbers",
      "With damping = \"rayleigh\" (shear model): the two modes i < j (either order) that get the building's zeta "
      "exactly; the others get a0 / (2 omega) + a1 omega / 2. A sampled building with fewer than j storeys takes "
@@ -292,7 +292,7 @@ constexpr StudyKey keys[] = {
      "buildings it damps the shear buildings and the SDOFs keep their zeta (refused where every building is an "
      "SDOF). The run's model line states it; "
      "pounding modes --rayleigh-modes and simulate --rayleigh-modesK show each mode's ratio. The default of every "
-     "building.", 1.0, 200.0},
+     "building.", 1.0, 200.0, stored_as("structures.buildingN/rayleigh_modes")},
     {"structures", "building1", "table", "the [structures] defaults", "", "", "Building 1 (the left one)."},
     {"structures", "building2", "table", "the [structures] defaults", "", "", "Building 2 (the right one of a pair)."},
     {"structures", "buildings", "integer", "2", "", "[2, 16]",
@@ -311,9 +311,9 @@ constexpr StudyKey keys[] = {
     {"structures.buildingN", "periods", "array of numbers", "[structures] periods", "s", "[0.02, 20] (a real building), strictly increasing",
      "This building's period grid. Not with period.", 0.02, 20.0},
     {"structures.buildingN", "period_min", "number", "1.00", "s", "[0.02, 20] (a real building)", "Grid form of periods, as in [structures].",
-     0.02, 20.0},
-    {"structures.buildingN", "period_max", "number", "1.50", "s", "[0.02, 20] (a real building)", "Grid form of periods.", 0.02, 20.0},
-    {"structures.buildingN", "period_step", "number", "0.05", "s", "> 0", "Grid form of periods."},
+     0.02, 20.0, stored_as("periods")},
+    {"structures.buildingN", "period_max", "number", "1.50", "s", "[0.02, 20] (a real building)", "Grid form of periods.", 0.02, 20.0, stored_as("periods")},
+    {"structures.buildingN", "period_step", "number", "0.05", "s", "> 0", "Grid form of periods.", no_limit, no_limit, stored_as("periods")},
     {"structures.buildingN", "period", "number or distribution", "none (the grid)", "s", "[0.02, 20] (a real building)",
      "A fixed period (a grid of one point) or a distribution drawn per sample (with the period-height rule: "
      "truncated to the periods the rule admits, refused when that keeps less than 50 %). Not with a grid.",
@@ -326,7 +326,7 @@ constexpr StudyKey keys[] = {
      "Viscous damping ratio.", 0.0, 0.5},
     {"structures.buildingN", "yield_coefficient", "number or distribution", "the drift/ductility rule", "", "[0.005, 5] (a real building)",
      "Cy = Vy / W: fy = Cy m g (g = 9.80665 m/s^2). Not with drift or ductility, nor for an elastic building.",
-     0.005, 5.0},
+     0.005, 5.0, stored_as("yield")},
     {"structures.buildingN", "alpha", "number", "[structures] alpha", "", "[0, 1)", "As in [structures].", 0.0, 0.999999},
     {"structures.buildingN", "hysteresis", "string", "[structures] hysteresis", "", "\"bilinear\" | \"elastic\"",
      "As in [structures]."},
@@ -477,9 +477,9 @@ constexpr StudyKey keys[] = {
 
     // ---------------------------------------------------------------- [bridge]
     {"bridge", "frame", "array of tables", "required", "", "2 or more tables (a study), 1 or more (a bridge file)",
-     "The frames, left to right ([[bridge.frame]])."},
-    {"bridge", "joint", "array of tables", "required", "", "one fewer than frames", "The joints ([[bridge.joint]])."},
-    {"bridge", "abutment", "table", "none", "", "{left, right}", "The abutments ([bridge.abutment.left|right])."},
+     "The frames, left to right ([[bridge.frame]]).", no_limit, no_limit, stored_as("description")},
+    {"bridge", "joint", "array of tables", "required", "", "one fewer than frames", "The joints ([[bridge.joint]]).", no_limit, no_limit, stored_as("description")},
+    {"bridge", "abutment", "table", "none", "", "{left, right}", "The abutments ([bridge.abutment.left|right]).", no_limit, no_limit, stored_as("description")},
     {"bridge", "samples", "integer", "1", "", "[1, 1000000]",
      "Bridges per record (models): 1 for a fixed bridge; more with period_cov or mass_cov.", 1, 1e6},
     {"bridge", "period_cov", "number", "0", "", "[0, 1]",
@@ -597,7 +597,7 @@ constexpr StudyKey keys[] = {
     {"contact", "levels", "string", "\"common\"", "", "\"common\" | \"top\"",
      "Shear buildings and rows: which facing floors pound -- common = every pair of floors at the same level (and "
      "every other floor against the neighbour's column, docs/floor-contact.md), top = only the lower roof of each pair "
-     "of neighbours (against the other building's floor or column there)."},
+     "of neighbours (against the other building's floor or column there).", no_limit, no_limit, unless_default},
     {"contact", "gap_offsets", "array of numbers", "none (0 at every level)", "m", "[0, 10]",
      "Shear buildings and rows: per contact level from level 1 (an element's level: the number of the floor that "
      "strikes, the left one floor to floor), added to the study gap at that level (a level beyond the list: 0). An analysis touches at gap g when some level's uncoupled closing minus its offset exceeds g "
@@ -616,12 +616,12 @@ constexpr StudyKey keys[] = {
      "floor; every other floor below the neighbour's roof meets the neighbour's column between two floors (linear "
      "shape functions, docs/floor-contact.md). 0.05 m: slabs whose levels differ by less overlap over most of their "
      "depth (a 0.15-0.25 m slab), i.e. the construction tolerance of one level, not a different level.",
-     0.0, 1.0},
+     0.0, 1.0, unless_default},
     {"contact", "shape_functions", "string", "\"linear\"", "", "\"linear\" | \"cubic\"",
      "Shear buildings: how a floor striking the neighbour's column between two floors shares the column's two floors "
      "(x = (1 - N2) u_below + N2 u_above, the force with the same weights): linear N2 = xi, or cubic N2 = 3 xi^2 - "
      "2 xi^3, the fixed-fixed column's deflected shape (its nodal forces are the column's fixed-end reactions). "
-     "docs/floor-contact.md."},
+     "docs/floor-contact.md.", no_limit, no_limit, unless_default},
     {"contact", "n", "number", "1.5", "", "[1, 3]", "Exponent of the Hertz-family force k delta^n.", 1.0, 3.0},
     {"contact", "v0_min", "number", "1e-3", "m/s", "(0, 1]",
      "Smallest approach velocity used to set the contact damping.", 1e-12, 1.0},
@@ -660,7 +660,7 @@ constexpr StudyKey keys[] = {
      "Worker threads per rank, each computing its own units. 0: the CPUs this process may run on (its affinity "
      "mask) when the job is one rank, 1 per rank under mpirun with several ranks (nothing oversubscribes); a "
      "value given applies to every rank. pounding run --threads and Study.run(threads=) override it. Results do "
-     "not depend on it.", 0, 1024},
+     "not depend on it.", 0, 1024, not_stored("how the work runs, not what it computes: the results do not depend on it")},
     {"analysis", "free_vibration", "number", "0", "s", "[0, 1000]", "Time analysed after the record ends.", 0.0, 1000.0},
     {"analysis", "displacement_limit", "number", "10", "m", "(0, 1e6]",
      "A model whose displacement exceeds this is marked diverged.", 1e-6, 1e6},
@@ -743,7 +743,7 @@ constexpr StudyKey keys[] = {
     {"intensity", "method", "string", "\"msa\"", "", "\"msa\" | \"ida\"",
      "Multiple stripes (Baker 2015 MLE) or incremental dynamic analysis."},
     {"intensity", "period", "number or \"pair\"", "required for Sa", "s", "[0.01, 20]",
-     "Sa's period; \"pair\": the geometric mean of the buildings' median periods. Only for Sa.", 0.01, 20.0},
+     "Sa's period; \"pair\": the geometric mean of the buildings' median periods. Only for Sa.", 0.01, 20.0, stored_as("periods")},
     {"intensity", "periods", "array of numbers or {min, max, count}", "required for Sa_avg", "s", "[0.01, 20], at least 2",
      "Sa_avg's periods (the geometric mean of Sa over them). Only for Sa_avg.", 0.01, 20.0},
     {"intensity", "damping", "number", "0.05", "", "[0, 0.5]", "Damping ratio of Sa and Sa_avg.", 0.0, 0.5},
@@ -803,7 +803,7 @@ constexpr StudyKey keys[] = {
     {"target_spectrum", "soil", "string", "required (Standard 2800)", "", "\"I\" | \"II\" | \"III\" | \"IV\"",
      "Standard 2800: soil type."},
     {"target_spectrum", "file", "string", "required (csv)", "", "a CSV file",
-     "csv: the spectrum as \"period,sa\" lines in s and g (relative to the study file)."},
+     "csv: the spectrum as \"period,sa\" lines in s and g (relative to the study file).", no_limit, no_limit, stored_as("description")},
     {"target_spectrum", "rule", "string", "\"ASCE 7-16\" (\"EC8\" for an EC8 target)", "",
      "\"ASCE 7-16\" | \"ASCE 7-10\" | \"EC8\" | \"none\"",
      "The scaling condition the suite mean must meet over the period range."},

@@ -6,11 +6,13 @@
 // Gamma1 phi1 = 1: its rows are the code rules section's, and this section is not written (its bits).
 #include <algorithm>
 #include <cmath>
+#include <variant>
 
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 
 #include "data.hpp"
+#include "pounding/config/study_keys.hpp"
 #include "pounding/model/modes.hpp"
 #include "pounding/model/shear_building.hpp"
 #include "pounding/report/escape.hpp"
@@ -144,10 +146,15 @@ std::optional<CodeLevels> code_levels(const Data& r) {
   if (!shear) return std::nullopt;
   CodeLevels c;
   c.b[0] = level_building(r, 1), c.b[1] = level_building(r, 2);
-  const double tolerance = s.find("contact", "level_tolerance") ? s.number("contact", "level_tolerance") : 0.05;
-  const auto levels = parse_enum(model::contact_levels_names, text_or(s, "contact", "levels", "common"))
-                          .value_or(model::ContactLevels::common);
-  const auto shape = parse_enum(model::shape_functions_names, text_or(s, "contact", "shape_functions", "linear"))
+  // stored unless at their defaults (study_keys.hpp's unless_default): absent, the key's default
+  const auto key_default = [](const char* key) { return config::typed_default(config::study_key("contact", key)); };
+  const double tolerance = s.find("contact", "level_tolerance") ? s.number("contact", "level_tolerance")
+                                                                : std::get<double>(key_default("level_tolerance"));
+  const auto levels =
+      parse_enum(model::contact_levels_names, text_or(s, "contact", "levels", std::get<std::string>(key_default("levels"))))
+          .value_or(model::ContactLevels::common);
+  const auto shape = parse_enum(model::shape_functions_names,
+                                text_or(s, "contact", "shape_functions", std::get<std::string>(key_default("shape_functions"))))
                          .value_or(model::ShapeFunctions::linear);
   c.levels = contact_levels(c.b, tolerance, levels, shape);
   c.levels_rule = fmt::format(

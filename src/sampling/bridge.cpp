@@ -33,16 +33,16 @@ physics::BridgeBilinear bilinear(const toml::table* t, const std::string& file, 
   physics::BridgeBilinear b;
   b.k = required(r, "stiffness", "the bearing");
   b.fy = r.number("yield_force", inf);
-  b.alpha = r.number("alpha", 0.0);
+  b.alpha = r.number("alpha");
   r.finish("stiffness, yield_force, alpha");
   return b;
 }
 
-int support(config::TableReader& r) { return static_cast<int>(r.integer("support", 1)) - 1; }
+int support(config::TableReader& r) { return static_cast<int>(r.integer("support")) - 1; }
 
 // A stick frame's own keys (storeys > 1; physics/bridge.hpp BridgeFrame): per-level lists, modal damping.
 void stick_keys(config::TableReader& r, physics::BridgeFrame& f) {
-  f.storeys = static_cast<int>(r.integer("storeys", 1));
+  f.storeys = static_cast<int>(r.integer("storeys"));
   const bool stick = f.storeys > 1;
   for (const char* key : {"storey_mass", "storey_stiffness", "storey_yield", "storey_height", "modal_zeta"})
     if (!stick && r.get(key) != nullptr)
@@ -52,7 +52,7 @@ void stick_keys(config::TableReader& r, physics::BridgeFrame& f) {
   f.storey_stiffness = r.numbers("storey_stiffness", {});
   f.storey_yield = r.numbers("storey_yield", {});
   f.storey_height = r.numbers("storey_height", {});
-  const std::string d = r.string("damping", "rayleigh");
+  const std::string d = r.string("damping");
   if (d != "rayleigh" && d != "modal")
     throw InputError(fmt::format("unknown damping '{}'", d), r.where("damping"), "give \"rayleigh\" or \"modal\"");
   if (d == "modal" && !stick)
@@ -81,17 +81,17 @@ physics::BridgeFrame frame(const toml::table* t, const std::string& file, const 
                      r.where("period"), "give period (s) or stiffness (N/m)");
   f.period = r.number("period", 0.0);
   f.stiffness = r.number("stiffness", 0.0);
-  f.zeta = r.number("zeta", 0.05);
+  f.zeta = r.number("zeta");
   f.fy = r.number("yield_force", inf);
-  f.alpha = r.number("alpha", 0.0);
-  const std::string h = r.string("hysteresis", "bilinear");
+  f.alpha = r.number("alpha");
+  const std::string h = r.string("hysteresis");
   if (h != "bilinear" && h != "q-hyst")
     throw InputError(fmt::format("unknown hysteresis '{}'", h), r.where("hysteresis"), "give \"bilinear\" or \"q-hyst\"");
   f.qhyst = h == "q-hyst";
   if (f.qhyst && !std::isfinite(f.fy) && f.storey_yield.empty())
     throw InputError("a Q-Hyst frame needs a yield force", r.where("yield_force"), "give yield_force (N)");
-  f.beta = r.number("beta", 0.5);
-  f.height = r.number("height", 10.0);
+  f.beta = r.number("beta");
+  f.height = r.number("height");
   f.support = support(r);
   r.finish("label, mass, period, stiffness, zeta, yield_force, alpha, hysteresis, beta, height, support, storeys, "
            "storey_mass, storey_stiffness, storey_yield, storey_height, damping, modal_zeta");
@@ -130,7 +130,7 @@ physics::BridgeJoint joint(const toml::table* t, const std::string& file, const 
     model::TensionGap::Spec s;
     s.k = required(rr, "stiffness", "the restrainer");
     s.fy = rr.number("yield_force", inf);
-    s.alpha = rr.number("alpha", 0.05);
+    s.alpha = rr.number("alpha");
     if (d.study && rr.get("slack") == nullptr)
       throw InputError("a restrainer in a study has no slack", rr.where("slack"),
                        "give slack (m): the joint gap varies over the [gaps] ratios, the slack does not follow it");
@@ -146,11 +146,11 @@ physics::BridgeJoint joint(const toml::table* t, const std::string& file, const 
 physics::BridgeAbutment abutment(const toml::table* t, const std::string& file, const std::string& name) {
   config::TableReader r(t, file, name, "bridge.abutment");
   physics::BridgeAbutment a;
-  const std::string b = r.string("backfill", "none");
+  const std::string b = r.string("backfill");
   if (b != "none" && b != "epp" && b != "hyperbolic")
     throw InputError(fmt::format("unknown backfill '{}'", b), r.where("backfill"), "give \"none\", \"epp\" or \"hyperbolic\"");
   a.backfill = b == "epp" ? physics::Backfill::epp : b == "hyperbolic" ? physics::Backfill::hyperbolic : physics::Backfill::none;
-  const double gap = r.number("gap", 0.0);
+  const double gap = r.number("gap");
   const bool wall = r.get("width") != nullptr || r.get("height") != nullptr;
   if (a.backfill == physics::Backfill::epp) {
     if (wall) {
@@ -160,7 +160,7 @@ physics::BridgeAbutment abutment(const toml::table* t, const std::string& file, 
     } else {
       a.epp.k = required(r, "stiffness", "the abutment"), a.epp.fy = required(r, "capacity", "the abutment");
     }
-    a.epp.alpha = r.number("alpha", 0.0);
+    a.epp.alpha = r.number("alpha");
     a.epp.gap = gap;
   }
   if (a.backfill == physics::Backfill::hyperbolic) {
@@ -168,7 +168,7 @@ physics::BridgeAbutment abutment(const toml::table* t, const std::string& file, 
     a.hyperbolic.k_ur = r.number("k_ur", a.hyperbolic.k_max);
     if (a.hyperbolic.k_ur < a.hyperbolic.k_max)
       throw InputError("k_ur is below k_max", r.where("k_ur"), "give k_ur >= k_max (first loading follows the envelope)");
-    a.hyperbolic.rf = r.number("rf", 0.7);
+    a.hyperbolic.rf = r.number("rf");
     a.hyperbolic.f_ult = required(r, "f_ult", "the abutment");
     a.hyperbolic.gap = gap;
   }
@@ -290,9 +290,9 @@ BridgeModel parse_bridge_model(const toml::table* bridge, const std::string& fil
   if (m.spec.joints.empty())
     throw InputError("a bridge study needs at least one joint", r.where("frame"),
                      "give two or more [[bridge.frame]] tables and the [[bridge.joint]] between them");
-  *samples = r.integer("samples", 1);
-  m.period_cov = r.number("period_cov", 0.0);
-  m.mass_cov = r.number("mass_cov", 0.0);
+  *samples = r.integer("samples");
+  m.period_cov = r.number("period_cov");
+  m.mass_cov = r.number("mass_cov");
   if (*samples > 1 && !m.sampled())
     throw InputError(fmt::format("samples = {} and nothing is sampled: every model would be the same bridge", *samples),
                      r.where("samples"), "give period_cov or mass_cov, or samples = 1");

@@ -494,7 +494,7 @@ void check_bearing_keys(config::TableReader& q, physics::Bearing b) {
 void read_smooth_bearing(config::TableReader& q, physics::IsolationSpec& iso) {
   if (iso.bearing == physics::Bearing::friction_pendulum) {
     iso.radius = q.number("radius", 0.0), iso.mu_slow = q.number("mu_slow", 0.0);
-    iso.mu_fast = q.number("mu_fast", iso.mu_slow), iso.rate = q.number("rate", 0.0);
+    iso.mu_fast = q.number("mu_fast", iso.mu_slow), iso.rate = q.number("rate");
     iso.uy = q.number("u_y", iso.uy);
     if (iso.mu_fast != iso.mu_slow && !(iso.rate > 0))
       throw InputError(fmt::format("mu_fast = {:g} differs from mu_slow = {:g} but rate is 0, so mu(v) would stay "

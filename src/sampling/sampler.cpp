@@ -190,7 +190,7 @@ void resolve_buildings(StructureModel& m, const std::array<const toml::table*, 2
 // A row (docs/architecture.md §2.7.1): buildings = n and the tables [structures.buildingK] for K = 3..n (null when
 // absent); a table beyond n is refused.
 std::vector<const toml::table*> read_row_tables(config::TableReader& r, const toml::table& table, const std::string& file) {
-  const long count = r.integer("buildings", 2);
+  const long count = r.integer("buildings");
   for (const auto& [key, node] : table) {
     const std::string_view k = key.str();
     if (k.size() <= 8 || k.substr(0, 8) != "building" || k.find_first_not_of("0123456789", 8) != std::string_view::npos)
@@ -285,7 +285,7 @@ StructureModel parse_structure_model(const toml::table& table, const std::string
     number(key, *out);
   bool rule_explicit = false;
   for (const char* key : {"ct_lower", "ct_upper", "height_exponent"}) rule_explicit |= r.get(key) != nullptr;
-  m.equal_heights = r.boolean("equal_heights", false);
+  m.equal_heights = r.boolean("equal_heights");
   {
     BuildingModel shared;
     read_shear_defaults(r, shared);

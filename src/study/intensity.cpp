@@ -12,9 +12,11 @@
 #include <fmt/format.h>
 
 #include "pounding/config/config.hpp"
+#include "pounding/config/fields.hpp"
 #include "pounding/core/error.hpp"
 #include "pounding/core/files.hpp"
 #include "pounding/sampling/sampler.hpp"
+#include "pounding/study/study_fields.hpp"
 
 namespace pounding {
 
@@ -44,7 +46,7 @@ std::vector<double> read_periods(TableReader& r, const std::string& path) {
     TableReader g(t, path, "intensity.periods");
     const double lo = g.number("min", 0.0);
     const double hi = g.number("max", 0.0);
-    const long count = g.integer("count", 10);
+    const long count = g.integer("count");
     g.finish("min, max, count");
     if (!(hi > lo)) throw InputError("periods: max must exceed min", r.where("periods"), "give {min = 0.2, max = 2.0, count = 10}");
     std::vector<double> p(static_cast<std::size_t>(count));
@@ -115,13 +117,13 @@ IntensitySpec parse_intensity(const toml::table* t, const std::string& path, con
   x.im.measure = r.choice("measure", "Sa", [](const std::string& n) { return parse_named(im_measure_names, n, "measure"); });
   x.method = r.choice("method", "msa", [](const std::string& n) { return parse_named(fragility_method_names, n, "method"); });
   read_period(x, r, path, structures);
-  x.im.damping = r.number("damping", 0.05);
+  x.im.damping = r.number("damping");
   read_levels(x, r);
-  x.max_scale = r.number("max_scale", 10.0);
+  x.max_scale = r.number("max_scale");
   if (x.method != FragilityMethod::ida && r.get("tolerance"))
     throw InputError("tolerance is for method = \"ida\" (the bisection's bracket width)", r.where("tolerance"),
                      "delete tolerance, or set method = \"ida\"");
-  x.tolerance = r.number("tolerance", 0.01);
+  x.tolerance = r.number("tolerance");
   r.finish("measure, period, periods, damping, levels, max_scale, method, tolerance");
   return x;
 }
@@ -244,9 +246,7 @@ HazardSpec parse_hazard(const toml::table* t, const std::string& path, const Int
     }
     check_hazard_covers_stripes(h, intensity, r.where("curve"));
   }
-  h.years = r.number("years", 50.0);
-  h.target = r.number("target", 2.0);
-  h.source = r.string("source", "");
+  config::read_fields(h, r, study_fields::hazard);
   r.finish("curve, k0, k, years, target, source");
   return h;
 }

@@ -9,10 +9,12 @@
 #include <fmt/format.h>
 
 #include "pounding/config/config.hpp"
+#include "pounding/config/fields.hpp"
 #include "pounding/core/error.hpp"
 #include "pounding/sampling/sampler.hpp"
 #include "pounding/study/intensity.hpp"
 #include "pounding/study/study.hpp"
+#include "pounding/study/study_fields.hpp"
 
 namespace pounding {
 
@@ -93,12 +95,12 @@ std::string read_code_parameters(TargetSpectrumSpec& spec, TableReader& r, const
         spec.asce7.sd1 = required(r, "sd1", code, "sd1 = 0.6 (g, the design 1-s Sa)");
         spec.asce7.tl = tl;
       }
-      spec.mcer = r.boolean("mcer", false);
+      spec.mcer = r.boolean("mcer");
       return "sds, sd1, ss, s1, site_class, tl, mcer";
     }
     case TargetCode::ec8: {
       const char* const grounds[] = {"A", "B", "C", "D", "E"};
-      spec.ec8.type = r.integer("type", 1) == 1 ? Ec8Type::type1 : Ec8Type::type2;
+      spec.ec8.type = r.integer("type") == 1 ? Ec8Type::type1 : Ec8Type::type2;
       spec.ec8.ground = one_of<Ec8Ground>(r, "ground", grounds, code, "\"A\", \"B\", \"C\", \"D\" or \"E\"");
       spec.ec8.agr = required(r, "agr", code, "agr = 0.25 (g, the reference PGA on ground A)");
       spec.ec8.importance = r.number("importance", 1.0, any_lo, any_hi, "the code's own limits are checked next");
@@ -161,10 +163,7 @@ TargetSpectrumSection parse_target_spectrum(const toml::table* t, const std::str
   x.options.rule = r.get("rule") ? r.choice("rule", "", parse_scaling_rule) : default_scaling_rule(x.spec.code);
   read_range(x, r, structures);
   // the ranges of src/config/study_keys.cpp are validate()'s (selection.hpp: selection_period_min ...)
-  x.options.points = static_cast<int>(r.integer("points", 30));
-  x.options.damping = r.number("damping", 0.05);
-  x.options.min_scale = r.number("min_scale", 0.25);
-  x.options.max_scale = r.number("max_scale", 4.0);
+  config::read_fields(x.options, r, study_fields::target_spectrum);
   r.finish("code, " + code_keys + ", rule, t_min, t_max, points, damping, min_scale, max_scale");
   if (x.options.min_scale > x.options.max_scale)
     throw InputError(fmt::format("min_scale = {:g} is above max_scale = {:g}", x.options.min_scale, x.options.max_scale),

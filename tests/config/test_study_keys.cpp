@@ -333,3 +333,38 @@ TEST(StudyKeys, DocumentedChoicesAreTheEnumTables) {
     EXPECT_EQ(k->range, names) << "[" << sk.first << "]." << sk.second;
   }
 }
+
+// The typed default is the documented one where that is a value of the key's type, and what TableReader::number(key)
+// and its siblings give for an absent key; a computed default ("required", "[structures] zeta") has none, and reading
+// such a key without a default is a programming error.
+TEST(StudyKeys, TypedDefaultsAreTheDocumentedValues) {
+  int typed = 0;
+  for (const config::StudyKey& k : config::study_keys()) {
+    const config::KeyDefault d = config::typed_default(k);
+    if (std::holds_alternative<std::monostate>(d)) continue;
+    ++typed;
+    config::TableReader r(nullptr, "s.toml", std::string(k.section), std::string(k.section));
+    const std::string what = "[" + std::string(k.section) + "]." + std::string(k.key) + " = " + std::string(k.def);
+    if (const double* x = std::get_if<double>(&d)) {
+      EXPECT_EQ(k.type, "number") << what;
+      if (!std::isnan(k.lo)) EXPECT_EQ(r.number(k.key), *x) << what;
+    } else if (const long* i = std::get_if<long>(&d)) {
+      EXPECT_EQ(k.type, "integer") << what;
+      if (!std::isnan(k.lo)) EXPECT_EQ(r.integer(k.key), *i) << what;
+    } else if (const bool* b = std::get_if<bool>(&d)) {
+      EXPECT_EQ(r.boolean(k.key), *b) << what;
+    } else if (const std::string* s = std::get_if<std::string>(&d)) {
+      EXPECT_EQ(r.string(k.key), *s) << what;
+    } else if (const auto* v = std::get_if<std::vector<double>>(&d)) {
+      EXPECT_EQ(k.type, "array of numbers") << what;
+      if (!std::isnan(k.lo)) EXPECT_EQ(r.numbers(k.key), *v) << what;
+    }
+  }
+  EXPECT_GE(typed, 100);
+  const config::KeyDefault e = config::typed_default(config::study_key("contact", "e"));
+  ASSERT_TRUE(std::holds_alternative<double>(e));
+  EXPECT_EQ(std::get<double>(e), 0.65);
+  config::TableReader computed(nullptr, "s.toml", "structures.building1");
+  EXPECT_THROW(computed.number("zeta"), std::logic_error);  // "[structures] zeta": the caller gives it
+  EXPECT_THROW(computed.string("zeta"), std::logic_error);  // not a string either
+}

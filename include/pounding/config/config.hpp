@@ -70,6 +70,14 @@ class TableReader {
   // as `described_as` ("buildingK").
   const toml::table* table(std::string_view key, std::string_view described_as);
 
+  // Typed reads whose default (typed_default) and allowed range are the key's description's: the literal is
+  // written once, in study_keys.cpp. std::logic_error when the description's default is computed or of another type
+  // (then give it: the overloads below).
+  double number(std::string_view key);
+  long integer(std::string_view key);
+  std::vector<double> numbers(std::string_view key);
+  std::string string(std::string_view key);
+  bool boolean(std::string_view key);
   // Typed reads with a default for an absent key, the allowed range taken from the key's description
   // (study_keys.cpp: lo, hi, range, units); a value outside it (or not finite) is an error naming the range.
   double number(std::string_view key, double def);

@@ -4,7 +4,8 @@
 // cannot drift from it:
 //   - config::TableReader refuses to look up a key that is not listed here for its section (std::logic_error,
 //     so every test that parses a study fails until the key is described);
-//   - TableReader::number(key, def) / integer(key, def) / numbers(key, def) take the allowed range from here,
+//   - TableReader::number(key) / integer(key) / ... take the default (typed_default) and the allowed range from
+//     here; number(key, def) / integer(key, def) / numbers(key, def), for a computed default, the range,
 //     so the documented range is the checked one (keys checked elsewhere, e.g. [structures] in
 //     validate_building, give lo/hi here and tests/config/test_study_keys.cpp checks that a value just outside
 //     is refused);
@@ -17,10 +18,29 @@
 #include <span>
 #include <string>
 #include <string_view>
+#include <variant>
+#include <vector>
 
 namespace pounding::config {
 
 inline constexpr double no_limit = std::numeric_limits<double>::quiet_NaN();
+
+// How a key reaches the results file's /settings/<section> (visit_settings, study/settings.hpp), checked for every
+// key a study gives by tests/study/test_settings_keys.cpp:
+//   always          attribute <key>, whether given or defaulted;
+//   unless_default  attribute <key> only where the value is not the default (older files' bits);
+//   as              stored under another attribute, `text`: a resolved value ("periods" for period_min, a
+//                   building's "yield" for yield_coefficient, a bridge's "description");
+//   none            not stored, `text` says why (a section; how the work runs, not what it computes).
+// A key of a value table (isolation = {...}, a distribution, [[bridge.frame]]) is stored through its parent key.
+enum class Store : unsigned char { always, unless_default, as, none };
+struct StoreRule {
+  Store rule = Store::always;
+  std::string_view text;  // as: the attribute; none: the reason
+};
+inline constexpr StoreRule unless_default{Store::unless_default, ""};
+constexpr StoreRule stored_as(std::string_view attribute) { return {Store::as, attribute}; }
+constexpr StoreRule not_stored(std::string_view reason) { return {Store::none, reason}; }
 
 struct StudyKey {
   std::string_view section;  // "" (top level), "records", "structures.buildingN", "distribution.lognormal", ...
@@ -31,7 +51,14 @@ struct StudyKey {
   std::string_view range;    // the allowed values, as shown in errors ("(0, 1000]", "\"g\" | \"m/s2\"")
   std::string_view meaning;
   double lo = no_limit, hi = no_limit;  // numeric keys: the closed bounds the parser checks (NaN: no numeric check)
+  StoreRule store{};
 };
+
+// A key's typed default, read from `def` where that is a TOML value of the key's type ("1.0", "\"g\"", "true",
+// "[10, 5, 1]"): the documented default and the parsed one are the same literal. std::monostate ("computed") where
+// `def` is a sentence ("required", "[structures] zeta", "the study's seed"): the reader's caller gives it.
+using KeyDefault = std::variant<std::monostate, double, long, bool, std::string, std::vector<double>>;
+KeyDefault typed_default(const StudyKey& k);
 
 struct StudySection {
   std::string_view name;     // as in StudyKey::section

@@ -170,11 +170,13 @@ struct Study {
   // records
   std::string suite, real_dir, directory;
   std::vector<RecordFile> files;
-  double scale = 1.0;
+  // The fields of study_fields.hpp's lists are value-initialised here, not defaulted: their defaults are their keys'
+  // in src/config/study_keys.cpp, which the section readers take (a Study is made by parse_study).
+  double scale{};
   AccUnits units = AccUnits::g;
   double dt_one_column = 0.0;
-  int record_limit = 0;
-  bool synthetic_only = false;  // suite: every entry a synthetic stand-in, even where a real file exists
+  int record_limit{};
+  bool synthetic_only{};  // suite: every entry a synthetic stand-in, even where a real file exists
   int select = 0;               // [records] select: choose this many records to [target_spectrum] (0: keep all)
   std::string select_where;     // "file:line [records].select" for errors found when the records load
   std::size_t max_per_event = default_max_per_event;  // [records] max_per_event (with select; selection.hpp)
@@ -194,7 +196,7 @@ struct Study {
   // on the same axis.
   std::vector<double> gap_ratios{0.1, 0.2, 0.3, 0.5, 0.7, 1.0};
   bool gap_metres = false;
-  double curve_max = 1.5, curve_step = 0.005;
+  double curve_max = 1.5, curve_step{};
   // [gaps] existing (m): the as-built gap, reported with P(closing > existing) (NaN: not given)
   double existing_gap = NAN;
   // A sampled pair's gap unit: its code gap d (a bridge's reference gap) in ratio mode, 1 m in metres mode. The
@@ -203,7 +205,7 @@ struct Study {
   double gap_at(std::size_t g, const SampledPair& p) const { return gap_ratios[g] * gap_unit(p); }
   // contact and analysis
   ContactModel contact;
-  double e = 0.65;
+  double e{};
   // [contact] restitution: e(v0) at the latched approach velocity of each impact (contact/restitution.hpp), used
   // instead of e by the coupled runs (physics::HertzdampRestitution); absent: e
   std::optional<contact::RestitutionCurve> restitution;
@@ -217,11 +219,11 @@ struct Study {
   std::vector<double> joint_gap_offsets;
   // [contact] level_tolerance (m): floors of neighbouring shear buildings whose levels differ by at most this meet
   // floor to floor; any other floor below the neighbour's roof meets its column (model::shear_buildings)
-  double level_tolerance = 0.05;
+  double level_tolerance{};
   // [contact] shape_functions: the column side's weights (model::column_weight), linear or the fixed-fixed cubic
   model::ShapeFunctions shape_functions = model::ShapeFunctions::linear;
   Stepper stepper = Stepper::central_difference;
-  int substeps = 1;
+  int substeps{};
   double max_dt = 0.0;  // step cap (s): substeps = max(substeps, ceil(dt / max_dt)); default 2.5 ms (impacts), 0 (probability)
   // [analysis] substeps or max_dt given: the step is the user's (check_shear_steps refuses one the structures cannot
   // follow); otherwise check_shear_steps lowers max_dt to a stable step and says so in scene_reason
@@ -230,24 +232,24 @@ struct Study {
   // [analysis] threads: worker threads per rank (0: the CPUs of the affinity mask on one rank, 1 per rank under
   // mpirun with several ranks); how the work runs, not what it computes: not in /settings, the results' bits do
   // not depend on it (pounding run --threads overrides it)
-  int threads = 0;
-  double free_vibration = 0.0;
-  double displacement_limit = 10.0;
-  bool skip_untouched = true;  // impacts scene: pairs that never touch take their uncoupled results
-  bool scale_elastic = true;   // stripes: models elastic at the lowest stripe and within yield take its peaks x ratio
-  double max_excluded_fraction = 0.001;  // [analysis]: more excluded analyses than this fraction -> exit code 3
+  int threads{};
+  double free_vibration{};
+  double displacement_limit{};
+  bool skip_untouched{};  // impacts scene: pairs that never touch take their uncoupled results
+  bool scale_elastic{};   // stripes: models elastic at the lowest stripe and within yield take its peaks x ratio
+  double max_excluded_fraction{};  // [analysis]: more excluded analyses than this fraction -> exit code 3
   // [analysis] coarse: analyses marked coarse by the resolution guard; default "refine", "exclude" when the study gives
   // the step ([analysis] substeps or max_dt: a step the user set is the step every analysis runs at)
   CoarsePolicy coarse = CoarsePolicy::refine;
   // report
-  std::vector<double> targets{10.0, 5.0, 1.0};
+  std::vector<double> targets;
   double fit_min = 0.1, fit_max = 1.0;
-  double confidence = 0.95;
-  int bootstrap = 2000;
+  double confidence{};
+  int bootstrap{};
   std::string compare_with;  // "" or "stochastic-pounding"
-  bool html = false;         // [report] html: the HTML report next to the results (report/html.hpp)
+  bool html{};               // [report] html: the HTML report next to the results (report/html.hpp)
   // outputs wanted from the impacts scene
-  bool want_forces = true, want_amplification = true;
+  bool want_forces{}, want_amplification{};
   bool per_model = true;  // [outputs] per_model: false = reductions only (study/reductions.hpp)
   // [outputs] per_model = "stream" (per_model stays true): every model's peaks, but written to the results file from
   // the checkpoint after the units, in bounded memory (study/spill.hpp); the run's report from the reductions
