@@ -43,7 +43,7 @@ void set_lane(BatchResult& to, std::size_t j, const BatchResult& from, std::size
 struct RefineScratch {  // one lane's rerun
   PairBatch pair;
   BatchResult pair_result;
-  BlockPeaks peaks;
+  RunPeaks peaks;
   std::vector<std::size_t> lane;
 };
 // The pair kernel's coupled run of `batch` (law cm) into `res`: its coarse lanes, each from its own PairParams.
@@ -53,6 +53,6 @@ void refine_pairs(const PairBatch& batch, const ContactModel& cm, const GroundMo
 // SystemBlock::coupled on that lane alone.
 void refine_systems(SystemBlock& block, std::span<const SampledPair> pairs, std::span<const std::size_t> lanes,
                     double ratio, const ContactModel& cm, const ContactNumbers& cn, const GroundMotion& gm,
-                    const KernelSettings& ks, BlockPeaks& out, RefineScratch& one, std::span<std::int32_t> used);
+                    const KernelSettings& ks, RunPeaks& out, RefineScratch& one, std::span<std::int32_t> used);
 
 }  // namespace pounding
