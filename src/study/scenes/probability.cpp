@@ -1,0 +1,32 @@
+// The probability scene: every lane uncoupled, its peaks and D (the largest study-gap closing) per lane (scene.hpp).
+#include "scene.hpp"
+
+namespace pounding::study_run {
+
+UnitMotion unit_motion(UnitContext& c) {
+  const Record& rec = c.record.record;
+  const GroundMotion gm{rec.dt, rec.acc, rec.duration() + c.s.free_vibration};
+  // a bridge on several supports ([records] supports): channel k is the realisation's support k + 1
+  const int channels = c.s.structures.bridge ? c.s.structures.bridge->spec.channels() : 1;
+  std::vector<GroundMotion>& out = c.scratch.channels;
+  out.clear();
+  for (int k = 0; k < channels && channels > 1; ++k)
+    out.push_back(k == 0 ? gm
+                         : GroundMotion{rec.dt, c.record.more_supports[static_cast<std::size_t>(k - 1)].acc,
+                                        rec.duration() + c.s.free_vibration});
+  return UnitMotion{gm, out};
+}
+
+// The uncoupled runs give status, the buildings' largest floor displacements and D = the largest peak closing over
+// the study-gap contacts (system_block.hpp; the pair's peak closing), so the scene answers every gap exactly; the
+// per-floor rows and a row's buildings 3..n where the plan's schema has them.
+void probability(UnitContext& c, const UnitMotion& m, UnitResult& out) {
+  RunPeaks& peaks = c.scratch.peaks;
+  c.runner.uncoupled(m, c.ks, peaks);
+  for (std::size_t i = 0; i < c.block.size(); ++i) {
+    put_uncoupled(out, i, peaks, i);
+    put_uncoupled_rows(c, out, i, peaks, 0);
+  }
+}
+
+}  // namespace pounding::study_run
