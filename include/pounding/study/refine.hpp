@@ -5,8 +5,8 @@
 // runs in all, the batch's run being the first) -- until it is resolved. The last run is its result: still coarse or
 // diverged at the cap, it is excluded as with "exclude". Analyses that were not coarse keep their bits.
 //
-// One function for every scene that runs coupled analyses (the SDOF pair kernel's and SystemBlock's, study/run.cpp;
-// the runner's coupled(), docs/runner-design.md section 2): the scene says how to read a lane of its batch run and
+// One function for every runner that runs coupled analyses (the SDOF pair kernel's and SystemBlock's: coupled() of
+// src/study/pair_runner.cpp and src/study/system_runner.cpp): the runner says how to read a lane of its batch run and
 // how to run one lane alone. A lane's rerun depends on nothing but that lane (run alone, one lane wide), so the
 // results do not depend on the batch width, the threads or the ranks.
 #include <cstddef>

@@ -1,6 +1,6 @@
 // The runner of a study's unit (docs/runner-design.md section 2): the pair kernel or the system stepper behind one interface.
 #pragma once
-// A unit's scenes (study/unit_computer.cpp) run their batches through a Runner: PairRunner (src/study/pair_runner.cpp)
+// A unit's scenes (src/study/scenes/) run their batches through a Runner: PairRunner (src/study/pair_runner.cpp)
 // holds a PairBatch and calls pounding::run_batch, SystemRunner (src/study/system_runner.cpp) wraps SystemBlock. Each
 // method is the branch of the scenes it replaced, moved verbatim: the same kernel calls on the same batches in the
 // same order, so the bits are the same. A virtual call happens once per batch, never per step.
