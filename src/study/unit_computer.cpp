@@ -13,6 +13,26 @@
 
 namespace pounding::study_run {
 
+namespace {
+
+// The unit's motion: the record with the study's free vibration, a multi-support bridge's channels (in
+// scratch.channels).
+UnitMotion unit_motion(const UnitContext& c) {
+  const Record& rec = c.record.record;
+  const GroundMotion gm{rec.dt, rec.acc, rec.duration() + c.s.free_vibration};
+  // a bridge on several supports ([records] supports): channel k is the realisation's support k + 1
+  const int channels = c.s.structures.bridge ? c.s.structures.bridge->spec.channels() : 1;
+  std::vector<GroundMotion>& out = c.scratch.channels;
+  out.clear();
+  for (int k = 0; k < channels && channels > 1; ++k)
+    out.push_back(k == 0 ? gm
+                         : GroundMotion{rec.dt, c.record.more_supports[static_cast<std::size_t>(k - 1)].acc,
+                                        rec.duration() + c.s.free_vibration});
+  return UnitMotion{gm, out};
+}
+
+}  // namespace
+
 // One work unit: sample the block, run its scenes, fill a UnitResult. A rank's threads have one UnitComputer each: it
 // holds every buffer it writes (its Runner, the sampled block, the scenes' Scratch); what it shares with the others is
 // read only (study, records, stripes, sampler, plan) except `computed`, the rank's count of units started (the compute

@@ -3,20 +3,6 @@
 
 namespace pounding::study_run {
 
-UnitMotion unit_motion(UnitContext& c) {
-  const Record& rec = c.record.record;
-  const GroundMotion gm{rec.dt, rec.acc, rec.duration() + c.s.free_vibration};
-  // a bridge on several supports ([records] supports): channel k is the realisation's support k + 1
-  const int channels = c.s.structures.bridge ? c.s.structures.bridge->spec.channels() : 1;
-  std::vector<GroundMotion>& out = c.scratch.channels;
-  out.clear();
-  for (int k = 0; k < channels && channels > 1; ++k)
-    out.push_back(k == 0 ? gm
-                         : GroundMotion{rec.dt, c.record.more_supports[static_cast<std::size_t>(k - 1)].acc,
-                                        rec.duration() + c.s.free_vibration});
-  return UnitMotion{gm, out};
-}
-
 // The uncoupled runs give status, the buildings' largest floor displacements and D = the largest peak closing over
 // the study-gap contacts (system_block.hpp; the pair's peak closing), so the scene answers every gap exactly; the
 // per-floor rows and a row's buildings 3..n where the plan's schema has them.

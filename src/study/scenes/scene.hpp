@@ -73,8 +73,6 @@ void put_coupled(const UnitContext& c, UnitResult& out, std::size_t i, std::size
 
 // The record times f, in scratch.scaled.
 std::span<const double> scaled(Scratch& scratch, const Record& rec, double f);
-// The unit's motion: the record with the study's free vibration, a multi-support bridge's channels.
-UnitMotion unit_motion(UnitContext& c);
 
 void probability(UnitContext& c, const UnitMotion& m, UnitResult& out);              // probability.cpp
 void impacts(UnitContext& c, std::size_t g, const UnitMotion& m, UnitResult& out);  // impacts.cpp, gap g
