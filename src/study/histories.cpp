@@ -329,7 +329,7 @@ class HistoryRunner {
                                                 gm.duration});
     block_->set_channels(channels_);
     physics::SystemSeries series;
-    BlockPeaks p;
+    RunPeaks p;
     const std::span<const SampledPair> one(&pair_, 1);
     const model::System& sys =
         coupled ? block_->record(one, ratio, s_.contact, ContactNumbers{s_.e, s_.contact_stiffness}, gm, ks, p, series)

@@ -63,7 +63,7 @@ void refine_pairs(const PairBatch& batch, const ContactModel& cm, const GroundMo
 
 void refine_systems(SystemBlock& block, std::span<const SampledPair> pairs, std::span<const std::size_t> lanes,
                     double ratio, const ContactModel& cm, const ContactNumbers& cn, const GroundMotion& gm,
-                    const KernelSettings& ks, BlockPeaks& out, RefineScratch& one, std::span<std::int32_t> used) {
+                    const KernelSettings& ks, RunPeaks& out, RefineScratch& one, std::span<std::int32_t> used) {
   const auto worst = [&](std::size_t j) { return out.worst[j]; };
   const auto rerun = [&](std::size_t j, int n) {
     one.lane.assign(1, lanes[j]);

@@ -140,7 +140,7 @@ physics::ShearSpec shear_spec(const BuildingModel& b, const SampledStructure& s,
   return spec;
 }
 
-void BlockPeaks::resize(std::size_t n, std::size_t nb, const TableLayout& t) {
+void RunPeaks::resize(std::size_t n, std::size_t nb, const TableLayout& t) {
   status.assign(n, 0);
   u1.assign(n, 0.0), u2.assign(n, 0.0), closing.assign(n, 0.0);
   buildings = nb;
@@ -157,7 +157,7 @@ void BlockPeaks::resize(std::size_t n, std::size_t nb, const TableLayout& t) {
   springs.resize(0);
 }
 
-void BlockPeaks::set_scaled(std::size_t to, const BlockPeaks& from, std::size_t k, double scale) {
+void RunPeaks::set_scaled(std::size_t to, const RunPeaks& from, std::size_t k, double scale) {
   status[to] = from.status[k];
   u1[to] = scale * from.u1[k], u2[to] = scale * from.u2[k], closing[to] = scale * from.closing[k];
   for (std::size_t b = 0; b < buildings; ++b) u[to * buildings + b] = scale * from.u[k * buildings + b];
@@ -170,7 +170,7 @@ void BlockPeaks::set_scaled(std::size_t to, const BlockPeaks& from, std::size_t 
   for (std::size_t e = 0; e < E; ++e) e_closing[to * E + e] = scale * from.e_closing[k * E + e];
 }
 
-void BlockPeaks::set_lane(std::size_t to, const BlockPeaks& from, std::size_t k) {
+void RunPeaks::set_lane(std::size_t to, const RunPeaks& from, std::size_t k) {
   const std::size_t n = status.size();
   const auto row = [&](auto& mine, const auto& theirs) {  // lane k's values of `theirs` (of any width) as lane `to`'s
     const std::size_t w = mine.size() / n;
@@ -187,11 +187,11 @@ void BlockPeaks::set_lane(std::size_t to, const BlockPeaks& from, std::size_t k)
   if (!springs.empty()) springs[to] = from.springs[k];
 }
 
-bool SystemBlock::scales_linearly(const BlockPeaks& p, std::size_t k, double ratio, double limit) const {
+bool SystemBlock::scales_linearly(const RunPeaks& p, std::size_t k, double ratio, double limit) const {
   constexpr double margin = 1.0 - 1e-9;  // as the pair's (study/run.cpp elastic_at)
   // ratio >= 1: then every scaled peak within the elastic range puts the anchor's there too (the anchor is linear)
   if (!(ratio >= 1.0) || model_.bridge || !offsets_.empty() || !joint_offsets_.empty() || p.status[k] != 0 || k >= p.springs.size()) return false;
-  const BlockPeaks::Springs& s = p.springs[k];
+  const RunPeaks::Springs& s = p.springs[k];
   if (s.walls) return false;
   for (std::size_t i = 0; i < s.law.size(); ++i)
     if (!physics::spring_stays_elastic(s.law[i], s.spec[i], ratio * s.peak[i], margin)) return false;
@@ -384,7 +384,7 @@ std::vector<ContactModel> SystemBlock::groups(const LaneTopology& t, const Conta
 
 void SystemBlock::run(std::span<const SampledPair> pairs, std::span<const std::size_t> lanes, double ratio,
                       const ContactModel& cm, const ContactNumbers& cn, const GroundMotion& gm,
-                      const KernelSettings& ks, BlockPeaks& out, physics::SystemSeries* series) {
+                      const KernelSettings& ks, RunPeaks& out, physics::SystemSeries* series) {
   const std::size_t n = lanes.size(), nb = body_count(model_);
   out.resize(n, nb, layout_), out.springs.resize(keep_springs_ ? n : 0);
   keys_.resize(n);
@@ -470,14 +470,14 @@ void SystemBlock::run_lanes(std::span<const ContactModel> groups, const GroundMo
 
 const model::System& SystemBlock::record(std::span<const SampledPair> pairs, double ratio, const ContactModel& cm,
                                          const ContactNumbers& cn, const GroundMotion& gm, const KernelSettings& ks,
-                                         BlockPeaks& out, physics::SystemSeries& series) {
+                                         RunPeaks& out, physics::SystemSeries& series) {
   const std::size_t one[] = {0};
   run(pairs.first(1), one, ratio, cm, cn, gm, ks, out, &series);
   return system(lane_topology(model_, pairs[0]));
 }
 
 // Lane l (of w) of the last run into lane k of out's per-floor and per-element rows (the table's order: to_table).
-void SystemBlock::table_lane(BlockPeaks& out, const model::System& sys, std::span<const std::size_t> to_table,
+void SystemBlock::table_lane(RunPeaks& out, const model::System& sys, std::span<const std::size_t> to_table,
                              std::size_t l, std::size_t w, std::size_t k) const {
   for (std::size_t b = 0; b < sys.bodies().size() && b < layout_.floors.size(); ++b) {
     const auto& dofs = sys.bodies()[b].dofs;
@@ -498,7 +498,7 @@ void SystemBlock::table_lane(BlockPeaks& out, const model::System& sys, std::spa
   }
 }
 
-void SystemBlock::keep_lane_springs(BlockPeaks::Springs& s, const model::System& sys,
+void SystemBlock::keep_lane_springs(RunPeaks::Springs& s, const model::System& sys,
                                     std::span<const ContactModel> groups, std::size_t l, std::size_t w) const {
   const std::size_t S = sys.springs().size();
   s.law.resize(S), s.spec.resize(S), s.peak.resize(S);
@@ -514,7 +514,7 @@ void SystemBlock::keep_lane_springs(BlockPeaks::Springs& s, const model::System&
 }
 
 void SystemBlock::uncoupled(std::span<const SampledPair> pairs, const ContactModel& none, const GroundMotion& gm,
-                            const KernelSettings& ks, BlockPeaks& out) {
+                            const KernelSettings& ks, RunPeaks& out) {
   all_.resize(pairs.size());
   std::iota(all_.begin(), all_.end(), std::size_t{0});
   run(pairs, all_, 0.0, none, ContactNumbers{}, gm, ks, out);
@@ -522,7 +522,7 @@ void SystemBlock::uncoupled(std::span<const SampledPair> pairs, const ContactMod
 
 void SystemBlock::coupled(std::span<const SampledPair> pairs, std::span<const std::size_t> lanes, double ratio,
                           const ContactModel& cm, const ContactNumbers& cn, const GroundMotion& gm,
-                          const KernelSettings& ks, BlockPeaks& out) {
+                          const KernelSettings& ks, RunPeaks& out) {
   run(pairs, lanes, ratio, cm, cn, gm, ks, out);
 }
 

@@ -1,111 +1,58 @@
-// UnitComputer: one work unit of a study through the pair kernel or the system stepper (moved from run.cpp).
+// UnitComputer: one work unit of a study -- the block sampled, the motion built, then the scenes (scenes/scene.hpp).
 #include "unit_computer.hpp"
 
-#include <sys/stat.h>
-#include <unistd.h>
-
 #include <atomic>
-#include <algorithm>
 #include <memory>
-#include <chrono>
-#include <cmath>
-#include <cstdlib>
-#include <cstring>
-#include <map>
-#include <memory>
-#include <mutex>
-#include <optional>
-#include <thread>
+#include <vector>
 
-#include <fmt/format.h>
-#include <fmt/ranges.h>
-
-#include "pounding/core/error.hpp"
-#include "pounding/core/parallel_for.hpp"
-#include "pounding/core/files.hpp"
-#include "pounding/contact/registry.hpp"
-#include "pounding/model/hysteresis/registry.hpp"
-#include "pounding/model/sdof.hpp"
-#include "pounding/motion/library.hpp"
-#include "pounding/physics/batch.hpp"
-#include "pounding/physics/velocity_restitution.hpp"
-#include "pounding/results/reader.hpp"
-#include "pounding/results/writer.hpp"
 #include "pounding/sampling/sampler.hpp"
-#include "pounding/study/checkpoint.hpp"
-#include "pounding/study/histories.hpp"
-#include "pounding/study/make_results.hpp"
-#include "pounding/study/plan.hpp"
-#include "pounding/study/refine.hpp"
-#include "pounding/study/system_block.hpp"
-#include "pounding/study/spill.hpp"
-#include "pounding/study/tally.hpp"
-#include "pounding/study/unit_result.hpp"
+#include "pounding/study/runner.hpp"
 
 #include "run_phases.hpp"
+#include "scenes/scene.hpp"
 
 namespace pounding::study_run {
 
-// The hysteresis model of the springs the kernel runs (model::Registered), asked for its driver traits.
-using Spring = model::Registered::Spring;
-static_assert(model::Hysteresis<Spring>);
-
 namespace {
 
-// The unit fields this computer fills (results/schema.hpp); indices into the plan's schema.
-namespace field {
-constexpr std::size_t unc_status = results::unit_field("uncoupled", "status");
-constexpr std::size_t unc_peak_u1 = results::unit_field("uncoupled", "peak_u1");
-constexpr std::size_t unc_peak_u2 = results::unit_field("uncoupled", "peak_u2");
-constexpr std::size_t unc_peak_closing = results::unit_field("uncoupled", "peak_closing");
-constexpr std::size_t imp_status = results::unit_field("impacts", "status");
-constexpr std::size_t imp_count = results::unit_field("impacts", "impact_count");
-constexpr std::size_t imp_peak_force = results::unit_field("impacts", "peak_force");
-constexpr std::size_t imp_peak_u1 = results::unit_field("impacts", "peak_u1");
-constexpr std::size_t imp_peak_u2 = results::unit_field("impacts", "peak_u2");
-constexpr std::size_t imp_t_first = results::unit_field("impacts", "t_first_impact");
-constexpr std::size_t imp_h_omega = results::unit_field("impacts", "h_omega_contact");
-}  // namespace field
+// The unit's motion: the record with the study's free vibration, a multi-support bridge's channels (in
+// scratch.channels).
+UnitMotion unit_motion(const UnitContext& c) {
+  const Record& rec = c.record.record;
+  const GroundMotion gm{rec.dt, rec.acc, rec.duration() + c.s.free_vibration};
+  // a bridge on several supports ([records] supports): channel k is the realisation's support k + 1
+  const int channels = c.s.structures.bridge ? c.s.structures.bridge->spec.channels() : 1;
+  std::vector<GroundMotion>& out = c.scratch.channels;
+  out.clear();
+  for (int k = 0; k < channels && channels > 1; ++k)
+    out.push_back(k == 0 ? gm
+                         : GroundMotion{rec.dt, c.record.more_supports[static_cast<std::size_t>(k - 1)].acc,
+                                        rec.duration() + c.s.free_vibration});
+  return UnitMotion{gm, out};
+}
 
 }  // namespace
 
-// One work unit: sample the block, run the uncoupled pairs (and, in the impacts scene, the coupled ones per
-// gap), fill a UnitResult. A rank's threads have one UnitComputer each: it holds every buffer it writes (batches,
-// results, scratch, its SystemBlock); what it shares with the others is read only (study, records, stripes,
-// sampler, plan) except `computed`, the rank's count of units started (the compute fault fires on the rank's third).
+// One work unit: sample the block, run its scenes, fill a UnitResult. A rank's threads have one UnitComputer each: it
+// holds every buffer it writes (its Runner, the sampled block, the scenes' Scratch); what it shares with the others is
+// read only (study, records, stripes, sampler, plan) except `computed`, the rank's count of units started (the compute
+// fault fires on the rank's third).
 class UnitComputer {
  public:
   UnitComputer(const Study& s, const std::vector<StudyRecord>& records, const StripePlan& stripes,
                const StructureSampler& sampler, const WorkPlan& plan, int rank, std::atomic<int>& computed,
                const std::atomic<bool>* stop)
-      : s_(s), records_(records), stripes_(stripes), sampler_(sampler), plan_(plan), rank_(rank), computed_(computed) {
+      : s_(s), records_(records), stripes_(stripes), sampler_(sampler), plan_(plan), rank_(rank), computed_(computed),
+        runner_(make_runner(s, plan)), fields_(field_index(s, plan, runner_->layout())) {
     ks_base_.stop = stop;  // a stop reaches the steppers inside a unit (StopRequested: the unit is left to --resume)
     ks_base_.stepper = s.stepper;
     ks_base_.displacement_limit = s.displacement_limit;
-    uncoupled_ = s.contact;
-    uncoupled_.law = ContactLaw::none;
-    if (runs_systems(sampler.model()))
-      block_.emplace(sampler.model(), s.contact, s.e, s.contact_levels, s.gap_offsets, s.level_tolerance,
-                     s.shape_functions);
-    if (block_) block_->set_joint_offsets(s.joint_gap_offsets), block_->set_gap_metres(s.gap_metres);
-    if (block_ && !plan.system.empty()) table_fields(plan);
-    if (block_ && (plan.stripes || plan.ida)) block_->keep_springs(true);  // scales_linearly reads them
-    if (s.restitution && plan.impacts) {  // e(v0) in the coupled runs (study.cpp: hertzdamp, CD, impacts scene)
+    if (s.restitution && plan.impacts)  // e(v0) in the coupled runs (study.cpp: hertzdamp, CD, impacts scene)
       restitution_ = std::make_unique<physics::HertzdampRestitution>(*s.restitution, s.contact);
-      f_rest_out_ = results::field_index(plan.fields, "impacts", "restitution_outside");
-      if (block_ && !plan.system.empty())
-        f_e_outside_ = results::field_index(plan.fields, "impacts", results::restitution_element_field.name);
-    }
-    if (plan.stripes) stripe_scaled_ = results::field_index(plan.fields, "uncoupled", "scaled");
-    if (s.coarse == CoarsePolicy::refine && plan.impacts) f_substeps_ = results::field_index(plan.fields, "impacts", "substeps");
-    if (plan.ida) {
-      ida_analyses_ = results::field_index(plan.fields, "ida", "analyses");
-      ida_limit_ = results::field_index(plan.fields, "ida", "scale_limit");
-      ida_lo_ = results::field_index(plan.fields, "ida", "scale_lo");
-      ida_hi_ = results::field_index(plan.fields, "ida", "scale_hi");
-    }
   }
 
+  // The unit's pipeline: stripes, or probability followed by impacts (gaps coupled) and ida (it bisects); the
+  // order is today's, which decides the bits.
   UnitResult operator()(std::size_t unit) {
     if (++computed_ == 3) inject_fault("compute", rank_);  // the rank's third unit, on whichever thread
     const UnitIndex u = plan_.decode(unit);
@@ -113,539 +60,25 @@ class UnitComputer {
     pairs_.resize(n);
     const SampleId pair = s_.structures.pair_id(static_cast<std::int64_t>(u.pair));  // slots i1, i2
     sampler_.sample_block(pair.i1, pair.i2, static_cast<std::int64_t>(u.block * plan_.batch), pairs_);
-    const Record& rec = records_[u.record].record;
     KernelSettings ks = ks_base_;
-    ks.substeps = substeps_for(rec.dt);
+    ks.substeps = study_substeps(s_, records_[u.record].record.dt);
     UnitResult out(plan_, n);
-    if (block_) {  // shear buildings, rows, bridges: Systems (study/system_block.hpp)
-      if (plan_.stripes) {
-        stripes(rec, u.record, ks, out);
-        return out;
-      }
-      systems(records_[u.record], ks, out);
-      if (plan_.ida) ida(rec, u.record, ks, out);
-      return out;
-    }
-    batch_.resize(n);
-    for (std::size_t i = 0; i < n; ++i) batch_.set(i, pairs_[i].pair_params(0.0, s_.e));
+    runner_->load(pairs_);
+    UnitContext c{s_, plan_, stripes_, fields_, restitution_.get(), records_[u.record], u.record, ks, *runner_, pairs_,
+                  scratch_};
     if (plan_.stripes) {
-      stripes(rec, u.record, ks, out);
+      stripes(c, out);
       return out;
     }
-    const GroundMotion gm{rec.dt, rec.acc, rec.duration() + s_.free_vibration};
-    run_batch(batch_, uncoupled_, gm, ks, res_);
-    for (std::size_t i = 0; i < n; ++i) put_uncoupled(out, i, res_.status[i], res_.peak_u1[i], res_.peak_u2[i], res_.peak_closing[i]);
+    const UnitMotion m = unit_motion(c);
+    probability(c, m, out);
     if (plan_.impacts)
-      for (std::size_t g = 0; g < plan_.gaps; ++g) coupled(g, gm, ks, out);
-    if (plan_.ida) ida(rec, u.record, ks, out);
+      for (std::size_t g = 0; g < plan_.gaps; ++g) impacts(c, g, m, out);
+    if (plan_.ida) ida(c, out);
     return out;
   }
 
  private:
-  int substeps_for(double dt) const { return study_substeps(s_, dt); }
-
-  // Value k of the uncoupled per-lane fields ([stripe][lane] in a multiple-stripe unit).
-  static void put_uncoupled(UnitResult& out, std::size_t k, std::uint8_t status, double u1, double u2, double closing) {
-    out.values<std::uint8_t>(field::unc_status)[k] = status;
-    out.values<double>(field::unc_peak_u1)[k] = u1;
-    out.values<double>(field::unc_peak_u2)[k] = u2;
-    out.values<double>(field::unc_peak_closing)[k] = closing;
-  }
-
-  // record * f into scaled_ (the record itself is loaded or synthesised once)
-  std::span<const double> scaled(const Record& rec, double f) {
-    scaled_.resize(rec.acc.size());
-    for (std::size_t t = 0; t < scaled_.size(); ++t) scaled_[t] = f * rec.acc[t];
-    return scaled_;
-  }
-
-  // A multiple-stripe unit: the block of models under record r scaled to every stripe's level, lowest first. A
-  // record dropped from a stripe (factor above max_scale) is not analysed there (status dropped_status). The first
-  // stripe analysed runs every model (the anchor, factor fa). At a higher stripe with factor f a model whose
-  // buildings stayed elastic in the anchor run and stay so at f -- ratio f / fa times each anchor peak |u| below
-  // (1 - 1e-9) fy / k, and ratio times (peak |u1| + peak |u2|) within the displacement limit -- is not rerun: an
-  // elastic response scales exactly with the record, so its peaks are the anchor's times the ratio
-  // ([analysis] scale_elastic; tests/cli/fragility_scale_elastic.sh compares it with every model run). The others
-  // (and all of them with scale_elastic = false) are run on the scaled record.
-  void stripes(const Record& rec, std::size_t r, const KernelSettings& ks, UnitResult& out) {
-    const std::size_t n = pairs_.size(), R = stripes_.records;
-    double fa = 0;
-    for (std::size_t s = 0; s < plan_.stripes; ++s) {
-      const std::size_t k = s * R + r, at = s * n;
-      if (stripes_.dropped[k]) {
-        for (std::size_t i = 0; i < n; ++i) out.values<std::uint8_t>(field::unc_status)[at + i] = results::dropped_status;
-        continue;
-      }
-      const bool anchor = fa == 0;
-      peaks_at(rec, stripes_.scale[k], fa, ks);
-      for (std::size_t i = 0; i < n; ++i) put_uncoupled(out, at + i, st_[i], pu1_[i], pu2_[i], pc_[i]);
-      if (block_) put_system_stripe(out, s);
-      if (anchor) continue;
-      auto scaled_flag = out.values<std::uint8_t>(stripe_scaled_);
-      for (std::size_t i = 0; i < n; ++i) scaled_flag[at + i] = 1;
-      for (std::size_t i : lanes_) scaled_flag[at + i] = 0;
-    }
-  }
-
-  // The peaks of every lane under the record scaled by f, into st_, pu1_, pu2_, pc_: with fa == 0 the anchor run
-  // (fa becomes f); else the anchor's peaks times f / fa for the lanes elastic at f, a run for the others. The
-  // same for the stripes and the IDA's hunt, so the hunt is MSA's own analysis, bit for bit.
-  void peaks_at(const Record& rec, double f, double& fa, const KernelSettings& ks) {
-    const std::size_t n = pairs_.size();
-    st_.resize(n), pu1_.resize(n), pu2_.resize(n), pc_.resize(n);
-    const GroundMotion gm{rec.dt, scaled(rec, f), rec.duration() + s_.free_vibration};
-    if (block_) {
-      system_peaks_at(gm, f, fa, ks);
-      return;
-    }
-    if (fa == 0) {
-      fa = f;
-      run_batch(batch_, uncoupled_, gm, ks, anchor_);
-      for (std::size_t i = 0; i < n; ++i)
-        st_[i] = anchor_.status[i], pu1_[i] = anchor_.peak_u1[i], pu2_[i] = anchor_.peak_u2[i], pc_[i] = anchor_.peak_closing[i];
-      return;
-    }
-    const double ratio = f / fa;
-    lanes_.clear();
-    for (std::size_t i = 0; i < n; ++i)
-      if (!(s_.scale_elastic && elastic_at(i, ratio, ks.displacement_limit))) lanes_.push_back(i);
-    if (!lanes_.empty()) {
-      sub_.resize(lanes_.size());
-      for (std::size_t j = 0; j < lanes_.size(); ++j) sub_.set(j, batch_.get(lanes_[j]));
-      run_batch(sub_, uncoupled_, gm, ks, res_);
-    }
-    for (std::size_t i = 0, j = 0; i < n; ++i) {
-      if (j < lanes_.size() && lanes_[j] == i) {
-        st_[i] = res_.status[j], pu1_[i] = res_.peak_u1[j], pu2_[i] = res_.peak_u2[j], pc_[i] = res_.peak_closing[j];
-        ++j;
-      } else {
-        st_[i] = 0, pu1_[i] = ratio * anchor_.peak_u1[i], pu2_[i] = ratio * anchor_.peak_u2[i];
-        pc_[i] = ratio * anchor_.peak_closing[i];
-      }
-    }
-  }
-
-  // Lane i of the anchor run stays elastic when the record is scaled by `ratio` more (see stripes()): each spring's
-  // hysteresis model answers (stays_elastic, model/hysteresis/registry.hpp), not a value test here.
-  bool elastic_at(std::size_t i, double ratio, double limit) const {
-    if (block_) return block_->scales_linearly(anchor_peaks_, i, ratio, limit);
-    constexpr double margin = 1.0 - 1e-9;
-    const double u1 = ratio * anchor_.peak_u1[i], u2 = ratio * anchor_.peak_u2[i];
-    if (anchor_.status[i] != 0) return false;
-    const PairParams p = batch_.get(i);
-    return Spring::stays_elastic(p.s1, u1, margin) && Spring::stays_elastic(p.s2, u2, margin) && u1 + u2 <= limit;
-  }
-
-  // The bisection IDA of yielding pairs (method = "ida"): for every lane and gap ratio x, the record scale factor
-  // at which the pair first touches, i.e. the smallest f with peak closing D(f) > x d.
-  //  1. Hunt: the record scaled (like a stripe, bit-identical to MSA's analysis at that factor) to each factor of
-  //     ida_hunt_factors -- the stripes' levels below max_scale, then max_scale. The first factor whose run
-  //     touches brackets f* between it and the factor before (0 before the first); no touch up to the last factor:
-  //     censored. A diverged analysis ends the lane's hunt: its open gaps are censored at the factor before (the
-  //     record's cap comes down to it in make_results), or excluded when that was the first factor.
-  //  2. Bisection on ln f (halving from 0 while the bracket starts there) until hi <= lo (1 + tolerance). Each
-  //     step runs every open (lane, gap) as its own kernel lane with its own factor, using the exact identity of
-  //     bilinear (kinematic hardening) and elastic restoring forces R(f w; fy) = f R(w; fy / f): the response to
-  //     f ag is f times the response to ag of the same structure with yield forces fy / f. So the record stays
-  //     unscaled, each lane's fy is divided by its factor, and the peaks are multiplied by it (the displacement
-  //     limit is applied to the multiplied peaks). Checked against the scaled record in tests/study.
-  //  A lane whose buildings are still elastic at the factor that closed its bracket needs no bisection: its first
-  //  contact is the anchor's linear extrapolation, exact (scale_lo = scale_hi).
-  // With several crossings of D(f) = x d (a "resurrection"), the hunt's first bracket is kept: f* is the first
-  // crossing to the resolution of the hunt.
-  void ida(const Record& rec, std::size_t record, const KernelSettings& ks, UnitResult& out) {
-    const std::size_t n = pairs_.size(), G = plan_.gaps;
-    const std::vector<double> hunt = ida_hunt_factors(s_.intensity, stripes_.im[record]);
-    std::vector<std::uint8_t> state(n * G, open);
-    std::vector<double> lo(n * G, 0.0), hi(n * G, INFINITY);
-    auto analyses = out.values<std::int32_t>(ida_analyses_);
-    auto limit = out.values<double>(ida_limit_);
-    for (std::size_t i = 0; i < n; ++i) analyses[i] = 1, limit[i] = hunt.back();  // 1: the record as it is
-    std::vector<std::uint8_t> diverged(n, 0);
-    double fa = 0;
-    for (std::size_t h = 0; h < hunt.size(); ++h) {
-      const double f = hunt[h];
-      peaks_at(rec, f, fa, ks);
-      if (h == 0)
-        for (std::size_t i = 0; i < n; ++i) ++analyses[i];
-      else
-        for (std::size_t i : lanes_) ++analyses[i];  // the lanes run, not scaled from the anchor
-      for (std::size_t i = 0; i < n; ++i) {
-        if (diverged[i]) continue;
-        if (st_[i] != 0) {
-          // no contact known up to the factor before: censored there (the record's cap goes down to it, make_results);
-          // at the first factor nothing is known: excluded
-          diverged[i] = 1, limit[i] = h ? hunt[h - 1] : 0.0;
-          for (std::size_t g = 0; g < G; ++g)
-            if (state[i * G + g] == open && h == 0) state[i * G + g] = excluded;
-          continue;
-        }
-        for (std::size_t g = 0; g < G; ++g) {
-          const std::size_t k = i * G + g;
-          if (state[k] != open) continue;
-          if (pc_[i] > s_.gap_at(g, pairs_[i])) state[k] = found, hi[k] = f;
-          else lo[k] = f;
-        }
-      }
-    }
-    // A lane still elastic where it first touched is linear on [0, hi]: D(f) = (f / fa) D(fa), so its first contact
-    // is exactly at fa x d / D(fa), no bisection needed ([analysis] scale_elastic; the bracket closes on it)
-    if (s_.scale_elastic)
-      for (std::size_t k = 0; k < n * G; ++k) {
-        const std::size_t i = k / G;
-        if (state[k] != found || !elastic_at(i, hi[k] / fa, ks.displacement_limit)) continue;
-        const double D = block_ ? anchor_peaks_.closing[i] : anchor_.peak_closing[i];
-        const double f = fa * s_.gap_ratios[k % G] * s_.gap_unit(pairs_[i]) / D;  // (fa x) d / D in this order: ratio studies' bits
-        lo[k] = hi[k] = std::clamp(f, lo[k], hi[k]);
-      }
-    if (block_) system_bisect(rec, ks, state, lo, hi, analyses);
-    else bisect(rec, ks, state, lo, hi, analyses);
-    auto slo = out.values<double>(ida_lo_), shi = out.values<double>(ida_hi_);
-    for (std::size_t k = 0; k < n * G; ++k) {
-      const bool ok = state[k] != excluded;
-      slo[k] = ok ? lo[k] : NAN, shi[k] = ok ? hi[k] : NAN;  // open: censored, [last factor analysed, inf)
-    }
-  }
-
-  // The pair whose response to the unscaled record, times f, is the response of `pp` to the record times f: each
-  // spring's unscaled_equivalent (bilinear: fy / f). Every registered model the study runs has one; a model
-  // without (answering std::nullopt) would need its lane run on the scaled record, which the bisection does not do.
-  static PairParams unscaled_equivalent(PairParams pp, double f) {
-    const std::optional<Structure> s1 = Spring::unscaled_equivalent(pp.s1, f), s2 = Spring::unscaled_equivalent(pp.s2, f);
-    if (!s1 || !s2) throw std::logic_error("IDA bisection: the structure model does not scale with the record");
-    pp.s1 = *s1, pp.s2 = *s2;
-    return pp;
-  }
-
-  // The IDA's bisection (see ida()): every found (lane, gap) bracket narrowed to the tolerance, one kernel lane
-  // per open bracket with each spring replaced by its unscaled equivalent at the lane's factor.
-  void bisect(const Record& rec, const KernelSettings& ks, std::vector<std::uint8_t>& state, std::vector<double>& lo,
-              std::vector<double>& hi, std::span<std::int32_t> analyses) {
-    const std::size_t nG = state.size();
-    const std::size_t G = plan_.gaps;
-    const GroundMotion gm{rec.dt, rec.acc, rec.duration() + s_.free_vibration};
-    for (int step = 0; step < 200; ++step) {
-      todo_.clear();
-      for (std::size_t k = 0; k < nG; ++k)
-        if (state[k] == found && !(hi[k] <= lo[k] * (1.0 + s_.intensity.tolerance))) todo_.push_back(k);
-      if (todo_.empty()) break;
-      sub_.resize(todo_.size());
-      mid_.resize(todo_.size());
-      double f_min = INFINITY;
-      for (std::size_t j = 0; j < todo_.size(); ++j) {
-        const std::size_t k = todo_[j];
-        mid_[j] = lo[k] > 0 ? std::sqrt(lo[k] * hi[k]) : 0.5 * hi[k];
-        f_min = std::min(f_min, mid_[j]);
-        sub_.set(j, unscaled_equivalent(pairs_[k / G].pair_params(0.0, s_.e), mid_[j]));
-      }
-      KernelSettings kb = ks;
-      kb.displacement_limit = ks.displacement_limit / f_min;  // the exact limit is applied per lane below
-      run_batch(sub_, uncoupled_, gm, kb, bres_);
-      for (std::size_t j = 0; j < todo_.size(); ++j) {
-        const std::size_t k = todo_[j], i = k / G, g = k % G;
-        const double f = mid_[j];
-        ++analyses[i];
-        // the kernel's limit is on |u1| + |u2| at one instant; the sum of the peaks bounds it (conservative)
-        if (bres_.status[j] != 0 || f * (bres_.peak_u1[j] + bres_.peak_u2[j]) > ks.displacement_limit)
-          state[k] = excluded;
-        else if (f * bres_.peak_closing[j] > s_.gap_at(g, pairs_[i])) hi[k] = f;
-        else lo[k] = f;
-      }
-    }
-  }
-
-  // A pair whose uncoupled peak closing stays <= g never touches at gap g, and its coupled run is
-  // bit-identical to the uncoupled one (the first-passage property, tested): only the pairs that touch are
-  // run with contact; the others take the uncoupled results (unless [analysis] skip_untouched = false).
-  void coupled(std::size_t g, const GroundMotion& gm, const KernelSettings& ks, UnitResult& out) {
-    const std::size_t n = pairs_.size();
-    lanes_.clear();
-    for (std::size_t i = 0; i < n; ++i) {
-      const bool untouched = res_.status[i] == 0 && !(res_.peak_closing[i] > s_.gap_at(g, pairs_[i]));
-      if (!s_.skip_untouched || !untouched) lanes_.push_back(i);
-    }
-    sub_.resize(lanes_.size());
-    for (std::size_t j = 0; j < lanes_.size(); ++j) {
-      PairParams pp = pairs_[lanes_[j]].pair_params(s_.gap_ratios[g], s_.e);
-      pp.gap = s_.gap_at(g, pairs_[lanes_[j]]);  // ratio x d (the same product), or metres
-      if (s_.contact_stiffness > 0) pp.kc = s_.contact_stiffness;
-      sub_.set(j, pp);
-    }
-    KernelSettings kc = ks;
-    if (restitution_) kc.restitution = &restitution_->hook;
-    if (!lanes_.empty()) run_batch(sub_, s_.contact, gm, kc, cres_);
-    used_.assign(lanes_.size(), kc.substeps);  // [analysis] coarse = "refine": the coarse lanes again (study/refine.hpp)
-    if (f_substeps_ != npos && !lanes_.empty()) refine_pairs(sub_, s_.contact, gm, kc, cres_, one_, used_);
-    std::span<std::int32_t> outside;
-    if (restitution_) outside = out.values<std::int32_t>(f_rest_out_);
-    auto status = out.values<std::uint8_t>(field::imp_status);
-    auto count = out.values<std::int32_t>(field::imp_count);
-    auto force = out.values<double>(field::imp_peak_force), first = out.values<double>(field::imp_t_first);
-    auto u1 = out.values<double>(field::imp_peak_u1), u2 = out.values<double>(field::imp_peak_u2);
-    auto hw = out.values<double>(field::imp_h_omega);
-    const std::size_t G = plan_.gaps;
-    for (std::size_t i = 0, j = 0; i < n; ++i) {
-      const std::size_t k = i * G + g;  // [lane][gap]
-      if (j < lanes_.size() && lanes_[j] == i) {
-        status[k] = cres_.status[j], count[k] = cres_.impact_count[j], force[k] = cres_.peak_force[j];
-        u1[k] = cres_.peak_u1[j], u2[k] = cres_.peak_u2[j], first[k] = cres_.t_first_impact[j];
-        hw[k] = cres_.h_omega_contact[j];
-        if (restitution_) outside[k] = cres_.restitution_outside[j];
-        if (f_substeps_ != npos) out.values<std::int32_t>(f_substeps_)[k] = used_[j];
-        ++j;
-      } else {
-        status[k] = res_.status[i], count[k] = 0, force[k] = 0.0;
-        u1[k] = res_.peak_u1[i], u2[k] = res_.peak_u2[i], first[k] = NAN;
-        hw[k] = res_.status[i] == 0 && contact::traits(s_.contact.law).has_force ? 0.0 : NAN;  // never touched
-        if (restitution_) outside[k] = 0;
-        if (f_substeps_ != npos) out.values<std::int32_t>(f_substeps_)[k] = ks.substeps;
-      }
-    }
-  }
-
-  // The coupled Systems of lanes_ at gap ratio `ratio` into coupled_, the coarse ones refined ([analysis] coarse =
-  // "refine", study/refine.hpp); used_[j]: lane j's substeps.
-  void coupled_systems(double ratio, const GroundMotion& gm, const KernelSettings& kc) {
-    used_.assign(lanes_.size(), kc.substeps);
-    if (lanes_.empty()) return;
-    const ContactNumbers cn{s_.e, s_.contact_stiffness};
-    block_->coupled(pairs_, lanes_, ratio, s_.contact, cn, gm, kc, coupled_);
-    if (f_substeps_ != npos) refine_systems(*block_, pairs_, lanes_, ratio, s_.contact, cn, gm, kc, coupled_, one_, used_);
-  }
-
-  // A block with a shear building (model = "shear"): the uncoupled Systems give status, the buildings' largest
-  // floor displacements and D = the largest peak closing over the floor contacts (system_block.hpp), so the
-  // probability scene answers every gap exactly as for the pair; the impacts scene runs coupled only the lanes that
-  // touch (D > gap) or failed (all with skip_untouched = false), as coupled() does for pairs. [intensity]: stripes()
-  // and ida() run the Systems through system_peaks_at / system_bisect.
-  // A bridge on several supports ([records] supports): channel k is the realisation's support k + 1.
-  void systems(const StudyRecord& sr, const KernelSettings& ks, UnitResult& out) {
-    const Record& rec = sr.record;
-    const std::size_t n = pairs_.size(), G = plan_.gaps;
-    const GroundMotion gm{rec.dt, rec.acc, rec.duration() + s_.free_vibration};
-    const int channels = s_.structures.bridge ? s_.structures.bridge->spec.channels() : 1;
-    channels_.clear();
-    for (int c = 0; c < channels && channels > 1; ++c)
-      channels_.push_back(c == 0 ? gm
-                                 : GroundMotion{rec.dt, sr.more_supports[static_cast<std::size_t>(c - 1)].acc,
-                                                rec.duration() + s_.free_vibration});
-    block_->set_channels(channels_);
-    block_->uncoupled(pairs_, uncoupled_, gm, ks, peaks_);
-    const bool table = !block_->layout().empty();
-    const std::size_t nb = peaks_.buildings;
-    for (std::size_t i = 0; i < n; ++i) {
-      put_uncoupled(out, i, peaks_.status[i], peaks_.u1[i], peaks_.u2[i], peaks_.closing[i]);
-      if (table) put_table_uncoupled(out, i, peaks_);
-      for (std::size_t b = 2; b < nb; ++b) out.values<double>(f_row_unc_[b])[i] = peaks_.u[i * nb + b];
-    }
-    if (!plan_.impacts) return;
-    auto status = out.values<std::uint8_t>(field::imp_status);
-    auto count = out.values<std::int32_t>(field::imp_count);
-    auto force = out.values<double>(field::imp_peak_force), first = out.values<double>(field::imp_t_first);
-    auto u1 = out.values<double>(field::imp_peak_u1), u2 = out.values<double>(field::imp_peak_u2);
-    auto hw = out.values<double>(field::imp_h_omega);
-    KernelSettings kc = ks;  // e(v0) at every study-gap element's impact ([contact] restitution)
-    std::span<std::int32_t> outside;
-    if (restitution_) kc.restitution = &restitution_->hook, outside = out.values<std::int32_t>(f_rest_out_);
-    for (std::size_t g = 0; g < G; ++g) {
-      lanes_.clear();
-      for (std::size_t i = 0; i < n; ++i) {
-        const bool untouched = peaks_.status[i] == 0 && !(peaks_.closing[i] > s_.gap_at(g, pairs_[i]));
-        if (!s_.skip_untouched || !untouched) lanes_.push_back(i);
-      }
-      coupled_systems(s_.gap_ratios[g], gm, kc);
-      for (std::size_t i = 0, j = 0; i < n; ++i) {
-        const std::size_t k = i * G + g;  // [lane][gap]
-        if (j < lanes_.size() && lanes_[j] == i) {
-          status[k] = coupled_.status[j], count[k] = coupled_.impact_count[j], force[k] = coupled_.peak_force[j];
-          u1[k] = coupled_.u1[j], u2[k] = coupled_.u2[j], first[k] = coupled_.t_first_impact[j];
-          hw[k] = coupled_.h_omega_contact[j];
-          if (restitution_) outside[k] = coupled_.restitution_outside[j];
-          if (f_substeps_ != npos) out.values<std::int32_t>(f_substeps_)[k] = used_[j];
-          for (std::size_t b = 2; b < nb; ++b) out.values<double>(f_row_imp_[b])[k] = coupled_.u[j * nb + b];
-          if (table) put_table_coupled(out, i, g, j);
-          ++j;
-        } else {
-          status[k] = peaks_.status[i], count[k] = 0, force[k] = 0.0;
-          u1[k] = peaks_.u1[i], u2[k] = peaks_.u2[i], first[k] = NAN;
-          for (std::size_t b = 2; b < nb; ++b) out.values<double>(f_row_imp_[b])[k] = peaks_.u[i * nb + b];
-          hw[k] = peaks_.status[i] == 0 && contact::traits(s_.contact.law).has_force ? 0.0 : NAN;  // never touched
-          if (restitution_) outside[k] = 0;
-          if (f_substeps_ != npos) out.values<std::int32_t>(f_substeps_)[k] = ks.substeps;
-          if (table) put_table_coupled(out, i, g, std::string::npos);
-        }
-      }
-    }
-  }
-
-  // Results format 3 (plan.system not empty): the per-floor and per-element rows, laid out as the study's largest
-  // topology (table_topology, the plan's /system).
-  void table_fields(const WorkPlan& plan) {
-    const std::optional<LaneTopology> t = table_topology(sampler_.model(), sampler_.seed());
-    block_->set_table(block_->table_system(*t));
-    const std::size_t nb = t->buildings();
-    f_floor_u_.resize(nb), f_floor_drift_.resize(nb), f_floor_acc_.resize(nb);
-    f_row_unc_.assign(nb, 0), f_row_imp_.assign(nb, 0);
-    for (std::size_t b = 2; b < nb; ++b) {  // a row's buildings 3..n
-      f_row_unc_[b] = results::field_index(plan.fields, "uncoupled", results::building_name("peak_u{b}", b + 1));
-      if (plan.impacts)
-        f_row_imp_[b] = results::field_index(plan.fields, "impacts", results::building_name("peak_u{b}", b + 1));
-    }
-    for (std::size_t b = 0; b < nb; ++b) {
-      f_floor_u_[b] = results::field_index(plan.fields, "uncoupled", results::building_name("peak_u_floors{b}", b + 1));
-      f_floor_drift_[b] = results::field_index(plan.fields, "uncoupled", results::building_name("peak_drift{b}", b + 1));
-      f_floor_acc_[b] = results::field_index(plan.fields, "uncoupled", results::building_name("peak_acc_floors{b}", b + 1));
-    }
-    f_e_closing_ = results::field_index(plan.fields, "uncoupled", "peak_closing_elements");
-    if (!plan.impacts) return;
-    f_imp_floor_u_.resize(nb), f_imp_floor_drift_.resize(nb), f_imp_floor_acc_.resize(nb);
-    for (std::size_t b = 0; b < nb; ++b) {
-      f_imp_floor_u_[b] = results::field_index(plan.fields, "impacts", results::building_name("peak_u_floors{b}", b + 1));
-      f_imp_floor_drift_[b] = results::field_index(plan.fields, "impacts", results::building_name("peak_drift{b}", b + 1));
-      f_imp_floor_acc_[b] =
-          results::field_index(plan.fields, "impacts", results::building_name("peak_acc_floors{b}", b + 1));
-    }
-    f_e_count_ = results::field_index(plan.fields, "impacts", "element_impact_count");
-    f_e_force_ = results::field_index(plan.fields, "impacts", "element_peak_force");
-    f_e_pen_ = results::field_index(plan.fields, "impacts", "element_peak_penetration");
-    f_e_first_ = results::field_index(plan.fields, "impacts", "element_t_first_impact");
-    f_e_hw_ = results::field_index(plan.fields, "impacts", "element_h_omega_contact");
-  }
-
-  // lane i's per-floor rows and per-element closings from the uncoupled run p (at stripe `stripe`)
-  void put_table_uncoupled(UnitResult& out, std::size_t i, const BlockPeaks& p, std::size_t stripe = 0) {
-    const TableLayout& t = block_->layout();
-    for (std::size_t b = 0; b < t.floors.size(); ++b)
-      for (auto [field, from] : {std::pair{f_floor_u_[b], &p.floor_u[b]}, {f_floor_drift_[b], &p.floor_drift[b]},
-                                 {f_floor_acc_[b], &p.floor_acc[b]}}) {
-        auto v = out.lane_values<double>(field, i, stripe);
-        std::copy_n(from->begin() + static_cast<std::ptrdiff_t>(i * t.floors[b]), t.floors[b], v.begin());
-      }
-    auto c = out.lane_values<double>(f_e_closing_, i, stripe);
-    std::copy_n(p.e_closing.begin() + static_cast<std::ptrdiff_t>(i * t.elements), t.elements, c.begin());
-  }
-
-  // peaks_at() for Systems (shear buildings, rows): with fa == 0 the anchor run of every lane (anchor_peaks_, each
-  // lane's springs kept); at a higher factor f the lanes that scale linearly over f / fa (SystemBlock::scales_linearly,
-  // the model trait; [analysis] scale_elastic) take the anchor's peaks times f / fa, the others run on the scaled
-  // record (SystemBlock::coupled at ratio 0 with the law none is the uncoupled run of those lanes: a lane's bits do
-  // not depend on the lanes run beside it). cur_ holds every lane's peaks at f; st_, pu1_, pu2_, pc_ its pair columns.
-  void system_peaks_at(const GroundMotion& gm, double f, double& fa, const KernelSettings& ks) {
-    const std::size_t n = pairs_.size();
-    const bool anchor = fa == 0;
-    if (anchor) fa = f;
-    const double ratio = anchor ? 1.0 : f / fa;
-    lanes_.clear();
-    if (anchor) {
-      block_->uncoupled(pairs_, uncoupled_, gm, ks, anchor_peaks_);
-    } else {
-      for (std::size_t i = 0; i < n; ++i)
-        if (!(s_.scale_elastic && elastic_at(i, ratio, ks.displacement_limit))) lanes_.push_back(i);
-      if (!lanes_.empty()) block_->coupled(pairs_, lanes_, 0.0, uncoupled_, ContactNumbers{}, gm, ks, sub_peaks_);
-    }
-    cur_.resize(n, anchor_peaks_.buildings, block_->layout());
-    for (std::size_t i = 0, j = 0; i < n; ++i) {
-      if (j < lanes_.size() && lanes_[j] == i) cur_.set_scaled(i, sub_peaks_, j++, 1.0);
-      else cur_.set_scaled(i, anchor_peaks_, i, ratio);
-      st_[i] = cur_.status[i], pu1_[i] = cur_.u1[i], pu2_[i] = cur_.u2[i], pc_[i] = cur_.closing[i];
-    }
-  }
-
-  // stripe s's per-floor / per-element rows and a row's buildings 3..n from cur_
-  void put_system_stripe(UnitResult& out, std::size_t s) {
-    const std::size_t nb = cur_.buildings;
-    const bool table = !block_->layout().empty();
-    for (std::size_t i = 0; i < pairs_.size(); ++i) {
-      if (table) put_table_uncoupled(out, i, cur_, s);
-      for (std::size_t b = 2; b < nb; ++b) out.lane_values<double>(f_row_unc_[b], i, s)[0] = cur_.u[i * nb + b];
-    }
-  }
-
-  // The IDA's bisection for Systems (see ida()): every found (lane, gap) bracket narrowed to the tolerance as for
-  // pairs, each lane run on the record scaled by its factor -- a System has no unscaled equivalent in general (a
-  // smooth bearing, a moat wall, the guard's sum over floors), so the record is scaled, one run per (lane, factor);
-  // the gaps of a lane that meet at the same factor share its run.
-  void system_bisect(const Record& rec, const KernelSettings& ks, std::vector<std::uint8_t>& state,
-                     std::vector<double>& lo, std::vector<double>& hi, std::span<std::int32_t> analyses) {
-    const std::size_t G = plan_.gaps;
-    for (int step = 0; step < 200; ++step) {
-      todo_.clear();
-      for (std::size_t k = 0; k < state.size(); ++k)
-        if (state[k] == found && !(hi[k] <= lo[k] * (1.0 + s_.intensity.tolerance))) todo_.push_back(k);
-      if (todo_.empty()) break;
-      std::size_t ran = std::string::npos;
-      double ran_f = 0.0;
-      for (std::size_t k : todo_) {
-        const std::size_t i = k / G, g = k % G;
-        const double f = lo[k] > 0 ? std::sqrt(lo[k] * hi[k]) : 0.5 * hi[k];
-        if (i != ran || f != ran_f) {
-          const std::size_t one[] = {i};
-          const GroundMotion gm{rec.dt, scaled(rec, f), rec.duration() + s_.free_vibration};
-          block_->coupled(pairs_, one, 0.0, uncoupled_, ContactNumbers{}, gm, ks, sub_peaks_);
-          ++analyses[i], ran = i, ran_f = f;
-        }
-        if (sub_peaks_.status[0] != 0) state[k] = excluded;
-        else if (sub_peaks_.closing[0] > s_.gap_at(g, pairs_[i])) hi[k] = f;
-        else lo[k] = f;
-      }
-    }
-  }
-
-  // lane i's per-element impacts at gap g: from coupled_ lane j, or (j = npos) untouched: no impacts at the study-gap
-  // elements its topology has (those with an uncoupled closing), and a moat wall's of the uncoupled run (the walls act
-  // there too, and the coupled run of an untouched lane is the uncoupled run; they held 0, issue 45 item 2)
-  void put_table_coupled(UnitResult& out, std::size_t i, std::size_t g, std::size_t j) {
-    const std::size_t E = block_->layout().elements;
-    auto count = out.lane_values<std::int32_t>(f_e_count_, i);
-    auto force = out.lane_values<double>(f_e_force_, i), pen = out.lane_values<double>(f_e_pen_, i);
-    auto first = out.lane_values<double>(f_e_first_, i), hw = out.lane_values<double>(f_e_hw_, i);
-    const bool has_force = contact::traits(s_.contact.law).has_force;
-    for (std::size_t e = 0; e < E; ++e) {
-      const std::size_t o = g * E + e;
-      if (j != std::string::npos) {
-        const std::size_t x = j * E + e;
-        count[o] = coupled_.e_count[x], force[o] = coupled_.e_force[x], pen[o] = coupled_.e_penetration[x];
-        first[o] = coupled_.e_first[x], hw[o] = coupled_.e_hw[x];
-      } else if (!std::isnan(peaks_.e_closing[i * E + e]) && !study_gap(e)) {
-        const std::size_t x = i * E + e;
-        count[o] = peaks_.e_count[x], force[o] = peaks_.e_force[x], pen[o] = peaks_.e_penetration[x];
-        first[o] = peaks_.e_first[x], hw[o] = peaks_.e_hw[x];
-      } else if (!std::isnan(peaks_.e_closing[i * E + e])) {
-        count[o] = 0, force[o] = 0.0, pen[o] = 0.0, first[o] = NAN;
-        hw[o] = peaks_.status[i] == 0 && has_force ? 0.0 : NAN;
-      }
-    }
-    if (restitution_) {  // per element: impacts outside the e(v0) curve's range (0 where it never touched)
-      auto outside = out.lane_values<std::int32_t>(f_e_outside_, i);
-      for (std::size_t e = 0; e < E; ++e)
-        if (j != std::string::npos) outside[g * E + e] = coupled_.e_outside[j * E + e];
-        else if (!std::isnan(peaks_.e_closing[i * E + e])) outside[g * E + e] = 0;
-    }
-    put_floors_coupled(out, i, g, j);
-  }
-
-  // element e of the plan's /system belongs to a study-gap group (a moat wall does not)
-  bool study_gap(std::size_t e) const {
-    const results::SystemTable& t = plan_.system;
-    return e >= t.element_group.size() || t.group_study_gap[static_cast<std::size_t>(t.element_group[e])] != 0;
-  }
-
-  // lane i's per-floor peaks at gap g: from coupled_ lane j, or (j = npos, a lane that never touched) its uncoupled
-  // peaks, as impacts/peak_u1 takes them
-  void put_floors_coupled(UnitResult& out, std::size_t i, std::size_t g, std::size_t j) {
-    const TableLayout& t = block_->layout();
-    const BlockPeaks& p = j != std::string::npos ? coupled_ : peaks_;
-    const std::size_t lane = j != std::string::npos ? j : i;
-    for (std::size_t b = 0; b < t.floors.size(); ++b) {
-      const std::size_t F = t.floors[b];
-      for (auto [field, from] : {std::pair{f_imp_floor_u_[b], &p.floor_u[b]}, {f_imp_floor_drift_[b], &p.floor_drift[b]},
-                                 {f_imp_floor_acc_[b], &p.floor_acc[b]}}) {
-        auto v = out.lane_values<double>(field, i);
-        std::copy_n(from->begin() + static_cast<std::ptrdiff_t>(lane * F), F, v.begin() + static_cast<std::ptrdiff_t>(g * F));
-      }
-    }
-  }
-
   const Study& s_;
   const std::vector<StudyRecord>& records_;
   const StripePlan& stripes_;
@@ -654,35 +87,11 @@ class UnitComputer {
   int rank_;
   std::atomic<int>& computed_;
   KernelSettings ks_base_;
-  ContactModel uncoupled_;
-  std::vector<SampledPair> pairs_;
-  std::vector<std::size_t> lanes_;
-  PairBatch sub_;
-  PairBatch batch_;
-  BatchResult res_, cres_, bres_, anchor_;
-  std::optional<SystemBlock> block_;
+  std::unique_ptr<Runner> runner_;  // the pair kernel or the system stepper (study/runner.hpp)
+  FieldIndex fields_;
   std::unique_ptr<physics::HertzdampRestitution> restitution_;  // [contact] restitution: the kernel's e(v0) hook
-  std::size_t f_rest_out_ = 0;
-  BlockPeaks peaks_, coupled_;
-  BlockPeaks anchor_peaks_, cur_, sub_peaks_;  // fragility studies of Systems: the anchor run, the peaks at a factor, a run
-  // [analysis] coarse = "refine": impacts/substeps (npos: another policy), each coupled lane's substeps, one lane's
-  // rerun (study/refine.hpp)
-  static constexpr std::size_t npos = std::string::npos;
-  std::size_t f_substeps_ = npos;
-  std::vector<std::int32_t> used_;
-  RefineScratch one_;
-  std::vector<GroundMotion> channels_;  // a multi-support bridge's motions of the unit's record
-  std::vector<std::size_t> f_floor_u_, f_floor_drift_, f_floor_acc_;
-  std::vector<std::size_t> f_row_unc_, f_row_imp_;  // a row's buildings 3..n: uncoupled / impacts peak_u{b}
-  std::size_t f_e_closing_ = 0, f_e_count_ = 0, f_e_force_ = 0, f_e_pen_ = 0, f_e_first_ = 0, f_e_hw_ = 0;
-  std::size_t f_e_outside_ = 0;  // [contact] restitution: impacts/element_restitution_outside
-  std::vector<std::size_t> f_imp_floor_u_, f_imp_floor_drift_, f_imp_floor_acc_;  // impacts/peak_u_floors{b}, ...
-  std::vector<std::uint8_t> st_;
-  std::vector<double> scaled_, mid_, pu1_, pu2_, pc_;
-  std::vector<std::size_t> todo_;
-  enum : std::uint8_t { open, found, excluded };  // the IDA's (lane, gap) states
-  std::size_t stripe_scaled_ = 0;
-  std::size_t ida_analyses_ = 0, ida_limit_ = 0, ida_lo_ = 0, ida_hi_ = 0;  // the ida rows' positions in the plan's schema
+  std::vector<SampledPair> pairs_;
+  Scratch scratch_;
 };
 
 void UnitComputerDelete::operator()(UnitComputer* c) const noexcept { delete c; }

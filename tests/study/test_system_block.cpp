@@ -100,7 +100,7 @@ TEST(SystemBlock, FirstPassageThreeAgainstFiveStoreys) {
     for (std::size_t e = 0; e < 3; ++e) D[l] = std::max(D[l], free.peak_closing[e * L + l]);
   }
   // the block's own uncoupled run gives the same D, u1, u2
-  BlockPeaks peaks;
+  RunPeaks peaks;
   block.uncoupled(pairs, none, gm, ks, peaks);
   for (std::size_t l = 0; l < L; ++l) {
     EXPECT_TRUE(same_bits(peaks.closing[l], D[l])) << l;
@@ -157,7 +157,7 @@ TEST(SystemBlock, FloorsAgainstColumnsFirstPassage) {
   KernelSettings ks;
   ks.substeps = 4;
   const ContactModel none = test::contact(ContactLaw::none), hertz = test::contact(ContactLaw::hertzdamp);
-  BlockPeaks free;
+  RunPeaks free;
   block.uncoupled(pairs, none, gm, ks, free);
   std::vector<double> D(free.closing);
   std::sort(D.begin(), D.end());
@@ -165,7 +165,7 @@ TEST(SystemBlock, FloorsAgainstColumnsFirstPassage) {
   std::vector<std::size_t> lanes(L);
   for (std::size_t l = 0; l < L; ++l) lanes[l] = l;
   for (double g : {0.5 * D[0], 0.5 * (D[1] + D[2]), 0.5 * (D[3] + D[4]), 1.5 * D[5]}) {
-    BlockPeaks r;
+    RunPeaks r;
     block.coupled(pairs, lanes, g, hertz, ContactNumbers{0.65, 0.0}, gm, ks, r);
     for (std::size_t l = 0; l < L; ++l) {
       ASSERT_EQ(r.status[l], 0) << l;
@@ -195,7 +195,7 @@ TEST(SystemBlock, LaneBitsDoNotDependOnBucketsOrWidth) {
   ks.substeps = 4;
   const ContactModel none = test::contact(ContactLaw::none), hertz = test::contact(ContactLaw::hertzdamp);
   SystemBlock block(model);
-  BlockPeaks all, one, coupled_all, coupled_one;
+  RunPeaks all, one, coupled_all, coupled_one;
   block.uncoupled(pairs, none, gm, ks, all);
   std::vector<std::size_t> lanes{6, 0, 3, 5};
   block.coupled(pairs, lanes, 0.01, hertz, ContactNumbers{0.65, 0.0}, gm, ks, coupled_all);
@@ -255,7 +255,7 @@ TEST(SystemBlock, ScalesLinearlyIsTheModelTrait) {
                          double amplitude = 1.0) {
     SystemBlock block(model);
     block.keep_springs(true);
-    BlockPeaks a, b;
+    RunPeaks a, b;
     std::vector<double> base(ag), scaled(ag);
     for (double& x : base) x *= amplitude;
     for (double& x : scaled) x = ratio * (amplitude * x);
@@ -298,7 +298,7 @@ TEST(SystemBlock, ScalesLinearlyIsTheModelTrait) {
   check(moat, 1.5, false, "a moat wall");
   SystemBlock offsets(elastic, test::contact(ContactLaw::hertzdamp), 0.65, model::ContactLevels::common, {0.01});
   offsets.keep_springs(true);
-  BlockPeaks a;
+  RunPeaks a;
   offsets.uncoupled(pairs, none, GroundMotion{0.005, ag, 0.0}, ks, a);
   EXPECT_FALSE(offsets.scales_linearly(a, 0, 1.5, 10.0)) << "gap offsets";
 }

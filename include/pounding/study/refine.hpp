@@ -5,8 +5,8 @@
 // runs in all, the batch's run being the first) -- until it is resolved. The last run is its result: still coarse or
 // diverged at the cap, it is excluded as with "exclude". Analyses that were not coarse keep their bits.
 //
-// One function for every scene that runs coupled analyses (the SDOF pair kernel's and SystemBlock's, study/run.cpp;
-// the runner's coupled(), docs/runner-design.md section 2): the scene says how to read a lane of its batch run and
+// One function for every runner that runs coupled analyses (the SDOF pair kernel's and SystemBlock's: coupled() of
+// src/study/pair_runner.cpp and src/study/system_runner.cpp): the runner says how to read a lane of its batch run and
 // how to run one lane alone. A lane's rerun depends on nothing but that lane (run alone, one lane wide), so the
 // results do not depend on the batch width, the threads or the ranks.
 #include <cstddef>
@@ -43,7 +43,7 @@ void set_lane(BatchResult& to, std::size_t j, const BatchResult& from, std::size
 struct RefineScratch {  // one lane's rerun
   PairBatch pair;
   BatchResult pair_result;
-  BlockPeaks peaks;
+  RunPeaks peaks;
   std::vector<std::size_t> lane;
 };
 // The pair kernel's coupled run of `batch` (law cm) into `res`: its coarse lanes, each from its own PairParams.
@@ -53,6 +53,6 @@ void refine_pairs(const PairBatch& batch, const ContactModel& cm, const GroundMo
 // SystemBlock::coupled on that lane alone.
 void refine_systems(SystemBlock& block, std::span<const SampledPair> pairs, std::span<const std::size_t> lanes,
                     double ratio, const ContactModel& cm, const ContactNumbers& cn, const GroundMotion& gm,
-                    const KernelSettings& ks, BlockPeaks& out, RefineScratch& one, std::span<std::int32_t> used);
+                    const KernelSettings& ks, RunPeaks& out, RefineScratch& one, std::span<std::int32_t> used);
 
 }  // namespace pounding

@@ -87,8 +87,9 @@ struct TableLayout {
   bool empty() const { return floors.empty(); }
 };
 
-// What one run of a block gives per lane (index = the lane's position in the block).
-struct BlockPeaks {
+// What one run gives per lane (index = the lane's position in the block, or in the run's lanes): filled by SystemBlock
+// and by both runners (study/runner.hpp).
+struct RunPeaks {
   std::vector<std::uint8_t> status;
   std::vector<double> u1, u2, closing;  // closing: D (uncoupled runs)
   std::size_t buildings = 2;
@@ -116,12 +117,15 @@ struct BlockPeaks {
     bool walls = false;
   };
   std::vector<Springs> springs;  // [lane], empty without keep_springs
+  // A runner's coupled(): each lane's substeps ([analysis] coarse = "refine" reruns a coarse lane at more; else the
+  // run's). Not touched by resize, set_scaled or set_lane.
+  std::vector<std::int32_t> substeps;
   void resize(std::size_t n, std::size_t buildings = 2, const TableLayout& t = {});
   // Lane `to` = lane k of `from` (sized alike) with every displacement, closing and acceleration peak times `scale`
   // (1: a copy); the uncoupled values only (status, u1, u2, closing, u, the per-floor rows, e_closing).
-  void set_scaled(std::size_t to, const BlockPeaks& from, std::size_t k, double scale);
+  void set_scaled(std::size_t to, const RunPeaks& from, std::size_t k, double scale);
   // Lane `to` = lane k of `from` (laid out alike, of any width): every value, coupled ones and springs included.
-  void set_lane(std::size_t to, const BlockPeaks& from, std::size_t k);
+  void set_lane(std::size_t to, const RunPeaks& from, std::size_t k);
 };
 
 // How the contacts of a coupled run are set.
@@ -158,19 +162,19 @@ class SystemBlock {
   // Every lane of `pairs`, uncoupled: `none` is the study's contact model with law none (the study-gap group's law);
   // status, u1, u2, closing = D.
   void uncoupled(std::span<const SampledPair> pairs, const ContactModel& none, const GroundMotion& gm,
-                 const KernelSettings& ks, BlockPeaks& out);
+                 const KernelSettings& ks, RunPeaks& out);
   // The lanes `lanes` (positions in `pairs`) coupled at gap = ratio d (with [gaps] metres, a study's block: gap =
   // ratio, in metres; Study::gap_unit) with contact model `cm`; out[j] is lane lanes[j]'s.
   void coupled(std::span<const SampledPair> pairs, std::span<const std::size_t> lanes, double ratio,
                const ContactModel& cm, const ContactNumbers& cn, const GroundMotion& gm, const KernelSettings& ks,
-               BlockPeaks& out);
+               RunPeaks& out);
 
   // pairs[0] run alone as coupled() would run it (ratio 0 and the law none: uncoupled()), recording its series
   // (physics::run_system_recorded; an SDOF pair System through the pair kernel's recorder, as run_system runs it):
   // the same numbers as that lane of any block ([outputs] histories, study/histories.hpp). Returns the lane's System.
   const model::System& record(std::span<const SampledPair> pairs, double ratio, const ContactModel& cm,
                               const ContactNumbers& cn, const GroundMotion& gm, const KernelSettings& ks,
-                              BlockPeaks& out, physics::SystemSeries& series);
+                              RunPeaks& out, physics::SystemSeries& series);
 
   // A bridge on several supports: one motion per channel (the record's support 1 first; the same dt and length as
   // the motion the runs get), used instead of that motion while set; empty: uniform input.
@@ -181,10 +185,10 @@ class SystemBlock {
   // The results' table System of a topology (table_topology()): system(t), except with levels = "top", where it has
   // every common level (each lane's lower roof is one of them, at a level that varies with its storeys).
   const model::System& table_system(const LaneTopology& t);
-  // Fill BlockPeaks' per-floor / per-element rows laid out as `table` (the System of table_topology()).
+  // Fill RunPeaks' per-floor / per-element rows laid out as `table` (the System of table_topology()).
   void set_table(const model::System& table);
   const TableLayout& layout() const { return layout_; }
-  // Runs keep each lane's springs in BlockPeaks::springs (for scales_linearly).
+  // Runs keep each lane's springs in RunPeaks::springs (for scales_linearly).
   void keep_springs(bool on) { keep_springs_ = on; }
   // The model trait behind a fragility study's shortcut (multiple stripes, IDA; issue 25 §1): lane k of `p` (a run
   // with keep_springs, status ok) answers the record scaled by `ratio` >= 1 more with its peaks times `ratio` when
@@ -192,7 +196,7 @@ class SystemBlock {
   // stays_elastic, physics::spring_stays_elastic; a smooth bearing never does), no moat wall ran with a law, and
   // ratio x the sum over buildings of their largest |u| stays within `limit` (the divergence guard's sum, bounded).
   // False with gap_offsets (D = max(closing - offset) is not linear in the record) and for a bridge.
-  bool scales_linearly(const BlockPeaks& p, std::size_t k, double ratio, double limit) const;
+  bool scales_linearly(const RunPeaks& p, std::size_t k, double ratio, double limit) const;
   // Lane `lane` of b (sized for system(t)) from pair p: both buildings' numbers (shear_spec; an isolated one through
   // physics::set_isolated_building, its base mass one floor's unless given), every pounding element's gap, e and kc
   // (cn.stiffness, else the model's kh, else equivalent spheres of the two floors' masses; two one-storey buildings:
@@ -210,13 +214,13 @@ class SystemBlock {
  private:
   // lanes[j] of `pairs` bucketed by topology, one run_system per bucket, out[j] lane lanes[j]'s
   // lane l of the last bucket's res_ (width w) into lane k of out's per-floor / per-element rows (to_table: element order)
-  void table_lane(BlockPeaks& out, const model::System& sys, std::span<const std::size_t> to_table, std::size_t l,
+  void table_lane(RunPeaks& out, const model::System& sys, std::span<const std::size_t> to_table, std::size_t l,
                   std::size_t w, std::size_t k) const;
   // lane l of the last bucket's batch_/res_ (width w) into s
-  void keep_lane_springs(BlockPeaks::Springs& s, const model::System& sys, std::span<const ContactModel> groups,
+  void keep_lane_springs(RunPeaks::Springs& s, const model::System& sys, std::span<const ContactModel> groups,
                          std::size_t l, std::size_t w) const;
   void run(std::span<const SampledPair> pairs, std::span<const std::size_t> lanes, double ratio, const ContactModel& cm,
-           const ContactNumbers& cn, const GroundMotion& gm, const KernelSettings& ks, BlockPeaks& out,
+           const ContactNumbers& cn, const GroundMotion& gm, const KernelSettings& ks, RunPeaks& out,
            physics::SystemSeries* series = nullptr);
   // batch_ through run_system into res_ (the motions: channels_, else gm); with `series` its lane 0 recorded
   void run_lanes(std::span<const ContactModel> groups, const GroundMotion& gm, const KernelSettings& ks,
