@@ -304,6 +304,9 @@ Study parse_study(const std::string& text, const std::string& path) {
   s.path = path;
   s.text = text;
   const toml::table root = config::parse(text, path, "fix the study file's syntax");
+  if (root.contains("inventory"))  // docs/inventory.md: a template for every pair of an inventory
+    throw InputError("the study has an [inventory] section: it is an inventory study", path,
+                     "run it with `pounding inventory run " + path + "` (every adjacent pair of the inventory)");
   TableReader top(&root, path, "");
   s.title = top.string("title", fs::path(path).stem().string());
   top.get("seed");

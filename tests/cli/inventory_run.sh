@@ -107,4 +107,7 @@ refuse typo "unknown key 'sample'"
 refuse structures "[structures] is made per pair"
 sed 's/street.csv/nowhere.csv/' street.toml > missing.toml
 refuse missing "nowhere.csv"
+set +e; "$bin" run street.toml --quiet > as_study.out 2> as_study.err; rc=$?; set -e
+[ $rc = 2 ] && grep -q "pounding inventory run" as_study.err || fail "pounding run of a template: exit $rc $(cat as_study.err)"
+echo "pounding run of a template refused: $(cut -c1-120 as_study.err)"
 echo "inventory run: all checks passed"
