@@ -51,6 +51,7 @@
 #include "pounding/model/hysteresis/bilinear_kinematic.hpp"
 #include "pounding/model/hysteresis/bridge_links.hpp"
 #include "pounding/model/hysteresis/smooth.hpp"
+#include "pounding/model/hysteresis/spring_spec.hpp"
 
 namespace pounding::kernel::sys {
 
@@ -64,12 +65,11 @@ struct Side {
 
 // Rows of the pool. DOF: state (U holds the new displacement from step 1 on), constants, step scratch, observers.
 enum DofRow : int { U, Vel, A, M, IM, CF, VO, VH, DU, VP, PU, PA, dof_rows };
-// Spring: bilinear parameters (k, alpha k, qy, kp), storey dashpot, force, step scratch T (force + dashpot),
-// observers (peak |d|, peak |f|); a smooth spring (laws 1, 2: model/hysteresis/smooth.hpp) holds k, Q_slow, Q_fast,
-// rate in K, AK, QY, KP and its other constants and z in the rows after PF. A gap link (laws 3-5,
-// model/hysteresis/bridge_links.hpp) holds k, c1, c2, side in K, AK, QY, KP, gap0 in ZA and its current gap in Z; a
-// Q-Hyst spring (law 6) k, alpha k, F_y, beta in K, AK, QY, KP and its state (mode, x0, dr, fr, dp, dn) in ZA..ZS.
+// Spring: the model's rows (model::SpringRows: K, AK, QY, KP, ZA .. ZS, Z in slot order, spring_slot_row; its header
+// says what each holds), storey dashpot, force, step scratch T (force + dashpot), observers (peak |d|, peak |f|).
 enum SpringRow : int { K, AK, QY, KP, CS, FS, T, PD, PF, ZA, ZB, ZG, ZM, ZE, ZS, Z, spring_rows };
+constexpr int spring_slot_row(int k) { return k < 4 ? K + k : ZA + (k - 4); }
+static_assert(spring_slot_row(model::spring_slots - 1) == Z && Z + 1 == spring_rows);
 // Element: constants (N1/N2 of interpolated sides; p = -1: a column's ground end, x = N2 u_q), state, observers.
 enum ElemRow : int {
   GAP, KC, CD, E, MEFF, H2M, N1L, N2L, N1R, N2R, F, IV0, DPREV,
