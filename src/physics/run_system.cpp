@@ -122,7 +122,7 @@ Layout layout_of(const model::System& S) {
     L.dashpot.push_back(d ? 1 : 0);
     L.any_dashpot = L.any_dashpot || d;
     L.law.push_back(s.law);
-    L.any_smooth = L.any_smooth || s.law != model::law_of<model::BilinearKinematic>;
+    L.any_smooth = L.any_smooth || !model::fast_path(s.law);
   }
   L.above_start.push_back(0);
   L.link_start.push_back(0);

@@ -77,6 +77,17 @@ struct BilinearKinematic {
   static double stored_energy(const SpringRows& r, double d, double f) {
     return strain_energy(Params<double>{r[0], r[1], r[2], r[3]}, d, f);
   }
+  // The system stepper's step (the registry's trait): the return from the committed force fo over the increment dd
+  // to the deformation d, from the rows r (r.get(slot)); the dissipation in x (WithEnergy). Every spring of this
+  // model: fast_path (the driver's straight bilinear loop and the stick path, with these operations).
+  static constexpr bool fast_path = true;
+  template <bool WithEnergy, class T, class R>
+  POUNDING_INLINE static T step(const R& r, const T& fo, const T& d, const T& dd, const T&, T& x) {
+    const Params<T> p{r.get(0), r.get(1), r.get(2), r.get(3)};
+    const T f = restoring<T>(p, fo, dd, d);
+    if constexpr (WithEnergy) x = dissipated<T>(p, fo, dd, f);
+    return f;
+  }
   // Elastic while |u| <= fy / k: the expression study/run.cpp's
   // elastic_at evaluated before the registry, verbatim (margin * fy / k), so its decisions keep their bits.
   static bool stays_elastic(const Spec& s, double peak_abs_deformation, double margin) {

@@ -40,6 +40,11 @@ struct BoucWen {
   template <class Bad> static void problems(const SpringSpec& s, Bad&& bad) { Smooth::problems(params(unpack(s)), bad); }
   static double load(const SpringSpec& s, double d0, SpringRows& r) { return Smooth::load(params(unpack(s)), d0, r); }
   static double stored_energy(const SpringRows& r, double d, double f) { return Smooth::stored_energy(r, d, f); }
+  static constexpr bool fast_path = false;
+  template <bool WithEnergy, class T, class R>
+  POUNDING_INLINE static T step(const R& r, const T& fo, const T& d, const T& dd, const T& rate, T& x) {
+    return Smooth::step<WithEnergy, T>(r, fo, d, dd, rate, x);
+  }
   // No elastic range: z moves from the first increment on.
   static bool stays_elastic(const Spec&, double, double) { return false; }
   // R(f u) = alpha k f u + (1 - alpha) k u_y z(f u / u_y) = f R(u; u_y / f): exact (z depends on u / u_y only).

@@ -31,6 +31,7 @@
 #include <cmath>
 #include <limits>
 #include <optional>
+#include <utility>
 #include <string_view>
 
 #include "pounding/kernel/lane.hpp"
@@ -75,6 +76,16 @@ struct GapSpring {
     return f0;
   }
   static double stored_energy(const SpringRows& r, double, double f) { return strain_energy(r[0], f); }
+  // The system stepper's step: the force from the current gap (the last row, updated); the dissipation in x.
+  template <bool Hyperbolic, bool WithEnergy, class T, class R>
+  POUNDING_INLINE static T step(const R& r, const T& fo, const T& d, const T& dd, T& x) {
+    const GapParams<T> p{r.get(0), r.get(1), r.get(2), r.get(3), r.get(4)};
+    T gap = r.get(10);
+    const T f = force<Hyperbolic, T>(p, d, gap);
+    r.set(10, gap);
+    if constexpr (WithEnergy) x = dissipated<T>(p.k, fo, f, dd);
+    return f;
+  }
   // A gap law's SpringSpec numbers p[0] = gap, p[1] = side (as a double: validation reads it): gap >= 0 and side
   // +-1 (the registry's trait problems); true when one is reported.
   static constexpr std::string_view fix = "give a valid link description (model/hysteresis/bridge_links.hpp)";
@@ -104,6 +115,11 @@ struct TensionGap {
   template <class Bad> static void problems(const SpringSpec& s, Bad&& bad) { GapSpring::problems(s, bad); }
   static double load(const SpringSpec& s, double d0, SpringRows& r) { return GapSpring::load<false>(params(unpack(s)), d0, r); }
   static double stored_energy(const SpringRows& r, double d, double f) { return GapSpring::stored_energy(r, d, f); }
+  static constexpr bool fast_path = false;
+  template <bool WithEnergy, class T, class R>
+  POUNDING_INLINE static T step(const R& r, const T& fo, const T& d, const T& dd, const T&, T& x) {
+    return GapSpring::step<false, WithEnergy, T>(r, fo, d, dd, x);
+  }
   static Params<double> straight(double k, double fy, double alpha, double gap, double side) {
     if (!std::isfinite(fy)) return {k, 0.0, std::numeric_limits<double>::infinity(), side, gap};
     return {k, alpha * k, fy - alpha * k * (gap + fy / k), side, gap};
@@ -139,6 +155,11 @@ struct CompressionGap {
   template <class Bad> static void problems(const SpringSpec& s, Bad&& bad) { GapSpring::problems(s, bad); }
   static double load(const SpringSpec& s, double d0, SpringRows& r) { return GapSpring::load<false>(params(unpack(s)), d0, r); }
   static double stored_energy(const SpringRows& r, double d, double f) { return GapSpring::stored_energy(r, d, f); }
+  static constexpr bool fast_path = false;
+  template <bool WithEnergy, class T, class R>
+  POUNDING_INLINE static T step(const R& r, const T& fo, const T& d, const T& dd, const T&, T& x) {
+    return GapSpring::step<false, WithEnergy, T>(r, fo, d, dd, x);
+  }
   static bool stays_elastic(const Spec& s, double peak_abs_deformation, double margin) {
     return peak_abs_deformation <= margin * s.gap;
   }
@@ -189,6 +210,11 @@ struct HyperbolicGap {
   }
   static double load(const SpringSpec& s, double d0, SpringRows& r) { return GapSpring::load<true>(params(unpack(s)), d0, r); }
   static double stored_energy(const SpringRows& r, double d, double f) { return GapSpring::stored_energy(r, d, f); }
+  static constexpr bool fast_path = false;
+  template <bool WithEnergy, class T, class R>
+  POUNDING_INLINE static T step(const R& r, const T& fo, const T& d, const T& dd, const T&, T& x) {
+    return GapSpring::step<true, WithEnergy, T>(r, fo, d, dd, x);
+  }
   static bool stays_elastic(const Spec& s, double peak_abs_deformation, double margin) {
     return peak_abs_deformation <= margin * s.gap;
   }
@@ -238,6 +264,26 @@ struct QHyst {
   }
   static double stored_energy(const SpringRows& r, double, double f) {
     return strain_energy(Params<double>{r[0], r[1], r[2], r[3]}, QHystState{r[4], r[5], r[6], r[7], r[8], r[9]}, f);
+  }
+  // The system stepper's step, lane by lane (the state is event-driven): the rows' numbers and state, the force at d
+  // from fo over dd, the state written back (r.lane(slot, l)); the dissipation in x (WithEnergy).
+  static constexpr bool fast_path = false;
+  template <bool WithEnergy, class T, class R>
+  POUNDING_INLINE static T step(const R& r, const T& fo, const T& d, const T& dd, const T&, T& x) {
+    constexpr int W = lane::width_v<T>;
+    alignas(64) double out[W], diss[W];
+    for (int l = 0; l < W; ++l) {
+      const Params<double> p{r.get(0)[l], r.get(1)[l], r.get(2)[l], r.get(3)[l]};
+      QHystState st{r.get(4)[l], r.get(5)[l], r.get(6)[l], r.get(7)[l], r.get(8)[l], r.get(9)[l]};
+      const double f0 = fo[l], e0 = strain_energy(p, st, f0);
+      out[l] = step(p, st, d[l] - dd[l], d[l], f0);
+      diss[l] = std::fma(0.5 * (f0 + out[l]), dd[l], -(strain_energy(p, st, out[l]) - e0));
+      for (const auto& [slot, v] : {std::pair{4, st.mode}, std::pair{5, st.x0}, std::pair{6, st.dr},
+                                    std::pair{7, st.fr}, std::pair{8, st.dp}, std::pair{9, st.dn}})
+        r.lane(slot, l) = v;
+    }
+    if constexpr (WithEnergy) x = lane::load<T>(diss);
+    return lane::load<T>(out);
   }
   static QHystState initial(const Params<double>& p) {
     QHystState st;

@@ -42,6 +42,11 @@ struct FrictionPendulum {
   template <class Bad> static void problems(const SpringSpec& s, Bad&& bad) { Smooth::problems(params(unpack(s)), bad); }
   static double load(const SpringSpec& s, double d0, SpringRows& r) { return Smooth::load(params(unpack(s)), d0, r); }
   static double stored_energy(const SpringRows& r, double d, double f) { return Smooth::stored_energy(r, d, f); }
+  static constexpr bool fast_path = false;
+  template <bool WithEnergy, class T, class R>
+  POUNDING_INLINE static T step(const R& r, const T& fo, const T& d, const T& dd, const T& rate, T& x) {
+    return Smooth::step<WithEnergy, T>(r, fo, d, dd, rate, x);
+  }
   static bool stays_elastic(const Spec&, double, double) { return false; }
   // R(f u, f v) = f R(u, v; mu / f, rate f, u_y / f): z depends on u / u_y, mu(f v) / f is the law with mu / f and
   // rate f. Exact; the equivalent's friction may exceed what a user could give (f < 1).

@@ -15,6 +15,9 @@
 //   load(SpringSpec, d0, rows) -> f0: the system stepper's rows of the spring (model/hysteresis/spring_spec.hpp's
 //     SpringRows: its numbers and state) and its force at rest in the deformation d0; stored_energy(rows, d, f):
 //     its recoverable energy at deformation d and force f.
+//   step<WithEnergy, V>(rows, fo, d, dd, rate, x) -> f: the system stepper's update of one spring over a step (rows
+//     r.get(slot) / r.set(slot, v) / r.lane(slot, l), the dissipation in x); fast_path: the driver may run the
+//     spring in its straight bilinear loop (bilinear only: the stick path and the loop without dispatch).
 //   problems(SpringSpec, bad): the model's own input checks; each failure is bad(field, message with {} for the
 //     values, fix, values...) (physics/validate.cpp formats it; k, fy, alpha are the driver's checks).
 // A spring's `law` (model::Spring) is its model's index in Hystereses (law_of<H>); visit_hysteresis(law, f) calls
@@ -29,6 +32,7 @@
 #include <utility>
 
 #include "pounding/core/type_list.hpp"
+#include "pounding/kernel/lane.hpp"
 #include "pounding/model/hysteresis/bilinear_kinematic.hpp"
 #include "pounding/model/hysteresis/bouc_wen.hpp"
 #include "pounding/model/hysteresis/bridge_links.hpp"
@@ -57,6 +61,7 @@ concept Hysteresis = requires(const typename H::Spec& s, const SpringSpec& ss, d
   H::problems(ss, detail::AnyBad{});
   { H::load(ss, x, std::declval<SpringRows&>()) } -> std::same_as<double>;
   { H::stored_energy(std::declval<const SpringRows&>(), x, x) } -> std::same_as<double>;
+  { H::fast_path } -> std::convertible_to<bool>;
 };
 
 // THE list of hysteresis models: a spring's `law` is its model's index here. Laws other than bilinear run in the
@@ -80,8 +85,8 @@ template <class H, class... Hs> consteval int index_in(TypeList<Hs...>) {
 template <class H> inline constexpr int law_of = detail::index_in<H>(Hystereses{});
 
 // f.template operator()<H>() for the model of `law`, the list's order (bilinear first); a law outside the list
-// calls nothing and returns R{}.
-template <class F, class... Hs> decltype(auto) visit_hysteresis(int law, F&& f, TypeList<Hs...>) {
+// calls nothing and returns R{}. Always inlined: the system stepper dispatches through it per spring and step.
+template <class F, class... Hs> POUNDING_INLINE decltype(auto) visit_hysteresis(int law, F&& f, TypeList<Hs...>) {
   using R = decltype(f.template operator()<BilinearKinematic>());
   int i = 0;
   if constexpr (std::is_void_v<R>) {
@@ -92,7 +97,7 @@ template <class F, class... Hs> decltype(auto) visit_hysteresis(int law, F&& f, 
     return r;
   }
 }
-template <class F> decltype(auto) visit_hysteresis(int law, F&& f) {
+template <class F> POUNDING_INLINE decltype(auto) visit_hysteresis(int law, F&& f) {
   return visit_hysteresis(law, std::forward<F>(f), Hystereses{});
 }
 inline constexpr bool is_law(int law) { return law >= 0 && law < static_cast<int>(Hystereses::size); }
@@ -117,6 +122,9 @@ template <class... Hs> constexpr auto lane_steppers_of(TypeList<Hs...>) {
   return std::array<bool, sizeof...(Hs)>{Hs::lane_stepper...};
 }
 inline constexpr auto hysteresis_lane_steppers = lane_steppers_of(Hystereses{});
+template <class... Hs> constexpr auto fast_paths_of(TypeList<Hs...>) { return std::array<bool, sizeof...(Hs)>{Hs::fast_path...}; }
+inline constexpr auto hysteresis_fast_paths = fast_paths_of(Hystereses{});
+inline constexpr bool fast_path(int law) { return is_law(law) && hysteresis_fast_paths[static_cast<std::size_t>(law)]; }
 // Traits by law (false outside the list).
 inline constexpr bool runs_on_lane_stepper(int law) {
   return is_law(law) && hysteresis_lane_steppers[static_cast<std::size_t>(law)];

@@ -94,6 +94,19 @@ struct Smooth {
     p.k = r[0], p.uy_2a = r[9];
     return strain_energy(p, d, f - p.k * d, r[10]);
   }
+  // The system stepper's step: z over the increment dd, Q at the predicted rate (rows as load writes them; z in the
+  // last); the dissipation in x (WithEnergy).
+  template <bool WithEnergy, class T, class R>
+  POUNDING_INLINE static T step(const R& r, const T& fo, const T& d, const T& dd, const T& rate, T& x) {
+    const SmoothParams<T> p{r.get(0), r.get(1), r.get(2), r.get(3), r.get(4),
+                            r.get(5), r.get(6), r.get(7), r.get(8), r.get(9)};
+    const T z0 = r.get(10), z1 = z_next<T>(p, z0, dd);
+    T h1;
+    const T f = restoring<T>(p, z1, d, rate, h1);
+    if constexpr (WithEnergy) x = dissipated<T>(p, lane::fma(-p.k, d - dd, fo), z0, h1, z1, dd);
+    r.set(10, z1);
+    return f;
+  }
   // Recoverable energy k d^2 / 2 + Q z^2 u_y / (2 A), h = Q z.
   static double strain_energy(const SmoothParams<double>& p, double d, double h, double z) {
     return 0.5 * p.k * d * d + h * z * p.uy_2a;
