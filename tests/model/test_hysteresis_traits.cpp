@@ -176,7 +176,7 @@ TEST(HysteresisTraits, EachModelsTraitsFollowTheList) {
   EXPECT_FALSE(model::stays_elastic(-1, model::SpringSpec{}, 0.0, 1.0));
 }
 
-TEST(HysteresisTraits, RolesAndLaneStepperAsEachModelDeclares) {
+TEST(HysteresisTraits, RolesLaneStepperAndFastPathAsEachModelDeclares) {
   const auto roles = [](int law) {
     const model::Roles& r = model::hysteresis_roles[static_cast<std::size_t>(law)];
     return std::string(r.storey ? "s" : "") + (r.isolator ? "i" : "") + (r.link ? "l" : "");
@@ -191,6 +191,11 @@ TEST(HysteresisTraits, RolesAndLaneStepperAsEachModelDeclares) {
   int lane = 0;
   for (int law = 0; law < static_cast<int>(model::Hystereses::size); ++law) lane += model::runs_on_lane_stepper(law);
   EXPECT_EQ(lane, 1) << "Newmark and RK4 run the bilinear model only (they need its tangent)";
+  int fast = 0;
+  for (int law = 0; law < static_cast<int>(model::Hystereses::size); ++law) fast += model::fast_path(law);
+  EXPECT_EQ(fast, 1) << "the system stepper's straight loop and stick path run the bilinear model only";
+  EXPECT_TRUE(model::fast_path(model::law_of<BilinearKinematic>));
+  EXPECT_FALSE(model::fast_path(-1));
   EXPECT_TRUE(model::runs_on_lane_stepper(model::law_of<BilinearKinematic>));
 }
 

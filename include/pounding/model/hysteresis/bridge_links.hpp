@@ -97,9 +97,25 @@ struct GapSpring {
   }
 };
 
+// The registry's traits the gap laws share (G the law, with params and unpack): links only, not on the lane
+// steppers, not fast_path; the gap's checks, rows, recoverable energy and step of GapSpring.
+template <class G, bool Hyperbolic> struct GapTraits {
+  static constexpr Roles roles{.link = true};
+  static constexpr bool lane_stepper = false, fast_path = false;
+  template <class Bad> static void problems(const SpringSpec& s, Bad&& bad) { GapSpring::problems(s, bad); }
+  static double load(const SpringSpec& s, double d0, SpringRows& r) {
+    return GapSpring::load<Hyperbolic>(G::params(G::unpack(s)), d0, r);
+  }
+  static double stored_energy(const SpringRows& r, double d, double f) { return GapSpring::stored_energy(r, d, f); }
+  template <bool WithEnergy, class T, class R>
+  POUNDING_INLINE static T step(const R& r, const T& fo, const T& d, const T& dd, const T&, T& x) {
+    return GapSpring::step<Hyperbolic, WithEnergy, T>(r, fo, d, dd, x);
+  }
+};
+
 // A cable restrainer: tension-only bilinear with slack (k = n E A / L, F_y, hardening alpha; slack usually the
 // joint gap). side +1: it pulls when d = u_j - u_i exceeds the slack (j the right frame, i the left one).
-struct TensionGap {
+struct TensionGap : GapTraits<TensionGap, false> {
   static constexpr std::string_view name = "restrainer";
   struct Spec {
     double k = 0.0, fy = std::numeric_limits<double>::infinity(), alpha = 0.0, slack = 0.0;
@@ -107,19 +123,9 @@ struct TensionGap {
   };
   template <class T> using Params = GapParams<T>;
   static Params<double> params(const Spec& s) { return straight(s.k, s.fy, s.alpha, s.slack, s.side); }
-  // A link; packed as k, fy, alpha and p = {slack, side}.
-  static constexpr Roles roles{.link = true};
-  static constexpr bool lane_stepper = false;
+  // A link (GapTraits); packed as k, fy, alpha and p = {slack, side}.
   static SpringSpec pack(const Spec& s) { return {s.k, s.fy, s.alpha, {s.slack, double(s.side)}}; }
   static Spec unpack(const SpringSpec& s) { return {s.k, s.fy, s.alpha, s.p[0], static_cast<int>(s.p[1])}; }
-  template <class Bad> static void problems(const SpringSpec& s, Bad&& bad) { GapSpring::problems(s, bad); }
-  static double load(const SpringSpec& s, double d0, SpringRows& r) { return GapSpring::load<false>(params(unpack(s)), d0, r); }
-  static double stored_energy(const SpringRows& r, double d, double f) { return GapSpring::stored_energy(r, d, f); }
-  static constexpr bool fast_path = false;
-  template <bool WithEnergy, class T, class R>
-  POUNDING_INLINE static T step(const R& r, const T& fo, const T& d, const T& dd, const T&, T& x) {
-    return GapSpring::step<false, WithEnergy, T>(r, fo, d, dd, x);
-  }
   static Params<double> straight(double k, double fy, double alpha, double gap, double side) {
     if (!std::isfinite(fy)) return {k, 0.0, std::numeric_limits<double>::infinity(), side, gap};
     return {k, alpha * k, fy - alpha * k * (gap + fy / k), side, gap};
@@ -139,7 +145,7 @@ struct TensionGap {
 // Abutment backfill (Caltrans SDC): the expansion gap, then elastic-perfectly-plastic (alpha = 0 by default) in
 // compression, K_abut and P_bw (caltrans_abutment() below). side -1: a wall on the left of DOF j (it resists
 // d < -gap); +1: a wall on the right.
-struct CompressionGap {
+struct CompressionGap : GapTraits<CompressionGap, false> {
   static constexpr std::string_view name = "abutment";
   struct Spec {
     double k = 0.0, fy = std::numeric_limits<double>::infinity(), alpha = 0.0, gap = 0.0;
@@ -147,19 +153,9 @@ struct CompressionGap {
   };
   template <class T> using Params = GapParams<T>;
   static Params<double> params(const Spec& s) { return TensionGap::straight(s.k, s.fy, s.alpha, s.gap, s.side); }
-  // A link; packed as k, fy, alpha and p = {gap, side}.
-  static constexpr Roles roles{.link = true};
-  static constexpr bool lane_stepper = false;
+  // A link (GapTraits); packed as k, fy, alpha and p = {gap, side}.
   static SpringSpec pack(const Spec& s) { return {s.k, s.fy, s.alpha, {s.gap, double(s.side)}}; }
   static Spec unpack(const SpringSpec& s) { return {s.k, s.fy, s.alpha, s.p[0], static_cast<int>(s.p[1])}; }
-  template <class Bad> static void problems(const SpringSpec& s, Bad&& bad) { GapSpring::problems(s, bad); }
-  static double load(const SpringSpec& s, double d0, SpringRows& r) { return GapSpring::load<false>(params(unpack(s)), d0, r); }
-  static double stored_energy(const SpringRows& r, double d, double f) { return GapSpring::stored_energy(r, d, f); }
-  static constexpr bool fast_path = false;
-  template <bool WithEnergy, class T, class R>
-  POUNDING_INLINE static T step(const R& r, const T& fo, const T& d, const T& dd, const T&, T& x) {
-    return GapSpring::step<false, WithEnergy, T>(r, fo, d, dd, x);
-  }
   static bool stays_elastic(const Spec& s, double peak_abs_deformation, double margin) {
     return peak_abs_deformation <= margin * s.gap;
   }
@@ -183,7 +179,7 @@ inline CaltransAbutment caltrans_abutment(double width, double height) {
 
 // The hyperbolic abutment (OpenSees HyperbolicGapMaterial; recommended per metre of wall width for a 1.68 m back
 // wall: K_max 20300 kN/m, K_ur = K_max, R_f 0.7, F_ult 326 kN, gap 2.54 cm).
-struct HyperbolicGap {
+struct HyperbolicGap : GapTraits<HyperbolicGap, true> {
   static constexpr std::string_view name = "hyperbolic-abutment";
   struct Spec {
     double k_max = 0.0, k_ur = 0.0, rf = 0.7, f_ult = 0.0, gap = 0.0;
@@ -191,10 +187,8 @@ struct HyperbolicGap {
   };
   template <class T> using Params = GapParams<T>;
   static Params<double> params(const Spec& s) { return {s.k_ur, 1.0 / s.k_max, s.rf / s.f_ult, double(s.side), s.gap}; }
-  // A link; packed as k = K_ur (the initial tangent validation and omega_max read), fy = F_ult, alpha = 0 and
+  // A link (GapTraits); packed as k = K_ur (the initial tangent validation and omega_max read), fy = F_ult, alpha = 0 and
   // p = {gap, side, K_max, R_f}.
-  static constexpr Roles roles{.link = true};
-  static constexpr bool lane_stepper = false;
   static SpringSpec pack(const Spec& s) { return {s.k_ur, s.f_ult, 0.0, {s.gap, double(s.side), s.k_max, s.rf}}; }
   static Spec unpack(const SpringSpec& s) { return {s.p[2], s.k, s.p[3], s.fy, s.p[0], static_cast<int>(s.p[1])}; }
   // The gap's checks, then K_max > 0, K_ur >= K_max, R_f in (0, 1], F_ult finite.
@@ -207,13 +201,6 @@ struct HyperbolicGap {
       bad("link", "K_ur = {} is below K_max = {} (first loading would leave the envelope)", fix, h.k_ur, h.k_max);
     else if (!(h.rf > 0 && h.rf <= 1)) bad("link", "R_f = {} is outside (0, 1]", fix, h.rf);
     else if (!std::isfinite(h.f_ult)) bad("link", "F_ult = {} must be finite", fix, h.f_ult);
-  }
-  static double load(const SpringSpec& s, double d0, SpringRows& r) { return GapSpring::load<true>(params(unpack(s)), d0, r); }
-  static double stored_energy(const SpringRows& r, double d, double f) { return GapSpring::stored_energy(r, d, f); }
-  static constexpr bool fast_path = false;
-  template <bool WithEnergy, class T, class R>
-  POUNDING_INLINE static T step(const R& r, const T& fo, const T& d, const T& dd, const T&, T& x) {
-    return GapSpring::step<true, WithEnergy, T>(r, fo, d, dd, x);
   }
   static bool stays_elastic(const Spec& s, double peak_abs_deformation, double margin) {
     return peak_abs_deformation <= margin * s.gap;
