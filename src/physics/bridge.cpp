@@ -233,6 +233,7 @@ model::System bridge_system(const BridgeSpec& spec) {
   model::System::Parts P;
   P.channels = spec.channels();
   const int n = static_cast<int>(spec.frames.size());
+  constexpr int bilinear = model::law_of<model::BilinearKinematic>, qhyst = model::law_of<model::QHyst>;
   for (int k = 0; k < n; ++k) {
     const BridgeFrame& f = spec.frames[static_cast<std::size_t>(k)];
     const int levels = std::max(f.storeys, 1), d0 = x.frame_dof[static_cast<std::size_t>(k)];
@@ -249,22 +250,22 @@ model::System bridge_system(const BridgeSpec& spec) {
     }
     P.bodies.push_back(b);
     for (int s = 0; s < levels; ++s)
-      P.springs.push_back({s == 0 ? model::ground : d0 + s - 1, d0 + s, f.qhyst ? model::law_qhyst : model::law_bilinear,
+      P.springs.push_back({s == 0 ? model::ground : d0 + s - 1, d0 + s, f.qhyst ? qhyst : bilinear,
                            model::SpringRole::storey, k, s + 1});
   }
   const auto deck = [&](int k) { return x.deck[static_cast<std::size_t>(k)]; };
   for (int k = 0; k + 1 < n; ++k) {
     const BridgeJoint& j = spec.joints[static_cast<std::size_t>(k)];
-    if (j.restrainer) P.springs.push_back({deck(k), deck(k + 1), model::law_restrainer, model::SpringRole::link, k + 1, 0});
-    if (j.bearing) P.springs.push_back({deck(k), deck(k + 1), model::law_bilinear, model::SpringRole::link, k + 1, 0});
+    if (j.restrainer) P.springs.push_back({deck(k), deck(k + 1), model::law_of<model::TensionGap>, model::SpringRole::link, k + 1, 0});
+    if (j.bearing) P.springs.push_back({deck(k), deck(k + 1), bilinear, model::SpringRole::link, k + 1, 0});
   }
   for (const auto& [a, body] : {std::pair{&spec.left, 0}, std::pair{&spec.right, n - 1}}) {
     const int dof = deck(body);
     if (a->backfill != Backfill::none)
       P.springs.push_back({model::ground, dof,
-                           a->backfill == Backfill::epp ? model::law_abutment : model::law_hyperbolic_abutment,
+                           a->backfill == Backfill::epp ? model::law_of<model::CompressionGap> : model::law_of<model::HyperbolicGap>,
                            model::SpringRole::link, body, 0, a->support});
-    if (a->bearing) P.springs.push_back({model::ground, dof, model::law_bilinear, model::SpringRole::link, body, 0, a->support});
+    if (a->bearing) P.springs.push_back({model::ground, dof, bilinear, model::SpringRole::link, body, 0, a->support});
   }
   for (int k = 0; k + 1 < n; ++k) {
     model::ContactElement e;
@@ -289,7 +290,7 @@ void set_stick_frame(SystemBatch& B, std::size_t lane, int k, const BridgeFrame&
   const model::Body& b = B.system->bodies()[static_cast<std::size_t>(k)];
   for (std::size_t i = 0; i < b.dofs.size(); ++i)
     B.spring[SystemBatch::at(B.system->spring_below(b.dofs[i]), lane, B.width)] =
-        link_spring(model::QHyst::Spec{num.k[i], num.fy[i], f.alpha, f.beta});
+        model::QHyst::pack({num.k[i], num.fy[i], f.alpha, f.beta});
 }
 }  // namespace
 
@@ -308,7 +309,7 @@ void set_bridge(SystemBatch& B, std::size_t lane, const BridgeSpec& spec) {
     B.m[at(d)] = f.mass, B.c_floor[at(d)] = 2.0 * f.zeta * std::sqrt(kf * f.mass);
     B.u0[at(d)] = 0.0, B.v0[at(d)] = 0.0;
     SpringSpec s{kf, f.fy, f.alpha};
-    if (f.qhyst) s = link_spring(model::QHyst::Spec{kf, f.fy, f.alpha, f.beta});
+    if (f.qhyst) s = model::QHyst::pack({kf, f.fy, f.alpha, f.beta});
     B.spring[at(x.frame_spring[k])] = s;
   }
   for (std::size_t k = 0; k < spec.joints.size(); ++k) {
@@ -318,7 +319,7 @@ void set_bridge(SystemBatch& B, std::size_t lane, const BridgeSpec& spec) {
     if (j.restrainer) {
       model::TensionGap::Spec r = *j.restrainer;
       r.side = 1;
-      B.spring[at(x.restrainer[k])] = link_spring(r);
+      B.spring[at(x.restrainer[k])] = model::TensionGap::pack(r);
     }
     if (j.bearing) B.spring[at(x.bearing[k])] = {j.bearing->k, j.bearing->fy, j.bearing->alpha};
   }
@@ -327,11 +328,11 @@ void set_bridge(SystemBatch& B, std::size_t lane, const BridgeSpec& spec) {
     if (a->backfill == Backfill::epp) {
       model::CompressionGap::Spec c = a->epp;
       c.side = side;
-      B.spring[at(fill)] = link_spring(c);
+      B.spring[at(fill)] = model::CompressionGap::pack(c);
     } else if (a->backfill == Backfill::hyperbolic) {
       model::HyperbolicGap::Spec h = a->hyperbolic;
       h.side = side;
-      B.spring[at(fill)] = link_spring(h);
+      B.spring[at(fill)] = model::HyperbolicGap::pack(h);
     }
     if (a->bearing) B.spring[at(bear)] = {a->bearing->k, a->bearing->fy, a->bearing->alpha};
   }

@@ -122,7 +122,7 @@ Layout layout_of(const model::System& S) {
     L.dashpot.push_back(d ? 1 : 0);
     L.any_dashpot = L.any_dashpot || d;
     L.law.push_back(s.law);
-    L.any_smooth = L.any_smooth || s.law != model::law_bilinear;
+    L.any_smooth = L.any_smooth || !model::fast_path(s.law);
   }
   L.above_start.push_back(0);
   L.link_start.push_back(0);
@@ -236,19 +236,6 @@ struct LaneView {
   }
 };
 
-model::BilinearKinematic::Params<double> spring_params(const SpringSpec& s) {
-  Structure st;
-  st.k = s.k, st.fy = s.fy, st.alpha = s.alpha;
-  return model::BilinearKinematic::params(st);
-}
-
-// A gap link's per-lane constants (laws 3-5) from its SpringSpec.
-model::GapParams<double> gap_params(const SpringSpec& s, int law) {
-  if (law == model::law_hyperbolic_abutment)
-    return model::HyperbolicGap::params({s.k_max, s.k, s.rf, s.fy, s.gap, s.side > 0 ? 1 : -1});
-  return model::TensionGap::straight(s.k, s.fy, s.alpha, s.gap, s.side);
-}
-
 // Per run: each group's model, runner and elements; each element's damping constant per lane (DampingTable: each
 // distinct e once per group and call, as run_batch).
 struct Plan {
@@ -306,37 +293,10 @@ void fill_structure(const Pool& T, std::size_t i, const LaneView& v) {
     const int a = L.si[static_cast<std::size_t>(s)], b = L.sj[static_cast<std::size_t>(s)];
     const SpringSpec& spec = B.spring[SystemBatch::at(s, v.l, B.width)];
     const double d0 = a < 0 ? v.at(B.u0, b) : v.at(B.u0, b) - v.at(B.u0, a);
-    double f0 = 0.0;
-    T.spring(sys::Z, s)[i] = 0.0;
-    if (L.law[static_cast<std::size_t>(s)] == model::law_bilinear) {
-      const auto p = spring_params(spec);
-      T.spring(sys::K, s)[i] = p.k, T.spring(sys::AK, s)[i] = p.ak, T.spring(sys::QY, s)[i] = p.qy;
-      T.spring(sys::KP, s)[i] = p.kp;
-      f0 = model::BilinearKinematic::initial_force(p, d0);
-    } else if (model::is_gap_law(L.law[static_cast<std::size_t>(s)])) {  // the gap at its given value
-      const auto p = gap_params(spec, L.law[static_cast<std::size_t>(s)]);
-      T.spring(sys::K, s)[i] = p.k, T.spring(sys::AK, s)[i] = p.c1, T.spring(sys::QY, s)[i] = p.c2;
-      T.spring(sys::KP, s)[i] = p.side, T.spring(sys::ZA, s)[i] = p.gap0;
-      double g = p.gap0;
-      f0 = L.law[static_cast<std::size_t>(s)] == model::law_hyperbolic_abutment ? model::GapSpring::force<true>(p, d0, g)
-                                                                                : model::GapSpring::force<false>(p, d0, g);
-      T.spring(sys::Z, s)[i] = g;
-    } else if (L.law[static_cast<std::size_t>(s)] == model::law_qhyst) {  // from rest at d = 0 to d0
-      const model::QHyst::Params<double> p{spec.k, spec.alpha * spec.k, spec.fy, spec.beta};
-      model::QHystState st = model::QHyst::initial(p);
-      f0 = model::QHyst::step(p, st, 0.0, d0, 0.0);
-      T.spring(sys::K, s)[i] = p.k, T.spring(sys::AK, s)[i] = p.ak, T.spring(sys::QY, s)[i] = p.fy;
-      T.spring(sys::KP, s)[i] = p.beta;
-      T.spring(sys::ZA, s)[i] = st.mode, T.spring(sys::ZB, s)[i] = st.x0, T.spring(sys::ZG, s)[i] = st.dr;
-      T.spring(sys::ZM, s)[i] = st.fr, T.spring(sys::ZE, s)[i] = st.dp, T.spring(sys::ZS, s)[i] = st.dn;
-    } else {  // a smooth spring starts at z = 0: its force at rest in u0 is k d0
-      const model::SmoothParams<double>& p = spec.smooth;
-      T.spring(sys::K, s)[i] = p.k, T.spring(sys::AK, s)[i] = p.q_slow, T.spring(sys::QY, s)[i] = p.q_fast;
-      T.spring(sys::KP, s)[i] = p.rate, T.spring(sys::ZA, s)[i] = p.a_uy, T.spring(sys::ZB, s)[i] = p.b_uy;
-      T.spring(sys::ZG, s)[i] = p.g_uy, T.spring(sys::ZM, s)[i] = p.z_max, T.spring(sys::ZE, s)[i] = p.eta;
-      T.spring(sys::ZS, s)[i] = p.uy_2a;
-      f0 = p.k * d0;
-    }
+    model::SpringRows r{};  // Z = 0 unless the model loads it
+    const double f0 = model::visit_hysteresis(L.law[static_cast<std::size_t>(s)],
+                                              [&]<class H>() { return H::load(spec, d0, r); });
+    for (int k = 0; k < model::spring_slots; ++k) T.spring(sys::spring_slot_row(k), s)[i] = r[static_cast<std::size_t>(k)];
     T.spring(sys::CS, s)[i] = B.c_storey.empty() ? 0.0 : v.at(B.c_storey, s);
     T.spring(sys::FS, s)[i] = f0, T.spring(sys::PD, s)[i] = std::abs(d0), T.spring(sys::PF, s)[i] = std::abs(f0);
   }
@@ -453,24 +413,11 @@ void collect_lane(const Pool& T, std::size_t i, const LaneView& v, const Plan& P
     out.peak_drift[at(s)] = val(T.spring(sys::PD, s)[i]), out.peak_spring_force[at(s)] = val(T.spring(sys::PF, s)[i]);
     const int a = L.si[static_cast<std::size_t>(s)], b = L.sj[static_cast<std::size_t>(s)];
     const double d = a < 0 ? T.dof(sys::U, b)[i] : T.dof(sys::U, b)[i] - T.dof(sys::U, a)[i];
-    double x = 0.0;
-    if (L.law[static_cast<std::size_t>(s)] == model::law_bilinear) {
-      const model::BilinearKinematic::Params<double> p{T.spring(sys::K, s)[i], T.spring(sys::AK, s)[i],
-                                                       T.spring(sys::QY, s)[i], T.spring(sys::KP, s)[i]};
-      x = model::BilinearKinematic::strain_energy(p, d, T.spring(sys::FS, s)[i]);
-    } else if (model::is_gap_law(L.law[static_cast<std::size_t>(s)])) {
-      x = model::GapSpring::strain_energy(T.spring(sys::K, s)[i], T.spring(sys::FS, s)[i]);
-    } else if (L.law[static_cast<std::size_t>(s)] == model::law_qhyst) {
-      const model::QHyst::Params<double> p{T.spring(sys::K, s)[i], T.spring(sys::AK, s)[i], T.spring(sys::QY, s)[i],
-                                           T.spring(sys::KP, s)[i]};
-      const model::QHystState st{T.spring(sys::ZA, s)[i], T.spring(sys::ZB, s)[i], T.spring(sys::ZG, s)[i],
-                                 T.spring(sys::ZM, s)[i], T.spring(sys::ZE, s)[i], T.spring(sys::ZS, s)[i]};
-      x = model::QHyst::strain_energy(p, st, T.spring(sys::FS, s)[i]);
-    } else {
-      model::SmoothParams<double> p{};
-      p.k = T.spring(sys::K, s)[i], p.uy_2a = T.spring(sys::ZS, s)[i];
-      x = model::Smooth::strain_energy(p, d, T.spring(sys::FS, s)[i] - p.k * d, T.spring(sys::Z, s)[i]);
-    }
+    model::SpringRows r;
+    for (int k = 0; k < model::spring_slots; ++k) r[static_cast<std::size_t>(k)] = T.spring(sys::spring_slot_row(k), s)[i];
+    const double f = T.spring(sys::FS, s)[i];
+    const double x = model::visit_hysteresis(L.law[static_cast<std::size_t>(s)],
+                                             [&]<class H>() { return H::stored_energy(r, d, f); });
     es = s == 0 ? x : es + x;
   }
   for (int e = 0; e < L.nelem; ++e) {
@@ -607,6 +554,14 @@ std::string stepper_name(Stepper s) {
   return name;
 }
 
+// Whether a model with roles `r` may stand where a spring of role `role` does; the role as a word.
+bool plays(const model::Roles& r, model::SpringRole role) {
+  return role == model::SpringRole::storey ? r.storey : role == model::SpringRole::isolator ? r.isolator : r.link;
+}
+const char* role_word(model::SpringRole role) {
+  return role == model::SpringRole::storey ? "storey" : role == model::SpringRole::isolator ? "isolator" : "link";
+}
+
 }  // namespace
 
 std::size_t default_system_tile(std::size_t) { return static_cast<std::size_t>(simd::W); }
@@ -628,10 +583,14 @@ std::vector<Problem> system_stepper_problems(const SystemBatch& B, std::span<con
                        fmt::format("contact law of group '{}'", S.groups()[g].name),
                        "use a law with a force element (hertzdamp, kelvin, ...)"});
   for (std::size_t s = 0; s < S.springs().size(); ++s)
-    if (S.springs()[s].law < 0 || S.springs()[s].law >= static_cast<int>(model::Hystereses::size))
-      out.push_back({fmt::format("spring {} has hysteresis law {}; the system stepper runs laws 0 to 6 "
-                                 "(model/hysteresis/registry.hpp)", s, S.springs()[s].law),
+    if (const model::Spring& sp = S.springs()[s]; !model::is_law(sp.law))
+      out.push_back({fmt::format("spring {} has hysteresis law {}; the system stepper runs laws 0 to {} "
+                                 "(model/hysteresis/registry.hpp)", s, sp.law, static_cast<int>(model::Hystereses::size) - 1),
                      "system springs", "use a registered hysteresis law (model/hysteresis/registry.hpp)"});
+    else if (!plays(model::hysteresis_roles[static_cast<std::size_t>(sp.law)], sp.role))
+      out.push_back({fmt::format("spring {} is a {} spring of the {} model, which does not play that role", s,
+                                 role_word(sp.role), model::hysteresis_name(sp.law)),
+                     "system springs", "give the spring a model whose roles include it (model/hysteresis/registry.hpp)"});
   for (std::size_t g = 0; g < groups.size(); ++g) {
     if (!contact::traits(groups[g].law).impulsive) continue;
     for (const model::ContactElement& e : S.contacts())

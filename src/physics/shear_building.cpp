@@ -142,8 +142,7 @@ IsolationNumbers isolation_numbers(std::span<const double> h, const ShearSpec& s
     require(std::isfinite(iso.rate) && iso.rate >= 0.0, "the rate must be finite and >= 0");
     require(std::isfinite(iso.uy) && iso.uy > 0.0, "u_y must be finite and > 0");
     out.weight = standard_gravity * out.m_total;
-    out.isolator = smooth_spring(model::FrictionPendulum::params(
-        {out.weight, iso.radius, iso.mu_slow, iso.mu_fast, iso.rate, iso.uy}));
+    out.isolator = model::FrictionPendulum::pack({out.weight, iso.radius, iso.mu_slow, iso.mu_fast, iso.rate, iso.uy});
   } else {
     require(std::isfinite(iso.k1) && iso.k1 > 0.0, "k1 must be finite and > 0");
     require(std::isfinite(iso.k2) && iso.k2 >= 0.0 && iso.k2 < iso.k1, "k2 must be in [0, k1)");
@@ -154,8 +153,8 @@ IsolationNumbers isolation_numbers(std::span<const double> h, const ShearSpec& s
               "beta + gamma must be > 0");
       require(iso.bw_eta >= 1 && iso.bw_eta <= model::smooth_max_eta, "eta must be an integer in [1, 8]");
       const double alpha = iso.k2 / iso.k1;
-      out.isolator = smooth_spring(model::BoucWen::params(
-          {iso.k1, alpha, iso.qd / (iso.k1 - iso.k2), iso.bw_a, iso.bw_beta, iso.bw_gamma, iso.bw_eta}));
+      out.isolator =
+          model::BoucWen::pack({iso.k1, alpha, iso.qd / (iso.k1 - iso.k2), iso.bw_a, iso.bw_beta, iso.bw_gamma, iso.bw_eta});
     } else {
       out.isolator = {iso.k1, iso.qd * iso.k1 / (iso.k1 - iso.k2), iso.k2 / iso.k1};  // SB §2: Fy = Qd/(1 - k2/k1)
       require(std::isfinite(iso.zeta_eff) && iso.zeta_eff >= 0.0 && iso.zeta_eff < 1.0, "zeta_eff must be in [0, 1)");
@@ -168,9 +167,9 @@ IsolationNumbers isolation_numbers(std::span<const double> h, const ShearSpec& s
 
 int isolator_law(Bearing bearing) {
   switch (bearing) {
-    case Bearing::friction_pendulum: return model::law_friction_pendulum;
-    case Bearing::bouc_wen: return model::law_bouc_wen;
-    default: return model::law_bilinear;
+    case Bearing::friction_pendulum: return model::law_of<model::FrictionPendulum>;
+    case Bearing::bouc_wen: return model::law_of<model::BoucWen>;
+    default: return model::law_of<model::BilinearKinematic>;  // linear and lead-rubber bearings
   }
 }
 

@@ -29,10 +29,6 @@ using std::size_t;
 constexpr double nan = std::numeric_limits<double>::quiet_NaN();
 constexpr double inf = std::numeric_limits<double>::infinity();
 
-constexpr std::array<std::string_view, 7> law_names{"bilinear",  "bouc-wen", "friction-pendulum", "restrainer",
-                                                    "abutment", "hyperbolic-abutment", "q-hyst"};
-static_assert(model::Hystereses::size == law_names.size(), "a new hysteresis law: name it here");
-
 // An element side's DOFs and weights: x = sum g_k u_dof[k] (left +, right -), up to two DOFs per side.
 struct Incidence {
   std::array<int, 4> dof{};
@@ -671,8 +667,8 @@ std::vector<Problem> lane_stepper_problems(const SystemBatch& B, std::span<const
   const std::string fix = "use --stepper central-difference (or [analysis] stepper = \"central-difference\")";
   for (std::size_t s = 0; s < S.springs().size(); ++s) {
     const model::Spring& sp = S.springs()[s];
-    if (sp.law == model::law_bilinear) continue;
-    const std::string_view law = sp.law >= 0 && sp.law < static_cast<int>(law_names.size()) ? law_names[static_cast<size_t>(sp.law)] : "unknown";
+    if (model::runs_on_lane_stepper(sp.law)) continue;
+    const std::string_view law = model::is_law(sp.law) ? model::hysteresis_name(sp.law) : "unknown";
     out.push_back({fmt::format("the {} stepper runs systems of bilinear springs (storeys, linear and lead-rubber "
                                "bearings), and {}'s {} spring has the {} law", st,
                                S.bodies()[static_cast<size_t>(sp.body)].label,

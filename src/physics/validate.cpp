@@ -66,39 +66,13 @@ template <class N, class W> void yield(std::vector<Problem>& out, double fy, con
 template <class N, class W> void hardening(std::vector<Problem>& out, double alpha, const N& name, const W& where) {
   in_range(out, alpha, 0.0, std::nextafter(1.0, 0.0), name, where, "[0, 1)");
 }
-// A smooth spring's constants (model/hysteresis/smooth.hpp): k >= 0, Q_slow > 0, Q_fast >= 0, rate >= 0, A / u_y > 0,
-// beta + gamma > 0, z_max finite and > 0, eta an integer in [1, smooth_max_eta], u_y / (2 A) > 0.
-template <class W> void smooth_values(std::vector<Problem>& out, const model::SmoothParams<double>& p, const W& where) {
-  const bool ok = std::isfinite(p.k) && p.k >= 0 && std::isfinite(p.q_slow) && p.q_slow > 0 &&
-                  std::isfinite(p.q_fast) && p.q_fast >= 0 && std::isfinite(p.rate) && p.rate >= 0 &&
-                  std::isfinite(p.a_uy) && p.a_uy > 0 && std::isfinite(p.b_uy) && std::isfinite(p.g_uy) &&
-                  p.b_uy + p.g_uy > 0 && std::isfinite(p.z_max) && p.z_max > 0 && p.eta >= 1 &&
-                  p.eta <= model::smooth_max_eta && p.eta == std::floor(p.eta) && std::isfinite(p.uy_2a) && p.uy_2a > 0;
-  if (!ok)
-    out.push_back({fmt::format("the smooth hysteresis constants (k {}, Q_slow {}, Q_fast {}, rate {}, A/u_y {}, beta/u_y "
-                               "{}, gamma/u_y {}, eta {}) are not valid", p.k, p.q_slow, p.q_fast, p.rate, p.a_uy,
-                               p.b_uy, p.g_uy, p.eta),
-                   text(where), "build them with BoucWen::params or FrictionPendulum::params from a valid spec"});
-}
-// A bridge link's description (laws 3-6, model/hysteresis/bridge_links.hpp): the gap laws' gap >= 0 and side +-1,
-// the hyperbolic abutment's K_max > 0, K_ur >= K_max, R_f in (0, 1], F_ult finite; Q-Hyst's F_y finite, beta in [0, 1].
-template <class W> void link_values(std::vector<Problem>& out, const SpringSpec& s, int law, const W& where) {
-  std::string bad;
-  if (model::is_gap_law(law)) {
-    if (!std::isfinite(s.gap) || s.gap < 0) bad = fmt::format("gap = {} must be >= 0 (m)", s.gap);
-    else if (s.side != 1.0 && s.side != -1.0) bad = fmt::format("side = {} must be +1 or -1", s.side);
-  }
-  if (law == model::law_hyperbolic_abutment && bad.empty()) {
-    if (!(std::isfinite(s.k_max) && s.k_max > 0)) bad = fmt::format("K_max = {} must be > 0 (N/m)", s.k_max);
-    else if (!(s.k >= s.k_max)) bad = fmt::format("K_ur = {} is below K_max = {} (first loading would leave the envelope)", s.k, s.k_max);
-    else if (!(s.rf > 0 && s.rf <= 1)) bad = fmt::format("R_f = {} is outside (0, 1]", s.rf);
-    else if (!std::isfinite(s.fy)) bad = fmt::format("F_ult = {} must be finite", s.fy);
-  }
-  if (law == model::law_qhyst) {
-    if (!std::isfinite(s.fy)) bad = fmt::format("F_y = {} must be finite for Q-Hyst", s.fy);
-    else if (!(s.beta >= 0 && s.beta <= 1)) bad = fmt::format("beta = {} is outside [0, 1]", s.beta);
-  }
-  if (!bad.empty()) out.push_back({bad, text(where), "give a valid link description (model/hysteresis/bridge_links.hpp)"});
+// The model's own checks of a spring's description (the registry's trait problems), each failure at where(field).
+template <class W> void model_values(std::vector<Problem>& out, const SpringSpec& s, int law, const W& where) {
+  model::visit_hysteresis(law, [&]<class H>() {
+    H::problems(s, [&](std::string_view field, std::string_view what, std::string_view fix, auto... values) {
+      out.push_back({fmt::format(fmt::runtime(what), values...), text(where(field)), std::string(fix)});
+    });
+  });
 }
 template <class W> void gap_value(std::vector<Problem>& out, double gap, const W& where) {
   if (!std::isfinite(gap) || gap < 0)
@@ -213,9 +187,7 @@ std::vector<Problem> validate_system_lane(const SystemBatch& b, std::span<const 
     stiffness(out, b.spring[i].k, "k", where("k", place), false);
     yield(out, b.spring[i].fy, "fy", where("fy", place));
     hardening(out, b.spring[i].alpha, "alpha", where("alpha", place));
-    const int law = sys.springs()[s].law;
-    if (model::is_smooth_law(law)) smooth_values(out, b.spring[i].smooth, where("smooth", place));
-    if (law >= model::law_restrainer) link_values(out, b.spring[i], law, where("link", place));
+    model_values(out, b.spring[i], sys.springs()[s].law, [&](std::string_view field) { return where(field, place); });
     if (!b.c_storey.empty()) dashpot(out, b.c_storey[i], "c_storey", where("c_storey", place));
   }
   for (std::size_t el = 0; el < sys.contacts().size(); ++el) {

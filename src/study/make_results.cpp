@@ -232,11 +232,8 @@ results::Settings settings_of(const Study& study) {
 namespace {
 
 // The name of hysteresis model `law` (its index in model::Hystereses).
-template <class... Hs>
-std::string_view hysteresis_name(int law, TypeList<Hs...>) {
-  std::string_view out;
-  int k = 0;
-  ((k++ == law ? (out = Hs::name, true) : false) || ...);
+std::string_view hysteresis_name(int law) {
+  const std::string_view out = model::hysteresis_name(law);
   if (out.empty()) throw std::logic_error(fmt::format("system_table: no hysteresis model {}", law));
   return out;
 }
@@ -295,7 +292,7 @@ results::SystemTable system_table(const model::System& system, std::span<const C
     t.spring_i.push_back(s.i), t.spring_j.push_back(s.j);
     t.spring_building.push_back(s.body), t.spring_storey.push_back(s.role == model::SpringRole::storey ? s.storey : 0);
     t.spring_role.emplace_back(role_name(s.role));
-    t.spring_law.emplace_back(hysteresis_name(s.law, model::Hystereses{}));
+    t.spring_law.emplace_back(hysteresis_name(s.law));
   }
   const auto height = [&](int dof) { return t.dof_height[static_cast<std::size_t>(dof)]; };
   t.group_elements.assign(system.groups().size(), 0);

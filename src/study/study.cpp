@@ -120,7 +120,7 @@ static void check_system_stepper(const Study& s, TableReader& top, const std::st
                      where, "write stepper = \"central-difference\", \"newmark\" or \"rk4\", " + other_fix);
   for (std::size_t b = 0; b < s.structures.building_count(); ++b)
     if (const BuildingModel m = s.structures.row_building(b);
-        m.isolated && physics::isolator_law(m.isolation.bearing) != model::law_bilinear)
+        m.isolated && !model::runs_on_lane_stepper(physics::isolator_law(m.isolation.bearing)))
       throw InputError(fmt::format("the {} stepper runs systems of bilinear springs (storeys, linear and lead-rubber "
                                    "bearings), and building {} has a {} bearing", to_string(s.stepper), b + 1,
                                    bearing_name(m.isolation.bearing)),

@@ -37,7 +37,7 @@ LONG_FILES = {
     "src/cli/commands/simulate.cpp": 1632,
     "src/report/report.cpp": 1080,
     "src/analysis/stripes.cpp": 938,
-    "include/pounding/physics/steppers/system_central_difference.hpp": 905,
+    "include/pounding/physics/steppers/system_central_difference.hpp": 860,
     "src/io/hdf5.cpp": 889,
     "src/config/study_keys.cpp": 905,
 }

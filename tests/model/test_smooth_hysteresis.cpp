@@ -193,7 +193,7 @@ TEST(SmoothHysteresis, BitEqualAtBothLaneTypes) {
 
 // Traits: no elastic range; unscaled_equivalent exact: F(f u; spec) = f F(u; spec') along a random-ish path.
 TEST(SmoothHysteresis, Traits) {
-  static_assert(model::Hystereses::size == 7);
+  static_assert(model::law_of<BoucWen> >= 0 && model::law_of<FrictionPendulum> >= 0);  // registered
   const BoucWen::Spec bw = t22(2, 0.7, 0.3);
   const FrictionPendulum::Spec fp{1e6, 2.0, 0.05, 0.10, 20.0, 5e-4};
   EXPECT_FALSE(BoucWen::stays_elastic(bw, 0.0, 1.0));

@@ -176,7 +176,7 @@ TEST(IsolationSmooth, BoucWenAgainstScipy) {
 // dissipated) closes better as h falls: residual below 1e-4 of the input at dt/80 and falling by > 3 per halving
 // (measured 2.6e-5, 6.5e-6, 1.6e-6: second order).
 TEST(IsolationSmooth, PendulumMoatEnergyBalanceConverges) {
-  const model::System S = isolated(model::law_friction_pendulum, true);
+  const model::System S = isolated(model::law_of<model::FrictionPendulum>, true);
   SystemBatch B;
   B.resize(S, 1);
   set_isolated_building(B, 0, 0, superstructure(), pendulum(5e-4));

@@ -313,7 +313,7 @@ TEST(SystemSteppers, RefusesWhatTheyDoNotRun) {
   // an isolated building on a friction pendulum: its smooth law is refused by name
   model::StickTopology a, b;
   a.storeys = b.storeys = 3, a.storey_heights = b.storey_heights = {3.0};
-  a.isolated = true, a.isolator_law = model::law_friction_pendulum;
+  a.isolated = true, a.isolator_law = model::law_of<model::FrictionPendulum>;
   const model::StickTopology t[] = {a, b};
   const model::System iso = model::shear_buildings(t);
   SystemBatch ib;
@@ -365,7 +365,7 @@ TEST(SystemSteppers, ColumnSidesAndMoatWallsConvergeToCentralDifference) {
     model::StickTopology t1, t2;
     t1.storeys = kind == 0 ? 4 : 3, t1.storey_heights = {3.0};
     t2.storeys = 3, t2.storey_heights = {kind == 0 ? 4.0 : 3.0};
-    if (kind == 1) t1.isolated = true, t1.moat = true, t1.isolator_law = model::law_bilinear;
+    if (kind == 1) t1.isolated = true, t1.moat = true, t1.isolator_law = model::law_of<model::BilinearKinematic>;
     const model::StickTopology tops[] = {t1, t2};
     const model::System S = model::shear_buildings(tops);
     SystemBatch B;

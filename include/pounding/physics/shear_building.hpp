@@ -97,7 +97,7 @@ struct IsolationSpec {
 int isolator_law(Bearing bearing);
 struct IsolationNumbers {
   double m_base = 0.0, m_total = 0.0;
-  SpringSpec isolator;  // {k, fy, alpha}; the smooth bearings: smooth_spring(params)
+  SpringSpec isolator;  // packed by the bearing's model (BilinearKinematic, BoucWen or FrictionPendulum::pack)
   double c_base = 0.0;  // the linear bearing's dashpot (N s/m), 0 for the hysteretic bearings
   double weight = 0.0;  // W = g M_total (N): the friction pendulum's normal force
   ShearNumbers super;   // the FIXED-BASE superstructure's numbers (its Rayleigh from its own modes)

@@ -15,72 +15,23 @@
 
 #include "pounding/contact/model.hpp"
 #include "pounding/kernel/batch.hpp"
-#include "pounding/model/hysteresis/bridge_links.hpp"
 #include "pounding/model/hysteresis/registry.hpp"
-#include "pounding/model/hysteresis/smooth.hpp"
 #include "pounding/model/system.hpp"
 
 namespace pounding::physics {
 
-// The description of one spring for its hysteresis law (law 0, bilinear kinematic hardening): kept un-derived
-// so that the driver's scaling by traits reproduces today's arithmetic (§2.2.2). fy = +inf: linear elastic.
-// A spring of law 1 (Bouc-Wen) or 2 (friction pendulum) runs `smooth` (model/hysteresis/smooth.hpp; from
-// BoucWen::params / FrictionPendulum::params); its k is then the initial tangent k + max(Q_slow, Q_fast) A / u_y (what validation
-// and the structure's omega_max read), fy = inf, alpha = 0.
-// The bridge links (laws 3-6, model/hysteresis/bridge_links.hpp) read k (K_ur for the hyperbolic abutment: the
-// initial tangent validation and omega_max read), fy (F_ult for the hyperbolic abutment), alpha and the fields below.
-struct SpringSpec {
-  double k = 0.0, fy = std::numeric_limits<double>::infinity(), alpha = 0.0;
-  model::SmoothParams<double> smooth{};
-  double gap = 0.0;   // laws 3-5: the slack or gap (m)
-  double side = 1.0;  // laws 3-5: +1 engages as d = u_j - u_i grows past the gap, -1 as it falls below -gap
-  double k_max = 0.0, rf = 0.0;  // law 5: K_max (N/m) and the failure ratio R_f
-  double beta = 0.5;  // law 6: Q-Hyst's unloading exponent
-};
-// The SpringSpec of a bridge link from its model's description.
-inline SpringSpec link_spring(const model::TensionGap::Spec& s) {
-  SpringSpec o{s.k, s.fy, s.alpha};
-  o.gap = s.slack, o.side = s.side;
-  return o;
-}
-inline SpringSpec link_spring(const model::CompressionGap::Spec& s) {
-  SpringSpec o{s.k, s.fy, s.alpha};
-  o.gap = s.gap, o.side = s.side;
-  return o;
-}
-inline SpringSpec link_spring(const model::HyperbolicGap::Spec& s) {
-  SpringSpec o{s.k_ur, s.f_ult, 0.0};
-  o.gap = s.gap, o.side = s.side, o.k_max = s.k_max, o.rf = s.rf;
-  return o;
-}
-inline SpringSpec link_spring(const model::QHyst::Spec& s) {
-  SpringSpec o{s.k, s.fy, s.alpha};
-  o.beta = s.beta;
-  return o;
-}
-// The SpringSpec of a smooth spring (laws 1, 2) from its parameters.
-inline SpringSpec smooth_spring(const model::SmoothParams<double>& p) {
-  return {p.k + (p.q_fast > p.q_slow ? p.q_fast : p.q_slow) * p.a_uy, std::numeric_limits<double>::infinity(), 0.0, p};
-}
+// The description of one spring, packed by its hysteresis model (model/hysteresis/spring_spec.hpp; H::pack): k, fy,
+// alpha kept un-derived so that the driver's scaling by traits reproduces today's arithmetic (§2.2.2); fy = +inf:
+// linear elastic.
+using model::SpringSpec;
 
 // The registry's trait stays_elastic (model/hysteresis/registry.hpp) asked of a spring of the batch by its law: the
-// spring stays on its initial elastic branch (bilinear, Q-Hyst: |d| <= margin fy / k) or inside its gap (laws 3-5:
-// no force, so linear) at peak |deformation| `peak`; the smooth laws (Bouc-Wen, friction pendulum) have no elastic
-// range and answer false. A response scaled from a linear run is exact only when every spring of the lane answers
-// true (the fragility stripes' and IDA's shortcut, study/run.cpp).
+// spring stays on its initial elastic branch (bilinear, Q-Hyst: |d| <= margin fy / k) or inside its gap (the gap
+// links: no force, so linear) at peak |deformation| `peak`; the smooth models have no elastic range and answer
+// false. A response scaled from a linear run is exact only when every spring of the lane answers true (the
+// fragility stripes' and IDA's shortcut, study/run.cpp).
 inline bool spring_stays_elastic(int law, const SpringSpec& s, double peak, double margin) {
-  static_assert(model::Hystereses::size == 7, "a new hysteresis law: add its case here (and its SpringSpec fields)");
-  switch (law) {
-    case model::law_bilinear: return model::BilinearKinematic::stays_elastic(Structure{0.0, s.k, 0.0, s.fy, s.alpha}, peak, margin);
-    case model::law_bouc_wen: return model::BoucWen::stays_elastic({}, peak, margin);
-    case model::law_friction_pendulum: return model::FrictionPendulum::stays_elastic({}, peak, margin);
-    case model::law_restrainer: return model::TensionGap::stays_elastic({s.k, s.fy, s.alpha, s.gap, 1}, peak, margin);
-    case model::law_abutment: return model::CompressionGap::stays_elastic({s.k, s.fy, s.alpha, s.gap, 1}, peak, margin);
-    case model::law_hyperbolic_abutment:
-      return model::HyperbolicGap::stays_elastic({s.k_max, s.k, s.rf, s.fy, s.gap, 1}, peak, margin);
-    case model::law_qhyst: return model::QHyst::stays_elastic({s.k, s.fy, s.alpha, s.beta}, peak, margin);
-    default: return false;
-  }
+  return model::stays_elastic(law, s, peak, margin);
 }
 
 struct SystemBatch {

@@ -807,7 +807,7 @@ void set_buildings(const SimulateOptions& o, const std::vector<Side>& sides, con
     const bool smooth = iso.bearing == physics::Bearing::friction_pendulum || iso.bearing == physics::Bearing::bouc_wen;
     // the periods on the isolator's initial stiffness (linear, lead-rubber, Bouc-Wen) or, for the friction
     // pendulum, on its pendulum stiffness W/R alone (sliding; T -> 2 pi sqrt(R/g) for a rigid superstructure)
-    const double k_chain = iso.bearing == physics::Bearing::friction_pendulum ? num.isolator.smooth.k : num.isolator.k;
+    const double k_chain = iso.bearing == physics::Bearing::friction_pendulum ? model::FrictionPendulum::params(model::FrictionPendulum::unpack(num.isolator)).k : num.isolator.k;
     std::vector<double> chain_m{num.m_base}, chain_k{k_chain};
     chain_m.insert(chain_m.end(), num.super.m.begin(), num.super.m.end());
     chain_k.insert(chain_k.end(), num.super.k.begin(), num.super.k.end());
@@ -819,7 +819,7 @@ void set_buildings(const SimulateOptions& o, const std::vector<Side>& sides, con
     if (iso.bearing == physics::Bearing::friction_pendulum)
       br.isolation->law_numbers = {{"weight_N", num.weight}, {"radius_m", iso.radius}, {"mu_slow", iso.mu_slow},
                                    {"mu_fast", iso.mu_fast}, {"rate_s_m", iso.rate}, {"uy_m", iso.uy},
-                                   {"pendulum_k_N_m", num.isolator.smooth.k}};
+                                   {"pendulum_k_N_m", model::FrictionPendulum::params(model::FrictionPendulum::unpack(num.isolator)).k}};
     else if (iso.bearing == physics::Bearing::bouc_wen)
       br.isolation->law_numbers = {{"alpha", iso.k2 / iso.k1}, {"uy_m", iso.qd / (iso.k1 - iso.k2)},
                                    {"qd_N", iso.qd}, {"A", iso.bw_a}, {"beta", iso.bw_beta}, {"gamma", iso.bw_gamma},

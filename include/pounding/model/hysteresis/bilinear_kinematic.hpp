@@ -9,6 +9,7 @@
 
 #include "pounding/kernel/lane.hpp"
 #include "pounding/kernel/tile.hpp"
+#include "pounding/model/hysteresis/spring_spec.hpp"
 
 namespace pounding::model {
 
@@ -60,7 +61,34 @@ struct BilinearKinematic {
     return std::fma(0.5 * p.ak * u, u, kp > 0 ? 0.5 * q * q / kp : 0.0);
   }
 
-  // Driver traits (model/hysteresis/registry.hpp). Elastic while |u| <= fy / k: the expression study/run.cpp's
+  // Driver traits (model/hysteresis/registry.hpp). Every role; the only model the lane steppers (Newmark, RK4) run,
+  // as they need its tangent. Packed as k, fy, alpha alone (m and c belong to the body).
+  static constexpr Roles roles{.storey = true, .isolator = true, .link = true};
+  static constexpr bool lane_stepper = true;
+  static SpringSpec pack(const Spec& s) { return {s.k, s.fy, s.alpha}; }
+  static Spec unpack(const SpringSpec& s) { return Structure{0.0, s.k, 0.0, s.fy, s.alpha}; }
+  template <class Bad> static void problems(const SpringSpec&, Bad&&) {}  // k, fy, alpha: the driver's checks
+  // The system stepper's rows (k, alpha k, qy, kp) and the force at rest in d0; the recoverable energy from them.
+  static double load(const SpringSpec& s, double d0, SpringRows& r) {
+    const Params<double> p = params(unpack(s));
+    r[0] = p.k, r[1] = p.ak, r[2] = p.qy, r[3] = p.kp;
+    return initial_force(p, d0);
+  }
+  static double stored_energy(const SpringRows& r, double d, double f) {
+    return strain_energy(Params<double>{r[0], r[1], r[2], r[3]}, d, f);
+  }
+  // The system stepper's step (the registry's trait): the return from the committed force fo over the increment dd
+  // to the deformation d, from the rows r (r.get(slot)); the dissipation in x (WithEnergy). Every spring of this
+  // model: fast_path (the driver's straight bilinear loop and the stick path, with these operations).
+  static constexpr bool fast_path = true;
+  template <bool WithEnergy, class T, class R>
+  POUNDING_INLINE static T step(const R& r, const T& fo, const T& d, const T& dd, const T&, T& x) {
+    const Params<T> p{r.get(0), r.get(1), r.get(2), r.get(3)};
+    const T f = restoring<T>(p, fo, dd, d);
+    if constexpr (WithEnergy) x = dissipated<T>(p, fo, dd, f);
+    return f;
+  }
+  // Elastic while |u| <= fy / k: the expression study/run.cpp's
   // elastic_at evaluated before the registry, verbatim (margin * fy / k), so its decisions keep their bits.
   static bool stays_elastic(const Spec& s, double peak_abs_deformation, double margin) {
     return peak_abs_deformation <= margin * s.fy / s.k;

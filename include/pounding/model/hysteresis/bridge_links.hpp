@@ -31,9 +31,11 @@
 #include <cmath>
 #include <limits>
 #include <optional>
+#include <utility>
 #include <string_view>
 
 #include "pounding/kernel/lane.hpp"
+#include "pounding/model/hysteresis/spring_spec.hpp"
 
 namespace pounding::model {
 
@@ -64,11 +66,56 @@ struct GapSpring {
     return T(0.5) * (f0 + f1) * (dd - (f1 - f0) / k);
   }
   static double strain_energy(double k, double f) { return 0.5 * f * f / k; }
+  // The system stepper's rows (k, c1, c2, side, gap0; the current gap in the last) at the given gap, and the force
+  // in d0; the recoverable energy from them.
+  template <bool Hyperbolic> static double load(const GapParams<double>& p, double d0, SpringRows& r) {
+    r[0] = p.k, r[1] = p.c1, r[2] = p.c2, r[3] = p.side, r[4] = p.gap0;
+    double g = p.gap0;
+    const double f0 = force<Hyperbolic>(p, d0, g);
+    r[10] = g;
+    return f0;
+  }
+  static double stored_energy(const SpringRows& r, double, double f) { return strain_energy(r[0], f); }
+  // The system stepper's step: the force from the current gap (the last row, updated); the dissipation in x.
+  template <bool Hyperbolic, bool WithEnergy, class T, class R>
+  POUNDING_INLINE static T step(const R& r, const T& fo, const T& d, const T& dd, T& x) {
+    const GapParams<T> p{r.get(0), r.get(1), r.get(2), r.get(3), r.get(4)};
+    T gap = r.get(10);
+    const T f = force<Hyperbolic, T>(p, d, gap);
+    r.set(10, gap);
+    if constexpr (WithEnergy) x = dissipated<T>(p.k, fo, f, dd);
+    return f;
+  }
+  // A gap law's SpringSpec numbers p[0] = gap, p[1] = side (as a double: validation reads it): gap >= 0 and side
+  // +-1 (the registry's trait problems); true when one is reported.
+  static constexpr std::string_view fix = "give a valid link description (model/hysteresis/bridge_links.hpp)";
+  template <class Bad> static bool problems(const SpringSpec& s, Bad&& bad) {
+    const double gap = s.p[0], side = s.p[1];
+    if (!std::isfinite(gap) || gap < 0) return bad("link", "gap = {} must be >= 0 (m)", fix, gap), true;
+    if (side != 1.0 && side != -1.0) return bad("link", "side = {} must be +1 or -1", fix, side), true;
+    return false;
+  }
+};
+
+// The registry's traits the gap laws share (G the law, with params and unpack): links only, not on the lane
+// steppers, not fast_path; the gap's checks, rows, recoverable energy and step of GapSpring.
+template <class G, bool Hyperbolic> struct GapTraits {
+  static constexpr Roles roles{.link = true};
+  static constexpr bool lane_stepper = false, fast_path = false;
+  template <class Bad> static void problems(const SpringSpec& s, Bad&& bad) { GapSpring::problems(s, bad); }
+  static double load(const SpringSpec& s, double d0, SpringRows& r) {
+    return GapSpring::load<Hyperbolic>(G::params(G::unpack(s)), d0, r);
+  }
+  static double stored_energy(const SpringRows& r, double d, double f) { return GapSpring::stored_energy(r, d, f); }
+  template <bool WithEnergy, class T, class R>
+  POUNDING_INLINE static T step(const R& r, const T& fo, const T& d, const T& dd, const T&, T& x) {
+    return GapSpring::step<Hyperbolic, WithEnergy, T>(r, fo, d, dd, x);
+  }
 };
 
 // A cable restrainer: tension-only bilinear with slack (k = n E A / L, F_y, hardening alpha; slack usually the
 // joint gap). side +1: it pulls when d = u_j - u_i exceeds the slack (j the right frame, i the left one).
-struct TensionGap {
+struct TensionGap : GapTraits<TensionGap, false> {
   static constexpr std::string_view name = "restrainer";
   struct Spec {
     double k = 0.0, fy = std::numeric_limits<double>::infinity(), alpha = 0.0, slack = 0.0;
@@ -76,6 +123,9 @@ struct TensionGap {
   };
   template <class T> using Params = GapParams<T>;
   static Params<double> params(const Spec& s) { return straight(s.k, s.fy, s.alpha, s.slack, s.side); }
+  // A link (GapTraits); packed as k, fy, alpha and p = {slack, side}.
+  static SpringSpec pack(const Spec& s) { return {s.k, s.fy, s.alpha, {s.slack, double(s.side)}}; }
+  static Spec unpack(const SpringSpec& s) { return {s.k, s.fy, s.alpha, s.p[0], static_cast<int>(s.p[1])}; }
   static Params<double> straight(double k, double fy, double alpha, double gap, double side) {
     if (!std::isfinite(fy)) return {k, 0.0, std::numeric_limits<double>::infinity(), side, gap};
     return {k, alpha * k, fy - alpha * k * (gap + fy / k), side, gap};
@@ -95,7 +145,7 @@ struct TensionGap {
 // Abutment backfill (Caltrans SDC): the expansion gap, then elastic-perfectly-plastic (alpha = 0 by default) in
 // compression, K_abut and P_bw (caltrans_abutment() below). side -1: a wall on the left of DOF j (it resists
 // d < -gap); +1: a wall on the right.
-struct CompressionGap {
+struct CompressionGap : GapTraits<CompressionGap, false> {
   static constexpr std::string_view name = "abutment";
   struct Spec {
     double k = 0.0, fy = std::numeric_limits<double>::infinity(), alpha = 0.0, gap = 0.0;
@@ -103,6 +153,9 @@ struct CompressionGap {
   };
   template <class T> using Params = GapParams<T>;
   static Params<double> params(const Spec& s) { return TensionGap::straight(s.k, s.fy, s.alpha, s.gap, s.side); }
+  // A link (GapTraits); packed as k, fy, alpha and p = {gap, side}.
+  static SpringSpec pack(const Spec& s) { return {s.k, s.fy, s.alpha, {s.gap, double(s.side)}}; }
+  static Spec unpack(const SpringSpec& s) { return {s.k, s.fy, s.alpha, s.p[0], static_cast<int>(s.p[1])}; }
   static bool stays_elastic(const Spec& s, double peak_abs_deformation, double margin) {
     return peak_abs_deformation <= margin * s.gap;
   }
@@ -126,7 +179,7 @@ inline CaltransAbutment caltrans_abutment(double width, double height) {
 
 // The hyperbolic abutment (OpenSees HyperbolicGapMaterial; recommended per metre of wall width for a 1.68 m back
 // wall: K_max 20300 kN/m, K_ur = K_max, R_f 0.7, F_ult 326 kN, gap 2.54 cm).
-struct HyperbolicGap {
+struct HyperbolicGap : GapTraits<HyperbolicGap, true> {
   static constexpr std::string_view name = "hyperbolic-abutment";
   struct Spec {
     double k_max = 0.0, k_ur = 0.0, rf = 0.7, f_ult = 0.0, gap = 0.0;
@@ -134,6 +187,21 @@ struct HyperbolicGap {
   };
   template <class T> using Params = GapParams<T>;
   static Params<double> params(const Spec& s) { return {s.k_ur, 1.0 / s.k_max, s.rf / s.f_ult, double(s.side), s.gap}; }
+  // A link (GapTraits); packed as k = K_ur (the initial tangent validation and omega_max read), fy = F_ult, alpha = 0 and
+  // p = {gap, side, K_max, R_f}.
+  static SpringSpec pack(const Spec& s) { return {s.k_ur, s.f_ult, 0.0, {s.gap, double(s.side), s.k_max, s.rf}}; }
+  static Spec unpack(const SpringSpec& s) { return {s.p[2], s.k, s.p[3], s.fy, s.p[0], static_cast<int>(s.p[1])}; }
+  // The gap's checks, then K_max > 0, K_ur >= K_max, R_f in (0, 1], F_ult finite.
+  template <class Bad> static void problems(const SpringSpec& s, Bad&& bad) {
+    if (GapSpring::problems(s, bad)) return;
+    const Spec h = unpack(s);
+    const auto fix = GapSpring::fix;
+    if (!(std::isfinite(h.k_max) && h.k_max > 0)) bad("link", "K_max = {} must be > 0 (N/m)", fix, h.k_max);
+    else if (!(h.k_ur >= h.k_max))
+      bad("link", "K_ur = {} is below K_max = {} (first loading would leave the envelope)", fix, h.k_ur, h.k_max);
+    else if (!(h.rf > 0 && h.rf <= 1)) bad("link", "R_f = {} is outside (0, 1]", fix, h.rf);
+    else if (!std::isfinite(h.f_ult)) bad("link", "F_ult = {} must be finite", fix, h.f_ult);
+  }
   static bool stays_elastic(const Spec& s, double peak_abs_deformation, double margin) {
     return peak_abs_deformation <= margin * s.gap;
   }
@@ -160,6 +228,50 @@ struct QHyst {
   };
   template <class T> using Params = QHystParams<T>;
   static Params<double> params(const Spec& s) { return {s.k, s.alpha * s.k, s.fy, s.beta}; }
+  // A storey (bridge frames) or a link; packed as k, fy, alpha and p = {beta}.
+  static constexpr Roles roles{.storey = true, .link = true};
+  static constexpr bool lane_stepper = false;
+  static SpringSpec pack(const Spec& s) { return {s.k, s.fy, s.alpha, {s.beta}}; }
+  static Spec unpack(const SpringSpec& s) { return {s.k, s.fy, s.alpha, s.p[0]}; }
+  // F_y finite, beta in [0, 1].
+  template <class Bad> static void problems(const SpringSpec& s, Bad&& bad) {
+    const auto fix = GapSpring::fix;
+    if (!std::isfinite(s.fy)) bad("link", "F_y = {} must be finite for Q-Hyst", fix, s.fy);
+    else if (!(s.p[0] >= 0 && s.p[0] <= 1)) bad("link", "beta = {} is outside [0, 1]", fix, s.p[0]);
+  }
+  // The system stepper's rows (k, alpha k, F_y, beta, then the state mode, x0, dr, fr, dp, dn), loaded from rest at
+  // d = 0 to d0; the recoverable energy from them.
+  static double load(const SpringSpec& s, double d0, SpringRows& r) {
+    const Params<double> p = params(unpack(s));
+    QHystState st = initial(p);
+    const double f0 = step(p, st, 0.0, d0, 0.0);
+    r[0] = p.k, r[1] = p.ak, r[2] = p.fy, r[3] = p.beta;
+    r[4] = st.mode, r[5] = st.x0, r[6] = st.dr, r[7] = st.fr, r[8] = st.dp, r[9] = st.dn;
+    return f0;
+  }
+  static double stored_energy(const SpringRows& r, double, double f) {
+    return strain_energy(Params<double>{r[0], r[1], r[2], r[3]}, QHystState{r[4], r[5], r[6], r[7], r[8], r[9]}, f);
+  }
+  // The system stepper's step, lane by lane (the state is event-driven): the rows' numbers and state, the force at d
+  // from fo over dd, the state written back (r.lane(slot, l)); the dissipation in x (WithEnergy).
+  static constexpr bool fast_path = false;
+  template <bool WithEnergy, class T, class R>
+  POUNDING_INLINE static T step(const R& r, const T& fo, const T& d, const T& dd, const T&, T& x) {
+    constexpr int W = lane::width_v<T>;
+    alignas(64) double out[W], diss[W];
+    for (int l = 0; l < W; ++l) {
+      const Params<double> p{r.get(0)[l], r.get(1)[l], r.get(2)[l], r.get(3)[l]};
+      QHystState st{r.get(4)[l], r.get(5)[l], r.get(6)[l], r.get(7)[l], r.get(8)[l], r.get(9)[l]};
+      const double f0 = fo[l], e0 = strain_energy(p, st, f0);
+      out[l] = step(p, st, d[l] - dd[l], d[l], f0);
+      diss[l] = std::fma(0.5 * (f0 + out[l]), dd[l], -(strain_energy(p, st, out[l]) - e0));
+      for (const auto& [slot, v] : {std::pair{4, st.mode}, std::pair{5, st.x0}, std::pair{6, st.dr},
+                                    std::pair{7, st.fr}, std::pair{8, st.dp}, std::pair{9, st.dn}})
+        r.lane(slot, l) = v;
+    }
+    if constexpr (WithEnergy) x = lane::load<T>(diss);
+    return lane::load<T>(out);
+  }
   static QHystState initial(const Params<double>& p) {
     QHystState st;
     st.dp = p.fy / p.k, st.dn = -p.fy / p.k;

@@ -15,8 +15,8 @@
 //  1. per DOF: vh = v + hh a, du = h vh, u <- u + du, vp = vh + hh a (vo = v kept only for the energy terms)
 //  2. stereomechanical (one point-point element): the exchange at the located closing instant
 //  3. per spring: increment dd = du_j (ground: no subtraction) or du_j - du_i, deformation d = u_j or u_j - u_i,
-//     f = H::restoring (bilinear kinematic hardening; the smooth laws: z by model::Smooth::z_next over dd, Q at
-//     the predicted rate vp_j - vp_i), t = f, or fma(cs, vp_j - vp_i, f) with a storey dashpot;
+//     f = the model's step (model/hysteresis/registry.hpp; the rate is vp_j - vp_i), t = f, or
+//     fma(cs, vp_j - vp_i, f) with a storey dashpot;
 //     the |d| and |f| observers
 //  5. per group (its law chosen once per run): per element delta = x_L - x_R - gap; the law only where some
 //     lane of the chunk touches (else F = 0 exactly): Hertzdamp latch at the interpolated closing instant,
@@ -49,8 +49,7 @@
 #include "pounding/kernel/guard.hpp"
 #include "pounding/kernel/observers.hpp"
 #include "pounding/model/hysteresis/bilinear_kinematic.hpp"
-#include "pounding/model/hysteresis/bridge_links.hpp"
-#include "pounding/model/hysteresis/smooth.hpp"
+#include "pounding/model/hysteresis/registry.hpp"
 
 namespace pounding::kernel::sys {
 
@@ -64,12 +63,11 @@ struct Side {
 
 // Rows of the pool. DOF: state (U holds the new displacement from step 1 on), constants, step scratch, observers.
 enum DofRow : int { U, Vel, A, M, IM, CF, VO, VH, DU, VP, PU, PA, dof_rows };
-// Spring: bilinear parameters (k, alpha k, qy, kp), storey dashpot, force, step scratch T (force + dashpot),
-// observers (peak |d|, peak |f|); a smooth spring (laws 1, 2: model/hysteresis/smooth.hpp) holds k, Q_slow, Q_fast,
-// rate in K, AK, QY, KP and its other constants and z in the rows after PF. A gap link (laws 3-5,
-// model/hysteresis/bridge_links.hpp) holds k, c1, c2, side in K, AK, QY, KP, gap0 in ZA and its current gap in Z; a
-// Q-Hyst spring (law 6) k, alpha k, F_y, beta in K, AK, QY, KP and its state (mode, x0, dr, fr, dp, dn) in ZA..ZS.
+// Spring: the model's rows (model::SpringRows: K, AK, QY, KP, ZA .. ZS, Z in slot order, spring_slot_row; its header
+// says what each holds), storey dashpot, force, step scratch T (force + dashpot), observers (peak |d|, peak |f|).
 enum SpringRow : int { K, AK, QY, KP, CS, FS, T, PD, PF, ZA, ZB, ZG, ZM, ZE, ZS, Z, spring_rows };
+constexpr int spring_slot_row(int k) { return k < 4 ? K + k : ZA + (k - 4); }
+static_assert(spring_slot_row(model::spring_slots - 1) == Z && Z + 1 == spring_rows);
 // Element: constants (N1/N2 of interpolated sides; p = -1: a column's ground end, x = N2 u_q), state, observers.
 enum ElemRow : int {
   GAP, KC, CD, E, MEFF, H2M, N1L, N2L, N1R, N2R, F, IV0, DPREV,
@@ -90,7 +88,7 @@ struct Layout {
   std::vector<int> si, sj;            // spring ends (si = -1: ground)
   std::vector<char> dashpot;          // storey dashpot on the spring
   std::vector<int> law;               // hysteresis law per spring (model/hysteresis/registry.hpp)
-  bool any_smooth = false;            // some spring of a law other than 0 (bilinear)
+  bool any_smooth = false;            // some spring whose model is not fast_path (model/hysteresis/registry.hpp)
   std::vector<int> link_start, link;  // link springs with j == dof (CSR): their force acts on j as a storey's below
   bool any_link = false;
   // multi-support input (issue 26 §2; more than one channel, else all empty): the channel of each DOF's support, of
@@ -368,42 +366,14 @@ template <bool WithEnergy> POUNDING_INLINE void predict(Chunk c, Topo L, const S
   }
 }
 
-// A bridge link's force (laws 3-6, model/hysteresis/bridge_links.hpp) from its committed force fo over the increment
-// dd to the deformation d, its state in the spring's rows; the dissipation added to dhys in spring order.
-template <bool WithEnergy>
-POUNDING_INLINE V link_force(Chunk c, int s, int law, const V& fo, const V& d, const V& dd, V& dhys) {
-  V f;
-  if (law != 6) {
-    using G = model::GapSpring;
-    const model::GapParams<V> p{c.spr(K, s), c.spr(AK, s), c.spr(QY, s), c.spr(KP, s), c.spr(ZA, s)};
-    V gap = c.spr(Z, s);
-    f = law == 5 ? G::force<true, V>(p, d, gap) : G::force<false, V>(p, d, gap);
-    c.spr(Z, s, gap);
-    if constexpr (WithEnergy) {
-      const V x = G::dissipated<V>(p.k, fo, f, dd);
-      dhys = s == 0 ? x : dhys + x;
-    }
-    return f;
-  }
-  using Q = model::QHyst;
-  alignas(64) double out[simd::W], diss[simd::W];
-  for (int l = 0; l < simd::W; ++l) {
-    const Q::Params<double> p{c.spr(K, s)[l], c.spr(AK, s)[l], c.spr(QY, s)[l], c.spr(KP, s)[l]};
-    model::QHystState st{c.spr(ZA, s)[l], c.spr(ZB, s)[l], c.spr(ZG, s)[l], c.spr(ZM, s)[l], c.spr(ZE, s)[l], c.spr(ZS, s)[l]};
-    const double f0 = fo[l], e0 = Q::strain_energy(p, st, f0);
-    out[l] = Q::step(p, st, d[l] - dd[l], d[l], f0);
-    diss[l] = std::fma(0.5 * (f0 + out[l]), dd[l], -(Q::strain_energy(p, st, out[l]) - e0));
-    for (const auto& [row, v] : {std::pair{ZA, st.mode}, std::pair{ZB, st.x0}, std::pair{ZG, st.dr},
-                                 std::pair{ZM, st.fr}, std::pair{ZE, st.dp}, std::pair{ZS, st.dn}})
-      c.ps[Chunk::at(s, spring_rows, row) + l] = v;
-  }
-  f = V(out, simd::stdx::vector_aligned);
-  if constexpr (WithEnergy) {
-    const V x(diss, simd::stdx::vector_aligned);
-    dhys = s == 0 ? x : dhys + x;
-  }
-  return f;
-}
+// A spring's rows in the chunk for its model's step (model/hysteresis/registry.hpp): slot k at spring_slot_row(k).
+struct SpringRowsOf {
+  Chunk c;
+  int s;
+  POUNDING_INLINE V get(int k) const { return c.spr(spring_slot_row(k), s); }
+  POUNDING_INLINE void set(int k, const V& v) const { c.spr(spring_slot_row(k), s, v); }
+  POUNDING_INLINE double& lane(int k, int l) const { return c.ps[Chunk::at(s, spring_rows, spring_slot_row(k)) + l]; }
+};
 
 // Step 3: every spring's return map from the increment h vh; the hysteretic increments summed in spring order.
 // A spring whose two sides lie on different ground-motion channels (a link between frames on two piers, or to a wall
@@ -424,30 +394,15 @@ template <bool WithEnergy> POUNDING_INLINE void springs(Chunk c, Topo L, const d
       dd = dd + V(go.du), d = d + V(go.u1), rate = rate + V(go.v1);
     }
     const V fo = c.spr(FS, s);
-    V f;
-    const int law = L.law[s];
-    if (L.any_smooth && law >= 3) {  // bridge links: gap laws and Q-Hyst
-      f = link_force<WithEnergy>(c, s, law, fo, d, dd, dhys);
-    } else if (L.any_smooth && law != 0) {  // Bouc-Wen, friction pendulum: z over the increment, Q at the predicted rate
-      using S = model::Smooth;
-      const model::SmoothParams<V> p{c.spr(K, s),  c.spr(AK, s), c.spr(QY, s), c.spr(KP, s), c.spr(ZA, s),
-                                     c.spr(ZB, s), c.spr(ZG, s), c.spr(ZM, s), c.spr(ZE, s), c.spr(ZS, s)};
-      const V z0 = c.spr(Z, s), z1 = S::z_next<V>(p, z0, dd);
-      V h1;
-      f = S::restoring<V>(p, z1, d, rate, h1);
-      if constexpr (WithEnergy) {
-        const V x = S::dissipated<V>(p, lane::fma(-p.k, d - dd, fo), z0, h1, z1, dd);
-        dhys = s == 0 ? x : dhys + x;
-      }
-      c.spr(Z, s, z1);
-    } else {
-      const H::Params<V> p{c.spr(K, s), c.spr(AK, s), c.spr(QY, s), c.spr(KP, s)};
-      f = H::restoring<V>(p, fo, dd, d);
-      if constexpr (WithEnergy) {
-        const V x = H::dissipated<V>(p, fo, dd, f);
-        dhys = s == 0 ? x : dhys + x;
-      }
-    }
+    const SpringRowsOf r{c, s};
+    V f, x;
+    if (!L.any_smooth)  // every spring fast_path: the straight bilinear loop
+      f = H::step<WithEnergy, V>(r, fo, d, dd, rate, x);
+    else  // per spring through the list, bilinear first
+      model::visit_hysteresis(L.law[s], [&]<class M>() __attribute__((always_inline)) {
+        f = M::template step<WithEnergy, V>(r, fo, d, dd, rate, x);
+      });
+    if constexpr (WithEnergy) dhys = s == 0 ? x : dhys + x;
     if (cross) c.lan(EIN, c.lan(EIN) + contact_work(fo, f, V(go.du)));
     c.spr(FS, s, f);
     V t = f;
