@@ -10,6 +10,8 @@
 #include <vector>
 
 #include "kernel_test_support.hpp"
+#include "pounding/model/hysteresis/registry.hpp"
+#include "pounding/physics/system_stepper.hpp"
 #include "pounding/physics/validate.hpp"
 
 namespace pounding::physics {
@@ -110,6 +112,21 @@ TEST(SystemValidate, EveryLaneValueIsChecked) {
   // the law's traits decide: no contact law needs neither kc nor e
   f.models[0] = test::contact(ContactLaw::none);
   EXPECT_TRUE(f.check(b).empty());
+}
+
+// A model stands only where its roles allow (model/hysteresis/registry.hpp): a restrainer (a tension-gap link) as a
+// storey spring is refused before a run, naming the spring, its role and the model; as a storey, bilinear is fine.
+TEST(SystemValidate, AModelOutsideItsRolesIsRefused) {
+  Fixture f;
+  System::Parts p = f.sys.parts();
+  p.springs[3].law = model::law_of<model::TensionGap>;
+  const System wrong = System::build(p);
+  const SystemBatch b = uniform(wrong, 4);
+  const std::vector<Problem> ps = system_stepper_problems(b, f.models, f.ks);
+  ASSERT_FALSE(ps.empty());
+  EXPECT_NE(ps[0].what.find("spring 3 is a storey spring of the"), std::string::npos) << ps[0].what;
+  EXPECT_NE(ps[0].what.find("which does not play that role"), std::string::npos) << ps[0].what;
+  EXPECT_TRUE(system_stepper_problems(uniform(f.sys, 4), f.models, f.ks).empty());
 }
 
 TEST(SystemValidate, GroupsStepperAndLaws) {
